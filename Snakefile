@@ -1,0 +1,17 @@
+# mechrepro: config -> parameter files -> solver runs (netCDF) -> notebooks -> report -> archive.
+# Run `make reproduce` (full) or `snakemake --cores 2 --config profile=ci` (fast profile).
+configfile: "config/config.yaml"
+
+
+include: "workflow/rules/common.smk"
+include: "workflow/rules/params.smk"
+include: "workflow/rules/solve.smk"
+include: "workflow/rules/notebook.smk"
+include: "workflow/rules/report.smk"
+
+
+rule all:
+    input:
+        f"{RESULTS}/report/index.html",
+        f"{RESULTS}/archive/manifest.json",
+        f"{RESULTS}/archive/reference_check.txt",

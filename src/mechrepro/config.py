@@ -1,0 +1,201 @@
+"""The one scene loader: paper config -> validated, fully resolved runs.
+
+A paper config (``config/papers/<paper>.yaml``) holds the paper's parameters (each with
+unit and source, or ``assumed: true`` and ``why``), named **scenes** (effects +
+resolution + parameter overrides) and **studies** (sweeps over a scene).  Loading:
+
+1. the file is validated against ``config/schema/paper.schema.json`` (its shape);
+2. the profile overlay (``profiles: {ci: ...}``) is merged in;
+3. every scene and every study point is expanded into a **run** record and validated
+   against ``config/schema/<paper>.run.schema.json`` (allowed effects, parameter ranges,
+   resolution ranges), so a bad value is reported with file, key, value and allowed range
+   before anything runs;
+4. parameters are converted to SI (:mod:`mechrepro.units`).
+
+A run record is plain JSON (str, int, float, list, dict) so that Snakemake's params
+trigger can see every change.
+"""
+from __future__ import annotations
+
+import copy
+import itertools
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import jsonschema
+import yaml
+
+from .units import UNITS, to_si
+
+SCHEMA_DIR_NAME = "schema"
+
+
+class ConfigError(ValueError):
+    """A config file is malformed or a value is out of range; the message names it."""
+
+
+@dataclass
+class PaperConfig:
+    paper: str
+    path: str
+    profile: str
+    source: str
+    raw: dict
+    runs: dict[str, dict] = field(default_factory=dict)
+    studies: dict[str, list[str]] = field(default_factory=dict)
+
+    @property
+    def figures(self) -> list[str]:
+        return list(self.raw.get("figures", []))
+
+    @property
+    def tables(self) -> list[str]:
+        return list(self.raw.get("tables", ["validation"]))
+
+    def assumed(self) -> dict[str, dict]:
+        """Parameters the paper does not give, with value, unit and justification."""
+        return {k: v for k, v in self.raw["parameters"].items() if v.get("assumed")}
+
+    def runs_of(self, study: str | None = None) -> list[str]:
+        return self.studies[study] if study else list(self.runs)
+
+
+def _format_error(err: jsonschema.ValidationError, where: str) -> str:
+    loc = ".".join(str(p) for p in err.absolute_path) or "<top>"
+    v, inst = err.validator, err.instance
+    allowed = {
+        "minimum": lambda s: f"must be >= {s}",
+        "exclusiveMinimum": lambda s: f"must be > {s}",
+        "maximum": lambda s: f"must be <= {s}",
+        "exclusiveMaximum": lambda s: f"must be < {s}",
+        "enum": lambda s: f"allowed: {', '.join(map(str, s))}",
+        "type": lambda s: f"must be of type {s}",
+    }
+    if v in allowed:
+        return f"{where}: {loc} = {inst!r}: {allowed[v](err.validator_value)}"
+    if v == "required":
+        return f"{where}: {loc}: missing key ({err.message})"
+    if v == "additionalProperties":
+        return f"{where}: {loc}: unknown key ({err.message})"
+    return f"{where}: {loc}: {err.message}"
+
+
+def _validate(instance, schema, where: str, base_uri: str) -> None:
+    registry_cls = jsonschema.validators.validator_for(schema)
+    validator = registry_cls(schema)
+    errors = sorted(validator.iter_errors(instance), key=lambda e: list(map(str, e.absolute_path)))
+    if errors:
+        raise ConfigError("invalid config:\n  " + "\n  ".join(_format_error(e, where) for e in errors))
+
+
+def _deep_merge(base: dict, over: dict) -> dict:
+    out = copy.deepcopy(base)
+    for k, v in over.items():
+        if isinstance(v, dict) and isinstance(out.get(k), dict):
+            out[k] = _deep_merge(out[k], v)
+        else:
+            out[k] = copy.deepcopy(v)
+    return out
+
+
+def _schema_dir(path: Path) -> Path:
+    # config/papers/<paper>.yaml -> config/schema/
+    return path.resolve().parent.parent / SCHEMA_DIR_NAME
+
+
+def load_schema(name: str, schema_dir: Path) -> dict:
+    return json.loads((schema_dir / name).read_text())
+
+
+def load_paper(path: str | Path, profile: str = "default") -> PaperConfig:
+    """Load, validate and expand one paper config (the only way configs are read)."""
+    path = Path(path)
+    where = str(path)
+    try:
+        raw = yaml.safe_load(path.read_text())
+    except (OSError, yaml.YAMLError) as exc:
+        raise ConfigError(f"{where}: cannot read: {exc}") from exc
+    sdir = _schema_dir(path)
+    _validate(raw, load_schema("paper.schema.json", sdir), where, sdir.as_uri())
+    for name, p in raw["parameters"].items():
+        if p["unit"] not in UNITS:
+            raise ConfigError(f"{where}: parameters.{name}.unit = {p['unit']!r}: "
+                              f"allowed: {', '.join(UNITS)}")
+    profiles = raw.get("profiles", {})
+    if profile != "default":
+        if profile not in profiles:
+            raise ConfigError(f"{where}: profile {profile!r} not defined (have: default, "
+                              f"{', '.join(profiles)})")
+        raw = _deep_merge(raw, profiles[profile])
+    paper = raw["paper"]
+    run_schema = load_schema(f"{paper}.run.schema.json", sdir)
+    cfg = PaperConfig(paper=paper, path=where, profile=profile,
+                      source=raw.get("source", ""), raw=raw)
+    for scene in raw["scenes"]:
+        cfg.runs[scene] = _make_run(raw, scene, None, 0, {}, run_schema, where)
+    for study, spec in raw.get("studies", {}).items():
+        if spec["scene"] not in raw["scenes"]:
+            raise ConfigError(f"{where}: studies.{study}.scene = {spec['scene']!r}: "
+                              f"allowed: {', '.join(raw['scenes'])}")
+        names = []
+        for i, point in enumerate(_sweep_points(spec, where, study)):
+            run = f"{study}-{i:03d}"
+            cfg.runs[run] = _make_run(raw, spec["scene"], study, i, point, run_schema, where)
+            names.append(run)
+        cfg.studies[study] = names
+    return cfg
+
+
+def _sweep_points(spec: dict, where: str, study: str) -> list[dict]:
+    sweep = spec["sweep"]
+    keys = list(sweep)
+    if spec.get("mode", "product") == "zip":
+        lengths = {len(v) for v in sweep.values()}
+        if len(lengths) != 1:
+            raise ConfigError(f"{where}: studies.{study}.sweep: mode zip needs equal lengths, "
+                              f"got {dict((k, len(v)) for k, v in sweep.items())}")
+        combos = zip(*sweep.values())
+    else:
+        combos = itertools.product(*sweep.values())
+    return [dict(zip(keys, c)) for c in combos]
+
+
+def _make_run(raw, scene_name, study, index, point, run_schema, where) -> dict:
+    scene = raw["scenes"][scene_name]
+    params = {k: v["value"] for k, v in raw["parameters"].items()}
+    params.update(scene.get("parameters", {}))
+    resolution = dict(scene.get("resolution", {}))
+    for key, value in point.items():
+        if key in resolution:
+            resolution[key] = value
+        elif key in params:
+            params[key] = value
+        else:
+            raise ConfigError(f"{where}: studies.{study}.sweep.{key}: not a resolution key of "
+                              f"scene {scene_name!r} nor a parameter")
+    record = {"effects": list(scene["effects"]), "resolution": resolution,
+              "parameters": params, "options": scene.get("options", {})}
+    origin = f"{where} (run {scene_name if study is None else f'{study}[{index}]'})"
+    _validate(record, run_schema, origin, "")
+    si, units = {}, {}
+    for k, v in params.items():
+        si[k], units[k] = to_si(v, raw["parameters"][k]["unit"])
+    return {
+        "paper": raw["paper"],
+        "run": scene_name if study is None else f"{study}-{index:03d}",
+        "scene": scene_name,
+        "study": study,
+        "sweep": point,
+        "effects": record["effects"],
+        "resolution": resolution,
+        "options": record["options"],
+        "parameters": si,
+        "units": units,
+        "seed": int(scene.get("seed", raw.get("seed", 0))),
+    }
+
+
+def load_all(config_dir: str | Path, papers, profile: str = "default") -> dict[str, PaperConfig]:
+    config_dir = Path(config_dir)
+    return {p: load_paper(config_dir / "papers" / f"{p}.yaml", profile) for p in papers}

@@ -1,0 +1,136 @@
+"""The one netCDF writer (CF-style attributes, provenance, atomic) and the study gather.
+
+Every result file is written to a temporary name in the target directory and renamed
+into place only after it was closed successfully, so an interrupted job never leaves a
+half-written ``.nc`` (or ``.csv``, ``.json``) that a later step would trust.
+"""
+from __future__ import annotations
+
+import contextlib
+import datetime as _dt
+import json
+import os
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from .provenance import code_version, package_versions
+
+
+@contextlib.contextmanager
+def atomic_path(path: str | Path):
+    """Yield a temporary path next to ``path``; rename it to ``path`` on success only."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    # keep the real suffix last: writers (netCDF4, papermill) pick formats by extension
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=f".part{path.suffix}",
+                               dir=path.parent)
+    os.close(fd)
+    try:
+        yield Path(tmp)
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(FileNotFoundError):
+            os.unlink(tmp)
+        raise
+
+
+def write_text(path: str | Path, text: str) -> None:
+    with atomic_path(path) as tmp:
+        tmp.write_text(text)
+
+
+def write_json(path: str | Path, obj) -> None:
+    write_text(path, json.dumps(obj, indent=2, sort_keys=True) + "\n")
+
+
+def check_cf(ds: xr.Dataset) -> None:
+    """Every variable and coordinate carries ``units`` and ``long_name``."""
+    missing = [f"{n}:{a}" for n, v in {**ds.data_vars, **ds.coords}.items()
+               for a in ("units", "long_name") if a not in v.attrs]
+    if missing:
+        raise ValueError(f"variables without CF attributes: {missing}")
+
+
+def provenance_attrs(run: dict) -> dict:
+    return {
+        "paper": run["paper"],
+        "scene": run["scene"],
+        "run": run["run"],
+        "study": run.get("study") or "",
+        "sweep": json.dumps(run.get("sweep", {}), sort_keys=True),
+        "effects": json.dumps(run["effects"]),
+        "resolution": json.dumps(run["resolution"], sort_keys=True),
+        "parameters": json.dumps({"values_si": run["parameters"], "units_si": run["units"],
+                                  "options": run.get("options", {}), "seed": run.get("seed")},
+                                 sort_keys=True),
+        "code_version": code_version(),
+        "package_versions": json.dumps(package_versions(), sort_keys=True),
+        "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+        "Conventions": "CF-1.8",
+    }
+
+
+def write_dataset(ds: xr.Dataset, path: str | Path, run: dict | None = None,
+                  extra_attrs: dict | None = None) -> Path:
+    """Write ``ds`` atomically; with ``run``, add the provenance attributes."""
+    check_cf(ds)
+    ds = ds.copy()
+    if run is not None:
+        ds.attrs.update(provenance_attrs(run))
+    if extra_attrs:
+        ds.attrs.update(extra_attrs)
+    with atomic_path(path) as tmp:
+        ds.to_netcdf(tmp, engine="netcdf4")
+    return Path(path)
+
+
+def open_dataset(path: str | Path) -> xr.Dataset:
+    """Load a result fully into memory and close the file (one reader at a time)."""
+    with xr.open_dataset(path, engine="netcdf4") as ds:
+        return ds.load()
+
+
+def run_attrs(ds: xr.Dataset) -> dict:
+    """Decode the JSON provenance attributes of a run dataset."""
+    out = dict(ds.attrs)
+    for k in ("effects", "resolution", "parameters", "sweep", "package_versions"):
+        if k in out and isinstance(out[k], str):
+            out[k] = json.loads(out[k])
+    return out
+
+
+def gather_study(paths: list[str | Path]) -> xr.Dataset:
+    """Stack the runs of one study along a ``run`` dimension.
+
+    Swept keys become coordinates along ``run``.  Variables whose shape differs between
+    runs (e.g. a time axis whose length is the resolution) cannot be stacked and are kept
+    only as their scalar summaries: runs are expected to store the scalars a study needs.
+    """
+    dsets = [open_dataset(p) for p in paths]
+    attrs = [run_attrs(d) for d in dsets]
+    names = [a["run"] for a in attrs]
+    stackable = []
+    for var in dsets[0].data_vars:
+        shapes = {(d[var].dims, d[var].shape) if var in d else None for d in dsets}
+        if len(shapes) == 1 and None not in shapes:
+            same_coords = all(
+                all(np.array_equal(d[c].values, dsets[0][c].values) for c in d[var].dims if c in d.coords)
+                for d in dsets)
+            if same_coords:
+                stackable.append(var)
+    out = xr.concat([d[stackable] for d in dsets], dim="run", coords="minimal",
+                    compat="override", combine_attrs="drop")
+    out = out.assign_coords(run=("run", names, {"long_name": "run name", "units": "1"}))
+    for key in attrs[0]["sweep"]:
+        vals = [a["sweep"][key] for a in attrs]
+        out = out.assign_coords({key: ("run", vals, {"long_name": f"swept {key}",
+                                                    "units": "as in config"})})
+    out.attrs = {"paper": attrs[0]["paper"], "study": attrs[0]["study"],
+                 "scene": attrs[0]["scene"], "runs": json.dumps(names),
+                 "code_version": code_version(),
+                 "package_versions": json.dumps(package_versions(), sort_keys=True),
+                 "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")}
+    return out

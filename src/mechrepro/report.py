@@ -1,0 +1,115 @@
+"""The reproduction report: every figure and table of every paper, pass/fail at a glance."""
+from __future__ import annotations
+
+import csv
+import datetime as _dt
+import html
+import json
+import os
+from collections import Counter
+from pathlib import Path
+
+from .config import load_paper
+from .io import write_text
+from .provenance import code_version
+
+CSS = """
+body{font-family:system-ui,sans-serif;margin:2em auto;max-width:1150px;color:#222;line-height:1.4}
+h1{margin-bottom:0}h2{border-bottom:2px solid #ccc;padding-top:1em}
+table{border-collapse:collapse;margin:.6em 0;font-size:13px}
+td,th{border:1px solid #ccc;padding:3px 7px;text-align:left;vertical-align:top}
+th{background:#f0f0f0}
+tr.pass td.status{background:#c8efc8;font-weight:bold}
+tr.fail td.status{background:#f6c3c3;font-weight:bold}
+tr.info td.status{background:#e4e4f4}
+.badge{display:inline-block;padding:2px 8px;border-radius:8px;margin-right:6px;font-size:13px}
+.b-pass{background:#c8efc8}.b-fail{background:#f6c3c3}.b-info{background:#e4e4f4}
+.claim{background:#fff8e0;border-left:4px solid #e0b000;padding:.5em 1em}
+figure{display:inline-block;margin:.5em;vertical-align:top}
+figure img{max-width:520px;border:1px solid #ddd}
+figcaption{font-size:12px;color:#555}
+.note{color:#555;font-size:12px}
+"""
+
+
+def _read_csv(path: Path) -> tuple[list[str], list[list[str]]]:
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    return rows[0], rows[1:]
+
+
+def _fmt(cell: str) -> str:
+    try:
+        x = float(cell)
+    except ValueError:
+        return html.escape(cell)
+    return html.escape(f"{x:.6g}")
+
+
+def paper_section(paper: str, results: Path, config_dir: Path, profile: str, out_dir: Path) -> tuple[str, Counter]:
+    cfg = load_paper(config_dir / "papers" / f"{paper}.yaml", profile)
+    root = results / paper
+    claim = json.loads((root / "claim.json").read_text())
+    head, rows = _read_csv(root / "tables" / "validation.csv")
+    notes = dict(_read_csv(root / "tables" / "validation_notes.csv")[1]) if (
+        root / "tables" / "validation_notes.csv").exists() else {}
+    si = head.index("status")
+    counts = Counter(r[si] for r in rows)
+    parts = [f'<h2 id="{paper}">{html.escape(paper)} &mdash; {html.escape(cfg.raw.get("title", ""))}</h2>',
+             f'<p class="note">{html.escape(cfg.source)}</p>',
+             "".join(f'<span class="badge b-{s}">{s}: {counts.get(s, 0)}</span>'
+                     for s in ("pass", "fail", "info")),
+             f'<p class="claim"><b>Replication claim: {html.escape(claim["claim"])}.</b> '
+             f'{html.escape(claim["text"])}</p>',
+             "<h3>Validation table</h3><table><tr>"
+             + "".join(f"<th>{html.escape(h)}</th>" for h in head) + "<th>note</th></tr>"]
+    for r in rows:
+        cells = "".join(f'<td class="{h}">{_fmt(c)}</td>' for h, c in zip(head, r))
+        parts.append(f'<tr class="{r[si]}">{cells}<td class="note">'
+                     f'{html.escape(notes.get(r[0], ""))}</td></tr>')
+    parts.append("</table>")
+    assumed = cfg.assumed()
+    if assumed:
+        parts.append("<h3>Assumed constants (not given by the paper)</h3><table>"
+                     "<tr><th>parameter</th><th>value</th><th>unit</th><th>why</th></tr>")
+        for k, v in assumed.items():
+            parts.append(f"<tr><td>{html.escape(k)}</td><td>{html.escape(str(v['value']))}</td>"
+                         f"<td>{html.escape(v['unit'])}</td><td>{html.escape(v['why'])}</td></tr>")
+        parts.append("</table>")
+    parts.append("<h3>Figures</h3>")
+    for fig in cfg.figures:
+        rel = os.path.relpath(root / "figures" / f"{fig}.png", out_dir)
+        parts.append(f'<figure><img src="{html.escape(rel)}" alt="{paper} {fig}">'
+                     f"<figcaption>{html.escape(fig)}</figcaption></figure>")
+    for table in cfg.tables:
+        if table == "validation":
+            continue
+        h2, r2 = _read_csv(root / "tables" / f"{table}.csv")
+        parts.append(f"<h3>Table: {html.escape(table)}</h3><table><tr>"
+                     + "".join(f"<th>{html.escape(h)}</th>" for h in h2) + "</tr>"
+                     + "".join("<tr>" + "".join(f"<td>{_fmt(c)}</td>" for c in row) + "</tr>"
+                               for row in r2) + "</table>")
+    return "\n".join(parts), counts
+
+
+def write_report(out: str, results: str, config_dir: str, papers: list[str], profile: str) -> None:
+    out, results, config_dir = Path(out), Path(results), Path(config_dir)
+    sections, summary = [], []
+    for paper in papers:
+        text, counts = paper_section(paper, results, config_dir, profile, out.parent)
+        sections.append(text)
+        claim = json.loads((results / paper / "claim.json").read_text())["claim"]
+        summary.append(f'<tr><td><a href="#{paper}">{paper}</a></td><td>{claim}</td>'
+                       + "".join(f'<td class="b-{s}">{counts.get(s, 0)}</td>'
+                                 for s in ("pass", "fail", "info")) + "</tr>")
+    now = _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+    page = f"""<!doctype html><html><head><meta charset="utf-8">
+<title>mechrepro reproduction report</title><style>{CSS}</style></head><body>
+<h1>mechrepro reproduction report</h1>
+<p class="note">profile <b>{html.escape(profile)}</b> &middot; code {html.escape(code_version())} &middot; {now}</p>
+<table><tr><th>paper</th><th>claim</th><th>pass</th><th>fail</th><th>info</th></tr>
+{''.join(summary)}</table>
+{''.join(sections)}
+</body></html>
+"""
+    write_text(out, page)

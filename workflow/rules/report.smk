@@ -1,0 +1,56 @@
+# Report page, result archive with manifest, and the drift check against the reference.
+
+
+rule report:
+    input:
+        figures=[f for p in PAPERS for f in figures_of(p)],
+        tables=[f for p in PAPERS for f in tables_of(p)],
+        claims=expand(f"{RESULTS}/{{paper}}/claim.json", paper=PAPERS),
+        configs=expand(str(BASE / "config/papers/{paper}.yaml"), paper=PAPERS),
+        code=code("report.py", "config.py", "validation.py"),
+    output:
+        f"{RESULTS}/report/index.html",
+    params:
+        papers=PAPERS,
+        profile=PROFILE,
+    run:
+        from mechrepro.report import write_report
+
+        write_report(output[0], RESULTS, str(BASE / "config"), params.papers, params.profile)
+
+
+rule archive:
+    input:
+        report=f"{RESULTS}/report/index.html",
+        notebooks=expand(f"{RESULTS}/{{paper}}/notebook.ipynb", paper=PAPERS),
+        runs=[f for p in PAPERS for f in runs_of(p)],
+        configs=expand(str(BASE / "config/papers/{paper}.yaml"), paper=PAPERS),
+        code=code("archive.py"),
+    output:
+        manifest=f"{RESULTS}/archive/manifest.json",
+        archive=f"{RESULTS}/archive/mechrepro-results.tar.gz",
+    params:
+        papers=PAPERS,
+        profile=PROFILE,
+    run:
+        from mechrepro.archive import write_archive
+
+        write_archive(output.archive, output.manifest, RESULTS, str(BASE / "config"),
+                      params.papers, params.profile)
+
+
+rule reference_check:
+    input:
+        tables=expand(f"{RESULTS}/{{paper}}/tables/validation.csv", paper=PAPERS),
+        manifest=f"{RESULTS}/archive/manifest.json",
+        code=code("archive.py"),
+    output:
+        f"{RESULTS}/archive/reference_check.txt",
+    params:
+        papers=PAPERS,
+        profile=PROFILE,
+    run:
+        from mechrepro.archive import check_reference
+
+        check_reference(output[0], RESULTS, str(BASE / "results/reference"), params.papers,
+                        params.profile)
