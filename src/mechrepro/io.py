@@ -122,7 +122,7 @@ def gather_study(paths: list[str | Path]) -> xr.Dataset:
             if same_coords:
                 stackable.append(var)
     out = xr.concat([d[stackable] for d in dsets], dim="run", coords="minimal",
-                    compat="override", combine_attrs="drop")
+                    compat="override", combine_attrs="override")
     out = out.assign_coords(run=("run", names, {"long_name": "run name", "units": "1"}))
     for key in attrs[0]["sweep"]:
         vals = [a["sweep"][key] for a in attrs]

@@ -1,0 +1,50 @@
+# mechrepro: `make reproduce` (everything) and `make test` (all tests) bootstrap a venv first.
+PYTHON ?= python3
+VENV   := .venv
+BIN    := $(VENV)/bin
+CORES  ?= 2
+STAMP  := $(VENV)/.installed
+
+.PHONY: reproduce test venv ci-reproduce reference benchmark screenshot clean
+
+$(STAMP): requirements.lock pyproject.toml
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/pip install --quiet --upgrade pip
+	$(BIN)/pip install --quiet -r requirements.lock
+	$(BIN)/pip install --quiet --no-deps -e .
+	$(BIN)/python -m ipykernel install --sys-prefix --name python3 > /dev/null
+	touch $(STAMP)
+
+venv: $(STAMP)
+
+## Reproduce every figure and table of every paper (full resolution): results/report/index.html
+reproduce: $(STAMP)
+	$(BIN)/snakemake --cores $(CORES)
+
+## Run every test (unit tests, config errors, pipeline + reference check on the ci profile)
+test: $(STAMP)
+	$(BIN)/pytest -q
+
+## The fast profile, as CI runs it, into results-ci/
+ci-reproduce: $(STAMP)
+	$(BIN)/snakemake --cores $(CORES) --config profile=ci results=results-ci
+
+## Deliberately refresh the committed reference numbers from a fresh ci-profile run
+reference: $(STAMP)
+	rm -rf results-ci
+	$(BIN)/snakemake --cores $(CORES) --config profile=ci results=results-ci \
+	  --omit-from reference_check
+	$(BIN)/python -m mechrepro.archive results-ci results/reference config ci \
+	  $$($(BIN)/python -c "import yaml;print(' '.join(yaml.safe_load(open('config/config.yaml'))['papers']))")
+
+## Speed benchmarks (ratios measured side by side)
+benchmark: $(STAMP)
+	$(BIN)/python -m pytest benchmarks -q -s
+
+## Render the report in headless Chromium to results/report/screenshot.png
+screenshot:
+	bash scripts/screenshot_report.sh results/report/index.html results/report/screenshot.png
+
+clean:
+	rm -rf results/saw_chain results/rolling_shear results/joint_wear results/disk_tension \
+	  results/chain_drive results/report results/archive results-ci .snakemake

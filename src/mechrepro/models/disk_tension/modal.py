@@ -1,0 +1,92 @@
+"""Eigen-analysis (Eqs. 5-6), the first-order estimate (Eq. 9), the modal matrices
+(Eqs. 16-17), buckling and frequency conversions, shared by both discretisations."""
+from __future__ import annotations
+
+import numpy as np
+import scipy.linalg as sla
+
+TWO_PI = 2.0 * np.pi
+
+
+class BucklingError(ArithmeticError):
+    """A requested frequency does not exist because the stressed plate has buckled."""
+
+
+def eigen(K, M, count=1):
+    """Lowest ``count`` eigenpairs of (K - omega^2 M) phi = 0, Eq. (5)/(6).
+
+    Returns (omega^2, Phi) with mass-normalised columns (Phi^T M Phi = I).  omega^2 may be
+    negative when K includes compressive K^(sigma): the caller decides (see ``frequency``).
+    """
+    count = min(int(count), len(K))
+    lam, phi = sla.eigh(K, M, subset_by_index=[0, count - 1])
+    return lam, phi
+
+
+def frequency(omega2, buckled="nan"):
+    """f = sqrt(omega^2) / 2 pi [Hz]; a negative omega^2 (buckled) gives NaN or raises.
+
+    Never a silent square root of a negative number: ``buckled="raise"`` raises
+    :class:`BucklingError`, ``"nan"`` returns NaN (the caller stores a buckled flag).
+    """
+    omega2 = np.asarray(omega2, float)
+    neg = omega2 < 0
+    if np.any(neg) and buckled == "raise":
+        raise BucklingError(f"omega^2 = {omega2[neg]} < 0: the stressed plate has buckled")
+    out = np.sqrt(np.where(neg, np.nan, omega2)) / TWO_PI
+    return out
+
+
+def eq9_delta_omega2(phi, K_sigma, M):
+    """Eq. (9): Delta omega^2 = phi^T K^(sigma) phi / phi^T M phi (unrolled mode phi)."""
+    phi = np.atleast_2d(np.asarray(phi).T).T
+    num = np.einsum("ik,ij,jk->k", phi, K_sigma, phi)
+    den = np.einsum("ik,ij,jk->k", phi, M, phi)
+    return num / den
+
+
+def delta_f_linearised(omega, delta_omega2):
+    """Delta f = Delta omega^2 / (2 omega) / 2 pi: first-order conversion [Hz]."""
+    return np.asarray(delta_omega2) / (2.0 * np.asarray(omega)) / TWO_PI
+
+
+def delta_f_exact(omega, delta_omega2):
+    """Delta f = (sqrt(omega^2 + Delta omega^2) - omega) / 2 pi [Hz]; NaN if buckled."""
+    omega = np.asarray(omega, float)
+    return frequency(omega**2 + np.asarray(delta_omega2, float)) - omega / TWO_PI
+
+
+def critical_load_factor(K, K_sigma):
+    """Smallest lambda > 0 with det(K + lambda K^(sigma)) = 0 (inf if none).
+
+    Solves K_sigma phi = mu K phi (K positive definite after clamping); a compressive mode
+    has mu < 0 and buckles at lambda = -1/mu.
+    """
+    mu = sla.eigh(K_sigma, K, eigvals_only=True)
+    neg = mu[mu < 0]
+    return float(-1.0 / neg.min()) if neg.size else float("inf")
+
+
+def modal_stress_matrix(Phi, K_sigma):
+    """Eq. (16): [K^hat(sigma)] = Phi^T K^(sigma) Phi."""
+    return Phi.T @ K_sigma @ Phi
+
+
+def modal_mass_cross(Phi_rolled, M, Phi):
+    """Eq. (17): [m^hat] = Phi~^T M Phi (unit matrix when modes do not change)."""
+    return Phi_rolled.T @ M @ Phi
+
+
+def mac(Phi_a, Phi_b, M=None):
+    """Modal assurance criterion |a^T M b|^2 / (a^T M a)(b^T M b) for all column pairs."""
+    W = Phi_b if M is None else M @ Phi_b
+    Wa = Phi_a if M is None else M @ Phi_a
+    num = (Phi_a.T @ W) ** 2
+    return num / np.outer(np.einsum("ij,ij->j", Phi_a, Wa), np.einsum("ij,ij->j", Phi_b, W))
+
+
+def align_signs(Phi_rolled, M, Phi):
+    """Flip rolled modes so that diag(Phi~^T M Phi) >= 0 (eigenvector sign is arbitrary)."""
+    s = np.sign(np.einsum("ij,ij->j", Phi_rolled, M @ Phi))
+    s[s == 0] = 1.0
+    return Phi_rolled * s

@@ -1,0 +1,70 @@
+"""Thermal analogy of roll-tensioning: Eq. (4) temperature and its plane-stress field.
+
+The paper replaces the plastic deformation of rolling by a Gaussian temperature load,
+Eq. (4), and takes the thermal stress of the disk as the residual stress after rolling.
+For an axisymmetric temperature the plane-stress field has a closed form (Timoshenko &
+Goodier, Sec. 143), evaluated here exactly; the 2-D model solves the same problem by FE.
+
+In-plane boundary condition at the clamp (``inplane_bc``):
+
+``clamped``
+    annulus ``r_f <= r <= b`` with ``u_r(r_f) = 0`` and ``sigma_r(b) = 0``.  This is the
+    paper's FE model taken literally: the disk "is perfectly fixed in the region r <= r_f"
+    and the same model carries the temperature load, so the clamped region neither
+    strains nor transmits the temperature inside it.
+``free_disk``
+    solid disk ``0 <= r <= b`` with ``sigma_r(b) = 0``: the residual stress of a blade
+    rolled before it is mounted; clamping then does not change it.
+"""
+from __future__ import annotations
+
+import numpy as np
+from scipy.special import erf
+
+INPLANE_BCS = ("clamped", "free_disk")
+
+
+def temperature(r, amplitude, r_c, s):
+    """Eq. (4): T(r) = A exp(-(r - r_c)^2 / 2 s^2)  [K]."""
+    r = np.asarray(r, float)
+    return amplitude * np.exp(-((r - r_c) ** 2) / (2.0 * s * s))
+
+
+def _antiderivative(r, amplitude, r_c, s):
+    """G(r) with dG/dr = T(r) r (closed form of the Gaussian moment)."""
+    t = np.asarray(r, float) - r_c
+    return amplitude * (-s * s * np.exp(-t * t / (2 * s * s))
+                        + r_c * s * np.sqrt(np.pi / 2) * erf(t / (s * np.sqrt(2))))
+
+
+def thermal_stress(r, *, amplitude, r_c, s, r_f, b, E, nu, alpha, inplane_bc="clamped"):
+    """Plane-stress thermal stresses (sigma_r, sigma_theta) [Pa] at radii ``r >= r_f``.
+
+    u = (1+nu) alpha Q/r + C1 r + C2/r with Q(r) = int_{r0}^r T rho d rho, and
+    sigma_r = -alpha E Q/r^2 + E/(1-nu^2) ((1+nu) C1 - (1-nu) C2/r^2),
+    sigma_theta = alpha E Q/r^2 - alpha E T + E/(1-nu^2) ((1+nu) C1 + (1-nu) C2/r^2).
+    """
+    if inplane_bc not in INPLANE_BCS:
+        raise ValueError(f"inplane_bc = {inplane_bc!r}: allowed {INPLANE_BCS}")
+    if not (0.0 <= r_f < b):
+        raise ValueError(f"clamp radius r_f = {r_f} must satisfy 0 <= r_f < b = {b}")
+    if s <= 0:
+        raise ValueError(f"Gaussian width s = {s} must be > 0")
+    r = np.asarray(r, float)
+    r0 = 0.0 if inplane_bc == "free_disk" else r_f
+    if np.any(r < r0 - 1e-12) or np.any(r <= 0):
+        raise ValueError("thermal_stress is evaluated only on the flexible region r >= r_f > 0")
+    G0 = _antiderivative(r0, amplitude, r_c, s)
+    Q = _antiderivative(r, amplitude, r_c, s) - G0
+    Qb = _antiderivative(b, amplitude, r_c, s) - G0
+    T = temperature(r, amplitude, r_c, s)
+    if inplane_bc == "free_disk":
+        c1, c2 = (1 - nu) * alpha * Qb / b**2, 0.0
+    else:
+        a = r_f
+        c1 = alpha * Qb / b**2 * (1 - nu**2) / ((1 + nu) + (1 - nu) * a**2 / b**2)
+        c2 = -c1 * a * a
+    k = E / (1 - nu**2)
+    sig_r = -alpha * E * Q / r**2 + k * ((1 + nu) * c1 - (1 - nu) * c2 / r**2)
+    sig_t = alpha * E * Q / r**2 - alpha * E * T + k * ((1 + nu) * c1 + (1 - nu) * c2 / r**2)
+    return sig_r, sig_t

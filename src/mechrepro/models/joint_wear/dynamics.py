@@ -1,0 +1,208 @@
+"""Dynamic clearance joint B: stiff Lankarani-Nikravesh contact integrated implicitly.
+
+State y = (theta3, phi2, dtheta3/dt, dphi2/dt) -- the two extra DOF of the clearance
+joint in minimal coordinates (see loads.py).  The right-hand side is written with scalar
+``math`` calls: for a 4-state system the numpy call overhead would dominate, and the
+integrator (scipy ``solve_ivp``, Radau by default) calls it a few thousand times per
+period.  The Jacobian of the contact force (Eqs. 11, 14, 15 through Eqs. 5-10) is
+analytic; the slow, non-stiff parts (mass-matrix variation, velocity terms) are left out
+of it, which only affects Newton convergence, never the solution.
+
+Effects: friction off -> mu = 0; contact_damping off -> the K'' term is never evaluated.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from . import loads
+from .geometry import FourBar
+
+
+class ClearanceJoint:
+    """Right-hand side and Jacobian of one configuration, closures over plain floats."""
+
+    def __init__(self, fb: FourBar, damping: bool = True):
+        self.fb = fb
+        self.damping = damping
+        self.M11, self.M22, self.am = loads.mass_terms(fb)
+        self.nfev = 0
+
+    # --- contact -----------------------------------------------------------------
+    def _contact(self, t, th3, ph2, w3, w2):
+        """Force on the bushing (fx, fy), friction F_T and the geometry, Eqs. (5)-(15)."""
+        fb = self.fb
+        c3, s3, c2, s2 = math.cos(th3), math.sin(th3), math.cos(ph2), math.sin(ph2)
+        th1 = fb.omega * t
+        c1, s1 = math.cos(th1), math.sin(th1)
+        # Eq. (5): e = r_i - r_j, and its rate
+        ex = fb.l1 * c1 - (fb.l0 + fb.l3 * c3 + fb.l2 * c2)
+        ey = fb.l1 * s1 - (fb.l3 * s3 + fb.l2 * s2)
+        edx = -fb.l1 * fb.omega * s1 - (-fb.l3 * w3 * s3 - fb.l2 * w2 * s2)
+        edy = fb.l1 * fb.omega * c1 - (fb.l3 * w3 * c3 + fb.l2 * w2 * c2)
+        e = math.hypot(ex, ey)                               # Eq. (6)
+        delta = e - fb.clearance                             # Eq. (8)
+        geo = (c3, s3, c2, s2, ex, ey, edx, edy, e, delta)
+        if delta <= 0.0:
+            return 0.0, 0.0, 0.0, 0.0, geo
+        nx, ny = ex / e, ey / e                              # Eq. (7)
+        tx, ty = -ny, nx
+        vN = edx * nx + edy * ny                             # Eq. (9)
+        vT = edx * tx + edy * ty + fb.omega * fb.R_pin - w2 * fb.R_bush   # Eq. (10)
+        FN = fb.K_contact * delta ** fb.n_exp                # Eq. (11), elastic part
+        if self.damping:
+            x = delta / fb.d_max
+            K2 = fb.C_max if x >= 1.0 else fb.C_max * x * x * (3.0 - 2.0 * x)   # Eq. (14)
+            FN += K2 * vN
+        if FN < 0.0:
+            FN = 0.0
+        FT = 0.0
+        if fb.mu:
+            FT = fb.mu * FN * vT / math.sqrt(vT * vT + fb.v_eps * fb.v_eps)   # Eq. (15)
+        return FN * nx + FT * tx, FN * ny + FT * ty, FN, FT, geo
+
+    def rhs(self, t, y):
+        self.nfev += 1
+        fb = self.fb
+        th3, ph2, w3, w2 = y
+        fx, fy, FN, FT, (c3, s3, c2, s2, *_rest) = self._contact(t, th3, ph2, w3, w2)
+        # applied loads (load P at E towards F, gravity) -- scalar copy of loads.applied_forces
+        exx, eyy = fb.l0 + 0.5 * fb.l3 * c3, 0.5 * fb.l3 * s3
+        dx, dy = fb.F[0] - exx, fb.F[1] - eyy
+        dn = math.hypot(dx, dy)
+        Px, Py = fb.P * dx / dn, fb.P * dy / dn
+        Q3 = 0.5 * fb.l3 * (-s3 * Px + c3 * Py) - fb.g * (0.5 * fb.m3 * fb.l3 + fb.m2 * fb.l3) * c3
+        Q2 = -fb.g * fb.m2 * 0.5 * fb.l2 * c2
+        # contact: J^T f + moment R_j F_T on the coupler
+        Q3 += fb.l3 * (-s3 * fx + c3 * fy)
+        Q2 += fb.l2 * (-s2 * fx + c2 * fy) + fb.R_bush * FT
+        cd = c3 * c2 + s3 * s2
+        sd = s3 * c2 - c3 * s2
+        b3 = Q3 - self.am * sd * w2 * w2
+        b2 = Q2 + self.am * sd * w3 * w3
+        m12 = self.am * cd
+        det = self.M11 * self.M22 - m12 * m12
+        return [w3, w2, (self.M22 * b3 - m12 * b2) / det, (self.M11 * b2 - m12 * b3) / det]
+
+    def jac(self, t, y):
+        """d rhs / d y: exact contact stiffness and damping, M(q) frozen."""
+        fb = self.fb
+        th3, ph2, w3, w2 = y
+        J = np.zeros((4, 4))
+        J[0, 2] = J[1, 3] = 1.0
+        _, _, FN, FT, (c3, s3, c2, s2, ex, ey, edx, edy, e, delta) = self._contact(t, th3, ph2, w3, w2)
+        if delta <= 0.0 or FN <= 0.0:
+            return J
+        n = np.array([ex / e, ey / e])
+        tt = np.array([-n[1], n[0]])
+        ed = np.array([edx, edy])
+        vN, vTe = ed @ n, ed @ tt
+        vT = vTe + fb.omega * fb.R_pin - w2 * fb.R_bush
+        # dF_N / de and dF_N / d(edot)
+        dFN_de = fb.n_exp * fb.K_contact * delta ** (fb.n_exp - 1.0) * n
+        dFN_ded = np.zeros(2)
+        if self.damping:
+            x = delta / fb.d_max
+            if x < 1.0:
+                K2 = fb.C_max * x * x * (3.0 - 2.0 * x)
+                dK2 = fb.C_max * (6.0 * x - 6.0 * x * x) / fb.d_max
+            else:
+                K2, dK2 = fb.C_max, 0.0
+            dFN_de = dFN_de + dK2 * vN * n + K2 * vTe / e * tt
+            dFN_ded = K2 * n
+        s = vT / math.sqrt(vT * vT + fb.v_eps ** 2)
+        ds = fb.v_eps ** 2 / (vT * vT + fb.v_eps ** 2) ** 1.5
+        dvT_de = -vN / e * tt
+        dFT_de = fb.mu * (s * dFN_de + FN * ds * dvT_de)
+        dFT_ded = fb.mu * (s * dFN_ded + FN * ds * tt)
+        dFT_dw2 = fb.mu * FN * ds * (-fb.R_bush)
+        # f = F_N n + F_T t
+        df_de = (np.outer(n, dFN_de) + FN / e * np.outer(tt, tt)
+                 + np.outer(tt, dFT_de) - FT / e * np.outer(n, tt))
+        df_ded = np.outer(n, dFN_ded) + np.outer(tt, dFT_ded)
+        Jb = np.array([[-fb.l3 * s3, -fb.l2 * s2], [fb.l3 * c3, fb.l2 * c2]])  # d r_j / d q
+        # e = r_i - r_j(q), edot = rdot_i - Jb qdot
+        dQ_dq = Jb.T @ df_de @ (-Jb)
+        dQ_dq[1] += fb.R_bush * (dFT_de @ (-Jb))
+        dQ_dw = Jb.T @ df_ded @ (-Jb)
+        dQ_dw[1] += fb.R_bush * (dFT_ded @ (-Jb))
+        dQ_dw[:, 1] += Jb.T @ (tt * dFT_dw2)
+        dQ_dw[1, 1] += fb.R_bush * dFT_dw2
+        m12 = self.am * (c3 * c2 + s3 * s2)
+        Minv = np.linalg.inv(np.array([[self.M11, m12], [m12, self.M22]]))
+        J[2:, :2] = Minv @ dQ_dq
+        J[2:, 2:] = Minv @ dQ_dw
+        return J
+
+
+def initial_state(fb: FourBar):
+    """Pin concentric with the bushing, ideal-mechanism velocities (Sec. 4.1)."""
+    from . import kinematics
+
+    th3, ph2 = kinematics.positions(fb, 0.0)
+    w3, w2 = kinematics.velocities(fb, 0.0, th3, ph2)
+    return np.array([float(th3), float(ph2), float(w3), float(w2)])
+
+
+def simulate(fb: FourBar, t_end: float, n_out: int, method: str = "Radau",
+             rtol: float = 1e-6, damping: bool = True, y0=None, atol_scale: float = 1e-4,
+             max_wall_s: float | None = None) -> dict:
+    """Integrate the clearance joint over [0, t_end] and sample n_out uniform points.
+
+    atol on angles is rtol * atol_scale [rad]: the clearance is ~3e-4 of the link lengths,
+    so an angle tolerance of rtol alone would let the penetration (~1 um) drown in error.
+    ``max_wall_s`` aborts an integrator that cannot finish (the explicit one on the stiff
+    contact) with a clear status instead of hanging.
+    """
+    sys_ = ClearanceJoint(fb, damping=damping)
+    y0 = initial_state(fb) if y0 is None else np.asarray(y0, float)
+    atol = np.array([1.0, 1.0, 10.0, 10.0]) * rtol * atol_scale
+    t_eval = np.linspace(0.0, t_end, n_out)
+    kw = {"jac": sys_.jac} if method in ("Radau", "BDF", "LSODA") else {}
+    fun = sys_.rhs
+    if max_wall_s is not None:
+        import time
+        t0 = time.perf_counter()
+
+        def fun(t, y, _f=sys_.rhs):
+            if time.perf_counter() - t0 > max_wall_s:
+                raise _WallLimit(t)
+            return _f(t, y)
+    try:
+        sol = solve_ivp(fun, (0.0, t_end), y0, method=method, t_eval=t_eval, rtol=rtol,
+                        atol=atol, **kw)
+        status, message, t_reached = sol.status, sol.message, t_end
+        T, Y = sol.t, sol.y
+    except _WallLimit as lim:
+        status, message, t_reached = -2, f"wall-time limit {max_wall_s} s reached", lim.t
+        T, Y = np.array([]), np.zeros((4, 0))
+    out = {"t": T, "y": Y, "status": status, "message": message, "nfev": sys_.nfev,
+           "t_reached": t_reached}
+    if T.size:
+        out.update(contact_history(sys_, T, Y))
+    return out
+
+
+class _WallLimit(Exception):
+    def __init__(self, t):
+        self.t = t
+
+
+def contact_history(sys_: ClearanceJoint, T, Y) -> dict:
+    """Penetration, forces, sliding velocity and the contact angle on the bushing."""
+    n = T.size
+    FN, FT, dl, vT, psi = (np.zeros(n) for _ in range(5))
+    fb = sys_.fb
+    for k in range(n):
+        th3, ph2, w3, w2 = Y[:, k]
+        _, _, FN[k], FT[k], geo = sys_._contact(T[k], th3, ph2, w3, w2)
+        ex, ey, edx, edy, e, delta = geo[4:]
+        dl[k] = delta
+        nx, ny = ex / e if e else 1.0, ey / e if e else 0.0
+        vT[k] = edx * -ny + edy * nx + fb.omega * fb.R_pin - w2 * fb.R_bush
+        psi[k] = math.atan2(ny, nx) - ph2
+    psi = np.angle(np.exp(1j * psi))
+    return {"F_N": FN, "F_T": FT, "delta": dl, "v_T": vT, "psi": psi,
+            "theta3": Y[0], "phi2": Y[1]}

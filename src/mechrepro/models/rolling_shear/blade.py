@@ -1,0 +1,104 @@
+"""Blade pose: transforms M12, M20 (Eq. 4), midpoint (Eq. 5), dynamic lowest point (Eqs. 6-7).
+
+Conventions chosen where the printed equations contradict each other (mm, rad, y up):
+
+* **M20** is printed as a rotation by -theta5; the loop equations (9) measure theta5
+  counter-clockwise (l5 e^{+i theta5}) and the text states beta = theta5 - beta2.  Both
+  hold only if M20 rotates by **+theta5**.  M12 is kept as printed (rotation by -beta2,
+  translation d(cos beta1, sin beta1) in frame x2Dy2), so the blade turns by
+  beta = theta5 - beta2 in the fixed frame, as the text says.
+* **Eq. (6)** prints y_k = y_h + R(1 - cos beta).  With y upwards (the overlap line is
+  y = -s below the lower blade) the lowest point of an arc of radius R whose centre lies
+  R above the midpoint is y_k = y_h **-** R(1 - cos beta); only then is y_k constant under
+  the pure rolling of Eq. (8).  x_k = x_h - R sin beta is kept as printed.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .geometry import Geometry
+
+
+def rot(phi):
+    """Counter-clockwise rotation by phi (homogeneous 3x3)."""
+    c, s = np.cos(phi), np.sin(phi)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def M12(g: Geometry) -> np.ndarray:
+    """Eq. (4): frame x1Oy1 (blade) -> x2Dy2 (carrier), as printed (rotation -beta2)."""
+    c, s = np.cos(g.beta2), np.sin(g.beta2)
+    return np.array([[c, s, g.d * np.cos(g.beta1)],
+                     [-s, c, g.d * np.sin(g.beta1)],
+                     [0.0, 0.0, 1.0]])
+
+
+def M20(g: Geometry, theta5: float, theta6: float) -> np.ndarray:
+    """Eq. (4): frame x2Dy2 -> xEy, rotation **+theta5** (corrected sign, see module doc)."""
+    c, s = np.cos(theta5), np.sin(theta5)
+    return np.array([[c, -s, g.l6 * np.cos(theta6)],
+                     [s, c, g.l6 * np.sin(theta6)],
+                     [0.0, 0.0, 1.0]])
+
+
+def M20_printed(g: Geometry, theta5: float, theta6: float) -> np.ndarray:
+    """Eq. (4) exactly as printed (rotation -theta5); kept only to test the convention."""
+    c, s = np.cos(theta5), np.sin(theta5)
+    return np.array([[c, s, g.l6 * np.cos(theta6)],
+                     [-s, c, g.l6 * np.sin(theta6)],
+                     [0.0, 0.0, 1.0]])
+
+
+def blade_angle(g: Geometry, theta5):
+    """Turning angle of the upper blade, beta = theta5 - beta2 (Sec. 3.2)."""
+    return np.asarray(theta5) - g.beta2
+
+
+def to_fixed(g: Geometry, theta5, theta6, x1, y1):
+    """Eq. (4) for arrays of poses, written out (same numbers as M20 @ M12 @ p)."""
+    theta5, theta6 = np.asarray(theta5, float), np.asarray(theta6, float)
+    b = theta5 - g.beta2
+    cb, sb = np.cos(b), np.sin(b)
+    ox = g.l6 * np.cos(theta6) + g.d * np.cos(theta5 + g.beta1)
+    oy = g.l6 * np.sin(theta6) + g.d * np.sin(theta5 + g.beta1)
+    return ox + cb * x1 - sb * y1, oy + sb * x1 + cb * y1
+
+
+def midpoint(g: Geometry, theta5, theta6):
+    """Eq. (5): midpoint (0, -h) of the cutting edge in the fixed frame."""
+    return to_fixed(g, theta5, theta6, 0.0, -g.h)
+
+
+def lowest_point(g: Geometry, theta5, theta6):
+    """Eq. (7) with the corrected sign of Eq. (6): the dynamic lowest point (x_k, y_k)."""
+    xh, yh = midpoint(g, theta5, theta6)
+    b = blade_angle(g, theta5)
+    return xh - g.R * np.sin(b), yh - g.R * (1.0 - np.cos(b))
+
+
+def lowest_point_jacobian(g: Geometry, theta5: float, theta6: float) -> np.ndarray:
+    """d(x_k, y_k)/d(theta5, theta6) of Eq. (7), analytic."""
+    b = theta5 - g.beta2
+    # d/dtheta5 of O + Rot(b)(0,-h) + (-R sin b, -R(1 - cos b))
+    dx5 = -g.d * np.sin(theta5 + g.beta1) + g.h * np.cos(b) - g.R * np.cos(b)
+    dy5 = g.d * np.cos(theta5 + g.beta1) + g.h * np.sin(b) - g.R * np.sin(b)
+    dx6 = -g.l6 * np.sin(theta6)
+    dy6 = g.l6 * np.cos(theta6)
+    return np.array([[dx5, dx6], [dy5, dy6]])
+
+
+def arc_points(g: Geometry, theta5: float, theta6: float, half_angle: float, n: int = 2001):
+    """Points of the cutting-edge arc (centre R above the midpoint), for tests and plots."""
+    phi = np.linspace(-half_angle, half_angle, n)
+    x1 = g.R * np.sin(phi)
+    y1 = -g.h + g.R * (1.0 - np.cos(phi))
+    return to_fixed(g, theta5, theta6, x1, y1)
+
+
+def carrier_points(g: Geometry, theta5, theta6) -> dict:
+    """Joints of the blade carrier in the fixed frame: D, I, C, O (complex numbers)."""
+    theta5, theta6 = np.asarray(theta5, float), np.asarray(theta6, float)
+    D = g.l6 * np.exp(1j * theta6)
+    return {"D": D, "I": D + g.l5 * np.exp(1j * theta5),
+            "C": D + g.l8 * np.exp(1j * (theta5 + g.alpha)),
+            "O": D + g.d * np.exp(1j * (theta5 + g.beta1))}

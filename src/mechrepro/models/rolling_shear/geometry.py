@@ -1,0 +1,98 @@
+"""The rolling-shear linkage constants (Figs. 2-5, Table II) in one frozen record.
+
+Units inside this package: **millimetres and radians** (the paper's own units; its
+fitness threshold G < 1e-11 is a residual in mm).  :func:`from_parameters` converts the
+SI values of a run record (m, rad) to mm once, at the package boundary.
+
+Frame conventions (resolved in docs/rolling_shear.md, tested in tests):
+
+* fixed frame ``xEy``: origin E = fixed pivot of the guide rod l6, x to the right,
+  **y upwards**, y = 0 is the edge of the lower blade, the overlap line is y = -s;
+* crank pivots: A = (-l10 - l9, l11) (lever AB, l1, theta1) and G = (-l10, l11)
+  (lever GH, l2, theta2) -- read off Eq. (9) as printed;
+* blade carrier (one ternary body): D = E + l6 e^{i theta6} (guide rod end),
+  I = D + l5 e^{i theta5} (joint of rod HI), C = D + l8 e^{i(theta5 + alpha)} (joint of rod
+  BC); blade frame origin O = D + d e^{i(theta5 + beta1)}; blade angle beta = theta5 - beta2.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass, replace
+
+MM_PER_M = 1000.0
+
+LEVERS = ("l1", "l2", "l3", "l4", "l5", "l6", "l8", "l9", "l10", "l11")
+#: the levers the paper optimises (Sec. 3.3, step 3; Table II)
+OPTIMISED_LEVERS = ("l1", "l3", "l5", "l6", "l10")
+ANGLES = ("alpha", "beta1", "beta2")
+LENGTHS = LEVERS + ("d", "h", "R", "s", "width", "x_mid")
+
+
+@dataclass(frozen=True)
+class Geometry:
+    """All constants of the linkage, mm and rad.
+
+    ``elbow1``/``elbow2`` (+1/-1) select the assembly mode of the dyads AB-BC and GH-HI:
+    the sign of the cross product (B - A) x (C - B) (resp. (H - G) x (I - H)).
+    """
+    l1: float
+    l2: float
+    l3: float
+    l4: float
+    l5: float
+    l6: float
+    l8: float
+    l9: float
+    l10: float
+    l11: float
+    alpha: float
+    beta1: float
+    beta2: float
+    d: float
+    h: float
+    R: float
+    s: float
+    width: float
+    x_mid: float
+    elbow1: int = 1
+    elbow2: int = 1
+
+    def with_levers(self, **levers) -> "Geometry":
+        return replace(self, **levers)
+
+    def levers(self, names=OPTIMISED_LEVERS) -> tuple[float, ...]:
+        return tuple(getattr(self, n) for n in names)
+
+    def as_dict(self) -> dict:
+        return asdict(self)
+
+
+def from_parameters(p: dict) -> Geometry:
+    """Build the geometry from a run's SI parameters (lengths in m, angles in rad)."""
+    kw = {k: float(p[k]) * MM_PER_M for k in LENGTHS}
+    kw.update({k: float(p[k]) for k in ANGLES})
+    kw["elbow1"] = int(p.get("elbow1", 1))
+    kw["elbow2"] = int(p.get("elbow2", 1))
+    return Geometry(**kw)
+
+
+def cut_points(g: Geometry, n: int):
+    """Stations of the dynamic lowest point on y = -s (Sec. 3.3, step 1).
+
+    The cut runs from right to left (Eq. 8: x decreases with the rolled arc length), over
+    the rolled length ``width`` centred on ``x_mid``; ``n`` equally spaced stations.
+    Returns (huch, x_k): rolled length from the start of the cut and station abscissa.
+    """
+    import numpy as np
+
+    if n < 2:
+        raise ValueError(f"need at least 2 cut points, got {n}")
+    huch = np.linspace(0.0, g.width, n)
+    return huch, g.x_mid + 0.5 * g.width - huch
+
+
+def wrap_2pi(a):
+    """Angle in [0, 2 pi): the paper's ranges are stated on this interval."""
+    import numpy as np
+
+    return np.mod(a, 2.0 * math.pi)

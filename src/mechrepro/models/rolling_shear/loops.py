@@ -1,0 +1,124 @@
+"""Loop-closure equations (9) of the two vector polygons, their Jacobian and exact dyads.
+
+Eq. (9) as printed, with theta5, theta6 known (mm, rad):
+
+    b1 = l1 cos t1 - l3 cos t3 - l8 cos(t5 + alpha) - l6 cos t6 - l10 - l9
+    b2 = l1 sin t1 - l3 sin t3 - l8 sin(t5 + alpha) - l6 sin t6 + l11
+    b3 = l2 cos t2 - l4 cos t4 - l5 cos t5 - l6 cos t6 - l10
+    b4 = l2 sin t2 - l4 sin t4 - l5 sin t5 - l6 sin t6 + l11
+
+The first loop holds only theta1, theta3 and the second only theta2, theta4: each is a
+dyad (two bars between a fixed pivot and a carrier joint) with a closed-form solution,
+:func:`dyad`, used as the trusted reference and to explain non-assembly.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .geometry import Geometry
+
+#: unknowns of Eq. (9), in this order
+UNKNOWNS = ("theta1", "theta2", "theta3", "theta4")
+
+
+class NonAssembly(RuntimeError):
+    """The linkage does not assemble at a cut point; the message names it and why."""
+
+    def __init__(self, message: str, cut_point: int | None = None, x_k: float | None = None):
+        super().__init__(message)
+        self.cut_point = cut_point
+        self.x_k = x_k
+
+
+def pivots(g: Geometry) -> tuple[complex, complex]:
+    """Fixed crank pivots A (lever AB) and G (lever GH), read off Eq. (9)."""
+    return complex(-g.l10 - g.l9, g.l11), complex(-g.l10, g.l11)
+
+
+def residuals(g: Geometry, th, theta5, theta6):
+    """Eq. (9) for one or many candidate vectors ``th`` (..., 4); returns (..., 4)."""
+    th = np.asarray(th, float)
+    t1, t2, t3, t4 = th[..., 0], th[..., 1], th[..., 2], th[..., 3]
+    c6, s6 = g.l6 * math.cos(theta6), g.l6 * math.sin(theta6)
+    cx, cy = g.l8 * math.cos(theta5 + g.alpha), g.l8 * math.sin(theta5 + g.alpha)
+    ix, iy = g.l5 * math.cos(theta5), g.l5 * math.sin(theta5)
+    return np.stack([
+        g.l1 * np.cos(t1) - g.l3 * np.cos(t3) - cx - c6 - g.l10 - g.l9,
+        g.l1 * np.sin(t1) - g.l3 * np.sin(t3) - cy - s6 + g.l11,
+        g.l2 * np.cos(t2) - g.l4 * np.cos(t4) - ix - c6 - g.l10,
+        g.l2 * np.sin(t2) - g.l4 * np.sin(t4) - iy - s6 + g.l11,
+    ], axis=-1)
+
+
+def jacobian(g: Geometry, th) -> np.ndarray:
+    """d b / d(theta1..theta4) of Eq. (9) (block diagonal in the two loops)."""
+    t1, t2, t3, t4 = th
+    J = np.zeros((4, 4))
+    J[0, 0], J[0, 2] = -g.l1 * math.sin(t1), g.l3 * math.sin(t3)
+    J[1, 0], J[1, 2] = g.l1 * math.cos(t1), -g.l3 * math.cos(t3)
+    J[2, 1], J[2, 3] = -g.l2 * math.sin(t2), g.l4 * math.sin(t4)
+    J[3, 1], J[3, 3] = g.l2 * math.cos(t2), -g.l4 * math.cos(t4)
+    return J
+
+
+def dyad(P: complex, Q: complex, r_p: float, r_q: float, elbow: int):
+    """Exact dyad: the joint X with |X - P| = r_p, |X - Q| = r_q on the ``elbow`` side.
+
+    ``elbow`` is the sign of (X - P) x (Q - X).  Returns (angle of X - P, angle of X - Q,
+    distance |Q - P|) or raises :class:`NonAssembly` when |Q - P| is outside
+    [|r_p - r_q|, r_p + r_q].
+    """
+    L = abs(Q - P)
+    if not (abs(r_p - r_q) < L < r_p + r_q):
+        raise NonAssembly(f"|PQ| = {L:.6g} mm outside ({abs(r_p - r_q):.6g}, {r_p + r_q:.6g}) mm")
+    u = (Q - P) / L
+    a = (r_p * r_p - r_q * r_q + L * L) / (2.0 * L)
+    hgt = math.sqrt(max(r_p * r_p - a * a, 0.0))
+    X = P + a * u - elbow * hgt * 1j * u  # cross((X-P),(Q-X)) = -sigma*hgt*L, sigma = -elbow
+    return math.atan2((X - P).imag, (X - P).real), math.atan2((X - Q).imag, (X - Q).real), L
+
+
+def elbow_signs(g: Geometry, th, theta5, theta6) -> tuple[int, int]:
+    """Assembly mode of the two dyads of a solution (signs of the elbow cross products)."""
+    t1, t2, t3, t4 = th
+    u1, v1 = g.l1 * complex(math.cos(t1), math.sin(t1)), -g.l3 * complex(math.cos(t3), math.sin(t3))
+    u2, v2 = g.l2 * complex(math.cos(t2), math.sin(t2)), -g.l4 * complex(math.cos(t4), math.sin(t4))
+    c1 = u1.real * v1.imag - u1.imag * v1.real
+    c2 = u2.real * v2.imag - u2.imag * v2.real
+    return int(np.sign(c1)), int(np.sign(c2))
+
+
+def exact_angles(g: Geometry, theta5: float, theta6: float) -> np.ndarray:
+    """Closed-form theta1..theta4 on the design assembly mode (the trusted reference)."""
+    A, G = pivots(g)
+    D = g.l6 * complex(math.cos(theta6), math.sin(theta6))
+    C = D + g.l8 * complex(math.cos(theta5 + g.alpha), math.sin(theta5 + g.alpha))
+    I = D + g.l5 * complex(math.cos(theta5), math.sin(theta5))
+    try:
+        t1, t3p, _ = dyad(A, C, g.l1, g.l3, g.elbow1)
+    except NonAssembly as exc:
+        raise NonAssembly(f"loop ABCD (levers l1 = {g.l1:.6g}, l3 = {g.l3:.6g}): {exc}") from None
+    try:
+        t2, t4p, _ = dyad(G, I, g.l2, g.l4, g.elbow2)
+    except NonAssembly as exc:
+        raise NonAssembly(f"loop GHID (levers l2 = {g.l2:.6g}, l4 = {g.l4:.6g}): {exc}") from None
+    # theta3, theta4 point from the carrier joint to the crank tip (Eq. 9: -l3 e^{i t3})
+    return np.mod([t1, t2, t3p, t4p], 2.0 * math.pi)
+
+
+def dyad_margins(g: Geometry, theta5, theta6) -> np.ndarray:
+    """Distance to the nearest toggle/fold of each dyad, for arrays of poses (n, 2), mm.
+
+    Positive: assembles with that margin; negative: does not assemble.
+    """
+    theta5, theta6 = np.asarray(theta5, float), np.asarray(theta6, float)
+    A, G = pivots(g)
+    D = g.l6 * np.exp(1j * theta6)
+    C = D + g.l8 * np.exp(1j * (theta5 + g.alpha))
+    I = D + g.l5 * np.exp(1j * theta5)
+    L1, L2 = np.abs(C - A), np.abs(I - G)
+    m1 = np.minimum(g.l1 + g.l3 - L1, L1 - abs(g.l1 - g.l3))
+    m2 = np.minimum(g.l2 + g.l4 - L2, L2 - abs(g.l2 - g.l4))
+    return np.stack([m1, m2], axis=-1)

@@ -1,0 +1,46 @@
+"""Closed-form positions of the key points and their exact time derivatives.
+
+In each stage one link is being seated: its leading hinge ("lead") runs on the pitch
+circle, its trailing hinge ("trail") on the tight-side line y = 0 (Eqs. 7 and 9).  With
+phi = omega*tau (tau: time since the stage began), Tx = p1 + 2 p2 and link length L:
+
+    lead  = (Tx + R sin phi, R (1 - cos phi))
+    trail = (lead_x - sqrt(L^2 - lead_y^2), 0)
+    mid   = (lead + trail) / 2                                  (Eqs. 8, 10)
+
+Stage 1: lead O1, trail O2, L = p2 (drive link, mid A1).
+Stage 2: lead O2, trail O3, L = p1 (tie strap,  mid A2).
+
+The derivatives are exact (differentiated by hand, checked against finite differences
+in the tests) and serve as the converged reference (effect ``exact_reference``).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+
+def stage_positions(phi, R, L, Tx):
+    """x, y of lead, trail and midpoint for rotation angles ``phi`` (array) [m]."""
+    xl = Tx + R * np.sin(phi)
+    yl = R * (1.0 - np.cos(phi))
+    xt = xl - np.sqrt(L**2 - yl**2)
+    return {"lead_x": xl, "lead_y": yl, "trail_x": xt,
+            "mid_x": 0.5 * (xl + xt), "mid_y": 0.5 * yl}
+
+
+def stage_derivatives(phi, R, L, omega):
+    """Exact velocities [m/s] and accelerations [m/s^2] of trail and midpoint.
+
+    With s = sqrt(L^2 - y^2):  s' = -y y'/s,  s'' = -(y'^2 + y y'' + s'^2)/s,
+    trail_x' = lead_x' - s',  trail_x'' = lead_x'' - s''.
+    """
+    yl = R * (1.0 - np.cos(phi))
+    xl_d, yl_d = R * omega * np.cos(phi), R * omega * np.sin(phi)
+    xl_dd, yl_dd = -R * omega**2 * np.sin(phi), R * omega**2 * np.cos(phi)
+    s = np.sqrt(L**2 - yl**2)
+    s_d = -yl * yl_d / s
+    s_dd = -(yl_d**2 + yl * yl_dd + s_d**2) / s
+    xt_d, xt_dd = xl_d - s_d, xl_dd - s_dd
+    return {"trail_vx": xt_d, "trail_ax": xt_dd,
+            "mid_vx": 0.5 * (xl_d + xt_d), "mid_vy": 0.5 * yl_d,
+            "mid_ax": 0.5 * (xl_dd + xt_dd), "mid_ay": 0.5 * yl_dd}

@@ -1,0 +1,189 @@
+"""Compose the saw_chain effects named by a scene into one xarray Dataset."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import xarray as xr
+
+from mechrepro.effects import EffectRegistry
+
+from .difference import backward_differences, check_roundoff
+from .geometry import initial_points, pitch_radius, stage_angles
+from .kinematics import stage_derivatives, stage_positions
+from .loads import dynamic_load, textbook_velocity_load, tight_side_mass
+
+EFFECTS = EffectRegistry("saw_chain")
+
+
+@dataclass(frozen=True)
+class Chain:
+    """Geometry, masses and the time grid of one period (2K steps, Eqs. 5-6)."""
+    p1: float
+    p2: float
+    z: int
+    omega: float
+    m_L: float
+    m_C: float
+    M: int
+    N: int
+    K: int
+
+    @property
+    def R(self):
+        return pitch_radius(self.p1, self.p2, self.z)
+
+    @property
+    def Tx(self):
+        return initial_points(self.p1, self.p2)["T"]
+
+    @property
+    def phases(self):
+        return stage_angles(self.p1, self.p2, self.R)
+
+    @property
+    def m_tight(self):
+        return tight_side_mass(self.M, self.N, self.m_L, self.m_C)
+
+    def stages(self):
+        """(lead-link length, link mass, local angles phi_i, i = 0..K) for each stage."""
+        phi1, phi2 = self.phases
+        return [(self.p2, self.m_C, np.linspace(0.0, phi1, self.K + 1)),
+                (self.p1, self.m_L, np.linspace(0.0, phi2 - phi1, self.K + 1))]
+
+    def time(self):
+        """Sample times: t = 0, then K steps of each stage [s]."""
+        phi1, phi2 = self.phases
+        return np.concatenate([np.linspace(0.0, phi1, self.K + 1),
+                               np.linspace(phi1, phi2, self.K + 1)[1:]]) / self.omega
+
+
+def chain_from_run(run: dict) -> Chain:
+    p = run["parameters"]
+    return Chain(p1=p["tie_strap_pitch"], p2=p["drive_link_pitch"], z=int(p["teeth"]),
+                 omega=p["sprocket_speed"], m_L=p["tie_strap_mass"],
+                 m_C=p["drive_link_mass"], M=int(p["tie_straps_tight_side"]),
+                 N=int(p["drive_links_tight_side"]), K=int(run["resolution"]["K"]))
+
+
+def _join(stage1, stage2):
+    """One period from two stages: stage 2's index 0 duplicates t1 and is dropped."""
+    return np.concatenate([stage1, stage2[1:]])
+
+
+@EFFECTS.register("difference_method")
+def difference_method(chain: Chain, options: dict) -> dict:
+    """Tight-side velocity and dynamic load by the paper's difference method."""
+    R, w = chain.R, chain.omega
+    phi1, phi2 = chain.phases
+    roundoff = check_roundoff(chain.K, chain.Tx + chain.R, phi1 / w, R * w**2,
+                              options.get("roundoff_tolerance", 1e-3))
+    out = {"vx": [], "ax": [], "Fx": [], "Fy": []}
+    v0, a0 = np.array([R * w, R * w, 0.0]), np.zeros(3)  # (trail_x, mid_x, mid_y)
+    for L, m_link, phi in chain.stages():
+        pos = stage_positions(phi, R, L, chain.Tx)
+        x = np.stack([pos["trail_x"], pos["mid_x"], pos["mid_y"]], axis=1)
+        dt = (phi[1] - phi[0]) / w
+        v, a = backward_differences(x, dt, v0, a0)
+        Fx, Fy = dynamic_load(m_link, a[:, 1], a[:, 2], chain.m_tight, a[:, 0])
+        out["vx"].append(v[:, 0]); out["ax"].append(a[:, 0])
+        out["Fx"].append(Fx); out["Fy"].append(Fy)
+        # stage 2 starts with O2's values at t1 for both A2 and O3 (Sec. 3.3 (2))
+        v0 = np.array([v[-1, 0], v[-1, 0], 0.0])
+        a0 = np.array([a[-1, 0], a[-1, 0], 0.0])
+    return {
+        "tight_side_velocity": (_join(*out["vx"]), "m/s", "tight-side velocity, difference method (Eqs. 12, 18)"),
+        "tight_side_acceleration": (_join(*out["ax"]), "m/s2", "tight-side acceleration, difference method (Eqs. 13, 19)"),
+        "dynamic_load_x": (_join(*out["Fx"]), "N", "total tight-side dynamic load x, difference method (Eqs. 16, 22)"),
+        "dynamic_load_y": (_join(*out["Fy"]), "N", "dynamic load y of the seating link, difference method (Eqs. 16, 22)"),
+        "roundoff_acceleration_bound": (roundoff, "m/s2", "bound of round-off in the second backward difference"),
+    }
+
+
+@EFFECTS.register("exact_reference")
+def exact_reference(chain: Chain, options: dict) -> dict:
+    """Analytic derivatives of the closed-form positions: the converged reference."""
+    R, w = chain.R, chain.omega
+    out = {"vx": [], "ax": [], "Fx": [], "Fy": []}
+    for L, m_link, phi in chain.stages():
+        d = stage_derivatives(phi, R, L, w)
+        Fx, Fy = dynamic_load(m_link, d["mid_ax"], d["mid_ay"], chain.m_tight, d["trail_ax"])
+        out["vx"].append(d["trail_vx"]); out["ax"].append(d["trail_ax"])
+        out["Fx"].append(Fx); out["Fy"].append(Fy)
+    return {
+        "tight_side_velocity_exact": (_join(*out["vx"]), "m/s", "tight-side velocity, exact derivative"),
+        "tight_side_acceleration_exact": (_join(*out["ax"]), "m/s2", "tight-side acceleration, exact derivative"),
+        "dynamic_load_x_exact": (_join(*out["Fx"]), "N", "total tight-side dynamic load x, exact derivative"),
+        "dynamic_load_y_exact": (_join(*out["Fy"]), "N", "dynamic load y of the seating link, exact derivative"),
+    }
+
+
+@EFFECTS.register("textbook")
+def textbook(chain: Chain, options: dict, theta: float = 0.0, mass: float = 0.0) -> dict:
+    """Textbook model, Eq. (23), on the same time grid."""
+    v, a, F = textbook_velocity_load(chain.time(), chain.R, chain.omega, theta, mass)
+    return {
+        "tight_side_velocity_textbook": (v, "m/s", "tight-side velocity, textbook Eq. (23)"),
+        "tight_side_acceleration_textbook": (a, "m/s2", "tight-side acceleration, textbook Eq. (23)"),
+        "dynamic_load_x_textbook": (F, "N", "dynamic load, textbook Eq. (23)"),
+    }
+
+
+def _summaries(ds: xr.Dataset) -> dict:
+    """Scalars a study stacks: ranges of each model and errors against the reference."""
+    out = {}
+    for suffix, label in (("", "difference method"), ("_exact", "exact"), ("_textbook", "textbook")):
+        for q, unit in (("tight_side_velocity", "m/s"), ("dynamic_load_x", "N")):
+            name = q + suffix
+            if name in ds:
+                out[f"{name}_min"] = (float(ds[name].min()), unit, f"minimum of {q}, {label}")
+                out[f"{name}_max"] = (float(ds[name].max()), unit, f"maximum of {q}, {label}")
+    if "tight_side_velocity" in ds and "tight_side_velocity_exact" in ds:
+        for q in ("tight_side_velocity", "dynamic_load_x"):
+            ref = ds[f"{q}_exact"].values
+            scale = np.max(np.abs(ref))
+            err = ds[q].values - ref
+            out[f"{q}_error_rms"] = (float(np.sqrt(np.mean(err**2)) / scale), "1",
+                                     f"RMS error of {q} vs exact, relative to max |exact|")
+            for end, fn in (("min", np.min), ("max", np.max)):
+                out[f"{q}_error_{end}"] = (float(abs(fn(ds[q].values) - fn(ref)) / scale), "1",
+                                           f"error of the {end} of {q} vs exact, relative to max |exact|")
+    return out
+
+
+def compute(run: dict) -> dict:
+    """The physics of one run (what the cost-of-accuracy timing measures).
+
+    Only the effects the scene names are evaluated.
+    """
+    chain = chain_from_run(run)
+    p, options = run["parameters"], run.get("options", {})
+    data = {}
+    for name, fn in EFFECTS.select(run["effects"]).items():
+        if name == "textbook":
+            data.update(fn(chain, options, theta=p["textbook_phase"], mass=p["textbook_mass"]))
+        else:
+            data.update(fn(chain, options))
+    return {"chain": chain, "t": chain.time(), "data": data}
+
+
+def to_dataset(result: dict, run: dict) -> xr.Dataset:
+    """Package a :func:`compute` result as a CF-annotated Dataset with summaries."""
+    chain, t = result["chain"], result["t"]
+    stage = np.where(np.arange(t.size) <= chain.K, 1, 2)
+    coords = {"t": ("t", t, {"units": "s", "long_name": "time since O1 left the tangent point T"})}
+    variables = {"stage": ("t", stage, {"units": "1", "long_name": "stage of the period (Sec. 3.1)"})}
+    for name, (val, unit, long_name) in result["data"].items():
+        dims = ("t",) if np.ndim(val) else ()
+        variables[name] = (dims, val, {"units": unit, "long_name": long_name})
+    ds = xr.Dataset(variables, coords)
+    for name, (val, unit, long_name) in _summaries(ds).items():
+        ds[name] = ((), val, {"units": unit, "long_name": long_name})
+    ds["pitch_radius"] = ((), chain.R, {"units": "m", "long_name": "sprocket pitch radius, Eq. (1)"})
+    ds["sprocket_speed"] = ((), chain.omega, {"units": "rad/s", "long_name": "sprocket speed omega"})
+    ds["period"] = ((), t[-1], {"units": "s", "long_name": "period t2 of one tooth, Eq. (6)"})
+    return ds
+
+
+def solve(run: dict) -> xr.Dataset:
+    return to_dataset(compute(run), run)
