@@ -9,7 +9,7 @@ import xarray as xr
 from mechrepro.effects import EffectRegistry
 
 from .difference import backward_differences, check_roundoff
-from .geometry import initial_points, pitch_radius, stage_angles
+from .geometry import check_meshing, initial_points, pitch_radius, stage_angles
 from .kinematics import stage_derivatives, stage_positions
 from .loads import dynamic_load, textbook_velocity_load, tight_side_mass
 
@@ -60,6 +60,7 @@ class Chain:
 
 def chain_from_run(run: dict) -> Chain:
     p = run["parameters"]
+    check_meshing(p["tie_strap_pitch"], p["drive_link_pitch"], p["teeth"])  # before int()
     return Chain(p1=p["tie_strap_pitch"], p2=p["drive_link_pitch"], z=int(p["teeth"]),
                  omega=p["sprocket_speed"], m_L=p["tie_strap_mass"],
                  m_C=p["drive_link_mass"], M=int(p["tie_straps_tight_side"]),

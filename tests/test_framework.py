@@ -1,0 +1,130 @@
+"""Shared framework: effects, atomic netCDF writer, gather, validation table, drift check."""
+import math
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from mechrepro import io as mio
+from mechrepro.accuracy import cost_of_accuracy, observed_order, time_call
+from mechrepro.archive import compare
+from mechrepro.effects import EffectRegistry, UnknownEffect
+from mechrepro.validation import check, compare as vcompare, info, read_table, write_table
+
+RUN = {"paper": "saw_chain", "scene": "s", "run": "s", "study": None, "sweep": {},
+       "effects": ["a"], "resolution": {"K": 3}, "parameters": {"x": 1.0},
+       "units": {"x": "m"}, "options": {}, "seed": 0}
+
+
+def small_dataset(value=1.0):
+    return xr.Dataset({"y": ("t", np.arange(3.0) * value, {"units": "m", "long_name": "y"})},
+                      {"t": ("t", np.arange(3.0), {"units": "s", "long_name": "time"})})
+
+
+def test_registry_selects_only_named_effects_in_declaration_order():
+    reg = EffectRegistry("demo")
+    calls = []
+    for name in ("first", "second", "third"):
+        reg.register(name)(lambda name=name: calls.append(name))
+    sel = reg.select(["third", "first"])
+    assert list(sel) == ["first", "third"]
+    for fn in sel.values():
+        fn()
+    assert calls == ["first", "third"]
+    with pytest.raises(UnknownEffect, match="allowed"):
+        reg.select(["fourth"])
+    with pytest.raises(ValueError, match="twice"):
+        reg.register("first")(lambda: None)
+
+
+def test_writer_adds_provenance_and_refuses_missing_units(tmp_path):
+    path = mio.write_dataset(small_dataset(), tmp_path / "r.nc", RUN)
+    ds = mio.open_dataset(path)
+    attrs = mio.run_attrs(ds)
+    assert attrs["paper"] == "saw_chain" and attrs["resolution"] == {"K": 3}
+    assert "numpy" in attrs["package_versions"] and attrs["code_version"]
+    assert attrs["parameters"]["values_si"] == {"x": 1.0}
+    bad = small_dataset()
+    del bad["y"].attrs["units"]
+    with pytest.raises(ValueError, match="y:units"):
+        mio.write_dataset(bad, tmp_path / "bad.nc", RUN)
+    assert not (tmp_path / "bad.nc").exists()
+
+
+def test_interrupted_write_leaves_no_file(tmp_path, monkeypatch):
+    target = tmp_path / "runs" / "r.nc"
+    mio.write_dataset(small_dataset(1.0), target, RUN)
+    before = target.read_bytes()
+
+    def crash(self, path, **kw):
+        with open(path, "wb") as f:
+            f.write(b"CDF half")
+        raise KeyboardInterrupt("killed mid-write")
+
+    monkeypatch.setattr(xr.Dataset, "to_netcdf", crash)
+    with pytest.raises(KeyboardInterrupt):
+        mio.write_dataset(small_dataset(2.0), target, RUN)
+    assert target.read_bytes() == before  # old complete file untouched
+    assert [p.name for p in target.parent.iterdir()] == ["r.nc"]  # no partial file left
+    with pytest.raises(KeyboardInterrupt):
+        mio.write_dataset(small_dataset(2.0), tmp_path / "runs" / "new.nc", RUN)
+    assert not (tmp_path / "runs" / "new.nc").exists()
+
+
+def test_gather_stacks_scalars_and_equal_shapes(tmp_path):
+    paths = []
+    for i, K in enumerate((3, 5)):
+        ds = small_dataset(K)
+        ds["s"] = ((), float(K), {"units": "1", "long_name": "scalar"})
+        if K == 5:  # a variable whose length differs between runs cannot be stacked
+            ds["z"] = ("u", np.ones(K), {"units": "1", "long_name": "z"})
+        run = dict(RUN, run=f"st-{i:03d}", study="st", sweep={"K": K})
+        paths.append(mio.write_dataset(ds, tmp_path / f"{i}.nc", run))
+    g = mio.gather_study(paths)
+    assert list(g["run"].values) == ["st-000", "st-001"]
+    assert list(g["K"].values) == [3, 5]
+    assert g["s"].values.tolist() == [3.0, 5.0] and g["y"].shape == (2, 3)
+    assert "z" not in g
+    mio.check_cf(g)
+
+
+def test_validation_status_is_computed():
+    rows = [vcompare("a", "Fig. 1", 10.0, 10.05, "m", 0.01),
+            vcompare("b", "Fig. 1", 10.0, 11.0, "m", 0.01),
+            check("c", "Sec. 2", False), check("d", "Sec. 2", True),
+            info("e", "ours", 3.0, "s")]
+    assert [r.status for r in rows] == ["pass", "fail", "fail", "pass", "info"]
+    assert rows[1].rel_error == pytest.approx(0.1)
+    assert math.isnan(rows[4].rel_error)
+
+
+def test_validation_table_columns_and_duplicates(tmp_path):
+    path = write_table([vcompare("a", "Fig. 1", 1.0, 1.0, "m", 0.1)], tmp_path / "validation.csv")
+    assert path.read_text().splitlines()[0] == \
+        "quantity,source,paper_value,reproduced_value,unit,rel_error,tolerance,status"
+    assert read_table(path)[0]["status"] == "pass"
+    with pytest.raises(ValueError, match="duplicate"):
+        write_table([check("a", "x", True)] * 2, tmp_path / "v2.csv")
+
+
+def test_drift_check_reports_readable_differences():
+    ref = [{"quantity": "a", "reproduced_value": "1.0", "drift_rtol": "1e-6"},
+           {"quantity": "b", "reproduced_value": "2.0", "drift_rtol": "1e-6"}]
+    cur = [{"quantity": "a", "reproduced_value": "1.0000000001"},
+           {"quantity": "b", "reproduced_value": "2.1"},
+           {"quantity": "c", "reproduced_value": "3"}]
+    problems = compare(cur, ref)
+    assert len(problems) == 2
+    assert any("b: reference 2.0, now 2.1" in p for p in problems)
+    assert any("c: new quantity" in p for p in problems)
+
+
+def test_cost_of_accuracy_helpers():
+    h = np.array([0.1, 0.05, 0.025])
+    assert observed_order(h, 3 * h**2) == pytest.approx(2.0)
+    ds = cost_of_accuracy("demo", "K", [30, 10, 20], [3.0, 1.0, 2.0], {"q": [0.1, 0.3, 0.2]}, "exact")
+    assert ds["resolution"].values.tolist() == [10, 20, 30]
+    assert ds["error_q"].values.tolist() == [0.3, 0.2, 0.1]
+    mio.check_cf(ds)
+    result, seconds = time_call(lambda: 42, min_time=0.01)
+    assert result == 42 and 0 < seconds < 0.01

@@ -1,0 +1,134 @@
+"""The whole workflow on the ci profile, in a copy: outputs, reference, incremental reruns.
+
+Slow (it runs Snakemake and every paper's notebook) but part of `make test`: this is the
+check CI relies on to compare the fast profile against results/reference/ci.
+"""
+import json
+import re
+import shutil
+import subprocess
+import sys
+from html.parser import HTMLParser
+from pathlib import Path
+
+import pytest
+import yaml
+
+from conftest import ROOT
+from mechrepro.provenance import file_sha256
+
+pytestmark = pytest.mark.slow
+SNAKEMAKE = [sys.executable, "-m", "snakemake", "--cores", "2", "--config", "profile=ci"]
+
+
+def snakemake(work, *args, check=True):
+    proc = subprocess.run([*SNAKEMAKE, *args], cwd=work, capture_output=True, text=True,
+                          timeout=1500)
+    if check and proc.returncode != 0:
+        raise AssertionError(f"snakemake {' '.join(args)} failed:\n{proc.stdout[-4000:]}\n{proc.stderr[-4000:]}")
+    return proc.stdout + proc.stderr
+
+
+def scheduled(dry_run_output: str) -> set[str]:
+    """{'rule' or 'rule[wildcards]'} of every job in a dry run."""
+    jobs, current = set(), None
+    for line in dry_run_output.splitlines():
+        m = re.match(r"^(?:local)?rule (\w+):", line)
+        if m:
+            if current:
+                jobs.add(current)
+            current = m.group(1)
+        elif current and line.strip().startswith("wildcards:"):
+            current += "[" + line.split(":", 1)[1].strip() + "]"
+    if current:
+        jobs.add(current)
+    return jobs
+
+
+class Images(HTMLParser):
+    def __init__(self):
+        super().__init__()
+        self.src = []
+
+    def handle_starttag(self, tag, attrs):
+        if tag == "img":
+            self.src.append(dict(attrs)["src"])
+
+
+@pytest.fixture(scope="module")
+def workflow(tmp_path_factory):
+    work = tmp_path_factory.mktemp("wf")
+    for item in ("Snakefile", "workflow", "config", "notebooks", "src"):
+        src = ROOT / item
+        (shutil.copytree if src.is_dir() else shutil.copy2)(src, work / item)
+    shutil.copytree(ROOT / "results" / "reference", work / "results" / "reference")
+    log = snakemake(work)
+    return work, log
+
+
+def test_pipeline_writes_every_output_and_matches_reference(workflow):
+    work, log = workflow
+    papers = yaml.safe_load((work / "config" / "config.yaml").read_text())["papers"]
+    res = work / "results"
+    for paper in papers:
+        cfg = yaml.safe_load((work / "config" / "papers" / f"{paper}.yaml").read_text())
+        for fig in cfg["figures"]:
+            assert (res / paper / "figures" / f"{fig}.png").stat().st_size > 1000
+        for table in cfg.get("tables", ["validation"]):
+            assert (res / paper / "tables" / f"{table}.csv").exists()
+        assert (res / paper / "notebook.ipynb").exists()
+        assert list((res / paper / "benchmarks").glob("*.tsv"))
+        assert not list(res.rglob("*.part*")), "temporary files left behind"
+    # the drift check ran against the committed reference of every paper
+    check = (res / "archive" / "reference_check.txt").read_text()
+    for paper in papers:
+        assert re.search(rf"^{paper}: \d+ quantities within tolerance", check, re.M), check
+    # manifest: checksums of every archived file
+    man = json.loads((res / "archive" / "manifest.json").read_text())
+    assert man["profile"] == "ci" and man["config_hash"] and man["package_versions"]["numpy"]
+    for rel, sha in man["files"].items():
+        assert file_sha256(res / rel) == sha
+    # the report links every figure of every paper, and the files exist
+    page = (res / "report" / "index.html").read_text()
+    imgs = Images()
+    imgs.feed(page)
+    assert len(imgs.src) == sum(len(yaml.safe_load((work / "config" / "papers" / f"{p}.yaml")
+                                                   .read_text())["figures"]) for p in papers)
+    for src in imgs.src:
+        assert (res / "report" / src).resolve().exists(), src
+    assert page.count('class="pass"') + page.count('class="fail"') > 0
+
+
+def test_no_change_schedules_nothing(workflow):
+    work, _ = workflow
+    out = snakemake(work, "-n")
+    assert "Nothing to be done" in out, out[-3000:]
+
+
+def test_one_parameter_reruns_exactly_its_run_notebook_and_report(workflow):
+    work, _ = workflow
+    path = work / "config" / "papers" / "saw_chain.yaml"
+    original = path.read_text()
+    try:
+        path.write_text(original.replace("parameters: {sprocket_speed: 12000}",
+                                         "parameters: {sprocket_speed: 11000}"))
+        jobs = scheduled(snakemake(work, "-n"))
+    finally:
+        path.write_text(original)
+    assert jobs == {"run_params[paper=saw_chain, run=speed_12000]",
+                    "solve[paper=saw_chain, run=speed_12000]",
+                    "notebook_saw_chain", "report", "archive", "reference_check", "all"}, jobs
+    assert "Nothing to be done" in snakemake(work, "-n")
+
+
+def test_bad_config_stops_before_any_job(workflow, tmp_path):
+    work, _ = workflow
+    path = work / "config" / "papers" / "saw_chain.yaml"
+    original = path.read_text()
+    try:
+        path.write_text(original.replace("value: 8.91,", "value: -8.91,"))
+        proc = subprocess.run([*SNAKEMAKE, "-n"], cwd=work, capture_output=True, text=True)
+    finally:
+        path.write_text(original)
+    assert proc.returncode != 0
+    assert "parameters.tie_strap_pitch = -8.91: must be > 0" in proc.stderr + proc.stdout
