@@ -24,15 +24,18 @@ class RoundoffError(ValueError):
 
 
 def backward_differences(x, dt, v0, a0):
-    """Velocity and acceleration of positions ``x`` (shape (K+1, ...)) by Eqs. (12)-(13).
+    """Velocity and acceleration of positions ``x`` (1-D, K+1 steps) by Eqs. (12)-(13).
 
-    Vectorised over steps and components; ``v0``, ``a0`` are the values at index 0.
+    Vectorised over the steps; ``v0``, ``a0`` are the values at index 0.  Written into
+    preallocated arrays because this is the solver's hot path.
     """
     v = np.empty_like(x)
     a = np.empty_like(x)
     v[0], a[0] = v0, a0
-    v[1:] = np.diff(x, axis=0) / dt
-    a[1:] = np.diff(v, axis=0) / dt
+    np.subtract(x[1:], x[:-1], out=v[1:])
+    v[1:] *= 1.0 / dt
+    np.subtract(v[1:], v[:-1], out=a[1:])
+    a[1:] *= 1.0 / dt
     return v, a
 
 

@@ -75,28 +75,33 @@ def _join(stage1, stage2):
 @EFFECTS.register("difference_method")
 def difference_method(chain: Chain, options: dict) -> dict:
     """Tight-side velocity and dynamic load by the paper's difference method."""
-    R, w = chain.R, chain.omega
-    phi1, phi2 = chain.phases
-    roundoff = check_roundoff(chain.K, chain.Tx + chain.R, phi1 / w, R * w**2,
+    R, w, K = chain.R, chain.omega, chain.K
+    phi1, _ = chain.phases
+    roundoff = check_roundoff(K, chain.Tx + R, phi1 / w, R * w**2,
                               options.get("roundoff_tolerance", 1e-3))
-    out = {"vx": [], "ax": [], "Fx": [], "Fy": []}
-    v0, a0 = np.array([R * w, R * w, 0.0]), np.zeros(3)  # (trail_x, mid_x, mid_y)
-    for L, m_link, phi in chain.stages():
+    n = 2 * K + 1
+    vx, ax, Fx, Fy = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
+    # initial values (Sec. 3.3): O2 and A1 move with R omega along x, at rest in y
+    v_trail, a_trail, v_mid, a_mid = R * w, 0.0, R * w, 0.0
+    for stage, (L, m_link, phi) in enumerate(chain.stages()):
         pos = stage_positions(phi, R, L, chain.Tx)
-        x = np.stack([pos["trail_x"], pos["mid_x"], pos["mid_y"]], axis=1)
         dt = (phi[1] - phi[0]) / w
-        v, a = backward_differences(x, dt, v0, a0)
-        Fx, Fy = dynamic_load(m_link, a[:, 1], a[:, 2], chain.m_tight, a[:, 0])
-        out["vx"].append(v[:, 0]); out["ax"].append(a[:, 0])
-        out["Fx"].append(Fx); out["Fy"].append(Fy)
+        vt, at = backward_differences(pos["trail_x"], dt, v_trail, a_trail)
+        _, amx = backward_differences(pos["mid_x"], dt, v_mid, a_mid)
+        _, amy = backward_differences(pos["mid_y"], dt, 0.0, 0.0)
+        Fsx, Fsy = dynamic_load(m_link, amx, amy, chain.m_tight, at)
+        # stage 2's index 0 repeats t1 (already stored by stage 1)
+        dst = slice(0, K + 1) if stage == 0 else slice(K + 1, n)
+        src = slice(0, K + 1) if stage == 0 else slice(1, K + 1)
+        vx[dst], ax[dst], Fx[dst], Fy[dst] = vt[src], at[src], Fsx[src], Fsy[src]
         # stage 2 starts with O2's values at t1 for both A2 and O3 (Sec. 3.3 (2))
-        v0 = np.array([v[-1, 0], v[-1, 0], 0.0])
-        a0 = np.array([a[-1, 0], a[-1, 0], 0.0])
+        v_trail = v_mid = vt[-1]
+        a_trail = a_mid = at[-1]
     return {
-        "tight_side_velocity": (_join(*out["vx"]), "m/s", "tight-side velocity, difference method (Eqs. 12, 18)"),
-        "tight_side_acceleration": (_join(*out["ax"]), "m/s2", "tight-side acceleration, difference method (Eqs. 13, 19)"),
-        "dynamic_load_x": (_join(*out["Fx"]), "N", "total tight-side dynamic load x, difference method (Eqs. 16, 22)"),
-        "dynamic_load_y": (_join(*out["Fy"]), "N", "dynamic load y of the seating link, difference method (Eqs. 16, 22)"),
+        "tight_side_velocity": (vx, "m/s", "tight-side velocity, difference method (Eqs. 12, 18)"),
+        "tight_side_acceleration": (ax, "m/s2", "tight-side acceleration, difference method (Eqs. 13, 19)"),
+        "dynamic_load_x": (Fx, "N", "total tight-side dynamic load x, difference method (Eqs. 16, 22)"),
+        "dynamic_load_y": (Fy, "N", "dynamic load y of the seating link, difference method (Eqs. 16, 22)"),
         "roundoff_acceleration_bound": (roundoff, "m/s2", "bound of round-off in the second backward difference"),
     }
 

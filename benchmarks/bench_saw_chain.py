@@ -1,0 +1,51 @@
+"""saw_chain speed: vectorised difference method vs a per-step Python loop, and the study.
+
+Run: `make benchmark` or `.venv/bin/python benchmarks/bench_saw_chain.py`.
+Targets (issue 2): vectorised >= 50x the loop; the whole saw_chain study including its
+cost-of-accuracy sweep <= 10 s.  Printed, never asserted: timings depend on the machine.
+"""
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "src"))
+
+from mechrepro.accuracy import time_call  # noqa: E402
+from mechrepro.config import load_paper  # noqa: E402
+from mechrepro.models.saw_chain import compute  # noqa: E402
+from mechrepro.models.saw_chain.reference_loop import difference_method_loop  # noqa: E402
+from mechrepro.solve import run_solver  # noqa: E402
+
+
+def vectorised_vs_loop(K=10000):
+    cfg = load_paper(ROOT / "config/papers/saw_chain.yaml")
+    run = dict(cfg.runs["accuracy"], effects=["difference_method"], resolution={"K": K})
+    p = run["parameters"]
+    _, t_vec = time_call(compute, run, min_time=0.5)
+    _, t_loop = time_call(difference_method_loop, p["tie_strap_pitch"], p["drive_link_pitch"],
+                          int(p["teeth"]), p["sprocket_speed"], p["tie_strap_mass"],
+                          p["drive_link_mass"], int(p["tie_straps_tight_side"]),
+                          int(p["drive_links_tight_side"]), K, min_time=0.5)
+    return t_vec, t_loop
+
+
+def whole_study(profile="default"):
+    cfg = load_paper(ROOT / "config/papers/saw_chain.yaml", profile)
+    t0 = time.perf_counter()
+    for run in cfg.runs.values():
+        run_solver(dict(run, options={**run["options"], "timing_min_s": 0.0}))
+    return len(cfg.runs), time.perf_counter() - t0
+
+
+def test_bench_saw_chain():
+    t_vec, t_loop = vectorised_vs_loop()
+    n, t_study = whole_study()
+    print(f"\nsaw_chain K=10000: vectorised {t_vec * 1e3:.2f} ms, per-step loop "
+          f"{t_loop * 1e3:.1f} ms, ratio {t_loop / t_vec:.0f}x (target >= 50x)")
+    print(f"saw_chain whole study (default profile, {n} runs, solve + packaging): "
+          f"{t_study:.2f} s (target <= 10 s)")
+
+
+if __name__ == "__main__":
+    test_bench_saw_chain()
