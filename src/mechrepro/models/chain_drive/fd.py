@@ -1,0 +1,280 @@
+"""Finite differences for the moving-string span, Eqs. (2-36)/(2-37) with (2-38).
+
+    m u_tt + 2 m c u_xt + m c^2 u_xx + c_d (u_t + c u_x) - (P + P_t) u_xx - kappa P_t = 0
+
+Time: central differences (three levels).  The gyroscopic term 2 m c u_xt is centred in
+time, D(u^{j+1} - u^{j-1}) / (2 dt), which makes each step a tridiagonal solve but keeps
+the scheme neutrally stable up to the characteristic (CFL) limit; a fully explicit lag of
+that term is unconditionally (weakly) unstable for the moving string (tests show it).
+Space: second derivative central; first derivatives by the mixed differencing of
+Eq. (2-38) with weight s* (central at s* = 0, backward at s* = 1).
+
+The whole speed sweep is one computation: every array is shaped (n_speeds, n_points)
+and the S tridiagonal systems of a step are solved as one block-diagonal banded system
+by LAPACK (``dgttrs``, factorised once per length state).  Time-dependent coefficients
+(dynamic tension, end motions, span-length state) are evaluated by the effects for the
+whole (time, speed) grid before stepping.
+
+The time step is derived from the characteristic speeds c +- c_w of the moving string,
+dt = cfl * dx / (c_w,max + c); a requested step beyond the limit is refused.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.linalg import lapack
+
+
+class StabilityError(ValueError):
+    """A time step beyond the stability limit was requested, or the tension went slack."""
+
+
+@dataclass
+class Excitation:
+    """Time-dependent data on the step grid, arrays shaped (n_steps + 1, n_speeds).
+
+    ``tension``: dynamic tension P_t; ``u_left``/``u_right``: prescribed end displacements at
+    x = 0 (driven sprocket) and x = L (driving sprocket); ``long``: span-length state (True =
+    long span); ``load``: transverse force per length (sag term kappa P_t).  None = absent.
+    """
+    tension: np.ndarray | None = None
+    u_left: np.ndarray | None = None
+    u_right: np.ndarray | None = None
+    long: np.ndarray | None = None
+    load: np.ndarray | None = None
+    source: object = None     # callable(j) -> (S, n-1) distributed force at interior nodes
+
+
+@dataclass
+class Grid:
+    """Spatial grid over the long span [0, L_long]; the short span ends at index n_short."""
+    L_long: float
+    n_long: int
+    n_short: int
+
+    @property
+    def dx(self) -> float:
+        return self.L_long / self.n_long
+
+    @property
+    def x(self) -> np.ndarray:
+        return np.linspace(0.0, self.L_long, self.n_long + 1)
+
+
+def stable_time_step(dx: float, c, P_max, m: float, cfl: float = 0.9) -> float:
+    """dt = cfl * dx / max(c + c_w) with c_w = sqrt(P_max/m): the characteristic (CFL) limit."""
+    if not 0.0 < cfl <= 1.0:
+        raise StabilityError(f"CFL safety factor {cfl} outside (0, 1]: the scheme is only "
+                             "stable up to the characteristic limit")
+    P_max = np.asarray(P_max, float)
+    if np.any(P_max <= 0):
+        raise StabilityError("tension is not positive: the span is slack, a string model "
+                             "cannot represent it")
+    speed = np.max(np.asarray(c, float) + np.sqrt(P_max / m))
+    return float(cfl * dx / speed)
+
+
+def check_time_step(dt: float, dx: float, c, P_max, m: float) -> None:
+    """Refuse a hand-picked step past the characteristic limit (never return garbage)."""
+    limit = stable_time_step(dx, c, P_max, m, cfl=1.0)
+    if dt > limit * (1 + 1e-12):
+        raise StabilityError(f"time step {dt:.4g} s exceeds the stability limit "
+                             f"{limit:.4g} s = dx/max(c + c_w); refusing to step")
+
+
+def mixed_weights(s_star, dx: float):
+    """Eq. (2-38): weights of u_{i-1}, u_i, u_{i+1} in du/dx (shape (S, 3))."""
+    s = np.asarray(s_star, float)
+    return np.stack([-(1 + s) / (2 * dx), s / dx, (1 - s) / (2 * dx)], axis=-1)
+
+
+@dataclass
+class MarchResult:
+    amplitude: np.ndarray                 # (S,) max |u| over x and the measuring window
+    growth: np.ndarray                    # (S,) growth ratio of the last to first window block
+    unstable: np.ndarray                  # (S,) bool: growing response (Mathieu) or capped
+    block_max: np.ndarray                 # (n_blocks, S) max |u| per block of the window
+    probes: np.ndarray | None = None      # (n_rec, S, n_probe) recorded u at probe indices
+    t_rec: np.ndarray | None = None
+    final: np.ndarray | None = None       # (S, n+1) last state
+    n_steps: int = 0
+    dt: float = 0.0
+    info: dict = field(default_factory=dict)
+
+
+def _factor(dl, d, du):
+    out = lapack.dgttrf(dl, d, du)
+    if out[-1] != 0:
+        raise StabilityError(f"tridiagonal step matrix is singular (info={out[-1]})")
+    return out[:-1]
+
+
+def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
+          exc: Excitation, s_star=None, measure_from: int | None = None, n_blocks: int = 4,
+          u_cap: float = 1.0, probes=(), record_every: int = 0, u0=None, v0=None,
+          dt_series=None, u1=None) -> MarchResult:
+    """Step Eq. (2-36)/(2-37) for S operating speeds at once.
+
+    c, P: (S,) chain speed and axial tension P = T_s (+ lambda m c^2).
+    dt: the time step (check with :func:`check_time_step` first), or ``dt_series`` (n_steps,)
+    for the non-uniform scheme of Sec. 3.1 (the matrix is then refactorised every step).
+    u0, v0: initial displacement and velocity (S, n+1) (default rest).
+    measure_from: first step of the measuring window (steady state); the window is split
+    in ``n_blocks`` blocks whose maxima reveal growth.  Rows whose |u| exceeds ``u_cap``
+    are frozen and reported unstable: growth is detected, never overflowed into NaN.
+    """
+    c = np.atleast_1d(np.asarray(c, float))
+    S = c.size
+    P = np.broadcast_to(np.asarray(P, float), (S,)).copy()
+    n, ns = grid.n_long, grid.n_short
+    dx = grid.dx
+    ni = n - 1
+    s = c / np.sqrt(P / m) if s_star is None else np.broadcast_to(s_star, (S,))
+    W = mixed_weights(np.clip(s, 0, 1), dx)              # (S, 3)
+    zeros = np.zeros((n_steps + 1, S))
+    Pt = exc.tension if exc.tension is not None else zeros
+    uL = exc.u_left if exc.u_left is not None else zeros
+    uR = exc.u_right if exc.u_right is not None else zeros
+    q = exc.load
+    longs = exc.long
+    length_change = longs is not None and ns != n
+
+    def step_coeffs(h1, h2):
+        """LHS tridiagonal blocks and explicit weights for steps h1 (j-1 -> j), h2 (j -> j+1)."""
+        a_tt = 2.0 / (h2 * (h1 + h2))                  # multiplies u^{j+1} in u_tt
+        b_t = 1.0 / (h1 + h2)                          # central first time derivative
+        diag = m * a_tt + c_d * b_t + 2 * m * c * b_t * W[:, 1]
+        low = 2 * m * c * b_t * W[:, 0]
+        up = 2 * m * c * b_t * W[:, 2]
+        return a_tt, b_t, low, diag, up
+
+    def factors(low, diag, up, short: bool):
+        dl = np.repeat(low[:, None], ni, 1)
+        dd = np.repeat(diag[:, None], ni, 1)
+        du = np.repeat(up[:, None], ni, 1)
+        if short:
+            # interior rows from index ns on are identity rows holding the boundary value
+            k0 = ns - 1
+            dd[:, k0:] = 1.0
+            dl[:, k0:] = 0.0
+            du[:, k0:] = 0.0
+        dl[:, 0] = 0.0      # block boundaries: no coupling between speeds
+        du[:, -1] = 0.0
+        return _factor(dl.ravel()[1:], dd.ravel(), du.ravel()[:-1])
+
+    uniform = dt_series is None
+    if uniform:
+        hs = np.full(n_steps, float(dt))
+    else:
+        hs = np.asarray(dt_series, float)
+        n_steps = hs.size
+    h_prev = hs[0]
+    coeffs = step_coeffs(h_prev, hs[0])
+    fac_long = factors(*coeffs[2:], short=False)
+    fac_short = factors(*coeffs[2:], short=True) if length_change else None
+
+    u_prev = np.zeros((S, n + 1)) if u0 is None else np.array(u0, float)
+    u_prev[:, 0], u_prev[:, -1] = uL[0], uR[0]
+    if length_change:
+        sh = ~longs[0]
+        u_prev[sh, ns:] = uR[0, sh, None]
+    # second level from a Taylor step (rest or given velocity, no acceleration)
+    if u1 is not None:
+        u_cur = np.array(u1, float)
+    else:
+        u_cur = u_prev + (0.0 if v0 is None else hs[0] * np.asarray(v0, float))
+    u_cur[:, 0], u_cur[:, -1] = uL[1], uR[1]
+    if length_change:
+        sh = ~longs[1]
+        u_cur[sh, ns:] = uR[1, sh, None]
+
+    measure_from = n_steps // 2 if measure_from is None else int(measure_from)
+    win = max(n_steps - measure_from, 1)
+    block_len = max(win // n_blocks, 1)
+    block_max = np.zeros((n_blocks, S))
+    capped = np.zeros(S, bool)
+    rec, t_rec = [], []
+    probes = list(probes)
+    t = hs[0]
+    rhs = np.empty((S, ni))
+    tmp = np.empty((S, ni))
+    cdc = c_d * c
+    for j in range(1, n_steps):
+        h1, h2 = hs[j - 1], hs[j]
+        if not uniform:
+            coeffs = step_coeffs(h1, h2)
+            fac_long = factors(*coeffs[2:], short=False)
+            if length_change:
+                fac_short = factors(*coeffs[2:], short=True)
+        a_tt, b_t, low, diag, up = coeffs
+        a_prev = 2.0 / (h1 * (h1 + h2))
+        a_cur = 2.0 / (h1 * h2)
+        # rhs = m(a_cur u^j - a_prev u^{j-1}) + (P + P_t - m c^2) u_xx^j - c_d c D u^j
+        #       + 2 m c b_t D u^{j-1} + c_d b_t u^{j-1} + load, as two 3-point stencils
+        # with per-speed weights (only the tension weight changes in time)
+        Tj = (P + Pt[j] - m * c * c) / (dx * dx)
+        kl = Tj - cdc * W[:, 0]
+        kc = m * a_cur - 2 * Tj - cdc * W[:, 1]
+        ku = Tj - cdc * W[:, 2]
+        g = 2 * m * b_t * c
+        ql = g * W[:, 0]
+        qc = g * W[:, 1] - (m * a_prev - c_d * b_t)
+        qu = g * W[:, 2]
+        uc, up_ = u_cur, u_prev
+        np.multiply(uc[:, :-2], kl[:, None], out=rhs)
+        np.multiply(uc[:, 1:-1], kc[:, None], out=tmp); rhs += tmp
+        np.multiply(uc[:, 2:], ku[:, None], out=tmp); rhs += tmp
+        np.multiply(up_[:, :-2], ql[:, None], out=tmp); rhs += tmp
+        np.multiply(up_[:, 1:-1], qc[:, None], out=tmp); rhs += tmp
+        np.multiply(up_[:, 2:], qu[:, None], out=tmp); rhs += tmp
+        if q is not None:
+            rhs += q[j][:, None]
+        if exc.source is not None:
+            rhs += exc.source(j)
+        # known boundary values at j+1 of the implicit D u^{j+1}
+        rhs[:, 0] -= low * uL[j + 1]
+        rhs[:, -1] -= up * uR[j + 1]
+        sol = lapack.dgttrs(*fac_long, rhs.ravel())[0].reshape(S, ni)
+        if length_change:
+            rs = rhs.copy()
+            k0 = ns - 1
+            rs[:, k0:] = uR[j + 1][:, None]   # identity rows; node ns couples in the matrix
+            sol_s = lapack.dgttrs(*fac_short, rs.ravel())[0].reshape(S, ni)
+            sh = ~longs[j + 1]
+            sol[sh] = sol_s[sh]
+        u_new = u_prev  # reuse the buffer of level j-1
+        u_new[:, 1:-1] = sol
+        u_new[:, 0] = uL[j + 1]
+        u_new[:, -1] = uR[j + 1]
+        if length_change:
+            sh = ~longs[j + 1]
+            u_new[sh, ns:] = uR[j + 1, sh, None]
+        t += h2
+        if j + 1 >= measure_from:
+            amp = np.max(np.abs(u_new), axis=1)
+            b = min((j + 1 - measure_from) // block_len, n_blocks - 1)
+            np.maximum(block_max[b], amp, out=block_max[b])
+        if j % 16 == 0:
+            # freeze rows that left the linear range: growth is reported, never overflowed
+            big = np.max(np.abs(u_new), axis=1) > u_cap
+            if np.any(big):
+                capped |= big
+                u_new[big] = 0.0
+                u_cur[big] = 0.0
+        if record_every and (j + 1) % record_every == 0:
+            rec.append(u_new[:, probes].copy())
+            t_rec.append(t)
+        u_prev, u_cur = u_cur, u_new
+    first = np.maximum(block_max[0], 1e-300)
+    growth = block_max[-1] / first
+    # a growing response: each block larger than the one before, the last by > 50 %
+    monotone = np.all(np.diff(block_max, axis=0) > 0, axis=0)
+    unstable = capped | (monotone & (growth > 1.5))
+    amplitude = np.where(capped, u_cap, np.max(block_max, axis=0))
+    return MarchResult(amplitude=amplitude, growth=np.where(capped, np.inf, growth),
+                       unstable=unstable, block_max=block_max,
+                       probes=np.array(rec) if rec else None,
+                       t_rec=np.array(t_rec) if t_rec else None, final=u_cur,
+                       n_steps=n_steps, dt=float(hs.max()))

@@ -1,0 +1,160 @@
+"""Polygonal action: the rigid four-bar (Eqs. 2-6 to 2-10), the end-point motions
+(Eqs. 2-24, 2-25), the span-length state, and the elastic four-bar (Eqs. 2-11 to 2-23).
+
+All functions broadcast over time and operating speed.  Angles in rad, SI units.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .geometry import pitch_radius
+
+
+def driven_phase(n2: int, f_p: float) -> float:
+    """alpha_f = 2 pi f_p / n2 (Eq. 2-7)."""
+    return 2.0 * np.pi * f_p / n2
+
+
+def chain_travel(t, omega1, n1: int, r1: float):
+    """Chain length paid out by the driving sprocket since t = 0, and theta_1.
+
+    theta_1 = omega1 t + pi/2 - pi/n1 within a tooth period (Eq. 2-7); each tooth period
+    the chord r1 (cos theta_10 - cos theta_1) sweeps exactly one pitch.
+    """
+    t = np.asarray(t, float)
+    phi = np.asarray(omega1, float) * t
+    step = 2 * np.pi / n1
+    k = np.floor(phi / step)
+    th10 = np.pi / 2 - np.pi / n1
+    th1 = th10 + (phi - k * step)
+    p_c = 2 * r1 * np.sin(np.pi / n1)
+    return k * p_c + r1 * (np.cos(th10) - np.cos(th1)), th1
+
+
+def rigid_kinematics(t, omega1, *, n1: int, n2: int, p_c: float, f_p: float) -> dict:
+    """Rigid four-bar, Eqs. (2-7) to (2-10) (without I2; see :func:`polygonal_load_rigid`).
+
+    theta_2 follows from r2 cos theta_2 = r2 cos theta_20 - (chain travel mod p_c), the
+    integrated form of Eq. (2-7) with the wrap of Eq. (2-8) at every driven tooth.
+    Returns theta1, theta2, omega2 (Eq. 2-7), alpha2 (Eq. 2-9), and the driving/driven
+    tooth phases (fraction of a pitch since the last engagement / disengagement).
+    """
+    r1, r2 = pitch_radius(p_c, n1), pitch_radius(p_c, n2)
+    omega1 = np.asarray(omega1, float)
+    s, th1 = chain_travel(t, omega1, n1, r1)
+    th20_start = np.pi / 2 - np.pi / n2
+    th20 = th20_start + driven_phase(n2, f_p)
+    s_off = r2 * (np.cos(th20_start) - np.cos(th20))
+    s2 = np.mod(s + s_off, p_c)
+    th2 = np.arccos(np.clip(np.cos(th20_start) - s2 / r2, -1.0, 1.0))
+    w2 = omega1 * r1 * np.sin(th1) / (r2 * np.sin(th2))
+    a2 = (r1 * omega1**2 * np.cos(th1) - r2 * w2**2 * np.cos(th2)) / (r2 * np.sin(th2))
+    phase1 = np.mod(s, p_c) / p_c
+    phase2 = s2 / p_c
+    return {"theta1": th1, "theta2": th2, "omega2": w2, "alpha2": a2, "r1": r1, "r2": r2,
+            "phase1": phase1, "phase2": phase2}
+
+
+def polygonal_load_rigid(alpha2, I2: float, r2: float):
+    """Eq. (2-10): D_pol = I2 alpha2 / r2."""
+    return I2 * np.asarray(alpha2, float) / r2
+
+
+def end_displacements(theta1, theta2, r1: float, r2: float, n2: int):
+    """Eqs. (2-24), (2-25): u_n = r1 (1 - sin theta1) (driving end), u_0 = r2 (1 - sin theta2)
+    (driven end), both shifted by -0.5 r2 (1 - cos(pi/n2)) as the paper states."""
+    shift = -0.5 * r2 * (1 - np.cos(np.pi / n2))
+    return r2 * (1 - np.sin(theta2)) + shift, r1 * (1 - np.sin(theta1)) + shift
+
+
+def long_span(phase1, phase2):
+    """Length state of Sec. 2.2: the span is long (L_0 + p_c) after a disengagement at the
+    driven sprocket until the next engagement at the driving sprocket.
+
+    A disengagement is more recent than the last engagement iff the driven phase is
+    smaller than the driving phase (both measured in pitches of chain travel).
+    """
+    return np.asarray(phase2) < np.asarray(phase1)
+
+
+# --------------------------------------------------------------------------- elastic four-bar
+
+def fourier_coefficients(n1: int, n2: int, r1: float, r2: float, alpha: float) -> dict:
+    """Eqs. (2-12), (2-14): a0, a1, a2 and N, b1, c1, b2, c2 (two harmonics kept)."""
+    a0 = n1 * r1 / np.pi * np.sin(np.pi / n1)
+    N = (n2 * r2 / np.pi * np.sin(np.pi / n2)) / a0
+    return {
+        "a0": a0, "a1": 2 * a0 / (1 - n1**2), "a2": 2 * a0 / (1 - 4 * n1**2), "N": N,
+        "b1": 2 * N * a0 / (1 - n2**2) * np.cos(n2 * alpha),
+        "c1": -2 * N * a0 / (1 - n2**2) * np.sin(n2 * alpha),
+        "b2": 2 * N * a0 / (1 - 4 * n2**2) * np.cos(2 * n2 * alpha),
+        "c2": -2 * N * a0 / (1 - 4 * n2**2) * np.sin(2 * n2 * alpha),
+    }
+
+
+def _elastic_residual(X, omega1, k, I2, fc, pt):
+    """Residual of Eq. (2-19) on one tooth period with Eqs. (2-13), (2-14), (2-16), (2-17).
+
+    X = (l1, m1, l2, m2).  The residual is linear in X, so its harmonic projection
+    gives the 9x4 system A X = F of Eq. (2-20).
+    """
+    l1, m1, l2, m2 = X
+    a0, a1, a2, N = fc["a0"], fc["a1"], fc["a2"], fc["N"]
+    b1, c1, b2, c2 = fc["b1"], fc["c1"], fc["b2"], fc["c2"]
+    p = pt[1]
+    ct, st, c2t, s2t = (np.cos(pt[0]), np.sin(pt[0]), np.cos(2 * pt[0]), np.sin(2 * pt[0]))
+    # x1 + L - x2 without the secular terms (they cancel): Eqs. (2-13), (2-16)
+    x1 = -omega1 * (a1 / p * st + a2 / (2 * p) * s2t)
+    x2 = -omega1 / N * (l1 / p * st - m1 / p * ct + l2 / (2 * p) * s2t - m2 / (2 * p) * c2t) \
+        - omega1 / (N * p) * (m1 + m2 / 2)
+    stretch = x1 - x2
+    r2s2 = N * a0 + b1 * ct + c1 * st + b2 * c2t + c2 * s2t            # Eq. (2-14)
+    A_ = N * a0 + l1 * ct + m1 * st + l2 * c2t + m2 * s2t
+    B_ = N * a0 - b1 * ct - c1 * st - b2 * c2t - c2 * s2t
+    dA = p * (-l1 * st + m1 * ct - 2 * l2 * s2t + 2 * m2 * c2t)
+    dB = p * (b1 * st - c1 * ct + 2 * b2 * s2t - 2 * c2 * c2t)
+    th2dd = omega1 / (N**3 * a0**2) * (dA * B_ + A_ * dB)             # Eqs. (2-17), (2-18)
+    return I2 * th2dd + k * stretch * r2s2                           # Eq. (2-19)
+
+
+def elastic_four_bar(omega1: float, *, k: float, I2: float, n1: int, n2: int, p_c: float,
+                     f_p: float, n_samples: int = 64) -> dict:
+    """Elastic four-bar of Sec. 2.1.2b: solve A X = F (Eq. 2-20) by least squares (Eq. 2-21).
+
+    A and F are the projections of Eq. (2-19) on the nine harmonics 1, cos ipt, sin ipt
+    (i = 1..4), computed numerically (FFT of the residual over one tooth period) rather than
+    transcribed from Appendix II, whose printed entries contain duplicates and typos.
+    """
+    r1, r2 = pitch_radius(p_c, n1), pitch_radius(p_c, n2)
+    fc = fourier_coefficients(n1, n2, r1, r2, driven_phase(n2, f_p))
+    p = n1 * omega1
+    phase = 2 * np.pi * np.arange(n_samples) / n_samples
+    pt = (phase, p)
+
+    def harmonics(res):
+        C = np.fft.rfft(res) / n_samples
+        return np.concatenate([[C[0].real], np.ravel(np.column_stack(
+            [2 * C[1:5].real, -2 * C[1:5].imag]))])
+
+    F = -harmonics(_elastic_residual(np.zeros(4), omega1, k, I2, fc, pt))
+    A = np.column_stack([harmonics(_elastic_residual(e, omega1, k, I2, fc, pt)) + F
+                         for e in np.eye(4)])
+    X, *_ = np.linalg.lstsq(A, F, rcond=None)
+    return {"X": X, "A": A, "F": F, "coef": fc, "p": p, "r1": r1, "r2": r2}
+
+
+def polygonal_load_elastic(t, sol: dict, omega1: float, k: float):
+    """Eq. (2-22): D_pol = k (x2 - x1 - L)."""
+    l1, m1, l2, m2 = sol["X"]
+    fc, p = sol["coef"], sol["p"]
+    N, a1, a2 = fc["N"], fc["a1"], fc["a2"]
+    t = np.asarray(t, float)
+    return k * omega1 / (N * p) * ((N * a1 - l1) * np.sin(p * t) + m1 * np.cos(p * t)
+                                   + 0.5 * (N * a2 - l2) * np.sin(2 * p * t)
+                                   + 0.5 * m2 * np.cos(2 * p * t) - m1 - 0.5 * m2)
+
+
+def elastic_resonance(k: float, I2: float, r2: float, n1: int) -> float:
+    """Driving speed omega1 at which the tooth frequency n1 omega1 meets the torsional
+    frequency r2 sqrt(k/I2) of the driven sprocket on the span spring k = AE/L."""
+    return r2 * np.sqrt(k / I2) / n1

@@ -1,0 +1,174 @@
+"""High-speed model: Galerkin discretisation of the coupled transverse/longitudinal span,
+Eqs. (2-39) to (2-41), integrated by classical RK4 (the paper) or scipy's solve_ivp.
+
+    u1 = sum_j psi_j(t) cos(j pi x/L)                          (free-free rod modes)
+    u2 = sum_j phi_j(t) sin(j pi x/L) + (L-x)/L g(t) + x/L h(t) (string modes + end motion)
+
+The projections of (2-40) (with its boundary terms) on cos(k pi x/L) and of (2-41) on
+sin(k pi x/L) are evaluated by Gauss-Legendre quadrature; the linear parts are assembled
+once as matrices, the cubic/quadratic coupling terms at every right-hand-side call.
+"""
+from __future__ import annotations
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+
+class GalerkinModel:
+    def __init__(self, *, L, m, EA, P, c, c_d, n_t: int, n_l: int, n_quad: int | None = None,
+                 coupling: bool = True):
+        self.L, self.m, self.EA, self.P, self.c, self.c_d = L, m, EA, P, c, c_d
+        self.n_t, self.n_l, self.coupling = n_t, n_l, coupling
+        nq = n_quad or 4 * max(n_t, n_l) + 16
+        xg, wg = np.polynomial.legendre.leggauss(nq)
+        self.x = 0.5 * L * (xg + 1)
+        self.w = 0.5 * L * wg
+        kt = np.arange(1, n_t + 1)[:, None] * np.pi / L
+        kl = np.arange(1, n_l + 1)[:, None] * np.pi / L
+        x = self.x[None, :]
+        self.S, self.Sx, self.Sxx = np.sin(kt * x), kt * np.cos(kt * x), -kt**2 * np.sin(kt * x)
+        self.C, self.Cx, self.Cxx = np.cos(kl * x), -kl * np.sin(kl * x), -kl**2 * np.cos(kl * x)
+        self.Cend0 = np.ones(n_l)
+        self.CendL = np.cos(kl[:, 0] * L)
+        W = self.w[None, :]
+        # transverse: m(phi'' + 2c phi'_x + c^2 phi_xx) - P phi_xx + c_d(phi' + c phi_x), projected on S
+        self.Mt = (self.S * W) @ self.S.T
+        self.Gt = (self.S * W) @ (2 * m * c * self.Sx.T + c_d * self.S.T)
+        self.Kt = (self.S * W) @ ((m * c**2 - P) * self.Sxx.T + c_d * c * self.Sx.T)
+        # longitudinal: m(psi'' + 2c psi'_x + c^2 psi_xx) - EA psi_xx projected on C
+        self.Ml = (self.C * W) @ self.C.T
+        self.Gl = (self.C * W) @ (2 * m * c * self.Cx.T)
+        self.Kl = (self.C * W) @ ((m * c**2 - EA) * self.Cxx.T)
+        self.Mt_inv = np.linalg.inv(self.Mt)
+        self.Ml_inv = np.linalg.inv(self.Ml)
+        self.lin = (L - self.x) / L, self.x / L
+
+    def rhs(self, t, y, ends, tension):
+        """y = (phi, psi, phi', psi'); ends(t) -> (g, h, g', h', g'', h''); tension(t) -> P_t."""
+        nt, nl = self.n_t, self.n_l
+        phi, psi = y[:nt], y[nt:nt + nl]
+        dphi, dpsi = y[nt + nl:2 * nt + nl], y[2 * nt + nl:]
+        g, h, gd, hd, gdd, hdd = ends(t)
+        a0, a1 = self.lin
+        L, m, c, c_d = self.L, self.m, self.c, self.c_d
+        # end-motion part of u2 (linear in x): its inertia, gyroscopic and damping loads
+        ub = a0 * g + a1 * h
+        ub_t, ub_tt = a0 * gd + a1 * hd, a0 * gdd + a1 * hdd
+        ub_x, ub_xt = (h - g) / L, (hd - gd) / L
+        u2x = phi @ self.Sx + ub_x
+        u2xx = phi @ self.Sxx
+        f_b = -(m * (ub_tt + 2 * c * ub_xt) + c_d * (ub_t + c * ub_x))
+        ft = -(self.Gt @ dphi) - (self.Kt @ phi) + (self.S * self.w) @ f_b
+        fl = -(self.Gl @ dpsi) - (self.Kl @ psi)
+        Pt = tension(t)
+        if self.coupling:
+            u1x, u1xx = psi @ self.Cx, psi @ self.Cxx
+            EA = self.EA
+            ft += (self.S * self.w) @ (EA * (u1xx * u2x + u1x * u2xx + 1.5 * u2x**2 * u2xx))
+            fl += (self.C * self.w) @ (EA * u2x * u2xx)
+        # the ends carry the dynamic tension: {EA(u1,x + u2,x^2/2) - P_t} at x = 0 and its
+        # negative at x = L (Eq. 2-40); u1,x = 0 at the ends for cosine modes
+        ex0 = 0.5 * self.EA * (phi @ self._Sx0 + (h - g) / L) ** 2 if self.coupling else 0.0
+        exL = 0.5 * self.EA * (phi @ self._SxL + (h - g) / L) ** 2 if self.coupling else 0.0
+        fl += (ex0 - Pt) * self.Cend0 + (-exL + Pt) * self.CendL
+        return np.concatenate([dphi, dpsi, self.Mt_inv @ ft, self.Ml_inv @ fl])
+
+    @property
+    def _Sx0(self):
+        return np.arange(1, self.n_t + 1) * np.pi / self.L
+
+    @property
+    def _SxL(self):
+        k = np.arange(1, self.n_t + 1)
+        return k * np.pi / self.L * np.cos(k * np.pi)
+
+    def u2_at(self, y, xi):
+        """Transverse displacement at x = xi of state(s) y (without the end motion part)."""
+        k = np.arange(1, self.n_t + 1) * np.pi / self.L
+        return np.asarray(y)[..., :self.n_t] @ np.sin(k * xi)
+
+    def max_stable_step(self) -> float:
+        """RK4 stability bound from the highest linearised eigenvalue (|lambda| dt <= 2.78)."""
+        nt, nl = self.n_t, self.n_l
+        n = nt + nl
+        Minv = np.zeros((n, n)); Minv[:nt, :nt] = self.Mt_inv; Minv[nt:, nt:] = self.Ml_inv
+        K = np.zeros((n, n)); K[:nt, :nt] = self.Kt; K[nt:, nt:] = self.Kl
+        G = np.zeros((n, n)); G[:nt, :nt] = self.Gt; G[nt:, nt:] = self.Gl
+        A = np.block([[np.zeros((n, n)), np.eye(n)], [-Minv @ K, -Minv @ G]])
+        lam = np.max(np.abs(np.linalg.eigvals(A)))
+        return 2.78 / lam
+
+
+def rk4(f, t0, y0, dt, n_steps, record_every=1):
+    """Classical fourth-order Runge-Kutta with a fixed step (the paper's integrator)."""
+    y = np.array(y0, float)
+    t = t0
+    out_t, out_y = [t], [y.copy()]
+    for i in range(n_steps):
+        k1 = f(t, y)
+        k2 = f(t + dt / 2, y + dt / 2 * k1)
+        k3 = f(t + dt / 2, y + dt / 2 * k2)
+        k4 = f(t + dt, y + dt * k3)
+        y = y + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+        t = t0 + (i + 1) * dt
+        if not np.all(np.isfinite(y)):
+            raise FloatingPointError(f"RK4 diverged at t = {t:.4g} s (step {dt:.3g} s too large?)")
+        if (i + 1) % record_every == 0:
+            out_t.append(t)
+            out_y.append(y.copy())
+    return np.array(out_t), np.array(out_y)
+
+
+def library(f, t0, y0, t_end, t_eval, rtol=1e-7, atol=1e-12, method="DOP853"):
+    """scipy solve_ivp (adaptive, error-controlled) on the same right-hand side."""
+    sol = solve_ivp(f, (t0, t_end), y0, method=method, t_eval=t_eval, rtol=rtol, atol=atol)
+    if not sol.success:
+        raise RuntimeError(f"solve_ivp failed: {sol.message}")
+    return sol.t, sol.y.T, sol.nfev
+
+
+def forcing(selected: dict, prm: dict, omega1: float, geo: dict, kimp: dict, step=None):
+    """Dynamic tension P_t(t) and end motions (g, h and derivatives) for the Galerkin model,
+    from the selected effects only (impact, polygonal_rigid/elastic, external_load,
+    end_excitation).  End velocities/accelerations by central differences of Eqs. (2-24/25).
+    """
+    from . import four_bar, loads
+
+    n1, n2, p = int(prm["n1"]), int(prm["n2"]), prm["pitch"]
+    parts = []
+    if "impact" in selected:
+        parts.append(lambda t: loads.impact_load(t, omega1, n1, p, kimp, step=step))
+    if "polygonal_rigid" in selected:
+        def pol(t):
+            kin = four_bar.rigid_kinematics(t, omega1, n1=n1, n2=n2, p_c=p, f_p=geo["f_p"])
+            return four_bar.polygonal_load_rigid(kin["alpha2"], prm["driven_inertia"], kin["r2"])
+        parts.append(pol)
+    if "polygonal_elastic" in selected:
+        k = prm["axial_stiffness"] / geo["L_ct"]
+        sol = four_bar.elastic_four_bar(omega1, k=k, I2=prm["driven_inertia"], n1=n1, n2=n2,
+                                        p_c=p, f_p=geo["f_p"])
+        parts.append(lambda t: four_bar.polygonal_load_elastic(t, sol, omega1, k))
+    if "external_load" in selected:
+        T_ex = prm["external_load_ratio"] * prm["static_tension"]
+        w_ex = prm["external_frequency_ratio"] * omega1
+        parts.append(lambda t: loads.external_load(t, T_ex, w_ex))
+
+    def tension(t):
+        return float(sum(f(t) for f in parts)) if parts else 0.0
+
+    if "end_excitation" in selected:
+        def pos(t):
+            kin = four_bar.rigid_kinematics(t, omega1, n1=n1, n2=n2, p_c=p, f_p=geo["f_p"])
+            return four_bar.end_displacements(kin["theta1"], kin["theta2"], kin["r1"], kin["r2"], n2)
+
+        h_fd = 1e-3 * 2 * np.pi / (n1 * omega1)
+
+        def ends(t):
+            ts = np.array([t - h_fd, t, t + h_fd])
+            g, h = pos(ts)
+            return (g[1], h[1], (g[2] - g[0]) / (2 * h_fd), (h[2] - h[0]) / (2 * h_fd),
+                    (g[2] - 2 * g[1] + g[0]) / h_fd**2, (h[2] - 2 * h[1] + h[0]) / h_fd**2)
+    else:
+        def ends(t):
+            return (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    return tension, ends
