@@ -120,3 +120,94 @@ def mode_values(mesh, phi, r):
                    3 * x**2 - 2 * x**3, L * (-x**2 + x**3)], axis=-1)
     dofs = 2 * e[:, None] + np.arange(4)[None, :]
     return np.sum(Nb * full[dofs], axis=-1)
+
+
+class AxisymDisk:
+    """The clamped disk discretised per harmonic (one dense block per N_d).
+
+    ``stress(r_c)`` must return callables (sigma_r(r), sigma_theta(r)) in Pa.
+    """
+
+    label = "axisym"
+
+    def __init__(self, *, r_f, b, h, E, nu, rho, n_d, n_elements, n_gauss=N_GAUSS):
+        self.mesh = radial_mesh(r_f, b, n_elements)
+        self.quad = quadrature(self.mesh, n_gauss)
+        self.h, self.n_d = h, np.asarray(n_d, int)
+        D = E * h**3 / (12 * (1 - nu**2))
+        self.K, self.M = {}, {}
+        for n in self.n_d:
+            self.K[n], self.M[n] = plate_matrices(self.mesh, n, D=D, nu=nu, rho_h=rho * h,
+                                                  quad=self.quad)
+
+    def unrolled(self):
+        """omega^2 and mass-normalised mode of the fundamental of each N_d, Eq. (6)."""
+        from .modal import eigen
+
+        self.omega2, self.phi = {}, {}
+        for n in self.n_d:
+            lam, phi = eigen(self.K[n], self.M[n], 1)
+            self.omega2[n], self.phi[n] = lam[0], phi[:, 0]
+        return np.array([self.omega2[n] for n in self.n_d])
+
+    def stress_stiffness(self, sigma):
+        sr, st = sigma
+        return {n: stress_stiffness(self.mesh, n, sr, st, self.h, quad=self.quad)
+                for n in self.n_d}
+
+    def rolled(self, Ks):
+        """Eq. (5) per harmonic: omega~^2 and mode of the fundamental."""
+        from .modal import eigen
+
+        out, modes = [], {}
+        for n in self.n_d:
+            lam, phi = eigen(self.K[n] + Ks[n], self.M[n], 1)
+            out.append(lam[0])
+            modes[n] = phi[:, 0]
+        return np.array(out), modes
+
+    def eq9(self, Ks):
+        from .modal import eq9_delta_omega2
+
+        return np.array([eq9_delta_omega2(self.phi[n], Ks[n], self.M[n])[0] for n in self.n_d])
+
+    def critical_load(self, Ks):
+        from .modal import critical_load_factor
+
+        return np.array([critical_load_factor(self.K[n], Ks[n]) for n in self.n_d])
+
+    def modal_matrices(self, Ks):
+        """Eqs. (16)-(17) over N_d: harmonics are orthogonal, so off-diagonals are exactly 0
+        (the paper's small off-diagonal entries come from its non-axisymmetric mesh)."""
+        from .modal import align_signs
+
+        nd = len(self.n_d)
+        k_hat, m_hat = np.zeros((nd, nd)), np.zeros((nd, nd))
+        _, modes = self.rolled(Ks)
+        for i, n in enumerate(self.n_d):
+            phi = self.phi[n][:, None]
+            k_hat[i, i] = (phi.T @ Ks[n] @ phi)[0, 0]
+            m_hat[i, i] = align_signs(modes[n][:, None], self.M[n], phi)[:, 0] @ self.M[n] @ phi[:, 0]
+        return k_hat, m_hat
+
+    def sensitivity(self, *, r_a, width, increase, E, nu, rho):
+        """Fig. 7: Delta f [Hz] of each N_d when D rises by ``increase`` in the annulus
+        |r - r_a| <= width/2 (eigen re-solve on a mesh with the annulus edges as nodes)."""
+        from .modal import eigen
+
+        D = E * self.h**3 / (12 * (1 - nu**2))
+        r_f, b = self.mesh.nodes[0], self.mesh.nodes[-1]
+        out = np.full((len(r_a), len(self.n_d)), np.nan)
+        for i, ra in enumerate(r_a):
+            lo, hi = ra - width / 2, ra + width / 2
+            mesh = radial_mesh(r_f, b, self.mesh.n_elements, breakpoints=(lo, hi))
+            quad = quadrature(mesh)
+            scale = lambda r: 1.0 + increase * ((r >= lo) & (r <= hi))  # noqa: E731
+            for j, n in enumerate(self.n_d):
+                K0, M = plate_matrices(mesh, n, D=D, nu=nu, rho_h=rho * self.h, quad=quad)
+                K1, _ = plate_matrices(mesh, n, D=D, nu=nu, rho_h=rho * self.h, quad=quad,
+                                       d_scale=scale)
+                w0 = eigen(K0, M, 1)[0][0]
+                w1 = eigen(K1, M, 1)[0][0]
+                out[i, j] = (np.sqrt(w1) - np.sqrt(w0)) / (2 * np.pi)
+        return out

@@ -1,0 +1,294 @@
+"""2-D plate model: Kirchhoff plate on a triangular mesh of the disk (scikit-fem).
+
+Bending uses the C1-conforming quintic Argyris triangle (no locking, exact Kirchhoff
+energy); the thermal-analogy residual stress comes from a plane-stress P2 solution on the
+same mesh, so a blade with radial expansion slots is handled like the plain disk (the
+paper's motivation: "sawblades with slots and tips can be easily modeled within the FEM").
+
+Every mode of the plain disk with N_d >= 1 is a degenerate sin/cos pair; the solver labels
+modes by MAC against the unrolled set (pair subspaces, not single vectors), rotates each
+unrolled pair so that its first member is the cos(N_d theta) mode, and evaluates Eq. (9)
+for a pair by the 2x2 block of Phi^T K^(sigma) Phi (degenerate first-order perturbation),
+which reduces to Eq. (9) when the block is diagonal (axisymmetric stress).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+from skfem import Basis, BilinearForm, ElementTriArgyris, ElementTriP2, ElementVector, LinearForm, MeshTri, asm
+from skfem.helpers import dd, ddot, div, dot, grad, sym_grad, trace
+
+INTORDER = 8  # mass of quintics needs 10 for exactness; 8 changes f by < 1e-6 and is faster
+
+
+@dataclass(frozen=True)
+class Slots:
+    """Radial expansion slots cut from the outer edge (constant angular width)."""
+    count: int
+    depth: float  # [m] from the outer edge inward
+    width: float  # [m] at the outer edge
+
+
+def polar_mesh(r_f, b, n_rings, n_sectors, slots: Slots | None = None,
+               equal_area: bool = True) -> MeshTri:
+    """Structured ring x sector mesh of the annulus r_f..b, minus the slot cells."""
+    if n_rings < 1 or n_sectors < 8:
+        raise ValueError(f"mesh too coarse: n_rings = {n_rings} (>= 1), "
+                         f"n_sectors = {n_sectors} (>= 8) needed")
+    if not (0 < r_f < b):
+        raise ValueError(f"need 0 < r_f < b, got r_f = {r_f}, b = {b}")
+    # geometric ring spacing keeps the cell aspect ratio uniform (cells near the clamp,
+    # where the low-N_d curvature lives, are as fine tangentially as radially)
+    r = r_f * (b / r_f) ** np.linspace(0.0, 1.0, n_rings + 1)
+    th = np.linspace(0, 2 * np.pi, n_sectors, endpoint=False)
+    if slots is not None and slots.count > 0:
+        if not (0 < slots.depth < b - r_f):
+            raise ValueError(f"slot depth {slots.depth} must lie in (0, b - r_f)")
+        r0 = b - slots.depth
+        # move the nearest ring onto the slot root instead of adding a thin ring
+        r[np.argmin(np.abs(r[1:-1] - r0)) + 1] = r0 if n_rings > 1 else r[1]
+        if n_rings == 1:
+            r = np.array([r_f, r0, b])
+        half = slots.width / (2 * b)
+        centres = 2 * np.pi * (np.arange(slots.count) + 0.5) / slots.count
+        edges = np.concatenate([centres - half, centres + half]) % (2 * np.pi)
+        dth = 2 * np.pi / n_sectors
+        gap = np.abs((th[:, None] - edges[None, :] + np.pi) % (2 * np.pi) - np.pi).min(axis=1)
+        th = np.sort(np.concatenate([th[gap > 0.5 * dth], edges]))
+    nr, nt = len(r), len(th)
+    # equal-area polygons: the ring of n_sectors chords encloses the area of its circle,
+    # which removes the leading O(dtheta^2) geometric error of an inscribed polygon
+    dth = 2 * np.pi / n_sectors
+    r = r * np.sqrt(dth / np.sin(dth)) if equal_area else r
+    R, TH = np.meshgrid(r, th, indexing="ij")
+    p = np.stack([(R * np.cos(TH)).ravel(), (R * np.sin(TH)).ravel()])
+    i, j = np.meshgrid(np.arange(nr - 1), np.arange(nt), indexing="ij")
+    i, j = i.ravel(), j.ravel()
+    jn = (j + 1) % nt
+    n00, n10, n11, n01 = i * nt + j, (i + 1) * nt + j, (i + 1) * nt + jn, i * nt + jn
+    keep = np.ones(len(i), bool)
+    if slots is not None and slots.count > 0:
+        tc = (th[j] + ((th[jn] - th[j]) % (2 * np.pi)) / 2) % (2 * np.pi)
+        rc = 0.5 * (r[i] + r[i + 1])
+        dist = np.abs((tc[:, None] - centres[None, :] + np.pi) % (2 * np.pi) - np.pi).min(axis=1)
+        keep = ~((dist < half) & (rc > b - slots.depth))
+    t = np.concatenate([np.stack([n00[keep], n10[keep], n11[keep]]),
+                        np.stack([n00[keep], n11[keep], n01[keep]])], axis=1)
+    used = np.unique(t)
+    remap = -np.ones(p.shape[1], int)
+    remap[used] = np.arange(len(used))
+    return MeshTri(p[:, used], remap[t])
+
+
+@BilinearForm
+def _bending(u, v, w):
+    # D [(1 - nu) dd(u):dd(v) + nu lap(u) lap(v)]
+    return w.D * ((1 - w.nu) * ddot(dd(u), dd(v)) + w.nu * trace(dd(u)) * trace(dd(v)))
+
+
+@BilinearForm
+def _mass(u, v, w):
+    return w.rho_h * u * v
+
+
+@BilinearForm
+def _geometric(u, v, w):
+    # Eq. (3): h grad(u)^T sigma grad(v), sigma the in-plane residual stress
+    gu, gv = grad(u), grad(v)
+    return w.h * (w.sxx * gu[0] * gv[0] + w.sxy * (gu[0] * gv[1] + gu[1] * gv[0])
+                  + w.syy * gu[1] * gv[1])
+
+
+@BilinearForm
+def _membrane(u, v, w):
+    eu, ev = sym_grad(u), sym_grad(v)
+    return w.C * ((1 - w.nu) * ddot(eu, ev) + w.nu * trace(eu) * trace(ev))
+
+
+@LinearForm
+def _thermal_load(v, w):
+    # plane-stress thermal stress E alpha T / (1 - nu) * I against eps(v)
+    return w.EaT * div(v)
+
+
+class PlateDisk:
+    """Clamped (r <= r_f) disk or sawblade; fundamental of each N_d by MAC labelling."""
+
+    label = "plate2d"
+
+    def __init__(self, *, r_f, b, h, E, nu, rho, n_d, n_rings, n_sectors,
+                 slots: Slots | None = None, extra_modes=4):
+        self.r_f, self.b, self.h, self.E, self.nu, self.rho = r_f, b, h, E, nu, rho
+        self.n_d = np.asarray(n_d, int)
+        self.mesh = polar_mesh(r_f, b, n_rings, n_sectors, slots)
+        self.basis = Basis(self.mesh, ElementTriArgyris(), intorder=INTORDER)
+        D = E * h**3 / (12 * (1 - nu**2))
+        self.K = asm(_bending, self.basis, D=D, nu=nu).tocsr()
+        self.M = asm(_mass, self.basis, rho_h=rho * h).tocsr()
+        rad = np.hypot(*self.mesh.p)
+        r_in = rad.min()
+        inner = self.mesh.facets_satisfying(lambda x: np.hypot(*x) < r_in * (1 + 1e-9))
+        if inner.size == 0:
+            raise ValueError("no clamped facets found at r = r_f")
+        fixed = self.basis.get_dofs(inner).all(["u", "u_x", "u_y", "u_n"])
+        self.free = np.setdiff1d(np.arange(self.basis.N), fixed)
+        self.n_modes = int(2 * self.n_d.max() + 1 + extra_modes)
+        outer = np.nonzero(rad > rad.max() * (1 - 1e-9))[0]
+        self.ring_theta = np.arctan2(*self.mesh.p[::-1, outer])
+        self.ring_dofs = self.basis.nodal_dofs[0, outer]
+        self._inplane = None
+
+    # -- helpers -----------------------------------------------------------------
+    def _sub(self, A):
+        return A[self.free][:, self.free]
+
+    def _eigs(self, K, k):
+        shift = -0.1 * float(self._shift_scale) if hasattr(self, "_shift_scale") else 0.0
+        lam, vec = spla.eigsh(self._sub(K), k=k, M=self._sub(self.M), sigma=shift, which="LM")
+        order = np.argsort(lam)
+        full = np.zeros((self.basis.N, k))
+        full[self.free] = vec[:, order]
+        return lam[order], full
+
+    def harmonic_content(self, Phi):
+        """Least-squares cos/sin content of each mode on the outer edge; returns the
+        dominant N_d and the (cos, sin) coefficients of every harmonic up to max N_d + 2."""
+        nmax = int(self.n_d.max()) + 2
+        th = self.ring_theta
+        cols = [np.ones_like(th)]
+        for n in range(1, nmax + 1):
+            cols += [np.cos(n * th), np.sin(n * th)]
+        A = np.stack(cols, axis=1)
+        coef = np.linalg.lstsq(A, Phi[self.ring_dofs], rcond=None)[0]
+        energy = np.vstack([coef[0] ** 2 * 2] + [coef[2 * n - 1] ** 2 + coef[2 * n] ** 2
+                                                 for n in range(1, nmax + 1)])
+        return energy.argmax(axis=0), coef
+
+    # -- Eq. (6): unrolled modes ---------------------------------------------------
+    def unrolled(self):
+        """omega^2 of the fundamental of each N_d; pairs rotated to cos/sin members."""
+        lam, Phi = self._eigs(self.K, self.n_modes)
+        self._shift_scale = lam.max()
+        nd, coef = self.harmonic_content(Phi)
+        self.all_omega2, self.all_phi, self.all_label = lam, Phi, nd
+        self.omega2, self.pair = {}, {}
+        for n in self.n_d:
+            idx = np.nonzero(nd == n)[0]
+            need = 1 if n == 0 else 2
+            if len(idx) < need:
+                raise RuntimeError(f"plate2d: N_d = {n} not among the lowest {self.n_modes} "
+                                   f"modes (labels {nd.tolist()}); increase extra_modes")
+            idx = idx[:need]
+            P = Phi[:, idx]
+            if n > 0:
+                # rotate the pair so that member 0 has no sin(n theta) content on the edge
+                s = coef[2 * n, idx]
+                a = np.array([s[1], -s[0]])
+                c0 = P @ a
+                c0 /= np.sqrt(c0 @ (self.M @ c0))
+                c1 = P[:, 1] - (c0 @ (self.M @ P[:, 1])) * c0 if abs(s[0]) < abs(s[1]) else \
+                    P[:, 0] - (c0 @ (self.M @ P[:, 0])) * c0
+                c1 /= np.sqrt(c1 @ (self.M @ c1))
+                P = np.stack([c0, c1], axis=1)
+            self.pair[n] = P
+            self.omega2[n] = lam[idx]
+        return np.array([self.omega2[n].mean() for n in self.n_d])
+
+    @property
+    def Phi(self):
+        """The unrolled modal matrix of Eqs. (16)-(17): the cos member of each N_d."""
+        return np.stack([self.pair[n][:, 0] for n in self.n_d], axis=1)
+
+    # -- thermal analogy: plane stress ---------------------------------------------
+    def residual_stress(self, temperature, alpha):
+        """Plane-stress thermal field with u = 0 at r = r_f (in-plane clamp), returned as
+        (sxx, sxy, syy) at the bending quadrature points [Pa]."""
+        if self._inplane is None:
+            ub = self.basis.with_element(ElementVector(ElementTriP2()))
+            Kin = asm(_membrane, ub, C=self.E / (1 - self.nu**2), nu=self.nu).tocsr()
+            r_in = np.hypot(*self.mesh.p).min()
+            inner = self.mesh.facets_satisfying(lambda x: np.hypot(*x) < r_in * (1 + 1e-9))
+            fixed = ub.get_dofs(inner).all()
+            free = np.setdiff1d(np.arange(ub.N), fixed)
+            lu = spla.splu(Kin[free][:, free].tocsc())
+            self._inplane = (ub, free, lu)
+        ub, free, lu = self._inplane
+        x = ub.global_coordinates().value
+        T = temperature(np.hypot(x[0], x[1]))
+        EaT = self.E * alpha * T / (1 - self.nu)
+        f = asm(_thermal_load, ub, EaT=EaT)
+        u = np.zeros(ub.N)
+        u[free] = lu.solve(f[free])
+        eps = sym_grad(ub.interpolate(u))
+        c = self.E / (1 - self.nu**2)
+        tr = eps[0, 0] + eps[1, 1]
+        sxx = c * ((1 - self.nu) * eps[0, 0] + self.nu * tr) - EaT
+        syy = c * ((1 - self.nu) * eps[1, 1] + self.nu * tr) - EaT
+        sxy = c * (1 - self.nu) * eps[0, 1]
+        return sxx, sxy, syy
+
+    def stress_stiffness(self, sigma):
+        sxx, sxy, syy = sigma
+        return asm(_geometric, self.basis, h=self.h, sxx=sxx, sxy=sxy, syy=syy).tocsr()
+
+    # -- Eq. (5), Eq. (9), Eqs. (16)-(17) ------------------------------------------
+    def rolled(self, Ks):
+        """omega~^2 per N_d (pair mean for the plain disk; both members in ``pairs``),
+        labelled by subspace MAC against the unrolled modes."""
+        lam, Phi = self._eigs(self.K + Ks, self.n_modes)
+        MPhi = self.M @ Phi
+        out, modes, both = [], {}, {}
+        taken = np.zeros(len(lam), bool)
+        for n in self.n_d:
+            P = self.pair[n]
+            proj = P.T @ MPhi  # coefficients of each rolled mode in the unrolled subspace
+            mac = np.sum(proj**2, axis=0)
+            mac[taken] = -1
+            k = 1 if n == 0 else 2
+            idx = np.sort(np.argsort(mac)[::-1][:k])
+            taken[idx] = True
+            both[n] = lam[idx]
+            modes[n] = Phi[:, idx]
+            out.append(lam[idx].mean())
+        self.rolled_pairs, self.rolled_modes = both, modes
+        return np.array(out), modes
+
+    def eq9(self, Ks):
+        """Eq. (9) per N_d; for a pair, the mean of the eigenvalues of its 2x2 block."""
+        out, self.eq9_pairs = [], {}
+        for n in self.n_d:
+            P = self.pair[n]
+            B = P.T @ (Ks @ P)
+            ev = np.linalg.eigvalsh(0.5 * (B + B.T))
+            self.eq9_pairs[n] = ev
+            out.append(ev.mean())
+        return np.array(out)
+
+    def critical_load(self, Ks):
+        """Smallest positive load factor of K + lambda K^(sigma) (inf if none)."""
+        Kf, Ksf = self._sub(self.K), self._sub(Ks)
+        mu = spla.eigsh(Ksf, k=3, M=Kf, which="SA", return_eigenvectors=False)
+        neg = mu[mu < 0]
+        return float(-1.0 / neg.min()) if neg.size else float("inf")
+
+    def modal_matrices(self, Ks):
+        """Eq. (16) with Phi = cos members; Eq. (17) raw (first rolled member as returned
+        by the eigensolver) and aligned (rolled pair projected on the cos member)."""
+        Phi = self.Phi
+        k_hat = Phi.T @ (Ks @ Phi)
+        self.rolled(Ks)
+        MPhi = self.M @ Phi
+        raw = np.stack([self.rolled_modes[n][:, 0] for n in self.n_d], axis=1)
+        m_raw = np.abs(raw.T @ MPhi)
+        aligned = []
+        for i, n in enumerate(self.n_d):
+            Q = self.rolled_modes[n]
+            c = Q.T @ MPhi[:, i]
+            v = Q @ c
+            aligned.append(v / np.sqrt(v @ (self.M @ v)))
+        aligned = np.stack(aligned, axis=1)
+        m_aligned = aligned.T @ MPhi
+        return k_hat, m_raw, m_aligned
