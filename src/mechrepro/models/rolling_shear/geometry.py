@@ -34,6 +34,9 @@ class Geometry:
 
     ``elbow1``/``elbow2`` (+1/-1) select the assembly mode of the dyads AB-BC and GH-HI:
     the sign of the cross product (B - A) x (C - B) (resp. (H - G) x (I - H)).
+    ``guide_mode`` is the sign of cos(theta6): -1 = the carrier joint D hangs to the left
+    of the guide pivot E.  The paper's ranges (theta6 in [pi, 2 pi]) do not separate the two
+    assembly modes of the guide rod, nor those of the isosceles dyad l1 = l3.
     """
     l1: float
     l2: float
@@ -56,6 +59,7 @@ class Geometry:
     x_mid: float
     elbow1: int = 1
     elbow2: int = 1
+    guide_mode: int = -1
 
     def with_levers(self, **levers) -> "Geometry":
         return replace(self, **levers)
@@ -73,6 +77,7 @@ def from_parameters(p: dict) -> Geometry:
     kw.update({k: float(p[k]) for k in ANGLES})
     kw["elbow1"] = int(p.get("elbow1", 1))
     kw["elbow2"] = int(p.get("elbow2", 1))
+    kw["guide_mode"] = int(p.get("guide_mode", -1))
     return Geometry(**kw)
 
 

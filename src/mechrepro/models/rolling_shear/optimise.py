@@ -1,0 +1,155 @@
+"""Lever optimisation (Sec. 3.3 step 3): l1, l3, l5, l6, l10 against the synthetic
+horizontal displacement, by selPSO and by scipy's differential evolution.
+
+Objective of a lever set: the blade poses of the whole stroke (Eq. 7, warm Newton), the
+synthetic horizontal displacement of the midpoint (Eqs. 5, 8), and a feasibility check
+that both dyads of Eq. (9) assemble on the design branch inside the paper's ranges at
+every cut point.  A lever set that does not assemble gets the flat penalty
+``PENALTY`` (mm), so both optimisers see the same landscape.
+
+Identifiability (see docs): with the lowest point prescribed on y = -s, Eq. (7) fixes the
+blade pose from the guide rod alone, so the objective depends on l6 only; l1, l3, l5,
+l10 enter only through the assembly constraint and are not determined by the objective.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import differential_evolution
+
+from . import newton
+from . import pose as pose_mod
+from .branch import RANGES
+from .geometry import OPTIMISED_LEVERS, Geometry
+from .loops import NonAssembly, pivots
+from .selpso import SelPSOSettings, selpso
+from .trajectory import synthetic_horizontal_displacement
+
+PENALTY = 1.0e4  # mm, far above any feasible objective
+
+
+def stroke_poses(g: Geometry, x_k, tol: float, max_iter: int = 30) -> np.ndarray:
+    """theta5, theta6 at every cut point: exact first point, warm Newton afterwards."""
+    out = np.empty((len(x_k), 2))
+    guess = pose_mod.exact_pose(g, float(x_k[0]))
+    for i, xk in enumerate(x_k):
+        r = newton.pose(g, tuple(guess), float(xk), tol, max_iter)
+        if not r.converged:
+            raise NonAssembly(f"cut point {i} (x_k = {float(xk):.6g} mm): blade pose (Eq. 7) "
+                              f"did not converge: {r.reason}", i, float(xk))
+        out[i] = r.x
+        guess = 2 * out[i] - out[i - 1] if i > 0 else out[i]
+    t6 = np.mod(out[:, 1], 2 * math.pi)
+    t5 = out[:, 0]
+    bad = ~((t5 >= 0) & (t5 <= math.pi) & (t6 >= math.pi) & (t6 <= 2 * math.pi)
+            & (g.guide_mode * np.cos(t6) > 0))
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise NonAssembly(f"cut point {i} (x_k = {float(x_k[i]):.6g} mm): blade pose leaves "
+                          f"the guide rod's design branch (theta5 = {t5[i]:.4g}, "
+                          f"theta6 = {t6[i]:.4g} rad)", i, float(x_k[i]))
+    return np.stack([t5, t6], axis=1)
+
+
+def dyad_angles(g: Geometry, theta5, theta6) -> np.ndarray:
+    """Closed-form theta1..theta4 for arrays of poses (n, 4); NaN where it cannot assemble."""
+    A, G = pivots(g)
+    D = g.l6 * np.exp(1j * theta6)
+    C = D + g.l8 * np.exp(1j * (theta5 + g.alpha))
+    I = D + g.l5 * np.exp(1j * theta5)
+    out = []
+    for P, Q, rp, rq, e in ((A, C, g.l1, g.l3, g.elbow1), (G, I, g.l2, g.l4, g.elbow2)):
+        L = np.abs(Q - P)
+        u = (Q - P) / L
+        a = (rp * rp - rq * rq + L * L) / (2 * L)
+        with np.errstate(invalid="ignore"):
+            hgt = np.sqrt(rp * rp - a * a)
+        X = P + a * u - e * hgt * 1j * u
+        out += [np.angle(X - P), np.angle(X - Q)]
+    return np.mod(np.stack([out[0], out[2], out[1], out[3]], axis=1), 2 * math.pi)
+
+
+def check_assembly(g: Geometry, x_k, poses) -> np.ndarray:
+    """theta1..theta4 of the stroke; raises NonAssembly naming the first bad cut point."""
+    th = dyad_angles(g, poses[:, 0], poses[:, 1])
+    ok = np.isfinite(th).all(axis=1)
+    for j in range(4):
+        lo, hi = RANGES[j]
+        ok &= (th[:, j] >= lo) & (th[:, j] <= hi)
+    if not ok.all():
+        i = int(np.argmin(ok))
+        why = ("dyad cannot close (toggle/fold passed)" if not np.isfinite(th[i]).all()
+               else f"angles {np.round(th[i], 4).tolist()} leave the paper's ranges")
+        loop = "ABCD (l1, l3)" if not np.isfinite(th[i, [0, 2]]).all() or not (
+            RANGES[0][0] <= th[i, 0] <= RANGES[0][1] and RANGES[2][0] <= th[i, 2] <= RANGES[2][1]
+        ) else "GHID (l2, l4)"
+        raise NonAssembly(f"cut point {i} (x_k = {float(x_k[i]):.6g} mm): loop {loop}: {why}",
+                          i, float(x_k[i]))
+    return th
+
+
+def objective(g: Geometry, x_k, tol: float) -> float:
+    """Synthetic horizontal displacement of a lever set (mm); raises NonAssembly."""
+    poses = stroke_poses(g, x_k, tol)
+    check_assembly(g, x_k, poses)
+    return synthetic_horizontal_displacement(poses[:, 0] - g.beta2, x_k, g.R)
+
+
+def penalised(g: Geometry, x_k, tol: float, names=OPTIMISED_LEVERS):
+    def f(levers) -> float:
+        try:
+            return objective(g.with_levers(**dict(zip(names, map(float, levers)))), x_k, tol)
+        except NonAssembly:
+            return PENALTY
+    return f
+
+
+@dataclass
+class OptimisationResult:
+    method: str
+    levers: np.ndarray
+    objective: float
+    evaluations: int
+    history: np.ndarray      # best objective after each iteration/generation
+    wall_time: float
+
+
+def optimise_selpso(g, x_k, bounds, settings: SelPSOSettings, rng, tol) -> OptimisationResult:
+    f = penalised(g, x_k, tol)
+    lo, hi = np.asarray(bounds, float).T
+    t0 = time.perf_counter()
+    r = selpso(lambda X: np.array([f(x) for x in X]), 0.5 * (lo + hi), settings, rng, lo, hi)
+    return OptimisationResult("selpso", r.x, r.fitness, r.evaluations, r.history,
+                              time.perf_counter() - t0)
+
+
+def optimise_de(g, x_k, bounds, budget: int, population: int, seed: int,
+                tol) -> OptimisationResult:
+    """scipy differential_evolution with the same bounds and (at most) the same budget.
+
+    Population ~ the swarm size (a multiple of the number of levers); generations so that
+    population x (generations + 1) <= budget; no polishing (it would spend extra
+    evaluations outside the budget).
+    """
+    f = penalised(g, x_k, tol)
+    n = len(bounds)
+    popsize = max(1, int(round(population / n)))
+    maxiter = max(1, budget // (popsize * n) - 1)
+    hist, count = [], [0]
+
+    def fc(x):
+        count[0] += 1
+        return f(x)
+
+    def callback(intermediate_result):
+        hist.append(float(intermediate_result.fun))
+
+    t0 = time.perf_counter()
+    r = differential_evolution(fc, bounds, popsize=popsize, maxiter=maxiter, tol=0.0, atol=0.0,
+                               seed=seed, polish=False, init="latinhypercube",
+                               updating="immediate", callback=callback)
+    return OptimisationResult("differential_evolution", np.asarray(r.x), float(r.fun), count[0],
+                              np.asarray(hist), time.perf_counter() - t0)

@@ -1,0 +1,62 @@
+"""Blade pose at a cut point: theta5, theta6 from Eq. (7) with the lowest point on y = -s.
+
+Two unknowns, two equations (Sec. 3.2):  x_k(theta5, theta6) = x_k*,  y_k(theta5, theta6) = -s.
+:func:`exact_pose` is the trusted reference: for a blade angle beta the pose with the
+lowest point at (x_k*, -s) is fixed, and the guide rod closes only if |ED| = l6 -- one
+scalar equation in beta, bracketed and solved by Brent's method.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.optimize import brentq
+
+from .blade import lowest_point
+from .geometry import Geometry
+from .loops import NonAssembly
+
+UNKNOWNS = ("theta5", "theta6")
+
+
+def residuals(g: Geometry, th, x_target: float):
+    """Eq. (7) residuals for one or many (theta5, theta6) candidates (..., 2)."""
+    th = np.asarray(th, float)
+    xk, yk = lowest_point(g, th[..., 0], th[..., 1])
+    return np.stack([xk - x_target, yk + g.s], axis=-1)
+
+
+def _guide_point(g: Geometry, beta: float, x_target: float) -> complex:
+    """Carrier joint D when the blade has angle beta and touches (x_target, -s)."""
+    K = complex(x_target, -g.s)
+    M = K + complex(g.R * math.sin(beta), g.R * (1.0 - math.cos(beta)))
+    O = M + g.h * complex(-math.sin(beta), math.cos(beta))
+    theta5 = beta + g.beta2
+    return O - g.d * complex(math.cos(theta5 + g.beta1), math.sin(theta5 + g.beta1))
+
+
+def exact_pose(g: Geometry, x_target: float, beta_window: float = 0.3, n_scan: int = 601):
+    """Reference (theta5, theta6) with theta6 in [pi, 2 pi] and theta5 in [0, pi].
+
+    The guide rod has two assembly modes inside the paper's range; the design mode
+    (``g.guide_mode``, the sign of cos theta6) is kept.  Scans |ED(beta)| - l6 over |beta| <= beta_window, keeps the roots whose pose is inside
+    the paper's ranges, and returns the one with the smallest |beta| (the cutting stroke
+    turns the blade by a few degrees).  Raises NonAssembly when no root qualifies.
+    """
+    betas = np.linspace(-beta_window, beta_window, n_scan)
+    f = np.array([abs(_guide_point(g, b, x_target)) - g.l6 for b in betas])
+    roots = []
+    for i in np.nonzero(np.sign(f[:-1]) * np.sign(f[1:]) <= 0)[0]:
+        b = brentq(lambda x: abs(_guide_point(g, x, x_target)) - g.l6, betas[i], betas[i + 1],
+                   xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
+        D = _guide_point(g, b, x_target)
+        t5, t6 = b + g.beta2, math.atan2(D.imag, D.real) % (2 * math.pi)
+        if (0.0 <= t5 <= math.pi and math.pi <= t6 <= 2 * math.pi
+                and g.guide_mode * math.cos(t6) > 0):
+            roots.append((abs(b), t5, t6))
+    if not roots:
+        raise NonAssembly(f"guide rod l6 = {g.l6:.6g} mm cannot reach the carrier with the "
+                          f"lowest point at x_k = {x_target:.6g} mm (no root of |ED| = l6 for "
+                          f"|beta| <= {beta_window})", x_k=x_target)
+    _, t5, t6 = min(roots)
+    return np.array([t5, t6])

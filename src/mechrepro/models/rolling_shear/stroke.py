@@ -1,0 +1,180 @@
+"""The cutting stroke: every cut point solved for theta5, theta6 (Eq. 7) then theta1..4 (Eq. 9).
+
+Methods (the scene's effects pick them, see __init__):
+
+* ``newton``  -- warm-started continuation: each cut point starts from the linear
+  extrapolation of the two previous solutions; the first from the configured initial
+  value.  The default solver.  A point that does not converge, or converges off the
+  design branch (near a toggle the two branches meet), raises :class:`NonAssembly`
+  naming the cut point -- a wrong branch is never returned.
+* ``selpso``  -- the paper's method: every system from the initial value + N(0, 1).
+* ``cold_root``, ``least_squares`` -- scipy from uniformly random starts in [0, 2 pi)^n.
+* ``exact``   -- closed form (Brent on |ED| = l6, circle intersections), the reference.
+
+:func:`run_method` never raises for the comparison methods: it records per cut point
+whether the solve converged, whether it is inside the paper's ranges and on the design
+branch, its fitness and wall time.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import least_squares, root
+
+from . import loops as loops_mod
+from . import newton
+from . import pose as pose_mod
+from .branch import in_ranges, on_design_branch, wrap
+from .geometry import Geometry
+from .loops import NonAssembly
+from .selpso import SelPSOSettings, selpso
+
+METHODS = ("newton", "selpso", "cold_root", "least_squares", "exact")
+
+
+@dataclass
+class StrokeSolution:
+    method: str
+    x_k: np.ndarray
+    theta: np.ndarray                      # (n, 6) theta1..theta6, wrapped to [0, 2 pi)
+    fitness_pose: np.ndarray               # G of Eq. (7), mm
+    fitness_loops: np.ndarray              # G of Eq. (9), mm
+    converged: np.ndarray                  # both systems reached their tolerance
+    in_ranges: np.ndarray
+    design_branch: np.ndarray
+    time_pose: float                       # mean wall time per solve of Eq. (7), s
+    time_loops: float                      # mean wall time per solve of Eq. (9), s
+    iterations_loops: np.ndarray
+    histories: list = field(default_factory=list, repr=False)
+
+    @property
+    def right(self) -> np.ndarray:
+        return self.converged & self.design_branch
+
+
+@dataclass(frozen=True)
+class SolverSettings:
+    tol_loops: float = 1e-11
+    tol_pose: float = 1e-9
+    max_iter: int = 30
+    initial_value: tuple = (4.3, 4.3, 2.5, 2.5, 2.6, 3.3)
+    pso_loops: SelPSOSettings = SelPSOSettings()
+    pso_pose: SelPSOSettings = SelPSOSettings(tol=1e-9)
+
+
+def _check_point(g, i, xk, theta, res_pose, res_loops, settings):
+    if not res_pose.converged:
+        raise NonAssembly(f"cut point {i} (x_k = {xk:.6g} mm): blade pose (Eq. 7) did not "
+                          f"converge: {res_pose.reason}", i, xk)
+    if not res_loops.converged:
+        raise NonAssembly(_explain(g, i, xk, theta, res_loops.reason), i, xk)
+    if not on_design_branch(g, theta):
+        raise NonAssembly(_explain(g, i, xk, theta, "converged off the design branch "
+                                   "(assembly modes meet at a toggle)"), i, xk)
+
+
+def _explain(g, i, xk, theta, why) -> str:
+    m = loops_mod.dyad_margins(g, theta[4], theta[5])
+    worst = "ABCD (l1, l3)" if m[0] < m[1] else "GHID (l2, l4)"
+    return (f"cut point {i} (x_k = {xk:.6g} mm): linkage does not assemble on the design "
+            f"branch: {why}; dyad margins to toggle/fold: ABCD {m[0]:.4g} mm, "
+            f"GHID {m[1]:.4g} mm (worst: loop {worst})")
+
+
+def solve_newton(g: Geometry, x_k, settings: SolverSettings) -> StrokeSolution:
+    """Warm-started Newton continuation along the stroke (the pipeline's default)."""
+    n = len(x_k)
+    theta = np.empty((n, 6))
+    fp, fl, it = np.empty(n), np.empty(n), np.empty(n, int)
+    guess = list(settings.initial_value)
+    t0 = time.perf_counter()
+    for i, xk in enumerate(x_k):
+        rp = newton.pose(g, (guess[4], guess[5]), float(xk), settings.tol_pose, settings.max_iter)
+        t5, t6 = rp.x
+        rl = newton.loops(g, guess[:4], t5, t6, settings.tol_loops, settings.max_iter)
+        th = np.array([*rl.x, t5, t6])
+        _check_point(g, i, float(xk), th, rp, rl, settings)
+        theta[i] = th
+        fp[i], fl[i], it[i] = rp.fitness, rl.fitness, rl.iterations
+        guess = list(2 * th - theta[i - 1]) if i > 0 else list(th)
+    elapsed = time.perf_counter() - t0
+    theta = wrap(theta)
+    ok = np.ones(n, bool)
+    return StrokeSolution("newton", np.asarray(x_k), theta, fp, fl, ok, ok.copy(), ok.copy(),
+                          elapsed / (2 * n), elapsed / (2 * n), it)
+
+
+def solve_exact(g: Geometry, x_k) -> StrokeSolution:
+    n = len(x_k)
+    theta = np.empty((n, 6))
+    for i, xk in enumerate(x_k):
+        try:
+            p = pose_mod.exact_pose(g, float(xk))
+            theta[i] = [*loops_mod.exact_angles(g, *p), *p]
+        except NonAssembly as exc:
+            raise NonAssembly(f"cut point {i} (x_k = {float(xk):.6g} mm): {exc}", i, float(xk)) from None
+    fp = np.array([np.abs(pose_mod.residuals(g, t[4:], xk)).sum() for t, xk in zip(theta, x_k)])
+    fl = np.array([np.abs(loops_mod.residuals(g, t[:4], t[4], t[5])).sum() for t in theta])
+    ok = np.ones(n, bool)
+    return StrokeSolution("exact", np.asarray(x_k), wrap(theta), fp, fl, ok, ok.copy(),
+                          ok.copy(), math.nan, math.nan, np.zeros(n, int))
+
+
+def _scipy_solve(kind, fun, jac, x0, tol):
+    if kind == "cold_root":
+        r = root(fun, x0, jac=jac, method="hybr", options={"xtol": 1e-14})
+        return r.x, int(r.nfev)
+    r = least_squares(fun, x0, jac=jac, method="trf", xtol=1e-15, ftol=1e-15, gtol=1e-15)
+    return r.x, int(r.nfev)
+
+
+def solve_compare(g: Geometry, x_k, method: str, settings: SolverSettings,
+                  rng: np.random.Generator, keep_history: bool = False) -> StrokeSolution:
+    """selPSO / cold scipy solves at every cut point, recorded, never raising."""
+    from .blade import lowest_point_jacobian
+
+    n = len(x_k)
+    theta = np.empty((n, 6))
+    fp, fl = np.empty(n), np.empty(n)
+    conv, inr, des = np.zeros(n, bool), np.zeros(n, bool), np.zeros(n, bool)
+    it = np.zeros(n, int)
+    hist = []
+    tp = tl = 0.0
+    init = np.asarray(settings.initial_value, float)
+    for i, xk in enumerate(x_k):
+        xk = float(xk)
+        fpose = lambda X, xk=xk: np.abs(pose_mod.residuals(g, X, xk)).sum(-1)  # noqa: E731
+        t0 = time.perf_counter()
+        if method == "selpso":
+            r = selpso(fpose, init[4:], settings.pso_pose, rng)
+            t56 = r.x
+        else:
+            t56, _ = _scipy_solve(method, lambda x, xk=xk: pose_mod.residuals(g, x, xk),
+                                  lambda x: lowest_point_jacobian(g, *x),
+                                  rng.uniform(0, 2 * math.pi, 2), settings.tol_pose)
+        tp += time.perf_counter() - t0
+        t5, t6 = float(t56[0]), float(t56[1])
+        floops = lambda X, t5=t5, t6=t6: np.abs(loops_mod.residuals(g, X, t5, t6)).sum(-1)  # noqa: E731
+        t0 = time.perf_counter()
+        if method == "selpso":
+            r = selpso(floops, init[:4], settings.pso_loops, rng)
+            t14, it[i] = r.x, r.iterations
+            if keep_history:
+                hist.append(r.history)
+        else:
+            t14, it[i] = _scipy_solve(method, lambda x: loops_mod.residuals(g, x, t5, t6),
+                                      lambda x: loops_mod.jacobian(g, x),
+                                      rng.uniform(0, 2 * math.pi, 4), settings.tol_loops)
+        tl += time.perf_counter() - t0
+        th = np.array([*t14, t5, t6])
+        theta[i] = wrap(th)
+        fp[i] = float(np.abs(pose_mod.residuals(g, th[4:], xk)).sum())
+        fl[i] = float(np.abs(loops_mod.residuals(g, th[:4], t5, t6)).sum())
+        conv[i] = fp[i] < settings.tol_pose and fl[i] < settings.tol_loops
+        inr[i] = in_ranges(th)
+        des[i] = on_design_branch(g, th)
+    return StrokeSolution(method, np.asarray(x_k), theta, fp, fl, conv, inr, des,
+                          tp / n, tl / n, it, hist)
