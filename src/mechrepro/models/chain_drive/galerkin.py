@@ -7,6 +7,11 @@ Eqs. (2-39) to (2-41), integrated by classical RK4 (the paper) or scipy's solve_
 The projections of (2-40) (with its boundary terms) on cos(k pi x/L) and of (2-41) on
 sin(k pi x/L) are evaluated by Gauss-Legendre quadrature; the linear parts are assembled
 once as matrices, the cubic/quadratic coupling terms at every right-hand-side call.
+
+The end motions of Eqs. (2-24)/(2-25) have velocity jumps at every tooth (the chordal
+kinks), so their acceleration is impulsive.  The state therefore carries the modal
+"momentum" z = phi' + beta(t), beta = projection of the end-motion velocity on the sine
+modes: only g, h, g', h' enter, never g'', h''.
 """
 from __future__ import annotations
 
@@ -32,46 +37,58 @@ class GalerkinModel:
         self.CendL = np.cos(kl[:, 0] * L)
         W = self.w[None, :]
         # transverse: m(phi'' + 2c phi'_x + c^2 phi_xx) - P phi_xx + c_d(phi' + c phi_x), projected on S
-        self.Mt = (self.S * W) @ self.S.T
+        self.Mt = m * (self.S * W) @ self.S.T
         self.Gt = (self.S * W) @ (2 * m * c * self.Sx.T + c_d * self.S.T)
         self.Kt = (self.S * W) @ ((m * c**2 - P) * self.Sxx.T + c_d * c * self.Sx.T)
         # longitudinal: m(psi'' + 2c psi'_x + c^2 psi_xx) - EA psi_xx projected on C
-        self.Ml = (self.C * W) @ self.C.T
+        self.Ml = m * (self.C * W) @ self.C.T
         self.Gl = (self.C * W) @ (2 * m * c * self.Cx.T)
         self.Kl = (self.C * W) @ ((m * c**2 - EA) * self.Cxx.T)
         self.Mt_inv = np.linalg.inv(self.Mt)
         self.Ml_inv = np.linalg.inv(self.Ml)
         self.lin = (L - self.x) / L, self.x / L
+        # beta = B @ (g', h'): sine-mode projection of the end-motion velocity field
+        self.B = np.linalg.solve((self.S * W) @ self.S.T,
+                                 (self.S * W) @ np.stack(self.lin, axis=1))
 
     def rhs(self, t, y, ends, tension):
-        """y = (phi, psi, phi', psi'); ends(t) -> (g, h, g', h', g'', h''); tension(t) -> P_t."""
+        """y = (phi, psi, z, psi') with z = phi' + beta; ends(t) -> (g, h, g', h');
+        tension(t) -> P_t."""
         nt, nl = self.n_t, self.n_l
         phi, psi = y[:nt], y[nt:nt + nl]
-        dphi, dpsi = y[nt + nl:2 * nt + nl], y[2 * nt + nl:]
-        g, h, gd, hd, gdd, hdd = ends(t)
+        z, dpsi = y[nt + nl:2 * nt + nl], y[2 * nt + nl:]
+        g, h, gd, hd = ends(t)
+        dphi = z - self.B @ np.array([gd, hd])
         a0, a1 = self.lin
         L, m, c, c_d = self.L, self.m, self.c, self.c_d
-        # end-motion part of u2 (linear in x): its inertia, gyroscopic and damping loads
-        ub = a0 * g + a1 * h
-        ub_t, ub_tt = a0 * gd + a1 * hd, a0 * gdd + a1 * hdd
+        ub_t = a0 * gd + a1 * hd
         ub_x, ub_xt = (h - g) / L, (hd - gd) / L
         u2x = phi @ self.Sx + ub_x
         u2xx = phi @ self.Sxx
-        f_b = -(m * (ub_tt + 2 * c * ub_xt) + c_d * (ub_t + c * ub_x))
+        # end-motion loads without its acceleration (absorbed in z): gyroscopic and damping
+        f_b = -(2 * m * c * ub_xt + c_d * (ub_t + c * ub_x))
         ft = -(self.Gt @ dphi) - (self.Kt @ phi) + (self.S * self.w) @ f_b
         fl = -(self.Gl @ dpsi) - (self.Kl @ psi)
         Pt = tension(t)
+        ex0 = exL = 0.0
         if self.coupling:
             u1x, u1xx = psi @ self.Cx, psi @ self.Cxx
             EA = self.EA
             ft += (self.S * self.w) @ (EA * (u1xx * u2x + u1x * u2xx + 1.5 * u2x**2 * u2xx))
             fl += (self.C * self.w) @ (EA * u2x * u2xx)
-        # the ends carry the dynamic tension: {EA(u1,x + u2,x^2/2) - P_t} at x = 0 and its
-        # negative at x = L (Eq. 2-40); u1,x = 0 at the ends for cosine modes
-        ex0 = 0.5 * self.EA * (phi @ self._Sx0 + (h - g) / L) ** 2 if self.coupling else 0.0
-        exL = 0.5 * self.EA * (phi @ self._SxL + (h - g) / L) ** 2 if self.coupling else 0.0
+            ex0 = 0.5 * EA * (phi @ self._Sx0 + ub_x) ** 2
+            exL = 0.5 * EA * (phi @ self._SxL + ub_x) ** 2
+        # boundary terms of Eq. (2-40): {EA(u1,x + u2,x^2/2) - P_t} at x = 0, its negative
+        # at x = L (u1,x = 0 at the ends of cosine modes)
         fl += (ex0 - Pt) * self.Cend0 + (-exL + Pt) * self.CendL
         return np.concatenate([dphi, dpsi, self.Mt_inv @ ft, self.Ml_inv @ fl])
+
+    def transverse(self, y, t, ends, xi):
+        """u2 at x = xi: modal part plus the end-motion line."""
+        k = np.arange(1, self.n_t + 1) * np.pi / self.L
+        e = np.array([ends(tt)[:2] for tt in np.atleast_1d(t)])
+        return (np.asarray(y)[..., :self.n_t] @ np.sin(k * xi)
+                + (1 - xi / self.L) * e[:, 0] + xi / self.L * e[:, 1])
 
     @property
     def _Sx0(self):
@@ -119,7 +136,7 @@ def rk4(f, t0, y0, dt, n_steps, record_every=1):
     return np.array(out_t), np.array(out_y)
 
 
-def library(f, t0, y0, t_end, t_eval, rtol=1e-7, atol=1e-12, method="DOP853"):
+def library(f, t0, y0, t_end, t_eval, rtol=1e-6, atol=1e-12, method="DOP853"):
     """scipy solve_ivp (adaptive, error-controlled) on the same right-hand side."""
     sol = solve_ivp(f, (t0, t_end), y0, method=method, t_eval=t_eval, rtol=rtol, atol=atol)
     if not sol.success:
@@ -157,18 +174,15 @@ def forcing(selected: dict, prm: dict, omega1: float, geo: dict, kimp: dict, ste
         return float(sum(f(t) for f in parts)) if parts else 0.0
 
     if "end_excitation" in selected:
-        def pos(t):
-            kin = four_bar.rigid_kinematics(t, omega1, n1=n1, n2=n2, p_c=p, f_p=geo["f_p"])
-            return four_bar.end_displacements(kin["theta1"], kin["theta2"], kin["r1"], kin["r2"], n2)
-
-        h_fd = 1e-3 * 2 * np.pi / (n1 * omega1)
-
         def ends(t):
-            ts = np.array([t - h_fd, t, t + h_fd])
-            g, h = pos(ts)
-            return (g[1], h[1], (g[2] - g[0]) / (2 * h_fd), (h[2] - h[0]) / (2 * h_fd),
-                    (g[2] - 2 * g[1] + g[0]) / h_fd**2, (h[2] - 2 * h[1] + h[0]) / h_fd**2)
+            kin = four_bar.rigid_kinematics(t, omega1, n1=n1, n2=n2, p_c=p, f_p=geo["f_p"])
+            g, h = four_bar.end_displacements(kin["theta1"], kin["theta2"], kin["r1"],
+                                              kin["r2"], n2)
+            # d/dt of Eqs. (2-25), (2-24)
+            gd = -kin["r2"] * np.cos(kin["theta2"]) * kin["omega2"]
+            hd = -kin["r1"] * np.cos(kin["theta1"]) * omega1
+            return float(g), float(h), float(gd), float(hd)
     else:
         def ends(t):
-            return (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+            return (0.0, 0.0, 0.0, 0.0)
     return tension, ends
