@@ -49,15 +49,23 @@ class SelPSOResult:
 
 
 def selpso(fitness, x_init, settings: SelPSOSettings, rng: np.random.Generator,
-           lower=None, upper=None) -> SelPSOResult:
+           lower=None, upper=None, period: float | None = None) -> SelPSOResult:
     """Minimise ``fitness`` from ``x_init`` (n,), or from an (N, n) initial swarm.
 
     With ``lower``/``upper`` the initial swarm is drawn uniformly in the box and the
     positions are clipped to it (used for the lever optimisation, whose levers are
     bounded); the root solves of the paper are unbounded.
+
+    ``period`` (2 pi for angles) reduces the initial value modulo the period before the
+    swarm is seeded.  The equations are periodic, so this changes no root, but an angle of
+    80 rad carries 1.4e-14 rad of round-off, i.e. ~1.3e-11 mm on a 908 mm lever: a swarm
+    seeded there stalls just above the paper's G < 1e-11 (measured: 1.5e-11 after 1000
+    iterations).
     """
     st = settings
     x_init = np.asarray(x_init, float)
+    if period is not None:
+        x_init = np.mod(x_init, period)
     if x_init.ndim == 2:
         X = x_init.copy()
         N, n = X.shape

@@ -93,16 +93,24 @@ def _stroke_outputs(ctx: Context, g: Geometry, theta: np.ndarray, prefix: str, w
 @EFFECTS.register("newton")
 def eff_newton(ctx: Context) -> dict:
     """Warm-started Newton continuation (default solver); raises NonAssembly."""
-    t0 = time.perf_counter()
     sol = stroke.solve_newton(ctx.g, ctx.x_k, ctx.settings)
-    wall = time.perf_counter() - t0
+    # a stroke takes ~1 ms: repeat it and take the median so that one preemption by another
+    # process does not dominate the timing (selPSO solves are long enough to time singly)
+    times, total = [], 0.0
+    while total < float(ctx.options.get("newton_timing_s", 0.02)) or len(times) < 3:
+        t0 = time.perf_counter()
+        stroke.solve_newton(ctx.g, ctx.x_k, ctx.settings)
+        times.append(time.perf_counter() - t0)
+        total += times[-1]
+    wall = float(np.median(times))
     out = _stroke_outputs(ctx, ctx.g, sol.theta, "newton", "warm-started Newton")
     out.update({
         "newton_fitness_loops": (("cut",), sol.fitness_loops, "mm", "G of Eq. (9), Newton"),
         "newton_fitness_pose": (("cut",), sol.fitness_pose, "mm", "G of Eq. (7), Newton"),
         "newton_iterations": (("cut",), sol.iterations_loops.astype(float), "1",
                               "Newton iterations on Eq. (9)"),
-        "newton_time_per_solve": _scalar(sol.time_loops, "s", "Newton wall time per system solve"),
+        "newton_time_per_solve": _scalar(wall / (2 * ctx.n), "s",
+                                         "Newton wall time per system solve (median stroke / 2n)"),
         "newton_stroke_time": _scalar(wall, "s", "Newton wall time of the whole stroke"),
         "newton_success_rate": _scalar(sol.converged.mean(), "1", "Newton converged fraction"),
         "newton_right_branch_rate": _scalar(sol.right.mean(), "1",
@@ -210,7 +218,8 @@ def eff_initial_values(ctx: Context) -> dict:
     from .branch import on_design_branch
     for k, x0 in enumerate(inits):
         t0 = time.perf_counter()
-        r = selpso(lambda X: np.abs(loops_mod.residuals(ctx.g, X, t5, t6)).sum(-1), x0, st, rng)
+        r = selpso(lambda X: np.abs(loops_mod.residuals(ctx.g, X, t5, t6)).sum(-1), x0, st, rng,
+                   period=2 * math.pi)
         times.append(time.perf_counter() - t0)
         hist[k, :r.history.size] = r.history
         iters.append(r.iterations)

@@ -149,7 +149,7 @@ def solve_compare(g: Geometry, x_k, method: str, settings: SolverSettings,
         fpose = lambda X, xk=xk: np.abs(pose_mod.residuals(g, X, xk)).sum(-1)  # noqa: E731
         t0 = time.perf_counter()
         if method == "selpso":
-            r = selpso(fpose, init[4:], settings.pso_pose, rng)
+            r = selpso(fpose, init[4:], settings.pso_pose, rng, period=2 * math.pi)
             t56 = r.x
         else:
             t56, _ = _scipy_solve(method, lambda x, xk=xk: pose_mod.residuals(g, x, xk),
@@ -160,7 +160,7 @@ def solve_compare(g: Geometry, x_k, method: str, settings: SolverSettings,
         floops = lambda X, t5=t5, t6=t6: np.abs(loops_mod.residuals(g, X, t5, t6)).sum(-1)  # noqa: E731
         t0 = time.perf_counter()
         if method == "selpso":
-            r = selpso(floops, init[:4], settings.pso_loops, rng)
+            r = selpso(floops, init[:4], settings.pso_loops, rng, period=2 * math.pi)
             t14, it[i] = r.x, r.iterations
             if keep_history:
                 hist.append(r.history)

@@ -1,0 +1,102 @@
+"""rolling_shear: the invented geometry is what design.py derives, and it assembles."""
+import math
+
+import numpy as np
+import pytest
+
+from mechrepro.models.rolling_shear import blade, loops, optimise, pose, stroke
+from mechrepro.models.rolling_shear.branch import in_ranges, on_design_branch
+from mechrepro.models.rolling_shear.design import design
+from mechrepro.models.rolling_shear.geometry import cut_points
+
+from test_rolling_shear_helpers import config, geometry, run, stroke_exact
+
+
+@pytest.fixture(scope="module")
+def g():
+    return geometry()
+
+
+def test_config_values_are_the_design_derivation():
+    P = config().raw["parameters"]
+    v = {k: P[k]["value"] for k in P}
+    d = design(l1=v["l1"], l3=v["l3"], l5=v["l5"], l6=v["l6"], l9=v["l9"], l10=v["l10"],
+               s=v["s"], h=v["h"], R=v["R"], y_joint=v["y_joint"], theta6_mid=v["theta6_mid"],
+               elbow_angle=math.radians(v["elbow_angle"]))
+    for k in ("l2", "l4", "l8", "l11", "d", "x_mid"):
+        assert abs(d[k] - v[k]) < 1e-3, k
+    for k in ("alpha", "beta1", "beta2"):
+        assert abs(d[k] - v[k]) < 1e-6, k
+
+
+def test_every_invented_constant_is_marked_assumed():
+    P = config().raw["parameters"]
+    invented = ["l2", "l4", "l8", "l9", "l11", "alpha", "beta1", "beta2", "d", "h", "R",
+                "x_mid", "width", "y_joint", "theta6_mid", "elbow_angle"]
+    for k in invented:
+        assert P[k].get("assumed") is True and len(P[k]["why"]) > 20, k
+    for k in ("l1", "l3", "l5", "l6", "l10", "s"):
+        assert "Table" in P[k]["source"], k
+
+
+def test_mid_cut_pose_is_the_design_pose(g):
+    t5, t6 = pose.exact_pose(g, g.x_mid)
+    assert abs(t5 - g.beta2) < 1e-6                              # beta = 0 at mid-cut
+    assert abs(t6 - config().raw["parameters"]["theta6_mid"]["value"]) < 1e-6
+
+
+@pytest.mark.parametrize("n", [5, 33])
+def test_linkage_assembles_over_the_whole_stroke_and_closes_every_loop(g, n):
+    sol = stroke_exact(g, n)
+    for th in sol.theta:
+        assert np.all(np.abs(loops.residuals(g, th[:4], th[4], th[5])) < 1e-9)  # mm
+        assert in_ranges(th) and on_design_branch(g, th)
+    xk, yk = blade.lowest_point(g, sol.theta[:, 4], sol.theta[:, 5])
+    assert np.max(np.abs(yk + g.s)) < 1e-9
+    assert np.allclose(xk, cut_points(g, n)[1], atol=1e-9)
+    # far from toggle and fold everywhere
+    assert loops.dyad_margins(g, sol.theta[:, 4], sol.theta[:, 5]).min() > 300.0
+
+
+def test_newton_stroke_closes_every_loop_to_1e_9_mm(g):
+    xk = cut_points(g, 33)[1]
+    sol = stroke.solve_newton(g, xk, stroke.SolverSettings(initial_value=tuple(
+        run()["parameters"]["initial_value"])))
+    ex = stroke.solve_exact(g, xk)
+    for th in sol.theta:
+        assert np.all(np.abs(loops.residuals(g, th[:4], th[4], th[5])) < 1e-9)
+    assert np.max(np.abs(np.angle(np.exp(1j * (sol.theta - ex.theta))))) < 1e-10
+
+
+def test_blade_stays_inside_the_opening_and_stroke_turns_a_few_degrees(g):
+    sol = stroke_exact(g, 9)
+    beta = sol.theta[:, 4] - g.beta2
+    assert np.ptp(beta) < math.radians(6) and np.ptp(beta) > math.radians(4)
+    # far end of the blade above the cut line, at the start of the cut (design rule for R)
+    assert g.width ** 2 / (2 * g.R) <= config().raw["parameters"]["opening"]["value"]
+
+
+def test_paper_optimised_levers_assemble_in_our_geometry(g):
+    lev = {k: float(v) for k, v in config().raw["scenes"]["paper_optimised"]["parameters"].items()}
+    gp = g.with_levers(**lev)
+    xk = cut_points(gp, 17)[1]
+    H = optimise.objective(gp, xk, 1e-9)
+    assert math.isfinite(H) and H > 0
+
+
+@pytest.mark.parametrize("edit,expect", [
+    (lambda c: c["scenes"]["original"].__setitem__("effects", ["newton", "magic"]), "allowed"),
+    (lambda c: c["scenes"]["original"]["resolution"].__setitem__("n_points", 1), ">= 2"),
+    (lambda c: c["parameters"]["l1"].__setitem__("value", -5), "l1"),
+])
+def test_schema_rejects_bad_runs(config_copy, edit, expect):
+    import yaml
+
+    from mechrepro.config import ConfigError, load_paper
+
+    path = config_copy / "papers" / "rolling_shear.yaml"
+    raw = yaml.safe_load(path.read_text())
+    edit(raw)
+    path.write_text(yaml.safe_dump(raw))
+    with pytest.raises(ConfigError, match=expect):
+        load_paper(path)
