@@ -1,4 +1,6 @@
 # mechrepro: `make reproduce` (everything) and `make test` (all tests) bootstrap a venv first.
+SHELL := /bin/bash
+.SHELLFLAGS := -o pipefail -c
 PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
@@ -10,7 +12,8 @@ STAMP  := $(VENV)/.installed
 $(STAMP): requirements.lock pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/pip install --quiet --upgrade pip
-	$(BIN)/pip install --quiet -r requirements.lock
+	# the pip config here names optional local indexes; hide its warnings about them
+	$(BIN)/pip install --quiet -r requirements.lock 2>&1 | { grep -v "^WARNING: Location" || true; }
 	$(BIN)/pip install --quiet --no-deps -e .
 	$(BIN)/python -m ipykernel install --sys-prefix --name python3 > /dev/null
 	touch $(STAMP)

@@ -10,6 +10,16 @@ include: "workflow/rules/notebook.smk"
 include: "workflow/rules/report.smk"
 
 
+# Cheap bookkeeping runs on the submitting host even under a cluster executor.
+localrules:
+    all,
+    run_params,
+    gather,
+    report,
+    archive,
+    reference_check,
+
+
 rule all:
     input:
         f"{RESULTS}/report/index.html",

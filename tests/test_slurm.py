@@ -1,0 +1,101 @@
+"""The workflow on a real (local, single-node) SLURM cluster through the executor plugin.
+
+Starts the cluster with scripts/slurm_local.sh (installs Debian's munge/slurm packages if
+missing), runs a reduced study through `--profile profiles/slurm`, checks that the jobs
+really were SLURM jobs, that the gathered study equals the local run's values, and that a
+failing job is reported as failed.  Skipped, with the reason, only where the machine
+cannot install packages (not root, or no apt-get).
+"""
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from conftest import ROOT
+from mechrepro.io import open_dataset
+
+pytestmark = pytest.mark.slow
+SCRIPT = ROOT / "scripts" / "slurm_local.sh"
+STUDY = "saw_chain/studies/cost_of_accuracy.nc"
+
+
+def can_install() -> str | None:
+    if os.geteuid() != 0:
+        return "not root: cannot install or start SLURM daemons"
+    if shutil.which("slurmctld") is None and shutil.which("apt-get") is None:
+        return "no slurmctld and no apt-get to install it"
+    return None
+
+
+@pytest.fixture(scope="module")
+def cluster():
+    reason = can_install()
+    if reason:
+        pytest.skip(f"SLURM test skipped: {reason}")
+    proc = subprocess.run(["bash", str(SCRIPT), "start"], capture_output=True, text=True,
+                          timeout=600)
+    assert proc.returncode == 0, proc.stderr
+    print(proc.stderr.strip())
+    yield
+    subprocess.run(["bash", str(SCRIPT), "stop"], capture_output=True, text=True, timeout=120)
+
+
+@pytest.fixture(scope="module")
+def work(tmp_path_factory):
+    work = tmp_path_factory.mktemp("slurm_wf")
+    for item in ("Snakefile", "workflow", "config", "notebooks", "src"):
+        src = ROOT / item
+        (shutil.copytree if src.is_dir() else shutil.copy2)(src, work / item)
+    return work
+
+
+def snakemake(work, results, *args, timeout=900):
+    cmd = ["timeout", "-k", "10", str(timeout), sys.executable, "-m", "snakemake", *args,
+           "--config", "profile=ci", "papers=[saw_chain]", f"results={results}"]
+    return subprocess.run(cmd, cwd=work, capture_output=True, text=True)
+
+
+def slurm(work, target):
+    return snakemake(work, "results-slurm", "--profile", str(ROOT / "profiles" / "slurm"),
+                     "--default-resources", "slurm_partition=debug", "--slurm-no-account",
+                     "--slurm-keep-successful-logs", target)
+
+
+def test_study_runs_as_slurm_jobs_and_equals_local(cluster, work):
+    local = snakemake(work, "results-local", "--cores", "2", f"results-local/{STUDY}")
+    assert local.returncode == 0, local.stderr[-3000:]
+    proc = slurm(work, f"results-slurm/{STUDY}")
+    assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
+    # every solver job left a SLURM log named by its SLURM job id, and SLURM knows those ids
+    logs = list((work / ".snakemake" / "slurm_logs" / "rule_solve").rglob("*.log"))
+    ids = {p.stem for p in logs}
+    n_runs = len(open_dataset(work / "results-local" / STUDY)["run"])
+    assert len(ids) == n_runs and all(i.isdigit() for i in ids)
+    known = subprocess.run(["squeue", "-t", "all", "-h", "-o", "%i %T"], capture_output=True,
+                           text=True).stdout
+    states = dict(line.split() for line in known.splitlines())
+    assert all(states.get(i) == "COMPLETED" for i in ids), (ids, states)
+    # the gathered study equals the local one (wall time is a measurement, not a result)
+    a, b = open_dataset(work / "results-local" / STUDY), open_dataset(work / "results-slurm" / STUDY)
+    assert set(a.data_vars) == set(b.data_vars)
+    for name in a.data_vars:
+        if name != "wall_time":
+            assert np.array_equal(a[name].values, b[name].values), name
+    assert list(a["K"].values) == list(b["K"].values)
+
+
+def test_failing_slurm_job_is_reported_failed(cluster, work):
+    cfg = work / "config" / "papers" / "saw_chain.yaml"
+    cfg.write_text(cfg.read_text().replace("resolution: {K: 100}", "resolution: {K: 5000000}"))
+    proc = slurm(work, "results-slurm/saw_chain/runs/accuracy.nc")
+    assert proc.returncode != 0
+    out = proc.stdout + proc.stderr
+    m = re.search(r"SLURM-job '(\d+)' failed", out)
+    assert m, out[-3000:]
+    log = (work / "results-slurm" / "saw_chain" / "logs" / "solve" / "accuracy.log").read_text()
+    assert "RoundoffError" in log and "K=5000000" in log
+    assert not (work / "results-slurm" / "saw_chain" / "runs" / "accuracy.nc").exists()
