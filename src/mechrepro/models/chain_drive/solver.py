@@ -77,28 +77,38 @@ def _impact_load(run, prm, res):
 
 
 def _rigid_load(run, prm, res):
+    """Fig. 3: one case per driven tooth number in ``options.cases`` (default: n2)."""
     EFFECTS.select(run["effects"])
-    n1, n2, p = int(prm["n1"]), int(prm["n2"]), prm["pitch"]
-    geo = span.span_geometry(prm, True)
+    n1, p = int(prm["n1"]), prm["pitch"]
+    cases = [int(x) for x in run.get("options", {}).get("cases", [prm["n2"]])]
     w1 = prm["speed"]
     tau = 2 * np.pi / (n1 * w1)
     t = np.linspace(0, 2 * tau, int(res["samples"]))
-    kin = four_bar.rigid_kinematics(t, w1, n1=n1, n2=n2, p_c=p, f_p=geo["f_p"])
-    D = four_bar.polygonal_load_rigid(kin["alpha2"], prm["driven_inertia"], kin["r2"])
-    speeds = np.asarray(prm["speed"] * np.array(res.get("speed_factors", [0.5, 1.0, 2.0])))
-    peaks = []
-    for w in speeds:
-        tt = np.linspace(0, 2 * 2 * np.pi / (n1 * w), int(res["samples"]))
-        kk = four_bar.rigid_kinematics(tt, w, n1=n1, n2=n2, p_c=p, f_p=geo["f_p"])
-        peaks.append(np.max(np.abs(four_bar.polygonal_load_rigid(kk["alpha2"], prm["driven_inertia"], kk["r2"]))))
+    factors = np.array([0.5, 1.0, 2.0])
+    speeds = w1 * factors
+    om2, D, u0, peaks, fps = [], [], [], [], []
+    for n2 in cases:
+        geo = span.span_geometry({**prm, "n2": n2}, True)
+        kin = four_bar.rigid_kinematics(t, w1, n1=n1, n2=n2, p_c=p, f_p=geo["f_p"])
+        om2.append(kin["omega2"] * RPM)
+        D.append(four_bar.polygonal_load_rigid(kin["alpha2"], prm["driven_inertia"], kin["r2"]))
+        u0.append(four_bar.end_displacements(kin["theta1"], kin["theta2"], kin["r1"], kin["r2"], n2)[0])
+        fps.append(geo["f_p"])
+        pk = []
+        for w in speeds:
+            tt = np.linspace(0, 2 * 2 * np.pi / (n1 * w), int(res["samples"]))
+            kk = four_bar.rigid_kinematics(tt, w, n1=n1, n2=n2, p_c=p, f_p=geo["f_p"])
+            pk.append(np.max(np.abs(four_bar.polygonal_load_rigid(kk["alpha2"], prm["driven_inertia"],
+                                                                  kk["r2"]))))
+        peaks.append(pk)
     return xr.Dataset({
-        "omega2": _v(kin["omega2"] * RPM, ("t",), "rpm", "driven sprocket speed omega_2, Eq. (2-7)"),
-        "polygonal_load": _v(D, ("t",), "N", "dynamic load D_pol, Eq. (2-10)"),
-        "u_left": _v(four_bar.end_displacements(kin["theta1"], kin["theta2"], kin["r1"], kin["r2"], n2)[0],
-                     ("t",), "m", "driven-end transverse displacement u_0, Eq. (2-25)"),
-        "peak_load_by_speed": _v(peaks, ("check_speed",), "N", "max |D_pol| at the check speeds"),
-        "fractional_pitch": _scalar(geo["f_p"], "1", "fractional pitch f_p, Eq. (2-6)"),
+        "omega2": _v(om2, ("n2", "t"), "rpm", "driven sprocket speed omega_2, Eq. (2-7)"),
+        "polygonal_load": _v(D, ("n2", "t"), "N", "dynamic load D_pol, Eq. (2-10)"),
+        "u_left": _v(u0, ("n2", "t"), "m", "driven-end transverse displacement u_0, Eq. (2-25)"),
+        "peak_load_by_speed": _v(peaks, ("n2", "check_speed"), "N", "max |D_pol| at the check speeds"),
+        "fractional_pitch": _v(fps, ("n2",), "1", "fractional pitch f_p, Eq. (2-6)"),
     }, coords={"t": ("t", t, {"units": "s", "long_name": "time"}),
+               "n2": ("n2", cases, {"units": "1", "long_name": "driven sprocket tooth number"}),
                "check_speed": ("check_speed", speeds * RPM, {"units": "rpm", "long_name": "check speed"})})
 
 
