@@ -1,0 +1,104 @@
+"""chain_drive hard cases: near-critical speed, CFL limit, Mathieu growth, short impacts."""
+import math
+
+import numpy as np
+import pytest
+
+from mechrepro.models.chain_drive import exact, fd, span
+from mechrepro.models.chain_drive.effects import EFFECTS
+
+M, T, L = 0.61, 400.0, 0.254
+CW = math.sqrt(T / M)
+
+
+def test_mixed_differencing_switches_to_backward_at_s_star_one():
+    w = fd.mixed_weights(np.array([0.0, 1.0]), 1.0)
+    np.testing.assert_allclose(w[0], [-0.5, 0.0, 0.5])     # central
+    np.testing.assert_allclose(w[1], [-1.0, 1.0, 0.0])     # backward
+
+
+@pytest.mark.parametrize("ratio", [0.9, 0.99, pytest.param(0.999, marks=pytest.mark.slow)])
+def test_speed_approaching_wave_speed_stays_bounded(ratio):
+    """s* -> 1: the frequencies collapse like (c_w^2 - c^2); the march stays finite and the
+    Wickert-Mote frequency is still found (mixed differencing, as in the paper)."""
+    e, w_fd, w_ex, dt, _ = exact.free_vibration(40, L=L, m=M, T=T, c=ratio * CW, periods=2)
+    assert np.isfinite(e) and e < 2.0                        # bounded, unit-amplitude mode
+    assert abs(w_fd / w_ex - 1) < 0.02
+
+
+def test_time_step_at_the_limit_is_stable():
+    grid = fd.Grid(L, 40, 40)
+    c = np.array([0.3 * CW])
+    dt = fd.stable_time_step(grid.dx, c, T, M, cfl=1.0)
+    u0 = np.sin(np.pi * grid.x / L)[None]
+    r = fd.march(c=c, P=np.array([T]), m=M, c_d=0.0, grid=grid, dt=dt, n_steps=4000,
+                 exc=fd.Excitation(), u0=u0, u_cap=10.0)
+    assert not r.unstable[0] and np.max(np.abs(r.final)) < 2.0
+
+
+def test_time_step_past_the_limit_is_refused():
+    grid = fd.Grid(L, 40, 40)
+    c = np.array([0.3 * CW])
+    limit = fd.stable_time_step(grid.dx, c, T, M, cfl=1.0)
+    fd.check_time_step(limit, grid.dx, c, T, M)             # at the limit: accepted
+    with pytest.raises(fd.StabilityError, match="exceeds the stability limit"):
+        fd.check_time_step(1.05 * limit, grid.dx, c, T, M)
+    with pytest.raises(fd.StabilityError, match="CFL"):
+        fd.stable_time_step(grid.dx, c, T, M, cfl=1.2)
+
+
+def test_past_the_limit_the_scheme_really_diverges_but_reports_growth_not_nan():
+    """Why the refusal: forced past the limit, the march grows; it is capped and flagged."""
+    grid = fd.Grid(L, 40, 40)
+    c = np.array([0.0])
+    dt = 1.3 * fd.stable_time_step(grid.dx, c, T, M, cfl=1.0)
+    u0 = 1e-6 * np.random.default_rng(0).standard_normal((1, 41))
+    r = fd.march(c=c, P=np.array([T]), m=M, c_d=0.0, grid=grid, dt=dt, n_steps=3000,
+                 exc=fd.Excitation(), u0=u0, u_cap=1e-2, measure_from=0)
+    assert r.unstable[0]
+    assert np.all(np.isfinite(r.amplitude)) and np.all(np.isfinite(r.final))
+
+
+def test_slack_span_is_refused():
+    with pytest.raises(fd.StabilityError, match="slack"):
+        fd.stable_time_step(0.003, np.array([1.0]), np.array([-5.0]), M)
+
+
+def _parametric(eps, freq_factor, T_s=100.0, n_steps=60000):
+    grid = fd.Grid(L, 30, 30)
+    c = np.array([0.5])
+    cw = math.sqrt(T_s / M)
+    w1 = math.pi * (cw**2 - c[0] ** 2) / (cw * L)
+    dt = fd.stable_time_step(grid.dx, c, T_s * (1 + eps), M, 0.9)
+    t = np.arange(n_steps + 1) * dt
+    Pt = (eps * T_s * np.cos(freq_factor * w1 * t))[:, None]
+    u0 = 1e-4 * np.sin(np.pi * grid.x / L)[None]
+    return fd.march(c=c, P=np.array([T_s]), m=M, c_d=0.5, grid=grid, dt=dt, n_steps=n_steps,
+                    exc=fd.Excitation(tension=Pt), u0=u0, u_cap=0.05, measure_from=n_steps // 3)
+
+
+def test_mathieu_instability_reported_as_growth():
+    """Tension pumped at twice the first frequency (principal parametric resonance) at low
+    static tension: the response grows; it is flagged, finite, never NaN."""
+    r = _parametric(eps=0.4, freq_factor=2.0)
+    assert r.unstable[0]
+    assert np.isfinite(r.amplitude[0]) and np.isfinite(r.growth[0]) or r.growth[0] == np.inf
+    assert not np.any(np.isnan(r.final))
+
+
+def test_off_resonance_parametric_excitation_is_stable():
+    r = _parametric(eps=0.4, freq_factor=3.3)
+    assert not r.unstable[0]
+
+
+def test_longitudinal_coupling_is_not_a_finite_difference_effect():
+    prm = dict(pitch=0.0127, mass_per_length=M, static_tension=T, transverse_damping=12.2, n1=24,
+               n2=24, centre_distance=20.0, lambda_support=0.9, axial_stiffness=2e6,
+               driven_inertia=0.002, impact_mass_links=2, contact_stiffness=2e8,
+               contact_damping_ratio=0.1, external_load_ratio=0.0, external_frequency_ratio=1.0,
+               speed_min=10.0, speed_max=20.0)
+    with pytest.raises(ValueError, match="Galerkin"):
+        span.assemble(["longitudinal_coupling"], prm, np.array([10.0]),
+                      dict(points_per_pitch=2, cfl=0.9, decay_times=0.1, window_periods=1))
+    with pytest.raises(KeyError, match="unknown effect"):
+        EFFECTS.select(["polygonal"])
