@@ -46,18 +46,25 @@ def frequency_determinant(lam, n, ratio, nu):
     return np.linalg.det(boundary_matrix(lam, n, ratio, nu))
 
 
-def frequency_parameters(n, ratio, nu, count=1, lam_max=40.0, step=0.02):
-    """The first ``count`` roots lambda = k b of the determinant for harmonic ``n``."""
+def frequency_parameters(n, ratio, nu, count=1, lam_max=60.0, step=0.02, chunk=8.0):
+    """The first ``count`` roots lambda = k b of the determinant for harmonic ``n``.
+
+    The determinant is an entire function of lambda (no poles), so every sign change on the
+    scan grid brackets a root; the scan stops at the first chunk that completes ``count``.
+    """
     if not (0.0 < ratio < 1.0):
         raise ValueError(f"a/b = {ratio} must be in (0, 1) for the annular plate")
-    lams = np.arange(step, lam_max, step)
-    det = frequency_determinant(lams, n, ratio, nu)
-    idx = np.nonzero(np.sign(det[:-1]) * np.sign(det[1:]) < 0)[0]
     f = lambda x: float(frequency_determinant(x, n, ratio, nu))  # noqa: E731
-    roots = [brentq(f, lams[i], lams[i + 1], xtol=1e-15, rtol=1e-15) for i in idx[:count]]
+    roots, lo = [], step
+    while len(roots) < count and lo < lam_max:
+        lams = np.arange(lo, min(lo + chunk, lam_max) + step / 2, step)
+        det = frequency_determinant(lams, n, ratio, nu)
+        idx = np.nonzero(np.sign(det[:-1]) * np.sign(det[1:]) < 0)[0]
+        roots += [brentq(f, lams[i], lams[i + 1], xtol=1e-15, rtol=1e-15) for i in idx]
+        lo = lams[-1]
     if len(roots) < count:
         raise RuntimeError(f"found only {len(roots)} roots below lambda = {lam_max}")
-    return np.array(roots)
+    return np.array(roots[:count])
 
 
 def natural_frequencies(n_d, *, a, b, h, E, nu, rho, count=1):

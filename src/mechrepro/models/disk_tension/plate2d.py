@@ -120,7 +120,7 @@ class PlateDisk:
     label = "plate2d"
 
     def __init__(self, *, r_f, b, h, E, nu, rho, n_d, n_rings, n_sectors,
-                 slots: Slots | None = None, extra_modes=4):
+                 slots: Slots | None = None, extra_modes=4, seed=0):
         self.r_f, self.b, self.h, self.E, self.nu, self.rho = r_f, b, h, E, nu, rho
         self.n_d = np.asarray(n_d, int)
         self.mesh = polar_mesh(r_f, b, n_rings, n_sectors, slots)
@@ -140,6 +140,9 @@ class PlateDisk:
         self.ring_theta = np.arctan2(*self.mesh.p[::-1, outer])
         self.ring_dofs = self.basis.nodal_dofs[0, outer]
         self._inplane = None
+        # ARPACK's start vector, seeded: the rotation of each degenerate pair it returns
+        # (the raw Eq. 17 entries) is then reproducible
+        self._v0 = np.random.default_rng(seed).standard_normal(len(self.free))
 
     # -- helpers -----------------------------------------------------------------
     def _sub(self, A):
@@ -147,7 +150,8 @@ class PlateDisk:
 
     def _eigs(self, K, k):
         shift = -0.1 * float(self._shift_scale) if hasattr(self, "_shift_scale") else 0.0
-        lam, vec = spla.eigsh(self._sub(K), k=k, M=self._sub(self.M), sigma=shift, which="LM")
+        lam, vec = spla.eigsh(self._sub(K), k=k, M=self._sub(self.M), sigma=shift, which="LM",
+                              v0=self._v0)
         order = np.argsort(lam)
         full = np.zeros((self.basis.N, k))
         full[self.free] = vec[:, order]
@@ -216,7 +220,7 @@ class PlateDisk:
             lu = spla.splu(Kin[free][:, free].tocsc())
             self._inplane = (ub, free, lu)
         ub, free, lu = self._inplane
-        x = ub.global_coordinates().value
+        x = np.asarray(ub.global_coordinates())
         T = temperature(np.hypot(x[0], x[1]))
         EaT = self.E * alpha * T / (1 - self.nu)
         f = asm(_thermal_load, ub, EaT=EaT)
@@ -229,6 +233,16 @@ class PlateDisk:
         syy = c * ((1 - self.nu) * eps[1, 1] + self.nu * tr) - EaT
         sxy = c * (1 - self.nu) * eps[0, 1]
         return sxx, sxy, syy
+
+    def polar_stress(self, sigma):
+        """(r, sigma_r, sigma_theta) at the bending quadrature points, flattened."""
+        sxx, sxy, syy = sigma
+        x = np.asarray(self.basis.global_coordinates())
+        th = np.arctan2(x[1], x[0])
+        c, s = np.cos(th), np.sin(th)
+        sr = sxx * c * c + 2 * sxy * s * c + syy * s * s
+        st = sxx * s * s - 2 * sxy * s * c + syy * c * c
+        return np.hypot(x[0], x[1]).ravel(), sr.ravel(), st.ravel()
 
     def stress_stiffness(self, sigma):
         sxx, sxy, syy = sigma

@@ -26,7 +26,6 @@ from mechrepro.effects import EffectRegistry
 from . import calibration, exact, thermal
 from .axisym import AxisymDisk
 from .modal import delta_f_exact, delta_f_linearised, frequency
-from .plate2d import PlateDisk, Slots
 
 EFFECTS = EffectRegistry("disk_tension")
 MODEL_EFFECTS = ("axisym", "plate2d")
@@ -120,7 +119,8 @@ def _calibrate(ctx: Context):
     ctx.alpha = calibration.alpha_effective(
         target=p["calibration_delta_omega2"], n_d=int(p["calibration_nodal_diameter"]),
         r_c=p["calibration_rolling_radius"], r_f=p["calibration_clamp_radius"], b=ctx.b,
-        h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho, alpha=handbook, amplitude=ctx.A, s=ctx.s,
+        h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho, alpha=handbook,
+        amplitude=p["calibration_temperature_amplitude"], s=p["calibration_gaussian_width"],
         inplane_bc=ctx.bc)
     ctx.put("alpha_effective", (), ctx.alpha, "1/K",
             "thermal-analogy expansion coefficient calibrated on Table 1 (N_d = 4)")
@@ -153,6 +153,8 @@ def _roll_tension(ctx: Context):
 
 @EFFECTS.register("slots")
 def _slots(ctx: Context):
+    from .plate2d import Slots  # scikit-fem is imported only by scenes that use it
+
     p = ctx.p
     ctx.slots = Slots(int(p["slot_count"]), p["slot_depth"], p["slot_width"])
     ctx.put("slot_count", (), ctx.slots.count, "1", "number of radial expansion slots")
@@ -189,10 +191,13 @@ def _plate2d(ctx: Context):
     if ctx.bc != "clamped":
         raise ValueError("plate2d meshes the flexible annulus only, so it supports "
                          "inplane_bc = 'clamped'; use axisym for 'free_disk'")
+    from .plate2d import PlateDisk  # scikit-fem is imported only by scenes that use it
+
     t0 = time.perf_counter()
     model = PlateDisk(r_f=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho,
                       n_d=ctx.n_d, n_rings=int(ctx.resolution.get("n_rings", 12)),
-                      n_sectors=int(ctx.resolution.get("n_sectors", 64)), slots=ctx.slots)
+                      n_sectors=int(ctx.resolution.get("n_sectors", 64)), slots=ctx.slots,
+                      seed=int(ctx.run.get("seed", 0)))
     model.build_time = time.perf_counter() - t0
     ctx.put("plate2d_n_dofs", (), model.basis.N, "1", "plate2d: number of Argyris DOFs")
     _model_common(ctx, model, "plate2d")
@@ -205,14 +210,38 @@ def _stress_matrices(ctx, name, model):
     if name not in cache:
         t0 = time.perf_counter()
         if name == "plate2d":
-            cache[name] = [model.stress_stiffness(model.residual_stress(ctx.temperature(rc),
-                                                                        ctx.alpha))
-                           for rc in ctx.r_c]
+            sig = [model.residual_stress(ctx.temperature(rc), ctx.alpha) for rc in ctx.r_c]
+            cache[name] = [model.stress_stiffness(s) for s in sig]
+            _plate2d_stress_profile(ctx, model, sig[0])
         else:
             cache[name] = [model.stress_stiffness(ctx.stress(rc)) for rc in ctx.r_c]
         ctx.put(f"{name}_time_stress", (), time.perf_counter() - t0, "s",
                 f"{name}: wall time of the thermal stress and K^(sigma) for all r_c")
     return cache[name]
+
+
+def _plate2d_stress_profile(ctx, model, sigma):
+    """FE stress of the first r_c on radial bins, and (plain disk) its error vs Eq. (4)'s
+    closed-form plane-stress field."""
+    r, sr, st = model.polar_stress(sigma)
+    edges = np.linspace(r.min(), r.max(), 81)
+    k = np.clip(np.digitize(r, edges) - 1, 0, len(edges) - 2)
+    cnt = np.bincount(k, minlength=len(edges) - 1)
+    mid = 0.5 * (edges[1:] + edges[:-1])
+    ctx.coords["r_bin"] = ("r_bin", mid, {"long_name": "radius (bin centre)", "units": "m"})
+    for nm, v in (("sigma_r", sr), ("sigma_theta", st)):
+        mean = np.bincount(k, weights=v, minlength=len(mid)) / np.maximum(cnt, 1)
+        ctx.put(f"plate2d_{nm}_binned", ("r_bin",), np.where(cnt > 0, mean, np.nan), "Pa",
+                f"plate2d: FE {nm} averaged over radial bins (first r_c)")
+    if ctx.slots is None:
+        a_r, a_t = ctx.stress(ctx.r_c[0])
+        rr = np.clip(r, ctx.r_f, ctx.b)
+        scale = np.max(np.abs(a_t(rr)))
+        dev = np.concatenate([sr - a_r(rr), st - a_t(rr)]) / scale
+        ctx.put("plate2d_stress_rel_error_max", (), np.max(np.abs(dev)), "1",
+                "plate2d: max |FE - closed-form stress| / max |sigma_theta| (first r_c)")
+        ctx.put("plate2d_stress_rel_error_rms", (), np.sqrt(np.mean(dev**2)), "1",
+                "plate2d: rms (FE - closed-form stress) / max |sigma_theta| (first r_c)")
 
 
 @EFFECTS.register("eigen")

@@ -1,0 +1,185 @@
+"""disk_tension: exact solution, thermal stress, axisymmetric model, Eq. (9), hard cases."""
+import numpy as np
+import pytest
+
+from mechrepro.models.disk_tension import calibration, exact, modal, thermal
+from mechrepro.models.disk_tension.axisym import AxisymDisk, radial_mesh
+
+E, NU, RHO, B = 206e9, 0.3, 7850.0, 0.1275
+H = calibration.thickness(f_target=434.5, n_d=4, r_f=0.025, b=B, E=E, nu=NU, rho=RHO)
+ALPHA = 12e-6
+
+
+def stress(r_c, r_f=0.025, A=50.0, bc="clamped", alpha=ALPHA):
+    kw = dict(amplitude=A, r_c=r_c, s=0.005, r_f=r_f, b=B, E=E, nu=NU, alpha=alpha, inplane_bc=bc)
+    return (lambda r: thermal.thermal_stress(r, **kw)[0], lambda r: thermal.thermal_stress(r, **kw)[1])
+
+
+def disk(r_f=0.025, n_elements=64, n_d=range(5)):
+    d = AxisymDisk(r_f=r_f, b=B, h=H, E=E, nu=NU, rho=RHO, n_d=list(n_d), n_elements=n_elements)
+    d.unrolled()
+    return d
+
+
+# -- exact Bessel solution --------------------------------------------------------------
+def test_thickness_calibration_hits_434_5_hz_exactly():
+    f = exact.natural_frequencies(4, a=0.025, b=B, h=H, E=E, nu=NU, rho=RHO)[0]
+    assert f == pytest.approx(434.5, rel=1e-12)
+    assert 1.0e-3 < H < 2.0e-3  # a plausible saw-blade gauge
+
+
+def test_exact_roots_are_roots_and_ordered():
+    lam = exact.frequency_parameters(2, 0.3, NU, count=3)
+    assert np.all(np.diff(lam) > 0)
+    scale = np.abs(exact.frequency_determinant(lam * 1.01, 2, 0.3, NU))
+    assert np.all(np.abs(exact.frequency_determinant(lam, 2, 0.3, NU)) < 1e-9 * scale)
+
+
+@pytest.mark.parametrize("r_f", [0.025, 0.055, 0.075])
+def test_axisym_matches_exact_bessel_frequencies(r_f):
+    d = disk(r_f=r_f, n_elements=64)
+    f = np.sqrt([d.omega2[n] for n in range(5)]) / (2 * np.pi)
+    fe = np.array([exact.natural_frequencies(n, a=r_f, b=B, h=H, E=E, nu=NU, rho=RHO)[0]
+                   for n in range(5)])
+    np.testing.assert_allclose(f, fe, rtol=2e-6)
+
+
+def test_axisym_converges_at_fourth_order():
+    fe = exact.natural_frequencies(3, a=0.025, b=B, h=H, E=E, nu=NU, rho=RHO)[0]
+    ne = np.array([16, 32, 64])  # asymptotic range (4..16 is pre-asymptotic)
+    err = [np.sqrt(disk(n_elements=n, n_d=[3]).omega2[3]) / (2 * np.pi) / fe - 1 for n in ne]
+    assert np.all(np.array(err) > 0)  # conforming Rayleigh-Ritz: from above
+    order = np.polyfit(np.log(1.0 / ne), np.log(err), 1)[0]
+    assert 3.5 < order < 5.0
+
+
+def test_exact_rejects_bad_ratio():
+    with pytest.raises(ValueError, match="a/b"):
+        exact.frequency_parameters(0, 1.2, NU)
+
+
+# -- thermal analogy --------------------------------------------------------------------
+@pytest.mark.parametrize("bc", ["clamped", "free_disk"])
+def test_thermal_stress_is_in_equilibrium_and_traction_free_at_rim(bc):
+    r = np.linspace(0.03, B, 4001)
+    sr, st = thermal.thermal_stress(r, amplitude=50, r_c=0.065, s=0.005, r_f=0.025, b=B, E=E,
+                                    nu=NU, alpha=ALPHA, inplane_bc=bc)
+    resid = np.gradient(sr, r) + (sr - st) / r
+    assert np.max(np.abs(resid[5:-5])) * 0.005 < 1e-4 * np.max(np.abs(st))
+    assert abs(sr[-1]) < 1e-6 * np.max(np.abs(st))
+
+
+def test_clamped_inplane_condition_gives_zero_hoop_strain_at_clamp():
+    r_f = 0.025
+    sr, st = thermal.thermal_stress(np.array([r_f]), amplitude=50, r_c=0.03, s=0.005, r_f=r_f,
+                                    b=B, E=E, nu=NU, alpha=ALPHA)
+    T = thermal.temperature(r_f, 50, 0.03, 0.005)
+    assert (st[0] - NU * sr[0]) / E + ALPHA * T == pytest.approx(0.0, abs=1e-12)
+
+
+def test_free_disk_hoop_force_balances():
+    # a half disk carries no net hoop force: int_0^b sigma_theta dr = 0
+    r = np.linspace(1e-6, B, 200001)
+    _, st = thermal.thermal_stress(r, amplitude=50, r_c=0.065, s=0.005, r_f=1e-6, b=B, E=E,
+                                   nu=NU, alpha=ALPHA, inplane_bc="free_disk")
+    assert abs(np.trapezoid(st, r)) < 1e-5 * np.max(np.abs(st)) * B
+
+
+def test_thermal_stress_bad_input():
+    with pytest.raises(ValueError, match="inplane_bc"):
+        thermal.thermal_stress([0.05], amplitude=1, r_c=0.05, s=0.005, r_f=0.025, b=B, E=E,
+                               nu=NU, alpha=ALPHA, inplane_bc="glued")
+    with pytest.raises(ValueError, match="r_f"):
+        thermal.thermal_stress([0.05], amplitude=1, r_c=0.05, s=0.005, r_f=0.2, b=B, E=E,
+                               nu=NU, alpha=ALPHA)
+
+
+# -- Eq. (9), Eqs. (16)-(17) ------------------------------------------------------------
+def test_eq9_is_an_upper_bound_and_exact_to_first_order():
+    d = disk()
+    Ks = d.stress_stiffness(stress(0.065))
+    d9 = d.eq9(Ks)
+    w2, _ = d.rolled(Ks)
+    w0 = np.array([d.omega2[n] for n in range(5)])
+    assert np.all(w2 <= w0 + d9 + 1e-9 * w0)  # Rayleigh quotient of the unrolled mode
+    # Eq. (9) is the first-order term: the rest shrinks linearly with the load factor
+    # (below ~1e-3 the eigensolver's round-off on omega^2 dominates the difference)
+    dev = []
+    for eps in (0.1, 0.01):
+        w2s, _ = d.rolled({n: eps * k for n, k in Ks.items()})
+        dev.append(np.abs((w2s - w0) / (eps * d9) - 1))
+    assert np.all(dev[0] < 2e-2) and np.all(dev[1] < 2e-3)
+    assert np.all(dev[1] < 0.2 * dev[0])
+
+
+def test_eq9_is_linear_in_the_temperature_amplitude():
+    d = disk(n_elements=32)
+    a = d.eq9(d.stress_stiffness(stress(0.085, A=50)))
+    b = d.eq9(d.stress_stiffness(stress(0.085, A=100)))
+    np.testing.assert_allclose(b, 2 * a, rtol=1e-12)
+
+
+def test_paper_70hz_is_the_linearised_conversion_of_table1():
+    w = 2 * np.pi * 434.5
+    assert modal.delta_f_linearised(w, 2.40e6) == pytest.approx(69.96, abs=0.01)
+    assert modal.delta_f_exact(w, 2.40e6) == pytest.approx(65.08, abs=0.01)
+
+
+def test_stress_calibration_meets_table1_and_modal_matrices_are_diagonal():
+    a = calibration.alpha_effective(target=2.40e6, n_d=4, r_c=0.065, r_f=0.025, b=B, h=H, E=E,
+                                    nu=NU, rho=RHO, alpha=ALPHA, amplitude=50, s=0.005,
+                                    inplane_bc="clamped")
+    d = disk(n_elements=128)
+    k_hat, m_hat = d.modal_matrices(d.stress_stiffness(stress(0.065, alpha=a)))
+    assert k_hat[4, 4] == pytest.approx(2.40e6, rel=1e-6)
+    assert np.all(k_hat - np.diag(np.diag(k_hat)) == 0)
+    assert np.all((np.diag(m_hat) > 0.99) & (np.diag(m_hat) <= 1 + 1e-12))
+
+
+# -- hard cases -------------------------------------------------------------------------
+def test_buckling_is_reported_not_square_rooted():
+    d = disk(n_elements=32)
+    Ks = d.stress_stiffness(stress(0.105, A=50))
+    lam = d.critical_load(Ks)
+    n2 = list(d.n_d).index(2)
+    assert 1.0 < lam[n2] < 3.0  # compressive hoop stress near the rim: N_d = 2 goes first
+    w2, _ = d.rolled({n: 1.5 * lam[n2] * k for n, k in Ks.items()})
+    assert w2[n2] < 0
+    f = modal.frequency(w2)
+    assert np.isnan(f[n2]) and np.array_equal(np.isnan(f), w2 < 0)
+    with pytest.raises(modal.BucklingError):
+        modal.frequency(w2, buckled="raise")
+    # at the critical load factor the lowest eigenvalue of N_d = 2 crosses zero
+    w2c, _ = d.rolled({n: lam[n2] * k for n, k in Ks.items()})
+    assert abs(w2c[n2]) < 1e-8 * d.omega2[2]
+
+
+def test_tensile_stress_never_buckles():
+    d = disk(n_elements=16, n_d=[0])
+    Ks = d.stress_stiffness((lambda r: 1e7 + 0 * r, lambda r: 1e7 + 0 * r))
+    assert np.isinf(d.critical_load(Ks)[0])
+
+
+def test_rolling_inside_the_clamp_changes_nothing_with_clamped_inplane_condition():
+    d = disk(r_f=0.075, n_elements=32)
+    d9 = d.eq9(d.stress_stiffness(stress(0.035, r_f=0.075)))
+    w0 = np.array([d.omega2[n] for n in range(5)])
+    assert np.max(np.abs(d9 / w0)) < 1e-12
+    # ... but the free disk carries the rolling's hoop stress out to the flexible region
+    d9f = d.eq9(d.stress_stiffness(stress(0.035, r_f=0.075, bc="free_disk")))
+    assert np.max(np.abs(d9f / w0)) > 1e-3
+
+
+def test_very_coarse_and_very_thin_axisymmetric_models_stay_finite():
+    fe = exact.natural_frequencies(4, a=0.025, b=B, h=H, E=E, nu=NU, rho=RHO)[0]
+    one = disk(n_elements=1, n_d=[4])
+    assert 0 < np.sqrt(one.omega2[4]) / (2 * np.pi) / fe - 1 < 0.5
+    with pytest.raises(ValueError, match="n_elements"):
+        radial_mesh(0.025, B, 0)
+    thin = AxisymDisk(r_f=0.025, b=B, h=H / 20, E=E, nu=NU, rho=RHO, n_d=[4], n_elements=32)
+    thin.unrolled()
+    Ks = thin.stress_stiffness(stress(0.105))
+    w2, _ = thin.rolled(Ks)
+    lam = thin.critical_load(Ks)[0]
+    assert (w2[0] < 0) == (lam < 1.0)  # a 20x thinner blade buckles under the same stress
+    assert lam < 1.0

@@ -1,0 +1,129 @@
+"""disk_tension 2-D Argyris model: exact solution, degenerate pairs, slots, hard cases."""
+import numpy as np
+import pytest
+
+from mechrepro.models.disk_tension import exact, thermal
+from mechrepro.models.disk_tension.axisym import AxisymDisk
+from mechrepro.models.disk_tension.plate2d import PlateDisk, Slots, polar_mesh
+
+E, NU, RHO, B, RF = 206e9, 0.3, 7850.0, 0.1275, 0.025
+H = 1.31e-3
+ALPHA = 15.8e-6
+T65 = (lambda r: thermal.temperature(r, 50, 0.065, 0.005))
+
+
+def sigma_axi(r_c=0.065):
+    kw = dict(amplitude=50, r_c=r_c, s=0.005, r_f=RF, b=B, E=E, nu=NU, alpha=ALPHA)
+    return (lambda r: thermal.thermal_stress(r, **kw)[0], lambda r: thermal.thermal_stress(r, **kw)[1])
+
+
+@pytest.fixture(scope="module")
+def plain():
+    p = PlateDisk(r_f=RF, b=B, h=H, E=E, nu=NU, rho=RHO, n_d=range(5), n_rings=10, n_sectors=64)
+    p.unrolled()
+    return p
+
+
+@pytest.fixture(scope="module")
+def axi():
+    a = AxisymDisk(r_f=RF, b=B, h=H, E=E, nu=NU, rho=RHO, n_d=range(5), n_elements=128)
+    a.unrolled()
+    return a
+
+
+@pytest.mark.slow
+def test_plate2d_unrolled_matches_exact_within_0_1_percent(plain):
+    fe = np.array([exact.natural_frequencies(n, a=RF, b=B, h=H, E=E, nu=NU, rho=RHO)[0]
+                   for n in range(5)])
+    f = np.sqrt([plain.omega2[n].mean() for n in range(5)]) / (2 * np.pi)
+    np.testing.assert_allclose(f, fe, rtol=1e-3)
+
+
+@pytest.mark.slow
+def test_plate2d_labels_every_nodal_diameter_and_pairs_are_degenerate(plain):
+    for n in range(1, 5):
+        w = plain.omega2[n]
+        assert len(w) == 2 and abs(w[1] - w[0]) < 1e-7 * w[0]
+        # the rotated pair: member 0 is the cos(n theta) mode, M-orthonormal to member 1
+        P = plain.pair[n]
+        G = P.T @ (plain.M @ P)
+        np.testing.assert_allclose(G, np.eye(2), atol=1e-10)
+        _, coef = plain.harmonic_content(P)
+        assert abs(coef[2 * n, 0]) < 1e-8 * abs(coef[2 * n - 1, 0])
+
+
+@pytest.mark.slow
+def test_plate2d_rolled_agrees_with_axisym_and_eq9_pairs(plain, axi):
+    Ks = plain.stress_stiffness(plain.residual_stress(T65, ALPHA))
+    w2, _ = plain.rolled(Ks)
+    w2a, _ = axi.rolled(axi.stress_stiffness(sigma_axi()))
+    np.testing.assert_allclose(w2, w2a, rtol=3e-3)
+    d9 = plain.eq9(Ks)
+    d9a = axi.eq9(axi.stress_stiffness(sigma_axi()))
+    np.testing.assert_allclose(d9, d9a, rtol=2e-2)
+    for n in range(1, 5):  # an axisymmetric stress keeps each pair degenerate
+        ev = plain.eq9_pairs[n]
+        assert abs(ev[1] - ev[0]) < 1e-4 * abs(ev).max()
+    k_hat, m_raw, m_al = plain.modal_matrices(Ks)
+    off = np.abs(k_hat - np.diag(np.diag(k_hat))).max() / np.abs(np.diag(k_hat)).min()
+    assert off < 1e-3
+    # MAC tracking: after projecting the rolled pair, m^hat is a unit matrix; the raw
+    # eigensolver member can be any rotation within its pair (|entry| <= 1)
+    np.testing.assert_allclose(np.diag(m_al), 1.0, atol=2e-3)
+    assert np.all(np.diag(m_raw) <= 1 + 1e-9)
+
+
+@pytest.mark.slow
+def test_fe_residual_stress_converges_to_closed_form():
+    ar, at = sigma_axi()
+    rms = []
+    for n_rings in (8, 16):
+        p = PlateDisk(r_f=RF, b=B, h=H, E=E, nu=NU, rho=RHO, n_d=[0], n_rings=n_rings,
+                      n_sectors=32)
+        r, sr, st = p.polar_stress(p.residual_stress(T65, ALPHA))
+        rr = np.clip(r, RF, B)
+        rms.append(np.sqrt(np.mean((st - at(rr)) ** 2 + (sr - ar(rr)) ** 2)) / np.abs(at(rr)).max())
+    # converging to the closed form: P2 displacements give stresses whose rms error falls
+    # ~4x per halving of the ring size once the Gaussian (s = 5 mm) is resolved
+    assert rms[1] < rms[0] / 2.5
+
+
+@pytest.mark.slow
+def test_six_slots_split_the_nd3_pair_but_not_nd4():
+    p = PlateDisk(r_f=RF, b=B, h=H, E=E, nu=NU, rho=RHO, n_d=range(5), n_rings=6, n_sectors=48,
+                  slots=Slots(6, 0.02, 0.0025))
+    p.unrolled()
+    split = {n: abs(np.diff(p.omega2[n])[0]) / p.omega2[n].mean() for n in (1, 2, 3, 4)}
+    # C6 symmetry couples cos/sin only for 2 N_d = 0 mod 6
+    assert split[3] > 1e-3
+    assert max(split[1], split[2], split[4]) < 1e-6
+    Ks = p.stress_stiffness(p.residual_stress(T65, ALPHA))
+    w2, _ = p.rolled(Ks)
+    assert np.all(np.isfinite(w2))
+
+
+def test_mesh_bad_input_and_coarse_limit():
+    with pytest.raises(ValueError, match="too coarse"):
+        polar_mesh(RF, B, 2, 4)
+    with pytest.raises(ValueError, match="r_f"):
+        polar_mesh(0.2, B, 2, 16)
+    with pytest.raises(ValueError, match="slot depth"):
+        polar_mesh(RF, B, 4, 16, Slots(4, 0.2, 0.002))
+    m = polar_mesh(RF, B, 1, 8)
+    assert m.t.shape[1] == 16
+    # equal-area rings: the polygon of the rim encloses pi b^2
+    p = polar_mesh(RF, B, 2, 16)
+    u, v = p.p[:, p.t[1]] - p.p[:, p.t[0]], p.p[:, p.t[2]] - p.p[:, p.t[0]]
+    area = np.sum(0.5 * np.abs(u[0] * v[1] - u[1] * v[0]))
+    r_in = np.hypot(*p.p).min()
+    assert area == pytest.approx(np.pi * (B**2 - (r_in / np.sqrt((2 * np.pi / 16) / np.sin(2 * np.pi / 16)))**2), rel=1e-12)
+
+
+def test_coarsest_plate2d_runs_and_errs_from_above():
+    p = PlateDisk(r_f=RF, b=B, h=H, E=E, nu=NU, rho=RHO, n_d=[0, 1, 2], n_rings=1, n_sectors=16,
+                  extra_modes=6)
+    w2 = p.unrolled()
+    fe = np.array([exact.natural_frequencies(n, a=RF, b=B, h=H, E=E, nu=NU, rho=RHO)[0]
+                   for n in (0, 1, 2)])
+    rel = np.sqrt(w2) / (2 * np.pi) / fe - 1
+    assert np.all(np.isfinite(rel)) and np.all(np.abs(rel) < 0.5)

@@ -1,0 +1,119 @@
+"""disk_tension: run records, effect selection, config/schema errors, determinism."""
+import copy
+from pathlib import Path
+
+import numpy as np
+import pytest
+import yaml
+
+from mechrepro.config import ConfigError, load_paper
+from mechrepro.effects import UnknownEffect
+from mechrepro.io import check_cf
+from mechrepro.models.disk_tension import EFFECTS, solve
+
+ROOT = Path(__file__).resolve().parent.parent
+CFG = ROOT / "config" / "papers" / "disk_tension.yaml"
+
+
+@pytest.fixture(scope="module")
+def cfg():
+    return load_paper(CFG, "ci")
+
+
+def run_of(cfg, scene, **over):
+    run = copy.deepcopy(cfg.runs[scene])
+    run["parameters"].update(over.pop("parameters", {}))
+    run.update(over)
+    return run
+
+
+def test_table12_run_is_cf_complete_and_reproduces_sec_4_3(cfg):
+    ds = solve(cfg.runs["table12"])
+    check_cf(ds)
+    assert float(ds["axisym_f_unrolled"].sel(n_d=4)) == pytest.approx(434.5, rel=1e-6)
+    assert float(ds["axisym_k_sigma_hat"].sel(row=4, col=4)) == pytest.approx(2.40e6, rel=1e-5)
+    f = float(ds["axisym_f_rolled"].sel(n_d=4, r_c=0.065))
+    assert 434.5 < f < 520.0
+    assert not ds["axisym_buckled"].any()
+
+
+def test_unselected_effects_are_never_called(cfg, monkeypatch):
+    def boom(ctx):
+        raise AssertionError("an effect that is off was evaluated")
+
+    run = cfg.runs["stress_rc65"]
+    for name in EFFECTS.names:
+        if name not in run["effects"]:
+            monkeypatch.setitem(EFFECTS._effects, name, boom)
+    ds = solve(run)
+    assert "sigma_theta" in ds and "axisym_f_unrolled" not in ds
+
+
+def test_unknown_effect_and_missing_dependencies_fail_clearly(cfg):
+    with pytest.raises(UnknownEffect, match="stress_stiffening"):
+        solve(run_of(cfg, "table12", effects=["axisym", "stress_stiffening"]))
+    with pytest.raises(ValueError, match="needs 'roll_tension'"):
+        solve(run_of(cfg, "table12", effects=["axisym", "eigen"]))
+    with pytest.raises(ValueError, match="discretisation"):
+        solve(run_of(cfg, "table12", effects=["roll_tension", "eq9"]))
+    with pytest.raises(ValueError, match="axisymmetric model cannot"):
+        solve(run_of(cfg, "table12", effects=["axisym", "slots"]))
+    with pytest.raises(ValueError, match="clamp_radius"):
+        solve(run_of(cfg, "table12", parameters={"clamp_radius": 0.2}))
+    with pytest.raises(ValueError, match="free_disk"):
+        solve(run_of(cfg, "table12_plate2d", parameters={"inplane_bc": "free_disk"}))
+
+
+def test_buckled_runs_store_nan_and_flag_never_a_silent_sqrt(cfg):
+    run = run_of(cfg, "buckling", parameters={"temperature_amplitude": 150.0})
+    ds = solve(run)
+    lam = ds["axisym_critical_load_factor"].isel(r_c=0)
+    buckled = ds["axisym_buckled"].isel(r_c=0).values.astype(bool)
+    assert buckled.any()
+    np.testing.assert_array_equal(buckled, lam.values < 1.0)
+    f = ds["axisym_f_rolled"].isel(r_c=0).values
+    np.testing.assert_array_equal(np.isnan(f), buckled)
+    assert np.all(ds["axisym_omega2_rolled"].isel(r_c=0).values[buckled] < 0)
+
+
+def test_calibration_does_not_follow_the_scene_amplitude(cfg):
+    a = solve(run_of(cfg, "buckling", parameters={"temperature_amplitude": 50.0}))
+    b = solve(run_of(cfg, "buckling", parameters={"temperature_amplitude": 100.0}))
+    assert float(a["alpha_effective"]) == float(b["alpha_effective"])
+    np.testing.assert_allclose(b["axisym_delta_omega2_eq9"], 2 * a["axisym_delta_omega2_eq9"],
+                               rtol=1e-12)
+
+
+def test_schema_rejects_typos_and_out_of_range_values(config_copy):
+    path = config_copy / "papers" / "disk_tension.yaml"
+    raw = yaml.safe_load(path.read_text())
+    bad = copy.deepcopy(raw)
+    bad["scenes"]["table12"]["resolution"] = {"n_element": 64}
+    path.write_text(yaml.safe_dump(bad))
+    with pytest.raises(ConfigError, match="n_element"):
+        load_paper(path)
+    bad = copy.deepcopy(raw)
+    bad["parameters"]["poisson_ratio"]["value"] = 0.7
+    path.write_text(yaml.safe_dump(bad))
+    with pytest.raises(ConfigError, match="poisson_ratio"):
+        load_paper(path)
+    bad = copy.deepcopy(raw)
+    bad["scenes"]["table12"]["effects"] = ["axisym", "eigne"]
+    path.write_text(yaml.safe_dump(bad))
+    with pytest.raises(ConfigError, match="eigne"):
+        load_paper(path)
+
+
+def test_every_assumed_constant_says_why():
+    raw = yaml.safe_load(CFG.read_text())
+    assumed = {k for k, v in raw["parameters"].items() if v.get("assumed")}
+    assert {"youngs_modulus", "poisson_ratio", "density", "thermal_expansion", "inplane_bc"} <= assumed
+    assert all(len(raw["parameters"][k]["why"]) > 20 for k in assumed)
+
+
+@pytest.mark.slow
+def test_plate2d_runs_are_deterministic(cfg):
+    run = run_of(cfg, "table12_plate2d", resolution={"n_rings": 4, "n_sectors": 32})
+    a, b = solve(run), solve(run)
+    np.testing.assert_array_equal(a["plate2d_m_hat_raw"].values, b["plate2d_m_hat_raw"].values)
+    np.testing.assert_array_equal(a["plate2d_f_rolled"].values, b["plate2d_f_rolled"].values)
