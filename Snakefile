@@ -15,6 +15,7 @@ localrules:
     all,
     run_params,
     gather,
+    summary,
     report,
     archive,
     reference_check,

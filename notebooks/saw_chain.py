@@ -100,9 +100,9 @@ R.save_figure(fig, "k_dependence")
 
 # %%
 coa = cost_of_accuracy(paper, "K", Ks, study["wall_time"].values,
-                       {"velocity_rms": study["tight_side_velocity_error_rms"].values,
+                       {"load_max": study["dynamic_load_x_error_max"].values,
                         "load_rms": study["dynamic_load_x_error_rms"].values,
-                        "load_max": study["dynamic_load_x_error_max"].values},
+                        "velocity_rms": study["tight_side_velocity_error_rms"].values},
                        reference="exact", description="difference method vs exact derivative")
 R.write_dataset(coa, "cost_of_accuracy")
 R.write_table("cost_of_accuracy", ["K", "wall_time_s", "error_velocity_rms", "error_load_rms", "error_load_max"],

@@ -29,6 +29,7 @@ figure{display:inline-block;margin:.5em;vertical-align:top}
 figure img{max-width:520px;border:1px solid #ddd}
 figcaption{font-size:12px;color:#555}
 .note{color:#555;font-size:12px}
+td.note{min-width:280px}
 """
 
 
@@ -92,23 +93,47 @@ def paper_section(paper: str, results: Path, config_dir: Path, profile: str, out
     return "\n".join(parts), counts
 
 
+def summary_section(out_dir: Path) -> str:
+    """The cross-paper summary (cost of accuracy side by side) and the last rerun plan."""
+    parts = []
+    if (out_dir / "summary.csv").exists():
+        head, rows = _read_csv(out_dir / "summary.csv")
+        parts.append("<h2>Cost of accuracy, all papers</h2>"
+                     '<figure><img src="cost_of_accuracy_all.png" alt="cost of accuracy, all papers">'
+                     "<figcaption>error vs wall time per solve, each paper's headline quantity"
+                     "</figcaption></figure><table><tr>"
+                     + "".join(f"<th>{html.escape(h)}</th>" for h in head) + "</tr>"
+                     + "".join("<tr>" + "".join(f"<td>{_fmt(c)}</td>" for c in r) + "</tr>"
+                               for r in rows) + "</table>")
+    parts.append("<h2>Last rerun plan</h2><p class='note'>Why each job of the last "
+                 "<code>make reproduce</code> ran (saved before the run by "
+                 "<code>python -m mechrepro.plan</code>).</p>"
+                 '<iframe src="../rerun_plan.html" style="width:100%;height:320px;'
+                 'border:1px solid #ccc"></iframe>')
+    return "\n".join(parts)
+
+
 def write_report(out: str, results: str, config_dir: str, papers: list[str], profile: str) -> None:
     out, results, config_dir = Path(out), Path(results), Path(config_dir)
     sections, summary = [], []
     for paper in papers:
         text, counts = paper_section(paper, results, config_dir, profile, out.parent)
         sections.append(text)
-        claim = json.loads((results / paper / "claim.json").read_text())["claim"]
-        summary.append(f'<tr><td><a href="#{paper}">{paper}</a></td><td>{claim}</td>'
+        claim = json.loads((results / paper / "claim.json").read_text())
+        n_assumed = len(load_paper(config_dir / "papers" / f"{paper}.yaml", profile).assumed())
+        summary.append(f'<tr><td><a href="#{paper}">{paper}</a></td><td>{claim["claim"]}</td>'
                        + "".join(f'<td class="b-{s}">{counts.get(s, 0)}</td>'
-                                 for s in ("pass", "fail", "info")) + "</tr>")
+                                 for s in ("pass", "fail", "info"))
+                       + f'<td>{n_assumed}</td><td class="note">{html.escape(claim["text"])}</td></tr>')
     now = _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
     page = f"""<!doctype html><html><head><meta charset="utf-8">
 <title>mechrepro reproduction report</title><style>{CSS}</style></head><body>
 <h1>mechrepro reproduction report</h1>
 <p class="note">profile <b>{html.escape(profile)}</b> &middot; code {html.escape(code_version())} &middot; {now}</p>
-<table><tr><th>paper</th><th>claim</th><th>pass</th><th>fail</th><th>info</th></tr>
+<h2>Replication summary</h2>
+<table><tr><th>paper</th><th>claim</th><th>pass</th><th>fail</th><th>info</th><th>assumed constants</th><th>what did not reproduce, and why</th></tr>
 {''.join(summary)}</table>
+{summary_section(out.parent)}
 {''.join(sections)}
 </body></html>
 """

@@ -19,6 +19,8 @@ for _paper in PAPERS:
             notebook=f"{RESULTS}/{_paper}/notebook.ipynb",
             figures=figures_of(_paper),
             tables=tables_of(_paper),
+            # every paper's cost of accuracy, for the cross-paper summary
+            cost_of_accuracy=f"{RESULTS}/{_paper}/tables/cost_of_accuracy.nc",
             claim=f"{RESULTS}/{_paper}/claim.json",
         params:
             paper=_paper,

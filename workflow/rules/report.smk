@@ -1,13 +1,32 @@
 # Report page, result archive with manifest, and the drift check against the reference.
 
 
+rule summary:
+    input:
+        coa=expand(f"{RESULTS}/{{paper}}/tables/cost_of_accuracy.nc", paper=PAPERS),
+        configs=expand(str(BASE / "config/papers/{paper}.yaml"), paper=PAPERS),
+        code=code("summary.py", "config.py", "plotting.py"),
+    output:
+        png=f"{RESULTS}/report/cost_of_accuracy_all.png",
+        csv=f"{RESULTS}/report/summary.csv",
+    params:
+        papers=PAPERS,
+        profile=PROFILE,
+    run:
+        from mechrepro.summary import write_summary
+
+        write_summary(output.png, output.csv, RESULTS, str(BASE / "config"), params.papers,
+                      params.profile)
+
+
 rule report:
     input:
+        summary=rules.summary.output,
         figures=[f for p in PAPERS for f in figures_of(p)],
         tables=[f for p in PAPERS for f in tables_of(p)],
         claims=expand(f"{RESULTS}/{{paper}}/claim.json", paper=PAPERS),
         configs=expand(str(BASE / "config/papers/{paper}.yaml"), paper=PAPERS),
-        code=code("report.py", "config.py", "validation.py"),
+        code=code("report.py", "config.py", "validation.py", "summary.py"),
     output:
         f"{RESULTS}/report/index.html",
     params:

@@ -1,0 +1,81 @@
+"""Every rerun explained: save the dry-run plan (job, wildcards, reason) before a run.
+
+`make reproduce` calls ``python -m mechrepro.plan <results> -- <snakemake args>``, which
+runs ``snakemake -n`` with the same arguments, writes ``<results>/rerun_plan.txt`` (the
+raw dry run) and ``<results>/rerun_plan.html`` (one row per job with its reason: params
+changed, code changed, input changed, missing output ...), and exits with snakemake's
+status.  The report page embeds the last plan.  The plan is not an input of any rule, so
+saving it never triggers a rerun by itself.
+"""
+from __future__ import annotations
+
+import html
+import re
+import subprocess
+import sys
+from collections import Counter
+from pathlib import Path
+
+from .io import write_text
+
+KINDS = (("Params have changed", "params changed"), ("Code has changed", "code changed"),
+         ("Updated input files", "input changed"), ("Missing output files", "missing output"),
+         ("Input files updated by another job", "upstream job reruns"),
+         ("Set of input files has changed", "input set changed"),
+         ("Forced execution", "forced"), ("Rules with a run or shell", "always"))
+
+
+def parse(dry_run: str) -> list[dict]:
+    """Jobs of a ``snakemake -n`` output: rule, wildcards, reason (full and classified)."""
+    jobs, job = [], None
+    for line in dry_run.splitlines():
+        m = re.match(r"^(?:local)?rule (\w+):", line)
+        if m:
+            job = {"rule": m.group(1), "wildcards": "", "reason": ""}
+            jobs.append(job)
+            continue
+        if job is None:
+            continue
+        s = line.strip()
+        if s.startswith("wildcards:"):
+            job["wildcards"] = s.split(":", 1)[1].strip()
+        elif s.startswith("reason:"):
+            job["reason"] = s.split(":", 1)[1].strip()
+    for job in jobs:
+        job["kind"] = "; ".join(k for key, k in KINDS if key in job["reason"]) or "other"
+    return jobs
+
+
+def to_html(jobs: list[dict]) -> str:
+    counts = Counter(j["rule"] for j in jobs)
+    rows = "".join(
+        f"<tr><td>{html.escape(j['rule'])}</td><td>{html.escape(j['wildcards'])}</td>"
+        f"<td>{html.escape(j['kind'])}</td><td class='r'>{html.escape(j['reason'][:400])}</td></tr>"
+        for j in jobs if j["rule"] != "all")
+    summary = ", ".join(f"{r}: {n}" for r, n in sorted(counts.items()) if r != "all")
+    return ("<!doctype html><meta charset='utf-8'><style>body{font:12px system-ui}"
+            "td,th{border:1px solid #ccc;padding:2px 5px;vertical-align:top}"
+            "table{border-collapse:collapse}.r{color:#555;font-size:11px}</style>"
+            f"<p><b>{len(jobs) - counts.get('all', 0)} jobs</b> {html.escape(summary)}</p>"
+            + ("<table><tr><th>rule</th><th>wildcards</th><th>why</th><th>snakemake's reason</th></tr>"
+               f"{rows}</table>" if rows else "<p>Nothing to be done: every result is up to date.</p>"))
+
+
+def main(argv: list[str]) -> int:
+    results, rest = argv[0], argv[argv.index("--") + 1:]
+    proc = subprocess.run([sys.executable, "-m", "snakemake", "-n", *rest],
+                          capture_output=True, text=True)
+    out = proc.stdout + proc.stderr
+    if proc.returncode != 0:
+        sys.stderr.write(out)
+        return proc.returncode
+    jobs = parse(out)
+    write_text(Path(results) / "rerun_plan.txt", out)
+    write_text(Path(results) / "rerun_plan.html", to_html(jobs))
+    n = sum(j["rule"] != "all" for j in jobs)
+    print(f"rerun plan: {n} jobs -> {results}/rerun_plan.html")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
