@@ -44,7 +44,7 @@ reference: $(STAMP)
 
 ## Speed benchmarks (ratios measured side by side)
 benchmark: $(STAMP)
-	$(BIN)/python -m pytest benchmarks -q -s
+	for f in benchmarks/bench_*.py; do echo "== $$f"; PYTHONPATH=src $(BIN)/python $$f || exit 1; done
 
 ## Render the report in headless Chromium to results/report/screenshot.png
 screenshot:
