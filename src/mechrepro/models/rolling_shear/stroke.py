@@ -65,23 +65,26 @@ class SolverSettings:
     pso_pose: SelPSOSettings = SelPSOSettings(tol=1e-9)
 
 
-def _check_point(g, i, xk, theta, res_pose, res_loops, settings):
+def _point_error(g, i, xk, theta, res_pose, res_loops) -> str | None:
+    """Why a Newton result at cut point i is refused, or None if it is accepted."""
     if not res_pose.converged:
-        raise NonAssembly(f"cut point {i} (x_k = {xk:.6g} mm): blade pose (Eq. 7) did not "
-                          f"converge: {res_pose.reason}", i, xk)
+        return (f"cut point {i} (x_k = {xk:.6g} mm): blade pose (Eq. 7) did not converge: "
+                f"{res_pose.reason}")
     if not res_loops.converged:
-        raise NonAssembly(_explain(g, i, xk, theta, res_loops.reason), i, xk)
+        return _explain(g, i, xk, theta, res_loops.reason)
     if not on_design_branch(g, theta):
-        raise NonAssembly(_explain(g, i, xk, theta, "converged off the design branch "
-                                   "(assembly modes meet at a toggle)"), i, xk)
+        return _explain(g, i, xk, theta, "Newton converged to another assembly mode "
+                        "(the modes meet at a toggle)")
+    return None
 
 
 def _explain(g, i, xk, theta, why) -> str:
     m = loops_mod.dyad_margins(g, theta[4], theta[5])
     worst = "ABCD (l1, l3)" if m[0] < m[1] else "GHID (l2, l4)"
-    return (f"cut point {i} (x_k = {xk:.6g} mm): linkage does not assemble on the design "
-            f"branch: {why}; dyad margins to toggle/fold: ABCD {m[0]:.4g} mm, "
-            f"GHID {m[1]:.4g} mm (worst: loop {worst})")
+    state = ("the linkage does not assemble" if m.min() <= 0 else
+             f"refused, {m.min():.4g} mm from a toggle of loop {worst}")
+    return (f"cut point {i} (x_k = {xk:.6g} mm): {state}: {why}; dyad margins to "
+            f"toggle/fold: ABCD {m[0]:.4g} mm, GHID {m[1]:.4g} mm (worst: loop {worst})")
 
 
 def solve_newton(g: Geometry, x_k, settings: SolverSettings) -> StrokeSolution:
@@ -92,11 +95,20 @@ def solve_newton(g: Geometry, x_k, settings: SolverSettings) -> StrokeSolution:
     guess = list(settings.initial_value)
     t0 = time.perf_counter()
     for i, xk in enumerate(x_k):
-        rp = newton.pose(g, (guess[4], guess[5]), float(xk), settings.tol_pose, settings.max_iter)
-        t5, t6 = rp.x
-        rl = newton.loops(g, guess[:4], t5, t6, settings.tol_loops, settings.max_iter)
-        th = np.array([*rl.x, t5, t6])
-        _check_point(g, i, float(xk), th, rp, rl, settings)
+        xk = float(xk)
+        # first-order predictor, then (near a toggle it can overshoot onto the other
+        # assembly mode) the previous solution; a point neither accepts raises
+        guesses = [guess] if i == 0 else [guess, list(theta[i - 1])]
+        for trial in guesses:
+            rp = newton.pose(g, (trial[4], trial[5]), xk, settings.tol_pose, settings.max_iter)
+            t5, t6 = rp.x
+            rl = newton.loops(g, trial[:4], t5, t6, settings.tol_loops, settings.max_iter)
+            th = np.array([*rl.x, t5, t6])
+            error = _point_error(g, i, xk, th, rp, rl)
+            if error is None:
+                break
+        if error is not None:
+            raise NonAssembly(error, i, xk)
         theta[i] = th
         fp[i], fl[i], it[i] = rp.fitness, rl.fitness, rl.iterations
         guess = list(2 * th - theta[i - 1]) if i > 0 else list(th)
