@@ -202,6 +202,16 @@ def eff_least_squares(ctx: Context) -> dict:
     return _compare(ctx, "least_squares", 3)
 
 
+@EFFECTS.register("warm_root")
+def eff_warm_root(ctx: Context) -> dict:
+    return _compare(ctx, "warm_root", 7)
+
+
+@EFFECTS.register("warm_least_squares")
+def eff_warm_least_squares(ctx: Context) -> dict:
+    return _compare(ctx, "warm_least_squares", 8)
+
+
 @EFFECTS.register("initial_values")
 def eff_initial_values(ctx: Context) -> dict:
     """Fig. 12: selPSO fitness vs iteration on Eq. (9) from several initial values."""

@@ -9,6 +9,9 @@ Methods (the scene's effects pick them, see __init__):
   naming the cut point -- a wrong branch is never returned.
 * ``selpso``  -- the paper's method: every system from the initial value + N(0, 1).
 * ``cold_root``, ``least_squares`` -- scipy from uniformly random starts in [0, 2 pi)^n.
+* ``warm_root``, ``warm_least_squares`` -- the same scipy solvers warm-started along the
+  stroke (the configured initial value, then the same predictor as ``newton``), without
+  the branch check, to show what the continuation alone buys.
 * ``exact``   -- closed form (Brent on |ED| = l6, circle intersections), the reference.
 
 :func:`run_method` never raises for the comparison methods: it records per cut point
@@ -32,7 +35,8 @@ from .geometry import Geometry
 from .loops import NonAssembly
 from .selpso import SelPSOSettings, selpso
 
-METHODS = ("newton", "selpso", "cold_root", "least_squares", "exact")
+METHODS = ("newton", "selpso", "cold_root", "least_squares", "warm_root", "warm_least_squares",
+           "exact")
 
 
 @dataclass
@@ -136,7 +140,7 @@ def solve_exact(g: Geometry, x_k) -> StrokeSolution:
 
 
 def _scipy_solve(kind, fun, jac, x0, tol):
-    if kind == "cold_root":
+    if kind.endswith("root"):
         r = root(fun, x0, jac=jac, method="hybr", options={"xtol": 1e-14})
         return r.x, int(r.nfev)
     r = least_squares(fun, x0, jac=jac, method="trf", xtol=1e-15, ftol=1e-15, gtol=1e-15)
@@ -156,6 +160,8 @@ def solve_compare(g: Geometry, x_k, method: str, settings: SolverSettings,
     hist = []
     tp = tl = 0.0
     init = np.asarray(settings.initial_value, float)
+    warm = method.startswith("warm_")
+    guess = init.copy()
     for i, xk in enumerate(x_k):
         xk = float(xk)
         fpose = lambda X, xk=xk: np.abs(pose_mod.residuals(g, X, xk)).sum(-1)  # noqa: E731
@@ -164,9 +170,9 @@ def solve_compare(g: Geometry, x_k, method: str, settings: SolverSettings,
             r = selpso(fpose, init[4:], settings.pso_pose, rng, period=2 * math.pi)
             t56 = r.x
         else:
+            start = guess[4:] if warm else rng.uniform(0, 2 * math.pi, 2)
             t56, _ = _scipy_solve(method, lambda x, xk=xk: pose_mod.residuals(g, x, xk),
-                                  lambda x: lowest_point_jacobian(g, *x),
-                                  rng.uniform(0, 2 * math.pi, 2), settings.tol_pose)
+                                  lambda x: lowest_point_jacobian(g, *x), start, settings.tol_pose)
         tp += time.perf_counter() - t0
         t5, t6 = float(t56[0]), float(t56[1])
         floops = lambda X, t5=t5, t6=t6: np.abs(loops_mod.residuals(g, X, t5, t6)).sum(-1)  # noqa: E731
@@ -177,11 +183,15 @@ def solve_compare(g: Geometry, x_k, method: str, settings: SolverSettings,
             if keep_history:
                 hist.append(r.history)
         else:
+            start = guess[:4] if warm else rng.uniform(0, 2 * math.pi, 4)
             t14, it[i] = _scipy_solve(method, lambda x: loops_mod.residuals(g, x, t5, t6),
-                                      lambda x: loops_mod.jacobian(g, x),
-                                      rng.uniform(0, 2 * math.pi, 4), settings.tol_loops)
+                                      lambda x: loops_mod.jacobian(g, x), start,
+                                      settings.tol_loops)
         tl += time.perf_counter() - t0
         th = np.array([*t14, t5, t6])
+        if warm:
+            guess = 2 * th - prev if i > 0 else th
+            prev = th
         theta[i] = wrap(th)
         fp[i] = float(np.abs(pose_mod.residuals(g, th[4:], xk)).sum())
         fl[i] = float(np.abs(loops_mod.residuals(g, th[:4], t5, t6)).sum())

@@ -157,7 +157,9 @@ def solver_comparison(comp: xr.Dataset) -> tuple[list, list]:
               "time_per_pose_solve_s", "speed_vs_selpso"]
     t_ref = float(comp["selpso_time_per_solve"])
     out = []
-    for m in ("newton", "selpso", "cold_root", "least_squares"):
+    for m in ("newton", "selpso", "cold_root", "least_squares", "warm_root", "warm_least_squares"):
+        if f"{m}_time_per_solve" not in comp:
+            continue
         t = float(comp[f"{m}_time_per_solve"])
         fl = comp[f"{m}_fitness_loops"].values
         out.append([m, float(comp[f"{m}_success_rate"]), float(comp[f"{m}_in_ranges_rate"]),
