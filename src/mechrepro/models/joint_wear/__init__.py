@@ -1,0 +1,11 @@
+"""joint_wear: four-bar with one clearance revolute joint, Archard wear, interval method.
+
+Lai, Liu, Ji, Wang, Zhang, J. Vibroengineering 20 (2018), DOI 10.21595/jve.2018.18979.
+Modules: geometry (Table 1-2, Eqs. 12-13), kinematics (ideal four-bar), loads (minimal-
+coordinate equations of motion), contact (Eqs. 5-15, 18-20), quasistatic (continuous
+contact), dynamics (stiff clearance contact), wear (Eqs. 16-34, Sec. 3.3), solver
+(effects -> Dataset).
+"""
+from .solver import EFFECTS, compute, setup, solve, to_dataset
+
+__all__ = ["EFFECTS", "compute", "setup", "solve", "to_dataset"]

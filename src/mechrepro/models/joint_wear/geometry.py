@@ -46,7 +46,8 @@ class FourBar:
     def with_bushing_radius(self, R_bush: float) -> "FourBar":
         """The worn joint: a larger bushing circle, K' of Eq. (12) re-evaluated."""
         K = stiffness_K(self.R_pin, R_bush, self._h_sum)
-        return replace(self, R_bush=R_bush, K_contact=K, _h_sum=self._h_sum)
+        # C_max stays the same fraction of K' (Sec. 2.2.2)
+        return replace(self, R_bush=R_bush, K_contact=K, C_max=self.C_max * K / self.K_contact)
 
     _h_sum: float = 0.0  # h_i + h_j of Eq. (13) [1/Pa], kept for re-evaluating K'
 
@@ -64,22 +65,24 @@ def stiffness_K(R_pin: float, R_bush: float, h_sum: float) -> float:
     return 4.0 / (3.0 * math.pi * h_sum) * math.sqrt(R_pin * R_bush / c)
 
 
-def from_parameters(p: dict, effects=()) -> FourBar:
-    """Build the record from SI run parameters; effects switch gravity/friction/damping."""
-    c = p["bushing_radius"] - p["pin_radius"]
+def from_parameters(p: dict) -> FourBar:
+    """The bare mechanism from SI run parameters: no gravity, no friction, no damping.
+
+    The effects ``gravity``, ``friction`` and ``contact_damping`` switch those terms on
+    (solver.py); a term that is off is zero and costs nothing.
+    """
+    c = p["radial_clearance"]
     if not c > 0.0:
-        raise ValueError(
-            f"joint_wear: bushing_radius - pin_radius = {c!r} m: the clearance must be > 0")
+        raise ValueError(f"joint_wear: radial_clearance = {c!r} m: the clearance must be > 0 "
+                         "(a pin as large as the bushing is an ideal joint, not a clearance joint)")
+    R_bush = p["pin_radius"] + c
     h_sum = material_h(p["E_pin"], p["nu_pin"]) + material_h(p["E_bushing"], p["nu_bushing"])
-    K = stiffness_K(p["pin_radius"], p["bushing_radius"], h_sum)
+    K = stiffness_K(p["pin_radius"], R_bush, h_sum)
     return FourBar(
         l1=p["crank_length"], l2=p["coupler_length"], l3=p["follower_length"],
         l0=p["ground_length"], m2=p["coupler_mass"], m3=p["follower_mass"],
         I2=p["coupler_inertia"], I3=p["follower_inertia"], omega=p["crank_speed"],
-        P=p["load"], F=(p["load_point_x"], p["load_point_y"]),
-        g=p["gravity"] if "gravity" in effects else 0.0,
-        R_pin=p["pin_radius"], R_bush=p["bushing_radius"], width=p["width"],
+        P=p["load"], F=(p["load_point_x"], p["load_point_y"]), g=0.0,
+        R_pin=p["pin_radius"], R_bush=R_bush, width=p["width"],
         K_contact=K, n_exp=p["contact_exponent"], d_max=p["d_max"],
-        C_max=p["C_max_ratio"] * K,
-        mu=p["friction_coefficient"] if "friction" in effects else 0.0,
-        v_eps=p["friction_v_eps"], _h_sum=h_sum)
+        C_max=p["C_max_ratio"] * K, mu=0.0, v_eps=p["friction_v_eps"], _h_sum=h_sum)

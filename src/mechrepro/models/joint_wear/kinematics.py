@@ -16,7 +16,11 @@ from .geometry import FourBar
 def positions(fb: FourBar, theta1):
     """theta3, phi2 for crank angle theta1 (loop closure, upper assembly branch)."""
     theta1 = np.asarray(theta1, float)
-    bx, by = fb.l1 * np.cos(theta1), fb.l1 * np.sin(theta1)
+    return positions_from_point(fb, fb.l1 * np.cos(theta1), fb.l1 * np.sin(theta1))
+
+
+def positions_from_point(fb: FourBar, bx, by):
+    """theta3, phi2 that put the coupler's end B at (bx, by) (two-link closure from D)."""
     dx, dy = fb.l0 - bx, -by                       # B -> D
     d2 = dx * dx + dy * dy
     d = np.sqrt(d2)
