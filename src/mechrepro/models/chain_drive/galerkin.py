@@ -116,8 +116,11 @@ class GalerkinModel:
         return 2.78 / lam
 
 
-def rk4(f, t0, y0, dt, n_steps, record_every=1):
-    """Classical fourth-order Runge-Kutta with a fixed step (the paper's integrator)."""
+def rk4(f, t0, y0, dt, n_steps, record_every=1, y_cap=1e3):
+    """Classical fourth-order Runge-Kutta with a fixed step (the paper's integrator).
+
+    Stops with a clear error once the state leaves any physical range (|y| > y_cap, in m,
+    m/s) -- before it overflows into inf/NaN."""
     y = np.array(y0, float)
     t = t0
     out_t, out_y = [t], [y.copy()]
@@ -128,7 +131,7 @@ def rk4(f, t0, y0, dt, n_steps, record_every=1):
         k4 = f(t + dt, y + dt * k3)
         y = y + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
         t = t0 + (i + 1) * dt
-        if not np.all(np.isfinite(y)):
+        if not np.all(np.isfinite(y)) or np.max(np.abs(y)) > y_cap:
             raise FloatingPointError(f"RK4 diverged at t = {t:.4g} s (step {dt:.3g} s too large?)")
         if (i + 1) % record_every == 0:
             out_t.append(t)
@@ -136,9 +139,13 @@ def rk4(f, t0, y0, dt, n_steps, record_every=1):
     return np.array(out_t), np.array(out_y)
 
 
-def library(f, t0, y0, t_end, t_eval, rtol=1e-6, atol=1e-12, method="DOP853"):
-    """scipy solve_ivp (adaptive, error-controlled) on the same right-hand side."""
-    sol = solve_ivp(f, (t0, t_end), y0, method=method, t_eval=t_eval, rtol=rtol, atol=atol)
+def library(f, t0, y0, t_end, t_eval, rtol=1e-6, atol=1e-12, method="DOP853", max_step=np.inf):
+    """scipy solve_ivp (adaptive, error-controlled) on the same right-hand side.
+
+    ``max_step`` must not exceed the width of the shortest forcing pulse, or the adaptive
+    controller may step over an impact without seeing it."""
+    sol = solve_ivp(f, (t0, t_end), y0, method=method, t_eval=t_eval, rtol=rtol, atol=atol,
+                    max_step=max_step)
     if not sol.success:
         raise RuntimeError(f"solve_ivp failed: {sol.message}")
     return sol.t, sol.y.T, sol.nfev

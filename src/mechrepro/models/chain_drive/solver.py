@@ -304,7 +304,8 @@ def _galerkin(run, prm, res):
         # through the step-averaged impact pulses, which makes a full record expensive
         n_lib = int(np.searchsorted(t_rk, float(res.get("library_duration", 0.02)))) + 1
         t_lib, y_lib, nfev = galerkin.library(f, 0.0, y0, t_rk[n_lib - 1], t_rk[:n_lib],
-                                              rtol=float(res.get("library_rtol", 1e-6)))
+                                              rtol=float(res.get("library_rtol", 1e-6)),
+                                              max_step=dt)
         wall_lib = time.perf_counter() - t0
         u_lib = np.full(t_rk.shape, np.nan)
         u_lib[:n_lib] = model.transverse(y_lib, t_lib, ends, xi)

@@ -1,0 +1,54 @@
+"""chain_drive config: every constant sourced or assumed, schema refuses bad runs, datasets CF."""
+import copy
+
+import pytest
+import yaml
+
+from mechrepro.config import ConfigError, load_paper
+from mechrepro.io import check_cf
+from mechrepro.models.chain_drive import EFFECTS, solve
+
+CFG = "config/papers/chain_drive.yaml"
+
+
+@pytest.fixture(scope="module")
+def root():
+    from pathlib import Path
+    return Path(__file__).resolve().parent.parent
+
+
+def test_config_loads_in_both_profiles(root):
+    d = load_paper(root / CFG)
+    c = load_paper(root / CFG, "ci")
+    assert set(d.runs) >= set(c.runs) - set()      # same scenes, fewer study points in ci
+    for cfg in (d, c):
+        for run in cfg.runs.values():
+            assert set(run["effects"]) <= set(EFFECTS.names)
+
+
+def test_every_parameter_has_a_source_or_a_reason(root):
+    raw = yaml.safe_load((root / CFG).read_text())
+    for name, p in raw["parameters"].items():
+        assert p.get("source") or (p.get("assumed") and p.get("why")), name
+
+
+@pytest.mark.parametrize("mutate, msg", [
+    (lambda r: r["scenes"]["fig05_plain"].__setitem__("effects", ["polygon"]), "allowed"),
+    (lambda r: r["scenes"]["fig05_plain"]["resolution"].__setitem__("cfl", 1.5), "must be <= 1"),
+    (lambda r: r["parameters"]["lambda_support"].__setitem__("value", 2.0), "must be <= 1"),
+    (lambda r: r["scenes"]["fig05_plain"]["resolution"].__setitem__("grid", 3), "unknown key"),
+])
+def test_schema_refuses_bad_runs(config_copy, mutate, msg):
+    path = config_copy / "papers" / "chain_drive.yaml"
+    raw = yaml.safe_load(path.read_text())
+    mutate(raw)
+    path.write_text(yaml.safe_dump(raw))
+    with pytest.raises(ConfigError, match=msg):
+        load_paper(path)
+
+
+@pytest.mark.parametrize("scene", ["fig01_impact", "fig03", "fig04_elastic"])
+def test_small_scenes_give_cf_datasets(root, scene):
+    run = copy.deepcopy(load_paper(root / CFG, "ci").runs[scene])
+    ds = solve(run)
+    check_cf(ds)
