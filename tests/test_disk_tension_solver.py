@@ -41,7 +41,7 @@ def test_unselected_effects_are_never_called(cfg, monkeypatch):
     def boom(ctx):
         raise AssertionError("an effect that is off was evaluated")
 
-    run = cfg.runs["stress_rc65"]
+    run = run_of(cfg, "buckling", effects=["stress_calibration", "roll_tension"])
     for name in EFFECTS.names:
         if name not in run["effects"]:
             monkeypatch.setitem(EFFECTS._effects, name, boom)

@@ -27,16 +27,25 @@ def thickness(*, f_target, n_d, r_f, b, E, nu, rho):
     return trial * f_target / f_trial
 
 
-def alpha_effective(*, target, n_d, r_c, r_f, b, h, E, nu, rho, alpha, amplitude, s,
-                    inplane_bc):
-    """alpha [1/K] that makes Eq. (9)'s Delta omega^2 of ``n_d`` equal ``target``."""
+def _calibration_case(*, n_d, r_c, r_f, b, h, E, nu, rho, alpha, amplitude, s, inplane_bc):
+    """(disk, K^(sigma)) of the calibration case on a fine axisymmetric mesh."""
     disk = AxisymDisk(r_f=r_f, b=b, h=h, E=E, nu=nu, rho=rho, n_d=[n_d],
                       n_elements=CALIBRATION_ELEMENTS)
     disk.unrolled()
     kw = dict(amplitude=amplitude, r_c=r_c, s=s, r_f=r_f, b=b, E=E, nu=nu, alpha=alpha,
               inplane_bc=inplane_bc)
     sig = (lambda r: thermal.thermal_stress(r, **kw)[0], lambda r: thermal.thermal_stress(r, **kw)[1])
-    d = float(disk.eq9(disk.stress_stiffness(sig))[0])
+    return disk, disk.stress_stiffness(sig)
+
+
+def alpha_effective(*, target, **case):
+    """alpha [1/K] that makes Eq. (9)'s Delta omega^2 of ``n_d`` equal ``target``, and the
+    handbook-alpha prediction it replaces: (alpha_eff, Delta omega^2, eigen Delta f [Hz])."""
+    disk, Ks = _calibration_case(**case)
+    n = case["n_d"]
+    d = float(disk.eq9(Ks)[0])
     if not np.isfinite(d) or d == 0.0 or np.sign(d) != np.sign(target):
         raise ValueError(f"cannot calibrate alpha: Eq. (9) gives {d:g}, target {target:g}")
-    return alpha * target / d
+    w2 = float(disk.rolled(Ks)[0][0])
+    df = (np.sqrt(w2) - np.sqrt(disk.omega2[n])) / (2 * np.pi) if w2 > 0 else np.nan
+    return case["alpha"] * target / d, d, df

@@ -116,7 +116,7 @@ def _exact(ctx: Context):
 def _calibrate(ctx: Context):
     p = ctx.p
     handbook = ctx.alpha
-    ctx.alpha = calibration.alpha_effective(
+    ctx.alpha, d_hb, df_hb = calibration.alpha_effective(
         target=p["calibration_delta_omega2"], n_d=int(p["calibration_nodal_diameter"]),
         r_c=p["calibration_rolling_radius"], r_f=p["calibration_clamp_radius"], b=ctx.b,
         h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho, alpha=handbook,
@@ -126,6 +126,10 @@ def _calibrate(ctx: Context):
             "thermal-analogy expansion coefficient calibrated on Table 1 (N_d = 4)")
     ctx.put("stress_scale", (), ctx.alpha / handbook, "1",
             "calibrated / handbook expansion coefficient")
+    ctx.put("handbook_delta_omega2_eq9", (), d_hb, "rad2/s2",
+            "Eq. (9) Delta omega^2 of the calibration case with the handbook alpha")
+    ctx.put("handbook_delta_f_eigen", (), df_hb, "Hz",
+            "eigen-analysis Delta f of the calibration case with the handbook alpha")
 
 
 @EFFECTS.register("roll_tension")
