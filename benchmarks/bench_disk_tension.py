@@ -55,45 +55,52 @@ def grid(ctx, n_elements):
     return f_eig, f_eq9, time.perf_counter() - t0, t_eig, t_eq9
 
 
-def plate2d_at_0_1_percent(ctx, meshes=((3, 24), (4, 32), (6, 48), (6, 64), (8, 64))):
+def exact_f(ctx):
+    return np.array([exact.natural_frequencies(n, a=0.025, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu,
+                                               rho=ctx.rho)[0] for n in ND])
+
+
+def plate2d_at_0_1_percent(ctx, meshes=((3, 24), (4, 32), (6, 48), (6, 64), (8, 64), (12, 64))):
+    """First mesh whose unrolled N_d = 0..4 are all within 0.1 % of exact."""
     from mechrepro.models.disk_tension.plate2d import PlateDisk
 
-    fe = exact.natural_frequencies(4, a=0.025, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho)[0]
+    fe = exact_f(ctx)
     for nr, ns in meshes:
         t0 = time.perf_counter()
         p = PlateDisk(r_f=0.025, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho, n_d=ND,
                       n_rings=nr, n_sectors=ns)
         p.unrolled()
         dt = time.perf_counter() - t0
-        err = abs(np.sqrt(p.omega2[4].mean()) / (2 * np.pi) / fe - 1)
-        print(f"  plate2d {nr:2d} x {ns:3d} ({p.basis.N:5d} DOFs): N_d=4 error {err:.2e}, {dt:.2f} s")
-        if err < 1e-3:
-            return nr, ns, err, dt
+        err = np.abs(np.sqrt([p.omega2[n].mean() for n in ND]) / (2 * np.pi) / fe - 1)
+        print(f"  plate2d {nr:2d} x {ns:3d} ({p.basis.N:5d} DOFs): N_d=4 error {err[4]:.2e}, "
+              f"max over N_d {err.max():.2e}, {dt:.2f} s")
+        if err.max() < 1e-3:
+            return nr, ns, err.max(), dt
     return None
 
 
 def axisym_at(ctx, tol):
-    fe = exact.natural_frequencies(4, a=0.025, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho)[0]
+    fe = exact_f(ctx)
     for n in (1, 2, 3, 4, 6, 8, 12, 16):
         t0 = time.perf_counter()
         d = AxisymDisk(r_f=0.025, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho, n_d=ND,
                        n_elements=n)
         d.unrolled()
         dt = time.perf_counter() - t0
-        err = abs(np.sqrt(d.omega2[4]) / (2 * np.pi) / fe - 1)
+        err = np.abs(np.sqrt([d.omega2[k] for k in ND]) / (2 * np.pi) / fe - 1).max()
         if err < tol:
             return n, err, dt
 
 
 def test_bench_disk_tension():
     ctx = setup()
-    ref, _, _, _, _ = grid(ctx, 512)
+    ref, _, _, _, _ = grid(ctx, 256)  # converged to ~1e-8 (beyond: round-off)
     print("\ndisk_tension: full Fig. 6 + Fig. 8 grid (9 r_c x 3 r_f x N_d 0..4), axisym")
     chosen = None
     for n in (8, 16, 24, 32, 48, 64):
         f_eig, f_eq9, t, t_eig, t_eq9 = grid(ctx, n)
         err = np.max(np.abs(f_eig / ref - 1))
-        print(f"  {n:3d} elements: max rel error vs 512 elements {err:.1e}, grid {t:.3f} s "
+        print(f"  {n:3d} elements: max rel error vs 256 elements {err:.1e}, grid {t:.3f} s "
               f"(eigen {t_eig:.3f} s, Eq. 9 {t_eq9:.4f} s)")
         if chosen is None and err < 1e-4:
             chosen = (n, err, t, t_eig, t_eq9, f_eig, f_eq9)
@@ -102,12 +109,13 @@ def test_bench_disk_tension():
     print(f"  -> {n} elements reach {err:.1e} < 1e-4: whole grid {t:.3f} s (target <= 3 s)")
     print(f"  Eq. (9) vs eigen-analysis on the same K_sigma: {t_eq9 * 1e3:.2f} ms vs "
           f"{t_eig * 1e3:.1f} ms, ratio {t_eig / t_eq9:.0f}x; Eq. (9) max frequency error {e9:.3f}")
-    print("disk_tension: 2-D Argyris model until within 0.1 % of the exact N_d = 4 frequency")
+    print("disk_tension: 2-D Argyris model until N_d = 0..4 are within 0.1 % of exact (N_d = 4 "
+          "is the target's)")
     hit = plate2d_at_0_1_percent(ctx)
     ax = axisym_at(ctx, 1e-3)
     if hit:
         nr, ns, e2, t2 = hit
-        print(f"  -> plate2d {nr} x {ns}: error {e2:.1e} in {t2:.2f} s (target <= 60 s); axisym at the "
+        print(f"  -> plate2d {nr} x {ns}: max error {e2:.1e} in {t2:.2f} s (target <= 60 s); axisym at the "
               f"same accuracy: {ax[0]} elements, error {ax[1]:.1e} in {ax[2] * 1e3:.1f} ms "
               f"-> axisym {t2 / ax[2]:.0f}x faster")
 
