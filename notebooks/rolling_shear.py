@@ -79,15 +79,24 @@ R.save_figure(fig, "linkage")
 # construction; the figure shows how constant (round-off level).
 
 # %%
-fig, ax = plt.subplots(1, 2, figsize=(10, 3.8))
+fig, ax = plt.subplots(1, 3, figsize=(14, 3.8))
 for ds, pre, lab in ((orig, "newton", "original levers"), (opt, "opt_selpso", "optimised (selPSO)"),
                      (popt, "newton", "paper's optimised levers")):
     ax[0].plot(ds[f"{pre}_x_k"], ds[f"{pre}_y_k"], "o-", ms=3, label=lab)
     ax[1].semilogy(ds["huch"], np.abs(ds[f"{pre}_y_k"] + s) + 1e-16, "o-", ms=3, label=lab)
 ax[0].axhline(-s, color="k", ls=":", lw=0.8)
-ax[0].set(xlabel="x_k [mm]", ylabel="y_k [mm]", ylim=(-s - 1, -s + 1), title="Fig. 9: lowest points")
+ax[0].set(xlabel="x_k [mm]", ylabel="y_k [mm]", ylim=(-s - 1, -s + 1),
+          title="Fig. 9: lowest points, reverse-solved drive")
 ax[1].set(xlabel="rolled length huch [mm]", ylabel="|y_k + s| [mm]", title="deviation from y = -s")
 ax[0].legend(fontsize=7)
+ax[2].plot(orig["crd_x_k"], orig["crd_y_k"], "o-", ms=3, color="tab:red",
+           label="levers at constant rate (same end positions)")
+ax[2].plot(orig["newton_x_k"], orig["newton_y_k"], "o-", ms=3, color="tab:blue",
+           label="reverse-solved motion laws")
+ax[2].axhline(0, color="k", lw=0.8)
+ax[2].axhline(-s, color="k", ls=":", lw=0.8)
+ax[2].set(xlabel="x_k [mm]", ylabel="y_k [mm]", title="contrast: original levers, other drive")
+ax[2].legend(fontsize=7)
 R.save_figure(fig, "fig09")
 
 

@@ -121,6 +121,24 @@ def eff_newton(ctx: Context) -> dict:
     return out
 
 
+@EFFECTS.register("constant_rate_drive")
+def eff_constant_rate_drive(ctx: Context) -> dict:
+    """Fig. 9 contrast: levers turned at a constant rate between the solved end positions."""
+    from .forward import constant_rate_drive
+
+    sol = stroke.solve_newton(ctx.g, ctx.x_k, ctx.settings)
+    r = constant_rate_drive(ctx.g, sol.theta)
+    w = "both levers at a constant rate between the stroke's end positions"
+    return {
+        "crd_theta1": (("cut",), r["theta"][:, 0], "rad", f"theta1, {w}"),
+        "crd_theta2": (("cut",), r["theta"][:, 1], "rad", f"theta2, {w}"),
+        "crd_x_k": (("cut",), r["x_k"], "mm", f"lowest point x_k, {w}"),
+        "crd_y_k": (("cut",), r["y_k"], "mm", f"lowest point y_k, {w}"),
+        "crd_overlap_max_deviation": _scalar(np.max(np.abs(r["y_k"] + ctx.g.s)), "mm",
+                                             f"max |y_k + s|, {w}"),
+    }
+
+
 @EFFECTS.register("exact")
 def eff_exact(ctx: Context) -> dict:
     """Closed-form reference (Brent on the guide rod, circle intersections)."""

@@ -60,6 +60,15 @@ def rows(orig: xr.Dataset, popt: xr.Dataset, opt: xr.Dataset, comp: xr.Dataset,
         compare("overlap_max_deviation_optimised", "Fig. 9 (optimised trajectory of the lowest points)",
                 0.0, float(opt["opt_selpso_overlap_max_deviation"]), "mm", TOL_OVERLAP_MM,
                 "same, levers optimised by selPSO"),
+        info("overlap_max_deviation_constant_rate_drive", "Fig. 9 context, Sec. 1 (uneven overlap)",
+             float(orig["crd_overlap_max_deviation"]), "mm",
+             note="the original levers driven at a constant rate between the same start and end "
+                  "positions: the lowest point leaves y = -s (rises above the lower blade mid-cut)"),
+        check("reverse_solved_drive_makes_overlap_constant", "Abstract, Fig. 9 (overlap becomes a constant)",
+              float(orig["crd_overlap_max_deviation"]) > 1e3 * max(
+                  float(orig["newton_overlap_max_deviation"]), 1e-9),
+              "the overlap is constant under the reverse-solved motion laws and not under a "
+              "constant-rate drive of the same levers"),
         compare("synthetic_horizontal_displacement_original", "Sec. 4, p. (1.4341 before optimisation)",
                 PAPER_H_ORIGINAL, H0, "mm", TOL_GEOMETRY,
                 f"mean |midpoint - trajectory 1| over the cut, original levers. {GEOMETRY_NOTE} "
