@@ -97,6 +97,7 @@ ax[2].axhline(0, color="k", lw=0.8)
 ax[2].axhline(-s, color="k", ls=":", lw=0.8)
 ax[2].set(xlabel="x_k [mm]", ylabel="y_k [mm]", title="contrast: original levers, other drive")
 ax[2].legend(fontsize=7)
+fig.tight_layout()
 R.save_figure(fig, "fig09")
 
 

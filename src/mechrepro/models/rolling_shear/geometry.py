@@ -95,9 +95,3 @@ def cut_points(g: Geometry, n: int):
     huch = np.linspace(0.0, g.width, n)
     return huch, g.x_mid + 0.5 * g.width - huch
 
-
-def wrap_2pi(a):
-    """Angle in [0, 2 pi): the paper's ranges are stated on this interval."""
-    import numpy as np
-
-    return np.mod(a, 2.0 * math.pi)
