@@ -69,22 +69,20 @@ print(f"period {period:.4g} s, periods per 2 h M = {M:.6g}")
 
 # %%
 deg = np.degrees
+wrap = lambda a: np.mod(deg(a), 360.0)   # noqa: E731  contact angle in [0, 360) deg
 fig, ax = plt.subplots(1, 2, figsize=(10, 4))
 tf, pf, df = fig13["t_full"].values, fig13["contact_angle_full"].values, fig13["penetration_full"].values
 c = df > 0
-ax[0].plot(tf[c], deg(np.unwrap(pf[c])), ".", ms=1.5, label="dynamic, concentric start (1st period)")
-ax[0].plot(per_dyn["t"], deg(np.unwrap(per_dyn["contact_angle"].values)), "-", label="dynamic, steady period")
-ax[0].plot(per_qs["t"], deg(np.unwrap(per_qs["contact_angle"].values)), "--", label="quasi-static continuous contact")
-ax[0].set(xlabel="t [s]", ylabel="contact angle ψ on the bushing [deg]\n(coupler frame, from C→B)", title="Fig. 13")
+ax[0].plot(tf[c], wrap(pf[c]), ".", ms=1.5, label="dynamic, concentric start (1st period)")
+ax[0].plot(per_dyn["t"], wrap(per_dyn["contact_angle"].values), "-", label="dynamic, steady period")
+ax[0].plot(per_qs["t"], wrap(per_qs["contact_angle"].values), "--", label="quasi-static continuous contact")
+ax[0].set(xlabel="t [s]", ylabel="contact angle ψ on the bushing [deg]\n(coupler frame, 0 = direction C→B)", title="Fig. 13")
 ax[0].legend(fontsize=7)
-th = np.linspace(0, 2 * np.pi, 200)
-ax[1].plot(np.cos(th), np.sin(th), "k-", lw=0.8)
-ax[1].plot(np.cos(pf[c]), np.sin(pf[c]), ".", ms=2, alpha=0.4, label="1st period (with impact)")
-ps = per_dyn["contact_angle"].values
-ax[1].plot(1.03 * np.cos(ps), 1.03 * np.sin(ps), "-", lw=4, label="steady period")
-ax[1].annotate("C", (-1.3, 0)); ax[1].annotate("B→ (coupler axis)", (0.8, -0.2), fontsize=7)
-ax[1].set(aspect="equal", title="contact points on the bushing (coupler frame)")
-ax[1].axis("off"); ax[1].legend(fontsize=7, loc="lower left")
+bins = np.linspace(np.floor(wrap(pf[c]).min()) - 1, np.ceil(wrap(pf[c]).max()) + 1, 80)
+ax[1].hist(wrap(pf[c]), bins=bins, density=True, alpha=0.6, label="1st period (impact, rattling, sliding)")
+ax[1].hist(wrap(per_dyn["contact_angle"].values), bins=bins, density=True, alpha=0.6, label="steady period")
+ax[1].set(xlabel="contact angle ψ [deg]", ylabel="share of time in contact [1/deg]", title="distribution of contact points")
+ax[1].legend(fontsize=7)
 R.save_figure(fig, "fig13")
 arc_steady = float(deg(per_dyn["contact_arc_angle"])); arc_first = float(deg(fig13["contact_arc_angle"]))
 print(f"contact arc: steady {arc_steady:.2f} deg, first period incl. impact {arc_first:.1f} deg")

@@ -86,7 +86,7 @@ class ClearanceJoint:
         return [w3, w2, (self.M22 * b3 - m12 * b2) / det, (self.M11 * b2 - m12 * b3) / det]
 
     def jac(self, t, y):
-        """d rhs / d y: exact contact stiffness and damping, M(q) frozen."""
+        """d rhs / d y: exact contact terms (stiffness, damping, friction); M(q) frozen."""
         fb = self.fb
         th3, ph2, w3, w2 = y
         J = np.zeros((4, 4))
@@ -123,8 +123,10 @@ class ClearanceJoint:
         df_ded = np.outer(n, dFN_ded) + np.outer(tt, dFT_ded)
         Jb = np.array([[-fb.l3 * s3, -fb.l2 * s2], [fb.l3 * c3, fb.l2 * c2]])  # d r_j / d q
         # e = r_i - r_j(q), edot = rdot_i - Jb qdot
-        dQ_dq = Jb.T @ df_de @ (-Jb)
-        dQ_dq[1] += fb.R_bush * (dFT_de @ (-Jb))
+        # edot = rdot_i - Jb(q) qdot also depends on q: d edot / dq = [l3 w3 u3, l2 w2 u2]
+        dedq = np.array([[fb.l3 * w3 * c3, fb.l2 * w2 * c2], [fb.l3 * w3 * s3, fb.l2 * w2 * s2]])
+        dQ_dq = Jb.T @ (df_de @ (-Jb) + df_ded @ dedq)
+        dQ_dq[1] += fb.R_bush * (dFT_de @ (-Jb) + dFT_ded @ dedq)
         dQ_dw = Jb.T @ df_ded @ (-Jb)
         dQ_dw[1] += fb.R_bush * (dFT_ded @ (-Jb))
         dQ_dw[:, 1] += Jb.T @ (tt * dFT_dw2)
@@ -136,7 +138,7 @@ class ClearanceJoint:
         return J
 
 
-def initial_state(fb: FourBar, start: str = "concentric"):
+def initial_state(fb: FourBar, start: str = "concentric", t0: float = 0.0):
     """Initial state at t = 0.
 
     ``concentric``: the pin centred in the bushing, ideal-mechanism velocities (Sec. 4.1):
@@ -147,13 +149,22 @@ def initial_state(fb: FourBar, start: str = "concentric"):
     """
     from . import kinematics, quasistatic
 
-    th3, ph2 = kinematics.positions(fb, 0.0)
-    w3, w2 = kinematics.velocities(fb, 0.0, th3, ph2)
+    th1 = fb.omega * t0
+    th3, ph2 = kinematics.positions(fb, th1)
+    w3, w2 = kinematics.velocities(fb, th1, th3, ph2)
     if start == "equilibrium":
-        qs = quasistatic.one_period(fb, 256)
-        ecc = fb.clearance + qs["delta"][0]
-        bx = fb.l1 - ecc * qs["nx"][0]
-        by = 0.0 - ecc * qs["ny"][0]
+        n = 720
+        qs = quasistatic.one_period(fb, n)
+        # the quasi-static contact state at t0 (periodic linear interpolation)
+        x = (t0 % fb.period) / fb.period * n
+        i = int(x) % n
+        f = x - int(x)
+        ang = np.unwrap(np.arctan2(qs["ny"], qs["nx"]))
+        ang = np.append(ang, ang[0] + (ang[-1] - ang[0]) + (ang[1] - ang[0]))
+        a = (1 - f) * ang[i] + f * ang[i + 1]
+        ecc = fb.clearance + (1 - f) * qs["delta"][i] + f * qs["delta"][(i + 1) % n]
+        bx = fb.l1 * math.cos(th1) - ecc * math.cos(a)
+        by = fb.l1 * math.sin(th1) - ecc * math.sin(a)
         th3, ph2 = kinematics.positions_from_point(fb, bx, by)
     elif start != "concentric":
         raise ValueError(f"joint_wear: initial state {start!r}: allowed concentric, equilibrium")
@@ -167,8 +178,9 @@ IMPLICIT = ("Radau", "BDF", "LSODA")
 
 def simulate(fb: FourBar, t_end: float, n_out: int, method: str = "Radau",
              rtol: float = 1e-5, damping: bool = True, start: str = "concentric",
-             atol_scale: float = 1e-2, max_wall_s: float | None = None) -> dict:
-    """Integrate the clearance joint over [0, t_end] and sample n_out uniform points.
+             atol_scale: float = 1e-2, max_wall_s: float | None = None,
+             t_start: float = 0.0) -> dict:
+    """Integrate the clearance joint over [t_start, t_end], sample n_out uniform points.
 
     atol on angles is rtol * atol_scale [rad] (on rates 10x that): the clearance is
     ~3e-4 of the link lengths, so an angle tolerance of rtol alone would let the
@@ -184,13 +196,13 @@ def simulate(fb: FourBar, t_end: float, n_out: int, method: str = "Radau",
     if method not in METHODS:
         raise ValueError(f"joint_wear: method {method!r}: allowed {', '.join(METHODS)}")
     sys_ = ClearanceJoint(fb, damping=damping)
-    y0 = initial_state(fb, start)
+    y0 = initial_state(fb, start, t_start)
     atol = np.array([1.0, 1.0, 10.0, 10.0]) * rtol * atol_scale
     kw = {"jac": sys_.jac} if method in IMPLICIT else {}
-    solver = getattr(integrate, METHODS[method])(sys_.rhs, 0.0, y0, t_end, rtol=rtol,
+    solver = getattr(integrate, METHODS[method])(sys_.rhs, t_start, y0, t_end, rtol=rtol,
                                                  atol=atol, **kw)
-    t_eval = np.linspace(0.0, t_end, n_out)
-    T, Y = [0.0], [y0]
+    t_eval = np.linspace(t_start, t_end, n_out)
+    T, Y = [t_start], [y0]
     k = 1
     status, message = 0, "finished"
     t0 = time.perf_counter()

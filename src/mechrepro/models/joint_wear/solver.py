@@ -239,6 +239,10 @@ def to_dataset(res: dict, run: dict) -> xr.Dataset:
         scal["n_simulations_prediction"] = (float(n_sim), "1", "one-period simulations of the prediction (all sides)")
         scal["n_simulations_per_side"] = (float(len(w["G_pred"][0])), "1", "one-period simulations of the prediction per side")
         scal["wall_time_wear"] = (w["wall_time_prediction"], "s", "wall time of calibration + prediction, all sides")
+        # the interval method assumes the wear per period barely changes within an interval
+        # (Sec. 3.3); its largest change between successive simulations measures that
+        changes = [np.max(np.abs(np.diff(g) / g[:-1])) if len(g) > 1 else 0.0 for g in w["G_pred"]]
+        scal["interval_factor_change_max"] = (float(max(changes)), "1", "largest relative change of the wear per period between successive interval simulations")
         if "pbp" in res:
             n, wall = res["pbp"]
             scal["pbp_sample_periods"] = (float(n), "1", "consecutive periods simulated one by one (Fig. 6) to time the reference")
