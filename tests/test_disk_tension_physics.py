@@ -183,3 +183,23 @@ def test_very_coarse_and_very_thin_axisymmetric_models_stay_finite():
     lam = thin.critical_load(Ks)[0]
     assert (w2[0] < 0) == (lam < 1.0)  # a 20x thinner blade buckles under the same stress
     assert lam < 1.0
+
+
+def test_fig7_sensitivity_matches_first_order_energy_fraction():
+    from mechrepro.models.disk_tension.axisym import plate_matrices, quadrature
+
+    d = disk(n_elements=32)
+    r_a, w = np.array([0.04, 0.09]), 0.01
+    df = d.sensitivity(r_a=r_a, width=w, increase=0.01, E=E, nu=NU, rho=RHO)
+    D = E * H**3 / (12 * (1 - NU**2))
+    for i, ra in enumerate(r_a):
+        mesh = radial_mesh(0.025, B, 32, breakpoints=(ra - w / 2, ra + w / 2))
+        q = quadrature(mesh)
+        ind = lambda r: ((r >= ra - w / 2) & (r <= ra + w / 2)).astype(float)  # noqa: E731
+        for j, n in enumerate(range(5)):
+            K, M = plate_matrices(mesh, n, D=D, nu=NU, rho_h=RHO * H, quad=q)
+            Ka, _ = plate_matrices(mesh, n, D=D, nu=NU, rho_h=RHO * H, quad=q, d_scale=ind)
+            lam, phi = modal.eigen(K, M, 1)
+            d_w2 = 0.01 * (phi[:, 0] @ Ka @ phi[:, 0])
+            assert df[i, j] > 0  # a stiffer annulus never lowers a frequency
+            assert df[i, j] == pytest.approx(modal.delta_f_linearised(np.sqrt(lam[0]), d_w2), rel=1e-2)

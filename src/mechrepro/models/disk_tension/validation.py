@@ -193,10 +193,14 @@ def rows(d: dict) -> list:
                        _at(t2, "plate2d_f_rolled", 0.065), "Hz", TOL_F))
     sl, pl = d["slotted"], d["plain2d"]
     for n in (3, 4):
+        gain = {k: float(np.nanmax(ds["plate2d_f_rolled"].sel(n_d=n))
+                         - ds["plate2d_f_unrolled"].sel(n_d=n)) for k, ds in (("s", sl), ("p", pl))}
         out.append(info(f"slotted_optimal_rc_nd{n}", "slotted sawblade (ours, 2-D)",
                         _argext(sl, "plate2d_f_rolled", n, np.nanargmax), "mm",
                         note=f"plain disk on the same mesh: "
-                             f"{_argext(pl, 'plate2d_f_rolled', n, np.nanargmax):.0f} mm"))
+                             f"{_argext(pl, 'plate2d_f_rolled', n, np.nanargmax):.0f} mm; gain of "
+                             f"rolling at the optimum {gain['s']:.1f} Hz slotted vs "
+                             f"{gain['p']:.1f} Hz plain"))
     amp = np.array([a for a, _ in d["buckling"]], float)
     bk = [ds for _, ds in d["buckling"]]
     lam = np.array([ds["axisym_critical_load_factor"].sel(n_d=2).values[0] for ds in bk])
