@@ -263,11 +263,13 @@ for a, v, d in zip(ax, tss, d7):
     a.legend(fontsize=7)
 a.set_xlabel("omega_1 [rpm]")
 R.save_figure(fig, "fig07")
-for j, (v, d) in enumerate(zip(tss, d7)):
+for v, d in zip(tss, d7):
     n_un = int(d.unstable.sum())
-    expect = j >= 2          # the paper: first two cases stable, last two unstable
+    # the paper's four cases: the two highest tensions stable, the two lowest unstable; our
+    # base T_s is the second case, so "unstable" is expected below it
+    expect = v < prm["static_tension"]
     rows.append(check(f"{'instability' if expect else 'no_instability'}_Ts{int(v)}",
-                      f"Fig. 7{'abcd'[j]} / p. 10", (n_un > 0) == expect,
+                      "Fig. 7 / p. 10", (n_un > 0) == expect,
                       f"{n_un} of {d.speed.size} speeds grow or go slack"))
 
 # %% [markdown]
