@@ -84,6 +84,10 @@ def _stroke_outputs(ctx: Context, g: Geometry, theta: np.ndarray, prefix: str, w
                                   f"distance of each dyad from toggle/fold, {what}"),
         f"{prefix}_synthetic_horizontal_displacement":
             _scalar(np.mean(np.abs(dx)), "mm", f"synthetic horizontal displacement, {what}"),
+        f"{prefix}_synthetic_horizontal_displacement_best_anchor":
+            _scalar(np.mean(np.abs(dx - np.median(dx))), "mm",
+                    f"synthetic horizontal displacement with trajectory 1 shifted to its best "
+                    f"horizontal position (median), {what}"),
         f"{prefix}_overlap_max_deviation":
             _scalar(np.max(np.abs(yk + g.s)), "mm", f"max |y_k + s| over the cut, {what}"),
     })
