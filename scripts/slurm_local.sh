@@ -5,7 +5,8 @@
 #          one node named after `hostname -s` at 127.0.0.1 with this machine's CPUs and
 #          memory, starts the daemons in the background, waits until the node is idle,
 #          and prints `export SLURM_CONF=...` for the clients (sbatch, squeue, snakemake).
-#   stop:  ends exactly the daemons that `start` started (pids recorded in the state dir).
+#   stop:  ends exactly the daemons that `start` started (pids recorded in the state dir)
+#          and removes the slurm.conf it wrote.
 # The config goes to Debian's default /etc/slurm/slurm.conf, because srun inside a job does
 # not inherit SLURM_CONF; an existing slurm.conf not written by this script is never touched.
 set -euo pipefail
@@ -126,6 +127,11 @@ stop() {
     fi
     rm -f "$f"
   done
+  # With a slurm.conf but no controller, `scontrol show config` blocks for 10 s, and the
+  # SLURM executor plugin runs it on import, i.e. at every snakemake start: remove ours.
+  if [ -f "$CONF" ] && grep -qF "$MARK" "$CONF"; then
+    rm -f "$CONF"
+  fi
 }
 
 status() { SLURM_CONF=$CONF sinfo; SLURM_CONF=$CONF squeue; }

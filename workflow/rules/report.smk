@@ -5,18 +5,16 @@ rule summary:
     input:
         coa=expand(f"{RESULTS}/{{paper}}/tables/cost_of_accuracy.nc", paper=PAPERS),
         configs=expand(str(BASE / "config/papers/{paper}.yaml"), paper=PAPERS),
-        code=code("summary.py", "config.py", "plotting.py"),
+        code=code("cli.py", "summary.py", "config.py", "plotting.py"),
     output:
         png=f"{RESULTS}/report/cost_of_accuracy_all.png",
         csv=f"{RESULTS}/report/summary.csv",
     params:
         papers=PAPERS,
         profile=PROFILE,
-    run:
-        from mechrepro.summary import write_summary
-
-        write_summary(output.png, output.csv, RESULTS, str(BASE / "config"), params.papers,
-                      params.profile)
+    shell:
+        "PYTHONPATH={SRC} {PY} -m mechrepro.cli summary {output.png} {output.csv} {RESULTS} "
+        "{BASE}/config {params.profile} {params.papers}"
 
 
 rule report:
@@ -26,16 +24,15 @@ rule report:
         tables=[f for p in PAPERS for f in tables_of(p)],
         claims=expand(f"{RESULTS}/{{paper}}/claim.json", paper=PAPERS),
         configs=expand(str(BASE / "config/papers/{paper}.yaml"), paper=PAPERS),
-        code=code("report.py", "config.py", "validation.py", "summary.py"),
+        code=code("cli.py", "report.py", "config.py", "validation.py"),
     output:
         f"{RESULTS}/report/index.html",
     params:
         papers=PAPERS,
         profile=PROFILE,
-    run:
-        from mechrepro.report import write_report
-
-        write_report(output[0], RESULTS, str(BASE / "config"), params.papers, params.profile)
+    shell:
+        "PYTHONPATH={SRC} {PY} -m mechrepro.cli report {output} {RESULTS} {BASE}/config "
+        "{params.profile} {params.papers}"
 
 
 rule archive:
@@ -44,32 +41,28 @@ rule archive:
         notebooks=expand(f"{RESULTS}/{{paper}}/notebook.ipynb", paper=PAPERS),
         runs=[f for p in PAPERS for f in runs_of(p)],
         configs=expand(str(BASE / "config/papers/{paper}.yaml"), paper=PAPERS),
-        code=code("archive.py"),
+        code=code("cli.py", "archive.py"),
     output:
         manifest=f"{RESULTS}/archive/manifest.json",
         archive=f"{RESULTS}/archive/mechrepro-results.tar.gz",
     params:
         papers=PAPERS,
         profile=PROFILE,
-    run:
-        from mechrepro.archive import write_archive
-
-        write_archive(output.archive, output.manifest, RESULTS, str(BASE / "config"),
-                      params.papers, params.profile)
+    shell:
+        "PYTHONPATH={SRC} {PY} -m mechrepro.cli archive {output.archive} {output.manifest} "
+        "{RESULTS} {BASE}/config {params.profile} {params.papers}"
 
 
 rule reference_check:
     input:
         tables=expand(f"{RESULTS}/{{paper}}/tables/validation.csv", paper=PAPERS),
         manifest=f"{RESULTS}/archive/manifest.json",
-        code=code("archive.py"),
+        code=code("cli.py", "archive.py"),
     output:
         f"{RESULTS}/archive/reference_check.txt",
     params:
         papers=PAPERS,
         profile=PROFILE,
-    run:
-        from mechrepro.archive import check_reference
-
-        check_reference(output[0], RESULTS, str(BASE / "results/reference"), params.papers,
-                        params.profile)
+    shell:
+        "PYTHONPATH={SRC} {PY} -m mechrepro.cli check-reference {output} {RESULTS} "
+        "{BASE}/results/reference {params.profile} {params.papers}"

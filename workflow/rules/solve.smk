@@ -25,7 +25,5 @@ rule gather:
         code=code("io.py"),
     output:
         f"{RESULTS}/{{paper}}/studies/{{study}}.nc",
-    run:
-        from mechrepro.io import gather_study, write_dataset
-
-        write_dataset(gather_study(input.runs), output[0])
+    shell:
+        "PYTHONPATH={SRC} {PY} -m mechrepro.cli gather {output} {input.runs}"
