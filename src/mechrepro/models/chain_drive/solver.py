@@ -270,14 +270,18 @@ def _galerkin(run, prm, res):
     kimp = loads.impact_constants(prm["impact_mass_links"] * p * m, prm["contact_stiffness"],
                                   prm["contact_damping_ratio"])
     dt_limit = model.max_stable_step()
-    dt = float(res["rk4_cfl"]) * dt_limit
-    # impact pulses shorter than the step enter with their exact impulse per step
-    tension, ends = galerkin.forcing(selected, prm, w1, geo, kimp, step=dt)
+    # a whole number of steps per tooth period: the end-motion kinks and the impacts then sit
+    # on step boundaries (RK4 is only first order across a kink inside a step)
+    tau = 2 * np.pi / (n1 * w1)
+    dt = tau / math.ceil(tau / (float(res["rk4_cfl"]) * dt_limit))
+    # impact pulses shorter than the step enter with their exact impulse, spread over a few
+    # RK4 steps so that the integrator resolves the forcing it is given
+    tension, ends = galerkin.forcing(selected, prm, w1, geo, kimp,
+                                     step=float(res.get("impact_window_steps", 4)) * dt)
     f = lambda t, y: model.rhs(t, y, ends, tension)  # noqa: E731
     y0 = np.zeros(2 * (model.n_t + model.n_l))
     t_end = float(res["duration"])
     n_steps = int(math.ceil(t_end / dt))
-    dt = t_end / n_steps
     rec = max(n_steps // int(res["samples"]), 1)
     t0 = time.perf_counter()
     t_rk, y_rk = galerkin.rk4(f, 0.0, y0, dt, n_steps, record_every=rec)
@@ -286,7 +290,7 @@ def _galerkin(run, prm, res):
     u_rk = model.transverse(y_rk, t_rk, ends, xi)
     data = {
         "u_probe_rk4": _v(u_rk, ("t",), "m", "transverse displacement at the probe, RK4"),
-        "rk4_time_step": _scalar(dt, "s", "RK4 step"),
+        "rk4_time_step": _scalar(dt, "s", "RK4 step (a whole number per tooth period)"),
         "rk4_step_limit": _scalar(dt_limit, "s", "RK4 linear stability limit"),
         "rk4_wall_time": _scalar(wall_rk, "s", "wall time of RK4"),
         "chain_speed": _scalar(c, "m/s", "chain speed"),
