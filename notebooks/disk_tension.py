@@ -112,7 +112,8 @@ for ax, (rf, ds) in zip(axes, sorted(grid.items())):
         ax.plot([0, 65], [434.5, 502.1], "*", color="k", ms=9, label="paper 434.5 / 502.1 Hz")
     ax.axvspan(0, rf, color="0.9")
     ax.set(xlabel="r_c [mm]", ylabel="natural frequency [Hz]", title=f"Fig. 6{'abc'[[25, 55, 75].index(rf)]}: r_f = {rf} mm")
-axes[0].legend(fontsize=7, loc="center right")
+fig.legend(*axes[0].get_legend_handles_labels(), loc="lower center", ncol=6, fontsize=8,
+           bbox_to_anchor=(0.5, -0.1))
 R.save_figure(fig, "fig06")
 
 # %% [markdown]
@@ -147,7 +148,8 @@ for ax, (rf, ds) in zip(axes, sorted(grid.items())):
         ax.plot([65], [67.6], "P", color="k", ms=7, label="paper eigen 67.6 Hz")
     ax.axhline(0, color="k", lw=0.6)
     ax.set(xlabel="r_c [mm]", ylabel="Δf [Hz]", title=f"Fig. 8{'abc'[[25, 55, 75].index(rf)]}: r_f = {rf} mm")
-axes[0].legend(fontsize=7)
+fig.legend(*axes[0].get_legend_handles_labels(), loc="lower center", ncol=7, fontsize=8,
+           bbox_to_anchor=(0.5, -0.1))
 R.save_figure(fig, "fig08")
 
 # %% [markdown]
