@@ -171,3 +171,20 @@ def test_wear_update_and_unbalanced_load():
     # B1 wears more than B2 (Sec. 4.2)
     assert float(up["wear_at_end_B1"]) > float(up["wear_at_end_B2"])
     assert int(up["n_simulations_per_side"]) == 38
+
+
+def test_minimal_coordinates_equal_the_lagrange_multiplier_form_eq3():
+    """The joint-B force of the minimal-coordinate equations (ideal joint, no friction)
+    equals the Lagrange multiplier of Eq. (3) in Cartesian coordinates."""
+    from mechrepro.models.joint_wear import cartesian
+
+    fb = fourbar("period_quasistatic")          # gravity on, friction off below
+    fb = fb.__class__(**{**fb.__dict__, "mu": 0.0})
+    qs = quasistatic.one_period(fb, 200)
+    lamB, qdd = cartesian.joint_B_reaction(fb, qs["t"], 0.4973, 8.801e-4)
+    fx = qs["F_N"] * qs["nx"]
+    fy = qs["F_N"] * qs["ny"]
+    assert np.allclose(lamB[:, 0], fx, rtol=1e-9, atol=1e-9 * qs["F_N"].max())
+    assert np.allclose(lamB[:, 1], fy, rtol=1e-9, atol=1e-9 * qs["F_N"].max())
+    # the crank turns at constant speed
+    assert np.allclose(qdd[:, 2], 0.0, atol=1e-9)

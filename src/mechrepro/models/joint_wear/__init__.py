@@ -4,7 +4,7 @@ Lai, Liu, Ji, Wang, Zhang, J. Vibroengineering 20 (2018), DOI 10.21595/jve.2018.
 Modules: geometry (Table 1-2, Eqs. 12-13), kinematics (ideal four-bar), loads (minimal-
 coordinate equations of motion), contact (Eqs. 5-15, 18-20), quasistatic (continuous
 contact), dynamics (stiff clearance contact), wear (Eqs. 16-34, Sec. 3.3), solver
-(effects -> Dataset).
+(effects -> Dataset), cartesian (Eq. 3 with Lagrange multipliers, for verification).
 """
 from .solver import EFFECTS, compute, setup, solve, to_dataset
 
