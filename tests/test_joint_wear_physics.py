@@ -188,3 +188,16 @@ def test_minimal_coordinates_equal_the_lagrange_multiplier_form_eq3():
     assert np.allclose(lamB[:, 1], fy, rtol=1e-9, atol=1e-9 * qs["F_N"].max())
     # the crank turns at constant speed
     assert np.allclose(qdd[:, 2], 0.0, atol=1e-9)
+
+
+def test_point_wear_distributed_over_the_range_is_eq29():
+    """Eq. (25) (all wear at one point G) spread over the range by Eq. (28) is Eq. (29)."""
+    fb = fourbar("period_quasistatic")
+    f = wear.period_wear_factor(quasistatic.one_period(fb, 360), fb, fb.period)
+    k = 6.4e-14
+    dh_star = wear.local_wear_depth(k, f["F_N_mean"], f["S"], f["A_mean"])
+    dh = wear.distributed_wear_depth(dh_star, f["AB_mean"], f["L_wear"])
+    assert dh == pytest.approx(k * f["G"], rel=1e-12)
+    # A_a = |AB| w (Eq. 20) at the mean penetration is close to the mean area
+    d = quasistatic.one_period(fb, 360)["delta"]
+    assert float(np.mean(contact.contact_area(d, fb.R_pin, fb.R_bush, fb.width))) == pytest.approx(f["A_mean"])

@@ -207,7 +207,6 @@ def simulate(fb: FourBar, t_end: float, n_out: int, method: str = "Radau",
     status, message = 0, "finished"
     t0 = time.perf_counter()
     while solver.status == "running":
-        t_prev = solver.t
         msg = solver.step()
         if solver.status == "failed":
             status, message = -1, str(msg)
@@ -223,7 +222,6 @@ def simulate(fb: FourBar, t_end: float, n_out: int, method: str = "Radau",
         if max_wall_s is not None and time.perf_counter() - t0 > max_wall_s and solver.status == "running":
             status, message = -2, f"wall-time limit {max_wall_s} s reached at t = {solver.t:.4g} s"
             break
-        del t_prev
     wall = time.perf_counter() - t0
     T, Y = np.asarray(T), np.asarray(Y).T
     out = {"t": T, "y": Y, "status": status, "message": message, "nfev": sys_.nfev,

@@ -10,7 +10,6 @@ drift, hence no Baumgarte stabilisation needed.  Centres of mass at the link mid
 """
 from __future__ import annotations
 
-import math
 
 import numpy as np
 
@@ -35,17 +34,3 @@ def applied_forces(fb: FourBar, theta3, phi2):
     Q3 = fb.l3 / 2 * (-s3 * Px + c3 * Py) - fb.g * (fb.m3 * fb.l3 / 2 + fb.m2 * fb.l3) * c3
     Q2 = -fb.g * fb.m2 * fb.l2 / 2 * np.cos(phi2)
     return Q3, Q2
-
-
-def bushing_centre(fb: FourBar, theta3, phi2):
-    """r_j = D + l3 u(theta3) + l2 u(phi2)."""
-    return (fb.l0 + fb.l3 * np.cos(theta3) + fb.l2 * np.cos(phi2),
-            fb.l3 * np.sin(theta3) + fb.l2 * np.sin(phi2))
-
-
-def pin_centre(fb: FourBar, t):
-    """r_i = l1 u(omega t): the crank starts horizontal (Sec. 4.1)."""
-    th = fb.omega * np.asarray(t, float)
-    return fb.l1 * np.cos(th), fb.l1 * np.sin(th)
-
-
