@@ -99,3 +99,14 @@ def test_every_configured_paper_loads_in_every_profile():
         path = ROOT / "config" / "papers" / f"{paper}.yaml"
         for profile in ["default", *yaml.safe_load(path.read_text()).get("profiles", {})]:
             assert load_paper(path, profile).runs
+
+
+def test_readme_lists_every_assumed_constant():
+    from conftest import ROOT
+
+    readme = (ROOT / "README.md").read_text()
+    papers = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())["papers"]
+    missing = [f"{p}.{name}" for p in papers
+               for name in load_paper(ROOT / "config" / "papers" / f"{p}.yaml").assumed()
+               if f"| {p} | `{name}` |" not in readme]
+    assert not missing, f"README lacks assumed constants (run scripts/assumed_constants.py): {missing}"
