@@ -276,15 +276,17 @@ def _galerkin(run, prm, res):
     dt = tau / math.ceil(tau / (float(res["rk4_cfl"]) * dt_limit))
     # impact pulses shorter than the step enter with their exact impulse, spread over a few
     # RK4 steps so that the integrator resolves the forcing it is given
-    tension, ends = galerkin.forcing(selected, prm, w1, geo, kimp,
-                                     step=float(res.get("impact_window_steps", 4)) * dt)
+    window = float(res.get("impact_window_steps", 4)) * dt
+    tension, ends = galerkin.forcing(selected, prm, w1, geo, kimp, step=window)
     f = lambda t, y: model.rhs(t, y, ends, tension)  # noqa: E731
     y0 = np.zeros(2 * (model.n_t + model.n_l))
     t_end = float(res["duration"])
     n_steps = int(math.ceil(t_end / dt))
     rec = max(n_steps // int(res["samples"]), 1)
     t0 = time.perf_counter()
-    t_rk, y_rk = galerkin.rk4(f, 0.0, y0, dt, n_steps, record_every=rec)
+    F = galerkin.forcing_arrays(selected, prm, w1, geo, kimp, galerkin.stage_times(dt, n_steps),
+                                step=window)
+    t_rk, y_rk = galerkin.rk4_tabulated(model, y0, dt, n_steps, F, record_every=rec)
     wall_rk = time.perf_counter() - t0
     xi = float(prm["probe_fraction"]) * L   # measured from the driven sprocket (x = 0)
     u_rk = model.transverse(y_rk, t_rk, ends, xi)
