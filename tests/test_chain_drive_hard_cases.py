@@ -118,3 +118,19 @@ def test_impact_pulse_much_shorter_than_the_time_step_in_the_march():
     assert out["dt_max"] > 2 * out["contact_time"]
     assert out["uniform_averaged"]["error"] < 0.05
     assert out["uniform_sampled"]["error"] > 0.5
+
+
+def test_time_step_adapts_to_the_dynamic_tension():
+    """The characteristic speed includes the selected dynamic tension: a large external load
+    shrinks the step below the static-tension step instead of running past the limit."""
+    prm = dict(pitch=0.0127, mass_per_length=M, static_tension=T, transverse_damping=12.2,
+               n1=24, n2=24, centre_distance=20.0, lambda_support=0.9, axial_stiffness=2e6,
+               driven_inertia=0.002, impact_mass_links=2, contact_stiffness=2e8,
+               contact_damping_ratio=0.1, external_load_ratio=3.0, external_frequency_ratio=1.0,
+               speed_min=20.0, speed_max=30.0)
+    res = dict(points_per_pitch=2, cfl=0.9, decay_times=0.2, window_periods=1)
+    om = np.array([20.0, 30.0])
+    a = span.assemble(["external_load"], prm, om, res)
+    static = fd.stable_time_step(a["grid"].dx, a["c"], T, M, 0.9)
+    dynamic = fd.stable_time_step(a["grid"].dx, a["c"], T + np.max(a["exc"].tension, axis=0), M, 0.9)
+    assert a["dt"] < static and a["dt"] <= dynamic * (1 + 1e-12)
