@@ -3,6 +3,7 @@ import sys
 from pathlib import Path
 
 import pytest
+import yaml
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "src"))
@@ -13,4 +14,25 @@ def config_copy(tmp_path):
     """A writable copy of config/ (schemas + paper files) for mutation tests."""
     dst = tmp_path / "config"
     shutil.copytree(ROOT / "config", dst)
+    return dst
+
+
+@pytest.fixture
+def edit_config(config_copy):
+    """Apply ``fn`` to the parsed copy of a paper's config; return the edited file's path."""
+    def edit(paper, fn):
+        path = config_copy / "papers" / f"{paper}.yaml"
+        raw = yaml.safe_load(path.read_text())
+        fn(raw)
+        path.write_text(yaml.safe_dump(raw))
+        return path
+    return edit
+
+
+def copy_workflow(dst: Path) -> Path:
+    """What a run of the workflow needs, copied to ``dst`` (tests never touch the repo)."""
+    for item in ("Snakefile", "workflow", "config", "notebooks", "src"):
+        src = ROOT / item
+        (shutil.copytree if src.is_dir() else shutil.copy2)(src, dst / item)
+    shutil.copytree(ROOT / "results" / "reference", dst / "results" / "reference")
     return dst

@@ -40,11 +40,8 @@ def test_every_parameter_has_a_source_or_a_reason(root):
     (lambda r: r["parameters"]["lambda_support"].__setitem__("value", 2.0), "must be <= 1"),
     (lambda r: r["scenes"]["fig05_plain"]["resolution"].__setitem__("grid", 3), "unknown key"),
 ])
-def test_schema_refuses_bad_runs(config_copy, mutate, msg):
-    path = config_copy / "papers" / "chain_drive.yaml"
-    raw = yaml.safe_load(path.read_text())
-    mutate(raw)
-    path.write_text(yaml.safe_dump(raw))
+def test_schema_refuses_bad_runs(edit_config, mutate, msg):
+    path = edit_config("chain_drive", mutate)
     with pytest.raises(ConfigError, match=msg):
         load_paper(path)
 

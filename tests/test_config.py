@@ -7,14 +7,6 @@ import yaml
 from mechrepro.config import ConfigError, load_paper
 
 
-def mutate(config_dir, paper, fn):
-    path = config_dir / "papers" / f"{paper}.yaml"
-    raw = yaml.safe_load(path.read_text())
-    fn(raw)
-    path.write_text(yaml.safe_dump(raw))
-    return path
-
-
 def test_scenes_and_studies_expand_to_si_runs(config_copy):
     cfg = load_paper(config_copy / "papers" / "saw_chain.yaml")
     run = cfg.runs["speed_12000"]
@@ -34,9 +26,8 @@ def test_ci_profile_overlays_resolution(config_copy):
     assert ci.runs["fig07_fig08"]["parameters"] == default.runs["fig07_fig08"]["parameters"]
 
 
-def test_negative_pitch_names_file_key_value_and_range(config_copy):
-    path = mutate(config_copy, "saw_chain",
-                  lambda r: r["parameters"]["tie_strap_pitch"].update(value=-8.91))
+def test_negative_pitch_names_file_key_value_and_range(edit_config):
+    path = edit_config("saw_chain", lambda r: r["parameters"]["tie_strap_pitch"].update(value=-8.91))
     with pytest.raises(ConfigError) as e:
         load_paper(path)
     msg = str(e.value)
@@ -44,49 +35,43 @@ def test_negative_pitch_names_file_key_value_and_range(config_copy):
     assert "-8.91" in msg and "must be > 0" in msg
 
 
-def test_unknown_effect_lists_allowed(config_copy):
-    path = mutate(config_copy, "saw_chain",
-                  lambda r: r["scenes"]["fig07_fig08"]["effects"].append("warp_drive"))
+def test_unknown_effect_lists_allowed(edit_config):
+    path = edit_config("saw_chain", lambda r: r["scenes"]["fig07_fig08"]["effects"].append("warp_drive"))
     with pytest.raises(ConfigError) as e:
         load_paper(path)
     msg = str(e.value)
     assert "fig07_fig08" in msg and "'warp_drive'" in msg and "difference_method" in msg
 
 
-def test_missing_parameter_is_named(config_copy):
-    path = mutate(config_copy, "saw_chain", lambda r: r["parameters"].pop("teeth"))
+def test_missing_parameter_is_named(edit_config):
+    path = edit_config("saw_chain", lambda r: r["parameters"].pop("teeth"))
     with pytest.raises(ConfigError, match="missing key.*teeth"):
         load_paper(path)
 
 
-def test_bad_scene_override_and_resolution(config_copy):
-    path = mutate(config_copy, "saw_chain",
-                  lambda r: r["scenes"]["speed_12000"]["parameters"].update(teeth=2))
+def test_bad_scene_override_and_resolution(edit_config):
+    path = edit_config("saw_chain", lambda r: r["scenes"]["speed_12000"]["parameters"].update(teeth=2))
     with pytest.raises(ConfigError, match=r"speed_12000.*parameters.teeth = 2: must be >= 3"):
         load_paper(path)
-    path = mutate(config_copy, "saw_chain",
-                  lambda r: r["scenes"]["speed_12000"]["parameters"].update(teeth=8)
+    path = edit_config("saw_chain", lambda r: r["scenes"]["speed_12000"]["parameters"].update(teeth=8)
                   or r["scenes"]["fig07_fig08"]["resolution"].update(K=1))
     with pytest.raises(ConfigError, match=r"resolution.K = 1: must be >= 2"):
         load_paper(path)
 
 
-def test_unknown_unit_sweep_key_profile_and_source(config_copy):
-    path = mutate(config_copy, "saw_chain",
-                  lambda r: r["parameters"]["teeth"].update(unit="furlong"))
+def test_unknown_unit_sweep_key_profile_and_source(edit_config):
+    path = edit_config("saw_chain", lambda r: r["parameters"]["teeth"].update(unit="furlong"))
     with pytest.raises(ConfigError, match="parameters.teeth.unit = 'furlong'"):
         load_paper(path)
-    path = mutate(config_copy, "saw_chain",
-                  lambda r: r["parameters"]["teeth"].update(unit="1")
+    path = edit_config("saw_chain", lambda r: r["parameters"]["teeth"].update(unit="1")
                   or r["studies"]["cost_of_accuracy"]["sweep"].update(Q=[1]))
     with pytest.raises(ConfigError, match="sweep.Q: not a resolution key"):
         load_paper(path)
-    path = mutate(config_copy, "saw_chain",
-                  lambda r: r["studies"]["cost_of_accuracy"]["sweep"].pop("Q"))
+    path = edit_config("saw_chain", lambda r: r["studies"]["cost_of_accuracy"]["sweep"].pop("Q"))
     with pytest.raises(ConfigError, match="profile 'huge' not defined"):
         load_paper(path, "huge")
     # an assumed constant must say why; a given one must say where from
-    path = mutate(config_copy, "saw_chain", lambda r: r["parameters"]["textbook_mass"].pop("why"))
+    path = edit_config("saw_chain", lambda r: r["parameters"]["textbook_mass"].pop("why"))
     with pytest.raises(ConfigError, match="textbook_mass"):
         load_paper(path)
 

@@ -5,7 +5,6 @@ check CI relies on to compare the fast profile against results/reference/ci.
 """
 import json
 import re
-import shutil
 import subprocess
 import sys
 from html.parser import HTMLParser
@@ -14,7 +13,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from conftest import ROOT
+from conftest import copy_workflow
 from mechrepro.provenance import file_sha256
 
 pytestmark = pytest.mark.slow
@@ -57,11 +56,7 @@ class Images(HTMLParser):
 
 @pytest.fixture(scope="module")
 def workflow(tmp_path_factory):
-    work = tmp_path_factory.mktemp("wf")
-    for item in ("Snakefile", "workflow", "config", "notebooks", "src"):
-        src = ROOT / item
-        (shutil.copytree if src.is_dir() else shutil.copy2)(src, work / item)
-    shutil.copytree(ROOT / "results" / "reference", work / "results" / "reference")
+    work = copy_workflow(tmp_path_factory.mktemp("wf"))
     log = snakemake(work)
     return work, log
 

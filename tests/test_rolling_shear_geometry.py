@@ -89,15 +89,10 @@ def test_paper_optimised_levers_assemble_in_our_geometry(g):
     (lambda c: c["scenes"]["original"]["resolution"].__setitem__("n_points", 1), ">= 2"),
     (lambda c: c["parameters"]["l1"].__setitem__("value", -5), "l1"),
 ])
-def test_schema_rejects_bad_runs(config_copy, edit, expect):
-    import yaml
-
+def test_schema_rejects_bad_runs(edit_config, edit, expect):
     from mechrepro.config import ConfigError, load_paper
 
-    path = config_copy / "papers" / "rolling_shear.yaml"
-    raw = yaml.safe_load(path.read_text())
-    edit(raw)
-    path.write_text(yaml.safe_dump(raw))
+    path = edit_config("rolling_shear", edit)
     with pytest.raises(ConfigError, match=expect):
         load_paper(path)
 

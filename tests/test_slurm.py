@@ -15,7 +15,7 @@ import sys
 import numpy as np
 import pytest
 
-from conftest import ROOT
+from conftest import ROOT, copy_workflow
 from mechrepro.io import open_dataset
 
 pytestmark = pytest.mark.slow
@@ -46,11 +46,7 @@ def cluster():
 
 @pytest.fixture(scope="module")
 def work(tmp_path_factory):
-    work = tmp_path_factory.mktemp("slurm_wf")
-    for item in ("Snakefile", "workflow", "config", "notebooks", "src"):
-        src = ROOT / item
-        (shutil.copytree if src.is_dir() else shutil.copy2)(src, work / item)
-    return work
+    return copy_workflow(tmp_path_factory.mktemp("slurm_wf"))
 
 
 def snakemake(work, results, *args, timeout=900):
