@@ -112,7 +112,8 @@ def test_one_parameter_reruns_exactly_its_run_notebook_and_report(workflow):
         path.write_text(original)
     assert jobs == {"run_params[paper=saw_chain, run=speed_12000]",
                     "solve[paper=saw_chain, run=speed_12000]",
-                    "notebook_saw_chain", "report", "archive", "reference_check", "all"}, jobs
+                    "notebook_saw_chain", "summary", "report", "archive", "reference_check",
+                    "all"}, jobs
     assert "Nothing to be done" in snakemake(work, "-n")
 
 
