@@ -34,12 +34,14 @@ ci-reproduce: $(STAMP)
 	$(BIN)/python -m mechrepro.plan results-ci -- --cores $(CORES) --config profile=ci results=results-ci
 	$(BIN)/snakemake --cores $(CORES) --config profile=ci results=results-ci
 
-## Deliberately refresh the committed reference numbers from a fresh ci-profile run
+## Deliberately refresh the committed reference numbers of a profile (ci by default;
+## `make reference REF_PROFILE=default` for the full one) from a fresh run
+REF_PROFILE ?= ci
 reference: $(STAMP)
-	rm -rf results-ci
-	$(BIN)/snakemake --cores $(CORES) --config profile=ci results=results-ci \
+	rm -rf results-$(REF_PROFILE)
+	$(BIN)/snakemake --cores $(CORES) --config profile=$(REF_PROFILE) results=results-$(REF_PROFILE) \
 	  --omit-from reference_check
-	$(BIN)/python -m mechrepro.archive results-ci results/reference config ci \
+	$(BIN)/python -m mechrepro.archive results-$(REF_PROFILE) results/reference config $(REF_PROFILE) \
 	  $$($(BIN)/python -c "import yaml;print(' '.join(yaml.safe_load(open('config/config.yaml'))['papers']))")
 
 ## Speed benchmarks (ratios measured side by side)
@@ -52,4 +54,5 @@ screenshot:
 
 clean:
 	rm -rf results/saw_chain results/rolling_shear results/joint_wear results/disk_tension \
-	  results/chain_drive results/report results/archive results-ci .snakemake
+	  results/chain_drive results/report results/archive results/rerun_plan.* results-ci \
+	  results-default .snakemake
