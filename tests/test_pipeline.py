@@ -87,8 +87,12 @@ def test_pipeline_writes_every_output_and_matches_reference(workflow):
     page = (res / "report" / "index.html").read_text()
     imgs = Images()
     imgs.feed(page)
-    assert len(imgs.src) == sum(len(yaml.safe_load((work / "config" / "papers" / f"{p}.yaml")
-                                                   .read_text())["figures"]) for p in papers)
+    n_figures = sum(len(yaml.safe_load((work / "config" / "papers" / f"{p}.yaml")
+                                       .read_text())["figures"]) for p in papers)
+    assert len(imgs.src) == n_figures + 1  # + the cross-paper cost-of-accuracy figure
+    assert "cost_of_accuracy_all.png" in imgs.src
+    summary = (res / "report" / "summary.csv").read_text().splitlines()
+    assert [line.split(",")[0] for line in summary[1:]] == papers
     for src in imgs.src:
         assert (res / "report" / src).resolve().exists(), src
     assert page.count('class="pass"') + page.count('class="fail"') > 0
