@@ -3,7 +3,7 @@
 Every solver run records its own wall time with :func:`time_call`.  A study over the
 paper's **resolution** knob is then condensed by :func:`cost_of_accuracy` into one
 dataset (dimension ``resolution``) holding, per quantity of interest, the error against
-the reference (``exact`` solution, the ``finest`` run, or a ``richardson`` extrapolation)
+the reference (``exact`` solution or the ``finest`` run)
 and the wall time; :func:`plot` draws it, the same way for all papers.
 """
 from __future__ import annotations
@@ -30,18 +30,6 @@ def time_call(fn, *args, min_time: float = 0.05, max_repeat: int = 50, **kwargs)
         best = min(best, time.perf_counter() - t0)
         n += 1
     return result, best
-
-
-def max_rel_error(value, reference, scale=None) -> float:
-    """max |value - reference| / scale, with scale = max |reference| by default."""
-    value, reference = np.asarray(value, float), np.asarray(reference, float)
-    scale = np.max(np.abs(reference)) if scale is None else scale
-    return float(np.max(np.abs(value - reference)) / scale)
-
-
-def richardson(coarse: float, fine: float, ratio: float, order: float) -> float:
-    """Richardson extrapolation of a quantity computed at step h and h/ratio."""
-    return fine + (fine - coarse) / (ratio ** order - 1.0)
 
 
 def observed_order(h, err) -> float:

@@ -81,7 +81,7 @@ def _format_error(err: jsonschema.ValidationError, where: str) -> str:
     return f"{where}: {loc}: {err.message}"
 
 
-def _validate(instance, schema, where: str, base_uri: str) -> None:
+def _validate(instance, schema, where: str) -> None:
     registry_cls = jsonschema.validators.validator_for(schema)
     validator = registry_cls(schema)
     errors = sorted(validator.iter_errors(instance), key=lambda e: list(map(str, e.absolute_path)))
@@ -117,7 +117,7 @@ def load_paper(path: str | Path, profile: str = "default") -> PaperConfig:
     except (OSError, yaml.YAMLError) as exc:
         raise ConfigError(f"{where}: cannot read: {exc}") from exc
     sdir = _schema_dir(path)
-    _validate(raw, load_schema("paper.schema.json", sdir), where, sdir.as_uri())
+    _validate(raw, load_schema("paper.schema.json", sdir), where)
     for name, p in raw["parameters"].items():
         if p["unit"] not in UNITS:
             raise ConfigError(f"{where}: parameters.{name}.unit = {p['unit']!r}: "
@@ -177,7 +177,7 @@ def _make_run(raw, scene_name, study, index, point, run_schema, where) -> dict:
     record = {"effects": list(scene["effects"]), "resolution": resolution,
               "parameters": params, "options": scene.get("options", {})}
     origin = f"{where} (run {scene_name if study is None else f'{study}[{index}]'})"
-    _validate(record, run_schema, origin, "")
+    _validate(record, run_schema, origin)
     si, units = {}, {}
     for k, v in params.items():
         si[k], units[k] = to_si(v, raw["parameters"][k]["unit"])

@@ -39,19 +39,6 @@ def backward_differences(x, dt, v0, a0):
     return v, a
 
 
-def backward_differences_loop(x, dt, v0, a0):
-    """The same recursion step by step in Python (the paper's MATLAB-style loop).
-
-    Kept as the reference the vectorised form is tested against and benchmarked with.
-    """
-    n = len(x)
-    v, a = [v0] + [0.0] * (n - 1), [a0] + [0.0] * (n - 1)
-    for i in range(1, n):
-        v[i] = (x[i] - x[i - 1]) / dt
-        a[i] = (v[i] - v[i - 1]) / dt
-    return np.array(v), np.array(a)
-
-
 def roundoff_acceleration(x_max, dt):
     """Bound of the round-off in a second backward difference [m/s^2].
 
