@@ -31,11 +31,14 @@ class SelPSOSettings:
     tol: float = 1e-11
     init_scale: float = 1.0
     v_max: float = float("inf")
+    #: natural selection (Sec. 2.1); off only to measure what it buys (tests, benchmark)
+    selection: bool = True
 
     @classmethod
     def from_dict(cls, d: dict) -> "SelPSOSettings":
-        return cls(**{k: (float(v) if k not in ("swarm", "max_iter") else int(v))
-                      for k, v in d.items() if k in cls.__dataclass_fields__})
+        conv = {"swarm": int, "max_iter": int, "selection": bool}
+        return cls(**{k: conv.get(k, float)(v) for k, v in d.items()
+                      if k in cls.__dataclass_fields__})
 
 
 @dataclass
@@ -105,9 +108,15 @@ def selpso(fitness, x_init, settings: SelPSOSettings, rng: np.random.Generator,
         ib = int(np.argmin(pG))
         if pG[ib] < gG:
             gbest, gG = pbest[ib].copy(), float(pG[ib])
-        # natural selection: the worse half continues from the better half's state
-        order = np.argsort(G, kind="stable")
-        X[order[-half:]] = X[order[:half]]
-        V[order[-half:]] = V[order[:half]]
+        if st.selection:
+            natural_selection(X, V, G, half)
         history.append(gG)
     return SelPSOResult(gbest, gG, k, evals, gG < st.tol, np.asarray(history))
+
+
+def natural_selection(X: np.ndarray, V: np.ndarray, G: np.ndarray, half: int) -> None:
+    """Sec. 2.1: rank by fitness G; the worse half takes the better half's positions and
+    velocities (in place); pbest and gbest are kept by the caller."""
+    order = np.argsort(G, kind="stable")
+    X[order[-half:]] = X[order[:half]]
+    V[order[-half:]] = V[order[:half]]
