@@ -25,4 +25,3 @@ rule all:
     input:
         f"{RESULTS}/report/index.html",
         f"{RESULTS}/archive/manifest.json",
-        f"{RESULTS}/archive/reference_check.txt",

@@ -15,13 +15,16 @@ from mechrepro.config import load_paper  # noqa: E402
 
 def main():
     papers = yaml.safe_load((ROOT / "config/config.yaml").read_text())["papers"]
-    print("| paper | parameter | value | unit | why |")
-    print("|---|---|---|---|---|")
+    print("| paper | parameter | value | unit | plausible range / calibration | why |")
+    print("|---|---|---|---|---|---|")
     for paper in papers:
         cfg = load_paper(ROOT / "config" / "papers" / f"{paper}.yaml")
         for name, p in cfg.assumed().items():
             why = " ".join(str(p["why"]).split()).replace("|", "/")
-            print(f"| {paper} | `{name}` | {p['value']} | {p['unit']} | {why} |")
+            how = (f"{p['range'][0]} … {p['range'][1]}" if "range" in p else
+                   f"calibrated on `{p['calibrated_on']}`" if "calibrated_on" in p else
+                   "numerical setting" if p.get("numerical") else "")
+            print(f"| {paper} | `{name}` | {p['value']} | {p['unit']} | {how} | {why} |")
 
 
 if __name__ == "__main__":

@@ -36,3 +36,25 @@ def copy_workflow(dst: Path) -> Path:
         (shutil.copytree if src.is_dir() else shutil.copy2)(src, dst / item)
     shutil.copytree(ROOT / "results" / "reference", dst / "results" / "reference")
     return dst
+
+
+SNAKEMAKE = [sys.executable, "-m", "snakemake", "--cores", "2", "--config", "profile=ci"]
+
+
+def snakemake(work, *args, check=True, env=None):
+    import subprocess
+
+    proc = subprocess.run([*SNAKEMAKE, *args], cwd=work, capture_output=True, text=True,
+                          timeout=2400, env=env)
+    if check and proc.returncode != 0:
+        raise AssertionError(f"snakemake {' '.join(args)} failed:\n{proc.stdout[-4000:]}\n"
+                             f"{proc.stderr[-4000:]}")
+    return proc.stdout + proc.stderr
+
+
+@pytest.fixture(scope="session")
+def workflow(tmp_path_factory):
+    """The ci-profile pipeline, run once per test session in a copy of the workflow."""
+    work = copy_workflow(tmp_path_factory.mktemp("wf"))
+    log = snakemake(work)
+    return work, log

@@ -1,4 +1,4 @@
-"""Shared framework: effects, atomic netCDF writer, gather, validation table, drift check."""
+"""Shared framework: effects, atomic netCDF writer, gather, cost of accuracy."""
 import math
 
 import numpy as np
@@ -7,9 +7,7 @@ import xarray as xr
 
 from mechrepro import io as mio
 from mechrepro.accuracy import cost_of_accuracy, observed_order, time_call
-from mechrepro.archive import compare
 from mechrepro.effects import EffectRegistry, UnknownEffect
-from mechrepro.validation import check, compare as vcompare, info, read_table, write_table
 
 RUN = {"paper": "saw_chain", "scene": "s", "run": "s", "study": None, "sweep": {},
        "effects": ["a"], "resolution": {"K": 3}, "parameters": {"x": 1.0},
@@ -86,37 +84,6 @@ def test_gather_stacks_scalars_and_equal_shapes(tmp_path):
     assert g["s"].values.tolist() == [3.0, 5.0] and g["y"].shape == (2, 3)
     assert "z" not in g
     mio.check_cf(g)
-
-
-def test_validation_status_is_computed():
-    rows = [vcompare("a", "Fig. 1", 10.0, 10.05, "m", 0.01),
-            vcompare("b", "Fig. 1", 10.0, 11.0, "m", 0.01),
-            check("c", "Sec. 2", False), check("d", "Sec. 2", True),
-            info("e", "ours", 3.0, "s")]
-    assert [r.status for r in rows] == ["pass", "fail", "fail", "pass", "info"]
-    assert rows[1].rel_error == pytest.approx(0.1)
-    assert math.isnan(rows[4].rel_error)
-
-
-def test_validation_table_columns_and_duplicates(tmp_path):
-    path = write_table([vcompare("a", "Fig. 1", 1.0, 1.0, "m", 0.1)], tmp_path / "validation.csv")
-    assert path.read_text().splitlines()[0] == \
-        "quantity,source,paper_value,reproduced_value,unit,rel_error,tolerance,status"
-    assert read_table(path)[0]["status"] == "pass"
-    with pytest.raises(ValueError, match="duplicate"):
-        write_table([check("a", "x", True)] * 2, tmp_path / "v2.csv")
-
-
-def test_drift_check_reports_readable_differences():
-    ref = [{"quantity": "a", "reproduced_value": "1.0", "drift_rtol": "1e-6"},
-           {"quantity": "b", "reproduced_value": "2.0", "drift_rtol": "1e-6"}]
-    cur = [{"quantity": "a", "reproduced_value": "1.0000000001"},
-           {"quantity": "b", "reproduced_value": "2.1"},
-           {"quantity": "c", "reproduced_value": "3"}]
-    problems = compare(cur, ref)
-    assert len(problems) == 2
-    assert any("b: reference 2.0, now 2.1" in p for p in problems)
-    assert any("c: new quantity" in p for p in problems)
 
 
 def test_cost_of_accuracy_helpers():

@@ -13,19 +13,12 @@ from pathlib import Path
 import pytest
 import yaml
 
-from conftest import copy_workflow
+from conftest import SNAKEMAKE, snakemake
 from mechrepro.provenance import file_sha256
+from mechrepro.reference import settings, variant_env
+from mechrepro.validation import read_table
 
 pytestmark = pytest.mark.slow
-SNAKEMAKE = [sys.executable, "-m", "snakemake", "--cores", "2", "--config", "profile=ci"]
-
-
-def snakemake(work, *args, check=True):
-    proc = subprocess.run([*SNAKEMAKE, *args], cwd=work, capture_output=True, text=True,
-                          timeout=1500)
-    if check and proc.returncode != 0:
-        raise AssertionError(f"snakemake {' '.join(args)} failed:\n{proc.stdout[-4000:]}\n{proc.stderr[-4000:]}")
-    return proc.stdout + proc.stderr
 
 
 def scheduled(dry_run_output: str) -> set[str]:
@@ -54,13 +47,6 @@ class Images(HTMLParser):
             self.src.append(dict(attrs)["src"])
 
 
-@pytest.fixture(scope="module")
-def workflow(tmp_path_factory):
-    work = copy_workflow(tmp_path_factory.mktemp("wf"))
-    log = snakemake(work)
-    return work, log
-
-
 def test_pipeline_writes_every_output_and_matches_reference(workflow):
     work, log = workflow
     papers = yaml.safe_load((work / "config" / "config.yaml").read_text())["papers"]
@@ -75,7 +61,8 @@ def test_pipeline_writes_every_output_and_matches_reference(workflow):
         assert list((res / paper / "benchmarks").glob("*.tsv"))
         assert not list(res.rglob("*.part*")), "temporary files left behind"
     # the drift check ran against the committed reference of every paper
-    check = (res / "archive" / "reference_check.txt").read_text()
+    check = (res / "report" / "reference_check.txt").read_text()
+    assert check.splitlines()[0] == "reference check, profile ci: OK", check
     for paper in papers:
         assert re.search(rf"^{paper}: \d+ quantities within tolerance", check, re.M), check
     # manifest: checksums of every archived file
@@ -116,8 +103,7 @@ def test_one_parameter_reruns_exactly_its_run_notebook_and_report(workflow):
         path.write_text(original)
     assert jobs == {"run_params[paper=saw_chain, run=speed_12000]",
                     "solve[paper=saw_chain, run=speed_12000]",
-                    "notebook_saw_chain", "summary", "report", "archive", "reference_check",
-                    "all"}, jobs
+                    "notebook_saw_chain", "summary", "report", "archive", "all"}, jobs
     assert "Nothing to be done" in snakemake(work, "-n")
 
 
@@ -132,3 +118,24 @@ def test_bad_config_stops_before_any_job(workflow, tmp_path):
         path.write_text(original)
     assert proc.returncode != 0
     assert "parameters.tie_strap_pitch = -8.91: must be > 0" in proc.stderr + proc.stdout
+
+
+def test_another_platform_gives_the_same_verdicts(workflow):
+    """CI re-runs the ci pipeline under the platform variant of config/reference.yaml
+    (other BLAS kernels, numpy SIMD at its baseline): it must pass the reference check,
+    and no verdict may differ from the native run."""
+    work, _ = workflow
+    conf = settings(work / "config")
+    name = conf["ci_variant"]
+    out = f"results-{name}"
+    snakemake(work, f"results={out}", env=variant_env(conf["variants"][name]))
+    check = (work / out / "report" / "reference_check.txt").read_text()
+    assert check.splitlines()[0] == "reference check, profile ci: OK", check
+    papers = yaml.safe_load((work / "config" / "config.yaml").read_text())["papers"]
+    for paper in papers:
+        native = {r["quantity"]: r["status"] for r in
+                  read_table(work / "results" / paper / "tables" / "validation.csv")}
+        other = {r["quantity"]: r["status"] for r in
+                 read_table(work / out / paper / "tables" / "validation.csv")}
+        assert native == other, {q: (native[q], other.get(q)) for q in native
+                                 if native[q] != other.get(q)}

@@ -10,7 +10,12 @@ resolution + parameter overrides) and **studies** (sweeps over a scene).  Loadin
    against ``config/schema/<paper>.run.schema.json`` (allowed effects, parameter ranges,
    resolution ranges), so a bad value is reported with file, key, value and allowed range
    before anything runs;
-4. parameters are converted to SI (:mod:`mechrepro.units`).
+4. parameters are converted to SI (:mod:`mechrepro.units`);
+5. the **variant runs** that re-check the verdicts are added (``<run>@finer``,
+   ``<run>@<param>-lo|hi``; see docs/VALIDATION.md): for every verdict row of the
+   ``reported:`` block, each scene or study it ``reads`` is re-run at the next finer
+   resolution (``refine:``) and at both ends of the ``range`` of every assumed constant the
+   row ``depends_on``.
 
 A run record is plain JSON (str, int, float, list, dict) so that Snakemake's params
 trigger can see every change.
@@ -44,6 +49,21 @@ class PaperConfig:
     raw: dict
     runs: dict[str, dict] = field(default_factory=dict)
     studies: dict[str, list[str]] = field(default_factory=dict)
+    # variant name -> names (scenes and studies) re-run under it
+    variants: dict[str, list[str]] = field(default_factory=dict)
+
+    @property
+    def reported(self) -> dict[str, dict]:
+        """What the paper reports (docs/VALIDATION.md), with ``kind`` filled in."""
+        return {q: {"kind": "compare", **spec} for q, spec in self.raw.get("reported", {}).items()}
+
+    @property
+    def base_runs(self) -> list[str]:
+        return [r for r in self.runs if "@" not in r]
+
+    @property
+    def base_studies(self) -> list[str]:
+        return [s for s in self.studies if "@" not in s]
 
     @property
     def figures(self) -> list[str]:
@@ -52,6 +72,11 @@ class PaperConfig:
     @property
     def tables(self) -> list[str]:
         return list(self.raw.get("tables", ["validation"]))
+
+    @property
+    def notebook_tables(self) -> list[str]:
+        """Tables the notebook writes (validation.csv is the framework's, when declared)."""
+        return [t for t in self.tables if not (t == "validation" and "reported" in self.raw)]
 
     def assumed(self) -> dict[str, dict]:
         """Parameters the paper does not give, with value, unit and justification."""
@@ -128,6 +153,9 @@ def load_paper(path: str | Path, profile: str = "default") -> PaperConfig:
             raise ConfigError(f"{where}: profile {profile!r} not defined (have: default, "
                               f"{', '.join(profiles)})")
         raw = _deep_merge(raw, profiles[profile])
+        # an overlay can break what the file alone satisfied: check the merged result too
+        _validate({k: v for k, v in raw.items() if k != "profiles"},
+                  load_schema("paper.schema.json", sdir), f"{where} (profile {profile})")
     paper = raw["paper"]
     run_schema = load_schema(f"{paper}.run.schema.json", sdir)
     cfg = PaperConfig(paper=paper, path=where, profile=profile,
@@ -144,7 +172,115 @@ def load_paper(path: str | Path, profile: str = "default") -> PaperConfig:
             cfg.runs[run] = _make_run(raw, spec["scene"], study, i, point, run_schema, where)
             names.append(run)
         cfg.studies[study] = names
+    if "reported" in raw:
+        _check_reported(raw, where)
+        _add_variants(cfg, raw, run_schema, where)
     return cfg
+
+
+VERDICT_KINDS = ("compare", "bound", "check")
+
+
+def _check_reported(raw: dict, where: str) -> None:
+    """Cross-references of the reported block: reads, depends_on, calibrations, ranges."""
+    names = set(raw["scenes"]) | set(raw.get("studies", {}))
+    params = raw["parameters"]
+    reported = raw["reported"]
+    for q, spec in reported.items():
+        for r in spec["reads"]:
+            if r not in names:
+                raise ConfigError(f"{where}: reported.{q}.reads: {r!r} is neither a scene nor a "
+                                  f"study; allowed: {', '.join(sorted(names))}")
+        for p in spec.get("depends_on", []):
+            if p not in params or not params[p].get("assumed"):
+                raise ConfigError(f"{where}: reported.{q}.depends_on: {p!r} is not an assumed "
+                                  f"parameter")
+            if "range" not in params[p]:
+                raise ConfigError(f"{where}: reported.{q}.depends_on: {p!r} has no range "
+                                  f"(parameters.{p}.range: [lo, hi] with range_why)")
+    for p, spec in params.items():
+        if not spec.get("assumed"):
+            continue
+        how = [k for k in ("range", "calibrated_on", "numerical") if k in spec]
+        if len(how) != 1:
+            raise ConfigError(f"{where}: parameters.{p}: an assumed constant declares exactly one "
+                              f"of range (+ range_why), calibrated_on, numerical; got {how or 'none'}")
+        if "range" in spec and "range_why" not in spec:
+            raise ConfigError(f"{where}: parameters.{p}.range: missing range_why")
+        if "calibrated_on" in spec:
+            target = spec["calibrated_on"]
+            if reported.get(target, {}).get("evidence") != "calibration":
+                raise ConfigError(f"{where}: parameters.{p}.calibrated_on = {target!r}: must name "
+                                  f"a reported quantity with evidence: calibration")
+        if "range" in spec:
+            lo, hi = spec["range"]
+            v = spec["value"]
+            if all(isinstance(x, (int, float)) for x in (lo, hi, v)) and not lo <= v <= hi:
+                raise ConfigError(f"{where}: parameters.{p}: value {v} outside its range [{lo}, {hi}]")
+
+
+def _variant_names(spec: dict) -> list[str]:
+    if spec["kind"] not in VERDICT_KINDS:
+        return []
+    out = ["finer"] if spec.get("finer", True) else []
+    for p in spec.get("depends_on", []):
+        out += [f"{p}-lo", f"{p}-hi"]
+    return out
+
+
+def _add_variants(cfg: PaperConfig, raw: dict, run_schema: dict, where: str) -> None:
+    """Add the variant runs (and studies) that the verdict rows need."""
+    wanted: dict[str, dict[str, list[str]]] = {}  # variant -> name -> quantities needing it
+    for q, spec in cfg.reported.items():
+        for v in _variant_names(spec):
+            for name in spec["reads"]:
+                wanted.setdefault(v, {}).setdefault(name, []).append(q)
+    for variant, names in wanted.items():
+        cfg.variants[variant] = sorted(names)
+        for name, quantities in sorted(names.items()):
+            why = f"variant {variant} of {name!r}, needed by {', '.join(quantities)}"
+            if name in raw["scenes"]:
+                base = cfg.runs[name]
+                cfg.runs[f"{name}@{variant}"] = _variant_run(raw, base, variant, run_schema, where, why)
+            else:
+                runs = []
+                for run in cfg.studies[name]:
+                    vr = f"{run}@{variant}"
+                    cfg.runs[vr] = _variant_run(raw, cfg.runs[run], variant, run_schema, where, why)
+                    runs.append(vr)
+                cfg.studies[f"{name}@{variant}"] = runs
+
+
+def _variant_run(raw, base: dict, variant: str, run_schema, where, why) -> dict:
+    scene = raw["scenes"][base["scene"]]
+    resolution = copy.deepcopy(base["resolution"])
+    params = {k: v["value"] for k, v in raw["parameters"].items()}
+    params.update(scene.get("parameters", {}))
+    params.update({k: v for k, v in base["sweep"].items() if k in params})
+    if variant == "finer":
+        refine = raw.get("refine", {})
+        for key, value in resolution.items():
+            if key not in refine:
+                raise ConfigError(f"{where}: refine: no factor for resolution key {key!r} "
+                                  f"(scene {base['scene']!r}; {why}); add refine.{key}")
+            if isinstance(value, bool) or not isinstance(value, (int, float)):
+                raise ConfigError(f"{where}: refine.{key}: resolution value {value!r} of scene "
+                                  f"{base['scene']!r} is not a number")
+            fine = value * refine[key]
+            resolution[key] = int(round(fine)) if isinstance(value, int) else float(fine)
+    else:
+        p, end = variant.rsplit("-", 1)
+        # a scene or sweep that sets the constant itself keeps its own value
+        if p not in scene.get("parameters", {}) and p not in base["sweep"]:
+            params[p] = raw["parameters"][p]["range"][0 if end == "lo" else 1]
+    record = {"effects": base["effects"], "resolution": resolution, "parameters": params,
+              "options": base["options"]}
+    _validate(record, run_schema, f"{where} ({why})")
+    si, units = {}, {}
+    for k, v in params.items():
+        si[k], units[k] = to_si(v, raw["parameters"][k]["unit"])
+    return {**base, "run": f"{base['run']}@{variant}", "variant": variant,
+            "resolution": resolution, "parameters": si, "units": units}
 
 
 def _sweep_points(spec: dict, where: str, study: str) -> list[dict]:

@@ -60,6 +60,7 @@ def provenance_attrs(run: dict) -> dict:
         "scene": run["scene"],
         "run": run["run"],
         "study": run.get("study") or "",
+        "variant": run.get("variant") or "",
         "sweep": json.dumps(run.get("sweep", {}), sort_keys=True),
         "effects": json.dumps(run["effects"]),
         "resolution": json.dumps(run["resolution"], sort_keys=True),

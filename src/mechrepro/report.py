@@ -12,6 +12,7 @@ from pathlib import Path
 from .config import load_paper
 from .io import write_text
 from .provenance import code_version
+from .validation import EVIDENCE, STATUSES, counts as evidence_counts
 
 CSS = """
 body{font-family:system-ui,sans-serif;margin:2em auto;max-width:1150px;color:#222;line-height:1.4}
@@ -22,6 +23,13 @@ th{background:#f0f0f0}
 tr.pass td.status{background:#c8efc8;font-weight:bold}
 tr.fail td.status{background:#f6c3c3;font-weight:bold}
 tr.info td.status{background:#e4e4f4}
+tr.inconclusive td.status{background:#f6e3b0;font-weight:bold}
+tr.nc td{color:#777}
+.b-inconclusive{background:#f6e3b0}
+nav.toc{background:#f7f7f7;padding:.4em 1em;border:1px solid #ddd}
+nav.toc a{margin-right:1em}
+pre.check{background:#f4f4f4;padding:.6em;font-size:12px;white-space:pre-wrap}
+pre.drift{background:#fbe0e0}
 .badge{display:inline-block;padding:2px 8px;border-radius:8px;margin-right:6px;font-size:13px}
 .b-pass{background:#c8efc8}.b-fail{background:#f6c3c3}.b-info{background:#e4e4f4}
 .claim{background:#fff8e0;border-left:4px solid #e0b000;padding:.5em 1em}
@@ -47,35 +55,58 @@ def _fmt(cell: str) -> str:
     return html.escape(f"{x:.6g}")
 
 
-def paper_section(paper: str, results: Path, config_dir: Path, profile: str, out_dir: Path) -> tuple[str, Counter]:
+def _evidence_table(rows: list[dict]) -> str:
+    c = evidence_counts(rows)
+    head = "".join(f"<th>{s}</th>" for s in STATUSES)
+    body = "".join(f"<tr><td>{e}{' (counted)' if e == 'independent' else ''}</td>"
+                   + "".join(f'<td class="b-{s}">{c.get(e, {}).get(s, 0)}</td>' for s in STATUSES)
+                   + "</tr>" for e in EVIDENCE if e in c)
+    return f"<table><tr><th>evidence</th>{head}</tr>{body}</table>"
+
+
+def paper_section(paper: str, results: Path, config_dir: Path, profile: str,
+                  out_dir: Path) -> tuple[str, dict]:
     cfg = load_paper(config_dir / "papers" / f"{paper}.yaml", profile)
     root = results / paper
     claim = json.loads((root / "claim.json").read_text())
-    head, rows = _read_csv(root / "tables" / "validation.csv")
-    notes = dict(_read_csv(root / "tables" / "validation_notes.csv")[1]) if (
-        root / "tables" / "validation_notes.csv").exists() else {}
-    si = head.index("status")
-    counts = Counter(r[si] for r in rows)
+    with open(root / "tables" / "validation.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    head = [h for h in rows[0]] if rows else []
+    ind = Counter(r["status"] for r in rows if r.get("evidence") == "independent")
     parts = [f'<h2 id="{paper}">{html.escape(paper)} &mdash; {html.escape(cfg.raw.get("title", ""))}</h2>',
              f'<p class="note">{html.escape(cfg.source)}</p>',
-             "".join(f'<span class="badge b-{s}">{s}: {counts.get(s, 0)}</span>'
-                     for s in ("pass", "fail", "info")),
+             "<p>independent rows: " + "".join(
+                 f'<span class="badge b-{s}">{s}: {ind.get(s, 0)}</span>'
+                 for s in ("pass", "fail", "inconclusive")) + "</p>",
              f'<p class="claim"><b>Replication claim: {html.escape(claim["claim"])}.</b> '
              f'{html.escape(claim["text"])}</p>',
-             "<h3>Validation table</h3><table><tr>"
-             + "".join(f"<th>{html.escape(h)}</th>" for h in head) + "<th>note</th></tr>"]
+             "<h3>Rows by evidence class</h3>"
+             "<p class='note'>Only <b>independent</b> rows (no constant was fitted to them) count "
+             "in the claim; the others are shown, labelled, not counted.</p>", _evidence_table(rows)]
+    flips = [r for r in rows if r["status"] == "inconclusive"]
+    if flips:
+        parts.append("<h3>Inconclusive verdicts, and what flips them</h3><ul>" + "".join(
+            f"<li><b>{html.escape(r['quantity'])}</b>: {html.escape(r.get('note', ''))}</li>"
+            for r in flips) + "</ul>")
+    parts.append("<h3>Validation table</h3><table><tr>"
+                 + "".join(f"<th>{html.escape(h)}</th>" for h in head) + "</tr>")
     for r in rows:
-        cells = "".join(f'<td class="{h}">{_fmt(c)}</td>' for h, c in zip(head, r))
-        parts.append(f'<tr class="{r[si]}">{cells}<td class="note">'
-                     f'{html.escape(notes.get(r[0], ""))}</td></tr>')
+        counted = "" if r.get("evidence") == "independent" else " nc"
+        cells = "".join(f'<td class="{h}">{_fmt(r[h])}</td>' for h in head)
+        parts.append(f'<tr class="{r["status"]}{counted}">{cells}</tr>')
     parts.append("</table>")
     assumed = cfg.assumed()
     if assumed:
         parts.append("<h3>Assumed constants (not given by the paper)</h3><table>"
-                     "<tr><th>parameter</th><th>value</th><th>unit</th><th>why</th></tr>")
+                     "<tr><th>parameter</th><th>value</th><th>unit</th><th>plausible range / "
+                     "calibration</th><th>why</th></tr>")
         for k, v in assumed.items():
+            rng = (f"{v['range']} ({v.get('range_why', '')})" if "range" in v else
+                   f"calibrated on {v['calibrated_on']}" if "calibrated_on" in v else
+                   "numerical setting" if v.get("numerical") else "")
             parts.append(f"<tr><td>{html.escape(k)}</td><td>{html.escape(str(v['value']))}</td>"
-                         f"<td>{html.escape(v['unit'])}</td><td>{html.escape(v['why'])}</td></tr>")
+                         f"<td>{html.escape(v['unit'])}</td><td>{html.escape(rng)}</td>"
+                         f"<td>{html.escape(v['why'])}</td></tr>")
         parts.append("</table>")
     parts.append("<h3>Figures</h3>")
     for fig in cfg.figures:
@@ -90,7 +121,7 @@ def paper_section(paper: str, results: Path, config_dir: Path, profile: str, out
                      + "".join(f"<th>{html.escape(h)}</th>" for h in h2) + "</tr>"
                      + "".join("<tr>" + "".join(f"<td>{_fmt(c)}</td>" for c in row) + "</tr>"
                                for row in r2) + "</table>")
-    return "\n".join(parts), counts
+    return "\n".join(parts), {"independent": ind, "claim": claim}
 
 
 def summary_section(out_dir: Path) -> str:
@@ -117,23 +148,31 @@ def write_report(out: str, results: str, config_dir: str, papers: list[str], pro
     out, results, config_dir = Path(out), Path(results), Path(config_dir)
     sections, summary = [], []
     for paper in papers:
-        text, counts = paper_section(paper, results, config_dir, profile, out.parent)
+        text, info = paper_section(paper, results, config_dir, profile, out.parent)
         sections.append(text)
-        claim = json.loads((results / paper / "claim.json").read_text())
+        ind, claim = info["independent"], info["claim"]
         n_assumed = len(load_paper(config_dir / "papers" / f"{paper}.yaml", profile).assumed())
         summary.append(f'<tr><td><a href="#{paper}">{paper}</a></td><td>{claim["claim"]}</td>'
-                       + "".join(f'<td class="b-{s}">{counts.get(s, 0)}</td>'
-                                 for s in ("pass", "fail", "info"))
+                       + "".join(f'<td class="b-{s}">{ind.get(s, 0)}</td>'
+                                 for s in ("pass", "fail", "inconclusive"))
                        + f'<td>{n_assumed}</td><td class="note">{html.escape(claim["text"])}</td></tr>')
+    check_file = out.parent / "reference_check.txt"
+    check = check_file.read_text() if check_file.exists() else "not run"
+    drift = "" if check.splitlines()[0].endswith(": OK") else " drift"
+    toc = "".join(f'<a href="#{p}">{p}</a>' for p in papers)
     now = _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
     page = f"""<!doctype html><html><head><meta charset="utf-8">
 <title>mechrepro reproduction report</title><style>{CSS}</style></head><body>
 <h1>mechrepro reproduction report</h1>
 <p class="note">profile <b>{html.escape(profile)}</b> &middot; code {html.escape(code_version())} &middot; {now}</p>
-<h2>Replication summary</h2>
-<table><tr><th>paper</th><th>claim</th><th>pass</th><th>fail</th><th>info</th><th>assumed constants</th><th>what did not reproduce, and why</th></tr>
+<nav class="toc"><a href="#summary">summary</a><a href="#reference">reference check</a>{toc}<a href="#cost">cost of accuracy</a></nav>
+<h2 id="summary">Replication summary</h2>
+<p class="note">Counts are of <b>independent</b> rows only (see each paper's rows by evidence class).</p>
+<table><tr><th>paper</th><th>claim</th><th>pass</th><th>fail</th><th>inconclusive</th><th>assumed constants</th><th>what did not reproduce, and why</th></tr>
 {''.join(summary)}</table>
-{summary_section(out.parent)}
+<h2 id="reference">Reference check</h2>
+<pre class="check{drift}">{html.escape(check)}</pre>
+<div id="cost">{summary_section(out.parent)}</div>
 {''.join(sections)}
 </body></html>
 """

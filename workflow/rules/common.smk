@@ -24,8 +24,8 @@ except ConfigError as exc:
 
 wildcard_constraints:
     paper="|".join(PAPERS),
-    run="[a-z0-9_]+(-[0-9]{3})?",
-    study="[a-z0-9_]+",
+    run="[a-z0-9_]+(-[0-9]{3})?(@[a-z0-9_]+(-lo|-hi)?)?",
+    study="[a-z0-9_]+(@[a-z0-9_]+(-lo|-hi)?)?",
 
 
 def code(*relpaths):
@@ -45,17 +45,26 @@ def model_code(paper):
     return code(*SOLVER_CORE, f"models/{paper}")
 
 
-def runs_of(paper):
-    return expand(f"{RESULTS}/{paper}/runs/{{run}}.nc", run=list(CFG[paper].runs))
+def runs_of(paper, variants=False):
+    """Run files of a paper; with ``variants``, also the verdict re-check runs (``run@variant``)."""
+    names = list(CFG[paper].runs) if variants else CFG[paper].base_runs
+    return expand(f"{RESULTS}/{paper}/runs/{{run}}.nc", run=names)
 
 
-def studies_of(paper):
-    return expand(f"{RESULTS}/{paper}/studies/{{study}}.nc", study=list(CFG[paper].studies))
+def studies_of(paper, variants=False):
+    names = list(CFG[paper].studies) if variants else CFG[paper].base_studies
+    return expand(f"{RESULTS}/{paper}/studies/{{study}}.nc", study=names)
+
+
+def migrated(paper):
+    """Papers whose validation table the framework builds from their `reported:` block."""
+    return "reported" in CFG[paper].raw
 
 
 def figures_of(paper):
     return expand(f"{RESULTS}/{paper}/figures/{{f}}.png", f=CFG[paper].figures)
 
 
-def tables_of(paper):
-    return expand(f"{RESULTS}/{paper}/tables/{{t}}.csv", t=CFG[paper].tables)
+def tables_of(paper, notebook_only=False):
+    names = CFG[paper].notebook_tables if notebook_only else CFG[paper].tables
+    return expand(f"{RESULTS}/{paper}/tables/{{t}}.csv", t=names)

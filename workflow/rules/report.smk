@@ -17,9 +17,28 @@ rule summary:
         "{BASE}/config {params.profile} {params.papers}"
 
 
+rule reference_check:
+    input:
+        tables=expand(f"{RESULTS}/{{paper}}/tables/validation.csv", paper=PAPERS),
+        reference=[str(f) for p in PAPERS
+                   for f in [BASE / "results/reference" / PROFILE / f"{p}.csv"] if f.exists()],
+        code=code("cli.py", "reference.py", "validation.py"),
+    output:
+        f"{RESULTS}/report/reference_check.txt",
+    params:
+        papers=PAPERS,
+        profile=PROFILE,
+    log:
+        f"{RESULTS}/logs/reference_check.log",
+    shell:
+        "PYTHONPATH={SRC} {PY} -m mechrepro.cli check-reference {output} {RESULTS} "
+        "{BASE}/results/reference {params.profile} {params.papers} > {log} 2>&1"
+
+
 rule report:
     input:
         summary=rules.summary.output,
+        check=rules.reference_check.output,
         figures=[f for p in PAPERS for f in figures_of(p)],
         tables=[f for p in PAPERS for f in tables_of(p)],
         claims=expand(f"{RESULTS}/{{paper}}/claim.json", paper=PAPERS),
@@ -30,16 +49,21 @@ rule report:
     params:
         papers=PAPERS,
         profile=PROFILE,
+    log:
+        f"{RESULTS}/logs/report.log",
     shell:
         "PYTHONPATH={SRC} {PY} -m mechrepro.cli report {output} {RESULTS} {BASE}/config "
-        "{params.profile} {params.papers}"
+        "{params.profile} {params.papers} > {log} 2>&1"
 
 
+# Only results that passed the reference check are archived (the job fails otherwise).
 rule archive:
     input:
         report=f"{RESULTS}/report/index.html",
+        check=rules.reference_check.output,
         notebooks=expand(f"{RESULTS}/{{paper}}/notebook.ipynb", paper=PAPERS),
-        runs=[f for p in PAPERS for f in runs_of(p)],
+        runs=[f for p in PAPERS for f in runs_of(p, variants=True)],
+        studies=[f for p in PAPERS for f in studies_of(p, variants=True)],
         configs=expand(str(BASE / "config/papers/{paper}.yaml"), paper=PAPERS),
         code=code("cli.py", "archive.py"),
     output:
@@ -48,21 +72,9 @@ rule archive:
     params:
         papers=PAPERS,
         profile=PROFILE,
+    log:
+        f"{RESULTS}/logs/archive.log",
     shell:
         "PYTHONPATH={SRC} {PY} -m mechrepro.cli archive {output.archive} {output.manifest} "
-        "{RESULTS} {BASE}/config {params.profile} {params.papers}"
-
-
-rule reference_check:
-    input:
-        tables=expand(f"{RESULTS}/{{paper}}/tables/validation.csv", paper=PAPERS),
-        manifest=f"{RESULTS}/archive/manifest.json",
-        code=code("cli.py", "archive.py"),
-    output:
-        f"{RESULTS}/archive/reference_check.txt",
-    params:
-        papers=PAPERS,
-        profile=PROFILE,
-    shell:
-        "PYTHONPATH={SRC} {PY} -m mechrepro.cli check-reference {output} {RESULTS} "
-        "{BASE}/results/reference {params.profile} {params.papers}"
+        "{RESULTS} {BASE}/config {params.profile} {params.papers} > {log} 2>&1 "
+        "|| {{ cat {log} >&2; exit 1; }}"

@@ -1,0 +1,232 @@
+"""Reference numbers that hold on any machine: tolerances measured across platform variants.
+
+``make reference`` (:func:`measure` then :func:`derive`) runs a profile once per platform
+variant of ``config/reference.yaml`` (other BLAS kernels, numpy SIMD limited to the
+baseline, another BLAS thread count) and writes ``results/reference/<profile>/<paper>.csv``:
+
+    quantity, reproduced_value, status, basis, spread, tolerance, variants
+
+``spread`` is the largest difference from the native value over the variants, and
+``tolerance = max(safety * spread, floor * |value|)``.  ``basis`` says what is compared:
+``value`` (value within tolerance and same verdict), ``verdict`` (only the status: a
+round-off-level residual, declared ``drift: verdict`` with a reason) or ``timing``
+(nothing: wall-clock quantities never enter the check).  A verdict that differs between
+the variants is refused: such a quantity is not well defined and must be fixed at its
+source.
+
+:func:`check` compares a results tree with the reference (the ``reference_check`` rule).
+"""
+from __future__ import annotations
+
+import csv
+import io
+import math
+import os
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import yaml
+
+from .config import load_paper
+from .io import write_text
+from .validation import read_table
+
+HEADER = ["quantity", "reproduced_value", "status", "basis", "spread", "tolerance", "variants"]
+
+
+class DriftError(RuntimeError):
+    pass
+
+
+class ResultFileError(ValueError):
+    """A result or reference file cannot be read as expected (names file, row, value)."""
+
+
+def settings(config_dir: str | Path) -> dict:
+    return yaml.safe_load((Path(config_dir) / "reference.yaml").read_text())
+
+
+def variant_env(spec: dict) -> dict:
+    env = dict(os.environ)
+    env.update({k: str(v) for k, v in spec.get("env", {}).items()})
+    return env
+
+
+def snakemake_args(spec: dict, papers: list[str]) -> list[str]:
+    threads = spec.get("threads")
+    if not threads:
+        return []
+    rules = ["solve"] + [f"validate_{p}" for p in papers]
+    return ["--set-threads", *[f"{r}={threads}" for r in rules]]
+
+
+def measure(profile: str, papers: list[str], workdir: str | Path, config_dir: str | Path,
+            cores: int = 2, variants: list[str] | None = None) -> dict[str, Path]:
+    """Run the pipeline of ``profile`` once per platform variant into ``workdir/<variant>``."""
+    conf = settings(config_dir)
+    names = variants or [v for v in conf["variants"] if v != "old_cpu"]
+    out = {}
+    for i, name in enumerate(names, 1):
+        spec = conf["variants"][name]
+        res = Path(workdir) / name
+        targets = [f"{res}/{p}/tables/validation.csv" for p in papers]
+        cmd = [sys.executable, "-m", "snakemake", "--cores", str(cores), "--config",
+               f"profile={profile}", f"results={res}", f"papers=[{','.join(papers)}]",
+               *snakemake_args(spec, papers), *targets]
+        t0 = time.perf_counter()
+        print(f"[reference {i}/{len(names)}] {name}: {spec or 'native kernels'}", flush=True)
+        proc = subprocess.run(cmd, env=variant_env(spec), capture_output=True, text=True)
+        if proc.returncode != 0:
+            raise RuntimeError(f"variant {name} failed:\n{proc.stderr[-3000:]}")
+        print(f"[reference {i}/{len(names)}] {name}: done in {time.perf_counter() - t0:.0f} s",
+              flush=True)
+        out[name] = res
+    return out
+
+
+def _float(text: str, where: str) -> float:
+    if text == "":
+        return math.nan
+    try:
+        return float(text)
+    except ValueError:
+        raise ResultFileError(f"{where}: {text!r} is not a number") from None
+
+
+def _table(path: Path, required: list[str]) -> list[dict]:
+    try:
+        rows = read_table(path)
+    except FileNotFoundError:
+        raise ResultFileError(f"{path}: missing") from None
+    except (csv.Error, UnicodeDecodeError) as exc:
+        raise ResultFileError(f"{path}: not a readable CSV ({exc})") from None
+    if rows and not set(required) <= set(rows[0]):
+        raise ResultFileError(f"{path}: columns {list(rows[0])}, expected at least {required}")
+    return rows
+
+
+def _values(path: Path) -> dict[str, tuple[float, str]]:
+    rows = _table(path, ["quantity", "reproduced_value", "status"])
+    out = {}
+    for i, r in enumerate(rows, 2):
+        where = f"{path}, line {i} ({r['quantity']}), reproduced_value"
+        out[r["quantity"]] = (_float(r["reproduced_value"], where), r["status"])
+    return out
+
+
+def _basis(cfg) -> dict[str, str]:
+    out = {}
+    for q, spec in cfg.reported.items():
+        out[q] = ("timing" if spec.get("timing") else spec.get("drift", "value"))
+    return out
+
+
+def derive(results: dict[str, Path], reference_dir: str | Path, config_dir: str | Path,
+           papers: list[str], profile: str, native: str = "native") -> None:
+    """Write the reference of ``profile`` from the variant runs of :func:`measure`."""
+    conf = settings(config_dir)
+    safety, floor = float(conf["safety"]), float(conf["floor"])
+    refused = []
+    for paper in papers:
+        cfg = load_paper(Path(config_dir) / "papers" / f"{paper}.yaml", profile)
+        basis = _basis(cfg)
+        tables = {v: _values(res / paper / "tables" / "validation.csv") for v, res in results.items()}
+        base = tables[native]
+        buf = io.StringIO()
+        w = csv.writer(buf, lineterminator="\n")
+        w.writerow(HEADER)
+        for q, (value, status) in base.items():
+            b = basis.get(q, "value")
+            others = {v: t.get(q, (math.nan, "missing")) for v, t in tables.items()}
+            if b != "timing":
+                flips = {v: s for v, (_, s) in others.items() if s != status}
+                if flips:
+                    refused.append(f"  {paper}.{q}: {status} natively, " + ", ".join(
+                        f"{s} under {v} ({others[v][0]!r})" for v, s in flips.items()))
+            spread = max((abs(x - value) for x, _ in others.values()
+                          if not (math.isnan(x) and math.isnan(value))), default=0.0)
+            if b == "value" and not math.isnan(value):
+                tol = max(safety * spread, floor * abs(value))
+            else:
+                tol = math.nan
+            w.writerow([q, repr(value), status, b, repr(spread), repr(tol),
+                        " ".join(results)])
+        write_text(Path(reference_dir) / profile / f"{paper}.csv", buf.getvalue())
+        print(f"reference written: {Path(reference_dir) / profile / f'{paper}.csv'}")
+    if refused:
+        raise DriftError("verdicts that differ between platform variants (fix each quantity "
+                         "at its source; a verdict must not depend on the CPU):\n"
+                         + "\n".join(refused))
+
+
+def compare(current: dict[str, tuple[float, str]], ref_rows: list[dict], where: str) -> list[str]:
+    """Readable differences between a validation table and its reference."""
+    ref = {r["quantity"]: r for r in ref_rows}
+    problems = []
+    for q in sorted(set(ref) - set(current)):
+        problems.append(f"  {q}: in reference, missing now")
+    for q in sorted(set(current) - set(ref)):
+        problems.append(f"  {q}: new quantity, not in reference")
+    for i, (q, r) in enumerate(ref.items(), 2):
+        if q not in current or r["basis"] == "timing":
+            continue
+        value, status = current[q]
+        if status != r["status"]:
+            problems.append(f"  {q}: verdict {r['status']} in reference, now {status}")
+        if r["basis"] != "value":
+            continue
+        x0 = _float(r["reproduced_value"], f"{where}, line {i} ({q}), reproduced_value")
+        tol = _float(r["tolerance"], f"{where}, line {i} ({q}), tolerance")
+        if math.isnan(x0) and math.isnan(value):
+            continue
+        drift = abs(value - x0) if not (math.isnan(x0) or math.isnan(value)) else math.inf
+        if not drift <= tol:
+            problems.append(f"  {q}: reference {x0!r}, now {value!r}, |drift| {drift:.3g} > "
+                            f"tolerance {tol:.3g} (platform spread {r['spread']})")
+    return problems
+
+
+def check(out: str, results: str, reference_dir: str, papers: list[str], profile: str) -> str:
+    """Compare every paper's validation table with the reference; raise DriftError on drift."""
+    results, ref_root = Path(results), Path(reference_dir) / profile
+    lines, failed = [], False
+    for paper in papers:
+        ref_file = ref_root / f"{paper}.csv"
+        if not ref_file.exists():
+            lines.append(f"{paper}: no reference at {ref_file} (not checked)")
+            continue
+        ref = _table(ref_file, HEADER[:-1])
+        current = _values(results / paper / "tables" / "validation.csv")
+        problems = compare(current, ref, str(ref_file))
+        if problems:
+            failed = True
+            lines.append(f"{paper}: DRIFT against {ref_file}")
+            lines += problems
+        else:
+            n = sum(r["basis"] != "timing" for r in ref)
+            lines.append(f"{paper}: {n} quantities within tolerance of {ref_file} "
+                         f"(same verdicts; {len(ref) - n} timing rows not compared)")
+    text = "\n".join(lines) + "\n"
+    if failed:
+        raise DriftError(text + "If the change is deliberate, refresh with `make reference`.")
+    return text
+
+
+def main(argv: list[str]) -> int:
+    """python -m mechrepro.reference PROFILE WORKDIR [VARIANT ...]: measure and derive."""
+    profile, workdir, *variants = argv
+    config_dir = Path("config")
+    papers = yaml.safe_load((config_dir / "config.yaml").read_text())["papers"]
+    results = measure(profile, papers, workdir, config_dir, variants=variants or None)
+    try:
+        derive(results, "results/reference", config_dir, papers, profile)
+    except DriftError as exc:
+        sys.stderr.write(f"{exc}\n")
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
