@@ -260,12 +260,11 @@ def _variant_run(raw, base: dict, variant: str, run_schema, where, why) -> dict:
     if variant == "finer":
         refine = raw.get("refine", {})
         for key, value in resolution.items():
-            if key not in refine:
+            if key not in refine and isinstance(value, (int, float)) and not isinstance(value, bool):
                 raise ConfigError(f"{where}: refine: no factor for resolution key {key!r} "
                                   f"(scene {base['scene']!r}; {why}); add refine.{key}")
             if isinstance(value, bool) or not isinstance(value, (int, float)):
-                raise ConfigError(f"{where}: refine.{key}: resolution value {value!r} of scene "
-                                  f"{base['scene']!r} is not a number")
+                continue  # a choice (an integrator's name): the same at the finer resolution
             fine = value * refine[key]
             resolution[key] = int(round(fine)) if isinstance(value, int) else float(fine)
     else:
@@ -329,7 +328,24 @@ def _make_run(raw, scene_name, study, index, point, run_schema, where) -> dict:
         "parameters": si,
         "units": units,
         "seed": int(scene.get("seed", raw.get("seed", 0))),
+        **_calibration(raw),
     }
+
+
+def _calibration(raw: dict) -> dict:
+    """The paper numbers that constants calibrated inside a run are fitted to (SI).
+
+    A solver that re-calibrates a constant in every run (so that the assumed-range
+    variants re-calibrate too) reads its target here instead of typing it again.
+    """
+    out = {}
+    for p, spec in raw["parameters"].items():
+        q = spec.get("calibrated_on")
+        target = raw.get("reported", {}).get(q, {})
+        if q and "value" in target and "unit" in target and target["unit"] in UNITS:
+            value, unit = to_si(target["value"], target["unit"])
+            out[p] = {"quantity": q, "value": value, "unit": unit}
+    return {"calibration": out} if out else {}
 
 
 def load_all(config_dir: str | Path, papers, profile: str = "default") -> dict[str, PaperConfig]:
