@@ -22,6 +22,7 @@ venv: $(STAMP)
 
 ## Reproduce every figure and table of every paper (full resolution): results/report/index.html
 reproduce: $(STAMP)
+	$(BIN)/python -m mechrepro.heal results
 	$(BIN)/python -m mechrepro.plan results -- --cores $(CORES)
 	$(BIN)/snakemake --cores $(CORES)
 
@@ -31,6 +32,7 @@ test: $(STAMP)
 
 ## The fast profile, as CI runs it, into results-ci/
 ci-reproduce: $(STAMP)
+	$(BIN)/python -m mechrepro.heal results-ci
 	$(BIN)/python -m mechrepro.plan results-ci -- --cores $(CORES) --config profile=ci results=results-ci
 	$(BIN)/snakemake --cores $(CORES) --config profile=ci results=results-ci
 

@@ -4,6 +4,12 @@ configfile: "config/config.yaml"
 
 
 include: "workflow/rules/common.smk"
+wildcard_constraints:
+    paper="|".join(PAPERS),
+    run="[a-z0-9_]+(-[0-9]{3})?(@[A-Za-z0-9_]+(-lo|-hi)?)?",
+    study="[a-z0-9_]+(@[A-Za-z0-9_]+(-lo|-hi)?)?",
+
+
 include: "workflow/rules/params.smk"
 include: "workflow/rules/solve.smk"
 include: "workflow/rules/notebook.smk"
@@ -23,5 +29,4 @@ localrules:
 
 rule all:
     input:
-        f"{RESULTS}/report/index.html",
-        f"{RESULTS}/archive/manifest.json",
+        every_output(),

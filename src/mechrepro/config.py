@@ -25,6 +25,7 @@ from __future__ import annotations
 import copy
 import itertools
 import json
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -175,7 +176,30 @@ def load_paper(path: str | Path, profile: str = "default") -> PaperConfig:
     if "reported" in raw:
         _check_reported(raw, where)
         _add_variants(cfg, raw, run_schema, where)
+    for name, run in cfg.runs.items():
+        _cross_check(raw.get("cross_checks", {}), run, f"{where} (run {name})")
     return cfg
+
+
+_MATH = {k: getattr(math, k) for k in ("pi", "sqrt", "sin", "cos", "tan", "asin", "acos",
+                                       "atan", "atan2", "hypot", "radians", "degrees", "exp",
+                                       "log", "floor", "ceil")}
+_MATH.update(abs=abs, min=min, max=max)
+
+
+def _cross_check(checks: dict, run: dict, where: str) -> None:
+    """Evaluate the paper's physical cross-checks on one run's SI parameters."""
+    env = {**_MATH, **run["parameters"]}
+    for name, spec in checks.items():
+        try:
+            ok = eval(spec["require"], {"__builtins__": {}}, env)  # noqa: S307 (config, not input)
+        except Exception as exc:
+            raise ConfigError(f"{where}: cross_checks.{name}: cannot evaluate "
+                              f"{spec['require']!r}: {exc}") from None
+        if not ok:
+            used = {k: v for k, v in run["parameters"].items() if k in spec["require"]}
+            raise ConfigError(f"{where}: physical cross-check {name!r} fails: "
+                              f"{spec['require']} with {used} (SI): {spec['why']}")
 
 
 VERDICT_KINDS = ("compare", "bound", "check")
@@ -348,6 +372,15 @@ def _calibration(raw: dict) -> dict:
     return {"calibration": out} if out else {}
 
 
-def load_all(config_dir: str | Path, papers, profile: str = "default") -> dict[str, PaperConfig]:
+def load_all(config_dir: str | Path, papers, profile: str = "default",
+             every_profile: bool = True) -> dict[str, PaperConfig]:
+    """The selected profile of every paper; ``every_profile`` also checks the others, so a
+    bad value in a profile that is not running now is refused now, not mid-way later."""
     config_dir = Path(config_dir)
-    return {p: load_paper(config_dir / "papers" / f"{p}.yaml", profile) for p in papers}
+    out = {p: load_paper(config_dir / "papers" / f"{p}.yaml", profile) for p in papers}
+    if every_profile:
+        for p, cfg in out.items():
+            for other in ["default", *cfg.raw.get("profiles", {})]:
+                if other != profile:
+                    load_paper(config_dir / "papers" / f"{p}.yaml", other)
+    return out

@@ -19,9 +19,19 @@ import xarray as xr
 from .provenance import code_version, package_versions
 
 
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
 @contextlib.contextmanager
 def atomic_path(path: str | Path):
-    """Yield a temporary path next to ``path``; rename it to ``path`` on success only."""
+    """Yield a temporary path next to ``path``; rename it to ``path`` on success only.
+
+    The file gets the permissions a plain ``open`` would give it (0666 less the umask):
+    ``mkstemp`` makes it 0600, which a shared results directory could not read.
+    """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     # keep the real suffix last: writers (netCDF4, papermill) pick formats by extension
@@ -30,6 +40,7 @@ def atomic_path(path: str | Path):
     os.close(fd)
     try:
         yield Path(tmp)
+        os.chmod(tmp, 0o666 & ~_umask())
         os.replace(tmp, path)
     except BaseException:
         with contextlib.suppress(FileNotFoundError):

@@ -1,31 +1,32 @@
 # Config loading and validation (before any rule runs), and the file lists rules share.
+import json
+import os
 import sys
 from pathlib import Path
 
 from snakemake.utils import validate
 
-BASE = Path(workflow.basedir)
+# Paths relative to the working directory, so that a moved or copied project (results
+# included) schedules nothing: Snakemake compares the set of input paths of every job.
+BASE = Path(os.path.relpath(workflow.basedir))
 SRC = BASE / "src"
-sys.path.insert(0, str(SRC))  # this workflow's own package, not whatever is installed
+sys.path.insert(0, str(SRC.resolve()))  # this workflow's own package, not whatever is installed
 
 from mechrepro.config import ConfigError, load_all  # noqa: E402
 
-validate(config, str(BASE / "config/schema/config.schema.json"))
+validate(config, str((BASE / "config/schema/config.schema.json").resolve()))
 PROFILE = config["profile"]
 RESULTS = config["results"]
 PAPERS = config["papers"]
-PY = sys.executable
 try:
     CFG = load_all(BASE / "config", PAPERS, PROFILE)
 except ConfigError as exc:
     sys.stderr.write(f"\n{exc}\n\n")
     raise SystemExit(1)
 
-
-wildcard_constraints:
-    paper="|".join(PAPERS),
-    run="[a-z0-9_]+(-[0-9]{3})?(@[a-z0-9_]+(-lo|-hi)?)?",
-    study="[a-z0-9_]+(@[a-z0-9_]+(-lo|-hi)?)?",
+# Every job runs `python -m mechrepro.<module>` with this workflow's src/ first on the path.
+PY = os.path.relpath(sys.executable) if not os.path.isabs(os.path.relpath(sys.executable)) else sys.executable
+RUN = {"python": f"PYTHONPATH={SRC} {PY}", "profile": PROFILE, "base": str(BASE)}
 
 
 def code(*relpaths):
@@ -39,10 +40,22 @@ def code(*relpaths):
 
 # The framework modules every solver job imports.
 SOLVER_CORE = ["__init__.py", "solve.py", "io.py", "provenance.py", "accuracy.py", "effects.py"]
+VALIDATE_CORE = ["__init__.py", "cli.py", "config.py", "units.py", "io.py", "validation.py"]
+NOTEBOOK_CORE = ["__init__.py", "config.py", "units.py", "io.py", "results.py",
+                 "validation.py", "accuracy.py", "plotting.py", "notebook.py"]
 
 
 def model_code(paper):
     return code(*SOLVER_CORE, f"models/{paper}")
+
+
+def run_json(wc):
+    """A run record as a plain JSON string: Snakemake's params trigger sees every change."""
+    return json.dumps(CFG[wc.paper].runs[wc.run], indent=2, sort_keys=True)
+
+
+def paper_config(paper):
+    return str(BASE / f"config/papers/{paper}.yaml")
 
 
 def runs_of(paper, variants=False):
@@ -68,3 +81,15 @@ def figures_of(paper):
 def tables_of(paper, notebook_only=False):
     names = CFG[paper].notebook_tables if notebook_only else CFG[paper].tables
     return expand(f"{RESULTS}/{paper}/tables/{{t}}.csv", t=names)
+
+
+def every_output():
+    """Every declared output (the target of the workflow), so that a deleted one is restored."""
+    out = [f"{RESULTS}/report/index.html", f"{RESULTS}/archive/manifest.json",
+           f"{RESULTS}/report/cost_of_accuracy_all.png", f"{RESULTS}/report/summary.csv",
+           f"{RESULTS}/report/reference_check.txt"]
+    for p in PAPERS:
+        out += runs_of(p, variants=True) + studies_of(p, variants=True) + figures_of(p)
+        out += tables_of(p) + [f"{RESULTS}/{p}/notebook.ipynb", f"{RESULTS}/{p}/claim.json",
+                               f"{RESULTS}/{p}/tables/cost_of_accuracy.nc"]
+    return out

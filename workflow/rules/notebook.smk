@@ -3,8 +3,6 @@
 # figure and writes the paper's other tables.  Outputs differ per paper (its declared
 # figures/tables), so the rules are made per paper.
 
-VALIDATE_CORE = ["__init__.py", "cli.py", "config.py", "units.py", "io.py", "validation.py"]
-
 for _paper in [p for p in PAPERS if migrated(p)]:
 
     rule:
@@ -13,22 +11,22 @@ for _paper in [p for p in PAPERS if migrated(p)]:
         input:
             runs=runs_of(_paper, variants=True),
             studies=studies_of(_paper, variants=True),
-            config=str(BASE / f"config/papers/{_paper}.yaml"),
+            config=paper_config(_paper),
             code=code(*VALIDATE_CORE, f"models/{_paper}"),
         output:
             table=f"{RESULTS}/{_paper}/tables/validation.csv",
             claim=f"{RESULTS}/{_paper}/claim.json",
         params:
             paper=_paper,
+            python=RUN["python"],
+            results=lambda wc, output: str(Path(output.table).parents[2]),
+            profile=RUN["profile"],
         log:
             f"{RESULTS}/{_paper}/logs/validate.log",
         shell:
-            "PYTHONPATH={SRC} {PY} -m mechrepro.cli validate {params.paper} {RESULTS} "
-            "{input.config} {PROFILE} > {log} 2>&1"
+            "{params.python} -m mechrepro.cli validate {params.paper} {params.results} "
+            "{input.config} {params.profile} > {log} 2>&1"
 
-
-NOTEBOOK_CORE = ["__init__.py", "config.py", "units.py", "io.py", "results.py",
-                 "validation.py", "accuracy.py", "plotting.py", "notebook.py"]
 
 for _paper in PAPERS:
 
@@ -40,7 +38,7 @@ for _paper in PAPERS:
             studies=studies_of(_paper),
             validation=[f"{RESULTS}/{_paper}/tables/validation.csv"] if migrated(_paper) else [],
             source=str(BASE / f"notebooks/{_paper}.py"),
-            config=str(BASE / f"config/papers/{_paper}.yaml"),
+            config=paper_config(_paper),
             code=code(*NOTEBOOK_CORE, f"models/{_paper}"),
         output:
             notebook=f"{RESULTS}/{_paper}/notebook.ipynb",
@@ -51,10 +49,13 @@ for _paper in PAPERS:
             claim=[] if migrated(_paper) else [f"{RESULTS}/{_paper}/claim.json"],
         params:
             paper=_paper,
+            python=RUN["python"],
+            results=lambda wc, output: str(Path(output.notebook).parents[1]),
+            profile=RUN["profile"],
         log:
             f"{RESULTS}/{_paper}/logs/notebook.log",
         benchmark:
             f"{RESULTS}/{_paper}/benchmarks/notebook.tsv"
         shell:
-            "PYTHONPATH={SRC} {PY} -m mechrepro.notebook {params.paper} {input.source} "
-            "{output.notebook} {RESULTS} {input.config} {PROFILE} > {log} 2>&1"
+            "{params.python} -m mechrepro.notebook {params.paper} {input.source} "
+            "{output.notebook} {params.results} {input.config} {params.profile} > {log} 2>&1"

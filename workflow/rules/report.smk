@@ -4,7 +4,7 @@
 rule summary:
     input:
         coa=expand(f"{RESULTS}/{{paper}}/tables/cost_of_accuracy.nc", paper=PAPERS),
-        configs=expand(str(BASE / "config/papers/{paper}.yaml"), paper=PAPERS),
+        configs=[paper_config(p) for p in PAPERS],
         code=code("cli.py", "summary.py", "config.py", "plotting.py"),
     output:
         png=f"{RESULTS}/report/cost_of_accuracy_all.png",
@@ -12,9 +12,14 @@ rule summary:
     params:
         papers=PAPERS,
         profile=PROFILE,
+        python=RUN["python"],
+        results=lambda wc, output: str(Path(output[0]).parents[1]),
+        base=RUN["base"],
+    log:
+        f"{RESULTS}/logs/summary.log",
     shell:
-        "PYTHONPATH={SRC} {PY} -m mechrepro.cli summary {output.png} {output.csv} {RESULTS} "
-        "{BASE}/config {params.profile} {params.papers}"
+        "{params.python} -m mechrepro.cli summary {output.png} {output.csv} {params.results} "
+        "{params.base}/config {params.profile} {params.papers} > {log} 2>&1"
 
 
 rule reference_check:
@@ -28,11 +33,14 @@ rule reference_check:
     params:
         papers=PAPERS,
         profile=PROFILE,
+        python=RUN["python"],
+        results=lambda wc, output: str(Path(output[0]).parents[1]),
+        base=RUN["base"],
     log:
         f"{RESULTS}/logs/reference_check.log",
     shell:
-        "PYTHONPATH={SRC} {PY} -m mechrepro.cli check-reference {output} {RESULTS} "
-        "{BASE}/results/reference {params.profile} {params.papers} > {log} 2>&1"
+        "{params.python} -m mechrepro.cli check-reference {output} {params.results} "
+        "{params.base}/results/reference {params.profile} {params.papers} > {log} 2>&1"
 
 
 rule report:
@@ -42,17 +50,20 @@ rule report:
         figures=[f for p in PAPERS for f in figures_of(p)],
         tables=[f for p in PAPERS for f in tables_of(p)],
         claims=expand(f"{RESULTS}/{{paper}}/claim.json", paper=PAPERS),
-        configs=expand(str(BASE / "config/papers/{paper}.yaml"), paper=PAPERS),
+        configs=[paper_config(p) for p in PAPERS],
         code=code("cli.py", "report.py", "config.py", "validation.py"),
     output:
         f"{RESULTS}/report/index.html",
     params:
         papers=PAPERS,
         profile=PROFILE,
+        python=RUN["python"],
+        results=lambda wc, output: str(Path(output[0]).parents[1]),
+        base=RUN["base"],
     log:
         f"{RESULTS}/logs/report.log",
     shell:
-        "PYTHONPATH={SRC} {PY} -m mechrepro.cli report {output} {RESULTS} {BASE}/config "
+        "{params.python} -m mechrepro.cli report {output} {params.results} {params.base}/config "
         "{params.profile} {params.papers} > {log} 2>&1"
 
 
@@ -64,7 +75,7 @@ rule archive:
         notebooks=expand(f"{RESULTS}/{{paper}}/notebook.ipynb", paper=PAPERS),
         runs=[f for p in PAPERS for f in runs_of(p, variants=True)],
         studies=[f for p in PAPERS for f in studies_of(p, variants=True)],
-        configs=expand(str(BASE / "config/papers/{paper}.yaml"), paper=PAPERS),
+        configs=[paper_config(p) for p in PAPERS],
         code=code("cli.py", "archive.py"),
     output:
         manifest=f"{RESULTS}/archive/manifest.json",
@@ -72,9 +83,12 @@ rule archive:
     params:
         papers=PAPERS,
         profile=PROFILE,
+        python=RUN["python"],
+        results=lambda wc, output: str(Path(output[0]).parents[1]),
+        base=RUN["base"],
     log:
         f"{RESULTS}/logs/archive.log",
     shell:
-        "PYTHONPATH={SRC} {PY} -m mechrepro.cli archive {output.archive} {output.manifest} "
-        "{RESULTS} {BASE}/config {params.profile} {params.papers} > {log} 2>&1 "
+        "{params.python} -m mechrepro.cli archive {output.archive} {output.manifest} "
+        "{params.results} {params.base}/config {params.profile} {params.papers} > {log} 2>&1 "
         "|| {{ cat {log} >&2; exit 1; }}"

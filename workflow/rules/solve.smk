@@ -7,6 +7,8 @@ rule solve:
         code=lambda wc: model_code(wc.paper),
     output:
         f"{RESULTS}/{{paper}}/runs/{{run}}.nc",
+    params:
+        python=RUN["python"],
     log:
         f"{RESULTS}/{{paper}}/logs/solve/{{run}}.log",
     benchmark:
@@ -15,15 +17,19 @@ rule solve:
         mem_mb=2000,
         runtime=30,
     shell:
-        "PYTHONPATH={SRC} {PY} -m mechrepro.solve {input.params} {output} > {log} 2>&1"
+        "{params.python} -m mechrepro.solve {input.params} {output} > {log} 2>&1"
 
 
 rule gather:
     input:
         runs=lambda wc: expand(f"{RESULTS}/{wc.paper}/runs/{{run}}.nc",
                                run=CFG[wc.paper].studies[wc.study]),
-        code=code("io.py"),
+        code=code("io.py", "cli.py"),
     output:
         f"{RESULTS}/{{paper}}/studies/{{study}}.nc",
+    params:
+        python=RUN["python"],
+    log:
+        f"{RESULTS}/{{paper}}/logs/gather/{{study}}.log",
     shell:
-        "PYTHONPATH={SRC} {PY} -m mechrepro.cli gather {output} {input.runs}"
+        "{params.python} -m mechrepro.cli gather {output} {input.runs} > {log} 2>&1"
