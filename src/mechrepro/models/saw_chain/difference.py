@@ -1,4 +1,4 @@
-"""The kinematic difference method, Eqs. (11)-(13) and (17)-(19).
+"""The kinematic difference method, Eqs. (11)-(13) and (17)-(19), and its error budget.
 
 Each stage is divided into K steps; velocities are backward differences of the
 displacements and accelerations backward differences of those velocities:
@@ -6,9 +6,17 @@ displacements and accelerations backward differences of those velocities:
     V^i = (U^i - U^(i-1)) / dt,   a^i = (V^i - V^(i-1)) / dt,   i = 1..K
 
 with V^0, a^0 given (stage 1: V^0 = (R omega, 0), a^0 = 0; stage 2: the values of O2 at
-t1).  The second difference divides round-off in the positions (~eps*|x|) by dt^2, so
-for large K the accelerations become noise; :func:`roundoff_acceleration` bounds that
-noise and :func:`check_roundoff` refuses such a K instead of reporting noise as a load.
+t1).  Two errors compete in a load built from the second difference:
+
+- truncation: a^i = a(t_i) - dt a'(t_i) + O(dt^2), first order, estimated by
+  :func:`truncation_load` from the exact jerk;
+- round-off: each position carries a relative error of a few eps, which the second
+  difference divides by dt^2, bounded by :func:`roundoff_load`.
+
+The first falls like 1/K, the second grows like K^2; :func:`roundoff_limit` is the K at
+which the round-off bound reaches the truncation estimate.  Beyond it the error grows
+again (the measured optimum of the pointwise load error lies there, see
+``tests/test_saw_chain_accuracy.py``), so :func:`check_roundoff` refuses such K.
 """
 from __future__ import annotations
 
@@ -20,7 +28,7 @@ EPS = np.finfo(float).eps
 
 
 class RoundoffError(ValueError):
-    """K so large that the second backward difference is dominated by round-off."""
+    """K beyond the round-off limit: the second backward difference is dominated by round-off."""
 
 
 def backward_differences(x, dt, v0, a0):
@@ -39,28 +47,43 @@ def backward_differences(x, dt, v0, a0):
     return v, a
 
 
-def roundoff_acceleration(x_max, dt):
-    """Bound of the round-off in a second backward difference [m/s^2].
+def truncation_load(dt, load_jerk_max):
+    """Leading truncation error of a load from second backward differences [N].
 
-    Each position carries a relative error of a few eps (sin, sqrt); the second
-    difference combines four such errors and divides by dt^2.
+    a^i - a(t_i) = -dt a'(t_i) + O(dt^2), so |F^i - F(t_i)| <~ dt max|dF/dt|.
     """
-    return 4.0 * EPS * x_max / dt**2
+    return dt * load_jerk_max
 
 
-def max_steps(x_max, stage_time, accel_scale, tolerance):
-    """Largest K whose round-off bound stays below ``tolerance * accel_scale``."""
-    return int(math.floor(stage_time * math.sqrt(tolerance * accel_scale / (4.0 * EPS * x_max))))
+def roundoff_load(dt, x_max, mass):
+    """Bound of the round-off in a load from second backward differences [N].
+
+    The second difference x_i - 2 x_(i-1) + x_(i-2) combines errors of about eps*x_max
+    with weights summing to 4, then divides by dt^2; ``mass`` is the mass it multiplies.
+    """
+    return 4.0 * EPS * x_max * mass / dt**2
 
 
-def check_roundoff(K, x_max, stage_time, accel_scale, tolerance):
-    """Raise :class:`RoundoffError` when K steps make the loads round-off noise."""
-    dt = stage_time / K
-    bound = roundoff_acceleration(x_max, dt)
-    if bound > tolerance * accel_scale:
+def roundoff_limit(stage_times, load_jerk_max, x_max, mass):
+    """Largest K at which the round-off bound stays below the truncation estimate.
+
+    With K steps in every stage, truncation is max_s(T_s J_s)/K and the round-off bound
+    4 eps x m K^2 / min_s(T_s)^2 (the shortest stage has the smallest dt), so
+    K^3 = max_s(T_s J_s) min_s(T_s)^2 / (4 eps x m).
+    """
+    trunc = max(T * J for T, J in zip(stage_times, load_jerk_max))
+    return int(math.floor((trunc * min(stage_times) ** 2 / (4.0 * EPS * x_max * mass)) ** (1.0 / 3.0)))
+
+
+def check_roundoff(K, limit, allow=False):
+    """Raise :class:`RoundoffError` for K beyond the round-off limit, unless ``allow``.
+
+    ``allow`` is for the cost-of-accuracy study, which crosses the limit on purpose to
+    show the round-off floor; its runs carry the flag ``roundoff_dominated``.
+    """
+    if K > limit and not allow:
         raise RoundoffError(
-            f"K={K}: round-off in the second backward difference reaches {bound:.3g} m/s^2, "
-            f"more than {tolerance:g} of the acceleration scale {accel_scale:.3g} m/s^2; "
-            f"the loads would be noise. Use K <= "
-            f"{max_steps(x_max, stage_time, accel_scale, tolerance)} (or the exact_reference effect).")
-    return bound
+            f"K={K}: beyond K={limit} the round-off of the second backward difference "
+            f"exceeds its truncation error, so the loads get less accurate, not more. "
+            f"Use K <= {limit} (or the exact_reference effect).")
+    return K > limit

@@ -56,3 +56,23 @@ def stage_derivatives(phi, R, L, omega):
     return {"trail_vx": xt_d, "trail_ax": xt_dd,
             "mid_vx": 0.5 * (xl_d + xt_d), "mid_vy": 0.5 * yl_d,
             "mid_ax": 0.5 * (xl_dd + xt_dd), "mid_ay": 0.5 * yl_dd}
+
+
+def stage_jerks(phi, R, L, omega):
+    """Exact third time derivatives (jerks) of trail x and midpoint x, y [m/s^3].
+
+    Differentiating s s' = -y y' twice more gives
+    s''' = -(3 y' y'' + y y''' + 3 s' s'') / s,  with y''' = -R omega^3 sin(phi) and
+    lead_x''' = -R omega^3 cos(phi).  The jerk is the leading truncation term of the
+    second backward difference (Eqs. 13, 19): a_i = a(t_i) - dt a'(t_i) + O(dt^2).
+    """
+    c, sn = np.cos(phi), np.sin(phi)
+    y = R * (1.0 - c)
+    y1, y2, y3 = R * omega * sn, R * omega**2 * c, -R * omega**3 * sn
+    s = np.sqrt(L**2 - y**2)
+    s1 = -y * y1 / s
+    s2 = -(y1**2 + y * y2 + s1**2) / s
+    s3 = -(3 * y1 * y2 + y * y3 + 3 * s1 * s2) / s
+    xl3 = -R * omega**3 * c
+    xt3 = xl3 - s3
+    return {"trail_jx": xt3, "mid_jx": 0.5 * (xl3 + xt3), "mid_jy": 0.5 * y3}

@@ -1,0 +1,145 @@
+"""Measurements on the saw_chain model: order, round-off optimum, the paper's K, readings of R.
+
+Pure functions over a :class:`~.solver.Chain` or a cost-of-accuracy study; the
+validation extractors and the notebook call them, nothing here is a verdict.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+from scipy.optimize import minimize_scalar
+
+from .geometry import stage_angles
+from .kinematics import stage_derivatives
+from .solver import Chain, difference_method
+
+
+def observed_order(K, err, truncation, roundoff, margin=100.0):
+    """Observed order p of err ~ K^-p from the two finest truncation-dominated runs.
+
+    A run is truncation-dominated when the solver's own round-off bound is below
+    ``1/margin`` of its truncation estimate (the window follows from each run's error
+    budget, not from a chosen K range); the finest pair of them is the closest to the
+    asymptotic range.  Returns (order, local orders of all consecutive pairs used, K pair).
+    """
+    K, err = np.asarray(K, float), np.asarray(err, float)
+    use = (np.asarray(roundoff) * margin < np.asarray(truncation)) & (err > 0)
+    k, e = K[use], err[use]
+    order = np.argsort(k)
+    k, e = k[order], e[order]
+    if k.size < 2:
+        return math.nan, [], ()
+    local = list(-np.diff(np.log(e)) / np.diff(np.log(k)))
+    return float(local[-1]), [float(x) for x in local], (int(k[-2]), int(k[-1]))
+
+
+def error_model_optimum(K, err):
+    """Fit err(K) = a/K + b K^2 (truncation + round-off) and return its minimum.
+
+    The fit minimises the relative residuals (linear least squares in a, b), so both
+    branches weigh alike; the optimum K* = (a / 2b)^(1/3) does not depend on where the
+    sweep happens to sample.  Returns (K*, err(K*), a, b); NaN without a round-off branch.
+    """
+    K, err = np.asarray(K, float), np.asarray(err, float)
+    A = np.column_stack([1.0 / (K * err), K**2 / err])
+    (a, b), *_ = np.linalg.lstsq(A, np.ones_like(K), rcond=None)
+    if not (a > 0 and b > 0):
+        return math.nan, math.nan, float(a), float(b)
+    K_opt = (a / (2.0 * b)) ** (1.0 / 3.0)
+    return float(K_opt), float(a / K_opt + b * K_opt**2), float(a), float(b)
+
+
+def load_extreme_at(chain: Chain, K: int, fn=np.max) -> float:
+    """Maximum (or ``fn``) of the difference-method load x over one period at K steps per stage."""
+    return float(fn(difference_method(replace(chain, K=int(K)), {})["dynamic_load_x"][0]))
+
+
+def load_max_at(chain: Chain, K: int) -> float:
+    return load_extreme_at(chain, K, np.max)
+
+
+def equivalent_K(chain: Chain, target: float):
+    """Smallest K whose difference-method load maximum reaches ``target`` (bisection).
+
+    The maximum sits at the last sample t2 and lags the exact value by dt max|dF/dt|, so
+    it rises monotonically with K (checked on the bracket); the root is found on the
+    solver itself, not interpolated between study points.  Returns (K, max at K - 1,
+    max at K); K is None if ``target`` is not reached below the round-off limit.
+    """
+    lo, hi = 2, chain.roundoff_limit()
+    f_lo, f_hi = load_max_at(chain, lo), load_max_at(chain, hi)
+    if not (f_lo < target <= f_hi):
+        return None, f_lo, f_hi
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if load_max_at(chain, mid) >= target:
+            hi = mid
+        else:
+            lo = mid
+    return hi, load_max_at(chain, hi - 1), load_max_at(chain, hi)
+
+
+def pitch_radius_readings(p1, p2, z):
+    """Common readings of a sprocket's pitch radius for the alternating p1/p2 chain [m].
+
+    - ``eq1``: Eq. (1), the circle through the hinge centres (the model's R);
+    - ``pair_chord``: the roller-chain formula R = p / (2 sin(pi/z)) with the pair
+      p = p1 + p2 taken as one straight chord per tooth;
+    - ``mean_pitch``: R = p / (2 sin(pi/2z)) with the mean pitch p = (p1 + p2)/2 on 2z links;
+    - ``pitch_line``: the circle whose circumference is the chain length per revolution,
+      z (p1 + p2) / (2 pi) (the mean chain speed over omega);
+    - ``tie_strap``, ``drive_link``: one pitch alone on 2z links.
+    """
+    s, s2 = math.sin(math.pi / z), math.sin(math.pi / (2 * z))
+    return {
+        "eq1": math.sqrt(p1**2 + p2**2 + 2 * p1 * p2 * math.cos(math.pi / z)) / (2 * s),
+        "pair_chord": (p1 + p2) / (2 * s),
+        "mean_pitch": 0.5 * (p1 + p2) / (2 * s2),
+        "pitch_line": z * (p1 + p2) / (2 * math.pi),
+        "tie_strap": p1 / (2 * s2),
+        "drive_link": p2 / (2 * s2),
+    }
+
+
+def velocity_band(p1, p2, omega, R):
+    """Exact min and max of the tight-side velocity of Eqs. (5)-(10) for a given R [m/s].
+
+    Stage angles follow Eqs. (5)-(6) with this R.  The maximum R omega is reached at the
+    stage ends; the minimum is located by a bounded scalar minimisation in each stage,
+    so it does not depend on a sampling grid.
+    """
+    phi1, phi2 = stage_angles(p1, p2, R)
+    lows = []
+    for L, span in ((p2, phi1), (p1, phi2 - phi1)):
+        vx = lambda ph, L=L: float(stage_derivatives(np.float64(ph), R, L, omega)["trail_vx"])  # noqa: E731
+        res = minimize_scalar(vx, bounds=(0.0, float(span)), method="bounded",
+                              options={"xatol": 1e-12 * float(span)})
+        lows.append(min(res.fun, vx(0.0), vx(float(span))))
+    return float(min(lows)), float(R * omega)
+
+
+def textbook_constants_for_range(F_low, F_high, R, omega, z):
+    """theta [rad] and mass [kg] for which Eq. (23) spans [F_low, F_high] over one tooth.
+
+    Both ends negative means sin(omega t + theta) > 0 over omega t in [0, 2 pi/z]; with
+    theta + 2 pi/z < pi/2 the load runs monotonically from -A sin(theta) (= F_high) to
+    -A sin(theta + 2 pi/z) (= F_low), A = m R omega^2.  Two numbers fix the two constants:
+    cot(theta) = (r - cos a) / sin a with r = F_low / F_high, a = 2 pi / z.
+    """
+    a = 2 * math.pi / z
+    if not (F_low < F_high < 0):
+        raise ValueError(f"needs F_low < F_high < 0, got {F_low}, {F_high}")
+    r = F_low / F_high
+    theta = math.atan2(math.sin(a), r - math.cos(a))
+    A = -F_high / math.sin(theta)
+    if theta + a >= math.pi / 2:
+        raise ValueError("the range is not monotonic over one tooth; no closed form")
+    return theta, A / (R * omega**2)
+
+
+def time_mean(t, v):
+    """Time mean of a sampled signal over its span (trapezoidal rule)."""
+    t, v = np.asarray(t, float), np.asarray(v, float)
+    return float(np.trapezoid(v, t) / (t[-1] - t[0]))
