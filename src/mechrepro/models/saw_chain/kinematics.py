@@ -20,14 +20,17 @@ import numpy as np
 
 
 def _sin_versine(phi):
-    """sin(phi) and 1 - cos(phi) for 0 <= phi < pi/2, with one transcendental call.
+    """sin(phi) and 1 - cos(phi) for 0 <= phi < pi, with one transcendental call.
 
-    1 - cos(phi) = sin^2 / (1 + cos) avoids the cancellation of 1 - cos for small phi,
-    and cos = sqrt(1 - sin^2) is an order of magnitude cheaper than a second cos call.
+    With h = sin(phi/2): 1 - cos(phi) = 2 h^2 has no cancellation at small phi, and
+    sin(phi) = 2 h sqrt(1 - h^2) holds on the whole range, since phi/2 < pi/2 (a stage
+    angle 2 asin(p/2R) is below pi).  A stage of a sprocket with few teeth and unequal
+    pitches exceeds pi/2 (z = 3, p1 : p2 = 5 : 1 gives 1.78 rad), so a half-range formula
+    such as cos = sqrt(1 - sin^2) would silently fold the pitch circle back.
     """
-    s = np.sin(phi)
-    s2 = s * s
-    return s, s2 / (1.0 + np.sqrt(1.0 - s2))
+    h = np.sin(0.5 * phi)
+    h2 = h * h
+    return 2.0 * h * np.sqrt(1.0 - h2), 2.0 * h2
 
 
 def stage_positions(phi, R, L, Tx):

@@ -1,0 +1,179 @@
+"""saw_chain: error budget of the difference method, its round-off limit, and hard cases."""
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from mechrepro.models.saw_chain import solve
+from mechrepro.models.saw_chain.analysis import (equivalent_K, error_model_optimum, load_max_at,
+                                                 observed_order, pitch_radius_readings,
+                                                 textbook_constants_for_range, velocity_band)
+from mechrepro.models.saw_chain.difference import RoundoffError
+from mechrepro.models.saw_chain.kinematics import stage_derivatives, stage_jerks
+from mechrepro.models.saw_chain.reference_loop import difference_method_loop
+from mechrepro.models.saw_chain.solver import chain_from_run, stage_switch_index
+from mechrepro.models.saw_chain.loads import textbook_velocity_load
+
+from test_saw_chain import P, run
+
+BOTH = ["difference_method", "exact_reference"]
+
+
+def allowed(K, **over):
+    r = run(K=K, effects=BOTH, **over)
+    r["options"] = {"beyond_roundoff_limit": True, "timing_min_s": 0.0}
+    return r
+
+
+def test_exact_jerk_matches_finite_differences_of_exact_acceleration():
+    R, L, w = 0.0211, 0.00756, 686.0
+    phi, h = np.linspace(0.01, 0.35, 7), 1e-6
+    d = lambda ph: stage_derivatives(ph, R, L, w)  # noqa: E731
+    j = stage_jerks(phi, R, L, w)
+    for a, jk in (("trail_ax", "trail_jx"), ("mid_ax", "mid_jx"), ("mid_ay", "mid_jy")):
+        fd = (d(phi + h)[a] - d(phi - h)[a]) / (2 * h) * w
+        np.testing.assert_allclose(j[jk], fd, rtol=1e-6)
+
+
+def test_leading_error_is_minus_dt_times_the_load_jerk():
+    """a^i = a(t_i) - dt a'(t_i) + O(dt^2): the method is first order, with a known constant."""
+    chain = chain_from_run(run(K=1))
+    errs = []
+    for K in (250, 1000):  # round-off stays far below the O(dt^2) remainder
+        ds = solve(run(K=K, effects=BOTH))
+        F, Fe = ds["dynamic_load_x"].values, ds["dynamic_load_x_exact"].values
+        dt = chain.stage_times()[1] / K
+        # stage 2 interior samples, away from the switch: compare with -dt dF/dt
+        i = np.arange(K + 3, 2 * K + 1)
+        L, m_link, _ = chain.stages()[1]
+        phi = (ds["t"].values[i] - ds["t"].values[K]) * chain.omega
+        j = stage_jerks(phi, chain.R, L, chain.omega)
+        dFdt = m_link * j["mid_jx"] + chain.m_tight * j["trail_jx"]
+        errs.append(np.max(np.abs((F[i] - Fe[i]) + dt * dFdt)) / np.max(np.abs(dt * dFdt)))
+    # the remainder is O(dt^2): relative to the leading term it falls like 1/K
+    assert errs[0] < 1e-2 and errs[1] < errs[0] / 3
+
+
+def test_stage_switch_sample_does_not_converge_and_is_reported_apart():
+    vals = []
+    for K in (100, 1000, 10000):
+        ds = solve(run(K=K, effects=BOTH))
+        s = stage_switch_index(K)
+        F, Fe = ds["dynamic_load_x"].values, ds["dynamic_load_x_exact"].values
+        assert float(ds["dynamic_load_x_switch"]) == F[s]
+        # it straddles the jump at t1: between the one-sided exact values, far from both
+        assert Fe[s] + 50 < F[s] < Fe[K] - 50
+        assert float(ds["dynamic_load_x_error_switch"]) > 0.3
+        # excluded from the pointwise error, which converges
+        assert float(ds["dynamic_load_x_error_pointwise"]) < 5.0 / K
+        vals.append(F[s])
+    assert max(vals) - min(vals) < 0.03 * abs(vals[-1])
+
+
+def test_refusal_threshold_sits_at_the_measured_optimum():
+    """The solver's a-priori limit agrees with where the measured pointwise error is smallest."""
+    limit = chain_from_run(run(K=1)).roundoff_limit()
+    Ks = np.unique(np.geomspace(limit / 4, limit * 4, 9).astype(int))
+    err = np.array([float(solve(allowed(int(K)))["dynamic_load_x_error_pointwise"]) for K in Ks])
+    best = Ks[np.argmin(err)]
+    assert limit / 2 <= best <= 2 * limit
+    at_limit = float(solve(allowed(limit))["dynamic_load_x_error_pointwise"])
+    assert at_limit <= 1.5 * err.min()
+    # the fitted optimum of the study's error model agrees too
+    K_opt, e_opt, _, _ = error_model_optimum(Ks, err)
+    assert limit / 2 <= K_opt <= 2 * limit and e_opt <= 1.5 * err.min()
+
+
+def test_hard_case_K_at_the_refusal_edge():
+    limit = chain_from_run(run(K=1)).roundoff_limit()
+    ds = solve(run(K=limit, effects=BOTH))
+    assert int(ds["roundoff_dominated"]) == 0
+    assert float(ds["dynamic_load_x_error_pointwise"]) < 1e-3
+    with pytest.raises(RoundoffError, match=rf"K={limit + 1}: .*Use K <= {limit}"):
+        solve(run(K=limit + 1, effects=["difference_method"]))
+    # the exact reference has no such limit
+    assert np.all(np.isfinite(solve(run(K=10 * limit, effects=["exact_reference"]))["dynamic_load_x_exact"]))
+
+
+def test_hard_case_roundoff_floor_is_bounded_and_flagged():
+    """Far beyond the limit (allowed for the study): finite, flagged, within the error budget."""
+    ds = solve(allowed(1_000_000))
+    assert int(ds["roundoff_dominated"]) == 1
+    F, Fe = ds["dynamic_load_x"].values, ds["dynamic_load_x_exact"].values
+    assert np.all(np.isfinite(F))
+    keep = np.arange(F.size) != stage_switch_index(1_000_000)
+    budget = float(ds["truncation_load_estimate"]) + float(ds["roundoff_load_bound"])
+    assert np.max(np.abs(F - Fe)[keep]) <= budget
+    # and round-off, not truncation, is what the error is made of
+    assert float(ds["roundoff_load_bound"]) > 10 * float(ds["truncation_load_estimate"])
+    assert float(ds["dynamic_load_x_error_pointwise"]) > 10 * float(
+        solve(allowed(chain_from_run(run(K=1)).roundoff_limit()))["dynamic_load_x_error_pointwise"])
+
+
+@pytest.mark.parametrize("p1,p2", [(20e-3, 4e-3), (4e-3, 20e-3)])
+def test_hard_case_three_teeth_very_unequal_stages(p1, p2):
+    """z = 3 with pitches 5:1: one stage is several times longer than the other."""
+    over = dict(teeth=3, tie_strap_pitch=p1, drive_link_pitch=p2)
+    chain = chain_from_run(run(K=1, **over))
+    T1, T2 = chain.stage_times()
+    assert max(T1, T2) / min(T1, T2) > 3
+    assert (T1 + T2) * chain.omega == pytest.approx(2 * math.pi / 3, rel=1e-14)
+    errs = []
+    for K in (300, 3000):
+        ds = solve(run(K=K, effects=BOTH, **over))
+        v = ds["tight_side_velocity_exact"].values
+        assert v.max() == pytest.approx(chain.R * chain.omega, rel=1e-12)
+        assert np.all(np.isfinite(ds["dynamic_load_x"].values))
+        errs.append(float(ds["dynamic_load_x_error_pointwise"]))
+    assert math.log(errs[0] / errs[1]) / math.log(10) == pytest.approx(1.0, abs=0.05)
+    v_loop, F_loop = difference_method_loop(p1, p2, 3, chain.omega, chain.m_L, chain.m_C,
+                                            chain.M, chain.N, 300)
+    ds = solve(run(K=300, effects=BOTH, **over))
+    np.testing.assert_allclose(ds["dynamic_load_x"].values, F_loop, rtol=0,
+                               atol=float(ds["roundoff_load_bound"]))
+    # the limit still guards the short stage
+    assert chain.roundoff_limit() > 1000
+
+
+def test_method_is_timed_alone():
+    ds = solve(run(K=1000))
+    for effect in ("difference_method", "exact_reference", "textbook"):
+        assert float(ds[f"wall_time_{effect}"]) > 0
+
+
+def test_equivalent_K_is_a_root_of_the_solver():
+    chain = chain_from_run(run(K=1))
+    K, below, at = equivalent_K(chain, 209.4)
+    assert below < 209.4 <= at
+    assert load_max_at(chain, K - 1) == below and load_max_at(chain, K) == at
+    # monotonic around the root, so the smallest such K is unique
+    m = [load_max_at(chain, k) for k in range(K - 20, K + 20)]
+    assert np.all(np.diff(m) > 0)
+    assert equivalent_K(chain, 1e6)[0] is None
+
+
+def test_velocity_band_of_eq1_radius_equals_the_solvers_exact_band():
+    chain = chain_from_run(run(K=1))
+    R = pitch_radius_readings(chain.p1, chain.p2, chain.z)["eq1"]
+    assert R == pytest.approx(chain.R, rel=1e-15)
+    lo, hi = velocity_band(chain.p1, chain.p2, chain.omega, R)
+    v = solve(run(K=20000, effects=["exact_reference"]))["tight_side_velocity_exact"].values
+    assert lo == pytest.approx(v.min(), rel=1e-9) and hi == pytest.approx(v.max(), rel=1e-12)
+    assert lo <= v.min()
+
+
+def test_textbook_constants_round_trip():
+    chain = chain_from_run(run(K=1))
+    theta, m = textbook_constants_for_range(-463.2, -33.4, chain.R, chain.omega, chain.z)
+    t = np.linspace(0, 2 * math.pi / chain.z / chain.omega, 2001)
+    _, _, F = textbook_velocity_load(t, chain.R, chain.omega, theta, m)
+    assert F.min() == pytest.approx(-463.2, rel=1e-9) and F.max() == pytest.approx(-33.4, rel=1e-9)
+
+
+def test_observed_order_uses_only_truncation_dominated_runs():
+    K = np.array([10, 100, 1000, 1e4, 1e5])
+    err = 1.0 / K + 1e-12 * K**2
+    trunc, roff = 1.0 / K, 1e-12 * K**2
+    p, local, pair = observed_order(K, err, trunc, roff)
+    assert pair == (100, 1000) and p == pytest.approx(1.0, abs=1e-3)
