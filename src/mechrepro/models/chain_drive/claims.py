@@ -1,40 +1,75 @@
-"""Turn the paper's worded claims into computed quantities (used by the notebook and tests).
+"""Turn the paper's worded claims into well-posed computed quantities.
 
 All functions take plain arrays (speed in rpm, amplitude in m) and return numbers or
-booleans; thresholds are stated here once, a priori, not tuned to the outcome.
+booleans.  The thresholds are physical and fixed a priori, once, here -- never relative to
+a sweep's own maximum (which an instability capped at ``u_cap`` would set):
+
+* ``PEAK_PROMINENCE`` = 0.05 mm: a peak must rise this far above the higher of its two
+  flanking minima.  It is 1/8 of the chordal end-motion amplitude r (1 - cos(pi/n)) =
+  0.41 mm of a 24-tooth No. 40 sprocket, the quasi-static response level of every sweep;
+  ripples below it are invisible on the paper's amplitude scale.
+* ``ORDER_WINDOW`` = 3 %: an order's peaks are searched in [0.97 x long-span speed,
+  1.03 x short-span speed] -- the region where the paper's "two peaks per order" are.
+* ``AMPLIFIED`` = 2: "amplified" = the peak within 5 % of the first resonance is at least
+  twice the quasi-static amplitude at the lowest speed.
 """
 from __future__ import annotations
 
 import numpy as np
 from scipy.signal import find_peaks
 
-PEAK_PROMINENCE = 0.05     # a peak rises by >= 5 % of the sweep's largest amplitude
-MATCH_TOL = 0.015          # a peak "is at" a predicted speed within 1.5 % of it
-AMPLIFIED = 2.0            # "amplified": peak >= 2 x the quasi-static amplitude
+PEAK_PROMINENCE = 0.05e-3  # m
+ORDER_WINDOW = 0.03
+AMPLIFIED = 2.0
+NEAR_PEAK = 0.06           # a predicted resonance "has" a peak within 6 % of it
 
 
-def peaks(speed, amp, prominence: float = PEAK_PROMINENCE):
-    """Indices of local maxima of amp(speed) with relative prominence."""
+def peaks(speed, amp, prominence: float = PEAK_PROMINENCE, stable=None):
+    """Indices of local maxima of amp(speed) rising >= ``prominence`` [m] above their flanks.
+
+    ``stable``: optional mask; unstable (capped) speeds are excluded from the search (an
+    instability is reported as such, not as a resonance peak)."""
     a = np.nan_to_num(np.asarray(amp, float), nan=0.0)
-    if a.size < 3 or np.max(a) <= 0:
+    if stable is not None:
+        a = np.where(np.asarray(stable, bool), a, np.nan)
+        # split at unstable speeds: a peak never straddles an instability band
+        out = []
+        ok = np.isfinite(a)
+        start = None
+        for i in range(a.size + 1):
+            if i < a.size and ok[i]:
+                start = i if start is None else start
+            elif start is not None:
+                seg = a[start:i]
+                if seg.size >= 3:
+                    idx, _ = find_peaks(seg, prominence=prominence)
+                    out.extend(start + idx)
+                start = None
+        return np.array(out, int)
+    if a.size < 3:
         return np.array([], int)
-    idx, _ = find_peaks(a, prominence=prominence * np.max(a))
+    idx, _ = find_peaks(a, prominence=prominence)
     return idx
 
 
-def peak_near(speed, amp, target: float, tol: float = MATCH_TOL):
-    """Speed of the highest peak within tol (relative) of target, or nan."""
+def order_window(long_speed: float, short_speed: float, width: float = ORDER_WINDOW):
+    lo, hi = sorted((long_speed, short_speed))
+    return lo * (1 - width), hi * (1 + width)
+
+
+def count_peaks(speed, amp, lo: float, hi: float, stable=None) -> int:
     speed = np.asarray(speed, float)
-    idx = peaks(speed, amp)
-    if not np.isfinite(target):
-        return float("nan")
-    near = idx[np.abs(speed[idx] / target - 1) <= tol]
-    if near.size == 0:
-        return float("nan")
-    return float(speed[near[np.argmax(np.asarray(amp)[near])]])
+    idx = peaks(speed, amp, stable=stable)
+    return int(np.sum((speed[idx] >= lo) & (speed[idx] <= hi)))
 
 
-def nearest_peak(speed, amp, target: float, window: float = 0.06):
+def peak_speeds(speed, amp, lo: float, hi: float, stable=None) -> list[float]:
+    speed = np.asarray(speed, float)
+    idx = peaks(speed, amp, stable=stable)
+    return [float(s) for s in speed[idx] if lo <= s <= hi]
+
+
+def nearest_peak(speed, amp, target: float, window: float = NEAR_PEAK):
     """Speed of the peak closest to target within a +-window band, or nan."""
     speed = np.asarray(speed, float)
     idx = peaks(speed, amp)
@@ -42,12 +77,6 @@ def nearest_peak(speed, amp, target: float, window: float = 0.06):
     if idx.size == 0:
         return float("nan")
     return float(speed[idx[np.argmin(np.abs(speed[idx] - target))]])
-
-
-def count_peaks(speed, amp, lo: float, hi: float) -> int:
-    speed = np.asarray(speed, float)
-    idx = peaks(speed, amp)
-    return int(np.sum((speed[idx] >= lo) & (speed[idx] <= hi)))
 
 
 def amplification(speed, amp, target: float, window: float = 0.05) -> float:
@@ -59,25 +88,31 @@ def amplification(speed, amp, target: float, window: float = 0.05) -> float:
     return float(np.nanmax(amp[band]) / amp[0])
 
 
-def off_resonance_mask(speed, resonances, width: float = 0.04):
-    """True where the speed is more than width (relative) from every predicted resonance."""
+def off_peak_mask(speed, peak_speeds_, width: float = 0.04):
+    """True where the speed is more than width (relative) from every given peak speed."""
     speed = np.asarray(speed, float)
-    r = np.asarray([x for x in np.ravel(resonances) if np.isfinite(x)])
+    r = np.asarray([x for x in np.ravel(peak_speeds_) if np.isfinite(x)])
     if r.size == 0:
         return np.ones(speed.shape, bool)
     return np.all(np.abs(speed[:, None] / r[None, :] - 1) > width, axis=1)
 
 
-def resonance_peak_level(speed, amp, resonances, window: float = 0.02) -> float:
-    """Mean over predicted resonances (inside the speed range) of the max amplitude near each."""
+def level_at(speed, amp, at_speeds, window: float = 0.01) -> float:
+    """Mean over the given speeds of the max amplitude within +-window of each."""
     speed, amp = np.asarray(speed, float), np.asarray(amp, float)
     vals = []
-    for r in np.ravel(resonances):
-        if np.isfinite(r) and speed[0] <= r <= speed[-1]:
-            band = np.abs(speed / r - 1) <= window
-            if band.any():
-                vals.append(np.nanmax(amp[band]))
+    for r in np.ravel(at_speeds):
+        band = np.abs(speed / r - 1) <= window
+        if band.any():
+            vals.append(np.nanmax(amp[band]))
     return float(np.mean(vals)) if vals else float("nan")
+
+
+def resonance_peak_level(speed, amp, resonances, window: float = 0.02) -> float:
+    """Mean over predicted resonances (inside the speed range) of the max amplitude near each."""
+    speed = np.asarray(speed, float)
+    inside = [r for r in np.ravel(resonances) if np.isfinite(r) and speed[0] <= r <= speed[-1]]
+    return level_at(speed, amp, inside, window)
 
 
 def monotone_increasing(values) -> bool:

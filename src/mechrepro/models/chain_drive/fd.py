@@ -4,7 +4,7 @@
 
 Time: central differences (three levels).  The gyroscopic term 2 m c u_xt is centred in
 time, D(u^{j+1} - u^{j-1}) / (2 dt), which makes each step a tridiagonal solve but keeps
-the scheme neutrally stable up to the characteristic (CFL) limit; a fully explicit lag of
+the scheme neutrally stable up to its von Neumann limit dx/sqrt(c_w^2 - c^2); a fully explicit lag of
 that term is unconditionally (weakly) unstable for the moving string (tests show it).
 Space: second derivative central; first derivatives by the mixed differencing of
 Eq. (2-38) with weight s* (central at s* = 0, backward at s* = 1).
@@ -15,8 +15,8 @@ by LAPACK (``dgttrs``, factorised once per length state).  Time-dependent coeffi
 (dynamic tension, end motions, span-length state) are evaluated by the effects for the
 whole (time, speed) grid before stepping.
 
-The time step is derived from the characteristic speeds c +- c_w of the moving string,
-dt = cfl * dx / (c_w,max + c); a requested step beyond the limit is refused.
+The time step is the von Neumann limit of this scheme, dt = cfl * dx / sqrt(c_w^2 - c^2)
+(:func:`courant_limit`); a requested step beyond the limit is refused.
 """
 from __future__ import annotations
 
@@ -63,25 +63,75 @@ class Grid:
         return np.linspace(0.0, self.L_long, self.n_long + 1)
 
 
+def amplification(nu, a, s_star, n_theta: int = 721):
+    """Von Neumann amplification of the scheme as coded (principal part, no damping).
+
+    With u_i^j = G^j e^{i i theta}, nu = c_w dt/dx (c_w^2 = (P + P_t)/m), a = c/c_w, the
+    three-level scheme of :func:`march` (central u_tt, centred-in-time gyroscopic term with
+    the mixed first difference of Eq. (2-38), explicit u_xx) gives
+
+        (1 + beta) G^2 - (2 - 4 (1 - a^2) nu^2 sin^2(theta/2)) G + (1 - beta) = 0,
+        beta = a nu (i sin theta + s* (1 - cos theta)).
+
+    Returns max over theta in [0, pi] of the larger root modulus (broadcast over nu, a, s*).
+    """
+    th = np.linspace(0.0, np.pi, n_theta)
+    nu = np.asarray(nu, float)[..., None]
+    a = np.asarray(a, float)[..., None]
+    s = np.asarray(s_star, float)[..., None]
+    beta = a * nu * (1j * np.sin(th) + s * (1 - np.cos(th)))
+    A, C = 1 + beta, 1 - beta
+    B = -2 + 4 * (1 - a * a) * nu * nu * np.sin(th / 2) ** 2
+    disc = np.sqrt(B * B - 4 * A * C + 0j)
+    g = np.maximum(np.abs((-B + disc) / (2 * A)), np.abs((-B - disc) / (2 * A)))
+    return np.max(g, axis=-1)
+
+
+def courant_limit(a):
+    """Largest stable nu = c_w dt/dx of the scheme: nu_max = 1/sqrt(1 - a^2), a = c/c_w < 1.
+
+    From :func:`amplification`: the implicit (centred-in-time) gyroscopic term leaves the
+    product of the roots |1 - beta|/|1 + beta| <= 1 for every s* >= 0, so stability is
+    decided by the explicit u_xx term alone; at theta = pi the roots leave the unit circle
+    once (1 - a^2) nu^2 > 1.  In dimensional form dt <= dx / sqrt(c_w^2 - c^2) -- larger
+    than the characteristic bound dx/(c + c_w) by sqrt((c_w + c)/(c_w - c)) (1.73 at
+    c = 0.5 c_w).  Checked against the numerical root modulus and by marching just inside
+    and just outside the limit (tests/test_chain_drive_stability.py).
+    """
+    a = np.asarray(a, float)
+    if np.any(a >= 1):
+        raise StabilityError("c >= c_w: supercritical speed, the string model has no stable "
+                             "time step")
+    return 1.0 / np.sqrt(1.0 - a * a)
+
+
 def stable_time_step(dx: float, c, P_max, m: float, cfl: float = 0.9) -> float:
-    """dt = cfl * dx / max(c + c_w) with c_w = sqrt(P_max/m): the characteristic (CFL) limit."""
+    """dt = cfl * min over speeds of dx / sqrt(c_w^2 - c^2), c_w^2 = P_max/m: the von Neumann
+    limit of the scheme as coded (:func:`courant_limit`)."""
     if not 0.0 < cfl <= 1.0:
         raise StabilityError(f"CFL safety factor {cfl} outside (0, 1]: the scheme is only "
-                             "stable up to the characteristic limit")
+                             "stable up to its von Neumann limit")
     P_max = np.asarray(P_max, float)
     if np.any(P_max <= 0):
         raise StabilityError("tension is not positive: the span is slack, a string model "
                              "cannot represent it")
-    speed = np.max(np.asarray(c, float) + np.sqrt(P_max / m))
-    return float(cfl * dx / speed)
+    c = np.asarray(c, float)
+    cw = np.sqrt(P_max / m)
+    a = np.abs(c) / cw
+    return float(cfl * dx * np.min(courant_limit(a) / cw))
+
+
+def characteristic_time_step(dx: float, c, P_max, m: float) -> float:
+    """The former, stated bound dt = dx / max(c + c_w) (kept to compare with)."""
+    return float(dx / np.max(np.asarray(c, float) + np.sqrt(np.asarray(P_max, float) / m)))
 
 
 def check_time_step(dt: float, dx: float, c, P_max, m: float) -> None:
-    """Refuse a hand-picked step past the characteristic limit (never return garbage)."""
+    """Refuse a hand-picked step past the von Neumann limit (never return garbage)."""
     limit = stable_time_step(dx, c, P_max, m, cfl=1.0)
     if dt > limit * (1 + 1e-12):
         raise StabilityError(f"time step {dt:.4g} s exceeds the stability limit "
-                             f"{limit:.4g} s = dx/max(c + c_w); refusing to step")
+                             f"{limit:.4g} s = dx/sqrt(c_w^2 - c^2); refusing to step")
 
 
 def mixed_weights(s_star, dx: float):

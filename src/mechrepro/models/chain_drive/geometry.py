@@ -75,7 +75,7 @@ def moving_string_frequencies(k, c, P, m, L):
 
 
 def resonance_speed(k: int, L: float, *, n1: int, p_c: float, T_s: float, m: float,
-                    lam: float, speed_tensioning: bool, harmonic: int = 1,
+                    lam: float, speed_tensioning: bool, harmonic: float = 1,
                     omega_max: float = 1e4) -> float:
     """Driving-sprocket speed omega1 [rad/s] at which the tooth frequency ``harmonic * n1 * omega1``
     meets the k-th moving-string natural frequency of a span of length L.

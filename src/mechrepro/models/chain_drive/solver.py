@@ -158,7 +158,24 @@ def _elastic_load(run, prm, res):
                "curve_speed": ("curve_speed", curve_w * RPM, {"units": "rpm", "long_name": "driving speed"})})
 
 
+def elastic_speed_window(prm, window) -> tuple[float, float]:
+    """Speeds [lo, hi] x omega_c of the drive's own elastic four-bar resonance
+    omega_c = r2 sqrt(k/I2)/n1 with k = AE/L_ct: a medium-speed window placed around the
+    resonance of *this* drive, not a speed range copied from another drive."""
+    geo = span.span_geometry(prm, False)
+    wc = four_bar.elastic_resonance(prm["axial_stiffness"] / geo["L_ct"], prm["driven_inertia"],
+                                    geometry.pitch_radius(prm["pitch"], int(prm["n2"])),
+                                    int(prm["n1"]))
+    return float(window[0] * wc), float(window[1] * wc)
+
+
 def _sweep(run, prm, res, mode="vectorised"):
+    window = run.get("options", {}).get("speed_window_elastic")
+    wc = None
+    if window:
+        prm = dict(prm)
+        prm["speed_min"], prm["speed_max"] = elastic_speed_window(prm, window)
+        wc = prm["speed_max"] / window[1]
     omega1 = span.speed_axis(prm, int(res["n_speeds"]))
     t0 = time.perf_counter()
     out = span.sweep(run["effects"], prm, omega1, res, mode=mode)
@@ -181,13 +198,15 @@ def _sweep(run, prm, res, mode="vectorised"):
                                    "tooth frequency = k-th moving-string frequency, long span"),
         "resonance_speed_mean": _v(reso["L_ct"] * RPM, ("order",), "rpm",
                                    "tooth frequency = k-th moving-string frequency, span L_ct"),
-        "time_step": _scalar(out["dt"], "s", "time step from the characteristic speeds"),
+        "time_step": _scalar(out["dt"], "s", "time step: cfl x the von Neumann limit dx/sqrt(c_w^2 - c^2)"),
         "n_steps": _scalar(out["n_steps"], "1", "number of time steps"),
         "n_points": _scalar(g.n_long + 1, "1", "grid points of the long span"),
         "L_short": _scalar(geo["L_short"], "m", "short span length L_0"),
         "L_long": _scalar(geo["L_long"], "m", "long span length"),
         "fractional_pitch": _scalar(geo["f_p"], "1", "fractional pitch f_p, Eq. (2-6)"),
         "sweep_wall_time": _scalar(wall, "s", "wall time of the whole speed sweep"),
+        "elastic_resonance_speed": _scalar(np.nan if wc is None else wc * RPM, "rpm",
+                                           "omega_c of the drive's elastic four-bar (k = AE/L_ct)"),
     }, coords={**_speed_coord(omega1),
                "order": ("order", orders, {"units": "1", "long_name": "resonance order k"})})
     return ds
@@ -215,23 +234,46 @@ def _time_history(run, prm, res):
 
 
 def _resonant_speed(run, prm, selected, L) -> float:
-    """omega1 from options.resonance: tooth frequency at the j-th longitudinal or the k-th
-    transverse frequency of the span (derived, never typed in); else parameter ``speed``."""
-    spec = run.get("options", {}).get("resonance")
+    """omega1 from options.resonance: tooth frequency = ``detuning`` x the j-th longitudinal or
+    the k-th transverse frequency of the span (derived, never typed in); else ``speed``."""
+    opts = run.get("options", {})
+    spec = opts.get("resonance")
     if not spec:
         return prm["speed"]
     what, order = spec
+    d = float(opts.get("detuning", 1.0))
     n1, p, m = int(prm["n1"]), prm["pitch"], prm["mass_per_length"]
     if what == "transverse":
         return geometry.resonance_speed(int(order), L, n1=n1, p_c=p, T_s=prm["static_tension"], m=m,
                                         lam=prm["lambda_support"],
-                                        speed_tensioning="speed_tensioning" in selected)
+                                        speed_tensioning="speed_tensioning" in selected,
+                                        harmonic=1.0 / d)
     from scipy.optimize import brentq
 
     def f(w):
-        return n1 * w - geometry.longitudinal_frequency(int(order), prm["axial_stiffness"], m,
-                                                        float(geometry.chain_speed(w, n1, p)), L)
+        return n1 * w - d * geometry.longitudinal_frequency(int(order), prm["axial_stiffness"], m,
+                                                            float(geometry.chain_speed(w, n1, p)), L)
     return float(brentq(f, 1e-3, 1e5))
+
+
+def envelope_statistics(u, steps_per_tooth: int) -> dict:
+    """Well-posed statistics of a probe record sampled at every RK4 step.
+
+    The record is cut into quarters of whole tooth periods (the forcing period), so each
+    quarter holds the same phases of the forcing; the statistic is the maximum of |u| over
+    every step of a quarter (never over a decimated record, whose maximum depends on the
+    sampling).  ``steady_amplitude`` = max over the last quarter; ``steady_ratio`` = last
+    quarter / third quarter (1 for a steady envelope).
+    """
+    u = np.abs(np.asarray(u, float))
+    n_periods = (u.size - 1) // steps_per_tooth
+    q = n_periods // 4
+    if q < 1:
+        raise ValueError(f"record of {n_periods} tooth periods: too short for quarter statistics")
+    edges = [(u.size - 1) - (4 - i) * q * steps_per_tooth for i in range(5)]
+    blocks = [np.max(u[edges[i] + 1: edges[i + 1] + 1]) for i in range(4)]
+    return {"steady_amplitude": blocks[3], "steady_ratio": blocks[3] / blocks[2],
+            "quarter_periods": q}
 
 
 def _impact_timestep(run, prm, res):
@@ -246,7 +288,7 @@ def _impact_timestep(run, prm, res):
                     "max |u_mid - u_ref| / max |u_ref| against a fine uniform reference"),
         "march_wall_time": _v([out[n]["wall"] for n in names], ("strategy",), "s", "wall time of the march"),
         "steps": _v([out[n]["steps"] for n in names], ("strategy",), "1", "number of time steps"),
-        "dt_max": _scalar(out["dt_max"], "s", "characteristic (CFL) step"),
+        "dt_max": _scalar(out["dt_max"], "s", "von Neumann limit step (x cfl)"),
         "dt_min": _scalar(out["dt_min"], "s", "smallest step of the non-uniform scheme"),
         "dt_equal_accuracy": _scalar(out["uniform_equal_accuracy"]["dt"], "s",
                                      "uniform step reaching the non-uniform accuracy"),
@@ -256,6 +298,7 @@ def _impact_timestep(run, prm, res):
 
 def _galerkin(run, prm, res):
     selected = EFFECTS.select(run["effects"])
+    opts = run.get("options", {})
     n1, p, m = int(prm["n1"]), prm["pitch"], prm["mass_per_length"]
     geo = span.span_geometry(prm, False)
     L = geo["L_ct"]
@@ -273,25 +316,31 @@ def _galerkin(run, prm, res):
     # a whole number of steps per tooth period: the end-motion kinks and the impacts then sit
     # on step boundaries (RK4 is only first order across a kink inside a step)
     tau = 2 * np.pi / (n1 * w1)
-    dt = tau / math.ceil(tau / (float(res["rk4_cfl"]) * dt_limit))
-    # impact pulses shorter than the step enter with their exact impulse, spread over a few
-    # RK4 steps so that the integrator resolves the forcing it is given
-    window = float(res.get("impact_window_steps", 4)) * dt
+    per_tooth = math.ceil(tau / (float(res["rk4_cfl"]) * dt_limit))
+    dt = tau / per_tooth
+    # impact pulses shorter than the step enter with their exact impulse, spread over a
+    # fixed fraction of the tooth period (not a number of steps: the forcing must not
+    # change when the step is refined)
+    window = tau / 16
     tension, ends = galerkin.forcing(selected, prm, w1, geo, kimp, step=window)
     f = lambda t, y: model.rhs(t, y, ends, tension)  # noqa: E731
     y0 = np.zeros(2 * (model.n_t + model.n_l))
-    t_end = float(res["duration"])
-    n_steps = int(math.ceil(t_end / dt))
-    rec = max(n_steps // int(res["samples"]), 1)
+    # a whole number of tooth periods
+    n_steps = per_tooth * max(int(math.ceil(float(res["duration"]) / tau)), 4)
     t0 = time.perf_counter()
     F = galerkin.forcing_arrays(selected, prm, w1, geo, kimp, galerkin.stage_times(dt, n_steps),
                                 step=window)
-    t_rk, y_rk = galerkin.rk4_tabulated(model, y0, dt, n_steps, F, record_every=rec)
+    t_all, y_all = galerkin.rk4_tabulated(model, y0, dt, n_steps, F, record_every=1)
     wall_rk = time.perf_counter() - t0
     xi = float(prm["probe_fraction"]) * L   # measured from the driven sprocket (x = 0)
-    u_rk = model.transverse(y_rk, t_rk, ends, xi)
+    Fe = galerkin.forcing_arrays(selected, prm, w1, geo, kimp, t_all + 1e-9 * dt, step=window)
+    u_all = model.u2_at(y_all, xi) + (1 - xi / L) * Fe["g"] + xi / L * Fe["h"]
+    stats = envelope_statistics(u_all, per_tooth)
+    rec = max(n_steps // int(res["samples"]), 1)
+    t_rk, u_rk = t_all[::rec], u_all[::rec]
     data = {
-        "u_probe_rk4": _v(u_rk, ("t",), "m", "transverse displacement at the probe, RK4"),
+        "u_probe_rk4": _v(u_rk, ("t",), "m", "transverse displacement at the probe, RK4 (every "
+                          f"{rec}th step, for the figure)"),
         "rk4_time_step": _scalar(dt, "s", "RK4 step (a whole number per tooth period)"),
         "rk4_step_limit": _scalar(dt_limit, "s", "RK4 linear stability limit"),
         "rk4_wall_time": _scalar(wall_rk, "s", "wall time of RK4"),
@@ -300,36 +349,43 @@ def _galerkin(run, prm, res):
                                           "first longitudinal frequency of the moving span"),
         "tooth_frequency": _scalar(n1 * w1, "rad/s", "tooth frequency n1 omega1"),
         "speed": _scalar(w1 * RPM, "rpm", "driving sprocket speed"),
+        "detuning": _scalar(float(opts.get("detuning", 1.0)), "1",
+                            "tooth frequency / the resonance frequency named in options"),
         "transverse_order_at_speed": _scalar(
             n1 * w1 / float(geometry.moving_string_frequencies(1, c, P, m, L)), "1",
             "tooth frequency / first transverse frequency of the moving span"),
+        "steady_amplitude": _scalar(stats["steady_amplitude"], "m",
+                                    "max |u| at the probe over every step of the last quarter "
+                                    "(whole tooth periods)"),
+        "steady_ratio": _scalar(stats["steady_ratio"], "1",
+                                "max |u| last quarter / third quarter (whole tooth periods)"),
     }
-    if res.get("compare_library", False):
+    if opts.get("compare_library", False):
         t0 = time.perf_counter()
-        # the library run covers the first part of the record: adaptive steppers creep
-        # through the step-averaged impact pulses, which makes a full record expensive
-        n_lib = int(np.searchsorted(t_rk, float(res.get("library_duration", 0.02)))) + 1
-        t_lib, y_lib, nfev = galerkin.library(f, 0.0, y0, t_rk[n_lib - 1], t_rk[:n_lib],
-                                              rtol=float(res.get("library_rtol", 1e-6)),
-                                              max_step=dt)
+        # the library covers the first tooth periods: with a tolerance far below the RK4
+        # error (rtol 1e-9) the difference is RK4's own error, not the adaptive controller's
+        # (rtol 1e-6 made it depend on step-size decisions, hence on the platform)
+        n_lib = per_tooth * max(int(round(float(res["library_periods"]))), 1)
+        t_lib, y_lib, nfev = galerkin.library(f, 0.0, y0, t_all[n_lib], t_all[:n_lib + 1],
+                                              rtol=float(res.get("library_rtol", 1e-9)),
+                                              atol=1e-14, max_step=dt)
         wall_lib = time.perf_counter() - t0
-        u_lib = np.full(t_rk.shape, np.nan)
-        u_lib[:n_lib] = model.transverse(y_lib, t_lib, ends, xi)
-        scale = np.max(np.abs(u_rk[:n_lib]))
+        u_lib = model.u2_at(y_lib, xi) + (1 - xi / L) * Fe["g"][:n_lib + 1] + xi / L * Fe["h"][:n_lib + 1]
+        scale = np.max(np.abs(u_all[:n_lib + 1]))
         data.update({
-            "u_probe_library": _v(u_lib, ("t",), "m",
-                                  "transverse displacement at the probe, solve_ivp DOP853 (first part)"),
-            "rk4_vs_library": _scalar(np.max(np.abs(u_rk[:n_lib] - u_lib[:n_lib])) / scale, "1",
+            "u_probe_library": _v(u_lib, ("t_library",), "m",
+                                  "transverse displacement at the probe, solve_ivp DOP853 (first periods)"),
+            "rk4_vs_library": _scalar(np.max(np.abs(u_all[:n_lib + 1] - u_lib)) / scale, "1",
                                       "max |u_RK4 - u_library| / max |u| over the library window"),
             "library_wall_time": _scalar(wall_lib, "s", "wall time of solve_ivp"),
             "library_nfev": _scalar(nfev, "1", "right-hand-side calls of solve_ivp"),
             "rk4_nfev": _scalar(4 * n_steps, "1", "right-hand-side calls of RK4"),
         })
-    nt = len(t_rk)
-    tail = slice(nt * 3 // 4, None)
-    data["steady_amplitude"] = _scalar(np.max(np.abs(u_rk[tail])), "m",
-                                       "max |u| at the probe over the last quarter")
-    return xr.Dataset(data, coords={"t": ("t", t_rk, {"units": "s", "long_name": "time"})})
+        coords_lib = {"t_library": ("t_library", t_lib, {"units": "s", "long_name": "time"})}
+    else:
+        coords_lib = {}
+    return xr.Dataset(data, coords={"t": ("t", t_rk, {"units": "s", "long_name": "time"}),
+                                    **coords_lib})
 
 
 def _exact_free(run, prm, res):

@@ -6,7 +6,7 @@ impact with an exponential function.  Here
     dt(t) = dt_min + (dt_max - dt_min) (1 - exp(-d(t) / delta)),
 
 d(t) = time since the last impact or to the next one, delta = 3 t_i (t_i = contact time),
-dt_min = t_i / refine, dt_max = the characteristic (CFL) step.  It is compared with
+dt_min = t_i / refine, dt_max = the von Neumann limit step (x cfl).  It is compared with
 uniform steps (point-sampled load) and with our uniform step whose impact load is
 averaged exactly over each step (the pulse enters with its exact impulse).
 """

@@ -1,0 +1,56 @@
+"""chain_drive: the worded claims are well-posed measurements (fixed physical thresholds,
+statistics independent of sampling and of a sweep's own maximum)."""
+import math
+
+import numpy as np
+import pytest
+
+from mechrepro.models.chain_drive import claims as C
+from mechrepro.models.chain_drive.solver import elastic_speed_window, envelope_statistics
+
+
+def _curve(extra_peak_height):
+    sp = np.linspace(300, 500, 401)
+    a = 0.5e-3 + 2e-3 * np.exp(-((sp - 400) / 3) ** 2) + extra_peak_height * np.exp(-((sp - 450) / 3) ** 2)
+    return sp, a
+
+
+def test_peak_threshold_is_physical_not_relative_to_the_sweep_maximum():
+    sp, a = _curve(0.2e-3)
+    assert len(C.peaks(sp, a)) == 2
+    # a capped instability elsewhere (50 mm) must not hide the 0.2 mm peak
+    a2 = a.copy()
+    a2[10:13] = 0.05
+    stable = np.ones(sp.size, bool)
+    stable[10:13] = False
+    assert len(C.peaks(sp, a2, stable=stable)) == 2
+    # a ripple below 0.05 mm is not a peak, whatever the rest of the sweep
+    sp, a = _curve(0.03e-3)
+    assert len(C.peaks(sp, a)) == 1
+
+
+def test_order_window_brackets_both_span_speeds():
+    lo, hi = C.order_window(240.0, 250.0)
+    assert lo == pytest.approx(240 * 0.97) and hi == pytest.approx(250 * 1.03)
+
+
+def test_envelope_statistics_use_whole_tooth_periods_and_every_step():
+    per_tooth = 13
+    n_periods = 40
+    t = np.arange(per_tooth * n_periods + 1) / per_tooth
+    u = np.sin(2 * np.pi * t + 0.3)            # steady, forced at the tooth frequency
+    s = envelope_statistics(u, per_tooth)
+    assert s["steady_ratio"] == pytest.approx(1.0, abs=1e-12)
+    decaying = np.exp(-t / 10) * u
+    assert envelope_statistics(decaying, per_tooth)["steady_ratio"] < 0.9
+
+
+def test_elastic_speed_window_follows_each_drive():
+    prm = dict(pitch=0.0127, n1=24, n2=24, centre_distance=20.0, axial_stiffness=2e6,
+               driven_inertia=0.002)
+    lo, hi = elastic_speed_window(prm, [0.25, 1.25])
+    prm2 = dict(prm, n1=15, n2=40, driven_inertia=0.0005)
+    lo2, hi2 = elastic_speed_window(prm2, [0.25, 1.25])
+    rpm = 30 / math.pi
+    assert 1100 < hi / 1.25 * rpm < 1300          # 24/24: omega_c ~ 1.2e3 rpm
+    assert 6000 < hi2 / 1.25 * rpm < 7200         # 15/40: omega_c ~ 6.6e3 rpm

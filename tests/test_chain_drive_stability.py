@@ -1,0 +1,64 @@
+"""chain_drive: the time-step limit of the FD scheme, derived (von Neumann) and measured.
+
+The scheme of fd.march (central u_tt, centred-in-time gyroscopic term with the mixed first
+difference of Eq. 2-38, explicit u_xx) is stable for nu = c_w dt/dx <= 1/sqrt(1 - (c/c_w)^2),
+whatever the mixed-differencing weight s*: the stated bound dx/(c + c_w) refused stable steps.
+"""
+import math
+
+import numpy as np
+import pytest
+
+from mechrepro.models.chain_drive import fd
+
+M, T, L = 0.61, 400.0, 0.254
+CW = math.sqrt(T / M)
+
+
+@pytest.mark.parametrize("a", [0.0, 0.2, 0.5, 0.8, 0.95])
+@pytest.mark.parametrize("s", [0.0, 0.5, 1.0])
+def test_closed_form_limit_matches_the_root_modulus(a, s):
+    nu = fd.courant_limit(a)
+    assert fd.amplification(0.999 * nu, a, s) <= 1 + 1e-9
+    assert fd.amplification(1.01 * nu, a, s) > 1 + 1e-4
+
+
+def _march(a, factor, s=None, n_steps=3000):
+    grid = fd.Grid(L, 40, 40)
+    c = np.array([a * CW])
+    dt = factor * fd.stable_time_step(grid.dx, c, T, M, cfl=1.0)
+    rng = np.random.default_rng(0)
+    u0 = 1e-6 * rng.standard_normal((1, 41))
+    return fd.march(c=c, P=np.array([T]), m=M, c_d=0.0, grid=grid, dt=dt, n_steps=n_steps,
+                    exc=fd.Excitation(), u0=u0, u_cap=1e-2, measure_from=0,
+                    s_star=None if s is None else np.array([s]))
+
+
+@pytest.mark.parametrize("a", [0.2, 0.5, 0.8])
+@pytest.mark.parametrize("s", [0.0, None])      # central, and the paper's s* = c/sqrt(T_s/m)
+def test_just_inside_the_limit_stays_bounded(a, s):
+    r = _march(a, 0.98, s)
+    assert not r.unstable[0]
+    assert np.max(np.abs(r.final)) < 1e-4
+
+
+@pytest.mark.parametrize("a", [0.2, 0.5, 0.8])
+@pytest.mark.parametrize("s", [0.0, None])
+def test_just_outside_the_limit_grows(a, s):
+    r = _march(a, 1.03, s)
+    assert r.unstable[0]
+    assert np.all(np.isfinite(r.final))
+
+
+def test_stated_characteristic_bound_refuses_stable_steps():
+    """At c = 0.5 c_w the derived limit is sqrt(3) = 1.73 x the bound dx/(c + c_w)."""
+    grid = fd.Grid(L, 40, 40)
+    c = np.array([0.5 * CW])
+    ratio = (fd.stable_time_step(grid.dx, c, T, M, cfl=1.0)
+             / fd.characteristic_time_step(grid.dx, c, T, M))
+    assert ratio == pytest.approx(math.sqrt(3.0), rel=1e-12)
+
+
+def test_supercritical_speed_is_refused():
+    with pytest.raises(fd.StabilityError, match="supercritical"):
+        fd.stable_time_step(0.003, np.array([1.1 * CW]), T, M)
