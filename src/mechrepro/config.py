@@ -346,6 +346,9 @@ def _make_run(raw, scene_name, study, index, point, run_schema, where) -> dict:
         "scene": scene_name,
         "study": study,
         "sweep": point,
+        # the unit of each swept value as written in the config (resolution keys: "1")
+        "sweep_units": {k: raw["parameters"][k]["unit"] if k in raw["parameters"] else "1"
+                        for k in point},
         "effects": record["effects"],
         "resolution": resolution,
         "options": record["options"],

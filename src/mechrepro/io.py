@@ -73,6 +73,7 @@ def provenance_attrs(run: dict) -> dict:
         "study": run.get("study") or "",
         "variant": run.get("variant") or "",
         "sweep": json.dumps(run.get("sweep", {}), sort_keys=True),
+        "sweep_units": json.dumps(run.get("sweep_units", {}), sort_keys=True),
         "effects": json.dumps(run["effects"]),
         "resolution": json.dumps(run["resolution"], sort_keys=True),
         "parameters": json.dumps({"values_si": run["parameters"], "units_si": run["units"],
@@ -85,17 +86,41 @@ def provenance_attrs(run: dict) -> dict:
     }
 
 
+# config spellings that UDUNITS (and so the CF checker) does not know
+CF_UNITS = {"deg": "degree", "r/min": "rpm", "HB": "kgf/mm2", "bool": "1"}
+
+
+def _cf_types(ds: xr.Dataset) -> tuple[xr.Dataset, dict]:
+    """CF-1.8 data types (no 64-bit integers) and no _FillValue on coordinates."""
+    encoding = {}
+    for name, var in {**ds.coords, **ds.data_vars}.items():
+        if var.dtype.kind in "iu" and var.dtype.itemsize == 8:
+            v = var.values
+            fits = v.size == 0 or (v.min() >= np.iinfo(np.int32).min and v.max() <= np.iinfo(np.int32).max)
+            ds[name] = var.astype(np.int32 if fits else np.float64)
+        if var.attrs.get("units") in CF_UNITS:
+            ds[name].attrs["units"] = CF_UNITS[var.attrs["units"]]
+        if name in ds.coords or var.dtype.kind not in "fc":
+            encoding[name] = {"_FillValue": None}
+    return ds, encoding
+
+
 def write_dataset(ds: xr.Dataset, path: str | Path, run: dict | None = None,
                   extra_attrs: dict | None = None) -> Path:
-    """Write ``ds`` atomically; with ``run``, add the provenance attributes."""
+    """Write ``ds`` atomically (CF-1.8 types); with ``run``, add the provenance attributes."""
     check_cf(ds)
-    ds = ds.copy()
+    ds, encoding = _cf_types(ds.copy())
     if run is not None:
         ds.attrs.update(provenance_attrs(run))
     if extra_attrs:
         ds.attrs.update(extra_attrs)
+    ds.attrs.setdefault("Conventions", "CF-1.8")
+    ds.attrs.setdefault("title", f"mechrepro {ds.attrs.get('paper', '')} "
+                                 f"{ds.attrs.get('run') or ds.attrs.get('study') or Path(path).stem}")
+    ds.attrs.setdefault("history", f"{ds.attrs.get('created', '')} written by mechrepro "
+                                   f"{code_version()}")
     with atomic_path(path) as tmp:
-        ds.to_netcdf(tmp, engine="netcdf4")
+        ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
     return Path(path)
 
 
@@ -136,10 +161,12 @@ def gather_study(paths: list[str | Path]) -> xr.Dataset:
     out = xr.concat([d[stackable] for d in dsets], dim="run", coords="minimal",
                     compat="override", combine_attrs="override")
     out = out.assign_coords(run=("run", names, {"long_name": "run name", "units": "1"}))
+    units = json.loads(dsets[0].attrs.get("sweep_units", "{}"))
     for key in attrs[0]["sweep"]:
         vals = [a["sweep"][key] for a in attrs]
-        out = out.assign_coords({key: ("run", vals, {"long_name": f"swept {key}",
-                                                    "units": "as in config"})})
+        unit = CF_UNITS.get(units.get(key, "1"), units.get(key, "1"))
+        out = out.assign_coords({key: ("run", vals, {"long_name": f"swept {key} (in the "
+                                                    f"config's unit)", "units": unit})})
     out.attrs = {"paper": attrs[0]["paper"], "study": attrs[0]["study"],
                  "scene": attrs[0]["scene"], "runs": json.dumps(names),
                  "code_version": code_version(),

@@ -44,6 +44,12 @@ class PaperResults:
         savefig(fig, self.figure_path(name))
         return self.figure_path(name)
 
+    def validation(self) -> list[dict]:
+        """The validation table the framework built (``validate_<paper>``), for display."""
+        from .validation import read_table
+
+        return read_table(self.table_path("validation"))
+
     def write_validation(self, rows) -> Path:
         return write_table(rows, self.table_path("validation"))
 

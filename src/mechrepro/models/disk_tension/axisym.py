@@ -203,6 +203,14 @@ class AxisymDisk:
             m_hat[i, i] = align_signs(modes[n][:, None], self.M[n], phi)[:, 0] @ self.M[n] @ phi[:, 0]
         return k_hat, m_hat
 
+    def m_hat_diag(self, Ks, scale=1.0):
+        """Diagonal of Eq. (17) with K^(sigma) scaled by ``scale`` (mode change vs stress)."""
+        from .modal import align_signs
+
+        _, modes = self.rolled({n: scale * Ks[n] for n in self.n_d})
+        return np.array([align_signs(modes[n][:, None], self.M[n], self.phi[n][:, None])[:, 0]
+                         @ self.M[n] @ self.phi[n] for n in self.n_d])
+
     def sensitivity(self, *, r_a, width, increase, E, nu, rho):
         """Fig. 7: Delta f [Hz] of each N_d when D rises by ``increase`` in the annulus
         |r - r_a| <= width/2 (eigen re-solve on a mesh with the annulus edges as nodes)."""

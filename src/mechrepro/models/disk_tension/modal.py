@@ -96,3 +96,42 @@ def align_signs(Phi_rolled, M, Phi):
     s = np.sign(np.einsum("ij,ij->j", Phi_rolled, M @ Phi))
     s[s == 0] = 1.0
     return Phi_rolled * s
+
+
+def align_pair(Q, M, P):
+    """Canonical basis of a rolled mode pair for Eq. (17): the rotation of ``Q`` closest to
+    the unrolled pair ``P``.
+
+    A degenerate sin/cos pair is returned by an eigensolver in an arbitrary rotation (it
+    depends on the start vector, the BLAS kernels and the thread count), so a single member's
+    entry of Eq. (17) is not well defined.  The orthogonal Procrustes rotation
+    R = argmax trace((Q R)^T M P) = U V^T, with U S V^T = Q^T M P, aligns the pair with the
+    cos/sin basis of the unstressed mode; the block (Q R)^T M P = V S V^T is then symmetric
+    and independent of how ``Q`` was rotated or signed.  ``Q``, ``P``: (n_dof, k) with
+    mass-normalised columns, k = 1 (N_d = 0) or 2.
+    """
+    C = Q.T @ (M @ P)
+    U, _, Vt = np.linalg.svd(C)
+    return Q @ (U @ Vt)
+
+
+def harmonic_coupling_symmetry(nonzero_pairs, n_max, orders=range(2, 65)):
+    """Smallest rotational symmetry order N of a mesh whose harmonic coupling pattern is
+    ``nonzero_pairs`` (pairs (i, j), i < j <= n_max, of nonzero off-diagonals of Eq. (16)).
+
+    On a mesh with C_N symmetry, cos(i theta) and cos(j theta) couple iff i = +-j (mod N)
+    (selection rule of the cyclic group); returns None when no N <= max(orders) fits.
+    """
+    want = {tuple(sorted(p)) for p in nonzero_pairs}
+    for N in orders:
+        got = {(i, j) for i in range(n_max + 1) for j in range(i + 1, n_max + 1)
+               if (i - j) % N == 0 or (i + j) % N == 0}
+        if got == want:
+            return N
+    return None
+
+
+def degenerate_harmonics(N, n_d):
+    """Harmonics that stay degenerate sin/cos pairs on a C_N-symmetric mesh: N_d with
+    N_d mod N not in {0, N/2} (the others split into two singlets)."""
+    return [int(n) for n in n_d if (n % N) != 0 and (2 * n) % N != 0]

@@ -83,6 +83,37 @@ def polar_mesh(r_f, b, n_rings, n_sectors, slots: Slots | None = None,
     return MeshTri(p[:, used], remap[t])
 
 
+def with_inner_disk(mesh: MeshTri) -> MeshTri:
+    """The annulus mesh plus a mesh of the clamped core r < r_f (rings + centre fan).
+
+    The annulus nodes and triangles come first with unchanged indices, so the first
+    ``mesh.nelements`` triangles of the result are the annulus triangles with the same local
+    node order: a field solved on the whole disk is then evaluated at exactly the bending
+    quadrature points (the free-disk residual stress, ``inplane_bc = free_disk``).
+    """
+    rad = np.hypot(*mesh.p)
+    r0 = rad.min()
+    ring = np.nonzero(rad < r0 * (1 + 1e-9))[0]
+    ring = ring[np.argsort(np.arctan2(mesh.p[1, ring], mesh.p[0, ring]))]
+    th = np.arctan2(mesh.p[1, ring], mesh.p[0, ring])
+    nt = len(ring)
+    # ring spacing of the core close to the annulus's first ring width (cells of similar size)
+    dr = np.sort(np.unique(np.round(rad, 12)))[1] - r0
+    k = int(np.clip(np.ceil(r0 / dr), 2, 12))
+    radii = r0 * np.arange(k - 1, 0, -1) / k
+    base = mesh.p.shape[1]
+    pts = [np.stack([rr * np.cos(th), rr * np.sin(th)]) for rr in radii]
+    centre = base + nt * len(radii)
+    p = np.hstack([mesh.p] + pts + [np.zeros((2, 1))])
+    rings = [ring] + [base + i * nt + np.arange(nt) for i in range(len(radii))]
+    tri = []
+    j, jn = np.arange(nt), (np.arange(nt) + 1) % nt
+    for outer, inner in zip(rings[:-1], rings[1:]):
+        tri += [np.stack([outer[j], inner[j], inner[jn]]), np.stack([outer[j], inner[jn], outer[jn]])]
+    tri.append(np.stack([rings[-1][j], np.full(nt, centre), rings[-1][jn]]))
+    return MeshTri(p, np.hstack([mesh.t] + tri))
+
+
 @BilinearForm
 def _bending(u, v, w):
     # D [(1 - nu) dd(u):dd(v) + nu lap(u) lap(v)]
@@ -207,26 +238,50 @@ class PlateDisk:
         return np.stack([self.pair[n][:, 0] for n in self.n_d], axis=1)
 
     # -- thermal analogy: plane stress ---------------------------------------------
-    def residual_stress(self, temperature, alpha):
-        """Plane-stress thermal field with u = 0 at r = r_f (in-plane clamp), returned as
-        (sxx, sxy, syy) at the bending quadrature points [Pa]."""
-        if self._inplane is None:
+    def _inplane_problem(self, inplane_bc):
+        """P2 plane-stress basis, free DOFs and factorised stiffness for ``inplane_bc``.
+
+        ``clamped``: the annulus with u = 0 at r = r_f.  ``free_disk``: the whole disk (the
+        annulus plus the core r < r_f, which carries the temperature too), held only against
+        rigid motion (centre node fixed, tangential displacement of one rim-of-core node):
+        the residual stress of a blade rolled before it is clamped.
+        """
+        if inplane_bc == "clamped":
             ub = self.basis.with_element(ElementVector(ElementTriP2()))
-            Kin = asm(_membrane, ub, C=self.E / (1 - self.nu**2), nu=self.nu).tocsr()
             r_in = np.hypot(*self.mesh.p).min()
             inner = self.mesh.facets_satisfying(lambda x: np.hypot(*x) < r_in * (1 + 1e-9))
             fixed = ub.get_dofs(inner).all()
-            free = np.setdiff1d(np.arange(ub.N), fixed)
-            lu = spla.splu(Kin[free][:, free].tocsc())
-            self._inplane = (ub, free, lu)
-        ub, free, lu = self._inplane
+        elif inplane_bc == "free_disk":
+            full = with_inner_disk(self.mesh)
+            ub = Basis(full, ElementVector(ElementTriP2()), intorder=INTORDER)
+            centre = int(np.argmin(np.hypot(*full.p)))
+            ring = np.hypot(*full.p[:, :self.mesh.p.shape[1]])
+            anchor = int(np.argmin(np.abs(full.p[1, :self.mesh.p.shape[1]])
+                                   + (ring - ring.min())))
+            fixed = np.array([ub.nodal_dofs[0, centre], ub.nodal_dofs[1, centre],
+                              ub.nodal_dofs[1, anchor]])
+        else:
+            raise ValueError(f"inplane_bc = {inplane_bc!r}: allowed 'clamped', 'free_disk'")
+        Kin = asm(_membrane, ub, C=self.E / (1 - self.nu**2), nu=self.nu).tocsr()
+        free = np.setdiff1d(np.arange(ub.N), fixed)
+        return ub, free, spla.splu(Kin[free][:, free].tocsc())
+
+    def residual_stress(self, temperature, alpha, inplane_bc="clamped"):
+        """Plane-stress thermal field (thermal analogy, Eq. 4 load) for the in-plane boundary
+        condition ``inplane_bc``, returned as (sxx, sxy, syy) at the bending quadrature
+        points [Pa]."""
+        if self._inplane is None or self._inplane[0] != inplane_bc:
+            self._inplane = (inplane_bc,) + self._inplane_problem(inplane_bc)
+        _, ub, free, lu = self._inplane
         x = np.asarray(ub.global_coordinates())
         T = temperature(np.hypot(x[0], x[1]))
         EaT = self.E * alpha * T / (1 - self.nu)
         f = asm(_thermal_load, ub, EaT=EaT)
         u = np.zeros(ub.N)
         u[free] = lu.solve(f[free])
-        eps = sym_grad(ub.interpolate(u))
+        ne = self.mesh.t.shape[1]
+        EaT = EaT[:ne]
+        eps = sym_grad(ub.interpolate(u))[:, :, :ne]
         c = self.E / (1 - self.nu**2)
         tr = eps[0, 0] + eps[1, 1]
         sxx = c * ((1 - self.nu) * eps[0, 0] + self.nu * tr) - EaT
@@ -289,20 +344,17 @@ class PlateDisk:
         return float(-1.0 / neg.min()) if neg.size else float("inf")
 
     def modal_matrices(self, Ks):
-        """Eq. (16) with Phi = cos members; Eq. (17) raw (first rolled member as returned
-        by the eigensolver) and aligned (rolled pair projected on the cos member)."""
+        """Eq. (16) with Phi = cos members; Eq. (17) with every rolled pair rotated onto the
+        cos/sin basis of its unrolled pair first (:func:`modal.align_pair`), so Table 2 does
+        not depend on the rotation the eigensolver happens to return."""
+        from .modal import align_pair
+
         Phi = self.Phi
         k_hat = Phi.T @ (Ks @ Phi)
         self.rolled(Ks)
-        MPhi = self.M @ Phi
-        raw = np.stack([self.rolled_modes[n][:, 0] for n in self.n_d], axis=1)
-        m_raw = np.abs(raw.T @ MPhi)
-        aligned = []
-        for i, n in enumerate(self.n_d):
-            Q = self.rolled_modes[n]
-            c = Q.T @ MPhi[:, i]
-            v = Q @ c
-            aligned.append(v / np.sqrt(v @ (self.M @ v)))
-        aligned = np.stack(aligned, axis=1)
-        m_aligned = aligned.T @ MPhi
-        return k_hat, m_raw, m_aligned
+        canon = []
+        for n in self.n_d:
+            P = self.pair[n][:, :1] if n == 0 else self.pair[n]
+            canon.append(align_pair(self.rolled_modes[n], self.M, P)[:, 0])
+        m_hat = np.stack(canon, axis=1).T @ (self.M @ Phi)
+        return k_hat, m_hat

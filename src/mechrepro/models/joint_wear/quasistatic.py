@@ -1,11 +1,23 @@
 """Continuous-contact joint B, quasi-static (the paper's low-speed assumption, Sec. 3.2).
 
 At 9.6 r/min the pin never leaves the bushing (checked: the dynamic clearance model's
-minimum penetration over a period stays > 0).  The joint then moves with the ideal
-kinematics; the joint-B force follows from the minimal-coordinate equations of motion
-(loads.py) solved for the contact force, Eqs. (11), (15) give F_N, the penetration and the
-contact arc.  No stiff dynamics is integrated: one period costs a few vectorised array
-operations.
+minimum penetration over a period stays > 0).  The pin then slides on the bushing with
+the penetration that carries the joint force, and the bushing's centre sits at
+r_j = r_i - (c + delta) n (Eqs. 5-8 read backwards).  The joint-B force follows from the
+minimal-coordinate equations of motion (loads.py) solved for the contact force; Eqs.
+(11), (15) give F_N, the penetration and the contact direction.  No stiff dynamics is
+integrated: one period costs a few vectorised array operations.
+
+Clearance kinematics.  The coupler and follower do not follow the ideal four-bar: the
+bushing centre is offset from the pin by the eccentricity (c + delta) along n, which
+turns the links by ~c / l (3e-4 rad at c = 0.1 mm, 2e-3 rad once the bushing is worn
+0.5 mm).  That offset is what the dynamic clearance joint settles on; ignoring it puts
+the quasi-static state ~0.01 deg off the dynamic one, enough to ring the clearance's
+lightly damped rocking mode when a dynamic run starts there, and it would hide the
+enlarged clearance from the force history of a worn joint.  The positions are found by a
+fixed point: ideal kinematics -> force -> n -> bushing centre -> link angles (velocities
+and accelerations by spectral differentiation of the periodic angles) -> force ...; the
+correction shrinks by ~c/l per pass: ``passes`` = 2 leaves 1e-10 in the wear per period.
 """
 from __future__ import annotations
 
@@ -15,13 +27,31 @@ from . import contact, kinematics, loads
 from .geometry import FourBar
 
 
-def one_period(fb: FourBar, n_steps: int) -> dict:
-    """Contact history over one crank period on a uniform periodic grid of n_steps."""
-    t = np.arange(n_steps) * (fb.period / n_steps)
+def one_period(fb: FourBar, n_steps: int, passes: int = 2, t0: float = 0.0) -> dict:
+    """Contact history over one crank period on a uniform periodic grid of n_steps from t0.
+
+    passes = 0 is the ideal-kinematics approximation (the bushing centre on the pin's).
+    """
+    t = t0 + np.arange(n_steps) * (fb.period / n_steps)
     th1 = fb.omega * t
     th3, ph2 = kinematics.positions(fb, th1)
     w3, w2 = kinematics.velocities(fb, th1, th3, ph2)
     a3, a2 = kinematics.accelerations(fb, th1, th3, ph2, w3, w2)
+    out = _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2)
+    for _ in range(passes):
+        ecc = fb.clearance + out["delta"]
+        bx = fb.l1 * np.cos(th1) - ecc * out["nx"]
+        by = fb.l1 * np.sin(th1) - ecc * out["ny"]
+        th3, ph2 = kinematics.positions_from_point(fb, bx, by)
+        w3, a3 = periodic_derivatives(th3, fb.period)
+        w2, a2 = periodic_derivatives(ph2, fb.period)
+        out = _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2)
+    out.update(w3=w3, w2=w2)
+    return out
+
+
+def _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2) -> dict:
+    """Joint-B force, its normal/friction split and the penetration for given link motion."""
     M11, M22, am = loads.mass_terms(fb)
     cd = np.cos(th3 - ph2)
     sd = np.sin(th3 - ph2)
@@ -44,14 +74,11 @@ def one_period(fb: FourBar, n_steps: int) -> dict:
         mus = fb.mu * sgn
         F_N = np.hypot(fx, fy) / np.sqrt(1.0 + mus ** 2)
         # f = F_N (n + mu s t): n is f turned back by the friction angle
-        beta = np.arctan(mus)
-        ang_f = np.arctan2(fy, fx)
-        ang_n = ang_f - beta
+        ang_n = np.arctan2(fy, fx) - np.arctan(mus)
         nx, ny = np.cos(ang_n), np.sin(ang_n)
         delta = contact.static_penetration(F_N, fb.K_contact, fb.n_exp)
         # e = (c + delta) n moves with the contact direction: its tangential rate enters v_T
-        ang_u = np.unwrap(ang_n)
-        dang = _periodic_derivative(ang_u, fb.period, fb.omega)
+        dang, _ = periodic_derivatives(ang_n, fb.period, second=False)
         v_T = (fb.clearance + delta) * dang + fb.omega * fb.R_pin - w2 * fb.R_bush
         F_T = contact.friction_force(F_N, v_T, fb.mu, fb.v_eps)
         tau = fb.R_bush * F_T
@@ -60,16 +87,27 @@ def one_period(fb: FourBar, n_steps: int) -> dict:
             "delta": delta, "v_T": v_T, "psi": psi, "nx": nx, "ny": ny}
 
 
-def _periodic_derivative(ang_unwrapped, period, omega):
-    """d/dt of an angle sampled uniformly over one period (central differences, wrapped).
+HARMONICS = 64
 
-    The angle may gain 2 pi k over the period; that secular part is removed first.
+
+def periodic_derivatives(angle, period, second=True, harmonics=HARMONICS):
+    """First (and second) time derivative of an angle sampled uniformly over one period.
+
+    Spectral differentiation of the periodic part; a secular 2 pi k per period (a link
+    that turns fully) is removed first and its constant rate added back.  Only the first
+    ``harmonics`` crank harmonics are kept: the mechanism's motion is smooth (its
+    harmonics fall to round-off well before 64), while differentiating the round-off of
+    the higher ones would feed noise into the position fixed point at frequencies above
+    the clearance's rocking mode (~1e3 rad/s), where no quasi-static state exists and
+    the fixed point diverges.
     """
-    n = ang_unwrapped.size
-    dt = period / n
-    drift = ang_unwrapped[-1] + (ang_unwrapped[1] - ang_unwrapped[0]) - ang_unwrapped[0]
-    k = np.round(drift / (2 * np.pi))
-    lin = 2 * np.pi * k * np.arange(n) / n
-    per = ang_unwrapped - lin
-    d = (np.roll(per, -1) - np.roll(per, 1)) / (2 * dt)
-    return d + 2 * np.pi * k / period
+    a = np.unwrap(np.asarray(angle, float))
+    n = a.size
+    k = np.round((a[-1] + (a[1] - a[0]) - a[0]) / (2 * np.pi))
+    per = a - 2 * np.pi * k * np.arange(n) / n
+    f = np.fft.rfft(per)
+    w = 2 * np.pi * np.fft.rfftfreq(n, period / n)
+    f[min(harmonics + 1, (n - 1) // 2 + 1):] = 0.0   # incl. the Nyquist mode of an even n
+    d1 = np.fft.irfft(1j * w * f, n) + 2 * np.pi * k / period
+    d2 = np.fft.irfft(-(w * w) * f, n) if second else None
+    return d1, d2

@@ -1,9 +1,21 @@
 """Archard wear of the bushing per motion period and the interval method (Eqs. 16-34).
 
-Unit reading (one consistent SI reading of the paper's mixed units): the *equivalent
-wear coefficient* k = K/H of Eqs. (25)-(32) is Archard's dimensional coefficient in
-m^2/N = m^3/(N m) = 1/Pa -- the unit the paper prints in Tables 3-4 ("10^-11 Pa^-1").
-The dimensionless Archard K is k * H with H = 21 HB = 21 * 9.80665e6 Pa (Table 2).
+Unit chain (decided from the paper's equations and printed units).  Eq. (32) reads
+    dh_j = K / (H A_a) * F_N S * AB / L_arc   =   K / (H w) * F_N S / L_arc,
+and Tables 3-4 print K in "10^-11 Pa^-1" while Table 2 gives H as "21 HB".  For dh_j to be
+a length, K/H must be in m^2/N = Pa^-1 (F_N S / (w L_arc) is in N/m).  With K in Pa^-1 as
+printed, that holds only if H enters as the bare hardness *number* 21 (the paper's own
+number, Brinell's kgf/mm^2 without its unit):
+    k = K / H_number  [m^2/N],    Archard's dimensionless K_A = k * H = K * 9.80665e6,
+where H = 21 HB = 21 * 9.80665e6 Pa.  The two other readings fail physically:
+  * the table's value as k = K/H itself (H dropped): the paper's own wear per period
+    then implies a wear range L_arc = F_N S / (w G) of ~0.7 m, eleven bushing
+    circumferences;
+  * K dimensionless and H in Pa: the table's unit is wrong, K_A ~ 8e-11 is six orders
+    below any measured Archard coefficient, and the implied wear range is ~3 nm.
+Read as k = K/21, the paper's coefficients are K_A ~ 7.7e-4 (B1) and 5.3e-4 (B2) --
+inside the 1e-4 .. 1e-2 of dry aluminium on steel -- and imply a wear range of ~0.03 m
+(about half the bushing, the "upper part" of Sec. 4.2).
 
 Per period (Eq. 29):  dh_j = k * F_N_mean * S / (w * L_wear)  =  k * G,
 G [N/m] is the *wear factor* of one period; it is all the calibration and the
@@ -13,9 +25,8 @@ Wear range.  Eq. (29) divides by L_arc^j, the length of the arc the contact poin
 covers.  When the load direction barely moves relative to the bushing that arc shrinks
 to zero and Eq. (29) diverges, although the worn region is never narrower than the
 contact patch |AB| itself.  The default ``contact_point`` is the paper's literal
-L_arc (it reproduces the paper's own calibration factors, see the notebook);
-``swept_patch`` uses L_wear = L_arc + mean |AB| (the union of the contact patches over
-the period), which stays finite when the arc collapses.
+L_arc; ``swept_patch`` uses L_wear = L_arc + mean |AB| (the union of the contact
+patches over the period), which stays finite when the arc collapses.
 
 Bushing growth (Sec. 4.4 steps 1, 4): the measured h^P of Eq. (33) is a change of
 *diameter* across the worn side, so the enlarged bushing circle has diameter D0 + h,
@@ -35,17 +46,58 @@ from .geometry import FourBar
 def contact_arc(psi, in_contact=None):
     """Angular range [rad] the contact point covers on the bushing (Fig. 4, Arc^j).
 
-    psi is the contact angle in the bushing's frame; it is centred on its circular
-    mean before the range is taken, so a range straddling +-pi is measured correctly.
+    psi is the contact angle in the bushing's frame over one period on a uniform periodic
+    grid; it is centred on its circular mean before the range is taken, so a range
+    straddling +-pi is measured correctly.  When the contact is continuous (all samples),
+    each extreme is refined by the vertex of the parabola through it and its two
+    periodic neighbours: the range of the smooth contact-point path then converges with
+    the sampling as O(dt^3) instead of depending on where the samples fall.  With gaps
+    (free flight) the raw sample range is returned: the path is not smooth there.
     """
     psi = np.asarray(psi, float)
-    if in_contact is not None:
+    full = in_contact is None or bool(np.all(in_contact))
+    if not full:
         psi = psi[np.asarray(in_contact, bool)]
     if psi.size == 0:
         return 0.0
     centre = np.angle(np.mean(np.exp(1j * psi)))
     rel = np.angle(np.exp(1j * (psi - centre)))
-    return float(rel.max() - rel.min())
+    if not full or rel.size < 3:
+        return float(rel.max() - rel.min())
+    return float(_vertex(rel, int(np.argmax(rel))) - _vertex(rel, int(np.argmin(rel))))
+
+
+def _vertex(y, i):
+    """Extreme value of the parabola through y[i-1], y[i], y[i+1] (periodic indices)."""
+    ym, y0, yp = y[i - 1], y[i], y[(i + 1) % y.size]
+    curv = yp - 2.0 * y0 + ym
+    if curv == 0.0:
+        return float(y0)
+    return float(y0 - (yp - ym) ** 2 / (8.0 * curv))
+
+
+def contact_arc_quantile(psi, weights=None, q=0.9):
+    """Central range [rad] holding the share q of the contact time (time-weighted).
+
+    A well-posed statistic of where the contact point dwells when the period contains an
+    impact and rattling: the max - min of ``contact_arc`` is set there by a few samples
+    of the impact and moves with the output sampling, while a quantile of the time spent
+    in contact converges as the sampling is refined.  weights: time per sample (uniform
+    sampling: ones, out-of-contact samples: zero).
+    """
+    psi = np.asarray(psi, float)
+    w = np.ones_like(psi) if weights is None else np.asarray(weights, float)
+    keep = w > 0
+    psi, w = psi[keep], w[keep]
+    if psi.size == 0:
+        return 0.0
+    centre = np.angle(np.sum(w * np.exp(1j * psi)))
+    rel = np.angle(np.exp(1j * (psi - centre)))
+    order = np.argsort(rel)
+    cw = np.cumsum(w[order]) / np.sum(w)
+    lo = np.interp(0.5 * (1.0 - q), cw, rel[order])
+    hi = np.interp(0.5 * (1.0 + q), cw, rel[order])
+    return float(hi - lo)
 
 
 def period_wear_factor(hist: dict, fb: FourBar, period: float,
@@ -63,6 +115,7 @@ def period_wear_factor(hist: dict, fb: FourBar, period: float,
     AB_mean = float(np.mean(AB))                                              # Eq. (23)
     A_mean = AB_mean * fb.width                                               # Eq. (24)
     arc = contact_arc(hist["psi"], in_contact)
+    arc_q90 = contact_arc_quantile(hist["psi"], in_contact.astype(float), 0.9)
     L_arc = fb.R_bush * arc
     if wear_range == "swept_patch":
         L_wear = L_arc + AB_mean
@@ -72,9 +125,37 @@ def period_wear_factor(hist: dict, fb: FourBar, period: float,
         raise ValueError(f"joint_wear: wear_range {wear_range!r}: allowed swept_patch, contact_point")
     G = F_mean * S / (fb.width * L_wear) if L_wear > 0 else math.inf          # Eq. (29) / k
     return {"S": S, "F_N_mean": F_mean, "AB_mean": AB_mean, "A_mean": A_mean,
-            "arc": arc, "L_arc": L_arc, "L_wear": L_wear, "G": G,
+            "arc": arc, "arc_q90": arc_q90, "L_arc": L_arc, "L_wear": L_wear, "G": G,
             "min_penetration": float(delta.min()), "F_N_min": float(F_N.min()),
             "F_N_max": float(F_N.max())}
+
+
+HB_TO_PA = 9.80665e6   # 1 HB = 1 kgf/mm^2 = 9.80665e6 Pa
+
+
+def hardness_number(H):
+    """The bare number Eq. (32) divides by: H [Pa] in Brinell units, 21 for 21 HB."""
+    return H / HB_TO_PA
+
+
+def k_from_table(K_table, H):
+    """Eq. (32) with the printed units: k = K / H_number [m^2/N]; H [Pa] (SI run value)."""
+    return np.asarray(K_table, float) / hardness_number(H)
+
+
+def table_from_k(k, H):
+    """k [m^2/N] -> the coefficient K as Tables 3-4 print it [Pa^-1]: K = k H_number."""
+    return np.asarray(k, float) * hardness_number(H)
+
+
+def archard_dimensionless(k, H):
+    """Archard's dimensionless coefficient K_A = k H, H [Pa]."""
+    return np.asarray(k, float) * H
+
+
+def implied_wear_range(k, dh_per_period, F_mean, S, width):
+    """The wear range L_arc [m] that Eq. (29) needs to turn k into dh_per_period."""
+    return k * F_mean * S / (width * dh_per_period)
 
 
 def local_wear_depth(k: float, F_mean: float, S: float, A_mean: float) -> float:
@@ -98,14 +179,18 @@ def periods_per_interval(hours: float, period: float) -> float:
 
 
 def calibrate(h_measured, interval_h: float, period: float, R0: float,
-              wear_factor: Callable[[float], float]):
+              wear_factor: Callable[[float], float], dh_measured=None):
     """Eqs. (32)-(34): k_p = (dh^P / M) / G(R at the start of interval p).
 
-    h_measured: cumulative measured wear h^P after each interval (Tables 3-4).
+    h_measured: cumulative measured wear h^P after each interval (Tables 3-4), which
+    sets the bushing radius at the start of each interval (Sec. 4.4 step 1);
+    dh_measured: the increments dh^P the tables print (default: differences of h^P).
     Returns (k_p per interval, mean k, the wear factors G_p used).
     """
     h = np.concatenate([[0.0], np.asarray(h_measured, float)])
-    dh = np.diff(h)                                                             # Eq. (33)
+    dh = np.diff(h) if dh_measured is None else np.asarray(dh_measured, float)    # Eq. (33)
+    if dh.shape != h[1:].shape:
+        raise ValueError(f"joint_wear: {dh.size} increments for {h.size - 1} cumulative values")
     M = periods_per_interval(interval_h, period)
     G = np.array([wear_factor(bushing_radius(R0, hp)) for hp in h[:-1]])
     k = dh / M / G                                                              # Eq. (34)

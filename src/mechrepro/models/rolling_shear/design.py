@@ -14,15 +14,24 @@ Design intents, all at mid-cut (blade turned by beta = 0, lowest point at (x_mid
    theta6 stays in the paper's range [pi, 2 pi] over the whole stroke);
 3. I lies on the carrier side of D towards the blade (left of D);
 4. both dyads are bent at the elbow angle ``elbow_angle`` (far from toggle and fold);
-5. the blade centre lies midway between C and I.
+5. the blade centre lies ``blade_offset`` to the side of I along the cut (negative: towards
+   C; -l9/2 is midway between C and I).
+
+The intents form the *admissible family* (docs/rolling_shear.md): every member satisfies
+Table I, Table II and the paper's angle ranges over the whole stroke.  One intent, the
+guide-rod tilt theta6_mid, is calibrated on the paper's 1.4341 (``calibrate.py``).
 """
 from __future__ import annotations
 
 import math
 
 
+INTENTS = ("l1", "l3", "l5", "l6", "l9", "l10", "s", "h", "R", "y_joint", "theta6_mid",
+           "elbow_angle", "blade_offset")
+
+
 def design(*, l1, l3, l5, l6, l9, l10, s, h, R, y_joint, theta6_mid, elbow_angle,
-           elbow1=1, elbow2=1) -> dict:
+           blade_offset=None, elbow1=1, elbow2=1) -> dict:
     """Derived constants (mm, rad) from the design intents above."""
     l2, l4 = l1, l3
     D = l6 * complex(math.cos(theta6_mid), math.sin(theta6_mid))
@@ -31,7 +40,7 @@ def design(*, l1, l3, l5, l6, l9, l10, s, h, R, y_joint, theta6_mid, elbow_angle
         raise ValueError(f"y_joint = {y_joint} unreachable from D with l5 = {l5}")
     I = complex(D.real - math.sqrt(l5 * l5 - dy * dy), y_joint)
     C = I - l9
-    x_mid = I.real - 0.5 * l9
+    x_mid = I.real + (-0.5 * l9 if blade_offset is None else blade_offset)
     beta2 = math.atan2((I - D).imag, (I - D).real)
     l8 = abs(C - D)
     alpha = math.atan2((C - D).imag, (C - D).real) - beta2

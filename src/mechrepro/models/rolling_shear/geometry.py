@@ -60,8 +60,18 @@ class Geometry:
     elbow1: int = 1
     elbow2: int = 1
     guide_mode: int = -1
+    #: reading of Eq. (8): "rotation" (equal blade rotation, anchored at the first cut
+    #: point) or "literal" (theta = huch / R as printed, anchored mid-cut); trajectory.py
+    eq8: str = "rotation"
+    #: what a lever change does to the carrier constants: "frozen" (l8, alpha, beta1,
+    #: beta2, d, l11, x_mid kept) or "rederived" (re-derived from the design intents)
+    carrier: str = "frozen"
+    #: the design intents (mm, rad) the constants were derived from, as (name, value) pairs
+    intents: tuple = ()
 
     def with_levers(self, **levers) -> "Geometry":
+        if self.carrier == "rederived" and self.intents:
+            return derive({**dict(self.intents), **levers}, self)
         return replace(self, **levers)
 
     def levers(self, names=OPTIMISED_LEVERS) -> tuple[float, ...]:
@@ -71,14 +81,41 @@ class Geometry:
         return asdict(self)
 
 
+INTENT_LENGTHS = ("l1", "l3", "l5", "l6", "l9", "l10", "s", "h", "R", "y_joint", "blade_offset",
+                  "width")
+
+
+def derive(intents: dict, base: "Geometry | None" = None, **modes) -> Geometry:
+    """Geometry derived from design intents (mm, rad) by :func:`design.design`."""
+    from .design import INTENTS, design
+
+    kw = {k: getattr(base, k) for k in ("elbow1", "elbow2", "guide_mode", "eq8", "carrier")} \
+        if base is not None else {}
+    kw.update(modes)
+    d = design(**{k: intents[k] for k in INTENTS}, elbow1=kw.get("elbow1", 1),
+               elbow2=kw.get("elbow2", 1))
+    d.pop("elbow1"), d.pop("elbow2")
+    levers = {k: intents[k] for k in ("l1", "l3", "l5", "l6", "l9", "l10")}
+    return Geometry(**levers, **d, h=intents["h"], R=intents["R"], s=intents["s"],
+                    width=intents["width"], intents=tuple(sorted(intents.items())), **kw)
+
+
 def from_parameters(p: dict) -> Geometry:
-    """Build the geometry from a run's SI parameters (lengths in m, angles in rad)."""
-    kw = {k: float(p[k]) * MM_PER_M for k in LENGTHS}
-    kw.update({k: float(p[k]) for k in ANGLES})
-    kw["elbow1"] = int(p.get("elbow1", 1))
-    kw["elbow2"] = int(p.get("elbow2", 1))
-    kw["guide_mode"] = int(p.get("guide_mode", -1))
-    return Geometry(**kw)
+    """Build the geometry from a run's SI parameters (lengths in m, angles in rad).
+
+    The carrier constants are derived from the design intents at run time, so that a change
+    of an intent (or a range-end variant) changes every constant that follows from it.
+    """
+    intents = {k: float(p[k]) * MM_PER_M for k in INTENT_LENGTHS}
+    intents.update(theta6_mid=float(p["theta6_mid"]), elbow_angle=float(p["elbow_angle"]))
+    return derive(intents, elbow1=int(p.get("elbow1", 1)), elbow2=int(p.get("elbow2", 1)),
+                  guide_mode=int(p.get("guide_mode", -1)), eq8=str(p.get("eq8_reading", "rotation")),
+                  carrier=str(p.get("carrier_constants", "frozen")))
+
+
+def with_intent(g: Geometry, **intents) -> Geometry:
+    """The same family member with some intents changed (re-derived)."""
+    return derive({**dict(g.intents), **intents}, g)
 
 
 def cut_points(g: Geometry, n: int):

@@ -23,7 +23,7 @@ from scipy.optimize import differential_evolution
 from . import newton
 from . import pose as pose_mod
 from .branch import RANGES
-from .geometry import OPTIMISED_LEVERS, Geometry
+from .geometry import OPTIMISED_LEVERS, Geometry, cut_points
 from .loops import NonAssembly, pivots
 from .selpso import SelPSOSettings, selpso
 from .trajectory import synthetic_horizontal_displacement
@@ -92,17 +92,22 @@ def check_assembly(g: Geometry, x_k, poses) -> np.ndarray:
 
 
 def objective(g: Geometry, x_k, tol: float) -> float:
-    """Synthetic horizontal displacement of a lever set (mm); raises NonAssembly."""
+    """Synthetic horizontal displacement of a lever set (mm); raises NonAssembly.
+
+    The cut points are those of ``g`` (same number as ``x_k``): with re-derived carrier
+    constants the cut moves with the machine's mid-cut pose.
+    """
+    x_k = cut_points(g, len(x_k))[1]
     poses = stroke_poses(g, x_k, tol)
     check_assembly(g, x_k, poses)
-    return synthetic_horizontal_displacement(poses[:, 0] - g.beta2, x_k, g.R)
+    return synthetic_horizontal_displacement(g, poses[:, 0] - g.beta2, x_k)
 
 
 def penalised(g: Geometry, x_k, tol: float, names=OPTIMISED_LEVERS):
     def f(levers) -> float:
         try:
             return objective(g.with_levers(**dict(zip(names, map(float, levers)))), x_k, tol)
-        except NonAssembly:
+        except (NonAssembly, ValueError):  # ValueError: design intents unreachable
             return PENALTY
     return f
 

@@ -27,19 +27,42 @@ class Context:
         p, res, opt = run["parameters"], run["resolution"], run.get("options", {})
         self.g: Geometry = from_parameters(p)
         self.n = int(res["n_points"])
-        self.huch, self.x_k = cut_points(self.g, self.n)
         tol_floor = float(p["pose_tol"]) * 1e3  # m -> mm
+        # the tilt is fitted on the original levers in every run, so that range-end variants
+        # of the other intents re-calibrate; a scene's lever set is applied afterwards
+        self.calibration = None
+        target = run.get("calibration", {}).get("theta6_mid")
+        if target is not None:
+            from .calibrate import calibrate_tilt
+
+            self.g, self.calibration = calibrate_tilt(self.g, float(target["value"]) * 1e3,  # m -> mm
+                                                      self.n, tol_floor)
+            self.calibration["H_original"] = optimise.objective(
+                self.g, cut_points(self.g, self.n)[1], tol_floor)
+        self.g_original = self.g
+        if "levers" in opt:
+            self.g = self.g.with_levers(**{k: float(v) for k, v in opt["levers"].items()})
+        self.huch, self.x_k = cut_points(self.g, self.n)
         newton_tol = float(res.get("newton_tol", p["loops_tol"] * 1e3))
         pso = dict(swarm=int(res.get("pso_swarm", p["pso_swarm"])),
                    max_iter=int(res.get("pso_iter", p["pso_max_iter"])),
                    w_start=p["pso_w_start"], w_end=p["pso_w_end"], c1=p["pso_c1"],
                    c2=p["pso_c2"], v_max=p["pso_v_max"], init_scale=p["pso_init_scale"])
         pso_tol = float(opt.get("pso_tol", p["loops_tol"] * 1e3))
+        initial = tuple(float(v) for v in p["initial_value"])
+        if self.calibration is not None:
+            # the geometry is derived in-run: the rough initial value is its pose at the first
+            # cut point rounded to 0.1 rad, as the configured one is for the default geometry
+            first = stroke.solve_exact(self.g, self.x_k[:1]).theta[0]
+            initial = tuple(float(v) for v in np.round(first, 1))
+        std = dict(pso, w_start=p["pso_std_w"], w_end=p["pso_std_w"], c1=p["pso_std_c"],
+                   c2=p["pso_std_c"])
         self.settings = stroke.SolverSettings(
-            tol_loops=newton_tol, tol_pose=max(newton_tol, tol_floor),
-            initial_value=tuple(float(v) for v in p["initial_value"]),
+            tol_loops=newton_tol, tol_pose=max(newton_tol, tol_floor), initial_value=initial,
             pso_loops=SelPSOSettings(tol=pso_tol, **pso),
-            pso_pose=SelPSOSettings(tol=max(pso_tol, tol_floor), **pso))
+            pso_pose=SelPSOSettings(tol=max(pso_tol, tol_floor), **pso),
+            pso_std_loops=SelPSOSettings(tol=pso_tol, **std),
+            pso_std_pose=SelPSOSettings(tol=max(pso_tol, tol_floor), **std))
         self.tol_floor = tol_floor
         self.seed = int(run.get("seed", 0))
         self.options = opt
@@ -66,8 +89,8 @@ def _stroke_outputs(ctx: Context, g: Geometry, theta: np.ndarray, prefix: str, w
     xk, yk = lowest_point(g, t5, t6)
     xh, yh = midpoint(g, t5, t6)
     beta = t5 - g.beta2
-    x1, y1 = trajectory1_for(beta, xk, g.R, g.s)
-    dx = horizontal_displacement(beta, xk, g.R)
+    x1, y1 = trajectory1_for(g, beta, xk)
+    dx = horizontal_displacement(g, beta, xk)
     margins = dyad_margins(g, t5, t6)
     out = _angles(prefix, theta, what)
     out.update({
@@ -116,6 +139,9 @@ def eff_newton(ctx: Context) -> dict:
         "newton_time_per_solve": _scalar(wall / (2 * ctx.n), "s",
                                          "Newton wall time per system solve (median stroke / 2n)"),
         "newton_stroke_time": _scalar(wall, "s", "Newton wall time of the whole stroke"),
+        "newton_time_per_loops_solve": _scalar(
+            stroke.time_newton_loops(ctx.g, sol.theta, ctx.settings), "s",
+            "Newton wall time per Eq. (9) solve (continuation, poses given)"),
         "newton_success_rate": _scalar(sol.converged.mean(), "1", "Newton converged fraction"),
         "newton_right_branch_rate": _scalar(sol.right.mean(), "1",
                                             "Newton fraction on the design branch"),
@@ -123,6 +149,18 @@ def eff_newton(ctx: Context) -> dict:
                                          "Newton fraction inside the paper's ranges"),
     })
     return out
+
+
+@EFFECTS.register("tilt_scan")
+def eff_tilt_scan(ctx: Context) -> dict:
+    """H of the original levers over the guide-rod tilt at the run's other intents (family)."""
+    from .calibrate import TILTS, H_of_tilt
+
+    H = (ctx.calibration["H_scan"] if ctx.calibration is not None else
+         np.array([H_of_tilt(ctx.g_original, t, ctx.n, ctx.tol_floor) for t in TILTS]))
+    return {"family_tilt": (("tilt",), TILTS, "rad", "guide-rod tilt theta6_mid - pi"),
+            "family_H": (("tilt",), H, "mm",
+                         "synthetic horizontal displacement, original levers (NaN: leaves the paper's ranges)")}
 
 
 @EFFECTS.register("constant_rate_drive")
@@ -186,32 +224,28 @@ def _compare(ctx: Context, method: str, salt: int) -> dict:
         # objective from the selPSO poses; motion-law error up to the assembly mode
         beta = sol.theta[:, 4] - ctx.g.beta2
         out["selpso_synthetic_horizontal_displacement"] = _scalar(
-            np.mean(np.abs(horizontal_displacement(beta, ctx.x_k, ctx.g.R))), "mm",
+            np.mean(np.abs(horizontal_displacement(ctx.g, beta, ctx.x_k))), "mm",
             "synthetic horizontal displacement from selPSO poses")
         out["exact_synthetic_horizontal_displacement_ref"] = _scalar(
-            np.mean(np.abs(horizontal_displacement(ref.theta[:, 4] - ctx.g.beta2, ctx.x_k,
-                                                   ctx.g.R))), "mm",
+            np.mean(np.abs(horizontal_displacement(ctx.g, ref.theta[:, 4] - ctx.g.beta2,
+                                                   ctx.x_k))), "mm",
             "synthetic horizontal displacement, closed form")
-        out["selpso_motion_law_error"] = _scalar(_mode_free_error(ctx, sol.theta), "rad",
-                                                 "max error of theta1, theta2 vs exact, either assembly mode")
+        out["selpso_pose_error"] = _scalar(
+            float(np.max(err)), "rad",
+            "max |theta1..theta6 - closed form| over the cut (a wrong assembly mode is a large error)")
+        out["selpso_stroke_time"] = _scalar(ctx.n * (sol.time_pose + sol.time_loops), "s",
+                                            "selPSO wall time of the whole stroke (Eqs. 7 and 9)")
     return out
-
-
-def _mode_free_error(ctx: Context, theta: np.ndarray) -> float:
-    """max |theta1,2 - exact| taking the nearer of the two assembly modes of each dyad."""
-    from dataclasses import replace
-
-    errs = []
-    for e1, e2 in ((1, 1), (-1, -1)):
-        g = replace(ctx.g, elbow1=e1 * ctx.g.elbow1, elbow2=e2 * ctx.g.elbow2)
-        ref = optimise.dyad_angles(g, theta[:, 4], theta[:, 5])
-        errs.append(np.abs(np.angle(np.exp(1j * (theta[:, :2] - ref[:, :2])))))
-    return float(np.nanmax(np.minimum(errs[0], errs[1])))
 
 
 @EFFECTS.register("selpso")
 def eff_selpso(ctx: Context) -> dict:
     return _compare(ctx, "selpso", 1)
+
+
+@EFFECTS.register("pso_standard")
+def eff_pso_standard(ctx: Context) -> dict:
+    return _compare(ctx, "pso_standard", 9)
 
 
 @EFFECTS.register("cold_root")
@@ -291,12 +325,13 @@ def _optimised_outputs(ctx: Context, res, prefix: str) -> dict:
     }
     if res.objective < optimise.PENALTY:
         g = ctx.g.with_levers(**dict(zip(OPTIMISED_LEVERS, map(float, res.levers))))
-        sol = stroke.solve_newton(g, ctx.x_k, _anchored_settings(ctx, g))
+        x_k = cut_points(g, ctx.n)[1]  # the cut moves with re-derived carrier constants
+        sol = stroke.solve_newton(g, x_k, _anchored_settings(ctx, g, x_k))
         out.update(_stroke_outputs(ctx, g, sol.theta, prefix, f"levers optimised by {prefix}"))
     return out
 
 
-def _anchored_settings(ctx: Context, g: Geometry) -> stroke.SolverSettings:
+def _anchored_settings(ctx: Context, g: Geometry, x_k=None) -> stroke.SolverSettings:
     """Settings whose initial value is the closed-form pose at the first cut point.
 
     Lever sets far from the original move the cranks by more than the rough initial value
@@ -304,7 +339,7 @@ def _anchored_settings(ctx: Context, g: Geometry) -> stroke.SolverSettings:
     """
     from dataclasses import replace
 
-    first = stroke.solve_exact(g, ctx.x_k[:1]).theta[0]
+    first = stroke.solve_exact(g, (ctx.x_k if x_k is None else x_k)[:1]).theta[0]
     return replace(ctx.settings, initial_value=tuple(first))
 
 
@@ -357,7 +392,22 @@ def compute(run: dict) -> dict:
     data = {}
     for name, fn in EFFECTS.select(run["effects"]).items():
         data.update(fn(ctx))
+    data.update(_geometry_outputs(ctx))
     return {"ctx": ctx, "data": data}
+
+
+def _geometry_outputs(ctx: Context) -> dict:
+    """The derived constants of the run's geometry and its calibration (mm, rad)."""
+    g = ctx.g
+    out = {f"geometry_{k}": _scalar(getattr(g, k), "rad" if k in ("alpha", "beta1", "beta2") else "mm",
+                                    f"derived constant {k} of the run's geometry")
+           for k in ("l2", "l4", "l8", "l11", "alpha", "beta1", "beta2", "d", "x_mid")}
+    out["geometry_tilt"] = _scalar(dict(ctx.g_original.intents)["theta6_mid"] - math.pi, "rad",
+                                   "guide-rod tilt at mid-cut, theta6_mid - pi (calibrated if the run calibrates)")
+    if ctx.calibration is not None:
+        out["calibrated_H_original"] = _scalar(ctx.calibration["H_original"], "mm",
+                                               "synthetic horizontal displacement of the original levers after calibration")
+    return out
 
 
 def to_dataset(result: dict, run: dict) -> xr.Dataset:

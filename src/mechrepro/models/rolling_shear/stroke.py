@@ -35,7 +35,7 @@ from .geometry import Geometry
 from .loops import NonAssembly
 from .selpso import SelPSOSettings, selpso
 
-METHODS = ("newton", "selpso", "cold_root", "least_squares", "warm_root", "warm_least_squares",
+METHODS = ("newton", "selpso", "pso_standard", "cold_root", "least_squares", "warm_root", "warm_least_squares",
            "exact")
 
 
@@ -67,6 +67,9 @@ class SolverSettings:
     initial_value: tuple = (4.3, 4.3, 2.5, 2.5, 2.6, 3.3)
     pso_loops: SelPSOSettings = SelPSOSettings()
     pso_pose: SelPSOSettings = SelPSOSettings(tol=1e-9)
+    #: selPSO with the standard constriction constants (like-for-like baseline)
+    pso_std_loops: SelPSOSettings = SelPSOSettings()
+    pso_std_pose: SelPSOSettings = SelPSOSettings(tol=1e-9)
 
 
 def _point_error(g, i, xk, theta, res_pose, res_loops) -> str | None:
@@ -166,8 +169,9 @@ def solve_compare(g: Geometry, x_k, method: str, settings: SolverSettings,
         xk = float(xk)
         fpose = lambda X, xk=xk: np.abs(pose_mod.residuals(g, X, xk)).sum(-1)  # noqa: E731
         t0 = time.perf_counter()
-        if method == "selpso":
-            r = selpso(fpose, init[4:], settings.pso_pose, rng, period=2 * math.pi)
+        if method in ("selpso", "pso_standard"):
+            st = settings.pso_pose if method == "selpso" else settings.pso_std_pose
+            r = selpso(fpose, init[4:], st, rng, period=2 * math.pi)
             t56 = r.x
         else:
             start = guess[4:] if warm else rng.uniform(0, 2 * math.pi, 2)
@@ -177,8 +181,9 @@ def solve_compare(g: Geometry, x_k, method: str, settings: SolverSettings,
         t5, t6 = float(t56[0]), float(t56[1])
         floops = lambda X, t5=t5, t6=t6: np.abs(loops_mod.residuals(g, X, t5, t6)).sum(-1)  # noqa: E731
         t0 = time.perf_counter()
-        if method == "selpso":
-            r = selpso(floops, init[:4], settings.pso_loops, rng, period=2 * math.pi)
+        if method in ("selpso", "pso_standard"):
+            st = settings.pso_loops if method == "selpso" else settings.pso_std_loops
+            r = selpso(floops, init[:4], st, rng, period=2 * math.pi)
             t14, it[i] = r.x, r.iterations
             if keep_history:
                 hist.append(r.history)
@@ -200,3 +205,28 @@ def solve_compare(g: Geometry, x_k, method: str, settings: SolverSettings,
         des[i] = on_design_branch(g, th)
     return StrokeSolution(method, np.asarray(x_k), theta, fp, fl, conv, inr, des,
                           tp / n, tl / n, it, hist)
+
+
+def time_newton_loops(g: Geometry, theta: np.ndarray, settings: SolverSettings,
+                      min_time: float = 0.02) -> float:
+    """Wall time per Eq. (9) solve of the warm-started continuation, poses given (s).
+
+    Only Eq. (9), as selPSO's time per solve is: each cut point starts from the linear
+    extrapolation of the two previous solutions.  Median of repeated strokes (a stroke
+    takes ~0.1 ms, so one preemption would dominate a single timing).
+    """
+    n = len(theta)
+    times, total = [], 0.0
+    while total < min_time or len(times) < 3:
+        t0 = time.perf_counter()
+        guess = list(theta[0, :4])
+        prev = None
+        for i in range(n):
+            r = newton.loops(g, guess, theta[i, 4], theta[i, 5], settings.tol_loops,
+                             settings.max_iter)
+            x = np.array(r.x)
+            guess = list(2 * x - prev) if prev is not None else list(x)
+            prev = x
+        times.append(time.perf_counter() - t0)
+        total += times[-1]
+    return float(np.median(times)) / n

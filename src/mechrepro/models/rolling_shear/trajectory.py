@@ -4,20 +4,25 @@ Eq. (8): theta = huch / r,  x = -huch + r sin(theta) + x0,  y = r (1 - cos(theta
 is the midpoint of an arc of radius r = R rolling without slip to the left on y = y0.
 
 Corresponding points: the paper compares "the difference between (5) and (8)" at the
-calculated points without saying how points correspond.  We compare at equal blade
-rotation: trajectory 1 is the pure rolling that starts from the actual pose at the
-first cut point, huch = R (beta - beta_0), x0 = x_k,0 + R beta_0, y0 = -s.  Then the
-vertical difference is zero (the lowest point is held on y = -s) and the horizontal
-difference is the slip of the blade on the plate accumulated since the start of the cut:
+calculated points without saying how points correspond.  Two readings (``Geometry.eq8``):
 
-    dx_i = x_h,i - x_1,i = (x_k,i - x_k,0) + R (beta_i - beta_0).
+* ``"rotation"``: at equal blade rotation, trajectory 1 the pure rolling that starts from
+  the actual pose at the first cut point, huch = R (beta - beta_0), x0 = x_k,0 + R beta_0,
+  y0 = -s.  The horizontal difference is the slip accumulated since the start of the cut:
+  dx_i = (x_k,i - x_k,0) + R (beta_i - beta_0).
+* ``"literal"``: at equal rolled length as printed, theta = huch / R with huch counted from
+  the middle cut point m, trajectory 1 through the actual pose there:
+  theta_i = beta_m + (x_k,m - x_k,i) / R, x_1,i = x_k,i + R sin(theta_i), so
+  dx_i = R (sin beta_i - sin theta_i).
 
-The synthetic horizontal displacement is its mean absolute value over the cut points
-("mean value of all horizontal displacement relating to calculated points", Abstract).
+The synthetic horizontal displacement is the mean |dx_i| over the cut points ("mean value
+of all horizontal displacement relating to calculated points", Abstract).
 """
 from __future__ import annotations
 
 import numpy as np
+
+READINGS = ("rotation", "literal")
 
 
 def trajectory1(huch, r: float, x0: float, y0: float):
@@ -27,22 +32,30 @@ def trajectory1(huch, r: float, x0: float, y0: float):
     return -huch + r * np.sin(th) + x0, r * (1.0 - np.cos(th)) + y0
 
 
-def trajectory1_for(beta, x_k, R: float, s: float):
-    """Trajectory 1 through the first cut point, sampled at the actual blade angles.
+def _literal_theta(g, beta, x_k):
+    m = len(x_k) // 2
+    return beta[m] + (x_k[m] - x_k) / g.R
 
-    theta of Eq. (8) is the blade angle beta, so huch = R beta is counted from the
-    (virtual) pose beta = 0 of the pure rolling that passes through the first cut point.
-    """
+
+def trajectory1_for(g, beta, x_k):
+    """Trajectory 1 sampled at the cut points, in the reading ``g.eq8``."""
     beta, x_k = np.asarray(beta, float), np.asarray(x_k, float)
-    return trajectory1(R * beta, R, x_k[0] + R * beta[0], -s)
+    if g.eq8 == "literal":
+        th = _literal_theta(g, beta, x_k)
+        return x_k + g.R * np.sin(th), -g.s + g.R * (1.0 - np.cos(th))
+    return trajectory1(g.R * beta, g.R, x_k[0] + g.R * beta[0], -g.s)
 
 
-def horizontal_displacement(beta, x_k, R: float):
-    """Slip of the midpoint relative to trajectory 1, per cut point (mm)."""
+def horizontal_displacement(g, beta, x_k):
+    """Midpoint minus trajectory 1, horizontally, per cut point (mm), reading ``g.eq8``."""
     beta, x_k = np.asarray(beta, float), np.asarray(x_k, float)
-    return (x_k - x_k[0]) + R * (beta - beta[0])
+    if g.eq8 == "literal":
+        return g.R * (np.sin(beta) - np.sin(_literal_theta(g, beta, x_k)))
+    if g.eq8 != "rotation":
+        raise ValueError(f"eq8 reading {g.eq8!r}: allowed {READINGS}")
+    return (x_k - x_k[0]) + g.R * (beta - beta[0])
 
 
-def synthetic_horizontal_displacement(beta, x_k, R: float) -> float:
+def synthetic_horizontal_displacement(g, beta, x_k) -> float:
     """Mean |horizontal displacement| over the cut points (the paper's objective)."""
-    return float(np.mean(np.abs(horizontal_displacement(beta, x_k, R))))
+    return float(np.mean(np.abs(horizontal_displacement(g, beta, x_k))))

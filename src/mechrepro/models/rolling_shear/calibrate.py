@@ -1,0 +1,65 @@
+"""Calibration of the guide-rod tilt on the paper's synthetic horizontal displacement.
+
+Of the design intents (design.py) the tilt of the guide rod at mid-cut, theta6_mid - pi, is
+the one the paper's 1.4341 selects: the slip of the blade on the plate is the integral of
+how far the line ED passes below the contact point (the instant centre of the carrier lies
+on ED vertically above or below the contact point, because the lowest point is held on
+y = -s), so H grows monotonically with the tilt; a smaller tilt lets theta6 leave the
+paper's range [pi, 2 pi] during the stroke.  The other intents keep their configured values
+(or their range ends, in the variant runs, which re-calibrate).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.optimize import brentq
+
+from . import optimise
+from .geometry import Geometry, cut_points, with_intent
+from .loops import NonAssembly
+
+#: tilts scanned for the bracket (rad): theta6_mid = pi + tilt
+TILTS = np.round(np.arange(0.0, 0.8001, 0.01), 10)
+
+
+class CalibrationError(ValueError):
+    pass
+
+
+def H_of_tilt(g: Geometry, tilt: float, n: int, tol: float) -> float:
+    """Synthetic horizontal displacement of the family member with this tilt; NaN if it
+    does not assemble inside the paper's ranges over the whole stroke."""
+    try:
+        gt = with_intent(g, theta6_mid=math.pi + tilt)
+        return optimise.objective(gt, cut_points(gt, n)[1], tol)
+    except (NonAssembly, ValueError):
+        return math.nan
+
+
+def calibrate_tilt(g: Geometry, target: float, n: int, tol: float) -> tuple[Geometry, dict]:
+    """The geometry whose tilt gives H = target (mm) with ``n`` cut points.
+
+    Scans ``TILTS``, takes the first sign change of H - target among assembling members
+    (H rises with the tilt) and refines it by Brent's method.  Raises CalibrationError when
+    no member of the family reaches the target.
+    """
+    H = np.array([H_of_tilt(g, t, n, tol) for t in TILTS])
+    ok = np.isfinite(H)
+    if not ok.any():
+        # say why at the configured tilt (NonAssembly names the cut point and the loop)
+        optimise.objective(g, cut_points(g, n)[1], tol)
+        raise CalibrationError("no tilt in [0, 0.8] rad assembles over the whole stroke")
+    f = H - target
+    idx = [i for i in range(len(TILTS) - 1) if ok[i] and ok[i + 1] and f[i] * f[i + 1] <= 0]
+    if not idx:
+        raise CalibrationError(
+            f"H = {target} mm is outside the family's reach: assembling tilts "
+            f"{TILTS[ok].min():.2f}..{TILTS[ok].max():.2f} rad give H = "
+            f"{np.nanmin(H):.4g}..{np.nanmax(H):.4g} mm")
+    i = idx[0]
+    tilt = brentq(lambda t: H_of_tilt(g, t, n, tol) - target, TILTS[i], TILTS[i + 1],
+                  xtol=1e-13, rtol=1e-13)
+    gc = with_intent(g, theta6_mid=math.pi + tilt)
+    return gc, {"tilt": tilt, "tilt_min": float(TILTS[ok].min()), "H_scan": H,
+                "H_at_min_tilt": float(H[ok][0])}

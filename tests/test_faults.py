@@ -1,0 +1,168 @@
+"""Fault injection on the ci pipeline: what is deleted, truncated, corrupted, garbled,
+interrupted or moved is detected, named and rebuilt; bad input is refused before any job.
+
+Each test breaks the session's pipeline copy (tests/conftest.py `workflow`), runs what
+`make ci-reproduce` runs (heal, then Snakemake) and checks that exactly the broken
+results and what depends on them were rebuilt, and that the tree is whole again.
+"""
+import os
+import shutil
+import subprocess
+import sys
+
+import pytest
+import yaml
+
+from conftest import SNAKEMAKE, snakemake
+from mechrepro.archive import verify
+
+pytestmark = pytest.mark.slow
+
+
+def heal(work):
+    proc = subprocess.run([sys.executable, "-m", "mechrepro.heal", "results"], cwd=work,
+                          capture_output=True, text=True, check=True,
+                          env={**os.environ, "PYTHONPATH": str(work / "src")})
+    return proc.stdout
+
+
+def planned(work):
+    from test_pipeline import scheduled
+
+    return scheduled(snakemake(work, "-n"))
+
+
+def restored(work):
+    """Heal, rerun, and check the whole tree against the fresh manifest."""
+    log = heal(work)
+    snakemake(work)
+    assert "Nothing to be done" in snakemake(work, "-n")
+    assert verify(work / "results", work / "results" / "archive" / "manifest.json") == []
+    return log
+
+
+def test_deleted_figure_run_and_summary_image_are_restored(workflow):
+    work, _ = workflow
+    res = work / "results"
+    fig = res / "saw_chain" / "figures" / "fig07.png"
+    run = res / "saw_chain" / "runs" / "speed_12000.nc"
+    summary = res / "report" / "cost_of_accuracy_all.png"
+    for f in (fig, run, summary):
+        f.unlink()
+    jobs = planned(work)
+    assert {"notebook_saw_chain", "solve[paper=saw_chain, run=speed_12000]", "summary"} <= jobs
+    assert not any(j.startswith("notebook_") and j != "notebook_saw_chain" for j in jobs), jobs
+    restored(work)
+    assert fig.stat().st_size > 1000 and run.exists() and summary.exists()
+
+
+def test_truncated_netcdf_is_rebuilt_and_its_study_kept(workflow):
+    work, _ = workflow
+    run = work / "results" / "saw_chain" / "runs" / "cost_of_accuracy-001.nc"
+    study = work / "results" / "saw_chain" / "studies" / "cost_of_accuracy.nc"
+    st = run.stat()
+    run.write_bytes(run.read_bytes()[:200])
+    os.utime(run, ns=(st.st_atime_ns, st.st_mtime_ns))
+    log = restored(work)
+    assert "unreadable netCDF" in log and str(run.name) in log
+    assert study.exists() and run.stat().st_size > 1000
+
+
+def test_corruption_that_keeps_the_time_stamp_is_found_by_checksum(workflow):
+    work, _ = workflow
+    table = work / "results" / "saw_chain" / "tables" / "cost_of_accuracy.csv"
+    st = table.stat()
+    data = bytearray(table.read_bytes())
+    data[-5] = ord("7") if data[-5] != ord("7") else ord("8")
+    table.write_bytes(bytes(data))
+    os.utime(table, ns=(st.st_atime_ns, st.st_mtime_ns))
+    assert verify(work / "results", work / "results" / "archive" / "manifest.json") == [
+        "saw_chain/tables/cost_of_accuracy.csv: sha256 differs from the manifest"]
+    log = restored(work)
+    assert "checksum differs" in log
+
+
+def test_garbage_in_a_table_is_named_not_archived_and_then_rebuilt(workflow):
+    work, _ = workflow
+    table = work / "results" / "saw_chain" / "tables" / "validation.csv"
+    good = table.read_text()
+    lines = good.splitlines()
+    head = lines[0].split(",")
+    cells = lines[1].split(",")
+    cells[head.index("reproduced_value")] = "#garbage#"
+    table.write_text("\n".join([lines[0], ",".join(cells), *lines[2:]]) + "\n")
+    # without healing, the reference check names file, line and value, and the
+    # archive refuses to certify it
+    proc = subprocess.run(SNAKEMAKE, cwd=work, capture_output=True, text=True)
+    assert proc.returncode != 0
+    check = (work / "results" / "report" / "reference_check.txt").read_text()
+    assert "DRIFT" in check.splitlines()[0] and "line 2" in check and "'#garbage#' is not a number" in check
+    assert "not archiving" in (work / "results" / "logs" / "archive.log").read_text()
+    log = restored(work)
+    assert "changed after the job that wrote it" in log
+    assert "OK" in (work / "results" / "report" / "reference_check.txt").read_text().splitlines()[0]
+
+
+def test_an_interrupted_job_leaves_nothing_that_stays(workflow):
+    work, _ = workflow
+    stale = work / "results" / "saw_chain" / "runs" / ".speed_12000.abc.part.nc"
+    stale.write_bytes(b"half")
+    log = restored(work)
+    assert "temporary file of an interrupted job" in log and not stale.exists()
+
+
+def test_a_moved_project_with_its_results_schedules_nothing(workflow, tmp_path):
+    work, _ = workflow
+    moved = tmp_path / "moved"
+    shutil.copytree(work, moved, symlinks=True)  # copytree keeps time stamps (copy2)
+    assert "Nothing to be done" in snakemake(moved, "-n")
+
+
+def test_results_honour_the_umask(workflow):
+    work, _ = workflow
+    for f in [work / "results" / "saw_chain" / "runs" / "speed_12000.nc",
+              work / "results" / "report" / "index.html",
+              work / "results" / "archive" / "mechrepro-results.tar.gz"]:
+        assert f.stat().st_mode & 0o044 == 0o044, f"{f} is not readable by others"
+    import tarfile
+
+    with tarfile.open(work / "results" / "archive" / "mechrepro-results.tar.gz") as tar:
+        members = tar.getmembers()
+        names = {m.name for m in members}
+        assert all(m.mode & 0o044 == 0o044 for m in members)
+    # everything the archived report links is in the archive
+    assert {"report/index.html", "report/cost_of_accuracy_all.png", "report/summary.csv",
+            "manifest.json"} <= names
+
+
+def test_lint_is_clean_but_for_conda(workflow):
+    work, _ = workflow
+    proc = subprocess.run([*SNAKEMAKE, "--lint"], cwd=work, capture_output=True, text=True)
+    lints = {line.strip() for line in (proc.stdout + proc.stderr).splitlines()
+             if line.strip().startswith("* ")}
+    assert lints <= {"* Specify a conda environment or container for each rule.:"}, lints
+
+
+@pytest.mark.parametrize("edit, message", [
+    # a value YAML reads as a string, in a profile that is not the one running
+    (lambda raw: raw["studies"]["cost_of_accuracy"]["sweep"].update(K=["1e3"]), "must be of type"),
+    # an empty sweep in the ci overlay
+    (lambda raw: raw["profiles"]["ci"]["studies"]["cost_of_accuracy"].update(sweep={"K": []}),
+     "should be non-empty"),
+    # a misspelt scene in the overlay
+    (lambda raw: raw["profiles"]["ci"]["scenes"].update(fig07_fig8={"resolution": {"K": 3}}),
+     "'effects' is a required property"),
+])
+def test_bad_profile_input_stops_before_any_job(workflow, edit, message):
+    work, _ = workflow
+    path = work / "config" / "papers" / "saw_chain.yaml"
+    original = path.read_text()
+    raw = yaml.safe_load(original)
+    edit(raw)
+    try:
+        path.write_text(yaml.safe_dump(raw))
+        proc = subprocess.run([*SNAKEMAKE, "-n"], cwd=work, capture_output=True, text=True)
+    finally:
+        path.write_text(original)
+    assert proc.returncode != 0
+    assert message in proc.stderr + proc.stdout, (proc.stderr + proc.stdout)[-2000:]
