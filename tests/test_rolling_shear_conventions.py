@@ -1,5 +1,6 @@
 """rolling_shear: the conventions chosen where the printed equations contradict each other."""
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -75,17 +76,28 @@ def test_pure_rolling_keeps_lowest_point_on_the_line_and_follows_trajectory1(g):
     assert np.max(np.abs(yk_printed + g.s)) > 50.0
     xt, yt = trajectory1(g.R * beta, g.R, x0, -g.s)
     assert np.max(np.abs(xt - xh)) < 1e-8 and np.max(np.abs(yt - yh)) < 1e-8
-    assert np.max(np.abs(horizontal_displacement(beta, xk, g.R))) < 1e-8
+    for reading in ("rotation", "literal"):        # no slip under either reading of Eq. (8)
+        gr = replace(g, eq8=reading)
+        assert np.max(np.abs(horizontal_displacement(gr, beta, xk))) < 1e-8
 
 
-def test_trajectory1_anchored_at_first_cut_point(g):
-    sol = stroke_exact(g, 9)
-    beta = sol.theta[:, 4] - g.beta2
-    xk, yk = blade.lowest_point(g, sol.theta[:, 4], sol.theta[:, 5])
-    xh, yh = blade.midpoint(g, sol.theta[:, 4], sol.theta[:, 5])
-    xt, yt = trajectory1_for(beta, xk, g.R, g.s)
-    assert abs(xt[0] - xh[0]) < 1e-8 and np.max(np.abs(yt - yh)) < 1e-8
-    assert np.allclose(xh - xt, horizontal_displacement(beta, xk, g.R), atol=1e-8)
+@pytest.mark.parametrize("reading,anchor", [("rotation", 0), ("literal", 4)])
+def test_trajectory1_anchored_where_the_reading_says(g, reading, anchor):
+    gr = replace(g, eq8=reading)
+    sol = stroke_exact(gr, 9)
+    beta = sol.theta[:, 4] - gr.beta2
+    xk, yk = blade.lowest_point(gr, sol.theta[:, 4], sol.theta[:, 5])
+    xh, yh = blade.midpoint(gr, sol.theta[:, 4], sol.theta[:, 5])
+    xt, yt = trajectory1_for(gr, beta, xk)
+    assert abs(xt[anchor] - xh[anchor]) < 1e-8
+    assert np.allclose(xh - xt, horizontal_displacement(gr, beta, xk), atol=1e-8)
+    if reading == "rotation":                      # equal rotation: no vertical difference
+        assert np.max(np.abs(yt - yh)) < 1e-8
+    else:                                          # equal rolled length, Eq. (8) as printed
+        th = beta[anchor] + (xk[anchor] - xk) / gr.R   # theta = huch / R from the anchor pose
+        x0 = xh[anchor] + gr.R * th[anchor] - gr.R * np.sin(th[anchor])
+        x8, y8 = trajectory1(gr.R * th, gr.R, x0, -gr.s)
+        assert np.allclose(xt, x8, atol=1e-6) and np.allclose(yt, y8, atol=1e-6)
 
 
 @pytest.mark.parametrize("t5,t6", POSES)

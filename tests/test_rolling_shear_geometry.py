@@ -7,7 +7,7 @@ import pytest
 from mechrepro.models.rolling_shear import blade, loops, optimise, pose, stroke
 from mechrepro.models.rolling_shear.branch import in_ranges, on_design_branch
 from mechrepro.models.rolling_shear.design import design
-from mechrepro.models.rolling_shear.geometry import cut_points
+from mechrepro.models.rolling_shear.geometry import cut_points, with_intent
 
 from test_rolling_shear_helpers import config, geometry, run, stroke_exact
 
@@ -17,26 +17,43 @@ def g():
     return geometry()
 
 
-def test_config_values_are_the_design_derivation():
+def test_geometry_is_derived_from_the_intents_at_run_time():
     P = config().raw["parameters"]
     v = {k: P[k]["value"] for k in P}
     d = design(l1=v["l1"], l3=v["l3"], l5=v["l5"], l6=v["l6"], l9=v["l9"], l10=v["l10"],
                s=v["s"], h=v["h"], R=v["R"], y_joint=v["y_joint"], theta6_mid=v["theta6_mid"],
-               elbow_angle=math.radians(v["elbow_angle"]))
-    for k in ("l2", "l4", "l8", "l11", "d", "x_mid"):
-        assert abs(d[k] - v[k]) < 1e-3, k
-    for k in ("alpha", "beta1", "beta2"):
-        assert abs(d[k] - v[k]) < 1e-6, k
+               elbow_angle=math.radians(v["elbow_angle"]), blade_offset=v["blade_offset"])
+    g = geometry()
+    for k in ("l2", "l4", "l8", "l11", "d", "x_mid", "alpha", "beta1", "beta2"):
+        assert abs(d[k] - getattr(g, k)) < 1e-9, k
+    # an intent changed at run time changes every constant that follows from it
+    g2 = with_intent(g, blade_offset=v["blade_offset"] + 100.0)
+    assert abs(g2.x_mid - g.x_mid - 100.0) < 1e-9 and g2.d != g.d
 
 
-def test_every_invented_constant_is_marked_assumed():
+def test_every_assumed_constant_declares_range_calibration_or_numerical():
     P = config().raw["parameters"]
-    invented = ["l2", "l4", "l8", "l9", "l11", "alpha", "beta1", "beta2", "d", "h", "R",
-                "x_mid", "width", "y_joint", "theta6_mid", "elbow_angle"]
+    invented = ["l9", "h", "R", "width", "y_joint", "theta6_mid", "elbow_angle", "blade_offset",
+                "eq8_reading", "carrier_constants", "elbow1", "elbow2", "guide_mode"]
     for k in invented:
         assert P[k].get("assumed") is True and len(P[k]["why"]) > 20, k
+        assert ("range" in P[k]) + ("calibrated_on" in P[k]) + bool(P[k].get("numerical")) == 1, k
+    assert P["theta6_mid"]["calibrated_on"] == "synthetic_horizontal_displacement_original"
+    for k in ("pose_tol", "pso_swarm", "pso_max_iter", "pso_c1", "pso_w_start", "initial_value"):
+        assert P[k]["numerical"] is True, k
     for k in ("l1", "l3", "l5", "l6", "l10", "s"):
         assert "Table" in P[k]["source"], k
+
+
+def test_calibration_hits_the_paper_number_and_is_monotone(g):
+    from mechrepro.models.rolling_shear.calibrate import TILTS, calibrate_tilt
+
+    gc, info = calibrate_tilt(g, 1.4341, 9, 1e-9)
+    xk = cut_points(gc, 9)[1]
+    assert abs(optimise.objective(gc, xk, 1e-9) - 1.4341) < 1e-9
+    H = info["H_scan"][np.isfinite(info["H_scan"])]
+    assert np.all(np.diff(H) > 0)                   # H rises with the tilt: one root
+    assert TILTS[np.isfinite(info["H_scan"])].min() > 0   # theta6 = pi itself leaves the range
 
 
 def test_mid_cut_pose_is_the_design_pose(g):
@@ -77,7 +94,7 @@ def test_blade_stays_inside_the_opening_and_stroke_turns_a_few_degrees(g):
 
 
 def test_paper_optimised_levers_assemble_in_our_geometry(g):
-    lev = {k: float(v) for k, v in config().raw["scenes"]["paper_optimised"]["parameters"].items()}
+    lev = {k: float(v) for k, v in config().raw["scenes"]["paper_optimised"]["options"]["levers"].items()}
     gp = g.with_levers(**lev)
     xk = cut_points(gp, 17)[1]
     H = optimise.objective(gp, xk, 1e-9)
