@@ -50,7 +50,7 @@ def test_deleted_figure_run_and_summary_image_are_restored(workflow):
     for f in (fig, run, summary):
         f.unlink()
     jobs = planned(work)
-    assert {"notebook_saw_chain", "solve[paper=saw_chain, run=speed_12000]", "summary"} <= jobs
+    assert {"notebook_saw_chain", "solve_saw_chain__scene_speed_12000", "summary"} <= jobs
     assert not any(j.startswith("notebook_") and j != "notebook_saw_chain" for j in jobs), jobs
     restored(work)
     assert fig.stat().st_size > 1000 and run.exists() and summary.exists()

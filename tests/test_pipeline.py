@@ -91,19 +91,29 @@ def test_no_change_schedules_nothing(workflow):
     assert "Nothing to be done" in out, out[-3000:]
 
 
-def test_one_parameter_reruns_exactly_its_run_notebook_and_report(workflow):
+def test_one_parameter_reruns_exactly_its_runs_notebook_and_report(workflow):
+    """Changing the speed of one scene reruns that scene's runs (baseline and verdict
+    variants) in their one solver job, the paper's validation and notebook, and the
+    cross-paper steps; nothing of the other scenes, studies or papers."""
+    from mechrepro.config import load_paper
+
     work, _ = workflow
     path = work / "config" / "papers" / "saw_chain.yaml"
     original = path.read_text()
+    before = load_paper(path, "ci").runs
     try:
         path.write_text(original.replace("parameters: {sprocket_speed: 12000}",
                                          "parameters: {sprocket_speed: 11000}"))
+        after = load_paper(path, "ci").runs
         jobs = scheduled(snakemake(work, "-n"))
     finally:
         path.write_text(original)
-    assert jobs == {"run_params[paper=saw_chain, run=speed_12000]",
-                    "solve[paper=saw_chain, run=speed_12000]",
-                    "notebook_saw_chain", "summary", "report", "archive", "all"}, jobs
+    changed = sorted(r for r in after if after[r] != before.get(r))
+    assert changed and all(r.startswith("speed_12000") for r in changed), changed
+    assert jobs == {*(f"run_params[paper=saw_chain, run={r}]" for r in changed),
+                    "solve_saw_chain__scene_speed_12000", "validate_saw_chain",
+                    "notebook_saw_chain", "summary", "reference_check", "report", "archive",
+                    "all"}, jobs
     assert "Nothing to be done" in snakemake(work, "-n")
 
 

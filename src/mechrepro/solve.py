@@ -36,16 +36,26 @@ def run_solver(run: dict):
     return ds
 
 
-def main(params_json: str, out_nc: str) -> None:
-    run = json.loads(Path(params_json).read_text())
-    t0 = time.perf_counter()
-    print(f"[{run['paper']}] {run['run']}: effects={run['effects']} "
-          f"resolution={run['resolution']}", flush=True)
-    ds = run_solver(run)
-    write_dataset(ds, out_nc, run)
-    print(f"[{run['paper']}] {run['run']}: solve {ds.attrs['wall_time_s']:.4g} s, "
-          f"total {time.perf_counter() - t0:.3g} s -> {out_nc}", flush=True)
+def main(pairs: list[str]) -> None:
+    """Solve ``params.json out.nc [params.json out.nc ...]`` in one process.
+
+    Cheap runs share one job (one interpreter start, one import of the model) instead of
+    paying both per run; each run is still timed and written on its own.
+    """
+    if len(pairs) % 2:
+        raise SystemExit("usage: python -m mechrepro.solve PARAMS.json OUT.nc [...]")
+    n = len(pairs) // 2
+    for i in range(n):
+        params_json, out_nc = pairs[2 * i], pairs[2 * i + 1]
+        run = json.loads(Path(params_json).read_text())
+        t0 = time.perf_counter()
+        print(f"[{run['paper']} {i + 1}/{n}] {run['run']}: effects={run['effects']} "
+              f"resolution={run['resolution']}", flush=True)
+        ds = run_solver(run)
+        write_dataset(ds, out_nc, run)
+        print(f"[{run['paper']} {i + 1}/{n}] {run['run']}: solve {ds.attrs['wall_time_s']:.4g} s, "
+              f"total {time.perf_counter() - t0:.3g} s -> {out_nc}", flush=True)
 
 
 if __name__ == "__main__":
-    main(*sys.argv[1:])
+    main(sys.argv[1:])

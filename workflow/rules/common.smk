@@ -49,6 +49,19 @@ def model_code(paper):
     return code(*SOLVER_CORE, f"models/{paper}")
 
 
+def solve_jobs(paper):
+    """{job name: runs it solves}: one job per scene or study (baseline and variants),
+    one per run for the studies the paper fans out (`fan_out:`)."""
+    cfg = CFG[paper]
+    fan = set(cfg.raw.get("fan_out", []))
+    jobs = {}
+    for run, rec in cfg.runs.items():
+        group = rec["study"] or rec["scene"]
+        key = run if group in fan else ("study_" if rec["study"] else "scene_") + group
+        jobs.setdefault(key.replace("@", "__").replace("-", "_"), []).append(run)
+    return jobs
+
+
 def run_json(wc):
     """A run record as a plain JSON string: Snakemake's params trigger sees every change."""
     return json.dumps(CFG[wc.paper].runs[wc.run], indent=2, sort_keys=True)
