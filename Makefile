@@ -39,12 +39,15 @@ ci-reproduce: $(STAMP)
 ## Deliberately refresh the committed reference numbers of a profile (ci by default;
 ## `make reference REF_PROFILE=default` for the full one): the profile is run once per
 ## platform variant of config/reference.yaml and each tolerance is set from the spread
-## measured across them (`REF_VARIANTS="native old_cpu"` to run fewer)
+## measured across them (`REF_VARIANTS="native old_cpu"` to run fewer,
+## `REF_PAPERS=saw_chain` for one paper)
 REF_PROFILE ?= ci
 REF_VARIANTS ?=
+REF_PAPERS ?=
 reference: $(STAMP)
 	rm -rf results-reference-$(REF_PROFILE)
-	$(BIN)/python -m mechrepro.reference $(REF_PROFILE) results-reference-$(REF_PROFILE) $(REF_VARIANTS)
+	$(BIN)/python -m mechrepro.reference $(REF_PROFILE) results-reference-$(REF_PROFILE) \
+	  $(if $(REF_PAPERS),--papers $(REF_PAPERS)) $(if $(REF_VARIANTS),--variants $(REF_VARIANTS))
 
 ## Speed benchmarks (ratios measured side by side)
 benchmark: $(STAMP)

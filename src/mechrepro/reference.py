@@ -66,7 +66,7 @@ def measure(profile: str, papers: list[str], workdir: str | Path, config_dir: st
             cores: int = 2, variants: list[str] | None = None) -> dict[str, Path]:
     """Run the pipeline of ``profile`` once per platform variant into ``workdir/<variant>``."""
     conf = settings(config_dir)
-    names = variants or [v for v in conf["variants"] if v != "old_cpu"]
+    names = variants or list(conf["variants"])
     out = {}
     for i, name in enumerate(names, 1):
         spec = conf["variants"][name]
@@ -74,7 +74,7 @@ def measure(profile: str, papers: list[str], workdir: str | Path, config_dir: st
         targets = [f"{res}/{p}/tables/validation.csv" for p in papers]
         cmd = [sys.executable, "-m", "snakemake", "--cores", str(cores), "--config",
                f"profile={profile}", f"results={res}", f"papers=[{','.join(papers)}]",
-               *snakemake_args(spec, papers), *targets]
+               "--nolock", *snakemake_args(spec, papers), *targets]
         t0 = time.perf_counter()
         print(f"[reference {i}/{len(names)}] {name}: {spec or 'native kernels'}", flush=True)
         proc = subprocess.run(cmd, env=variant_env(spec), capture_output=True, text=True)
@@ -215,13 +215,22 @@ def check(out: str, results: str, reference_dir: str, papers: list[str], profile
 
 
 def main(argv: list[str]) -> int:
-    """python -m mechrepro.reference PROFILE WORKDIR [VARIANT ...]: measure and derive."""
-    profile, workdir, *variants = argv
+    """python -m mechrepro.reference PROFILE WORKDIR [--papers P ...] [--variants V ...]"""
+    import argparse
+
+    ap = argparse.ArgumentParser(prog="python -m mechrepro.reference", description=main.__doc__)
+    ap.add_argument("profile")
+    ap.add_argument("workdir")
+    ap.add_argument("--papers", nargs="*", help="default: every paper of config/config.yaml")
+    ap.add_argument("--variants", nargs="*", help="default: every variant of config/reference.yaml")
+    ap.add_argument("--cores", type=int, default=2)
+    args = ap.parse_args(argv)
     config_dir = Path("config")
-    papers = yaml.safe_load((config_dir / "config.yaml").read_text())["papers"]
-    results = measure(profile, papers, workdir, config_dir, variants=variants or None)
+    papers = args.papers or yaml.safe_load((config_dir / "config.yaml").read_text())["papers"]
+    results = measure(args.profile, papers, args.workdir, config_dir, cores=args.cores,
+                      variants=args.variants or None)
     try:
-        derive(results, "results/reference", config_dir, papers, profile)
+        derive(results, "results/reference", config_dir, papers, args.profile)
     except DriftError as exc:
         sys.stderr.write(f"{exc}\n")
         return 1

@@ -174,6 +174,8 @@ def write_report(out: str, results: str, config_dir: str, papers: list[str], pro
 <pre class="check{drift}">{html.escape(check)}</pre>
 <div id="cost">{summary_section(out.parent)}</div>
 {''.join(sections)}
+<script>/* for `make screenshot`: the whole page's height once images are laid out */
+window.addEventListener("load", () => document.body.dataset.height = document.documentElement.scrollHeight);</script>
 </body></html>
 """
     write_text(out, page)
