@@ -66,7 +66,7 @@ def _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2) -> dict:
     det = j11 * j22 - j12 * j21
     tau = np.zeros_like(t)
     v_T = fb.omega * fb.R_pin - w2 * fb.R_bush
-    for _ in range(6):  # friction moment R_j F_T is ~1e-3 of the load terms: fixed point
+    for _ in range(4):  # friction moment R_j F_T is ~1e-3 of the load terms: 4 passes leave 1e-9
         c2 = b2 - tau
         fx = (b3 * j22 - j12 * c2) / det
         fy = (j11 * c2 - j21 * b3) / det

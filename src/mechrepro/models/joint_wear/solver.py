@@ -330,10 +330,10 @@ def to_dataset(res: dict, run: dict) -> xr.Dataset:
         # (Sec. 3.3); its largest change between successive simulations measures that
         changes = [np.max(np.abs(np.diff(g) / g[:-1])) if len(g) > 1 else 0.0 for g in w["G_pred"]]
         scal["interval_factor_change_max"] = (float(max(changes)), "1", "largest relative change of the wear per period between successive interval simulations")
-        if "pbp" in res:
-            n, wall = res["pbp"]
-            scal["pbp_sample_periods"] = (float(n), "1", "consecutive periods simulated one by one (Fig. 6) to time the reference")
-            scal["pbp_sample_wall_time"] = (wall, "s", "wall time of those periods")
+    if "pbp" in res:
+        n, wall = res["pbp"]
+        scal["pbp_sample_periods"] = (float(n), "1", "consecutive periods simulated one by one (Fig. 6) to time the reference")
+        scal["pbp_sample_wall_time"] = (wall, "s", "wall time of those periods")
     if "scan" in res:
         sc = res["scan"]
         H = float(run["parameters"]["hardness_bushing"])
