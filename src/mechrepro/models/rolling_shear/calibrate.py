@@ -37,14 +37,17 @@ def H_of_tilt(g: Geometry, tilt: float, n: int, tol: float) -> float:
         return math.nan
 
 
-def calibrate_tilt(g: Geometry, target: float, n: int, tol: float) -> tuple[Geometry, dict]:
+def calibrate_tilt(g: Geometry, target: float, n: int, tol: float,
+                   n_scan: int = 33) -> tuple[Geometry, dict]:
     """The geometry whose tilt gives H = target (mm) with ``n`` cut points.
 
-    Scans ``TILTS``, takes the first sign change of H - target among assembling members
-    (H rises with the tilt) and refines it by Brent's method.  Raises CalibrationError when
-    no member of the family reaches the target.
+    Scans ``TILTS`` at ``n_scan`` cut points (cheap), takes the first sign change of
+    H - target among assembling members (H rises with the tilt), moves that bracket until it
+    brackets the root at ``n`` points, and refines it by Brent's method.  Raises
+    CalibrationError when no member of the family reaches the target.
     """
-    H = np.array([H_of_tilt(g, t, n, tol) for t in TILTS])
+    n_scan = min(n_scan, n)
+    H = np.array([H_of_tilt(g, t, n_scan, tol) for t in TILTS])
     ok = np.isfinite(H)
     if not ok.any():
         # say why at the configured tilt (NonAssembly names the cut point and the loop)
@@ -56,10 +59,22 @@ def calibrate_tilt(g: Geometry, target: float, n: int, tol: float) -> tuple[Geom
         raise CalibrationError(
             f"H = {target} mm is outside the family's reach: assembling tilts "
             f"{TILTS[ok].min():.2f}..{TILTS[ok].max():.2f} rad give H = "
-            f"{np.nanmin(H):.4g}..{np.nanmax(H):.4g} mm")
+            f"{np.nanmin(H):.4g}..{np.nanmax(H):.4g} mm (at {n_scan} cut points)")
     i = idx[0]
-    tilt = brentq(lambda t: H_of_tilt(g, t, n, tol) - target, TILTS[i], TILTS[i + 1],
-                  xtol=1e-13, rtol=1e-13)
+
+    def fn(t):
+        return H_of_tilt(g, t, n, tol) - target
+
+    lo, hi = TILTS[i], TILTS[i + 1]
+    for _ in range(len(TILTS)):  # the root moves little between n_scan and n points
+        flo, fhi = fn(lo), fn(hi)
+        if not (math.isfinite(flo) and math.isfinite(fhi)):
+            raise CalibrationError(f"bracket [{lo:.2f}, {hi:.2f}] rad leaves the family at {n} points")
+        if flo * fhi <= 0:
+            break
+        step = hi - lo
+        lo, hi = (lo - step, lo) if flo > 0 else (hi, hi + step)
+    tilt = brentq(fn, lo, hi, xtol=1e-13, rtol=1e-13)
     gc = with_intent(g, theta6_mid=math.pi + tilt)
     return gc, {"tilt": tilt, "tilt_min": float(TILTS[ok].min()), "H_scan": H,
-                "H_at_min_tilt": float(H[ok][0])}
+                "n_scan": n_scan, "H_at_min_tilt": float(H[ok][0])}

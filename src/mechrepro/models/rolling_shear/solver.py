@@ -35,13 +35,18 @@ class Context:
         if target is not None:
             from .calibrate import calibrate_tilt
 
+            n_cal = int(p["calibration_points"])
             self.g, self.calibration = calibrate_tilt(self.g, float(target["value"]) * 1e3,  # m -> mm
-                                                      self.n, tol_floor)
+                                                      n_cal, tol_floor)
+            self.calibration["n"] = n_cal
             self.calibration["H_original"] = optimise.objective(
-                self.g, cut_points(self.g, self.n)[1], tol_floor)
+                self.g, cut_points(self.g, n_cal)[1], tol_floor)
         self.g_original = self.g
         if "levers" in opt:
             self.g = self.g.with_levers(**{k: float(v) for k, v in opt["levers"].items()})
+            if self.calibration is not None:
+                self.calibration["H_levers"] = optimise.objective(
+                    self.g, cut_points(self.g, self.calibration["n"])[1], tol_floor)
         self.huch, self.x_k = cut_points(self.g, self.n)
         newton_tol = float(res.get("newton_tol", p["loops_tol"] * 1e3))
         pso = dict(swarm=int(res.get("pso_swarm", p["pso_swarm"])),
@@ -157,10 +162,11 @@ def eff_tilt_scan(ctx: Context) -> dict:
     from .calibrate import TILTS, H_of_tilt
 
     H = (ctx.calibration["H_scan"] if ctx.calibration is not None else
-         np.array([H_of_tilt(ctx.g_original, t, ctx.n, ctx.tol_floor) for t in TILTS]))
+         np.array([H_of_tilt(ctx.g_original, t, 33, ctx.tol_floor) for t in TILTS]))
     return {"family_tilt": (("tilt",), TILTS, "rad", "guide-rod tilt theta6_mid - pi"),
             "family_H": (("tilt",), H, "mm",
-                         "synthetic horizontal displacement, original levers (NaN: leaves the paper's ranges)")}
+                         "synthetic horizontal displacement, original levers, 33 cut points "
+                         "(NaN: leaves the paper's ranges)")}
 
 
 @EFFECTS.register("constant_rate_drive")
@@ -350,7 +356,11 @@ def eff_lever_selpso(ctx: Context) -> dict:
                         c1=ctx.p["pso_c1"], c2=ctx.p["pso_c2"], tol=0.0)
     res = optimise.optimise_selpso(ctx.g, ctx.x_k, _bounds(ctx), st, ctx.rng(5),
                                    ctx.settings.tol_pose)
-    return _optimised_outputs(ctx, res, "opt_selpso")
+    out = _optimised_outputs(ctx, res, "opt_selpso")
+    out["opt_original_objective"] = _scalar(
+        optimise.objective(ctx.g, ctx.x_k, ctx.settings.tol_pose), "mm",
+        "synthetic horizontal displacement of the original levers, same cut points")
+    return out
 
 
 @EFFECTS.register("lever_de")
@@ -405,8 +415,14 @@ def _geometry_outputs(ctx: Context) -> dict:
     out["geometry_tilt"] = _scalar(dict(ctx.g_original.intents)["theta6_mid"] - math.pi, "rad",
                                    "guide-rod tilt at mid-cut, theta6_mid - pi (calibrated if the run calibrates)")
     if ctx.calibration is not None:
-        out["calibrated_H_original"] = _scalar(ctx.calibration["H_original"], "mm",
-                                               "synthetic horizontal displacement of the original levers after calibration")
+        n = ctx.calibration["n"]
+        out["calibrated_H_original"] = _scalar(
+            ctx.calibration["H_original"], "mm",
+            f"synthetic horizontal displacement of the original levers after calibration, {n} cut points")
+        if "H_levers" in ctx.calibration:
+            out["calibrated_H_levers"] = _scalar(
+                ctx.calibration["H_levers"], "mm",
+                f"synthetic horizontal displacement of the scene's levers, {n} cut points")
     return out
 
 
