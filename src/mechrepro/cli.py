@@ -23,8 +23,10 @@ def main(argv: list[str]) -> int:
 
         write_dataset(gather_study(args[1:]), args[0])
     elif cmd == "validate":
+        from .solve import blas_threads
         from .validation import validate
 
+        blas_threads()
         rows = validate(*args)
         for r in rows:
             print(f"{r.status:12s} {r.spec['evidence']:12s} {r.quantity}")

@@ -54,14 +54,6 @@ def variant_env(spec: dict) -> dict:
     return env
 
 
-def snakemake_args(spec: dict, papers: list[str]) -> list[str]:
-    threads = spec.get("threads")
-    if not threads:
-        return []
-    rules = ["solve"] + [f"validate_{p}" for p in papers]
-    return ["--set-threads", *[f"{r}={threads}" for r in rules]]
-
-
 def measure(profile: str, papers: list[str], workdir: str | Path, config_dir: str | Path,
             cores: int = 2, variants: list[str] | None = None) -> dict[str, Path]:
     """Run the pipeline of ``profile`` once per platform variant into ``workdir/<variant>``."""
@@ -74,7 +66,7 @@ def measure(profile: str, papers: list[str], workdir: str | Path, config_dir: st
         targets = [f"{res}/{p}/tables/validation.csv" for p in papers]
         cmd = [sys.executable, "-m", "snakemake", "--cores", str(cores), "--config",
                f"profile={profile}", f"results={res}", f"papers=[{','.join(papers)}]",
-               "--nolock", *snakemake_args(spec, papers), *targets]
+               "--nolock", *targets]
         t0 = time.perf_counter()
         print(f"[reference {i}/{len(names)}] {name}: {spec or 'native kernels'}", flush=True)
         proc = subprocess.run(cmd, env=variant_env(spec), capture_output=True, text=True)

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import importlib
 import json
+import os
 import sys
 import time
 from pathlib import Path
@@ -36,12 +37,23 @@ def run_solver(run: dict):
     return ds
 
 
+def blas_threads() -> None:
+    """Apply MECHREPRO_BLAS_THREADS (a platform variant of config/reference.yaml): Snakemake
+    sets OPENBLAS_NUM_THREADS to the job's threads, which a variant cannot override."""
+    n = os.environ.get("MECHREPRO_BLAS_THREADS")
+    if n:
+        from threadpoolctl import threadpool_limits
+
+        threadpool_limits(int(n), user_api="blas")
+
+
 def main(pairs: list[str]) -> None:
     """Solve ``params.json out.nc [params.json out.nc ...]`` in one process.
 
     Cheap runs share one job (one interpreter start, one import of the model) instead of
     paying both per run; each run is still timed and written on its own.
     """
+    blas_threads()
     if len(pairs) % 2:
         raise SystemExit("usage: python -m mechrepro.solve PARAMS.json OUT.nc [...]")
     n = len(pairs) // 2
