@@ -60,8 +60,18 @@ def test_unknown_effect_and_missing_dependencies_fail_clearly(cfg):
         solve(run_of(cfg, "table12", effects=["axisym", "slots"]))
     with pytest.raises(ValueError, match="clamp_radius"):
         solve(run_of(cfg, "table12", parameters={"clamp_radius": 0.2}))
-    with pytest.raises(ValueError, match="free_disk"):
-        solve(run_of(cfg, "table12_plate2d", parameters={"inplane_bc": "free_disk"}))
+    with pytest.raises(ValueError, match="inplane_bc"):
+        solve(run_of(cfg, "table12", parameters={"inplane_bc": "glued"}))
+
+
+def test_roll_tension_computes_only_the_scenes_inplane_condition(cfg):
+    run = run_of(cfg, "buckling", effects=["stress_calibration", "roll_tension"])
+    for bc in ("clamped", "free_disk"):
+        ds = solve(run_of(cfg, "buckling", effects=run["effects"], parameters={"inplane_bc": bc}))
+        assert ds["sigma_theta"].dims == ("r_c", "r") and bc in ds["sigma_theta"].attrs["long_name"]
+        inside = ds["r"].values < cfg.runs["buckling"]["parameters"]["clamp_radius"]
+        # the clamped annulus has no stress inside the clamp; the free disk has
+        assert np.isnan(ds["sigma_theta"].values[0, inside][1:]).all() == (bc == "clamped")
 
 
 def test_buckled_runs_store_nan_and_flag_never_a_silent_sqrt(cfg):
@@ -115,5 +125,5 @@ def test_every_assumed_constant_says_why():
 def test_plate2d_runs_are_deterministic(cfg):
     run = run_of(cfg, "table12_plate2d", resolution={"n_rings": 4, "n_sectors": 32})
     a, b = solve(run), solve(run)
-    np.testing.assert_array_equal(a["plate2d_m_hat_raw"].values, b["plate2d_m_hat_raw"].values)
+    np.testing.assert_array_equal(a["plate2d_m_hat"].values, b["plate2d_m_hat"].values)
     np.testing.assert_array_equal(a["plate2d_f_rolled"].values, b["plate2d_f_rolled"].values)

@@ -1,0 +1,87 @@
+"""disk_tension: what the calibrations fix, the in-plane condition chosen on evidence, and
+the test of Table 2's 0.93 (mode change vs a rotation inside a degenerate pair)."""
+import copy
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mechrepro.config import load_paper
+from mechrepro.models.disk_tension import solve
+from mechrepro.models.disk_tension.convergence import reference_pair, richardson
+from mechrepro.models.disk_tension.modal import degenerate_harmonics, harmonic_coupling_symmetry
+
+ROOT = Path(__file__).resolve().parent.parent
+TABLE1 = np.array([-1.70e5, -3.41e4, 3.82e5, 1.16e6, 2.40e6])
+
+
+@pytest.fixture(scope="module")
+def cfg():
+    return load_paper(ROOT / "config" / "papers" / "disk_tension.yaml", "ci")
+
+
+def table12(cfg, n_elements=64, **params):
+    run = copy.deepcopy(cfg.runs["table12"])
+    run["effects"] = ["exact_reference", "stress_calibration", "roll_tension", "axisym", "eigen",
+                      "eq9", "modal_matrices"]
+    run["resolution"] = {"n_elements": n_elements}
+    run["parameters"].update(params)
+    return solve(run)
+
+
+def test_youngs_modulus_and_density_are_absorbed_by_the_calibrations(cfg):
+    """range_why of E and rho: h and alpha absorb them, so no verdict can depend on them."""
+    base = table12(cfg)
+    for p in ({"youngs_modulus": 190e9}, {"density": 7750.0}):
+        ds = table12(cfg, **p)
+        for v in ("axisym_f_unrolled", "axisym_f_rolled", "axisym_k_sigma_hat", "axisym_m_hat"):
+            np.testing.assert_allclose(ds[v].values, base[v].values, rtol=1e-8, atol=1e-9)
+
+
+def test_calibrated_numbers_do_not_move_with_the_inplane_condition_but_table1_ratios_do(cfg):
+    """f~(N_d=4) is `determined` (the calibration fixes it), Table 1's other entries are not:
+    they choose the in-plane condition."""
+    f, err = {}, {}
+    for bc in ("clamped", "free_disk"):
+        ds = table12(cfg, inplane_bc=bc)
+        f[bc] = float(ds["axisym_f_rolled"].sel(n_d=4, r_c=0.065))
+        k = np.diag(ds["axisym_k_sigma_hat"].values)
+        assert k[4] == pytest.approx(2.40e6, rel=1e-6)  # calibrated at 128 elements, run at 64
+        err[bc] = np.max(np.abs(k[:4] / TABLE1[:4] - 1))
+    assert abs(f["clamped"] / f["free_disk"] - 1) < 5e-4
+    assert err["free_disk"] < 0.03 < 0.09 < err["clamped"]
+
+
+def test_a_stable_disk_cannot_show_table2s_093_as_a_mode_change(cfg):
+    ds = table12(cfg)
+    ds_b = solve({**cfg.runs["table12"], "effects": ["stress_calibration", "roll_tension", "axisym",
+                                                     "modal_matrices", "critical_load"],
+                  "resolution": {"n_elements": 64}})
+    lam = float(ds_b["axisym_buckling_load_factor"])
+    assert 1.0 < lam < 5.0
+    assert float(ds_b["axisym_m_hat_diag_at_buckling"].sel(n_d=3)) > 0.99
+    assert float(ds["axisym_m_hat"].sel(row=3, col=3)) > 0.999
+
+
+def test_table1_pattern_is_the_selection_rule_of_a_c4_mesh():
+    # the paper's nonzero off-diagonals (0,4) and (1,3), everything else printed 0.00
+    N = harmonic_coupling_symmetry([(0, 4), (1, 3)], 4)
+    assert N == 4
+    # on a C4 mesh only N_d = 1 and 3 stay degenerate pairs (free rotation in an eigensolver)
+    assert degenerate_harmonics(N, range(5)) == [1, 3]
+    # a finer mesh symmetry would not couple 0 and 4; a coarser one would couple more
+    assert harmonic_coupling_symmetry([(0, 4), (1, 3), (0, 2), (2, 4), (1, 3)], 4) == 2
+    assert harmonic_coupling_symmetry([(1, 3)], 4) is None
+
+
+def test_richardson_reference_beats_the_finest_run_on_the_exact_solution(cfg):
+    runs = {n: table12(cfg, n_elements=n) for n in (32, 64, 128)}
+    n0, n1 = reference_pair(runs)
+    assert (n0, n1) == (64, 128)
+    exact = runs[128]["f_exact"].values
+    ref = richardson(runs[n0]["axisym_f_unrolled"].values, runs[n1]["axisym_f_unrolled"].values)
+    err_ref = np.max(np.abs(ref / exact - 1))
+    err_128 = np.max(np.abs(runs[128]["axisym_f_unrolled"].values / exact - 1))
+    assert err_ref < 1e-8 and err_ref < err_128
+    with pytest.raises(ValueError, match="pair"):
+        reference_pair([4, 16, 256])
