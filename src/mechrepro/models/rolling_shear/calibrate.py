@@ -20,7 +20,7 @@ from .geometry import Geometry, cut_points, with_intent
 from .loops import NonAssembly
 
 #: tilts scanned for the bracket (rad): theta6_mid = pi + tilt
-TILTS = np.round(np.arange(0.0, 0.8001, 0.01), 10)
+TILTS = np.round(np.arange(0.0, 0.8001, 0.02), 10)
 
 
 class CalibrationError(ValueError):

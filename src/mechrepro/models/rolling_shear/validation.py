@@ -101,6 +101,27 @@ def our_optimisation(R):
     return out
 
 
+@Q.register("table2_reduction_family_frozen_min", "table2_reduction_family_frozen_max",
+            "table2_reduction_family_rederived_min", "table2_reduction_family_rederived_max")
+def family(R):
+    ds = R.run("family")
+    red = ds["family_member_reduction"].values
+    carrier = ds["family_member_carrier_constants"].values.astype(str)
+    out = {}
+    for c in ("frozen", "rederived"):
+        sel = (carrier == c) & np.isfinite(red)
+        lo, hi = int(np.argmin(np.where(sel, red, np.inf))), int(np.argmax(np.where(sel, red, -np.inf)))
+
+        def member(i):
+            return ", ".join(f"{k} {ds[f'family_member_{k}'].values[i]}" for k in
+                             ("blade_offset", "R", "width", "y_joint", "eq8_reading"))
+        note = (f"{int(sel.sum())} of {int((carrier == c).sum())} grid members reach 1.4341 "
+                f"({ds.sizes['cut']} cut points)")
+        out[f"table2_reduction_family_{c}_min"] = Reproduced(float(red[lo]), note=f"{note}; at {member(lo)}")
+        out[f"table2_reduction_family_{c}_max"] = Reproduced(float(red[hi]), note=f"at {member(hi)}")
+    return out
+
+
 @Q.register("optimisation_shortens_l6")
 def l6_direction(R):
     opt = R.run("optimisation")
