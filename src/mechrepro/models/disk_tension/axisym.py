@@ -8,6 +8,12 @@ factor int cos^2 = pi or 2 pi cancels in every eigenvalue and Rayleigh quotient)
   mass         rho h W^2 r                                                -> [M]
   stress       h [sigma_r W'^2 + sigma_theta N_d^2 W^2 / r^2] r           -> [K^(sigma)], Eq. (3)
 
+Eq. (3)'s [K^(sigma)] is written for shell elements: its 6 x 6 stress block acts on the
+derivatives of all three displacements (u, v, w).  Only the w rows enter here: for a flat
+plate the in-plane stress couples the transverse motion only through grad(w)^T sigma grad(w)
+(the u, v rows stiffen in-plane modes, which stay uncoupled from bending and lie far above
+the N_d = 0..4 bending frequencies), so dropping them changes no frequency of the paper.
+
 discretised by cubic Hermite elements (nodal W and ell W', with ell the mean element
 length: both DOF kinds then carry the same unit, which keeps [K] and [M] well conditioned
 enough for relative frequency errors near 1e-9 instead of a 1e-6 round-off floor).  All elements are integrated at once

@@ -127,7 +127,8 @@ def _mass(u, v, w):
 
 @BilinearForm
 def _geometric(u, v, w):
-    # Eq. (3): h grad(u)^T sigma grad(v), sigma the in-plane residual stress
+    # Eq. (3): h grad(u)^T sigma grad(v), sigma the in-plane residual stress; the in-plane
+    # (u, v) rows of Eq. (3) are dropped: a flat plate's bending does not couple to them
     gu, gv = grad(u), grad(v)
     return w.h * (w.sxx * gu[0] * gv[0] + w.sxy * (gu[0] * gv[1] + gu[1] * gv[0])
                   + w.syy * gu[1] * gv[1])
