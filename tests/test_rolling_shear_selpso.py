@@ -40,3 +40,21 @@ def test_natural_selection_halves_the_iterations_on_eq9():
 
     with_sel, without = iterations(True), iterations(False)
     assert with_sel < 0.75 * without, (with_sel, without)
+
+
+def test_cost_of_accuracy_error_sees_the_other_assembly_mode():
+    """The selPSO error of the cost-of-accuracy study is the full pose against the closed
+    form on the design branch: a converged solution on the mirror mode of a dyad is a large
+    error (the former mode-free metric reported ~1e-15 for it)."""
+    from dataclasses import replace
+
+    from mechrepro.models.rolling_shear import loops
+    from mechrepro.models.rolling_shear.solver import pose_error
+
+    g = geometry()
+    t5, t6 = pose.exact_pose(g, g.x_mid)
+    right = np.array([*loops.exact_angles(g, t5, t6), t5, t6])
+    mirror = np.array([*loops.exact_angles(replace(g, elbow1=-g.elbow1), t5, t6), t5, t6])
+    assert np.abs(loops.residuals(g, mirror[:4], t5, t6)).sum() < 1e-9     # a true root
+    assert pose_error(right[None], right[None]).max() < 1e-15
+    assert pose_error(mirror[None], right[None]).max() > 0.1

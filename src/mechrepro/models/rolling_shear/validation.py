@@ -195,7 +195,7 @@ def table2(orig, popt, opt, cfg_raw) -> tuple[list, list]:
     spread = dict(zip(opt["lever"].values.tolist(), opt["scan_spread"].values))
     rows_ = [[k, float(p[k]["value"]), pl[k], float(sel[k]), float(de[k]), float(spread[k])]
              for k in OPTIMISED_LEVERS]
-    rows_.append(["objective H (our calibrated geometry)",
+    rows_.append(["objective H at the run's cut points (geometry calibrated on 1.4341)",
                   float(orig["newton_synthetic_horizontal_displacement"]),
                   float(popt["newton_synthetic_horizontal_displacement"]),
                   float(opt["opt_selpso_objective"]), float(opt["opt_de_objective"]), math.nan])
