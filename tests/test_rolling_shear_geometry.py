@@ -126,3 +126,21 @@ def test_forward_drive_with_reverse_solved_laws_reproduces_the_stroke(g):
     crd = constant_rate_drive(g, sol.theta)
     assert abs(crd["y_k"][0] + g.s) < 1e-6 and abs(crd["y_k"][-1] + g.s) < 1e-6
     assert np.max(np.abs(crd["y_k"] + g.s)) > 1.0
+
+
+def test_every_run_recalibrates_for_its_own_intents():
+    """A range-end variant of an intent re-fits the tilt: H of the original levers is the
+    paper's number again (the calibration target comes from the reported block)."""
+    from mechrepro.models.rolling_shear.solver import Context
+
+    base = run("original", "ci")
+    assert base["calibration"]["theta6_mid"]["quantity"] == "synthetic_horizontal_displacement_original"
+    tilts = []
+    for width in (1.5, 3.2):                     # m, the range ends of the rolled length
+        r = run("original", "ci")
+        r["parameters"]["width"] = width
+        r["parameters"]["calibration_points"] = 17
+        ctx = Context(r)
+        assert abs(ctx.calibration["H_original"] - 1.4341) < 1e-9
+        tilts.append(ctx.calibration["tilt"])
+    assert tilts[0] > tilts[1] + 0.1             # a shorter cut needs a steeper guide rod
