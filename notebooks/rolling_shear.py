@@ -275,6 +275,9 @@ coa_pso = cost_of_accuracy(paper, "swarm_x_iter", budget, pso["selpso_stroke_tim
 
 for d in (coa_pts, coa_tol, coa_pso):  # every knob is timed over the whole stroke
     d["wall_time"].attrs["long_name"] = "wall time of the whole stroke"
+    # the motion-law error is absolute (rad), not relative as the shared builder labels it
+    d["error_motion_laws_rad"].attrs.update(units="rad",
+                                            long_name=f"max |theta - {d.attrs['reference']}|, motion laws")
 
 # the paper's own resolution knob (particles x iterations of selPSO) is the headline
 # cost_of_accuracy.nc that the cross-paper summary reads; the other two knobs beside it
