@@ -191,3 +191,20 @@ def test_a_verdict_that_differs_between_platforms_is_refused(edit_config, tmp_pa
         _table(res[name] / "saw_chain" / "tables" / "validation.csv", [("load_max", 1.0, status)])
     with pytest.raises(ref.DriftError, match="load_max: pass natively, fail under other"):
         ref.derive(res, tmp_path / "ref", path.parent.parent, ["saw_chain"], "ci")
+
+
+def test_flips_found_by_the_extraction_make_a_verdict_inconclusive(paper):
+    cfg, results = paper
+    write_runs(cfg, results, lambda run: 100.5)
+    Q = quantities()
+    fn = Q._fn["load_max"]
+
+    def with_corner(R):
+        out = fn(R)
+        out["load_max"] = Reproduced(out["load_max"], flips=["fail at the joint corner (a, b)"])
+        return out
+    Q._fn = {k: (with_corner if v is fn else v) for k, v in Q._fn.items()}
+    Q._names[with_corner] = Q._names.pop(fn)
+    rows = {r.quantity: r for r in build(cfg, Q, results)}
+    assert rows["load_max"].status == "inconclusive"
+    assert "joint corner" in rows["load_max"].cells()[9]

@@ -39,9 +39,15 @@ class ValidationError(RuntimeError):
 
 @dataclass
 class Reproduced:
-    """A reproduced value with a note computed from the runs (e.g. the exact value)."""
+    """A reproduced value with a note computed from the runs (e.g. the exact value).
+
+    ``flips`` names re-checks the extraction did itself that change the verdict (a joint
+    corner of several assumed constants, which the one-at-a-time variants do not reach);
+    a pass or fail with flips is ``inconclusive``.
+    """
     value: float | bool
     note: str = ""
+    flips: list[str] = field(default_factory=list)
 
 
 class Quantities:
@@ -243,7 +249,10 @@ def build(cfg, quantities: Quantities, results_dir: str | Path) -> list[Row]:
     for q, spec in reported.items():
         r = base[q]
         value = float(r.value) if not isinstance(r.value, bool) else float(r.value)
-        rows.append(Row(q, spec, value, r.note, verdict(spec, r.value)))
+        row = Row(q, spec, value, r.note, verdict(spec, r.value))
+        if row.status in ("pass", "fail"):
+            row.flips += list(r.flips)
+        rows.append(row)
     by_variant: dict[str, list[str]] = {}
     for q, spec in reported.items():
         for v in _variant_names(spec):
