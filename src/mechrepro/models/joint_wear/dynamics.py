@@ -153,7 +153,7 @@ def initial_state(fb: FourBar, start: str = "concentric", t0: float = 0.0):
     from . import kinematics, quasistatic
 
     if start == "equilibrium":
-        qs = quasistatic.one_period(fb, 720, t0=t0)
+        qs = quasistatic.one_period(fb, 720, t0=t0, settled=True)
         return np.array([qs["theta3"][0], qs["phi2"][0], qs["w3"][0], qs["w2"][0]])
     if start != "concentric":
         raise ValueError(f"joint_wear: initial state {start!r}: allowed concentric, equilibrium")

@@ -27,30 +27,37 @@ from . import contact, kinematics, loads
 from .geometry import FourBar
 
 
-def one_period(fb: FourBar, n_steps: int, passes: int = 2, t0: float = 0.0) -> dict:
+def one_period(fb: FourBar, n_steps: int, passes: int = 2, t0: float = 0.0,
+               settled: bool = False) -> dict:
     """Contact history over one crank period on a uniform periodic grid of n_steps from t0.
 
     passes = 0 is the ideal-kinematics approximation (the bushing centre on the pin's).
+    settled=True converges the link angles to round-off (4 passes, full friction fixed
+    point in each): the start of a dynamic run needs the bushing position to ~1e-10 m,
+    since a tangential offset d rings the rocking mode with an amplitude d / c.
     """
+    if settled:
+        passes = max(passes, 4)
     t = t0 + np.arange(n_steps) * (fb.period / n_steps)
     th1 = fb.omega * t
     th3, ph2 = kinematics.positions(fb, th1)
     w3, w2 = kinematics.velocities(fb, th1, th3, ph2)
     a3, a2 = kinematics.accelerations(fb, th1, th3, ph2, w3, w2)
-    out = _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2)
-    for _ in range(passes):
+    # intermediate passes only steer the link angles: a rougher friction fixed point will do
+    rough = 4 if settled else 2
+    out = _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2, rough if passes else 4)
+    for i in range(passes):
         ecc = fb.clearance + out["delta"]
         bx = fb.l1 * np.cos(th1) - ecc * out["nx"]
         by = fb.l1 * np.sin(th1) - ecc * out["ny"]
         th3, ph2 = kinematics.positions_from_point(fb, bx, by)
-        w3, a3 = periodic_derivatives(th3, fb.period)
-        w2, a2 = periodic_derivatives(ph2, fb.period)
-        out = _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2)
+        (w3, w2), (a3, a2) = periodic_derivatives(np.vstack([th3, ph2]), fb.period)
+        out = _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2, 4 if i == passes - 1 else rough)
     out.update(w3=w3, w2=w2)
     return out
 
 
-def _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2) -> dict:
+def _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2, iterations=4) -> dict:
     """Joint-B force, its normal/friction split and the penetration for given link motion."""
     M11, M22, am = loads.mass_terms(fb)
     cd = np.cos(th3 - ph2)
@@ -66,7 +73,7 @@ def _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2) -> dict:
     det = j11 * j22 - j12 * j21
     tau = np.zeros_like(t)
     v_T = fb.omega * fb.R_pin - w2 * fb.R_bush
-    for _ in range(4):  # friction moment R_j F_T is ~1e-3 of the load terms: 4 passes leave 1e-9
+    for _ in range(iterations):  # friction moment R_j F_T is ~1e-3 of the load terms: 4 leave 1e-9
         c2 = b2 - tau
         fx = (b3 * j22 - j12 * c2) / det
         fy = (j11 * c2 - j21 * b3) / det
@@ -91,7 +98,8 @@ HARMONICS = 64
 
 
 def periodic_derivatives(angle, period, second=True, harmonics=HARMONICS):
-    """First (and second) time derivative of an angle sampled uniformly over one period.
+    """First (and second) time derivative of angles sampled uniformly over one period
+    (the last axis).
 
     Spectral differentiation of the periodic part; a secular 2 pi k per period (a link
     that turns fully) is removed first and its constant rate added back.  Only the first
@@ -101,13 +109,13 @@ def periodic_derivatives(angle, period, second=True, harmonics=HARMONICS):
     the clearance's rocking mode (~1e3 rad/s), where no quasi-static state exists and
     the fixed point diverges.
     """
-    a = np.unwrap(np.asarray(angle, float))
-    n = a.size
-    k = np.round((a[-1] + (a[1] - a[0]) - a[0]) / (2 * np.pi))
+    a = np.unwrap(np.asarray(angle, float), axis=-1)
+    n = a.shape[-1]
+    k = np.round((a[..., -1] + (a[..., 1] - a[..., 0]) - a[..., 0]) / (2 * np.pi))[..., None]
     per = a - 2 * np.pi * k * np.arange(n) / n
-    f = np.fft.rfft(per)
+    f = np.fft.rfft(per, axis=-1)
     w = 2 * np.pi * np.fft.rfftfreq(n, period / n)
-    f[min(harmonics + 1, (n - 1) // 2 + 1):] = 0.0   # incl. the Nyquist mode of an even n
-    d1 = np.fft.irfft(1j * w * f, n) + 2 * np.pi * k / period
-    d2 = np.fft.irfft(-(w * w) * f, n) if second else None
+    f[..., min(harmonics + 1, (n - 1) // 2 + 1):] = 0.0   # incl. the Nyquist mode of an even n
+    d1 = np.fft.irfft(1j * w * f, n, axis=-1) + 2 * np.pi * k / period
+    d2 = np.fft.irfft(-(w * w) * f, n, axis=-1) if second else None
     return d1, d2
