@@ -180,8 +180,7 @@ class PlateDisk:
     def _sub(self, A):
         return A[self.free][:, self.free]
 
-    def _eigs(self, K, k):
-        shift = -0.1 * float(self._shift_scale) if hasattr(self, "_shift_scale") else 0.0
+    def _eigs(self, K, k, shift):
         lam, vec = spla.eigsh(self._sub(K), k=k, M=self._sub(self.M), sigma=shift, which="LM",
                               v0=self._v0)
         order = np.argsort(lam)
@@ -206,7 +205,9 @@ class PlateDisk:
     # -- Eq. (6): unrolled modes ---------------------------------------------------
     def unrolled(self):
         """omega^2 of the fundamental of each N_d; pairs rotated to cos/sin members."""
-        lam, Phi = self._eigs(self.K, self.n_modes)
+        # the unstressed plate is positive definite: shift 0.  Repeated calls (timing) must
+        # give the same modes, so no shift may depend on a previous call.
+        lam, Phi = self._eigs(self.K, self.n_modes, 0.0)
         self._shift_scale = lam.max()
         nd, coef = self.harmonic_content(Phi)
         self.all_omega2, self.all_phi, self.all_label = lam, Phi, nd
@@ -308,7 +309,9 @@ class PlateDisk:
     def rolled(self, Ks):
         """omega~^2 per N_d (pair mean for the plain disk; both members in ``pairs``),
         labelled by subspace MAC against the unrolled modes."""
-        lam, Phi = self._eigs(self.K + Ks, self.n_modes)
+        # a compressive K^(sigma) may make K + K^(sigma) indefinite: shift below zero by a
+        # tenth of the highest unrolled eigenvalue computed (fixed once by ``unrolled``)
+        lam, Phi = self._eigs(self.K + Ks, self.n_modes, -0.1 * float(self._shift_scale))
         MPhi = self.M @ Phi
         out, modes, both = [], {}, {}
         taken = np.zeros(len(lam), bool)
