@@ -56,7 +56,6 @@ st_dyn, st_exp, st_qs = R.study("accuracy_dynamic"), R.study("accuracy_explicit"
 mm = 1e3   # display in mm
 cal_h = wp["cal_hour"].values
 h_cal = {s: np.asarray(to_si(R.cfg.raw["parameters"][f"measured_wear_{s}"]["value"], "mm")[0]) for s in ("B1", "B2")}
-M_cal = float(wp["cal_hour"][0]) * 3600 / float(wp["period"])   # periods per measurement interval (Eq. 34)
 paper_K = {s: np.array([reported[f"k_{s.lower()}_p{i}"]["value"] for i in range(1, 6)]) for s in ("B1", "B2")}
 
 # %% [markdown]
@@ -154,8 +153,7 @@ R.save_figure(fig, "fig15")
 
 fig, ax = plt.subplots(1, 2, figsize=(10, 4))
 for side in ("B1", "B2"):
-    h = wp["k_mean"].sel(side=side).values * wp["wear_factor_calibration"].sel(side=side).values * M_cal
-    ax[0].plot(cal_h, (np.cumsum(h) / h_cal[side] - 1) * 100, "o-", label=side)
+    ax[0].plot(cal_h, (wp["wear_calibration_replay"].sel(side=side).values / h_cal[side] - 1) * 100, "o-", label=side)
 ax[0].axhline(0, color="k", lw=0.6)
 ax[0].set(xlabel="t [h]", ylabel="(replay with mean K - measured) / measured [%]", title="Fig. 16 (in-sample, 2-10 h)")
 ax[0].legend(fontsize=7)

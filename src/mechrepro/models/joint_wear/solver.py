@@ -303,6 +303,9 @@ def to_dataset(res: dict, run: dict) -> xr.Dataset:
         v["K_table_mean"] = _var("side", wear.table_from_k(np.array(w["k_mean"]), H), "1/Pa", "mean equivalent wear coefficient K as Tables 3-4 print it")
         v["K_archard_mean"] = _var("side", wear.archard_dimensionless(np.array(w["k_mean"]), H), "1", "mean dimensionless Archard coefficient K_A = k H, H = 21 HB in Pa")
         v["wear_factor_calibration"] = _var(("side", "cal_hour"), np.array(w["G_cal"]), "N/m", "wear factor of the simulated period per calibration interval")
+        M_cal = wear.periods_per_interval(float(run["parameters"]["measurement_interval"]) / 3600.0, fb.period)
+        replay = np.cumsum(np.array(w["k_mean"])[:, None] * np.array(w["G_cal"]) * M_cal, axis=1)
+        v["wear_calibration_replay"] = _var(("side", "cal_hour"), replay, "m", "the measured intervals replayed with the mean coefficient (in-sample, Eqs. 32-34)")
         v["k_mean"] = _var("side", np.array(w["k_mean"]), "m2/N", "mean dimensional wear coefficient k = K/H")
         nodes = w["nodes"][0]
         coords["hour"] = _var("hour", nodes, "h", "operating time at the interval nodes")
