@@ -216,6 +216,7 @@ for a, d, lab in ((ax[0], d9a, "(a) n1 = n2 = 24, I2 = 0.002"), (ax[1], d9b, "(b
     a.axvline(float(d.elastic_resonance_speed), color="k", ls=":", lw=0.8, label="omega_c")
     a.set(title=f"Fig. 9{lab}", ylabel="max |u| [mm]", xlabel="omega_1 [rpm]")
     a.legend(fontsize=7)
+fig.tight_layout()
 R.save_figure(fig, "fig09")
 
 # %% [markdown]

@@ -123,7 +123,9 @@ def _elastic_load(run, prm, res):
     # the paper's omega_c1 < omega_c2: the long (softer) span resonates first
     wc1, wc2 = min(wc_short, wc_long), max(wc_short, wc_long)
     ks = {"short": k1, "long": k2}
-    curve_w = np.linspace(prm["speed_min"], prm["speed_max"], int(res["n_speeds"]))
+    window = run.get("options", {}).get("speed_window_elastic")
+    lo, hi = (elastic_speed_window(prm, window) if window else (prm["speed_min"], prm["speed_max"]))
+    curve_w = np.linspace(lo, hi, int(res["n_speeds"]))
     peak = {}
     for name, k in ks.items():
         vals = []

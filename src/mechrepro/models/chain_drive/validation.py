@@ -9,7 +9,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.integrate import quad  # noqa: F401  (quadrature lives in the run; kept for clarity)
 
 from mechrepro.validation import Quantities, Reproduced
 
@@ -63,12 +62,12 @@ def fig03(R):
     for j, n2 in enumerate(d.n2.values):
         pk = d.peak_load_by_speed.sel(n2=n2).values
         grows.append(C.monotone_increasing(pk))
-        notes.append(f"n2={int(n2)}: {list(np.round(pk, 2))} N")
+        notes.append(f"n2={int(n2)}: {[round(float(x), 2) for x in pk]} N")
         errs.append(abs(float(d.omega2.sel(n2=n2).mean()) / (w1 * n1 / float(n2)) - 1))
         out[f"polygonal_load_max_300rpm_fig03{'abc'[j]}"] = float(
             np.max(np.abs(d.polygonal_load.sel(n2=n2))))
     out["polygonal_load_grows_with_speed"] = Reproduced(
-        all(grows), f"max|D_pol| at {list(np.round(d.check_speed.values))} rpm: " + "; ".join(notes))
+        all(grows), f"max|D_pol| at {[round(float(x)) for x in d.check_speed.values]} rpm: " + "; ".join(notes))
     out["driven_mean_speed_error"] = max(errs)
     return out
 
@@ -154,9 +153,8 @@ def fig05_one_peak(R):
     for k in (2, 3, 4, 5):
         ok, notes = True, []
         for cd, ds in runs:
-            # the window of the length-change runs (same centre distance): L_0 and L_0 + p
-            # are the plain run's L_ct -+ f_p p, (1 - f_p) p
-            from .geometry import resonance_speed  # noqa: F401 (window from the run's own table)
+            # the same window as the length-change check: each run tabulates the short- and
+            # long-span speeds of its centre distance
             lo, hi = C.order_window(float(ds.resonance_speed_long.sel(order=k)),
                                     float(ds.resonance_speed_short.sel(order=k)))
             pk = C.peak_speeds(ds.speed.values, ds.amplitude.values, lo, hi, stable=_stable(ds))
