@@ -263,16 +263,23 @@ def _add_variants(cfg: PaperConfig, raw: dict, run_schema: dict, where: str) -> 
         cfg.variants[variant] = sorted(names)
         for name, quantities in sorted(names.items()):
             why = f"variant {variant} of {name!r}, needed by {', '.join(quantities)}"
+            # a variant identical to the baseline (a range end equal to the value) is not
+            # re-run: the validation reads the baseline run for it
             if name in raw["scenes"]:
                 base = cfg.runs[name]
-                cfg.runs[f"{name}@{variant}"] = _variant_run(raw, base, variant, run_schema, where, why)
+                vr = _variant_run(raw, base, variant, run_schema, where, why)
+                if _differs(vr, base):
+                    cfg.runs[vr["run"]] = vr
             else:
-                runs = []
-                for run in cfg.studies[name]:
-                    vr = f"{run}@{variant}"
-                    cfg.runs[vr] = _variant_run(raw, cfg.runs[run], variant, run_schema, where, why)
-                    runs.append(vr)
-                cfg.studies[f"{name}@{variant}"] = runs
+                runs = [_variant_run(raw, cfg.runs[run], variant, run_schema, where, why)
+                        for run in cfg.studies[name]]
+                if any(_differs(vr, cfg.runs[r]) for vr, r in zip(runs, cfg.studies[name])):
+                    cfg.runs.update({vr["run"]: vr for vr in runs})
+                    cfg.studies[f"{name}@{variant}"] = [vr["run"] for vr in runs]
+
+
+def _differs(variant_run: dict, base: dict) -> bool:
+    return any(variant_run[k] != base[k] for k in ("parameters", "resolution"))
 
 
 def _variant_run(raw, base: dict, variant: str, run_schema, where, why) -> dict:

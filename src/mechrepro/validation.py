@@ -231,7 +231,8 @@ def _describe_variant(cfg, variant: str) -> str:
     p, end = variant.rsplit("-", 1)
     spec = cfg.raw["parameters"][p]
     v = spec["range"][0 if end == "lo" else 1]
-    return f"at {p} = {v} {spec['unit']} (range {end})"
+    unit = f" {spec['unit']}" if isinstance(v, (int, float)) and spec["unit"] != "1" else ""
+    return f"at {p} = {v}{unit} (range {end})"
 
 
 def build(cfg, quantities: Quantities, results_dir: str | Path) -> list[Row]:
@@ -315,7 +316,9 @@ def claim(cfg, rows: list[Row]) -> dict:
     agree = sorted(a for a, s in arts.items() if s == {"pass"})
     disagree = sorted(a for a, s in arts.items() if "fail" in s)
     unsettled = sorted(a for a, s in arts.items() if "fail" not in s and "inconclusive" in s)
-    if ind and len(by["pass"]) == len(ind):
+    # an artefact the paper reports but no independent verdict scores (only info rows)
+    unscored = sorted({r.spec["artefact"] for r in rows} - set(arts))
+    if ind and len(by["pass"]) == len(ind) and not unscored:
         kind = "full"
     elif by["pass"]:
         kind = "partial"
@@ -330,6 +333,8 @@ def claim(cfg, rows: list[Row]) -> dict:
         parts.append(f"Disagree: {', '.join(disagree)}.")
     if unsettled:
         parts.append(f"Not settled: {', '.join(unsettled)}.")
+    if unscored:
+        parts.append(f"Not scored by an independent verdict: {', '.join(unscored)}.")
     for r in by["fail"]:
         why = r.spec.get("note") or r.note
         parts.append(f"{r.quantity} fails{': ' + why if why else ''}")
@@ -339,7 +344,8 @@ def claim(cfg, rows: list[Row]) -> dict:
         parts.append(cfg.raw["claim_note"])
     return {"paper": cfg.paper, "claim": kind, "text": " ".join(parts),
             "independent": n, "counts": counts(rows),
-            "agree": agree, "disagree": disagree, "inconclusive": unsettled}
+            "agree": agree, "disagree": disagree, "inconclusive": unsettled,
+            "unscored": unscored}
 
 
 def validate(paper: str, results_dir: str, config_file: str, profile: str) -> list[Row]:

@@ -46,7 +46,10 @@ NOTEBOOK_CORE = ["__init__.py", "config.py", "units.py", "io.py", "results.py",
 
 
 def model_code(paper):
-    return code(*SOLVER_CORE, f"models/{paper}")
+    """What a solver job imports: the framework core and the model, not the extraction of
+    validation values (models/<paper>/validation.py), which only validate_<paper> reads."""
+    return [f for f in code(*SOLVER_CORE, f"models/{paper}")
+            if f != str(SRC / "mechrepro" / "models" / paper / "validation.py")]
 
 
 def solve_jobs(paper):
