@@ -23,6 +23,7 @@ trigger can see every change.
 from __future__ import annotations
 
 import copy
+import functools
 import itertools
 import json
 import math
@@ -107,9 +108,14 @@ def _format_error(err: jsonschema.ValidationError, where: str) -> str:
     return f"{where}: {loc}: {err.message}"
 
 
+_VALIDATORS: dict[str, object] = {}
+
+
 def _validate(instance, schema, where: str) -> None:
-    registry_cls = jsonschema.validators.validator_for(schema)
-    validator = registry_cls(schema)
+    key = id(schema)  # schemas come from the load_schema cache
+    validator = _VALIDATORS.get(key)
+    if validator is None:  # compiled once per schema: every run of every scene is checked
+        validator = _VALIDATORS[key] = jsonschema.validators.validator_for(schema)(schema)
     errors = sorted(validator.iter_errors(instance), key=lambda e: list(map(str, e.absolute_path)))
     if errors:
         raise ConfigError("invalid config:\n  " + "\n  ".join(_format_error(e, where) for e in errors))
@@ -130,7 +136,9 @@ def _schema_dir(path: Path) -> Path:
     return path.resolve().parent.parent / SCHEMA_DIR_NAME
 
 
+@functools.lru_cache(maxsize=None)
 def load_schema(name: str, schema_dir: Path) -> dict:
+    """A schema file, parsed once per process (treat it as read-only)."""
     return json.loads((schema_dir / name).read_text())
 
 
@@ -139,7 +147,8 @@ def load_paper(path: str | Path, profile: str = "default") -> PaperConfig:
     path = Path(path)
     where = str(path)
     try:
-        raw = yaml.safe_load(path.read_text())
+        # libyaml's loader where available: the configs are parsed at every workflow start
+        raw = yaml.load(path.read_text(), Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
     except (OSError, yaml.YAMLError) as exc:
         raise ConfigError(f"{where}: cannot read: {exc}") from exc
     sdir = _schema_dir(path)
