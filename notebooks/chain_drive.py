@@ -238,6 +238,7 @@ ax[1].plot(dTu.t * 1e3, dTu.u_probe_rk4 * 1e3, lw=0.6, alpha=0.7, label="uncoupl
 ax[1].set(title=f"Fig. 10b: fifth transverse resonance ({float(dT.speed):.0f} rpm)",
           xlabel="t [ms]", ylabel="u(L/3) [mm]")
 ax[1].legend(fontsize=7)
+fig.tight_layout()
 R.save_figure(fig, "fig10")
 
 # %% [markdown]
