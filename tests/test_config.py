@@ -95,3 +95,15 @@ def test_readme_lists_every_assumed_constant():
                for name in load_paper(ROOT / "config" / "papers" / f"{p}.yaml").assumed()
                if f"| {p} | `{name}` |" not in readme]
     assert not missing, f"README lacks assumed constants (run scripts/assumed_constants.py): {missing}"
+
+
+@pytest.mark.parametrize("paper, edit, check", [
+    ("disk_tension", lambda r: r["scenes"]["rc_grid"]["parameters"].update(rolling_radius=[65, 140]),
+     "rolling_band_inside_disk"),
+    ("disk_tension", lambda r: r["parameters"]["clamp_radius"].update(value=130),
+     "clamp_inside_disk"),
+])
+def test_impossible_geometry_is_refused_by_name(edit_config, paper, edit, check):
+    path = edit_config(paper, edit)
+    with pytest.raises(ConfigError, match=f"physical cross-check '{check}' fails"):
+        load_paper(path)
