@@ -135,6 +135,20 @@ def test_results_honour_the_umask(workflow):
             "manifest.json"} <= names
 
 
+def test_the_extracted_archive_report_has_no_broken_link(workflow, tmp_path):
+    import re
+    import tarfile
+
+    work, _ = workflow
+    with tarfile.open(work / "results" / "archive" / "mechrepro-results.tar.gz") as tar:
+        tar.extractall(tmp_path, filter="data")
+    page = (tmp_path / "report" / "index.html").read_text()
+    links = re.findall(r'(?:src|href)="([^"#]+)"', page)
+    assert links
+    broken = [l for l in links if not (tmp_path / "report" / l).resolve().exists()]
+    assert not broken, broken
+
+
 def test_lint_is_clean_but_for_conda(workflow):
     work, _ = workflow
     proc = subprocess.run([*SNAKEMAKE, "--lint"], cwd=work, capture_output=True, text=True)

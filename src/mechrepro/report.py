@@ -136,11 +136,12 @@ def summary_section(out_dir: Path) -> str:
                      + "".join(f"<th>{html.escape(h)}</th>" for h in head) + "</tr>"
                      + "".join("<tr>" + "".join(f"<td>{_fmt(c)}</td>" for c in r) + "</tr>"
                                for r in rows) + "</table>")
-    parts.append("<h2>Last rerun plan</h2><p class='note'>Why each job of the last "
-                 "<code>make reproduce</code> ran (saved before the run by "
-                 "<code>python -m mechrepro.plan</code>).</p>"
-                 '<iframe src="../rerun_plan.html" style="width:100%;height:320px;'
-                 'border:1px solid #ccc"></iframe>')
+    if (out_dir.parent / "rerun_plan.html").exists():  # saved by `make reproduce`
+        parts.append("<h2>Last rerun plan</h2><p class='note'>Why each job of the last "
+                     "<code>make reproduce</code> ran (saved before the run by "
+                     "<code>python -m mechrepro.plan</code>).</p>"
+                     '<iframe src="../rerun_plan.html" style="width:100%;height:320px;'
+                     'border:1px solid #ccc"></iframe>')
     return "\n".join(parts)
 
 
