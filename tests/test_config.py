@@ -107,3 +107,15 @@ def test_impossible_geometry_is_refused_by_name(edit_config, paper, edit, check)
     path = edit_config(paper, edit)
     with pytest.raises(ConfigError, match=f"physical cross-check '{check}' fails"):
         load_paper(path)
+
+
+@pytest.mark.parametrize("paper, edit, check", [
+    ("joint_wear", lambda r: r["parameters"]["pin_radius"].update(value=0.05),
+     "clearance_smaller_than_pin"),
+    ("joint_wear", lambda r: r["parameters"]["crank_length"].update(value=0.3),
+     "crank_rocker"),
+])
+def test_impossible_joint_is_refused_by_name(edit_config, paper, edit, check):
+    path = edit_config(paper, edit)
+    with pytest.raises(ConfigError, match=f"physical cross-check '{check}' fails"):
+        load_paper(path)
