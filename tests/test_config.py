@@ -119,3 +119,14 @@ def test_impossible_joint_is_refused_by_name(edit_config, paper, edit, check):
     path = edit_config(paper, edit)
     with pytest.raises(ConfigError, match=f"physical cross-check '{check}' fails"):
         load_paper(path)
+
+
+@pytest.mark.parametrize("edit", [
+    lambda r: r["parameters"]["centre_distance"].update(value=6.0),
+    lambda r: r["parameters"]["n2"].update(value=120),
+])
+def test_sprockets_that_overlap_are_refused_by_name(edit_config, edit):
+    """Before: 'math domain error' mid-run; now refused before any job."""
+    path = edit_config("chain_drive", edit)
+    with pytest.raises(ConfigError, match="physical cross-check 'sprockets_apart' fails"):
+        load_paper(path)
