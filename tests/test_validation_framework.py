@@ -179,7 +179,7 @@ def test_reference_tolerance_is_derived_from_the_platform_spread(edit_config, tm
         ref.check("x", tmp_path / "now", tmp_path / "ref", ["saw_chain"], "ci")
     _table(tmp_path / "now" / "saw_chain" / "tables" / "validation.csv",
            [("load_max", "#garbage#", "pass"), ("exact", 3.0, "info")])
-    with pytest.raises(ref.ResultFileError, match=r"line 2 \(load_max\).*'#garbage#' is not a number"):
+    with pytest.raises(ref.DriftError, match=r"line 2 \(load_max\).*.#garbage#. is not a number"):
         ref.check("x", tmp_path / "now", tmp_path / "ref", ["saw_chain"], "ci")
 
 

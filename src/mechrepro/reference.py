@@ -189,9 +189,12 @@ def check(out: str, results: str, reference_dir: str, papers: list[str], profile
         if not ref_file.exists():
             lines.append(f"{paper}: no reference at {ref_file} (not checked)")
             continue
-        ref = _table(ref_file, HEADER[:-1])
-        current = _values(results / paper / "tables" / "validation.csv")
-        problems = compare(current, ref, str(ref_file))
+        try:
+            ref = _table(ref_file, HEADER[:-1])
+            current = _values(results / paper / "tables" / "validation.csv")
+            problems = compare(current, ref, str(ref_file))
+        except ResultFileError as exc:  # one unreadable file does not hide the others
+            problems = [f"  {exc}"]
         if problems:
             failed = True
             lines.append(f"{paper}: DRIFT against {ref_file}")
