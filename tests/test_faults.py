@@ -111,6 +111,27 @@ def test_an_interrupted_job_leaves_nothing_that_stays(workflow):
     assert "temporary file of an interrupted job" in log and not stale.exists()
 
 
+def test_a_killed_run_recovers_as_the_readme_says(workflow):
+    """kill -9 in the middle of a solver job; then `snakemake --unlock` and a normal run."""
+    import signal
+    import time
+
+    work, _ = workflow
+    run = work / "results" / "saw_chain" / "runs" / "fig07_fig08.nc"
+    proc = subprocess.Popen([*SNAKEMAKE, "--forcerun", "solve_saw_chain__scene_fig07_fig08"],
+                            cwd=work, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                            start_new_session=True)
+    deadline = time.time() + 120
+    while time.time() < deadline and not list(run.parent.glob(".fig07_fig08*.part*")) \
+            and proc.poll() is None:
+        time.sleep(0.05)
+    os.killpg(proc.pid, signal.SIGKILL)
+    proc.wait()
+    snakemake(work, "--unlock")
+    restored(work)
+    assert run.stat().st_size > 1000
+
+
 def test_a_moved_project_with_its_results_schedules_nothing(workflow, tmp_path):
     work, _ = workflow
     moved = tmp_path / "moved"
