@@ -24,7 +24,7 @@ venv: $(STAMP)
 reproduce: $(STAMP)
 	$(BIN)/python -m mechrepro.heal results
 	$(BIN)/python -m mechrepro.plan results -- --cores $(CORES)
-	$(BIN)/snakemake --cores $(CORES)
+	$(BIN)/snakemake --cores $(CORES) --rerun-incomplete
 
 ## Run every test (unit tests, config errors, pipeline + reference check on the ci profile)
 test: $(STAMP)
@@ -34,7 +34,7 @@ test: $(STAMP)
 ci-reproduce: $(STAMP)
 	$(BIN)/python -m mechrepro.heal results-ci
 	$(BIN)/python -m mechrepro.plan results-ci -- --cores $(CORES) --config profile=ci results=results-ci
-	$(BIN)/snakemake --cores $(CORES) --config profile=ci results=results-ci
+	$(BIN)/snakemake --cores $(CORES) --rerun-incomplete --config profile=ci results=results-ci
 
 ## Deliberately refresh the committed reference numbers of a profile (ci by default;
 ## `make reference REF_PROFILE=default` for the full one): the profile is run once per

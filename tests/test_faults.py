@@ -128,7 +128,10 @@ def test_a_killed_run_recovers_as_the_readme_says(workflow):
     os.killpg(proc.pid, signal.SIGKILL)
     proc.wait()
     snakemake(work, "--unlock")
-    restored(work)
+    heal(work)
+    snakemake(work, "--rerun-incomplete")  # as `make reproduce` runs it
+    assert "Nothing to be done" in snakemake(work, "-n")
+    assert verify(work / "results", work / "results" / "archive" / "manifest.json") == []
     assert run.stat().st_size > 1000
 
 
