@@ -327,13 +327,22 @@ def fig09b(R):
 
 
 # ----------------------------------------------------------------------------- Fig. 10
+# The coupled Galerkin model of Fig. 10 does not converge in the number of transverse modes
+# (docs/chain_drive.md: coupled/uncoupled 0.30 / 0.98 at 6 / 12 modes, changing with the
+# step beyond 12), and its 12-mode record at the finer re-run is itself sensitive to
+# round-off (its verdict differed between numpy SIMD variants).  A verdict on it is
+# therefore not a measurement on any platform: said here, once, for the three rows.
+NOT_CONVERGED = ["not converged in transverse modes (6 vs 12 modes, docs/chain_drive.md); "
+                 "the finer re-run's value depends on round-off"]
+
+
 @Q.register("weak_coupling_near_first_longitudinal_resonance")
 def fig10_weak(R):
     c, u = R.run("fig10_longitudinal"), R.run("fig10_uncoupled")
     r = float(c.steady_amplitude) / float(u.steady_amplitude)
     return Reproduced(r, f"{float(c.steady_amplitude) * 1e3:.3g} mm / {float(u.steady_amplitude) * 1e3:.3g} mm "
                          f"at {float(c.speed):.0f} rpm (tooth frequency {float(c.detuning):g} x the first "
-                         "longitudinal frequency)")
+                         "longitudinal frequency)", flips=NOT_CONVERGED)
 
 
 @Q.register("clear_coupling_near_transverse_resonance")
@@ -341,7 +350,7 @@ def fig10_clear(R):
     c, u = R.run("fig10_transverse5"), R.run("fig10_transverse5_uncoupled")
     r = float(c.steady_amplitude) / float(u.steady_amplitude)
     return Reproduced(abs(r - 1), f"coupled / uncoupled = {r:.3g} at the fifth transverse resonance "
-                                  f"({float(c.speed):.0f} rpm)")
+                                  f"({float(c.speed):.0f} rpm)", flips=NOT_CONVERGED)
 
 
 @Q.register("fifth_transverse_resonance_near_first_longitudinal")
@@ -356,7 +365,8 @@ def fig10_steady(R):
     names = ("fig10_longitudinal", "fig10_uncoupled", "fig10_transverse5", "fig10_transverse5_uncoupled")
     dev = {n: abs(float(R.run(n).steady_ratio) - 1) for n in names}
     worst = max(dev, key=dev.get)
-    return Reproduced(dev[worst], "; ".join(f"{n}: {float(R.run(n).steady_ratio):.3f}" for n in names))
+    return Reproduced(dev[worst], "; ".join(f"{n}: {float(R.run(n).steady_ratio):.3f}" for n in names),
+                      flips=NOT_CONVERGED)
 
 
 @Q.register("rk4_vs_solve_ivp_coupled")
