@@ -81,7 +81,7 @@ R.save_figure(fig, "fig01")
 d3 = R.run("fig03")
 fig, ax = plt.subplots(2, 3, figsize=(12, 5.5), sharex=True)
 t_ms = d3.t * 1e3
-for j, n2 in enumerate(d3.n2.values):
+for j, n2 in enumerate(d3.n2.values[np.argsort(d3.panel.values)]):
     ax[0, j].plot(t_ms, d3.omega2.sel(n2=n2))
     ax[0, j].set(title=f"Fig. 3{'abc'[j]}: (n1, n2) = ({prm['n1']}, {n2})", ylabel="omega_2 [rpm]")
     ax[1, j].plot(t_ms, d3.polygonal_load.sel(n2=n2))

@@ -45,7 +45,9 @@ def test_just_inside_the_limit_stays_bounded(a, s):
 @pytest.mark.parametrize("a", [0.2, 0.5, 0.8])
 @pytest.mark.parametrize("s", [0.0, None])
 def test_just_outside_the_limit_grows(a, s):
-    r = _march(a, 1.03, s)
+    # the growth rate 3 % past the limit is small: march long enough that the verdict does
+    # not hang on round-off (it flipped with the test order's BLAS state at 3000 steps)
+    r = _march(a, 1.03, s, n_steps=20000)
     assert r.unstable[0]
     assert np.all(np.isfinite(r.final))
 

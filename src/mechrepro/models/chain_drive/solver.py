@@ -80,7 +80,9 @@ def _rigid_load(run, prm, res):
     """Fig. 3: one case per driven tooth number in ``options.cases`` (default: n2)."""
     EFFECTS.select(run["effects"])
     n1, p = int(prm["n1"]), prm["pitch"]
-    cases = [int(x) for x in run.get("options", {}).get("cases", [prm["n2"]])]
+    panels = [int(x) for x in run.get("options", {}).get("cases", [prm["n2"]])]
+    # a CF dimension coordinate is monotonic: cases sorted, the paper's panel kept beside
+    cases = sorted(panels)
     w1 = prm["speed"]
     tau = 2 * np.pi / (n1 * w1)
     t = np.linspace(0, 2 * tau, int(res["samples"]))
@@ -107,6 +109,8 @@ def _rigid_load(run, prm, res):
         "u_left": _v(u0, ("n2", "t"), "m", "driven-end transverse displacement u_0, Eq. (2-25)"),
         "peak_load_by_speed": _v(peaks, ("n2", "check_speed"), "N", "max |D_pol| at the check speeds"),
         "fractional_pitch": _v(fps, ("n2",), "1", "fractional pitch f_p, Eq. (2-6)"),
+        "panel": _v(np.array([panels.index(n) for n in cases], dtype=np.int32), ("n2",), "1",
+                    "panel of Fig. 3 (0 = a, 1 = b, 2 = c) in the order of options.cases"),
     }, coords={"t": ("t", t, {"units": "s", "long_name": "time"}),
                "n2": ("n2", cases, {"units": "1", "long_name": "driven sprocket tooth number"}),
                "check_speed": ("check_speed", speeds * RPM, {"units": "rpm", "long_name": "check speed"})})

@@ -59,7 +59,7 @@ def fig03(R):
     n1 = R.parameter("n1")
     w1 = R.parameter("speed") * 30 / math.pi
     grows, errs, out, notes = [], [], {}, []
-    for j, n2 in enumerate(d.n2.values):
+    for j, n2 in enumerate(d.n2.values[np.argsort(d.panel.values)]):
         pk = d.peak_load_by_speed.sel(n2=n2).values
         grows.append(C.monotone_increasing(pk))
         notes.append(f"n2={int(n2)}: {[round(float(x), 2) for x in pk]} N")
