@@ -62,12 +62,16 @@ def slurm(work, target):
 
 
 def test_study_runs_as_slurm_jobs_and_equals_local(cluster, work):
+    # fan the study out (one solver job per run, as a costly study would be)
+    cfg = work / "config" / "papers" / "saw_chain.yaml"
+    cfg.write_text(cfg.read_text() + "\nfan_out: [cost_of_accuracy]\n")
     local = snakemake(work, "results-local", "--cores", "2", f"results-local/{STUDY}")
     assert local.returncode == 0, local.stderr[-3000:]
     proc = slurm(work, f"results-slurm/{STUDY}")
     assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
     # every solver job left a SLURM log named by its SLURM job id, and SLURM knows those ids
-    logs = list((work / ".snakemake" / "slurm_logs" / "rule_solve").rglob("*.log"))
+    logs = [p for d in (work / ".snakemake" / "slurm_logs").glob("rule_solve_saw_chain__cost_of_accuracy_*")
+            for p in d.rglob("*.log")]
     ids = {p.stem for p in logs}
     n_runs = len(open_dataset(work / "results-local" / STUDY)["run"])
     assert len(ids) == n_runs and all(i.isdigit() for i in ids)
@@ -86,12 +90,13 @@ def test_study_runs_as_slurm_jobs_and_equals_local(cluster, work):
 
 def test_failing_slurm_job_is_reported_failed(cluster, work):
     cfg = work / "config" / "papers" / "saw_chain.yaml"
-    cfg.write_text(cfg.read_text().replace("resolution: {K: 100}", "resolution: {K: 5000000}"))
-    proc = slurm(work, "results-slurm/saw_chain/runs/accuracy.nc")
+    cfg.write_text(cfg.read_text().replace("fig07_fig08: {resolution: {K: 300}}",
+                                           "fig07_fig08: {resolution: {K: 5000000}}"))
+    proc = slurm(work, "results-slurm/saw_chain/runs/fig07_fig08.nc")
     assert proc.returncode != 0
     out = proc.stdout + proc.stderr
     m = re.search(r"SLURM-job '(\d+)' failed", out)
     assert m, out[-3000:]
-    log = (work / "results-slurm" / "saw_chain" / "logs" / "solve" / "accuracy.log").read_text()
-    assert "RoundoffError" in log and "K=5000000" in log
-    assert not (work / "results-slurm" / "saw_chain" / "runs" / "accuracy.nc").exists()
+    log = (work / "results-slurm" / "saw_chain" / "logs" / "solve" / "scene_fig07_fig08.log").read_text()
+    assert "RoundoffError" in log and "5000000" in log
+    assert not (work / "results-slurm" / "saw_chain" / "runs" / "fig07_fig08.nc").exists()

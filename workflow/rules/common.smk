@@ -25,7 +25,11 @@ except ConfigError as exc:
     raise SystemExit(1)
 
 # Every job runs `python -m mechrepro.<module>` with this workflow's src/ first on the path.
-PY = os.path.relpath(sys.executable) if not os.path.isabs(os.path.relpath(sys.executable)) else sys.executable
+# relative when the interpreter lives in the project (.venv), so a moved project keeps its
+# commands; absolute when it lives elsewhere, which does not move with the project
+_exe = Path(sys.executable).absolute()
+PY = (os.path.relpath(_exe) if _exe.is_relative_to(Path(workflow.basedir).absolute())
+      else str(_exe))
 RUN = {"python": f"PYTHONPATH={SRC} {PY}", "profile": PROFILE, "base": str(BASE)}
 
 
