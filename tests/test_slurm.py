@@ -83,7 +83,7 @@ def test_study_runs_as_slurm_jobs_and_equals_local(cluster, work):
     a, b = open_dataset(work / "results-local" / STUDY), open_dataset(work / "results-slurm" / STUDY)
     assert set(a.data_vars) == set(b.data_vars)
     for name in a.data_vars:
-        if name != "wall_time":
+        if not name.startswith("wall_time"):  # timings are measurements, not results
             assert np.array_equal(a[name].values, b[name].values), name
     assert list(a["K"].values) == list(b["K"].values)
 
