@@ -6,16 +6,15 @@ Notebooks stay short by going through :class:`PaperResults` for every read and w
     ds = R.run("fig07_velocity")          # one run, loaded and closed
     st = R.study("cost_of_accuracy")      # the gathered study
     R.save_figure(fig, "fig07")           # results/<paper>/figures/fig07.png
-    R.write_validation(rows)              # results/<paper>/tables/validation.csv
-    R.write_claim("partial", "...")       # results/<paper>/claim.json, shown in the report
+    R.validation()                        # the table validate_<paper> built, for display
 """
 from __future__ import annotations
 
 from pathlib import Path
 
 from .config import load_paper
-from .io import open_dataset, write_dataset, write_json
-from .validation import write_csv, write_table
+from .io import open_dataset, write_dataset
+from .validation import write_csv
 
 
 class PaperResults:
@@ -50,9 +49,6 @@ class PaperResults:
 
         return read_table(self.table_path("validation"))
 
-    def write_validation(self, rows) -> Path:
-        return write_table(rows, self.table_path("validation"))
-
     def write_table(self, name: str, header, rows) -> Path:
         if name not in self.cfg.tables:
             raise KeyError(f"{self.paper}: table {name!r} not declared in config 'tables'")
@@ -61,10 +57,3 @@ class PaperResults:
     def write_dataset(self, ds, name: str) -> Path:
         """A derived dataset of the notebook (e.g. cost_of_accuracy) under tables/."""
         return write_dataset(ds, self.root / "tables" / f"{name}.nc")
-
-    def write_claim(self, claim: str, text: str) -> Path:
-        if claim not in ("full", "partial", "none"):
-            raise ValueError("claim must be full, partial or none")
-        path = self.root / "claim.json"
-        write_json(path, {"paper": self.paper, "claim": claim, "text": text})
-        return path

@@ -380,26 +380,3 @@ def write_csv(path: str | Path, header: list[str], rows: list[list]) -> Path:
         w.writerow([_fmt(x) if isinstance(x, float) else x for x in r])
     write_text(path, buf.getvalue())
     return Path(path)
-
-
-# --- legacy row helpers, used by notebooks not yet migrated to the reported block --------
-def _legacy(quantity, source, paper_value, reproduced_value, unit, tolerance, note, kind):
-    spec = {"kind": kind, "source": source, "unit": unit, "artefact": "text",
-            "evidence": "independent", "reads": [], "value": float(paper_value)}
-    if kind == "compare":
-        spec["tolerance"] = float(tolerance)
-    value = float(reproduced_value)
-    return Row(quantity, spec, value, note, verdict(spec, value) if kind != "info" else "info")
-
-
-def compare(quantity, source, paper_value, reproduced_value, unit, tolerance, note="") -> Row:
-    return _legacy(quantity, source, paper_value, reproduced_value, unit, tolerance, note,
-                   "compare" if not math.isnan(float(tolerance)) else "info")
-
-
-def check(quantity, source, holds: bool, note="") -> Row:
-    return _legacy(quantity, source, 1.0, 1.0 if bool(holds) else 0.0, "bool", 0.0, note, "check")
-
-
-def info(quantity, source, reproduced_value, unit, paper_value=math.nan, note="") -> Row:
-    return _legacy(quantity, source, paper_value, reproduced_value, unit, math.nan, note, "info")
