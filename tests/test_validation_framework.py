@@ -172,15 +172,15 @@ def test_reference_tolerance_is_derived_from_the_platform_spread(edit_config, tm
     # within tolerance: passes; beyond, or a changed verdict: drift, named
     _table(tmp_path / "now" / "saw_chain" / "tables" / "validation.csv",
            [("load_max", 100.0 + 5e-5, "pass"), ("exact", 3.0, "info")])
-    ref.check("x", tmp_path / "now", tmp_path / "ref", ["saw_chain"], "ci")
+    ref.check(tmp_path / "now", tmp_path / "ref", ["saw_chain"], "ci")
     _table(tmp_path / "now" / "saw_chain" / "tables" / "validation.csv",
            [("load_max", 100.0 + 5e-4, "fail"), ("exact", 3.0, "info")])
     with pytest.raises(ref.DriftError, match="verdict pass in reference, now fail"):
-        ref.check("x", tmp_path / "now", tmp_path / "ref", ["saw_chain"], "ci")
+        ref.check(tmp_path / "now", tmp_path / "ref", ["saw_chain"], "ci")
     _table(tmp_path / "now" / "saw_chain" / "tables" / "validation.csv",
            [("load_max", "#garbage#", "pass"), ("exact", 3.0, "info")])
     with pytest.raises(ref.DriftError, match=r"line 2 \(load_max\).*.#garbage#. is not a number"):
-        ref.check("x", tmp_path / "now", tmp_path / "ref", ["saw_chain"], "ci")
+        ref.check(tmp_path / "now", tmp_path / "ref", ["saw_chain"], "ci")
 
 
 def test_a_verdict_that_differs_between_platforms_is_refused(edit_config, tmp_path):

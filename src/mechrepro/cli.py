@@ -56,7 +56,7 @@ def main(argv: list[str]) -> int:
 
         out, results, reference_dir, profile, *papers = args
         try:
-            text = check(out, results, reference_dir, papers, profile)
+            text = check(results, reference_dir, papers, profile)
             status = "OK"
         except (DriftError, ResultFileError) as exc:
             text, status = str(exc), "DRIFT"

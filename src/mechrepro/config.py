@@ -77,8 +77,8 @@ class PaperConfig:
 
     @property
     def notebook_tables(self) -> list[str]:
-        """Tables the notebook writes (validation.csv is the framework's, when declared)."""
-        return [t for t in self.tables if not (t == "validation" and "reported" in self.raw)]
+        """Tables the notebook writes (validation.csv is the framework's)."""
+        return [t for t in self.tables if t != "validation"]
 
     def assumed(self) -> dict[str, dict]:
         """Parameters the paper does not give, with value, unit and justification."""
@@ -182,9 +182,8 @@ def load_paper(path: str | Path, profile: str = "default") -> PaperConfig:
             cfg.runs[run] = _make_run(raw, spec["scene"], study, i, point, run_schema, where)
             names.append(run)
         cfg.studies[study] = names
-    if "reported" in raw:
-        _check_reported(raw, where)
-        _add_variants(cfg, raw, run_schema, where)
+    _check_reported(raw, where)
+    _add_variants(cfg, raw, run_schema, where)
     for name, run in cfg.runs.items():
         _cross_check(raw.get("cross_checks", {}), run, f"{where} (run {name})")
     return cfg

@@ -180,7 +180,7 @@ def compare(current: dict[str, tuple[float, str]], ref_rows: list[dict], where: 
     return problems
 
 
-def check(out: str, results: str, reference_dir: str, papers: list[str], profile: str) -> str:
+def check(results: str, reference_dir: str, papers: list[str], profile: str) -> str:
     """Compare every paper's validation table with the reference; raise DriftError on drift."""
     results, ref_root = Path(results), Path(reference_dir) / profile
     lines, failed = [], False

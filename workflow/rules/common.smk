@@ -89,10 +89,6 @@ def studies_of(paper, variants=False):
     return expand(f"{RESULTS}/{paper}/studies/{{study}}.nc", study=names)
 
 
-def migrated(paper):
-    """Papers whose validation table the framework builds from their `reported:` block."""
-    return "reported" in CFG[paper].raw
-
 
 def figures_of(paper):
     return expand(f"{RESULTS}/{paper}/figures/{{f}}.png", f=CFG[paper].figures)

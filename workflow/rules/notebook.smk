@@ -3,7 +3,7 @@
 # figure and writes the paper's other tables.  Outputs differ per paper (its declared
 # figures/tables), so the rules are made per paper.
 
-for _paper in [p for p in PAPERS if migrated(p)]:
+for _paper in PAPERS:
 
     rule:
         name:
@@ -36,7 +36,7 @@ for _paper in PAPERS:
         input:
             runs=runs_of(_paper),
             studies=studies_of(_paper),
-            validation=[f"{RESULTS}/{_paper}/tables/validation.csv"] if migrated(_paper) else [],
+            validation=f"{RESULTS}/{_paper}/tables/validation.csv",
             source=str(BASE / f"notebooks/{_paper}.py"),
             config=paper_config(_paper),
             code=code(*NOTEBOOK_CORE, f"models/{_paper}"),
@@ -46,7 +46,6 @@ for _paper in PAPERS:
             tables=tables_of(_paper, notebook_only=True),
             # every paper's cost of accuracy, for the cross-paper summary
             cost_of_accuracy=f"{RESULTS}/{_paper}/tables/cost_of_accuracy.nc",
-            claim=[] if migrated(_paper) else [f"{RESULTS}/{_paper}/claim.json"],
         params:
             paper=_paper,
             python=RUN["python"],
