@@ -6,7 +6,7 @@ axisymmetric model in <= 3 s at better than 1e-4 relative frequency accuracy; th
 model within 0.1 % of the exact unrolled N_d = 4 frequency in <= 60 s.  Printed, never
 asserted: timings depend on the machine (and on whatever else shares its cores).
 
-Every timing is the fastest of repeated calls (mechrepro.accuracy.time_call), and the grid
+Every timing is the fastest of repeated calls (mechrepro.timing.time_call), and the grid
 reference is the Richardson extrapolation of 64 and 128 elements (256 elements carry ~10x the
 round-off of 128).  BLAS threads: the axisym model solves small dense eigenproblems
 (2 n_elements unknowns).  OpenBLAS threads them from ~64 x 64 on, and on a loaded shared
@@ -30,7 +30,7 @@ import numpy as np  # noqa: E402
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "src"))
 
-from mechrepro.accuracy import time_call  # noqa: E402
+from mechrepro.timing import time_call  # noqa: E402
 from mechrepro.config import load_paper  # noqa: E402
 from mechrepro.models.disk_tension import compute, exact  # noqa: E402
 from mechrepro.models.disk_tension.axisym import AxisymDisk  # noqa: E402

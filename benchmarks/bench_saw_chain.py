@@ -11,7 +11,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "src"))
 
-from mechrepro.accuracy import time_call  # noqa: E402
+from mechrepro.timing import time_call  # noqa: E402
 from mechrepro.config import load_paper  # noqa: E402
 from mechrepro.models.saw_chain.solver import chain_from_run, difference_method  # noqa: E402
 from mechrepro.models.saw_chain.reference_loop import difference_method_loop  # noqa: E402

@@ -6,7 +6,9 @@ import pytest
 import xarray as xr
 
 from mechrepro import io as mio
-from mechrepro.accuracy import cost_of_accuracy, observed_order, time_call
+from mechrepro import accuracy
+from mechrepro.accuracy import observed_order
+from mechrepro.timing import time_call
 from mechrepro.effects import EffectRegistry, UnknownEffect
 
 RUN = {"paper": "saw_chain", "scene": "s", "run": "s", "study": None, "sweep": {},
@@ -86,12 +88,27 @@ def test_gather_stacks_scalars_and_equal_shapes(tmp_path):
     mio.check_cf(g)
 
 
-def test_cost_of_accuracy_helpers():
+def test_cost_of_accuracy_long_table():
     h = np.array([0.1, 0.05, 0.025])
     assert observed_order(h, 3 * h**2) == pytest.approx(2.0)
-    ds = cost_of_accuracy("demo", "K", [30, 10, 20], [3.0, 1.0, 2.0], {"q": [0.1, 0.3, 0.2]}, "exact")
-    assert ds["resolution"].values.tolist() == [10, 20, 30]
-    assert ds["error_q"].values.tolist() == [0.3, 0.2, 0.1]
-    mio.check_cf(ds)
+    st = xr.Dataset({"wall_time": ("run", [3.0, 1.0, 2.0]), "q": ("run", [1.1, 1.3, 1.2])},
+                    coords={"K": ("run", [30, 10, 20])})
+    Q = accuracy.AccuracyQuantities("demo")
+    Q.register("q_exact")(lambda ds, e: np.abs(ds["q"].values - 1.0))
+    Q.register("q_finest")(lambda ds, e: accuracy.against_finest(ds["q"].values, ds["K"].values,
+                                                                   e["finer"]))
+    entries = [{"name": "k", "study": "st", "knob": "K", "finer": "larger", "reference": "exact",
+                "quantities": {"q_exact": {"error": "absolute", "unit": "N"}}},
+               {"name": "kf", "study": "st", "knob": "K", "finer": "larger",
+                "reference": "finest", "quantities": {"q_finest": {"error": "relative"}}}]
+    rows = accuracy.rows(entries, lambda name: st, Q)
+    exact = [r for r in rows if r["accuracy"] == "k"]
+    assert [r["knob_value"] for r in exact] == [10, 20, 30]
+    assert [r["error"] for r in exact] == pytest.approx([0.3, 0.2, 0.1])
+    assert exact[0]["time_s"] == 1.0 and exact[0]["error_unit"] == "N"
+    fin = [r for r in rows if r["accuracy"] == "kf"]   # the finest point is the reference
+    assert [r["knob_value"] for r in fin] == [10, 20]
+    assert fin[0]["error"] == pytest.approx(0.2 / 1.1)
+    assert set(rows[0]) == set(accuracy.COLUMNS)
     result, seconds = time_call(lambda: 42, min_time=0.01)
     assert result == 42 and 0 < seconds < 0.01

@@ -1,35 +1,81 @@
-"""The one cost-of-accuracy helper: error against a trusted reference vs wall time.
+"""The one cost-of-accuracy path: error against a trusted reference vs wall time.
 
-Every solver run records its own wall time with :func:`time_call`.  A study over the
-paper's **resolution** knob is then condensed by :func:`cost_of_accuracy` into one
-dataset (dimension ``resolution``) holding, per quantity of interest, the error against
-the reference (``exact`` solution or the ``finest`` run)
-and the wall time; :func:`plot` draws it, the same way for all papers.
+A paper declares its studies in config (``accuracy:``; see ``config/schema/paper.schema.json``)::
+
+    accuracy:
+      - name: K                    # one curve family of the table
+        study: cost_of_accuracy    # a study (its runs along ``run``) or a scene's run
+        knob: K                    # the coordinate of the knob along the study
+        finer: larger              # which direction is finer
+        reference: exact           # exact solution, or the study's finest point
+        time: wall_time            # the time per point [s], a variable of the study
+        quantities: {load: {error: relative}}
+
+and registers one function per quantity in ``models/<paper>/accuracy.py``::
+
+    ACCURACY = AccuracyQuantities("saw_chain")
+
+    @ACCURACY.register("load")
+    def load(ds, entry):           # -> errors along the knob's dimension
+        return ...
+
+A quantity taken against the finest point uses :func:`against_finest`.  The framework
+(rule ``validate_<paper>``) turns every entry into the rows of one long-form table,
+``tables/cost_of_accuracy.csv``: one row per (entry, knob value, quantity), columns
+:data:`COLUMNS`.  :func:`plot` draws it the same way for every paper.
 """
 from __future__ import annotations
 
-import time
+from collections.abc import Callable
 
 import numpy as np
-import xarray as xr
+
+COLUMNS = ["accuracy", "knob", "knob_value", "quantity", "error", "error_kind", "error_unit",
+           "reference", "time_s", "time_of"]
 
 
-def time_call(fn, *args, min_time: float = 0.05, max_repeat: int = 50, **kwargs):
-    """Call ``fn`` until ``min_time`` has elapsed; return (first result, fastest call [s]).
+class AccuracyQuantities:
+    """The error functions of one paper's cost-of-accuracy quantities."""
 
-    Fast solves are repeated and the fastest call is kept (as ``timeit`` advises): the
-    other calls measure the machine's other load, not the solver.
-    """
-    t_start = time.perf_counter()
-    result = fn(*args, **kwargs)
-    best = time.perf_counter() - t_start
-    n = 1
-    while time.perf_counter() - t_start < min_time and n < max_repeat:
-        t0 = time.perf_counter()
-        fn(*args, **kwargs)
-        best = min(best, time.perf_counter() - t0)
-        n += 1
-    return result, best
+    def __init__(self, paper: str):
+        self.paper = paper
+        self._fns: dict[str, Callable] = {}
+
+    def register(self, name: str):
+        def deco(fn):
+            if name in self._fns:
+                raise ValueError(f"{self.paper}: accuracy quantity {name!r} registered twice")
+            self._fns[name] = fn
+            return fn
+        return deco
+
+    @property
+    def names(self) -> list[str]:
+        return list(self._fns)
+
+    def __call__(self, name: str, ds, entry: dict):
+        if name not in self._fns:
+            raise KeyError(f"{self.paper}: accuracy quantity {name!r} has no function in "
+                           f"models/{self.paper}/accuracy.py (have: {self.names})")
+        return self._fns[name](ds, entry)
+
+
+def finest_index(knob, finer: str) -> int:
+    knob = np.asarray(knob, float)
+    return int(np.argmax(knob) if finer == "larger" else np.argmin(knob))
+
+
+def against_finest(values, knob, finer: str, error: str = "relative"):
+    """Errors of ``values`` (first axis along the knob; further axes are norms' support)
+    against the finest point: max |q_i - q_f| (over the other axes), divided by max |q_f|
+    when ``error`` is relative.  The finest point itself gets NaN (it is the reference)."""
+    q = np.asarray(values, float)
+    f = finest_index(knob, finer)
+    diff = np.abs(q - q[f]).reshape(len(q), -1).max(axis=1)
+    if error == "relative":
+        diff = diff / np.abs(q[f]).max()
+    diff[f] = np.nan
+    return diff
 
 
 def observed_order(h, err) -> float:
@@ -39,39 +85,58 @@ def observed_order(h, err) -> float:
     return float(np.polyfit(np.log(h[ok]), np.log(err[ok]), 1)[0])
 
 
-def cost_of_accuracy(paper: str, knob: str, knob_values, wall_time_s, errors: dict,
-                     reference: str, knob_units: str = "1", description: str = "") -> xr.Dataset:
-    """Assemble the cost-of-accuracy dataset of one paper (dimension ``resolution``)."""
-    order = np.argsort(np.asarray(knob_values, float))
-    coords = {"resolution": ("resolution", np.asarray(knob_values)[order],
-                             {"long_name": f"resolution knob {knob}", "units": knob_units})}
-    data = {"wall_time": ("resolution", np.asarray(wall_time_s, float)[order],
-                          {"long_name": "wall time of one solve", "units": "s"})}
-    for name, err in errors.items():
-        data[f"error_{name}"] = ("resolution", np.asarray(err, float)[order],
-                                 {"long_name": f"relative error of {name} vs {reference}",
-                                  "units": "1"})
-    return xr.Dataset(data, coords, attrs={"paper": paper, "knob": knob,
-                                           "reference": reference, "description": description})
+def rows(entries: list[dict], dataset: Callable[[str], object],
+         quantities: AccuracyQuantities) -> list[dict]:
+    """The long-form cost-of-accuracy table of one paper (``dataset(name)`` opens a study
+    or a run).  Sorted from coarse to fine; the reference point of ``finest`` is left out."""
+    out = []
+    for entry in entries:
+        ds = dataset(entry["study"])
+        knob = np.asarray(ds[entry["knob"]].values)
+        time_var = entry.get("time", "wall_time")
+        t = np.broadcast_to(np.asarray(ds[time_var].values, float), knob.shape)
+        order = np.argsort(knob.astype(float))
+        if entry["finer"] == "smaller":
+            order = order[::-1]
+        for qname, qspec in entry["quantities"].items():
+            err = np.asarray(quantities(qname, ds, entry), float)
+            if err.shape != knob.shape:
+                raise ValueError(f"{quantities.paper}: accuracy {entry['name']}.{qname}: "
+                                 f"{err.shape} errors for {knob.shape} knob values")
+            for i in order:
+                if entry["reference"] == "finest" and i == finest_index(knob, entry["finer"]):
+                    continue
+                out.append({
+                    "accuracy": entry["name"], "knob": entry["knob"],
+                    "knob_value": knob[i].item(), "quantity": qname,
+                    "error": float(err[i]), "error_kind": qspec["error"],
+                    "error_unit": "1" if qspec["error"] == "relative" else qspec.get("unit", "1"),
+                    "reference": entry["reference"], "time_s": float(t[i]),
+                    "time_of": entry.get("time_of", "one solve"),
+                })
+    return out
 
 
-def plot(ds: xr.Dataset, ax=None, annotate: bool = True):
-    """Error vs wall time, one line per quantity, points labelled with the knob value."""
+def plot(table: list[dict], accuracy: str | None = None, ax=None, annotate: bool = True):
+    """Error vs time, one line per quantity of one entry (the first when not given)."""
     import matplotlib.pyplot as plt
 
+    accuracy = accuracy or table[0]["accuracy"]
+    sel = [r for r in table if r["accuracy"] == accuracy]
     if ax is None:
         _, ax = plt.subplots(figsize=(6, 4.2))
-    t = ds["wall_time"].values
-    for name in [v for v in ds.data_vars if v.startswith("error_")]:
-        ax.loglog(t, ds[name].values, "o-", label=name.removeprefix("error_"))
-    if annotate:
-        first = [v for v in ds.data_vars if v.startswith("error_")][0]
-        for x, y, k in zip(t, ds[first].values, ds["resolution"].values):
-            ax.annotate(f"{ds.attrs['knob']}={k}", (x, y), fontsize=7,
-                        textcoords="offset points", xytext=(4, 4))
-    ax.set_xlabel("wall time per solve [s]")
-    ax.set_ylabel(f"relative error vs {ds.attrs['reference']}")
-    ax.set_title(f"{ds.attrs['paper']}: cost of accuracy ({ds.attrs['knob']})")
+    quantities = list(dict.fromkeys(r["quantity"] for r in sel))
+    for q in quantities:
+        pts = [r for r in sel if r["quantity"] == q]
+        ax.loglog([float(r["time_s"]) for r in pts], [float(r["error"]) for r in pts], "o-",
+                  label=f"{q} ({pts[0]['error_kind']})")
+        if annotate and q == quantities[0]:
+            for r in pts:
+                ax.annotate(f"{r['knob']}={r['knob_value']}", (float(r["time_s"]), float(r["error"])),
+                            fontsize=7, textcoords="offset points", xytext=(4, 4))
+    ax.set_xlabel(f"wall time [s] ({sel[0]['time_of']})")
+    ax.set_ylabel(f"error vs {sel[0]['reference']}")
+    ax.set_title(f"cost of accuracy: {accuracy}")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
     return ax

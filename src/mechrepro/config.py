@@ -73,16 +73,33 @@ class PaperConfig:
 
     @property
     def tables(self) -> list[str]:
-        return list(self.raw.get("tables", ["validation"]))
+        return list(dict.fromkeys([*self.raw.get("tables", []), *self.framework_tables]))
 
     @property
     def notebook_tables(self) -> list[str]:
-        """Tables the notebook writes (validation.csv is the framework's)."""
-        return [t for t in self.tables if t != "validation"]
+        """Tables the notebook writes (the others are the framework's: validation,
+        cost_of_accuracy when the paper declares ``accuracy:``, effect_cost, job_time)."""
+        return [t for t in self.tables if t not in self.framework_tables]
+
+    @property
+    def framework_tables(self) -> list[str]:
+        return ["validation", "effect_cost", "job_time"] + (
+            ["cost_of_accuracy"] if self.raw.get("accuracy") else [])
 
     def assumed(self) -> dict[str, dict]:
         """Parameters the paper does not give, with value, unit and justification."""
         return {k: v for k, v in self.raw["parameters"].items() if v.get("assumed")}
+
+    def solve_jobs(self) -> dict[str, list[str]]:
+        """{job name: runs it solves}: one job per scene or study (baseline and variants),
+        one per run for the studies the paper fans out (``fan_out:``)."""
+        fan = set(self.raw.get("fan_out", []))
+        jobs: dict[str, list[str]] = {}
+        for run, rec in self.runs.items():
+            group = rec["study"] or rec["scene"]
+            key = run if group in fan else ("study_" if rec["study"] else "scene_") + group
+            jobs.setdefault(key.replace("@", "__").replace("-", "_"), []).append(run)
+        return jobs
 
     def runs_of(self, study: str | None = None) -> list[str]:
         return self.studies[study] if study else list(self.runs)
@@ -166,6 +183,7 @@ def load_paper(path: str | Path, profile: str = "default") -> PaperConfig:
         # an overlay can break what the file alone satisfied: check the merged result too
         _validate({k: v for k, v in raw.items() if k != "profiles"},
                   load_schema("paper.schema.json", sdir), f"{where} (profile {profile})")
+    _check_effects(raw, where)
     paper = raw["paper"]
     run_schema = load_schema(f"{paper}.run.schema.json", sdir)
     cfg = PaperConfig(paper=paper, path=where, profile=profile,
@@ -211,6 +229,62 @@ def _cross_check(checks: dict, run: dict, where: str) -> None:
 
 
 VERDICT_KINDS = ("compare", "bound", "check")
+
+
+def _check_effects(raw: dict, where: str) -> None:
+    """The effect protocol (:mod:`mechrepro.effects`), checked before any job is planned:
+    every scene names a declared solver and only effects that solver honours, with what
+    they require and without what they exclude.  Never silently ignored."""
+    solvers, effects = raw.get("solvers", {}), raw.get("effects", {})
+    for name, spec in effects.items():
+        for s in spec["honoured_by"]:
+            if s not in solvers:
+                raise ConfigError(f"{where}: effects.{name}.honoured_by: solver {s!r} is not "
+                                  f"declared; solvers: {', '.join(solvers) or '(none)'}")
+        for key in ("requires", "excludes"):
+            for e in spec.get(key, []):
+                if e not in effects:
+                    raise ConfigError(f"{where}: effects.{name}.{key}: {e!r} is not a declared "
+                                      f"effect; effects: {', '.join(effects)}")
+        for k, unit in spec.get("units", {}).items():
+            if k not in spec["contributes"]:
+                raise ConfigError(f"{where}: effects.{name}.units.{k}: not one of its "
+                                  f"contributions {spec['contributes']}")
+            if unit not in UNITS and not _udunits_like(unit):
+                raise ConfigError(f"{where}: effects.{name}.units.{k} = {unit!r}: not a unit")
+    for scene, spec in raw["scenes"].items():
+        at = f"{where}: scenes.{scene}"
+        solver = spec.get("solver")
+        if solver is None:
+            if solvers:
+                raise ConfigError(f"{at}.solver: missing; solvers: {', '.join(solvers)}")
+            continue   # a paper that has not declared its solvers yet
+        if solver not in solvers:
+            raise ConfigError(f"{at}.solver = {solver!r}: not declared; solvers: "
+                              f"{', '.join(solvers) or '(none)'}")
+        named = spec["effects"]
+        for e in named:
+            if e not in effects:
+                raise ConfigError(f"{at}.effects: {e!r} is not a declared effect; effects: "
+                                  f"{', '.join(effects)}")
+            decl = effects[e]
+            if solver not in decl["honoured_by"]:
+                raise ConfigError(f"{at}: effect {e!r} is not honoured by solver {solver!r} "
+                                  f"(honoured by: {', '.join(decl['honoured_by'])}); remove it "
+                                  "or choose one of those solvers")
+            missing = [r for r in decl.get("requires", []) if r not in named]
+            if missing:
+                raise ConfigError(f"{at}: effect {e!r} requires {missing}")
+            clash = [x for x in decl.get("excludes", []) if x in named]
+            if clash:
+                raise ConfigError(f"{at}: effect {e!r} excludes {clash}")
+
+
+def _udunits_like(unit: str) -> bool:
+    """Units of contributions not in the config table: products/powers of known symbols."""
+    import re
+
+    return bool(re.fullmatch(r"[A-Za-z0-9*/^() .-]+", unit))
 
 
 def _check_reported(raw: dict, where: str) -> None:
@@ -364,7 +438,11 @@ def _make_run(raw, scene_name, study, index, point, run_schema, where) -> dict:
         # the unit of each swept value as written in the config (resolution keys: "1")
         "sweep_units": {k: raw["parameters"][k]["unit"] if k in raw["parameters"] else "1"
                         for k in point},
+        "solver": scene.get("solver"),
         "effects": record["effects"],
+        # what each named effect declares it contributes (checked when it is evaluated)
+        "contributes": {e: raw.get("effects", {}).get(e, {}).get("contributes", [])
+                        for e in record["effects"]} if raw.get("effects") else {},
         "resolution": resolution,
         "options": record["options"],
         "parameters": si,

@@ -1,21 +1,86 @@
-"""Effect registry: a solver assembles only the effects its scene names.
+"""The effect protocol: a scene's solver and effects decide exactly what runs.
 
-Each paper keeps one :class:`EffectRegistry`.  Effect implementations register under the
-name used in scenes; ``registry.select(run["effects"])`` returns only those callables, in
-the registry's declaration order, and raises on names the paper does not know.  An effect
-that is not selected is never looked up, let alone called -- tests check this by
-replacing unselected entries with functions that raise.
+Declared once per paper in its config (``config/papers/<paper>.yaml``)::
+
+    solvers:
+      finite_difference: {description: "Eqs. (2-36)-(2-38), implicit march"}
+    effects:
+      impact:
+        description: "Eqs. (2-2)-(2-4): impact load of a roller on a tooth"
+        contributes: [tension]          # the keys its implementation returns
+        units: {tension: N}
+        honoured_by: [finite_difference, galerkin]
+        requires: []                    # effects that must be named with it
+        excludes: []                    # effects that must not
+
+and checked when the config is loaded (:func:`mechrepro.config.load_paper`): a scene that
+names an effect its solver does not honour is refused before any job is planned.
+
+Implemented once per paper: ``@EFFECTS.register("impact")`` on a pure function
+``fn(ctx) -> {key: value}`` of the solver's context.  A solver calls
+:meth:`EffectRegistry.evaluate` with its run and context and reads the returned
+:class:`Contributions` by *key* (``tension``, ``u_left``, ...), never by effect name: an
+effect that is not named is never looked up, let alone called, and each one that is
+named is timed (:mod:`mechrepro.timing`), so the report can say what it costs.
 """
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable
+from typing import Any
+
+from .timing import EFFECT, phase
 
 
 class UnknownEffect(KeyError):
     pass
 
 
+class ContributionError(ValueError):
+    pass
+
+
+class Contributions:
+    """What the named effects contributed, by key, in the registry's declaration order."""
+
+    def __init__(self):
+        self._by_key: dict[str, list[tuple[str, Any]]] = {}
+
+    def add(self, effect: str, values: dict) -> None:
+        for key, value in values.items():
+            self._by_key.setdefault(key, []).append((effect, value))
+
+    def __contains__(self, key: str) -> bool:
+        return key in self._by_key
+
+    def keys(self) -> list[str]:
+        return list(self._by_key)
+
+    def all(self, key: str) -> list:
+        return [v for _, v in self._by_key.get(key, [])]
+
+    def total(self, key: str, zero=0.0):
+        """The sum of every contribution to ``key`` (``zero`` when none was named)."""
+        out = zero
+        for v in self.all(key):
+            out = out + v
+        return out
+
+    def get(self, key: str, default=None):
+        """The single contribution to ``key``; two effects contributing it is an error."""
+        vals = self._by_key.get(key, [])
+        if len(vals) > 1:
+            raise ContributionError(f"{key!r} contributed by {[e for e, _ in vals]}; "
+                                    "expected one (use total() for additive terms)")
+        return vals[0][1] if vals else default
+
+    def sources(self, key: str) -> list[str]:
+        """Which effects contributed ``key`` (for provenance and messages only)."""
+        return [e for e, _ in self._by_key.get(key, [])]
+
+
 class EffectRegistry:
+    """The implementations of one paper's declared effects."""
+
     def __init__(self, paper: str):
         self.paper = paper
         self._effects: dict[str, Callable] = {}
@@ -32,12 +97,33 @@ class EffectRegistry:
     def names(self) -> list[str]:
         return list(self._effects)
 
+    def __contains__(self, name: str) -> bool:
+        return name in self._effects
+
     def select(self, effects: Iterable[str]) -> dict[str, Callable]:
+        """The implementations of ``effects`` in declaration order (unknown names raise)."""
         wanted = list(effects)
         unknown = [e for e in wanted if e not in self._effects]
         if unknown:
             raise UnknownEffect(f"{self.paper}: unknown effect(s) {unknown}; allowed: {self.names}")
         return {name: self._effects[name] for name in self._effects if name in wanted}
 
-    def __contains__(self, name: str) -> bool:
-        return name in self._effects
+    def evaluate(self, run: dict, ctx, only: Iterable[str] | None = None) -> Contributions:
+        """Evaluate each effect the run names (or the subset ``only`` of them), timed, and
+        return their contributions.  The keys an effect returns must be the ones its
+        declaration lists (``run["contributes"]``, from the config)."""
+        named = list(run["effects"])
+        if only is not None:
+            only = set(only)
+            named = [e for e in named if e in only]
+        declared = run.get("contributes", {})
+        out = Contributions()
+        for name, fn in self.select(named).items():
+            with phase(EFFECT + name):
+                values = fn(ctx)
+            if name in declared and set(values) - set(declared[name]):
+                raise ContributionError(
+                    f"{self.paper}: effect {name!r} returned {sorted(values)}; its declaration "
+                    f"contributes {declared[name]}")
+            out.add(name, values)
+        return out

@@ -145,6 +145,37 @@ def summary_section(out_dir: Path) -> str:
     return "\n".join(parts)
 
 
+def time_section(results: Path, papers: list[str]) -> str:
+    """Per paper: the solves' own time against the solver jobs' wall time (start-up,
+    imports, writing and repeated timing calls are the difference), and the notebook job."""
+    from .costs import benchmark_seconds
+
+    rows = []
+    for paper in papers:
+        f = results / paper / "tables" / "job_time.csv"
+        if not f.exists():
+            continue
+        head, r = _read_csv(f)
+        solve = sum(float(x[head.index("solve_s")]) for x in r)
+        job = sum(float(x[head.index("job_s")]) for x in r)
+        nb = benchmark_seconds(results / paper / "benchmarks" / "notebook.tsv")
+        runs = sum(int(x[head.index("runs")]) for x in r)
+        rows.append(f"<tr><td>{paper}</td><td>{len(r)}</td><td>{runs}</td><td>{solve:.3g}</td>"
+                    f"<td>{job:.3g}</td><td>{(job - solve) / job:.0%}</td><td>{nb:.3g}</td></tr>"
+                    if job > 0 else
+                    f"<tr><td>{paper}</td><td>{len(r)}</td><td>{runs}</td><td>{solve:.3g}</td>"
+                    "<td>n/a</td><td>n/a</td><td>n/a</td></tr>")
+    if not rows:
+        return ""
+    return ("<h2 id='time'>Where the time goes</h2><p class='note'>solve: the fastest call of "
+            "each run's solve (<code>wall_time</code>), summed; job: the solver jobs' wall time "
+            "from Snakemake's benchmark files; overhead: interpreter start, imports, repeated "
+            "timing calls and writing. Each paper's <i>effect_cost</i> table splits the solves "
+            "into the solver core and each effect.</p><table><tr><th>paper</th><th>solver jobs"
+            "</th><th>runs</th><th>solve [s]</th><th>job [s]</th><th>overhead</th>"
+            "<th>notebook job [s]</th></tr>" + "".join(rows) + "</table>")
+
+
 def write_report(out: str, results: str, config_dir: str, papers: list[str], profile: str) -> None:
     out, results, config_dir = Path(out), Path(results), Path(config_dir)
     sections, summary = [], []
@@ -166,7 +197,7 @@ def write_report(out: str, results: str, config_dir: str, papers: list[str], pro
 <title>mechrepro reproduction report</title><style>{CSS}</style></head><body>
 <h1>mechrepro reproduction report</h1>
 <p class="note">profile <b>{html.escape(profile)}</b> &middot; code {html.escape(code_version())} &middot; {now}</p>
-<nav class="toc"><a href="#summary">summary</a><a href="#reference">reference check</a>{toc}<a href="#cost">cost of accuracy</a></nav>
+<nav class="toc"><a href="#summary">summary</a><a href="#reference">reference check</a>{toc}<a href="#cost">cost of accuracy</a><a href="#time">time</a></nav>
 <h2 id="summary">Replication summary</h2>
 <p class="note">Counts are of <b>independent</b> rows only (see each paper's rows by evidence class).</p>
 <table><tr><th>paper</th><th>claim</th><th>pass</th><th>fail</th><th>inconclusive</th><th>assumed constants</th><th>what did not reproduce, and why</th></tr>
@@ -174,6 +205,7 @@ def write_report(out: str, results: str, config_dir: str, papers: list[str], pro
 <h2 id="reference">Reference check</h2>
 <pre class="check{drift}">{html.escape(check)}</pre>
 <div id="cost">{summary_section(out.parent)}</div>
+{time_section(results, papers)}
 {''.join(sections)}
 <script>/* for `make screenshot`: the whole page's height once images are laid out */
 window.addEventListener("load", () => document.body.dataset.height = document.documentElement.scrollHeight);</script>

@@ -1,9 +1,9 @@
 """The cross-paper summary: cost-of-accuracy curves side by side, and one table.
 
-Each paper's notebook stores ``results/<paper>/tables/cost_of_accuracy.nc`` (written with
-:func:`mechrepro.accuracy.cost_of_accuracy`); its first ``error_*`` variable is the
-paper's headline error.  The table adds what each paper's config says about the
-resolution its default profile uses and why (``default_resolution:``).
+Each paper's ``results/<paper>/tables/cost_of_accuracy.csv`` is the long-form table of
+:mod:`mechrepro.accuracy`; its first entry's first quantity is the paper's headline curve.
+The table adds what each paper's config says about the resolution its default profile
+uses and why (``default_resolution:``).
 """
 from __future__ import annotations
 
@@ -12,26 +12,30 @@ from pathlib import Path
 import numpy as np
 
 from .config import load_paper
-from .io import open_dataset
-from .validation import write_csv
+from .validation import read_table, write_csv
 
 
-def primary_error(ds) -> str:
-    return [v for v in ds.data_vars if v.startswith("error_")][0]
+def headline(results: Path, paper: str) -> list[dict]:
+    """The rows of the paper's headline curve (first entry, first quantity)."""
+    table = read_table(results / paper / "tables" / "cost_of_accuracy.csv")
+    first = table[0]
+    return [r for r in table
+            if r["accuracy"] == first["accuracy"] and r["quantity"] == first["quantity"]]
 
 
 def rows(results: Path, config_dir: Path, papers: list[str], profile: str) -> list[dict]:
     out = []
     for paper in papers:
-        ds = open_dataset(results / paper / "tables" / "cost_of_accuracy.nc")
-        err = primary_error(ds)
+        h = headline(results, paper)
+        err = np.array([float(r["error"]) for r in h])
+        t = np.array([float(r["time_s"]) for r in h])
         default = load_paper(config_dir / "papers" / f"{paper}.yaml").raw.get("default_resolution", {})
         out.append({
-            "paper": paper, "knob": ds.attrs["knob"], "reference": ds.attrs["reference"],
-            "error_quantity": err.removeprefix("error_"),
-            "knob_range": f"{ds['resolution'].values.min()}..{ds['resolution'].values.max()}",
-            "best_error": float(np.nanmin(ds[err].values)),
-            "wall_time_range_s": f"{ds['wall_time'].values.min():.3g}..{ds['wall_time'].values.max():.3g}",
+            "paper": paper, "knob": h[0]["knob"], "reference": h[0]["reference"],
+            "error_quantity": f"{h[0]['quantity']} ({h[0]['error_kind']})",
+            "knob_range": f"{h[0]['knob_value']}..{h[-1]['knob_value']}",
+            "best_error": float(np.nanmin(err)),
+            "wall_time_range_s": f"{t.min():.3g}..{t.max():.3g}",
             "default_resolution": default.get("value", ""), "why": default.get("why", ""),
         })
     return out
@@ -46,13 +50,11 @@ def write_summary(png: str, csv: str, results: str, config_dir: str, papers: lis
     write_csv(csv, list(table[0]), [list(r.values()) for r in table])
     fig, ax = plt.subplots(figsize=(7.5, 5))
     for paper in papers:
-        ds = open_dataset(results / paper / "tables" / "cost_of_accuracy.nc")
-        err = primary_error(ds)
-        ax.loglog(ds["wall_time"].values, ds[err].values, "o-",
-                  label=f"{paper}: {err.removeprefix('error_')} vs {ds.attrs['reference']} "
-                        f"(knob {ds.attrs['knob']})")
+        h = headline(results, paper)
+        ax.loglog([float(r["time_s"]) for r in h], [float(r["error"]) for r in h], "o-",
+                  label=f"{paper}: {h[0]['quantity']} vs {h[0]['reference']} (knob {h[0]['knob']})")
     ax.set_xlabel("wall time per solve [s]")
-    ax.set_ylabel("relative error")
+    ax.set_ylabel("error (headline quantity)")
     ax.set_title("cost of accuracy, all papers")
     ax.legend(fontsize=7)
     savefig(fig, png)

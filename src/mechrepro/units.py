@@ -2,7 +2,7 @@
 
 Configs keep the papers' own units (mm, r/min, g ...) so every value can be checked
 against its source; solvers only ever see SI values.  ``to_si(value, unit)`` returns
-``(value_si, si_unit)``.
+``(value_si, si_unit)``; ``var(dims, data, units, long_name)`` labels a dataset variable.
 """
 from __future__ import annotations
 
@@ -40,3 +40,21 @@ def _scale(v, factor):
     if isinstance(v, bool) or not isinstance(v, (int, float)):
         return v  # strings, booleans: unitless choices, passed through
     return v * factor if factor != 1.0 else v
+
+
+def var(dims, data, units: str, long_name: str, **attrs):
+    """A dataset variable with its unit: ``ds[name] = var(("speed",), x, "N", "peak load")``.
+
+    ``dims`` is a dimension name, a tuple of them, or ``()`` for a scalar; ``units`` is the
+    UDUNITS spelling (``"1"`` for dimensionless).  The one way the models label their output.
+    """
+    import numpy as np
+
+    dims = (dims,) if isinstance(dims, str) else tuple(dims)
+    return dims, np.asarray(data), {"units": units, "long_name": long_name, **attrs}
+
+
+def from_si(value, unit: str):
+    """SI value(s) expressed in ``unit`` (a figure axis in the paper's units)."""
+    factor, _ = UNITS[unit]
+    return value / factor if factor != 1.0 else value

@@ -360,7 +360,35 @@ def validate(paper: str, results_dir: str, config_file: str, profile: str) -> li
     root = Path(results_dir) / paper
     write_table(rows, root / "tables" / "validation.csv")
     write_json(root / "claim.json", claim(cfg, rows))
+    write_costs(cfg, results_dir)
     return rows
+
+
+def write_costs(cfg, results_dir: str) -> None:
+    """The framework's other tables of a paper: the long-form cost of accuracy (from its
+    ``accuracy:`` block), what each effect costs, and each solver job against its solves."""
+    import importlib
+
+    from . import accuracy, costs
+    from .io import open_dataset
+
+    root = Path(results_dir) / cfg.paper
+    if cfg.raw.get("accuracy"):
+        module = importlib.import_module(f"mechrepro.models.{cfg.paper}.accuracy")
+
+        def dataset(name):
+            kind = "studies" if name in cfg.studies else "runs"
+            return open_dataset(root / kind / f"{name}.nc")
+
+        table = accuracy.rows(cfg.raw["accuracy"], dataset, module.ACCURACY)
+        write_csv(root / "tables" / "cost_of_accuracy.csv", accuracy.COLUMNS,
+                  [[r[c] for c in accuracy.COLUMNS] for r in table])
+    ec = costs.effect_cost([root / "runs" / f"{r}.nc" for r in cfg.base_runs])
+    write_csv(root / "tables" / "effect_cost.csv", costs.EFFECT_COST_COLUMNS,
+              [[r[c] for c in costs.EFFECT_COST_COLUMNS] for r in ec])
+    jt = costs.job_time(root, cfg.solve_jobs())
+    write_csv(root / "tables" / "job_time.csv", costs.JOB_TIME_COLUMNS,
+              [[r[c] for c in costs.JOB_TIME_COLUMNS] for r in jt])
 
 
 def read_table(path: str | Path) -> list[dict]:

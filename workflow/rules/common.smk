@@ -43,8 +43,10 @@ def code(*relpaths):
 
 
 # The framework modules every solver job imports.
-SOLVER_CORE = ["__init__.py", "solve.py", "io.py", "provenance.py", "accuracy.py", "effects.py"]
-VALIDATE_CORE = ["__init__.py", "cli.py", "config.py", "units.py", "io.py", "validation.py"]
+SOLVER_CORE = ["__init__.py", "solve.py", "io.py", "provenance.py", "timing.py", "effects.py",
+               "units.py"]
+VALIDATE_CORE = ["__init__.py", "cli.py", "config.py", "units.py", "io.py", "validation.py",
+                 "accuracy.py", "costs.py"]
 NOTEBOOK_CORE = ["__init__.py", "config.py", "units.py", "io.py", "results.py",
                  "validation.py", "accuracy.py", "plotting.py", "notebook.py"]
 
@@ -57,16 +59,7 @@ def model_code(paper):
 
 
 def solve_jobs(paper):
-    """{job name: runs it solves}: one job per scene or study (baseline and variants),
-    one per run for the studies the paper fans out (`fan_out:`)."""
-    cfg = CFG[paper]
-    fan = set(cfg.raw.get("fan_out", []))
-    jobs = {}
-    for run, rec in cfg.runs.items():
-        group = rec["study"] or rec["scene"]
-        key = run if group in fan else ("study_" if rec["study"] else "scene_") + group
-        jobs.setdefault(key.replace("@", "__").replace("-", "_"), []).append(run)
-    return jobs
+    return CFG[paper].solve_jobs()
 
 
 def run_json(wc):
@@ -106,6 +99,5 @@ def every_output():
            f"{RESULTS}/report/reference_check.txt"]
     for p in PAPERS:
         out += runs_of(p, variants=True) + studies_of(p, variants=True) + figures_of(p)
-        out += tables_of(p) + [f"{RESULTS}/{p}/notebook.ipynb", f"{RESULTS}/{p}/claim.json",
-                               f"{RESULTS}/{p}/tables/cost_of_accuracy.nc"]
+        out += tables_of(p) + [f"{RESULTS}/{p}/notebook.ipynb", f"{RESULTS}/{p}/claim.json"]
     return out

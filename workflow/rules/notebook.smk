@@ -16,6 +16,9 @@ for _paper in PAPERS:
         output:
             table=f"{RESULTS}/{_paper}/tables/validation.csv",
             claim=f"{RESULTS}/{_paper}/claim.json",
+            # the framework's cost tables (mechrepro.accuracy, mechrepro.costs)
+            costs=[f"{RESULTS}/{_paper}/tables/{t}.csv"
+                   for t in CFG[_paper].framework_tables if t != "validation"],
         params:
             paper=_paper,
             python=RUN["python"],
@@ -37,6 +40,8 @@ for _paper in PAPERS:
             runs=runs_of(_paper),
             studies=studies_of(_paper),
             validation=f"{RESULTS}/{_paper}/tables/validation.csv",
+            costs=[f"{RESULTS}/{_paper}/tables/{t}.csv"
+                   for t in CFG[_paper].framework_tables if t != "validation"],
             source=str(BASE / f"notebooks/{_paper}.py"),
             config=paper_config(_paper),
             code=code(*NOTEBOOK_CORE, f"models/{_paper}"),
@@ -44,8 +49,6 @@ for _paper in PAPERS:
             notebook=f"{RESULTS}/{_paper}/notebook.ipynb",
             figures=figures_of(_paper),
             tables=tables_of(_paper, notebook_only=True),
-            # every paper's cost of accuracy, for the cross-paper summary
-            cost_of_accuracy=f"{RESULTS}/{_paper}/tables/cost_of_accuracy.nc",
         params:
             paper=_paper,
             python=RUN["python"],

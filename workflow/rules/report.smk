@@ -3,9 +3,9 @@
 
 rule summary:
     input:
-        coa=expand(f"{RESULTS}/{{paper}}/tables/cost_of_accuracy.nc", paper=PAPERS),
+        coa=expand(f"{RESULTS}/{{paper}}/tables/cost_of_accuracy.csv", paper=PAPERS),
         configs=[paper_config(p) for p in PAPERS],
-        code=code("cli.py", "summary.py", "config.py", "plotting.py"),
+        code=code("cli.py", "summary.py", "config.py", "plotting.py", "validation.py"),
     output:
         png=f"{RESULTS}/report/cost_of_accuracy_all.png",
         csv=f"{RESULTS}/report/summary.csv",
@@ -51,7 +51,7 @@ rule report:
         tables=[f for p in PAPERS for f in tables_of(p)],
         claims=expand(f"{RESULTS}/{{paper}}/claim.json", paper=PAPERS),
         configs=[paper_config(p) for p in PAPERS],
-        code=code("cli.py", "report.py", "config.py", "validation.py"),
+        code=code("cli.py", "report.py", "config.py", "validation.py", "costs.py"),
     output:
         f"{RESULTS}/report/index.html",
     params:

@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from mechrepro.accuracy import time_call
+from mechrepro.timing import time_call
 from mechrepro.effects import EffectRegistry
 
 from . import calibration, exact, thermal

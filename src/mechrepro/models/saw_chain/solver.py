@@ -6,7 +6,7 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
-from mechrepro.accuracy import time_call
+from mechrepro.timing import time_call
 from mechrepro.effects import EffectRegistry
 
 from .difference import (backward_differences, check_roundoff, roundoff_limit,

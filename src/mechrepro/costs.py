@@ -1,0 +1,68 @@
+"""What a paper's runs cost: per effect, per solver core, and per job against its solves.
+
+``effect_cost`` sums the time split every run stores (:mod:`mechrepro.timing`) into one
+row per (solver, effect) -- the report's effect-cost table; ``job_time`` sets each solver
+job's wall time (Snakemake's benchmark file) against the solve time of its runs, so the
+overhead of starting a job shows.  Both tables are written by ``validate_<paper>``.
+"""
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+
+import numpy as np
+
+EFFECT_COST_COLUMNS = ["solver", "effect", "runs", "time_s", "share"]
+JOB_TIME_COLUMNS = ["job", "runs", "solve_s", "job_s"]
+
+
+def run_times(path: str | Path) -> dict:
+    """wall/core/effect times of one run file, read without loading its other variables."""
+    import netCDF4
+
+    with netCDF4.Dataset(path) as nc:
+        out = {"solver": getattr(nc, "solver", "") or "(undeclared)",
+               "wall": float(nc["wall_time"][...]),
+               "core": float(nc["core_time"][...]) if "core_time" in nc.variables else np.nan,
+               "effects": {}}
+        if "effect_time" in nc.variables:
+            names = [str(x) for x in nc["timed_effect"][...]]
+            out["effects"] = dict(zip(names, np.asarray(nc["effect_time"][...], float)))
+    return out
+
+
+def effect_cost(run_files) -> list[dict]:
+    """One row per (solver, effect), and a ``(solver core)`` row per solver: the summed time
+    over the runs that used it, and its share of those runs' wall time."""
+    acc: dict[tuple[str, str], list[float]] = {}
+    for f in run_files:
+        t = run_times(f)
+        acc.setdefault((t["solver"], "(solver core)"), []).append((t["core"], t["wall"]))
+        for e, sec in t["effects"].items():
+            acc.setdefault((t["solver"], e), []).append((sec, t["wall"]))
+    rows = []
+    for (solver, effect), v in sorted(acc.items()):
+        sec, wall = np.array(v).T
+        rows.append({"solver": solver, "effect": effect, "runs": len(v),
+                     "time_s": float(np.nansum(sec)),
+                     "share": float(np.nansum(sec) / wall.sum()) if wall.sum() > 0 else np.nan})
+    return rows
+
+
+def benchmark_seconds(tsv: str | Path) -> float:
+    """Wall seconds of one job from Snakemake's benchmark file (NaN if there is none)."""
+    try:
+        with open(tsv, newline="") as f:
+            return float(next(csv.DictReader(f, delimiter="\t"))["s"])
+    except (OSError, StopIteration, KeyError, ValueError):
+        return float("nan")
+
+
+def job_time(paper_root: str | Path, jobs: dict[str, list[str]]) -> list[dict]:
+    root = Path(paper_root)
+    rows = []
+    for job, runs in jobs.items():
+        solve = sum(run_times(root / "runs" / f"{r}.nc")["wall"] for r in runs)
+        rows.append({"job": job, "runs": len(runs), "solve_s": solve,
+                     "job_s": benchmark_seconds(root / "benchmarks" / f"solve__{job}.tsv")})
+    return rows

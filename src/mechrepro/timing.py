@@ -1,0 +1,116 @@
+"""The one timer: what a run costs, split into the solver core and each effect.
+
+The runner (:func:`mechrepro.solve.run_solver`) makes a :class:`Timer` current while a run
+is computed; :meth:`EffectRegistry.evaluate <mechrepro.effects.EffectRegistry.evaluate>`
+times each effect's contribution under ``effect:<name>``, a solver may time its own
+phases with :func:`phase`, and everything not inside an effect is the solver core.  The
+split is stored in the run's netCDF (:func:`timing_variables`) and summed per paper into
+the report's effect-cost table (:mod:`mechrepro.costs`).
+
+Inside a solver, cost-of-accuracy studies that time a piece of work on their own use
+:func:`time_call` (fastest of repeated calls) or :func:`stopwatch`; nothing else in the
+models reads the clock.
+"""
+from __future__ import annotations
+
+import time
+from collections import defaultdict
+from contextlib import contextmanager
+from contextvars import ContextVar
+
+EFFECT = "effect:"
+
+
+class Timer:
+    """Seconds spent per named phase (nested phases are counted in each enclosing one)."""
+
+    def __init__(self):
+        self.phases: dict[str, float] = defaultdict(float)
+
+    @contextmanager
+    def phase(self, name: str):
+        t0 = time.perf_counter()
+        try:
+            yield
+        finally:
+            self.phases[name] += time.perf_counter() - t0
+
+    def effects(self) -> dict[str, float]:
+        return {k.removeprefix(EFFECT): v for k, v in self.phases.items() if k.startswith(EFFECT)}
+
+
+_current: ContextVar[Timer | None] = ContextVar("mechrepro_timer", default=None)
+
+
+@contextmanager
+def phase(name: str):
+    """Time a block under ``name`` in the current run's timer (no-op outside a run)."""
+    timer = _current.get()
+    if timer is None:
+        yield
+        return
+    with timer.phase(name):
+        yield
+
+
+class _Stopwatch:
+    seconds: float = float("nan")
+
+
+@contextmanager
+def stopwatch():
+    """``with stopwatch() as sw: ...`` then ``sw.seconds``: one measured block."""
+    sw = _Stopwatch()
+    t0 = time.perf_counter()
+    try:
+        yield sw
+    finally:
+        sw.seconds = time.perf_counter() - t0
+
+
+def time_call(fn, *args, min_time: float = 0.05, max_repeat: int = 50, **kwargs):
+    """Call ``fn`` until ``min_time`` has elapsed; return (first result, fastest call [s]).
+
+    Fast solves are repeated and the fastest call is kept (as ``timeit`` advises): the
+    other calls measure the machine's other load, not the solver.
+    """
+    result, best, _ = timed_run(fn, *args, min_time=min_time, max_repeat=max_repeat, **kwargs)
+    return result, best
+
+
+def timed_run(fn, *args, min_time: float = 0.05, max_repeat: int = 50, **kwargs):
+    """As :func:`time_call`, each call under a fresh current :class:`Timer`; also returns
+    the phases of the fastest call."""
+    best, best_timer, result, n = float("inf"), None, None, 0
+    t_start = time.perf_counter()
+    while n == 0 or (time.perf_counter() - t_start < min_time and n < max_repeat):
+        timer = Timer()
+        token = _current.set(timer)
+        try:
+            t0 = time.perf_counter()
+            out = fn(*args, **kwargs)
+            dt = time.perf_counter() - t0
+        finally:
+            _current.reset(token)
+        if n == 0:
+            result = out
+        if dt < best:
+            best, best_timer = dt, timer
+        n += 1
+    return result, best, best_timer
+
+
+def timing_variables(seconds: float, timer: Timer | None, effects: list[str]) -> dict:
+    """The run's time split as dataset variables: ``wall_time`` (the solve), ``core_time``
+    (everything but the effects' contributions) and ``effect_time`` over ``timed_effect``."""
+    per = timer.effects() if timer is not None else {}
+    eff = [float(per.get(e, 0.0)) for e in effects]
+    out = {
+        "wall_time": ((), seconds, {"units": "s", "long_name": "wall time of one solve"}),
+        "core_time": ((), max(seconds - sum(eff), 0.0),
+                      {"units": "s", "long_name": "wall time of the solver core (not in an effect)"}),
+    }
+    if effects:
+        out["effect_time"] = (("timed_effect",), eff,
+                              {"units": "s", "long_name": "wall time of each effect's contribution"})
+    return out
