@@ -7,6 +7,7 @@ Notebooks stay short by going through :class:`PaperResults` for every read and w
     st = R.study("cost_of_accuracy")      # the gathered study
     R.save_figure(fig, "fig07")           # results/<paper>/figures/fig07.png
     R.validation()                        # the table validate_<paper> built, for display
+    R.table("cost_of_accuracy")           # the framework's long-form cost of accuracy
 """
 from __future__ import annotations
 
@@ -42,6 +43,13 @@ class PaperResults:
             raise KeyError(f"{self.paper}: figure {name!r} not declared in config 'figures'")
         savefig(fig, self.figure_path(name))
         return self.figure_path(name)
+
+    def table(self, name: str) -> list[dict]:
+        """A written table as rows of dicts (e.g. the framework's ``cost_of_accuracy``,
+        long form: one row per entry, knob value and quantity; see mechrepro.accuracy)."""
+        from .validation import read_table
+
+        return read_table(self.table_path(name))
 
     def validation(self) -> list[dict]:
         """The validation table the framework built (``validate_<paper>``), for display."""
