@@ -23,8 +23,8 @@ venv: $(STAMP)
 ## Reproduce every figure and table of every paper (full resolution): results/report/index.html
 reproduce: $(STAMP)
 	$(BIN)/python -m mechrepro.heal results
-	$(BIN)/python -m mechrepro.plan results -- --cores $(CORES)
-	$(BIN)/snakemake --cores $(CORES) --rerun-incomplete
+	$(BIN)/snakemake --cores $(CORES) --rerun-incomplete; s=$$?; \
+	  $(BIN)/python -m mechrepro.plan results > /dev/null; exit $$s
 
 ## Run every test (unit tests, config errors, pipeline + reference check on the ci profile)
 test: $(STAMP)
@@ -33,8 +33,8 @@ test: $(STAMP)
 ## The fast profile, as CI runs it, into results-ci/
 ci-reproduce: $(STAMP)
 	$(BIN)/python -m mechrepro.heal results-ci
-	$(BIN)/python -m mechrepro.plan results-ci -- --cores $(CORES) --config profile=ci results=results-ci
-	$(BIN)/snakemake --cores $(CORES) --rerun-incomplete --config profile=ci results=results-ci
+	$(BIN)/snakemake --cores $(CORES) --rerun-incomplete --config profile=ci results=results-ci; \
+	  s=$$?; $(BIN)/python -m mechrepro.plan results-ci > /dev/null; exit $$s
 
 ## Deliberately refresh the committed reference numbers of a profile (ci by default;
 ## `make reference REF_PROFILE=default` for the full one): the profile is run once per

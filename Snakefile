@@ -1,4 +1,4 @@
-# mechrepro: config -> parameter files -> solver runs (netCDF) -> notebooks -> report -> archive.
+# mechrepro: config -> solver runs (netCDF) -> validation, notebooks -> report -> archive.
 # Run `make reproduce` (full) or `snakemake --cores 2 --config profile=ci` (fast profile).
 configfile: "config/config.yaml"
 
@@ -10,7 +10,6 @@ wildcard_constraints:
     study="[a-z0-9_]+(@[A-Za-z0-9_]+(-lo|-hi)?)?",
 
 
-include: "workflow/rules/params.smk"
 include: "workflow/rules/solve.smk"
 include: "workflow/rules/notebook.smk"
 include: "workflow/rules/report.smk"
@@ -19,7 +18,6 @@ include: "workflow/rules/report.smk"
 # Cheap bookkeeping runs on the submitting host even under a cluster executor.
 localrules:
     all,
-    run_params,
     gather,
     summary,
     report,

@@ -2,13 +2,12 @@
 from mechrepro.plan import parse, to_html
 
 DRY_RUN = """Building DAG of jobs...
-rule run_params:
-    output: results/saw_chain/params/speed_12000.json
+rule solve_saw_chain__batch:
+    output: results/saw_chain/runs/speed_12000.nc
     reason: Params have changed since last execution: ...
-    wildcards: paper=saw_chain, run=speed_12000
-rule solve:
-    reason: Updated input files: src/mechrepro/models/saw_chain/solver.py
-    wildcards: paper=saw_chain, run=fig07_fig08
+rule gather:
+    reason: Updated input files: results/saw_chain/runs/a-000.nc
+    wildcards: paper=saw_chain, study=a
 rule notebook_saw_chain:
     reason: Missing output files: results/saw_chain/notebook.ipynb
 localrule all:
@@ -19,12 +18,21 @@ localrule all:
 def test_parse_classifies_reasons():
     jobs = parse(DRY_RUN)
     assert [(j["rule"], j["kind"]) for j in jobs] == [
-        ("run_params", "params changed"), ("solve", "input changed"),
+        ("solve_saw_chain__batch", "params changed"), ("gather", "input changed"),
         ("notebook_saw_chain", "missing output"), ("all", "upstream job reruns")]
-    assert jobs[1]["wildcards"] == "paper=saw_chain, run=fig07_fig08"
+    assert jobs[1]["wildcards"] == "paper=saw_chain, study=a"
     page = to_html(jobs)
     assert "3 jobs" in page and "params changed" in page
 
 
 def test_empty_plan_says_nothing_to_do():
     assert "Nothing to be done" in to_html(parse("Building DAG of jobs...\nNothing to be done."))
+
+
+def test_plan_is_read_from_the_run_log(tmp_path):
+    from mechrepro.plan import main
+
+    log = tmp_path / "run.snakemake.log"
+    log.write_text(DRY_RUN)
+    assert main([str(tmp_path / "results"), str(log)]) == 0
+    assert "3 jobs" in (tmp_path / "results" / "rerun_plan.html").read_text()

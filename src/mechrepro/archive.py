@@ -26,7 +26,6 @@ REPORT_ASSETS = ("index.html", "cost_of_accuracy_all.png", "summary.csv", "refer
 
 def _files(results: Path, papers: list[str]) -> list[Path]:
     out = [results / "report" / name for name in REPORT_ASSETS]
-    out += [results / name for name in ("rerun_plan.html", "rerun_plan.txt")]
     for paper in papers:
         root = results / paper
         for sub in ("runs", "studies", "figures", "tables"):

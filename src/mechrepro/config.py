@@ -91,15 +91,28 @@ class PaperConfig:
         return {k: v for k, v in self.raw["parameters"].items() if v.get("assumed")}
 
     def solve_jobs(self) -> dict[str, list[str]]:
-        """{job name: runs it solves}: one job per scene or study (baseline and variants),
-        one per run for the studies the paper fans out (``fan_out:``)."""
-        fan = set(self.raw.get("fan_out", []))
+        """{job name: runs it solves}, granularity by cost as the config declares it:
+        a study under ``fan_out:`` gets one job per run (its points cost seconds each);
+        a scene or study under ``alone:`` one job with its verdict variants; every other
+        run of the paper shares one ``batch`` job (one interpreter start and import)."""
+        fan, alone = set(self.raw.get("fan_out", [])), set(self.raw.get("alone", []))
         jobs: dict[str, list[str]] = {}
         for run, rec in self.runs.items():
             group = rec["study"] or rec["scene"]
-            key = run if group in fan else ("study_" if rec["study"] else "scene_") + group
+            if group in fan:
+                key = run
+            elif group in alone:
+                key = ("study_" if rec["study"] else "scene_") + group
+            else:
+                key = "batch"
             jobs.setdefault(key.replace("@", "__").replace("-", "_"), []).append(run)
         return jobs
+
+    def studies_solved_with(self, runs) -> list[str]:
+        """The studies (and study variants) whose runs are all among ``runs``: a solver job
+        stacks those itself; the others are gathered by the ``gather`` rule."""
+        runs = set(runs)
+        return [s for s, members in self.studies.items() if set(members) <= runs]
 
     def runs_of(self, study: str | None = None) -> list[str]:
         return self.studies[study] if study else list(self.runs)
@@ -469,10 +482,41 @@ def _calibration(raw: dict) -> dict:
 
 
 def load_all(config_dir: str | Path, papers, profile: str = "default",
-             every_profile: bool = True) -> dict[str, PaperConfig]:
+             every_profile: bool = True, cache_dir: str | Path | None = None
+             ) -> dict[str, PaperConfig]:
     """The selected profile of every paper; ``every_profile`` also checks the others, so a
-    bad value in a profile that is not running now is refused now, not mid-way later."""
+    bad value in a profile that is not running now is refused now, not mid-way later.
+
+    With ``cache_dir`` the validated result is kept, keyed by the content of every config
+    and schema file and of the loader's own code: a workflow start with unchanged configs
+    (a no-op decision) skips the validation it already passed."""
     config_dir = Path(config_dir)
+    if cache_dir is not None:
+        import hashlib
+        import pickle
+
+        h = hashlib.sha256(repr((sorted(papers), profile, every_profile)).encode())
+        for f in [*sorted((config_dir / "papers").glob("*.yaml")),
+                  *sorted((config_dir / "schema").glob("*.json")),
+                  Path(__file__), Path(__file__).with_name("units.py")]:
+            h.update(f.name.encode() + b"\0" + f.read_bytes())
+        cached = Path(cache_dir) / f"config-{h.hexdigest()[:32]}.pickle"
+        try:
+            return pickle.loads(cached.read_bytes())
+        except (OSError, EOFError, pickle.UnpicklingError, AttributeError):
+            import os
+            import tempfile
+
+            out = load_all(config_dir, papers, profile, every_profile)
+            cached.parent.mkdir(parents=True, exist_ok=True)
+            fd, tmp = tempfile.mkstemp(dir=cached.parent, suffix=".part")
+            with os.fdopen(fd, "wb") as f:
+                f.write(pickle.dumps(out))
+            os.replace(tmp, cached)   # atomic: a concurrent start reads old or new, whole
+            for old in sorted(cached.parent.glob("config-*.pickle"),
+                              key=lambda f: f.stat().st_mtime)[:-8]:
+                old.unlink(missing_ok=True)   # a few configs (profiles, edits) are enough
+            return out
     out = {p: load_paper(config_dir / "papers" / f"{p}.yaml", profile) for p in papers}
     if every_profile:
         for p, cfg in out.items():

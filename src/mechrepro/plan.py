@@ -1,17 +1,17 @@
-"""Every rerun explained: save the dry-run plan (job, wildcards, reason) before a run.
+"""Every rerun explained: the jobs of the last run (job, wildcards, reason) as a page.
 
-`make reproduce` calls ``python -m mechrepro.plan <results> -- <snakemake args>``, which
-runs ``snakemake -n`` with the same arguments, writes ``<results>/rerun_plan.txt`` (the
-raw dry run) and ``<results>/rerun_plan.html`` (one row per job with its reason: params
-changed, code changed, input changed, missing output ...), and exits with snakemake's
-status.  The report page embeds the last plan.  The plan is not an input of any rule, so
-saving it never triggers a rerun by itself.
+`make reproduce` calls ``python -m mechrepro.plan <results>`` after Snakemake: it reads the
+run's own log (the newest ``.snakemake/log/*.snakemake.log``, where Snakemake writes each
+job's reason as it starts it; so the workflow is parsed once, not a second time for a dry
+run) and writes ``<results>/rerun_plan.txt`` (the log) and ``<results>/rerun_plan.html``
+(one row per job with its reason: params changed, code changed, input changed, missing
+output ...).  The report page embeds the last plan.  The plan is not an input of any rule,
+so saving it never triggers a rerun by itself.
 """
 from __future__ import annotations
 
 import html
 import re
-import subprocess
 import sys
 from collections import Counter
 from pathlib import Path
@@ -61,19 +61,24 @@ def to_html(jobs: list[dict]) -> str:
                f"{rows}</table>" if rows else "<p>Nothing to be done: every result is up to date.</p>"))
 
 
+def latest_log(workdir: str | Path = ".") -> Path | None:
+    logs = sorted(Path(workdir, ".snakemake", "log").glob("*.snakemake.log"))
+    return logs[-1] if logs else None
+
+
 def main(argv: list[str]) -> int:
-    results, rest = argv[0], argv[argv.index("--") + 1:]
-    proc = subprocess.run([sys.executable, "-m", "snakemake", "-n", *rest],
-                          capture_output=True, text=True)
-    out = proc.stdout + proc.stderr
-    if proc.returncode != 0:
-        sys.stderr.write(out)
-        return proc.returncode
+    """``python -m mechrepro.plan RESULTS [SNAKEMAKE_LOG]``"""
+    results = Path(argv[0])
+    log = Path(argv[1]) if len(argv) > 1 else latest_log()
+    if log is None or not log.exists():
+        sys.stderr.write("rerun plan: no Snakemake log found\n")
+        return 1
+    out = log.read_text()
     jobs = parse(out)
-    write_text(Path(results) / "rerun_plan.txt", out)
-    write_text(Path(results) / "rerun_plan.html", to_html(jobs))
+    write_text(results / "rerun_plan.txt", out)
+    write_text(results / "rerun_plan.html", to_html(jobs))
     n = sum(j["rule"] != "all" for j in jobs)
-    print(f"rerun plan: {n} jobs -> {results}/rerun_plan.html")
+    print(f"rerun plan: {n} jobs ran -> {results}/rerun_plan.html")
     return 0
 
 

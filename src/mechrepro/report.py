@@ -138,7 +138,7 @@ def summary_section(out_dir: Path) -> str:
                                for r in rows) + "</table>")
     if (out_dir.parent / "rerun_plan.html").exists():  # saved by `make reproduce`
         parts.append("<h2>Last rerun plan</h2><p class='note'>Why each job of the last "
-                     "<code>make reproduce</code> ran (saved before the run by "
+                     "<code>make reproduce</code> ran (from Snakemake's log of that run, by "
                      "<code>python -m mechrepro.plan</code>).</p>"
                      '<iframe src="../rerun_plan.html" style="width:100%;height:320px;'
                      'border:1px solid #ccc"></iframe>')

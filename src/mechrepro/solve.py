@@ -1,15 +1,14 @@
-"""Run one solver job: params JSON in, provenance-stamped netCDF out (the Snakemake edge)."""
+"""Run one solver job: run records from the config in, provenance-stamped netCDF out (the
+Snakemake edge)."""
 from __future__ import annotations
 
 import importlib
-import json
 import os
 import sys
 import time
 from pathlib import Path
 
 from .timing import timed_run, timing_variables
-from .io import write_dataset
 
 
 def model(paper: str):
@@ -54,26 +53,44 @@ def blas_threads() -> None:
         threadpool_limits(int(n), user_api="blas")
 
 
-def main(pairs: list[str]) -> None:
-    """Solve ``params.json out.nc [params.json out.nc ...]`` in one process.
+def main(argv: list[str]) -> None:
+    """``python -m mechrepro.solve PAPER CONFIG_DIR PROFILE RESULTS RUN [RUN ...]``
 
-    Cheap runs share one job (one interpreter start, one import of the model) instead of
-    paying both per run; each run is still timed and written on its own.
+    Solves the named runs of one paper in one process (one interpreter start, one import
+    of the model) and writes ``RESULTS/PAPER/runs/<run>.nc`` for each, then stacks every
+    study whose runs were all solved here into ``RESULTS/PAPER/studies/<study>.nc``.  The
+    run records come from the validated config (the workflow passes them to Snakemake as
+    params too, so a changed record reruns exactly its job).
     """
+    if len(argv) < 5:
+        raise SystemExit("usage: python -m mechrepro.solve PAPER CONFIG_DIR PROFILE RESULTS RUN [RUN ...]")
+    paper, config_dir, profile, results, names = argv[0], argv[1], argv[2], Path(argv[3]), argv[4:]
     blas_threads()
-    if len(pairs) % 2:
-        raise SystemExit("usage: python -m mechrepro.solve PARAMS.json OUT.nc [...]")
-    n = len(pairs) // 2
-    for i in range(n):
-        params_json, out_nc = pairs[2 * i], pairs[2 * i + 1]
-        run = json.loads(Path(params_json).read_text())
+    from .config import load_all
+    from .io import gather_study, write_dataset
+
+    cfg = load_all(config_dir, [paper], profile, every_profile=False,
+                   cache_dir=".snakemake/mechrepro")[paper]
+    unknown = [r for r in names if r not in cfg.runs]
+    if unknown:
+        raise SystemExit(f"{paper} ({profile}): no such run(s) {unknown}")
+    root = results / paper
+    n = len(names)
+    for i, name in enumerate(names):
+        run = cfg.runs[name]
         t0 = time.perf_counter()
-        print(f"[{run['paper']} {i + 1}/{n}] {run['run']}: effects={run['effects']} "
+        print(f"[{paper} {i + 1}/{n}] {name}: solver={run.get('solver')} effects={run['effects']} "
               f"resolution={run['resolution']}", flush=True)
         ds = run_solver(run)
-        write_dataset(ds, out_nc, run)
-        print(f"[{run['paper']} {i + 1}/{n}] {run['run']}: solve {ds.attrs['wall_time_s']:.4g} s, "
-              f"total {time.perf_counter() - t0:.3g} s -> {out_nc}", flush=True)
+        write_dataset(ds, root / "runs" / f"{name}.nc", run)
+        print(f"[{paper} {i + 1}/{n}] {name}: solve {ds.attrs['wall_time_s']:.4g} s, "
+              f"total {time.perf_counter() - t0:.3g} s", flush=True)
+    done = set(names)
+    for study, runs in cfg.studies.items():
+        if set(runs) <= done:
+            write_dataset(gather_study([root / "runs" / f"{r}.nc" for r in runs]),
+                          root / "studies" / f"{study}.nc")
+            print(f"[{paper}] study {study}: {len(runs)} runs stacked", flush=True)
 
 
 if __name__ == "__main__":

@@ -19,7 +19,8 @@ PROFILE = config["profile"]
 RESULTS = config["results"]
 PAPERS = config["papers"]
 try:
-    CFG = load_all(BASE / "config", PAPERS, PROFILE)
+    # validated once per content of the configs, schemas and loader (a no-op start is fast)
+    CFG = load_all(BASE / "config", PAPERS, PROFILE, cache_dir=".snakemake/mechrepro")
 except ConfigError as exc:
     sys.stderr.write(f"\n{exc}\n\n")
     raise SystemExit(1)
@@ -44,7 +45,7 @@ def code(*relpaths):
 
 # The framework modules every solver job imports.
 SOLVER_CORE = ["__init__.py", "solve.py", "io.py", "provenance.py", "timing.py", "effects.py",
-               "units.py"]
+               "units.py", "config.py"]
 VALIDATE_CORE = ["__init__.py", "cli.py", "config.py", "units.py", "io.py", "validation.py",
                  "accuracy.py", "costs.py"]
 NOTEBOOK_CORE = ["__init__.py", "config.py", "units.py", "io.py", "results.py",
@@ -62,9 +63,9 @@ def solve_jobs(paper):
     return CFG[paper].solve_jobs()
 
 
-def run_json(wc):
-    """A run record as a plain JSON string: Snakemake's params trigger sees every change."""
-    return json.dumps(CFG[wc.paper].runs[wc.run], indent=2, sort_keys=True)
+def records_of(paper, runs):
+    """The run records of a job as one plain JSON string (params: any change reruns it)."""
+    return json.dumps({r: CFG[paper].runs[r] for r in runs}, sort_keys=True)
 
 
 def paper_config(paper):

@@ -1,9 +1,11 @@
-# Solver jobs, and gather, which stacks a study's runs into one dataset.
+# Solver jobs, and gather, which stacks the runs of a fanned-out study into one dataset.
 #
-# Job granularity follows cost: the runs of one scene or study (its points and its verdict
-# variants) are solved in one job, paying the interpreter start and the imports once;
-# a study a paper lists under `fan_out:` (each run costs seconds) gets one job per run,
-# so they spread over cores and cluster nodes.  A changed run reruns its own job only.
+# Job granularity follows cost, as each paper's config declares it (PaperConfig.solve_jobs):
+# every cheap run of a paper (scenes, study points, their verdict variants) is solved in one
+# `batch` job, paying the interpreter start and the imports once, and that job stacks its
+# studies itself; a scene or study under `alone:` gets a job of its own; a study under
+# `fan_out:` one job per run, so they spread over cores and cluster nodes.  The run records
+# are the job's params: a changed record reruns exactly the job that solves it.
 
 for _paper in PAPERS:
     for _job, _runs in solve_jobs(_paper).items():
@@ -12,14 +14,22 @@ for _paper in PAPERS:
             name:
                 f"solve_{_paper}__{_job}"
             input:
-                params=[f"{RESULTS}/{_paper}/params/{r}.json" for r in _runs],
+                config=paper_config(_paper),
                 code=model_code(_paper),
             output:
-                [f"{RESULTS}/{_paper}/runs/{r}.nc" for r in _runs],
+                runs=[f"{RESULTS}/{_paper}/runs/{r}.nc" for r in _runs],
+                studies=[f"{RESULTS}/{_paper}/studies/{s}.nc"
+                         for s in CFG[_paper].studies_solved_with(_runs)],
             params:
                 python=RUN["python"],
-                pairs=lambda wc, input, output: " ".join(
-                    f"{i} {o}" for i, o in zip(input.params, output)),
+                paper=_paper,
+                profile=PROFILE,
+                base=RUN["base"],
+                results=lambda wc, output: str(Path(output.runs[0]).parents[2]),
+                runs=" ".join(_runs),
+                # the resolved run records: Snakemake's params trigger reruns this job
+                # when one of them changes, and only then
+                records=records_of(_paper, _runs),
             log:
                 f"{RESULTS}/{_paper}/logs/solve/{_job}.log",
             benchmark:
@@ -28,7 +38,14 @@ for _paper in PAPERS:
                 mem_mb=2000,
                 runtime=30,
             shell:
-                "{params.python} -m mechrepro.solve {params.pairs} > {log} 2>&1"
+                "{params.python} -m mechrepro.solve {params.paper} {params.base}/config "
+                "{params.profile} {params.results} {params.runs} > {log} 2>&1"
+
+
+def _fanned_out_studies():
+    return "|".join(s for p in PAPERS for s in CFG[p].studies
+                    if not any(s in CFG[p].studies_solved_with(r)
+                               for r in solve_jobs(p).values())) or "^$"
 
 
 rule gather:
@@ -38,6 +55,8 @@ rule gather:
         code=code("io.py", "cli.py"),
     output:
         f"{RESULTS}/{{paper}}/studies/{{study}}.nc",
+    wildcard_constraints:
+        study=_fanned_out_studies(),
     params:
         python=RUN["python"],
     log:
