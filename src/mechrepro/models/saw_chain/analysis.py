@@ -13,7 +13,8 @@ from scipy.optimize import minimize_scalar
 
 from .geometry import stage_angles
 from .kinematics import stage_derivatives
-from .solver import Chain, difference_method
+from .chain import Chain
+from .solver import load_x
 
 
 def observed_order(K, err, truncation, roundoff, margin=100.0):
@@ -53,7 +54,7 @@ def error_model_optimum(K, err):
 
 def load_extreme_at(chain: Chain, K: int, fn=np.max) -> float:
     """Maximum (or ``fn``) of the difference-method load x over one period at K steps per stage."""
-    return float(fn(difference_method(replace(chain, K=int(K)), {})["dynamic_load_x"][0]))
+    return float(fn(load_x(replace(chain, K=int(K)))))
 
 
 def load_max_at(chain: Chain, K: int) -> float:
