@@ -87,3 +87,13 @@ def test_each_effect_is_timed_apart_from_the_solver_core():
     assert set(times) == {"textbook", "exact_reference"} and all(t > 0 for t in times.values())
     assert 0 < float(ds["core_time"]) < float(ds["wall_time"])
     assert float(ds["core_time"]) + sum(times.values()) == pytest.approx(float(ds["wall_time"]))
+
+
+def test_the_solver_named_as_an_effect_is_refused_at_load(edit_config):
+    """The old spelling (the method listed among the effects) stops before any job."""
+    from mechrepro.config import ConfigError
+
+    path = edit_config("saw_chain", lambda r: r["scenes"]["speed_12000"]["effects"].append(
+        "difference_method"))
+    with pytest.raises(ConfigError, match="'difference_method' is not a declared effect"):
+        load_paper(path)

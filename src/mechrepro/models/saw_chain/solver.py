@@ -14,7 +14,7 @@ import xarray as xr
 
 from mechrepro.units import var
 
-from .chain import Chain, chain_from_run, join_stages
+from .chain import Chain, chain_from_run
 from .difference import backward_differences, check_roundoff, roundoff_load, truncation_load
 from .effects import EFFECTS, Context
 from .kinematics import stage_positions
@@ -34,7 +34,7 @@ def difference_method(chain: Chain, beyond_roundoff_limit: bool = False) -> dict
     Eqs. (11)-(13) in stage 1 (drive link seating, from V^0 = R omega, a^0 = 0 at O2 and
     A1), Eqs. (17)-(19) in stage 2 (tie strap seating, from O2's values at t1 for both A2
     and O3, Sec. 3.3 (2)); loads Eqs. (14)-(16) and (20)-(22).  Also the run's error
-    budget (:mod:`.difference`); K beyond the round-off limit is refused unless allowed.
+    budget (:func:`error_budget`); K beyond the round-off limit is refused unless allowed.
     """
     R, w, K = chain.R, chain.omega, chain.K
     limit = chain.roundoff_limit()
@@ -55,16 +55,25 @@ def difference_method(chain: Chain, beyond_roundoff_limit: bool = False) -> dict
         vx[dst], ax[dst], Fx[dst], Fy[dst] = vt[src], at[src], Fsx[src], Fsy[src]
         v_trail = v_mid = vt[-1]
         a_trail = a_mid = at[-1]
-    truncation = max(truncation_load(T / K, J)
-                     for T, J in zip(chain.stage_times(), chain.load_jerk_max()))
     return {
         "tight_side_velocity": var("t", vx, "m/s", "tight-side velocity, difference method (Eqs. 12, 18)"),
         "tight_side_acceleration": var("t", ax, "m/s2",
                                        "tight-side acceleration, difference method (Eqs. 13, 19)"),
         "dynamic_load_x": var("t", Fx, "N", "total tight-side dynamic load x, difference method (Eqs. 16, 22)"),
         "dynamic_load_y": var("t", Fy, "N", "dynamic load y of the seating link, difference method (Eqs. 16, 22)"),
-        "roundoff_load_bound": var((), roundoff_load(min(chain.stage_times()) / K, chain.Tx + R,
-                                                     chain.roundoff_mass()), "N",
+        **error_budget(chain, limit, dominated),
+    }
+
+
+def error_budget(chain: Chain, limit: int, dominated: bool) -> dict:
+    """The run's error budget (:mod:`.difference`): round-off bound and truncation estimate
+    of one load sample, the round-off limit of K and whether this K is beyond it."""
+    K = chain.K
+    truncation = max(truncation_load(T / K, J)
+                     for T, J in zip(chain.stage_times(), chain.load_jerk_max()))
+    roundoff = roundoff_load(min(chain.stage_times()) / K, chain.Tx + chain.R, chain.roundoff_mass())
+    return {
+        "roundoff_load_bound": var((), roundoff, "N",
                                    "bound of round-off in a load sample (second backward difference)"),
         "truncation_load_estimate": var((), truncation, "N",
                                         "leading truncation error of a load sample, dt max|dF/dt|"),
