@@ -29,22 +29,27 @@ config_file = "config/papers/saw_chain.yaml"
 profile = "default"
 
 # %%
-import numpy as np
-
-from mechrepro.accuracy import cost_of_accuracy, plot
+from mechrepro import accuracy
 from mechrepro.io import run_attrs
+from mechrepro.models.saw_chain.analysis import (error_budget_relative, load_range_against_K,
+                                                 paper_band, stage_one_end)
 from mechrepro.plotting import plt
 from mechrepro.results import PaperResults
-from mechrepro.units import to_si
-from mechrepro.validation import read_table
+from mechrepro.units import from_si
 
 R = PaperResults(paper, results_dir, config_file, profile)
 fig_run, study = R.run("fig07_fig08"), R.study("cost_of_accuracy")
-reported = R.cfg.reported
-table = {r["quantity"]: r for r in read_table(R.table_path("validation"))}
+table = {r["quantity"]: r for r in R.validation()}
+coa = R.table("cost_of_accuracy")
 K = run_attrs(fig_run)["resolution"]["K"]
-t_ms = fig_run["t"] / to_si(1.0, "ms")[0]
-t1_ms = float(t_ms[K])
+t_ms = from_si(fig_run["t"], "ms")
+t1_ms = from_si(stage_one_end(fig_run), "ms")
+
+
+def value(q, column="reproduced_value"):
+    """A number of the validation table (in its row's unit)."""
+    return float(table[q][column])
+
 
 # %% [markdown]
 # ## Fig. 7 — tight-side velocity over one period
@@ -54,18 +59,17 @@ t1_ms = float(t_ms[K])
 # in the authors' program (rows `velocity_band_*_pair_chord`). The model keeps Eq. (1).
 
 # %%
-measured = reported["measured_velocity_mean"]
+lo, hi = paper_band(table["measured_velocity_mean"])
 fig, ax = plt.subplots(figsize=(6.5, 4))
 ax.plot(t_ms, fig_run["tight_side_velocity"], "-", label=f"difference method (K={K})")
 ax.plot(t_ms, fig_run["tight_side_velocity_exact"], ":", color="k", label="exact derivative")
 ax.plot(t_ms, fig_run["tight_side_velocity_textbook"], "--", label="textbook, Eq. (23)")
-half = measured["value"] * measured["tolerance"]
-ax.axhspan(measured["value"] - half, measured["value"] + half, color="tab:green", alpha=0.15,
-           label=f"measured {measured['value']} ± {half:.1f} m/s")
+ax.axhspan(lo, hi, color="tab:green", alpha=0.15,
+           label=f"measured {value('measured_velocity_mean', 'paper_value')} ± {(hi - lo) / 2:.1f} m/s")
 for q in ("tight_side_velocity_min", "tight_side_velocity_max"):
-    ax.axhline(reported[q]["value"], color="tab:red", lw=0.8, ls="-.")
+    ax.axhline(value(q, "paper_value"), color="tab:red", lw=0.8, ls="-.")
 for q in ("velocity_band_min_pair_chord", "velocity_band_max_pair_chord"):
-    ax.axhline(float(table[q]["reproduced_value"]), color="tab:purple", lw=0.8, ls=(0, (1, 2)))
+    ax.axhline(value(q), color="tab:purple", lw=0.8, ls=(0, (1, 2)))
 ax.plot([], [], color="tab:red", ls="-.", lw=0.8, label="paper's predicted band")
 ax.plot([], [], color="tab:purple", ls=(0, (1, 2)), lw=0.8, label="exact band, R = (p1+p2)/(2 sin(π/z))")
 ax.axvline(t1_ms, color="gray", lw=0.5)
@@ -89,7 +93,7 @@ ax.plot(t_ms, fig_run["dynamic_load_x_exact"], ":", color="k", label="exact deri
 ax.plot(t_ms, fig_run["dynamic_load_x_textbook"], "--", label="textbook, Eq. (23)")
 for q, c in (("dynamic_load_min", "tab:blue"), ("dynamic_load_max", "tab:blue"),
              ("textbook_load_min", "tab:orange"), ("textbook_load_max", "tab:orange")):
-    ax.axhline(reported[q]["value"], color=c, lw=0.7, ls="-.")
+    ax.axhline(value(q, "paper_value"), color=c, lw=0.7, ls="-.")
 ax.plot([], [], color="gray", ls="-.", lw=0.7, label="paper's ranges (Sec. 4)")
 ax.axvline(t1_ms, color="gray", lw=0.5)
 ax.set(xlabel="t [ms]", ylabel="dynamic load F_dx [N]", title="Fig. 8")
@@ -104,18 +108,16 @@ R.save_figure(fig, "fig08")
 # −73.67 N. Beyond the round-off limit (grey, refused outside this study) noise moves both.
 
 # %%
-Ks = study["K"].values
-K_eq = float(table["paper_equivalent_k"]["reproduced_value"])
+rng = load_range_against_K(study)
 fig, ax = plt.subplots(1, 2, figsize=(9, 3.6))
-for a, q, paper_q in ((ax[0], "dynamic_load_x_max", "dynamic_load_max"),
-                      (ax[1], "dynamic_load_x_min", "dynamic_load_min")):
-    a.semilogx(Ks, study[q], "o-", label="difference method")
-    a.axhline(float(study[q.replace("_x_", "_x_exact_")][0]), color="k", ls=":", label="exact")
-    a.axhline(reported[paper_q]["value"], color="tab:red", ls="-.", label="paper")
-    a.axvspan(float(table["roundoff_limit_k"]["reproduced_value"]), Ks.max(), color="gray",
-              alpha=0.15, lw=0)
-    a.set(xlabel="K (steps per stage)", ylabel=f"{q.rsplit('_', 1)[1]} F_dx [N]")
-ax[0].axvline(K_eq, color="tab:red", lw=0.6)
+for a, end, paper_q in ((ax[0], "max", "dynamic_load_max"), (ax[1], "min", "dynamic_load_min")):
+    method, exact = rng[end]
+    a.semilogx(rng["K"], method, "o-", label="difference method")
+    a.axhline(exact, color="k", ls=":", label="exact")
+    a.axhline(value(paper_q, "paper_value"), color="tab:red", ls="-.", label="paper")
+    a.axvspan(value("roundoff_limit_k"), rng["K"].max(), color="gray", alpha=0.15, lw=0)
+    a.set(xlabel="K (steps per stage)", ylabel=f"{end} F_dx [N]")
+ax[0].axvline(value("paper_equivalent_k"), color="tab:red", lw=0.6)
 ax[0].legend(fontsize=7)
 fig.suptitle("saw_chain: load range vs K")
 R.save_figure(fig, "k_dependence")
@@ -123,38 +125,26 @@ R.save_figure(fig, "k_dependence")
 # %% [markdown]
 # ## Cost of accuracy
 # Pointwise errors against the exact derivative (stage-switch sample excluded and shown on
-# its own), and the wall time of the difference method alone (not its reference). Left:
-# first-order truncation (slope −1, the solver's estimate dt·max|dF/dt| dashed) down to an
-# optimum, then round-off growing like K² (the solver's bound dotted); the solver refuses
-# K beyond the grey line unless a study asks for it. Right: error against time.
+# its own), and the time of the solver core: the difference method alone, its exact
+# reference timed apart (the framework's `tables/cost_of_accuracy.csv`, config `accuracy:`).
+# Left: first-order truncation (slope −1, the solver's estimate dt·max|dF/dt| dashed) down
+# to an optimum, then round-off growing like K² (the solver's bound dotted); the solver
+# refuses K beyond the grey line unless a study asks for it. Right: error against time.
 
 # %%
-coa = cost_of_accuracy(paper, "K", Ks, study["wall_time_difference_method"].values,
-                       {"load_pointwise": study["dynamic_load_x_error_pointwise"].values,
-                        "load_pointwise_rms": study["dynamic_load_x_error_pointwise_rms"].values,
-                        "load_stage_switch": study["dynamic_load_x_error_switch"].values,
-                        "velocity_pointwise": study["tight_side_velocity_error_pointwise"].values},
-                       reference="exact", description="difference method alone vs exact derivative")
-R.write_dataset(coa, "cost_of_accuracy")
-names = [v for v in coa.data_vars if v.startswith("error_")]
-R.write_table("cost_of_accuracy", ["K", "wall_time_s"] + names,
-              [[int(k), float(coa["wall_time"][i])] + [float(coa[n][i]) for n in names]
-               for i, k in enumerate(coa["resolution"].values)])
-peak = float(study["dynamic_load_x_exact_max"][0])
+budget = error_budget_relative(study)
 fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
-for n in names:
-    ax[0].loglog(coa["resolution"], coa[n], "o-", label=n.removeprefix("error_"))
-ax[0].loglog(Ks, study["truncation_load_estimate"] / peak, "--", color="gray", lw=0.8,
-             label="truncation estimate")
-ax[0].loglog(Ks, study["roundoff_load_bound"] / peak, ":", color="gray", lw=0.8,
-             label="round-off bound")
-ax[0].axvline(float(table["roundoff_limit_k"]["reproduced_value"]), color="gray", lw=0.6)
-ax[0].axvline(float(table["roundoff_optimum_k"]["reproduced_value"]), color="tab:green", lw=0.6,
-              ls="--", label="fitted optimum")
+for q in dict.fromkeys(r["quantity"] for r in coa):
+    rows = [r for r in coa if r["quantity"] == q]
+    ax[0].loglog([int(r["knob_value"]) for r in rows], [float(r["error"]) for r in rows], "o-", label=q)
+ax[0].loglog(budget["K"], budget["truncation"], "--", color="gray", lw=0.8, label="truncation estimate")
+ax[0].loglog(budget["K"], budget["roundoff"], ":", color="gray", lw=0.8, label="round-off bound")
+ax[0].axvline(value("roundoff_limit_k"), color="gray", lw=0.6)
+ax[0].axvline(value("roundoff_optimum_k"), color="tab:green", lw=0.6, ls="--", label="fitted optimum")
 ax[0].set(xlabel="K (steps per stage)", ylabel="relative error vs exact", ylim=(1e-9, 2))
 ax[0].grid(True, which="both", alpha=0.3)
 ax[0].legend(fontsize=7)
-plot(coa, ax[1])
+accuracy.plot(coa, ax=ax[1])  # the headline entry (the first of accuracy:)
 R.save_figure(fig, "cost_of_accuracy")
 
 # %% [markdown]

@@ -40,7 +40,7 @@ def test_unknown_effect_lists_allowed(edit_config):
     with pytest.raises(ConfigError) as e:
         load_paper(path)
     msg = str(e.value)
-    assert "fig07_fig08" in msg and "'warp_drive'" in msg and "difference_method" in msg
+    assert "fig07_fig08" in msg and "'warp_drive'" in msg and "effects: exact_reference, textbook" in msg
 
 
 def test_missing_parameter_is_named(edit_config):

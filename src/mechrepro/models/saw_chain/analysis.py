@@ -13,7 +13,8 @@ from scipy.optimize import minimize_scalar
 
 from .geometry import stage_angles
 from .kinematics import stage_derivatives
-from .solver import Chain, difference_method
+from .chain import Chain
+from .solver import load_x
 
 
 def observed_order(K, err, truncation, roundoff, margin=100.0):
@@ -53,7 +54,7 @@ def error_model_optimum(K, err):
 
 def load_extreme_at(chain: Chain, K: int, fn=np.max) -> float:
     """Maximum (or ``fn``) of the difference-method load x over one period at K steps per stage."""
-    return float(fn(difference_method(replace(chain, K=int(K)), {})["dynamic_load_x"][0]))
+    return float(fn(load_x(replace(chain, K=int(K)))))
 
 
 def load_max_at(chain: Chain, K: int) -> float:
@@ -143,3 +144,41 @@ def time_mean(t, v):
     """Time mean of a sampled signal over its span (trapezoidal rule)."""
     t, v = np.asarray(t, float), np.asarray(v, float)
     return float(np.trapezoid(v, t) / (t[-1] - t[0]))
+
+
+def stage_one_end(ds) -> float:
+    """t1 of a run [s]: the end of stage 1, when the drive link O1O2 is seated (Eq. 5)."""
+    t, stage = ds["t"].values, ds["stage"].values
+    return float(t[stage == 1][-1])
+
+
+def load_range_against_K(study) -> dict:
+    """The difference method's load extremes along the K study, and the exact ones.
+
+    The exact extremes (analytic derivatives of Eqs. 7-10) do not depend on K up to the
+    sampling of the period; those of the study's first run are the reference.
+    Returns {"K": K, "max": (method, exact), "min": (method, exact)}.
+    """
+    return {"K": study["K"].values,
+            "max": (study["dynamic_load_x_max"].values, float(study["dynamic_load_x_exact_max"][0])),
+            "min": (study["dynamic_load_x_min"].values, float(study["dynamic_load_x_exact_min"][0]))}
+
+
+def error_budget_relative(study) -> dict:
+    """The solver's a-priori error budget along the K study, relative to the exact peak load.
+
+    ``truncation``: dt max|dF/dt| (the leading term of Eqs. 13, 19), falling like 1/K;
+    ``roundoff``: 4 eps x m / dt^2 of the second backward difference, growing like K^2
+    (see :mod:`.difference`).  Returns {"K", "truncation", "roundoff"}.
+    """
+    peak = float(study["dynamic_load_x_exact_max"][0])
+    return {"K": study["K"].values,
+            "truncation": study["truncation_load_estimate"].values / peak,
+            "roundoff": study["roundoff_load_bound"].values / peak}
+
+
+def paper_band(row: dict) -> tuple[float, float]:
+    """The band a validation row accepts around the paper's value: value (1 -+ tolerance),
+    in the row's unit (e.g. the measured 14.6 +- 0.1 m/s of Fig. 7)."""
+    value, tol = float(row["paper_value"]), float(row["tolerance"])
+    return value - abs(value) * tol, value + abs(value) * tol

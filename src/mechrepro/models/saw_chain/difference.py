@@ -85,5 +85,5 @@ def check_roundoff(K, limit, allow=False):
         raise RoundoffError(
             f"K={K}: beyond K={limit} the round-off of the second backward difference "
             f"exceeds its truncation error, so the loads get less accurate, not more. "
-            f"Use K <= {limit} (or the exact_reference effect).")
+            f"Use K <= {limit}.")
     return K > limit

@@ -1,0 +1,71 @@
+"""The saw_chain effects: outputs computed beside the difference method, on its time grid.
+
+Neither is physics the difference method could add or leave out; each is a second model
+of the same period that a scene asks for by name (declared in ``config/papers/saw_chain.yaml``,
+which says why they are effects and not solvers).  Each is a pure function of the
+solver's :class:`Context` returning dataset variables (``mechrepro.units.var``) keyed by
+the names its declaration ``contributes``; it is evaluated, and timed, only when named.
+
+- ``exact_reference``: analytic time derivatives of the closed-form positions of
+  Eqs. (7)-(10), loaded as Eqs. (14)-(16), (20)-(22): the converged reference the
+  difference method is measured against.
+- ``textbook``: the textbook model of the polygon effect, Eq. (23).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from mechrepro.effects import EffectRegistry
+from mechrepro.units import var
+
+from .chain import Chain, join_stages
+from .kinematics import stage_derivatives
+from .loads import dynamic_load, textbook_velocity_load
+
+EFFECTS = EffectRegistry("saw_chain")
+
+
+@dataclass(frozen=True)
+class Context:
+    """What an effect sees: the chain of the run, its time grid and the constants of Eq. (23)."""
+    chain: Chain
+    t: np.ndarray
+    textbook_phase: float
+    textbook_mass: float
+
+
+@EFFECTS.register("exact_reference")
+def exact_reference(ctx: Context) -> dict:
+    """Velocity, acceleration and loads from the exact derivatives of Eqs. (7)-(10)."""
+    chain = ctx.chain
+    vx, ax, Fx, Fy = [], [], [], []
+    for L, m_link, phi in chain.stages():
+        d = stage_derivatives(phi, chain.R, L, chain.omega)
+        fx, fy = dynamic_load(m_link, d["mid_ax"], d["mid_ay"], chain.m_tight, d["trail_ax"])
+        vx.append(d["trail_vx"]), ax.append(d["trail_ax"]), Fx.append(fx), Fy.append(fy)
+    return {
+        "tight_side_velocity_exact": var("t", join_stages(*vx), "m/s",
+                                         "tight-side velocity, exact derivative"),
+        "tight_side_acceleration_exact": var("t", join_stages(*ax), "m/s2",
+                                             "tight-side acceleration, exact derivative"),
+        "dynamic_load_x_exact": var("t", join_stages(*Fx), "N",
+                                    "total tight-side dynamic load x, exact derivative"),
+        "dynamic_load_y_exact": var("t", join_stages(*Fy), "N",
+                                    "dynamic load y of the seating link, exact derivative"),
+    }
+
+
+@EFFECTS.register("textbook")
+def textbook(ctx: Context) -> dict:
+    """The textbook model, Eq. (23), with its phase theta and mass on the solver's grid."""
+    chain = ctx.chain
+    v, a, F = textbook_velocity_load(ctx.t, chain.R, chain.omega, ctx.textbook_phase,
+                                     ctx.textbook_mass)
+    return {
+        "tight_side_velocity_textbook": var("t", v, "m/s", "tight-side velocity, textbook Eq. (23)"),
+        "tight_side_acceleration_textbook": var("t", a, "m/s2",
+                                                "tight-side acceleration, textbook Eq. (23)"),
+        "dynamic_load_x_textbook": var("t", F, "N", "dynamic load, textbook Eq. (23)"),
+    }

@@ -1,0 +1,99 @@
+"""saw_chain effect protocol: the difference_method solver runs exactly the effects a scene
+names, each one named changes what the scene outputs, and each is timed apart from the core."""
+import copy
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mechrepro.config import load_paper
+from mechrepro.models.saw_chain import EFFECTS, solve
+from mechrepro.solve import run_solver
+
+CONFIG = Path(__file__).resolve().parents[1] / "config" / "papers" / "saw_chain.yaml"
+CFG = load_paper(CONFIG, "ci")
+
+
+def small(scene, K=50, effects=None):
+    """A config scene's run at small K (optionally naming other effects), timed once."""
+    run = copy.deepcopy(CFG.runs[scene])
+    run["resolution"] = {"K": K}
+    run["options"] = {**run.get("options", {}), "timing_min_s": 0.0}
+    if effects is not None:
+        run["effects"] = list(effects)
+        run["contributes"] = {e: CFG.raw["effects"][e]["contributes"] for e in effects}
+    return run
+
+
+def _raising(name):
+    def boom(ctx):
+        raise AssertionError(f"effect {name!r} evaluated although the scene did not name it")
+    return boom
+
+
+@pytest.mark.parametrize("scene", list(CFG.raw["scenes"]))
+def test_effects_a_scene_does_not_name_are_never_evaluated(scene, monkeypatch):
+    """Raising registry, for every scene of the one solver (difference_method)."""
+    run = small(scene)
+    assert run["solver"] == "difference_method"
+    for name in EFFECTS.names:
+        if name not in run["effects"]:
+            monkeypatch.setitem(EFFECTS._effects, name, _raising(name))
+    ds = run_solver(run)
+    for name, spec in CFG.raw["effects"].items():
+        for key in spec["contributes"]:
+            assert (key in ds) == (name in run["effects"]), (name, key)
+    assert np.all(np.isfinite(ds["dynamic_load_x"].values))
+
+
+def test_the_solver_alone_runs_without_any_effect(monkeypatch):
+    for name in EFFECTS.names:
+        monkeypatch.setitem(EFFECTS._effects, name, _raising(name))
+    ds = run_solver(small("accuracy", effects=[]))
+    assert "dynamic_load_x" in ds and "dynamic_load_x_error_pointwise" not in ds
+
+
+def test_exact_reference_adds_the_reference_and_the_errors_against_it():
+    off = solve(small("accuracy", K=200, effects=[]))
+    on = solve(small("accuracy", K=200, effects=["exact_reference"]))
+    assert set(on.data_vars) - set(off.data_vars) >= {
+        "dynamic_load_x_exact", "dynamic_load_x_error_pointwise", "tight_side_velocity_error_pointwise"}
+    # the difference method itself is untouched by its reference
+    np.testing.assert_array_equal(on["dynamic_load_x"].values, off["dynamic_load_x"].values)
+    err = float(on["dynamic_load_x_error_pointwise"])
+    assert 0 < err < 5.0 / 200  # first order against a reference that differs from the method
+
+
+def test_textbook_adds_eq23_which_differs_from_the_difference_method():
+    off = solve(small("speed_12000", K=200, effects=[]))
+    on = solve(small("speed_12000", K=200, effects=["textbook"]))
+    assert "dynamic_load_x_textbook" not in off
+    F, Ft = on["dynamic_load_x"].values, on["dynamic_load_x_textbook"].values
+    assert np.abs(Ft).max() > 1.5 * np.abs(F).max()   # Sec. 4: the textbook overestimates
+    assert float(on["dynamic_load_x_textbook_min"]) == pytest.approx(Ft.min())
+
+
+def test_contributions_carry_the_declared_units():
+    ds = solve(small("fig07_fig08"))
+    for name, spec in CFG.raw["effects"].items():
+        assert set(spec["units"]) == set(spec["contributes"])
+        for key, unit in spec["units"].items():
+            assert ds[key].attrs["units"] == unit, (name, key)
+
+
+def test_each_effect_is_timed_apart_from_the_solver_core():
+    ds = run_solver(small("fig07_fig08", K=2000))
+    times = dict(zip(ds["timed_effect"].values.tolist(), ds["effect_time"].values))
+    assert set(times) == {"textbook", "exact_reference"} and all(t > 0 for t in times.values())
+    assert 0 < float(ds["core_time"]) < float(ds["wall_time"])
+    assert float(ds["core_time"]) + sum(times.values()) == pytest.approx(float(ds["wall_time"]))
+
+
+def test_the_solver_named_as_an_effect_is_refused_at_load(edit_config):
+    """The old spelling (the method listed among the effects) stops before any job."""
+    from mechrepro.config import ConfigError
+
+    path = edit_config("saw_chain", lambda r: r["scenes"]["speed_12000"]["effects"].append(
+        "difference_method"))
+    with pytest.raises(ConfigError, match="'difference_method' is not a declared effect"):
+        load_paper(path)
