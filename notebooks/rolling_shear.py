@@ -89,7 +89,7 @@ R.save_figure(fig, "linkage")
 # %%
 fam = R.run("family")
 fig, ax = plt.subplots(1, 2, figsize=(11, 3.8))
-ax[0].plot(orig["family_tilt"], orig["family_H"], "o-", ms=3)
+ax[0].plot(orig["family_tilt"], orig["family_h"], "o-", ms=3)
 ax[0].axhline(R.cfg.reported["synthetic_horizontal_displacement_original"]["value"], color="k", ls=":",
               label="paper, 1.4341 mm")
 ax[0].axvline(float(orig["geometry_tilt"]), color="tab:red", lw=0.8, label="calibrated tilt")

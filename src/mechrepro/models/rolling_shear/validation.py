@@ -32,7 +32,7 @@ def _geometry_note(ds) -> str:
             "overlap_max_deviation_constant_rate_drive", "newton_vs_closed_form_max_angle_error")
 def original(R):
     ds = R.run("original")
-    H = ds["family_H"].values
+    H = ds["family_h"].values
     tilt = ds["family_tilt"].values
     ok = np.isfinite(H)
     err = max(float(np.max(np.abs(np.angle(np.exp(
