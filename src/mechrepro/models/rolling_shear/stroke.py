@@ -156,49 +156,56 @@ def _scipy_solve(kind, fun, jac, x0, tol):
     return r.x, int(r.nfev)
 
 
-def solve_compare(g: Geometry, x_k, method: str, settings: SolverSettings,
-                  rng: np.random.Generator, keep_history: bool = False) -> StrokeSolution:
-    """selPSO / cold scipy solves at every cut point, recorded, never raising."""
+def _pose_by(method, g, xk, start, settings, rng):
+    """theta5, theta6 at one cut point (Eq. 7) by a comparison method."""
     from .blade import lowest_point_jacobian
 
+    if method in ("selpso", "pso_standard"):
+        st = settings.pso_pose if method == "selpso" else settings.pso_std_pose
+        return selpso(lambda X: np.abs(pose_mod.residuals(g, X, xk)).sum(-1), start, st, rng,
+                      period=2 * math.pi).x
+    start = start if method.startswith("warm_") else rng.uniform(0, 2 * math.pi, 2)
+    return _scipy_solve(method, lambda x: pose_mod.residuals(g, x, xk),
+                        lambda x: lowest_point_jacobian(g, *x), start, settings.tol_pose)[0]
+
+
+def _loops_by(method, g, t5, t6, start, settings, rng):
+    """(theta1..theta4, iterations, history or None) at one cut point (Eq. 9)."""
+    if method in ("selpso", "pso_standard"):
+        st = settings.pso_loops if method == "selpso" else settings.pso_std_loops
+        r = selpso(lambda X: np.abs(loops_mod.residuals(g, X, t5, t6)).sum(-1), start, st, rng,
+                   period=2 * math.pi)
+        return r.x, r.iterations, r.history
+    start = start if method.startswith("warm_") else rng.uniform(0, 2 * math.pi, 4)
+    x, nfev = _scipy_solve(method, lambda x: loops_mod.residuals(g, x, t5, t6),
+                           lambda x: loops_mod.jacobian(g, x), start, settings.tol_loops)
+    return x, nfev, None
+
+
+def solve_compare(g: Geometry, x_k, method: str, settings: SolverSettings,
+                  rng: np.random.Generator, keep_history: bool = False) -> StrokeSolution:
+    """selPSO / scipy solves at every cut point, recorded, never raising.
+
+    selPSO starts every system from the initial value; cold scipy from uniformly random
+    starts; warm scipy from the linear extrapolation of the two previous solutions."""
     n = len(x_k)
     theta = np.empty((n, 6))
-    fp, fl = np.empty(n), np.empty(n)
+    fp, fl, it = np.empty(n), np.empty(n), np.zeros(n, int)
     conv, inr, des = np.zeros(n, bool), np.zeros(n, bool), np.zeros(n, bool)
-    it = np.zeros(n, int)
-    hist = []
-    tp = tl = 0.0
+    hist, tp, tl = [], 0.0, 0.0
     init = np.asarray(settings.initial_value, float)
     warm = method.startswith("warm_")
     guess = init.copy()
     for i, xk in enumerate(x_k):
         xk = float(xk)
-        fpose = lambda X, xk=xk: np.abs(pose_mod.residuals(g, X, xk)).sum(-1)  # noqa: E731
         with stopwatch() as sw:
-            if method in ("selpso", "pso_standard"):
-                st = settings.pso_pose if method == "selpso" else settings.pso_std_pose
-                t56 = selpso(fpose, init[4:], st, rng, period=2 * math.pi).x
-            else:
-                start = guess[4:] if warm else rng.uniform(0, 2 * math.pi, 2)
-                t56, _ = _scipy_solve(method, lambda x, xk=xk: pose_mod.residuals(g, x, xk),
-                                      lambda x: lowest_point_jacobian(g, *x), start,
-                                      settings.tol_pose)
+            t5, t6 = map(float, _pose_by(method, g, xk, guess[4:], settings, rng))
         tp += sw.seconds
-        t5, t6 = float(t56[0]), float(t56[1])
-        floops = lambda X, t5=t5, t6=t6: np.abs(loops_mod.residuals(g, X, t5, t6)).sum(-1)  # noqa: E731
         with stopwatch() as sw:
-            if method in ("selpso", "pso_standard"):
-                st = settings.pso_loops if method == "selpso" else settings.pso_std_loops
-                r = selpso(floops, init[:4], st, rng, period=2 * math.pi)
-                t14, it[i] = r.x, r.iterations
-                if keep_history:
-                    hist.append(r.history)
-            else:
-                start = guess[:4] if warm else rng.uniform(0, 2 * math.pi, 4)
-                t14, it[i] = _scipy_solve(method, lambda x: loops_mod.residuals(g, x, t5, t6),
-                                          lambda x: loops_mod.jacobian(g, x), start,
-                                          settings.tol_loops)
+            t14, it[i], h = _loops_by(method, g, t5, t6, guess[:4], settings, rng)
         tl += sw.seconds
+        if keep_history and h is not None:
+            hist.append(h)
         th = np.array([*t14, t5, t6])
         if warm:
             guess = 2 * th - prev if i > 0 else th
