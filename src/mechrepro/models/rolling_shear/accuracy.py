@@ -57,7 +57,7 @@ def interpolated_motion_laws(ds, entry):
     Every run stores its spline on the nested grid of LAW_GRID points
     (:func:`.motion_laws.driving_laws_on_grid`); the finest run's cut points are every
     (LAW_GRID - 1) / (n_finest - 1)-th point of it, where its spline is its solution."""
-    n = np.asarray(ds["n_points"].values, int)
+    n = np.asarray(ds[entry["knob"]].values, int)
     f = finest_index(n, entry["finer"])
     step = (LAW_GRID - 1) // (n[f] - 1) if (LAW_GRID - 1) % (n[f] - 1) == 0 else 1
     laws = np.stack([ds[f"newton_law_theta{k}"].values[:, ::step] for k in (1, 2)])
