@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import optimise, stroke
-from .geometry import Geometry, cut_points, from_parameters
+from .geometry import cut_points, from_parameters
 from .selpso import SelPSOSettings
 
 
@@ -78,7 +78,3 @@ class Context:
         """One independent stream per consumer, so that adding one never shifts another's
         numbers."""
         return np.random.default_rng([self.seed, salt])
-
-    @property
-    def geometry(self) -> Geometry:
-        return self.g
