@@ -19,7 +19,7 @@ sys.path.insert(0, str(ROOT / "src"))
 
 from mechrepro.config import load_paper  # noqa: E402
 from mechrepro.models.rolling_shear import stroke  # noqa: E402
-from mechrepro.models.rolling_shear.solver import Context  # noqa: E402
+from mechrepro.models.rolling_shear.context import Context  # noqa: E402
 
 
 def main(n_points: int = 33) -> None:

@@ -36,43 +36,30 @@ profile = "default"
 
 # %%
 import numpy as np
-from scipy.interpolate import CubicSpline
 
-from mechrepro.accuracy import cost_of_accuracy, plot
+from mechrepro import accuracy
 from mechrepro.models.rolling_shear import validation as V
-from mechrepro.models.rolling_shear.blade import arc_points, carrier_points
-from mechrepro.models.rolling_shear.geometry import Geometry
-from mechrepro.models.rolling_shear.loops import pivots
+from mechrepro.models.rolling_shear.drawing import linkage_at
 from mechrepro.plotting import plt
 from mechrepro.results import PaperResults
 
 R = PaperResults(paper, results_dir, config_file, profile)
 orig, popt, opt = R.run("original"), R.run("paper_optimised"), R.run("optimisation")
 comp = iv = R.run("solver_comparison")
-s = R.cfg.raw["parameters"]["s"]["value"]
+paper_value = {r["quantity"]: r["paper_value"] for r in R.validation()}
+s = float(orig["geometry_s"])  # overlap (mm): the lowest point is held on y = -s
 huch = orig["huch"].values
 
 # %% [markdown]
 # ## The assembled linkage (start, middle and end of the cut)
 
 # %%
-# the run's own (calibrated) geometry, as the solver derived it
-g = Geometry(**{k: float(orig[f"geometry_{k}"]) for k in ("l2", "l4", "l8", "l11", "alpha", "beta1",
-                                                          "beta2", "d", "x_mid")},
-             **{k: R.cfg.raw["parameters"][k]["value"] for k in ("l1", "l3", "l5", "l6", "l9", "l10",
-                                                                 "h", "R", "s", "width")})
-A, G = pivots(g)
 fig, ax = plt.subplots(figsize=(9, 4.2))
 for i, c in ((0, "tab:blue"), (len(huch) // 2, "tab:green"), (len(huch) - 1, "tab:red")):
-    t = [float(orig[f"exact_theta{k}"][i]) for k in range(1, 7)]
-    P = carrier_points(g, t[4], t[5])
-    B = A + g.l1 * np.exp(1j * t[0])
-    H = G + g.l2 * np.exp(1j * t[1])
-    for a, b in ((0, P["D"]), (A, B), (B, P["C"]), (G, H), (H, P["I"]), (P["D"], P["I"]),
-                 (P["D"], P["C"]), (P["D"], P["O"])):
+    L = linkage_at(orig, i)
+    for a, b in L["links"]:
         ax.plot([np.real(a), np.real(b)], [np.imag(a), np.imag(b)], "-o", color=c, ms=3, lw=1.2)
-    xa, ya = arc_points(g, t[4], t[5], 1900 / g.R, 200)
-    ax.plot(xa, ya, color=c, lw=2, label=f"huch = {huch[i]:.0f} mm")
+    ax.plot(*L["blade"], color=c, lw=2, label=f"huch = {huch[i]:.0f} mm")
 ax.axhline(0, color="k", lw=0.8)
 ax.axhline(-s, color="k", lw=0.6, ls=":")
 ax.set(aspect="equal", xlabel="x [mm]", ylabel="y [mm]",
@@ -89,8 +76,8 @@ R.save_figure(fig, "linkage")
 # %%
 fam = R.run("family")
 fig, ax = plt.subplots(1, 2, figsize=(11, 3.8))
-ax[0].plot(orig["family_tilt"], orig["family_H"], "o-", ms=3)
-ax[0].axhline(R.cfg.reported["synthetic_horizontal_displacement_original"]["value"], color="k", ls=":",
+ax[0].plot(orig["family_tilt"], orig["family_h"], "o-", ms=3)
+ax[0].axhline(float(paper_value["synthetic_horizontal_displacement_original"]), color="k", ls=":",
               label="paper, 1.4341 mm")
 ax[0].axvline(float(orig["geometry_tilt"]), color="tab:red", lw=0.8, label="calibrated tilt")
 ax[0].set(xlabel="guide-rod tilt theta6_mid - pi [rad]", ylabel="H, original levers [mm]",
@@ -102,7 +89,7 @@ eq8 = fam["family_member_eq8_reading"].values.astype(str)
 for k, (c, e) in enumerate([(c, e) for c in ("frozen", "rederived") for e in ("rotation", "literal")]):
     sel = (car == c) & (eq8 == e)
     ax[1].plot(np.full(sel.sum(), k) + np.linspace(-0.2, 0.2, sel.sum()), red[sel], "o", ms=3)
-ax[1].axhline(R.cfg.reported["horizontal_displacement_reduction"]["value"], color="k", ls=":",
+ax[1].axhline(float(paper_value["horizontal_displacement_reduction"]), color="k", ls=":",
               label="paper, -34.96 %")
 ax[1].set_xticks(range(4), ["frozen\nrotation", "frozen\nliteral", "re-derived\nrotation", "re-derived\nliteral"])
 ax[1].set(ylabel="reduction by Table II's levers [%]", title="family grid, each member calibrated")
@@ -120,7 +107,7 @@ fig, ax = plt.subplots(1, 3, figsize=(14, 3.8))
 for ds, pre, lab in ((orig, "newton", "original levers"), (opt, "opt_selpso", "optimised (selPSO)"),
                      (popt, "newton", "paper's optimised levers")):
     ax[0].plot(ds[f"{pre}_x_k"], ds[f"{pre}_y_k"], "o-", ms=3, label=lab)
-    ax[1].semilogy(ds["huch"], np.abs(ds[f"{pre}_y_k"] + s) + 1e-16, "o-", ms=3, label=lab)
+    ax[1].semilogy(ds["huch"], ds[f"{pre}_overlap_deviation"] + 1e-16, "o-", ms=3, label=lab)
 ax[0].axhline(-s, color="k", ls=":", lw=0.8)
 ax[0].set(xlabel="x_k [mm]", ylabel="y_k [mm]", ylim=(-s - 1, -s + 1),
           title="Fig. 9: lowest points, reverse-solved drive")
@@ -209,14 +196,11 @@ for k, name in ((1, "fig13"), (2, "fig14")):
 # ## Table II and the lever scans: which levers the objective determines
 
 # %%
-header, rows2 = V.table2(orig, popt, opt, R.cfg.raw)
+header, rows2 = V.table2(orig, popt, opt)
 R.write_table("table2", header, rows2)
 for r in rows2:
     print(r)
-scan = opt["scan_objective"].values
-R.write_table("lever_scan", ["lever"] + [f"{f:+.3f}" for f in opt["scan_fraction"].values] + ["spread_mm"],
-              [[lv] + [float(v) for v in scan[j]] + [float(opt["scan_spread"][j])]
-               for j, lv in enumerate(opt["lever"].values.tolist())])
+R.write_table("lever_scan", *V.lever_scan(opt))
 
 # %% [markdown]
 # ## Solver comparison
@@ -229,80 +213,19 @@ for r in rows3:
 
 # %% [markdown]
 # ## Cost of accuracy
-# Three knobs, one error measure: the max absolute error of the motion laws in rad (all six
-# angles against the closed form — a point on the wrong assembly mode is an error of order
-# 1 rad; for the cut-point knob, θ1, θ2 interpolated by cubic spline against the finest
-# run), and the relative error of the objective H. Time: wall time of the whole stroke.
+# Three knobs (config `accuracy:`, table built by the framework): the max absolute error of
+# the motion laws in rad (all six angles against the closed form -- a point on the wrong
+# assembly mode is an error of order 1 rad; for the cut-point knob, theta1, theta2
+# interpolated by cubic spline against the finest run), and the relative error of the
+# objective H. Time: wall time of the whole stroke.
 
 # %%
-pts = R.study("coa_points")
-names = R.cfg.runs_of("coa_points")
-finest = R.run(names[int(np.argmax(pts["n_points"].values))])
-H_ref = float(finest["newton_synthetic_horizontal_displacement"])
-law_err = []
-for name in names:
-    ds = R.run(name)
-    e = 0.0
-    for k in (1, 2):
-        ref = finest[f"newton_theta{k}"].values
-        f = CubicSpline(ds["huch"].values, ds[f"newton_theta{k}"].values)
-        e = max(e, float(np.max(np.abs(f(finest["huch"].values) - ref))))
-    law_err.append(e)
-coa_pts = cost_of_accuracy(paper, "n_points", pts["n_points"].values, pts["newton_stroke_time"].values,
-                           {"motion_laws_rad": np.array(law_err),
-                            "objective_H": np.abs(pts["newton_synthetic_horizontal_displacement"].values - H_ref) / H_ref},
-                           reference="finest / closed form",
-                           description="Newton stroke vs number of cut points; wall time of the whole stroke")
-
-tol = R.study("coa_tolerance")
-errs_t = np.max([np.max(np.abs(np.angle(np.exp(1j * (tol[f"newton_theta{k}"].values - tol[f"exact_theta{k}"].values)))),
-                        axis=1) for k in range(1, 7)], axis=0)
-H_exact = tol["exact_synthetic_horizontal_displacement"].values
-coa_tol = cost_of_accuracy(paper, "newton_tol", tol["newton_tol"].values, tol["newton_stroke_time"].values,
-                           {"motion_laws_rad": errs_t,
-                            "objective_H": np.abs(tol["newton_synthetic_horizontal_displacement"].values - H_exact) / H_exact},
-                           knob_units="mm", reference="closed form",
-                           description="warm Newton vs tolerance; wall time of the whole stroke")
-
-pso = R.study("coa_selpso")
-budget = pso["pso_swarm"].values * pso["pso_iter"].values
-H_ref_p = pso["exact_synthetic_horizontal_displacement_ref"].values
-coa_pso = cost_of_accuracy(paper, "swarm_x_iter", budget, pso["selpso_stroke_time"].values,
-                           {"motion_laws_rad": pso["selpso_pose_error"].values,
-                            "objective_H": np.abs(pso["selpso_synthetic_horizontal_displacement"].values - H_ref_p) / H_ref_p},
-                           reference="closed form",
-                           description="selPSO vs swarm x iterations (no early stop); wall time of the whole stroke")
-
-for d in (coa_pts, coa_tol, coa_pso):  # every knob is timed over the whole stroke
-    d["wall_time"].attrs["long_name"] = "wall time of the whole stroke"
-    # the motion-law error is absolute (rad), not relative as the shared builder labels it
-    d["error_motion_laws_rad"].attrs.update(units="rad",
-                                            long_name=f"max |theta - {d.attrs['reference']}|, motion laws")
-
-# the paper's own resolution knob (particles x iterations of selPSO) is the headline
-# cost_of_accuracy.nc that the cross-paper summary reads; the other two knobs beside it
-R.write_dataset(coa_pso, "cost_of_accuracy")
-R.write_dataset(coa_pts, "cost_of_accuracy_points")
-R.write_dataset(coa_tol, "cost_of_accuracy_tolerance")
-table = []
-for d, knob in ((coa_pts, "n_points"), (coa_tol, "newton_tol"), (coa_pso, "swarm_x_iter")):
-    for i in range(d.sizes["resolution"]):
-        table.append([knob, float(d["resolution"][i]), float(d["wall_time"][i])] +
-                     [f"{v.removeprefix('error_')}={float(d[v][i]):.3e}" for v in d.data_vars if v.startswith("error_")])
-R.write_table("cost_of_accuracy", ["knob", "value", "stroke_wall_time_s", "errors"],
-              [r[:3] + ["; ".join(r[3:])] for r in table])
-fig, ax = plt.subplots(1, 3, figsize=(15, 4.2))
-for a, d in zip(ax, (coa_pts, coa_tol, coa_pso)):
-    with np.errstate(divide="ignore"):
-        d = d.copy()
-        for v in [v for v in d.data_vars if v.startswith("error_")]:
-            d[v] = d[v].where(d[v] > 0, 1e-17)  # exact zeros drawn at the floor of the log axis
-    plot(d, a)
-    a.set_xlabel("wall time of the whole stroke [s]")
-    a.set_ylabel("error: motion laws [rad], objective H [relative]")
-    t = d["wall_time"].values
-    if t.max() / t.min() > 10:  # minor labels only crowd an axis that spans decades
-        a.xaxis.set_minor_formatter(plt.NullFormatter())
+coa = R.table("cost_of_accuracy")
+entries = list(dict.fromkeys(r["accuracy"] for r in coa))
+fig, ax = plt.subplots(1, len(entries), figsize=(15, 4.2))
+for a, name in zip(np.atleast_1d(ax), entries):
+    accuracy.plot(coa, name, a)
+fig.tight_layout()
 R.save_figure(fig, "cost_of_accuracy")
 
 # %% [markdown]
@@ -311,7 +234,5 @@ R.save_figure(fig, "cost_of_accuracy")
 # shown here, never built here.
 
 # %%
-import pandas as pd  # noqa: E402
-
-val = pd.read_csv(R.table_path("validation"))
-print(val[["quantity", "paper_value", "reproduced_value", "status", "evidence"]].to_string())
+for r in R.validation():
+    print(r["quantity"], r["paper_value"], r["reproduced_value"], r["status"], r["evidence"], sep=" | ")

@@ -102,7 +102,8 @@ def test_paper_optimised_levers_assemble_in_our_geometry(g):
 
 
 @pytest.mark.parametrize("edit,expect", [
-    (lambda c: c["scenes"]["original"].__setitem__("effects", ["newton", "magic"]), "allowed"),
+    (lambda c: c["scenes"]["original"].__setitem__("effects", ["tilt_scan", "magic"]),
+     "'magic' is not a declared effect"),
     (lambda c: c["scenes"]["original"]["resolution"].__setitem__("n_points", 1), ">= 2"),
     (lambda c: c["parameters"]["l1"].__setitem__("value", -5), "l1"),
 ])
@@ -131,7 +132,7 @@ def test_forward_drive_with_reverse_solved_laws_reproduces_the_stroke(g):
 def test_every_run_recalibrates_for_its_own_intents():
     """A range-end variant of an intent re-fits the tilt: H of the original levers is the
     paper's number again (the calibration target comes from the reported block)."""
-    from mechrepro.models.rolling_shear.solver import Context
+    from mechrepro.models.rolling_shear.context import Context
 
     base = run("original", "ci")
     assert base["calibration"]["theta6_mid"]["quantity"] == "synthetic_horizontal_displacement_original"

@@ -49,7 +49,7 @@ def test_cost_of_accuracy_error_sees_the_other_assembly_mode():
     from dataclasses import replace
 
     from mechrepro.models.rolling_shear import loops
-    from mechrepro.models.rolling_shear.solver import pose_error
+    from mechrepro.models.rolling_shear.motion_laws import pose_error
 
     g = geometry()
     t5, t6 = pose.exact_pose(g, g.x_mid)

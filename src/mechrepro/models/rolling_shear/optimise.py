@@ -14,11 +14,12 @@ l10 enter only through the assembly constraint and are not determined by the obj
 from __future__ import annotations
 
 import math
-import time
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import differential_evolution
+
+from mechrepro.timing import stopwatch
 
 from . import newton
 from . import pose as pose_mod
@@ -125,10 +126,9 @@ class OptimisationResult:
 def optimise_selpso(g, x_k, bounds, settings: SelPSOSettings, rng, tol) -> OptimisationResult:
     f = penalised(g, x_k, tol)
     lo, hi = np.asarray(bounds, float).T
-    t0 = time.perf_counter()
-    r = selpso(lambda X: np.array([f(x) for x in X]), 0.5 * (lo + hi), settings, rng, lo, hi)
-    return OptimisationResult("selpso", r.x, r.fitness, r.evaluations, r.history,
-                              time.perf_counter() - t0)
+    with stopwatch() as sw:
+        r = selpso(lambda X: np.array([f(x) for x in X]), 0.5 * (lo + hi), settings, rng, lo, hi)
+    return OptimisationResult("selpso", r.x, r.fitness, r.evaluations, r.history, sw.seconds)
 
 
 def optimise_de(g, x_k, bounds, budget: int, population: int, seed: int,
@@ -152,9 +152,9 @@ def optimise_de(g, x_k, bounds, budget: int, population: int, seed: int,
     def callback(intermediate_result):
         hist.append(float(intermediate_result.fun))
 
-    t0 = time.perf_counter()
-    r = differential_evolution(fc, bounds, popsize=popsize, maxiter=maxiter, tol=0.0, atol=0.0,
-                               seed=seed, polish=False, init="latinhypercube",
-                               updating="immediate", callback=callback)
+    with stopwatch() as sw:
+        r = differential_evolution(fc, bounds, popsize=popsize, maxiter=maxiter, tol=0.0,
+                                   atol=0.0, seed=seed, polish=False, init="latinhypercube",
+                                   updating="immediate", callback=callback)
     return OptimisationResult("differential_evolution", np.asarray(r.x), float(r.fun), count[0],
-                              np.asarray(hist), time.perf_counter() - t0)
+                              np.asarray(hist), sw.seconds)

@@ -1,6 +1,7 @@
 """The cutting stroke: every cut point solved for theta5, theta6 (Eq. 7) then theta1..4 (Eq. 9).
 
-Methods (the scene's effects pick them, see __init__):
+Methods (solver ``continuation``: newton and exact; solver ``method_comparison``: the
+others, named by the scene's ``options.methods``):
 
 * ``newton``  -- warm-started continuation: each cut point starts from the linear
   extrapolation of the two previous solutions; the first from the configured initial
@@ -21,11 +22,12 @@ branch, its fitness and wall time.
 from __future__ import annotations
 
 import math
-import time
 from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.optimize import least_squares, root
+
+from mechrepro.timing import stopwatch, time_call
 
 from . import loops as loops_mod
 from . import newton
@@ -100,7 +102,16 @@ def solve_newton(g: Geometry, x_k, settings: SolverSettings) -> StrokeSolution:
     theta = np.empty((n, 6))
     fp, fl, it = np.empty(n), np.empty(n), np.empty(n, int)
     guess = list(settings.initial_value)
-    t0 = time.perf_counter()
+    with stopwatch() as sw:
+        _continue(g, x_k, settings, guess, theta, fp, fl, it)
+    theta = wrap(theta)
+    ok = np.ones(n, bool)
+    return StrokeSolution("newton", np.asarray(x_k), theta, fp, fl, ok, ok.copy(), ok.copy(),
+                          sw.seconds / (2 * n), sw.seconds / (2 * n), it)
+
+
+def _continue(g, x_k, settings, guess, theta, fp, fl, it) -> None:
+    """The continuation proper: fills theta, fitnesses and iterations point by point."""
     for i, xk in enumerate(x_k):
         xk = float(xk)
         # first-order predictor, then (near a toggle it can overshoot onto the other
@@ -119,11 +130,6 @@ def solve_newton(g: Geometry, x_k, settings: SolverSettings) -> StrokeSolution:
         theta[i] = th
         fp[i], fl[i], it[i] = rp.fitness, rl.fitness, rl.iterations
         guess = list(2 * th - theta[i - 1]) if i > 0 else list(th)
-    elapsed = time.perf_counter() - t0
-    theta = wrap(theta)
-    ok = np.ones(n, bool)
-    return StrokeSolution("newton", np.asarray(x_k), theta, fp, fl, ok, ok.copy(), ok.copy(),
-                          elapsed / (2 * n), elapsed / (2 * n), it)
 
 
 def solve_exact(g: Geometry, x_k) -> StrokeSolution:
@@ -150,49 +156,56 @@ def _scipy_solve(kind, fun, jac, x0, tol):
     return r.x, int(r.nfev)
 
 
-def solve_compare(g: Geometry, x_k, method: str, settings: SolverSettings,
-                  rng: np.random.Generator, keep_history: bool = False) -> StrokeSolution:
-    """selPSO / cold scipy solves at every cut point, recorded, never raising."""
+def _pose_by(method, g, xk, start, settings, rng):
+    """theta5, theta6 at one cut point (Eq. 7) by a comparison method."""
     from .blade import lowest_point_jacobian
 
+    if method in ("selpso", "pso_standard"):
+        st = settings.pso_pose if method == "selpso" else settings.pso_std_pose
+        return selpso(lambda X: np.abs(pose_mod.residuals(g, X, xk)).sum(-1), start, st, rng,
+                      period=2 * math.pi).x
+    start = start if method.startswith("warm_") else rng.uniform(0, 2 * math.pi, 2)
+    return _scipy_solve(method, lambda x: pose_mod.residuals(g, x, xk),
+                        lambda x: lowest_point_jacobian(g, *x), start, settings.tol_pose)[0]
+
+
+def _loops_by(method, g, t5, t6, start, settings, rng):
+    """(theta1..theta4, iterations, history or None) at one cut point (Eq. 9)."""
+    if method in ("selpso", "pso_standard"):
+        st = settings.pso_loops if method == "selpso" else settings.pso_std_loops
+        r = selpso(lambda X: np.abs(loops_mod.residuals(g, X, t5, t6)).sum(-1), start, st, rng,
+                   period=2 * math.pi)
+        return r.x, r.iterations, r.history
+    start = start if method.startswith("warm_") else rng.uniform(0, 2 * math.pi, 4)
+    x, nfev = _scipy_solve(method, lambda x: loops_mod.residuals(g, x, t5, t6),
+                           lambda x: loops_mod.jacobian(g, x), start, settings.tol_loops)
+    return x, nfev, None
+
+
+def solve_compare(g: Geometry, x_k, method: str, settings: SolverSettings,
+                  rng: np.random.Generator, keep_history: bool = False) -> StrokeSolution:
+    """selPSO / scipy solves at every cut point, recorded, never raising.
+
+    selPSO starts every system from the initial value; cold scipy from uniformly random
+    starts; warm scipy from the linear extrapolation of the two previous solutions."""
     n = len(x_k)
     theta = np.empty((n, 6))
-    fp, fl = np.empty(n), np.empty(n)
+    fp, fl, it = np.empty(n), np.empty(n), np.zeros(n, int)
     conv, inr, des = np.zeros(n, bool), np.zeros(n, bool), np.zeros(n, bool)
-    it = np.zeros(n, int)
-    hist = []
-    tp = tl = 0.0
+    hist, tp, tl = [], 0.0, 0.0
     init = np.asarray(settings.initial_value, float)
     warm = method.startswith("warm_")
     guess = init.copy()
     for i, xk in enumerate(x_k):
         xk = float(xk)
-        fpose = lambda X, xk=xk: np.abs(pose_mod.residuals(g, X, xk)).sum(-1)  # noqa: E731
-        t0 = time.perf_counter()
-        if method in ("selpso", "pso_standard"):
-            st = settings.pso_pose if method == "selpso" else settings.pso_std_pose
-            r = selpso(fpose, init[4:], st, rng, period=2 * math.pi)
-            t56 = r.x
-        else:
-            start = guess[4:] if warm else rng.uniform(0, 2 * math.pi, 2)
-            t56, _ = _scipy_solve(method, lambda x, xk=xk: pose_mod.residuals(g, x, xk),
-                                  lambda x: lowest_point_jacobian(g, *x), start, settings.tol_pose)
-        tp += time.perf_counter() - t0
-        t5, t6 = float(t56[0]), float(t56[1])
-        floops = lambda X, t5=t5, t6=t6: np.abs(loops_mod.residuals(g, X, t5, t6)).sum(-1)  # noqa: E731
-        t0 = time.perf_counter()
-        if method in ("selpso", "pso_standard"):
-            st = settings.pso_loops if method == "selpso" else settings.pso_std_loops
-            r = selpso(floops, init[:4], st, rng, period=2 * math.pi)
-            t14, it[i] = r.x, r.iterations
-            if keep_history:
-                hist.append(r.history)
-        else:
-            start = guess[:4] if warm else rng.uniform(0, 2 * math.pi, 4)
-            t14, it[i] = _scipy_solve(method, lambda x: loops_mod.residuals(g, x, t5, t6),
-                                      lambda x: loops_mod.jacobian(g, x), start,
-                                      settings.tol_loops)
-        tl += time.perf_counter() - t0
+        with stopwatch() as sw:
+            t5, t6 = map(float, _pose_by(method, g, xk, guess[4:], settings, rng))
+        tp += sw.seconds
+        with stopwatch() as sw:
+            t14, it[i], h = _loops_by(method, g, t5, t6, guess[:4], settings, rng)
+        tl += sw.seconds
+        if keep_history and h is not None:
+            hist.append(h)
         th = np.array([*t14, t5, t6])
         if warm:
             guess = 2 * th - prev if i > 0 else th
@@ -212,21 +225,19 @@ def time_newton_loops(g: Geometry, theta: np.ndarray, settings: SolverSettings,
     """Wall time per Eq. (9) solve of the warm-started continuation, poses given (s).
 
     Only Eq. (9), as selPSO's time per solve is: each cut point starts from the linear
-    extrapolation of the two previous solutions.  Median of repeated strokes (a stroke
-    takes ~0.1 ms, so one preemption would dominate a single timing).
+    extrapolation of the two previous solutions.  Fastest of repeated strokes
+    (:func:`mechrepro.timing.time_call`; a stroke takes ~0.1 ms, so one preemption would
+    dominate a single timing).
     """
-    n = len(theta)
-    times, total = [], 0.0
-    while total < min_time or len(times) < 3:
-        t0 = time.perf_counter()
-        guess = list(theta[0, :4])
-        prev = None
-        for i in range(n):
-            r = newton.loops(g, guess, theta[i, 4], theta[i, 5], settings.tol_loops,
-                             settings.max_iter)
-            x = np.array(r.x)
-            guess = list(2 * x - prev) if prev is not None else list(x)
-            prev = x
-        times.append(time.perf_counter() - t0)
-        total += times[-1]
-    return float(np.median(times)) / n
+    _, best = time_call(_newton_loops_stroke, g, theta, settings, min_time=min_time)
+    return best / len(theta)
+
+
+def _newton_loops_stroke(g: Geometry, theta: np.ndarray, settings: SolverSettings) -> None:
+    guess, prev = list(theta[0, :4]), None
+    for i in range(len(theta)):
+        r = newton.loops(g, guess, theta[i, 4], theta[i, 5], settings.tol_loops,
+                         settings.max_iter)
+        x = np.array(r.x)
+        guess = list(2 * x - prev) if prev is not None else list(x)
+        prev = x

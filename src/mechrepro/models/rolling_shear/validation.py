@@ -32,7 +32,7 @@ def _geometry_note(ds) -> str:
             "overlap_max_deviation_constant_rate_drive", "newton_vs_closed_form_max_angle_error")
 def original(R):
     ds = R.run("original")
-    H = ds["family_H"].values
+    H = ds["family_h"].values
     tilt = ds["family_tilt"].values
     ok = np.isfinite(H)
     err = max(float(np.max(np.abs(np.angle(np.exp(
@@ -184,22 +184,29 @@ def solvers(R):
     }
 
 
-def table2(orig, popt, opt, cfg_raw) -> tuple[list, list]:
-    """Table II: the paper's levers and ours, with the objective in our calibrated geometry."""
-    pl = {k: float(v) for k, v in cfg_raw["scenes"]["paper_optimised"]["options"]["levers"].items()}
-    p = cfg_raw["parameters"]
+def table2(orig, popt, opt) -> tuple[list, list]:
+    """Table II: the paper's levers (original and optimised, as the runs used them) and ours,
+    with the objective H in our calibrated geometry."""
     header = ["lever", "paper_original_mm", "paper_optimised_mm", "ours_selpso_mm", "ours_de_mm",
               "objective_spread_mm"]
     sel = dict(zip(OPTIMISED_LEVERS, opt["opt_selpso_levers"].values))
     de = dict(zip(OPTIMISED_LEVERS, opt["opt_de_levers"].values))
     spread = dict(zip(opt["lever"].values.tolist(), opt["scan_spread"].values))
-    rows_ = [[k, float(p[k]["value"]), pl[k], float(sel[k]), float(de[k]), float(spread[k])]
-             for k in OPTIMISED_LEVERS]
+    rows_ = [[k, round(float(orig[f"geometry_{k}"]), 9), round(float(popt[f"geometry_{k}"]), 9),
+              float(sel[k]), float(de[k]), float(spread[k])] for k in OPTIMISED_LEVERS]
     rows_.append(["objective H at the run's cut points (geometry calibrated on 1.4341)",
                   float(orig["newton_synthetic_horizontal_displacement"]),
                   float(popt["newton_synthetic_horizontal_displacement"]),
                   float(opt["opt_selpso_objective"]), float(opt["opt_de_objective"]), math.nan])
     return header, rows_
+
+
+def lever_scan(opt) -> tuple[list, list]:
+    """The one-lever scans of H (columns: relative change of the lever) and their spread."""
+    scan = opt["scan_objective"].values
+    header = ["lever"] + [f"{f:+.3f}" for f in opt["scan_fraction"].values] + ["spread_mm"]
+    return header, [[lv] + [float(v) for v in scan[j]] + [float(opt["scan_spread"][j])]
+                    for j, lv in enumerate(opt["lever"].values.tolist())]
 
 
 def solver_comparison(comp: xr.Dataset) -> tuple[list, list]:

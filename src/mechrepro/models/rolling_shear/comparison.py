@@ -1,0 +1,91 @@
+"""Solver ``method_comparison``: every cut point by each method the scene lists in
+``options.methods`` (selPSO, the standard constricted PSO, scipy root and least_squares from
+cold random starts or warm-started), next to the Newton continuation and against the closed
+form (Sec. 4, Fig. 12 and the text after it).
+
+The methods are numerical methods for the same Eqs. (7) and (9), not physics: they are
+the scene's options (checked by the run schema at load), and each gets its own random
+stream, so that listing one more method never changes another's numbers.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from mechrepro.units import var
+
+from . import stroke
+from .context import Context
+from .continuation import solve_continuation
+from .trajectory import horizontal_displacement
+from .motion_laws import pose_error
+
+#: the comparison methods and the salt of their random stream
+METHOD_STREAMS = {"selpso": 1, "cold_root": 2, "least_squares": 3, "warm_root": 7,
+                  "warm_least_squares": 8, "pso_standard": 9}
+
+
+def compare(ctx: Context, method: str) -> dict:
+    """One method at every cut point, recorded (never raising): convergence, ranges, branch,
+    fitness, wall time per solve and the error against the closed form."""
+    sol = stroke.solve_compare(ctx.g, ctx.x_k, method, ctx.settings,
+                               ctx.rng(METHOD_STREAMS[method]))
+    err = pose_error(sol.theta, ctx.reference.theta)
+    w = method
+    out = {
+        f"{w}_theta": var(("cut", "angle"), sol.theta, "rad", f"theta1..theta6, {w}"),
+        f"{w}_fitness_loops": var("cut", sol.fitness_loops, "mm", f"G of Eq. (9), {w}"),
+        f"{w}_fitness_pose": var("cut", sol.fitness_pose, "mm", f"G of Eq. (7), {w}"),
+        f"{w}_converged": var("cut", sol.converged.astype(np.int8), "1",
+                              f"both systems below tolerance, {w}"),
+        f"{w}_in_ranges": var("cut", sol.in_ranges.astype(np.int8), "1",
+                              f"angles inside the paper's ranges, {w}"),
+        f"{w}_design_branch": var("cut", sol.design_branch.astype(np.int8), "1",
+                                  f"on the design assembly branch, {w}"),
+        f"{w}_error": var(("cut", "angle"), err, "rad", f"|theta - exact|, {w}"),
+        f"{w}_success_rate": var((), sol.converged.mean(), "1", f"converged fraction, {w}"),
+        f"{w}_in_ranges_rate": var((), sol.in_ranges.mean(), "1",
+                                   f"fraction inside the paper's ranges, {w}"),
+        f"{w}_right_branch_rate": var((), sol.right.mean(), "1",
+                                      f"converged and on the design branch, {w}"),
+        f"{w}_time_per_solve": var((), sol.time_loops, "s", f"wall time per Eq. (9) solve, {w}"),
+        f"{w}_time_per_pose_solve": var((), sol.time_pose, "s",
+                                        f"wall time per Eq. (7) solve, {w}"),
+        f"{w}_fitness_loops_median": var((), np.median(sol.fitness_loops), "mm",
+                                         f"median G of Eq. (9), {w}"),
+    }
+    if method == "selpso":
+        out.update(_selpso_accuracy(ctx, sol, err))
+    return out
+
+
+def _selpso_accuracy(ctx: Context, sol: stroke.StrokeSolution, err: np.ndarray) -> dict:
+    """selPSO's cost of accuracy: the objective H from its poses, the largest pose error
+    (up to the assembly mode: a wrong mode is an error of order 1 rad) and the wall time
+    of the whole stroke, at its swarm x iterations budget."""
+    st = ctx.settings.pso_loops
+    H = np.mean(np.abs(horizontal_displacement(ctx.g, sol.theta[:, 4] - ctx.g.beta2, ctx.x_k)))
+    H_ref = np.mean(np.abs(horizontal_displacement(
+        ctx.g, ctx.reference.theta[:, 4] - ctx.g.beta2, ctx.x_k)))
+    return {
+        "selpso_iterations": var("cut", sol.iterations_loops.astype(float), "1",
+                                 "selPSO iterations on Eq. (9)"),
+        "selpso_synthetic_horizontal_displacement": var(
+            (), H, "mm", "synthetic horizontal displacement from selPSO poses"),
+        "exact_synthetic_horizontal_displacement_ref": var(
+            (), H_ref, "mm", "synthetic horizontal displacement, closed form"),
+        "selpso_pose_error": var(
+            (), np.max(err), "rad",
+            "max |theta1..theta6 - closed form| over the cut (a wrong assembly mode is a large error)"),
+        "selpso_stroke_time": var((), ctx.n * (sol.time_pose + sol.time_loops), "s",
+                                  "selPSO wall time of the whole stroke (Eqs. 7 and 9)"),
+        "swarm_x_iter": var((), st.swarm * st.max_iter, "1",
+                            "selPSO budget: particles x iterations on each system"),
+    }
+
+
+def solve_method_comparison(run: dict, ctx: Context) -> dict:
+    """The continuation (with its reference and effects), then every listed method."""
+    data = solve_continuation(run, ctx)
+    for method in ctx.options.get("methods", []):
+        data.update(compare(ctx, method))
+    return data

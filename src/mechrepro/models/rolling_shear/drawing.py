@@ -1,0 +1,34 @@
+"""The assembled linkage of a solved run, for drawing (Figs. 2-5 of the paper): the
+positions of every joint from the run's geometry and its motion laws (mm)."""
+from __future__ import annotations
+
+import numpy as np
+
+from .blade import arc_points, carrier_points
+from .dataset import GEOMETRY_KEYS
+from .geometry import Geometry
+from .loops import pivots
+
+
+def geometry_of(ds) -> Geometry:
+    """The run's own geometry (calibrated, with the scene's levers) from its dataset."""
+    return Geometry(**{k: float(ds[f"geometry_{k}"]) for k in GEOMETRY_KEYS})
+
+
+def linkage_at(ds, i: int, prefix: str = "exact", blade_half_width: float = 1900.0) -> dict:
+    """The linkage at cut point ``i`` of a run (motion laws ``<prefix>_theta1..6``).
+
+    Returns ``links``: (start, end) joint pairs as complex numbers x + iy in the fixed frame
+    (E at the origin): guide rod ED, lever AB and rod BC (loop ABCD of Eq. 9), lever GH and
+    rod HI (loop GHID), the carrier D-I, D-C, D-O; and ``blade``: (x, y) of the cutting-edge
+    arc over +- ``blade_half_width`` mm of arc length.
+    """
+    g = geometry_of(ds)
+    t = [float(ds[f"{prefix}_theta{k}"][i]) for k in range(1, 7)]
+    P = carrier_points(g, t[4], t[5])
+    A, G = pivots(g)
+    B = A + g.l1 * np.exp(1j * t[0])
+    H = G + g.l2 * np.exp(1j * t[1])
+    links = [(0j, P["D"]), (A, B), (B, P["C"]), (G, H), (H, P["I"]), (P["D"], P["I"]),
+             (P["D"], P["C"]), (P["D"], P["O"])]
+    return {"links": links, "blade": arc_points(g, t[4], t[5], blade_half_width / g.R, 200)}

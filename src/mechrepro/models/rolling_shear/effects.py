@@ -1,0 +1,123 @@
+"""The effects of rolling_shear (declared in config/papers/rolling_shear.yaml, ``effects:``).
+
+The linkage has little physics to switch: Eqs. (7)-(9) are the machine, and which method
+solves them is the scene's solver (and its options).  What a scene may add are the drive
+law of the Fig. 9 contrast and outputs that cost extra solves (the tilt scan of the family,
+the selPSO initial-value histories of Fig. 12, the one-lever scans of Table II).  Each is a
+pure function of the solver's :class:`~.context.Context` returning its declared keys, each
+one a dataset variable (``mechrepro.units.var``).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from mechrepro.effects import EffectRegistry
+from mechrepro.timing import stopwatch
+from mechrepro.units import var
+
+from . import optimise
+
+EFFECTS = EffectRegistry("rolling_shear")
+
+
+@EFFECTS.register("constant_rate_drive")
+def constant_rate_drive(ctx) -> dict:
+    """Fig. 9 contrast, the drive law: both levers turned at a constant rate between the
+    end positions of the solved stroke (``ctx.stroke``); Eq. (9) forward, then Eq. (7)."""
+    from .forward import constant_rate_drive as drive
+
+    r = drive(ctx.g, ctx.stroke.theta)
+    w = "both levers at a constant rate between the stroke's end positions"
+    return {
+        "crd_theta1": var("cut", r["theta"][:, 0], "rad", f"theta1, {w}"),
+        "crd_theta2": var("cut", r["theta"][:, 1], "rad", f"theta2, {w}"),
+        "crd_x_k": var("cut", r["x_k"], "mm", f"lowest point x_k, {w}"),
+        "crd_y_k": var("cut", r["y_k"], "mm", f"lowest point y_k, {w}"),
+        "crd_overlap_deviation": var("cut", np.abs(r["y_k"] + ctx.g.s), "mm", f"|y_k + s|, {w}"),
+        "crd_overlap_max_deviation": var((), np.max(np.abs(r["y_k"] + ctx.g.s)), "mm",
+                                         f"max |y_k + s|, {w}"),
+    }
+
+
+@EFFECTS.register("tilt_scan")
+def tilt_scan(ctx) -> dict:
+    """H of the original levers over the guide-rod tilt at the run's other intents (the
+    family of docs/rolling_shear.md); the calibration's own scan when the run calibrates."""
+    from .calibrate import TILTS, H_of_tilt
+
+    H = (ctx.calibration["H_scan"] if ctx.calibration is not None else
+         np.array([H_of_tilt(ctx.g_original, t, 33, ctx.tol_floor) for t in TILTS]))
+    return {"family_tilt": var("tilt", TILTS, "rad", "guide-rod tilt theta6_mid - pi"),
+            "family_h": var("tilt", H, "mm",
+                            "synthetic horizontal displacement, original levers, 33 cut points "
+                            "(NaN: leaves the paper's ranges)")}
+
+
+@EFFECTS.register("initial_values")
+def initial_values(ctx) -> dict:
+    """Fig. 12: selPSO fitness G of Eq. (9) against the iterations at mid-cut, from each
+    initial value of ``options.initial_values`` (the pose from the closed form)."""
+    from . import loops as loops_mod
+    from . import pose as pose_mod
+    from .branch import on_design_branch
+    from .selpso import selpso
+
+    inits = np.asarray(ctx.options["initial_values"], float)
+    i_mid = ctx.n // 2
+    t5, t6 = pose_mod.exact_pose(ctx.g, float(ctx.x_k[i_mid]))
+    rng = ctx.rng(4)
+    st = ctx.settings.pso_loops
+    hist = np.full((len(inits), st.max_iter + 1), np.nan)
+    iters, fit, conv, design, times = [], [], [], [], []
+    for k, x0 in enumerate(inits):
+        with stopwatch() as sw:
+            r = selpso(lambda X: np.abs(loops_mod.residuals(ctx.g, X, t5, t6)).sum(-1), x0, st,
+                       rng, period=2 * math.pi)
+        times.append(sw.seconds)
+        hist[k, :r.history.size] = r.history
+        iters.append(r.iterations)
+        fit.append(r.fitness)
+        conv.append(r.converged)
+        design.append(on_design_branch(ctx.g, np.array([*r.x, t5, t6])))
+    return {
+        "iv_initial_value": var(("initial_value", "unknown"), inits, "rad",
+                                "initial values theta1..theta4 of selPSO"),
+        "iv_fitness_history": var(("initial_value", "iteration"), hist, "mm",
+                                  "best fitness G of Eq. (9) after each iteration"),
+        "iv_iterations": var("initial_value", np.asarray(iters, float), "1",
+                             "iterations to G < tol"),
+        "iv_fitness": var("initial_value", np.asarray(fit), "mm", "final fitness G"),
+        "iv_converged": var("initial_value", np.asarray(conv, np.int8), "1", "G < tol reached"),
+        "iv_design_branch": var("initial_value", np.asarray(design, np.int8), "1",
+                                "solution on the design branch"),
+        "iv_time": var("initial_value", np.asarray(times), "s", "wall time of the solve"),
+        "iv_cut_point_x_k": var((), ctx.x_k[i_mid], "mm", "cut point of Fig. 12 solves"),
+    }
+
+
+@EFFECTS.register("lever_scan")
+def lever_scan(ctx) -> dict:
+    """One-at-a-time scans of H over each lever's bounds: which levers the objective
+    determines (Table II; with frozen carrier constants only l6)."""
+    k = int(ctx.res.get("scan_points", 21))
+    f = optimise.penalised(ctx.g, ctx.x_k, ctx.settings.tol_pose)
+    base = np.array(ctx.g.levers())
+    frac = np.linspace(-1, 1, k) * float(ctx.p["lever_bound_fraction"])
+    H = np.full((len(base), k), np.nan)
+    for j in range(len(base)):
+        for m, fr in enumerate(frac):
+            x = base.copy()
+            x[j] *= 1 + fr
+            v = f(x)
+            H[j, m] = v if v < optimise.PENALTY else np.nan
+    return {
+        "scan_fraction": var("scan", frac, "1", "relative change of the scanned lever"),
+        "scan_objective": var(("lever", "scan"), H, "mm",
+                              "synthetic horizontal displacement, one lever varied (NaN: no assembly)"),
+        "scan_spread": var("lever", np.nanmax(H, axis=1) - np.nanmin(H, axis=1), "mm",
+                           "max - min of the objective over the scan"),
+        "scan_feasible_fraction": var("lever", np.isfinite(H).mean(axis=1), "1",
+                                      "fraction of the scan that assembles"),
+    }

@@ -1,0 +1,65 @@
+"""Solver ``family_scan``: the admissible family of linkages on a grid (docs/rolling_shear.md).
+
+Every grid member (the range ends of the design intents jointly, both readings of Eq. (8)
+and of the carrier constants) is calibrated on the run's target H (Sec. 4, 1.4341 mm) at the
+run's own number of cut points and given the scene's lever set (Table II): its tilt, its H
+and the reduction.  The framework re-checks verdicts one assumed constant at a time; this
+grid varies them jointly, so a verdict that only a combination of range ends flips shows
+up here.
+"""
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import replace
+
+import numpy as np
+
+from mechrepro.units import var
+
+from . import optimise
+from .calibrate import CalibrationError, calibrate_tilt
+from .context import Context
+from .geometry import cut_points, with_intent
+from .loops import NonAssembly
+
+GRID_KEYS = ("blade_offset", "R", "width", "y_joint", "eq8_reading", "carrier_constants")
+
+
+def member_geometry(base, member: dict):
+    """The uncalibrated linkage of one grid member."""
+    return replace(with_intent(base, **{k: float(member[k]) for k in GRID_KEYS[:4]}),
+                   eq8=member["eq8_reading"], carrier=member["carrier_constants"])
+
+
+def calibrated_member(ctx: Context, member: dict, levers: dict) -> tuple[float, float]:
+    """(calibrated tilt, H of the lever set) of one member; NaN if it cannot reach the target."""
+    try:
+        gc, info = calibrate_tilt(member_geometry(ctx.g_uncalibrated, member),
+                                  ctx.calibration_target, ctx.n, ctx.tol_floor)
+        gp = gc.with_levers(**levers)
+        return info["tilt"], optimise.objective(gp, cut_points(gp, ctx.n)[1], ctx.tol_floor)
+    except (CalibrationError, NonAssembly, ValueError):
+        return math.nan, math.nan
+
+
+def solve_family_scan(run: dict, ctx: Context) -> dict:
+    grid = ctx.options["grid"]
+    levers = {k: float(v) for k, v in ctx.options["levers"].items()}
+    members = [dict(zip(GRID_KEYS, combo))
+               for combo in itertools.product(*(grid[k] for k in GRID_KEYS))]
+    rows = np.asarray([calibrated_member(ctx, m, levers) for m in members])
+    target = ctx.calibration_target
+    out = {"family_member_tilt": var("member", rows[:, 0], "rad",
+                                     "calibrated guide-rod tilt (NaN: the member cannot reach the target)"),
+           "family_member_H_levers": var("member", rows[:, 1], "mm",
+                                         "synthetic horizontal displacement of the scene's levers"),
+           "family_member_reduction": var("member", 100.0 * (rows[:, 1] / target - 1.0), "%",
+                                          "reduction of the scene's levers against the calibrated original")}
+    for k in GRID_KEYS:
+        vals = [m[k] for m in members]
+        if isinstance(vals[0], str):
+            out[f"family_member_{k}"] = var("member", np.array(vals, dtype=object).astype(str), "1", k)
+        else:
+            out[f"family_member_{k}"] = var("member", np.asarray(vals, float), "mm", k)
+    return out

@@ -1,0 +1,81 @@
+"""Solver ``lever_optimisation`` (Sec. 3.3 step 3, Table II, Fig. 11): the five levers l1,
+l3, l5, l6, l10 against the synthetic horizontal displacement H, within +-
+``lever_bound_fraction`` of the original levers, by each optimiser the scene lists in
+``options.optimisers`` (selPSO, the paper's; differential evolution with the same bounds
+and budget, the comparison).  The optimisers are numerical methods for one problem, so they
+are the scene's options; the effects it honours (the one-lever scan) add outputs."""
+from __future__ import annotations
+
+from dataclasses import replace
+
+from mechrepro.units import var
+
+from . import optimise, stroke
+from .context import Context
+from .continuation import contributions
+from .geometry import OPTIMISED_LEVERS, Geometry, cut_points
+from .motion_laws import stroke_outputs
+from .selpso import SelPSOSettings
+
+
+def lever_bounds(ctx: Context) -> list[tuple[float, float]]:
+    f = float(ctx.p["lever_bound_fraction"])
+    return [((1 - f) * v, (1 + f) * v) for v in ctx.g.levers()]
+
+
+def by_selpso(ctx: Context) -> optimise.OptimisationResult:
+    st = SelPSOSettings(swarm=int(ctx.res["opt_swarm"]), max_iter=int(ctx.res["opt_iter"]),
+                        w_start=ctx.p["pso_w_start"], w_end=ctx.p["pso_w_end"],
+                        c1=ctx.p["pso_c1"], c2=ctx.p["pso_c2"], tol=0.0)
+    return optimise.optimise_selpso(ctx.g, ctx.x_k, lever_bounds(ctx), st, ctx.rng(5),
+                                    ctx.settings.tol_pose)
+
+
+def by_differential_evolution(ctx: Context) -> optimise.OptimisationResult:
+    swarm, iters = int(ctx.res["opt_swarm"]), int(ctx.res["opt_iter"])
+    return optimise.optimise_de(ctx.g, ctx.x_k, lever_bounds(ctx), swarm * (iters + 1), swarm,
+                                int(ctx.rng(6).integers(2**31)), ctx.settings.tol_pose)
+
+
+#: optimiser -> (function, prefix of its outputs)
+OPTIMISERS = {"selpso": (by_selpso, "opt_selpso"), "de": (by_differential_evolution, "opt_de")}
+
+
+def anchored_settings(ctx: Context, g: Geometry, x_k) -> stroke.SolverSettings:
+    """Settings whose initial value is the closed-form pose at the first cut point.
+
+    Lever sets far from the original move the cranks by more than the rough initial value
+    can absorb; the continuation is anchored on the exact first point instead.
+    """
+    first = stroke.solve_exact(g, x_k[:1]).theta[0]
+    return replace(ctx.settings, initial_value=tuple(first))
+
+
+def optimised_outputs(ctx: Context, res: optimise.OptimisationResult, prefix: str) -> dict:
+    """The optimum, its history and, if it assembles, the stroke of its levers."""
+    out = {
+        f"{prefix}_levers": var("lever", res.levers, "mm", f"optimised l1, l3, l5, l6, l10, {prefix}"),
+        f"{prefix}_objective": var((), res.objective, "mm",
+                                   f"optimised synthetic horizontal displacement, {prefix}"),
+        f"{prefix}_evaluations": var((), res.evaluations, "1", f"objective evaluations, {prefix}"),
+        f"{prefix}_wall_time": var((), res.wall_time, "s", f"wall time, {prefix}"),
+        f"{prefix}_history": var(f"{prefix}_generation", res.history, "mm",
+                                 f"best objective per iteration, {prefix}"),
+    }
+    if res.objective < optimise.PENALTY:
+        g = ctx.g.with_levers(**dict(zip(OPTIMISED_LEVERS, map(float, res.levers))))
+        x_k = cut_points(g, ctx.n)[1]  # the cut moves with re-derived carrier constants
+        sol = stroke.solve_newton(g, x_k, anchored_settings(ctx, g, x_k))
+        out.update(stroke_outputs(g, sol.theta, prefix, f"levers optimised by {prefix}"))
+    return out
+
+
+def solve_lever_optimisation(run: dict, ctx: Context) -> dict:
+    data = {"opt_original_objective": var(
+        (), optimise.objective(ctx.g, ctx.x_k, ctx.settings.tol_pose), "mm",
+        "synthetic horizontal displacement of the original levers, same cut points")}
+    for name in ctx.options.get("optimisers", ["selpso"]):  # the paper's by default
+        fn, prefix = OPTIMISERS[name]
+        data.update(optimised_outputs(ctx, fn(ctx), prefix))
+    data.update(contributions(run, ctx))
+    return data
