@@ -1,0 +1,107 @@
+"""Whole-workflow timings, an old revision and this tree measured side by side in one run.
+
+    python benchmarks/bench_workflow.py [--before REV] [--profiles ci default] [--cores 2]
+
+For each version (``REV`` checked out with ``git archive``, and the working tree) in a
+fresh temporary copy: the pipeline from clean, then a no-op run, then a dry run (the no-op
+*decision*), per profile.  Then, per paper, the solver jobs' wall time (Snakemake's
+benchmark files) against the solves' own time (``wall_time`` of each run), i.e. how much
+is start-up and writing.  Timings are printed, never asserted.
+"""
+from __future__ import annotations
+
+import argparse
+import csv
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+ITEMS = ("Snakefile", "workflow", "config", "notebooks", "src", "results/reference")
+
+
+def checkout(rev: str | None, dst: Path) -> Path:
+    dst.mkdir(parents=True)
+    if rev is None:
+        for item in ITEMS:
+            src = ROOT / item
+            (shutil.copytree if src.is_dir() else shutil.copy2)(src, dst / item)
+    else:
+        tar = subprocess.run(["git", "archive", rev, *ITEMS], cwd=ROOT, capture_output=True,
+                             check=True).stdout
+        subprocess.run(["tar", "x"], cwd=dst, input=tar, check=True)
+    return dst
+
+
+def snakemake(work: Path, *args: str) -> float:
+    t0 = time.perf_counter()
+    proc = subprocess.run([sys.executable, "-m", "snakemake", *args], cwd=work,
+                          capture_output=True, text=True)
+    dt = time.perf_counter() - t0
+    if proc.returncode != 0:
+        raise SystemExit(f"{work}: snakemake {' '.join(args)} failed\n{proc.stderr[-3000:]}")
+    return dt
+
+
+def per_paper(results: Path) -> dict[str, tuple[float, float, int]]:
+    """{paper: (solver job seconds, solve seconds, jobs)} from benchmark files and runs."""
+    import netCDF4
+
+    out = {}
+    for paper_dir in sorted(p for p in results.iterdir() if (p / "runs").is_dir()):
+        job = 0.0
+        tsvs = sorted((paper_dir / "benchmarks").glob("solve*.tsv"))
+        for tsv in tsvs:
+            with open(tsv, newline="") as f:
+                job += float(next(csv.DictReader(f, delimiter="\t"))["s"])
+        solve = 0.0
+        for nc in (paper_dir / "runs").glob("*.nc"):
+            with netCDF4.Dataset(nc) as ds:
+                solve += float(ds["wall_time"][...]) if "wall_time" in ds.variables else float(
+                    ds.getncattr("wall_time_s"))
+        out[paper_dir.name] = (job, solve, len(tsvs))
+    return out
+
+
+def measure(label: str, work: Path, profile: str, cores: int) -> dict:
+    cfg = ["--config", f"profile={profile}", f"results=results-{profile}"]
+    full = snakemake(work, "--cores", str(cores), *cfg)
+    noop = snakemake(work, "--cores", str(cores), *cfg)
+    dry = snakemake(work, "-n", *cfg)
+    print(f"  {label:>8s} {profile:8s} from clean {full:7.1f} s   no-op run {noop:5.2f} s   "
+          f"no-op decision (-n) {dry:5.2f} s", flush=True)
+    return {"full": full, "noop": noop, "dry": dry,
+            "papers": per_paper(work / f"results-{profile}")}
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--before", default="39b0397", help="revision to compare with")
+    ap.add_argument("--profiles", nargs="+", default=["ci"])
+    ap.add_argument("--cores", type=int, default=2)
+    a = ap.parse_args()
+    tmp = Path(tempfile.mkdtemp(prefix="bench-workflow-"))
+    versions = {f"before ({a.before})": checkout(a.before, tmp / "before"),
+                "after (tree)": checkout(None, tmp / "after")}
+    res = {}
+    for profile in a.profiles:
+        print(f"profile {profile}:", flush=True)
+        for label, work in versions.items():
+            res[(label, profile)] = measure(label.split()[0], work, profile, a.cores)
+        b, f = (res[(lab, profile)] for lab in versions)
+        print(f"  ratio before/after: from clean {b['full'] / f['full']:.2f}x, no-op decision "
+              f"{b['dry'] / f['dry']:.2f}x")
+        print(f"  {'paper':14s} {'jobs b/a':>9s} {'job s before':>13s} {'solve s before':>15s} "
+              f"{'job s after':>12s} {'solve s after':>14s}")
+        for paper in f["papers"]:
+            jb, sb, nb = b["papers"].get(paper, (float("nan"),) * 2 + (0,))
+            ja, sa, na = f["papers"][paper]
+            print(f"  {paper:14s} {nb:4d}/{na:<4d} {jb:13.1f} {sb:15.1f} {ja:12.1f} {sa:14.1f}")
+    shutil.rmtree(tmp, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    main()
