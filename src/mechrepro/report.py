@@ -41,6 +41,14 @@ td.note{min-width:280px}
 """
 
 
+CAPTIONS = {
+    "effect_cost": "What each effect costs (effect_cost: summed over the paper's runs; "
+                   "share = of those runs' solve time)",
+    "job_time": "Solver jobs: the solves' own time against the job's wall time (job_time)",
+    "cost_of_accuracy": "Cost of accuracy (long form: error against the reference vs time)",
+}
+
+
 def _read_csv(path: Path) -> tuple[list[str], list[list[str]]]:
     with open(path, newline="") as f:
         rows = list(csv.reader(f))
@@ -117,7 +125,8 @@ def paper_section(paper: str, results: Path, config_dir: Path, profile: str,
         if table == "validation":
             continue
         h2, r2 = _read_csv(root / "tables" / f"{table}.csv")
-        parts.append(f"<h3>Table: {html.escape(table)}</h3><table><tr>"
+        title = CAPTIONS.get(table, f"Table: {html.escape(table)}")
+        parts.append(f"<h3>{title}</h3><table><tr>"
                      + "".join(f"<th>{html.escape(h)}</th>" for h in h2) + "</tr>"
                      + "".join("<tr>" + "".join(f"<td>{_fmt(c)}</td>" for c in row) + "</tr>"
                                for row in r2) + "</table>")
