@@ -1,7 +1,7 @@
 """Cost-of-accuracy quantities of joint_wear (the ``accuracy:`` block of the config).
 
 dynamic      the wear per period (proportional to the wear factor G of Eq. 29) and the mean
-             joint force (Eq. 22) of each stiff integrator against the finest Radau run;
+             joint force (Eq. 22) of every stiff integrator run against the finest Radau run;
 quasistatic  the same quantities over the samples per period against the finest sampling;
 interval     the wear of side B1 at 86 h against the finest interval of the interval method.
 """
@@ -21,33 +21,37 @@ def finest_radau(st) -> int:
     return idx[int(np.argmin(st["rtol"].values[idx]))]
 
 
-def against_dynamic_reference(st, variable: str, method: str) -> np.ndarray:
-    """|q / q_ref - 1| of ``variable`` for the runs of ``method`` (NaN for the others and
-    for the reference itself) against the finest Radau run."""
+def against_dynamic_reference(st, variable: str) -> np.ndarray:
+    """|q / q_ref - 1| of ``variable`` for every run of the study (whatever its method)
+    against the finest Radau run (NaN for the reference itself)."""
     i_ref = finest_radau(st)
     if i_ref != finest_index(st["rtol"].values, "smaller"):
         raise ValueError("joint_wear: the finest rtol of accuracy_dynamic must be a Radau run "
                          "(the reference of the dynamic accuracy entry)")
     q = st[variable].values.astype(float)
     err = np.abs(q / q[i_ref] - 1.0)
-    err[st["method"].values != method] = np.nan
     err[i_ref] = np.nan
     return err
 
 
-for _method in ("Radau", "BDF", "LSODA"):
-    for _name, _var in (("wear_per_period", "wear_factor"), ("mean_force", "F_N_mean")):
-        ACCURACY.register(f"{_name}_{_method.lower()}")(
-            lambda ds, entry, v=_var, m=_method: against_dynamic_reference(ds, v, m))
+
+def _dynamic(ds) -> bool:
+    return "method" in ds
 
 
 @ACCURACY.register("wear_per_period")
 def wear_per_period(ds, entry):
+    """Wear per period, proportional to the wear factor G of Eq. (29)."""
+    if _dynamic(ds):
+        return against_dynamic_reference(ds, "wear_factor")
     return against_finest(ds["wear_factor"].values, ds[entry["knob"]].values, entry["finer"])
 
 
 @ACCURACY.register("mean_force")
 def mean_force(ds, entry):
+    """Mean joint force over the period, Eq. (22)."""
+    if _dynamic(ds):
+        return against_dynamic_reference(ds, "F_N_mean")
     return against_finest(ds["F_N_mean"].values, ds[entry["knob"]].values, entry["finer"])
 
 
