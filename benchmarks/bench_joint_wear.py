@@ -36,7 +36,7 @@ def main():
     ap.add_argument("--repeats", type=int, default=3)
     a = ap.parse_args()
     cfg = load_paper(ROOT / "config/papers/joint_wear.yaml")
-    fb, s, _, _ = setup(cfg.runs["period_dynamic"])
+    fb, _ = setup(cfg.runs["period_dynamic"])
     T = fb.period
     print(f"joint_wear benchmark (period {T:.4g} s; 2 cores shared with other jobs: pessimistic)")
 

@@ -35,28 +35,30 @@ profile = "default"
 # %%
 import numpy as np
 
-from mechrepro.accuracy import cost_of_accuracy, plot
+from mechrepro import accuracy
 from mechrepro.io import run_attrs
+from mechrepro.models.joint_wear import figures as F
 from mechrepro.plotting import plt
 from mechrepro.results import PaperResults
-from mechrepro.units import to_si
-from mechrepro.validation import read_table
+from mechrepro.units import from_si
 
 R = PaperResults(paper, results_dir, config_file, profile)
-reported = R.cfg.reported
-table = {r["quantity"]: r for r in read_table(R.table_path("validation"))}
+table = {r["quantity"]: r for r in R.validation()}
 fig13 = R.run("fig13_contact_points")
 per_dyn, per_qs = R.run("period_dynamic"), R.run("period_quasistatic")
-wp, wnu, wsp, wdyn, wiv = (R.run(n) for n in ("wear_prediction", "wear_no_update", "wear_swept_patch",
-                                                "wear_dynamic", "wear_interval"))
+wp, wnu, wsp, wdyn = (R.run(n) for n in ("wear_prediction", "wear_no_update", "wear_swept_patch", "wear_dynamic"))
 scan = R.run("coefficient_scan")
-interval_runs = {float(run_attrs(d)["resolution"]["interval_h"]): d
-                 for d in (R.run(n) for n in R.cfg.studies["intervals"])}
+interval_runs = F.interval_runs(R.run(n) for n in R.cfg.studies["intervals"])
 st_dyn, st_exp, st_qs = R.study("accuracy_dynamic"), R.study("accuracy_explicit"), R.study("accuracy_quasistatic")
-mm = 1e3   # display in mm
-cal_h = wp["cal_hour"].values
-h_cal = {s: np.asarray(to_si(R.cfg.raw["parameters"][f"measured_wear_{s}"]["value"], "mm")[0]) for s in ("B1", "B2")}
-paper_K = {s: np.array([reported[f"k_{s.lower()}_p{i}"]["value"] for i in range(1, 6)]) for s in ("B1", "B2")}
+coa = R.table("cost_of_accuracy")
+mm = lambda x: from_si(np.asarray(x), "mm")     # noqa: E731  lengths drawn in mm
+deg = lambda x: from_si(np.asarray(x), "deg")   # noqa: E731  angles drawn in deg
+dyn_interval = run_attrs(wdyn)["resolution"]["interval_h"]
+
+
+def paper_value(q):
+    return float(table[q]["paper_value"])
+
 
 # %% [markdown]
 # ## Fig. 13 — contact points on the bushing over a period
@@ -68,19 +70,17 @@ paper_K = {s: np.array([reported[f"k_{s.lower()}_p{i}"]["value"] for i in range(
 # the central range holding 90 % of the contact time (its max−min is set by the impact).
 
 # %%
-deg = np.degrees
-wrap = lambda a: np.mod(deg(a), 360.0)   # noqa: E731  contact angle in [0, 360) deg
 fig, ax = plt.subplots(1, 2, figsize=(10, 4))
-tf, pf, df = fig13["t_full"].values, fig13["contact_angle_full"].values, fig13["penetration_full"].values
-c = df > 0
-ax[0].plot(tf[c], wrap(pf[c]), ".", ms=1.5, label="dynamic, concentric start (1st period)")
-ax[0].plot(per_dyn["t"], wrap(per_dyn["contact_angle"].values), "-", label="dynamic, settled period")
-ax[0].plot(per_qs["t"], wrap(per_qs["contact_angle"].values), "--", label="quasi-static continuous contact")
+tc, psi_c = F.contact_points_in_contact(fig13)
+psi_dyn, psi_qs = (F.contact_angle(d["contact_angle"].values) for d in (per_dyn, per_qs))
+ax[0].plot(tc, deg(psi_c), ".", ms=1.5, label="dynamic, concentric start (1st period)")
+ax[0].plot(per_dyn["t"], deg(psi_dyn), "-", label="dynamic, settled period")
+ax[0].plot(per_qs["t"], deg(psi_qs), "--", label="quasi-static continuous contact")
 ax[0].set(xlabel="t [s]", ylabel="contact angle ψ on the bushing [deg]\n(coupler frame, 0 = direction C→B)", title="Fig. 13")
 ax[0].legend(fontsize=7)
-bins = np.linspace(np.floor(wrap(pf[c]).min()) - 1, np.ceil(wrap(pf[c]).max()) + 1, 80)
-ax[1].hist(wrap(pf[c]), bins=bins, density=True, alpha=0.6, label="1st period (impact, rattling, sliding)")
-ax[1].hist(wrap(per_dyn["contact_angle"].values), bins=bins, density=True, alpha=0.6, label="settled period")
+bins = np.linspace(np.floor(deg(psi_c).min()) - 1, np.ceil(deg(psi_c).max()) + 1, 80)
+ax[1].hist(deg(psi_c), bins=bins, density=True, alpha=0.6, label="1st period (impact, rattling, sliding)")
+ax[1].hist(deg(psi_dyn), bins=bins, density=True, alpha=0.6, label="settled period")
 ax[1].set(xlabel="contact angle ψ [deg]", ylabel="share of time in contact [1/deg]", title="distribution of contact points")
 ax[1].legend(fontsize=7)
 R.save_figure(fig, "fig13")
@@ -96,11 +96,9 @@ for q in ("contact_arc_steady_deg", "contact_arc_concentric_q90_deg"):
 
 # %%
 for side, name in (("B1", "table3"), ("B2", "table4")):
-    K = wp["K_table"].sel(side=side).values
-    rows = [[f"P{i + 1}", cal_h[i], paper_K[side][i], K[i], paper_K[side][i] / K[i]] for i in range(K.size)]
-    Km = float(wp["K_table_mean"].sel(side=side))
-    pm = reported[f"k_mean_{side.lower()}"]["value"]
-    rows.append(["mean", "", pm, Km, pm / Km])
+    s = side.lower()
+    paper_K = {f"p{i}": paper_value(f"k_{s}_p{i}") for i in range(1, 6)} | {"mean": paper_value(f"k_mean_{s}")}
+    rows = F.coefficient_table(wp, paper_K, side)
     R.write_table(name, ["point", "hour", "paper_K_per_Pa", "ours_K_per_Pa", "paper_over_ours"], rows)
     for r in rows:
         print(side, r[0], f"paper {r[2]:.4e}  ours {r[3]:.4e} 1/Pa  paper/ours {r[4]:.4g}")
@@ -118,13 +116,13 @@ for i, g in enumerate(scan["scan_gravity"].values):
     for side, mk in (("B1", "o-"), ("B2", "s--")):
         ax[0].semilogy(dirs, scan["scan_K_table_mean"].sel(side=side).values[i], mk, ms=3,
                        label=f"{side}, g = {g:g} m/s²")
-    ax[1].semilogy(dirs, scan["scan_L_arc"].values[i] * mm, "o-", ms=3, label=f"g = {g:g} m/s²")
+    ax[1].semilogy(dirs, mm(scan["scan_L_arc"].values[i]), "o-", ms=3, label=f"g = {g:g} m/s²")
 for side, col in (("B1", "k"), ("B2", "gray")):
-    ax[0].axhline(reported[f"k_mean_{side.lower()}"]["value"], color=col, lw=1, ls=":", label=f"paper mean {side}")
+    ax[0].axhline(paper_value(f"k_mean_{side.lower()}"), color=col, lw=1, ls=":", label=f"paper mean {side}")
 ax[0].set(xlabel="direction of F from E [deg]", ylabel="mean K [1/Pa] (table units)", title="calibrated coefficient")
 ax[0].legend(fontsize=6, ncol=2)
 ax[1].axhline(float(table["implied_wear_range_b1"]["reproduced_value"]), color="k", ls=":", label="wear range the paper's K needs")
-ax[1].axhline(2 * np.pi * float(per_qs["radial_clearance"] + 9.9e-3) * mm, color="r", lw=0.8, label="bushing circumference")
+ax[1].axhline(mm(2 * np.pi * float(per_qs["bushing_radius"])), color="r", lw=0.8, label="bushing circumference")
 ax[1].set(xlabel="direction of F from E [deg]", ylabel="contact-point arc L_arc [mm]", title="wear range of Eq. (29)")
 ax[1].legend(fontsize=6)
 R.save_figure(fig, "coefficient_scan")
@@ -140,32 +138,30 @@ R.save_figure(fig, "coefficient_scan")
 # %%
 fig, ax = plt.subplots(figsize=(7, 4.5))
 for side, col in (("B1", "tab:blue"), ("B2", "tab:orange")):
-    ax.plot(wp["hour"], wp["wear_predicted"].sel(side=side) * mm, "o-", ms=3, color=col, label=f"{side} predicted (quasi-static, 2 h)")
-    ax.plot(wnu["hour"], wnu["wear_predicted"].sel(side=side) * mm, ":", color=col, label=f"{side} without wear_update")
-    ax.plot(wsp["hour"], wsp["wear_predicted"].sel(side=side) * mm, "-.", color=col, lw=0.8, label=f"{side} wear range L_arc+|AB|")
-    ax.plot(np.r_[0, cal_h], np.r_[0, h_cal[side]] * mm, "s", color=col, mfc="none", label=f"{side} measured (Tables 3-4)")
-ax.plot(wdyn["hour"], wdyn["wear_predicted"].sel(side="B1") * mm, "x--", color="k",
-        label=f"B1 stiff dynamic joint with wear feedback, {run_attrs(wdyn)['resolution']['interval_h']:g} h")
-ax.axvline(10, color="gray", lw=0.6)
+    ax.plot(wp["hour"], mm(wp["wear_predicted"].sel(side=side)), "o-", ms=3, color=col, label=f"{side} predicted (quasi-static, 2 h)")
+    ax.plot(wnu["hour"], mm(wnu["wear_predicted"].sel(side=side)), ":", color=col, label=f"{side} without wear_update")
+    ax.plot(wsp["hour"], mm(wsp["wear_predicted"].sel(side=side)), "-.", color=col, lw=0.8, label=f"{side} wear range L_arc+|AB|")
+    hours, h = F.measured_wear(wp, side)
+    ax.plot(hours, mm(h), "s", color=col, mfc="none", label=f"{side} measured (Tables 3-4)")
+ax.plot(wdyn["hour"], mm(wdyn["wear_predicted"].sel(side="B1")), "x--", color="k",
+        label=f"B1 stiff dynamic joint with wear feedback, {dyn_interval:g} h")
+ax.axvline(float(wp["hour"][0]), color="gray", lw=0.6)
 ax.set(xlabel="operating time [h]", ylabel="cumulative wear depth [mm]", title="Fig. 15")
 ax.legend(fontsize=6.5)
 R.save_figure(fig, "fig15")
 
 fig, ax = plt.subplots(1, 2, figsize=(10, 4))
 for side in ("B1", "B2"):
-    ax[0].plot(cal_h, (wp["wear_calibration_replay"].sel(side=side).values / h_cal[side] - 1) * 100, "o-", label=side)
+    ax[0].plot(wp["cal_hour"], 100 * F.calibration_replay_error(wp, side), "o-", label=side)
 ax[0].axhline(0, color="k", lw=0.6)
 ax[0].set(xlabel="t [h]", ylabel="(replay with mean K - measured) / measured [%]", title="Fig. 16 (in-sample, 2-10 h)")
 ax[0].legend(fontsize=7)
-hh = wp["report_hour"].values
-base = wp["wear_report"].sel(side="B1").values
-lin = base[0] * hh / hh[0]
 for lab, d in (("without wear_update", wnu), ("wear range L_arc+|AB|", wsp),
-               (f"stiff dynamic joint ({run_attrs(wdyn)['resolution']['interval_h']:g} h)", wdyn)):
-    y = d["wear_report"].sel(side="B1").values
-    ok = d["report_is_node"].values > 0.5
-    ax[1].plot(hh[ok], (y[ok] / base[ok] - 1) * 100, "o-", ms=3, label=lab)
-ax[1].plot(hh, (lin / base - 1) * 100, label="linear extrapolation of measured rate")
+               (f"stiff dynamic joint ({dyn_interval:g} h)", wdyn)):
+    hrs, rel = F.relative_to(wp, d)
+    ax[1].plot(hrs, 100 * rel, "o-", ms=3, label=lab)
+hrs, rel = F.linear_extrapolation(wp)
+ax[1].plot(hrs, 100 * rel, label="linear extrapolation of measured rate")
 ax[1].set(xlabel="t [h]", ylabel="relative to our B1 prediction [%]", title="Fig. 16 substitute: model spread")
 ax[1].legend(fontsize=7)
 R.save_figure(fig, "fig16")
@@ -176,30 +172,22 @@ R.save_figure(fig, "fig16")
 # with the finest interval of the study.
 
 # %%
-ivals = sorted(interval_runs)
-ref_iv = ivals[0]
+ivals = list(interval_runs)
 fig, ax = plt.subplots(figsize=(7, 4.5))
-for iv in ivals:
-    d = interval_runs[iv]
-    ax.plot(d["hour"], d["wear_predicted"].sel(side="B1") * mm, "o-" if iv >= 2 else "-", ms=4, lw=1,
+for iv, d in interval_runs.items():
+    ax.plot(d["hour"], mm(d["wear_predicted"].sel(side="B1")), "o-" if iv >= 2 else "-", ms=4, lw=1,
             label=f"{iv:g} h ({int(d['n_simulations_per_side'])} simulations)")
-ax.plot(np.r_[0, cal_h], np.r_[0, h_cal["B1"]] * mm, "ks", mfc="none", label="measured B1")
+hours, h = F.measured_wear(wp, "B1")
+ax.plot(hours, mm(h), "ks", mfc="none", label="measured B1")
 ax.set(xlabel="t [h]", ylabel="cumulative wear B1 [mm]", title="Fig. 17")
 ax.legend(fontsize=7)
 R.save_figure(fig, "fig17")
 
-
-def rel_to(base_run, d):
-    ok = d["report_is_node"].values > 0.5
-    hrs = d["report_hour"].values[ok]
-    e = d["wear_report"].sel(side="B1").values[ok] / base_run["wear_report"].sel(side="B1").values[ok] - 1
-    return hrs, e * 100
-
-
-for name, base_iv, others in (("fig18", ref_iv, ivals[1:]), ("fig19", 2.0, [v for v in ivals if v > 2])):
+for name, base_iv, others in (("fig18", ivals[0], ivals[1:]), ("fig19", 2.0, [v for v in ivals if v > 2])):
     fig, ax = plt.subplots(figsize=(6.5, 4))
     for iv in others:
-        ax.plot(*rel_to(interval_runs[base_iv], interval_runs[iv]), "o-", ms=3, label=f"{iv:g} h vs {base_iv:g} h")
+        hrs, rel = F.relative_to(interval_runs[base_iv], interval_runs[iv])
+        ax.plot(hrs, 100 * rel, "o-", ms=3, label=f"{iv:g} h vs {base_iv:g} h")
     ax.set(xlabel="t [h]", ylabel="relative difference [%]",
            title="Fig. 18 substitute: vs the finest interval" if name == "fig18" else "Fig. 19")
     ax.legend(fontsize=7)
@@ -208,79 +196,35 @@ print(table["interval_error_grows"]["note"])
 
 # %% [markdown]
 # ## Cost of accuracy
-# (a) dynamic clearance joint from the settled state: Radau/BDF/LSODA over rtol, error of the
-# wear per period (∝ wear factor G) and of the mean contact force against the finest Radau
+# (a) dynamic clearance joint from the settled start: the stiff integrators over rtol, error of
+# the wear per period (∝ wear factor G) and of the mean contact force against the finest Radau
 # run; the explicit RK45 point is stopped by a step budget — its time per period is
-# extrapolated from how far it got.  (b) quasi-static continuous contact over samples per
-# period, against the same dynamic reference.  (c) wear at 86 h against the interval length,
-# against the finest interval.
+# extrapolated from how far it got.  (b) the quasi-static joint over samples per period
+# against its finest sampling.  (c) wear at 86 h against the interval length, against the
+# finest interval.  (d) the quasi-static wear per period against the dynamic reference (model
+# and sampling) and against its finest sampling.  The table is the framework's
+# (`tables/cost_of_accuracy.csv`, from the config's `accuracy:` block).
 
 # %%
-def sel_method(st, m):
-    return st.isel(run=[i for i, v in enumerate(st["method"].values) if v == m])
-
-
-radau = sel_method(st_dyn, "Radau")
-iref = int(np.argmin(radau["rtol"].values))
-G_ref, F_ref = float(radau["wear_factor"][iref]), float(radau["F_N_mean"][iref])
-ref_name = f"Radau rtol={radau['rtol'].values[iref]:g}"
-coa_sets = {}
-for m in sorted(set(st_dyn["method"].values)):
-    s = sel_method(st_dyn, m)
-    keep = [i for i in range(s.sizes["run"]) if not (m == "Radau" and i == iref)]
-    if not keep:
-        continue
-    s = s.isel(run=keep)
-    coa_sets[m] = cost_of_accuracy(paper, "rtol", s["rtol"].values, s["period_wall_time"].values,
-                                   {f"wear_per_period_{m}": np.abs(s["wear_factor"].values / G_ref - 1),
-                                    f"mean_force_{m}": np.abs(s["F_N_mean"].values / F_ref - 1)},
-                                   reference=ref_name, description=f"dynamic clearance joint, {m}")
-qs = cost_of_accuracy(paper, "n_steps", st_qs["n_steps"].values, st_qs["period_wall_time"].values,
-                      {"wear_per_period_quasistatic": np.abs(st_qs["wear_factor"].values / G_ref - 1),
-                       "mean_force_quasistatic": np.abs(st_qs["F_N_mean"].values / F_ref - 1)},
-                      reference=ref_name, description="quasi-static continuous contact")
-iv_arr = np.array(ivals[1:])
-w86 = np.array([float(interval_runs[v]["wear_at_end_B1"]) for v in iv_arr])
-w86_ref = float(interval_runs[ref_iv]["wear_at_end_B1"])
-iv_wall = np.array([float(run_attrs(interval_runs[v])["wall_time_s"]) for v in iv_arr])
-coa_iv = cost_of_accuracy(paper, "interval_h", iv_arr, iv_wall, {"wear_86h": np.abs(w86 / w86_ref - 1)},
-                          reference=f"interval {ref_iv:g} h", knob_units="h",
-                          description="wear of B1 at 86 h vs interval length")
-R.write_dataset(coa_sets.get("Radau", qs), "cost_of_accuracy")
-R.write_dataset(qs, "cost_of_accuracy_quasistatic")
-R.write_dataset(coa_iv, "cost_of_accuracy_interval")
-rows_coa = []
-for m, d in list(coa_sets.items()) + [("quasistatic", qs)]:
-    for i in range(d.sizes["resolution"]):
-        errs = [float(d[v][i]) for v in d.data_vars if v.startswith("error_")]
-        rows_coa.append([m, float(d["resolution"][i]), float(d["wall_time"][i]), errs[0], errs[1]])
-for i in range(coa_iv.sizes["resolution"]):
-    rows_coa.append(["interval_h", float(coa_iv["resolution"][i]), float(coa_iv["wall_time"][i]),
-                     float(coa_iv["error_wear_86h"][i]), float("nan")])
-for i in range(st_exp.sizes["run"]):
-    rows_coa.append(["RK45 (step budget)", float(st_exp["rtol"][i]), float(st_exp["period_wall_time"][i]),
-                     float("nan"), float("nan")])
-R.write_table("cost_of_accuracy", ["model", "knob", "wall_time_s", "error_wear_or_wear86", "error_mean_force"], rows_coa)
-
-fig, ax = plt.subplots(1, 3, figsize=(15, 4.3))
-for m, d in coa_sets.items():
-    plot(d, ax[0], annotate=(m == "Radau"))
-plot(qs, ax[0], annotate=False)
-for i in range(st_exp.sizes["run"]):
-    w = float(st_exp["period_wall_time"][i])
+fig, ax = plt.subplots(1, 4, figsize=(20, 4.3), sharey=False)
+accuracy.plot(coa, "dynamic", ax[0])
+for e in F.explicit_points(st_exp):
+    w = e["period_wall_time"]
     ax[0].axvline(w, color="r", ls=":", lw=1)
-    ax[0].annotate(f"RK45 rtol={float(st_exp['rtol'][i]):g}\nstep budget {float(st_exp['steps'][i]):.0f}: reached {float(st_exp['t_reached'][i]):.3g} s,\n"
-                   f"extrapolated {w:.3g} s/period", (w, 1e-6), fontsize=6, color="r", rotation=90, ha="right")
-ax[0].set_title("one period: dynamic (implicit, explicit) vs quasi-static")
-plot(coa_iv, ax[1])
-ax[1].set_title("wear at 86 h vs interval length")
-ax[2].semilogx(st_qs["n_steps"], np.abs(st_qs["wear_factor"] / G_ref - 1) + 1e-16, "o-", label=f"quasi-static vs {ref_name}")
-fin = st_qs["wear_factor"].values[np.argmax(st_qs["n_steps"].values)]
-ax[2].semilogx(st_qs["n_steps"], np.abs(st_qs["wear_factor"] / fin - 1) + 1e-16, "s--", label="quasi-static vs its finest")
-ax[2].set_yscale("log")
-ax[2].set(xlabel="samples per period", ylabel="relative error of wear per period")
-ax[2].legend(fontsize=7)
-ax[2].grid(True, which="both", alpha=0.3)
+    ax[0].annotate(f"RK45 rtol={e['rtol']:g}: step budget {e['steps']:.0f}\nreached {e['t_reached']:.3g} s, "
+                   f"extrapolated {w:.3g} s/period", (w, 0.05), xycoords=("data", "axes fraction"),
+                   fontsize=6, color="r", rotation=90, ha="right", va="bottom")
+ax[0].set_title("one period, dynamic joint: implicit (and explicit RK45)")
+accuracy.plot(coa, "quasistatic", ax[1])
+ax[1].set_title("one period, quasi-static joint")
+accuracy.plot(coa, "interval", ax[2])
+ax[2].set_title("wear at 86 h vs interval length")
+qe = F.quasistatic_errors(st_qs, st_dyn)
+ax[3].loglog(qe["n_steps"], qe["vs_dynamic"] + 1e-16, "o-", label=f"quasi-static vs {qe['reference']}")
+ax[3].loglog(qe["n_steps"], qe["vs_finest"] + 1e-16, "s--", label="quasi-static vs its finest")
+ax[3].set(xlabel="samples per period", ylabel="relative error of wear per period", title="quasi-static vs dynamic joint")
+ax[3].legend(fontsize=7)
+ax[3].grid(True, which="both", alpha=0.3)
 R.save_figure(fig, "cost_of_accuracy")
 
 # %% [markdown]

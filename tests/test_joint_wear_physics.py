@@ -129,36 +129,18 @@ def test_unit_reading_of_the_wear_coefficient():
     assert np.allclose(kp * Gp * 1152, dh, rtol=1e-9)
 
 
-def test_unselected_effects_are_never_evaluated(monkeypatch):
-    """A continuous-contact wear scene never touches the stiff contact dynamics."""
-    def boom(*a, **k):
-        raise AssertionError("evaluated an effect the scene did not ask for")
-    for name in ("clearance_contact", "contact_damping", "unbalanced_load"):
-        monkeypatch.setitem(EFFECTS._effects, name, boom)
-    monkeypatch.setattr(dynamics, "simulate", boom)
-    run = dict(CFG.runs["wear_interval"])
-    run["resolution"] = dict(run["resolution"], interval_h=16, n_steps=64)
-    ds = solve(run)
-    assert list(ds["side"].values) == ["B1"]
-    check_cf(ds)
-
-
 def test_effects_change_the_result():
     base = solve(run_of("period_quasistatic"))
     run = run_of("period_quasistatic")
-    run["effects"] = ["continuous_contact", "gravity"]
+    run["effects"] = ["gravity"]
     nofric = solve(run)
     # friction turns the contact point by ~atan(mu) and adds a friction force
     assert float(np.abs(nofric["F_T"]).max()) == 0.0
     assert float(np.abs(base["F_T"]).max()) > 0.05 * float(base["F_N_mean"])
-    run["effects"] = ["continuous_contact", "friction"]
+    run["effects"] = ["friction"]
     nograv = solve(run)
     # without the link weights the coupler is a two-force member: the arc collapses
     assert float(nograv["contact_arc_angle"]) < 0.1 * float(base["contact_arc_angle"])
-    with pytest.raises(ValueError, match="exactly one"):
-        r = run_of("period_quasistatic")
-        r["effects"] = ["friction"]
-        solve(r)
 
 
 def test_wear_update_and_unbalanced_load():

@@ -3,9 +3,12 @@
 Lai, Liu, Ji, Wang, Zhang, J. Vibroengineering 20 (2018), DOI 10.21595/jve.2018.18979.
 Modules: geometry (Table 1-2, Eqs. 12-13), kinematics (ideal four-bar), loads (minimal-
 coordinate equations of motion), contact (Eqs. 5-15, 18-20), quasistatic (continuous
-contact), dynamics (stiff clearance contact), wear (Eqs. 16-34, Sec. 3.3), solver
-(effects -> Dataset), cartesian (Eq. 3 with Lagrange multipliers, for verification).
+contact), dynamics (stiff clearance contact), wear (Eqs. 16-34, Sec. 3.3), effects (the
+effects a scene names), solver (the solvers a scene names), dataset (result -> Dataset),
+accuracy (cost-of-accuracy errors), figures (what the notebook draws), cartesian (Eq. 3
+with Lagrange multipliers, for verification).
 """
-from .solver import EFFECTS, compute, setup, solve, to_dataset
+from .effects import EFFECTS
+from .solver import SOLVERS, compute, setup, solve, to_dataset
 
-__all__ = ["EFFECTS", "compute", "setup", "solve", "to_dataset"]
+__all__ = ["EFFECTS", "SOLVERS", "compute", "setup", "solve", "to_dataset"]

@@ -183,9 +183,9 @@ def simulate(fb: FourBar, t_end: float, n_out: int, method: str = "Radau",
     integration stops must not depend on the machine's load.
     status: 0 finished, -1 integrator failure, -2 step budget spent.
     """
-    import time
-
     from scipy import integrate
+
+    from mechrepro.timing import stopwatch
 
     if method not in METHODS:
         raise ValueError(f"joint_wear: method {method!r}: allowed {', '.join(METHODS)}")
@@ -200,25 +200,25 @@ def simulate(fb: FourBar, t_end: float, n_out: int, method: str = "Radau",
     k = 1
     steps = 0
     status, message = 0, "finished"
-    t0 = time.perf_counter()
-    while solver.status == "running":
-        msg = solver.step()
-        steps += 1
-        if solver.status == "failed":
-            status, message = -1, str(msg)
-            break
-        # samples inside this step, from the step's dense output
-        j = np.searchsorted(t_eval, solver.t, side="right")
-        if j > k:
-            sol = solver.dense_output()
-            ts = t_eval[k:j]
-            T.extend(ts)
-            Y.extend(np.atleast_2d(sol(ts)).T)
-            k = j
-        if max_steps is not None and steps >= max_steps and solver.status == "running":
-            status, message = -2, f"step budget {max_steps} spent at t = {solver.t:.4g} s"
-            break
-    wall = time.perf_counter() - t0
+    with stopwatch() as sw:
+        while solver.status == "running":
+            msg = solver.step()
+            steps += 1
+            if solver.status == "failed":
+                status, message = -1, str(msg)
+                break
+            # samples inside this step, from the step's dense output
+            j = np.searchsorted(t_eval, solver.t, side="right")
+            if j > k:
+                sol = solver.dense_output()
+                ts = t_eval[k:j]
+                T.extend(ts)
+                Y.extend(np.atleast_2d(sol(ts)).T)
+                k = j
+            if max_steps is not None and steps >= max_steps and solver.status == "running":
+                status, message = -2, f"step budget {max_steps} spent at t = {solver.t:.4g} s"
+                break
+    wall = sw.seconds
     T, Y = np.asarray(T), np.asarray(Y).T
     out = {"t": T, "y": Y, "status": status, "message": message, "nfev": sys_.nfev,
            "steps": steps, "t_reached": float(solver.t), "wall": wall}

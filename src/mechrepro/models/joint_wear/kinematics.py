@@ -8,6 +8,8 @@ direction D -> C of the follower.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .geometry import FourBar
@@ -60,3 +62,11 @@ def accelerations(fb: FourBar, theta1, theta3, phi2, w3, w2):
     a3 = (rx * a22 - a12 * ry) / det
     a2 = (a11 * ry - a21 * rx) / det
     return a3, a2
+
+
+def load_point_mid_stroke(fb: FourBar, n: int = 721):
+    """E (the follower's centre, where P acts, Sec. 4.1) at the middle of the follower's
+    stroke: the centre of the load points F the coefficient scan places around it [m]."""
+    th3, _ = positions(fb, np.linspace(0.0, 2 * np.pi, n))
+    th_mid = 0.5 * (th3.min() + th3.max())
+    return (fb.l0 + 0.5 * fb.l3 * math.cos(th_mid), 0.5 * fb.l3 * math.sin(th_mid))

@@ -39,6 +39,8 @@ from collections.abc import Callable
 
 import numpy as np
 
+from mechrepro.units import from_si
+
 from . import contact
 from .geometry import FourBar
 
@@ -130,12 +132,9 @@ def period_wear_factor(hist: dict, fb: FourBar, period: float,
             "F_N_max": float(F_N.max())}
 
 
-HB_TO_PA = 9.80665e6   # 1 HB = 1 kgf/mm^2 = 9.80665e6 Pa
-
-
 def hardness_number(H):
     """The bare number Eq. (32) divides by: H [Pa] in Brinell units, 21 for 21 HB."""
-    return H / HB_TO_PA
+    return from_si(H, "HB")
 
 
 def k_from_table(K_table, H):
@@ -208,10 +207,11 @@ def interval_nodes(t_start_h: float, t_end_h: float, interval_h: float) -> np.nd
 
 def predict(h_start: float, t_start_h: float, t_end_h: float, interval_h: float, k: float,
             period: float, R0: float, wear_factor: Callable[[float], float],
-            update: bool = True):
+            worn_bushing: Callable[[float, float], float] | None = bushing_radius):
     """Sec. 3.3 / 4.4: one simulated period per interval, scaled by its periods.
 
-    update=False freezes the bushing at its starting size (no wear_update effect).
+    worn_bushing(R0, h): the bushing circle at the start of each interval (the
+    wear_update effect: Sec. 4.4 step 4); None freezes the bushing at its starting size.
     Returns (node times [h], cumulative wear at the nodes [m], G per simulation).
     """
     nodes = interval_nodes(t_start_h, t_end_h, interval_h)
@@ -220,7 +220,9 @@ def predict(h_start: float, t_start_h: float, t_end_h: float, interval_h: float,
     Gs = []
     G_fixed = None
     for i in range(nodes.size - 1):
-        if update or G_fixed is None:
+        if worn_bushing is not None:
+            G_fixed = wear_factor(worn_bushing(R0, h[i]))
+        elif G_fixed is None:
             G_fixed = wear_factor(bushing_radius(R0, h[i]))
         Gs.append(G_fixed)
         M = periods_per_interval(nodes[i + 1] - nodes[i], period)

@@ -1,0 +1,60 @@
+"""Cost-of-accuracy quantities of joint_wear (the ``accuracy:`` block of the config).
+
+dynamic      the wear per period (proportional to the wear factor G of Eq. 29) and the mean
+             joint force (Eq. 22) of every stiff integrator run against the finest Radau run;
+quasistatic  the same quantities over the samples per period against the finest sampling;
+interval     the wear of side B1 at 86 h against the finest interval of the interval method.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from mechrepro.accuracy import AccuracyQuantities, against_finest, finest_index
+
+ACCURACY = AccuracyQuantities("joint_wear")
+REFERENCE_METHOD = "Radau"
+
+
+def finest_radau(st) -> int:
+    """Index of the dynamic reference: the Radau run at the smallest rtol of the study."""
+    idx = [i for i, m in enumerate(st["method"].values) if m == REFERENCE_METHOD]
+    return idx[int(np.argmin(st["rtol"].values[idx]))]
+
+
+def against_dynamic_reference(st, variable: str) -> np.ndarray:
+    """|q / q_ref - 1| of ``variable`` for every run of the study (whatever its method)
+    against the finest Radau run (NaN for the reference itself)."""
+    i_ref = finest_radau(st)
+    if i_ref != finest_index(st["rtol"].values, "smaller"):
+        raise ValueError("joint_wear: the finest rtol of accuracy_dynamic must be a Radau run "
+                         "(the reference of the dynamic accuracy entry)")
+    q = st[variable].values.astype(float)
+    err = np.abs(q / q[i_ref] - 1.0)
+    err[i_ref] = np.nan
+    return err
+
+
+
+def _dynamic(ds) -> bool:
+    return "method" in ds
+
+
+@ACCURACY.register("wear_per_period")
+def wear_per_period(ds, entry):
+    """Wear per period, proportional to the wear factor G of Eq. (29)."""
+    if _dynamic(ds):
+        return against_dynamic_reference(ds, "wear_factor")
+    return against_finest(ds["wear_factor"].values, ds[entry["knob"]].values, entry["finer"])
+
+
+@ACCURACY.register("mean_force")
+def mean_force(ds, entry):
+    """Mean joint force over the period, Eq. (22)."""
+    if _dynamic(ds):
+        return against_dynamic_reference(ds, "F_N_mean")
+    return against_finest(ds["F_N_mean"].values, ds[entry["knob"]].values, entry["finer"])
+
+
+@ACCURACY.register("wear_86h")
+def wear_86h(ds, entry):
+    return against_finest(ds["wear_at_end_B1"].values, ds[entry["knob"]].values, entry["finer"])

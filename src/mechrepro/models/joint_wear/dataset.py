@@ -1,0 +1,181 @@
+"""The dataset of one joint_wear run: one function per part of a solver's result.
+
+Each part returns ``(coords, variables)`` labelled with :func:`mechrepro.units.var`; a part
+whose result is absent (no wear, no scan ...) contributes nothing.
+"""
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from mechrepro.units import var
+
+from . import wear
+
+SIDE = ("side", "1", "side of the bushing (Fig. 10)")
+
+
+def _scalars(items: dict) -> dict:
+    return {k: var((), float(v), u, ln) for k, (v, u, ln) in items.items()}
+
+
+def period_part(res: dict, run: dict):
+    """The contact history of the simulated period and its wear factor (Eqs. 18-29)."""
+    h, f = res["hist"], res["factor"]
+    coords = {"t": var("t", np.asarray(h["t"]), "s", "time within the crank period")}
+    v = {
+        "F_N": var("t", h["F_N"], "N", "normal contact force at joint B, Eq. (11)"),
+        "F_T": var("t", h["F_T"], "N", "friction force at joint B, Eq. (15)"),
+        "penetration": var("t", h["delta"], "m", "penetration depth delta, Eq. (8)"),
+        "sliding_velocity": var("t", h["v_T"], "m/s", "tangential relative velocity v_T, Eq. (10)"),
+        "contact_angle": var("t", h["psi"], "rad", "contact point on the bushing, angle in the coupler frame from C->B"),
+        "theta3": var("t", h["theta3"], "rad", "follower angle"),
+        "phi2": var("t", h["phi2"], "rad", "coupler angle C->B"),
+    }
+    v.update(_scalars({
+        "F_N_mean": (f["F_N_mean"], "N", "mean normal contact force over the period, Eq. (22)"),
+        "F_N_min": (f["F_N_min"], "N", "minimum normal contact force over the period"),
+        "F_N_max": (f["F_N_max"], "N", "maximum normal contact force over the period"),
+        "min_penetration": (f["min_penetration"], "m", "minimum penetration over the period"),
+        "sliding_distance": (f["S"], "m", "sliding distance over the period, Eq. (21)"),
+        "contact_chord_mean": (f["AB_mean"], "m", "mean contact arc chord |AB|, Eq. (23)"),
+        "contact_area_mean": (f["A_mean"], "m2", "mean contact area, Eq. (24)"),
+        "contact_arc_angle": (f["arc"], "rad", "angular range of the contact point on the bushing (Fig. 13)"),
+        "contact_arc_q90": (f["arc_q90"], "rad", "central range of the contact angle holding 90 % of the contact time (well-posed under rattling)"),
+        "L_arc": (f["L_arc"], "m", "length of the contact-point arc on the bushing, Arc^j"),
+        "L_wear": (f["L_wear"], "m", "length of the wear range used in Eq. (29)"),
+        "wear_factor": (f["G"], "N/m", "wear depth per period per unit k, F_N S / (w L), Eq. (29)"),
+        "period_wall_time": (res["period_wall"], "s", "wall time of one simulated period (extrapolated from t_reached if unfinished)"),
+    }))
+    return coords, v
+
+
+def mechanism_part(res: dict, run: dict):
+    fb = res["fb"]
+    return {}, _scalars({
+        "contact_stiffness": (fb.K_contact, "N/m^1.5", "K' of Eq. (12)"),
+        "radial_clearance": (fb.clearance, "m", "radial clearance c"),
+        "bushing_radius": (fb.R_bush, "m", "bushing radius R_j (new bushing)"),
+        "period": (fb.period, "s", "crank period"),
+    })
+
+
+def integrator_part(res: dict, run: dict):
+    """Cost of the dynamic integration and the whole simulated history (dynamic joint)."""
+    h = res["hist"]
+    full = h["full"]
+    coords = {"t_full": var("t_full", full["t"], "s", "time since start of the simulation")}
+    v = {
+        "penetration_full": var("t_full", full["delta"], "m", "penetration depth over the whole simulation"),
+        "F_N_full": var("t_full", full["F_N"], "N", "normal contact force over the whole simulation"),
+        "contact_angle_full": var("t_full", full["psi"], "rad", "contact angle over the whole simulation"),
+        "sliding_velocity_full": var("t_full", full["v_T"], "m/s", "sliding velocity over the whole simulation"),
+    }
+    v.update(_scalars({
+        "nfev": (h["nfev"], "1", "right-hand-side evaluations of the integrator"),
+        "steps": (h["steps"], "1", "integrator steps taken"),
+        "completed": (h["completed"], "1", "1 if the integrator finished the period within its step budget"),
+        "t_reached": (h["t_reached"], "s", "time the integrator reached"),
+    }))
+    return coords, v
+
+
+def calibration_part(res: dict, run: dict):
+    """Tables 3-4: the coefficients calibrated per interval (Eqs. 32-34) and their replay."""
+    w, p = res["wear"], run["parameters"]
+    H = float(p["hardness_bushing"])
+    k, k_mean, G = np.array(w["k"]), np.array(w["k_mean"]), np.array(w["G_cal"])
+    M_cal = wear.periods_per_interval(float(p["measurement_interval"]) / 3600.0, res["fb"].period)
+    sc = ("side", "cal_hour")
+    coords = {"side": var("side", np.array(w["sides"], dtype=object), *SIDE[1:]),
+              "cal_hour": var("cal_hour", w["cal_hours"], "h", "end of calibration interval P1..P5")}
+    v = {
+        "k_calibrated": var(sc, k, "m2/N", "dimensional wear coefficient k = K/H per interval, Eqs. (32)-(34)"),
+        "K_table": var(sc, wear.table_from_k(k, H), "1/Pa", "equivalent wear coefficient K = k H_number as Tables 3-4 print it"),
+        "K_table_mean": var("side", wear.table_from_k(k_mean, H), "1/Pa", "mean equivalent wear coefficient K as Tables 3-4 print it"),
+        "K_archard_mean": var("side", wear.archard_dimensionless(k_mean, H), "1", "mean dimensionless Archard coefficient K_A = k H, H = 21 HB in Pa"),
+        "wear_factor_calibration": var(sc, G, "N/m", "wear factor of the simulated period per calibration interval"),
+        "wear_calibration_replay": var(sc, np.cumsum(k_mean[:, None] * G * M_cal, axis=1), "m", "the measured intervals replayed with the mean coefficient (in-sample, Eqs. 32-34)"),
+        "k_mean": var("side", k_mean, "m2/N", "mean dimensional wear coefficient k = K/H"),
+    }
+    return coords, v
+
+
+def prediction_part(res: dict, run: dict):
+    """Fig. 15: the interval prediction, also at the paper's measurement times."""
+    w = res["wear"]
+    nodes = w["nodes"][0]
+    # the paper's measurement times (every measurement interval from the start of the
+    # prediction): nodes of every interval length that divides the schedule, so studies
+    # over the interval can be compared there without re-gridding
+    step_h = float(run["parameters"]["measurement_interval"]) / 3600.0
+    rep = np.arange(nodes[0], nodes[-1] + 1e-9, step_h)
+    rep[-1] = nodes[-1]
+    coords = {"hour": var("hour", nodes, "h", "operating time at the interval nodes"),
+              "report_hour": var("report_hour", rep, "h", "the paper's measurement times from the start of the prediction")}
+    v = {
+        "wear_predicted": var(("side", "hour"), np.array(w["h"]), "m", "predicted cumulative wear depth of the bushing (Fig. 15)"),
+        "wear_factor_prediction": var(("side", "hour"), np.array([np.append(g, np.nan) for g in w["G_pred"]]), "N/m", "wear factor of the period simulated at the start of each interval"),
+        "wear_report": var(("side", "report_hour"), np.array([np.interp(rep, nodes, h) for h in w["h"]]), "m",
+                           "predicted cumulative wear at the measurement times (linear between interval nodes)"),
+        "report_is_node": var("report_hour", np.isclose(rep[:, None], nodes[None, :], atol=1e-9).any(axis=1).astype(float), "1",
+                              "1 where the measurement time is a node of this run's interval schedule"),
+    }
+    # the interval method assumes the wear per period barely changes within an interval
+    # (Sec. 3.3); its largest change between successive simulations measures that
+    changes = [np.max(np.abs(np.diff(g) / g[:-1])) if len(g) > 1 else 0.0 for g in w["G_pred"]]
+    scal = {f"wear_at_end_{side}": (h[-1], "m", f"predicted wear of side {side} at the end of the prediction")
+            for side, h in zip(w["sides"], w["h"])}
+    scal.update({
+        "n_simulations_prediction": (sum(len(g) for g in w["G_pred"]), "1", "one-period simulations of the prediction (all sides)"),
+        "n_simulations_per_side": (len(w["G_pred"][0]), "1", "one-period simulations of the prediction per side"),
+        "wall_time_wear": (w["wall_time_prediction"], "s", "wall time of calibration + prediction, all sides"),
+        "interval_factor_change_max": (max(changes), "1", "largest relative change of the wear per period between successive interval simulations"),
+    })
+    v.update(_scalars(scal))
+    return coords, v
+
+
+def period_by_period_part(res: dict, run: dict):
+    n, wall = res["pbp"]
+    return {}, _scalars({
+        "pbp_sample_periods": (n, "1", "consecutive periods simulated one by one (Fig. 6) to time the reference"),
+        "pbp_sample_wall_time": (wall, "s", "wall time of those periods"),
+    })
+
+
+def scan_part(res: dict, run: dict):
+    """The calibrated coefficient over load points F and gravity planes."""
+    sc = res["scan"]
+    H = float(run["parameters"]["hardness_bushing"])
+    gd = ("scan_gravity", "scan_direction")
+    coords = {"side": var("side", np.array(sc["sides"], dtype=object), *SIDE[1:]),
+              "scan_gravity": var("scan_gravity", sc["gravity"], "m/s2", "gravity component in the plane of motion"),
+              "scan_direction": var("scan_direction", sc["directions"], "deg", "direction of the load point F from E's mid-stroke position")}
+    v = {
+        "scan_K_table_mean": var(("side", *gd), wear.table_from_k(sc["k"], H), "1/Pa", "mean equivalent wear coefficient (table units) calibrated with this load point and gravity"),
+        "scan_L_arc": var(gd, sc["L_arc"], "m", "contact-point arc length on the bushing (new bushing)"),
+        "scan_F_N_min": var(gd, sc["F_N_min"], "N", "minimum joint force over the period (new bushing)"),
+        "scan_load_distance": var((), float(sc["distance"]), "m", "distance of F from E's mid-stroke position in the scan"),
+    }
+    return coords, v
+
+
+# (part, the key of the solver's result it needs)
+PARTS = ((mechanism_part, "fb"), (period_part, "hist"), (calibration_part, "wear"),
+         (prediction_part, "wear"), (period_by_period_part, "pbp"), (scan_part, "scan"))
+
+
+def build(res: dict, run: dict) -> xr.Dataset:
+    """The run's dataset from a solver's result (solver.py)."""
+    coords, v = {}, {}
+    parts = [p for p, key in PARTS if key in res]
+    if "full" in res.get("hist", {}):
+        parts.append(integrator_part)
+    for part in parts:
+        c, d = part(res, run)
+        coords.update(c)
+        v.update(d)
+    ds = xr.Dataset(v, coords)
+    ds.attrs["solver"] = run["solver"]
+    return ds
