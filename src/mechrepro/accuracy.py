@@ -88,7 +88,8 @@ def observed_order(h, err) -> float:
 def rows(entries: list[dict], dataset: Callable[[str], object],
          quantities: AccuracyQuantities) -> list[dict]:
     """The long-form cost-of-accuracy table of one paper (``dataset(name)`` opens a study
-    or a run).  Sorted from coarse to fine; the reference point of ``finest`` is left out."""
+    or a run).  Sorted from coarse to fine; the reference point of ``finest`` is left out,
+    and so is a point whose error is NaN (a quantity that does not apply to it)."""
     out = []
     for entry in entries:
         ds = dataset(entry["study"])
@@ -106,6 +107,8 @@ def rows(entries: list[dict], dataset: Callable[[str], object],
             for i in order:
                 if entry["reference"] == "finest" and i == finest_index(knob, entry["finer"]):
                     continue
+                if not np.isfinite(err[i]):
+                    continue   # the quantity does not apply at this point (e.g. another method)
                 out.append({
                     "accuracy": entry["name"], "knob": entry["knob"],
                     "knob_value": knob[i].item(), "quantity": qname,
