@@ -51,6 +51,17 @@ class ThermalLoad:
     inplane_bc: str
 
 
+def thermal_load(ctx, r_c) -> ThermalLoad:
+    """Eq. (4) at ``r_c`` with the context's amplitude, width, alpha and in-plane condition."""
+    rc = float(r_c)
+    kw = dict(amplitude=ctx.A, r_c=rc, s=ctx.s, r_f=ctx.r_f, b=ctx.b, E=ctx.E, nu=ctx.nu,
+              alpha=ctx.alpha, inplane_bc=ctx.bc)
+    return ThermalLoad(r_c=rc, alpha=ctx.alpha, inplane_bc=ctx.bc,
+                       temperature=lambda r: thermal.temperature(r, ctx.A, rc, ctx.s),
+                       sigma=(lambda r: thermal.thermal_stress(r, **kw)[0],
+                              lambda r: thermal.thermal_stress(r, **kw)[1]))
+
+
 # --- stage 1: what the load and the mesh need ---------------------------------------------
 @EFFECTS.register("stress_calibration")
 def stress_calibration(ctx) -> dict:
@@ -90,18 +101,7 @@ def slots(ctx) -> dict:
 def roll_tension(ctx) -> dict:
     """Eq. (4) temperature of every r_c and its plane-stress field, for the run's
     ``inplane_bc`` only (the other condition is another scene, or a range variant)."""
-    kw = dict(amplitude=ctx.A, s=ctx.s, r_f=ctx.r_f, b=ctx.b, E=ctx.E, nu=ctx.nu,
-              alpha=ctx.alpha, inplane_bc=ctx.bc)
-
-    def load(rc):
-        rc = float(rc)
-        return ThermalLoad(
-            r_c=rc, alpha=ctx.alpha, inplane_bc=ctx.bc,
-            temperature=lambda r: thermal.temperature(r, ctx.A, rc, ctx.s),
-            sigma=(lambda r: thermal.thermal_stress(r, r_c=rc, **kw)[0],
-                   lambda r: thermal.thermal_stress(r, r_c=rc, **kw)[1]))
-
-    loads = [load(rc) for rc in ctx.r_c]
+    loads = [thermal_load(ctx, rc) for rc in ctx.r_c]
     r = np.linspace(0.0, ctx.b, N_RADII)
     sr = np.full((len(loads), len(r)), np.nan)
     st = sr.copy()
