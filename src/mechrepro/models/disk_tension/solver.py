@@ -243,6 +243,7 @@ def compute(run: dict) -> Disk:
 
 
 def to_dataset(ctx: Disk, run: dict | None = None) -> xr.Dataset:
+    """The run's variables; those named like their only dimension are its coordinates."""
     coords = {k: v for k, v in ctx.vars.items() if v[0] == (k,)}
     data = {k: v for k, v in ctx.vars.items() if k not in coords}
     return xr.Dataset(data, coords=coords)
