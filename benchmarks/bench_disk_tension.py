@@ -22,7 +22,6 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import subprocess  # noqa: E402
 import sys  # noqa: E402
-import time  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
@@ -30,7 +29,8 @@ import numpy as np  # noqa: E402
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "src"))
 
-from mechrepro.timing import time_call  # noqa: E402
+from mechrepro.timing import stopwatch, time_call  # noqa: E402
+from mechrepro.models.disk_tension.effects import thermal_load  # noqa: E402
 from mechrepro.config import load_paper  # noqa: E402
 from mechrepro.models.disk_tension import compute, exact  # noqa: E402
 from mechrepro.models.disk_tension.axisym import AxisymDisk  # noqa: E402
@@ -58,7 +58,7 @@ def grid(ctx, n_elements, min_time=0.2):
                           n_elements=n_elements)
         disk.unrolled()
         disks.append(disk)
-        Ks.append([disk.stress_stiffness(ctx.stress(r_c)) for r_c in RC])
+        Ks.append([disk.stress_stiffness(thermal_load(ctx, r_c).sigma) for r_c in RC])
 
     def setup_all():
         for i, r_f in enumerate(RF):
@@ -66,7 +66,7 @@ def grid(ctx, n_elements, min_time=0.2):
             d = AxisymDisk(r_f=r_f, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho, n_d=ND,
                            n_elements=n_elements)
             d.unrolled()
-            [d.stress_stiffness(ctx.stress(r_c)) for r_c in RC]
+            [d.stress_stiffness(thermal_load(ctx, r_c).sigma) for r_c in RC]
 
     def eig_all():
         return np.array([[d.rolled(k)[0] for k in ks] for d, ks in zip(disks, Ks)])
@@ -106,11 +106,11 @@ def plate2d_at_0_1_percent(ctx, meshes=((3, 24), (4, 32), (6, 48), (6, 64), (8, 
 
     fe = exact_f(ctx)
     for nr, ns in meshes:
-        t0 = time.perf_counter()
-        p = PlateDisk(r_f=0.025, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho, n_d=ND,
-                      n_rings=nr, n_sectors=ns)
-        p.unrolled()
-        dt = time.perf_counter() - t0
+        with stopwatch() as sw:
+            p = PlateDisk(r_f=0.025, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho, n_d=ND,
+                          n_rings=nr, n_sectors=ns)
+            p.unrolled()
+        dt = sw.seconds
         err = np.abs(np.sqrt([p.omega2[n].mean() for n in ND]) / (2 * np.pi) / fe - 1)
         print(f"  plate2d {nr:2d} x {ns:3d} ({p.basis.N:5d} DOFs): N_d=4 error {err[4]:.2e}, "
               f"max over N_d {err.max():.2e}, {dt:.2f} s")
@@ -122,11 +122,11 @@ def plate2d_at_0_1_percent(ctx, meshes=((3, 24), (4, 32), (6, 48), (6, 64), (8, 
 def axisym_at(ctx, tol):
     fe = exact_f(ctx)
     for n in (1, 2, 3, 4, 6, 8, 12, 16):
-        t0 = time.perf_counter()
-        d = AxisymDisk(r_f=0.025, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho, n_d=ND,
-                       n_elements=n)
-        d.unrolled()
-        dt = time.perf_counter() - t0
+        with stopwatch() as sw:
+            d = AxisymDisk(r_f=0.025, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho, n_d=ND,
+                           n_elements=n)
+            d.unrolled()
+        dt = sw.seconds
         err = np.abs(np.sqrt([d.omega2[k] for k in ND]) / (2 * np.pi) / fe - 1).max()
         if err < tol:
             return n, err, dt

@@ -36,31 +36,28 @@ profile = "default"
 # %%
 import numpy as np
 
-from mechrepro.accuracy import cost_of_accuracy, plot
-from mechrepro.io import run_attrs
-from mechrepro.models.disk_tension.convergence import reference_pair, richardson
+from mechrepro import accuracy
+from mechrepro.models.disk_tension import figures
 from mechrepro.plotting import plt
-from mechrepro.validation import read_table
 from mechrepro.results import PaperResults
+from mechrepro.units import from_si
 
 R = PaperResults(paper, results_dir, config_file, profile)
-MM, ND = 1e3, [0, 1, 2, 3, 4]
+ND = [0, 1, 2, 3, 4]
 COLORS = {n: f"C{n}" for n in ND}
 
 
-def study_runs(name, key):
-    """{swept value: run dataset} of a study."""
-    return {R.cfg.runs[r]["sweep"][key]: R.run(r) for r in R.cfg.studies[name]}
+def mm(x):
+    return from_si(np.asarray(x, float), "mm")
 
 
 t12, t12_2d, t12_cl = R.run("table12"), R.run("table12_plate2d"), R.run("table12_clamped")
-stress = t12
-grid = {25: R.run("rc_grid"), **study_runs("fig06", "clamp_radius")}
+grid = figures.rc_grid(R)
 clamped, fig07 = R.run("rc_grid_clamped"), R.run("fig07_sensitivity")
 plain2d, slotted = R.run("plate2d_rc_sweep"), R.run("slotted_rc_sweep")
-buck = sorted([(50.0, R.run("buckling"))] + list(study_runs("buckling_sweep", "temperature_amplitude").items()))
-print(f"thickness h = {float(t12['thickness']) * 1e3:.4f} mm, alpha_eff = "
-      f"{float(t12['alpha_effective']) * 1e6:.3f}e-6/K (x{float(t12['stress_scale']):.4f})")
+paper_pts = figures.paper_points(R)
+print(f"thickness h = {from_si(float(t12['thickness']), 'mm'):.4f} mm, alpha_eff = "
+      f"{float(t12['alpha_effective']):.4g} 1/K (x{float(t12['stress_scale']):.4f})")
 
 # %% [markdown]
 # ## Fig. 3 — the FE models of the disk
@@ -71,20 +68,19 @@ print(f"thickness h = {float(t12['thickness']) * 1e3:.4f} mm, alpha_eff = "
 # %%
 fig, axes = plt.subplots(1, 2, figsize=(11, 5.2), gridspec_kw={"width_ratios": [1.2, 1]})
 ax = axes[0]
-x, y = t12_2d["plate2d_mesh_x"].values * MM, t12_2d["plate2d_mesh_y"].values * MM
-ax.triplot(x, y, t12_2d["plate2d_mesh_cells"].values, lw=0.3, color="k")
-ax.add_patch(plt.Circle((0, 0), float(t12_2d["clamp_radius"]) * MM, color="0.7", label="clamped r ≤ r_f"))
+ax.triplot(mm(t12_2d["plate2d_mesh_x"]), mm(t12_2d["plate2d_mesh_y"]),
+           t12_2d["plate2d_mesh_cells"].values, lw=0.3, color="k")
+ax.add_patch(plt.Circle((0, 0), mm(t12_2d["clamp_radius"]), color="0.7", label="clamped r ≤ r_f"))
 ax.set(aspect="equal", xlabel="x [mm]", ylabel="y [mm]",
        title=f"Fig. 3: 2-D mesh ({t12_2d.sizes['mesh_cell']} triangles, "
              f"{int(t12_2d['plate2d_n_dofs'])} Argyris DOFs)")
 ax.legend(fontsize=8, loc="upper right")
 ax = axes[1]
-n_el = run_attrs(t12)["resolution"]["n_elements"]
-nodes = np.linspace(float(t12["clamp_radius"]), 0.5 * R.cfg.raw["parameters"]["outer_diameter"]["value"] / MM, n_el + 1) * MM
+nodes = mm(t12["axisym_mesh_r"])
 ax.plot(nodes, np.zeros_like(nodes), "|", ms=12, color="k")
 ax.axvspan(0, nodes[0], color="0.8", label="clamped")
 ax.set(xlabel="r [mm]", yticks=[], xlim=(0, nodes[-1] * 1.02),
-       title=f"axisymmetric model: {n_el} cubic Hermite elements × cos(N_d θ)")
+       title=f"axisymmetric model: {len(nodes) - 1} cubic Hermite elements × cos(N_d θ)")
 ax.legend(fontsize=8)
 R.save_figure(fig, "fig03")
 
@@ -93,10 +89,10 @@ R.save_figure(fig, "fig03")
 
 # %%
 fig, ax = plt.subplots(figsize=(6, 3.4))
-r = stress["r"].values * MM
-ax.plot(r, stress["temperature"].isel(r_c=0), "-")
-ax.axvspan(0, float(stress["clamp_radius"]) * MM, color="0.85", label="clamped r ≤ r_f")
-ax.axvspan(65 - 10, 65 + 10, color="tab:orange", alpha=0.15, label="rolling width 4s")
+r = mm(t12["r"])
+ax.plot(r, from_si(t12["temperature"].isel(r_c=0), "degC"), "-")
+ax.axvspan(0, mm(t12["clamp_radius"]), color="0.85", label="clamped r ≤ r_f")
+ax.axvspan(*mm(figures.rolling_band(t12)), color="tab:orange", alpha=0.15, label="rolling width 4s")
 ax.set(xlabel="r [mm]", ylabel="T [°C]", title="Fig. 4: thermal-analogy temperature, Eq. (4)",
        xlim=(0, r.max()))
 ax.legend(fontsize=8)
@@ -110,13 +106,14 @@ R.save_figure(fig, "fig04")
 
 # %%
 fig, ax = plt.subplots(figsize=(6.5, 4))
-for name, ds, ls in (("table12", t12, "-"), ("table12_clamped", t12_cl, "--")):
-    bc = R.cfg.runs[name]["parameters"]["inplane_bc"]
-    ax.plot(r, ds["sigma_theta"].isel(r_c=0) / 1e6, ls, color="C3", label=f"σ_θ, {bc}")
-    ax.plot(r, ds["sigma_r"].isel(r_c=0) / 1e6, ls, color="C0", label=f"σ_r, {bc}")
-rb = t12_2d["r_bin"].values * MM
-ax.plot(rb, t12_2d["plate2d_sigma_theta_binned"] / 1e6, ".", color="C3", ms=3, label="σ_θ, 2-D FE (free_disk)")
-ax.plot(rb, t12_2d["plate2d_sigma_r_binned"] / 1e6, ".", color="C0", ms=3, label="σ_r, 2-D FE (free_disk)")
+for ds, ls in ((t12, "-"), (t12_cl, "--")):
+    bc = ds["sigma_theta"].attrs["inplane_bc"]
+    ax.plot(r, from_si(ds["sigma_theta"].isel(r_c=0), "MPa"), ls, color="C3", label=f"σ_θ, {bc}")
+    ax.plot(r, from_si(ds["sigma_r"].isel(r_c=0), "MPa"), ls, color="C0", label=f"σ_r, {bc}")
+rb = mm(t12_2d["r_bin"])
+for var, color, sym in (("sigma_theta", "C3", "σ_θ"), ("sigma_r", "C0", "σ_r")):
+    ax.plot(rb, from_si(t12_2d[f"plate2d_{var}_binned"], "MPa"), ".", color=color, ms=3,
+            label=f"{sym}, 2-D FE ({t12_2d['sigma_theta'].attrs['inplane_bc']})")
 ax.axhline(0, color="k", lw=0.6)
 ax.set(xlabel="r [mm]", ylabel="residual stress [MPa]", xlim=(0, r.max()),
        title="Fig. 5: thermal-analogy residual stress (r_c = 65 mm, α calibrated per condition)")
@@ -130,8 +127,8 @@ R.save_figure(fig, "fig05")
 
 # %%
 fig, axes = plt.subplots(1, 3, figsize=(13, 4.2), sharey=False)
-for ax, (rf, ds) in zip(axes, sorted(grid.items())):
-    rc = ds["r_c"].values * MM
+for ax, (rf, ds), letter in zip(axes, sorted(grid.items()), "abc"):
+    rc = mm(ds["r_c"])
     for n in ND:
         ax.plot(rc, ds["axisym_f_rolled"].sel(n_d=n), "o-", ms=3, color=COLORS[n], label=f"N_d={n}")
         ax.plot([0], [float(ds["axisym_f_unrolled"].sel(n_d=n))], "o", mfc="none", color=COLORS[n])
@@ -139,11 +136,10 @@ for ax, (rf, ds) in zip(axes, sorted(grid.items())):
         for n in ND:
             ax.plot(rc, clamped["axisym_f_rolled"].sel(n_d=n), ":", lw=1, color=COLORS[n],
                     label="clamped" if n == 0 else None)
-        ax.plot([0, 65], [R.cfg.raw["parameters"]["calibration_frequency"]["value"],
-                          R.cfg.reported["f_rolled_nd4_rc65_rf25"]["value"]], "*", color="k", ms=9,
-                label="paper (Sec. 4.3)")
+        ax.plot([0, mm(paper_pts["r_c"])], [paper_pts["f_unrolled"], paper_pts["f_rolled"]], "*",
+                color="k", ms=9, label="paper (Sec. 4.3)")
     ax.axvspan(0, rf, color="0.9")
-    ax.set(xlabel="r_c [mm]", ylabel="natural frequency [Hz]", title=f"Fig. 6{'abc'[[25, 55, 75].index(rf)]}: r_f = {rf} mm")
+    ax.set(xlabel="r_c [mm]", ylabel="natural frequency [Hz]", title=f"Fig. 6{letter}: r_f = {rf} mm")
 fig.legend(*axes[0].get_legend_handles_labels(), loc="lower center", ncol=6, fontsize=8,
            bbox_to_anchor=(0.5, -0.1))
 R.save_figure(fig, "fig06")
@@ -153,9 +149,9 @@ R.save_figure(fig, "fig06")
 
 # %%
 fig, ax = plt.subplots(figsize=(6, 4))
-ra = fig07["r_a"].values * MM
 for n in ND:
-    ax.plot(ra, fig07["sensitivity_delta_f"].sel(n_d=n), "o-", ms=3, color=COLORS[n], label=f"N_d={n}")
+    ax.plot(mm(fig07["r_a"]), fig07["axisym_sensitivity_delta_f"].sel(n_d=n), "o-", ms=3,
+            color=COLORS[n], label=f"N_d={n}")
 ax.set(xlabel="r_a [mm]", ylabel="Δf for +1 % stiffness [Hz]",
        title="Fig. 7: sensitivity of natural frequency to stiffness (r_f = 25 mm)")
 ax.legend(fontsize=7)
@@ -168,20 +164,20 @@ R.save_figure(fig, "fig07")
 
 # %%
 fig, axes = plt.subplots(1, 3, figsize=(13, 4.2))
-for ax, (rf, ds) in zip(axes, sorted(grid.items())):
-    rc = ds["r_c"].values * MM
+for ax, (rf, ds), letter in zip(axes, sorted(grid.items()), "abc"):
+    rc = mm(ds["r_c"])
     for n in ND:
         ax.plot(rc, ds["axisym_delta_f_eq9_linearised"].sel(n_d=n), "-", color=COLORS[n], label=f"N_d={n}")
         ax.plot(rc, ds["axisym_delta_f_eq9_exact"].sel(n_d=n), "--", lw=0.8, color=COLORS[n])
         ax.plot(rc, ds["axisym_f_rolled"].sel(n_d=n) - ds["axisym_f_unrolled"].sel(n_d=n), ".",
                 color=COLORS[n])
     if rf == 25:
-        ax.plot([65], [R.cfg.reported["delta_f_eq9_nd4_rc65_rf25"]["value"]], "*", color="k", ms=10,
+        ax.plot([mm(paper_pts["r_c"])], [paper_pts["delta_f_eq9"]], "*", color="k", ms=10,
                 label="paper Eq. (9)")
-        ax.plot([65], [R.cfg.reported["delta_f_eigen_nd4_rc65_rf25"]["value"]], "P", color="k", ms=7,
+        ax.plot([mm(paper_pts["r_c"])], [paper_pts["delta_f_eigen"]], "P", color="k", ms=7,
                 label="paper eigen")
     ax.axhline(0, color="k", lw=0.6)
-    ax.set(xlabel="r_c [mm]", ylabel="Δf [Hz]", title=f"Fig. 8{'abc'[[25, 55, 75].index(rf)]}: r_f = {rf} mm")
+    ax.set(xlabel="r_c [mm]", ylabel="Δf [Hz]", title=f"Fig. 8{letter}: r_f = {rf} mm")
 fig.legend(*axes[0].get_legend_handles_labels(), loc="lower center", ncol=7, fontsize=8,
            bbox_to_anchor=(0.5, -0.1))
 R.save_figure(fig, "fig08")
@@ -194,31 +190,27 @@ R.save_figure(fig, "fig08")
 # %%
 fig, axes = plt.subplots(1, 2, figsize=(11, 4))
 ax = axes[0]
-for rf, ds in sorted(grid.items()):
-    w2 = (2 * np.pi * ds["axisym_f_unrolled"]) ** 2 + ds["axisym_delta_omega2_eq9"]
-    f9 = np.sqrt(w2.where(w2 > 0)) / (2 * np.pi)
-    err = np.abs(f9 / ds["axisym_f_rolled"] - 1)
+for (rf, ds), sym in zip(sorted(grid.items()), ["o-", "s--", "^:"]):
     for n in ND:
-        ax.semilogy(ds["r_c"] * MM, err.sel(n_d=n), ["o-", "s--", "^:"][[25, 55, 75].index(rf)],
-                    ms=3, color=COLORS[n], label=f"N_d={n}" if rf == 25 else None)
+        ax.semilogy(mm(ds["r_c"]), ds["axisym_eq9_rel_error"].sel(n_d=n), sym, ms=3,
+                    color=COLORS[n], label=f"N_d={n}" if rf == 25 else None)
 ax.set(xlabel="r_c [mm]", ylabel="|f(Eq. 9) / f(eigen) − 1|",
        title="Eq. (9) error (o r_f=25, s 55, ^ 75 mm)")
 ax.legend(fontsize=7)
-t_eig = {m: sum(float(g[f"{m}_time_eigen"]) for g in grid.values()) for m in ["axisym"]}
-t_eq9 = {m: sum(float(g[f"{m}_time_eq9"]) for g in grid.values()) for m in ["axisym"]}
-t_eig["plate2d"], t_eq9["plate2d"] = float(plain2d["plate2d_time_eigen"]), float(plain2d["plate2d_time_eq9"])
+times = figures.eq9_and_eigen_times(grid, plain2d)
 ax = axes[1]
-labels = ["axisym\n(27 r_c×r_f × 5 N_d)", f"plate2d\n({plain2d.sizes['r_c']} r_c, r_f=25)"]
+labels = [f"axisym\n({len(grid)} r_f × {grid[25].sizes['r_c']} r_c × {len(ND)} N_d)",
+          f"plate2d\n({plain2d.sizes['r_c']} r_c, r_f=25)"]
 x = np.arange(2)
-ax.bar(x - 0.2, [t_eig["axisym"], t_eig["plate2d"]], 0.4, label="eigen-analysis, Eq. (5)")
-ax.bar(x + 0.2, [t_eq9["axisym"], t_eq9["plate2d"]], 0.4, label="first order, Eq. (9)")
+ax.bar(x - 0.2, [times[m][0] for m in times], 0.4, label="eigen-analysis, Eq. (5)")
+ax.bar(x + 0.2, [times[m][1] for m in times], 0.4, label="first order, Eq. (9)")
 ax.set_yscale("log")
 ax.set_xticks(x, labels)
 ax.set(ylabel="wall time [s]", title="cost: Eq. (9) vs eigen-analysis")
 ax.legend(fontsize=7)
 R.save_figure(fig, "eq9_vs_eigen")
-for m in t_eig:
-    print(f"{m}: eigen {t_eig[m]:.4g} s, Eq. (9) {t_eq9[m]:.4g} s, ratio {t_eig[m] / t_eq9[m]:.0f}x")
+for m, (t_eig, t_eq9) in times.items():
+    print(f"{m}: eigen {t_eig:.4g} s, Eq. (9) {t_eq9:.4g} s, ratio {t_eig / t_eq9:.0f}x")
 
 # %% [markdown]
 # ## Beyond the paper: a sawblade with radial expansion slots (2-D model)
@@ -228,11 +220,11 @@ for m in t_eig:
 # %%
 fig, ax = plt.subplots(figsize=(7, 4.2))
 for n in (2, 3, 4):
-    rc = plain2d["r_c"].values * MM
-    ax.plot(rc, plain2d["plate2d_f_rolled"].sel(n_d=n), "o-", ms=3, color=COLORS[n], label=f"plain, N_d={n}")
+    ax.plot(mm(plain2d["r_c"]), plain2d["plate2d_f_rolled"].sel(n_d=n), "o-", ms=3, color=COLORS[n],
+            label=f"plain, N_d={n}")
     p = slotted["plate2d_f_rolled_pair"].sel(n_d=n)
-    ax.fill_between(slotted["r_c"].values * MM, p.isel(member=0), p.isel(member=1), color=COLORS[n], alpha=0.3)
-    ax.plot(slotted["r_c"].values * MM, p.mean("member"), "s--", ms=3, color=COLORS[n], label=f"slotted, N_d={n}")
+    ax.fill_between(mm(slotted["r_c"]), p.isel(member=0), p.isel(member=1), color=COLORS[n], alpha=0.3)
+    ax.plot(mm(slotted["r_c"]), p.mean("member"), "s--", ms=3, color=COLORS[n], label=f"slotted, N_d={n}")
     ax.plot([0], [float(plain2d["plate2d_f_unrolled"].sel(n_d=n))], "o", mfc="none", color=COLORS[n])
     ax.plot([0], [float(slotted["plate2d_f_unrolled"].sel(n_d=n))], "s", mfc="none", color=COLORS[n])
 ax.set(xlabel="r_c [mm]", ylabel="natural frequency [Hz]",
@@ -247,15 +239,14 @@ R.save_figure(fig, "slotted_blade")
 
 # %%
 fig, ax = plt.subplots(figsize=(6.5, 4))
-amps = np.array([a for a, _ in buck], float)
-w2 = np.array([ds["axisym_omega2_rolled"].isel(r_c=0).values for _, ds in buck])
+amps, w2, a_cr = figures.buckling_series(R)
+amps, a_cr = from_si(amps, "degC"), from_si(a_cr, "degC")
 for j, n in enumerate(ND):
-    ax.plot(amps, w2[:, j] / (2 * np.pi) ** 2 / 1e3, "o-", color=COLORS[n], label=f"N_d={n}")
-    acr = amps[0] * float(buck[0][1]["axisym_critical_load_factor"].isel(r_c=0).sel(n_d=n))
-    if np.isfinite(acr) and acr < 2 * amps.max():
-        ax.axvline(acr, color=COLORS[n], ls=":", lw=0.8)
+    ax.plot(amps, w2[:, j], "o-", color=COLORS[n], label=f"N_d={n}")
+    if np.isfinite(a_cr[j]) and a_cr[j] < 2 * amps.max():
+        ax.axvline(a_cr[j], color=COLORS[n], ls=":", lw=0.8)
 ax.axhline(0, color="k", lw=0.8)
-ax.set(xlabel="temperature amplitude A [°C]", ylabel="ω̃²/(2π)² [kHz²]",
+ax.set(xlabel="temperature amplitude A [°C]", ylabel="ω̃² [rad²/s²]",
        title="buckling: ω̃² through zero at the critical amplitude (dotted)")
 ax.legend(fontsize=7)
 R.save_figure(fig, "buckling")
@@ -264,15 +255,11 @@ R.save_figure(fig, "buckling")
 # ## Tables 1 and 2 (r_c = 65 mm, r_f = 25 mm)
 
 # %%
-def matrix_rows(da):
-    return [[int(n)] + [float(v) for v in da.sel(row=n).values] for n in da["row"].values]
-
-
 hdr = ["N_d"] + [str(n) for n in ND]
-R.write_table("table1", hdr, matrix_rows(t12["axisym_k_sigma_hat"]))
-R.write_table("table2", hdr, matrix_rows(t12["axisym_m_hat"]))
-R.write_table("table1_plate2d", hdr, matrix_rows(t12_2d["plate2d_k_sigma_hat"]))
-R.write_table("table2_plate2d", hdr, matrix_rows(t12_2d["plate2d_m_hat"]))
+R.write_table("table1", hdr, figures.matrix_rows(t12["axisym_k_sigma_hat"]))
+R.write_table("table2", hdr, figures.matrix_rows(t12["axisym_m_hat"]))
+R.write_table("table1_plate2d", hdr, figures.matrix_rows(t12_2d["plate2d_k_sigma_hat"]))
+R.write_table("table2_plate2d", hdr, figures.matrix_rows(t12_2d["plate2d_m_hat"]))
 np.set_printoptions(precision=4, linewidth=140)
 print("Table 1 (axisym):\n", t12["axisym_k_sigma_hat"].values)
 print("Table 1 (plate2d):\n", t12_2d["plate2d_k_sigma_hat"].values)
@@ -280,66 +267,28 @@ print("Table 2 (plate2d, pairs rotated onto the unrolled cos/sin basis):\n", t12
 
 # %% [markdown]
 # ## Cost of accuracy
-# Unrolled: error against the exact Bessel frequencies. Rolled: against a converged
-# reference — the Richardson extrapolation (h⁴) of the 64- and 128-element axisym runs, not
-# the finest run (256 elements carry ~10× the round-off of 128). The reference's own
-# accuracy is measured on the unrolled frequencies, where the exact solution is known.
-# Time = assembly + unrolled + stress + rolled eigen-analysis of one (r_c, r_f), each phase
-# repeated for ≥ 0.05 s and the fastest call kept (the solver's own timers).
+# Written by the framework from the config's `accuracy:` block (`tables/cost_of_accuracy.csv`).
+# Unrolled: error against the exact Bessel frequencies. Rolled: against the converged
+# reference of effect `rolled_reference` — the Richardson extrapolation (h⁴) of the 64- and
+# 128-element axisym models, not the finest run (256 elements carry ~10× the round-off of
+# 128); its own accuracy on the unrolled frequencies is the dotted line. Time = assembly +
+# unrolled + stress + rolled eigen-analysis of one (r_c, r_f), phases of the fastest call
+# when the runner repeats a fast run.
 
 # %%
-ax_names = ["table12"] + R.cfg.studies["cost_axisym"]
-ax_runs = {run_attrs(R.run(r))["resolution"]["n_elements"]: R.run(r) for r in ax_names}
-n0, n1 = reference_pair(ax_runs)
-f_ref = richardson(ax_runs[n0]["axisym_f_rolled"].values, ax_runs[n1]["axisym_f_rolled"].values)
-ref_unrolled = richardson(ax_runs[n0]["axisym_f_unrolled"].values, ax_runs[n1]["axisym_f_unrolled"].values)
-ref_err = float(np.max(np.abs(ref_unrolled / ax_runs[n1]["f_exact"].values - 1)))
-print(f"rolled reference: Richardson of {n0} and {n1} elements; on the unrolled frequencies it is "
-      f"within {ref_err:.1e} of exact (the {n1}-element run: "
-      f"{float(ax_runs[n1]['axisym_error_unrolled_max']):.1e})")
-
-
-def coa(base, study, model, knob):
-    """Error vs wall time over the base scene and its study runs."""
-    names = [base] + R.cfg.studies[study]
-    st = [R.run(r) for r in names]
-    kv = [int(d["plate2d_n_dofs"]) if model == "plate2d" else R.cfg.runs[r]["resolution"]["n_elements"]
-          for r, d in zip(names, st)]
-    tw = np.array([float(d[f"{model}_time_unrolled"]) + float(d[f"{model}_time_stress"])
-                   + float(d[f"{model}_time_eigen"]) for d in st])
-    err_u = [float(d[f"{model}_error_unrolled_max"]) for d in st]
-    err_r = [float(np.max(np.abs(d[f"{model}_f_rolled"].values / f_ref - 1))) for d in st]
-    err_4 = [abs(float(d[f"{model}_error_unrolled"].sel(n_d=4))) for d in st]
-    return cost_of_accuracy(paper, knob, kv, tw,
-                            {"unrolled_max_vs_exact": err_u, "unrolled_nd4_vs_exact": err_4,
-                             "rolled_max_vs_richardson": err_r},
-                            reference=f"exact (unrolled) / Richardson {n0}+{n1} axisym (rolled)",
-                            description=f"{model}: error vs wall time (fastest of repeated calls)")
-
-
-c_ax = coa("table12", "cost_axisym", "axisym", "n_elements")
-c_2d = coa("table12_plate2d", "cost_plate2d", "plate2d", "n_dofs")
-c_ax.attrs["reference_error_unrolled"] = ref_err
-R.write_dataset(c_ax, "cost_of_accuracy")
-R.write_dataset(c_2d, "cost_of_accuracy_plate2d")
-rows_coa = []
-for name, c in (("axisym", c_ax), ("plate2d", c_2d)):
-    for i in range(c.sizes["resolution"]):
-        rows_coa.append([name, c.attrs["knob"], int(c["resolution"].values[i]), float(c["wall_time"][i]),
-                         float(c["error_unrolled_max_vs_exact"][i]), float(c["error_unrolled_nd4_vs_exact"][i]),
-                         float(c["error_rolled_max_vs_richardson"][i])])
-R.write_table("cost_of_accuracy", ["model", "knob", "value", "wall_time_s", "error_unrolled_max_vs_exact",
-                                   "error_unrolled_nd4_vs_exact", "error_rolled_max_vs_richardson"], rows_coa)
+coa = R.table("cost_of_accuracy")
 fig, axes = plt.subplots(1, 2, figsize=(12, 4.4))
-plot(c_ax, axes[0])
-plot(c_2d, axes[1])
+for ax, entry in zip(axes, ("axisym", "plate2d")):
+    accuracy.plot(coa, entry, ax)
+ref_err = float(t12["axisym_reference_error_unrolled"])
 axes[0].axhline(ref_err, color="k", ls=":", lw=0.8)
 axes[0].annotate("accuracy of the rolled reference", (axes[0].get_xlim()[0], ref_err), fontsize=7,
                  xytext=(4, 3), textcoords="offset points")
-axes[1].axhline(1e-3, color="k", ls=":", lw=0.8)
+axes[1].axhline(figures.accuracy_goal(R, "plate2d_unrolled_vs_exact"), color="k", ls=":", lw=0.8)
 R.save_figure(fig, "cost_of_accuracy")
-for row in rows_coa:
-    print(row)
+for row in coa:
+    print(row["accuracy"], row["knob_value"], row["quantity"], f"{float(row['error']):.3e}",
+          f"{float(row['time_s']):.3g} s")
 
 # %% [markdown]
 # ## Validation table
@@ -347,7 +296,6 @@ for row in rows_coa:
 # only `independent` rows count in the replication claim.
 
 # %%
-table = read_table(R.table_path("validation"))
-for r in table:
+for r in R.validation():
     print(f"{r['status']:12s} {r['evidence']:12s} {r['quantity']:42s} paper {r['paper_value']:>10s}  "
           f"ours {float(r['reproduced_value']):11.5g}  {r['note'][:70]}")

@@ -6,6 +6,7 @@ eigen-analysis (Eq. 5), the first-order estimate (Eq. 9) and the modal matrices
 (Eqs. 16-17), on two discretisations (axisymmetric harmonics, 2-D Argyris plate) checked
 against the exact Bessel solution.
 """
-from .solver import EFFECTS, compute, solve
+from .effects import EFFECTS
+from .solver import compute, solve, to_dataset
 
-__all__ = ["EFFECTS", "compute", "solve"]
+__all__ = ["EFFECTS", "compute", "solve", "to_dataset"]

@@ -150,6 +150,8 @@ class PlateDisk:
     """Clamped (r <= r_f) disk or sawblade; fundamental of each N_d by MAC labelling."""
 
     label = "plate2d"
+    #: N_d >= 1 are sin/cos pairs (both members after rolling: ``rolled_pairs``)
+    degenerate_pairs = True
 
     def __init__(self, *, r_f, b, h, E, nu, rho, n_d, n_rings, n_sectors,
                  slots: Slots | None = None, extra_modes=4, seed=0):

@@ -9,6 +9,7 @@ import numpy as np
 
 from mechrepro.validation import Quantities, Reproduced
 
+from .figures import rc_grid
 from .modal import degenerate_harmonics, harmonic_coupling_symmetry
 
 Q = Quantities("disk_tension")
@@ -29,13 +30,7 @@ def _argext(ds, var, n_d, fn):
     return float(ds["r_c"].values[fn(y)] * 1e3)
 
 
-def _grid(R):
-    """{r_f [mm]: dataset} of Figs. 6/8: scene rc_grid (r_f = 25) and study fig06."""
-    out = {25: R.run("rc_grid")}
-    st = R.study("fig06")
-    for i, rf in enumerate(st["clamp_radius"].values):
-        out[int(round(float(rf)))] = st.isel(run=i)
-    return out
+_grid = rc_grid  # {r_f [mm]: dataset} of Figs. 6/8
 
 
 def _diag(ds, var="axisym_k_sigma_hat"):
@@ -296,7 +291,7 @@ def _eq9_speed(R):
 
 @Q.register("fig7_nd0_1_sensitivity_decreases_outward", "fig7_nd3_4_sensitivity_increases_outward")
 def _fig7(R):
-    s = R.run("fig07_sensitivity")["sensitivity_delta_f"]
+    s = R.run("fig07_sensitivity")["axisym_sensitivity_delta_f"]
     dec = all(np.all(np.diff(s.sel(n_d=n).values) < 0) for n in (0, 1))
     ratio = [float(s.sel(n_d=n)[-1] / s.sel(n_d=n)[0]) for n in (3, 4)]
     return {"fig7_nd0_1_sensitivity_decreases_outward": dec,

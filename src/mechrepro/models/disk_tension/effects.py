@@ -1,0 +1,283 @@
+"""The effects of disk_tension: pure functions ``fn(ctx) -> {key: value}``.
+
+Declared once in ``config/papers/disk_tension.yaml`` (``effects:``: what each contributes,
+which solver honours it, what it requires or excludes).  The solver
+(:mod:`.solver`) evaluates them in three stages and reads their contributions by key:
+
+1. what the load and the mesh need: ``stress_calibration`` -> ``thermal_expansion``,
+   ``slots`` -> ``slots``;
+2. the load: ``roll_tension`` -> ``thermal_load`` (Eq. 4 and its plane-stress field);
+3. the analyses of the discretised, stress-stiffened disk (Eqs. 5, 9, 16-17, Fig. 7) and
+   the exact reference.
+
+A contribution that is a labelled variable (:func:`mechrepro.units.var`) is written to the
+run's dataset; the others (``thermal_expansion``, ``slots``, ``thermal_load``) are consumed
+by the solver.  Which of these are physics and which are outputs is said in each
+declaration's description.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from mechrepro.effects import EffectRegistry
+from mechrepro.timing import stopwatch
+from mechrepro.units import var
+
+from . import calibration, exact, thermal
+from .axisym import AxisymDisk
+from .convergence import richardson
+from .modal import delta_f_exact, delta_f_linearised, frequency
+
+EFFECTS = EffectRegistry("disk_tension")
+
+#: element counts of the rolled reference: Richardson of two runs still in the h^4 range
+#: (beyond 128 elements round-off exceeds the h^4 error; convergence.reference_pair)
+REFERENCE_ELEMENTS = (64, 128)
+#: radii at which the closed-form temperature and stress are stored
+N_RADII = 256
+
+
+@dataclass(frozen=True)
+class ThermalLoad:
+    """Eq. (4) temperature of one centre radius of rolling and its plane-stress field."""
+
+    r_c: float
+    temperature: Callable      # T(r) [K]
+    sigma: tuple               # (sigma_r(r), sigma_theta(r)) [Pa], closed form
+    alpha: float               # expansion coefficient of the thermal analogy [1/K]
+    inplane_bc: str
+
+
+def thermal_load(ctx, r_c) -> ThermalLoad:
+    """Eq. (4) at ``r_c`` with the context's amplitude, width, alpha and in-plane condition."""
+    rc = float(r_c)
+    kw = dict(amplitude=ctx.A, r_c=rc, s=ctx.s, r_f=ctx.r_f, b=ctx.b, E=ctx.E, nu=ctx.nu,
+              alpha=ctx.alpha, inplane_bc=ctx.bc)
+    return ThermalLoad(r_c=rc, alpha=ctx.alpha, inplane_bc=ctx.bc,
+                       temperature=lambda r: thermal.temperature(r, ctx.A, rc, ctx.s),
+                       sigma=(lambda r: thermal.thermal_stress(r, **kw)[0],
+                              lambda r: thermal.thermal_stress(r, **kw)[1]))
+
+
+# --- stage 1: what the load and the mesh need ---------------------------------------------
+@EFFECTS.register("stress_calibration")
+def stress_calibration(ctx) -> dict:
+    """The thermal-analogy alpha that meets Table 1's N_d = 4 entry (Eq. 9 is linear in it)."""
+    p = ctx.p
+    alpha, d_hb, df_hb = calibration.alpha_effective(
+        target=p["calibration_delta_omega2"], n_d=int(p["calibration_nodal_diameter"]),
+        r_c=p["calibration_rolling_radius"], r_f=p["calibration_clamp_radius"], b=ctx.b,
+        h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho, alpha=ctx.alpha,
+        amplitude=p["calibration_temperature_amplitude"], s=p["calibration_gaussian_width"],
+        inplane_bc=ctx.bc)
+    return {
+        "thermal_expansion": alpha,
+        "alpha_effective": var((), alpha, "1/K", "thermal-analogy expansion coefficient "
+                               "calibrated on Table 1 (N_d = 4)"),
+        "stress_scale": var((), alpha / ctx.alpha, "1", "calibrated / handbook expansion "
+                            "coefficient"),
+        "handbook_delta_omega2_eq9": var((), d_hb, "rad2/s2", "Eq. (9) Delta omega^2 of the "
+                                         "calibration case with the handbook alpha"),
+        "handbook_delta_f_eigen": var((), df_hb, "Hz", "eigen-analysis Delta f of the "
+                                      "calibration case with the handbook alpha"),
+    }
+
+
+@EFFECTS.register("slots")
+def slots(ctx) -> dict:
+    """Radial expansion slots cut from the rim (the 2-D mesh leaves them out)."""
+    from .plate2d import Slots  # scikit-fem is imported only by scenes that use it
+
+    s = Slots(int(ctx.p["slot_count"]), ctx.p["slot_depth"], ctx.p["slot_width"])
+    return {"slots": s,
+            "slot_count": var((), s.count, "1", "number of radial expansion slots")}
+
+
+# --- stage 2: the load --------------------------------------------------------------------
+@EFFECTS.register("roll_tension")
+def roll_tension(ctx) -> dict:
+    """Eq. (4) temperature of every r_c and its plane-stress field, for the run's
+    ``inplane_bc`` only (the other condition is another scene, or a range variant)."""
+    loads = [thermal_load(ctx, rc) for rc in ctx.r_c]
+    r = np.linspace(0.0, ctx.b, N_RADII)
+    sr = np.full((len(loads), len(r)), np.nan)
+    st = sr.copy()
+    ok = r >= (ctx.r_f if ctx.bc == "clamped" else r[1])
+    for j, ld in enumerate(loads):
+        sr[j, ok], st[j, ok] = ld.sigma[0](r[ok]), ld.sigma[1](r[ok])
+    bc = {"inplane_bc": ctx.bc}
+    return {
+        "thermal_load": loads,
+        "r": var("r", r, "m", "radius"),
+        "temperature": var(("r_c", "r"), np.stack([ld.temperature(r) for ld in loads]), "K",
+                           "thermal-analogy temperature T(r), Eq. (4)"),
+        "sigma_r": var(("r_c", "r"), sr, "Pa", "radial residual stress (thermal analogy, "
+                       f"plane stress, {ctx.bc})", **bc),
+        "sigma_theta": var(("r_c", "r"), st, "Pa", "circumferential residual stress (thermal "
+                           f"analogy, plane stress, {ctx.bc})", **bc),
+        "alpha_used": var((), ctx.alpha, "1/K", "expansion coefficient used for the stress"),
+        "amplitude_used": var((), ctx.A, "K", "temperature amplitude A of Eq. (4) used for "
+                              "the stress"),
+        "width_used": var((), ctx.s, "m", "Gaussian width s of Eq. (4) used for the stress"),
+    }
+
+
+# --- stage 3: analyses of the discretised disk ---------------------------------------------
+def _loads(ctx):
+    if ctx.loads is None:
+        raise ValueError("this analysis needs the residual stress: name 'roll_tension'")
+    return ctx.loads
+
+
+def _stiffened(ctx):
+    _loads(ctx)
+    return ctx.k_sigma
+
+
+@EFFECTS.register("exact_reference")
+def exact_reference(ctx) -> dict:
+    """Exact Bessel frequencies of the unrolled clamped-free annulus (plain disk)."""
+    f = [exact.natural_frequencies(n, a=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu,
+                                   rho=ctx.rho)[0] for n in ctx.n_d]
+    return {"f_exact": var("n_d", f, "Hz", "exact unrolled frequency (Bessel solution, "
+                           "clamped-free annular plate)")}
+
+
+@EFFECTS.register("rolled_reference")
+def rolled_reference(ctx) -> dict:
+    """Converged rolled frequencies of the plain disk: the Richardson extrapolation (h^4)
+    of the 64- and 128-element axisymmetric models (not a finer run: beyond 128 elements
+    round-off exceeds the h^4 error), and its own error on the unrolled frequencies, where
+    the exact solution is known."""
+    runs = []
+    for n_el in REFERENCE_ELEMENTS:
+        disk = AxisymDisk(r_f=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho,
+                          n_d=ctx.n_d, n_elements=n_el)
+        f_u = frequency(disk.unrolled())
+        f_r = frequency(np.stack([disk.rolled(disk.stress_stiffness(ld.sigma))[0]
+                                  for ld in _loads(ctx)]))
+        runs.append((f_u, f_r))
+    (u0, r0), (u1, r1) = runs
+    f_exact = [exact.natural_frequencies(n, a=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu,
+                                         rho=ctx.rho)[0] for n in ctx.n_d]
+    n0, n1 = REFERENCE_ELEMENTS
+    return {
+        "f_rolled_reference": var(
+            ("r_c", "n_d"), richardson(r0, r1), "Hz",
+            f"rolled frequency: Richardson extrapolation (h^4) of the {n0}- and {n1}-element "
+            "axisymmetric models (plain disk)"),
+        "reference_error_unrolled": var(
+            (), np.max(np.abs(richardson(u0, u1) / f_exact - 1)), "1",
+            "max |relative error| of the same extrapolation on the unrolled frequencies vs "
+            "exact"),
+    }
+
+
+@EFFECTS.register("eigen")
+def eigen(ctx) -> dict:
+    """Eq. (5): omega~^2 of [K + K^(sigma)] for every r_c (NaN frequency and a flag if
+    buckled); on the 2-D mesh also both members of each sin/cos pair."""
+    model, ks = ctx.model, _stiffened(ctx)
+    pairs_of = getattr(model, "degenerate_pairs", False)
+
+    def solve_all():
+        w2 = np.full((len(ks), len(ctx.n_d)), np.nan)
+        pairs = np.full((len(ks), len(ctx.n_d), 2), np.nan)
+        for i, k in enumerate(ks):
+            w2[i] = model.rolled(k)[0]
+            if pairs_of:
+                for j, n in enumerate(ctx.n_d):
+                    v = model.rolled_pairs[n]
+                    pairs[i, j, :] = v if len(v) == 2 else v[0]
+        return w2, pairs
+
+    with stopwatch() as sw:
+        w2, pairs = solve_all()
+    dt = sw.seconds
+    out = {
+        "omega2_rolled": var(("r_c", "n_d"), w2, "rad2/s2", "omega~^2 after rolling, Eq. (5)"),
+        "f_rolled": var(("r_c", "n_d"), frequency(w2), "Hz", "frequency after rolling by "
+                        "eigen-analysis, Eq. (5) (NaN if buckled)"),
+        "buckled": var(("r_c", "n_d"), (w2 < 0).astype(np.int8), "1", "1 where omega~^2 < 0 "
+                       "(the residual stress buckles the disk)"),
+        "time_eigen": var((), dt, "s", "wall time of the eigen-analyses over the r_c grid"),
+    }
+    if pairs_of:
+        out["member"] = var("member", [0, 1], "1", "member of a sin/cos pair (ascending "
+                            "frequency)")
+        out["f_rolled_pair"] = var(("r_c", "n_d", "member"), frequency(pairs), "Hz",
+                                   "rolled frequency of each pair member (split by slots)")
+    return out
+
+
+@EFFECTS.register("eq9")
+def eq9(ctx) -> dict:
+    """Eq. (9): Delta omega^2 = phi^T K^(sigma) phi of the unrolled modes, and its two
+    conversions to Delta f."""
+    model, ks = ctx.model, _stiffened(ctx)
+    with stopwatch() as sw:
+        d = np.stack([model.eq9(k) for k in ks])
+    dt = sw.seconds
+    w = ctx.omega_unrolled
+    return {
+        "delta_omega2_eq9": var(("r_c", "n_d"), d, "rad2/s2", "Delta omega^2 by Eq. (9)"),
+        "delta_f_eq9_linearised": var(("r_c", "n_d"), delta_f_linearised(w, d), "Hz",
+                                      "Delta f = Delta omega^2 / (2 omega) / 2 pi (first order)"),
+        "delta_f_eq9_exact": var(("r_c", "n_d"), delta_f_exact(w, d), "Hz",
+                                 "Delta f = (sqrt(omega^2 + Delta omega^2) - omega) / 2 pi"),
+        "time_eq9": var((), dt, "s", "wall time of Eq. (9) over the r_c grid (K^(sigma) "
+                        "excluded)"),
+    }
+
+
+@EFFECTS.register("critical_load")
+def critical_load(ctx) -> dict:
+    """Load factor on the residual stress at which the disk buckles: per N_d on the
+    harmonics, the smallest of all modes on the 2-D mesh (inf: never)."""
+    lam = np.array([ctx.model.critical_load(k) for k in _stiffened(ctx)])
+    dims = ("r_c", "n_d") if lam.ndim == 2 else ("r_c",)
+    return {"critical_load_factor": var(dims, lam, "1", "load factor on the residual stress "
+                                        "at which the disk buckles (inf: never)")}
+
+
+@EFFECTS.register("modal_matrices")
+def modal_matrices(ctx) -> dict:
+    """Eqs. (16)-(17) at the first r_c (Tables 1-2); on the harmonics also the largest mode
+    change a stable disk can show (stress scaled to just below buckling)."""
+    model, ks = ctx.model, _stiffened(ctx)[0]
+    k_hat, m_hat = model.modal_matrices(ks)
+    out = {
+        "row": var("row", ctx.n_d, "1", "N_d of the row mode"),
+        "col": var("col", ctx.n_d, "1", "N_d of the column mode"),
+        "k_sigma_hat": var(("row", "col"), k_hat, "rad2/s2", "Eq. (16) Phi^T K^(sigma) Phi "
+                           "(mass-normalised modes), first r_c"),
+        "m_hat": var(("row", "col"), m_hat, "1", "Eq. (17) Phi~^T M Phi, first r_c (rolled "
+                     "pairs rotated onto the unrolled cos/sin basis)"),
+    }
+    if hasattr(model, "m_hat_diag"):
+        lam = float(np.min(model.critical_load(ks)))
+        out["buckling_load_factor"] = var((), lam, "1", "smallest load factor on the residual "
+                                          "stress that buckles any N_d (first r_c)")
+        out["m_hat_diag_at_buckling"] = var(
+            "n_d", model.m_hat_diag(ks, scale=(1 - 1e-6) * lam), "1",
+            "diagonal of Eq. (17) with the residual stress scaled to just below the buckling "
+            "load: the largest mode change a stable disk can show")
+    return out
+
+
+@EFFECTS.register("stiffness_sensitivity")
+def stiffness_sensitivity(ctx) -> dict:
+    """Fig. 7: Delta f of a 1 % stiffer 10 mm annulus at each r_a (re-solved per r_a)."""
+    p = ctx.p
+    r_a = np.atleast_1d(np.asarray(p["annulus_radii"], float))
+    w = p["annulus_width"]
+    if np.any(r_a - w / 2 < ctx.r_f - 1e-12) or np.any(r_a + w / 2 > ctx.b + 1e-12):
+        raise ValueError(f"annulus radii {r_a} +/- {w / 2} must stay inside [r_f, b]")
+    d = ctx.model.sensitivity(r_a=r_a, width=w, increase=p["stiffness_increase"],
+                              E=ctx.E, nu=ctx.nu, rho=ctx.rho)
+    return {"r_a": var("r_a", r_a, "m", "centre radius of the stiffened annulus"),
+            "sensitivity_delta_f": var(("r_a", "n_d"), d, "Hz", "frequency change for a 1 % "
+                                       "stiffer 10 mm annulus at r_a (Fig. 7)")}

@@ -1,0 +1,77 @@
+"""What the figures of disk_tension draw, taken from the runs (the notebook only draws).
+
+Every function reads datasets through a :class:`mechrepro.results.PaperResults` (or the
+datasets themselves) and returns arrays in SI; the notebook converts them to the paper's
+units with :func:`mechrepro.units.from_si`.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+#: r_f [mm] of Figs. 6/8 a-c: the scene rc_grid (25 mm) and the study fig06
+CLAMP_RADII_MM = (25, 55, 75)
+
+
+def rc_grid(R) -> dict:
+    """{r_f [mm]: dataset} of Figs. 6 and 8: scene ``rc_grid`` (r_f = 25 mm) and the points
+    of study ``fig06`` (r_f = 55, 75 mm)."""
+    out = {25: R.run("rc_grid")}
+    st = R.study("fig06")
+    for i, rf in enumerate(st["clamp_radius"].values):
+        out[int(round(float(rf)))] = st.isel(run=i)
+    return out
+
+
+def rolling_band(ds):
+    """(r_c - 2 s, r_c + 2 s) [m] of the first r_c: the rolled width 4 s of Sec. 3.2 that
+    Eq. (4)'s Gaussian of width s stands for."""
+    rc, s = float(ds["r_c"].values[0]), float(ds["width_used"])
+    return rc - 2 * s, rc + 2 * s
+
+
+def paper_points(R) -> dict:
+    """The paper's own numbers drawn on Figs. 6 and 8 (from the validation table): the
+    unrolled / rolled N_d = 4 frequency at r_c = 0 / 65 mm (Sec. 4.3) and its Delta f by
+    Eq. (9) and by the eigen-analysis [Hz], and r_c = 65 mm [m]."""
+    rows = {r["quantity"]: r for r in R.validation()}
+
+    def paper(q):
+        return float(rows[q]["paper_value"])
+
+    return {"r_c": 0.065,
+            "f_unrolled": float(rows["f_unrolled_nd4_rf25"]["reproduced_value"]),
+            "f_rolled": paper("f_rolled_nd4_rc65_rf25"),
+            "delta_f_eq9": paper("delta_f_eq9_nd4_rc65_rf25"),
+            "delta_f_eigen": paper("delta_f_eigen_nd4_rc65_rf25")}
+
+
+def accuracy_goal(R, quantity: str) -> float:
+    """The bound of one of our accuracy goals (a ``target`` row of the validation table)."""
+    return next(float(r["paper_value"]) for r in R.validation() if r["quantity"] == quantity)
+
+
+def eq9_and_eigen_times(grid: dict, plate2d) -> dict:
+    """Wall time [s] of the eigen-analysis (Eq. 5) and of Eq. (9) on the same K^(sigma):
+    summed over the axisym grid of Figs. 6/8, and over the plain 2-D r_c sweep."""
+    return {"axisym": (sum(float(g["axisym_time_eigen"]) for g in grid.values()),
+                       sum(float(g["axisym_time_eq9"]) for g in grid.values())),
+            "plate2d": (float(plate2d["plate2d_time_eigen"]), float(plate2d["plate2d_time_eq9"]))}
+
+
+def buckling_series(R):
+    """The hard case through the critical load (r_c = 105 mm): temperature amplitudes A [K]
+    (scene ``buckling`` and study ``buckling_sweep``, ascending), omega~^2 [rad^2/s^2] of each
+    (A, N_d), and the critical amplitude of each N_d, A * lambda_cr (omega~^2 is linear in A,
+    Eq. 3, so it vanishes at the load factor lambda_cr of the base run)."""
+    base, st = R.run("buckling"), R.study("buckling_sweep")
+    amps = np.r_[float(base["amplitude_used"]), st["amplitude_used"].values.astype(float)]
+    w2 = np.vstack([base["axisym_omega2_rolled"].isel(r_c=0).values,
+                    st["axisym_omega2_rolled"].isel(r_c=0).values])
+    order = np.argsort(amps)
+    a_cr = amps[0] * base["axisym_critical_load_factor"].isel(r_c=0).values
+    return amps[order], w2[order], a_cr
+
+
+def matrix_rows(da) -> list[list]:
+    """Rows ``[N_d, entries...]`` of a modal matrix (Tables 1-2)."""
+    return [[int(n)] + [float(v) for v in da.sel(row=n).values] for n in da["row"].values]

@@ -1,0 +1,115 @@
+"""disk_tension: the effect protocol -- an effect not named is never evaluated (for each
+solver), every effect changes the output of a scene built to show it, and what the effects
+return is what the config declares (keys and units)."""
+import copy
+from pathlib import Path
+
+import numpy as np
+import pytest
+import yaml
+
+from mechrepro.config import load_paper
+from mechrepro.models.disk_tension import EFFECTS, solve
+
+ROOT = Path(__file__).resolve().parent.parent
+CFG = ROOT / "config" / "papers" / "disk_tension.yaml"
+DECLARED = yaml.safe_load(CFG.read_text())["effects"]
+SMALL = {"axisym": {"n_elements": 8}, "plate2d": {"n_rings": 3, "n_sectors": 24}}
+
+
+@pytest.fixture(scope="module")
+def cfg():
+    return load_paper(CFG, "ci")
+
+
+def small_run(cfg, scene, effects=None, solver=None, **parameters):
+    """A fast run of ``scene``: coarse mesh, one r_c, no repeated timings."""
+    run = copy.deepcopy(cfg.runs[scene])
+    run["solver"] = solver or run["solver"]
+    run["effects"] = list(run["effects"] if effects is None else effects)
+    run["contributes"] = {e: DECLARED[e]["contributes"] for e in run["effects"]}
+    run["resolution"] = dict(SMALL[run["solver"]])
+    run["options"] = {"timing_min_s": 0.0}
+    run["parameters"].update({"rolling_radius": [0.065], **parameters})
+    return run
+
+
+@pytest.mark.parametrize("solver, scene", [("axisym", "table12"), ("plate2d", "slotted_rc_sweep")])
+def test_an_effect_the_scene_does_not_name_is_never_evaluated(cfg, monkeypatch, solver, scene):
+    run = small_run(cfg, scene)
+    assert run["solver"] == solver
+
+    def boom(ctx):
+        raise AssertionError("an effect the scene does not name was evaluated")
+
+    for name in EFFECTS.names:
+        if name not in run["effects"]:
+            monkeypatch.setitem(EFFECTS._effects, name, boom)
+    ds = solve(run)
+    assert f"{solver}_f_rolled" in ds
+
+
+def _changed(a, b, var):
+    return var in b and (var not in a or not np.allclose(a[var].values, b[var].values,
+                                                         equal_nan=True))
+
+
+# effect -> (solver, the scene's other effects, a variable switching it on must change)
+SHOWS = {
+    "stress_calibration": ("axisym", ["roll_tension"], "sigma_theta"),
+    "slots": ("plate2d", [], "plate2d_f_unrolled"),
+    "roll_tension": ("axisym", [], "sigma_theta"),
+    "exact_reference": ("axisym", [], "axisym_error_unrolled"),
+    "rolled_reference": ("axisym", ["roll_tension"], "axisym_f_rolled_reference"),
+    "eigen": ("axisym", ["roll_tension"], "axisym_f_rolled"),
+    "eq9": ("axisym", ["roll_tension"], "axisym_delta_f_eq9_exact"),
+    "critical_load": ("axisym", ["roll_tension"], "axisym_critical_load_factor"),
+    "modal_matrices": ("axisym", ["roll_tension"], "axisym_k_sigma_hat"),
+    "stiffness_sensitivity": ("axisym", [], "axisym_sensitivity_delta_f"),
+}
+
+
+def test_every_declared_effect_has_a_scene_that_shows_it():
+    assert set(SHOWS) == set(DECLARED) == set(EFFECTS.names)
+
+
+@pytest.mark.parametrize("effect", list(SHOWS))
+def test_switching_an_effect_on_changes_the_output(cfg, effect):
+    solver, others, var = SHOWS[effect]
+    scene = "slotted_rc_sweep" if solver == "plate2d" else "table12"
+    off = solve(small_run(cfg, scene, others))
+    on = solve(small_run(cfg, scene, others + [effect]))
+    assert _changed(off, on, var), f"{effect} did not change {var}"
+    assert np.isfinite(on[var].values.astype(float)).any()
+
+
+def test_the_plate2d_stress_is_the_one_roll_tension_contributes(cfg):
+    """The solver core reads the load by key: the 2-D plane-stress FE field follows the
+    calibrated alpha (stress_calibration) through roll_tension's contribution."""
+    a = solve(small_run(cfg, "table12_plate2d", ["roll_tension", "eigen"]))
+    b = solve(small_run(cfg, "table12_plate2d", ["stress_calibration", "roll_tension", "eigen"]))
+    scale = float(b["stress_scale"])
+    np.testing.assert_allclose(b["plate2d_sigma_theta_binned"], scale * a["plate2d_sigma_theta_binned"],
+                               rtol=1e-8, atol=1e-6)
+
+
+@pytest.mark.parametrize("solver, scene", [("axisym", "table12"), ("axisym", "fig07_sensitivity"),
+                                           ("plate2d", "slotted_rc_sweep")])
+def test_contributions_are_the_declared_keys_with_the_declared_units(cfg, monkeypatch, solver, scene):
+    seen = {}
+    for name, fn in list(EFFECTS._effects.items()):
+        def wrapped(ctx, _fn=fn, _name=name):
+            seen[_name] = out = _fn(ctx)
+            return out
+        monkeypatch.setitem(EFFECTS._effects, name, wrapped)
+    effects = [e for e, d in DECLARED.items() if solver in d["honoured_by"]
+               and not (e in ("exact_reference", "rolled_reference") and solver == "plate2d")]
+    if scene == "fig07_sensitivity":
+        effects = ["stiffness_sensitivity"]
+    solve(small_run(cfg, scene, effects))
+    assert set(seen) == set(effects)
+    for name, out in seen.items():
+        assert set(out) <= set(DECLARED[name]["contributes"])
+        for key, value in out.items():
+            if isinstance(value, tuple):
+                assert value[2]["units"] == DECLARED[name]["units"][key], (name, key)
