@@ -7,7 +7,7 @@ A paper declares its studies in config (``accuracy:``; see ``config/schema/paper
         study: cost_of_accuracy    # a study (its runs along ``run``) or a scene's run
         knob: K                    # the coordinate of the knob along the study
         finer: larger              # which direction is finer
-        reference: exact           # exact solution, or the study's finest point
+        reference: exact           # exact solution, extrapolated (Richardson), or finest point
         time: wall_time            # the time per point [s], a variable of the study
         quantities: {load: {error: relative}}
 
@@ -100,12 +100,13 @@ def rows(entries: list[dict], dataset: Callable[[str], object],
         if entry["finer"] == "smaller":
             order = order[::-1]
         for qname, qspec in entry["quantities"].items():
+            reference = qspec.get("reference", entry["reference"])
             err = np.asarray(quantities(qname, ds, entry), float)
             if err.shape != knob.shape:
                 raise ValueError(f"{quantities.paper}: accuracy {entry['name']}.{qname}: "
                                  f"{err.shape} errors for {knob.shape} knob values")
             for i in order:
-                if entry["reference"] == "finest" and i == finest_index(knob, entry["finer"]):
+                if reference == "finest" and i == finest_index(knob, entry["finer"]):
                     continue
                 if not np.isfinite(err[i]):
                     continue   # the quantity does not apply at this point (e.g. another method)
@@ -114,7 +115,7 @@ def rows(entries: list[dict], dataset: Callable[[str], object],
                     "knob_value": knob[i].item(), "quantity": qname,
                     "error": float(err[i]), "error_kind": qspec["error"],
                     "error_unit": "1" if qspec["error"] == "relative" else qspec.get("unit", "1"),
-                    "reference": entry["reference"], "time_s": float(t[i]),
+                    "reference": reference, "time_s": float(t[i]),
                     "time_of": entry.get("time_of", "one solve"),
                 })
     return out

@@ -276,15 +276,16 @@ def _check_effects(raw: dict, where: str) -> None:
             raise ConfigError(f"{at}.solver = {solver!r}: not declared; solvers: "
                               f"{', '.join(solvers) or '(none)'}")
         named = spec["effects"]
-        for e in named:
+        for e in named:   # first what the solver cannot do at all, then combinations
             if e not in effects:
                 raise ConfigError(f"{at}.effects: {e!r} is not a declared effect; effects: "
                                   f"{', '.join(effects)}")
-            decl = effects[e]
-            if solver not in decl["honoured_by"]:
+            if solver not in effects[e]["honoured_by"]:
                 raise ConfigError(f"{at}: effect {e!r} is not honoured by solver {solver!r} "
-                                  f"(honoured by: {', '.join(decl['honoured_by'])}); remove it "
-                                  "or choose one of those solvers")
+                                  f"(honoured by: {', '.join(effects[e]['honoured_by'])}); "
+                                  "remove it or choose one of those solvers")
+        for e in named:
+            decl = effects[e]
             missing = [r for r in decl.get("requires", []) if r not in named]
             if missing:
                 raise ConfigError(f"{at}: effect {e!r} requires {missing}")
