@@ -187,45 +187,38 @@ def library(f, t0, y0, t_end, t_eval, rtol=1e-6, atol=1e-12, method="DOP853", ma
     return sol.t, sol.y.T, sol.nfev
 
 
-def forcing_arrays(selected: dict, prm: dict, omega1: float, geo: dict, kimp: dict, t,
-                   step=None) -> dict:
+# the contributions the Galerkin model consumes (no span-length state, no sag term: the
+# config refuses length_change and sag for this solver)
+GALERKIN_KEYS = ("tension_coefficient", "tension", "tension_short", "tension_long", "u_left",
+                 "u_right", "v_left", "v_right", "coupling_stiffness")
+
+
+def contributions(run: dict, prm: dict, omega1: float, geo: dict, t, step, registry=None):
+    """The named effects' contributions at the times ``t`` (flattened) of one speed."""
+    from .effects import EFFECTS, SpanContext, consume
+
+    ctx = SpanContext(prm, [omega1], np.ravel(t), step, geo, end_velocity=True)
+    return consume((registry or EFFECTS).evaluate(run, ctx), GALERKIN_KEYS, "galerkin")
+
+
+def forcing_arrays(run: dict, prm: dict, omega1: float, geo: dict, t, step=None,
+                   registry=None) -> dict:
     """g, h, g', h' (Eqs. 2-24/25 and their time derivatives) and P_t at the times ``t``
-    (any shape), from the selected effects only."""
-    from . import four_bar, loads
+    (any shape), from the contributions of the named effects (zero where none)."""
+    from .span import dynamic_tension
 
-    n1, n2, p = int(prm["n1"]), int(prm["n2"]), prm["pitch"]
     t = np.asarray(t, float)
-    Pt = np.zeros(t.shape)
-    if "impact" in selected:
-        Pt = Pt + loads.impact_load(t, omega1, n1, p, kimp, step=step)
-    kin = None
-    if "polygonal_rigid" in selected or "end_excitation" in selected:
-        kin = four_bar.rigid_kinematics(t, omega1, n1=n1, n2=n2, p_c=p, f_p=geo["f_p"])
-    if "polygonal_rigid" in selected:
-        Pt = Pt + four_bar.polygonal_load_rigid(kin["alpha2"], prm["driven_inertia"], kin["r2"])
-    if "polygonal_elastic" in selected:
-        k = prm["axial_stiffness"] / geo["L_ct"]
-        sol = four_bar.elastic_four_bar(omega1, k=k, I2=prm["driven_inertia"], n1=n1, n2=n2,
-                                        p_c=p, f_p=geo["f_p"])
-        Pt = Pt + four_bar.polygonal_load_elastic(t, sol, omega1, k)
-    if "external_load" in selected:
-        Pt = Pt + loads.external_load(t, prm["external_load_ratio"] * prm["static_tension"],
-                                      prm["external_frequency_ratio"] * omega1)
-    if "end_excitation" in selected:
-        g, h = four_bar.end_displacements(kin["theta1"], kin["theta2"], kin["r1"], kin["r2"], n2)
-        gd = -kin["r2"] * np.cos(kin["theta2"]) * kin["omega2"]     # d/dt Eq. (2-25)
-        hd = -kin["r1"] * np.cos(kin["theta1"]) * omega1            # d/dt Eq. (2-24)
-    else:
-        g = h = gd = hd = np.zeros(t.shape)
-    return {"g": g, "h": h, "gd": gd, "hd": hd, "Pt": Pt}
+    c = contributions(run, prm, omega1, geo, t, step, registry)
+    out = {"Pt": dynamic_tension(c, (t.size, 1)).reshape(t.shape)}
+    for name, key in (("g", "u_left"), ("h", "u_right"), ("gd", "v_left"), ("hd", "v_right")):
+        v = c.get(key)
+        out[name] = np.zeros(t.shape) if v is None else np.reshape(v, t.shape)
+    return out
 
 
-def forcing(selected: dict, prm: dict, omega1: float, geo: dict, kimp: dict, step=None):
-    """Scalar functions tension(t) and ends(t) -> (g, h, g', h') for adaptive integrators."""
-    def tension(t):
-        return float(forcing_arrays(selected, prm, omega1, geo, kimp, t, step)["Pt"])
-
-    def ends(t):
-        F = forcing_arrays(selected, prm, omega1, geo, kimp, t, step)
-        return float(F["g"]), float(F["h"]), float(F["gd"]), float(F["hd"])
-    return tension, ends
+def forcing(run: dict, prm: dict, omega1: float, geo: dict, step=None, registry=None):
+    """A scalar function t -> (g, h, g', h', P_t) for adaptive integrators."""
+    def at(t):
+        F = forcing_arrays(run, prm, omega1, geo, t, step, registry)
+        return tuple(float(F[k]) for k in ("g", "h", "gd", "hd", "Pt"))
+    return at
