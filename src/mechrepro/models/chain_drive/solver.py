@@ -259,94 +259,110 @@ def envelope_statistics(u, steps_per_tooth: int) -> dict:
             "quarter_periods": q}
 
 
-def galerkin_span(run, prm, res):
-    """Fig. 10: the coupled Galerkin model (Eqs. 2-39..2-41) at the speed of
-    ``options.resonance``, RK4 with a whole number of steps per tooth period; optionally
-    compared with solve_ivp over the first tooth periods (``options.compare_library``)."""
-    opts = run.get("options", {})
-    n1, p, m = int(prm["n1"]), prm["pitch"], prm["mass_per_length"]
+def _galerkin_setup(run, prm, res) -> dict:
+    """The Galerkin model of the span L_ct at the speed of ``options.resonance`` (the steady
+    contributions -- tension coefficient, coupling -- fix the speed and P) and its RK4 step."""
+    n1, m = int(prm["n1"]), prm["mass_per_length"]
     geo = span.span_geometry(prm, False)
-    L, EA = geo["L_ct"], prm["axial_stiffness"]
-    # steady contributions first (tension coefficient, coupling): they fix the speed
+    L = geo["L_ct"]
     steady = galerkin.contributions(run, prm, prm["speed"], geo, np.zeros(1), None)
     k_c = steady.total("tension_coefficient")
     w1 = _resonant_speed(run, prm, k_c, L)
-    c = float(geometry.chain_speed(w1, n1, p))
+    c = float(geometry.chain_speed(w1, n1, prm["pitch"]))
     P = float(geometry.axial_tension(prm["static_tension"], k_c, c))
-    model = galerkin.GalerkinModel(L=L, m=m, EA=EA, P=P, c=c, c_d=prm["transverse_damping"],
-                                   n_t=int(res["n_transverse"]), n_l=int(res["n_longitudinal"]),
+    model = galerkin.GalerkinModel(L=L, m=m, EA=prm["axial_stiffness"], P=P, c=c,
+                                   c_d=prm["transverse_damping"], n_t=int(res["n_transverse"]),
+                                   n_l=int(res["n_longitudinal"]),
                                    coupling="coupling_stiffness" in steady)
     dt_limit = model.max_stable_step()
     # a whole number of steps per tooth period: the end-motion kinks and the impacts then sit
     # on step boundaries (RK4 is only first order across a kink inside a step)
     tau = 2 * np.pi / (n1 * w1)
     per_tooth = math.ceil(tau / (float(res["rk4_cfl"]) * dt_limit))
-    dt = tau / per_tooth
-    # impact pulses shorter than the step enter with their exact impulse, spread over a
-    # fixed fraction of the tooth period (not a number of steps: the forcing must not
-    # change when the step is refined)
-    window = tau / 16
-    y0 = np.zeros(2 * (model.n_t + model.n_l))
-    n_steps = per_tooth * max(int(math.ceil(float(res["duration"]) / tau)), 4)   # whole periods
+    return {"model": model, "geo": geo, "L": L, "w1": w1, "c": c, "P": P, "dt_limit": dt_limit,
+            "per_tooth": per_tooth, "dt": tau / per_tooth,
+            "n_steps": per_tooth * max(int(math.ceil(float(res["duration"]) / tau)), 4),
+            # impact pulses shorter than the step enter with their exact impulse, spread over
+            # a fixed fraction of the tooth period (the forcing must not change with the step)
+            "window": tau / 16, "xi": float(prm["probe_fraction"]) * L}   # xi from the driven end
+
+
+def _library_check(run, prm, res, g, u_all, t_all, Fe) -> tuple[dict, dict]:
+    """solve_ivp (DOP853) over the first tooth periods: with a tolerance far below the RK4
+    error (rtol 1e-9) the difference is RK4's own error, not the adaptive controller's."""
+    model, xi, L = g["model"], g["xi"], g["L"]
+    at = galerkin.forcing(run, prm, g["w1"], g["geo"], step=g["window"])
+    n_lib = g["per_tooth"] * max(int(round(float(res["library_periods"]))), 1)
+    with stopwatch() as sw:
+        t_lib, y_lib, nfev = galerkin.library(lambda t, y: model.rhs_values(y, *at(t)), 0.0,
+                                              np.zeros(2 * (model.n_t + model.n_l)), t_all[n_lib],
+                                              t_all[:n_lib + 1],
+                                              rtol=float(res.get("library_rtol", 1e-9)),
+                                              atol=1e-14, max_step=g["dt"])
+    u_lib = (model.u2_at(y_lib, xi) + (1 - xi / L) * Fe["g"][:n_lib + 1]
+             + xi / L * Fe["h"][:n_lib + 1])
+    scale = np.max(np.abs(u_all[:n_lib + 1]))
+    return {
+        "u_probe_library": var("t_library", u_lib, "m",
+                               "transverse displacement at the probe, solve_ivp DOP853 (first periods)"),
+        "rk4_vs_library": var((), np.max(np.abs(u_all[:n_lib + 1] - u_lib)) / scale, "1",
+                              "max |u_RK4 - u_library| / max |u| over the library window"),
+        "library_wall_time": var((), sw.seconds, "s", "wall time of solve_ivp"),
+        "library_nfev": var((), nfev, "1", "right-hand-side calls of solve_ivp"),
+        "rk4_nfev": var((), 4 * g["n_steps"], "1", "right-hand-side calls of RK4"),
+    }, _coord("t_library", t_lib, "s", "time")
+
+
+def galerkin_span(run, prm, res):
+    """Fig. 10: the coupled Galerkin model (Eqs. 2-39..2-41) at the speed of
+    ``options.resonance``, RK4 with a whole number of steps per tooth period; optionally
+    compared with solve_ivp over the first tooth periods (``options.compare_library``)."""
+    opts = run.get("options", {})
+    g = _galerkin_setup(run, prm, res)
+    model, dt, n_steps, xi, L, c, w1 = (g[k] for k in ("model", "dt", "n_steps", "xi", "L", "c", "w1"))
+    n1, m = int(prm["n1"]), prm["mass_per_length"]
     stages = galerkin.stage_times(dt, n_steps)
     t_rec = np.arange(n_steps + 1) * dt
-    xi = float(prm["probe_fraction"]) * L   # measured from the driven sprocket (x = 0)
     with stopwatch() as sw_rk:
         # the forcing at the RK4 stages and (for the end-motion line) at the recorded steps
-        F = galerkin.forcing_arrays(run, prm, w1, geo, np.concatenate([stages.ravel(), t_rec + 1e-9 * dt]),
-                                    step=window)
+        F = galerkin.forcing_arrays(run, prm, w1, g["geo"],
+                                    np.concatenate([stages.ravel(), t_rec + 1e-9 * dt]),
+                                    step=g["window"])
         Fs = {k: v[:stages.size].reshape(stages.shape) for k, v in F.items()}
         Fe = {k: v[stages.size:] for k, v in F.items()}
-        t_all, y_all = galerkin.rk4_tabulated(model, y0, dt, n_steps, Fs, record_every=1)
+        t_all, y_all = galerkin.rk4_tabulated(model, np.zeros(2 * (model.n_t + model.n_l)), dt,
+                                              n_steps, Fs, record_every=1)
     u_all = model.u2_at(y_all, xi) + (1 - xi / L) * Fe["g"] + xi / L * Fe["h"]
-    stats = envelope_statistics(u_all, per_tooth)
+    stats = envelope_statistics(u_all, g["per_tooth"])
     rec = max(n_steps // int(res["samples"]), 1)
     data = {
         "u_probe_rk4": var("t", u_all[::rec], "m", "transverse displacement at the probe, RK4 "
                            f"(every {rec}th step, for the figure)"),
         "rk4_time_step": var((), dt, "s", "RK4 step (a whole number per tooth period)"),
-        "rk4_step_limit": var((), dt_limit, "s", "RK4 linear stability limit"),
+        "rk4_step_limit": var((), g["dt_limit"], "s", "RK4 linear stability limit"),
         "rk4_wall_time": var((), sw_rk.seconds, "s", "wall time of the forcing and RK4"),
         "chain_speed": var((), c, "m/s", "chain speed"),
-        "longitudinal_frequency": var((), geometry.longitudinal_frequency(1, EA, m, c, L), "rad/s",
-                                          "first longitudinal frequency of the moving span"),
+        "longitudinal_frequency": var((), geometry.longitudinal_frequency(1, prm["axial_stiffness"],
+                                                                          m, c, L), "rad/s",
+                                      "first longitudinal frequency of the moving span"),
         "tooth_frequency": var((), n1 * w1, "rad/s", "tooth frequency n1 omega1"),
         "speed": var((), w1 * RPM, "rpm", "driving sprocket speed"),
         "detuning": var((), float(opts.get("detuning", 1.0)), "1",
-                            "tooth frequency / the resonance frequency named in options"),
-        "transverse_order_at_speed": var((), 
-            n1 * w1 / float(geometry.moving_string_frequencies(1, c, P, m, L)), "1",
+                        "tooth frequency / the resonance frequency named in options"),
+        "transverse_order_at_speed": var(
+            (), n1 * w1 / float(geometry.moving_string_frequencies(1, c, g["P"], m, L)), "1",
             "tooth frequency / first transverse frequency of the moving span"),
         "steady_amplitude": var((), stats["steady_amplitude"], "m",
-                                    "max |u| at the probe over every step of the last quarter "
-                                    "(whole tooth periods)"),
+                                "max |u| at the probe over every step of the last quarter "
+                                "(whole tooth periods)"),
         "steady_ratio": var((), stats["steady_ratio"], "1",
-                                "max |u| last quarter / third quarter (whole tooth periods)"),
+                            "max |u| last quarter / third quarter (whole tooth periods)"),
     }
     coords = _coord("t", t_all[::rec], "s", "time")
     if opts.get("compare_library", False):
-        at = galerkin.forcing(run, prm, w1, geo, step=window)
-        # the library covers the first tooth periods: with a tolerance far below the RK4
-        # error (rtol 1e-9) the difference is RK4's own error, not the adaptive controller's
-        n_lib = per_tooth * max(int(round(float(res["library_periods"]))), 1)
-        with stopwatch() as sw_lib:
-            t_lib, y_lib, nfev = galerkin.library(lambda t, y: model.rhs_values(y, *at(t)), 0.0,
-                                                  y0, t_all[n_lib], t_all[:n_lib + 1],
-                                                  rtol=float(res.get("library_rtol", 1e-9)),
-                                                  atol=1e-14, max_step=dt)
-        u_lib = (model.u2_at(y_lib, xi) + (1 - xi / L) * Fe["g"][:n_lib + 1]
-                 + xi / L * Fe["h"][:n_lib + 1])
-        scale = np.max(np.abs(u_all[:n_lib + 1]))
-        data.update({
-            "u_probe_library": var("t_library", u_lib, "m",
-                                   "transverse displacement at the probe, solve_ivp DOP853 (first periods)"),
-            "rk4_vs_library": var((), np.max(np.abs(u_all[:n_lib + 1] - u_lib)) / scale, "1",
-                                      "max |u_RK4 - u_library| / max |u| over the library window"),
-            "library_wall_time": var((), sw_lib.seconds, "s", "wall time of solve_ivp"),
-            "library_nfev": var((), nfev, "1", "right-hand-side calls of solve_ivp"),
-            "rk4_nfev": var((), 4 * n_steps, "1", "right-hand-side calls of RK4"),
-        })
-        coords.update(_coord("t_library", t_lib, "s", "time"))
+        more, more_coords = _library_check(run, prm, res, g, u_all, t_all, Fe)
+        data.update(more)
+        coords.update(more_coords)
     return xr.Dataset(data, coords=coords)
 
 
