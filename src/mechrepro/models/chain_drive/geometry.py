@@ -9,6 +9,8 @@ from __future__ import annotations
 import numpy as np
 from scipy.optimize import brentq
 
+RPM = 30.0 / np.pi   # rad/s -> rpm
+
 
 def pitch_radius(p_c: float, n: int) -> float:
     """Pitch-circle radius of an n-tooth sprocket: r = p_c / (2 sin(pi/n))."""
