@@ -35,7 +35,7 @@ def test_every_parameter_has_a_source_or_a_reason(root):
 
 
 @pytest.mark.parametrize("mutate, msg", [
-    (lambda r: r["scenes"]["fig05_plain"].__setitem__("effects", ["polygon"]), "allowed"),
+    (lambda r: r["scenes"]["fig05_plain"].__setitem__("effects", ["polygon"]), "not a declared effect"),
     (lambda r: r["scenes"]["fig05_plain"]["resolution"].__setitem__("cfl", 1.5), "must be <= 1"),
     (lambda r: r["parameters"]["lambda_support"].__setitem__("value", 2.0), "must be <= 1"),
     (lambda r: r["scenes"]["fig05_plain"]["resolution"].__setitem__("grid", 3), "unknown key"),

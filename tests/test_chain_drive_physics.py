@@ -53,10 +53,10 @@ def test_manufactured_solution_order():
 def test_resonance_speed_meets_wickert_mote():
     L = 20 * P_C
     for k in (1, 3, 5):
-        w1 = geometry.resonance_speed(k, L, n1=24, p_c=P_C, T_s=400, m=0.61, lam=0.9,
-                                      speed_tensioning=True)
+        w1 = geometry.resonance_speed(k, L, n1=24, p_c=P_C, T_s=400, m=0.61,
+                                      tension_coefficient=0.9 * 0.61)
         c = geometry.chain_speed(w1, 24, P_C)
-        P = geometry.axial_tension(400, 0.61, c, 0.9)
+        P = geometry.axial_tension(400, 0.9 * 0.61, c)
         assert 24 * w1 == pytest.approx(geometry.moving_string_frequencies(k, c, P, 0.61, L), rel=1e-10)
 
 
@@ -157,8 +157,8 @@ def test_end_excitation_phase_sets_first_mode_response():
     for cd in (20.0, 20.5):
         prm["centre_distance"] = cd
         L = span.span_geometry(prm, False)["L_ct"]
-        w1 = geometry.resonance_speed(1, L, n1=24, p_c=P_C, T_s=400, m=0.61, lam=0.9,
-                                      speed_tensioning=True)
+        w1 = geometry.resonance_speed(1, L, n1=24, p_c=P_C, T_s=400, m=0.61,
+                                      tension_coefficient=0.9 * 0.61)
         r = span.sweep(["speed_tensioning", "end_excitation"], prm, np.array([0.3 * w1, w1]), res)
         out[cd] = r["amplitude"][1] / r["amplitude"][0]
     assert out[20.0] > 2.0 > out[20.5]

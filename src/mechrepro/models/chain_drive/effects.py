@@ -1,10 +1,24 @@
-"""The effects of a chain_drive scene, one registry entry each.
+"""The effects of a chain_drive scene: one pure function ``fn(ctx) -> {key: value}`` each.
 
-Every entry takes the scene context (:class:`SpanContext`) and returns its contribution:
-``{"static_tension": (S,)}``, ``{"tension": (T, S)}``, ``{"u_left"/"u_right": (T, S)}``,
-``{"long": (T, S)}``, or ``{"sag": True}``.  The solver calls only the entries of
-``EFFECTS.select(run["effects"])``: an effect that is off is never looked up or evaluated,
-and the shared sprocket kinematics is computed lazily, only when a selected effect asks.
+Declared once in ``config/papers/chain_drive.yaml`` (``effects:``: what each contributes,
+its units, which solvers honour it).  Every solver builds a :class:`SpanContext` and calls
+``EFFECTS.evaluate(run, ctx)``; it reads the contributions by key:
+
+=====================  ===========  =====================================================
+key                    shape        meaning
+=====================  ===========  =====================================================
+tension_coefficient    scalar       k in P = T_s + k c^2 (:func:`.geometry.axial_tension`)
+tension                (T, S)       dynamic tension P_t, summed over the effects
+tension_short/_long    (T, S)       P_t of the elastic four-bar on the short / long span
+long                   (T, S) bool  span-length state (True = long span)
+u_left, u_right        (T, S)       end displacements (x = 0 driven, x = L driving)
+v_left, v_right        (T, S)       their time derivatives (only when ``ctx.end_velocity``)
+kappa                  (S,)         sag factor of the kappa P_t term
+coupling_stiffness     scalar       EA of the longitudinal-transverse coupling
+=====================  ===========  =====================================================
+
+An effect that is not named is never looked up or evaluated; the shared sprocket
+kinematics is computed lazily, only when a named effect asks for it.
 """
 from __future__ import annotations
 
@@ -17,45 +31,76 @@ from mechrepro.effects import EffectRegistry
 from . import four_bar, geometry, loads
 
 EFFECTS = EffectRegistry("chain_drive")
+G = 9.80665   # standard gravity [m/s^2]
 
 
 class SpanContext:
-    """Time grid x operating speeds, parameters (SI) and lazily computed kinematics."""
+    """What the effects see: parameters (SI), operating speeds ``omega1`` (S,), times ``t``
+    ((T,) shared by every speed, or (T, S)), the averaging window ``step`` of pulses shorter
+    than a time step (None: point values, Sec. 3.1), and the span geometry
+    (:func:`.span.span_geometry`)."""
 
-    def __init__(self, prm: dict, omega1, t, dt: float, span: dict):
+    def __init__(self, prm: dict, omega1, t, step, span: dict, end_velocity: bool = False,
+                 cache: dict | None = None):
         self.prm = prm
         self.omega1 = np.atleast_1d(np.asarray(omega1, float))          # (S,)
-        self.t = np.asarray(t, float)                                   # (T,)
-        self.dt = dt
+        self.t = np.asarray(t, float)
+        self.step = step
         self.span = span                                                # L_short, L_long, f_p
+        self.end_velocity = end_velocity
+        self.cache = {} if cache is None else cache     # elastic four-bar solutions, reused
         self.n1, self.n2 = int(prm["n1"]), int(prm["n2"])
         self.p_c = prm["pitch"]
         self.c = geometry.chain_speed(self.omega1, self.n1, self.p_c)
 
     @property
     def T(self):
-        return self.t[:, None]
+        """Times as a (T, 1) or (T, S) array (broadcasts against ``omega1[None, :]``)."""
+        return self.t if self.t.ndim == 2 else self.t[:, None]
+
+    def times_of(self, i: int):
+        """The times of speed ``i``."""
+        return self.t[:, i] if self.t.ndim == 2 else self.t
 
     @cached_property
     def kinematics(self) -> dict:
         return four_bar.rigid_kinematics(self.T, self.omega1[None, :], n1=self.n1, n2=self.n2,
                                          p_c=self.p_c, f_p=self.span["f_p"])
 
+    def elastic_solution(self, omega1: float, k: float) -> dict:
+        """Eq. (2-21) at one speed and span stiffness (solved once per context family)."""
+        key = (float(omega1), float(k), self.n1, self.n2, self.span["f_p"])
+        if key not in self.cache:
+            self.cache[key] = four_bar.elastic_four_bar(
+                omega1, k=k, I2=self.prm["driven_inertia"], n1=self.n1, n2=self.n2,
+                p_c=self.p_c, f_p=self.span["f_p"])
+        return self.cache[key]
+
+
+def consume(contributions, keys, solver: str):
+    """Refuse contributions a solver does not consume (the config refuses such a scene at
+    load already; this guards direct calls): an effect is honoured or refused, never ignored."""
+    extra = [k for k in contributions.keys() if k not in keys]
+    if extra:
+        by = sorted({e for k in extra for e in contributions.sources(k)})
+        raise ValueError(f"chain_drive: the {solver} solver does not honour {by} "
+                         f"(contributions {extra})")
+    return contributions
+
 
 @EFFECTS.register("speed_tensioning")
 def speed_tensioning(ctx: SpanContext) -> dict:
-    """Eq. (2-1): P = T_s + lambda m c^2."""
-    return {"static_tension": loads.speed_tensioning(ctx.prm["lambda_support"],
-                                                     ctx.prm["mass_per_length"], ctx.c)}
+    """Eq. (2-1): D_c = lambda m c^2, i.e. P = T_s + k c^2 with k = lambda m."""
+    return {"tension_coefficient": ctx.prm["lambda_support"] * ctx.prm["mass_per_length"]}
 
 
 @EFFECTS.register("impact")
 def impact(ctx: SpanContext) -> dict:
-    """Eqs. (2-2)-(2-4): impact load, averaged exactly over each time step."""
+    """Eqs. (2-2)-(2-4): impact load, averaged exactly over ``ctx.step`` (point values without)."""
     k = loads.impact_constants(ctx.prm["impact_mass_links"] * ctx.p_c * ctx.prm["mass_per_length"],
                                ctx.prm["contact_stiffness"], ctx.prm["contact_damping_ratio"])
     return {"tension": loads.impact_load(ctx.T, ctx.omega1[None, :], ctx.n1, ctx.p_c, k,
-                                         step=ctx.dt)}
+                                         step=ctx.step)}
 
 
 @EFFECTS.register("polygonal_rigid")
@@ -68,19 +113,19 @@ def polygonal_rigid(ctx: SpanContext) -> dict:
 
 @EFFECTS.register("polygonal_elastic")
 def polygonal_elastic(ctx: SpanContext) -> dict:
-    """Eqs. (2-11)-(2-23): D_pol of the elastic four-bar with k = AE/L of the current span
-    (k1 for the short, k2 for the long span when the length changes)."""
-    EA, I2 = ctx.prm["axial_stiffness"], ctx.prm["driven_inertia"]
+    """Eqs. (2-11)-(2-23): D_pol of the elastic four-bar with k = AE/L of the short (k1) and
+    the long (k2) span; the span-length state (``long``) picks one in time."""
+    EA = ctx.prm["axial_stiffness"]
     out = {}
-    for name, L in (("short", ctx.span["L_short"]), ("long", ctx.span["L_long"])):
+    for key, L in (("tension_short", ctx.span["L_short"]), ("tension_long", ctx.span["L_long"])):
+        if key == "tension_long" and L == ctx.span["L_short"]:
+            out[key] = out["tension_short"]
+            continue
         k = EA / L
-        cols = []
-        for w in ctx.omega1:
-            sol = four_bar.elastic_four_bar(w, k=k, I2=I2, n1=ctx.n1, n2=ctx.n2, p_c=ctx.p_c,
-                                            f_p=ctx.span["f_p"])
-            cols.append(four_bar.polygonal_load_elastic(ctx.t, sol, w, k))
-        out[name] = np.stack(cols, axis=1)
-    return {"tension_by_length": out}
+        out[key] = np.stack([four_bar.polygonal_load_elastic(ctx.times_of(i),
+                                                             ctx.elastic_solution(w, k), w, k)
+                             for i, w in enumerate(ctx.omega1)], axis=1)
+    return out
 
 
 @EFFECTS.register("external_load")
@@ -93,11 +138,16 @@ def external_load(ctx: SpanContext) -> dict:
 
 @EFFECTS.register("end_excitation")
 def end_excitation(ctx: SpanContext) -> dict:
-    """Eqs. (2-24), (2-25): transverse motion of the span ends (with the stated shift)."""
+    """Eqs. (2-24), (2-25): transverse motion of the span ends (with the stated shift), and
+    its velocity when the solver asks (the Galerkin end-motion line)."""
     kin = ctx.kinematics
     u0, un = four_bar.end_displacements(kin["theta1"], kin["theta2"], kin["r1"], kin["r2"],
                                         ctx.n2)
-    return {"u_left": u0, "u_right": un}
+    out = {"u_left": u0, "u_right": un}
+    if ctx.end_velocity:
+        out["v_left"], out["v_right"] = four_bar.end_velocities(
+            kin["theta1"], kin["theta2"], ctx.omega1[None, :], kin["omega2"], kin["r1"], kin["r2"])
+    return out
 
 
 @EFFECTS.register("length_change")
@@ -111,14 +161,14 @@ def length_change(ctx: SpanContext) -> dict:
 def sag(ctx: SpanContext) -> dict:
     """Eq. (2-36) instead of (2-37): the term kappa P_t, kappa = m g / (P_0 - m c^2) (Eq. 2-31)."""
     m = ctx.prm["mass_per_length"]
-    P0 = ctx.prm["static_tension"]
-    kappa = m * 9.80665 / (P0 - m * ctx.c**2)
+    kappa = m * G / (ctx.prm["static_tension"] - m * ctx.c**2)
     if np.any(kappa <= 0):
         raise ValueError("sag: P_0 - m c^2 <= 0, no small-sag equilibrium exists")
     return {"kappa": kappa}
 
 
 @EFFECTS.register("longitudinal_coupling")
-def longitudinal_coupling(ctx) -> dict:
-    """Eqs. (2-39)-(2-41): marks the high-speed Galerkin model (see :mod:`.galerkin`)."""
-    return {"galerkin": True}
+def longitudinal_coupling(ctx: SpanContext) -> dict:
+    """Eqs. (2-39)-(2-41): the stretching terms EA (u1,x + u2,x^2 / 2) that couple the
+    longitudinal and transverse motion."""
+    return {"coupling_stiffness": ctx.prm["axial_stiffness"]}

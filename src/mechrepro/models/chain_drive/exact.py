@@ -8,16 +8,13 @@
 """
 from __future__ import annotations
 
-import time
-
 import numpy as np
 import xarray as xr
 
+from mechrepro.timing import stopwatch
+from mechrepro.units import var
+
 from . import fd, geometry
-
-
-def _scalar(x, units, long_name):
-    return ((), np.asarray(x, float), {"units": units, "long_name": long_name})
 
 
 def moving_string_mode(x, t, k, c, cw, L):
@@ -47,11 +44,11 @@ def free_vibration(n: int, *, L, m, T, c, k=1, cfl=0.9, periods=4.0, s_star=None
     u0 = moving_string_mode(x, 0.0, k, c, cw, L)[None]
     u1 = moving_string_mode(x, dt, k, c, cw, L)[None]
     probe = int(round(0.37 * n))
-    t0 = time.perf_counter()
-    r = fd.march(c=c_arr, P=np.array([T]), m=m, c_d=0.0, grid=grid, dt=dt, n_steps=n_steps,
-                 exc=fd.Excitation(), s_star=s_star, u0=u0, u1=u1, probes=[probe],
-                 record_every=1, u_cap=1e3)
-    wall = time.perf_counter() - t0
+    with stopwatch() as sw:
+        r = fd.march(c=c_arr, P=np.array([T]), m=m, c_d=0.0, grid=grid, dt=dt, n_steps=n_steps,
+                     exc=fd.Excitation(), s_star=s_star, u0=u0, u1=u1, probes=[probe],
+                     record_every=1, u_cap=1e3)
+    wall = sw.seconds
     t_end = n_steps * dt
     err = np.max(np.abs(r.final[0] - moving_string_mode(x, t_end, k, c, cw, L)))
     w_fd = zero_crossing_frequency(r.t_rec, r.probes[:, 0, 0])
@@ -83,11 +80,13 @@ def free_vibration_check(prm: dict, res: dict) -> xr.Dataset:
                       {"units": "m", "long_name": "max |u_FD - u_exact| after the march (unit mode amplitude)"}),
         "omega_fd": (("differencing", "points"), col(1),
                      {"units": "rad/s", "long_name": "frequency from zero crossings of the FD response"}),
-        "omega_exact": _scalar(out["central"][0][2], "rad/s",
-                               "Wickert-Mote frequency k pi (c_w^2-c^2)/(c_w L)"),
-        "time_step": (("differencing", "points"), col(3), {"units": "s", "long_name": "time step"}),
-        "march_wall_time": (("differencing", "points"), col(4),
-                            {"units": "s", "long_name": "wall time of the march"}),
+        "omega_exact": var((), float(out["central"][0][2]), "rad/s",
+                           "Wickert-Mote frequency k pi (c_w^2-c^2)/(c_w L)"),
+        "time_step": var(("differencing", "points"), col(3), "s", "time step"),
+        "march_wall_time": var(("differencing", "points"), col(4), "s", "wall time of the march"),
+        # one time per grid for each differencing (the cost-of-accuracy curves)
+        "march_wall_time_central": var("points", col(4)[0], "s", "wall time of the central march"),
+        "march_wall_time_mixed": var("points", col(4)[1], "s", "wall time of the mixed march"),
     }, coords=coords)
 
 
@@ -119,11 +118,11 @@ def manufactured(n: int, *, L=0.25, m=0.6, T=400.0, c=5.0, c_d=10.0, cfl=0.9, t_
                         u_right=(X[-1] * Tm(t))[:, None],
                         load=(kappa * Pt(t))[:, None] if kappa else None,
                         source=lambda j: residual(t[j])[None, 1:-1])
-    t0 = time.perf_counter()
-    r = fd.march(c=c_arr, P=np.array([T]), m=m, c_d=c_d, grid=grid, dt=dt, n_steps=n_steps,
-                 exc=exc, s_star=s_star, u0=(X * Tm(0.0))[None], u1=(X * Tm(dt))[None],
-                 u_cap=1.0)
-    wall = time.perf_counter() - t0
+    with stopwatch() as sw:
+        r = fd.march(c=c_arr, P=np.array([T]), m=m, c_d=c_d, grid=grid, dt=dt, n_steps=n_steps,
+                     exc=exc, s_star=s_star, u0=(X * Tm(0.0))[None], u1=(X * Tm(dt))[None],
+                     u_cap=1.0)
+    wall = sw.seconds
     err = np.max(np.abs(r.final[0] - X * Tm(t[-1]))) / 1e-3
     return float(err), dt, grid.dx, wall
 

@@ -67,6 +67,12 @@ def end_displacements(theta1, theta2, r1: float, r2: float, n2: int):
     return r2 * (1 - np.sin(theta2)) + shift, r1 * (1 - np.sin(theta1)) + shift
 
 
+def end_velocities(theta1, theta2, omega1, omega2, r1: float, r2: float):
+    """Time derivatives of Eqs. (2-25), (2-24): u_0' = -r2 cos(theta2) omega2 (driven end),
+    u_n' = -r1 cos(theta1) omega1 (driving end); they jump at every tooth (chordal kinks)."""
+    return -r2 * np.cos(theta2) * omega2, -r1 * np.cos(theta1) * omega1
+
+
 def long_span(phase1, phase2):
     """Length state of Sec. 2.2: the span is long (L_0 + p_c) after a disengagement at the
     driven sprocket until the next engagement at the driving sprocket.

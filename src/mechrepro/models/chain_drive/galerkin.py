@@ -15,8 +15,20 @@ modes: only g, h, g', h' enter, never g'', h''.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
+import xarray as xr
 from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
+
+from mechrepro.timing import stopwatch
+from mechrepro.units import var
+
+from . import geometry
+from .effects import EFFECTS, SpanContext, consume
+from .geometry import RPM
+from .span import dynamic_tension, span_geometry
 
 
 class GalerkinModel:
@@ -187,45 +199,188 @@ def library(f, t0, y0, t_end, t_eval, rtol=1e-6, atol=1e-12, method="DOP853", ma
     return sol.t, sol.y.T, sol.nfev
 
 
-def forcing_arrays(selected: dict, prm: dict, omega1: float, geo: dict, kimp: dict, t,
-                   step=None) -> dict:
+# the contributions the Galerkin model consumes (no span-length state, no sag term: the
+# config refuses length_change and sag for this solver)
+GALERKIN_KEYS = ("tension_coefficient", "tension", "tension_short", "tension_long", "u_left",
+                 "u_right", "v_left", "v_right", "coupling_stiffness")
+
+
+def contributions(run: dict, prm: dict, omega1: float, geo: dict, t, step, registry=None):
+    """The named effects' contributions at the times ``t`` (flattened) of one speed."""
+    ctx = SpanContext(prm, [omega1], np.ravel(t), step, geo, end_velocity=True)
+    return consume((registry or EFFECTS).evaluate(run, ctx), GALERKIN_KEYS, "galerkin")
+
+
+def forcing_arrays(run: dict, prm: dict, omega1: float, geo: dict, t, step=None,
+                   registry=None) -> dict:
     """g, h, g', h' (Eqs. 2-24/25 and their time derivatives) and P_t at the times ``t``
-    (any shape), from the selected effects only."""
-    from . import four_bar, loads
-
-    n1, n2, p = int(prm["n1"]), int(prm["n2"]), prm["pitch"]
+    (any shape), from the contributions of the named effects (zero where none)."""
     t = np.asarray(t, float)
-    Pt = np.zeros(t.shape)
-    if "impact" in selected:
-        Pt = Pt + loads.impact_load(t, omega1, n1, p, kimp, step=step)
-    kin = None
-    if "polygonal_rigid" in selected or "end_excitation" in selected:
-        kin = four_bar.rigid_kinematics(t, omega1, n1=n1, n2=n2, p_c=p, f_p=geo["f_p"])
-    if "polygonal_rigid" in selected:
-        Pt = Pt + four_bar.polygonal_load_rigid(kin["alpha2"], prm["driven_inertia"], kin["r2"])
-    if "polygonal_elastic" in selected:
-        k = prm["axial_stiffness"] / geo["L_ct"]
-        sol = four_bar.elastic_four_bar(omega1, k=k, I2=prm["driven_inertia"], n1=n1, n2=n2,
-                                        p_c=p, f_p=geo["f_p"])
-        Pt = Pt + four_bar.polygonal_load_elastic(t, sol, omega1, k)
-    if "external_load" in selected:
-        Pt = Pt + loads.external_load(t, prm["external_load_ratio"] * prm["static_tension"],
-                                      prm["external_frequency_ratio"] * omega1)
-    if "end_excitation" in selected:
-        g, h = four_bar.end_displacements(kin["theta1"], kin["theta2"], kin["r1"], kin["r2"], n2)
-        gd = -kin["r2"] * np.cos(kin["theta2"]) * kin["omega2"]     # d/dt Eq. (2-25)
-        hd = -kin["r1"] * np.cos(kin["theta1"]) * omega1            # d/dt Eq. (2-24)
-    else:
-        g = h = gd = hd = np.zeros(t.shape)
-    return {"g": g, "h": h, "gd": gd, "hd": hd, "Pt": Pt}
+    c = contributions(run, prm, omega1, geo, t, step, registry)
+    out = {"Pt": dynamic_tension(c, (t.size, 1)).reshape(t.shape)}
+    for name, key in (("g", "u_left"), ("h", "u_right"), ("gd", "v_left"), ("hd", "v_right")):
+        v = c.get(key)
+        out[name] = np.zeros(t.shape) if v is None else np.reshape(v, t.shape)
+    return out
 
 
-def forcing(selected: dict, prm: dict, omega1: float, geo: dict, kimp: dict, step=None):
-    """Scalar functions tension(t) and ends(t) -> (g, h, g', h') for adaptive integrators."""
-    def tension(t):
-        return float(forcing_arrays(selected, prm, omega1, geo, kimp, t, step)["Pt"])
+def forcing(run: dict, prm: dict, omega1: float, geo: dict, step=None, registry=None):
+    """A scalar function t -> (g, h, g', h', P_t) for adaptive integrators."""
+    def at(t):
+        F = forcing_arrays(run, prm, omega1, geo, t, step, registry)
+        return tuple(float(F[k]) for k in ("g", "h", "gd", "hd", "Pt"))
+    return at
 
-    def ends(t):
-        F = forcing_arrays(selected, prm, omega1, geo, kimp, t, step)
-        return float(F["g"]), float(F["h"]), float(F["gd"]), float(F["hd"])
-    return tension, ends
+
+# ---------------------------------------------------------------------------- the Fig. 10 scene
+
+def _coord(name, values, units, long_name):
+    return {name: var(name, values, units, long_name)}
+
+
+
+def _resonant_speed(run, prm, tension_coefficient, L) -> float:
+    """omega1 from options.resonance: tooth frequency = ``detuning`` x the j-th longitudinal or
+    the k-th transverse frequency of the span (derived, never typed in); else ``speed``."""
+    opts = run.get("options", {})
+    spec = opts.get("resonance")
+    if not spec:
+        return prm["speed"]
+    what, order = spec
+    d = float(opts.get("detuning", 1.0))
+    n1, p, m = int(prm["n1"]), prm["pitch"], prm["mass_per_length"]
+    if what == "transverse":
+        return geometry.resonance_speed(int(order), L, n1=n1, p_c=p, T_s=prm["static_tension"], m=m,
+                                        tension_coefficient=tension_coefficient, harmonic=1.0 / d)
+
+    def f(w):
+        return n1 * w - d * geometry.longitudinal_frequency(int(order), prm["axial_stiffness"], m,
+                                                            float(geometry.chain_speed(w, n1, p)), L)
+    return float(brentq(f, 1e-3, 1e5))
+
+
+def envelope_statistics(u, steps_per_tooth: int) -> dict:
+    """Well-posed statistics of a probe record sampled at every RK4 step.
+
+    The record is cut into quarters of whole tooth periods (the forcing period), so each
+    quarter holds the same phases of the forcing; the statistic is the maximum of |u| over
+    every step of a quarter (never over a decimated record, whose maximum depends on the
+    sampling).  ``steady_amplitude`` = max over the last quarter; ``steady_ratio`` = last
+    quarter / third quarter (1 for a steady envelope).
+    """
+    u = np.abs(np.asarray(u, float))
+    n_periods = (u.size - 1) // steps_per_tooth
+    q = n_periods // 4
+    if q < 1:
+        raise ValueError(f"record of {n_periods} tooth periods: too short for quarter statistics")
+    edges = [(u.size - 1) - (4 - i) * q * steps_per_tooth for i in range(5)]
+    blocks = [np.max(u[edges[i] + 1: edges[i + 1] + 1]) for i in range(4)]
+    return {"steady_amplitude": blocks[3], "steady_ratio": blocks[3] / blocks[2],
+            "quarter_periods": q}
+
+
+def _galerkin_setup(run, prm, res) -> dict:
+    """The Galerkin model of the span L_ct at the speed of ``options.resonance`` (the steady
+    contributions -- tension coefficient, coupling -- fix the speed and P) and its RK4 step."""
+    n1, m = int(prm["n1"]), prm["mass_per_length"]
+    geo = span_geometry(prm, False)
+    L = geo["L_ct"]
+    steady = contributions(run, prm, prm["speed"], geo, np.zeros(1), None)
+    k_c = steady.total("tension_coefficient")
+    w1 = _resonant_speed(run, prm, k_c, L)
+    c = float(geometry.chain_speed(w1, n1, prm["pitch"]))
+    P = float(geometry.axial_tension(prm["static_tension"], k_c, c))
+    model = GalerkinModel(L=L, m=m, EA=prm["axial_stiffness"], P=P, c=c,
+                                   c_d=prm["transverse_damping"], n_t=int(res["n_transverse"]),
+                                   n_l=int(res["n_longitudinal"]),
+                                   coupling="coupling_stiffness" in steady)
+    dt_limit = model.max_stable_step()
+    # a whole number of steps per tooth period: the end-motion kinks and the impacts then sit
+    # on step boundaries (RK4 is only first order across a kink inside a step)
+    tau = 2 * np.pi / (n1 * w1)
+    per_tooth = math.ceil(tau / (float(res["rk4_cfl"]) * dt_limit))
+    return {"model": model, "geo": geo, "L": L, "w1": w1, "c": c, "P": P, "dt_limit": dt_limit,
+            "per_tooth": per_tooth, "dt": tau / per_tooth,
+            "n_steps": per_tooth * max(int(math.ceil(float(res["duration"]) / tau)), 4),
+            # impact pulses shorter than the step enter with their exact impulse, spread over
+            # a fixed fraction of the tooth period (the forcing must not change with the step)
+            "window": tau / 16, "xi": float(prm["probe_fraction"]) * L}   # xi from the driven end
+
+
+def _library_check(run, prm, res, g, u_all, t_all, Fe) -> tuple[dict, dict]:
+    """solve_ivp (DOP853) over the first tooth periods: with a tolerance far below the RK4
+    error (rtol 1e-9) the difference is RK4's own error, not the adaptive controller's."""
+    model, xi, L = g["model"], g["xi"], g["L"]
+    at = forcing(run, prm, g["w1"], g["geo"], step=g["window"])
+    n_lib = g["per_tooth"] * max(int(round(float(res["library_periods"]))), 1)
+    with stopwatch() as sw:
+        t_lib, y_lib, nfev = library(lambda t, y: model.rhs_values(y, *at(t)), 0.0,
+                                              np.zeros(2 * (model.n_t + model.n_l)), t_all[n_lib],
+                                              t_all[:n_lib + 1],
+                                              rtol=float(res.get("library_rtol", 1e-9)),
+                                              atol=1e-14, max_step=g["dt"])
+    u_lib = (model.u2_at(y_lib, xi) + (1 - xi / L) * Fe["g"][:n_lib + 1]
+             + xi / L * Fe["h"][:n_lib + 1])
+    scale = np.max(np.abs(u_all[:n_lib + 1]))
+    return {
+        "u_probe_library": var("t_library", u_lib, "m",
+                               "transverse displacement at the probe, solve_ivp DOP853 (first periods)"),
+        "rk4_vs_library": var((), np.max(np.abs(u_all[:n_lib + 1] - u_lib)) / scale, "1",
+                              "max |u_RK4 - u_library| / max |u| over the library window"),
+        "library_wall_time": var((), sw.seconds, "s", "wall time of solve_ivp"),
+        "library_nfev": var((), nfev, "1", "right-hand-side calls of solve_ivp"),
+        "rk4_nfev": var((), 4 * g["n_steps"], "1", "right-hand-side calls of RK4"),
+    }, _coord("t_library", t_lib, "s", "time")
+
+
+def solve_scene(run, prm, res):
+    """Fig. 10: the coupled Galerkin model (Eqs. 2-39..2-41) at the speed of
+    ``options.resonance``, RK4 with a whole number of steps per tooth period; optionally
+    compared with solve_ivp over the first tooth periods (``options.compare_library``)."""
+    opts = run.get("options", {})
+    g = _galerkin_setup(run, prm, res)
+    model, dt, n_steps, xi, L, c, w1 = (g[k] for k in ("model", "dt", "n_steps", "xi", "L", "c", "w1"))
+    n1, m = int(prm["n1"]), prm["mass_per_length"]
+    stages = stage_times(dt, n_steps)
+    t_rec = np.arange(n_steps + 1) * dt
+    with stopwatch() as sw_rk:
+        # the forcing at the RK4 stages and (for the end-motion line) at the recorded steps
+        F = forcing_arrays(run, prm, w1, g["geo"],
+                                    np.concatenate([stages.ravel(), t_rec + 1e-9 * dt]),
+                                    step=g["window"])
+        Fs = {k: v[:stages.size].reshape(stages.shape) for k, v in F.items()}
+        Fe = {k: v[stages.size:] for k, v in F.items()}
+        t_all, y_all = rk4_tabulated(model, np.zeros(2 * (model.n_t + model.n_l)), dt,
+                                              n_steps, Fs, record_every=1)
+    u_all = model.u2_at(y_all, xi) + (1 - xi / L) * Fe["g"] + xi / L * Fe["h"]
+    stats = envelope_statistics(u_all, g["per_tooth"])
+    rec = max(n_steps // int(res["samples"]), 1)
+    data = {
+        "u_probe_rk4": var("t", u_all[::rec], "m", "transverse displacement at the probe, RK4 "
+                           f"(every {rec}th step, for the figure)"),
+        "rk4_time_step": var((), dt, "s", "RK4 step (a whole number per tooth period)"),
+        "rk4_step_limit": var((), g["dt_limit"], "s", "RK4 linear stability limit"),
+        "rk4_wall_time": var((), sw_rk.seconds, "s", "wall time of the forcing and RK4"),
+        "chain_speed": var((), c, "m/s", "chain speed"),
+        "longitudinal_frequency": var((), geometry.longitudinal_frequency(1, prm["axial_stiffness"],
+                                                                          m, c, L), "rad/s",
+                                      "first longitudinal frequency of the moving span"),
+        "tooth_frequency": var((), n1 * w1, "rad/s", "tooth frequency n1 omega1"),
+        "speed": var((), w1 * RPM, "rpm", "driving sprocket speed"),
+        "detuning": var((), float(opts.get("detuning", 1.0)), "1",
+                        "tooth frequency / the resonance frequency named in options"),
+        "transverse_order_at_speed": var(
+            (), n1 * w1 / float(geometry.moving_string_frequencies(1, c, g["P"], m, L)), "1",
+            "tooth frequency / first transverse frequency of the moving span"),
+        "steady_amplitude": var((), stats["steady_amplitude"], "m",
+                                "max |u| at the probe over every step of the last quarter "
+                                "(whole tooth periods)"),
+        "steady_ratio": var((), stats["steady_ratio"], "1",
+                            "max |u| last quarter / third quarter (whole tooth periods)"),
+    }
+    coords = _coord("t", t_all[::rec], "s", "time")
+    if opts.get("compare_library", False):
+        more, more_coords = _library_check(run, prm, res, g, u_all, t_all, Fe)
+        data.update(more)
+        coords.update(more_coords)
+    return xr.Dataset(data, coords=coords)

@@ -9,6 +9,8 @@ from __future__ import annotations
 import numpy as np
 from scipy.optimize import brentq
 
+RPM = 30.0 / np.pi   # rad/s -> rpm
+
 
 def pitch_radius(p_c: float, n: int) -> float:
     """Pitch-circle radius of an n-tooth sprocket: r = p_c / (2 sin(pi/n))."""
@@ -48,10 +50,10 @@ def span_lengths(L_ct: float, p_c: float) -> tuple[float, float]:
     return (L0, L0) if f == 0.0 else (L0, L0 + p_c)
 
 
-def axial_tension(T_s, m, c, lam, speed_tensioning: bool = True):
-    """P = T_s + lambda m c^2 (Eq. 2-36 with Eq. 2-1); without speed tensioning P = T_s."""
-    c = np.asarray(c, float)
-    return T_s + (lam * m * c**2 if speed_tensioning else 0.0 * c)
+def axial_tension(T_s, tension_coefficient, c):
+    """P = T_s + k c^2 (Eq. 2-36 with Eq. 2-1): k = lambda m with speed tensioning, else 0
+    (the ``tension_coefficient`` contributed by the effects).  The one place P is formed."""
+    return T_s + tension_coefficient * np.asarray(c, float) ** 2
 
 
 def wave_speed(P, m):
@@ -75,7 +77,7 @@ def moving_string_frequencies(k, c, P, m, L):
 
 
 def resonance_speed(k: int, L: float, *, n1: int, p_c: float, T_s: float, m: float,
-                    lam: float, speed_tensioning: bool, harmonic: float = 1,
+                    tension_coefficient: float, harmonic: float = 1,
                     omega_max: float = 1e4) -> float:
     """Driving-sprocket speed omega1 [rad/s] at which the tooth frequency ``harmonic * n1 * omega1``
     meets the k-th moving-string natural frequency of a span of length L.
@@ -84,7 +86,7 @@ def resonance_speed(k: int, L: float, *, n1: int, p_c: float, T_s: float, m: flo
     """
     def f(w1):
         c = chain_speed(w1, n1, p_c)
-        P = axial_tension(T_s, m, c, lam, speed_tensioning)
+        P = axial_tension(T_s, tension_coefficient, c)
         return harmonic * n1 * w1 - moving_string_frequencies(k, c, P, m, L)
 
     lo = 1e-9

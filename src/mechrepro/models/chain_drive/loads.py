@@ -1,15 +1,11 @@
-"""Dynamic loads in the span tension: speed tensioning, impact, external load (Sec. 2.1.1).
+"""Dynamic loads in the span tension: impact and external load (Sec. 2.1.1); the speed
+tensioning of Eq. (2-1) is :func:`.geometry.axial_tension`.
 
 Pure functions of time (vectorised over any array shape), SI units.
 """
 from __future__ import annotations
 
 import numpy as np
-
-
-def speed_tensioning(lam: float, m: float, c):
-    """Eq. (2-1): D_c = lambda m c^2."""
-    return lam * m * np.asarray(c, float) ** 2
 
 
 def pressure_angle(n1: int) -> float:

@@ -1,4 +1,4 @@
-"""Scene solver for the low/medium-speed span: effects -> excitation -> FD sweep (Sec. 2.3.2).
+"""The low/medium-speed span: contributions -> excitation -> FD sweep (Sec. 2.3.2).
 
 One call solves a whole operating-speed sweep as one array computation (``vectorised``),
 or speed by speed (``loop``, kept for the benchmark and the equivalence test).
@@ -10,11 +10,16 @@ import math
 import numpy as np
 
 from . import fd, geometry
-from .effects import EFFECTS, SpanContext
+from .effects import EFFECTS, SpanContext, consume
+
+# the contributions the finite-difference march consumes (effects.py lists every key)
+FD_KEYS = ("tension_coefficient", "tension", "tension_short", "tension_long", "long",
+           "u_left", "u_right", "kappa")
 
 
-def span_geometry(prm: dict, length_change: bool) -> dict:
-    """Common tangent, fractional pitch (Eq. 2-6) and the two span lengths."""
+def span_geometry(prm: dict, length_change: bool = True) -> dict:
+    """Common tangent, fractional pitch (Eq. 2-6) and the two span lengths (both L_ct
+    without ``length_change``: the centre distance as an average span length)."""
     p = prm["pitch"]
     n1, n2 = int(prm["n1"]), int(prm["n2"])
     C = prm["centre_distance"] * p
@@ -39,22 +44,46 @@ def speed_axis(prm: dict, n_speeds: int) -> np.ndarray:
     return np.linspace(prm["speed_min"], prm["speed_max"], int(n_speeds))
 
 
-def assemble(effects: list[str], prm: dict, omega1, res: dict, registry=EFFECTS) -> dict:
-    """Evaluate the selected effects on the time grid; return the march inputs."""
-    selected = registry.select(effects)
-    if "longitudinal_coupling" in selected:
-        raise ValueError("longitudinal_coupling is the high-speed Galerkin model; "
-                         "the finite-difference span solver does not take it")
+def as_run(effects) -> dict:
+    """A run record (``effects``, and ``contributes`` when it comes from the config), or a
+    plain list of effect names (tests, benchmarks) made into one."""
+    return effects if isinstance(effects, dict) else {"effects": list(effects)}
+
+
+def dynamic_tension(c, shape) -> np.ndarray:
+    """P_t (Eqs. 2-36/2-37): the sum of the ``tension`` contributions, plus the elastic
+    four-bar load of the span length in force (``long``; the short span when the length
+    does not change)."""
+    Pt = c.total("tension", zero=np.zeros(shape))
+    if "tension_short" in c:
+        long = c.get("long")
+        Pt = Pt + (c.get("tension_short") if long is None
+                   else np.where(long, c.get("tension_long"), c.get("tension_short")))
+    return Pt
+
+
+def assemble(effects, prm: dict, omega1, res: dict, registry=EFFECTS) -> dict:
+    """Evaluate the named effects on the time grid of a sweep; return the march inputs.
+
+    ``effects``: the run (or a list of effect names).  First every named effect is probed
+    on one time sample: the steady contributions fix the axial tension P (the tension
+    coefficient: hence the characteristic speeds and the time step) and whether the span
+    length changes (a ``long`` state: the grid then covers both span lengths; otherwise
+    the span is the common tangent L_ct).  Then the effects are evaluated on the time grid,
+    refined until the step is stable for the dynamic tension too.
+    """
+    run = as_run(effects)
     m, T_s, c_d = prm["mass_per_length"], prm["static_tension"], prm["transverse_damping"]
-    span = span_geometry(prm, "length_change" in selected)
-    grid = make_grid(span, prm["pitch"], int(res["points_per_pitch"]))
     omega1 = np.atleast_1d(np.asarray(omega1, float))
+    full = span_geometry(prm, True)
+    cache: dict = {}
+    probe = consume(registry.evaluate(run, SpanContext(prm, omega1, np.zeros(1), 1.0, full,
+                                                       cache=cache)), FD_KEYS, "finite-difference")
+    span = full if "long" in probe else span_geometry(prm, False)
+    grid = make_grid(span, prm["pitch"], int(res["points_per_pitch"]))
     c = geometry.chain_speed(omega1, int(prm["n1"]), prm["pitch"])
-    # static part first: it fixes the characteristic speeds and hence the time step
-    probe = SpanContext(prm, omega1, np.zeros(1), 1.0, span)
-    P = np.full(omega1.shape, T_s, float)
-    if "speed_tensioning" in selected:
-        P = P + selected["speed_tensioning"](probe)["static_tension"]
+    k_c = probe.total("tension_coefficient")
+    P = geometry.axial_tension(T_s, k_c, c)
     sigma = c_d / (2 * m)
     tau_max = float(np.max(geometry.tooth_period(omega1, int(prm["n1"]))))
     settle = float(res["decay_times"]) / sigma if sigma > 0 else 0.0
@@ -64,16 +93,8 @@ def assemble(effects: list[str], prm: dict, omega1, res: dict, registry=EFFECTS)
     for _ in range(4):
         n_steps = int(math.ceil((settle + window) / dt))
         t = np.arange(n_steps + 1) * dt
-        ctx = SpanContext(prm, omega1, t, dt, span)
-        parts = {name: fn(ctx) for name, fn in selected.items() if name != "speed_tensioning"}
-        Pt = np.zeros((n_steps + 1, omega1.size))
-        for part in parts.values():
-            if "tension" in part:
-                Pt += part["tension"]
-        long = parts["length_change"]["long"] if "length_change" in parts else None
-        if "polygonal_elastic" in parts:
-            tb = parts["polygonal_elastic"]["tension_by_length"]
-            Pt += tb["short"] if long is None else np.where(long, tb["long"], tb["short"])
+        contrib = registry.evaluate(run, SpanContext(prm, omega1, t, dt, span, cache=cache))
+        Pt = dynamic_tension(contrib, (n_steps + 1, omega1.size))
         P_max = P + np.max(Pt, axis=0)
         P_min = P + np.min(Pt, axis=0)
         if fd.stable_time_step(grid.dx, c, P_max, m, float(res["cfl"])) >= dt * (1 - 1e-12):
@@ -83,14 +104,14 @@ def assemble(effects: list[str], prm: dict, omega1, res: dict, registry=EFFECTS)
                                  float(res["cfl"]))
     else:
         raise fd.StabilityError("no stable time step found for the dynamic tension")
-    exc = fd.Excitation(tension=Pt, long=long)
-    if "end_excitation" in parts:
-        exc.u_left, exc.u_right = parts["end_excitation"]["u_left"], parts["end_excitation"]["u_right"]
-    if "sag" in parts:
-        exc.load = parts["sag"]["kappa"][None, :] * Pt
+    kappa = contrib.get("kappa")
+    exc = fd.Excitation(tension=Pt, long=contrib.get("long"), u_left=contrib.get("u_left"),
+                        u_right=contrib.get("u_right"),
+                        load=None if kappa is None else kappa[None, :] * Pt)
     return {"grid": grid, "span": span, "c": c, "P": P, "P_min": P_min, "dt": dt,
             "n_steps": n_steps, "measure_from": int(round(settle / dt)), "exc": exc,
-            "s_star": geometry.s_star(c, T_s, m), "omega1": omega1, "m": m, "c_d": c_d}
+            "s_star": geometry.s_star(c, T_s, m), "omega1": omega1, "m": m, "c_d": c_d,
+            "tension_coefficient": k_c}
 
 
 def sweep(effects, prm, omega1, res, mode: str = "vectorised", probes=(), record_every=0,
@@ -119,6 +140,7 @@ def sweep(effects, prm, omega1, res, mode: str = "vectorised", probes=(), record
         raise ValueError(f"sweep mode {mode!r}: allowed vectorised, loop")
     slack = a["P_min"] <= 0
     out["unstable"] = out["unstable"] | slack
-    out.update({k: a[k] for k in ("grid", "span", "c", "P", "P_min", "dt", "n_steps", "s_star")})
+    out.update({k: a[k] for k in ("grid", "span", "c", "P", "P_min", "dt", "n_steps", "s_star",
+                                  "tension_coefficient")})
     out["slack"] = slack
     return out

@@ -12,12 +12,13 @@ averaged exactly over each step (the pulse enters with its exact impulse).
 """
 from __future__ import annotations
 
-import time
-
 import numpy as np
 
-from . import fd, four_bar, geometry, loads
-from .span import make_grid, span_geometry
+from mechrepro.timing import stopwatch
+
+from . import fd, geometry, loads
+from .effects import EFFECTS, SpanContext, consume
+from .span import as_run, dynamic_tension, make_grid, span_geometry
 
 
 def nonuniform_times(t_end: float, tau: float, dt_max: float, dt_min: float, delta: float,
@@ -33,60 +34,70 @@ def nonuniform_times(t_end: float, tau: float, dt_max: float, dt_min: float, del
     return np.array(ts)
 
 
-def response(prm: dict, effects, t: np.ndarray, points_per_pitch: int, averaged: bool):
-    """March one speed on the time points ``t``; returns u at mid-span and wall time."""
-    n1, n2, p, m = int(prm["n1"]), int(prm["n2"]), prm["pitch"], prm["mass_per_length"]
+# the contributions this march consumes (a uniform span: no length change)
+TIMESTEP_KEYS = ("tension_coefficient", "tension", "tension_short", "tension_long", "u_left",
+                 "u_right", "kappa")
+
+
+def response(run: dict, prm: dict, t: np.ndarray, points_per_pitch: int, averaged: bool,
+             registry=EFFECTS):
+    """March one speed on the time points ``t`` with the named effects' contributions
+    (pulses averaged over the local step, or point-sampled); returns u at mid-span and the
+    wall time of the march."""
+    n1, p, m = int(prm["n1"]), prm["pitch"], prm["mass_per_length"]
     w1 = np.array([prm["speed"]])
-    c = geometry.chain_speed(w1, n1, p)
-    P = prm["static_tension"] + (loads.speed_tensioning(prm["lambda_support"], m, c)
-                                 if "speed_tensioning" in effects else 0.0)
     geo = span_geometry(prm, False)
     grid = make_grid(geo, p, points_per_pitch)
     h = np.diff(t)
-    kimp = loads.impact_constants(prm["impact_mass_links"] * p * m, prm["contact_stiffness"],
-                                  prm["contact_damping_ratio"])
-    T = t[:, None]
-    if averaged:
-        # exact step average with the local step (centred window)
-        hh = np.concatenate([[h[0]], 0.5 * (h[1:] + h[:-1]), [h[-1]]])[:, None]
-        tension = loads.impact_load(T, w1[None, :], n1, p, kimp, step=hh)
-    else:
-        tension = loads.impact_load(T, w1[None, :], n1, p, kimp, step=None)
-    exc = fd.Excitation(tension=tension)
-    if "end_excitation" in effects:
-        kin = four_bar.rigid_kinematics(T, w1[None, :], n1=n1, n2=n2, p_c=p, f_p=geo["f_p"])
-        exc.u_left, exc.u_right = four_bar.end_displacements(kin["theta1"], kin["theta2"],
-                                                             kin["r1"], kin["r2"], n2)
-    if "sag" in effects:
-        exc.load = m * 9.80665 / (prm["static_tension"] - m * c[None, :] ** 2) * tension
+    # exact step average with the local step (centred window), or point values
+    step = np.concatenate([[h[0]], 0.5 * (h[1:] + h[:-1]), [h[-1]]])[:, None] if averaged else None
+    contrib = consume(registry.evaluate(run, SpanContext(prm, w1, t, step, geo)), TIMESTEP_KEYS,
+                      "impact_timestep")
+    c = geometry.chain_speed(w1, n1, p)
+    P = geometry.axial_tension(prm["static_tension"], contrib.total("tension_coefficient"), c)
+    tension = dynamic_tension(contrib, (t.size, 1))
+    kappa = contrib.get("kappa")
+    exc = fd.Excitation(tension=tension, u_left=contrib.get("u_left"),
+                        u_right=contrib.get("u_right"),
+                        load=None if kappa is None else kappa[None, :] * tension)
     fd.check_time_step(float(h.max()), grid.dx, c, P + tension.max(), m)
     mid = grid.n_long // 2
-    t0 = time.perf_counter()
-    r = fd.march(c=c, P=np.atleast_1d(P), m=m, c_d=prm["transverse_damping"], grid=grid,
-                 dt=None if len(np.unique(np.round(h / h[0], 12))) > 1 else h[0],
-                 dt_series=h if len(np.unique(np.round(h / h[0], 12))) > 1 else None,
-                 n_steps=len(h), exc=exc, probes=[mid], record_every=1)
-    wall = time.perf_counter() - t0
-    return np.concatenate([[0.0, 0.0], r.probes[:, 0, 0]])[: len(t)], wall
+    uniform = len(np.unique(np.round(h / h[0], 12))) == 1
+    with stopwatch() as sw:
+        r = fd.march(c=c, P=np.atleast_1d(P), m=m, c_d=prm["transverse_damping"], grid=grid,
+                     dt=h[0] if uniform else None, dt_series=None if uniform else h,
+                     n_steps=len(h), exc=exc, probes=[mid], record_every=1)
+    return np.concatenate([[0.0, 0.0], r.probes[:, 0, 0]])[: len(t)], sw.seconds
 
 
-def compare(prm: dict, effects, res: dict) -> dict:
-    """Errors (vs a fine uniform reference) and wall times of the time-step strategies."""
+def _steady(run: dict, prm: dict, registry=EFFECTS):
+    """Axial tension P (Eq. 2-36 with the named effects' tension coefficient) at the speed."""
+    geo = span_geometry(prm, False)
+    probe = registry.evaluate(run, SpanContext(prm, [prm["speed"]], np.zeros(1), None, geo))
+    c = geometry.chain_speed(prm["speed"], int(prm["n1"]), prm["pitch"])
+    return geometry.axial_tension(prm["static_tension"], probe.total("tension_coefficient"), c)
+
+
+def compare(run, prm: dict, res: dict, registry=EFFECTS) -> dict:
+    """Errors (vs a fine uniform reference) and wall times of the time-step strategies.
+
+    ``run``: the run (or a list of effect names)."""
+    run = as_run(run)
     n1, p, m = int(prm["n1"]), prm["pitch"], prm["mass_per_length"]
     w1 = prm["speed"]
     tau = 2 * np.pi / (n1 * w1)
     t_end = float(res.get("tooth_periods", 4)) * tau
-    c = geometry.chain_speed(w1, n1, p)
     kimp = loads.impact_constants(prm["impact_mass_links"] * p * m, prm["contact_stiffness"],
                                   prm["contact_damping_ratio"])
     geo = span_geometry(prm, False)
     ppp = int(res["points_per_pitch"])
     grid = make_grid(geo, p, ppp)
-    P = prm["static_tension"] + loads.speed_tensioning(prm["lambda_support"], m, c)
+    P = _steady(run, prm, registry)
     # the point-sampled pulse peak raises the wave speed: bound it from Eq. (2-4)
     tt = np.linspace(0, kimp["t_i"], 2001)
     peak = float(np.max(loads.impact_pulse(tt, loads.relative_velocity(w1, p),
                                            loads.pressure_angle(n1), kimp)))
+    c = geometry.chain_speed(w1, n1, p)
     dt_max = fd.stable_time_step(grid.dx, c, 1.01 * (P + peak), m, float(res["cfl"]))
     dt_min = kimp["t_i"] / float(res.get("refine", 10))
 
@@ -99,7 +110,7 @@ def compare(prm: dict, effects, res: dict) -> dict:
         return t0 + np.arange(n + 1) * ((t_end - t0) / n)
 
     t_ref = uniform(dt_min / 2)
-    u_ref, w_ref = response(prm, effects, t_ref, ppp, averaged=True)
+    u_ref, w_ref = response(run, prm, t_ref, ppp, averaged=True, registry=registry)
 
     def err(t, u):
         return float(np.max(np.abs(np.interp(t_ref, t, u) - u_ref)) / np.max(np.abs(u_ref)))
@@ -109,14 +120,14 @@ def compare(prm: dict, effects, res: dict) -> dict:
                          ("uniform_averaged", uniform(dt_max), True),
                          ("nonuniform", nonuniform_times(t_end, tau, dt_max, dt_min,
                                                          3 * kimp["t_i"], t0), False)):
-        u, w = response(prm, effects, t, ppp, averaged=avg)
+        u, w = response(run, prm, t, ppp, averaged=avg, registry=registry)
         out[name] = {"error": err(t, u), "wall": w, "steps": len(t) - 1}
     # the uniform (point-sampled) step that matches the non-uniform accuracy
     target = out["nonuniform"]["error"]
     dt = dt_max
     while True:
         t = uniform(dt)
-        u, w = response(prm, effects, t, ppp, averaged=False)
+        u, w = response(run, prm, t, ppp, averaged=False, registry=registry)
         e = err(t, u)
         if e <= target or dt <= dt_min / 2:
             out["uniform_equal_accuracy"] = {"error": e, "wall": w, "steps": len(t) - 1, "dt": dt}

@@ -1,0 +1,68 @@
+"""The error functions of chain_drive's cost-of-accuracy quantities (config ``accuracy:``).
+
+Each takes the study (or run) dataset of its entry and returns one error per knob value;
+the framework (:mod:`mechrepro.accuracy`) writes the long-form table.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from mechrepro.accuracy import AccuracyQuantities, against_finest
+
+ACCURACY = AccuracyQuantities("chain_drive")
+
+
+def resonance_peak(speed, amplitude) -> tuple[float, float]:
+    """The resonance peak of a sweep (Figs. 5-9): its maximum amplitude, and its speed by
+    parabolic interpolation through the largest sample and its two neighbours on the
+    (uniform) speed grid.  Returns (amplitude, speed)."""
+    a, sp = np.asarray(amplitude, float), np.asarray(speed, float)
+    i = int(np.nanargmax(a))
+    off = 0.0
+    if 0 < i < a.size - 1:
+        y0, y1, y2 = a[i - 1], a[i], a[i + 1]
+        den = y0 - 2 * y1 + y2
+        off = 0.5 * (y0 - y2) / den if den != 0 else 0.0
+    return float(np.max(a)), float(sp[i] + off * (sp[1] - sp[0]))
+
+
+def _peaks(ds) -> np.ndarray:
+    """(amplitude, speed) of the resonance peak of every run of a sweep study."""
+    return np.array([resonance_peak(ds.speed.values, ds.amplitude.isel(run=i).values)
+                     for i in range(ds.sizes["run"])])
+
+
+def _finest(ds, entry, values, error):
+    return against_finest(values, ds[entry["knob"]].values, entry["finer"], error)
+
+
+@ACCURACY.register("peak_amplitude")
+def peak_amplitude(ds, entry):
+    return _finest(ds, entry, _peaks(ds)[:, 0], entry["quantities"]["peak_amplitude"]["error"])
+
+
+@ACCURACY.register("peak_speed")
+def peak_speed(ds, entry):
+    return _finest(ds, entry, _peaks(ds)[:, 1], entry["quantities"]["peak_speed"]["error"])
+
+
+@ACCURACY.register("steady_amplitude")
+def steady_amplitude(ds, entry):
+    """Galerkin steady amplitude at the probe (last quarter of whole tooth periods)."""
+    return _finest(ds, entry, ds.steady_amplitude.values,
+                   entry["quantities"]["steady_amplitude"]["error"])
+
+
+def _exact(ds, differencing):
+    """max |u_FD - u_exact| after the march over the unit amplitude of the exact mode."""
+    return ds.error_max.sel(differencing=differencing).values / 1.0
+
+
+@ACCURACY.register("exact_mode_central")
+def exact_mode_central(ds, entry):
+    return _exact(ds, "central")
+
+
+@ACCURACY.register("exact_mode_mixed")
+def exact_mode_mixed(ds, entry):
+    return _exact(ds, "mixed")

@@ -1,0 +1,80 @@
+"""What the chain_drive figures and tables show, computed from the datasets (the notebook
+only draws): runs of a sweep with their base scene, the unstable speeds, the simulated
+peaks per resonance order, the Fig. 3 panel order, the frequency error of the FD mode.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from mechrepro.io import run_attrs
+
+from . import claims as C
+
+
+def parameter(ds, name: str) -> float:
+    """The SI value of a parameter in the run that wrote ``ds`` (its provenance)."""
+    return run_attrs(ds)["parameters"]["values_si"][name]
+
+
+def with_base(R, study: str, scene: str, key: str):
+    """A study's runs plus its base scene (the scene itself is one point of the sweep),
+    sorted by the swept value; returns (values, datasets).  The swept parameters of this
+    paper (centre distance in pitches, I2, T_s, omega_ex / omega_1) are SI in the config."""
+    st, base = R.study(study), R.run(scene)
+    values = [parameter(base, key)] + [float(v) for v in st[key].values]
+    runs = [base] + [st.isel(run=i) for i in range(st.sizes["run"])]
+    order = np.argsort(values)
+    return [values[i] for i in order], [runs[i] for i in order]
+
+
+def unstable(ds):
+    """Speeds [rpm] and amplitudes [m] of a sweep where the response grows or the span goes
+    slack (the figures mark them; they are never drawn as peaks)."""
+    mask = np.asarray(ds.unstable.values, bool)
+    return ds.speed.values[mask], ds.amplitude.values[mask]
+
+
+def resonances_in_window(ds) -> np.ndarray:
+    """Short- and long-span resonance speeds [rpm] of a sweep that lie inside its speed range."""
+    v = np.concatenate([ds.resonance_speed_short.values, ds.resonance_speed_long.values])
+    return v[(v >= float(ds.speed[0])) & (v <= float(ds.speed[-1]))]
+
+
+def panel_order(ds) -> np.ndarray:
+    """Driven tooth numbers of Fig. 3 in the paper's panel order (a, b, c)."""
+    return ds.n2.values[np.argsort(ds.panel.values)]
+
+
+def frequency_error(ds, differencing: str) -> np.ndarray:
+    """|omega_FD / omega_Wickert-Mote - 1| of the exact-mode check per grid."""
+    return np.abs(ds.omega_fd.sel(differencing=differencing).values / float(ds.omega_exact) - 1)
+
+
+RESONANCE_COLUMNS = ["centre_distance_pitches", "order", "curve", "short_span_rpm",
+                     "long_span_rpm", "simulated_peaks_rpm"]
+
+
+def resonance_rows(centre_distances, plain, length) -> list[list]:
+    """Table resonance_speeds (Fig. 5): per centre distance, order and curve (without /
+    with length change), the short- and long-span resonance speeds and the simulated peaks
+    (prominence >= 0.05 mm, stable speeds) in the order's window (:func:`.claims.order_window`)."""
+    rows = []
+    for cd, dp, dl in zip(centre_distances, plain, length):
+        for k in dp.order.values:
+            for label, ds in (("plain", dp), ("length", dl)):
+                short = float(ds.resonance_speed_short.sel(order=k))
+                long = float(ds.resonance_speed_long.sel(order=k))
+                lo, hi = C.order_window(long, short)
+                found = C.peak_speeds(ds.speed.values, ds.amplitude.values, lo, hi,
+                                      stable=~ds.unstable.values.astype(bool))
+                rows.append([cd, int(k), label, short, long, " ".join(f"{x:.1f}" for x in found)])
+    return rows
+
+
+TIMING_COLUMNS = ["sweep", "speeds", "grid_points", "time_steps", "wall_time_s"]
+
+
+def timing_rows(named_sweeps: dict) -> list[list]:
+    """Table timings: speeds, grid points, time steps and wall time of each named sweep."""
+    return [[name, int(ds.speed.size), int(ds.n_points), int(ds.n_steps), float(ds.wall_time)]
+            for name, ds in named_sweeps.items()]
