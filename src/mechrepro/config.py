@@ -248,7 +248,7 @@ def _check_effects(raw: dict, where: str) -> None:
     """The effect protocol (:mod:`mechrepro.effects`), checked before any job is planned:
     every scene names a declared solver and only effects that solver honours, with what
     they require and without what they exclude.  Never silently ignored."""
-    solvers, effects = raw.get("solvers", {}), raw.get("effects", {})
+    solvers, effects = raw["solvers"], raw["effects"]
     for name, spec in effects.items():
         for s in spec["honoured_by"]:
             if s not in solvers:
@@ -267,11 +267,7 @@ def _check_effects(raw: dict, where: str) -> None:
                 raise ConfigError(f"{where}: effects.{name}.units.{k} = {unit!r}: not a unit")
     for scene, spec in raw["scenes"].items():
         at = f"{where}: scenes.{scene}"
-        solver = spec.get("solver")
-        if solver is None:
-            if solvers:
-                raise ConfigError(f"{at}.solver: missing; solvers: {', '.join(solvers)}")
-            continue   # a paper that has not declared its solvers yet
+        solver = spec["solver"]
         if solver not in solvers:
             raise ConfigError(f"{at}.solver = {solver!r}: not declared; solvers: "
                               f"{', '.join(solvers) or '(none)'}")
@@ -452,11 +448,10 @@ def _make_run(raw, scene_name, study, index, point, run_schema, where) -> dict:
         # the unit of each swept value as written in the config (resolution keys: "1")
         "sweep_units": {k: raw["parameters"][k]["unit"] if k in raw["parameters"] else "1"
                         for k in point},
-        "solver": scene.get("solver"),
+        "solver": scene["solver"],
         "effects": record["effects"],
         # what each named effect declares it contributes (checked when it is evaluated)
-        "contributes": {e: raw.get("effects", {}).get(e, {}).get("contributes", [])
-                        for e in record["effects"]} if raw.get("effects") else {},
+        "contributes": {e: raw["effects"][e]["contributes"] for e in record["effects"]},
         "resolution": resolution,
         "options": record["options"],
         "parameters": si,
