@@ -42,7 +42,7 @@ td.note{min-width:280px}
 
 
 CAPTIONS = {
-    "effect_cost": "What each effect costs (effect_cost: summed over the paper's runs; "
+    "effect_cost": "What each effect costs (effect_cost: summed over every run, verdict variants included; "
                    "share = of those runs' solve time)",
     "job_time": "Solver jobs: the solves' own time against the job's wall time (job_time)",
     "cost_of_accuracy": "Cost of accuracy (long form: error against the reference vs time)",

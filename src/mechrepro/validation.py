@@ -383,7 +383,7 @@ def write_costs(cfg, results_dir: str) -> None:
         table = accuracy.rows(cfg.raw["accuracy"], dataset, module.ACCURACY)
         write_csv(root / "tables" / "cost_of_accuracy.csv", accuracy.COLUMNS,
                   [[r[c] for c in accuracy.COLUMNS] for r in table])
-    ec = costs.effect_cost([root / "runs" / f"{r}.nc" for r in cfg.base_runs])
+    ec = costs.effect_cost([root / "runs" / f"{r}.nc" for r in cfg.runs])   # variants too
     write_csv(root / "tables" / "effect_cost.csv", costs.EFFECT_COST_COLUMNS,
               [[r[c] for c in costs.EFFECT_COST_COLUMNS] for r in ec])
     jt = costs.job_time(root, cfg.solve_jobs())
