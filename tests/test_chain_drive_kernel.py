@@ -89,7 +89,8 @@ def test_auto_kernel_falls_back_to_numpy_without_numba(monkeypatch):
     kw = dict(c=np.array([3.0]), P=np.array([T]), m=M, c_d=1.0, grid=grid,
               dt=fd.stable_time_step(grid.dx, 3.0, T, M, 0.98), n_steps=400,
               exc=fd.Excitation(), u0=u0, differencing="central")
-    compiled = fd.march(**kw)
+    compiled = fd.march(kernel="compiled", **kw)
+    monkeypatch.setattr(fd_kernel, "MIN_UPDATES", 0)
     monkeypatch.setattr(fd_kernel, "available", lambda: False)
     fallback = fd.march(**kw)
     with pytest.raises(ValueError, match="compiled kernel unavailable"):
@@ -106,10 +107,17 @@ def test_unknown_differencing_or_kernel_is_refused():
         fd.march(kernel="fortran", **kw)
 
 
+@pytest.mark.parametrize("kernel", ["numpy", "compiled"])
 @pytest.mark.parametrize("cfl", [0.9, 0.98])
-def test_central_default_is_second_order_against_the_exact_mode(cfl):
-    """Wickert-Mote mode 1 at c = 0.5 c_w, marched by the compiled loop (no source term):
+def test_central_default_is_second_order_against_the_exact_mode(cfl, kernel, monkeypatch):
+    """Wickert-Mote mode 1 at c = 0.5 c_w, marched by either loop (no source term):
     observed order 2 at the default's cfl 0.98 as at 0.9."""
+    if kernel == "compiled":
+        if not fd_kernel.available():
+            pytest.skip("numba not installed")
+        monkeypatch.setattr(fd_kernel, "MIN_UPDATES", 0)
+    else:
+        monkeypatch.setattr(fd_kernel, "worth_it", lambda updates: False)
     errs, hs = [], []
     for n in (20, 40, 80):
         e, w_fd, w_ex, _, _ = exact.free_vibration(n, L=L, m=M, T=T, c=0.5 * CW, cfl=cfl,
@@ -120,8 +128,9 @@ def test_central_default_is_second_order_against_the_exact_mode(cfl):
     assert abs(w_fd / w_ex - 1) < 1e-3
 
 
+@pytest.mark.parametrize("kernel", ["numpy", pytest.param("compiled", marks=needs_numba)])
 @pytest.mark.parametrize("a", [0.0, 0.2, 0.5])
-def test_central_at_the_default_cfl_stays_bounded_with_dynamic_tension(a):
+def test_central_at_the_default_cfl_stays_bounded_with_dynamic_tension(a, kernel):
     """cfl 0.98 of the limit set by the largest tension of the record (as span.assemble
     sets it): a pumped, lightly damped span off its tongues stays bounded for 20000 steps;
     the same span 3 % past the limit of its largest tension grows."""
@@ -139,7 +148,7 @@ def test_central_at_the_default_cfl_stays_bounded_with_dynamic_tension(a):
         Pt = eps * T * np.cos(1.3 * w1 * t)[:, None]
         return fd.march(c=c, P=np.array([T]), m=M, c_d=0.2, grid=grid, dt=dt,
                         n_steps=n_steps, exc=fd.Excitation(tension=Pt), u0=u0, u_cap=1e-2,
-                        measure_from=n_steps // 2, differencing="central")
+                        measure_from=n_steps // 2, differencing="central", kernel=kernel)
 
     inside = run(0.98)
     assert not inside.unstable[0] and np.max(np.abs(inside.final)) < 1e-4

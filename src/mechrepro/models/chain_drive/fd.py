@@ -191,7 +191,8 @@ def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
     differencing: ``"central"`` (s* = 0, second order), ``"mixed"`` (Eq. 2-38 with the
     given ``s_star``, first order) or None (``s_star`` as given; s* = c/c_w if None).
     kernel: ``"auto"`` runs the uniform-step loop compiled (:mod:`.fd_kernel`) when numba
-    is installed, there is no ``exc.source`` and the step matrix is diagonally dominant
+    is installed, the march is large enough to pay for loading it (or it is loaded
+    already), there is no ``exc.source`` and the step matrix is diagonally dominant
     (Thomas without pivoting); ``"numpy"`` forces the numpy loop (LAPACK ``dgttrs``);
     ``"compiled"`` requires the compiled loop.  Both give the same result to round-off.
     """
@@ -271,7 +272,9 @@ def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
     block_len = max(win // n_blocks, 1)
     if kernel != "numpy":
         _, _, low, diag, up = coeffs
-        fast = (uniform and exc.source is None and fd_kernel.available()
+        fast = (uniform and exc.source is None
+                and (kernel == "compiled" or fd_kernel.worth_it(S * (n + 1) * n_steps))
+                and fd_kernel.available()
                 and bool(np.all(np.abs(diag) > np.abs(low) + np.abs(up))))
         if kernel == "compiled" and not fast:
             raise ValueError("compiled kernel unavailable here (needs numba, a uniform step, "
