@@ -41,7 +41,7 @@ def _same(a, b, rtol=1e-9):
 @needs_numba
 @pytest.mark.parametrize("differencing", ["central", "mixed"])
 def test_compiled_loop_equals_numpy_loop_with_length_change_and_sag(differencing):
-    """11 speeds (not a multiple of the 8 lanes), length change switching the span, impact,
+    """11 speeds (not a multiple of the lanes), length change switching the span, impact,
     polygonal action, end motion and the sag load: every output equal to round-off."""
     effects = ["speed_tensioning", "impact", "polygonal_rigid", "end_excitation",
                "length_change", "sag"]

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
-LANES = 8
+LANES = 16
 # "auto" compiles/loads the kernel only for marches of at least this many point-updates
 # (S x (n + 1) x steps): importing numba and loading the cached kernel cost ~0.5-1 s per
 # process, more than the numpy loop needs for a small march (exact-solution checks, a
