@@ -3,7 +3,7 @@
 The scheme is exactly the one of :mod:`.fd` (same three-level stencils, same boundary and
 span-length handling, same block maxima and capping); only the loop is compiled.  The
 speeds are independent, so they are marched in lanes of ``LANES`` speeds at a time: every
-array of a lane group is (n + 1, LANES) and stays in the L1 cache for the whole record,
+array of a lane group is (n + 1, LANES) and stays in cache (L1/L2) for the whole record,
 and the inner loops run over the lanes (SIMD).  The tridiagonal step matrix is constant
 in time for a uniform step, so each speed's Thomas factors (no pivoting; used only when
 the matrix is diagonally dominant, which :func:`.fd.march` checks) are computed once; the
