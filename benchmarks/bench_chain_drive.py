@@ -1,20 +1,32 @@
-"""Benchmark (not a test): the 200-speed sweep of the Fig. 5 study, vectorised vs per-speed loop.
+"""Benchmark (not a test): chain_drive FD speed sweeps, today's default against the new one.
 
-    .venv/bin/python benchmarks/bench_chain_drive.py [--loop-speeds 12] [--profile default]
+    .venv/bin/python benchmarks/bench_chain_drive.py [--ref-ppp 24] [--repeat 3]
 
-Prints, in one run, the wall time of the vectorised 200-speed sweep (scene fig05_length:
-length change, impact, rigid polygonal action, end excitation; centre distance 20.25 pitches
-so that the span length really changes) at the config's resolution,
-and the time of the same computation speed by speed.  The loop runs on an evenly spread
-subset of the speeds and is extrapolated linearly to all speeds (each speed costs the same
-number of steps), which the output says; its amplitudes are checked against the
-vectorised ones.  Timings on a shared machine are pessimistic.
+Prints, measured side by side in one run:
 
-    .venv/bin/python benchmarks/bench_chain_drive.py --schemes [--ppp 2 3 4 6 8 12] [--ref-ppp 16]
+1. Equal-accuracy ratio (issue #18).  Scene ``accuracy_peak`` (default profile: 44 speeds
+   around the third resonance, polygonal action and end motion, no impact): peak amplitude
+   = the maximum of the sampled amplitude over the speeds (the definition of the
+   cost-of-accuracy table), its relative error against central differencing at
+   ``--ref-ppp`` points per pitch (cfl 0.9; 24 and 32 agree to 3e-5), and the time of
+   - today's default: the paper's mixed differencing (Eq. 2-38), 4 points per pitch,
+     cfl 0.9, the numpy time loop (``kernel="numpy"``);
+   - the new default: the scene's configured resolution (central differencing, cfl 0.98,
+     3 points per pitch) with the compiled loop (numba, cached on disk; its first call,
+     which loads or compiles the cache, is timed separately).
+   Times: the march (best of ``--repeat``), and the whole sweep (effects evaluated on the
+   time grid + march), both for both.
+2. The 200-speed Fig. 5 sweep with length change and impact (fig05_length, 20.25 pitches;
+   these scenes keep the mixed scheme, see docs/chain_drive.md): numpy loop vs compiled
+   loop on the same grid, their largest amplitude difference, and the operation count
+   (grid points x steps x speeds x ~19 flops per point-update) against the time.
 
-instead compares, side by side in one run, the paper's mixed differencing (Eq. 2-38) with
-central differencing (s* = 0, second order) on the narrow sweep around the third resonance
-(scene accuracy_peak): peak amplitude error against central at --ref-ppp, and wall time.
+Timings on a shared machine are pessimistic; the ratios are measured in one run.
+
+    .venv/bin/python benchmarks/bench_chain_drive.py --schemes [--ppp 2 3 4 6 8 12]
+
+instead prints the cost-of-accuracy table of both schemes on ``accuracy_peak`` (error and
+compiled march time per points per pitch, at cfl 0.9 and at the new default's cfl).
 """
 from __future__ import annotations
 
@@ -29,80 +41,158 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "src"))
 
 from mechrepro.config import load_paper  # noqa: E402
-from mechrepro.models.chain_drive import fd, span  # noqa: E402
+from mechrepro.models.chain_drive import fd, fd_kernel, span  # noqa: E402
+
+FLOPS_PER_UPDATE = 19   # rhs: 6 mul + 7 add; forward elimination 2; back substitution 3; + the
+                        # speed-dependent coefficients (negligible per point)
 
 
 def _peak(a):
-    """Peak of amp(speed) by parabolic interpolation through the three highest samples."""
+    """Peak amplitude as the cost-of-accuracy table defines it: max over the sampled speeds."""
+    return float(np.max(a))
+
+
+def _peak_interp(a):
+    """For information: parabolic interpolation through the three highest samples."""
     i = int(np.argmax(a))
-    y0, y1, y2 = a[i - 1], a[i], a[i + 1]
-    return y1 - 0.125 * (y0 - y2) ** 2 / (y0 - 2 * y1 + y2)
+    if 0 < i < a.size - 1:
+        y0, y1, y2 = a[i - 1], a[i], a[i + 1]
+        den = y0 - 2 * y1 + y2
+        if den != 0:
+            return float(y1 - 0.125 * (y0 - y2) ** 2 / den)
+    return float(a[i])
+
+
+def _scene(profile: str, name: str):
+    run = load_paper(ROOT / "config/papers/chain_drive.yaml", profile).runs[name]
+    return dict(run["parameters"]), dict(run["resolution"]), run["effects"]
+
+
+def _march(a, differencing, kernel):
+    return fd.march(c=a["c"], P=a["P"], exc=a["exc"], s_star=a["s_star"], m=a["m"],
+                    c_d=a["c_d"], grid=a["grid"], dt=a["dt"], n_steps=a["n_steps"],
+                    measure_from=a["measure_from"], u_cap=0.05, differencing=differencing,
+                    kernel=kernel)
+
+
+def _timed(fn, repeat):
+    best, out = np.inf, None
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        out = fn()
+        best = min(best, time.perf_counter() - t0)
+    return out, best
+
+
+def _updates(a):
+    return a["c"].size * (a["grid"].n_long + 1) * a["n_steps"]
+
+
+def equal_accuracy(profile: str, ref_ppp: int, repeat: int) -> None:
+    prm, res, eff = _scene(profile, "accuracy_peak")
+    om = span.speed_axis(prm, int(res["n_speeds"]))
+    new = {"differencing": res.get("differencing", "mixed"), "ppp": int(res["points_per_pitch"]),
+           "cfl": float(res["cfl"]), "kernel": "compiled" if fd_kernel.available() else "numpy"}
+    old = {"differencing": "mixed", "ppp": 4, "cfl": 0.9, "kernel": "numpy"}
+
+    def assemble(ppp, cfl):
+        return span.assemble(eff, prm, om, dict(res, points_per_pitch=ppp, cfl=cfl))
+
+    t0 = time.perf_counter()
+    if fd_kernel.available():   # a tiny march: imports numba, loads (or compiles) the kernel
+        fd.march(c=np.ones(1), P=np.full(1, 400.0), m=0.61, c_d=0.0, grid=fd.Grid(0.25, 8, 8),
+                 dt=1e-5, n_steps=4, exc=fd.Excitation(), kernel="compiled")
+    t_load = time.perf_counter() - t0
+    ref_a = assemble(ref_ppp, 0.9)
+    ref = _peak(_march(ref_a, "central", "auto").amplitude)
+    rows = {}
+    for name, s in (("today", old), ("new", new)):
+        a, t_asm = _timed(lambda: assemble(s["ppp"], s["cfl"]), repeat)
+        r, t_m = _timed(lambda: _march(a, s["differencing"], s["kernel"]), repeat)
+        rows[name] = dict(s, peak=_peak(r.amplitude), interp=_peak_interp(r.amplitude),
+                          march=t_m, sweep=t_m + t_asm, updates=_updates(a),
+                          steps=a["n_steps"], points=a["grid"].n_long + 1)
+    print(f"== equal accuracy: scene accuracy_peak ({profile}), {om.size} speeds; reference: "
+          f"central at {ref_ppp} points per pitch, cfl 0.9: peak {ref * 1e3:.5f} mm")
+    print(f"{'':10s} {'scheme':8s} {'ppp':>4s} {'cfl':>5s} {'loop':>8s} {'points':>6s} "
+          f"{'steps':>6s} {'peak mm':>9s} {'error':>7s} {'(interp.)':>9s} {'march s':>8s} "
+          f"{'sweep s':>8s}")
+    for name, r in rows.items():
+        print(f"{name:10s} {r['differencing']:8s} {r['ppp']:4d} {r['cfl']:5.2f} {r['kernel']:>8s} "
+              f"{r['points']:6d} {r['steps']:6d} {r['peak'] * 1e3:9.5f} "
+              f"{abs(r['peak'] / ref - 1):7.2%} {abs(r['interp'] / ref - 1):9.2%} "
+              f"{r['march']:8.3f} {r['sweep']:8.3f}")
+    o, n = rows["today"], rows["new"]
+    print(f"ratio today / new: march {o['march'] / n['march']:.1f}x, whole sweep (incl. effects) "
+          f"{o['sweep'] / n['sweep']:.1f}x; grid-point updates {o['updates'] / n['updates']:.2f}x "
+          f"fewer; error {abs(o['peak'] / ref - 1):.2%} -> {abs(n['peak'] / ref - 1):.2%}")
+    print(f"compiled loop: import numba and load the kernel from its disk cache (or compile "
+          f"it, once per checkout) {t_load:.2f} s per process, not in the times above")
+
+
+def fig05(profile: str, repeat: int) -> None:
+    prm, res, eff = _scene(profile, "fig05_length")
+    prm["centre_distance"] = 20.25
+    om = span.speed_axis(prm, 200)
+    a = span.assemble(eff, prm, om, res)
+    diff = res.get("differencing", "mixed")
+    rn, tn = _timed(lambda: _march(a, diff, "numpy"), 1)
+    rc, tc = _timed(lambda: _march(a, diff, "auto"), repeat)
+    ok = ~rn.unstable
+    dmax = float(np.max(np.abs(rc.amplitude[ok] / rn.amplitude[ok] - 1))) if ok.any() else 0.0
+    up = _updates(a)
+    print(f"== 200-speed Fig. 5 sweep (fig05_length, {profile}, 20.25 pitches, {diff} "
+          f"differencing, {res['points_per_pitch']} points per pitch, cfl {res['cfl']}): "
+          f"{om.size} speeds x {a['grid'].n_long + 1} points x {a['n_steps']} steps = "
+          f"{up:.3g} point-updates")
+    print(f"numpy loop    : {tn:8.2f} s  ({tn / up * 1e9:5.1f} ns per point-update)")
+    print(f"compiled loop : {tc:8.2f} s  ({tc / up * 1e9:5.1f} ns per point-update; "
+          f"{FLOPS_PER_UPDATE * up / tc / 1e9:.2f} GFlop/s at ~{FLOPS_PER_UPDATE} flops each)")
+    print(f"numpy / compiled: {tn / tc:.1f}x; largest amplitude difference {dmax:.1e} "
+          f"(relative, stable speeds), unstable speeds equal: "
+          f"{bool(np.array_equal(rn.unstable, rc.unstable))}")
+    print(f"operation-count floor: {FLOPS_PER_UPDATE * up:.3g} flops = {FLOPS_PER_UPDATE * up / 1e10:.2f} s "
+          f"at 10 GFlop/s (one core, SIMD); compiled loop at {tc / (FLOPS_PER_UPDATE * up / 1e10):.1f}x "
+          f"the floor")
 
 
 def schemes(profile: str, ppps, ref_ppp: int) -> None:
-    run = load_paper(ROOT / "config/papers/chain_drive.yaml", profile).runs["accuracy_peak"]
-    prm, res0, eff = dict(run["parameters"]), dict(run["resolution"]), run["effects"]
+    prm, res0, eff = _scene(profile, "accuracy_peak")
     om = span.speed_axis(prm, int(res0["n_speeds"]))
+    cfl_new = float(res0["cfl"])
 
-    def one(ppp, central):
-        a = span.assemble(eff, prm, om, dict(res0, points_per_pitch=ppp))
-        s = np.zeros_like(a["s_star"]) if central else a["s_star"]
-        t0 = time.perf_counter()
-        r = fd.march(c=a["c"], P=a["P"], exc=a["exc"], s_star=s, m=a["m"], c_d=a["c_d"],
-                     grid=a["grid"], dt=a["dt"], n_steps=a["n_steps"],
-                     measure_from=a["measure_from"], u_cap=0.05)
-        return _peak(r.amplitude), time.perf_counter() - t0
+    def one(ppp, differencing, cfl):
+        a = span.assemble(eff, prm, om, dict(res0, points_per_pitch=ppp, cfl=cfl))
+        r, t = _timed(lambda: _march(a, differencing, "auto"), 1)
+        return _peak(r.amplitude), t
 
-    ref, _ = one(ref_ppp, True)
-    print(f"reference: central differencing at {ref_ppp} points per pitch, peak {ref * 1e3:.4f} mm")
-    print("points/pitch   central: error  time [s]    mixed (paper): error  time [s]")
+    ref, _ = one(ref_ppp, "central", 0.9)
+    print(f"reference: central differencing at {ref_ppp} points per pitch, cfl 0.9, "
+          f"peak {ref * 1e3:.5f} mm (max over the sampled speeds)")
+    print(f"points/pitch  central cfl 0.9: error time[s]  central cfl {cfl_new}: error time[s]"
+          f"  mixed cfl 0.9: error time[s]")
     for ppp in ppps:
-        (pc, tc), (pm, tm) = one(ppp, True), one(ppp, False)
-        print(f"{ppp:12d}   {abs(pc / ref - 1):13.2%}  {tc:8.2f}    {abs(pm / ref - 1):19.2%}  {tm:8.2f}")
+        cols = [one(ppp, d, c) for d, c in (("central", 0.9), ("central", cfl_new), ("mixed", 0.9))]
+        print(f"{ppp:12d}  " + "  ".join(f"{abs(p / ref - 1):19.2%} {t:7.2f}" for p, t in cols))
 
 
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--profile", default="default")
-    ap.add_argument("--scene", default="fig05_length")
-    ap.add_argument("--speeds", type=int, default=200)
-    ap.add_argument("--centre-distance", type=float, default=20.25,
-                    help="in pitches; non-integral so that the span length really changes")
-    ap.add_argument("--loop-speeds", type=int, default=12,
-                    help="speeds actually run in the per-speed loop (extrapolated to --speeds)")
+    ap.add_argument("--ref-ppp", type=int, default=24)
+    ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--schemes", action="store_true",
-                    help="compare central and mixed differencing (cost of accuracy) instead")
+                    help="print the cost-of-accuracy table of both schemes instead")
     ap.add_argument("--ppp", type=int, nargs="+", default=[2, 3, 4, 6, 8, 12])
-    ap.add_argument("--ref-ppp", type=int, default=16)
     a = ap.parse_args()
+    if not fd_kernel.available():
+        print("numba is not installed: the compiled loop is unavailable (pip install -r "
+              "requirements.txt); the new default then runs the numpy loop")
     if a.schemes:
         schemes(a.profile, a.ppp, a.ref_ppp)
         return
-    run = load_paper(ROOT / "config/papers/chain_drive.yaml", a.profile).runs[a.scene]
-    prm, res, eff = dict(run["parameters"]), dict(run["resolution"]), run["effects"]
-    prm["centre_distance"] = a.centre_distance
-    om = span.speed_axis(prm, a.speeds)
-    t0 = time.perf_counter()
-    vec = span.sweep(eff, prm, om, res, mode="vectorised")
-    t_vec = time.perf_counter() - t0
-    sub = np.unique(np.linspace(0, a.speeds - 1, min(a.loop_speeds, a.speeds)).round().astype(int))
-    # the loop reuses the step of the full sweep (set by the fastest speed) for equal work
-    t0 = time.perf_counter()
-    loop = span.sweep(eff, prm, om[sub], res, mode="loop")
-    t_sub = time.perf_counter() - t0
-    t_loop = t_sub * a.speeds / sub.size
-    same_dt = abs(loop["dt"] / vec["dt"] - 1) < 1e-12
-    err = (np.max(np.abs(loop["amplitude"] / vec["amplitude"][sub] - 1)) if same_dt else float("nan"))
-    print(f"scene {a.scene} ({a.profile}), centre distance {a.centre_distance} pitches: "
-          f"{a.speeds} speeds x {vec['grid'].n_long + 1} points x "
-          f"{vec['n_steps']} steps = {a.speeds * (vec['grid'].n_long + 1) * vec['n_steps']:.3g} "
-          f"grid-point updates")
-    print(f"vectorised sweep      : {t_vec:8.2f} s  (target <= 10 s)")
-    print(f"per-speed loop        : {t_loop:8.2f} s  (extrapolated from {sub.size} speeds run in "
-          f"{t_sub:.2f} s)")
-    print(f"loop / vectorised     : {t_loop / t_vec:8.1f} x")
-    print(f"amplitude difference  : {err:.2e} (loop vs vectorised on the subset; nan if the subset's "
-          f"time step differs)")
+    equal_accuracy(a.profile, a.ref_ppp, a.repeat)
+    fig05(a.profile, a.repeat)
 
 
 if __name__ == "__main__":

@@ -16,7 +16,18 @@ by LAPACK (``dgttrs``, factorised once per length state).  Time-dependent coeffi
 whole (time, speed) grid before stepping.
 
 The time step is the von Neumann limit of this scheme, dt = cfl * dx / sqrt(c_w^2 - c^2)
-(:func:`courant_limit`); a requested step beyond the limit is refused.
+(:func:`courant_limit`); a requested step beyond the limit is refused.  Near the limit
+(cfl 0.98, the default of the sweeps without impact) the explicit u_xx transports waves
+almost exactly (at c = 0 and nu = 1 the three-level scheme is exact), which removes most
+of the error of the lightly damped resonance peaks; at cfl = 1 the sawtooth mode has a
+double root at the largest tension and is left alone.
+
+``differencing="central"`` (s* = 0) is second order; the paper's mixed differencing adds a
+numerical Kelvin-Voigt damping ~ m c s* dx u_xxt (first order) -- which is also what keeps
+the pitch-scale modes pumped by the impact pulse bounded (docs/chain_drive.md, hard case).
+
+For a uniform step the time loop runs compiled (:mod:`.fd_kernel`, numba, cached on disk)
+when numba is installed; the numpy loop below is the reference and the fallback.
 """
 from __future__ import annotations
 
@@ -25,6 +36,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.linalg import lapack
+
+from . import fd_kernel
 
 
 class StabilityError(ValueError):
@@ -164,7 +177,8 @@ def _factor(dl, d, du):
 def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
           exc: Excitation, s_star=None, measure_from: int | None = None, n_blocks: int = 4,
           u_cap: float = 1.0, probes=(), record_every: int = 0, u0=None, v0=None,
-          dt_series=None, u1=None) -> MarchResult:
+          dt_series=None, u1=None, differencing: str | None = None,
+          kernel: str = "auto") -> MarchResult:
     """Step Eq. (2-36)/(2-37) for S operating speeds at once.
 
     c, P: (S,) chain speed and axial tension P = T_s (+ lambda m c^2).
@@ -174,9 +188,22 @@ def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
     measure_from: first step of the measuring window (steady state); the window is split
     in ``n_blocks`` blocks whose maxima reveal growth.  Rows whose |u| exceeds ``u_cap``
     are frozen and reported unstable: growth is detected, never overflowed into NaN.
+    differencing: ``"central"`` (s* = 0, second order), ``"mixed"`` (Eq. 2-38 with the
+    given ``s_star``, first order) or None (``s_star`` as given; s* = c/c_w if None).
+    kernel: ``"auto"`` runs the uniform-step loop compiled (:mod:`.fd_kernel`) when numba
+    is installed, the march is large enough to pay for loading it (or it is loaded
+    already), there is no ``exc.source`` and the step matrix is diagonally dominant
+    (Thomas without pivoting); ``"numpy"`` forces the numpy loop (LAPACK ``dgttrs``);
+    ``"compiled"`` requires the compiled loop.  Both give the same result to round-off.
     """
+    if differencing not in (None, "central", "mixed"):
+        raise ValueError(f"differencing {differencing!r}: allowed central, mixed")
+    if kernel not in ("auto", "numpy", "compiled"):
+        raise ValueError(f"kernel {kernel!r}: allowed auto, numpy, compiled")
     c = np.atleast_1d(np.asarray(c, float))
     S = c.size
+    if differencing == "central":
+        s_star = 0.0
     P = np.broadcast_to(np.asarray(P, float), (S,)).copy()
     n, ns = grid.n_long, grid.n_short
     dx = grid.dx
@@ -243,6 +270,22 @@ def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
     measure_from = n_steps // 2 if measure_from is None else int(measure_from)
     win = max(n_steps - measure_from, 1)
     block_len = max(win // n_blocks, 1)
+    if kernel != "numpy":
+        _, _, low, diag, up = coeffs
+        fast = (uniform and exc.source is None
+                and (kernel == "compiled" or fd_kernel.worth_it(S * (n + 1) * n_steps))
+                and fd_kernel.available()
+                and bool(np.all(np.abs(diag) > np.abs(low) + np.abs(up))))
+        if kernel == "compiled" and not fast:
+            raise ValueError("compiled kernel unavailable here (needs numba, a uniform step, "
+                             "no exc.source and a diagonally dominant step matrix)")
+        if fast:
+            return _march_compiled(c=c, P=P, W=W, m=m, c_d=c_d, grid=grid, dt=float(hs[0]),
+                                   n_steps=n_steps, measure_from=measure_from,
+                                   n_blocks=n_blocks, block_len=block_len, u_cap=u_cap,
+                                   exc=exc, Pt=exc.tension, uL=uL, uR=uR,
+                                   longs=longs if length_change else None, u0=u_prev,
+                                   u1=u_cur, probes=probes, record_every=record_every)
     block_max = np.zeros((n_blocks, S))
     capped = np.zeros(S, bool)
     rec, t_rec = [], []
@@ -317,6 +360,28 @@ def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
             rec.append(u_new[:, probes].copy())
             t_rec.append(t)
         u_prev, u_cur = u_cur, u_new
+    return _result(block_max, capped, u_cap, rec, t_rec, u_cur, n_steps, float(hs.max()))
+
+
+def _march_compiled(*, c, P, W, m, c_d, grid, dt, n_steps, measure_from, n_blocks,
+                    block_len, u_cap, exc, Pt, uL, uR, longs, u0, u1, probes, record_every):
+    block_max, capped, final, rec = fd_kernel.march_uniform(
+        c=c, P=P, W=W, m=m, c_d=c_d, dx=grid.dx, dt=dt, n=grid.n_long, ns=grid.n_short,
+        n_steps=n_steps, measure_from=measure_from, n_blocks=n_blocks, block_len=block_len,
+        u_cap=u_cap, Pt=Pt, uL=uL, uR=uR, longs=longs, q=exc.load, u0=u0, u1=u1,
+        probes=probes, record_every=record_every)
+    t_rec = None
+    if rec is not None:
+        t_rec = dt * np.array([j + 1 for j in range(1, n_steps) if (j + 1) % record_every == 0],
+                              float)
+        if not rec.shape[0]:
+            rec, t_rec = None, None
+    return _result(block_max, capped, u_cap, rec, t_rec, final, n_steps, dt)
+
+
+def _result(block_max, capped, u_cap, rec, t_rec, final, n_steps, dt) -> MarchResult:
+    rec = None if rec is None or (isinstance(rec, list) and not rec) else np.asarray(rec)
+    t_rec = None if t_rec is None or (isinstance(t_rec, list) and not t_rec) else np.asarray(t_rec)
     first = np.maximum(block_max[0], 1e-300)
     growth = block_max[-1] / first
     # a growing response: each block larger than the one before, the last by > 50 %
@@ -324,7 +389,5 @@ def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
     unstable = capped | (monotone & (growth > 1.5))
     amplitude = np.where(capped, u_cap, np.max(block_max, axis=0))
     return MarchResult(amplitude=amplitude, growth=np.where(capped, np.inf, growth),
-                       unstable=unstable, block_max=block_max,
-                       probes=np.array(rec) if rec else None,
-                       t_rec=np.array(t_rec) if t_rec else None, final=u_cur,
-                       n_steps=n_steps, dt=float(hs.max()))
+                       unstable=unstable, block_max=block_max, probes=rec, t_rec=t_rec,
+                       final=final, n_steps=n_steps, dt=dt)

@@ -195,7 +195,7 @@ def speed_sweep(run, prm, res):
         "unstable": var("speed", out["unstable"].astype("i1"), "1",
                         "1 where the response grows (Mathieu instability) or the span goes slack"),
         "slack": var("speed", out["slack"].astype("i1"), "1", "1 where P + P_t <= 0 somewhere"),
-        "s_star": var("speed", out["s_star"], "1", "mixed-differencing weight s*, Eq. (2-38)"),
+        "s_star": var("speed", out["s_star"], "1", "first-difference weight s* (0 = central differencing; Eq. (2-38) otherwise)"),
         "resonance_speed_short": var("order", reso["L_short"] * RPM, "rpm",
                                      "tooth frequency = k-th moving-string frequency, short span"),
         "resonance_speed_long": var("order", reso["L_long"] * RPM, "rpm",

@@ -110,7 +110,10 @@ def assemble(effects, prm: dict, omega1, res: dict, registry=EFFECTS) -> dict:
                         load=None if kappa is None else kappa[None, :] * Pt)
     return {"grid": grid, "span": span, "c": c, "P": P, "P_min": P_min, "dt": dt,
             "n_steps": n_steps, "measure_from": int(round(settle / dt)), "exc": exc,
-            "s_star": geometry.s_star(c, T_s, m), "omega1": omega1, "m": m, "c_d": c_d,
+            # first-difference weight of Eq. (2-38); 0 = central differencing (second order)
+            "s_star": (np.zeros_like(c) if res.get("differencing") == "central"
+                       else geometry.s_star(c, T_s, m)),
+            "omega1": omega1, "m": m, "c_d": c_d,
             "tension_coefficient": k_c}
 
 
@@ -119,7 +122,8 @@ def sweep(effects, prm, omega1, res, mode: str = "vectorised", probes=(), record
     """Maximum steady amplitude vs operating speed (Figs. 5-9)."""
     a = assemble(effects, prm, omega1, res, registry)
     kw = dict(m=a["m"], c_d=a["c_d"], grid=a["grid"], dt=a["dt"], n_steps=a["n_steps"],
-              measure_from=a["measure_from"], u_cap=float(res.get("u_cap", 0.05)))
+              measure_from=a["measure_from"], u_cap=float(res.get("u_cap", 0.05)),
+              differencing=res.get("differencing"))
     if mode == "vectorised":
         r = fd.march(c=a["c"], P=a["P"], exc=a["exc"], s_star=a["s_star"], probes=probes,
                      record_every=record_every, **kw)
