@@ -214,6 +214,10 @@ def load_paper(path: str | Path, profile: str = "default") -> PaperConfig:
             names.append(run)
         cfg.studies[study] = names
     _check_reported(raw, where)
+    for key in ("fan_out", "alone"):   # job granularity names scenes or studies
+        for name in raw.get(key, []):
+            if name not in raw["scenes"] and name not in raw.get("studies", {}):
+                raise ConfigError(f"{where}: {key}: {name!r} is neither a scene nor a study")
     _add_variants(cfg, raw, run_schema, where)
     for name, run in cfg.runs.items():
         _cross_check(raw.get("cross_checks", {}), run, f"{where} (run {name})")
