@@ -50,7 +50,7 @@ def test_deleted_figure_run_and_summary_image_are_restored(workflow):
     for f in (fig, run, summary):
         f.unlink()
     jobs = planned(work)
-    assert {"notebook_saw_chain", "solve_saw_chain__scene_speed_12000", "summary"} <= jobs
+    assert {"notebook_saw_chain", "solve_saw_chain__batch", "summary"} <= jobs
     assert not any(j.startswith("notebook_") and j != "notebook_saw_chain" for j in jobs), jobs
     restored(work)
     assert fig.stat().st_size > 1000 and run.exists() and summary.exists()
@@ -116,13 +116,14 @@ def test_an_interrupted_job_leaves_nothing_that_stays(workflow):
 
 
 def test_a_killed_run_recovers_as_the_readme_says(workflow):
-    """kill -9 in the middle of a solver job; then `snakemake --unlock` and a normal run."""
+    """kill -9 in the middle of a solver job (the batch writes fig07_fig08 first); then
+    `snakemake --unlock` and a normal run."""
     import signal
     import time
 
     work, _ = workflow
     run = work / "results" / "saw_chain" / "runs" / "fig07_fig08.nc"
-    proc = subprocess.Popen([*SNAKEMAKE, "--forcerun", "solve_saw_chain__scene_fig07_fig08"],
+    proc = subprocess.Popen([*SNAKEMAKE, "--forcerun", "solve_saw_chain__batch"],
                             cwd=work, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                             start_new_session=True)
     deadline = time.time() + 120

@@ -63,6 +63,14 @@ def solve_jobs(paper):
     return CFG[paper].solve_jobs()
 
 
+def fanned_out_studies():
+    """Studies that `gather` stacks: those no solver job holds whole (a regex for its
+    wildcard, so that it and the batch jobs never both claim a study file)."""
+    return "|".join(s for p in PAPERS for s in CFG[p].studies
+                    if not any(s in CFG[p].studies_solved_with(r)
+                               for r in solve_jobs(p).values())) or "^$"
+
+
 def records_of(paper, runs):
     """The run records of a job as one plain JSON string (params: any change reruns it)."""
     return json.dumps({r: CFG[paper].runs[r] for r in runs}, sort_keys=True)

@@ -42,12 +42,6 @@ for _paper in PAPERS:
                 "{params.profile} {params.results} {params.runs} > {log} 2>&1"
 
 
-def _fanned_out_studies():
-    return "|".join(s for p in PAPERS for s in CFG[p].studies
-                    if not any(s in CFG[p].studies_solved_with(r)
-                               for r in solve_jobs(p).values())) or "^$"
-
-
 rule gather:
     input:
         runs=lambda wc: expand(f"{RESULTS}/{wc.paper}/runs/{{run}}.nc",
@@ -56,7 +50,7 @@ rule gather:
     output:
         f"{RESULTS}/{{paper}}/studies/{{study}}.nc",
     wildcard_constraints:
-        study=_fanned_out_studies(),
+        study=fanned_out_studies(),
     params:
         python=RUN["python"],
     log:
