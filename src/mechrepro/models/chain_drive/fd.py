@@ -174,6 +174,33 @@ def _factor(dl, d, du):
     return out[:-1]
 
 
+def _step_coeffs(h1, h2, *, m, c_d, c, W):
+    """LHS tridiagonal blocks and explicit weights for steps h1 (j-1 -> j), h2 (j -> j+1)."""
+    a_tt = 2.0 / (h2 * (h1 + h2))                  # multiplies u^{j+1} in u_tt
+    b_t = 1.0 / (h1 + h2)                          # central first time derivative
+    diag = m * a_tt + c_d * b_t + 2 * m * c * b_t * W[:, 1]
+    low = 2 * m * c * b_t * W[:, 0]
+    up = 2 * m * c * b_t * W[:, 2]
+    return a_tt, b_t, low, diag, up
+
+
+def _factors(low, diag, up, *, ni, ns, short: bool):
+    """LU factors of the block-diagonal (one block per speed) tridiagonal step matrix;
+    ``short``: the rows of the long span's extra pitch hold the boundary value."""
+    dl = np.repeat(low[:, None], ni, 1)
+    dd = np.repeat(diag[:, None], ni, 1)
+    du = np.repeat(up[:, None], ni, 1)
+    if short:
+        # interior rows from index ns on are identity rows holding the boundary value
+        k0 = ns - 1
+        dd[:, k0:] = 1.0
+        dl[:, k0:] = 0.0
+        du[:, k0:] = 0.0
+    dl[:, 0] = 0.0      # block boundaries: no coupling between speeds
+    du[:, -1] = 0.0
+    return _factor(dl.ravel()[1:], dd.ravel(), du.ravel()[:-1])
+
+
 def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
           exc: Excitation, s_star=None, measure_from: int | None = None, n_blocks: int = 4,
           u_cap: float = 1.0, probes=(), record_every: int = 0, u0=None, v0=None,
@@ -191,8 +218,9 @@ def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
     differencing: ``"central"`` (s* = 0, second order), ``"mixed"`` (Eq. 2-38 with the
     given ``s_star``, first order) or None (``s_star`` as given; s* = c/c_w if None).
     kernel: ``"auto"`` runs the uniform-step loop compiled (:mod:`.fd_kernel`) when numba
-    is installed, the march is large enough to pay for loading it (or it is loaded
-    already), there is no ``exc.source`` and the step matrix is diagonally dominant
+    is installed, the march is large enough to pay for loading it (the march's size alone
+    decides, so a run's numbers never depend on what its process ran before), there is
+    no ``exc.source`` and the step matrix is diagonally dominant
     (Thomas without pivoting); ``"numpy"`` forces the numpy loop (LAPACK ``dgttrs``);
     ``"compiled"`` requires the compiled loop.  Both give the same result to round-off.
     """
@@ -218,29 +246,6 @@ def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
     longs = exc.long
     length_change = longs is not None and ns != n
 
-    def step_coeffs(h1, h2):
-        """LHS tridiagonal blocks and explicit weights for steps h1 (j-1 -> j), h2 (j -> j+1)."""
-        a_tt = 2.0 / (h2 * (h1 + h2))                  # multiplies u^{j+1} in u_tt
-        b_t = 1.0 / (h1 + h2)                          # central first time derivative
-        diag = m * a_tt + c_d * b_t + 2 * m * c * b_t * W[:, 1]
-        low = 2 * m * c * b_t * W[:, 0]
-        up = 2 * m * c * b_t * W[:, 2]
-        return a_tt, b_t, low, diag, up
-
-    def factors(low, diag, up, short: bool):
-        dl = np.repeat(low[:, None], ni, 1)
-        dd = np.repeat(diag[:, None], ni, 1)
-        du = np.repeat(up[:, None], ni, 1)
-        if short:
-            # interior rows from index ns on are identity rows holding the boundary value
-            k0 = ns - 1
-            dd[:, k0:] = 1.0
-            dl[:, k0:] = 0.0
-            du[:, k0:] = 0.0
-        dl[:, 0] = 0.0      # block boundaries: no coupling between speeds
-        du[:, -1] = 0.0
-        return _factor(dl.ravel()[1:], dd.ravel(), du.ravel()[:-1])
-
     uniform = dt_series is None
     if uniform:
         hs = np.full(n_steps, float(dt))
@@ -248,9 +253,10 @@ def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
         hs = np.asarray(dt_series, float)
         n_steps = hs.size
     h_prev = hs[0]
-    coeffs = step_coeffs(h_prev, hs[0])
-    fac_long = factors(*coeffs[2:], short=False)
-    fac_short = factors(*coeffs[2:], short=True) if length_change else None
+    sc = dict(m=m, c_d=c_d, c=c, W=W)
+    coeffs = _step_coeffs(h_prev, hs[0], **sc)
+    fac_long = _factors(*coeffs[2:], ni=ni, ns=ns, short=False)
+    fac_short = _factors(*coeffs[2:], ni=ni, ns=ns, short=True) if length_change else None
 
     u_prev = np.zeros((S, n + 1)) if u0 is None else np.array(u0, float)
     u_prev[:, 0], u_prev[:, -1] = uL[0], uR[0]
@@ -286,6 +292,20 @@ def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
                                    exc=exc, Pt=exc.tension, uL=uL, uR=uR,
                                    longs=longs if length_change else None, u0=u_prev,
                                    u1=u_cur, probes=probes, record_every=record_every)
+    return _march_numpy(hs=hs, uniform=uniform, coeffs=coeffs, sc=sc, fac_long=fac_long,
+                        fac_short=fac_short, u_prev=u_prev, u_cur=u_cur, Pt=Pt, uL=uL, uR=uR,
+                        q=q, longs=longs, exc=exc, P=P, W=W, dx=dx, ni=ni, ns=ns, S=S,
+                        n_steps=n_steps, measure_from=measure_from, n_blocks=n_blocks,
+                        block_len=block_len, u_cap=u_cap, probes=probes,
+                        record_every=record_every, length_change=length_change)
+
+
+def _march_numpy(*, hs, uniform, coeffs, sc, fac_long, fac_short, u_prev, u_cur, Pt, uL, uR,
+                 q, longs, exc, P, W, dx, ni, ns, S, n_steps, measure_from, n_blocks,
+                 block_len, u_cap, probes, record_every, length_change) -> MarchResult:
+    """The time loop of :func:`march` in numpy (LAPACK ``dgttrs``): the reference loop, and
+    the one for a non-uniform step or a source term."""
+    m, c_d, c = sc["m"], sc["c_d"], sc["c"]
     block_max = np.zeros((n_blocks, S))
     capped = np.zeros(S, bool)
     rec, t_rec = [], []
@@ -297,10 +317,10 @@ def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
     for j in range(1, n_steps):
         h1, h2 = hs[j - 1], hs[j]
         if not uniform:
-            coeffs = step_coeffs(h1, h2)
-            fac_long = factors(*coeffs[2:], short=False)
+            coeffs = _step_coeffs(h1, h2, **sc)
+            fac_long = _factors(*coeffs[2:], ni=ni, ns=ns, short=False)
             if length_change:
-                fac_short = factors(*coeffs[2:], short=True)
+                fac_short = _factors(*coeffs[2:], ni=ni, ns=ns, short=True)
         a_tt, b_t, low, diag, up = coeffs
         a_prev = 2.0 / (h1 * (h1 + h2))
         a_cur = 2.0 / (h1 * h2)

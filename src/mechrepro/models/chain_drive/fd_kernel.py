@@ -22,14 +22,15 @@ LANES = 16
 # "auto" compiles/loads the kernel only for marches of at least this many point-updates
 # (S x (n + 1) x steps): importing numba and loading the cached kernel cost ~0.5-1 s per
 # process, more than the numpy loop needs for a small march (exact-solution checks, a
-# single-speed time history); once loaded, every march uses it
+# single-speed time history).  The choice depends on the march alone, never on what ran
+# before in the process, so a run's numbers do not depend on how jobs are batched
 MIN_UPDATES = 5_000_000
 _KERNEL = None
 
 
 def worth_it(updates: int) -> bool:
     """Whether ``kernel="auto"`` should use the compiled loop for a march of this size."""
-    return _KERNEL is not None or updates >= MIN_UPDATES
+    return updates >= MIN_UPDATES
 
 
 def available() -> bool:
