@@ -84,8 +84,8 @@ def test_an_effect_the_scene_does_not_name_is_never_evaluated(solver, monkeypatc
         return fn
 
     swapped = {name: named(name, fn) if name in run["effects"] else boom(name)
-               for name, fn in EFFECTS._effects.items()}
-    monkeypatch.setattr(EFFECTS, "_effects", swapped)
+               for name, fn in EFFECTS._fn.items()}
+    monkeypatch.setattr(EFFECTS, "_fn", swapped)
     solve(run)
     assert set(called) == set(run["effects"])
 

@@ -44,7 +44,7 @@ def test_an_effect_the_scene_does_not_name_is_never_evaluated(cfg, monkeypatch, 
 
     for name in EFFECTS.names:
         if name not in run["effects"]:
-            monkeypatch.setitem(EFFECTS._effects, name, boom)
+            monkeypatch.setitem(EFFECTS._fn, name, boom)
     ds = solve(run)
     assert f"{solver}_f_rolled" in ds
 
@@ -97,11 +97,11 @@ def test_the_plate2d_stress_is_the_one_roll_tension_contributes(cfg):
                                            ("plate2d", "slotted_rc_sweep")])
 def test_contributions_are_the_declared_keys_with_the_declared_units(cfg, monkeypatch, solver, scene):
     seen = {}
-    for name, fn in list(EFFECTS._effects.items()):
+    for name, fn in list(EFFECTS._fn.items()):
         def wrapped(ctx, _fn=fn, _name=name):
             seen[_name] = out = _fn(ctx)
             return out
-        monkeypatch.setitem(EFFECTS._effects, name, wrapped)
+        monkeypatch.setitem(EFFECTS._fn, name, wrapped)
     effects = [e for e, d in DECLARED.items() if solver in d["honoured_by"]
                and not (e in ("exact_reference", "rolled_reference") and solver == "plate2d")]
     if scene == "fig07_sensitivity":

@@ -48,7 +48,7 @@ def test_unselected_effects_are_never_called(cfg, monkeypatch):
     run = run_of(cfg, "buckling", effects=["stress_calibration", "roll_tension"])
     for name in EFFECTS.names:
         if name not in run["effects"]:
-            monkeypatch.setitem(EFFECTS._effects, name, boom)
+            monkeypatch.setitem(EFFECTS._fn, name, boom)
     ds = solve(run)
     assert "sigma_theta" in ds and "axisym_f_unrolled" in ds and "axisym_f_rolled" not in ds
 

@@ -49,7 +49,7 @@ def test_effects_not_named_are_never_evaluated(solver, monkeypatch):
         raise AssertionError("evaluated an effect the scene did not name")
     for name in EFFECTS.names:
         if name not in run["effects"]:
-            monkeypatch.setitem(EFFECTS._effects, name, boom)
+            monkeypatch.setitem(EFFECTS._fn, name, boom)
     if solver not in ("clearance_implicit", "clearance_explicit"):
         monkeypatch.setattr(dynamics, "simulate", boom)   # no stiff dynamics either
     ds = solve(run)

@@ -31,7 +31,7 @@ def raising():
         with pytest.MonkeyPatch.context() as mp:
             for name in EFFECTS.names:
                 if name not in r["effects"]:
-                    mp.setitem(EFFECTS._effects, name, boom)
+                    mp.setitem(EFFECTS._fn, name, boom)
             return solve(r)
     return solve_raising
 

@@ -38,7 +38,7 @@ def test_effects_a_scene_does_not_name_are_never_evaluated(scene, monkeypatch):
     assert run["solver"] == "difference_method"
     for name in EFFECTS.names:
         if name not in run["effects"]:
-            monkeypatch.setitem(EFFECTS._effects, name, _raising(name))
+            monkeypatch.setitem(EFFECTS._fn, name, _raising(name))
     ds = run_solver(run)
     for name, spec in CFG.raw["effects"].items():
         for key in spec["contributes"]:
@@ -48,7 +48,7 @@ def test_effects_a_scene_does_not_name_are_never_evaluated(scene, monkeypatch):
 
 def test_the_solver_alone_runs_without_any_effect(monkeypatch):
     for name in EFFECTS.names:
-        monkeypatch.setitem(EFFECTS._effects, name, _raising(name))
+        monkeypatch.setitem(EFFECTS._fn, name, _raising(name))
     ds = run_solver(small("accuracy", effects=[]))
     assert "dynamic_load_x" in ds and "dynamic_load_x_error_pointwise" not in ds
 

@@ -30,34 +30,22 @@ from collections.abc import Callable
 
 import numpy as np
 
+from .registry import Registry
+
 COLUMNS = ["accuracy", "knob", "knob_value", "quantity", "error", "error_kind", "error_unit",
            "reference", "time_s", "time_of"]
 
 
-class AccuracyQuantities:
+class AccuracyQuantities(Registry):
     """The error functions of one paper's cost-of-accuracy quantities."""
 
-    def __init__(self, paper: str):
-        self.paper = paper
-        self._fns: dict[str, Callable] = {}
-
-    def register(self, name: str):
-        def deco(fn):
-            if name in self._fns:
-                raise ValueError(f"{self.paper}: accuracy quantity {name!r} registered twice")
-            self._fns[name] = fn
-            return fn
-        return deco
-
-    @property
-    def names(self) -> list[str]:
-        return list(self._fns)
+    kind = "accuracy quantity"
 
     def __call__(self, name: str, ds, entry: dict):
-        if name not in self._fns:
+        if name not in self._fn:
             raise KeyError(f"{self.paper}: accuracy quantity {name!r} has no function in "
                            f"models/{self.paper}/accuracy.py (have: {self.names})")
-        return self._fns[name](ds, entry)
+        return self._fn[name](ds, entry)
 
 
 def finest_index(knob, finer: str) -> int:

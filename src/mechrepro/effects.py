@@ -28,6 +28,7 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable
 from typing import Any
 
+from .registry import Registry
 from .timing import EFFECT, phase
 
 
@@ -78,35 +79,18 @@ class Contributions:
         return [e for e, _ in self._by_key.get(key, [])]
 
 
-class EffectRegistry:
+class EffectRegistry(Registry):
     """The implementations of one paper's declared effects."""
 
-    def __init__(self, paper: str):
-        self.paper = paper
-        self._effects: dict[str, Callable] = {}
-
-    def register(self, name: str) -> Callable[[Callable], Callable]:
-        def deco(fn: Callable) -> Callable:
-            if name in self._effects:
-                raise ValueError(f"{self.paper}: effect {name!r} registered twice")
-            self._effects[name] = fn
-            return fn
-        return deco
-
-    @property
-    def names(self) -> list[str]:
-        return list(self._effects)
-
-    def __contains__(self, name: str) -> bool:
-        return name in self._effects
+    kind = "effect"
 
     def select(self, effects: Iterable[str]) -> dict[str, Callable]:
         """The implementations of ``effects`` in declaration order (unknown names raise)."""
         wanted = list(effects)
-        unknown = [e for e in wanted if e not in self._effects]
+        unknown = [e for e in wanted if e not in self._fn]
         if unknown:
             raise UnknownEffect(f"{self.paper}: unknown effect(s) {unknown}; allowed: {self.names}")
-        return {name: self._effects[name] for name in self._effects if name in wanted}
+        return {name: self._fn[name] for name in self._fn if name in wanted}
 
     def evaluate(self, run: dict, ctx, only: Iterable[str] | None = None) -> Contributions:
         """Evaluate each effect the run names (or the subset ``only`` of them), timed, and

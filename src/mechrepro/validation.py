@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from .io import open_dataset, write_json, write_text
+from .registry import Registry
 
 COLUMNS = ["quantity", "source", "paper_value", "reproduced_value", "unit", "rel_error",
            "tolerance", "status", "evidence", "note", "artefact", "criterion"]
@@ -50,27 +51,10 @@ class Reproduced:
     flips: list[str] = field(default_factory=list)
 
 
-class Quantities:
+class Quantities(Registry):
     """The registry of a paper's extraction functions, one per reported quantity."""
 
-    def __init__(self, paper: str):
-        self.paper = paper
-        self._fn: dict[str, object] = {}
-        self._names: dict[object, tuple[str, ...]] = {}
-
-    def register(self, *names: str):
-        def deco(fn):
-            for n in names:
-                if n in self._fn:
-                    raise ValueError(f"{self.paper}: quantity {n!r} registered twice")
-                self._fn[n] = fn
-            self._names[fn] = names
-            return fn
-        return deco
-
-    @property
-    def names(self) -> list[str]:
-        return list(self._fn)
+    kind = "quantity"
 
     def evaluate(self, wanted, R: "ValidationInputs") -> dict[str, Reproduced]:
         """Call each function needed for ``wanted`` once; values wrapped as Reproduced."""
