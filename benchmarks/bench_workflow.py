@@ -6,7 +6,9 @@ For each version (``REV`` checked out with ``git archive``, and the working tree
 fresh temporary copy: the pipeline from clean, then a no-op run, then a dry run (the no-op
 *decision*), per profile.  Then, per paper, the solver jobs' wall time (Snakemake's
 benchmark files) against the solves' own time (``wall_time`` of each run), i.e. how much
-is start-up and writing.  Timings are printed, never asserted.
+is start-up and writing; the summed wall time per job kind (solve, gather, validate,
+notebook, other); and Snakemake's own import time, the floor of a no-op decision.
+Timings are printed, never asserted.
 """
 from __future__ import annotations
 
@@ -66,6 +68,28 @@ def per_paper(results: Path) -> dict[str, tuple[float, float, int]]:
     return out
 
 
+KINDS = ("solve", "gather", "validate", "notebook")
+
+
+def per_kind(results: Path) -> dict[str, tuple[float, int]]:
+    """{job kind: (summed wall seconds, jobs)} over every benchmark file of a results tree:
+    solver jobs, gather, validation, notebooks and the cross-paper jobs (``other``)."""
+    out: dict[str, tuple[float, int]] = {}
+    for tsv in results.rglob("benchmarks/*.tsv"):
+        kind = next((k for k in KINDS if tsv.stem.split("__")[0] == k), "other")
+        with open(tsv, newline="") as f:
+            s = float(next(csv.DictReader(f, delimiter="\t"))["s"])
+        t, n = out.get(kind, (0.0, 0))
+        out[kind] = (t + s, n + 1)
+    return out
+
+
+def import_seconds(module: str) -> float:
+    t0 = time.perf_counter()
+    subprocess.run([sys.executable, "-c", f"import {module}"], check=True)
+    return time.perf_counter() - t0
+
+
 def measure(label: str, work: Path, profile: str, cores: int) -> dict:
     cfg = ["--config", f"profile={profile}", f"results=results-{profile}"]
     full = snakemake(work, "--cores", str(cores), *cfg)
@@ -74,7 +98,8 @@ def measure(label: str, work: Path, profile: str, cores: int) -> dict:
     print(f"  {label:>8s} {profile:8s} from clean {full:7.1f} s   no-op run {noop:5.2f} s   "
           f"no-op decision (-n) {dry:5.2f} s", flush=True)
     return {"full": full, "noop": noop, "dry": dry,
-            "papers": per_paper(work / f"results-{profile}")}
+            "papers": per_paper(work / f"results-{profile}"),
+            "kinds": per_kind(work / f"results-{profile}")}
 
 
 def main() -> None:
@@ -100,6 +125,15 @@ def main() -> None:
             jb, sb, nb = b["papers"].get(paper, (float("nan"),) * 2 + (0,))
             ja, sa, na = f["papers"][paper]
             print(f"  {paper:14s} {nb:4d}/{na:<4d} {jb:13.1f} {sb:15.1f} {ja:12.1f} {sa:14.1f}")
+        print(f"  {'job kind':14s} {'jobs b/a':>9s} {'job s before':>13s} {'job s after':>12s}"
+              "   (wall seconds summed over jobs; older trees have no benchmark for some kinds)")
+        for kind in (*KINDS, "other"):
+            tb, nb = b["kinds"].get(kind, (float("nan"), 0))
+            ta, na = f["kinds"].get(kind, (float("nan"), 0))
+            print(f"  {kind:14s} {nb:4d}/{na:<4d} {tb:13.1f} {ta:12.1f}")
+    # the floor of any no-op decision: Snakemake's own import, measured beside it
+    print(f"import snakemake.cli alone: {min(import_seconds('snakemake.cli') for _ in range(3)):.2f} s",
+          flush=True)
     shutil.rmtree(tmp, ignore_errors=True)
 
 

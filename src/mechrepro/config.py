@@ -30,7 +30,6 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
-import jsonschema
 import yaml
 
 from .units import UNITS, to_si
@@ -118,7 +117,7 @@ class PaperConfig:
         return self.studies[study] if study else list(self.runs)
 
 
-def _format_error(err: jsonschema.ValidationError, where: str) -> str:
+def _format_error(err: "jsonschema.ValidationError", where: str) -> str:
     loc = ".".join(str(p) for p in err.absolute_path) or "<top>"
     v, inst = err.validator, err.instance
     allowed = {
@@ -145,6 +144,8 @@ def _validate(instance, schema, where: str) -> None:
     key = id(schema)  # schemas come from the load_schema cache
     validator = _VALIDATORS.get(key)
     if validator is None:  # compiled once per schema: every run of every scene is checked
+        import jsonschema  # here: a job that reads the cached config never validates
+
         validator = _VALIDATORS[key] = jsonschema.validators.validator_for(schema)(schema)
     errors = sorted(validator.iter_errors(instance), key=lambda e: list(map(str, e.absolute_path)))
     if errors:

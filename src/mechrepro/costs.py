@@ -8,6 +8,7 @@ overhead of starting a job shows.  Both tables are written by ``validate_<paper>
 from __future__ import annotations
 
 import csv
+import functools
 from pathlib import Path
 
 import numpy as np
@@ -18,6 +19,12 @@ JOB_TIME_COLUMNS = ["job", "runs", "solve_s", "job_s"]
 
 def run_times(path: str | Path) -> dict:
     """wall/core/effect times of one run file, read without loading its other variables."""
+    return _run_times(str(path))
+
+
+@functools.lru_cache(maxsize=None)
+def _run_times(path: str) -> dict:
+    # both cost tables read every run: open each file once per process
     import netCDF4
 
     with netCDF4.Dataset(path) as nc:

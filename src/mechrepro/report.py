@@ -156,8 +156,12 @@ def summary_section(out_dir: Path) -> str:
 
 def time_section(results: Path, papers: list[str]) -> str:
     """Per paper: the solves' own time against the solver jobs' wall time (start-up,
-    imports, writing and repeated timing calls are the difference), and the notebook job."""
+    imports, writing and repeated timing calls are the difference), and the paper's other
+    jobs (validation, notebook)."""
     from .costs import benchmark_seconds
+
+    def cell(x: float) -> str:
+        return "n/a" if x != x else f"{x:.3g}"
 
     rows = []
     for paper in papers:
@@ -167,22 +171,24 @@ def time_section(results: Path, papers: list[str]) -> str:
         head, r = _read_csv(f)
         solve = sum(float(x[head.index("solve_s")]) for x in r)
         job = sum(float(x[head.index("job_s")]) for x in r)
-        nb = benchmark_seconds(results / paper / "benchmarks" / "notebook.tsv")
         runs = sum(int(x[head.index("runs")]) for x in r)
+        other = [benchmark_seconds(results / paper / "benchmarks" / f"{k}.tsv")
+                 for k in ("validate", "notebook")]
+        overhead = f"{(job - solve) / job:.0%}" if job > 0 else "n/a"
         rows.append(f"<tr><td>{paper}</td><td>{len(r)}</td><td>{runs}</td><td>{solve:.3g}</td>"
-                    f"<td>{job:.3g}</td><td>{(job - solve) / job:.0%}</td><td>{nb:.3g}</td></tr>"
-                    if job > 0 else
-                    f"<tr><td>{paper}</td><td>{len(r)}</td><td>{runs}</td><td>{solve:.3g}</td>"
-                    "<td>n/a</td><td>n/a</td><td>n/a</td></tr>")
+                    f"<td>{cell(job if job > 0 else float('nan'))}</td><td>{overhead}</td>"
+                    + "".join(f"<td>{cell(x)}</td>" for x in other) + "</tr>")
     if not rows:
         return ""
     return ("<h2 id='time'>Where the time goes</h2><p class='note'>solve: the fastest call of "
             "each run's solve (<code>wall_time</code>), summed; job: the solver jobs' wall time "
             "from Snakemake's benchmark files; overhead: interpreter start, imports, repeated "
             "timing calls and writing. Each paper's <i>effect_cost</i> table splits the solves "
-            "into the solver core and each effect.</p><table><tr><th>paper</th><th>solver jobs"
-            "</th><th>runs</th><th>solve [s]</th><th>job [s]</th><th>overhead</th>"
-            "<th>notebook job [s]</th></tr>" + "".join(rows) + "</table>")
+            "into the solver core and each effect. The validation job of a paper runs before "
+            "this page is written; its notebook job too.</p><table><tr><th>paper</th>"
+            "<th>solver jobs</th><th>runs</th><th>solve [s]</th><th>job [s]</th><th>overhead"
+            "</th><th>validation job [s]</th><th>notebook job [s]</th></tr>"
+            + "".join(rows) + "</table>")
 
 
 def write_report(out: str, results: str, config_dir: str, papers: list[str], profile: str) -> None:

@@ -26,6 +26,8 @@ for _paper in PAPERS:
             profile=RUN["profile"],
         log:
             f"{RESULTS}/{_paper}/logs/validate.log",
+        benchmark:
+            f"{RESULTS}/{_paper}/benchmarks/validate.tsv"
         shell:
             "{params.python} -m mechrepro.cli validate {params.paper} {params.results} "
             "{input.config} {params.profile} > {log} 2>&1"

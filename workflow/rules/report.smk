@@ -17,6 +17,8 @@ rule summary:
         base=RUN["base"],
     log:
         f"{RESULTS}/logs/summary.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/summary.tsv"
     shell:
         "{params.python} -m mechrepro.cli summary {output.png} {output.csv} {params.results} "
         "{params.base}/config {params.profile} {params.papers} > {log} 2>&1"
@@ -38,6 +40,8 @@ rule reference_check:
         base=RUN["base"],
     log:
         f"{RESULTS}/logs/reference_check.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/reference_check.tsv"
     shell:
         "{params.python} -m mechrepro.cli check-reference {output} {params.results} "
         "{params.base}/results/reference {params.profile} {params.papers} > {log} 2>&1"
@@ -62,6 +66,8 @@ rule report:
         base=RUN["base"],
     log:
         f"{RESULTS}/logs/report.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/report.tsv"
     shell:
         "{params.python} -m mechrepro.cli report {output} {params.results} {params.base}/config "
         "{params.profile} {params.papers} > {log} 2>&1"
@@ -88,6 +94,8 @@ rule archive:
         base=RUN["base"],
     log:
         f"{RESULTS}/logs/archive.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/archive.tsv"
     shell:
         "{params.python} -m mechrepro.cli archive {output.archive} {output.manifest} "
         "{params.results} {params.base}/config {params.profile} {params.papers} > {log} 2>&1 "

@@ -55,5 +55,7 @@ rule gather:
         python=RUN["python"],
     log:
         f"{RESULTS}/{{paper}}/logs/gather/{{study}}.log",
+    benchmark:
+        f"{RESULTS}/{{paper}}/benchmarks/gather__{{study}}.tsv"
     shell:
         "{params.python} -m mechrepro.cli gather {output} {input.runs} > {log} 2>&1"
