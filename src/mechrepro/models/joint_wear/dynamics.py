@@ -241,7 +241,7 @@ def simulate(fb: FourBar, t_end: float, n_out: int, method: str = "Radau",
     return out
 
 
-COMPILED = ("Radau", "RK45")
+COMPILED = ("Radau", "BDF", "RK45")
 TOO_SMALL_STEP = "Required step size is less than spacing between numbers."
 
 
@@ -255,7 +255,7 @@ def _simulate_compiled(sys_: ClearanceJoint, method, y0, t_start, t_end, n_out, 
     k = ivp_kernel.kernels()
     p = ivp_kernel.params(sys_.fb, sys_.damping)
     t_eval = np.linspace(t_start, t_end, n_out)
-    fn = k["radau"] if method == "Radau" else k["rk45"]
+    fn = {"Radau": k["radau"], "BDF": k["bdf"], "RK45": k["rk45"]}[method]
     with stopwatch() as sw:
         Yout, m, nfev, steps, status, t_reached = fn(p, float(t_start), np.asarray(y0, float),
                                                      float(t_end), t_eval, float(rtol),

@@ -54,5 +54,5 @@ def kernels():
         from . import ivp_numba as m
 
         _K = {"rhs": m.rhs, "jac": m.jac, "radau": m.radau, "rk45": m.rk45,
-              "history": m.history, "rhs_new": m.rhs_new, "jac_new": m.jac_new}
+              "history": m.history, "rhs_new": m.rhs_new, "jac_new": m.jac_new, "bdf": m.bdf}
     return _K
