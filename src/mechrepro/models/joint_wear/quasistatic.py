@@ -60,7 +60,14 @@ def one_period(fb: FourBar, n_steps: int, passes: int = 2, t0: float = 0.0,
 
 
 def _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2, iterations=4) -> dict:
-    """Joint-B force, its normal/friction split and the penetration for given link motion."""
+    """Joint-B force, its normal/friction split and the penetration for given link motion.
+
+    With numba installed the element-wise stages run compiled (:mod:`.qs_numba`, the same
+    operations: results equal to round-off); the numpy code otherwise."""
+    from . import ivp_kernel
+
+    if ivp_kernel.available():
+        return _contact_state_compiled(fb, t, th1, th3, ph2, w3, w2, a3, a2, iterations)
     M11, M22, am = loads.mass_terms(fb)
     cd = np.cos(th3 - ph2)
     sd = np.sin(th3 - ph2)
@@ -95,6 +102,29 @@ def _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2, iterations=4) -> dict:
         tau = fb.R_bush * F_T
     nx, ny = np.cos(ang_n), np.sin(ang_n)
     psi = np.angle(np.exp(1j * (ang_n - ph2)))  # contact point on the bushing, coupler frame
+    return {"t": t, "theta1": th1, "theta3": th3, "phi2": ph2, "F_N": F_N, "F_T": F_T,
+            "delta": delta, "v_T": v_T, "psi": psi, "nx": nx, "ny": ny}
+
+
+def _contact_state_compiled(fb, t, th1, th3, ph2, w3, w2, a3, a2, iterations) -> dict:
+    """:func:`_contact_state` with the element-wise stages of :mod:`.qs_numba`."""
+    from . import qs_numba as k
+
+    M11, M22, am = loads.mass_terms(fb)
+    b3, b2, j11, j12, j21, j22, det = k.setup(
+        th3, ph2, w3, w2, a3, a2, M11, M22, am, fb.l0, fb.l2, fb.l3, fb.m2, fb.m3, fb.P,
+        float(fb.F[0]), float(fb.F[1]), fb.g)
+    tau = np.zeros_like(t)
+    slide = fb.omega * fb.R_pin
+    w2R = w2 * fb.R_bush
+    sgn = contact.friction_sign(slide - w2R, fb.v_eps)
+    for _ in range(iterations):
+        F_N, ang_n, delta = k.force(b3, b2, j11, j12, j21, j22, det, tau, sgn, fb.mu,
+                                    fb.K_contact, fb.n_exp)
+        dang, _ = periodic_derivatives(ang_n, fb.period, second=False)
+        v_T, sgn, F_T, tau = k.friction(F_N, delta, dang, slide, w2R, fb.clearance, fb.v_eps,
+                                        fb.mu, fb.R_bush)
+    nx, ny, psi = k.direction(ang_n, ph2)
     return {"t": t, "theta1": th1, "theta3": th3, "phi2": ph2, "F_N": F_N, "F_T": F_T,
             "delta": delta, "v_T": v_T, "psi": psi, "nx": nx, "ny": ny}
 
