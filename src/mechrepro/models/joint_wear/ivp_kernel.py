@@ -56,3 +56,34 @@ def kernels():
         _K = {"rhs": m.rhs, "jac": m.jac, "radau": m.radau, "rk45": m.rk45,
               "history": m.history, "rhs_new": m.rhs_new, "jac_new": m.jac_new, "bdf": m.bdf}
     return _K
+
+
+_WARM = False
+
+
+def warm() -> None:
+    """Load (or, on a fresh clone, compile) every compiled kernel once per process, with the
+    argument types the solvers use, so that a period's measured time is the period's and
+    not numba's one-time start (~1 s per process).  Changes no result."""
+    global _WARM
+    if _WARM or not available():
+        return
+    from . import qs_numba as q
+
+    k = kernels()
+    p = np.zeros(24)
+    p[[L1, L2, L3, L0, OMEGA, M11, M22, KC, NEXP, DMAX, CLR]] = 1.0
+    y = np.zeros(4)
+    te = np.zeros(1)
+    at = np.ones(4)
+    for name in ("radau", "bdf", "rk45"):
+        k[name](p, 0.0, y, 0.0, te, 1e-5, at, 0)
+    k["history"](te, np.zeros((4, 1)), p)
+    k["rhs_new"](0.0, y, p)
+    k["jac_new"](0.0, y, p)
+    a = np.zeros(2)
+    b = q.setup(a, a, a, a, a, a, 1.0, 1.0, 0.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 2.0, 0.0, 0.0)
+    F_N, ang, delta = q.force(*b, a, a, 0.0, 1.0, 1.5)
+    q.friction(F_N, delta, a, 0.0, a, 1.0, 1.0, 0.0, 1.0)
+    q.direction(ang, a)
+    _WARM = True
