@@ -286,16 +286,7 @@ def _simulate_lsoda(sys_: ClearanceJoint, y0, t_start, t_end, n_out, rtol, atol,
 
     k = ivp_kernel.kernels()
     p = ivp_kernel.params(sys_.fb, sys_.damping)
-    rhs_new, jac_new = k["rhs_new"], k["jac_new"]
-    nfev = [0]
-
-    def f(t, y):
-        nfev[0] += 1
-        return rhs_new(t, y, p)
-
-    def jac(t, y):
-        return jac_new(t, y, p)
-
+    f, jac = k["rhs_new"], k["jac_new"]     # called by the Fortran code as f(t, y, p)
     n = 4
     solver = ode(f, jac)
     solver.set_integrator("lsoda", rtol=rtol, atol=atol, max_step=0, min_step=0.0,
@@ -314,7 +305,7 @@ def _simulate_lsoda(sys_: ClearanceJoint, y0, t_start, t_end, n_out, rtol, atol,
     status, message = 0, "finished"
     with stopwatch() as sw:
         while t != t_end:
-            y, t = integ.run(f, jac, y, t, t_end, (), ())
+            y, t = integ.run(f, jac, y, t, t_end, (p,), (p,))
             steps += 1
             if not integ.success:
                 status, message = -1, "Unexpected istate in LSODA."
@@ -336,7 +327,7 @@ def _simulate_lsoda(sys_: ClearanceJoint, y0, t_start, t_end, n_out, rtol, atol,
                 status, message = -2, f"step budget {max_steps} spent at t = {t:.4g} s"
                 break
     wall = sw.seconds
-    sys_.nfev += nfev[0]
+    sys_.nfev += int(iwork[11])          # NFE: right-hand sides evaluated by LSODA
     T, Y = t_eval[:kk].copy(), np.ascontiguousarray(Yout[:kk].T)
     out = {"t": T, "y": Y, "status": status, "message": message, "nfev": sys_.nfev,
            "steps": steps, "t_reached": float(t), "wall": wall}
