@@ -30,12 +30,60 @@ def best_of(fn, repeats):
     return best, out
 
 
+def _main_quasistatic():
+    """quasistatic.py as it is on main (before issue #18), imported as a module."""
+    import importlib.util
+    import subprocess
+    import tempfile
+
+    src = subprocess.run(["git", "show", "main:src/mechrepro/models/joint_wear/quasistatic.py"],
+                         cwd=ROOT, capture_output=True, text=True, check=True).stdout
+    path = Path(tempfile.mkdtemp()) / "quasistatic_main.py"
+    path.write_text(src)
+    spec = importlib.util.spec_from_file_location(
+        "mechrepro.models.joint_wear.quasistatic_main", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def side_by_side(cfg, repeats):
+    """Issue #18: the old code paths against the new ones, in one process (ratios)."""
+    fb, _ = setup(cfg.runs["period_dynamic"])
+    T = fb.period
+    print("side by side (old -> new, best of repeats; the first compiled call is excluded)")
+    for method, rtol, start, steps in (("Radau", 1e-5, "equilibrium", None),
+                                       ("Radau", 1e-7, "equilibrium", None),
+                                       ("BDF", 1e-6, "equilibrium", None),
+                                       ("LSODA", 1e-7, "concentric", None),
+                                       ("RK45", 1e-5, "equilibrium", 5000)):
+        n = 2501 if start == "concentric" else 721
+        run = lambda kernel: dynamics.simulate(fb, T, n, method=method, rtol=rtol,  # noqa: E731
+                                               start=start, max_steps=steps, kernel=kernel)
+        run("auto")
+        t_old, r_old = best_of(lambda: run("scipy"), 1)
+        t_new, r_new = best_of(lambda: run("auto"), repeats)
+        print(f"  {method:5s} rtol {rtol:.0e} {start:11s}: scipy {t_old:8.3f} s -> compiled "
+              f"{t_new:8.4f} s  ({t_old / t_new:6.1f}x; steps {r_old['steps']} / {r_new['steps']})")
+    old = _main_quasistatic()
+    for n in (360, 720):
+        quasistatic.one_period(fb, n)
+        t_old, _ = best_of(lambda: old.one_period(fb, n), 20 * repeats)
+        t_new, _ = best_of(lambda: quasistatic.one_period(fb, n), 20 * repeats)
+        print(f"  quasi-static period, {n} samples: {t_old * 1e3:6.2f} ms -> {t_new * 1e3:6.2f} ms "
+              f"({t_old / t_new:4.1f}x)")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--explicit-steps", type=int, default=20000)
     ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--side-by-side-only", action="store_true")
     a = ap.parse_args()
     cfg = load_paper(ROOT / "config/papers/joint_wear.yaml")
+    side_by_side(cfg, a.repeats)
+    if a.side_by_side_only:
+        return
     fb, _ = setup(cfg.runs["period_dynamic"])
     T = fb.period
     print(f"joint_wear benchmark (period {T:.4g} s; 2 cores shared with other jobs: pessimistic)")

@@ -171,7 +171,7 @@ IMPLICIT = ("Radau", "BDF", "LSODA")
 def simulate(fb: FourBar, t_end: float, n_out: int, method: str = "Radau",
              rtol: float = 1e-5, damping: bool = True, start: str = "concentric",
              atol_scale: float = 1e-2, max_steps: int | None = None,
-             t_start: float = 0.0) -> dict:
+             t_start: float = 0.0, kernel: str = "auto") -> dict:
     """Integrate the clearance joint over [t_start, t_end], sample n_out uniform points.
 
     atol on angles is rtol * atol_scale [rad] (on rates 10x that): the clearance is
@@ -182,16 +182,31 @@ def simulate(fb: FourBar, t_end: float, n_out: int, method: str = "Radau",
     still report how far it got.  A step budget, never a wall-clock one: where the
     integration stops must not depend on the machine's load.
     status: 0 finished, -1 integrator failure, -2 step budget spent.
-    """
-    from scipy import integrate
 
+    ``kernel``: ``"auto"`` runs Radau and RK45 in the compiled loop of
+    :mod:`.ivp_kernel` (the same algorithms as scipy's, one call per period) when numba is
+    installed, every other method -- and everything without numba -- by stepping scipy's
+    solvers (``"scipy"``); the results agree to round-off.
+    """
     from mechrepro.timing import stopwatch
+
+    from . import ivp_kernel
 
     if method not in METHODS:
         raise ValueError(f"joint_wear: method {method!r}: allowed {', '.join(METHODS)}")
+    if kernel not in ("auto", "scipy", "numba"):
+        raise ValueError(f"joint_wear: kernel {kernel!r}: allowed auto, scipy, numba")
     sys_ = ClearanceJoint(fb, damping=damping)
     y0 = initial_state(fb, start, t_start)
     atol = np.array([1.0, 1.0, 10.0, 10.0]) * rtol * atol_scale
+    compiled = method in COMPILED and (kernel == "numba" or (kernel == "auto"
+                                                             and ivp_kernel.available()))
+    if compiled:
+        return _simulate_compiled(sys_, method, y0, t_start, t_end, n_out, rtol, atol, max_steps)
+    if method == "LSODA" and kernel != "scipy" and ivp_kernel.available():
+        return _simulate_lsoda(sys_, y0, t_start, t_end, n_out, rtol, atol, max_steps)
+    from scipy import integrate
+
     kw = {"jac": sys_.jac} if method in IMPLICIT else {}
     solver = getattr(integrate, METHODS[method])(sys_.rhs, t_start, y0, t_end, rtol=rtol,
                                                  atol=atol, **kw)
@@ -226,8 +241,110 @@ def simulate(fb: FourBar, t_end: float, n_out: int, method: str = "Radau",
     return out
 
 
+COMPILED = ("Radau", "BDF", "RK45")
+TOO_SMALL_STEP = "Required step size is less than spacing between numbers."
+
+
+def _simulate_compiled(sys_: ClearanceJoint, method, y0, t_start, t_end, n_out, rtol, atol,
+                       max_steps) -> dict:
+    """:func:`simulate` with the compiled Radau / RK45 of :mod:`.ivp_kernel`."""
+    from mechrepro.timing import stopwatch
+
+    from . import ivp_kernel
+
+    k = ivp_kernel.kernels()
+    p = ivp_kernel.params(sys_.fb, sys_.damping)
+    t_eval = np.linspace(t_start, t_end, n_out)
+    fn = {"Radau": k["radau"], "BDF": k["bdf"], "RK45": k["rk45"]}[method]
+    with stopwatch() as sw:
+        Yout, m, nfev, steps, status, t_reached = fn(p, float(t_start), np.asarray(y0, float),
+                                                     float(t_end), t_eval, float(rtol),
+                                                     np.asarray(atol, float),
+                                                     int(max_steps or 0))
+    wall = sw.seconds
+    sys_.nfev += int(nfev)
+    message = {0: "finished", -1: TOO_SMALL_STEP}.get(
+        int(status), f"step budget {max_steps} spent at t = {t_reached:.4g} s")
+    T, Y = t_eval[:m].copy(), np.ascontiguousarray(Yout[:m].T)
+    out = {"t": T, "y": Y, "status": int(status), "message": message, "nfev": sys_.nfev,
+           "steps": int(steps), "t_reached": float(t_reached), "wall": wall}
+    out.update(contact_history(sys_, T, Y))
+    return out
+
+
+def _simulate_lsoda(sys_: ClearanceJoint, y0, t_start, t_end, n_out, rtol, atol,
+                    max_steps) -> dict:
+    """:func:`simulate` for LSODA with compiled callbacks: the Fortran integrator set up and
+    stepped (one step per call, ``itask = 5``, ``tcrit = t_end``) exactly as scipy's
+    ``LSODA`` solver does, its dense output (the Nordsieck history) evaluated here only in
+    steps that hold samples -- without the ``OdeSolver`` wrappers around every step."""
+    from scipy.integrate import ode
+
+    from mechrepro.timing import stopwatch
+
+    from . import ivp_kernel
+
+    k = ivp_kernel.kernels()
+    p = ivp_kernel.params(sys_.fb, sys_.damping)
+    f, jac = k["rhs_new"], k["jac_new"]     # called by the Fortran code as f(t, y, p)
+    n = 4
+    solver = ode(f, jac)
+    solver.set_integrator("lsoda", rtol=rtol, atol=atol, max_step=0, min_step=0.0,
+                          first_step=0, lband=None, uband=None)
+    solver.set_initial_value(np.asarray(y0, float), t_start)
+    integ = solver._integrator
+    integ.rwork[0] = t_end
+    integ.call_args[4] = integ.rwork
+    integ.call_args[2] = 5
+    rwork, iwork = integ.rwork, integ.iwork
+    t_eval = np.linspace(t_start, t_end, n_out)
+    Yout = np.empty((n_out, n))
+    Yout[0] = y0
+    y, t = solver._y, float(t_start)
+    kk, steps = 1, 0
+    status, message = 0, "finished"
+    with stopwatch() as sw:
+        while t != t_end:
+            y, t = integ.run(f, jac, y, t, t_end, (p,), (p,))
+            steps += 1
+            if not integ.success:
+                status, message = -1, "Unexpected istate in LSODA."
+                break
+            j = int(np.searchsorted(t_eval, t, side="right"))
+            if j > kk:      # LsodaDenseOutput of this step
+                order = iwork[13]
+                h = rwork[11]
+                yh = np.reshape(rwork[20:20 + (order + 1) * n], (n, order + 1),
+                                order="F").copy()
+                if iwork[14] < order:
+                    yh[:, -1] *= (h / rwork[10]) ** order
+                x = ((t_eval[kk:j] - t) / h) ** np.arange(order + 1)[:, None]
+                Yout[kk:j] = np.dot(yh, x).T
+                kk = j
+            if t >= t_end:
+                break
+            if max_steps is not None and steps >= max_steps:
+                status, message = -2, f"step budget {max_steps} spent at t = {t:.4g} s"
+                break
+    wall = sw.seconds
+    sys_.nfev += int(iwork[11])          # NFE: right-hand sides evaluated by LSODA
+    T, Y = t_eval[:kk].copy(), np.ascontiguousarray(Yout[:kk].T)
+    out = {"t": T, "y": Y, "status": status, "message": message, "nfev": sys_.nfev,
+           "steps": steps, "t_reached": float(t), "wall": wall}
+    out.update(contact_history(sys_, T, Y))
+    return out
+
+
 def contact_history(sys_: ClearanceJoint, T, Y) -> dict:
     """Penetration, forces, sliding velocity and the contact angle on the bushing."""
+    from . import ivp_kernel
+
+    if ivp_kernel.available():
+        h = ivp_kernel.kernels()["history"](np.asarray(T, float), np.ascontiguousarray(Y),
+                                            ivp_kernel.params(sys_.fb, sys_.damping))
+        psi = np.angle(np.exp(1j * h[4]))
+        return {"F_N": h[0], "F_T": h[1], "delta": h[2], "v_T": h[3], "psi": psi,
+                "theta3": Y[0], "phi2": Y[1]}
     n = T.size
     FN, FT, dl, vT, psi = (np.zeros(n) for _ in range(5))
     fb = sys_.fb

@@ -21,6 +21,8 @@ correction shrinks by ~c/l per pass: ``passes`` = 2 leaves 1e-10 in the wear per
 """
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from . import contact, kinematics, loads
@@ -58,7 +60,14 @@ def one_period(fb: FourBar, n_steps: int, passes: int = 2, t0: float = 0.0,
 
 
 def _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2, iterations=4) -> dict:
-    """Joint-B force, its normal/friction split and the penetration for given link motion."""
+    """Joint-B force, its normal/friction split and the penetration for given link motion.
+
+    With numba installed the element-wise stages run compiled (:mod:`.qs_numba`, the same
+    operations: results equal to round-off); the numpy code otherwise."""
+    from . import ivp_kernel
+
+    if ivp_kernel.available():
+        return _contact_state_compiled(fb, t, th1, th3, ph2, w3, w2, a3, a2, iterations)
     M11, M22, am = loads.mass_terms(fb)
     cd = np.cos(th3 - ph2)
     sd = np.sin(th3 - ph2)
@@ -72,29 +81,71 @@ def _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2, iterations=4) -> dict:
     j21, j22 = -fb.l2 * np.sin(ph2), fb.l2 * np.cos(ph2)
     det = j11 * j22 - j12 * j21
     tau = np.zeros_like(t)
-    v_T = fb.omega * fb.R_pin - w2 * fb.R_bush
+    slide = fb.omega * fb.R_pin       # v_T = (c + delta) d(ang_n)/dt + slide - w2 R_j
+    w2R = w2 * fb.R_bush
+    v_T = slide - w2R
+    sgn = contact.friction_sign(v_T, fb.v_eps)
     for _ in range(iterations):  # friction moment R_j F_T is ~1e-3 of the load terms: 4 leave 1e-9
         c2 = b2 - tau
         fx = (b3 * j22 - j12 * c2) / det
         fy = (j11 * c2 - j21 * b3) / det
-        sgn = contact.friction_sign(v_T, fb.v_eps)
         mus = fb.mu * sgn
         F_N = np.hypot(fx, fy) / np.sqrt(1.0 + mus ** 2)
         # f = F_N (n + mu s t): n is f turned back by the friction angle
         ang_n = np.arctan2(fy, fx) - np.arctan(mus)
-        nx, ny = np.cos(ang_n), np.sin(ang_n)
         delta = contact.static_penetration(F_N, fb.K_contact, fb.n_exp)
         # e = (c + delta) n moves with the contact direction: its tangential rate enters v_T
         dang, _ = periodic_derivatives(ang_n, fb.period, second=False)
-        v_T = (fb.clearance + delta) * dang + fb.omega * fb.R_pin - w2 * fb.R_bush
-        F_T = contact.friction_force(F_N, v_T, fb.mu, fb.v_eps)
+        v_T = (fb.clearance + delta) * dang + slide - w2R
+        sgn = contact.friction_sign(v_T, fb.v_eps)   # F_T now, mus in the next pass
+        F_T = fb.mu * F_N * sgn                      # contact.friction_force(F_N, v_T, ...)
         tau = fb.R_bush * F_T
+    nx, ny = np.cos(ang_n), np.sin(ang_n)
     psi = np.angle(np.exp(1j * (ang_n - ph2)))  # contact point on the bushing, coupler frame
     return {"t": t, "theta1": th1, "theta3": th3, "phi2": ph2, "F_N": F_N, "F_T": F_T,
             "delta": delta, "v_T": v_T, "psi": psi, "nx": nx, "ny": ny}
 
 
+def _contact_state_compiled(fb, t, th1, th3, ph2, w3, w2, a3, a2, iterations) -> dict:
+    """:func:`_contact_state` with the element-wise stages of :mod:`.qs_numba`."""
+    from . import qs_numba as k
+
+    M11, M22, am = loads.mass_terms(fb)
+    b3, b2, j11, j12, j21, j22, det = k.setup(
+        th3, ph2, w3, w2, a3, a2, M11, M22, am, fb.l0, fb.l2, fb.l3, fb.m2, fb.m3, fb.P,
+        float(fb.F[0]), float(fb.F[1]), fb.g)
+    tau = np.zeros_like(t)
+    slide = fb.omega * fb.R_pin
+    w2R = w2 * fb.R_bush
+    sgn = contact.friction_sign(slide - w2R, fb.v_eps)
+    for _ in range(iterations):
+        F_N, ang_n, delta = k.force(b3, b2, j11, j12, j21, j22, det, tau, sgn, fb.mu,
+                                    fb.K_contact, fb.n_exp)
+        dang, _ = periodic_derivatives(ang_n, fb.period, second=False)
+        v_T, sgn, F_T, tau = k.friction(F_N, delta, dang, slide, w2R, fb.clearance, fb.v_eps,
+                                        fb.mu, fb.R_bush)
+    nx, ny, psi = k.direction(ang_n, ph2)
+    return {"t": t, "theta1": th1, "theta3": th3, "phi2": ph2, "F_N": F_N, "F_T": F_T,
+            "delta": delta, "v_T": v_T, "psi": psi, "nx": nx, "ny": ny}
+
+
 HARMONICS = 64
+
+
+def _unwrap(a):
+    """``np.unwrap(a, axis=-1)``, exactly: where no step reaches pi (the usual case: the
+    angles are smooth on the grid) np.unwrap adds zero corrections and returns ``a``."""
+    if np.abs(np.diff(a, axis=-1)).max(initial=0.0) < np.pi:
+        return a
+    return np.unwrap(a, axis=-1)
+
+
+@functools.lru_cache(maxsize=64)
+def _omegas(n, period):
+    """The angular frequencies of ``rfft`` over one period of n samples (read-only)."""
+    w = 2 * np.pi * np.fft.rfftfreq(n, period / n)
+    w.flags.writeable = False
+    return w
 
 
 def periodic_derivatives(angle, period, second=True, harmonics=HARMONICS):
@@ -109,13 +160,16 @@ def periodic_derivatives(angle, period, second=True, harmonics=HARMONICS):
     the clearance's rocking mode (~1e3 rad/s), where no quasi-static state exists and
     the fixed point diverges.
     """
-    a = np.unwrap(np.asarray(angle, float), axis=-1)
+    a = _unwrap(np.asarray(angle, float))
     n = a.shape[-1]
     k = np.round((a[..., -1] + (a[..., 1] - a[..., 0]) - a[..., 0]) / (2 * np.pi))[..., None]
-    per = a - 2 * np.pi * k * np.arange(n) / n
+    turns = bool(np.any(k))
+    per = a - 2 * np.pi * k * np.arange(n) / n if turns else a
     f = np.fft.rfft(per, axis=-1)
-    w = 2 * np.pi * np.fft.rfftfreq(n, period / n)
+    w = _omegas(n, period)
     f[..., min(harmonics + 1, (n - 1) // 2 + 1):] = 0.0   # incl. the Nyquist mode of an even n
-    d1 = np.fft.irfft(1j * w * f, n, axis=-1) + 2 * np.pi * k / period
+    d1 = np.fft.irfft(1j * w * f, n, axis=-1)
+    if turns:
+        d1 = d1 + 2 * np.pi * k / period
     d2 = np.fft.irfft(-(w * w) * f, n, axis=-1) if second else None
     return d1, d2

@@ -213,7 +213,12 @@ SOLVERS = {"clearance_implicit": clearance_implicit, "clearance_explicit": clear
 
 
 def compute(run: dict) -> dict:
-    """The physics of one run (what the runner times): the scene's solver."""
+    """The physics of one run (what the runner times): the scene's solver.  The compiled
+    kernels are loaded first (once per process), so that no measured period carries
+    numba's start."""
+    from . import ivp_kernel
+
+    ivp_kernel.warm()
     return SOLVERS[run["solver"]](run)
 
 

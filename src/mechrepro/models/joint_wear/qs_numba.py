@@ -1,0 +1,102 @@
+"""Compiled element-wise parts of the quasi-static contact state (quasistatic.py).
+
+:func:`.quasistatic._contact_state` is ~25 numpy operations on arrays of a few hundred
+samples per friction pass, each paying numpy's call overhead; here each stage is one
+loop (numba, cached on disk).  The operations and their order are those of the numpy
+code, so results agree with it to round-off (only libm's and numpy's transcendental
+functions may differ in the last bit).  The spectral derivative between the stages stays
+numpy's FFT.  Imported lazily (it imports numba); without numba the numpy code runs.
+"""
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+jit = numba.njit(cache=True, error_model="numpy")
+
+
+@jit
+def setup(th3, ph2, w3, w2, a3, a2, M11, M22, am, l0, l2, l3, m2, m3, P, Fx, Fy, g):
+    """b3, b2 (the equations of motion without the joint force) and J^T of the joint."""
+    n = th3.size
+    b3 = np.empty(n)
+    b2 = np.empty(n)
+    j11 = np.empty(n)
+    j12 = np.empty(n)
+    j21 = np.empty(n)
+    j22 = np.empty(n)
+    det = np.empty(n)
+    for i in range(n):
+        c3, s3 = math.cos(th3[i]), math.sin(th3[i])
+        c2, s2 = math.cos(ph2[i]), math.sin(ph2[i])
+        cd = math.cos(th3[i] - ph2[i])
+        sd = math.sin(th3[i] - ph2[i])
+        rhs3 = M11 * a3[i] + am * cd * a2[i] + am * sd * w2[i] ** 2
+        rhs2 = am * cd * a3[i] + M22 * a2[i] - am * sd * w3[i] ** 2
+        # loads.applied_forces
+        ex, ey = l0 + l3 / 2 * c3, l3 / 2 * s3
+        dx, dy = Fx - ex, Fy - ey
+        dn = math.hypot(dx, dy)
+        Px, Py = P * dx / dn, P * dy / dn
+        Q3 = l3 / 2 * (-s3 * Px + c3 * Py) - g * (m3 * l3 / 2 + m2 * l3) * c3
+        Q2 = -g * m2 * l2 / 2 * c2
+        b3[i] = rhs3 - Q3
+        b2[i] = rhs2 - Q2
+        j11[i], j12[i] = -l3 * s3, l3 * c3
+        j21[i], j22[i] = -l2 * s2, l2 * c2
+        det[i] = j11[i] * j22[i] - j12[i] * j21[i]
+    return b3, b2, j11, j12, j21, j22, det
+
+
+@jit
+def force(b3, b2, j11, j12, j21, j22, det, tau, sgn, mu, K, n_exp):
+    """The joint force for a friction moment tau: F_N, the contact direction, delta."""
+    n = b3.size
+    F_N = np.empty(n)
+    ang_n = np.empty(n)
+    delta = np.empty(n)
+    inv_n = 1.0 / n_exp
+    for i in range(n):
+        c2 = b2[i] - tau[i]
+        fx = (b3[i] * j22[i] - j12[i] * c2) / det[i]
+        fy = (j11[i] * c2 - j21[i] * b3[i]) / det[i]
+        mus = mu * sgn[i]
+        F_N[i] = math.hypot(fx, fy) / math.sqrt(1.0 + mus ** 2)
+        ang_n[i] = math.atan2(fy, fx) - math.atan(mus)
+        delta[i] = (max(F_N[i], 0.0) / K) ** inv_n
+    return F_N, ang_n, delta
+
+
+@jit
+def friction(F_N, delta, dang, slide, w2R, clearance, v_eps, mu, R_bush):
+    """Sliding velocity, friction sign and force, friction moment."""
+    n = F_N.size
+    v_T = np.empty(n)
+    sgn = np.empty(n)
+    F_T = np.empty(n)
+    tau = np.empty(n)
+    for i in range(n):
+        v = (clearance + delta[i]) * dang[i] + slide - w2R[i]
+        v_T[i] = v
+        s = v / math.sqrt(v * v + v_eps * v_eps)
+        sgn[i] = s
+        F_T[i] = mu * F_N[i] * s
+        tau[i] = R_bush * F_T[i]
+    return v_T, sgn, F_T, tau
+
+
+@jit
+def direction(ang_n, ph2):
+    """n = (cos, sin) of the contact direction and the contact angle psi in (-pi, pi]."""
+    n = ang_n.size
+    nx = np.empty(n)
+    ny = np.empty(n)
+    psi = np.empty(n)
+    for i in range(n):
+        nx[i] = math.cos(ang_n[i])
+        ny[i] = math.sin(ang_n[i])
+        x = ang_n[i] - ph2[i]
+        psi[i] = math.atan2(math.sin(x), math.cos(x))
+    return nx, ny, psi
