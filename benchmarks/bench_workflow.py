@@ -1,10 +1,12 @@
 """Whole-workflow timings, an old revision and this tree measured side by side in one run.
 
-    python benchmarks/bench_workflow.py [--before REV] [--profiles ci default] [--cores 2]
+    python benchmarks/bench_workflow.py [--before REV] [--profiles ci default] [--cores 2] [--warm]
 
-For each version (``REV`` checked out with ``git archive``, and the working tree) in a
-fresh temporary copy: the pipeline from clean, then a no-op run, then a dry run (the no-op
-*decision*), per profile.  Then, per paper, the solver jobs' wall time (Snakemake's
+For each version (``REV`` checked out with ``git archive``, and the working tree without
+its ``__pycache__``, like a fresh clone) in a fresh temporary copy, per profile: the pipeline from clean (numba compiling its kernels on
+the way), then a no-op run, then a dry run (the no-op *decision*), and with ``--warm`` once
+more from clean results with the compiled kernels cached.  Then, per paper (from the last
+run), the solver jobs' wall time (Snakemake's
 benchmark files) against the solves' own time (``wall_time`` of each run), i.e. how much
 is start-up and writing; the summed wall time per job kind (solve, gather, validate,
 notebook, other); and Snakemake's own import time, the floor of a no-op decision.
@@ -30,7 +32,11 @@ def checkout(rev: str | None, dst: Path) -> Path:
     if rev is None:
         for item in ITEMS:
             src = ROOT / item
-            (shutil.copytree if src.is_dir() else shutil.copy2)(src, dst / item)
+            # without __pycache__: a fresh clone has no compiled (numba) kernels on disk either
+            if src.is_dir():
+                shutil.copytree(src, dst / item, ignore=shutil.ignore_patterns("__pycache__"))
+            else:
+                shutil.copy2(src, dst / item)
     else:
         tar = subprocess.run(["git", "archive", rev, *ITEMS], cwd=ROOT, capture_output=True,
                              check=True).stdout
@@ -90,14 +96,22 @@ def import_seconds(module: str) -> float:
     return time.perf_counter() - t0
 
 
-def measure(label: str, work: Path, profile: str, cores: int) -> dict:
+def measure(label: str, work: Path, profile: str, cores: int, warm_too: bool) -> dict:
     cfg = ["--config", f"profile={profile}", f"results=results-{profile}"]
     full = snakemake(work, "--cores", str(cores), *cfg)
     noop = snakemake(work, "--cores", str(cores), *cfg)
     dry = snakemake(work, "-n", *cfg)
     print(f"  {label:>8s} {profile:8s} from clean {full:7.1f} s   no-op run {noop:5.2f} s   "
           f"no-op decision (-n) {dry:5.2f} s", flush=True)
-    return {"full": full, "noop": noop, "dry": dry,
+    warm = float("nan")
+    if warm_too:
+        # results deleted, compiled kernels kept: every later reproduction on this clone
+        shutil.rmtree(work / f"results-{profile}")
+        shutil.rmtree(work / ".snakemake", ignore_errors=True)
+        warm = snakemake(work, "--cores", str(cores), *cfg)
+        print(f"  {label:>8s} {profile:8s} from clean with the compiled kernels cached "
+              f"{warm:7.1f} s", flush=True)
+    return {"full": full, "noop": noop, "dry": dry, "warm": warm,
             "papers": per_paper(work / f"results-{profile}"),
             "kinds": per_kind(work / f"results-{profile}")}
 
@@ -107,6 +121,8 @@ def main() -> None:
     ap.add_argument("--before", default="39b0397", help="revision to compare with")
     ap.add_argument("--profiles", nargs="+", default=["ci"])
     ap.add_argument("--cores", type=int, default=2)
+    ap.add_argument("--warm", action="store_true",
+                    help="also rerun from clean results with the compiled kernels cached")
     a = ap.parse_args()
     tmp = Path(tempfile.mkdtemp(prefix="bench-workflow-"))
     versions = {f"before ({a.before})": checkout(a.before, tmp / "before"),
@@ -115,7 +131,7 @@ def main() -> None:
     for profile in a.profiles:
         print(f"profile {profile}:", flush=True)
         for label, work in versions.items():
-            res[(label, profile)] = measure(label.split()[0], work, profile, a.cores)
+            res[(label, profile)] = measure(label.split()[0], work, profile, a.cores, a.warm)
         b, f = (res[(lab, profile)] for lab in versions)
         print(f"  ratio before/after: from clean {b['full'] / f['full']:.2f}x, no-op decision "
               f"{b['dry'] / f['dry']:.2f}x")
