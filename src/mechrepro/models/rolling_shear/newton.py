@@ -25,6 +25,14 @@ class NewtonResult:
     reason: str = ""
 
 
+def reason(status: int, det: float, max_iter: int) -> str:
+    """Why a Newton solve failed, by status (1 non-finite, 2 singular, 3 no convergence;
+    the codes of :mod:`.kernels`)."""
+    return {1: "non-finite residual",
+            2: f"singular Jacobian (det = {det:.3g}, toggle configuration)",
+            3: f"no convergence in {max_iter} iterations"}[status]
+
+
 def _newton2(f_and_j, x0, tol, max_iter, scale):
     a, b = x0
     G = math.inf
@@ -34,16 +42,15 @@ def _newton2(f_and_j, x0, tol, max_iter, scale):
         if G < tol:
             return NewtonResult((a, b), G, k, True)
         if not math.isfinite(G):
-            return NewtonResult((a, b), G, k, False, "non-finite residual")
+            return NewtonResult((a, b), G, k, False, reason(1, 0.0, max_iter))
         if k == max_iter:
             break
         det = j11 * j22 - j12 * j21
         if abs(det) <= SINGULAR_RTOL * scale:
-            return NewtonResult((a, b), G, k, False,
-                                f"singular Jacobian (det = {det:.3g}, toggle configuration)")
+            return NewtonResult((a, b), G, k, False, reason(2, det, max_iter))
         a -= (f1 * j22 - f2 * j12) / det
         b -= (j11 * f2 - j21 * f1) / det
-    return NewtonResult((a, b), G, max_iter, False, f"no convergence in {max_iter} iterations")
+    return NewtonResult((a, b), G, max_iter, False, reason(3, 0.0, max_iter))
 
 
 def pose(g: Geometry, x0, x_target: float, tol: float, max_iter: int = 30) -> NewtonResult:

@@ -35,6 +35,30 @@ def _guide_point(g: Geometry, beta: float, x_target: float) -> complex:
     return O - g.d * complex(math.cos(theta5 + g.beta1), math.sin(theta5 + g.beta1))
 
 
+def _guide_point_array(g: Geometry, beta: np.ndarray, x_target: float) -> tuple:
+    """:func:`_guide_point` for an array of blade angles, as (real, imag) arrays.
+
+    The same operations in the same order, componentwise (so the same bits where numpy's
+    sin/cos are the C library's; the scan only brackets the roots, see
+    :func:`_guide_distance_scan`)."""
+    sb, cb = np.sin(beta), np.cos(beta)
+    mx, my = x_target + g.R * sb, -g.s + g.R * (1.0 - cb)
+    ox, oy = mx + g.h * -sb, my + g.h * cb
+    t = beta + g.beta2 + g.beta1
+    return ox - g.d * np.cos(t), oy - g.d * np.sin(t)
+
+
+def _guide_distance_scan(g: Geometry, betas: np.ndarray, x_target: float) -> np.ndarray:
+    """|ED(beta)| - l6 on the scan grid, vectorised; the few values within 1e-6 mm of zero
+    (where a round-off difference could flip a sign) are recomputed by the scalar
+    :func:`_guide_point`, so the brackets are exactly those of a scalar scan."""
+    dx, dy = _guide_point_array(g, betas, x_target)
+    f = np.hypot(dx, dy) - g.l6
+    for i in np.nonzero(np.abs(f) < 1e-6)[0]:
+        f[i] = abs(_guide_point(g, float(betas[i]), x_target)) - g.l6
+    return f
+
+
 def exact_pose(g: Geometry, x_target: float, beta_window: float = 0.3, n_scan: int = 601):
     """Reference (theta5, theta6) with theta6 in [pi, 2 pi] and theta5 in [0, pi].
 
@@ -44,7 +68,7 @@ def exact_pose(g: Geometry, x_target: float, beta_window: float = 0.3, n_scan: i
     turns the blade by a few degrees).  Raises NonAssembly when no root qualifies.
     """
     betas = np.linspace(-beta_window, beta_window, n_scan)
-    f = np.array([abs(_guide_point(g, b, x_target)) - g.l6 for b in betas])
+    f = _guide_distance_scan(g, betas, x_target)
     roots = []
     for i in np.nonzero(np.sign(f[:-1]) * np.sign(f[1:]) <= 0)[0]:
         b = brentq(lambda x: abs(_guide_point(g, x, x_target)) - g.l6, betas[i], betas[i + 1],

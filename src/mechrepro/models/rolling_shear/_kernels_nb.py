@@ -1,0 +1,152 @@
+"""The numba kernels of :mod:`.kernels` (imported only through :func:`.kernels.kernel`:
+importing this module imports numba).  Module-level functions, so that numba's disk cache
+holds them (and the kernels that call each other) across processes."""
+import math
+
+import numba
+import numpy as np
+
+jit = numba.njit(cache=True, error_model="numpy")
+
+
+@jit
+def fitness(kind, c, X, G):
+    """G = sum |residuals| per particle, Eq. (9) (kind LOOPS) or Eq. (7) (kind POSE)."""
+    N = X.shape[0]
+    if kind == 0:
+        l1, l2, l3, l4 = c[0], c[1], c[2], c[3]
+        cx, cy, c6, s6, ix, iy = c[4], c[5], c[6], c[7], c[8], c[9]
+        l9, l10, l11 = c[10], c[11], c[12]
+        for i in range(N):
+            t1, t2, t3, t4 = X[i, 0], X[i, 1], X[i, 2], X[i, 3]
+            f1 = l1 * math.cos(t1) - l3 * math.cos(t3) - cx - c6 - l10 - l9
+            f2 = l1 * math.sin(t1) - l3 * math.sin(t3) - cy - s6 + l11
+            f3 = l2 * math.cos(t2) - l4 * math.cos(t4) - ix - c6 - l10
+            f4 = l2 * math.sin(t2) - l4 * math.sin(t4) - iy - s6 + l11
+            G[i] = abs(f1) + abs(f2) + abs(f3) + abs(f4)
+    else:
+        l6, d, beta1, beta2, h, R, s, x_target = c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]
+        y1 = -h
+        for i in range(N):
+            t5, t6 = X[i, 0], X[i, 1]
+            b = t5 - beta2
+            cb, sb = math.cos(b), math.sin(b)
+            ox = l6 * math.cos(t6) + d * math.cos(t5 + beta1)
+            oy = l6 * math.sin(t6) + d * math.sin(t5 + beta1)
+            xh = ox + cb * 0.0 - sb * y1
+            yh = oy + sb * 0.0 + cb * y1
+            b = t5 - beta2
+            xk = xh - R * math.sin(b)
+            yk = yh - R * (1.0 - math.cos(b))
+            G[i] = abs(xk - x_target) + abs(yk + s)
+
+
+@jit
+def selpso_iterate(kind, c, X, V, pbest, pG, gbest, gG, rng, max_iter, w_start, w_end,
+                   c1, c2, tol, v_max, clip_v, selection, hist):
+    """Iterations 1..max_iter of :func:`.selpso.selpso` (unbounded); X, V, pbest, pG,
+    gbest updated in place, hist[k] = gG after iteration k.  Returns (gG, k)."""
+    N, n = X.shape
+    half = N // 2
+    G = np.empty(N)
+    r = np.empty((2, N, n))
+    k = 0
+    for it in range(1, max_iter + 1):
+        k = it
+        if gG < tol:
+            k = it - 1
+            break
+        w = w_start - (w_start - w_end) * (it - 1) / max(max_iter - 1, 1)
+        for a in range(2):
+            for i in range(N):
+                for j in range(n):
+                    r[a, i, j] = rng.random()
+        for i in range(N):
+            for j in range(n):
+                v = (w * V[i, j] + c1 * r[0, i, j] * (pbest[i, j] - X[i, j])
+                     + c2 * r[1, i, j] * (gbest[j] - X[i, j]))
+                if clip_v:
+                    if v < -v_max:
+                        v = -v_max
+                    elif v > v_max:
+                        v = v_max
+                V[i, j] = v
+                X[i, j] = X[i, j] + v
+        fitness(kind, c, X, G)
+        for i in range(N):
+            if G[i] < pG[i]:
+                for j in range(n):
+                    pbest[i, j] = X[i, j]
+                pG[i] = G[i]
+        ib = 0
+        best = pG[0]
+        if not math.isnan(best):
+            for i in range(1, N):
+                if math.isnan(pG[i]):
+                    ib = i
+                    break
+                if pG[i] < best:
+                    best = pG[i]
+                    ib = i
+        if pG[ib] < gG:
+            for j in range(n):
+                gbest[j] = pbest[ib, j]
+            gG = pG[ib]
+        if selection:
+            order = np.argsort(G, kind="mergesort")
+            for m in range(half):
+                dst, src = order[N - half + m], order[m]
+                for j in range(n):
+                    X[dst, j] = X[src, j]
+                    V[dst, j] = V[src, j]
+        hist[it] = gG
+    return gG, k
+
+
+@jit
+def pose_newton(c, a, b, x_target, tol, max_iter, scale, singular_rtol):
+    """:func:`.newton.pose` (Eq. 7): returns (a, b, G, iterations, status, det)."""
+    l6, d, b1, b2, h, R, s = c[0], c[1], c[2], c[3], c[4], c[5], c[6]
+    G = math.inf
+    for k in range(max_iter + 1):
+        be = a - b2
+        cb, sb = math.cos(be), math.sin(be)
+        c51, s51 = math.cos(a + b1), math.sin(a + b1)
+        c6, s6 = math.cos(b), math.sin(b)
+        xk = l6 * c6 + d * c51 + h * sb - R * sb
+        yk = l6 * s6 + d * s51 - h * cb - R * (1.0 - cb)
+        f1, f2 = xk - x_target, yk + s
+        j11, j12 = -d * s51 + (h - R) * cb, -l6 * s6
+        j21, j22 = d * c51 + (h - R) * sb, l6 * c6
+        G = abs(f1) + abs(f2)
+        if G < tol:
+            return a, b, G, k, 0, 0.0
+        if not math.isfinite(G):
+            return a, b, G, k, 1, 0.0
+        if k == max_iter:
+            break
+        det = j11 * j22 - j12 * j21
+        if abs(det) <= singular_rtol * scale:
+            return a, b, G, k, 2, det
+        a -= (f1 * j22 - f2 * j12) / det
+        b -= (j11 * f2 - j21 * f1) / det
+    return a, b, G, max_iter, 3, 0.0
+
+
+@jit
+def pose_stroke(c, x_k, a0, b0, tol, max_iter, scale, singular_rtol, out):
+    """The Newton loop of :func:`.optimise.stroke_poses`: out[i] = (theta5, theta6),
+    each point from the linear extrapolation of the two previous.  Returns (index of
+    the first point that fails or -1, its status, G, det)."""
+    ga, gb = a0, b0
+    for i in range(x_k.size):
+        a, b, G, k, status, det = pose_newton(c, ga, gb, x_k[i], tol, max_iter, scale,
+                                              singular_rtol)
+        if status != 0:
+            return i, status, G, det
+        out[i, 0], out[i, 1] = a, b
+        if i > 0:
+            ga, gb = 2 * out[i, 0] - out[i - 1, 0], 2 * out[i, 1] - out[i - 1, 1]
+        else:
+            ga, gb = a, b
+    return -1, 0, 0.0, 0.0
