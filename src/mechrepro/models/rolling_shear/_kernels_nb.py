@@ -150,3 +150,65 @@ def pose_stroke(c, x_k, a0, b0, tol, max_iter, scale, singular_rtol, out):
         else:
             ga, gb = a, b
     return -1, 0, 0.0, 0.0
+
+
+@jit
+def assembles_clearly(c, poses, margin):
+    """True when both dyads of Eq. (9) close at every pose (theta5, theta6) with theta1..4
+    inside the paper's ranges by more than ``margin`` (rad, and a relative margin on the
+    squared dyad height): the decision of :func:`.optimise.check_assembly` cannot depend on
+    round-off then.  False means "not clearly": the caller runs the numpy check, which
+    decides (and names the cut point that fails)."""
+    l1, l2, l3, l4, l5, l6, l8, l9, l10, l11 = (c[0], c[1], c[2], c[3], c[4], c[5], c[6],
+                                                c[7], c[8], c[9])
+    alpha, e1, e2 = c[10], c[11], c[12]
+    two_pi = 2.0 * math.pi
+    for i in range(poses.shape[0]):
+        t5, t6 = poses[i, 0], poses[i, 1]
+        dx_, dy_ = l6 * math.cos(t6), l6 * math.sin(t6)
+        for k in range(2):
+            if k == 0:   # A -> C, levers l1, l3
+                px, py = -l10 - l9, l11
+                qx = dx_ + l8 * math.cos(t5 + alpha)
+                qy = dy_ + l8 * math.sin(t5 + alpha)
+                rp, rq, e = l1, l3, e1
+            else:        # G -> I, levers l2, l4
+                px, py = -l10, l11
+                qx = dx_ + l5 * math.cos(t5)
+                qy = dy_ + l5 * math.sin(t5)
+                rp, rq, e = l2, l4, e2
+            L = math.hypot(qx - px, qy - py)
+            if not L > 0.0:
+                return False
+            ux, uy = (qx - px) / L, (qy - py) / L
+            a = (rp * rp - rq * rq + L * L) / (2.0 * L)
+            h2 = rp * rp - a * a
+            if not h2 > margin * rp * rp:
+                return False
+            hgt = math.sqrt(h2)
+            xx = px + a * ux + e * hgt * uy
+            xy = py + a * uy - e * hgt * ux
+            # theta1 / theta2 (crank, in [pi, 2 pi]) and theta3 / theta4 (rod, in [0, pi])
+            crank = math.atan2(xy - py, xx - px) % two_pi
+            rod = math.atan2(xy - qy, xx - qx) % two_pi
+            if not (math.pi + margin < crank < two_pi - margin):
+                return False
+            if not (margin < rod < math.pi - margin):
+                return False
+    return True
+
+
+@jit
+def guide_scan(c, betas, x_target, dx, dy, f):
+    """:func:`.pose._guide_point_array` and |ED| - l6 over the scan grid (the same
+    operations; the caller re-evaluates values near zero by the scalar path)."""
+    R, h, d, beta1, beta2, s, l6 = c[0], c[1], c[2], c[3], c[4], c[5], c[6]
+    for i in range(betas.size):
+        b = betas[i]
+        sb, cb = math.sin(b), math.cos(b)
+        mx, my = x_target + R * sb, -s + R * (1.0 - cb)
+        ox, oy = mx + h * -sb, my + h * cb
+        t = b + beta2 + beta1
+        dx[i] = ox - d * math.cos(t)
+        dy[i] = oy - d * math.sin(t)
+        f[i] = math.hypot(dx[i], dy[i]) - l6

@@ -71,3 +71,14 @@ def loops_constants(g, theta5: float, theta6: float) -> np.ndarray:
 def pose_constants(g, x_target: float = 0.0) -> np.ndarray:
     """The constants of Eq. (7) (fitness and Newton)."""
     return np.array([g.l6, g.d, g.beta1, g.beta2, g.h, g.R, g.s, x_target])
+
+
+def assembly_constants(g) -> np.ndarray:
+    """The constants of :func:`._kernels_nb.assembles_clearly`."""
+    return np.array([g.l1, g.l2, g.l3, g.l4, g.l5, g.l6, g.l8, g.l9, g.l10, g.l11, g.alpha,
+                     float(g.elbow1), float(g.elbow2)])
+
+
+def guide_constants(g) -> np.ndarray:
+    """The constants of :func:`._kernels_nb.guide_scan`."""
+    return np.array([g.R, g.h, g.d, g.beta1, g.beta2, g.s, g.l6])
