@@ -57,6 +57,26 @@ def kernel(name: str):
     return getattr(_K, name)
 
 
+def warm() -> None:
+    """Load every kernel (numba's disk cache, or a compile) by calling it once on tiny
+    inputs of the production types, so that this one-time cost of a process (~0.2-0.5 s)
+    is paid at import, not inside the first timed solve (it would inflate e.g. the first
+    selPSO run's time per solve).  Nothing is computed that a run uses."""
+    if not available():
+        return
+    z2 = np.zeros((2, 2))
+    gen = np.random.default_rng(0)
+    kernel("selpso_iterate")(LOOPS, np.zeros(13), z2.copy(), z2.copy(), z2.copy(), np.ones(2),
+                             np.zeros(2), 1.0, gen, 1, 0.9, 0.4, 2.0, 2.0, 0.0, 1.0, True,
+                             True, np.empty(2))
+    kernel("fitness")(POSE, np.zeros(8), z2, np.empty(2))
+    kernel("pose_stroke")(np.ones(8), np.zeros(2), 0.0, 0.0, 1.0, 1, 1.0, 1e-12, z2.copy())
+    kernel("assembles_clearly")(np.ones(13), z2, 1e-9)
+    betas = np.zeros(2)
+    betas.setflags(write=False)   # the scan grid of pose.exact_pose is read-only
+    kernel("guide_scan")(np.ones(7), betas, 0.0, np.empty(2), np.empty(2), np.empty(2))
+
+
 def loops_constants(g, theta5: float, theta6: float) -> np.ndarray:
     """The constants of the Eq. (9) fitness, computed exactly as :func:`.loops.residuals`
     computes them."""
