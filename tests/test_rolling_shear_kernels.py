@@ -107,3 +107,26 @@ def test_partial_scan_gives_the_same_tilt():
     first = calibrate_tilt(g, 1.4341, 9, 1e-9, whole_scan=False)
     assert whole[0] == first[0] and whole[1]["tilt"] == first[1]["tilt"]
     assert np.isnan(first[1]["H_scan"]).sum() > np.isnan(whole[1]["H_scan"]).sum()
+
+
+def test_newton_continuation_compiled_equals_numpy(monkeypatch):
+    """The warm Newton stroke (Eqs. 7 and 9 per cut point) and a refused start."""
+    from dataclasses import replace
+
+    from mechrepro.models.rolling_shear import newton
+
+    g = geometry()
+    x_k = cut_points(g, 33)[1]
+    first = stroke.solve_exact(g, x_k[:1]).theta[0]
+    settings = stroke.SolverSettings(initial_value=tuple(np.round(first, 1)))
+
+    def run():
+        sol = stroke.solve_newton(g, x_k, settings)
+        bad = newton.loops(g, (0.0, 0.0, 0.0, 0.0), 4.0, 3.3, 1e-11, 3)   # no convergence
+        sing = newton.loops(replace(g, l3=g.l1), (1.0, 1.0, 1.0, 1.0), 2.0, 3.0, 1e-11)
+        return (sol.theta, sol.fitness_pose, sol.fitness_loops, sol.iterations_loops,
+                bad.x, bad.fitness, bad.iterations, bad.reason, sing.reason)
+
+    off, on = both(monkeypatch, run)
+    for x, y in zip(off, on):
+        assert np.array_equal(np.asarray(x), np.asarray(y)), (x, y)

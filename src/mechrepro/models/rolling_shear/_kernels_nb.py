@@ -212,3 +212,64 @@ def guide_scan(c, betas, x_target, dx, dy, f):
         dx[i] = ox - d * math.cos(t)
         dy[i] = oy - d * math.sin(t)
         f[i] = math.hypot(dx[i], dy[i]) - l6
+
+
+@jit
+def newton2_dyad(la, lb, px, py, a, b, tol, max_iter, scale, singular_rtol):
+    """:func:`.newton._newton2` on one block of Eq. (9) (the dyad la, lb closing on
+    (px, py)): returns (a, b, G, iterations, status, det)."""
+    G = math.inf
+    for k in range(max_iter + 1):
+        ca, sa, cb, sb = math.cos(a), math.sin(a), math.cos(b), math.sin(b)
+        f1, f2 = la * ca - lb * cb - px, la * sa - lb * sb - py
+        j11, j12, j21, j22 = -la * sa, lb * sb, la * ca, -lb * cb
+        G = abs(f1) + abs(f2)
+        if G < tol:
+            return a, b, G, k, 0, 0.0
+        if not math.isfinite(G):
+            return a, b, G, k, 1, 0.0
+        if k == max_iter:
+            break
+        det = j11 * j22 - j12 * j21
+        if abs(det) <= singular_rtol * scale:
+            return a, b, G, k, 2, det
+        a -= (f1 * j22 - f2 * j12) / det
+        b -= (j11 * f2 - j21 * f1) / det
+    return a, b, G, max_iter, 3, 0.0
+
+
+@jit
+def loops_newton(c, t1, t2, t3, t4, theta5, theta6, tol, max_iter, singular_rtol):
+    """:func:`.newton.loops` (Eq. 9): the two dyads' results, each (a, b, G, iterations,
+    status, det)."""
+    l1, l2, l3, l4, l5, l6, l8, l9, l10, l11, alpha = (c[0], c[1], c[2], c[3], c[4], c[5],
+                                                       c[6], c[7], c[8], c[9], c[10])
+    c6, s6 = l6 * math.cos(theta6), l6 * math.sin(theta6)
+    cx = l8 * math.cos(theta5 + alpha) + c6 + l10 + l9
+    cy = l8 * math.sin(theta5 + alpha) + s6 - l11
+    ix = l5 * math.cos(theta5) + c6 + l10
+    iy = l5 * math.sin(theta5) + s6 - l11
+    r1 = newton2_dyad(l1, l3, cx, cy, t1, t3, 0.5 * tol, max_iter, l1 * l3, singular_rtol)
+    r2 = newton2_dyad(l2, l4, ix, iy, t2, t4, 0.5 * tol, max_iter, l2 * l4, singular_rtol)
+    return r1, r2
+
+
+@jit
+def loops_stroke(c, theta, tol, max_iter, singular_rtol):
+    """The Eq. (9) continuation of :func:`.stroke._newton_loops_stroke` (poses given, each
+    point from the linear extrapolation of the two previous); returns the summed fitness
+    (so that the work is not optimised away)."""
+    g1, g2, g3, g4 = theta[0, 0], theta[0, 1], theta[0, 2], theta[0, 3]
+    p1 = p2 = p3 = p4 = 0.0
+    total = 0.0
+    for i in range(theta.shape[0]):
+        r1, r2 = loops_newton(c, g1, g2, g3, g4, theta[i, 4], theta[i, 5], tol, max_iter,
+                              singular_rtol)
+        x1, x2, x3, x4 = r1[0], r2[0], r1[1], r2[1]
+        if i > 0:
+            g1, g2, g3, g4 = 2 * x1 - p1, 2 * x2 - p2, 2 * x3 - p3, 2 * x4 - p4
+        else:
+            g1, g2, g3, g4 = x1, x2, x3, x4
+        p1, p2, p3, p4 = x1, x2, x3, x4
+        total += r1[2] + r2[2]
+    return total

@@ -71,6 +71,9 @@ def warm() -> None:
                              True, np.empty(2))
     kernel("fitness")(POSE, np.zeros(8), z2, np.empty(2))
     kernel("pose_stroke")(np.ones(8), np.zeros(2), 0.0, 0.0, 1.0, 1, 1.0, 1e-12, z2.copy())
+    kernel("pose_newton")(np.ones(8), 0.0, 0.0, 0.0, 1.0, 1, 1.0, 1e-12)
+    kernel("loops_newton")(np.ones(11), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1, 1e-12)
+    kernel("loops_stroke")(np.ones(11), np.zeros((2, 6)), 1.0, 1, 1e-12)
     kernel("assembles_clearly")(np.ones(13), z2, 1e-9)
     betas = np.zeros(2)
     betas.setflags(write=False)   # the scan grid of pose.exact_pose is read-only
@@ -102,3 +105,8 @@ def assembly_constants(g) -> np.ndarray:
 def guide_constants(g) -> np.ndarray:
     """The constants of :func:`._kernels_nb.guide_scan`."""
     return np.array([g.R, g.h, g.d, g.beta1, g.beta2, g.s, g.l6])
+
+
+def newton_loops_constants(g) -> np.ndarray:
+    """The constants of :func:`._kernels_nb.loops_newton`."""
+    return np.array([g.l1, g.l2, g.l3, g.l4, g.l5, g.l6, g.l8, g.l9, g.l10, g.l11, g.alpha])

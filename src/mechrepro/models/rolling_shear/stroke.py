@@ -245,6 +245,12 @@ def time_newton_loops(g: Geometry, theta: np.ndarray, settings: SolverSettings,
 
 
 def _newton_loops_stroke(g: Geometry, theta: np.ndarray, settings: SolverSettings) -> None:
+    if kernels.available():  # the same loop compiled, as selPSO's iterations are
+        kernels.kernel("loops_stroke")(kernels.newton_loops_constants(g),
+                                       np.ascontiguousarray(theta, float),
+                                       float(settings.tol_loops), int(settings.max_iter),
+                                       newton.SINGULAR_RTOL)
+        return
     guess, prev = list(theta[0, :4]), None
     for i in range(len(theta)):
         r = newton.loops(g, guess, theta[i, 4], theta[i, 5], settings.tol_loops,
