@@ -42,6 +42,27 @@ def fitness(kind, c, X, G):
 
 
 @jit
+def stable_argsort(G, order):
+    """order = np.argsort(G, kind="stable") (NaN last), by insertion: the swarm has tens of
+    particles, and a stable sort's permutation is unique, so the same as numpy's."""
+    N = G.size
+    for i in range(N):
+        order[i] = i
+    for i in range(1, N):
+        k = order[i]
+        key = G[k]
+        j = i - 1
+        while j >= 0:
+            prev = G[order[j]]
+            if key < prev or (math.isnan(prev) and not math.isnan(key)):
+                order[j + 1] = order[j]
+                j -= 1
+            else:
+                break
+        order[j + 1] = k
+
+
+@jit
 def selpso_iterate(kind, c, X, V, pbest, pG, gbest, gG, rng, max_iter, w_start, w_end,
                    c1, c2, tol, v_max, clip_v, selection, hist):
     """Iterations 1..max_iter of :func:`.selpso.selpso` (unbounded); X, V, pbest, pG,
@@ -50,6 +71,7 @@ def selpso_iterate(kind, c, X, V, pbest, pG, gbest, gG, rng, max_iter, w_start, 
     half = N // 2
     G = np.empty(N)
     r = np.empty((2, N, n))
+    order = np.empty(N, np.int64)
     k = 0
     for it in range(1, max_iter + 1):
         k = it
@@ -93,7 +115,7 @@ def selpso_iterate(kind, c, X, V, pbest, pG, gbest, gG, rng, max_iter, w_start, 
                 gbest[j] = pbest[ib, j]
             gG = pG[ib]
         if selection:
-            order = np.argsort(G, kind="mergesort")
+            stable_argsort(G, order)
             for m in range(half):
                 dst, src = order[N - half + m], order[m]
                 for j in range(n):
