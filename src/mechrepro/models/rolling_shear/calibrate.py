@@ -37,17 +37,32 @@ def H_of_tilt(g: Geometry, tilt: float, n: int, tol: float) -> float:
         return math.nan
 
 
+def _scan(g: Geometry, target: float, n_scan: int, tol: float, whole: bool) -> np.ndarray:
+    """H over ``TILTS`` at ``n_scan`` cut points; unless ``whole``, it stops at the first
+    sign change of H - target between two assembling tilts (the bracket the calibration
+    takes, so the same tilt), leaving the rest NaN."""
+    H = np.full(len(TILTS), np.nan)
+    for j, t in enumerate(TILTS):
+        H[j] = H_of_tilt(g, t, n_scan, tol)
+        if (not whole and j > 0 and np.isfinite(H[j - 1]) and np.isfinite(H[j])
+                and (H[j - 1] - target) * (H[j] - target) <= 0):
+            break
+    return H
+
+
 def calibrate_tilt(g: Geometry, target: float, n: int, tol: float,
-                   n_scan: int = 33) -> tuple[Geometry, dict]:
+                   n_scan: int = 33, whole_scan: bool = True) -> tuple[Geometry, dict]:
     """The geometry whose tilt gives H = target (mm) with ``n`` cut points.
 
     Scans ``TILTS`` at ``n_scan`` cut points (cheap), takes the first sign change of
     H - target among assembling members (H rises with the tilt), moves that bracket until it
     brackets the root at ``n`` points, and refines it by Brent's method.  Raises
-    CalibrationError when no member of the family reaches the target.
+    CalibrationError when no member of the family reaches the target.  With
+    ``whole_scan=False`` the scan stops at that first sign change (the same tilt; ``H_scan``,
+    ``tilt_min`` and ``H_at_min_tilt`` then cover only the tilts scanned).
     """
     n_scan = min(n_scan, n)
-    H = np.array([H_of_tilt(g, t, n_scan, tol) for t in TILTS])
+    H = _scan(g, target, n_scan, tol, whole_scan)
     ok = np.isfinite(H)
     if not ok.any():
         # say why at the configured tilt (NonAssembly names the cut point and the loop)
@@ -62,8 +77,12 @@ def calibrate_tilt(g: Geometry, target: float, n: int, tol: float,
             f"{np.nanmin(H):.4g}..{np.nanmax(H):.4g} mm (at {n_scan} cut points)")
     i = idx[0]
 
+    seen = {}  # brentq starts by evaluating the bracket the loop below has just evaluated
+
     def fn(t):
-        return H_of_tilt(g, t, n, tol) - target
+        if t not in seen:
+            seen[t] = H_of_tilt(g, t, n, tol) - target
+        return seen[t]
 
     lo, hi = TILTS[i], TILTS[i + 1]
     for _ in range(len(TILTS)):  # the root moves little between n_scan and n points

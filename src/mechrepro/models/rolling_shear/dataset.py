@@ -10,12 +10,10 @@ import xarray as xr
 from mechrepro.units import var
 
 from .context import Context
-from .geometry import OPTIMISED_LEVERS
+from .geometry import GEOMETRY_KEYS, OPTIMISED_LEVERS
 from .motion_laws import ANGLE_NAMES
 
-#: constants of the run's geometry stored with it (enough to redraw the linkage)
-GEOMETRY_KEYS = ("l1", "l2", "l3", "l4", "l5", "l6", "l8", "l9", "l10", "l11", "alpha",
-                 "beta1", "beta2", "d", "h", "R", "s", "width", "x_mid")
+__all__ = ["GEOMETRY_KEYS", "geometry_outputs", "to_dataset"]
 
 
 def geometry_outputs(ctx: Context) -> dict:

@@ -5,8 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from .blade import arc_points, carrier_points
-from .dataset import GEOMETRY_KEYS
-from .geometry import Geometry
+from .geometry import GEOMETRY_KEYS, Geometry
 from .loops import pivots
 
 

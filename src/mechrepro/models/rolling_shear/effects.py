@@ -59,10 +59,10 @@ def tilt_scan(ctx) -> dict:
 def initial_values(ctx) -> dict:
     """Fig. 12: selPSO fitness G of Eq. (9) against the iterations at mid-cut, from each
     initial value of ``options.initial_values`` (the pose from the closed form)."""
-    from . import loops as loops_mod
     from . import pose as pose_mod
     from .branch import on_design_branch
     from .selpso import selpso
+    from .stroke import loops_fitness
 
     inits = np.asarray(ctx.options["initial_values"], float)
     i_mid = ctx.n // 2
@@ -73,8 +73,7 @@ def initial_values(ctx) -> dict:
     iters, fit, conv, design, times = [], [], [], [], []
     for k, x0 in enumerate(inits):
         with stopwatch() as sw:
-            r = selpso(lambda X: np.abs(loops_mod.residuals(ctx.g, X, t5, t6)).sum(-1), x0, st,
-                       rng, period=2 * math.pi)
+            r = selpso(loops_fitness(ctx.g, t5, t6), x0, st, rng, period=2 * math.pi)
         times.append(sw.seconds)
         hist[k, :r.history.size] = r.history
         iters.append(r.iterations)

@@ -36,7 +36,8 @@ def calibrated_member(ctx: Context, member: dict, levers: dict) -> tuple[float, 
     """(calibrated tilt, H of the lever set) of one member; NaN if it cannot reach the target."""
     try:
         gc, info = calibrate_tilt(member_geometry(ctx.g_uncalibrated, member),
-                                  ctx.calibration_target, ctx.n, ctx.tol_floor)
+                                  ctx.calibration_target, ctx.n, ctx.tol_floor,
+                                  whole_scan=False)  # only the tilt is kept
         gp = gc.with_levers(**levers)
         return info["tilt"], optimise.objective(gp, cut_points(gp, ctx.n)[1], ctx.tol_floor)
     except (CalibrationError, NonAssembly, ValueError):

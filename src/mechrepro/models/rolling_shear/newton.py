@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from . import kernels
 from .geometry import Geometry
 
 SINGULAR_RTOL = 1e-12
@@ -25,6 +26,14 @@ class NewtonResult:
     reason: str = ""
 
 
+def reason(status: int, det: float, max_iter: int) -> str:
+    """Why a Newton solve failed, by status (1 non-finite, 2 singular, 3 no convergence;
+    the codes of :mod:`.kernels`)."""
+    return {1: "non-finite residual",
+            2: f"singular Jacobian (det = {det:.3g}, toggle configuration)",
+            3: f"no convergence in {max_iter} iterations"}[status]
+
+
 def _newton2(f_and_j, x0, tol, max_iter, scale):
     a, b = x0
     G = math.inf
@@ -34,20 +43,28 @@ def _newton2(f_and_j, x0, tol, max_iter, scale):
         if G < tol:
             return NewtonResult((a, b), G, k, True)
         if not math.isfinite(G):
-            return NewtonResult((a, b), G, k, False, "non-finite residual")
+            return NewtonResult((a, b), G, k, False, reason(1, 0.0, max_iter))
         if k == max_iter:
             break
         det = j11 * j22 - j12 * j21
         if abs(det) <= SINGULAR_RTOL * scale:
-            return NewtonResult((a, b), G, k, False,
-                                f"singular Jacobian (det = {det:.3g}, toggle configuration)")
+            return NewtonResult((a, b), G, k, False, reason(2, det, max_iter))
         a -= (f1 * j22 - f2 * j12) / det
         b -= (j11 * f2 - j21 * f1) / det
-    return NewtonResult((a, b), G, max_iter, False, f"no convergence in {max_iter} iterations")
+    return NewtonResult((a, b), G, max_iter, False, reason(3, 0.0, max_iter))
+
+
+def _result(a, b, G, k, status, det, max_iter) -> NewtonResult:
+    return NewtonResult((a, b), G, k, status == 0, reason(status, det, max_iter) if status else "")
 
 
 def pose(g: Geometry, x0, x_target: float, tol: float, max_iter: int = 30) -> NewtonResult:
-    """Eq. (7): theta5, theta6 with the lowest point at (x_target, -s)."""
+    """Eq. (7): theta5, theta6 with the lowest point at (x_target, -s).  Compiled
+    (:mod:`.kernels`) where numba is installed: the same operations, the same bits."""
+    if kernels.available():
+        return _result(*kernels.kernel("pose_newton")(
+            kernels.pose_constants(g), float(x0[0]), float(x0[1]), float(x_target), float(tol),
+            int(max_iter), abs(g.R - g.h) * g.l6, SINGULAR_RTOL), max_iter)
     R, h, d, l6, b1, b2, s = g.R, g.h, g.d, g.l6, g.beta1, g.beta2, g.s
 
     def fj(t5, t6):
@@ -66,7 +83,14 @@ def pose(g: Geometry, x0, x_target: float, tol: float, max_iter: int = 30) -> Ne
 
 def loops(g: Geometry, x0, theta5: float, theta6: float, tol: float,
           max_iter: int = 30) -> NewtonResult:
-    """Eq. (9): theta1..theta4 (two independent 2x2 blocks)."""
+    """Eq. (9): theta1..theta4 (two independent 2x2 blocks); compiled like :func:`pose`."""
+    if kernels.available():
+        t1, t2, t3, t4 = x0
+        d1, d2 = kernels.kernel("loops_newton")(
+            kernels.newton_loops_constants(g), float(t1), float(t2), float(t3), float(t4),
+            float(theta5), float(theta6), float(tol), int(max_iter), SINGULAR_RTOL)
+        r1, r2 = _result(*d1, max_iter), _result(*d2, max_iter)
+        return _combine(r1, r2)
     c6, s6 = g.l6 * math.cos(theta6), g.l6 * math.sin(theta6)
     # carrier joints relative to the crank pivots A and G
     cx = g.l8 * math.cos(theta5 + g.alpha) + c6 + g.l10 + g.l9
@@ -84,6 +108,11 @@ def loops(g: Geometry, x0, theta5: float, theta6: float, tol: float,
     t1, t2, t3, t4 = x0
     r1 = _newton2(block(g.l1, g.l3, cx, cy), (t1, t3), 0.5 * tol, max_iter, g.l1 * g.l3)
     r2 = _newton2(block(g.l2, g.l4, ix, iy), (t2, t4), 0.5 * tol, max_iter, g.l2 * g.l4)
+    return _combine(r1, r2)
+
+
+def _combine(r1: NewtonResult, r2: NewtonResult) -> NewtonResult:
+    """The loops' result from the two dyads' (ABCD: theta1, theta3; GHID: theta2, theta4)."""
     x = (r1.x[0], r2.x[0], r1.x[1], r2.x[1])
     reason = "; ".join(f"loop {n}: {r.reason}" for n, r in (("ABCD", r1), ("GHID", r2))
                        if not r.converged)

@@ -7,11 +7,13 @@ scalar equation in beta, bracketed and solved by Brent's method.
 """
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
 from scipy.optimize import brentq
 
+from . import kernels
 from .blade import lowest_point
 from .geometry import Geometry
 from .loops import NonAssembly
@@ -35,6 +37,43 @@ def _guide_point(g: Geometry, beta: float, x_target: float) -> complex:
     return O - g.d * complex(math.cos(theta5 + g.beta1), math.sin(theta5 + g.beta1))
 
 
+def _guide_point_array(g: Geometry, beta: np.ndarray, x_target: float) -> tuple:
+    """:func:`_guide_point` for an array of blade angles, as (real, imag) arrays.
+
+    The same operations in the same order, componentwise (so the same bits where numpy's
+    sin/cos are the C library's; the scan only brackets the roots, see
+    :func:`_guide_distance_scan`)."""
+    sb, cb = np.sin(beta), np.cos(beta)
+    mx, my = x_target + g.R * sb, -g.s + g.R * (1.0 - cb)
+    ox, oy = mx + g.h * -sb, my + g.h * cb
+    t = beta + g.beta2 + g.beta1
+    return ox - g.d * np.cos(t), oy - g.d * np.sin(t)
+
+
+def _guide_distance_scan(g: Geometry, betas: np.ndarray, x_target: float) -> tuple:
+    """(|ED(beta)| - l6, x of D) on the scan grid, vectorised (compiled where numba is
+    installed); the few values of |ED| - l6 within 1e-6 mm of zero (where a round-off
+    difference could flip a sign) are recomputed by the scalar :func:`_guide_point`, so the
+    brackets are exactly those of a scalar scan."""
+    if kernels.available():
+        dx, dy, f = np.empty_like(betas), np.empty_like(betas), np.empty_like(betas)
+        kernels.kernel("guide_scan")(kernels.guide_constants(g), betas, float(x_target),
+                                     dx, dy, f)
+    else:
+        dx, dy = _guide_point_array(g, betas, x_target)
+        f = np.hypot(dx, dy) - g.l6
+    for i in np.nonzero(np.abs(f) < 1e-6)[0]:
+        f[i] = abs(_guide_point(g, float(betas[i]), x_target)) - g.l6
+    return f, dx
+
+
+@functools.lru_cache(maxsize=8)
+def _scan_grid(beta_window: float, n_scan: int) -> np.ndarray:
+    betas = np.linspace(-beta_window, beta_window, n_scan)
+    betas.setflags(write=False)
+    return betas
+
+
 def exact_pose(g: Geometry, x_target: float, beta_window: float = 0.3, n_scan: int = 601):
     """Reference (theta5, theta6) with theta6 in [pi, 2 pi] and theta5 in [0, pi].
 
@@ -43,10 +82,16 @@ def exact_pose(g: Geometry, x_target: float, beta_window: float = 0.3, n_scan: i
     the paper's ranges, and returns the one with the smallest |beta| (the cutting stroke
     turns the blade by a few degrees).  Raises NonAssembly when no root qualifies.
     """
-    betas = np.linspace(-beta_window, beta_window, n_scan)
-    f = np.array([abs(_guide_point(g, b, x_target)) - g.l6 for b in betas])
+    betas = _scan_grid(float(beta_window), int(n_scan))
+    f, dx = _guide_distance_scan(g, betas, x_target)
+    # a root between two grid points where D lies clearly on the other side of E (the
+    # other assembly mode of the guide rod) cannot qualify: x of D is within
+    # (|R - h| + d) (d beta)^2 / 8 of the chord between the grid points, so it keeps its sign
+    other = g.guide_mode * dx < -(abs(g.R - g.h) + g.d) * (betas[1] - betas[0]) ** 2
     roots = []
     for i in np.nonzero(np.sign(f[:-1]) * np.sign(f[1:]) <= 0)[0]:
+        if other[i] and other[i + 1]:
+            continue
         b = brentq(lambda x: abs(_guide_point(g, x, x_target)) - g.l6, betas[i], betas[i + 1],
                    xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
         D = _guide_point(g, b, x_target)

@@ -29,13 +29,14 @@ from scipy.optimize import least_squares, root
 
 from mechrepro.timing import stopwatch, time_call
 
+from . import kernels
 from . import loops as loops_mod
 from . import newton
 from . import pose as pose_mod
 from .branch import in_ranges, on_design_branch, wrap
 from .geometry import Geometry
 from .loops import NonAssembly
-from .selpso import SelPSOSettings, selpso
+from .selpso import KernelFitness, SelPSOSettings, selpso
 
 METHODS = ("newton", "selpso", "pso_standard", "cold_root", "least_squares", "warm_root", "warm_least_squares",
            "exact")
@@ -156,14 +157,25 @@ def _scipy_solve(kind, fun, jac, x0, tol):
     return r.x, int(r.nfev)
 
 
+def pose_fitness(g: Geometry, xk: float) -> KernelFitness:
+    """selPSO's fitness of Eq. (7): G = sum |residuals| (mm), numpy or compiled."""
+    return KernelFitness(lambda X: np.abs(pose_mod.residuals(g, X, xk)).sum(-1),
+                         kernels.POSE, kernels.pose_constants(g, xk))
+
+
+def loops_fitness(g: Geometry, t5: float, t6: float) -> KernelFitness:
+    """selPSO's fitness of Eq. (9): G = sum |residuals| (mm), numpy or compiled."""
+    return KernelFitness(lambda X: np.abs(loops_mod.residuals(g, X, t5, t6)).sum(-1),
+                         kernels.LOOPS, kernels.loops_constants(g, t5, t6))
+
+
 def _pose_by(method, g, xk, start, settings, rng):
     """theta5, theta6 at one cut point (Eq. 7) by a comparison method."""
     from .blade import lowest_point_jacobian
 
     if method in ("selpso", "pso_standard"):
         st = settings.pso_pose if method == "selpso" else settings.pso_std_pose
-        return selpso(lambda X: np.abs(pose_mod.residuals(g, X, xk)).sum(-1), start, st, rng,
-                      period=2 * math.pi).x
+        return selpso(pose_fitness(g, xk), start, st, rng, period=2 * math.pi).x
     start = start if method.startswith("warm_") else rng.uniform(0, 2 * math.pi, 2)
     return _scipy_solve(method, lambda x: pose_mod.residuals(g, x, xk),
                         lambda x: lowest_point_jacobian(g, *x), start, settings.tol_pose)[0]
@@ -173,8 +185,7 @@ def _loops_by(method, g, t5, t6, start, settings, rng):
     """(theta1..theta4, iterations, history or None) at one cut point (Eq. 9)."""
     if method in ("selpso", "pso_standard"):
         st = settings.pso_loops if method == "selpso" else settings.pso_std_loops
-        r = selpso(lambda X: np.abs(loops_mod.residuals(g, X, t5, t6)).sum(-1), start, st, rng,
-                   period=2 * math.pi)
+        r = selpso(loops_fitness(g, t5, t6), start, st, rng, period=2 * math.pi)
         return r.x, r.iterations, r.history
     start = start if method.startswith("warm_") else rng.uniform(0, 2 * math.pi, 4)
     x, nfev = _scipy_solve(method, lambda x: loops_mod.residuals(g, x, t5, t6),
@@ -234,6 +245,12 @@ def time_newton_loops(g: Geometry, theta: np.ndarray, settings: SolverSettings,
 
 
 def _newton_loops_stroke(g: Geometry, theta: np.ndarray, settings: SolverSettings) -> None:
+    if kernels.available():  # the same loop compiled, as selPSO's iterations are
+        kernels.kernel("loops_stroke")(kernels.newton_loops_constants(g),
+                                       np.ascontiguousarray(theta, float),
+                                       float(settings.tol_loops), int(settings.max_iter),
+                                       newton.SINGULAR_RTOL)
+        return
     guess, prev = list(theta[0, :4]), None
     for i in range(len(theta)):
         r = newton.loops(g, guess, theta[i, 4], theta[i, 5], settings.tol_loops,

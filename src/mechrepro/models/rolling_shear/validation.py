@@ -173,7 +173,9 @@ def solvers(R):
             r_sel, note=f"standard constriction PSO {r_std:.0%}; cold scipy root "
                         f"{float(c['cold_root_right_branch_rate']):.0%}, warm Newton "
                         f"{float(c['newton_right_branch_rate']):.0%}"),
-        "selpso_mean_solve_time": Reproduced(t_sel, note="Python/NumPy, vectorised swarm, shared machine"),
+        "selpso_mean_solve_time": Reproduced(
+            t_sel, note="compiled swarm loop (numba; the NumPy loop where numba is missing), "
+                        "shared machine"),
         "speedup_like_for_like": Reproduced(
             best / t_newton,
             note=f"Eq. (9) only: Newton {t_newton * 1e6:.1f} us per solve (100 % design branch); "

@@ -9,7 +9,6 @@ import math
 from dataclasses import replace
 
 import numpy as np
-from scipy.optimize import minimize_scalar
 
 from .geometry import stage_angles
 from .kinematics import stage_derivatives
@@ -111,6 +110,8 @@ def velocity_band(p1, p2, omega, R):
     stage ends; the minimum is located by a bounded scalar minimisation in each stage,
     so it does not depend on a sampling grid.
     """
+    from scipy.optimize import minimize_scalar  # here: the notebook imports this module
+
     phi1, phi2 = stage_angles(p1, p2, R)
     lows = []
     for L, span in ((p2, phi1), (p1, phi2 - phi1)):
