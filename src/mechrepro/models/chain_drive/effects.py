@@ -116,15 +116,21 @@ def polygonal_elastic(ctx: SpanContext) -> dict:
     """Eqs. (2-11)-(2-23): D_pol of the elastic four-bar with k = AE/L of the short (k1) and
     the long (k2) span; the span-length state (``long``) picks one in time."""
     EA = ctx.prm["axial_stiffness"]
-    out = {}
-    for key, L in (("tension_short", ctx.span["L_short"]), ("tension_long", ctx.span["L_long"])):
-        if key == "tension_long" and L == ctx.span["L_short"]:
-            out[key] = out["tension_short"]
-            continue
-        k = EA / L
-        out[key] = np.stack([four_bar.polygonal_load_elastic(ctx.times_of(i),
-                                                             ctx.elastic_solution(w, k), w, k)
-                             for i, w in enumerate(ctx.omega1)], axis=1)
+    spans = [("tension_short", EA / ctx.span["L_short"])]
+    if ctx.span["L_long"] != ctx.span["L_short"]:
+        spans.append(("tension_long", EA / ctx.span["L_long"]))
+    out = {key: np.empty(np.broadcast_shapes(ctx.T.shape, (1, ctx.omega1.size)))
+           for key, _ in spans}
+    for i, w in enumerate(ctx.omega1):
+        # sin, cos of the tooth frequency x t: shared by both spans and both harmonics
+        # (speed by speed: the arrays stay in cache)
+        pt = ctx.n1 * w * ctx.times_of(i)
+        sin_pt, cos_pt = np.sin(pt), np.cos(pt)
+        for key, k in spans:
+            out[key][:, i] = four_bar.polygonal_load_elastic_sc(
+                sin_pt, cos_pt, ctx.elastic_solution(w, k), w, k)
+    if len(spans) == 1:
+        out["tension_long"] = out["tension_short"]
     return out
 
 
@@ -142,11 +148,12 @@ def end_excitation(ctx: SpanContext) -> dict:
     its velocity when the solver asks (the Galerkin end-motion line)."""
     kin = ctx.kinematics
     u0, un = four_bar.end_displacements(kin["theta1"], kin["theta2"], kin["r1"], kin["r2"],
-                                        ctx.n2)
+                                        ctx.n2, sin1=kin["sin_theta1"], sin2=kin["sin_theta2"])
     out = {"u_left": u0, "u_right": un}
     if ctx.end_velocity:
         out["v_left"], out["v_right"] = four_bar.end_velocities(
-            kin["theta1"], kin["theta2"], ctx.omega1[None, :], kin["omega2"], kin["r1"], kin["r2"])
+            kin["theta1"], kin["theta2"], ctx.omega1[None, :], kin["omega2"], kin["r1"], kin["r2"],
+            cos1=kin["cos_theta1"], cos2=kin["cos_theta2"])
     return out
 
 
