@@ -63,9 +63,15 @@ class SpanContext:
         return self.t[:, i] if self.t.ndim == 2 else self.t
 
     @cached_property
+    def phases(self) -> dict:
+        """The tooth phases alone (:func:`.four_bar.tooth_phases`; the span-length state)."""
+        return four_bar.tooth_phases(self.T, self.omega1[None, :], n1=self.n1, n2=self.n2,
+                                     p_c=self.p_c, f_p=self.span["f_p"])
+
+    @cached_property
     def kinematics(self) -> dict:
         return four_bar.rigid_kinematics(self.T, self.omega1[None, :], n1=self.n1, n2=self.n2,
-                                         p_c=self.p_c, f_p=self.span["f_p"])
+                                         p_c=self.p_c, f_p=self.span["f_p"], phases=self.phases)
 
     def elastic_solution(self, omega1: float, k: float) -> dict:
         """Eq. (2-21) at one speed and span stiffness (solved once per context family)."""
@@ -160,8 +166,8 @@ def end_excitation(ctx: SpanContext) -> dict:
 @EFFECTS.register("length_change")
 def length_change(ctx: SpanContext) -> dict:
     """Sec. 2.2: the span shortens by one pitch at engagement, lengthens at disengagement."""
-    kin = ctx.kinematics
-    return {"long": four_bar.long_span(kin["phase1"], kin["phase2"])}
+    ph = ctx.phases
+    return {"long": four_bar.long_span(ph["phase1"], ph["phase2"])}
 
 
 @EFFECTS.register("sag")

@@ -31,14 +31,10 @@ def chain_travel(t, omega1, n1: int, r1: float):
     return k * p_c + r1 * (np.cos(th10) - np.cos(th1)), th1
 
 
-def rigid_kinematics(t, omega1, *, n1: int, n2: int, p_c: float, f_p: float) -> dict:
-    """Rigid four-bar, Eqs. (2-7) to (2-10) (without I2; see :func:`polygonal_load_rigid`).
-
-    theta_2 follows from r2 cos theta_2 = r2 cos theta_20 - (chain travel mod p_c), the
-    integrated form of Eq. (2-7) with the wrap of Eq. (2-8) at every driven tooth.
-    Returns theta1, theta2, omega2 (Eq. 2-7), alpha2 (Eq. 2-9), and the driving/driven
-    tooth phases (fraction of a pitch since the last engagement / disengagement).
-    """
+def tooth_phases(t, omega1, *, n1: int, n2: int, p_c: float, f_p: float) -> dict:
+    """theta_1 and the driving/driven tooth phases (fraction of a pitch of chain travel since
+    the last engagement / disengagement) -- the part of :func:`rigid_kinematics` the
+    span-length state needs (one cosine per sample)."""
     r1, r2 = pitch_radius(p_c, n1), pitch_radius(p_c, n2)
     omega1 = np.asarray(omega1, float)
     t = np.asarray(t, float)
@@ -50,7 +46,6 @@ def rigid_kinematics(t, omega1, *, n1: int, n2: int, p_c: float, f_p: float) -> 
     k = np.floor(phi / step)
     th1 = th10 + (phi - k * step)
     c1 = np.cos(th1)
-    s1 = np.sqrt(1.0 - c1 * c1)          # theta_1 in (0, pi)
     d1 = r1 * (np.cos(th10) - c1)
     th20_start = np.pi / 2 - np.pi / n2
     th20 = th20_start + driven_phase(n2, f_p)
@@ -71,13 +66,34 @@ def rigid_kinematics(t, omega1, *, n1: int, n2: int, p_c: float, f_p: float) -> 
         phase1 = np.array(np.broadcast_to(phase1, amb.shape))
         s2[amb] = np.mod(s_full + s_off, p_c)
         phase1[amb] = np.mod(s_full, p_c) / p_c
+    return {"theta1": th1, "cos_theta1": c1, "travel2": s2, "phase1": phase1,
+            "phase2": s2 / p_c, "r1": r1, "r2": r2}
+
+
+def rigid_kinematics(t, omega1, *, n1: int, n2: int, p_c: float, f_p: float,
+                     phases: dict | None = None) -> dict:
+    """Rigid four-bar, Eqs. (2-7) to (2-10) (without I2; see :func:`polygonal_load_rigid`).
+
+    theta_2 follows from r2 cos theta_2 = r2 cos theta_20 - (chain travel mod p_c), the
+    integrated form of Eq. (2-7) with the wrap of Eq. (2-8) at every driven tooth.
+    Returns theta1, theta2, omega2 (Eq. 2-7), alpha2 (Eq. 2-9), and the driving/driven
+    tooth phases (fraction of a pitch since the last engagement / disengagement), and the
+    sines and cosines of theta1, theta2.  ``phases``: :func:`tooth_phases` of the same
+    arguments, when already computed.
+    """
+    ph = tooth_phases(t, omega1, n1=n1, n2=n2, p_c=p_c, f_p=f_p) if phases is None else phases
+    r1, r2 = ph["r1"], ph["r2"]
+    omega1 = np.asarray(omega1, float)
+    th1, c1, s2 = ph["theta1"], ph["cos_theta1"], ph["travel2"]
+    s1 = np.sqrt(1.0 - c1 * c1)          # theta_1 in (0, pi)
+    th20_start = np.pi / 2 - np.pi / n2
     c2 = np.clip(np.cos(th20_start) - s2 / r2, -1.0, 1.0)
     th2 = np.arccos(c2)
     sn2 = np.sqrt(1.0 - c2 * c2)         # theta_2 in (0, pi)
     w2 = omega1 * r1 * s1 / (r2 * sn2)
     a2 = (r1 * omega1**2 * c1 - r2 * w2**2 * c2) / (r2 * sn2)
     return {"theta1": th1, "theta2": th2, "omega2": w2, "alpha2": a2, "r1": r1, "r2": r2,
-            "phase1": phase1, "phase2": s2 / p_c,
+            "phase1": ph["phase1"], "phase2": ph["phase2"],
             "cos_theta1": c1, "sin_theta1": s1, "cos_theta2": c2, "sin_theta2": sn2}
 
 
