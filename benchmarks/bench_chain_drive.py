@@ -262,10 +262,30 @@ import sys, time, json
 from mechrepro.config import load_paper
 from mechrepro.models.chain_drive import solver
 runs = load_paper(sys.argv[1] + "/config/papers/chain_drive.yaml", sys.argv[2]).runs
-solver.solve(runs["accuracy_peak"])          # numba import and kernel load, not timed
+import numpy as np
+from mechrepro.models.chain_drive import fd
+# numba import and kernel load (or compile, in a fresh copy of the source), not timed
+fd.march(c=np.ones(1), P=np.full(1, 400.0), m=0.61, c_d=0.0, grid=fd.Grid(0.25, 8, 8), dt=1e-5,
+         n_steps=4, exc=fd.Excitation(), kernel="compiled")
+solver.solve(runs["accuracy_peak"])
+from mechrepro.models.chain_drive import span
+asm = span.assemble
+spent = []
+
+
+def timed_assemble(*a, **k):
+    t0 = time.perf_counter()
+    r = asm(*a, **k)
+    spent.append(time.perf_counter() - t0)
+    return r
+
+
+span.assemble = timed_assemble
 out = {}
 for name in sys.argv[3:]:
-    t0 = time.perf_counter(); solver.solve(runs[name]); out[name] = time.perf_counter() - t0
+    spent.clear()
+    t0 = time.perf_counter(); solver.solve(runs[name])
+    out[name] = (time.perf_counter() - t0, sum(spent))
 print(json.dumps(out))
 """
 
@@ -287,14 +307,16 @@ def fd_sweeps(profile: str, repeat: int) -> None:
                 times[label].append(json.loads(r.stdout.strip().splitlines()[-1]))
     print(f"== FD speed sweeps ({profile}): whole scene (effects + march), main vs this checkout, "
           f"best of {repeat}")
-    tot = {"main": 0.0, "here": 0.0}
+    tot = {"main": np.zeros(2), "here": np.zeros(2)}
     for n in names:
-        b = {k: min(t[n] for t in v) for k, v in times.items()}
+        b = {k: np.min([t[n] for t in v], axis=0) for k, v in times.items()}
         tot = {k: tot[k] + b[k] for k in tot}
-        print(f"{n:16s} main {b['main']:6.2f} s  here {b['here']:6.2f} s  ratio "
-              f"{b['main'] / b['here']:4.1f}x")
-    print(f"{'total':16s} main {tot['main']:6.2f} s  here {tot['here']:6.2f} s  ratio "
-          f"{tot['main'] / tot['here']:4.1f}x")
+        print(f"{n:16s} main {b['main'][0]:6.2f} s (effects {b['main'][1]:5.2f} s)  here "
+              f"{b['here'][0]:6.2f} s (effects {b['here'][1]:5.2f} s)  ratio "
+              f"{b['main'][0] / b['here'][0]:4.1f}x (effects {b['main'][1] / b['here'][1]:4.1f}x)")
+    print(f"{'total':16s} main {tot['main'][0]:6.2f} s (effects {tot['main'][1]:5.2f} s)  here "
+          f"{tot['here'][0]:6.2f} s (effects {tot['here'][1]:5.2f} s)  ratio "
+          f"{tot['main'][0] / tot['here'][0]:4.1f}x (effects {tot['main'][1] / tot['here'][1]:4.1f}x)")
 
 
 def main() -> None:
@@ -305,14 +327,19 @@ def main() -> None:
     ap.add_argument("--schemes", action="store_true",
                     help="print the cost-of-accuracy table of both schemes instead")
     ap.add_argument("--ppp", type=int, nargs="+", default=[2, 3, 4, 6, 8, 12])
+    ap.add_argument("--only", choices=["galerkin", "library", "fd"], default=None,
+                    help="with --speed: one of the comparisons")
     ap.add_argument("--speed", action="store_true",
                     help="print the issue-#18 comparisons (Galerkin RK4, library check, FD "
                          "sweeps against main) instead")
     a = ap.parse_args()
     if a.speed:
-        galerkin_rk4(a.profile, a.repeat)
-        library_check(a.profile)
-        fd_sweeps(a.profile, a.repeat)
+        if a.only in (None, "galerkin"):
+            galerkin_rk4(a.profile, a.repeat)
+        if a.only in (None, "library"):
+            library_check(a.profile)
+        if a.only in (None, "fd"):
+            fd_sweeps(a.profile, a.repeat)
         return
     if not fd_kernel.available():
         print("numba is not installed: the compiled loop is unavailable (pip install -r "

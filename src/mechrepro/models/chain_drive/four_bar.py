@@ -221,6 +221,22 @@ def polygonal_load_elastic_sc(sin_pt, cos_pt, sol: dict, omega1: float, k: float
                                    + 0.5 * m2 * c2 - m1 - 0.5 * m2)
 
 
+def polygonal_load_elastic_speeds(sin_pt, cos_pt, sols, omega1, k: float):
+    """:func:`polygonal_load_elastic_sc` for S speeds at once: sin(p t), cos(p t) shaped
+    (T, S), ``sols`` the S solutions of :func:`elastic_four_bar`, ``omega1`` (S,)."""
+    X = np.array([s["X"] for s in sols])                       # (S, 4)
+    l1, m1, l2, m2 = X.T
+    N = np.array([s["coef"]["N"] for s in sols])
+    a1 = np.array([s["coef"]["a1"] for s in sols])
+    a2 = np.array([s["coef"]["a2"] for s in sols])
+    p = np.array([s["p"] for s in sols])
+    s2 = 2 * sin_pt * cos_pt
+    c2 = 1 - 2 * sin_pt * sin_pt
+    return k * np.asarray(omega1, float) / (N * p) * ((N * a1 - l1) * sin_pt + m1 * cos_pt
+                                                      + 0.5 * (N * a2 - l2) * s2
+                                                      + 0.5 * m2 * c2 - m1 - 0.5 * m2)
+
+
 def elastic_resonance(k: float, I2: float, r2: float, n1: int) -> float:
     """Driving speed omega1 at which the tooth frequency n1 omega1 meets the torsional
     frequency r2 sqrt(k/I2) of the driven sprocket on the span spring k = AE/L."""
