@@ -27,6 +27,21 @@ Timings on a shared machine are pessimistic; the ratios are measured in one run.
 
 instead prints the cost-of-accuracy table of both schemes on ``accuracy_peak`` (error and
 compiled march time per points per pitch, at cfl 0.9 and at the new default's cfl).
+
+    .venv/bin/python benchmarks/bench_chain_drive.py --speed [--profile ci] [--repeat 3]
+
+prints the issue-#18 side-by-side comparisons instead:
+
+3. Galerkin RK4 (Fig. 10): the numpy loop (``kernel="numpy"``, one ``rhs_values`` call per
+   stage) against the compiled loop (:mod:`.galerkin_kernel`), same tabulated forcing;
+   time, ratio and the largest state difference.
+4. The library check (``rk4_check_*``): one ``solve_ivp`` across the kinks with the forcing
+   evaluated through the effects at every scalar time (the former path) against the
+   segmented integration with the piecewise (interpolated) forcing; right-hand-side calls,
+   time, and each one's distance to the segmented solution at rtol 1e-12.
+5. FD speed sweeps: the whole scene (effects + march) with the source of the ``main``
+   branch (``git archive``, run in a subprocess) against this checkout's source, the same
+   scenes and profile, interleaved, best of ``--repeat``.
 """
 from __future__ import annotations
 
@@ -176,6 +191,134 @@ def schemes(profile: str, ppps, ref_ppp: int) -> None:
         print(f"{ppp:12d}  " + "  ".join(f"{abs(p / ref - 1):19.2%} {t:7.2f}" for p, t in cols))
 
 
+# ---------------------------------------------------------------------------- issue #18
+
+def _galerkin_inputs(profile, name):
+    from mechrepro.models.chain_drive import galerkin as G
+    run = load_paper(ROOT / "config/papers/chain_drive.yaml", profile).runs[name]
+    prm, res = run["parameters"], run["resolution"]
+    g = G._galerkin_setup(run, prm, res)
+    return G, run, prm, res, g
+
+
+def galerkin_rk4(profile: str, repeat: int) -> None:
+    print(f"== Galerkin RK4 (Fig. 10, {profile}): numpy loop vs compiled loop, same forcing")
+    for name in ("fig10_longitudinal", "fig10_uncoupled", "fig10_transverse5"):
+        G, run, prm, res, g = _galerkin_inputs(profile, name)
+        model, dt, n = g["model"], g["dt"], g["n_steps"]
+        st = G.stage_times(dt, n)
+        F, t_f = _timed(lambda: G.forcing_arrays(run, prm, g["w1"], g["geo"], st.ravel(),
+                                                 step=g["window"]), 1)
+        F = {k: v.reshape(st.shape) for k, v in F.items()}
+        y0 = np.zeros(2 * (model.n_t + model.n_l))
+        G.rk4_tabulated(model, y0, dt, 4, {k: v[:4] for k, v in F.items()}, kernel="compiled")
+        (_, ya), t_np = _timed(lambda: G.rk4_tabulated(model, y0, dt, n, F, kernel="numpy"), 1)
+        (_, yc), t_c = _timed(lambda: G.rk4_tabulated(model, y0, dt, n, F, kernel="compiled"),
+                              repeat)
+        d = float(np.max(np.abs(ya - yc)) / np.max(np.abs(ya)))
+        print(f"{name:20s} n_t={model.n_t} n_l={model.n_l} {n} steps ({4 * n} rhs): numpy "
+              f"{t_np:6.2f} s ({t_np / (4 * n) * 1e6:5.1f} us/rhs), compiled {t_c:6.3f} s "
+              f"({t_c / (4 * n) * 1e6:5.2f} us/rhs), ratio {t_np / t_c:5.0f}x; forcing "
+              f"(vectorised) {t_f:.3f} s; max |dy|/max|y| {d:.1e}")
+
+
+def library_check(profile: str) -> None:
+    print(f"== library check (rk4_check_*, {profile}): solve_ivp DOP853 rtol 1e-9 over 8 tooth "
+          "periods")
+    for name in ("rk4_check_coupled", "rk4_check_uncoupled"):
+        G, run, prm, res, g = _galerkin_inputs(profile, name)
+        model = g["model"]
+        n_lib = g["per_tooth"] * int(round(float(res["library_periods"])))
+        t_ev = np.arange(n_lib + 1) * g["dt"]
+        y0 = np.zeros(2 * (model.n_t + model.n_l))
+        edges = G.forcing_breakpoints(prm, g["w1"], g["geo"], g["window"], t_ev[-1])
+
+        def new(rtol):
+            pf = G.PiecewiseForcing(run, prm, g["w1"], g["geo"], g["window"], edges)
+            return G.library_piecewise(model.rhs_values, pf.on, edges, y0, t_ev, rtol=rtol)
+
+        def old():
+            at = G.forcing(run, prm, g["w1"], g["geo"], step=g["window"])
+            _, y, nfev = G.library(lambda t, y: model.rhs_values(y, *at(t)), 0.0, y0, t_ev[-1],
+                                   t_ev, rtol=1e-9, atol=1e-14, max_step=g["dt"])
+            return y, nfev
+
+        (y_ref, _), _ = _timed(lambda: new(1e-12), 1)
+        (y_old, n_old), t_old = _timed(old, 1)
+        (y_new, n_new), t_new = _timed(lambda: new(1e-9), 1)
+        xi = g["xi"]
+
+        def err(y):
+            return float(np.max(np.abs(model.u2_at(y - y_ref, xi)))
+                         / np.max(np.abs(model.u2_at(y_ref, xi))))
+        print(f"{name:20s} {edges.size - 1} smooth intervals; across the kinks: {n_old:6d} rhs "
+              f"{t_old:6.2f} s, error {err(y_old):.1e}; segmented: {n_new:5d} rhs {t_new:5.2f} s, "
+              f"error {err(y_new):.1e} (errors against segmented rtol 1e-12, probe, relative); "
+              f"ratio {t_old / t_new:.0f}x")
+
+
+_FD_SCRIPT = """
+import sys, time, json
+from mechrepro.config import load_paper
+from mechrepro.models.chain_drive import solver
+runs = load_paper(sys.argv[1] + "/config/papers/chain_drive.yaml", sys.argv[2]).runs
+import numpy as np
+from mechrepro.models.chain_drive import fd
+# numba import and kernel load (or compile, in a fresh copy of the source), not timed
+fd.march(c=np.ones(1), P=np.full(1, 400.0), m=0.61, c_d=0.0, grid=fd.Grid(0.25, 8, 8), dt=1e-5,
+         n_steps=4, exc=fd.Excitation(), kernel="compiled")
+solver.solve(runs["accuracy_peak"])
+from mechrepro.models.chain_drive import span
+asm = span.assemble
+spent = []
+
+
+def timed_assemble(*a, **k):
+    t0 = time.perf_counter()
+    r = asm(*a, **k)
+    spent.append(time.perf_counter() - t0)
+    return r
+
+
+span.assemble = timed_assemble
+out = {}
+for name in sys.argv[3:]:
+    spent.clear()
+    t0 = time.perf_counter(); solver.solve(runs[name])
+    out[name] = (time.perf_counter() - t0, sum(spent))
+print(json.dumps(out))
+"""
+
+
+def fd_sweeps(profile: str, repeat: int) -> None:
+    import json
+    import subprocess
+    import tempfile
+    names = ["fig05_plain", "fig05_length", "fig07_tension", "fig08_external", "fig09a", "fig09b"]
+    with tempfile.TemporaryDirectory() as tmp:
+        subprocess.run(f"git -C {ROOT} archive main src | tar -x -C {tmp}", shell=True,
+                       check=True)
+        times = {"main": [], "here": []}
+        for _ in range(repeat):
+            for label, src in (("main", f"{tmp}/src"), ("here", str(ROOT / "src"))):
+                r = subprocess.run([sys.executable, "-c", _FD_SCRIPT, str(ROOT), profile, *names],
+                                   env={"PYTHONPATH": src, "PATH": "/usr/bin:/bin"},
+                                   capture_output=True, text=True, check=True)
+                times[label].append(json.loads(r.stdout.strip().splitlines()[-1]))
+    print(f"== FD speed sweeps ({profile}): whole scene (effects + march), main vs this checkout, "
+          f"best of {repeat}")
+    tot = {"main": np.zeros(2), "here": np.zeros(2)}
+    for n in names:
+        b = {k: np.min([t[n] for t in v], axis=0) for k, v in times.items()}
+        tot = {k: tot[k] + b[k] for k in tot}
+        print(f"{n:16s} main {b['main'][0]:6.2f} s (effects {b['main'][1]:5.2f} s)  here "
+              f"{b['here'][0]:6.2f} s (effects {b['here'][1]:5.2f} s)  ratio "
+              f"{b['main'][0] / b['here'][0]:4.1f}x (effects {b['main'][1] / b['here'][1]:4.1f}x)")
+    print(f"{'total':16s} main {tot['main'][0]:6.2f} s (effects {tot['main'][1]:5.2f} s)  here "
+          f"{tot['here'][0]:6.2f} s (effects {tot['here'][1]:5.2f} s)  ratio "
+          f"{tot['main'][0] / tot['here'][0]:4.1f}x (effects {tot['main'][1] / tot['here'][1]:4.1f}x)")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--profile", default="default")
@@ -184,7 +327,20 @@ def main() -> None:
     ap.add_argument("--schemes", action="store_true",
                     help="print the cost-of-accuracy table of both schemes instead")
     ap.add_argument("--ppp", type=int, nargs="+", default=[2, 3, 4, 6, 8, 12])
+    ap.add_argument("--only", choices=["galerkin", "library", "fd"], default=None,
+                    help="with --speed: one of the comparisons")
+    ap.add_argument("--speed", action="store_true",
+                    help="print the issue-#18 comparisons (Galerkin RK4, library check, FD "
+                         "sweeps against main) instead")
     a = ap.parse_args()
+    if a.speed:
+        if a.only in (None, "galerkin"):
+            galerkin_rk4(a.profile, a.repeat)
+        if a.only in (None, "library"):
+            library_check(a.profile)
+        if a.only in (None, "fd"):
+            fd_sweeps(a.profile, a.repeat)
+        return
     if not fd_kernel.available():
         print("numba is not installed: the compiled loop is unavailable (pip install -r "
               "requirements.txt); the new default then runs the numpy loop")

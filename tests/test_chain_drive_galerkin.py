@@ -71,3 +71,83 @@ def test_rk4_past_its_limit_fails_loudly():
     y0[6] = 1e-3          # a little modal momentum
     with pytest.raises(FloatingPointError, match="RK4 diverged"):
         galerkin.rk4(f, 0.0, y0, 3.0 * model.max_stable_step(), 20000)
+
+
+# ---------------------------------------------------------------------------- issue 18: speed
+
+def _fig10_case(name="rk4_check_coupled"):
+    from pathlib import Path
+
+    from mechrepro.config import load_paper
+    root = Path(__file__).resolve().parent.parent
+    run = load_paper(root / "config/papers/chain_drive.yaml", "ci").runs[name]
+    prm, res = run["parameters"], run["resolution"]
+    return run, prm, res, galerkin._galerkin_setup(run, prm, res)
+
+
+@pytest.mark.skipif(not galerkin.galerkin_kernel.available(), reason="numba not installed")
+@pytest.mark.parametrize("name", ["rk4_check_coupled", "rk4_check_uncoupled"])
+def test_compiled_rk4_equals_the_numpy_loop(name):
+    """The compiled RK4 (galerkin_kernel) is the numpy loop of rk4_tabulated to round-off,
+    coupled and linear, with a record every 3rd step."""
+    run, prm, res, g = _fig10_case(name)
+    model, dt, n = g["model"], g["dt"], 30 * g["per_tooth"]
+    st = galerkin.stage_times(dt, n)
+    F = galerkin.forcing_arrays(run, prm, g["w1"], g["geo"], st.ravel(), step=g["window"])
+    F = {k: v.reshape(st.shape) for k, v in F.items()}
+    y0 = np.zeros(2 * (model.n_t + model.n_l))
+    ta, ya = galerkin.rk4_tabulated(model, y0, dt, n, F, record_every=3, kernel="numpy")
+    tb, yb = galerkin.rk4_tabulated(model, y0, dt, n, F, record_every=3, kernel="compiled")
+    np.testing.assert_array_equal(ta, tb)
+    assert np.max(np.abs(ya - yb)) <= 1e-11 * np.max(np.abs(ya))
+
+
+@pytest.mark.skipif(not galerkin.galerkin_kernel.available(), reason="numba not installed")
+def test_compiled_rk4_past_its_limit_fails_loudly():
+    model = galerkin.GalerkinModel(L=L, m=M, EA=EA, P=600.0, c=10.0, c_d=0.0, n_t=4, n_l=2)
+    n = 20000
+    F = {k: np.zeros((n, 4)) for k in ("g", "h", "gd", "hd", "Pt")}
+    y0 = np.zeros(12)
+    y0[6] = 1e-3
+    with pytest.raises(FloatingPointError, match="RK4 diverged"):
+        galerkin.rk4_tabulated(model, y0, 3.0 * model.max_stable_step(), n, F, kernel="compiled")
+
+
+def test_piecewise_forcing_interpolates_the_contributions_and_refuses_a_missing_edge():
+    run, prm, res, g = _fig10_case()
+    t_end = 3 * g["per_tooth"] * g["dt"]
+    edges = galerkin.forcing_breakpoints(prm, g["w1"], g["geo"], g["window"], t_end)
+    pf = galerkin.PiecewiseForcing(run, prm, g["w1"], g["geo"], g["window"], edges)
+    assert pf.error < 1e-12
+    rng = np.random.default_rng(0)
+    i = rng.integers(0, edges.size - 1, 50)
+    t = edges[i] + rng.random(50) * (edges[i + 1] - edges[i])
+    F = galerkin.forcing_arrays(run, prm, g["w1"], g["geo"], t, step=g["window"])
+    got = np.array([pf.on(j)(tt) for j, tt in zip(i, t)])
+    want = np.stack([F[k] for k in ("g", "h", "gd", "hd", "Pt")], axis=1)
+    assert np.all(np.abs(got - want) <= 1e-11 * np.max(np.abs(want), axis=0))
+    # without the impact edges the box-averaged pulse has kinks inside the intervals
+    with pytest.raises(ValueError, match="non-smooth point"):
+        galerkin.PiecewiseForcing(run, prm, g["w1"], g["geo"], g["window"],
+                                  galerkin.forcing_breakpoints(prm, g["w1"], g["geo"], None,
+                                                               t_end))
+
+
+def test_segmented_library_is_closer_to_a_tight_solution_than_one_across_the_kinks():
+    """solve_ivp restarted at the forcing's edges: fewer rhs calls and a smaller error (against
+    the segmented solution at rtol 1e-12) than one integration across the kinks."""
+    run, prm, res, g = _fig10_case("rk4_check_uncoupled")
+    model = g["model"]
+    t_ev = np.arange(2 * g["per_tooth"] + 1) * g["dt"]
+    y0 = np.zeros(2 * (model.n_t + model.n_l))
+    edges = galerkin.forcing_breakpoints(prm, g["w1"], g["geo"], g["window"], t_ev[-1])
+    pf = galerkin.PiecewiseForcing(run, prm, g["w1"], g["geo"], g["window"], edges)
+    ref, _ = galerkin.library_piecewise(model.rhs_values, pf.on, edges, y0, t_ev, rtol=1e-12)
+    seg, n_seg = galerkin.library_piecewise(model.rhs_values, pf.on, edges, y0, t_ev, rtol=1e-9)
+    at = galerkin.forcing(run, prm, g["w1"], g["geo"], step=g["window"])
+    _, one, n_one = galerkin.library(lambda t, y: model.rhs_values(y, *at(t)), 0.0, y0,
+                                     t_ev[-1], t_ev, rtol=1e-9, atol=1e-14, max_step=g["dt"])
+    scale = np.max(np.abs(ref))
+    assert n_seg < n_one
+    assert np.max(np.abs(seg - ref)) < np.max(np.abs(one - ref))
+    assert np.max(np.abs(seg - ref)) < 1e-9 * scale

@@ -162,3 +162,53 @@ def test_end_excitation_phase_sets_first_mode_response():
         r = span.sweep(["speed_tensioning", "end_excitation"], prm, np.array([0.3 * w1, w1]), res)
         out[cd] = r["amplitude"][1] / r["amplitude"][0]
     assert out[20.0] > 2.0 > out[20.5]
+
+
+# ---------------------------------------------------------------------------- issue 18: speed
+
+def test_fast_impact_load_equals_the_cumulative_impulse_formula():
+    """impact_load evaluates the pulse only near impacts; elsewhere whole impulses cancel."""
+    import math as _m
+
+    from mechrepro.models.chain_drive import loads as _loads
+    k = _loads.impact_constants(2 * 0.0127 * 0.61, 2e8, 0.1)
+    om = np.linspace(50, 800, 37) * _m.pi / 30
+    for dt in (7.5e-5, 1.1e-5):
+        t = (np.arange(int(0.05 / dt)) * dt)[:, None]
+        got = _loads.impact_load(t, om[None, :], 24, 0.0127, k, step=dt)
+        tau = 2 * np.pi / (24 * om[None, :])
+        V, eta = _loads.relative_velocity(om[None, :], 0.0127), _loads.pressure_angle(24)
+        J = _loads.impact_pulse_integral(np.inf * np.ones_like(V), V, eta, k)
+
+        def cum(s):
+            return np.floor(s / tau) * J + _loads.impact_pulse_integral(np.mod(s, tau), V, eta, k)
+        want = (cum(t + dt / 2) - cum(t - dt / 2)) / dt
+        assert np.max(np.abs(got - want)) <= 1e-12 * np.max(np.abs(want))
+
+
+def test_fast_rigid_kinematics_matches_chain_travel():
+    """rigid_kinematics (travel within the tooth period, sqrt for the sines) against the
+    direct form of Eqs. (2-7)-(2-9) through chain_travel and np.mod; the span-length state
+    identical at every sample."""
+    import math as _m
+
+    from mechrepro.models.chain_drive import four_bar as fb
+    from mechrepro.models.chain_drive.geometry import pitch_radius
+    om = np.linspace(50, 800, 41)[None, :] * _m.pi / 30
+    t = (np.arange(2000) * 7.5e-5)[:, None]
+    p = 0.0127
+    for n1, n2, f_p in ((24, 24, 0.25), (24, 24, 0.0), (15, 40, 0.5)):
+        kin = fb.rigid_kinematics(t, om, n1=n1, n2=n2, p_c=p, f_p=f_p)
+        r1, r2 = pitch_radius(p, n1), pitch_radius(p, n2)
+        s, th1 = fb.chain_travel(t, om, n1, r1)
+        th20s = np.pi / 2 - np.pi / n2
+        th20 = th20s + fb.driven_phase(n2, f_p)
+        s2 = np.mod(s + r2 * (np.cos(th20s) - np.cos(th20)), p)
+        th2 = np.arccos(np.clip(np.cos(th20s) - s2 / r2, -1.0, 1.0))
+        w2 = om * r1 * np.sin(th1) / (r2 * np.sin(th2))
+        a2 = (r1 * om**2 * np.cos(th1) - r2 * w2**2 * np.cos(th2)) / (r2 * np.sin(th2))
+        for key, want in (("theta1", th1), ("theta2", th2), ("omega2", w2), ("alpha2", a2),
+                          ("phase2", s2 / p), ("phase1", np.mod(s, p) / p)):
+            assert np.max(np.abs(kin[key] - want)) <= 1e-12 * np.max(np.abs(want)), key
+        assert np.array_equal(fb.long_span(kin["phase1"], kin["phase2"]),
+                              fb.long_span(np.mod(s, p) / p, s2 / p))

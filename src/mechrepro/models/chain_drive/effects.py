@@ -34,6 +34,29 @@ EFFECTS = EffectRegistry("chain_drive")
 G = 9.80665   # standard gravity [m/s^2]
 
 
+BLOCK = 1 << 16      # samples per block of :func:`blocked`
+
+
+def blocked(fn, n_rows: int, n_cols: int) -> dict:
+    """Evaluate ``fn(slice of rows)`` in blocks of rows and assemble the (n_rows, n_cols)
+    outputs (0-d/scalar outputs are taken from the first block)."""
+    rows = max(1, BLOCK // max(n_cols, 1))
+    if n_rows <= 2 * rows:
+        return fn(slice(0, n_rows))
+    out: dict = {}
+    for r0 in range(0, n_rows, rows):
+        sl = slice(r0, min(r0 + rows, n_rows))
+        part = fn(sl)
+        for k, v in part.items():
+            if np.ndim(v) == 2:
+                if k not in out:
+                    out[k] = np.empty((n_rows, np.shape(v)[1]), np.asarray(v).dtype)
+                out[k][sl] = v
+            elif k not in out:
+                out[k] = v
+    return out
+
+
 class SpanContext:
     """What the effects see: parameters (SI), operating speeds ``omega1`` (S,), times ``t``
     ((T,) shared by every speed, or (T, S)), the averaging window ``step`` of pulses shorter
@@ -62,10 +85,29 @@ class SpanContext:
         """The times of speed ``i``."""
         return self.t[:, i] if self.t.ndim == 2 else self.t
 
+    def blocked(self, fn) -> dict:
+        """``fn(rows) -> {key: (rows, S) array or scalar}`` evaluated block of time rows by
+        block (~64k samples each, so that the temporaries of the elementwise formulas stay
+        in cache instead of streaming (T, S) arrays through memory once per operation) and
+        assembled; the same numbers as one call on all rows."""
+        return blocked(fn, self.T.shape[0], self.omega1.size)
+
+    def phases_of(self, rows) -> dict:
+        """The tooth phases of the time rows ``rows`` (:func:`.four_bar.tooth_phases`)."""
+        return four_bar.tooth_phases(self.T[rows], self.omega1[None, :], n1=self.n1, n2=self.n2,
+                                     p_c=self.p_c, f_p=self.span["f_p"])
+
+    def kinematics_of(self, rows) -> dict:
+        """The rigid four-bar kinematics of the time rows ``rows`` (computed, not stored: the
+        effects evaluate it block by block, in cache, and keep only their contributions)."""
+        return four_bar.rigid_kinematics(self.T[rows], self.omega1[None, :], n1=self.n1,
+                                         n2=self.n2, p_c=self.p_c, f_p=self.span["f_p"],
+                                         phases=self.phases_of(rows))
+
     @cached_property
     def kinematics(self) -> dict:
-        return four_bar.rigid_kinematics(self.T, self.omega1[None, :], n1=self.n1, n2=self.n2,
-                                         p_c=self.p_c, f_p=self.span["f_p"])
+        """The whole kinematics on the (T, S) grid (for the figures of Fig. 3)."""
+        return self.blocked(self.kinematics_of)
 
     def elastic_solution(self, omega1: float, k: float) -> dict:
         """Eq. (2-21) at one speed and span stiffness (solved once per context family)."""
@@ -99,16 +141,23 @@ def impact(ctx: SpanContext) -> dict:
     """Eqs. (2-2)-(2-4): impact load, averaged exactly over ``ctx.step`` (point values without)."""
     k = loads.impact_constants(ctx.prm["impact_mass_links"] * ctx.p_c * ctx.prm["mass_per_length"],
                                ctx.prm["contact_stiffness"], ctx.prm["contact_damping_ratio"])
-    return {"tension": loads.impact_load(ctx.T, ctx.omega1[None, :], ctx.n1, ctx.p_c, k,
-                                         step=ctx.step)}
+    step = ctx.step
+
+    def rows(r):
+        st = step[r] if np.ndim(step) == 2 else step
+        return {"tension": loads.impact_load(ctx.T[r], ctx.omega1[None, :], ctx.n1, ctx.p_c, k,
+                                             step=st)}
+    return ctx.blocked(rows)
 
 
 @EFFECTS.register("polygonal_rigid")
 def polygonal_rigid(ctx: SpanContext) -> dict:
     """Eqs. (2-6)-(2-10): D_pol = I2 alpha2 / r2 from the rigid four-bar."""
-    kin = ctx.kinematics
-    return {"tension": four_bar.polygonal_load_rigid(kin["alpha2"], ctx.prm["driven_inertia"],
-                                                     kin["r2"])}
+    def rows(r):
+        kin = ctx.kinematics_of(r)
+        return {"tension": four_bar.polygonal_load_rigid(kin["alpha2"],
+                                                         ctx.prm["driven_inertia"], kin["r2"])}
+    return ctx.blocked(rows)
 
 
 @EFFECTS.register("polygonal_elastic")
@@ -116,15 +165,22 @@ def polygonal_elastic(ctx: SpanContext) -> dict:
     """Eqs. (2-11)-(2-23): D_pol of the elastic four-bar with k = AE/L of the short (k1) and
     the long (k2) span; the span-length state (``long``) picks one in time."""
     EA = ctx.prm["axial_stiffness"]
-    out = {}
-    for key, L in (("tension_short", ctx.span["L_short"]), ("tension_long", ctx.span["L_long"])):
-        if key == "tension_long" and L == ctx.span["L_short"]:
-            out[key] = out["tension_short"]
-            continue
-        k = EA / L
-        out[key] = np.stack([four_bar.polygonal_load_elastic(ctx.times_of(i),
-                                                             ctx.elastic_solution(w, k), w, k)
-                             for i, w in enumerate(ctx.omega1)], axis=1)
+    spans = [("tension_short", EA / ctx.span["L_short"])]
+    if ctx.span["L_long"] != ctx.span["L_short"]:
+        spans.append(("tension_long", EA / ctx.span["L_long"]))
+    sols = {key: [ctx.elastic_solution(w, k) for w in ctx.omega1] for key, k in spans}
+    p = ctx.n1 * ctx.omega1                      # the tooth frequency of each speed
+
+    def rows(r):
+        # sin, cos of the tooth frequency x t: shared by both spans and both harmonics
+        pt = ctx.T[r] * p[None, :]
+        sin_pt, cos_pt = np.sin(pt), np.cos(pt)
+        return {key: four_bar.polygonal_load_elastic_speeds(sin_pt, cos_pt, sols[key],
+                                                            ctx.omega1, k)
+                for key, k in spans}
+    out = ctx.blocked(rows)
+    if len(spans) == 1:
+        out["tension_long"] = out["tension_short"]
     return out
 
 
@@ -140,21 +196,26 @@ def external_load(ctx: SpanContext) -> dict:
 def end_excitation(ctx: SpanContext) -> dict:
     """Eqs. (2-24), (2-25): transverse motion of the span ends (with the stated shift), and
     its velocity when the solver asks (the Galerkin end-motion line)."""
-    kin = ctx.kinematics
-    u0, un = four_bar.end_displacements(kin["theta1"], kin["theta2"], kin["r1"], kin["r2"],
-                                        ctx.n2)
-    out = {"u_left": u0, "u_right": un}
-    if ctx.end_velocity:
-        out["v_left"], out["v_right"] = four_bar.end_velocities(
-            kin["theta1"], kin["theta2"], ctx.omega1[None, :], kin["omega2"], kin["r1"], kin["r2"])
-    return out
+    def rows(r):
+        k = ctx.kinematics_of(r)
+        u0, un = four_bar.end_displacements(k["theta1"], k["theta2"], k["r1"], k["r2"], ctx.n2,
+                                            sin1=k["sin_theta1"], sin2=k["sin_theta2"])
+        out = {"u_left": u0, "u_right": un}
+        if ctx.end_velocity:
+            out["v_left"], out["v_right"] = four_bar.end_velocities(
+                k["theta1"], k["theta2"], ctx.omega1[None, :], k["omega2"], k["r1"], k["r2"],
+                cos1=k["cos_theta1"], cos2=k["cos_theta2"])
+        return out
+    return ctx.blocked(rows)
 
 
 @EFFECTS.register("length_change")
 def length_change(ctx: SpanContext) -> dict:
     """Sec. 2.2: the span shortens by one pitch at engagement, lengthens at disengagement."""
-    kin = ctx.kinematics
-    return {"long": four_bar.long_span(kin["phase1"], kin["phase2"])}
+    def rows(r):
+        ph = ctx.phases_of(r)
+        return {"long": four_bar.long_span(ph["phase1"], ph["phase2"])}
+    return ctx.blocked(rows)
 
 
 @EFFECTS.register("sag")

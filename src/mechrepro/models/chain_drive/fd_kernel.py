@@ -51,6 +51,7 @@ def _build(lanes):
                     block_len, u_cap, Pt, has_Pt, uL, uR, longs, length_change, q, has_q,
                     u0, u1, probes, record_every, block_max, capped, final, rec):
         S = c.size                        # a multiple of B (padded by the caller)
+        S_in = uL.shape[1]                # the speeds of the (time, speed) inputs
         ni = n - 1
         k0 = ns - 1 if length_change else ni   # first identity row of the short state
         h2 = 1.0 / (dt * dt)              # a_tt = a_prev = 1/dt^2, a_cur = 2/dt^2 (uniform)
@@ -99,7 +100,8 @@ def _build(lanes):
             irec = 0
             for j in range(1, n_steps):
                 for k in range(B):
-                    s = s0 + k
+                    # the (time, speed) inputs are not padded: padded lanes repeat the last
+                    s = min(s0 + k, S_in - 1)
                     Tj = Tc[k]
                     if has_Pt:
                         Tj += Pt[j, s] * idx2
@@ -200,7 +202,9 @@ def march_uniform(*, c, P, W, m, c_d, dx, dt, n, ns, n_steps, measure_from, n_bl
     pad = np.r_[np.arange(S), np.full(Sp - S, S - 1)].astype(np.int64)
 
     def cols(x, dtype=float):
-        return np.ascontiguousarray(np.asarray(x, dtype)[..., pad])
+        # (time, speed) inputs are read unpadded (the kernel repeats the last speed in the
+        # padded lanes): no copy when already C-contiguous of the right type
+        return np.ascontiguousarray(np.asarray(x, dtype))
 
     def rows(x):
         return np.ascontiguousarray(np.asarray(x, float)[pad])

@@ -31,28 +31,70 @@ def chain_travel(t, omega1, n1: int, r1: float):
     return k * p_c + r1 * (np.cos(th10) - np.cos(th1)), th1
 
 
-def rigid_kinematics(t, omega1, *, n1: int, n2: int, p_c: float, f_p: float) -> dict:
+def tooth_phases(t, omega1, *, n1: int, n2: int, p_c: float, f_p: float) -> dict:
+    """theta_1 and the driving/driven tooth phases (fraction of a pitch of chain travel since
+    the last engagement / disengagement) -- the part of :func:`rigid_kinematics` the
+    span-length state needs (one cosine per sample)."""
+    r1, r2 = pitch_radius(p_c, n1), pitch_radius(p_c, n2)
+    omega1 = np.asarray(omega1, float)
+    t = np.asarray(t, float)
+    # theta_1 within the tooth period (as chain_travel) and the chain travel since the
+    # last engagement d1 = r1 (cos theta_10 - cos theta_1) in [0, p_c)
+    phi = omega1 * t
+    step = 2 * np.pi / n1
+    th10 = np.pi / 2 - np.pi / n1
+    k = np.floor(phi / step)
+    th1 = th10 + (phi - k * step)
+    c1 = np.cos(th1)
+    d1 = r1 * (np.cos(th10) - c1)
+    th20_start = np.pi / 2 - np.pi / n2
+    th20 = th20_start + driven_phase(n2, f_p)
+    s_off = r2 * (np.cos(th20_start) - np.cos(th20))     # in [0, p_c)
+    # (chain travel + s_off) mod p_c from the travel within the tooth period (the whole
+    # pitches drop out: no large numbers, no np.mod) ...
+    u = d1 + s_off
+    s2 = np.where(u >= p_c, u - p_c, u)
+    phase1 = d1 / p_c
+    # ... except at samples within round-off of a wrap (an engagement or a driven wrap at a
+    # sample instant), where the side of the jump is decided exactly as chain_travel + np.mod
+    # decide it
+    amb = (np.abs(u - p_c) < 1e-9 * p_c) | (d1 < 1e-9 * p_c) | (p_c - d1 < 1e-9 * p_c)
+    if np.any(amb):
+        s_full = np.broadcast_to(k * (2 * r1 * np.sin(np.pi / n1)), amb.shape)[amb] + \
+            np.broadcast_to(d1, amb.shape)[amb]
+        s2 = np.array(np.broadcast_to(s2, amb.shape))
+        phase1 = np.array(np.broadcast_to(phase1, amb.shape))
+        s2[amb] = np.mod(s_full + s_off, p_c)
+        phase1[amb] = np.mod(s_full, p_c) / p_c
+    return {"theta1": th1, "cos_theta1": c1, "travel2": s2, "phase1": phase1,
+            "phase2": s2 / p_c, "r1": r1, "r2": r2}
+
+
+def rigid_kinematics(t, omega1, *, n1: int, n2: int, p_c: float, f_p: float,
+                     phases: dict | None = None) -> dict:
     """Rigid four-bar, Eqs. (2-7) to (2-10) (without I2; see :func:`polygonal_load_rigid`).
 
     theta_2 follows from r2 cos theta_2 = r2 cos theta_20 - (chain travel mod p_c), the
     integrated form of Eq. (2-7) with the wrap of Eq. (2-8) at every driven tooth.
     Returns theta1, theta2, omega2 (Eq. 2-7), alpha2 (Eq. 2-9), and the driving/driven
-    tooth phases (fraction of a pitch since the last engagement / disengagement).
+    tooth phases (fraction of a pitch since the last engagement / disengagement), and the
+    sines and cosines of theta1, theta2.  ``phases``: :func:`tooth_phases` of the same
+    arguments, when already computed.
     """
-    r1, r2 = pitch_radius(p_c, n1), pitch_radius(p_c, n2)
+    ph = tooth_phases(t, omega1, n1=n1, n2=n2, p_c=p_c, f_p=f_p) if phases is None else phases
+    r1, r2 = ph["r1"], ph["r2"]
     omega1 = np.asarray(omega1, float)
-    s, th1 = chain_travel(t, omega1, n1, r1)
+    th1, c1, s2 = ph["theta1"], ph["cos_theta1"], ph["travel2"]
+    s1 = np.sqrt(1.0 - c1 * c1)          # theta_1 in (0, pi)
     th20_start = np.pi / 2 - np.pi / n2
-    th20 = th20_start + driven_phase(n2, f_p)
-    s_off = r2 * (np.cos(th20_start) - np.cos(th20))
-    s2 = np.mod(s + s_off, p_c)
-    th2 = np.arccos(np.clip(np.cos(th20_start) - s2 / r2, -1.0, 1.0))
-    w2 = omega1 * r1 * np.sin(th1) / (r2 * np.sin(th2))
-    a2 = (r1 * omega1**2 * np.cos(th1) - r2 * w2**2 * np.cos(th2)) / (r2 * np.sin(th2))
-    phase1 = np.mod(s, p_c) / p_c
-    phase2 = s2 / p_c
+    c2 = np.clip(np.cos(th20_start) - s2 / r2, -1.0, 1.0)
+    th2 = np.arccos(c2)
+    sn2 = np.sqrt(1.0 - c2 * c2)         # theta_2 in (0, pi)
+    w2 = omega1 * r1 * s1 / (r2 * sn2)
+    a2 = (r1 * omega1**2 * c1 - r2 * w2**2 * c2) / (r2 * sn2)
     return {"theta1": th1, "theta2": th2, "omega2": w2, "alpha2": a2, "r1": r1, "r2": r2,
-            "phase1": phase1, "phase2": phase2}
+            "phase1": ph["phase1"], "phase2": ph["phase2"],
+            "cos_theta1": c1, "sin_theta1": s1, "cos_theta2": c2, "sin_theta2": sn2}
 
 
 def polygonal_load_rigid(alpha2, I2: float, r2: float):
@@ -60,17 +102,23 @@ def polygonal_load_rigid(alpha2, I2: float, r2: float):
     return I2 * np.asarray(alpha2, float) / r2
 
 
-def end_displacements(theta1, theta2, r1: float, r2: float, n2: int):
+def end_displacements(theta1, theta2, r1: float, r2: float, n2: int, *, sin1=None, sin2=None):
     """Eqs. (2-24), (2-25): u_n = r1 (1 - sin theta1) (driving end), u_0 = r2 (1 - sin theta2)
-    (driven end), both shifted by -0.5 r2 (1 - cos(pi/n2)) as the paper states."""
+    (driven end), both shifted by -0.5 r2 (1 - cos(pi/n2)) as the paper states.
+    ``sin1``/``sin2``: sin theta1/2 when already known (:func:`rigid_kinematics`)."""
     shift = -0.5 * r2 * (1 - np.cos(np.pi / n2))
-    return r2 * (1 - np.sin(theta2)) + shift, r1 * (1 - np.sin(theta1)) + shift
+    sin1 = np.sin(theta1) if sin1 is None else sin1
+    sin2 = np.sin(theta2) if sin2 is None else sin2
+    return r2 * (1 - sin2) + shift, r1 * (1 - sin1) + shift
 
 
-def end_velocities(theta1, theta2, omega1, omega2, r1: float, r2: float):
+def end_velocities(theta1, theta2, omega1, omega2, r1: float, r2: float, *, cos1=None,
+                   cos2=None):
     """Time derivatives of Eqs. (2-25), (2-24): u_0' = -r2 cos(theta2) omega2 (driven end),
     u_n' = -r1 cos(theta1) omega1 (driving end); they jump at every tooth (chordal kinks)."""
-    return -r2 * np.cos(theta2) * omega2, -r1 * np.cos(theta1) * omega1
+    cos1 = np.cos(theta1) if cos1 is None else cos1
+    cos2 = np.cos(theta2) if cos2 is None else cos2
+    return -r2 * cos2 * omega2, -r1 * cos1 * omega1
 
 
 def long_span(phase1, phase2):
@@ -158,6 +206,35 @@ def polygonal_load_elastic(t, sol: dict, omega1: float, k: float):
     return k * omega1 / (N * p) * ((N * a1 - l1) * np.sin(p * t) + m1 * np.cos(p * t)
                                    + 0.5 * (N * a2 - l2) * np.sin(2 * p * t)
                                    + 0.5 * m2 * np.cos(2 * p * t) - m1 - 0.5 * m2)
+
+
+def polygonal_load_elastic_sc(sin_pt, cos_pt, sol: dict, omega1: float, k: float):
+    """:func:`polygonal_load_elastic` from sin(p t), cos(p t) (p = n1 omega1, shared by
+    both span stiffnesses); the second harmonic by the double-angle formulas."""
+    l1, m1, l2, m2 = sol["X"]
+    fc, p = sol["coef"], sol["p"]
+    N, a1, a2 = fc["N"], fc["a1"], fc["a2"]
+    s2 = 2 * sin_pt * cos_pt
+    c2 = 1 - 2 * sin_pt * sin_pt
+    return k * omega1 / (N * p) * ((N * a1 - l1) * sin_pt + m1 * cos_pt
+                                   + 0.5 * (N * a2 - l2) * s2
+                                   + 0.5 * m2 * c2 - m1 - 0.5 * m2)
+
+
+def polygonal_load_elastic_speeds(sin_pt, cos_pt, sols, omega1, k: float):
+    """:func:`polygonal_load_elastic_sc` for S speeds at once: sin(p t), cos(p t) shaped
+    (T, S), ``sols`` the S solutions of :func:`elastic_four_bar`, ``omega1`` (S,)."""
+    X = np.array([s["X"] for s in sols])                       # (S, 4)
+    l1, m1, l2, m2 = X.T
+    N = np.array([s["coef"]["N"] for s in sols])
+    a1 = np.array([s["coef"]["a1"] for s in sols])
+    a2 = np.array([s["coef"]["a2"] for s in sols])
+    p = np.array([s["p"] for s in sols])
+    s2 = 2 * sin_pt * cos_pt
+    c2 = 1 - 2 * sin_pt * sin_pt
+    return k * np.asarray(omega1, float) / (N * p) * ((N * a1 - l1) * sin_pt + m1 * cos_pt
+                                                      + 0.5 * (N * a2 - l2) * s2
+                                                      + 0.5 * m2 * c2 - m1 - 0.5 * m2)
 
 
 def elastic_resonance(k: float, I2: float, r2: float, n1: int) -> float:

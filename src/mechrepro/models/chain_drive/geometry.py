@@ -93,7 +93,7 @@ def resonance_speed(k: int, L: float, *, n1: int, p_c: float, T_s: float, m: flo
     if f(lo) >= 0:
         return float("nan")
     grid = np.geomspace(1e-3, omega_max, 400)
-    vals = np.array([f(w) for w in grid])
+    vals = f(grid)        # f is vectorised (the bracket only needs the signs)
     idx = np.nonzero(np.diff(np.sign(vals)) > 0)[0]
     if len(idx) == 0:
         return float("nan")

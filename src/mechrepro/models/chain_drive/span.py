@@ -62,6 +62,43 @@ def dynamic_tension(c, shape) -> np.ndarray:
     return Pt
 
 
+# the contributions the dynamic tension P_t is formed from (:func:`dynamic_tension`)
+TENSION_KEYS = ("tension", "tension_short", "tension_long", "long")
+
+
+def _tension_effects(run: dict, probe) -> tuple[list | None, list]:
+    """The named effects the dynamic tension depends on, and the others, from the keys each
+    contributed to the probe (``long`` counts only with ``tension_short``: it then picks the
+    elastic load).  (None, []) when the split is not known: evaluate everything at once."""
+    keys = set(TENSION_KEYS) if "tension_short" in probe else {"tension"}
+    by_effect: dict = {}
+    for key in probe.keys():
+        for e in probe.sources(key):
+            by_effect.setdefault(e, set()).add(key)
+    named = list(run["effects"])
+    dyn = [e for e in named if by_effect.get(e, set()) & keys]
+    rest = [e for e in named if e not in dyn and e in by_effect]
+    if any(e not in by_effect for e in named):
+        return None, []      # an effect contributed nothing to the probe: keep one pass
+    return dyn, rest
+
+
+class _Merged:
+    """Two :class:`~mechrepro.effects.Contributions` of disjoint effects read as one."""
+
+    def __init__(self, first, second):
+        self.parts = (first, second)
+
+    def __contains__(self, key):
+        return any(key in p for p in self.parts)
+
+    def get(self, key, default=None):
+        for p in self.parts:
+            if key in p:
+                return p.get(key)
+        return default
+
+
 def assemble(effects, prm: dict, omega1, res: dict, registry=EFFECTS) -> dict:
     """Evaluate the named effects on the time grid of a sweep; return the march inputs.
 
@@ -88,12 +125,16 @@ def assemble(effects, prm: dict, omega1, res: dict, registry=EFFECTS) -> dict:
     tau_max = float(np.max(geometry.tooth_period(omega1, int(prm["n1"]))))
     settle = float(res["decay_times"]) / sigma if sigma > 0 else 0.0
     window = float(res["window_periods"]) * tau_max
+    # the refinement passes evaluate only the effects the dynamic tension depends on (by
+    # their declared contributions); the others (end motion, sag) once, on the final grid
+    dyn, rest = _tension_effects(run, probe)
     # a first dt from the static tension, refined below with the dynamic tension bound
     dt = fd.stable_time_step(grid.dx, c, P, m, float(res["cfl"]))
     for _ in range(4):
         n_steps = int(math.ceil((settle + window) / dt))
         t = np.arange(n_steps + 1) * dt
-        contrib = registry.evaluate(run, SpanContext(prm, omega1, t, dt, span, cache=cache))
+        ctx = SpanContext(prm, omega1, t, dt, span, cache=cache)
+        contrib = registry.evaluate(run, ctx, only=dyn)
         Pt = dynamic_tension(contrib, (n_steps + 1, omega1.size))
         P_max = P + np.max(Pt, axis=0)
         P_min = P + np.min(Pt, axis=0)
@@ -104,6 +145,10 @@ def assemble(effects, prm: dict, omega1, res: dict, registry=EFFECTS) -> dict:
                                  float(res["cfl"]))
     else:
         raise fd.StabilityError("no stable time step found for the dynamic tension")
+    if rest:
+        # the same context: the sprocket kinematics computed for the tension is reused
+        more = registry.evaluate(run, ctx, only=rest)
+        contrib = _Merged(contrib, more)
     kappa = contrib.get("kappa")
     exc = fd.Excitation(tension=Pt, long=contrib.get("long"), u_left=contrib.get("u_left"),
                         u_right=contrib.get("u_right"),
