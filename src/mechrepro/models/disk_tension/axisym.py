@@ -155,6 +155,9 @@ class AxisymDisk:
         self.h, self.n_d = h, np.asarray(n_d, int)
         D = E * h**3 / (12 * (1 - nu**2))
         self.K, self.M = {}, {}
+        # results per K^(sigma) object (the analyses share the r_c of one run: Tables 1-2 and
+        # the critical load re-read the eigen effect's solves instead of repeating them)
+        self._memo = {}
         for n in self.n_d:
             self.K[n], self.M[n] = plate_matrices(self.mesh, n, D=D, nu=nu, rho_h=rho * h,
                                                   quad=self.quad)
@@ -174,8 +177,20 @@ class AxisymDisk:
         return {n: stress_stiffness(self.mesh, n, sr, st, self.h, quad=self.quad)
                 for n in self.n_d}
 
+    def _once(self, what, Ks, fn):
+        """``fn(Ks)`` computed once per (analysis, K^(sigma) object); the object is kept with
+        its result so that its id cannot be reused while the model lives."""
+        key = (what, id(Ks))
+        hit = self._memo.get(key)
+        if hit is None or hit[0] is not Ks:
+            hit = self._memo[key] = (Ks, fn(Ks))
+        return hit[1]
+
     def rolled(self, Ks):
         """Eq. (5) per harmonic: omega~^2 and mode of the fundamental."""
+        return self._once("rolled", Ks, self._rolled)
+
+    def _rolled(self, Ks):
         from .modal import eigen
 
         out, modes = [], {}
@@ -193,7 +208,8 @@ class AxisymDisk:
     def critical_load(self, Ks):
         from .modal import critical_load_factor
 
-        return np.array([critical_load_factor(self.K[n], Ks[n]) for n in self.n_d])
+        return self._once("critical_load", Ks, lambda Ks: np.array(
+            [critical_load_factor(self.K[n], Ks[n]) for n in self.n_d]))
 
     def modal_matrices(self, Ks):
         """Eqs. (16)-(17) over N_d: harmonics are orthogonal, so off-diagonals are exactly 0
