@@ -352,7 +352,19 @@ class PlateDisk:
     # -- Eq. (5), Eq. (9), Eqs. (16)-(17) ------------------------------------------
     def rolled(self, Ks):
         """omega~^2 per N_d (pair mean for the plain disk; both members in ``pairs``),
-        labelled by subspace MAC against the unrolled modes."""
+        labelled by subspace MAC against the unrolled modes.  Solved once per K^(sigma)
+        object: Eqs. (16)-(17) re-read the eigen effect's solve of the first r_c (the object
+        is kept with its result so that its id cannot be reused while the model lives)."""
+        memo = self.__dict__.setdefault("_rolled_memo", {})
+        hit = memo.get(id(Ks))
+        if hit is None or hit[0] is not Ks:
+            out, modes = self._rolled(Ks)
+            hit = memo[id(Ks)] = (Ks, out, modes, self.rolled_pairs)
+        _, out, modes, self.rolled_pairs = hit
+        self.rolled_modes = modes
+        return out, modes
+
+    def _rolled(self, Ks):
         # a compressive K^(sigma) may make K + K^(sigma) indefinite: shift below zero by a
         # tenth of the highest unrolled eigenvalue computed (fixed once by ``unrolled``)
         lam, Phi = self._eigs(self.K + Ks, self.n_modes, -0.1 * float(self._shift_scale))
