@@ -28,6 +28,7 @@ import numpy as np
 from numpy.polynomial.legendre import leggauss
 
 N_GAUSS = 6  # exact for the polynomial parts; the Gaussian stress needs a few more points
+BANDWIDTH = 3  # half-bandwidth of [K], [M]: element DOFs W, ell W' of two neighbouring nodes
 
 
 @dataclass(frozen=True)
@@ -168,7 +169,7 @@ class AxisymDisk:
 
         self.omega2, self.phi = {}, {}
         for n in self.n_d:
-            lam, phi = eigen(self.K[n], self.M[n], 1)
+            lam, phi = eigen(self.K[n], self.M[n], 1, BANDWIDTH)
             self.omega2[n], self.phi[n] = lam[0], phi[:, 0]
         return np.array([self.omega2[n] for n in self.n_d])
 
@@ -195,7 +196,7 @@ class AxisymDisk:
 
         out, modes = [], {}
         for n in self.n_d:
-            lam, phi = eigen(self.K[n] + Ks[n], self.M[n], 1)
+            lam, phi = eigen(self.K[n] + Ks[n], self.M[n], 1, BANDWIDTH)
             out.append(lam[0])
             modes[n] = phi[:, 0]
         return np.array(out), modes
@@ -250,7 +251,7 @@ class AxisymDisk:
                 K0, M = plate_matrices(mesh, n, D=D, nu=nu, rho_h=rho * self.h, quad=quad)
                 K1, _ = plate_matrices(mesh, n, D=D, nu=nu, rho_h=rho * self.h, quad=quad,
                                        d_scale=scale)
-                w0 = eigen(K0, M, 1)[0][0]
-                w1 = eigen(K1, M, 1)[0][0]
+                w0 = eigen(K0, M, 1, BANDWIDTH)[0][0]
+                w1 = eigen(K1, M, 1, BANDWIDTH)[0][0]
                 out[i, j] = (np.sqrt(w1) - np.sqrt(w0)) / (2 * np.pi)
         return out
