@@ -29,13 +29,14 @@ INTORDER = 8  # mass of quintics needs 10 for exactness; 8 changes f by < 1e-6 a
 class Argyris(ElementTriArgyris):
     """scikit-fem's Argyris triangle with all 21 global basis functions built in one pass.
 
-    :meth:`ElementGlobal.gbasis` builds one basis function per call and re-evaluates the
-    21 monomials and their first and second derivatives (147 arrays over all quadrature
-    points) for each of the 21 functions; :class:`~skfem.CellBasis` calls it once per
-    function.  Here the monomials are evaluated once and every basis function is
-    accumulated at once, term by term in the same order with the same products, so the
-    values are bit-identical to scikit-fem's (the first call of a (mapping, points,
-    elements) triple fills a one-entry cache, the other 20 read it).
+    :meth:`ElementGlobal.gbasis` builds one basis function per call, re-evaluating the 21
+    monomials and their first and second derivatives (147 arrays over all quadrature
+    points) for each of the 21 functions and summing the 21 monomial terms one array
+    operation at a time; :class:`~skfem.CellBasis` calls it once per function.  Here the
+    monomials are evaluated once and every function, value and derivative is one batched
+    product with the element's inverse Vandermonde matrix (equal to scikit-fem's basis to
+    round-off, summation order only).  The first call of a (mapping, points, elements)
+    triple fills a one-entry cache, the other 20 read it.
     """
 
     _gcache = None
@@ -52,17 +53,18 @@ class Argyris(ElementTriArgyris):
         if self.V is None:
             self._pbasis_init(self.maxdeg, self.dim, self.derivatives, self.tensorial_basis)
             self.V = np.linalg.inv(self._eval_dofs(mapping.mesh))
-        V = self.V[tind]
+        V = self.V[tind]                                     # (element, monomial, function)
         x = mapping.F(X, tind=tind)
         N = len(self._pbasis[()])
-        shape = x[0].shape
-        U = [np.zeros((N,) + (self.dim,) * k + shape) for k in range(self.derivatives + 1)]
+        shape = x[0].shape                                   # (element, point)
+        U = []
         for k in range(self.derivatives + 1):
-            diffs = list(itertools.product(*((list(range(self.dim)),) * k)))
-            for itr in range(N):
-                Vt = V[:, itr, :].T[:, :, None]      # (function, element, 1)
-                for diff in diffs:
-                    U[k][(slice(None),) + diff] += Vt * self._pbasis[diff][itr](*x)
+            Uk = np.empty((N,) + (self.dim,) * k + shape)
+            for diff in itertools.product(*((list(range(self.dim)),) * k)):
+                P = np.stack([np.broadcast_to(self._pbasis[diff][m](*x), shape)
+                              for m in range(N)], axis=-1)   # (element, point, monomial)
+                Uk[(slice(None),) + diff] = np.matmul(P, V).transpose(2, 0, 1)
+            U.append(Uk)
         return [(DiscreteField(value=U[0][i], grad=U[1][i], hess=U[2][i]),) for i in range(N)]
 
 
@@ -85,7 +87,7 @@ class ArgyrisForms:
         fields = [b[0] for b in basis.basis]
         self.shape = (basis.N, basis.N)
         self.dx = basis.dx                                            # (element, point)
-        self.value = np.stack([f.value for f in fields], axis=-1)     # (e, q, function)
+        self.value = np.stack([np.asarray(f) for f in fields], axis=-1)  # (e, q, function)
         self.grad = np.stack([f.grad for f in fields], axis=-1).transpose(1, 2, 0, 3)
         hess = np.stack([f.hess for f in fields], axis=-1)            # (2, 2, e, q, function)
         self.hess = hess.reshape(4, *hess.shape[2:]).transpose(1, 2, 0, 3)
