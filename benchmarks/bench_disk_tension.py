@@ -1,6 +1,9 @@
 """disk_tension speed: Eq. (9) vs eigen-analysis, and axisym vs 2-D at equal accuracy.
 
-Run: `make benchmark` or `.venv/bin/python benchmarks/bench_disk_tension.py`.
+Run: `make benchmark` or `.venv/bin/python benchmarks/bench_disk_tension.py`;
+`... bench_disk_tension.py --versus <git rev> [ci|default]` times the paper's solver jobs
+(the batch and the 2-D Table 1-2 scene) under that revision's src and this worktree's, side
+by side in alternating fresh processes (issue 18).
 Targets (issue 4): the whole Fig. 6 + Fig. 8 grid (9 r_c x 3 r_f x N_d 0..4) with the
 axisymmetric model in <= 3 s at better than 1e-4 relative frequency accuracy; the 2-D
 model within 0.1 % of the exact unrolled N_d = 4 frequency in <= 60 s.  Printed, never
@@ -163,7 +166,66 @@ def test_bench_disk_tension():
               f"-> axisym {t2 / ax[2]:.0f}x faster")
 
 
+# --- solver jobs side by side: a git revision's src against this worktree's --------------
+_JOB_CODE = r"""
+import json, sys, time
+sys.path.insert(0, {src!r})
+from mechrepro.config import load_paper
+from mechrepro.solve import run_solver
+cfg = load_paper({cfg!r}, {profile!r})
+t0 = time.perf_counter()
+solve = 0.0
+for name in {names!r}:
+    solve += run_solver(cfg.runs[name]).attrs["wall_time_s"]
+print(json.dumps({{"process": time.perf_counter() - t0, "solve": solve}}))
+"""
+
+
+def _job_runs(profile):
+    cfg = load_paper(ROOT / "config/papers/disk_tension.yaml", profile)
+    alone = [n for n in cfg.runs if n.split("@")[0] == "table12_plate2d"]
+    return {"batch": [n for n in cfg.runs if n not in alone], "table12_plate2d": alone}
+
+
+def versus(rev, profile="ci", repeats=3):
+    """Each solver job of ``profile`` (the batch of cheap runs, and the 2-D Table 1-2 scene
+    with its variant) solved by the src of git revision ``rev`` and by this worktree's,
+    in fresh processes, alternating, fastest of ``repeats``: wall of the runs (imports
+    excluded) and the sum of their recorded solve times."""
+    import json
+    import tempfile
+
+    tmp = Path(tempfile.mkdtemp(prefix="bench_disk_tension_"))
+    archive = subprocess.run(["git", "-C", str(ROOT), "archive", rev, "src"], check=True,
+                             capture_output=True).stdout
+    subprocess.run(["tar", "-x", "-C", str(tmp)], input=archive, check=True)
+    srcs = {rev: str(tmp / "src"), "worktree": str(ROOT / "src")}
+    print(f"disk_tension solver jobs ({profile}), {rev} vs worktree, fastest of {repeats}, "
+          f"OPENBLAS_NUM_THREADS={os.environ.get('OPENBLAS_NUM_THREADS')}")
+    for job, names in _job_runs(profile).items():
+        best = {k: {"process": float("inf"), "solve": float("inf")} for k in srcs}
+        for _ in range(repeats):
+            for key, src in srcs.items():
+                code = _JOB_CODE.format(src=src, cfg=str(ROOT / "config/papers/disk_tension.yaml"),
+                                        profile=profile, names=names)
+                out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True,
+                                     text=True, env=dict(os.environ, PYTHONPATH=src)).stdout
+                got = json.loads(out.strip().splitlines()[-1])
+                for k in got:
+                    best[key][k] = min(best[key][k], got[k])
+        a, b = best[rev], best["worktree"]
+        print(f"  {job:16s} ({len(names):2d} runs): runs {a['process']:6.2f} -> {b['process']:6.2f} s "
+              f"(x{a['process'] / b['process']:.2f}); recorded solve times {a['solve']:6.2f} -> "
+              f"{b['solve']:6.2f} s (x{a['solve'] / b['solve']:.2f})")
+
+
 if __name__ == "__main__":
+    if "--versus" in sys.argv:
+        i = sys.argv.index("--versus")
+        rev = sys.argv[i + 1]
+        prof = sys.argv[i + 2] if len(sys.argv) > i + 2 and not sys.argv[i + 2].startswith("-") else "ci"
+        versus(rev, prof)
+        sys.exit(0)
     test_bench_disk_tension()
     if "--threads-compare" in sys.argv:
         print("disk_tension: the 24 -> 32 element cliff is BLAS threading of small dense solves")

@@ -203,3 +203,27 @@ def test_fig7_sensitivity_matches_first_order_energy_fraction():
             d_w2 = 0.01 * (phi[:, 0] @ Ka @ phi[:, 0])
             assert df[i, j] > 0  # a stiffer annulus never lowers a frequency
             assert df[i, j] == pytest.approx(modal.delta_f_linearised(np.sqrt(lam[0]), d_w2), rel=1e-2)
+
+
+@pytest.mark.parametrize("amplitude", [0.0, 50.0, 400.0])
+def test_banded_inverse_iteration_matches_dense_and_falls_back_when_buckled(amplitude):
+    """The 32-64 element fundamentals come from banded inverse iteration (modal.eigen with a
+    bandwidth): the same eigenpair as LAPACK's dense driver to round-off; a stress that
+    buckles the harmonic (K + K^(sigma) indefinite) is handed to the dense driver."""
+    disk = AxisymDisk(r_f=0.025, b=B, h=H, E=E, nu=NU, rho=RHO, n_d=range(5), n_elements=64)
+    kw = dict(amplitude=amplitude, r_c=0.105, s=0.005, r_f=0.025, b=B, E=E, nu=NU,
+              alpha=ALPHA, inplane_bc="free_disk")
+    ks = disk.stress_stiffness((lambda r: thermal.thermal_stress(r, **kw)[0],
+                                lambda r: thermal.thermal_stress(r, **kw)[1]))
+    buckled = 0
+    for n in range(5):
+        A, M = disk.K[n] + ks[n], disk.M[n]
+        assert len(A) == 128 and modal.BANDED_MIN <= len(A) <= modal.BANDED_MAX
+        lam_b, phi_b = modal.eigen(A, M, 1, 3)
+        lam_d, phi_d = modal.eigen(A, M, 1)
+        if modal.lowest_banded(A, M, 3) is None:
+            buckled += 1
+            assert lam_d[0] < 0 and lam_b[0] == lam_d[0]
+        np.testing.assert_allclose(lam_b, lam_d, rtol=1e-8)
+        assert abs(abs(phi_b[:, 0] @ M @ phi_d[:, 0]) - 1) < 1e-12
+    assert (buckled > 0) == (amplitude == 400.0)

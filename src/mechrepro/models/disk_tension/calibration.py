@@ -15,6 +15,8 @@
 """
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
 from . import exact, thermal
@@ -43,7 +45,16 @@ def _calibration_case(*, n_d, r_c, r_f, b, h, E, nu, rho, alpha, amplitude, s, i
 
 def alpha_effective(*, target, **case):
     """alpha [1/K] that makes Eq. (9)'s Delta omega^2 of ``n_d`` equal ``target``, and the
-    handbook-alpha prediction it replaces: (alpha_eff, Delta omega^2, eigen Delta f [Hz])."""
+    handbook-alpha prediction it replaces: (alpha_eff, Delta omega^2, eigen Delta f [Hz]).
+
+    A pure function of scalars, memoised: the runs of a batch share a handful of calibration
+    cases (one per Poisson ratio and in-plane condition), each solved once per process."""
+    return _alpha_effective(target, tuple(sorted(case.items())))
+
+
+@lru_cache(maxsize=256)
+def _alpha_effective(target, case):
+    case = dict(case)
     disk, Ks = _calibration_case(**case)
     n = case["n_d"]
     d = float(disk.eq9(Ks)[0])

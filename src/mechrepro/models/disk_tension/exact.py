@@ -8,6 +8,8 @@ frequency parameters.  Columns of I_n and K_n are scaled by positive factors
 """
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 from scipy.optimize import brentq
 from scipy.special import ive, jv, jvp, kve, yv, yvp
@@ -51,9 +53,18 @@ def frequency_parameters(n, ratio, nu, count=1, lam_max=60.0, step=0.02, chunk=8
 
     The determinant is an entire function of lambda (no poles), so every sign change on the
     scan grid brackets a root; the scan stops at the first chunk that completes ``count``.
+    A pure function of its arguments, so memoised: every run of a batch needs the same few
+    (n, a/b, nu) -- the thickness calibration, the exact and the rolled references -- and
+    the cached roots are the very numbers a fresh solve gives.
     """
     if not (0.0 < ratio < 1.0):
         raise ValueError(f"a/b = {ratio} must be in (0, 1) for the annular plate")
+    return np.array(_roots(int(n), float(ratio), float(nu), int(count), float(lam_max),
+                           float(step), float(chunk)))
+
+
+@lru_cache(maxsize=1024)
+def _roots(n, ratio, nu, count, lam_max, step, chunk):
     f = lambda x: float(frequency_determinant(x, n, ratio, nu))  # noqa: E731
     roots, lo = [], step
     while len(roots) < count and lo < lam_max:
@@ -64,7 +75,7 @@ def frequency_parameters(n, ratio, nu, count=1, lam_max=60.0, step=0.02, chunk=8
         lo = lams[-1]
     if len(roots) < count:
         raise RuntimeError(f"found only {len(roots)} roots below lambda = {lam_max}")
-    return np.array(roots[:count])
+    return tuple(roots[:count])
 
 
 def natural_frequencies(n_d, *, a, b, h, E, nu, rho, count=1):

@@ -12,14 +12,30 @@ class BucklingError(ArithmeticError):
     """A requested frequency does not exist because the stressed plate has buckled."""
 
 
-def eigen(K, M, count=1):
+#: sizes (unknowns) of the banded problems solved by inverse iteration (see ``eigen``)
+BANDED_MIN, BANDED_MAX = 64, 128
+
+
+def eigen(K, M, count=1, bandwidth=None):
     """Lowest ``count`` eigenpairs of (K - omega^2 M) phi = 0, Eq. (5)/(6).
 
     Returns (omega^2, Phi) with mass-normalised columns (Phi^T M Phi = I).  omega^2 may be
     negative when K includes compressive K^(sigma): the caller decides (see ``frequency``).
+
+    ``bandwidth``: half-bandwidth of K and M when they are banded (the radial Hermite
+    elements: 3).  The fundamental (``count = 1``) of a banded pencil with K positive
+    definite and at most ``BANDED_MAX`` unknowns is found by inverse iteration with K's
+    banded Cholesky factor (:func:`lowest_banded`, O(n) per step instead of the dense
+    driver's O(n^3)); a buckled K (not positive definite) or an iteration that does not
+    converge falls back to the dense driver, as does every larger problem.
     """
     count = min(int(count), len(K))
-    lam, phi = sla.eigh(K, M, subset_by_index=[0, count - 1])
+    phi = None
+    if bandwidth is not None and count == 1 and BANDED_MIN <= len(K) <= BANDED_MAX:
+        x = lowest_banded(K, M, bandwidth)
+        phi = None if x is None else x[:, None]
+    if phi is None:
+        lam, phi = sla.eigh(K, M, subset_by_index=[0, count - 1])
     # LAPACK's subset driver (gvx) loses digits on the small eigenvalues of fine meshes
     # (1e-5 at 256 Hermite elements); its vectors are good, and the Rayleigh quotient of a
     # good vector is accurate to the square of the vector error
@@ -27,6 +43,32 @@ def eigen(K, M, count=1):
     m = np.einsum("ij,ij->j", phi, MP)
     lam = np.einsum("ij,ij->j", phi, KP) / m
     return lam, phi / np.sqrt(m)
+
+
+def lowest_banded(K, M, bandwidth, tol=1e-13, maxiter=200):
+    """Eigenvector of the lowest eigenvalue of (K, M) by inverse iteration, K symmetric
+    positive definite with half-bandwidth ``bandwidth``; None if K is not positive definite
+    or the iteration has not converged (|change| < ``tol`` of the largest entry) within
+    ``maxiter`` steps.  Start vector: all ones (deterministic).  Each step costs one banded
+    triangular solve pair and one product with M; the error falls by omega_1^2 / omega_2^2
+    per step (1/10 or less for the clamped disk)."""
+    from scipy.linalg.lapack import dpbtrf, dpbtrs
+
+    n, u = len(K), int(bandwidth)
+    ab = np.zeros((u + 1, n))
+    for k in range(u + 1):
+        ab[u - k, k:] = np.diagonal(K, k)
+    c, info = dpbtrf(ab)
+    if info != 0:
+        return None
+    x = np.ones(n) / np.sqrt(n)
+    for _ in range(maxiter):
+        y, info = dpbtrs(c, M @ x)
+        y /= np.copysign(np.linalg.norm(y), y @ x)
+        if np.abs(y - x).max() < tol * np.abs(y).max():
+            return y
+        x = y
+    return None
 
 
 def frequency(omega2, buckled="nan"):
