@@ -122,7 +122,7 @@ def main() -> None:
     ap.add_argument("--profiles", nargs="+", default=["ci"])
     ap.add_argument("--cores", type=int, default=2)
     ap.add_argument("--warm", action="store_true",
-                    help="also rerun from clean results with the compiled kernels cached")
+                    help="also rerun the tree from clean results with its compiled kernels cached")
     a = ap.parse_args()
     tmp = Path(tempfile.mkdtemp(prefix="bench-workflow-"))
     versions = {f"before ({a.before})": checkout(a.before, tmp / "before"),
@@ -131,7 +131,8 @@ def main() -> None:
     for profile in a.profiles:
         print(f"profile {profile}:", flush=True)
         for label, work in versions.items():
-            res[(label, profile)] = measure(label.split()[0], work, profile, a.cores, a.warm)
+            res[(label, profile)] = measure(label.split()[0], work, profile, a.cores,
+                                            a.warm and label.startswith("after"))
         b, f = (res[(lab, profile)] for lab in versions)
         print(f"  ratio before/after: from clean {b['full'] / f['full']:.2f}x, no-op decision "
               f"{b['dry'] / f['dry']:.2f}x")
