@@ -45,11 +45,12 @@ def code(*relpaths):
 
 # The framework modules every solver job imports.
 SOLVER_CORE = ["__init__.py", "solve.py", "io.py", "provenance.py", "timing.py", "effects.py",
-               "units.py", "config.py"]
+               "registry.py", "lazy.py", "units.py", "config.py"]
 VALIDATE_CORE = ["__init__.py", "cli.py", "config.py", "units.py", "io.py", "validation.py",
-                 "accuracy.py", "costs.py"]
+                 "accuracy.py", "costs.py", "registry.py", "lazy.py"]
 NOTEBOOK_CORE = ["__init__.py", "config.py", "units.py", "io.py", "results.py",
-                 "validation.py", "accuracy.py", "plotting.py", "notebook.py"]
+                 "validation.py", "accuracy.py", "plotting.py", "notebook.py", "registry.py",
+                 "lazy.py"]
 
 
 def model_code(paper):

@@ -4,26 +4,15 @@ Shi, Peng, Zhao, Zhang, J. Mech. Sci. Technol. (KSME & Springer) 2012.
 Solver ``difference_method`` (Eqs. 1-22); effects ``exact_reference`` (analytic derivatives
 of the closed-form positions of Eqs. 7-10) and ``textbook`` (Eq. 23), computed beside it.
 
-The names below are imported on first use (module ``__getattr__``), so that a reader of
+The names below are imported on first use (:func:`mechrepro.lazy.lazy_exports`), so that a reader of
 results (the notebook imports ``analysis``) does not import the solver.
 """
 from __future__ import annotations
 
-import importlib
+from mechrepro.lazy import lazy_exports
 
 #: public name -> submodule that defines it
 _LAZY = {"EFFECTS": "effects", "compute": "solver", "solve": "solver", "to_dataset": "solver"}
 
 __all__ = list(_LAZY)
-
-
-def __getattr__(name: str):
-    if name in _LAZY:
-        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def __dir__():
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = lazy_exports(__name__, _LAZY)
