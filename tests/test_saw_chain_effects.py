@@ -15,10 +15,11 @@ CFG = load_paper(CONFIG, "ci")
 
 
 def small(scene, K=50, effects=None):
-    """A config scene's run at small K (optionally naming other effects), timed once."""
+    """A config scene's run at small K (optionally naming other effects), timed once, with
+    its time history kept (the contributions are per-sample variables)."""
     run = copy.deepcopy(CFG.runs[scene])
     run["resolution"] = {"K": K}
-    run["options"] = {**run.get("options", {}), "timing_min_s": 0.0}
+    run["options"] = {**run.get("options", {}), "timing_min_s": 0.0, "keep_history": True}
     if effects is not None:
         run["effects"] = list(effects)
         run["contributes"] = {e: CFG.raw["effects"][e]["contributes"] for e in effects}
@@ -97,3 +98,15 @@ def test_the_solver_named_as_an_effect_is_refused_at_load(edit_config):
         "difference_method"))
     with pytest.raises(ConfigError, match="'difference_method' is not a declared effect"):
         load_paper(path)
+
+
+def test_a_study_without_history_keeps_every_scalar_it_stacks():
+    """``keep_history: false`` (the K study) drops the per-sample series and nothing else."""
+    full = solve(small("accuracy", K=200))
+    run = small("accuracy", K=200)
+    run["options"]["keep_history"] = False
+    lean = solve(run)
+    assert "t" not in lean.dims
+    assert set(lean.data_vars) == {v for v in full.data_vars if "t" not in full[v].dims}
+    for v in lean.data_vars:
+        np.testing.assert_array_equal(lean[v].values, full[v].values)

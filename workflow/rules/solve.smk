@@ -37,6 +37,9 @@ for _paper in PAPERS:
             resources:
                 mem_mb=2000,
                 runtime=30,
+            # every later job waits on the solves: a free core takes a solve before a
+            # validation or notebook (a critical-path-first order; results do not depend on it)
+            priority: 1
             shell:
                 "{params.python} -m mechrepro.solve {params.paper} {params.base}/config "
                 "{params.profile} {params.results} {params.runs} > {log} 2>&1"
