@@ -151,15 +151,24 @@ def gather_study(paths: list[str | Path]) -> xr.Dataset:
     dsets = [open_dataset(p) for p in paths]
     attrs = [run_attrs(d) for d in dsets]
     names = [a["run"] for a in attrs]
+    # plain Variables, not DataArrays: building a DataArray per variable and run was half
+    # of a gather's time
+    same_dim = {}   # dimension -> its coordinate is equal in every run that has one
+
+    def coord_equal(dim: str) -> bool:
+        if dim not in same_dim:
+            ref = dsets[0][dim].values
+            same_dim[dim] = all(np.array_equal(d.variables[dim].values, ref)
+                                for d in dsets if dim in d.coords)
+        return same_dim[dim]
+
     stackable = []
     for var in dsets[0].data_vars:
-        shapes = {(d[var].dims, d[var].shape) if var in d else None for d in dsets}
-        if len(shapes) == 1 and None not in shapes:
-            same_coords = all(
-                all(np.array_equal(d[c].values, dsets[0][c].values) for c in d[var].dims if c in d.coords)
-                for d in dsets)
-            if same_coords:
-                stackable.append(var)
+        shapes = {(d.variables[var].dims, d.variables[var].shape) if var in d.variables
+                  else None for d in dsets}
+        if len(shapes) == 1 and None not in shapes and all(
+                map(coord_equal, dsets[0].variables[var].dims)):
+            stackable.append(var)
     out = xr.concat([d[stackable] for d in dsets], dim="run", coords="minimal",
                     compat="override", combine_attrs="override")
     out = out.assign_coords(run=("run", names, {"long_name": "run name", "units": "1"}))
