@@ -26,6 +26,23 @@ def test_ci_profile_overlays_resolution(config_copy):
     assert ci.runs["fig07_fig08"]["parameters"] == default.runs["fig07_fig08"]["parameters"]
 
 
+def test_a_cached_load_is_the_load_and_follows_every_edit(edit_config, config_copy, tmp_path):
+    path = config_copy / "papers" / "saw_chain.yaml"
+    cache = tmp_path / "cache"
+    fresh = load_paper(path, "ci")
+    assert load_paper(path, "ci", cache).runs == fresh.runs
+    assert load_paper(path, "ci", cache).runs == fresh.runs   # read back from the cache
+    assert len(list(cache.glob("config-*.pickle"))) == 1
+    edit_config("saw_chain", lambda r: r["parameters"]["tie_strap_pitch"].update(value=9.0))
+    assert load_paper(path, "ci", cache).runs["speed_12000"]["parameters"]["tie_strap_pitch"] \
+        == pytest.approx(9.0e-3)
+    edit_config("saw_chain", lambda r: r["parameters"]["tie_strap_pitch"].update(value=-8.91))
+    with pytest.raises(ConfigError, match="tie_strap_pitch"):
+        load_paper(path, "ci", cache)   # a bad edit is refused, never served from the cache
+    with pytest.raises(ConfigError, match="cannot read"):
+        load_paper(config_copy / "papers" / "nope.yaml", "ci", cache)
+
+
 def test_negative_pitch_names_file_key_value_and_range(edit_config):
     path = edit_config("saw_chain", lambda r: r["parameters"]["tie_strap_pitch"].update(value=-8.91))
     with pytest.raises(ConfigError) as e:

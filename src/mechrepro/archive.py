@@ -12,7 +12,7 @@ import json
 import tarfile
 from pathlib import Path
 
-from .config import load_paper
+from .config import CACHE_DIR, load_paper
 from .io import atomic_path, write_json
 from .provenance import code_version, file_sha256, json_hash, package_versions
 
@@ -35,7 +35,7 @@ def _files(results: Path, papers: list[str]) -> list[Path]:
 
 
 def manifest(results: Path, config_dir: Path, papers: list[str], profile: str) -> dict:
-    configs = {p: load_paper(config_dir / "papers" / f"{p}.yaml", profile).raw for p in papers}
+    configs = {p: load_paper(config_dir / "papers" / f"{p}.yaml", profile, CACHE_DIR).raw for p in papers}
     return {
         "profile": profile,
         "papers": papers,

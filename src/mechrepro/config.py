@@ -173,9 +173,55 @@ def load_schema(name: str, schema_dir: Path) -> dict:
     return json.loads((schema_dir / name).read_text())
 
 
-def load_paper(path: str | Path, profile: str = "default") -> PaperConfig:
-    """Load, validate and expand one paper config (the only way configs are read)."""
+# Where jobs keep validated configs (relative to the workflow directory they run in).
+CACHE_DIR = ".snakemake/mechrepro"
+
+
+def _cached(cache_dir, key, files, schema_dir: Path, build):
+    """``build()``, kept in ``cache_dir`` keyed by ``key`` and the content of ``files``, of
+    every schema and of the loader's own code: validating a config takes ~0.2 s per paper
+    and every job of a run loads the same ones.  Unreadable or unwritable caches only cost
+    the validation again."""
+    import hashlib
+    import os
+    import pickle
+    import tempfile
+
+    h = hashlib.sha256(repr(key).encode())
+    try:
+        for f in [*files, *sorted(schema_dir.glob("*.json")), Path(__file__),
+                  Path(__file__).with_name("units.py")]:
+            h.update(f.name.encode() + b"\0" + f.read_bytes())
+    except OSError:
+        return build()   # an unreadable config: the loader says which and why
+    cached = Path(cache_dir) / f"config-{h.hexdigest()[:32]}.pickle"
+    try:
+        return pickle.loads(cached.read_bytes())
+    except (OSError, EOFError, pickle.UnpicklingError, AttributeError):
+        pass
+    out = build()
+    try:
+        cached.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(dir=cached.parent, suffix=".part")
+        with os.fdopen(fd, "wb") as f:
+            f.write(pickle.dumps(out))
+        os.replace(tmp, cached)   # atomic: a concurrent job reads old or new, whole
+        for old in sorted(cached.parent.glob("config-*.pickle"),
+                          key=lambda f: f.stat().st_mtime)[:-64]:
+            old.unlink(missing_ok=True)   # papers x profiles x a few edits are enough
+    except OSError:
+        pass
+    return out
+
+
+def load_paper(path: str | Path, profile: str = "default",
+               cache_dir: str | Path | None = None) -> PaperConfig:
+    """Load, validate and expand one paper config (the only way configs are read); with
+    ``cache_dir`` (:data:`CACHE_DIR` in jobs), the result of an unchanged config is reused."""
     path = Path(path)
+    if cache_dir is not None:
+        return _cached(cache_dir, ("paper", str(path), profile), [path], _schema_dir(path),
+                       lambda: load_paper(path, profile))
     where = str(path)
     try:
         # libyaml's loader where available: the configs are parsed at every workflow start
@@ -487,37 +533,14 @@ def load_all(config_dir: str | Path, papers, profile: str = "default",
              ) -> dict[str, PaperConfig]:
     """The selected profile of every paper; ``every_profile`` also checks the others, so a
     bad value in a profile that is not running now is refused now, not mid-way later.
-
-    With ``cache_dir`` the validated result is kept, keyed by the content of every config
-    and schema file and of the loader's own code: a workflow start with unchanged configs
-    (a no-op decision) skips the validation it already passed."""
+    With ``cache_dir``, kept as :func:`load_paper` keeps one paper (a no-op decision of
+    the workflow skips the validation it already passed)."""
     config_dir = Path(config_dir)
     if cache_dir is not None:
-        import hashlib
-        import pickle
-
-        h = hashlib.sha256(repr((sorted(papers), profile, every_profile)).encode())
-        for f in [*sorted((config_dir / "papers").glob("*.yaml")),
-                  *sorted((config_dir / "schema").glob("*.json")),
-                  Path(__file__), Path(__file__).with_name("units.py")]:
-            h.update(f.name.encode() + b"\0" + f.read_bytes())
-        cached = Path(cache_dir) / f"config-{h.hexdigest()[:32]}.pickle"
-        try:
-            return pickle.loads(cached.read_bytes())
-        except (OSError, EOFError, pickle.UnpicklingError, AttributeError):
-            import os
-            import tempfile
-
-            out = load_all(config_dir, papers, profile, every_profile)
-            cached.parent.mkdir(parents=True, exist_ok=True)
-            fd, tmp = tempfile.mkstemp(dir=cached.parent, suffix=".part")
-            with os.fdopen(fd, "wb") as f:
-                f.write(pickle.dumps(out))
-            os.replace(tmp, cached)   # atomic: a concurrent start reads old or new, whole
-            for old in sorted(cached.parent.glob("config-*.pickle"),
-                              key=lambda f: f.stat().st_mtime)[:-8]:
-                old.unlink(missing_ok=True)   # a few configs (profiles, edits) are enough
-            return out
+        return _cached(cache_dir, ("all", str(config_dir), sorted(papers), profile, every_profile),
+                       sorted((config_dir / "papers").glob("*.yaml")),
+                       config_dir.resolve() / SCHEMA_DIR_NAME,
+                       lambda: load_all(config_dir, papers, profile, every_profile))
     out = {p: load_paper(config_dir / "papers" / f"{p}.yaml", profile) for p in papers}
     if every_profile:
         for p, cfg in out.items():

@@ -9,7 +9,7 @@ import os
 from collections import Counter
 from pathlib import Path
 
-from .config import load_paper
+from .config import CACHE_DIR, load_paper
 from .io import write_text
 from .provenance import code_version
 from .validation import EVIDENCE, STATUSES, counts as evidence_counts
@@ -74,7 +74,7 @@ def _evidence_table(rows: list[dict]) -> str:
 
 def paper_section(paper: str, results: Path, config_dir: Path, profile: str,
                   out_dir: Path) -> tuple[str, dict]:
-    cfg = load_paper(config_dir / "papers" / f"{paper}.yaml", profile)
+    cfg = load_paper(config_dir / "papers" / f"{paper}.yaml", profile, CACHE_DIR)
     root = results / paper
     claim = json.loads((root / "claim.json").read_text())
     with open(root / "tables" / "validation.csv", newline="") as f:
@@ -198,7 +198,7 @@ def write_report(out: str, results: str, config_dir: str, papers: list[str], pro
         text, info = paper_section(paper, results, config_dir, profile, out.parent)
         sections.append(text)
         ind, claim = info["independent"], info["claim"]
-        n_assumed = len(load_paper(config_dir / "papers" / f"{paper}.yaml", profile).assumed())
+        n_assumed = len(load_paper(config_dir / "papers" / f"{paper}.yaml", profile, CACHE_DIR).assumed())
         summary.append(f'<tr><td><a href="#{paper}">{paper}</a></td><td>{claim["claim"]}</td>'
                        + "".join(f'<td class="b-{s}">{ind.get(s, 0)}</td>'
                                  for s in ("pass", "fail", "inconclusive"))

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .config import load_paper
+from .config import CACHE_DIR, load_paper
 from .validation import read_table, write_csv
 
 
@@ -29,7 +29,7 @@ def rows(results: Path, config_dir: Path, papers: list[str], profile: str) -> li
         h = headline(results, paper)
         err = np.array([float(r["error"]) for r in h])
         t = np.array([float(r["time_s"]) for r in h])
-        default = load_paper(config_dir / "papers" / f"{paper}.yaml").raw.get("default_resolution", {})
+        default = load_paper(config_dir / "papers" / f"{paper}.yaml", cache_dir=CACHE_DIR).raw.get("default_resolution", {})
         out.append({
             "paper": paper, "knob": h[0]["knob"], "reference": h[0]["reference"],
             "error_quantity": f"{h[0]['quantity']} ({h[0]['error_kind']})",

@@ -12,7 +12,7 @@ BASE = Path(os.path.relpath(workflow.basedir))
 SRC = BASE / "src"
 sys.path.insert(0, str(SRC.resolve()))  # this workflow's own package, not whatever is installed
 
-from mechrepro.config import ConfigError, load_all  # noqa: E402
+from mechrepro.config import CACHE_DIR, ConfigError, load_all  # noqa: E402
 
 validate(config, str((BASE / "config/schema/config.schema.json").resolve()))
 PROFILE = config["profile"]
@@ -20,7 +20,7 @@ RESULTS = config["results"]
 PAPERS = config["papers"]
 try:
     # validated once per content of the configs, schemas and loader (a no-op start is fast)
-    CFG = load_all(BASE / "config", PAPERS, PROFILE, cache_dir=".snakemake/mechrepro")
+    CFG = load_all(BASE / "config", PAPERS, PROFILE, cache_dir=CACHE_DIR)
 except ConfigError as exc:
     sys.stderr.write(f"\n{exc}\n\n")
     raise SystemExit(1)

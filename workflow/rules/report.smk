@@ -82,7 +82,7 @@ rule archive:
         runs=[f for p in PAPERS for f in runs_of(p, variants=True)],
         studies=[f for p in PAPERS for f in studies_of(p, variants=True)],
         configs=[paper_config(p) for p in PAPERS],
-        code=code("cli.py", "archive.py"),
+        code=code("cli.py", "archive.py", "config.py"),
     output:
         manifest=f"{RESULTS}/archive/manifest.json",
         archive=f"{RESULTS}/archive/mechrepro-results.tar.gz",
