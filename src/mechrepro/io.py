@@ -13,10 +13,14 @@ import os
 import tempfile
 from pathlib import Path
 
+from typing import TYPE_CHECKING
+
 import numpy as np
-import xarray as xr
 
 from .provenance import code_version, package_versions
+
+if TYPE_CHECKING:   # xarray (with pandas, ~0.5 s) is imported where datasets are read:
+    import xarray as xr   # the report, archive and reference jobs write files only
 
 
 def _umask() -> int:
@@ -128,6 +132,8 @@ def write_dataset(ds: xr.Dataset, path: str | Path, run: dict | None = None,
 
 def open_dataset(path: str | Path) -> xr.Dataset:
     """Load a result fully into memory and close the file (one reader at a time)."""
+    import xarray as xr
+
     with xr.open_dataset(path, engine="netcdf4") as ds:
         return ds.load()
 
@@ -148,6 +154,8 @@ def gather_study(paths: list[str | Path]) -> xr.Dataset:
     runs (e.g. a time axis whose length is the resolution) cannot be stacked and are kept
     only as their scalar summaries: runs are expected to store the scalars a study needs.
     """
+    import xarray as xr
+
     dsets = [open_dataset(p) for p in paths]
     attrs = [run_attrs(d) for d in dsets]
     names = [a["run"] for a in attrs]
