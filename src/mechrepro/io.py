@@ -64,7 +64,7 @@ def write_json(path: str | Path, obj) -> None:
 def check_cf(ds: xr.Dataset) -> None:
     """Every variable and coordinate carries ``units`` and ``long_name`` (labels, i.e.
     strings, only a ``long_name``: CF gives text no unit)."""
-    missing = [f"{n}:{a}" for n, v in {**ds.data_vars, **ds.coords}.items()
+    missing = [f"{n}:{a}" for n, v in ds.variables.items()
                for a in ("units", "long_name") if a not in v.attrs
                and not (a == "units" and v.dtype.kind in "USO")]
     if missing:
@@ -96,26 +96,33 @@ def provenance_attrs(run: dict) -> dict:
 CF_UNITS = {"deg": "degree", "r/min": "rpm", "HB": "kgf/mm2", "bool": "1"}
 
 
-def _cf_types(ds: xr.Dataset) -> tuple[xr.Dataset, dict]:
-    """CF-1.8 data types (no 64-bit integers) and no _FillValue on coordinates."""
+def _cf_types(ds: xr.Dataset) -> dict:
+    """The encoding of CF-1.8 data types (no 64-bit integers) and of no _FillValue on
+    coordinates; units spelled as UDUNITS knows them.  Works on ``ds``'s Variables in place
+    (``ds`` is the writer's own shallow copy): assigning DataArrays to a Dataset merges
+    and aligns each time, which was a third of a run's write."""
     encoding = {}
-    for name, var in {**ds.coords, **ds.data_vars}.items():
+    for name, var in ds.variables.items():
+        enc = {}
         if var.dtype.kind in "iu" and var.dtype.itemsize == 8:
             v = var.values
             fits = v.size == 0 or (v.min() >= np.iinfo(np.int32).min and v.max() <= np.iinfo(np.int32).max)
-            ds[name] = var.astype(np.int32 if fits else np.float64)
+            enc["dtype"] = np.dtype(np.int32 if fits else np.float64)
         if var.attrs.get("units") in CF_UNITS:
-            ds[name].attrs["units"] = CF_UNITS[var.attrs["units"]]
+            var.attrs["units"] = CF_UNITS[var.attrs["units"]]
         if name in ds.coords or var.dtype.kind not in "fc":
-            encoding[name] = {"_FillValue": None}
-    return ds, encoding
+            enc["_FillValue"] = None
+        if enc:
+            encoding[name] = enc
+    return encoding
 
 
 def write_dataset(ds: xr.Dataset, path: str | Path, run: dict | None = None,
                   extra_attrs: dict | None = None) -> Path:
     """Write ``ds`` atomically (CF-1.8 types); with ``run``, add the provenance attributes."""
     check_cf(ds)
-    ds, encoding = _cf_types(ds.copy())
+    ds = ds.copy()
+    encoding = _cf_types(ds)
     if run is not None:
         ds.attrs.update(provenance_attrs(run))
     if extra_attrs:
