@@ -91,6 +91,7 @@ class ResultFiles:
 
     def __init__(self):
         self._open: dict[Path, object] = {}
+        self._derived: dict = {}
 
     def __call__(self, path: str | Path):
         import xarray as xr
@@ -100,10 +101,19 @@ class ResultFiles:
             self._open[path] = xr.open_dataset(path, engine="netcdf4")
         return self._open[path]
 
+    def derived(self, key, make):
+        """``make()`` once per job and ``key`` (e.g. a study split into its points, which
+        several quantities and their variants read; key it by the ids of the datasets it
+        is made of: they stay open, so their ids are unique, until :meth:`close`)."""
+        if key not in self._derived:
+            self._derived[key] = make()
+        return self._derived[key]
+
     def close(self) -> None:
         for ds in self._open.values():
             ds.close()
         self._open.clear()
+        self._derived.clear()
 
     def __enter__(self) -> "ResultFiles":
         return self
@@ -147,6 +157,11 @@ class ValidationInputs:
 
     def study(self, name: str):
         return self._open(self.root / "studies" / f"{self._name(name, 'study')}.nc")
+
+    def derived(self, key, make):
+        """See :meth:`ResultFiles.derived` (read the datasets it needs through :meth:`run`
+        and :meth:`study` first, so that the declared reads are checked every time)."""
+        return self._files.derived(key, make)
 
     def reported(self, quantity: str) -> dict:
         return self.cfg.reported[quantity]
