@@ -24,7 +24,7 @@ from collections import Counter
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .io import open_dataset, write_json, write_text
+from .io import write_json, write_text
 from .registry import Registry
 
 COLUMNS = ["quantity", "source", "paper_value", "reproduced_value", "unit", "rel_error",
@@ -79,15 +79,59 @@ class Quantities(Registry):
         return out
 
 
+class ResultFiles:
+    """The result files of one validate job, each opened once and read lazily.
+
+    A job reads ~20-60 files, most for a few of their variables, and the variants re-read
+    the baseline runs they do not re-run; loading every variable of every file (what
+    :func:`mechrepro.io.open_dataset` does for a reader that keeps the data) was most of
+    the job's reading time.  Values are decoded by xarray exactly as ``open_dataset``
+    decodes them, only when first used.  Use as a context manager: it closes the files.
+    """
+
+    def __init__(self):
+        self._open: dict[Path, object] = {}
+        self._derived: dict = {}
+
+    def __call__(self, path: str | Path):
+        import xarray as xr
+
+        path = Path(path)
+        if path not in self._open:
+            self._open[path] = xr.open_dataset(path, engine="netcdf4")
+        return self._open[path]
+
+    def derived(self, key, make):
+        """``make()`` once per job and ``key`` (e.g. a study split into its points, which
+        several quantities and their variants read; key it by the ids of the datasets it
+        is made of: they stay open, so their ids are unique, until :meth:`close`)."""
+        if key not in self._derived:
+            self._derived[key] = make()
+        return self._derived[key]
+
+    def close(self) -> None:
+        for ds in self._open.values():
+            ds.close()
+        self._open.clear()
+        self._derived.clear()
+
+    def __enter__(self) -> "ResultFiles":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+
 class ValidationInputs:
     """What an extraction function may read: the runs of one variant, as declared."""
 
-    def __init__(self, cfg, results_dir: str | Path, variant: str | None = None):
+    def __init__(self, cfg, results_dir: str | Path, variant: str | None = None,
+                 files: ResultFiles | None = None):
         self.cfg = cfg
         self.root = Path(results_dir) / cfg.paper
         self.variant = variant
         self.allowed: set[str] = set()
-        self._cache: dict[Path, object] = {}
+        self._files = ResultFiles() if files is None else files
 
     def reads_of(self, names) -> set[str]:
         return {r for n in names for r in self.cfg.reported[n]["reads"]}
@@ -106,15 +150,18 @@ class ValidationInputs:
         return v if self.variant and v in table else name
 
     def _open(self, path: Path):
-        if path not in self._cache:
-            self._cache[path] = open_dataset(path)
-        return self._cache[path]
+        return self._files(path)
 
     def run(self, name: str):
         return self._open(self.root / "runs" / f"{self._name(name, 'run')}.nc")
 
     def study(self, name: str):
         return self._open(self.root / "studies" / f"{self._name(name, 'study')}.nc")
+
+    def derived(self, key, make):
+        """See :meth:`ResultFiles.derived` (read the datasets it needs through :meth:`run`
+        and :meth:`study` first, so that the declared reads are checked every time)."""
+        return self._files.derived(key, make)
 
     def reported(self, quantity: str) -> dict:
         return self.cfg.reported[quantity]
@@ -219,8 +266,13 @@ def _describe_variant(cfg, variant: str) -> str:
     return f"at {p} = {v}{unit} (range {end})"
 
 
-def build(cfg, quantities: Quantities, results_dir: str | Path) -> list[Row]:
-    """Evaluate every reported quantity and its robust verdict (see module docstring)."""
+def build(cfg, quantities: Quantities, results_dir: str | Path,
+          files: ResultFiles | None = None) -> list[Row]:
+    """Evaluate every reported quantity and its robust verdict (see module docstring).
+    ``files``: the job's open result files (default: opened here, closed on return)."""
+    if files is None:
+        with ResultFiles() as files:
+            return build(cfg, quantities, results_dir, files)
     from .config import _variant_names
 
     reported = cfg.reported
@@ -229,7 +281,7 @@ def build(cfg, quantities: Quantities, results_dir: str | Path) -> list[Row]:
     if missing or extra:
         raise ValidationError(f"{cfg.paper}: reported quantities without an extraction function: "
                               f"{missing}; functions for quantities not reported: {extra}")
-    base = quantities.evaluate(list(reported), ValidationInputs(cfg, results_dir))
+    base = quantities.evaluate(list(reported), ValidationInputs(cfg, results_dir, files=files))
     rows = []
     for q, spec in reported.items():
         r = base[q]
@@ -244,7 +296,7 @@ def build(cfg, quantities: Quantities, results_dir: str | Path) -> list[Row]:
             by_variant.setdefault(v, []).append(q)
     index = {row.quantity: row for row in rows}
     for variant, qs in by_variant.items():
-        got = quantities.evaluate(qs, ValidationInputs(cfg, results_dir, variant))
+        got = quantities.evaluate(qs, ValidationInputs(cfg, results_dir, variant, files))
         for q in qs:
             row, s = index[q], verdict(reported[q], got[q].value)
             if s != row.status:
@@ -336,33 +388,42 @@ def validate(paper: str, results_dir: str, config_file: str, profile: str) -> li
     """Build and write ``tables/validation.csv`` and ``claim.json`` of one paper."""
     import importlib
 
-    from .config import load_paper
+    from .config import load_all
 
-    cfg = load_paper(config_file, profile)
+    path = Path(config_file)
+    if path.name != f"{paper}.yaml" or path.parent.name != "papers":
+        raise ValueError(f"{config_file}: not a paper config CONFIG_DIR/papers/{paper}.yaml")
+    # the config as the solver jobs loaded it, from the cache keyed by the content of every
+    # config and schema file: validated once, not again here (as in mechrepro.solve)
+    cfg = load_all(path.parent.parent, [paper], profile, every_profile=False,
+                   cache_dir=".snakemake/mechrepro")[paper]
     module = importlib.import_module(f"mechrepro.models.{paper}.validation")
-    rows = build(cfg, module.Q, results_dir)
     root = Path(results_dir) / paper
-    write_table(rows, root / "tables" / "validation.csv")
-    write_json(root / "claim.json", claim(cfg, rows))
-    write_costs(cfg, results_dir)
+    with ResultFiles() as files:   # one opening of each file for the tables below
+        rows = build(cfg, module.Q, results_dir, files)
+        write_table(rows, root / "tables" / "validation.csv")
+        write_json(root / "claim.json", claim(cfg, rows))
+        write_costs(cfg, results_dir, files)
     return rows
 
 
-def write_costs(cfg, results_dir: str) -> None:
+def write_costs(cfg, results_dir: str, files: ResultFiles | None = None) -> None:
     """The framework's other tables of a paper: the long-form cost of accuracy (from its
     ``accuracy:`` block), what each effect costs, and each solver job against its solves."""
     import importlib
 
     from . import accuracy, costs
-    from .io import open_dataset
 
+    if files is None:
+        with ResultFiles() as files:
+            return write_costs(cfg, results_dir, files)
     root = Path(results_dir) / cfg.paper
     if cfg.raw.get("accuracy"):
         module = importlib.import_module(f"mechrepro.models.{cfg.paper}.accuracy")
 
         def dataset(name):
             kind = "studies" if name in cfg.studies else "runs"
-            return open_dataset(root / kind / f"{name}.nc")
+            return files(root / kind / f"{name}.nc")
 
         table = accuracy.rows(cfg.raw["accuracy"], dataset, module.ACCURACY)
         write_csv(root / "tables" / "cost_of_accuracy.csv", accuracy.COLUMNS,

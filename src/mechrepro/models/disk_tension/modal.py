@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import numpy as np
-import scipy.linalg as sla
 
 TWO_PI = 2.0 * np.pi
 
@@ -35,6 +34,8 @@ def eigen(K, M, count=1, bandwidth=None):
         x = lowest_banded(K, M, bandwidth)
         phi = None if x is None else x[:, None]
     if phi is None:
+        import scipy.linalg as sla  # here: validate_disk_tension imports this module, never solves
+
         lam, phi = sla.eigh(K, M, subset_by_index=[0, count - 1])
     # LAPACK's subset driver (gvx) loses digits on the small eigenvalues of fine meshes
     # (1e-5 at 256 Hermite elements); its vectors are good, and the Rayleigh quotient of a
@@ -110,6 +111,8 @@ def critical_load_factor(K, K_sigma):
     Solves K_sigma phi = mu K phi (K positive definite after clamping); a compressive mode
     has mu < 0 and buckles at lambda = -1/mu.
     """
+    import scipy.linalg as sla  # here: validate_disk_tension imports this module, never solves
+
     mu = sla.eigh(K_sigma, K, eigvals_only=True)
     neg = mu[mu < 0]
     return float(-1.0 / neg.min()) if neg.size else float("inf")

@@ -30,7 +30,11 @@ def _argext(ds, var, n_d, fn):
     return float(ds["r_c"].values[fn(y)] * 1e3)
 
 
-_grid = rc_grid  # {r_f [mm]: dataset} of Figs. 6/8
+def _grid(R) -> dict:
+    """{r_f [mm]: dataset} of Figs. 6/8 (:func:`.figures.rc_grid`), split once per job:
+    ten quantities and their variants read it, and each split of the study costs ms."""
+    a, st = R.run("rc_grid"), R.study("fig06")   # the declared reads, checked every time
+    return R.derived(("rc_grid", id(a), id(st)), lambda: rc_grid(R))
 
 
 def _diag(ds, var="axisym_k_sigma_hat"):
