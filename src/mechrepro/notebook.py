@@ -41,9 +41,6 @@ def run_notebook(source: str | Path, output: str | Path, parameters: dict,
 
 def main(argv: list[str]) -> None:
     paper, source, output, results, config_file, profile = argv
-    # `python -m` put the working directory first on sys.path; a kernel process has not
-    if sys.path and sys.path[0] and Path(sys.path[0]).resolve() == Path.cwd().resolve():
-        del sys.path[0]
     run_notebook(source, output, {"paper": paper, "results_dir": results,
                                   "config_file": config_file, "profile": profile},
                  cwd=Path(config_file).resolve().parent.parent.parent)
