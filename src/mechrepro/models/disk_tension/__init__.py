@@ -6,7 +6,12 @@ eigen-analysis (Eq. 5), the first-order estimate (Eq. 9) and the modal matrices
 (Eqs. 16-17), on two discretisations (axisymmetric harmonics, 2-D Argyris plate) checked
 against the exact Bessel solution.
 """
-from .effects import EFFECTS
-from .solver import compute, solve, to_dataset
+# imported on first use (mechrepro.lazy): the notebook, which reads datasets, does not
+# import the solvers and scipy
+from mechrepro.lazy import lazy_exports  # noqa: E402
 
-__all__ = ["EFFECTS", "compute", "solve", "to_dataset"]
+#: public name -> submodule that defines it
+_LAZY = {'EFFECTS': 'effects', 'compute': 'solver', 'solve': 'solver', 'to_dataset': 'solver'}
+
+__all__ = list(_LAZY)
+__getattr__, __dir__ = lazy_exports(__name__, _LAZY)
