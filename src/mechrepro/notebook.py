@@ -1,13 +1,16 @@
 """The one notebook runner: a jupytext ``py:percent`` notebook executed by papermill.
 
 Notebooks live in git as ``notebooks/<paper>.py`` (reviewable text) and are executed as
-parameterised notebooks; the executed ``.ipynb`` is written atomically.  Executed
+parameterised notebooks, in this process (:mod:`mechrepro.kernel`: no kernel process to
+start, and the notebook's imports are not paid twice); the executed ``.ipynb`` is written
+atomically, once at the end (papermill's save after every cell is skipped).  Executed
 notebooks carry timestamps: compare the data they write, never their bytes.
 """
 from __future__ import annotations
 
 import os
 import sys
+import warnings
 from pathlib import Path
 
 from .io import atomic_path
@@ -15,17 +18,24 @@ from .io import atomic_path
 
 def run_notebook(source: str | Path, output: str | Path, parameters: dict,
                  cwd: str | Path = ".") -> Path:
-    import jupytext
-    import papermill
+    # the runner's own imports must not leave warnings filters a kernel process has not
+    # (requests adds one for urllib3)
+    with warnings.catch_warnings():
+        import jupytext
+        import papermill
 
-    os.environ["MPLBACKEND"] = "Agg"  # inherited by the kernel: no display needed
+    from .kernel import KernelManager
+
+    os.environ["MPLBACKEND"] = "Agg"  # seen by the kernel: no display needed
     nb = jupytext.read(source)
     nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3",
                                  "language": "python"}
     with atomic_path(output) as tmp:
         papermill.execute_notebook(nb, str(tmp), parameters=parameters,
                                    kernel_name="python3", cwd=str(cwd),
-                                   progress_bar=False, log_output=False)
+                                   progress_bar=False, log_output=False,
+                                   request_save_on_cell_execute=False,
+                                   kernel_manager_class=KernelManager)
     return Path(output)
 
 

@@ -8,7 +8,12 @@ effects a scene names), solver (the solvers a scene names), dataset (result -> D
 accuracy (cost-of-accuracy errors), figures (what the notebook draws), cartesian (Eq. 3
 with Lagrange multipliers, for verification).
 """
-from .effects import EFFECTS
-from .solver import SOLVERS, compute, setup, solve, to_dataset
+# imported on first use (mechrepro.lazy): the notebook, which reads datasets, does not
+# import the solvers and scipy
+from mechrepro.lazy import lazy_exports  # noqa: E402
 
-__all__ = ["EFFECTS", "SOLVERS", "compute", "setup", "solve", "to_dataset"]
+#: public name -> submodule that defines it
+_LAZY = {'EFFECTS': 'effects', 'SOLVERS': 'solver', 'compute': 'solver', 'setup': 'solver', 'solve': 'solver', 'to_dataset': 'solver'}
+
+__all__ = list(_LAZY)
+__getattr__, __dir__ = lazy_exports(__name__, _LAZY)
