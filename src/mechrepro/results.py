@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .config import load_paper
+from .config import CACHE_DIR, load_paper
 from .io import open_dataset, write_dataset
 from .validation import write_csv
 
@@ -22,7 +22,7 @@ class PaperResults:
     def __init__(self, paper: str, results_dir: str, config_file: str, profile: str = "default"):
         self.paper = paper
         self.root = Path(results_dir) / paper
-        self.cfg = load_paper(config_file, profile)
+        self.cfg = load_paper(config_file, profile, CACHE_DIR)
 
     def run(self, name: str):
         return open_dataset(self.root / "runs" / f"{name}.nc")

@@ -66,11 +66,10 @@ def main(argv: list[str]) -> None:
         raise SystemExit("usage: python -m mechrepro.solve PAPER CONFIG_DIR PROFILE RESULTS RUN [RUN ...]")
     paper, config_dir, profile, results, names = argv[0], argv[1], argv[2], Path(argv[3]), argv[4:]
     blas_threads()
-    from .config import CACHE_DIR, load_all
+    from .config import CACHE_DIR, load_paper
     from .io import gather_study, write_dataset
 
-    cfg = load_all(config_dir, [paper], profile, every_profile=False,
-                   cache_dir=CACHE_DIR)[paper]
+    cfg = load_paper(Path(config_dir) / "papers" / f"{paper}.yaml", profile, CACHE_DIR)
     unknown = [r for r in names if r not in cfg.runs]
     if unknown:
         raise SystemExit(f"{paper} ({profile}): no such run(s) {unknown}")

@@ -388,15 +388,11 @@ def validate(paper: str, results_dir: str, config_file: str, profile: str) -> li
     """Build and write ``tables/validation.csv`` and ``claim.json`` of one paper."""
     import importlib
 
-    from .config import load_all
+    from .config import CACHE_DIR, load_paper
 
-    path = Path(config_file)
-    if path.name != f"{paper}.yaml" or path.parent.name != "papers":
-        raise ValueError(f"{config_file}: not a paper config CONFIG_DIR/papers/{paper}.yaml")
-    # the config as the solver jobs loaded it, from the cache keyed by the content of every
-    # config and schema file: validated once, not again here (as in mechrepro.solve)
-    cfg = load_all(path.parent.parent, [paper], profile, every_profile=False,
-                   cache_dir=".snakemake/mechrepro")[paper]
+    # as the solver jobs loaded it: from the cache keyed by the content of the config, the
+    # schemas and the loader, validated once per content, not again here
+    cfg = load_paper(config_file, profile, CACHE_DIR)
     module = importlib.import_module(f"mechrepro.models.{paper}.validation")
     root = Path(results_dir) / paper
     with ResultFiles() as files:   # one opening of each file for the tables below

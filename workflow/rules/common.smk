@@ -49,8 +49,8 @@ SOLVER_CORE = ["__init__.py", "solve.py", "io.py", "provenance.py", "timing.py",
 VALIDATE_CORE = ["__init__.py", "cli.py", "config.py", "units.py", "io.py", "validation.py",
                  "accuracy.py", "costs.py", "registry.py", "lazy.py"]
 NOTEBOOK_CORE = ["__init__.py", "config.py", "units.py", "io.py", "results.py",
-                 "validation.py", "accuracy.py", "plotting.py", "notebook.py", "registry.py",
-                 "lazy.py"]
+                 "validation.py", "accuracy.py", "plotting.py", "notebook.py", "kernel.py",
+                 "registry.py", "lazy.py"]
 
 
 def model_code(paper):
