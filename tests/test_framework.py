@@ -112,3 +112,18 @@ def test_cost_of_accuracy_long_table():
     assert set(rows[0]) == set(accuracy.COLUMNS)
     result, seconds = time_call(lambda: 42, min_time=0.01)
     assert result == 42 and 0 < seconds < 0.01
+
+
+def test_the_writer_encodes_cf_types_without_touching_the_callers_dataset(tmp_path):
+    ds = xr.Dataset(
+        {"n": ("t", np.array([1, 2, 3], dtype=np.int64), {"units": "1", "long_name": "count"}),
+         "big": ((), np.int64(2**40), {"units": "1", "long_name": "too big for int32"}),
+         "a": ("t", np.arange(3.0), {"units": "deg", "long_name": "angle"})},
+        coords={"t": ("t", np.arange(3.0), {"units": "s", "long_name": "time"})})
+    before = ds.copy(deep=True)
+    mio.write_dataset(ds, tmp_path / "x.nc", RUN)
+    assert ds.identical(before)   # units and dtypes changed in the file only
+    back = mio.open_dataset(tmp_path / "x.nc")
+    assert back["n"].dtype == np.int32 and back["big"].dtype == np.float64
+    assert float(back["big"]) == 2.0**40 and back["n"].values.tolist() == [1, 2, 3]
+    assert back["a"].attrs["units"] == "degree" and "_FillValue" not in back["t"].encoding
