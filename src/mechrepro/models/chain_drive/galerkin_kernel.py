@@ -34,6 +34,18 @@ def worth_it(n_steps: int) -> bool:
 def _build():
     import numba
 
+    @numba.njit(cache=True, inline="always")
+    def project_add(Wt, f, out, acc, nq, n):
+        """out += Wt^T f over the quadrature points: one independent sum per mode (the
+        mode innermost), added to ``out`` after the sum, as the numpy path orders it."""
+        for r in range(n):
+            acc[r] = 0.0
+        for q in range(nq):
+            for r in range(n):
+                acc[r] += Wt[q, r] * f[q]
+        for r in range(n):
+            out[r] += acc[r]
+
     @numba.njit(cache=True)
     def rk4(y0, dt, n_steps, F, record_every, y_cap, nt, nl, B, SWt, Sx, Sxx, CWt, Cx, Cxx,
             a0, a1, Gt, Kt, Gl, Kl, Mti, Mli, Cend0, CendL, Sx0, SxL, L, m, c, c_d, EA,
@@ -120,21 +132,9 @@ def _build():
                         bx = u2xx[q]
                         fq[q] += EA * (u1xx[q] * ax + u1x[q] * bx + 1.5 * ax * ax * bx)
                         fc[q] = EA * ax * bx
-                    for r in range(nl):
-                        acc[r] = 0.0
-                    for q in range(nq):
-                        for r in range(nl):
-                            acc[r] += CWt[q, r] * fc[q]
-                    for r in range(nl):
-                        fl[r] += acc[r]
+                    project_add(CWt, fc, fl, acc, nq, nl)
                 # the projections: one independent sum per mode (the mode innermost)
-                for r in range(nt):
-                    acc[r] = 0.0
-                for q in range(nq):
-                    for r in range(nt):
-                        acc[r] += SWt[q, r] * fq[q]
-                for r in range(nt):
-                    ft[r] += acc[r]
+                project_add(SWt, fq, ft, acc, nq, nt)
                 ex0 = 0.0
                 exL = 0.0
                 if coupling:
