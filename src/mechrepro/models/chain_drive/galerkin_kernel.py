@@ -34,6 +34,11 @@ def worth_it(n_steps: int) -> bool:
 def _build():
     import numba
 
+    # a module global, not a closure variable of rk4: numba keys its disk cache on the
+    # closure's objects, so a helper defined here as a local was compiled again in every
+    # process (~2 s)
+    global project_add
+
     @numba.njit(cache=True, inline="always")
     def project_add(Wt, f, out, acc, nq, n):
         """out += Wt^T f over the quadrature points: one independent sum per mode (the
