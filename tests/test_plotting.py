@@ -1,0 +1,67 @@
+"""The figure writer (mechrepro.plotting.savefig): cropped to what is drawn, like
+``bbox_inches="tight"``, and nothing outside the canvas is ever cut off."""
+import numpy as np
+from PIL import Image
+
+from mechrepro.plotting import content_crop, plt, savefig
+
+
+def _figure(**legend):
+    fig, ax = plt.subplots(figsize=(5, 3.5))
+    ax.plot([0, 1, 2], [0, 1, 0], label="a line")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.set_title("title")
+    if legend:
+        fig.legend(**legend)
+    else:
+        ax.legend()
+    fig.tight_layout()
+    return fig
+
+
+def _png(path):
+    return np.asarray(Image.open(path))
+
+
+def test_a_figure_inside_its_canvas_is_cropped_to_its_pixels_as_tight_would(tmp_path):
+    fig = _figure()
+    crop = content_crop(fig)
+    assert crop is not None
+    pad = round(plt.rcParams["savefig.pad_inches"] * fig.dpi)
+    # the padding is background, the content starts right after it
+    background = crop[0, 0]
+    drawn = np.any(crop != background, axis=2)
+    rows, cols = np.flatnonzero(drawn.any(axis=1)), np.flatnonzero(drawn.any(axis=0))
+    assert (rows[0], cols[0]) == (pad, pad)
+    assert (crop.shape[0] - 1 - rows[-1], crop.shape[1] - 1 - cols[-1]) == (pad, pad)
+    savefig(fig, tmp_path / "new.png", close=False)
+    fig.savefig(tmp_path / "tight.png", bbox_inches="tight")
+    new, tight = _png(tmp_path / "new.png"), _png(tmp_path / "tight.png")
+    assert np.array_equal(new, crop)
+    # "tight" measures text boxes (with the font's line spacing), the crop drawn pixels:
+    # a few pixels apart at most
+    assert np.all(np.abs(np.array(new.shape[:2]) - tight.shape[:2]) <= 10)
+    plt.close(fig)
+
+
+def test_a_legend_below_the_canvas_is_kept(tmp_path):
+    # as disk_tension's Figs. 6 and 8: a figure legend anchored below the axes
+    fig = _figure(loc="lower center", bbox_to_anchor=(0.5, -0.15), ncol=2)
+    assert content_crop(fig) is None
+    height = fig.canvas.get_width_height()[1]
+    savefig(fig, tmp_path / "fig.png", close=False)
+    assert _png(tmp_path / "fig.png").shape[0] > height
+    plt.close(fig)
+
+
+def test_content_cut_by_the_canvas_edge_is_kept(tmp_path):
+    # no tight_layout: the x label of a short figure reaches below the canvas
+    fig, ax = plt.subplots(figsize=(5, 1.2))
+    ax.plot([0, 1], [0, 1])
+    ax.set_xlabel("a label below the canvas")
+    assert content_crop(fig) is None
+    savefig(fig, tmp_path / "fig.png", close=False)
+    fig.savefig(tmp_path / "tight.png", bbox_inches="tight")
+    assert _png(tmp_path / "fig.png").shape == _png(tmp_path / "tight.png").shape
+    plt.close(fig)
