@@ -12,7 +12,9 @@ from .timing import timed_run, timing_variables
 
 
 def model(paper: str):
-    """The model package of a paper; it exposes ``solve(run) -> xarray.Dataset``."""
+    """The model package of a paper; it exposes ``solve(run) -> xarray.Dataset`` and may
+    expose ``compute``/``to_dataset`` (only ``compute`` is timed) and ``warm()`` (load its
+    compiled kernels; called once per solver process, before the first timed run)."""
     return importlib.import_module(f"mechrepro.models.{paper}")
 
 
@@ -74,6 +76,13 @@ def main(argv: list[str]) -> None:
     if unknown:
         raise SystemExit(f"{paper} ({profile}): no such run(s) {unknown}")
     root = results / paper
+    # a model's compiled loops are loaded here, once, so that no run's measured time
+    # carries the process's one-time load (numba's disk cache, ~0.3-1 s)
+    warm = getattr(model(paper), "warm", None)
+    if warm is not None:
+        t0 = time.perf_counter()
+        warm()
+        print(f"[{paper}] compiled kernels loaded in {time.perf_counter() - t0:.3g} s", flush=True)
     n = len(names)
     for i, name in enumerate(names):
         run = cfg.runs[name]

@@ -224,3 +224,16 @@ def march_uniform(*, c, P, W, m, c_d, dx, dt, n, ns, n_steps, measure_from, n_bl
              rows(u0), rows(u1), probes, int(record_every), block_max, capped, final, rec)
     out_rec = rec[:n_rec, :S] if record_every and probes.size else None
     return block_max[:, :S], capped[:S], final[:S], out_rec
+
+
+def warm() -> None:
+    """Load the lane kernel (numba's disk cache, or a compile) by one call on a one-node,
+    no-step march of the production argument types: a solver process pays this ~0.3-0.5 s
+    once, before any timed solve, not inside the first sweep's time."""
+    if not available():
+        return
+    z = np.zeros
+    march_uniform(c=z(1), P=np.ones(1), W=z((1, 3)), m=1.0, c_d=0.0, dx=1.0, dt=1.0, n=2, ns=2,
+                  n_steps=1, measure_from=1, n_blocks=1, block_len=1, u_cap=1.0, Pt=None,
+                  uL=z((2, 1)), uR=z((2, 1)), longs=None, q=None, u0=z((1, 3)), u1=z((1, 3)),
+                  probes=[], record_every=0)

@@ -187,6 +187,17 @@ def kernel():
     return _KERNEL
 
 
+def warm() -> None:
+    """Load the compiled RK4 (numba's disk cache, or a compile) by one zero-step call of the
+    production argument types: paid once per solver process, before any timed solve."""
+    if not available():
+        return
+    a1, a2 = np.zeros(1), np.zeros((1, 1))
+    kernel()(np.zeros(4), 1.0, 0, np.zeros((5, 0, 4)), 1, 1e3, 1, 1, a2, a2, a2, a2, a2, a2, a2,
+             a1, a1, a2, a2, a2, a2, a2, a2, a1, a1, a1, a1, 1.0, 1.0, 1.0, 0.0, 1.0, False,
+             np.zeros((1, 4)))
+
+
 def rk4_tabulated(model, y0, dt, n_steps, F, record_every=1, y_cap=1e3):
     """Compiled :func:`.galerkin.rk4_tabulated`: same arguments, same result to round-off."""
     nt, nl = model.n_t, model.n_l

@@ -240,6 +240,15 @@ SOLVERS = {"impact_load": impact_load, "rigid_four_bar": rigid_four_bar,
            "manufactured": lambda run, prm, res: exact.manufactured_check(prm, res)}
 
 
+def warm() -> None:
+    """Load both compiled loops once per solver process (the runner calls this before the
+    first timed solve), so that no run's time carries numba's start."""
+    from . import fd_kernel, galerkin_kernel
+
+    fd_kernel.warm()
+    galerkin_kernel.warm()
+
+
 def solve(run: dict) -> xr.Dataset:
     solver = run.get("solver")
     if solver not in SOLVERS:

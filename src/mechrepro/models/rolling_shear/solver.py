@@ -9,7 +9,6 @@
 """
 from __future__ import annotations
 
-from . import kernels
 from .comparison import solve_method_comparison
 from .context import Context
 from .continuation import solve_continuation
@@ -17,8 +16,6 @@ from .dataset import geometry_outputs, to_dataset
 from .effects import EFFECTS
 from .family import solve_family_scan
 from .lever_optimisation import solve_lever_optimisation
-
-kernels.warm()  # a solver process loads its compiled loops once, outside every timed solve
 
 SOLVERS = {"continuation": solve_continuation, "method_comparison": solve_method_comparison,
            "lever_optimisation": solve_lever_optimisation, "family_scan": solve_family_scan}
