@@ -54,3 +54,21 @@ def test_elastic_speed_window_follows_each_drive():
     rpm = 30 / math.pi
     assert 1100 < hi / 1.25 * rpm < 1300          # 24/24: omega_c ~ 1.2e3 rpm
     assert 6000 < hi2 / 1.25 * rpm < 7200         # 15/40: omega_c ~ 6.6e3 rpm
+
+
+def test_find_peaks_is_scipys():
+    """claims.find_peaks (written out to spare the validation and the notebook the import of
+    scipy.signal) finds what scipy.signal.find_peaks(x, prominence=p) finds: random walks,
+    rounded to make flat tops and ties, edges, constant and tiny arrays."""
+    from scipy.signal import find_peaks
+
+    rng = np.random.default_rng(20261123)
+    cases = [np.zeros(0), np.zeros(1), np.array([0.0, 1.0]), np.array([0.0, 1.0, 0.0]),
+             np.ones(7), np.array([1.0, 2.0, 2.0, 2.0, 1.0]), np.array([2.0, 2.0, 1.0, 3.0, 3.0]),
+             np.array([0.0, 1.0, 1.0, 2.0, 1.0, 1.0, 0.0])]
+    for _ in range(400):
+        walk = np.cumsum(rng.normal(size=rng.integers(3, 400)))
+        cases.append(np.round(walk, int(rng.integers(0, 3))))
+    for x in cases:
+        for p in (0.0, 0.05, 0.5, 2.0):
+            assert np.array_equal(C.find_peaks(x, p), find_peaks(x, prominence=p)[0]), (x, p)

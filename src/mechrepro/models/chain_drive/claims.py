@@ -16,12 +16,47 @@ a sweep's own maximum (which an instability capped at ``u_cap`` would set):
 from __future__ import annotations
 
 import numpy as np
-from scipy.signal import find_peaks
 
 PEAK_PROMINENCE = 0.05e-3  # m
 ORDER_WINDOW = 0.03
 AMPLIFIED = 2.0
 NEAR_PEAK = 0.06           # a predicted resonance "has" a peak within 6 % of it
+
+
+def find_peaks(x, prominence: float):
+    """``scipy.signal.find_peaks(x, prominence=prominence)[0]`` for a 1-D float array, by
+    scipy's own algorithm (``_local_maxima_1d``, then ``_peak_prominences`` with no window):
+    a local maximum (a flat top counts once, at its middle, rounded down) whose height above
+    the higher of the lowest points between it and a higher sample (or the end) on each side
+    is at least ``prominence``.  Written out because importing ``scipy.signal`` imports
+    ``scipy.stats`` too (~0.6-1 s, twice per reproduction: validation and notebook), for
+    one function on arrays of a few hundred speeds; ``tests/test_chain_drive_claims.py``
+    checks it against scipy's."""
+    x = np.ascontiguousarray(x, dtype=float)
+    n = x.size
+    out = []
+    i = 1
+    while i < n - 1:
+        if x[i - 1] < x[i]:
+            ahead = i + 1
+            while ahead < n - 1 and x[ahead] == x[i]:
+                ahead += 1
+            if x[ahead] < x[i]:
+                peak = (i + ahead - 1) // 2
+                top = x[peak]
+                j, left_min = peak, top
+                while j >= 0 and x[j] <= top:
+                    left_min = min(left_min, x[j])
+                    j -= 1
+                j, right_min = peak, top
+                while j < n and x[j] <= top:
+                    right_min = min(right_min, x[j])
+                    j += 1
+                if top - max(left_min, right_min) >= prominence:
+                    out.append(peak)
+                i = ahead
+        i += 1
+    return np.array(out, dtype=np.intp)
 
 
 def peaks(speed, amp, prominence: float = PEAK_PROMINENCE, stable=None):
@@ -42,13 +77,13 @@ def peaks(speed, amp, prominence: float = PEAK_PROMINENCE, stable=None):
             elif start is not None:
                 seg = a[start:i]
                 if seg.size >= 3:
-                    idx, _ = find_peaks(seg, prominence=prominence)
+                    idx = find_peaks(seg, prominence)
                     out.extend(start + idx)
                 start = None
         return np.array(out, int)
     if a.size < 3:
         return np.array([], int)
-    idx, _ = find_peaks(a, prominence=prominence)
+    idx = find_peaks(a, prominence)
     return idx
 
 
