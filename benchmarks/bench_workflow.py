@@ -10,6 +10,12 @@ run), the solver jobs' wall time (Snakemake's
 benchmark files) against the solves' own time (``wall_time`` of each run), i.e. how much
 is start-up and writing; the summed wall time per job kind (solve, gather, validate,
 notebook, other); and Snakemake's own import time, the floor of a no-op decision.
+With ``--interleave N``, each profile is then run N more times from clean in each tree
+with the compiled kernels cached, the trees alternating (before, after, before, ...), and
+as many no-op decisions, alternating too: a shared or throttled VM drifts in speed within
+the hour (a pure-Python loop here took 1.7 s at one time and 2.5 s at another), which a
+before-then-after pair would read as a difference of the trees.  The median of each
+tree and the median of the per-round ratios are printed.
 Timings are printed, never asserted.
 """
 from __future__ import annotations
@@ -116,6 +122,31 @@ def measure(label: str, work: Path, profile: str, cores: int, warm_too: bool) ->
             "kinds": per_kind(work / f"results-{profile}")}
 
 
+def interleave(versions: dict[str, Path], profile: str, cores: int, rounds: int) -> None:
+    """Alternate the trees, ``rounds`` times: from clean with the kernels cached, then
+    (on the results just made) a no-op decision; print each, the medians and the median
+    of the per-round ratios before/after."""
+    import statistics
+
+    cfg = ["--config", f"profile={profile}", f"results=results-{profile}"]
+    full = {label: [] for label in versions}
+    dry = {label: [] for label in versions}
+    for r in range(rounds):
+        for label, work in versions.items():
+            shutil.rmtree(work / f"results-{profile}", ignore_errors=True)
+            shutil.rmtree(work / ".snakemake", ignore_errors=True)
+            full[label].append(snakemake(work, "--cores", str(cores), *cfg))
+            dry[label].append(snakemake(work, "-n", *cfg))
+            print(f"  round {r + 1} {label.split()[0]:>8s} {profile:8s} from clean (kernels cached) "
+                  f"{full[label][-1]:7.1f} s   no-op decision {dry[label][-1]:5.2f} s", flush=True)
+    b, f = versions
+    for name, t in (("from clean (kernels cached)", full), ("no-op decision", dry)):
+        ratios = [x / y for x, y in zip(t[b], t[f])]
+        print(f"  interleaved {profile} {name}: before median {statistics.median(t[b]):.2f} s, "
+              f"after median {statistics.median(t[f]):.2f} s, median ratio before/after "
+              f"{statistics.median(ratios):.2f}x over {rounds} rounds", flush=True)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--before", default="39b0397", help="revision to compare with")
@@ -123,6 +154,8 @@ def main() -> None:
     ap.add_argument("--cores", type=int, default=2)
     ap.add_argument("--warm", action="store_true",
                     help="also rerun the tree from clean results with its compiled kernels cached")
+    ap.add_argument("--interleave", type=int, default=0, metavar="N",
+                    help="then N alternating rounds per tree: from clean (kernels cached), no-op decision")
     a = ap.parse_args()
     tmp = Path(tempfile.mkdtemp(prefix="bench-workflow-"))
     versions = {f"before ({a.before})": checkout(a.before, tmp / "before"),
@@ -148,6 +181,8 @@ def main() -> None:
             tb, nb = b["kinds"].get(kind, (float("nan"), 0))
             ta, na = f["kinds"].get(kind, (float("nan"), 0))
             print(f"  {kind:14s} {nb:4d}/{na:<4d} {tb:13.1f} {ta:12.1f}")
+        if a.interleave:
+            interleave(versions, profile, a.cores, a.interleave)
     # the floor of any no-op decision: Snakemake's own import, measured beside it
     print(f"import snakemake.cli alone: {min(import_seconds('snakemake.cli') for _ in range(3)):.2f} s",
           flush=True)
