@@ -36,7 +36,7 @@ def content_crop(fig, pad_inches: float | None = None):
     tight bbox needs a layout pass over every tick label before the drawing pass (~40 %
     of a save), the pixels need none.  Its crop is the bounding box of the drawn pixels,
     where "tight" takes the artists' extents (text boxes include the font's line
-    spacing), so it is up to a few pixels tighter.
+    spacing): on the ci figures 0-9 px tighter in height, up to 3 px wider.
     """
     pad_inches = plt.rcParams["savefig.pad_inches"] if pad_inches is None else pad_inches
     renderer = fig.canvas.get_renderer()
