@@ -153,3 +153,37 @@ def test_central_at_the_default_cfl_stays_bounded_with_dynamic_tension(a, kernel
     inside = run(0.98)
     assert not inside.unstable[0] and np.max(np.abs(inside.final)) < 1e-4
     assert run(1.03).unstable[0]
+
+
+WARM_THEN_SOLVE = """
+import math, numpy as np
+from mechrepro.models.chain_drive import fd, fd_kernel, galerkin, galerkin_kernel, solver
+L, M, T = 0.254, 0.61, 400.0
+solver.warm()
+grid = fd.Grid(L, 16, 16)
+fd.march(c=np.array([3.0]), P=np.array([T]), m=M, c_d=1.0, grid=grid,
+         dt=fd.stable_time_step(grid.dx, 3.0, T, M, 0.98), n_steps=400, exc=fd.Excitation(),
+         u0=1e-4 * np.sin(np.pi * grid.x / L)[None], differencing="central", kernel="compiled")
+model = galerkin.GalerkinModel(L=L, m=M, EA=2e6, P=T, c=10.0, c_d=1.0, n_t=4, n_l=2)
+F = {k: np.zeros((50, 4)) for k in ("g", "h", "gd", "hd", "Pt")}
+galerkin.rk4_tabulated(model, np.zeros(12), 1e-6, 50, F, kernel="compiled")
+print(len(fd_kernel.kernel().signatures), len(galerkin_kernel.kernel().signatures))
+"""
+
+
+@needs_numba
+def test_warm_loads_the_signatures_the_solvers_call():
+    """solver.warm() (the runner calls it before the first timed run) calls both kernels
+    with the production argument types: in a fresh process, a compiled march and a compiled
+    RK4 after it leave one signature each, so nothing is loaded or compiled inside a timed
+    solve."""
+    import os
+    import subprocess
+    import sys
+
+    from conftest import ROOT
+
+    env = {**os.environ, "PYTHONPATH": str(ROOT / "src")}
+    out = subprocess.run([sys.executable, "-c", WARM_THEN_SOLVE], env=env, capture_output=True,
+                         text=True, check=True).stdout
+    assert out.split() == ["1", "1"]
