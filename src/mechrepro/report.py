@@ -14,6 +14,8 @@ from .io import write_text
 from .provenance import code_version
 from .validation import EVIDENCE, STATUSES, counts as evidence_counts
 
+VERDICTS = ("pass", "fail", "inconclusive", "not_converged")
+
 CSS = """
 body{font-family:system-ui,sans-serif;margin:2em auto;max-width:1150px;color:#222;line-height:1.4}
 h1{margin-bottom:0}h2{border-bottom:2px solid #ccc;padding-top:1em}
@@ -24,8 +26,10 @@ tr.pass td.status{background:#c8efc8;font-weight:bold}
 tr.fail td.status{background:#f6c3c3;font-weight:bold}
 tr.info td.status{background:#e4e4f4}
 tr.inconclusive td.status{background:#f6e3b0;font-weight:bold}
+tr.not_converged td.status{background:#e8c8f0;font-weight:bold}
 tr.nc td{color:#777}
 .b-inconclusive{background:#f6e3b0}
+.b-not_converged{background:#e8c8f0}
 nav.toc{background:#f7f7f7;padding:.4em 1em;border:1px solid #ddd}
 nav.toc a{margin-right:1em}
 pre.check{background:#f4f4f4;padding:.6em;font-size:12px;white-space:pre-wrap}
@@ -85,17 +89,25 @@ def paper_section(paper: str, results: Path, config_dir: Path, profile: str,
              f'<p class="note">{html.escape(cfg.source)}</p>',
              "<p>independent rows: " + "".join(
                  f'<span class="badge b-{s}">{s}: {ind.get(s, 0)}</span>'
-                 for s in ("pass", "fail", "inconclusive")) + "</p>",
+                 for s in VERDICTS) + "</p>",
              f'<p class="claim"><b>Replication claim: {html.escape(claim["claim"])}.</b> '
              f'{html.escape(claim["text"])}</p>',
              "<h3>Rows by evidence class</h3>"
              "<p class='note'>Only <b>independent</b> rows (no constant was fitted to them) count "
              "in the claim; the others are shown, labelled, not counted.</p>", _evidence_table(rows)]
-    flips = [r for r in rows if r["status"] == "inconclusive"]
+    flips = [r for r in rows if r["status"] in ("inconclusive", "not_converged")]
     if flips:
-        parts.append("<h3>Inconclusive verdicts, and what flips them</h3><ul>" + "".join(
-            f"<li><b>{html.escape(r['quantity'])}</b>: {html.escape(r.get('note', ''))}</li>"
-            for r in flips) + "</ul>")
+        parts.append("<h3>Inconclusive and not converged verdicts, and what decides them</h3><ul>"
+                     + "".join(f"<li><b>{html.escape(r['quantity'])}</b> ({r['status']}): "
+                               f"{html.escape(r.get('note', ''))}</li>" for r in flips) + "</ul>")
+    falsified = [r for r in rows if r.get("falsifier")]
+    if falsified:
+        parts.append("<h3>Falsifiers: the model change under which each check must fail</h3>"
+                     "<table><tr><th>quantity</th><th>status</th><th>falsifier: its verdict "
+                     "(value)</th></tr>" + "".join(
+                         f"<tr><td>{html.escape(r['quantity'])}</td><td>{r['status']}</td>"
+                         f"<td>{html.escape(r['falsifier'])}</td></tr>" for r in falsified)
+                     + "</table>")
     parts.append("<h3>Validation table</h3><table><tr>"
                  + "".join(f"<th>{html.escape(h)}</th>" for h in head) + "</tr>")
     for r in rows:
@@ -201,7 +213,7 @@ def write_report(out: str, results: str, config_dir: str, papers: list[str], pro
         n_assumed = len(load_paper(config_dir / "papers" / f"{paper}.yaml", profile, CACHE_DIR).assumed())
         summary.append(f'<tr><td><a href="#{paper}">{paper}</a></td><td>{claim["claim"]}</td>'
                        + "".join(f'<td class="b-{s}">{ind.get(s, 0)}</td>'
-                                 for s in ("pass", "fail", "inconclusive"))
+                                 for s in VERDICTS)
                        + f'<td>{n_assumed}</td><td class="note">{html.escape(claim["text"])}</td></tr>')
     check_file = out.parent / "reference_check.txt"
     check = check_file.read_text() if check_file.exists() else "not run"
@@ -215,7 +227,7 @@ def write_report(out: str, results: str, config_dir: str, papers: list[str], pro
 <nav class="toc"><a href="#summary">summary</a><a href="#reference">reference check</a>{toc}<a href="#cost">cost of accuracy</a><a href="#time">time</a></nav>
 <h2 id="summary">Replication summary</h2>
 <p class="note">Counts are of <b>independent</b> rows only (see each paper's rows by evidence class).</p>
-<table><tr><th>paper</th><th>claim</th><th>pass</th><th>fail</th><th>inconclusive</th><th>assumed constants</th><th>what did not reproduce, and why</th></tr>
+<table><tr><th>paper</th><th>claim</th><th>pass</th><th>fail</th><th>inconclusive</th><th>not converged</th><th>assumed constants</th><th>what did not reproduce, and why</th></tr>
 {''.join(summary)}</table>
 <h2 id="reference">Reference check</h2>
 <pre class="check{drift}">{html.escape(check)}</pre>
