@@ -48,6 +48,8 @@ class Context:
                 raise
             raise Refused("calibration", str(exc)) from None
         self.g_original = self.g
+        if levers is not None and self.calibration is not None:
+            self._check_buildable()
         if levers is not None:
             try:
                 self.g = self.g.with_levers(**{k: float(v) for k, v in levers.items()})
@@ -75,6 +77,21 @@ class Context:
         cal["H_original"] = optimise.objective(self.g, cut_points(self.g, n_cal)[1],
                                                self.tol_floor)
         return cal
+
+    def _check_buildable(self) -> None:
+        """Refuse a calibrated member nobody could build (constraints.py, issue 27): its
+        original levers over the stroke at the calibration's cut points."""
+        from .constraints import violations
+
+        p, n = self.p, self.calibration["n"]
+        theta = stroke.solve_exact(self.g, cut_points(self.g, n)[1]).theta
+        broken = violations(self.g, theta, clearance=float(p["clearance"]) * 1e3,
+                            plate_top=float(p["plate_thickness_max"]) * 1e3,
+                            mu_min=float(p["transmission_min"]), opening=float(p["opening"]) * 1e3)
+        self.calibration["violations"] = broken
+        if broken:
+            raise Refused("unbuildable", "; ".join(broken) + f" (tilt {self.calibration['tilt']:.4f} "
+                          f"rad calibrated on 1.4341, {n} cut points)")
 
     def _settings(self) -> stroke.SolverSettings:
         p, res, opt = self.p, self.res, self.options

@@ -42,11 +42,13 @@ def compute(run: dict) -> dict:
 def refusal_dataset(exc: Refused) -> xr.Dataset:
     """The dataset of a refused lever set: what was refused and why, no stroke."""
     ds = xr.Dataset({
-        "levers_assemble": var((), np.nan if exc.kind == "calibration" else 0.0, "1",
-                               "1: the lever set assembles over the stroke; 0: refused; "
-                               "NaN: the member cannot be calibrated on the paper's H"),
+        "levers_assemble": var((), 0.0 if exc.kind == "assembly" else np.nan, "1",
+                               "1: the lever set assembles over the stroke; 0: refused; NaN: "
+                               "the member was refused before (not calibrated, not buildable)"),
         "calibrated": var((), float(exc.kind != "calibration"), "1",
                           "1: the family member reaches the paper's 1.4341 at some tilt"),
+        "buildable": var((), 0.0 if exc.kind == "unbuildable" else np.nan, "1",
+                         "0: the calibrated member breaks a constraint of constraints.py"),
     })
     ds.attrs.update(length_unit="mm", refusal_kind=exc.kind, refusal=exc.message)
     return ds
