@@ -71,7 +71,7 @@ R.save_figure(fig, "linkage")
 # ## The admissible family and Table II's result as a distribution
 # Left: H of the original levers against the guide-rod tilt at the configured other intents
 # (the calibration picks the tilt where H = 1.4341). Middle: the reduction the paper's
-# Table II levers give over the family grid (scene `family`, 576 members, each calibrated on
+# Table II levers give over the family grid (scene `family`, 432 members, each calibrated on
 # 1.4341): grey every calibrated member, colour those that can be built (constraints.py:
 # guide rod beside the plate, rod joints over it, transmission, opening). Right: the same
 # over the framework's members of family `machine` (joint corners and seeded samples, the
@@ -104,7 +104,7 @@ ax[1].plot([], [], "o", color="C0", ms=3, label=f"buildable ({int(built.sum())})
 ax[1].axhline(paper_red, color="k", ls=":", label="paper, -34.96 % (band: 5 %)")
 ax[1].axhspan(paper_red * 1.05, paper_red * 0.95, color="k", alpha=0.12, lw=0)
 ax[1].set_xticks(range(4), ["frozen\nrotation", "frozen\nliteral", "re-derived\nrotation", "re-derived\nliteral"])
-ax[1].set(ylabel="reduction by Table II's levers [%]", title="family grid (576 members), each calibrated")
+ax[1].set(ylabel="reduction by Table II's levers [%]", title="family grid (432 members), each calibrated")
 ax[1].legend(fontsize=7, loc="upper left")
 ev = [r for r in R.table("verdict_evidence")
       if r["quantity"] == "horizontal_displacement_reduction" and r["kind"] == "family"]
