@@ -62,6 +62,11 @@ for i, c in ((0, "tab:blue"), (len(huch) // 2, "tab:green"), (len(huch) - 1, "ta
     ax.plot(*L["blade"], color=c, lw=2, label=f"huch = {huch[i]:.0f} mm")
 ax.axhline(0, color="k", lw=0.8)
 ax.axhline(-s, color="k", lw=0.6, ls=":")
+# the plate (Table I: up to 50 mm thick) over the rolled length: the guide rod ED must stay
+# beside it (constraints.py)
+x_lo = float(orig["geometry_x_mid"]) - 0.5 * float(orig["geometry_width"])
+ax.fill_between([x_lo, x_lo + float(orig["geometry_width"])], 0, 50, color="0.6", alpha=0.5,
+                label="plate (50 mm, rolled length)")
 ax.set(aspect="equal", xlabel="x [mm]", ylabel="y [mm]",
        title=f"Assembled linkage (calibrated tilt {float(orig['geometry_tilt']):.4f} rad), E at the origin")
 ax.legend(fontsize=7)

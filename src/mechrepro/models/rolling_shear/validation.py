@@ -49,8 +49,7 @@ def original(R):
                                            f"below {tilt[ok].min():.2f} rad"),
         "family_h_min": Reproduced(float(np.nanmin(H)),
                                    note=f"original levers over the assembling tilts {tilt[ok].min():.2f}-"
-                                        f"{tilt[ok].max():.2f} rad at the configured other intents; "
-                                        "over blade_offset and tilt together 0.7-60 mm (docs)"),
+                                        f"{tilt[ok].max():.2f} rad at the configured other intents"),
         "family_h_max": float(np.nanmax(H)),
         "overlap_max_deviation": float(ds["newton_overlap_max_deviation"]),
         "overlap_max_deviation_constant_rate_drive": Reproduced(
