@@ -670,7 +670,20 @@ def _make_run(raw, scene_name, study, index, point, run_schema, where) -> dict:
         "units": units,
         "seed": int(scene.get("seed", raw.get("seed", 0))),
         **_calibration(raw),
+        **_target(raw, scene, resolution, origin),
     }
+
+
+def _target(raw: dict, scene: dict, resolution: dict, where: str) -> dict:
+    """A scene's accuracy target, with the refinement step of its knob."""
+    t = scene.get("target")
+    if not t:
+        return {}
+    spec = refine_spec(raw).get(t["knob"], {})
+    if t["knob"] not in resolution or "factor" not in spec:
+        raise ConfigError(f"{where}: target.knob = {t['knob']!r}: must be a resolution key of the "
+                          f"scene with a refine: factor (resolution: {sorted(resolution)})")
+    return {"target": {"reduce": "max", **t, "factor": spec["factor"]}}
 
 
 def _calibration(raw: dict) -> dict:

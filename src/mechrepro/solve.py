@@ -8,6 +8,8 @@ import sys
 import time
 from pathlib import Path
 
+import numpy as np
+
 from .timing import timed_run, timing_variables
 
 
@@ -25,7 +27,30 @@ def run_solver(run: dict):
     (``to_dataset(result, run)``) is timed on the physics alone, so that the cost of
     accuracy is not blurred by xarray overhead; otherwise ``solve(run)`` is timed.
     Fast solves are repeated and the fastest call kept (:func:`mechrepro.timing.time_call`).
+    A run with a ``target`` accuracy is solved at the cheapest setting that meets it
+    (:mod:`mechrepro.target`), and says what it chose, estimated and verified.
     """
+    if run.get("target"):
+        from . import target
+
+        ds, rec = target.solve(run, lambda r: (lambda d: (d, d.attrs["wall_time_s"]))(
+            _solve_once(r)))
+        return ds.assign({
+            f"target_{k}": ((), float(rec[k]), {"units": "s" if k == "seconds_all_solves" else
+                                                 run["target"].get("unit", "1"),
+                                                 "long_name": k.replace("_", " ")})
+            for k in ("requested", "estimated_error", "verified_error", "knob_value",
+                      "seconds_all_solves")} | {
+            "target_levels": (("target_level",), np.asarray(rec["levels"], float),
+                              {"units": "1", "long_name": f"values of {rec['knob']} solved"}),
+            "target_values": (("target_level",), np.asarray(rec["values"], float),
+                              {"units": run["target"].get("unit", "1"),
+                               "long_name": f"{run['target']['reduce']} of "
+                                            f"{run['target']['quantity']} at each level"})})
+    return _solve_once(run)
+
+
+def _solve_once(run: dict):
     min_time = float(run.get("options", {}).get("timing_min_s", 0.05))
     m = model(run["paper"])
     if hasattr(m, "compute") and hasattr(m, "to_dataset"):

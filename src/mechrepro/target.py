@@ -1,0 +1,105 @@
+"""Ask for an accuracy instead of a resolution: the cheapest knob setting whose estimated error
+meets a requested tolerance.
+
+A scene may say::
+
+    target: {quantity: dynamic_load_x, reduce: max, rtol: 1.0e-3, knob: K,
+             exact: dynamic_load_x_exact}
+
+The runner (:func:`solve`) solves the scene at its own knob value k0 and at k0 r, k0 r^2
+(r: the knob's ``refine`` factor).  With q_i the reduced quantity, the three levels give the
+observed order p = ln(|q0 - q1| / |q1 - q2|) / ln r and, for a method of that order, the
+error of every setting k: e(k) = |q1 - q2| / (r^p - 1) (k2 / k)^p (Richardson).  It returns the
+cheapest sampled level whose estimated error meets ``rtol |q|`` (or ``atol``), or else solves
+once more at the predicted setting k* = k2 (e(k2) / tol)^(1/p).  The dataset records what was
+requested, the estimated error, the error against ``exact`` where the scene computes one (the
+verified error) and the time of every solve it took.
+"""
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+REDUCE = {"max": np.nanmax, "min": np.nanmin, "mean": np.nanmean,
+          "absmax": lambda a: np.nanmax(np.abs(a))}
+
+
+def reduce(ds, name: str, how: str) -> float:
+    return float(REDUCE[how](np.asarray(ds[name].values, float)))
+
+
+def order_and_error(q: list[float], ratio: float) -> tuple[float, float]:
+    """Observed order from three levels and the Richardson error estimate of the finest."""
+    d1, d2 = abs(q[0] - q[1]), abs(q[1] - q[2])
+    if d2 == 0.0:
+        return math.inf, 0.0
+    if d1 <= d2:
+        return math.nan, math.inf   # not in the asymptotic range: no estimate
+    p = math.log(d1 / d2) / math.log(ratio)
+    return p, d2 / (ratio ** p - 1.0)
+
+
+def _with(run: dict, knob: str, value) -> dict:
+    return {**run, "resolution": {**run["resolution"], knob: value}}
+
+
+def solve(run: dict, solve_once) -> tuple[object, dict]:
+    """``solve_once(run) -> (dataset, seconds)`` at the cheapest setting meeting the target;
+    returns the chosen dataset and the record of the choice."""
+    t = run["target"]
+    knob, ratio = t["knob"], float(t["factor"])
+    finer_is_larger = ratio > 1
+    k0 = run["resolution"][knob]
+    as_int = isinstance(k0, int)
+
+    def level(k):
+        return max(1, int(round(k))) if as_int else float(k)
+
+    ks = [level(k0 * ratio ** i) for i in range(3)]
+    solved, spent = [], 0.0
+    for k in ks:
+        ds, s = solve_once(_with(run, knob, k))
+        solved.append(ds)
+        spent += s
+    q = [reduce(ds, t["quantity"], t.get("reduce", "max")) for ds in solved]
+    p, e2 = order_and_error(q, ratio if finer_is_larger else 1 / ratio)
+    tol = max(float(t.get("rtol", 0.0)) * abs(q[-1]), float(t.get("atol", 0.0)))
+    h = [1.0 / k if finer_is_larger else k for k in ks]       # a step: smaller is finer
+    chosen = None
+    if math.isfinite(e2) and math.isfinite(p):
+        est = [e2 * (hi / h[-1]) ** p if p != math.inf else 0.0 for hi in h]
+        meets = [i for i, e in enumerate(est) if e <= tol]
+        if meets:
+            chosen, estimate = meets[0], est[meets[0]]
+        elif p > 0:
+            h_star = h[-1] * (tol / e2) ** (1.0 / p)
+            k_star = level(1.0 / h_star if finer_is_larger else h_star)
+            ds, s = solve_once(_with(run, knob, k_star))
+            solved.append(ds)
+            spent += s
+            ks.append(k_star)
+            q.append(reduce(ds, t["quantity"], t.get("reduce", "max")))
+            chosen, estimate = len(ks) - 1, e2 * (h_star / h[-1]) ** p
+    if chosen is None:
+        raise RuntimeError(f"{run['run']}: target {t} cannot be met: the levels {ks} give "
+                           f"{q}, which do not converge (no error estimate)")
+    ds = solved[chosen]
+    verified = math.nan
+    if t.get("exact"):
+        exact = reduce(ds, t["exact"], t.get("reduce", "max"))
+        verified = abs(q[chosen] - exact)
+    record = {"knob": knob, "knob_value": ks[chosen], "levels": ks, "values": q,
+              "observed_order": p, "requested": tol, "estimated_error": estimate,
+              "verified_error": verified, "seconds_all_solves": spent}
+    return ds, record
+
+
+def timed(solve_fn):
+    """``solve_fn(run) -> dataset`` as ``(dataset, seconds)``."""
+    def once(run):
+        t0 = time.perf_counter()
+        ds = solve_fn(run)
+        return ds, time.perf_counter() - t0
+    return once
