@@ -22,7 +22,7 @@ venv: $(STAMP)
 
 ## Reproduce every figure and table of every paper (full resolution): results/report/index.html
 reproduce: $(STAMP)
-	$(BIN)/python -m mechrepro.heal results
+	# the workflow heals results/ itself first, under its run lock (mechrepro.heal)
 	$(BIN)/snakemake --cores $(CORES) --rerun-incomplete; s=$$?; \
 	  $(BIN)/python -m mechrepro.plan results > /dev/null; exit $$s
 
@@ -32,7 +32,7 @@ test: $(STAMP)
 
 ## The fast profile, as CI runs it, into results-ci/
 ci-reproduce: $(STAMP)
-	$(BIN)/python -m mechrepro.heal results-ci
+	# the workflow heals results/ itself first, under its run lock (mechrepro.heal)
 	$(BIN)/snakemake --cores $(CORES) --rerun-incomplete --config profile=ci results=results-ci; \
 	  s=$$?; $(BIN)/python -m mechrepro.plan results-ci > /dev/null; exit $$s
 

@@ -145,7 +145,7 @@ def derive(results: dict[str, Path], reference_dir: str | Path, config_dir: str 
                 tol = math.nan
             w.writerow([q, repr(value), status, b, repr(spread), repr(tol),
                         " ".join(results)])
-        write_text(Path(reference_dir) / profile / f"{paper}.csv", buf.getvalue())
+        write_text(Path(reference_dir) / profile / f"{paper}.csv", buf.getvalue(), record=False)
         print(f"reference written: {Path(reference_dir) / profile / f'{paper}.csv'}")
     if refused:
         raise DriftError("verdicts that differ between platform variants (fix each quantity "

@@ -25,6 +25,13 @@ except ConfigError as exc:
     sys.stderr.write(f"\n{exc}\n\n")
     raise SystemExit(1)
 
+# Before the jobs are decided: take this results directory's run lock (a second run is
+# refused here, before it can touch anything), then heal by content (mechrepro.heal), in
+# the main process of a run only. `make reproduce` and a plain `snakemake` are alike.
+from mechrepro.heal import heal_workflow  # noqa: E402
+
+heal_workflow(workflow, RESULTS)
+
 # Every job runs `python -m mechrepro.<module>` with this workflow's src/ first on the path.
 # relative when the interpreter lives in the project (.venv), so a moved project keeps its
 # commands; absolute when it lives elsewhere, which does not move with the project
