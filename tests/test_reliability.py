@@ -165,3 +165,94 @@ def test_an_interrupted_run_keeps_what_it_finished(run, tmp_path):
     assert "[heal] removed" not in out.stderr
     assert {p.name: file_sha256(p) for p in runs.glob("*.nc")} == solved
     assert "Nothing to be done" in sm(work, "-n").stdout
+
+
+# --- the archive --------------------------------------------------------------------------
+
+def archive_dir(work):
+    return work / "results" / f"archive-{PAPER}"
+
+
+@pipeline
+def test_the_archive_holds_exactly_the_declared_outputs(run, tmp_path):
+    import json
+    import tarfile
+
+    work = tmp_path / "w"
+    shutil.copytree(run, work, symlinks=True)
+    stray = work / "results" / PAPER / "runs" / "renamed_scene.nc"
+    shutil.copy(next((work / "results" / PAPER / "runs").glob("*.nc")), stray)
+    (work / "results" / PAPER / "tables" / "old_table.csv").write_text("a\n1\n")
+    sm(work, "--forcerun", "archive")
+    man = json.loads((archive_dir(work) / "manifest.json").read_text())
+    with tarfile.open(archive_dir(work) / "mechrepro-results.tar.gz") as tar:
+        names = set(tar.getnames())
+    assert names == set(man["files"]) | {"manifest.json"}
+    assert not any("renamed_scene" in n or "old_table" in n or "/." in n for n in names)
+    # every declared output of the paper is there, nothing else from its directory
+    dry = sm(work, "--list-target-rules").stdout   # the workflow parses
+    assert f"{PAPER}/claim.json" in names and f"{PAPER}/tables/validation.csv" in names, dry
+
+
+@pipeline
+@pytest.mark.parametrize("fault", ["missing reference", "drift"])
+def test_a_failed_check_archives_nothing_and_keeps_the_last_good_archive(run, tmp_path, fault):
+    work = tmp_path / "w"
+    shutil.copytree(run, work, symlinks=True)
+    keep = {n: file_sha256(archive_dir(work) / n)
+            for n in ("manifest.json", "mechrepro-results.tar.gz")}
+    if fault == "missing reference":
+        (work / "results" / "reference" / "ci" / f"{PAPER}.csv").unlink()
+    else:   # a reference value far from what the run gives
+        ref = work / "results" / "reference" / "ci" / f"{PAPER}.csv"
+        lines = ref.read_text().splitlines()
+        i = next(i for i, l in enumerate(lines) if ",value," in l)
+        cells = lines[i].split(",")
+        cells[1] = repr(float(cells[1]) * 1.5 + 1.0)
+        lines[i] = ",".join(cells)
+        ref.write_text("\n".join(lines) + "\n")
+    proc = sm(work, check=False)
+    assert proc.returncode != 0
+    check = (work / "results" / f"report-{PAPER}" / "reference_check.txt").read_text()
+    assert "OK" not in check.splitlines()[0]
+    assert ("NOT CHECKED" if fault == "missing reference" else "DRIFT") in check
+    assert "not archiving" in proc.stderr
+    assert not (archive_dir(work) / "checked.json").exists()
+    assert {n: file_sha256(archive_dir(work) / n) for n in keep} == keep
+    # the manifest of the last good archive stays usable: it names exactly what the failed
+    # run rewrote (the report of the failed check), so a later bit flip is still found
+    from mechrepro.archive import verify
+
+    assert {p.split(":")[0] for p in verify(work / "results", archive_dir(work) / "manifest.json")
+            } <= {f"report-{PAPER}/index.html", f"report-{PAPER}/reference_check.txt"}
+
+
+def test_timing_verdicts_are_checked_and_profiles_must_agree(tmp_path):
+    from mechrepro.reference import HEADER, compare, profiles_agree
+
+    ref = [dict(zip(HEADER, ["speedup", "11231.7", "pass", "timing", "8920", "nan", "native"]))]
+    assert compare({"speedup": (16874.0, "pass")}, ref, "ref") == []   # value not compared
+    assert "verdict pass in reference, now fail" in compare({"speedup": (3.0, "fail")}, ref,
+                                                             "ref")[0]
+    for prof, status in (("ci", "pass"), ("default", "fail")):
+        d = tmp_path / prof
+        d.mkdir()
+        (d / "p.csv").write_text(",".join(HEADER) + f"\nq,1.0,{status},value,0,1e-9,native\n")
+    problems = profiles_agree(tmp_path, "p", None)
+    assert len(problems) == 1 and "profile_differs_why" in problems[0]
+
+
+def test_cli_errors_are_readable(tmp_path):
+    env = {**os.environ, "PYTHONPATH": str(healmod.Path(healmod.__file__).parents[1])}
+
+    def cli(*args):
+        return subprocess.run([sys.executable, "-m", "mechrepro.cli", *args], cwd=tmp_path,
+                              capture_output=True, text=True, env=env)
+
+    for args, rc, text in [((), 2, "usage"), (("--help",), 0, "gather"),
+                           (("verify", "results"), 1, "no manifest"),
+                           (("archive", "x"), 2, "needs at least"),
+                           (("nonsense",), 2, "unknown command")]:
+        out = cli(*args)
+        assert out.returncode == rc and text in out.stdout + out.stderr, (args, out)
+        assert "Traceback" not in out.stderr, out.stderr
