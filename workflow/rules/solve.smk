@@ -13,8 +13,9 @@ for _paper in PAPERS:
         rule:
             name:
                 f"solve_{_paper}__{_job}"
+            # not the paper's config file: the run records below are (as params), so an
+            # edit of one scene reruns exactly the jobs whose records it changes
             input:
-                config=paper_config(_paper),
                 code=model_code(_paper),
             output:
                 runs=[f"{RESULTS}/{_paper}/runs/{r}.nc" for r in _runs],
