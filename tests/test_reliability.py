@@ -316,3 +316,53 @@ def test_one_parameter_in_one_scene_reruns_exactly_its_solve_jobs(paper, tmp_pat
     assert "Params have changed" in dry.stdout
     if paper == "chain_drive":
         assert jobs == {"solve_chain_drive__scene_fig09b"}
+
+
+# --- bad input: refused before any job, nothing lost --------------------------------------
+
+@pipeline
+@pytest.mark.parametrize("edit, expect", [
+    (lambda t: t.replace('{value: 32,    unit: "1", source: "Sec. 4 (M)"}',
+                         '{value: .nan,  unit: "1", source: "Sec. 4 (M)"}'),
+     "parameters.tie_straps_tight_side.value = nan"),
+    (lambda t: t + "\nscenes:\n  x: {solver: difference_method, effects: []}\n",
+     "'scenes' given twice"),
+    (lambda t: t.replace("{value: 8.91,  unit: mm,", "{value: 8.91,  unit: m,"),
+     "chain pitch between 3 mm and 200 mm"),
+    (lambda t: t.replace("Sec. 4 (p1)", "Sec. 4 (p1) \udce9"), "not UTF-8"),
+], ids=["nan", "duplicate scenes", "8.91 m pitch", "latin-1 byte"])
+def test_bad_input_stops_a_real_run_before_any_job_and_loses_nothing(run, tmp_path, edit, expect):
+    work = tmp_path / "w"
+    shutil.copytree(run, work, symlinks=True)
+    before = hashes(work / "results")
+    path = work / "config" / "papers" / f"{PAPER}.yaml"
+    path.write_bytes(edit(path.read_text()).encode("utf-8", "surrogateescape"))
+    proc = sm(work, check=False)
+    out = proc.stdout + proc.stderr
+    assert proc.returncode != 0 and expect in out and f"config/papers/{PAPER}.yaml" in out, out[-2000:]
+    assert "rule " not in out and "Traceback" not in out, out[-2000:]
+    assert hashes(work / "results") == before
+
+
+@pipeline
+def test_plain_snakemake_recovers_from_an_interrupted_run(run, tmp_path):
+    """With the workflow profile (profiles/default), a plain `snakemake` reruns the jobs a
+    kill left incomplete, as `make reproduce` does with --rerun-incomplete."""
+    from conftest import ROOT
+
+    work = tmp_path / "w"
+    shutil.copytree(run, work, symlinks=True)
+    shutil.copytree(ROOT / "profiles", work / "profiles")
+    proc = subprocess.Popen([*SM, "--forcerun", f"validate_{PAPER}"], cwd=work,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                            start_new_session=True)
+    marker = work / ".snakemake" / "incomplete"
+    deadline = time.time() + 120
+    while time.time() < deadline and proc.poll() is None and not (
+            marker.is_dir() and any(marker.iterdir())):
+        time.sleep(0.02)
+    os.killpg(proc.pid, signal.SIGKILL)
+    proc.wait()
+    sm(work, "--unlock")
+    sm(work)   # no --rerun-incomplete: the profile gives it
+    assert "Nothing to be done" in sm(work, "-n").stdout
