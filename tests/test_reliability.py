@@ -187,7 +187,7 @@ def test_the_archive_holds_exactly_the_declared_outputs(run, tmp_path):
     man = json.loads((archive_dir(work) / "manifest.json").read_text())
     with tarfile.open(archive_dir(work) / "mechrepro-results.tar.gz") as tar:
         names = set(tar.getnames())
-    assert names == set(man["files"]) | {"manifest.json"}
+    assert names == set(man["files"]) | set(man.get("extras", {})) | {"manifest.json"}
     assert not any("renamed_scene" in n or "old_table" in n or "/." in n for n in names)
     # every declared output of the paper is there, nothing else from its directory
     dry = sm(work, "--list-target-rules").stdout   # the workflow parses
@@ -366,3 +366,29 @@ def test_plain_snakemake_recovers_from_an_interrupted_run(run, tmp_path):
     sm(work, "--unlock")
     sm(work)   # no --rerun-incomplete: the profile gives it
     assert "Nothing to be done" in sm(work, "-n").stdout
+
+
+@pipeline
+def test_the_archived_report_is_self_contained_with_a_saved_plan(run, tmp_path):
+    import re
+    import tarfile
+
+    from mechrepro.plan import main as plan
+
+    work = tmp_path / "w"
+    shutil.copytree(run, work, symlinks=True)
+    log = sorted((work / ".snakemake" / "log").glob("*.snakemake.log"))[-1]
+    os.chdir(work)
+    try:
+        assert plan(["results", str(log)]) == 0      # what `make` does after a run
+    finally:
+        os.chdir(tmp_path)
+    sm(work, "--forcerun", "report")
+    page = (work / "results" / f"report-{PAPER}" / "index.html").read_text()
+    assert "../rerun_plan.html" in page
+    out = tmp_path / "x"
+    with tarfile.open(archive_dir(work) / "mechrepro-results.tar.gz") as tar:
+        tar.extractall(out, filter="data")
+    links = re.findall(r'(?:src|href)="([^"#:]+)"', page)
+    broken = [l for l in links if not (out / f"report-{PAPER}" / l).resolve().exists()]
+    assert links and not broken, broken

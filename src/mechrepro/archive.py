@@ -62,17 +62,40 @@ def manifest(results: Path, files: list[str], config_dir: Path, papers: list[str
             "files": rels}
 
 
+def linked_extras(results: Path, files: dict) -> list[str]:
+    """Files outside the declared outputs that an archived page links (the rerun plan that
+    `make` saves after each run and the report embeds as ``../rerun_plan.html``), so the
+    extracted report has no dangling link.  Archived as they were, listed under
+    ``extras`` (not re-verified: the next make rewrites the plan)."""
+    out = []
+    for rel in files:
+        if rel.endswith(".html"):
+            page = (results / rel).read_text(errors="replace")
+            for link in re.findall(r'(?:src|href)="([^"#:]+)"', page):
+                target = (results / rel).parent / link
+                try:
+                    extra = str(target.resolve().relative_to(results.resolve()))
+                except ValueError:
+                    continue
+                if extra not in files and extra not in out and target.is_file():
+                    out.append(extra)
+    return out
+
+
 def write_archive(archive_dir: str, check: str, results: str, config_dir: str,
                   papers: list[str], profile: str, files: list[str]) -> dict:
     archive_dir, results = Path(archive_dir), Path(results)
     check_passed(Path(check), papers)
     man = manifest(results, files, Path(config_dir), papers, profile)
+    extras = linked_extras(results, man["files"])
+    if extras:
+        man["extras"] = {rel: file_sha256(results / rel) for rel in extras}
     data = (json.dumps(man, indent=2, sort_keys=True) + "\n").encode()
     with atomic_path(archive_dir / TARBALL) as tmp:
         # zlib's default level: tarfile's 9 took 2.7x as long for 0.1 % less (netCDF
         # results barely compress)
         with tarfile.open(tmp, "w:gz", compresslevel=6) as tar:
-            for rel in man["files"]:
+            for rel in [*man["files"], *man.get("extras", {})]:
                 tar.add(results / rel, arcname=rel)
             info = tarfile.TarInfo(MANIFEST)
             info.size, info.mode = len(data), 0o644

@@ -204,6 +204,10 @@ def heal_workflow(workflow, results: str, argv: list[str] | None = None) -> None
     except RunInProgress as exc:
         sys.stderr.write(f"\n{exc}\n\n")
         raise SystemExit(1)
+    except OSError as exc:
+        # read-only results or .snakemake: nothing can be healed, nor written by any job;
+        # a no-op run must still say "Nothing to be done", not end in a traceback
+        sys.stderr.write(f"[heal] not healed ({exc.strerror}: {exc.filename})\n")
 
 
 def main(argv: list[str]) -> int:
@@ -222,6 +226,9 @@ def main(argv: list[str]) -> int:
         lines = heal(args.results, dry_run=args.dry_run)
     except RunInProgress as exc:
         sys.stderr.write(f"{exc}\n")
+        return 1
+    except OSError as exc:
+        sys.stderr.write(f"heal: {exc.strerror}: {exc.filename}\n")
         return 1
     for line in lines:
         print(f"[heal] {line}", flush=True)
