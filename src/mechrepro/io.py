@@ -153,6 +153,11 @@ def _cf_types(ds: xr.Dataset) -> dict:
             var.attrs["units"] = CF_UNITS[var.attrs["units"]]
         if name in ds.coords or var.dtype.kind not in "fc":
             enc["_FillValue"] = None
+        if name in ds.dims and var.dtype.kind in "USO":
+            # a label dimension (run names, timed effects) as a char array: a string
+            # coordinate variable makes CF checkers fail (monotonicity of strings); xarray
+            # and netCDF4 read it back as the same strings (its _Encoding attribute)
+            enc["dtype"] = "S1"
         if enc:
             encoding[name] = enc
     return encoding
