@@ -52,6 +52,11 @@ class PaperConfig:
     studies: dict[str, list[str]] = field(default_factory=dict)
     # variant name -> names (scenes and studies) re-run under it
     variants: dict[str, list[str]] = field(default_factory=dict)
+    # variant name -> {"kind", "label", "parameters" (paper units: what it sets)}
+    variant_info: dict[str, dict] = field(default_factory=dict)
+    # variant name -> {scene or study: why it cannot run} (a coarser level beyond a
+    # solver's limits: the rows reading it get a two-level error estimate)
+    variant_skipped: dict[str, dict[str, str]] = field(default_factory=dict)
 
     @property
     def reported(self) -> dict[str, dict]:
@@ -82,7 +87,7 @@ class PaperConfig:
 
     @property
     def framework_tables(self) -> list[str]:
-        return ["validation", "effect_cost", "job_time"] + (
+        return ["validation", "verdict_evidence", "effect_cost", "job_time"] + (
             ["cost_of_accuracy"] if self.raw.get("accuracy") else [])
 
     def assumed(self) -> dict[str, dict]:
@@ -317,28 +322,31 @@ def _check_effects(raw: dict, where: str) -> None:
             if unit not in UNITS and not _udunits_like(unit):
                 raise ConfigError(f"{where}: effects.{name}.units.{k} = {unit!r}: not a unit")
     for scene, spec in raw["scenes"].items():
-        at = f"{where}: scenes.{scene}"
-        solver = spec["solver"]
-        if solver not in solvers:
-            raise ConfigError(f"{at}.solver = {solver!r}: not declared; solvers: "
-                              f"{', '.join(solvers) or '(none)'}")
-        named = spec["effects"]
-        for e in named:   # first what the solver cannot do at all, then combinations
-            if e not in effects:
-                raise ConfigError(f"{at}.effects: {e!r} is not a declared effect; effects: "
-                                  f"{', '.join(effects)}")
-            if solver not in effects[e]["honoured_by"]:
-                raise ConfigError(f"{at}: effect {e!r} is not honoured by solver {solver!r} "
-                                  f"(honoured by: {', '.join(effects[e]['honoured_by'])}); "
-                                  "remove it or choose one of those solvers")
-        for e in named:
-            decl = effects[e]
-            missing = [r for r in decl.get("requires", []) if r not in named]
-            if missing:
-                raise ConfigError(f"{at}: effect {e!r} requires {missing}")
-            clash = [x for x in decl.get("excludes", []) if x in named]
-            if clash:
-                raise ConfigError(f"{at}: effect {e!r} excludes {clash}")
+        _check_scene_effects(raw, spec["solver"], spec["effects"], f"{where}: scenes.{scene}")
+
+
+def _check_scene_effects(raw: dict, solver: str, named: list[str], at: str) -> None:
+    """One scene's (or falsifier's) solver and effects against the declarations."""
+    solvers, effects = raw["solvers"], raw["effects"]
+    if solver not in solvers:
+        raise ConfigError(f"{at}.solver = {solver!r}: not declared; solvers: "
+                          f"{', '.join(solvers) or '(none)'}")
+    for e in named:   # first what the solver cannot do at all, then combinations
+        if e not in effects:
+            raise ConfigError(f"{at}.effects: {e!r} is not a declared effect; effects: "
+                              f"{', '.join(effects)}")
+        if solver not in effects[e]["honoured_by"]:
+            raise ConfigError(f"{at}: effect {e!r} is not honoured by solver {solver!r} "
+                              f"(honoured by: {', '.join(effects[e]['honoured_by'])}); "
+                              "remove it or choose one of those solvers")
+    for e in named:
+        decl = effects[e]
+        missing = [r for r in decl.get("requires", []) if r not in named]
+        if missing:
+            raise ConfigError(f"{at}: effect {e!r} requires {missing}")
+        clash = [x for x in decl.get("excludes", []) if x in named]
+        if clash:
+            raise ConfigError(f"{at}: effect {e!r} excludes {clash}")
 
 
 def _udunits_like(unit: str) -> bool:
@@ -353,12 +361,45 @@ def _check_reported(raw: dict, where: str) -> None:
     names = set(raw["scenes"]) | set(raw.get("studies", {}))
     params = raw["parameters"]
     reported = raw["reported"]
+    families, falsifiers = raw.get("families", {}), raw.get("falsifiers", {})
+    in_family = family_of(raw)
+    for f, fam in families.items():
+        for p in fam["members"]:
+            if p not in params or "range" not in params[p]:
+                raise ConfigError(f"{where}: families.{f}.members: {p!r} is not an assumed "
+                                  f"parameter with a range")
+            if p in families:
+                raise ConfigError(f"{where}: families.{f}: {p!r} is a family, not a parameter")
+        if fam.get("corners", True) and len(fam["members"]) > 6:
+            raise ConfigError(f"{where}: families.{f}: {len(fam['members'])} members have "
+                              f"{2 ** len(fam['members'])} corners; at most 6 members with "
+                              "corners: true (use corners: false and samples: N)")
+        if f in params:
+            raise ConfigError(f"{where}: families.{f}: a family cannot share a parameter's name")
+    for f, spec in falsifiers.items():
+        for p in spec.get("parameters", {}):
+            if p not in params:
+                raise ConfigError(f"{where}: falsifiers.{f}.parameters: {p!r} is not a parameter")
+    for key, spec in refine_spec(raw).items():
+        if spec.get("factor") == 1:
+            raise ConfigError(f"{where}: refine.{key} = 1: a knob that is never refined; give "
+                              "it a factor (>1 for counts, <1 for steps and tolerances) or "
+                              "declare {fixed: why} if it is a choice, not an accuracy knob")
     for q, spec in reported.items():
         for r in spec["reads"]:
             if r not in names:
                 raise ConfigError(f"{where}: reported.{q}.reads: {r!r} is neither a scene nor a "
                                   f"study; allowed: {', '.join(sorted(names))}")
+        if spec.get("falsifier") and spec["falsifier"] not in falsifiers:
+            raise ConfigError(f"{where}: reported.{q}.falsifier = {spec['falsifier']!r}: not "
+                              f"declared under falsifiers: ({', '.join(falsifiers) or 'none'})")
         for p in spec.get("depends_on", []):
+            if p in families:
+                continue
+            if p in in_family:
+                raise ConfigError(f"{where}: reported.{q}.depends_on: {p!r} is a member of "
+                                  f"family {in_family[p]!r}, which is checked jointly: depend "
+                                  f"on the family")
             if p not in params or not params[p].get("assumed"):
                 raise ConfigError(f"{where}: reported.{q}.depends_on: {p!r} is not an assumed "
                                   f"parameter")
@@ -386,43 +427,157 @@ def _check_reported(raw: dict, where: str) -> None:
                 raise ConfigError(f"{where}: parameters.{p}: value {v} outside its range [{lo}, {hi}]")
 
 
-def _variant_names(spec: dict) -> list[str]:
+def refine_spec(raw: dict) -> dict[str, dict]:
+    """``refine:`` normalised: {key: {"factor": f} | {"fixed": why}}."""
+    out = {}
+    for key, v in raw.get("refine", {}).items():
+        out[key] = {"factor": float(v)} if isinstance(v, (int, float)) else dict(v)
+    return out
+
+
+def family_of(raw: dict) -> dict[str, str]:
+    """{member parameter: family} of the declared families."""
+    return {m: f for f, spec in raw.get("families", {}).items() for m in spec["members"]}
+
+
+def _variant_names(spec: dict, raw: dict | None = None) -> list[str]:
+    """The variants that re-check one reported row (docs/VALIDATION.md): the resolution
+    levels, other seeds, range ends (one constant) or members (a family), the falsifier."""
     if spec["kind"] not in VERDICT_KINDS:
         return []
-    out = ["finer"] if spec.get("finer", True) else []
+    out = []
+    if spec.get("finer", True):
+        out += (["coarser"] if spec.get("coarser", True) else []) + ["finer"]
+    out += [f"seed{k}" for k in range(1, int(spec.get("seeds", 0)) + 1)]
+    families = (raw or {}).get("families", {})
     for p in spec.get("depends_on", []):
-        out += [f"{p}-lo", f"{p}-hi"]
+        if p in families:
+            out += _family_members(p, families[p], raw)
+        else:
+            out += [f"{p}-lo", f"{p}-hi"]
+    if spec.get("falsifier"):
+        out.append(f"falsify-{spec['falsifier']}")
     return out
+
+
+def _family_members(name: str, fam: dict, raw: dict) -> list[str]:
+    n = len(fam["members"])
+    corners = [f"{name}-c{i:02d}" for i in range(2 ** n)] if fam.get("corners", True) else []
+    return corners + [f"{name}-s{i:02d}" for i in range(int(fam.get("samples", 0)))]
+
+
+def family_values(raw: dict, name: str, member: str) -> dict:
+    """The parameter values (paper units) of one member variant of a family: a corner
+    ``c<bits>`` (bit i set: member i at its range's upper end) or a seeded sample ``s<i>``
+    (uniform inside the box; categorical or integer ranges take one of their ends)."""
+    import zlib
+
+    import numpy as np
+
+    fam = raw["families"][name]
+    params = raw["parameters"]
+    out = {}
+    if member.startswith("c"):
+        bits = int(member[1:])
+        for i, p in enumerate(fam["members"]):
+            out[p] = params[p]["range"][(bits >> i) & 1]
+        return out
+    k = int(member[1:])
+    rng = np.random.default_rng([int(raw.get("seed", 0)), zlib.crc32(name.encode()), k])
+    for p in fam["members"]:
+        lo, hi = params[p]["range"]
+        u = float(rng.random())
+        if all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in (lo, hi)):
+            v = lo + u * (hi - lo)
+            out[p] = int(round(v)) if all(isinstance(x, int) for x in (lo, hi, params[p]["value"])) else v
+        else:
+            out[p] = lo if u < 0.5 else hi
+    return out
+
+
+def _variant_overrides(raw: dict, variant: str) -> tuple[str, dict, str]:
+    """(kind, parameter overrides in paper units, label) of a variant name."""
+    if variant in ("coarser", "finer"):
+        return "level", {}, f"at the {variant} resolution"
+    if variant.startswith("seed") and variant[4:].isdigit():
+        return "seed", {}, f"at seed + {variant[4:]}"
+    if variant.startswith("falsify-"):
+        f = variant[len("falsify-"):]
+        return "falsifier", dict(raw["falsifiers"][f].get("parameters", {})), \
+            f"under falsifier {f} ({raw['falsifiers'][f]['why']})"
+    p, end = variant.rsplit("-", 1)
+    if p in raw.get("families", {}):
+        vals = family_values(raw, p, end)
+        return "family", vals, f"at family {p} member {end} ({_short(vals)})"
+    v = raw["parameters"][p]["range"][0 if end == "lo" else 1]
+    return "range", {p: v}, f"at {p} = {v}{_unit(raw, p, v)} (range {end})"
+
+
+def _unit(raw, p, v) -> str:
+    u = raw["parameters"][p]["unit"]
+    return f" {u}" if isinstance(v, (int, float)) and u != "1" else ""
+
+
+def _short(vals: dict) -> str:
+    return ", ".join(f"{k} = {v:.4g}" if isinstance(v, float) else f"{k} = {v}"
+                     for k, v in vals.items())
 
 
 def _add_variants(cfg: PaperConfig, raw: dict, run_schema: dict, where: str) -> None:
     """Add the variant runs (and studies) that the verdict rows need."""
     wanted: dict[str, dict[str, list[str]]] = {}  # variant -> name -> quantities needing it
     for q, spec in cfg.reported.items():
-        for v in _variant_names(spec):
+        for v in _variant_names(spec, raw):
             for name in spec["reads"]:
                 wanted.setdefault(v, {}).setdefault(name, []).append(q)
     for variant, names in wanted.items():
         cfg.variants[variant] = sorted(names)
+        kind, overrides, label = _variant_overrides(raw, variant)
+        cfg.variant_info[variant] = {"kind": kind, "parameters": overrides, "label": label}
         for name, quantities in sorted(names.items()):
             why = f"variant {variant} of {name!r}, needed by {', '.join(quantities)}"
             # a variant identical to the baseline (a range end equal to the value) is not
             # re-run: the validation reads the baseline run for it
-            if name in raw["scenes"]:
-                base = cfg.runs[name]
-                vr = _variant_run(raw, base, variant, run_schema, where, why)
-                if _differs(vr, base):
-                    cfg.runs[vr["run"]] = vr
-            else:
+            try:
                 runs = [_variant_run(raw, cfg.runs[run], variant, run_schema, where, why)
-                        for run in cfg.studies[name]]
+                        for run in (cfg.studies[name] if name not in raw["scenes"] else [name])]
+            except ConfigError as exc:
+                if variant != "coarser":
+                    raise
+                # one level coarser is beyond what the run schema allows (a stability limit)
+                cfg.variant_skipped.setdefault(variant, {})[name] = str(exc).split("\n")[-1].strip()
+                continue
+            if name in raw["scenes"]:
+                if _differs(runs[0], cfg.runs[name]):
+                    cfg.runs[runs[0]["run"]] = runs[0]
+            else:
                 if any(_differs(vr, cfg.runs[r]) for vr, r in zip(runs, cfg.studies[name])):
                     cfg.runs.update({vr["run"]: vr for vr in runs})
                     cfg.studies[f"{name}@{variant}"] = [vr["run"] for vr in runs]
 
 
 def _differs(variant_run: dict, base: dict) -> bool:
-    return any(variant_run[k] != base[k] for k in ("parameters", "resolution"))
+    return any(variant_run[k] != base[k]
+               for k in ("parameters", "resolution", "effects", "solver", "options", "seed"))
+
+
+def _refined(raw, base: dict, direction: str, where: str, why: str) -> dict:
+    """The run's resolution one level finer or coarser (every knob together)."""
+    refine = refine_spec(raw)
+    resolution = copy.deepcopy(base["resolution"])
+    for key, value in resolution.items():
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            continue  # a choice (an integrator's name): the same at every level
+        if key not in refine:
+            raise ConfigError(f"{where}: refine: no factor for resolution key {key!r} "
+                              f"(scene {base['scene']!r}; {why}); add refine.{key} "
+                              "(a factor, or {fixed: why} if it is not an accuracy knob)")
+        if "fixed" in refine[key]:
+            continue
+        f = refine[key]["factor"] if direction == "finer" else 1.0 / refine[key]["factor"]
+        fine = value * f
+        resolution[key] = max(1, int(round(fine))) if isinstance(value, int) else float(fine)
+    return resolution
 
 
 def _variant_run(raw, base: dict, variant: str, run_schema, where, why) -> dict:
@@ -431,28 +586,34 @@ def _variant_run(raw, base: dict, variant: str, run_schema, where, why) -> dict:
     params = {k: v["value"] for k, v in raw["parameters"].items()}
     params.update(scene.get("parameters", {}))
     params.update({k: v for k, v in base["sweep"].items() if k in params})
-    if variant == "finer":
-        refine = raw.get("refine", {})
-        for key, value in resolution.items():
-            if key not in refine and isinstance(value, (int, float)) and not isinstance(value, bool):
-                raise ConfigError(f"{where}: refine: no factor for resolution key {key!r} "
-                                  f"(scene {base['scene']!r}; {why}); add refine.{key}")
-            if isinstance(value, bool) or not isinstance(value, (int, float)):
-                continue  # a choice (an integrator's name): the same at the finer resolution
-            fine = value * refine[key]
-            resolution[key] = int(round(fine)) if isinstance(value, int) else float(fine)
+    effects, solver = list(base["effects"]), base["solver"]
+    options, seed = copy.deepcopy(base["options"]), base["seed"]
+    kind, overrides, _ = _variant_overrides(raw, variant)
+    if kind == "level":
+        resolution = _refined(raw, base, variant, where, why)
+    elif kind == "seed":
+        seed = base["seed"] + int(variant[4:])
+    elif kind == "falsifier":
+        spec = raw["falsifiers"][variant[len("falsify-"):]]
+        params.update(overrides)   # a model change: it overrides the scene's own values
+        effects = [e for e in effects if e not in spec.get("effects_off", [])]
+        effects += [e for e in spec.get("effects_on", []) if e not in effects]
+        solver = spec.get("solver", solver)
+        options.update(spec.get("options", {}))
+        _check_scene_effects(raw, solver, effects, f"{where}: {why}")
     else:
-        p, end = variant.rsplit("-", 1)
         # a scene or sweep that sets the constant itself keeps its own value
-        if p not in scene.get("parameters", {}) and p not in base["sweep"]:
-            params[p] = raw["parameters"][p]["range"][0 if end == "lo" else 1]
-    record = {"effects": base["effects"], "resolution": resolution, "parameters": params,
-              "options": base["options"]}
+        params.update({p: v for p, v in overrides.items()
+                       if p not in scene.get("parameters", {}) and p not in base["sweep"]})
+    record = {"effects": effects, "resolution": resolution, "parameters": params,
+              "options": options}
     _validate(record, run_schema, f"{where} ({why})")
     si, units = {}, {}
     for k, v in params.items():
         si[k], units[k] = to_si(v, raw["parameters"][k]["unit"])
     return {**base, "run": f"{base['run']}@{variant}", "variant": variant,
+            "solver": solver, "effects": effects, "options": options, "seed": seed,
+            "contributes": {e: raw["effects"][e]["contributes"] for e in effects},
             "resolution": resolution, "parameters": si, "units": units}
 
 

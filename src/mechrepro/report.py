@@ -1,52 +1,72 @@
-"""The reproduction report: every figure and table of every paper, pass/fail at a glance."""
+"""The reproduction report: whether to trust the run on the first screen, then per paper each
+figure and table beside what the paper states about it.
+
+The page is a Jinja2 template (``templates/report.html.j2``) filled from structured data only:
+the reference check, each paper's ``claim.json``, ``validation.csv`` and declared artefacts.
+Images are linked relative to the page, so the report inside the archive is self-contained.
+"""
 from __future__ import annotations
 
 import csv
 import datetime as _dt
-import html
 import json
 import os
-from collections import Counter
+import platform
+import re
 from pathlib import Path
 
 from .config import CACHE_DIR, load_paper
 from .io import write_text
 from .provenance import code_version
-from .validation import EVIDENCE, STATUSES, counts as evidence_counts
+
+VERDICTS = ("pass", "fail", "inconclusive", "not_converged")
 
 CSS = """
-body{font-family:system-ui,sans-serif;margin:2em auto;max-width:1150px;color:#222;line-height:1.4}
-h1{margin-bottom:0}h2{border-bottom:2px solid #ccc;padding-top:1em}
-table{border-collapse:collapse;margin:.6em 0;font-size:13px}
-td,th{border:1px solid #ccc;padding:3px 7px;text-align:left;vertical-align:top}
+body{font-family:system-ui,sans-serif;margin:1em auto;max-width:1180px;padding:0 12px;color:#222;line-height:1.4}
+h1{margin:.2em 0;font-size:1.5em}h2{border-bottom:2px solid #ccc;padding-top:.8em}
+h3{margin:.8em 0 .3em}h3 a.anchor{color:inherit;text-decoration:none}
+table{border-collapse:collapse;margin:.5em 0;font-size:13px}
+td,th{border:1px solid #ccc;padding:3px 6px;text-align:left;vertical-align:top;overflow-wrap:anywhere}
 th{background:#f0f0f0}
-tr.pass td.status{background:#c8efc8;font-weight:bold}
-tr.fail td.status{background:#f6c3c3;font-weight:bold}
-tr.info td.status{background:#e4e4f4}
-tr.inconclusive td.status{background:#f6e3b0;font-weight:bold}
-tr.nc td{color:#777}
-.b-inconclusive{background:#f6e3b0}
-nav.toc{background:#f7f7f7;padding:.4em 1em;border:1px solid #ddd}
-nav.toc a{margin-right:1em}
-pre.check{background:#f4f4f4;padding:.6em;font-size:12px;white-space:pre-wrap}
-pre.drift{background:#fbe0e0}
-.badge{display:inline-block;padding:2px 8px;border-radius:8px;margin-right:6px;font-size:13px}
+table.papers,table.rows{width:100%;table-layout:fixed}
+table.papers th:nth-child(1){width:9em}table.papers th:nth-child(2){width:5em}table.papers th:nth-child(3){width:17em}
+col.c-q{width:22%}col.c-v{width:13%}col.c-s{width:12%}col.c-w{width:40%}
+.banner{border:2px solid;border-radius:6px;padding:.3em 1em .6em;margin-bottom:.6em}
+.banner.ok{border-color:#3a9a3a;background:#f3fbf3}.banner.bad{border-color:#c33;background:#fdf0f0}
+.trust{font-size:1.05em;margin:.3em 0}.meta{color:#555;font-size:12px;margin:.2em 0}
+ul.drift{font-size:12px;margin:.2em 0}
+.badge{display:inline-block;padding:1px 7px;border-radius:8px;margin:1px 4px 1px 0;font-size:12px;white-space:nowrap}
 .b-pass{background:#c8efc8}.b-fail{background:#f6c3c3}.b-info{background:#e4e4f4}
-.claim{background:#fff8e0;border-left:4px solid #e0b000;padding:.5em 1em}
-figure{display:inline-block;margin:.5em;vertical-align:top}
-figure img{max-width:520px;border:1px solid #ddd}
+.b-inconclusive{background:#f6e3b0}.b-not_converged{background:#e8c8f0}
+tr.nc td{color:#777}
+.claim{background:#fff8e0;border-left:4px solid #e0b000;padding:.4em 1em}
+nav.toc{background:#f7f7f7;padding:.3em 1em;border:1px solid #ddd;position:sticky;top:0;z-index:1}
+nav.toc a{margin-right:1em}
+figure{margin:.4em 0}figure img{max-width:100%;height:auto;border:1px solid #ddd}
 figcaption{font-size:12px;color:#555}
-.note{color:#555;font-size:12px}
-td.note{min-width:280px}
+.note{color:#555;font-size:12px}.ours{color:#666;font-weight:normal;font-size:.85em}
+details summary{cursor:pointer;color:#245}dl{font-size:12px;margin:.2em 0}dt{font-weight:bold}dd{margin:0 0 .3em 1em}
+details.table{margin:.4em 0}.scroll{overflow-x:auto;max-width:100%}
+@media print{nav.toc{display:none}details{display:block}details>*{display:block}
+  .paper,.artefact{break-inside:avoid-page}body{max-width:none}}
 """
 
-
-CAPTIONS = {
-    "effect_cost": "What each effect costs (effect_cost: summed over every run, verdict variants included; "
-                   "share = of those runs' solve time)",
-    "job_time": "Solver jobs: the solves' own time against the job's wall time (job_time)",
-    "cost_of_accuracy": "Cost of accuracy (long form: error against the reference vs time)",
+TABLE_TITLES = {
+    "effect_cost": "What each effect costs (summed over every run, verdict variants included)",
+    "job_time": "Solver jobs: the solves' own time against the job's wall time",
+    "cost_of_accuracy": "Cost of accuracy: error against the reference vs time (long form)",
+    "verdict_evidence": "Every re-check of every verdict (levels, seeds, range ends, family "
+                        "members, falsifiers)",
 }
+
+
+def artefact_title(aid: str) -> str:
+    """'fig07' -> 'Fig. 7', 'table2' -> 'Table 2', 'fig6a' -> 'Fig. 6a', others as words."""
+    for prefix, word in (("fig", "Fig."), ("table", "Table")):
+        rest = aid[len(prefix):]
+        if aid.startswith(prefix) and rest[:1].isdigit():
+            return f"{word} {rest.lstrip('0') or '0'}".replace("_", " ")
+    return {"text": "Statements in the text"}.get(aid, aid.replace("_", " "))
 
 
 def _read_csv(path: Path) -> tuple[list[str], list[list[str]]]:
@@ -55,109 +75,132 @@ def _read_csv(path: Path) -> tuple[list[str], list[list[str]]]:
     return rows[0], rows[1:]
 
 
-def _fmt(cell: str) -> str:
+def _num(cell: str) -> str:
     try:
         x = float(cell)
     except ValueError:
-        return html.escape(cell)
-    return html.escape(f"{x:.6g}")
+        return cell
+    return f"{x:.6g}"
 
 
-def _evidence_table(rows: list[dict]) -> str:
-    c = evidence_counts(rows)
-    head = "".join(f"<th>{s}</th>" for s in STATUSES)
-    body = "".join(f"<tr><td>{e}{' (counted)' if e == 'independent' else ''}</td>"
-                   + "".join(f'<td class="b-{s}">{c.get(e, {}).get(s, 0)}</td>' for s in STATUSES)
-                   + "</tr>" for e in EVIDENCE if e in c)
-    return f"<table><tr><th>evidence</th>{head}</tr>{body}</table>"
+_SENTENCE_END = re.compile(r"(?<!\bEq)(?<!\bEqs)(?<!\bFig)(?<!\bFigs)(?<!\bSec)(?<!\bRef)(?<!\be\.g)"
+                           r"(?<!\bi\.e)(?<!\bvs)(?<!\bp)(?<!\bcf)\.\s+(?=[A-Z(\[])")
 
 
-def paper_section(paper: str, results: Path, config_dir: Path, profile: str,
-                  out_dir: Path) -> tuple[str, dict]:
+def _first_sentence(text: str, limit: int = 220) -> str:
+    """The first sentence (abbreviations such as 'Eq.' and 'Fig.' do not end one)."""
+    text = " ".join(text.split())
+    m = _SENTENCE_END.search(text)
+    out = text if m is None else text[:m.start() + 1]
+    return out if len(out) <= limit else out[:limit - 1].rstrip() + "…"
+
+
+def _row(r: dict, spec: dict) -> dict:
+    """One validation.csv row as the report shows it."""
+    error = r.get("error_estimate", "")
+    ours = _num(r["reproduced_value"])
+    if spec.get("kind") == "check":
+        ours = {"1.0": "holds", "0.0": "does not hold"}.get(r["reproduced_value"], ours)
+    if error and error not in ("0.0", "nan", "inf") and r["status"] != "info":
+        ours += f" ± {float(error):.2g}"
+    if r["unit"] not in ("1", "bool", ""):
+        ours += f" {r['unit']}"
+    paper = "claim holds" if spec.get("kind") == "check" else _num(r["paper_value"]) or "—"
+    if paper not in ("—", "claim holds") and r["unit"] not in ("1", "bool", ""):
+        paper += f" {r['unit']}"
+    why = spec.get("why", "") if r["status"] == "pass" else ""
+    why = _first_sentence(why or r.get("note", "") or spec.get("note", ""))
+    details = [(k, v) for k, v in (
+        ("criterion", r.get("criterion", "")), ("tolerance", r.get("tolerance", "")),
+        ("observed order", _num(r.get("observed_order", ""))),
+        ("falsifier", r.get("falsifier", "")), ("note", r.get("note", "")),
+        ("tolerance why", spec.get("why", ""))) if v]
+    return {"quantity": r["quantity"].replace("_", " "), "source": r["source"], "paper": paper,
+            "ours": ours, "status": r["status"], "evidence": r["evidence"],
+            "counted": r["evidence"] == "independent" and r["status"] != "info",
+            "why": why, "details": details}
+
+
+def claim_sentence(claim: dict) -> str:
+    """One plain sentence from claim.json's structured fields (artefact titles, no row ids)."""
+    n = claim["independent"]
+    total = sum(n.values())
+    parts = [f"{n.get('pass', 0)} of {total} independent checks pass"]
+    for key, word in (("agree", "agrees on"), ("disagree", "disagrees on"),
+                      ("inconclusive", "not settled on")):
+        if claim.get(key):
+            parts.append(f"{word} {', '.join(artefact_title(a) for a in claim[key])}")
+    n_nc = len(claim.get("not_counted_passes", []))
+    if n_nc:
+        parts.append(f"{n_nc} pass{'es' if n_nc != 1 else ''} not counted (no falsifier "
+                     "that fails)")
+    return "; ".join(parts) + "."
+
+
+def paper_view(paper: str, results: Path, config_dir: Path, profile: str, out_dir: Path) -> dict:
     cfg = load_paper(config_dir / "papers" / f"{paper}.yaml", profile, CACHE_DIR)
     root = results / paper
     claim = json.loads((root / "claim.json").read_text())
     with open(root / "tables" / "validation.csv", newline="") as f:
         rows = list(csv.DictReader(f))
-    head = [h for h in rows[0]] if rows else []
-    ind = Counter(r["status"] for r in rows if r.get("evidence") == "independent")
-    parts = [f'<h2 id="{paper}">{html.escape(paper)} &mdash; {html.escape(cfg.raw.get("title", ""))}</h2>',
-             f'<p class="note">{html.escape(cfg.source)}</p>',
-             "<p>independent rows: " + "".join(
-                 f'<span class="badge b-{s}">{s}: {ind.get(s, 0)}</span>'
-                 for s in ("pass", "fail", "inconclusive")) + "</p>",
-             f'<p class="claim"><b>Replication claim: {html.escape(claim["claim"])}.</b> '
-             f'{html.escape(claim["text"])}</p>',
-             "<h3>Rows by evidence class</h3>"
-             "<p class='note'>Only <b>independent</b> rows (no constant was fitted to them) count "
-             "in the claim; the others are shown, labelled, not counted.</p>", _evidence_table(rows)]
-    flips = [r for r in rows if r["status"] == "inconclusive"]
-    if flips:
-        parts.append("<h3>Inconclusive verdicts, and what flips them</h3><ul>" + "".join(
-            f"<li><b>{html.escape(r['quantity'])}</b>: {html.escape(r.get('note', ''))}</li>"
-            for r in flips) + "</ul>")
-    parts.append("<h3>Validation table</h3><table><tr>"
-                 + "".join(f"<th>{html.escape(h)}</th>" for h in head) + "</tr>")
-    for r in rows:
-        counted = "" if r.get("evidence") == "independent" else " nc"
-        cells = "".join(f'<td class="{h}">{_fmt(r[h])}</td>' for h in head)
-        parts.append(f'<tr class="{r["status"]}{counted}">{cells}</tr>')
-    parts.append("</table>")
-    assumed = cfg.assumed()
-    if assumed:
-        parts.append("<h3>Assumed constants (not given by the paper)</h3><table>"
-                     "<tr><th>parameter</th><th>value</th><th>unit</th><th>plausible range / "
-                     "calibration</th><th>why</th></tr>")
-        for k, v in assumed.items():
-            rng = (f"{v['range']} ({v.get('range_why', '')})" if "range" in v else
-                   f"calibrated on {v['calibrated_on']}" if "calibrated_on" in v else
-                   "numerical setting" if v.get("numerical") else "")
-            parts.append(f"<tr><td>{html.escape(k)}</td><td>{html.escape(str(v['value']))}</td>"
-                         f"<td>{html.escape(v['unit'])}</td><td>{html.escape(rng)}</td>"
-                         f"<td>{html.escape(v['why'])}</td></tr>")
-        parts.append("</table>")
-    parts.append("<h3>Figures</h3>")
+    reported = cfg.reported
+    artefacts: dict[str, dict] = {}
     for fig in cfg.figures:
-        rel = os.path.relpath(root / "figures" / f"{fig}.png", out_dir)
-        parts.append(f'<figure><img src="{html.escape(rel)}" alt="{paper} {fig}">'
-                     f"<figcaption>{html.escape(fig)}</figcaption></figure>")
-    for table in cfg.tables:
-        if table == "validation":
+        artefacts[fig] = {"id": fig, "rows": [], "image": os.path.relpath(
+            root / "figures" / f"{fig}.png", out_dir)}
+    for r in rows:
+        a = r["artefact"]
+        artefacts.setdefault(a, {"id": a, "rows": [], "image": None})["rows"].append(
+            _row(r, reported.get(r["quantity"], {})))
+    for a in artefacts.values():
+        a["title"] = artefact_title(a["id"])
+        # ours: an artefact of no paper statement, or one whose every row cites us
+        a["ours"] = not a["rows"] or all("ours" in r["source"] for r in a["rows"])
+        a["caption"] = f"{paper} {a['title']}"
+    tables = []
+    for t in cfg.tables:
+        if t == "validation" or not (root / "tables" / f"{t}.csv").exists():
             continue
-        h2, r2 = _read_csv(root / "tables" / f"{table}.csv")
-        title = CAPTIONS.get(table, f"Table: {html.escape(table)}")
-        parts.append(f"<h3>{title}</h3><table><tr>"
-                     + "".join(f"<th>{html.escape(h)}</th>" for h in h2) + "</tr>"
-                     + "".join("<tr>" + "".join(f"<td>{_fmt(c)}</td>" for c in row) + "</tr>"
-                               for row in r2) + "</table>")
-    return "\n".join(parts), {"independent": ind, "claim": claim}
+        head, body = _read_csv(root / "tables" / f"{t}.csv")
+        tables.append({"title": TABLE_TITLES.get(t, f"Table {t}"), "head": head,
+                       "rows": [[_num(c) for c in row] for row in body]})
+    assumed = [{"name": k, "value": f"{v['value']} {v['unit'] if v['unit'] != '1' else ''}".strip(),
+                "range": (f"{v['range'][0]} … {v['range'][1]}: {v.get('range_why', '')}"
+                          if "range" in v else f"calibrated on {v['calibrated_on']}"
+                          if "calibrated_on" in v else "numerical setting"),
+                "why": v["why"]} for k, v in cfg.assumed().items()]
+    counts = [(s, n) for s in VERDICTS for n in [claim["independent"].get(s, 0)]
+              if n or s in ("pass", "fail")]
+    return {"id": paper, "title": cfg.raw.get("title", ""), "source": cfg.source,
+            "claim": claim["claim"], "counts": counts, "sentence": claim_sentence(claim),
+            "paper_note": cfg.raw.get("claim_note", ""), "artefacts": list(artefacts.values()),
+            "tables": tables, "assumed": assumed}
 
 
-def summary_section(out_dir: Path) -> str:
-    """The cross-paper summary (cost of accuracy side by side) and the last rerun plan."""
-    parts = []
-    if (out_dir / "summary.csv").exists():
-        head, rows = _read_csv(out_dir / "summary.csv")
-        parts.append("<h2>Cost of accuracy, all papers</h2>"
-                     '<figure><img src="cost_of_accuracy_all.png" alt="cost of accuracy, all papers">'
-                     "<figcaption>error vs wall time per solve, each paper's headline quantity"
-                     "</figcaption></figure><table><tr>"
-                     + "".join(f"<th>{html.escape(h)}</th>" for h in head) + "</tr>"
-                     + "".join("<tr>" + "".join(f"<td>{_fmt(c)}</td>" for c in r) + "</tr>"
-                               for r in rows) + "</table>")
-    if (out_dir.parent / "rerun_plan.html").exists():  # saved by `make reproduce`
-        parts.append("<h2>Last rerun plan</h2><p class='note'>Why each job of the last "
-                     "<code>make reproduce</code> ran (from Snakemake's log of that run, by "
-                     "<code>python -m mechrepro.plan</code>).</p>"
-                     '<iframe src="../rerun_plan.html" style="width:100%;height:320px;'
-                     'border:1px solid #ccc"></iframe>')
-    return "\n".join(parts)
+def banner(check_file: Path, profile: str) -> dict:
+    """Whether to trust the run: the reference check's first line decides (a drift, a paper
+    without a reference, or no check at all is not OK)."""
+    text = check_file.read_text() if check_file.exists() else ""
+    lines = text.splitlines()
+    ok = bool(lines) and lines[0].endswith(": OK") and "not checked" not in text
+    if not lines:
+        headline, detail = "Not checked:", "the reference check did not run."
+    elif ok:
+        headline, detail = "Reference check passed:", ("every value is within its measured "
+                                                         "tolerance and every verdict is the same as in the committed reference.")
+    else:
+        headline, detail = "Do not trust these numbers yet:", "the reference check did not pass."
+    bad = [ln.strip() for ln in lines[1:] if ln.startswith("  ") or "not checked" in ln
+           or "DRIFT" in ln]
+    return {"ok": ok, "headline": headline, "detail": detail, "lines": bad[:12],
+            "profile": profile, "code": code_version(),
+            "platform": f"{platform.machine()} {platform.system()}, Python {platform.python_version()}",
+            "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")}
 
 
-def time_section(results: Path, papers: list[str]) -> str:
-    """Per paper: the solves' own time against the solver jobs' wall time (start-up,
-    imports, writing and repeated timing calls are the difference), and the paper's other
-    jobs (validation, notebook)."""
+def time_view(results: Path, papers: list[str]) -> dict | None:
+    """Per paper: the solves' own time against the solver jobs' wall time, and the paper's
+    other jobs (validation, notebook)."""
     from .costs import benchmark_seconds
 
     def cell(x: float) -> str:
@@ -174,56 +217,32 @@ def time_section(results: Path, papers: list[str]) -> str:
         runs = sum(int(x[head.index("runs")]) for x in r)
         other = [benchmark_seconds(results / paper / "benchmarks" / f"{k}.tsv")
                  for k in ("validate", "notebook")]
-        overhead = f"{(job - solve) / job:.0%}" if job > 0 else "n/a"
-        rows.append(f"<tr><td>{paper}</td><td>{len(r)}</td><td>{runs}</td><td>{solve:.3g}</td>"
-                    f"<td>{cell(job if job > 0 else float('nan'))}</td><td>{overhead}</td>"
-                    + "".join(f"<td>{cell(x)}</td>" for x in other) + "</tr>")
+        rows.append([paper, str(len(r)), str(runs), f"{solve:.3g}",
+                     cell(job if job > 0 else float("nan")),
+                     f"{(job - solve) / job:.0%}" if job > 0 else "n/a", *map(cell, other)])
     if not rows:
-        return ""
-    return ("<h2 id='time'>Where the time goes</h2><p class='note'>solve: the fastest call of "
-            "each run's solve (<code>wall_time</code>), summed; job: the solver jobs' wall time "
-            "from Snakemake's benchmark files; overhead: interpreter start, imports, repeated "
-            "timing calls and writing. Each paper's <i>effect_cost</i> table splits the solves "
-            "into the solver core and each effect. The validation job of a paper runs before "
-            "this page is written; its notebook job too.</p><table><tr><th>paper</th>"
-            "<th>solver jobs</th><th>runs</th><th>solve [s]</th><th>job [s]</th><th>overhead"
-            "</th><th>validation job [s]</th><th>notebook job [s]</th></tr>"
-            + "".join(rows) + "</table>")
+        return None
+    return {"head": ["paper", "solver jobs", "runs", "solve [s]", "job [s]", "overhead",
+                     "validation job [s]", "notebook job [s]"], "rows": rows}
+
+
+def render(context: dict) -> str:
+    import jinja2
+
+    env = jinja2.Environment(
+        loader=jinja2.FileSystemLoader(Path(__file__).with_name("templates")),
+        autoescape=True, undefined=jinja2.StrictUndefined, trim_blocks=True, lstrip_blocks=True)
+    return env.get_template("report.html.j2").render(css=CSS, **context)
 
 
 def write_report(out: str, results: str, config_dir: str, papers: list[str], profile: str) -> None:
     out, results, config_dir = Path(out), Path(results), Path(config_dir)
-    sections, summary = [], []
-    for paper in papers:
-        text, info = paper_section(paper, results, config_dir, profile, out.parent)
-        sections.append(text)
-        ind, claim = info["independent"], info["claim"]
-        n_assumed = len(load_paper(config_dir / "papers" / f"{paper}.yaml", profile, CACHE_DIR).assumed())
-        summary.append(f'<tr><td><a href="#{paper}">{paper}</a></td><td>{claim["claim"]}</td>'
-                       + "".join(f'<td class="b-{s}">{ind.get(s, 0)}</td>'
-                                 for s in ("pass", "fail", "inconclusive"))
-                       + f'<td>{n_assumed}</td><td class="note">{html.escape(claim["text"])}</td></tr>')
-    check_file = out.parent / "reference_check.txt"
-    check = check_file.read_text() if check_file.exists() else "not run"
-    drift = "" if check.splitlines()[0].endswith(": OK") else " drift"
-    toc = "".join(f'<a href="#{p}">{p}</a>' for p in papers)
-    now = _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
-    page = f"""<!doctype html><html><head><meta charset="utf-8">
-<title>mechrepro reproduction report</title><style>{CSS}</style></head><body>
-<h1>mechrepro reproduction report</h1>
-<p class="note">profile <b>{html.escape(profile)}</b> &middot; code {html.escape(code_version())} &middot; {now}</p>
-<nav class="toc"><a href="#summary">summary</a><a href="#reference">reference check</a>{toc}<a href="#cost">cost of accuracy</a><a href="#time">time</a></nav>
-<h2 id="summary">Replication summary</h2>
-<p class="note">Counts are of <b>independent</b> rows only (see each paper's rows by evidence class).</p>
-<table><tr><th>paper</th><th>claim</th><th>pass</th><th>fail</th><th>inconclusive</th><th>assumed constants</th><th>what did not reproduce, and why</th></tr>
-{''.join(summary)}</table>
-<h2 id="reference">Reference check</h2>
-<pre class="check{drift}">{html.escape(check)}</pre>
-<div id="cost">{summary_section(out.parent)}</div>
-{time_section(results, papers)}
-{''.join(sections)}
-<script>/* for `make screenshot`: the whole page's height once images are laid out */
-window.addEventListener("load", () => document.body.dataset.height = document.documentElement.scrollHeight);</script>
-</body></html>
-"""
-    write_text(out, page)
+    cost = None
+    if (out.parent / "summary.csv").exists():
+        head, rows = _read_csv(out.parent / "summary.csv")
+        cost = {"image": "cost_of_accuracy_all.png", "head": head,
+                "rows": [[_num(c) for c in r] for r in rows]}
+    write_text(out, render({
+        "banner": banner(out.parent / "reference_check.txt", profile),
+        "papers": [paper_view(p, results, config_dir, profile, out.parent) for p in papers],
+        "cost": cost, "time": time_view(results, papers)}))

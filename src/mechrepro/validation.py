@@ -6,11 +6,19 @@ which assumed constants it depends on).  ``models/<paper>/validation.py`` only r
 functions that extract the reproduced values (:class:`Quantities`).  :func:`build` then
 
 1. evaluates every quantity on the baseline runs;
-2. re-evaluates every verdict row on its variant runs (next finer resolution, both ends
-   of the range of each assumed constant it depends on), and makes a verdict that flips
-   ``inconclusive``, saying what flips it;
-3. returns the rows; :func:`write_table` writes ``validation.csv`` and :func:`claim`
-   the replication claim, which counts only ``independent`` rows.
+2. re-evaluates every verdict row on its variant runs: one level coarser and one finer
+   (every knob together) give the value's error estimate and observed order, or show that
+   it does not converge (``not_converged``); other seeds add their spread; both ends of an
+   assumed constant's range, or the corners and seeded members of a declared family, must
+   not flip the verdict (else ``inconclusive``, saying what flips it); the row's falsifier
+   (a model change) must make it fail;
+3. decides each verdict with its error bar: ``pass`` when |value - paper| + error is within
+   the tolerance, ``fail`` when |value - paper| - error is beyond it, else ``inconclusive``;
+   a counted (``independent``) pass without a falsifier that fails is graded
+   ``construction``;
+4. returns the rows; :func:`write_table` writes ``validation.csv``, :func:`write_evidence`
+   every re-check (``verdict_evidence.csv``) and :func:`claim` the replication claim, which
+   counts only ``independent`` rows.
 
 See docs/VALIDATION.md for the contract.
 """
@@ -28,9 +36,15 @@ from .io import write_json, write_text
 from .registry import Registry
 
 COLUMNS = ["quantity", "source", "paper_value", "reproduced_value", "unit", "rel_error",
-           "tolerance", "status", "evidence", "note", "artefact", "criterion"]
+           "tolerance", "status", "evidence", "note", "artefact", "criterion",
+           "error_estimate", "observed_order", "falsifier"]
+EVIDENCE_COLUMNS = ["quantity", "variant", "kind", "value", "status", "label"]
 EVIDENCE = ("independent", "calibration", "determined", "construction", "target")
-STATUSES = ("pass", "fail", "inconclusive", "info")
+STATUSES = ("pass", "fail", "inconclusive", "not_converged", "info")
+# differences between levels below this share of the tolerance band cannot move a verdict
+NEGLIGIBLE = 1e-3
+# |coarser - base| / |base - finer| at or below this: the levels do not contract
+CONTRACTION_MIN = 1.05
 OPS = {">": operator.gt, ">=": operator.ge, "<": operator.lt, "<=": operator.le}
 
 
@@ -44,11 +58,14 @@ class Reproduced:
 
     ``flips`` names re-checks the extraction did itself that change the verdict (a joint
     corner of several assumed constants, which the one-at-a-time variants do not reach);
-    a pass or fail with flips is ``inconclusive``.
+    a pass or fail with flips is ``inconclusive``.  ``error``: an error the extraction
+    knows of its own (e.g. half the step of the grid a peak was read from), added to the
+    error estimate from the resolution levels and seeds.
     """
     value: float | bool
     note: str = ""
     flips: list[str] = field(default_factory=list)
+    error: float = 0.0
 
 
 class Quantities(Registry):
@@ -175,8 +192,8 @@ class ValidationInputs:
 
         spec = self.cfg.raw["parameters"][name]
         value = spec["value"]
-        if self.variant and self.variant.rsplit("-", 1)[0] == name:
-            value = spec["range"][0 if self.variant.endswith("-lo") else 1]
+        if self.variant:
+            value = self.cfg.variant_info[self.variant]["parameters"].get(name, value)
         return to_si(value, spec["unit"])[0]
 
 
@@ -188,6 +205,14 @@ class Row:
     note: str = ""
     status: str = "info"
     flips: list[str] = field(default_factory=list)
+    error: float = math.nan          # error estimate of value (levels + seeds + own)
+    order: float = math.nan          # observed order across the levels
+    evidence: str = ""               # as graded (a pass without a failing falsifier: construction)
+    falsifier: str = ""              # its name and what it gave
+    checks: list[tuple] = field(default_factory=list)   # (variant, kind, value, status, label)
+
+    def __post_init__(self):
+        self.evidence = self.evidence or self.spec["evidence"]
 
     @property
     def kind(self) -> str:
@@ -226,12 +251,13 @@ class Row:
         tol = self.spec.get("tolerance", math.nan) if self.kind == "compare" else math.nan
         notes = [n for n in (self.spec.get("note", ""), self.note) if n]
         if self.flips:
-            notes.insert(0, "INCONCLUSIVE: " + "; ".join(self.flips))
+            notes.insert(0, self.status.upper().replace("_", " ") + ": " + "; ".join(self.flips))
         if self.spec.get("evidence_why"):
             notes.append(f"[{self.spec['evidence']}] {self.spec['evidence_why']}")
         return [self.quantity, self.spec["source"], _fmt(self.paper_value), _fmt(self.value),
-                self.unit, _fmt(self.rel_error), _fmt(tol), self.status, self.spec["evidence"],
-                " ".join(notes), self.spec["artefact"], self.criterion]
+                self.unit, _fmt(self.rel_error), _fmt(tol), self.status, self.evidence,
+                " ".join(notes), self.spec["artefact"], self.criterion,
+                _fmt(self.error), _fmt(self.order), self.falsifier]
 
 
 def rel_error(paper: float, reproduced: float) -> float:
@@ -256,19 +282,87 @@ def verdict(spec: dict, value) -> str:
     return "pass" if abs(rel_error(spec["value"], x)) <= float(spec["tolerance"]) else "fail"
 
 
-def _describe_variant(cfg, variant: str) -> str:
-    if variant == "finer":
-        return f"at the next finer resolution (refine {cfg.raw.get('refine', {})})"
-    p, end = variant.rsplit("-", 1)
-    spec = cfg.raw["parameters"][p]
-    v = spec["range"][0 if end == "lo" else 1]
-    unit = f" {spec['unit']}" if isinstance(v, (int, float)) and spec["unit"] != "1" else ""
-    return f"at {p} = {v}{unit} (range {end})"
+def band(spec: dict, value: float) -> float:
+    """The width a difference must stay below to leave a verdict alone: the tolerance
+    band of a compare row, the distance to the threshold of a bound row."""
+    if spec["kind"] == "compare":
+        p = float(spec["value"])
+        return float(spec["tolerance"]) * (abs(p) if p != 0.0 else 1.0)
+    if spec["kind"] == "bound":
+        return abs(float(value) - float(spec["value"]))
+    return math.nan
+
+
+def level_error(coarse: float, base: float, fine: float, ratio: float, width: float
+                ) -> tuple[float, float, bool, str]:
+    """Error estimate of ``base`` from one coarser and one finer level (every knob refined
+    by ``ratio``): (error, observed order, converged, how).
+
+    d1 = coarse - base and d2 = base - fine contract by q = |d1| / |d2| = ratio^p for a
+    method of order p; the baseline's error is then |d2| q / (q - 1) (Richardson).
+    Differences below round-off or a thousandth of ``width`` (the tolerance band) are
+    negligible; levels that do not contract (q <= 1.05) do not converge.  ``coarse`` NaN:
+    two levels only, the error is |d2| and no order is measured."""
+    d2 = abs(base - fine)
+    if math.isnan(coarse):
+        return d2, math.nan, True, f"2 levels: |base - finer| = {d2:.3g}"
+    d1 = abs(coarse - base)
+    floor = max(1e-9 * abs(base), NEGLIGIBLE * width if math.isfinite(width) else 0.0)
+    if max(d1, d2) <= floor:
+        return max(d1, d2), math.nan, True, "levels agree to within round-off / 1e-3 of the band"
+    if d2 == 0.0:
+        return 0.0, math.inf, True, "base and finer agree exactly"
+    q = d1 / d2
+    if q <= CONTRACTION_MIN:
+        return math.inf, math.nan, False, (f"does not converge: coarser {coarse:.6g}, base "
+                                           f"{base:.6g}, finer {fine:.6g} (|d1|/|d2| = {q:.3g})")
+    order = math.log(q) / math.log(ratio) if ratio > 1 else math.nan
+    return d2 * q / (q - 1.0), order, True, f"3 levels, |d1|/|d2| = {q:.3g}"
+
+
+def verdict_with_error(spec: dict, value: float, error: float) -> tuple[str, str]:
+    """pass / fail / inconclusive of a compare or bound row whose value is known to
+    +- ``error`` (and why, when inconclusive)."""
+    if not error or math.isnan(error):
+        return verdict(spec, value), ""
+    if spec["kind"] == "compare":
+        d, w = abs(float(value) - float(spec["value"])), band(spec, value)
+        if d + error <= w:
+            return "pass", ""
+        if d - error > w:
+            return "fail", ""
+        return "inconclusive", (f"the error bar straddles the tolerance: |value - paper| = "
+                                f"{d:.4g} +- {error:.3g} against {w:.4g}")
+    lo, hi = verdict(spec, value - error), verdict(spec, value + error)
+    if lo == hi:
+        return lo, ""
+    return "inconclusive", (f"the error bar straddles the threshold: {float(value):.6g} +- "
+                            f"{error:.3g} {spec['op']} {float(spec['value']):g}")
+
+
+def _level_ratio(cfg, spec: dict) -> float:
+    """The refinement factor of one level (the largest over the refined knobs of the
+    row's reads; >1)."""
+    from .config import refine_spec
+
+    refine = refine_spec(cfg.raw)
+    keys = {k for r in spec["reads"]
+            for run in (cfg.studies.get(r) or [r]) for k in cfg.runs[run]["resolution"]}
+    ratios = [max(f, 1 / f) for k in keys if "factor" in refine.get(k, {})
+              for f in [refine[k]["factor"]]]
+    return max(ratios, default=math.nan)
+
+
+def _distribution(values: list[float]) -> str:
+    v = sorted(x for x in values if not math.isnan(x))
+    if not v:
+        return ""
+    return f"min {v[0]:.6g}, median {v[len(v) // 2]:.6g}, max {v[-1]:.6g}"
 
 
 def build(cfg, quantities: Quantities, results_dir: str | Path,
           files: ResultFiles | None = None) -> list[Row]:
-    """Evaluate every reported quantity and its robust verdict (see module docstring).
+    """Evaluate every reported quantity and its verdict with error bar (module docstring).
     ``files``: the job's open result files (default: opened here, closed on return)."""
     if files is None:
         with ResultFiles() as files:
@@ -282,30 +376,100 @@ def build(cfg, quantities: Quantities, results_dir: str | Path,
         raise ValidationError(f"{cfg.paper}: reported quantities without an extraction function: "
                               f"{missing}; functions for quantities not reported: {extra}")
     base = quantities.evaluate(list(reported), ValidationInputs(cfg, results_dir, files=files))
-    rows = []
-    for q, spec in reported.items():
-        r = base[q]
-        value = float(r.value) if not isinstance(r.value, bool) else float(r.value)
-        row = Row(q, spec, value, r.note, verdict(spec, r.value))
-        if row.status in ("pass", "fail"):
-            row.flips += list(r.flips)
-        rows.append(row)
     by_variant: dict[str, list[str]] = {}
     for q, spec in reported.items():
-        for v in _variant_names(spec):
+        for v in _variant_names(spec, cfg.raw):
             by_variant.setdefault(v, []).append(q)
-    index = {row.quantity: row for row in rows}
-    for variant, qs in by_variant.items():
-        got = quantities.evaluate(qs, ValidationInputs(cfg, results_dir, variant, files))
-        for q in qs:
-            row, s = index[q], verdict(reported[q], got[q].value)
-            if s != row.status:
-                row.flips.append(f"{s} {_describe_variant(cfg, variant)}: "
-                                 f"{_fmt_short(got[q].value)}")
-    for row in rows:
-        if row.flips:
-            row.status = "inconclusive"
-    return rows
+    skipped = {v: [q for q in qs if set(reported[q]["reads"]) & set(cfg.variant_skipped.get(v, {}))]
+               for v, qs in by_variant.items()}
+    got: dict[str, dict[str, Reproduced]] = {
+        variant: quantities.evaluate([q for q in qs if q not in skipped[variant]],
+                                     ValidationInputs(cfg, results_dir, variant, files))
+        for variant, qs in by_variant.items()}
+    return [_row(cfg, q, spec, base[q], {v: got[v][q] for v in _variant_names(spec, cfg.raw)
+                                         if q in got[v]})
+            for q, spec in reported.items()]
+
+
+def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]) -> Row:
+    """One row's verdict from its baseline value and its re-checks."""
+    row = Row(q, spec, float(r.value), r.note, verdict(spec, r.value))
+    if row.status == "info":
+        return row
+    info = cfg.variant_info
+    numeric = spec["kind"] in ("compare", "bound") and math.isfinite(row.value)
+    base_status = row.status
+    for v, got in variants.items():
+        s = verdict(spec, got.value)
+        row.checks.append((v, info[v]["kind"], float(got.value), s, info[v]["label"]))
+    by_kind: dict[str, list[tuple]] = {}
+    for c in row.checks:
+        by_kind.setdefault(c[1], []).append(c)
+    flips = list(r.flips)
+    converged, how = True, ""
+    error = float(r.error or 0.0)
+    levels = {c[0]: c for c in by_kind.get("level", [])}
+    if "finer" in levels:
+        if numeric:
+            coarse = levels["coarser"][2] if "coarser" in levels else math.nan
+            if "coarser" not in levels and spec.get("coarser", True):
+                why = "; ".join(f"{n}: {m}" for n, m in cfg.variant_skipped.get("coarser", {}).items()
+                                if n in spec["reads"])
+                row.note = " ".join(x for x in (row.note, f"No coarser level ({why}).") if x)
+            e, row.order, converged, how = level_error(
+                coarse, row.value, levels["finer"][2], _level_ratio(cfg, spec),
+                band(spec, row.value))
+            error += e
+        elif levels["finer"][3] != base_status:
+            flips.append(f"{levels['finer'][3]} {levels['finer'][4]}: "
+                         f"{_fmt_short(levels['finer'][2])}")
+    seeds = by_kind.get("seed", [])
+    if seeds and numeric:
+        error += max(abs(c[2] - row.value) for c in seeds)
+    for c in seeds + by_kind.get("range", []):
+        if c[3] != base_status:
+            flips.append(f"{c[3]} {c[4]}: {_fmt_short(c[2])}")
+    fam = [c for c in by_kind.get("family", [])]
+    if fam:
+        names = sorted({c[0].rsplit("-", 1)[0] for c in fam})
+        for name in names:
+            members = [c for c in fam if c[0].rsplit("-", 1)[0] == name]
+            flipped = [c for c in members if c[3] != base_status]
+            dist = _distribution([c[2] for c in members]) if numeric else ""
+            row.note = " ".join(x for x in (row.note, f"Family {name} ({len(members)} members): "
+                                            f"{dist}{'; ' if dist else ''}{len(flipped)} flip the "
+                                            f"verdict.") if x)
+            flips += [f"{c[3]} {c[4]}: {_fmt_short(c[2])}" for c in flipped[:3]]
+            if len(flipped) > 3:
+                flips.append(f"and {len(flipped) - 3} more members of {name}")
+    row.error = error if numeric else math.nan
+    if not converged:
+        row.status = "not_converged"
+        row.flips = [how]
+    elif flips:
+        row.status, row.flips = "inconclusive", flips
+    elif numeric:
+        row.status, why = verdict_with_error(spec, row.value, error)
+        if why:
+            row.flips = [why]
+    if how and numeric and converged and error:
+        row.note = " ".join(x for x in (row.note, f"Error estimate {error:.3g} ({how}).") if x)
+    fal = by_kind.get("falsifier", [])
+    if fal:
+        c = fal[0]
+        row.falsifier = f"{spec['falsifier']}: {c[3]} ({_fmt_short(c[2])})"
+    if row.status == "pass" and spec["evidence"] == "independent":
+        if not fal:
+            row.evidence = "construction"
+            row.note = " ".join(x for x in (row.note, "[construction] no falsifier declared: a "
+                                            "pass no model change was shown to fail is not "
+                                            "counted.") if x)
+        elif fal[0][3] != "fail":
+            row.evidence = "construction"
+            row.note = " ".join(x for x in (row.note, f"[construction] its falsifier "
+                                            f"{spec['falsifier']} does not make it fail "
+                                            f"({_fmt_short(fal[0][2])}): not counted.") if x)
+    return row
 
 
 def _fmt(x) -> str:
@@ -337,21 +501,22 @@ def counts(rows) -> dict[str, dict[str, int]]:
     """{evidence: {status: n}} over rows (Row objects or validation.csv dicts)."""
     out: dict[str, Counter] = {e: Counter() for e in EVIDENCE}
     for r in rows:
-        ev, st = (r.spec["evidence"], r.status) if isinstance(r, Row) else (r["evidence"], r["status"])
+        ev, st = (r.evidence, r.status) if isinstance(r, Row) else (r["evidence"], r["status"])
         out[ev][st] += 1
     return {e: {s: c[s] for s in STATUSES if c[s]} for e, c in out.items() if c}
 
 
 def claim(cfg, rows: list[Row]) -> dict:
     """The replication claim: full / partial / none, from the independent rows only."""
-    ind = [r for r in rows if r.spec["evidence"] == "independent" and r.status != "info"]
-    by = {s: [r for r in ind if r.status == s] for s in ("pass", "fail", "inconclusive")}
+    verdicts = ("pass", "fail", "inconclusive", "not_converged")
+    ind = [r for r in rows if r.evidence == "independent" and r.status != "info"]
+    by = {s: [r for r in ind if r.status == s] for s in verdicts}
     arts = {}
     for r in ind:
         arts.setdefault(r.spec["artefact"], set()).add(r.status)
     agree = sorted(a for a, s in arts.items() if s == {"pass"})
     disagree = sorted(a for a, s in arts.items() if "fail" in s)
-    unsettled = sorted(a for a, s in arts.items() if "fail" not in s and "inconclusive" in s)
+    unsettled = sorted(a for a, s in arts.items() if "fail" not in s and s - {"pass"})
     # an artefact the paper reports but no independent verdict scores (only info rows)
     unscored = sorted({r.spec["artefact"] for r in rows} - set(arts))
     if ind and len(by["pass"]) == len(ind) and not unscored:
@@ -362,7 +527,9 @@ def claim(cfg, rows: list[Row]) -> dict:
         kind = "none"
     n = {s: len(v) for s, v in by.items()}
     parts = [f"{n['pass']} of {len(ind)} independent checks pass, {n['fail']} fail, "
-             f"{n['inconclusive']} inconclusive."]
+             f"{n['inconclusive']} inconclusive, {n['not_converged']} not converged."]
+    demoted = [r.quantity for r in rows if r.spec["evidence"] == "independent"
+               and r.evidence == "construction"]
     if agree:
         parts.append(f"Agree: {', '.join(agree)}.")
     if disagree:
@@ -371,17 +538,28 @@ def claim(cfg, rows: list[Row]) -> dict:
         parts.append(f"Not settled: {', '.join(unsettled)}.")
     if unscored:
         parts.append(f"Not scored by an independent verdict: {', '.join(unscored)}.")
+    if demoted:
+        parts.append(f"Passes not counted (no falsifier that fails): {', '.join(demoted)}.")
     for r in by["fail"]:
         why = r.spec.get("note") or r.note
         parts.append(f"{r.quantity} fails{': ' + why if why else ''}")
     for r in by["inconclusive"]:
         parts.append(f"{r.quantity} is inconclusive ({'; '.join(r.flips)}).")
+    for r in by["not_converged"]:
+        parts.append(f"{r.quantity} does not converge ({'; '.join(r.flips)}).")
     if cfg.raw.get("claim_note"):
         parts.append(cfg.raw["claim_note"])
     return {"paper": cfg.paper, "claim": kind, "text": " ".join(parts),
             "independent": n, "counts": counts(rows),
             "agree": agree, "disagree": disagree, "inconclusive": unsettled,
-            "unscored": unscored}
+            "unscored": unscored, "not_counted_passes": demoted}
+
+
+def write_evidence(rows: list[Row], path: str | Path) -> Path:
+    """Every re-check of every verdict row, long form (:data:`EVIDENCE_COLUMNS`)."""
+    return write_csv(path, EVIDENCE_COLUMNS,
+                     [[r.quantity, v, kind, _fmt_short(value), status, label]
+                      for r in rows for v, kind, value, status, label in r.checks])
 
 
 def validate(paper: str, results_dir: str, config_file: str, profile: str) -> list[Row]:
@@ -398,6 +576,7 @@ def validate(paper: str, results_dir: str, config_file: str, profile: str) -> li
     with ResultFiles() as files:   # one opening of each file for the tables below
         rows = build(cfg, module.Q, results_dir, files)
         write_table(rows, root / "tables" / "validation.csv")
+        write_evidence(rows, root / "tables" / "verdict_evidence.csv")
         write_json(root / "claim.json", claim(cfg, rows))
         write_costs(cfg, results_dir, files)
     return rows

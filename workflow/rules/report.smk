@@ -58,7 +58,7 @@ rule report:
         tables=[f for p in PAPERS for f in tables_of(p)],
         claims=expand(f"{RESULTS}/{{paper}}/claim.json", paper=PAPERS),
         configs=[paper_config(p) for p in PAPERS],
-        code=code("cli.py", "report.py", "config.py", "validation.py", "costs.py"),
+        code=code("cli.py", "report.py", "templates/report.html.j2", "config.py", "validation.py", "costs.py"),
     output:
         f"{REPORT}/index.html",
     params:
