@@ -3,10 +3,9 @@
 ``write_archive`` is given the workflow's declared outputs (never a glob: a renamed
 scene's leftovers in ``runs/`` are not certified) and the reference check of the run.  It
 refuses unless the check passed *and* names every selected paper as checked (a paper
-without a reference is not checked, so not archived).  The tarball and ``manifest.json``
-are written aside and promoted only then, so a refused attempt keeps the last good
-archive and manifest; ``checked.json`` (the Snakemake output of the archive job, the
-same manifest) says which attempt passed.  :func:`verify` re-hashes a results tree
+without a reference is not checked, so not archived).  Its outputs are ``update()`` in
+the workflow: Snakemake keeps the last good archive and manifest while the job runs and
+restores them when it fails.  :func:`verify` re-hashes a results tree
 against the manifest and names every mismatch.
 """
 from __future__ import annotations
@@ -21,7 +20,7 @@ from .config import CACHE_DIR, load_paper
 from .io import atomic_path, write_json
 from .provenance import code_version, file_sha256, json_hash, package_versions
 
-TARBALL, MANIFEST, CHECKED = "mechrepro-results.tar.gz", "manifest.json", "checked.json"
+MANIFEST = "manifest.json"
 
 
 class ArchiveRefused(RuntimeError):
@@ -82,16 +81,16 @@ def linked_extras(results: Path, files: dict) -> list[str]:
     return out
 
 
-def write_archive(archive_dir: str, check: str, results: str, config_dir: str,
-                  papers: list[str], profile: str, files: list[str]) -> dict:
-    archive_dir, results = Path(archive_dir), Path(results)
+def write_archive(archive: str, manifest_path: str, check: str, results: str,
+                  config_dir: str, papers: list[str], profile: str, files: list[str]) -> dict:
+    results = Path(results)
     check_passed(Path(check), papers)
     man = manifest(results, files, Path(config_dir), papers, profile)
     extras = linked_extras(results, man["files"])
     if extras:
         man["extras"] = {rel: file_sha256(results / rel) for rel in extras}
     data = (json.dumps(man, indent=2, sort_keys=True) + "\n").encode()
-    with atomic_path(archive_dir / TARBALL) as tmp:
+    with atomic_path(archive) as tmp:
         # zlib's default level: tarfile's 9 took 2.7x as long for 0.1 % less (netCDF
         # results barely compress)
         with tarfile.open(tmp, "w:gz", compresslevel=6) as tar:
@@ -100,9 +99,7 @@ def write_archive(archive_dir: str, check: str, results: str, config_dir: str,
             info = tarfile.TarInfo(MANIFEST)
             info.size, info.mode = len(data), 0o644
             tar.addfile(info, io.BytesIO(data))
-        # only now, with the whole tarball written, is anything replaced
-    write_json(archive_dir / MANIFEST, man)
-    write_json(archive_dir / CHECKED, man)
+    write_json(manifest_path, man)
     return man
 
 

@@ -4,7 +4,7 @@
     python -m mechrepro.cli validate PAPER RESULTS CONFIG_FILE PROFILE
     python -m mechrepro.cli summary PNG CSV RESULTS CONFIG_DIR PROFILE PAPER ...
     python -m mechrepro.cli report HTML RESULTS CONFIG_DIR PROFILE PAPER ...
-    python -m mechrepro.cli archive ARCHIVE_DIR CHECK RESULTS CONFIG_DIR PROFILE PAPER ... --files FILE ...
+    python -m mechrepro.cli archive TAR MANIFEST CHECK RESULTS CONFIG_DIR PROFILE PAPER ... --files FILE ...
     python -m mechrepro.cli check-reference OUT RESULTS REFERENCE_DIR PROFILE PAPER ...
     python -m mechrepro.cli verify RESULTS [MANIFEST]
 
@@ -20,7 +20,7 @@ USAGE = {
     "validate": (4, "PAPER RESULTS CONFIG_FILE PROFILE"),
     "summary": (6, "PNG CSV RESULTS CONFIG_DIR PROFILE PAPER ..."),
     "report": (5, "HTML RESULTS CONFIG_DIR PROFILE PAPER ..."),
-    "archive": (6, "ARCHIVE_DIR CHECK RESULTS CONFIG_DIR PROFILE PAPER ... --files FILE ..."),
+    "archive": (7, "TAR MANIFEST CHECK RESULTS CONFIG_DIR PROFILE PAPER ... --files FILE ..."),
     "check-reference": (5, "OUT RESULTS REFERENCE_DIR PROFILE PAPER ..."),
     "verify": (1, "RESULTS [MANIFEST]"),
 }
@@ -78,15 +78,15 @@ def main(argv: list[str]) -> int:
                              + _usage(cmd))
             return 2
         i = args.index("--files")
-        archive_dir, check, results, config_dir, profile, *papers = args[:i]
+        tar, manifest, check, results, config_dir, profile, *papers = args[:i]
         try:
-            man = write_archive(archive_dir, check, results, config_dir, papers, profile,
+            man = write_archive(tar, manifest, check, results, config_dir, papers, profile,
                                 args[i + 1:])
         except ArchiveRefused as exc:
-            sys.stderr.write(f"{exc}\n(the last archive that passed, if any, is kept in "
-                             f"{archive_dir})\n")
+            sys.stderr.write(f"{exc}\n(the last archive that passed, if any, is kept: "
+                             f"{tar})\n")
             return 1
-        print(f"archived {len(man['files'])} files of {', '.join(papers)} in {archive_dir}")
+        print(f"archived {len(man['files'])} files of {', '.join(papers)} in {tar}")
     elif cmd == "check-reference":
         # always writes its report (the report page shows it); the archive refuses drift
         from .reference import DriftError, ResultFileError, check

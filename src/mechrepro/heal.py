@@ -148,14 +148,6 @@ def inspect(results: str | Path) -> tuple[list[tuple[Path, str]], list[Path], li
             remove.append((f, "checksum differs from the last manifest"))
         elif name.endswith(".nc") and not _readable_netcdf(f):
             remove.append((f, "unreadable netCDF (truncated or corrupted)"))
-    for checked in sorted(results.glob("archive*/checked.json")):
-        # the archive job's output says an archive passed; without its tarball or with
-        # another manifest beside it, the job must run again
-        d = checked.parent
-        tar, man = d / "mechrepro-results.tar.gz", d / "manifest.json"
-        if not tar.is_file() or not man.is_file() or man.read_bytes() != checked.read_bytes():
-            if all(f != checked for f, _ in remove):
-                remove.append((checked, "its archive or manifest is missing or differs"))
     return remove, restore, orphans
 
 

@@ -222,7 +222,7 @@ def check(results: str, reference_dir: str, papers: list[str], profile: str,
         ref_file = ref_root / f"{paper}.csv"
         if not ref_file.exists():
             failed = True
-            lines.append(f"{paper}: NOT CHECKED: no reference at {ref_file} (create it with "
+            lines.append(f"{paper}: not checked: no reference at {ref_file} (create it with "
                          f"`make reference REF_PROFILE={profile} REF_PAPERS={paper}`)")
             continue
         try:

@@ -135,4 +135,5 @@ def archived_outputs():
 
 def every_output():
     """Every declared output (the target of the workflow), so that a deleted one is restored."""
-    return archived_outputs() + [f"{ARCHIVE}/checked.json"]
+    return archived_outputs() + [f"{ARCHIVE}/manifest.json",
+                                 f"{ARCHIVE}/mechrepro-results.tar.gz"]

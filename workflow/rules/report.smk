@@ -77,10 +77,8 @@ rule report:
 
 
 # Only results that passed the reference check of every selected paper are archived.  The
-# job's output is `checked.json` (the manifest of the last archive that passed): Snakemake
-# removes a job's outputs before it runs, so the tarball and `manifest.json` are not its
-# outputs; the job writes them aside and promotes them only when the check passed, so a
-# failed check keeps the last good archive and manifest.
+# outputs are `update()`: Snakemake neither removes them before the job nor keeps a failed
+# job's version; it restores the last good archive and manifest when the check refuses.
 rule archive:
     input:
         check=rules.reference_check.output,
@@ -88,7 +86,8 @@ rule archive:
         configs=[paper_config(p) for p in PAPERS],
         code=code("cli.py", "archive.py", "config.py"),
     output:
-        checked=f"{ARCHIVE}/checked.json",
+        manifest=update(f"{ARCHIVE}/manifest.json"),
+        archive=update(f"{ARCHIVE}/mechrepro-results.tar.gz"),
     params:
         papers=PAPERS,
         profile=PROFILE,
@@ -101,6 +100,6 @@ rule archive:
     benchmark:
         f"{RESULTS}/benchmarks/archive{_TAG}.tsv"
     shell:
-        "{params.python} -m mechrepro.cli archive {params.archive} {input.check} "
+        "{params.python} -m mechrepro.cli archive {output.archive} {output.manifest} {input.check} "
         "{params.results} {params.base}/config {params.profile} {params.papers} "
         "--files {input.files} > {log} 2>&1 || {{ cat {log} >&2; exit 1; }}"
