@@ -390,3 +390,32 @@ def test_the_archived_report_is_self_contained_with_a_saved_plan(run, tmp_path):
     links = re.findall(r'(?:src|href)="([^"#:]+)"', page)
     broken = [l for l in links if not (out / f"report-{PAPER}" / l).resolve().exists()]
     assert links and not broken, broken
+
+
+@pipeline
+def test_a_failing_solve_job_keeps_its_last_good_results(run, tmp_path):
+    """The solve job fails after writing its first run (a solver crash injected into the
+    copy's code): every run and study of the batch is back as it was (update() outputs),
+    heal keeps them, and fixing the cause reruns the job."""
+    work = tmp_path / "w"
+    shutil.copytree(run, work, symlinks=True)
+    solved = {p.name: file_sha256(p) for d in ("runs", "studies")
+              for p in (work / "results" / PAPER / d).glob("*.nc")}
+    solve = work / "src" / "mechrepro" / "solve.py"
+    original = solve.read_text()
+    hook = '        write_dataset(ds, root / "runs" / f"{name}.nc", run)\n'
+    assert hook in original
+    solve.write_text(original.replace(hook, hook + '        raise RuntimeError("injected")\n'))
+    proc = sm(work, check=False)
+    assert proc.returncode != 0 and "Restored previous version" in proc.stderr
+    assert "injected" in (work / "results" / PAPER / "logs" / "solve" / "batch.log").read_text()
+    now = {p.name: file_sha256(p) for d in ("runs", "studies")
+           for p in (work / "results" / PAPER / d).glob("*.nc")}
+    assert now == solved
+    assert "[heal] removed" not in sm(work, "-n").stderr
+    before = set(healmod.inspect(work / "results")[0])
+    assert not before, before
+    solve.write_text(original)
+    out = sm(work)
+    assert "[heal] removed" not in out.stderr and f"solve_{PAPER}__batch" in out.stdout + out.stderr
+    assert "Nothing to be done" in sm(work, "-n").stdout

@@ -116,13 +116,13 @@ def _readable_netcdf(path: Path) -> bool:
         return False
 
 
-def inspect(results: str | Path) -> tuple[list[tuple[Path, str]], list[Path], list[Path]]:
+def inspect(results: str | Path):
     """What heal would do: ([(file to remove, why)], [file whose time stamp to restore],
-    [record whose file is gone])."""
+    [record whose file is gone], [file restored to its previous version])."""
     results = Path(results)
-    remove, restore, orphans = [], [], []
+    remove, restore, orphans, reverted = [], [], [], []
     if not results.is_dir():
-        return remove, restore, orphans
+        return remove, restore, orphans, reverted
     manifest = None
     for f in _results_files(results):
         name = f.name
@@ -136,7 +136,12 @@ def inspect(results: str | Path) -> tuple[list[tuple[Path, str]], list[Path], li
         st = f.stat()
         if rec is not None:
             if st.st_size != rec["size"] or file_sha256(f) != rec["sha256"]:
-                remove.append((f, "content differs from what its job wrote (checksum)"))
+                prev = rec.get("previous")
+                if prev and st.st_size == prev["size"] and file_sha256(f) == prev["sha256"]:
+                    # the last good version, put back by Snakemake after its job failed
+                    reverted.append(f)
+                else:
+                    remove.append((f, "content differs from what its job wrote (checksum)"))
             elif st.st_mtime_ns != rec["mtime_ns"]:
                 restore.append(f)
             continue
@@ -148,7 +153,7 @@ def inspect(results: str | Path) -> tuple[list[tuple[Path, str]], list[Path], li
             remove.append((f, "checksum differs from the last manifest"))
         elif name.endswith(".nc") and not _readable_netcdf(f):
             remove.append((f, "unreadable netCDF (truncated or corrupted)"))
-    return remove, restore, orphans
+    return remove, restore, orphans, reverted
 
 
 def heal(results: str | Path, workdir: str | Path = ".", dry_run: bool = False) -> list[str]:
@@ -159,7 +164,7 @@ def heal(results: str | Path, workdir: str | Path = ".", dry_run: bool = False) 
     results = Path(results)
     if not dry_run:
         acquire(results, workdir)
-    remove, restore, orphans = inspect(results)
+    remove, restore, orphans, reverted = inspect(results)
     verb = "would remove" if dry_run else "removed"
     lines = []
     for f, why in remove:
@@ -170,6 +175,16 @@ def heal(results: str | Path, workdir: str | Path = ".", dry_run: bool = False) 
     for f in orphans:
         if not dry_run:
             f.unlink(missing_ok=True)
+    for f in reverted:
+        if not dry_run:
+            # the record follows the file back; the time stamp is the restore's (newer
+            # than the job's inputs), so what depends on it is checked again
+            rec = read_sum(f)["previous"]
+            st = f.stat()
+            rec["mtime_ns"] = st.st_mtime_ns
+            sum_path(f).write_text(json.dumps(rec, sort_keys=True) + "\n")
+        lines.append(f"{'would keep' if dry_run else 'kept'} {f}: the last good version, "
+                     f"restored after its job failed")
     for f in restore:
         if not dry_run:
             rec = read_sum(f)

@@ -57,6 +57,11 @@ def _write_sum(tmp: Path, path: Path) -> None:
 
     st = tmp.stat()
     rec = {"sha256": file_sha256(tmp), "size": st.st_size, "mtime_ns": st.st_mtime_ns}
+    old = read_sum(path)
+    if old is not None:
+        # what was there before: a failed job's outputs are restored by Snakemake (the
+        # rules' update() flag), and heal must recognise them as what their job wrote
+        rec["previous"] = {k: old[k] for k in ("sha256", "size", "mtime_ns")}
     side = sum_path(path)
     fd, stmp = tempfile.mkstemp(prefix=side.name + ".", suffix=".part", dir=path.parent)
     with os.fdopen(fd, "w") as f:
