@@ -92,8 +92,7 @@ rule archive:
         papers=PAPERS,
         profile=PROFILE,
         python=RUN["python"],
-        results=RESULTS,
-        archive=ARCHIVE,
+        results=lambda wc, output: str(Path(output.manifest).parents[1]),
         base=RUN["base"],
     log:
         f"{RESULTS}/logs/archive{_TAG}.log",
