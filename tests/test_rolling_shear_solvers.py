@@ -95,6 +95,30 @@ def test_hard_case_near_toggle_is_solved_on_the_design_branch(g, margin):
     assert all(on_design_branch(gt, th) for th in sol.theta)
 
 
+@pytest.mark.parametrize("margin", [0.01, 1e-4])
+def test_hard_case_toggle_inside_the_stroke_is_passed_on_the_design_branch(g, margin):
+    # |GI| peaks at an interior cut point (7 of 33): with l4 set so that the dyad GH-HI is
+    # `margin` mm from its stretched toggle there, the first-order predictor overshoots
+    # onto the other assembly mode just past the toggle; the branch check refuses that and
+    # the retry from the previous point stays on the design branch (issue 27: the toggle of
+    # the near-toggle test above sits at the last cut point, where nothing follows it)
+    n = 33
+    ex = stroke.solve_exact(g, cut_points(g, n)[1])
+    _, G = loops.pivots(g)
+    D = g.l6 * np.exp(1j * ex.theta[:, 5])
+    gi = np.abs(D + g.l5 * np.exp(1j * ex.theta[:, 4]) - G)
+    i_toggle = int(np.argmax(gi))
+    assert 0 < i_toggle < n - 1
+    gt = replace(g, l4=float(gi.max() - g.l2 + margin))
+    xk = cut_points(gt, n)[1]
+    ref = stroke.solve_exact(gt, xk)
+    m = loops.dyad_margins(gt, ref.theta[:, 4], ref.theta[:, 5])[:, 1]
+    assert int(np.argmin(m)) == i_toggle and m.min() < 2 * margin
+    sol = stroke.solve_newton(gt, xk, replace(settings(), initial_value=tuple(ref.theta[0])))
+    assert np.max(np.abs(np.angle(np.exp(1j * (sol.theta - ref.theta))))) < 1e-6
+    assert all(on_design_branch(gt, th) for th in sol.theta)
+
+
 def test_hard_case_wrong_branch_is_refused_not_returned(g):
     # start the continuation on the mirror assembly mode of AB-BC: every point converges,
     # but to the wrong branch, so the solver must raise instead of returning it

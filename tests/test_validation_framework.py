@@ -285,3 +285,18 @@ def test_flips_found_by_the_extraction_make_a_verdict_inconclusive(paper):
     rows = {r.quantity: r for r in build(cfg, Q, results)}
     assert rows["load_max"].status == "inconclusive"
     assert "joint corner" in rows["load_max"].cells()[9]
+
+
+def test_a_check_without_a_value_is_no_pass_and_refused_members_are_left_out(paper):
+    cfg, results = paper
+    write_runs(cfg, results, lambda run: 100.5)
+    Q = quantities()
+    fn = Q._fn["mass_claim"]
+
+    def nan_claim(R):
+        return float("nan")
+    Q._fn = {k: (nan_claim if v is fn else v) for k, v in Q._fn.items()}
+    Q._names[nan_claim] = Q._names.pop(fn)
+    rows = {r.quantity: r for r in build(cfg, Q, results)}
+    assert rows["mass_claim"].status == "inconclusive"
+    assert "could not be evaluated" in rows["mass_claim"].cells()[9]

@@ -273,6 +273,8 @@ def verdict(spec: dict, value) -> str:
     if kind == "info":
         return "info"
     if kind == "check":
+        if isinstance(value, float) and math.isnan(value):
+            return "no_value"   # bool(nan) is True: a check that was not evaluated is no pass
         return "pass" if bool(value) else "fail"
     x = float(value)
     if math.isnan(x):
@@ -399,8 +401,13 @@ def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]
     info = cfg.variant_info
     numeric = spec["kind"] in ("compare", "bound") and math.isfinite(row.value)
     base_status = row.status
+    if base_status == "no_value":
+        row.status, row.flips = "inconclusive", ["the check could not be evaluated (no value)"]
+        return row
     for v, got in variants.items():
         s = verdict(spec, got.value)
+        if info[v]["kind"] == "family" and math.isnan(float(got.value)):
+            s = "excluded"   # a member the model refuses by name (not buildable, no root)
         row.checks.append((v, info[v]["kind"], float(got.value), s, info[v]["label"]))
     by_kind: dict[str, list[tuple]] = {}
     for c in row.checks:
@@ -434,11 +441,14 @@ def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]
         names = sorted({c[0].rsplit("-", 1)[0] for c in fam})
         for name in names:
             members = [c for c in fam if c[0].rsplit("-", 1)[0] == name]
+            excluded = [c for c in members if c[3] == "excluded"]
+            members = [c for c in members if c[3] != "excluded"]
             flipped = [c for c in members if c[3] != base_status]
             dist = _distribution([c[2] for c in members]) if numeric else ""
-            row.note = " ".join(x for x in (row.note, f"Family {name} ({len(members)} members): "
-                                            f"{dist}{'; ' if dist else ''}{len(flipped)} flip the "
-                                            f"verdict.") if x)
+            out = f", {len(excluded)} refused by the model" if excluded else ""
+            row.note = " ".join(x for x in (row.note, f"Family {name} ({len(members)} members"
+                                            f"{out}): {dist}{'; ' if dist else ''}"
+                                            f"{len(flipped)} flip the verdict.") if x)
             flips += [f"{c[3]} {c[4]}: {_fmt_short(c[2])}" for c in flipped[:3]]
             if len(flipped) > 3:
                 flips.append(f"and {len(flipped) - 3} more members of {name}")

@@ -55,6 +55,8 @@ def compare(ctx: Context, method: str) -> dict:
     }
     if method == "selpso":
         out.update(_selpso_accuracy(ctx, sol, err))
+    if method in ("selpso", "pso_standard") and int(ctx.options.get("seeds", 0)) > 0:
+        out.update(_over_seeds(ctx, method, sol, err))
     return out
 
 
@@ -80,6 +82,39 @@ def _selpso_accuracy(ctx: Context, sol: stroke.StrokeSolution, err: np.ndarray) 
                                   "selPSO wall time of the whole stroke (Eqs. 7 and 9)"),
         "swarm_x_iter": var((), st.swarm * st.max_iter, "1",
                             "selPSO budget: particles x iterations on each system"),
+    }
+
+
+def _over_seeds(ctx: Context, method: str, sol: stroke.StrokeSolution, err: np.ndarray) -> dict:
+    """A stochastic method judged over ``options.seeds`` strokes, not one draw (issue 27):
+    the largest pose error of each stroke against the closed form (a wrong assembly mode is
+    an error of order 1 rad), its quantiles, the probability that a whole stroke lands on
+    the design branch (every cut point converged on it) and the mean stroke time.  Seed 0 is
+    the run's own stream (the stroke above); seed k > 0 the stream (run seed, salt, k)."""
+    k_seeds = int(ctx.options["seeds"])
+    salt = METHOD_STREAMS[method]
+    errs, ok, times = [float(np.max(err))], [bool(sol.right.all())], \
+        [ctx.n * (sol.time_pose + sol.time_loops)]
+    for k in range(1, k_seeds):
+        s = stroke.solve_compare(ctx.g, ctx.x_k, method, ctx.settings,
+                                 np.random.default_rng([ctx.seed, salt, k]))
+        errs.append(float(np.max(pose_error(s.theta, ctx.reference.theta))))
+        ok.append(bool(s.right.all()))
+        times.append(ctx.n * (s.time_pose + s.time_loops))
+    errs = np.asarray(errs)
+    w = method
+    return {
+        f"{w}_pose_error_seeds": var("seed", errs, "rad",
+                                     f"max |theta - closed form| over the cut, per seed, {w}"),
+        f"{w}_pose_error_q50": var((), np.quantile(errs, 0.5), "rad",
+                                   f"median over seeds of the stroke's max pose error, {w}"),
+        f"{w}_pose_error_q90": var((), np.quantile(errs, 0.9), "rad",
+                                   f"90 % quantile over seeds of the stroke's max pose error, {w}"),
+        f"{w}_stroke_failure_probability": var(
+            (), 1.0 - float(np.mean(ok)), "1",
+            f"fraction of seeds whose stroke leaves the design branch or does not converge, {w}"),
+        f"{w}_stroke_time_seeds": var((), float(np.mean(times)), "s",
+                                      f"mean wall time of the whole stroke over seeds, {w}"),
     }
 
 

@@ -11,8 +11,21 @@ from __future__ import annotations
 import numpy as np
 
 from . import optimise, stroke
+from .calibrate import CalibrationError
 from .geometry import cut_points, from_parameters
+from .loops import NonAssembly
 from .selpso import SelPSOSettings
+
+
+class Refused(RuntimeError):
+    """A lever set (``options.levers``) the run refuses by name: the family member cannot
+    be calibrated on the paper's 1.4341 (``calibration``), or the lever set does not
+    assemble over the stroke (``assembly``).  Such a run is a result, not a crash: its
+    dataset carries ``levers_assemble`` and the refusal (``solver.refusal_dataset``)."""
+
+    def __init__(self, kind: str, message: str):
+        super().__init__(f"{kind}: {message}")
+        self.kind, self.message = kind, message
 
 
 class Context:
@@ -27,13 +40,24 @@ class Context:
         self.g_uncalibrated = self.g = from_parameters(p)
         target = run.get("calibration", {}).get("theta6_mid")
         self.calibration_target = float(target["value"]) * 1e3 if target is not None else None
-        self.calibration = self._calibrate() if target is not None else None
+        levers = opt.get("levers")
+        try:
+            self.calibration = self._calibrate() if target is not None else None
+        except CalibrationError as exc:
+            if levers is None:
+                raise
+            raise Refused("calibration", str(exc)) from None
         self.g_original = self.g
-        if "levers" in opt:
-            self.g = self.g.with_levers(**{k: float(v) for k, v in opt["levers"].items()})
-            if self.calibration is not None:
-                self.calibration["H_levers"] = optimise.objective(
-                    self.g, cut_points(self.g, self.calibration["n"])[1], self.tol_floor)
+        if levers is not None and self.calibration is not None:
+            self._check_buildable()
+        if levers is not None:
+            try:
+                self.g = self.g.with_levers(**{k: float(v) for k, v in levers.items()})
+                if self.calibration is not None:
+                    self.calibration["H_levers"] = optimise.objective(
+                        self.g, cut_points(self.g, self.calibration["n"])[1], self.tol_floor)
+            except (NonAssembly, ValueError) as exc:  # ValueError: intents unreachable
+                raise Refused("assembly", f"Table II lever set {dict(levers)}: {exc}") from None
         self.huch, self.x_k = cut_points(self.g, self.n)
         self.settings = self._settings()
         #: the solved stroke (a :class:`stroke.StrokeSolution`), once a solver has it
@@ -45,11 +69,29 @@ class Context:
         from .calibrate import calibrate_tilt
 
         n_cal = int(self.p["calibration_points"])
-        self.g, cal = calibrate_tilt(self.g, self.calibration_target, n_cal, self.tol_floor)
+        # the scan stops at the bracket it uses; the effect tilt_scan, when the scene names
+        # it, scans the rest (so its cost is booked to it, issue 27)
+        self.g, cal = calibrate_tilt(self.g, self.calibration_target, n_cal, self.tol_floor,
+                                     whole_scan=False)
         cal["n"] = n_cal
         cal["H_original"] = optimise.objective(self.g, cut_points(self.g, n_cal)[1],
                                                self.tol_floor)
         return cal
+
+    def _check_buildable(self) -> None:
+        """Refuse a calibrated member nobody could build (constraints.py, issue 27): its
+        original levers over the stroke at the calibration's cut points."""
+        from .constraints import violations
+
+        p, n = self.p, self.calibration["n"]
+        theta = stroke.solve_exact(self.g, cut_points(self.g, n)[1]).theta
+        broken = violations(self.g, theta, clearance=float(p["clearance"]) * 1e3,
+                            plate_top=float(p["plate_thickness_max"]) * 1e3,
+                            mu_min=float(p["transmission_min"]), opening=float(p["opening"]) * 1e3)
+        self.calibration["violations"] = broken
+        if broken:
+            raise Refused("unbuildable", "; ".join(broken) + f" (tilt {self.calibration['tilt']:.4f} "
+                          f"rad calibrated on 1.4341, {n} cut points)")
 
     def _settings(self) -> stroke.SolverSettings:
         p, res, opt = self.p, self.res, self.options

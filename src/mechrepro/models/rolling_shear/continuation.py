@@ -11,7 +11,8 @@ from mechrepro.timing import time_call
 from mechrepro.units import var
 
 from . import stroke
-from .context import Context
+from .context import Context, Refused
+from .loops import NonAssembly
 from .effects import EFFECTS
 from .motion_laws import driving_laws_on_grid, stroke_outputs
 
@@ -58,8 +59,15 @@ def exact_stroke(ctx: Context) -> tuple[stroke.StrokeSolution, dict]:
 
 def solve_continuation(run: dict, ctx: Context) -> dict:
     """Newton and closed-form strokes, then the effects the scene names (which consume the
-    Newton stroke through ``ctx.stroke``); their contributions are outputs of the run."""
-    ctx.stroke, data = newton_stroke(ctx)
+    Newton stroke through ``ctx.stroke``); their contributions are outputs of the run.
+    A scene's lever set (``options.levers``) that does not assemble is refused by name."""
+    try:
+        ctx.stroke, data = newton_stroke(ctx)
+    except NonAssembly as exc:
+        if "levers" not in ctx.options:
+            raise
+        raise Refused("assembly", f"lever set {dict(ctx.options['levers'])}: {exc}") from None
+    data["levers_assemble"] = var((), 1.0, "1", "1: the lever set assembles over the stroke")
     ctx.reference, exact = exact_stroke(ctx)
     data.update(exact)
     data.update(contributions(run, ctx))

@@ -44,11 +44,15 @@ def constant_rate_drive(ctx) -> dict:
 @EFFECTS.register("tilt_scan")
 def tilt_scan(ctx) -> dict:
     """H of the original levers over the guide-rod tilt at the run's other intents (the
-    family of docs/rolling_shear.md); the calibration's own scan when the run calibrates."""
+    family of docs/rolling_shear.md).  A calibrating run's scan stopped at its bracket: the
+    tilts it scanned are reused, the rest scanned here (so the cost is this effect's)."""
     from .calibrate import TILTS, H_of_tilt
 
-    H = (ctx.calibration["H_scan"] if ctx.calibration is not None else
-         np.array([H_of_tilt(ctx.g_original, t, 33, ctx.tol_floor) for t in TILTS]))
+    cal = ctx.calibration
+    H = np.full(len(TILTS), np.nan) if cal is None else np.array(cal["H_scan"], float)
+    n_scan = 33 if cal is None else int(cal["n_scan"])
+    for j in range(0 if cal is None else int(cal["n_scanned"]), len(TILTS)):
+        H[j] = H_of_tilt(ctx.g_original, float(TILTS[j]), n_scan, ctx.tol_floor)
     return {"family_tilt": var("tilt", TILTS, "rad", "guide-rod tilt theta6_mid - pi"),
             "family_h": var("tilt", H, "mm",
                             "synthetic horizontal displacement, original levers, 33 cut points "

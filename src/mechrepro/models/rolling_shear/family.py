@@ -32,16 +32,29 @@ def member_geometry(base, member: dict):
                    eq8=member["eq8_reading"], carrier=member["carrier_constants"])
 
 
-def calibrated_member(ctx: Context, member: dict, levers: dict) -> tuple[float, float]:
-    """(calibrated tilt, H of the lever set) of one member; NaN if it cannot reach the target."""
+def calibrated_member(ctx: Context, member: dict, levers: dict) -> tuple[float, float, float]:
+    """(calibrated tilt, H of the lever set, buildable 1/0) of one member; NaN where it
+    cannot reach the target (or the lever set does not assemble)."""
+    from . import stroke
+    from .constraints import violations
+
     try:
         gc, info = calibrate_tilt(member_geometry(ctx.g_uncalibrated, member),
                                   ctx.calibration_target, ctx.n, ctx.tol_floor,
                                   whole_scan=False)  # only the tilt is kept
-        gp = gc.with_levers(**levers)
-        return info["tilt"], optimise.objective(gp, cut_points(gp, ctx.n)[1], ctx.tol_floor)
     except (CalibrationError, NonAssembly, ValueError):
-        return math.nan, math.nan
+        return math.nan, math.nan, math.nan
+    p = ctx.p
+    theta = stroke.solve_exact(gc, cut_points(gc, ctx.n)[1]).theta
+    ok = not violations(gc, theta, clearance=float(p["clearance"]) * 1e3,
+                        plate_top=float(p["plate_thickness_max"]) * 1e3,
+                        mu_min=float(p["transmission_min"]), opening=float(p["opening"]) * 1e3)
+    try:
+        gp = gc.with_levers(**levers)
+        H = optimise.objective(gp, cut_points(gp, ctx.n)[1], ctx.tol_floor)
+    except (NonAssembly, ValueError):
+        H = math.nan
+    return info["tilt"], H, float(ok)
 
 
 def solve_family_scan(run: dict, ctx: Context) -> dict:
@@ -56,7 +69,10 @@ def solve_family_scan(run: dict, ctx: Context) -> dict:
            "family_member_H_levers": var("member", rows[:, 1], "mm",
                                          "synthetic horizontal displacement of the scene's levers"),
            "family_member_reduction": var("member", 100.0 * (rows[:, 1] / target - 1.0), "%",
-                                          "reduction of the scene's levers against the calibrated original")}
+                                          "reduction of the scene's levers against the calibrated original"),
+           "family_member_buildable": var("member", rows[:, 2], "1",
+                                          "1: the calibrated member meets the constraints of constraints.py "
+                                          "(NaN: not calibrated)")}
     for k in GRID_KEYS:
         vals = [m[k] for m in members]
         if isinstance(vals[0], str):

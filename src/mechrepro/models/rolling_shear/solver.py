@@ -9,10 +9,16 @@
 """
 from __future__ import annotations
 
+import numpy as np
+import xarray as xr
+
+from mechrepro.units import var
+
 from .comparison import solve_method_comparison
-from .context import Context
+from .context import Context, Refused
 from .continuation import solve_continuation
-from .dataset import geometry_outputs, to_dataset
+from .dataset import geometry_outputs
+from .dataset import to_dataset as _to_dataset
 from .effects import EFFECTS
 from .family import solve_family_scan
 from .lever_optimisation import solve_lever_optimisation
@@ -22,11 +28,36 @@ SOLVERS = {"continuation": solve_continuation, "method_comparison": solve_method
 
 
 def compute(run: dict) -> dict:
-    """The physics of one run: its solver, which evaluates only the effects it names."""
-    ctx = Context(run)
-    data = SOLVERS[run["solver"]](run, ctx)
+    """The physics of one run: its solver, which evaluates only the effects it names.
+    A lever set the run refuses by name (:class:`Refused`) gives ``{"refused": ...}``."""
+    try:
+        ctx = Context(run)
+        data = SOLVERS[run["solver"]](run, ctx)
+    except Refused as exc:
+        return {"refused": exc}
     data.update(geometry_outputs(ctx))
     return {"ctx": ctx, "data": data}
+
+
+def refusal_dataset(exc: Refused) -> xr.Dataset:
+    """The dataset of a refused lever set: what was refused and why, no stroke."""
+    ds = xr.Dataset({
+        "levers_assemble": var((), 0.0 if exc.kind == "assembly" else np.nan, "1",
+                               "1: the lever set assembles over the stroke; 0: refused; NaN: "
+                               "the member was refused before (not calibrated, not buildable)"),
+        "calibrated": var((), float(exc.kind != "calibration"), "1",
+                          "1: the family member reaches the paper's 1.4341 at some tilt"),
+        "buildable": var((), 0.0 if exc.kind == "unbuildable" else np.nan, "1",
+                         "0: the calibrated member breaks a constraint of constraints.py"),
+    })
+    ds.attrs.update(length_unit="mm", refusal_kind=exc.kind, refusal=exc.message)
+    return ds
+
+
+def to_dataset(result: dict, run: dict) -> xr.Dataset:
+    if "refused" in result:
+        return refusal_dataset(result["refused"])
+    return _to_dataset(result, run)
 
 
 def solve(run: dict):

@@ -233,15 +233,22 @@ def solve_compare(g: Geometry, x_k, method: str, settings: SolverSettings,
 
 def time_newton_loops(g: Geometry, theta: np.ndarray, settings: SolverSettings,
                       min_time: float = 0.02) -> float:
-    """Wall time per Eq. (9) solve of the warm-started continuation, poses given (s).
+    """Mean wall time per Eq. (9) solve of the warm-started continuation, poses given (s).
 
-    Only Eq. (9), as selPSO's time per solve is: each cut point starts from the linear
-    extrapolation of the two previous solutions.  Fastest of repeated strokes
-    (:func:`mechrepro.timing.time_call`; a stroke takes ~0.1 ms, so one preemption would
-    dominate a single timing).
+    Only Eq. (9), and timed as selPSO's time per solve is (issue 27: like for like): the
+    mean over every solve of whole strokes, repeated until ``min_time`` has elapsed (a
+    stroke takes ~10 us, so one stroke alone would be at the timer's resolution), not the
+    fastest stroke.  Each cut point starts from the linear extrapolation of the two previous
+    solutions; the first stroke warms the caches and is not counted.
     """
-    _, best = time_call(_newton_loops_stroke, g, theta, settings, min_time=min_time)
-    return best / len(theta)
+    import time
+
+    _newton_loops_stroke(g, theta, settings)
+    n, t0 = 0, time.perf_counter()
+    while n == 0 or time.perf_counter() - t0 < min_time:
+        _newton_loops_stroke(g, theta, settings)
+        n += 1
+    return (time.perf_counter() - t0) / (n * len(theta))
 
 
 def _newton_loops_stroke(g: Geometry, theta: np.ndarray, settings: SolverSettings) -> None:
