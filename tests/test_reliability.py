@@ -419,3 +419,17 @@ def test_a_failing_solve_job_keeps_its_last_good_results(run, tmp_path):
     out = sm(work)
     assert "[heal] removed" not in out.stderr and f"solve_{PAPER}__batch" in out.stdout + out.stderr
     assert "Nothing to be done" in sm(work, "-n").stdout
+
+
+def test_a_profile_difference_passes_only_with_its_reason(tmp_path, edit_config, config_copy):
+    from mechrepro.reference import HEADER, profiles_agree
+
+    q = "tight_side_velocity_max"
+    for prof, status in (("ci", "pass"), ("default", "fail")):
+        (tmp_path / prof).mkdir()
+        (tmp_path / prof / "saw_chain.csv").write_text(
+            ",".join(HEADER) + f"\n{q},14.4,{status},value,0,1e-9,native\n")
+    assert len(profiles_agree(tmp_path, "saw_chain", config_copy)) == 1
+    edit_config("saw_chain", lambda raw: raw["reported"][q].update(
+        profile_differs_why="the ci resolution cannot resolve the band (test)"))
+    assert profiles_agree(tmp_path, "saw_chain", config_copy) == []
