@@ -21,8 +21,8 @@ $(STAMP): requirements.lock pyproject.toml
 venv: $(STAMP)
 
 ## Reproduce every figure and table of every paper (full resolution): results/report/index.html
+## (the workflow heals results/ itself first, under its run lock: mechrepro.heal)
 reproduce: $(STAMP)
-	# the workflow heals results/ itself first, under its run lock (mechrepro.heal)
 	t=$$(date +%s); $(BIN)/snakemake --cores $(CORES) --rerun-incomplete; s=$$?; \
 	  $(BIN)/python -m mechrepro.plan results --since $$t --status $$s > /dev/null; exit $$s
 
@@ -32,7 +32,6 @@ test: $(STAMP)
 
 ## The fast profile, as CI runs it, into results-ci/
 ci-reproduce: $(STAMP)
-	# the workflow heals results/ itself first, under its run lock (mechrepro.heal)
 	t=$$(date +%s); $(BIN)/snakemake --cores $(CORES) --rerun-incomplete --config profile=ci \
 	  results=results-ci; s=$$?; \
 	  $(BIN)/python -m mechrepro.plan results-ci --since $$t --status $$s > /dev/null; exit $$s
