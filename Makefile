@@ -23,16 +23,16 @@ venv: $(STAMP)
 ## Reproduce every figure and table of every paper (full resolution): results/report/index.html
 ## (the workflow heals results/ itself first, under its run lock: mechrepro.heal)
 reproduce: $(STAMP)
-	t=$$(date +%s); $(BIN)/snakemake --cores $(CORES) --rerun-incomplete; s=$$?; \
+	t=$$(date +%s); $(BIN)/python -m snakemake --cores $(CORES) --rerun-incomplete; s=$$?; \
 	  $(BIN)/python -m mechrepro.plan results --since $$t --status $$s > /dev/null; exit $$s
 
 ## Run every test (unit tests, config errors, pipeline + reference check on the ci profile)
 test: $(STAMP)
-	$(BIN)/pytest -q
+	$(BIN)/python -m pytest -q
 
 ## The fast profile, as CI runs it, into results-ci/
 ci-reproduce: $(STAMP)
-	t=$$(date +%s); $(BIN)/snakemake --cores $(CORES) --rerun-incomplete --config profile=ci \
+	t=$$(date +%s); $(BIN)/python -m snakemake --cores $(CORES) --rerun-incomplete --config profile=ci \
 	  results=results-ci; s=$$?; \
 	  $(BIN)/python -m mechrepro.plan results-ci --since $$t --status $$s > /dev/null; exit $$s
 
