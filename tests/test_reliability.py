@@ -433,3 +433,23 @@ def test_a_profile_difference_passes_only_with_its_reason(tmp_path, edit_config,
     edit_config("saw_chain", lambda raw: raw["reported"][q].update(
         profile_differs_why="the ci resolution cannot resolve the band (test)"))
     assert profiles_agree(tmp_path, "saw_chain", config_copy) == []
+
+
+def test_heal_leaves_results_alone_while_snakemake_locks_name_them(tmp_path, monkeypatch):
+    """A master killed with kill -9 leaves Snakemake's locks and maybe jobs still writing:
+    heal touches nothing until `snakemake --unlock` (the README's recovery)."""
+    monkeypatch.chdir(tmp_path)
+    res = tmp_path / "results"
+    part = res / "p" / "runs" / ".r.x.part.nc"
+    part.parent.mkdir(parents=True)
+    part.write_text("an orphaned job is writing this")
+    locks = tmp_path / ".snakemake" / "locks"
+    locks.mkdir(parents=True)
+    (locks / "0.output.lock").write_text("results/p/runs/r.nc\n")
+    lines = healmod.heal("results")
+    healmod.release("results")
+    assert part.exists() and "snakemake --unlock" in lines[0]
+    (locks / "0.output.lock").write_text("results-ci/p/runs/r.nc\n")   # another results dir
+    healmod.heal("results")
+    healmod.release("results")
+    assert not part.exists()

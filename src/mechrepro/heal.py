@@ -86,6 +86,20 @@ def release(results: str | Path, workdir: str | Path = ".") -> None:
         os.close(fd)   # closing drops the flock
 
 
+def snakemake_locked(results: str | Path, workdir: str | Path = ".") -> Path | None:
+    """A Snakemake lock file that names a file under ``results`` (a run in progress, or the
+    lock a killed master left: its orphaned jobs may still be writing), or None."""
+    prefix = os.path.normpath(str(results)) + os.sep
+    for lock in sorted(Path(workdir, ".snakemake", "locks").glob("*.lock")):
+        try:
+            lines = lock.read_text().splitlines()
+        except OSError:
+            continue
+        if any(os.path.normpath(line.strip()).startswith(prefix) for line in lines):
+            return lock
+    return None
+
+
 def _results_files(results: Path):
     for sub in sorted(results.iterdir()):
         if sub.name in SKIP_DIRS:
@@ -164,6 +178,11 @@ def heal(results: str | Path, workdir: str | Path = ".", dry_run: bool = False) 
     results = Path(results)
     if not dry_run:
         acquire(results, workdir)
+        lock = snakemake_locked(results, workdir)
+        if lock is not None:
+            return [f"not healed: Snakemake's lock {lock} names files of {results} (a run "
+                    f"killed with its jobs still writing?); when no job is left, "
+                    f"`snakemake --unlock` and run again"]
     remove, restore, orphans, reverted = inspect(results)
     verb = "would remove" if dry_run else "removed"
     lines = []
