@@ -21,20 +21,20 @@ $(STAMP): requirements.lock pyproject.toml
 venv: $(STAMP)
 
 ## Reproduce every figure and table of every paper (full resolution): results/report/index.html
+## (the workflow heals results/ itself first, under its run lock: mechrepro.heal)
 reproduce: $(STAMP)
-	$(BIN)/python -m mechrepro.heal results
-	$(BIN)/snakemake --cores $(CORES) --rerun-incomplete; s=$$?; \
-	  $(BIN)/python -m mechrepro.plan results > /dev/null; exit $$s
+	t=$$(date +%s); $(BIN)/python -m snakemake --cores $(CORES) --rerun-incomplete; s=$$?; \
+	  $(BIN)/python -m mechrepro.plan results --since $$t --status $$s > /dev/null; exit $$s
 
 ## Run every test (unit tests, config errors, pipeline + reference check on the ci profile)
 test: $(STAMP)
-	$(BIN)/pytest -q
+	$(BIN)/python -m pytest -q
 
 ## The fast profile, as CI runs it, into results-ci/
 ci-reproduce: $(STAMP)
-	$(BIN)/python -m mechrepro.heal results-ci
-	$(BIN)/snakemake --cores $(CORES) --rerun-incomplete --config profile=ci results=results-ci; \
-	  s=$$?; $(BIN)/python -m mechrepro.plan results-ci > /dev/null; exit $$s
+	t=$$(date +%s); $(BIN)/python -m snakemake --cores $(CORES) --rerun-incomplete --config profile=ci \
+	  results=results-ci; s=$$?; \
+	  $(BIN)/python -m mechrepro.plan results-ci --since $$t --status $$s > /dev/null; exit $$s
 
 ## Deliberately refresh the committed reference numbers of a profile (ci by default;
 ## `make reference REF_PROFILE=default` for the full one): the profile is run once per

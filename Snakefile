@@ -1,5 +1,6 @@
 # mechrepro: config -> solver runs (netCDF) -> validation, notebooks -> report -> archive.
-# Run `make reproduce` (full) or `snakemake --cores 2 --config profile=ci` (fast profile).
+# Run `make reproduce` (full, into results/) or `make ci-reproduce` (fast profile, as
+# `snakemake --cores 2 --config profile=ci results=results-ci`).
 configfile: "config/config.yaml"
 
 

@@ -64,7 +64,7 @@ def test_truncated_netcdf_is_rebuilt_and_its_study_kept(workflow):
     run.write_bytes(run.read_bytes()[:200])
     os.utime(run, ns=(st.st_atime_ns, st.st_mtime_ns))
     log = restored(work)
-    assert "unreadable netCDF" in log and str(run.name) in log
+    assert "content differs from what its job wrote" in log and str(run.name) in log
     assert study.exists() and run.stat().st_size > 1000
 
 
@@ -79,12 +79,10 @@ def test_corruption_that_keeps_the_time_stamp_is_found_by_checksum(workflow):
     assert verify(work / "results", work / "results" / "archive" / "manifest.json") == [
         "saw_chain/tables/cost_of_accuracy.csv: sha256 differs from the manifest"]
     log = restored(work)
-    assert "checksum differs" in log
+    assert "content differs from what its job wrote" in log
 
 
-def test_garbage_in_a_table_is_named_not_archived_and_then_rebuilt(workflow):
-    work, _ = workflow
-    table = work / "results" / "saw_chain" / "tables" / "validation.csv"
+def _garbled(table):
     import csv
     import io
 
@@ -92,19 +90,43 @@ def test_garbage_in_a_table_is_named_not_archived_and_then_rebuilt(workflow):
     rows[1][rows[0].index("reproduced_value")] = "#garbage#"
     buf = io.StringIO()
     csv.writer(buf, lineterminator="\n").writerows(rows)
-    table.write_text(buf.getvalue())
-    # without healing, the reference check names file, line and value, and no archive
-    # certifies it (the archive job refuses, or never runs: the report cannot be built)
-    manifest = work / "results" / "archive" / "manifest.json"
-    stamp = manifest.stat().st_mtime
+    return buf.getvalue()
+
+
+def test_garbage_pasted_into_a_table_is_healed_by_plain_snakemake(workflow):
+    """Garbage pasted into a result (time stamp kept): the workflow's own heal finds it
+    by content before any job, and the run rebuilds it."""
+    work, _ = workflow
+    table = work / "results" / "saw_chain" / "tables" / "validation.csv"
+    st = table.stat()
+    table.write_text(_garbled(table))
+    os.utime(table, ns=(st.st_atime_ns, st.st_mtime_ns))
+    log = snakemake(work)
+    assert "validation.csv: content differs from what its job wrote" in log
+    assert "Nothing to be done" in snakemake(work, "-n")
+    assert "OK" in (work / "results" / "report" / "reference_check.txt").read_text().splitlines()[0]
+    assert verify(work / "results", work / "results" / "archive" / "manifest.json") == []
+
+
+def test_garbage_written_by_a_job_is_named_and_not_archived(workflow):
+    """Garbage a job itself wrote (its checksum recorded, so heal keeps it): the reference
+    check names file, line and value; the archive refuses and keeps the last good one."""
+    from mechrepro.io import write_text
+    from mechrepro.provenance import file_sha256
+
+    work, _ = workflow
+    table = work / "results" / "saw_chain" / "tables" / "validation.csv"
+    archive = work / "results" / "archive"
+    keep = {f.name: file_sha256(f) for f in archive.iterdir() if not f.name.startswith(".")}
+    write_text(table, _garbled(table))
     proc = subprocess.run([*SNAKEMAKE, "--keep-going"], cwd=work, capture_output=True, text=True)
     assert proc.returncode != 0
     check = (work / "results" / "report" / "reference_check.txt").read_text()
     assert "DRIFT" in check.splitlines()[0] and "line 2" in check and "'#garbage#' is not a number" in check
-    assert manifest.stat().st_mtime == stamp
-    log = restored(work)
-    assert "changed after the job that wrote it" in log
+    assert {f.name: file_sha256(f) for f in archive.iterdir() if not f.name.startswith(".")} == keep
+    snakemake(work, "--forcerun", "validate_saw_chain")
     assert "OK" in (work / "results" / "report" / "reference_check.txt").read_text().splitlines()[0]
+    assert verify(work / "results", work / "results" / "archive" / "manifest.json") == []
 
 
 def test_an_interrupted_job_leaves_nothing_that_stays(workflow):

@@ -36,3 +36,27 @@ def test_plan_is_read_from_the_run_log(tmp_path):
     log.write_text(DRY_RUN)
     assert main([str(tmp_path / "results"), str(log)]) == 0
     assert "3 jobs" in (tmp_path / "results" / "rerun_plan.html").read_text()
+
+
+def test_a_run_that_planned_nothing_does_not_show_an_old_plan(tmp_path):
+    """A run stopped before Snakemake wrote its log (a refused config): the page says so,
+    not "Nothing to be done" from the log of the run before."""
+    import os
+
+    from mechrepro.plan import main
+
+    log = tmp_path / "old.snakemake.log"
+    log.write_text("Building DAG of jobs...\nNothing to be done.")
+    os.utime(log, (1000, 1000))
+    assert main([str(tmp_path / "results"), str(log), "--since", "2000", "--status", "1"]) == 0
+    page = (tmp_path / "results" / "rerun_plan.html").read_text()
+    assert "stopped before any job was planned" in page and "Nothing to be done" not in page
+
+
+def test_a_failed_run_says_it_failed(tmp_path):
+    from mechrepro.plan import main
+
+    log = tmp_path / "run.snakemake.log"
+    log.write_text(DRY_RUN)
+    assert main([str(tmp_path / "results"), str(log), "--status", "1"]) == 0
+    assert "The run failed" in (tmp_path / "results" / "rerun_plan.html").read_text()

@@ -1,14 +1,18 @@
-"""The result archive: only checked results, everything the report links, a JSON manifest.
+"""The result archive: exactly the declared results, only after every paper was checked.
 
-The archive is built after the reference check and refuses to certify results that
-drifted from the reference.  ``manifest.json`` (beside the tarball and inside it) lists
-the sha256 of every archived file with the provenance of the run; :func:`verify`
-re-hashes a results tree against it and names every mismatch.
+``write_archive`` is given the workflow's declared outputs (never a glob: a renamed
+scene's leftovers in ``runs/`` are not certified) and the reference check of the run.  It
+refuses unless the check passed *and* names every selected paper as checked (a paper
+without a reference is not checked, so not archived).  Its outputs are ``update()`` in
+the workflow: Snakemake keeps the last good archive and manifest while the job runs and
+restores them when it fails.  :func:`verify` re-hashes a results tree
+against the manifest and names every mismatch.
 """
 from __future__ import annotations
 
 import io
 import json
+import re
 import tarfile
 from pathlib import Path
 
@@ -16,64 +20,106 @@ from .config import CACHE_DIR, load_paper
 from .io import atomic_path, write_json
 from .provenance import code_version, file_sha256, json_hash, package_versions
 
+MANIFEST = "manifest.json"
+
 
 class ArchiveRefused(RuntimeError):
     pass
 
 
-REPORT_ASSETS = ("index.html", "cost_of_accuracy_all.png", "summary.csv", "reference_check.txt")
+def check_passed(check: Path, papers: list[str]) -> None:
+    """Raise ArchiveRefused unless ``check`` says OK and names every paper as checked."""
+    if not check.is_file():
+        raise ArchiveRefused(f"not archiving: no reference check at {check}")
+    text = check.read_text()
+    lines = text.splitlines()
+    if not lines or not lines[0].endswith(": OK"):
+        raise ArchiveRefused(f"not archiving: the reference check did not pass ({check}):\n{text}")
+    unchecked = [p for p in papers
+                 if not re.search(rf"^{re.escape(p)}: \d+ quantities within tolerance", text, re.M)]
+    if unchecked:
+        raise ArchiveRefused(f"not archiving: {', '.join(unchecked)} not checked against a "
+                             f"reference ({check})")
 
 
-def _files(results: Path, papers: list[str]) -> list[Path]:
-    out = [results / "report" / name for name in REPORT_ASSETS]
-    for paper in papers:
-        root = results / paper
-        for sub in ("runs", "studies", "figures", "tables"):
-            out += sorted((root / sub).glob("*")) if (root / sub).is_dir() else []
-        out += [root / "notebook.ipynb", root / "claim.json"]
-    return [f for f in out if f.is_file() and not f.name.startswith(".")]
+def manifest(results: Path, files: list[str], config_dir: Path, papers: list[str],
+             profile: str) -> dict:
+    configs = {p: load_paper(config_dir / "papers" / f"{p}.yaml", profile, CACHE_DIR).raw
+               for p in papers}
+    rels = {}
+    for f in files:
+        path = Path(f)
+        try:
+            rel = str(path.relative_to(results))
+        except ValueError:
+            raise ArchiveRefused(f"not archiving: {f} is not under {results}") from None
+        if not path.is_file():
+            raise ArchiveRefused(f"not archiving: declared output {f} is missing")
+        rels[rel] = file_sha256(path)
+    return {"profile": profile, "papers": papers, "code_version": code_version(),
+            "package_versions": package_versions(), "config_hash": json_hash(configs),
+            "files": rels}
 
 
-def manifest(results: Path, config_dir: Path, papers: list[str], profile: str) -> dict:
-    configs = {p: load_paper(config_dir / "papers" / f"{p}.yaml", profile, CACHE_DIR).raw for p in papers}
-    return {
-        "profile": profile,
-        "papers": papers,
-        "code_version": code_version(),
-        "package_versions": package_versions(),
-        "config_hash": json_hash(configs),
-        "files": {str(f.relative_to(results)): file_sha256(f) for f in _files(results, papers)},
-    }
+def linked_extras(results: Path, files: dict) -> list[str]:
+    """Files outside the declared outputs that an archived page links (the rerun plan that
+    `make` saves after each run and the report embeds as ``../rerun_plan.html``), so the
+    extracted report has no dangling link.  Archived as they were, listed under
+    ``extras`` (not re-verified: the next make rewrites the plan)."""
+    out = []
+    for rel in files:
+        if rel.endswith(".html"):
+            page = (results / rel).read_text(errors="replace")
+            for link in re.findall(r'(?:src|href)="([^"#:]+)"', page):
+                target = (results / rel).parent / link
+                try:
+                    extra = str(target.resolve().relative_to(results.resolve()))
+                except ValueError:
+                    continue
+                if extra not in files and extra not in out and target.is_file():
+                    out.append(extra)
+    return out
 
 
-def write_archive(archive: str, manifest_path: str, results: str, config_dir: str,
-                  papers: list[str], profile: str) -> None:
-    results, config_dir = Path(results), Path(config_dir)
-    check = results / "report" / "reference_check.txt"
-    status = check.read_text().splitlines()[0] if check.exists() else "missing"
-    if not status.endswith(": OK"):
-        raise ArchiveRefused(f"not archiving: the reference check did not pass ({check}):\n"
-                             + (check.read_text() if check.exists() else "no check file"))
-    man = manifest(results, config_dir, papers, profile)
+def write_archive(archive: str, manifest_path: str, check: str, results: str,
+                  config_dir: str, papers: list[str], profile: str, files: list[str]) -> dict:
+    results = Path(results)
+    check_passed(Path(check), papers)
+    man = manifest(results, files, Path(config_dir), papers, profile)
+    extras = linked_extras(results, man["files"])
+    if extras:
+        man["extras"] = {rel: file_sha256(results / rel) for rel in extras}
     data = (json.dumps(man, indent=2, sort_keys=True) + "\n").encode()
     with atomic_path(archive) as tmp:
         # zlib's default level: tarfile's 9 took 2.7x as long for 0.1 % less (netCDF
         # results barely compress)
         with tarfile.open(tmp, "w:gz", compresslevel=6) as tar:
-            for rel in man["files"]:
+            for rel in [*man["files"], *man.get("extras", {})]:
                 tar.add(results / rel, arcname=rel)
-            info = tarfile.TarInfo("manifest.json")
+            info = tarfile.TarInfo(MANIFEST)
             info.size, info.mode = len(data), 0o644
             tar.addfile(info, io.BytesIO(data))
     write_json(manifest_path, man)
+    return man
+
+
+class ManifestError(ValueError):
+    pass
 
 
 def verify(results: str, manifest_path: str) -> list[str]:
     """Re-hash every file of the manifest; return the mismatches (empty: all verified)."""
-    results = Path(results)
-    man = json.loads(Path(manifest_path).read_text())
+    results, manifest_path = Path(results), Path(manifest_path)
+    try:
+        man = json.loads(manifest_path.read_text())
+        files = man["files"]
+    except FileNotFoundError:
+        raise ManifestError(f"{manifest_path}: no manifest (an archive is written only when "
+                            f"the reference check of every paper passed)") from None
+    except (OSError, ValueError, KeyError, TypeError) as exc:
+        raise ManifestError(f"{manifest_path}: not a readable manifest ({exc})") from None
     problems = []
-    for rel, sha in man["files"].items():
+    for rel, sha in files.items():
         f = results / rel
         if not f.is_file():
             problems.append(f"{rel}: missing")

@@ -4,7 +4,7 @@
     python -m mechrepro.cli validate PAPER RESULTS CONFIG_FILE PROFILE
     python -m mechrepro.cli summary PNG CSV RESULTS CONFIG_DIR PROFILE PAPER ...
     python -m mechrepro.cli report HTML RESULTS CONFIG_DIR PROFILE PAPER ...
-    python -m mechrepro.cli archive TAR MANIFEST RESULTS CONFIG_DIR PROFILE PAPER ...
+    python -m mechrepro.cli archive TAR MANIFEST CHECK RESULTS CONFIG_DIR PROFILE PAPER ... --files FILE ...
     python -m mechrepro.cli check-reference OUT RESULTS REFERENCE_DIR PROFILE PAPER ...
     python -m mechrepro.cli verify RESULTS [MANIFEST]
 
@@ -15,9 +15,39 @@ from __future__ import annotations
 
 import sys
 
+USAGE = {
+    "gather": (2, "OUT.nc RUN.nc ..."),
+    "validate": (4, "PAPER RESULTS CONFIG_FILE PROFILE"),
+    "summary": (6, "PNG CSV RESULTS CONFIG_DIR PROFILE PAPER ..."),
+    "report": (5, "HTML RESULTS CONFIG_DIR PROFILE PAPER ..."),
+    "archive": (7, "TAR MANIFEST CHECK RESULTS CONFIG_DIR PROFILE PAPER ... --files FILE ..."),
+    "check-reference": (5, "OUT RESULTS REFERENCE_DIR PROFILE PAPER ..."),
+    "verify": (1, "RESULTS [MANIFEST]"),
+}
+
+
+def _usage(cmd: str | None = None) -> str:
+    cmds = [cmd] if cmd else list(USAGE)
+    return "usage:\n" + "".join(f"  python -m mechrepro.cli {c} {USAGE[c][1]}\n" for c in cmds)
+
 
 def main(argv: list[str]) -> int:
+    if not argv or argv[0] in ("-h", "--help", "help"):
+        sys.stdout.write(__doc__ if argv else "")
+        if not argv:
+            sys.stderr.write(_usage())
+        return 0 if argv else 2
     cmd, args = argv[0], argv[1:]
+    if cmd not in USAGE:
+        sys.stderr.write(f"unknown command {cmd!r}\n" + _usage())
+        return 2
+    if "-h" in args or "--help" in args:
+        sys.stdout.write(_usage(cmd))
+        return 0
+    if len(args) < USAGE[cmd][0]:
+        sys.stderr.write(f"{cmd}: needs at least {USAGE[cmd][0]} arguments, got {len(args)}\n"
+                         + _usage(cmd))
+        return 2
     if cmd == "gather":
         from .io import gather_study, write_dataset
 
@@ -43,12 +73,20 @@ def main(argv: list[str]) -> int:
     elif cmd == "archive":
         from .archive import ArchiveRefused, write_archive
 
-        tar, manifest, results, config_dir, profile, *papers = args
+        if "--files" not in args:
+            sys.stderr.write("archive: --files FILE ... (the declared outputs) is required\n"
+                             + _usage(cmd))
+            return 2
+        i = args.index("--files")
+        tar, manifest, check, results, config_dir, profile, *papers = args[:i]
         try:
-            write_archive(tar, manifest, results, config_dir, papers, profile)
+            man = write_archive(tar, manifest, check, results, config_dir, papers, profile,
+                                args[i + 1:])
         except ArchiveRefused as exc:
-            sys.stderr.write(f"{exc}\n")
+            sys.stderr.write(f"{exc}\n(the last archive that passed, if any, is kept: "
+                             f"{tar})\n")
             return 1
+        print(f"archived {len(man['files'])} files of {', '.join(papers)} in {tar}")
     elif cmd == "check-reference":
         # always writes its report (the report page shows it); the archive refuses drift
         from .reference import DriftError, ResultFileError, check
@@ -64,16 +102,17 @@ def main(argv: list[str]) -> int:
         write_text(out, f"reference check, profile {profile}: {status}\n" + text)
         print(text)
     elif cmd == "verify":
-        from .archive import verify
+        from .archive import ManifestError, verify
 
         results = args[0]
         manifest = args[1] if len(args) > 1 else f"{results}/archive/manifest.json"
-        problems = verify(results, manifest)
+        try:
+            problems = verify(results, manifest)
+        except ManifestError as exc:
+            sys.stderr.write(f"verify: {exc}\n")
+            return 1
         print("\n".join(problems) if problems else f"{results}: every file matches {manifest}")
         return 1 if problems else 0
-    else:
-        sys.stderr.write(__doc__)
-        return 2
     return 0
 
 

@@ -195,7 +195,7 @@ def _cached(cache_dir, key, files, schema_dir: Path, build):
     h = hashlib.sha256(repr(key).encode())
     try:
         for f in [*files, *sorted(schema_dir.glob("*.json")), Path(__file__),
-                  Path(__file__).with_name("units.py")]:
+                  Path(__file__).with_name("units.py"), Path(__file__).with_name("inputs.py")]:
             h.update(f.name.encode() + b"\0" + f.read_bytes())
     except OSError:
         return build()   # an unreadable config: the loader says which and why
@@ -229,8 +229,8 @@ def load_paper(path: str | Path, profile: str = "default",
                        lambda: load_paper(path, profile))
     where = str(path)
     try:
-        # libyaml's loader where available: the configs are parsed at every workflow start
-        raw = yaml.load(path.read_text(), Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
+        # strict (mechrepro.inputs): UTF-8, no duplicate keys, no NaN, plausible units
+        from .inputs import read_yaml; raw = read_yaml(path)  # noqa: E702
     except (OSError, yaml.YAMLError) as exc:
         raise ConfigError(f"{where}: cannot read: {exc}") from exc
     sdir = _schema_dir(path)

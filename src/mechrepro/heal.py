@@ -1,115 +1,265 @@
-"""Before a run: find what Snakemake cannot see, and remove it so that it is rebuilt.
+"""Before a run: find by content what Snakemake cannot see, rebuild it, and never touch work.
 
 Snakemake decides by file existence and modification time.  It cannot see
 
-- a temporary ``.*.part.*`` file left by a killed job (harmless, but it stays forever);
-- a result file that cannot be read any more (a truncated ``.nc``): its time stamp is new,
-  so it would be trusted;
-- a result written by something other than its job (garbage pasted into a table): its
-  time stamp is later than the end of the job that made it, as Snakemake recorded it;
-- a result whose bytes changed while its time stamp did not (a bit flip, a copy over it
-  with ``cp -p``): the manifest of the last archived run still has its checksum.
+- a temporary ``.*.part*`` file left by a killed job (harmless, but it stays forever);
+- a result whose bytes are no longer what its job wrote (a truncated ``.nc``, garbage
+  pasted into a table, a bit flip, a ``cp -p`` over it): its time stamp looks fine;
+- a project copied without its time stamps (``cp -r``, an unpacked zip): every result
+  looks newer or older than its inputs in an arbitrary order.
 
-``python -m mechrepro.heal RESULTS`` removes each of these and names it; the run that
-follows rebuilds exactly them and what depends on them.  Files newer than the manifest
-are results of a later run and are kept.
+Every result is written by :func:`mechrepro.io.atomic_path`, which records beside it
+(``.<name>.sum``) the sha256, size and time stamp it wrote.  Heal compares each result
+with that record: the same content with another time stamp gets its recorded time stamp
+back (a copy schedules nothing); other content is removed, named, and rebuilt by the run.
+A result without a record (written by an older version) is checked against the last
+manifest's sha256 and, for netCDF, by opening it.  Time stamps alone never remove anything.
+
+Heal runs inside the workflow (``workflow/rules/common.smk``) before Snakemake builds its
+jobs, so ``make reproduce`` and a plain ``snakemake`` are healed alike, and only while this
+process holds the run lock of its results directory (an ``fcntl`` lock the kernel drops
+when the process ends, even on ``kill -9``): a second run started while one is writing is
+refused before it can remove anything.  ``python -m mechrepro.heal RESULTS`` heals by hand
+under the same lock (``--dry-run`` lists what it would do).
 """
 from __future__ import annotations
 
-import base64
+import fcntl
+import hashlib
 import json
 import os
 import sys
 from pathlib import Path
 
+from .io import SUM_SUFFIX, read_sum, sum_path
 from .provenance import file_sha256
 
+LOCK_DIR = Path(".snakemake") / "mechrepro"
+SKIP_DIRS = {"reference", "logs", "benchmarks"}
+# Snakemake invocations that parse the workflow but run no job: never heal there.
+NOT_A_RUN = {"-n", "--dry-run", "--dryrun", "--unlock", "--lint", "-t", "--touch", "-l",
+             "--list", "--list-rules", "--list-target-rules", "-S", "--summary", "-D",
+             "--detailed-summary", "--cleanup-metadata", "--cm", "--lc", "--li", "--lp",
+             "--lt", "--lu", "--list-changes", "--list-untracked", "--dag", "--rulegraph",
+             "--filegraph", "--d3dag", "--containerize", "--archive", "--cleanup-shadow",
+             "--delete-all-output", "--delete-temp-output", "--report", "--export-cwl",
+             "--print-compilation", "--help", "-h", "--version", "-v"}
 
-def stale_parts(results: Path) -> list[Path]:
-    return sorted(p for p in results.rglob(".*.part*") if p.is_file())
+
+class RunInProgress(RuntimeError):
+    pass
 
 
-def unreadable_netcdf(results: Path) -> list[Path]:
-    import netCDF4
+_held: dict[str, int] = {}   # results dir -> fd of the lock this process holds
 
-    bad = []
-    for p in sorted(results.rglob("*.nc")):
-        if p.name.startswith(".") or "reference" in p.parts:
-            continue
+
+def lock_file(results: str | Path, workdir: str | Path = ".") -> Path:
+    key = hashlib.sha256(str(Path(workdir, results).resolve()).encode()).hexdigest()[:16]
+    return Path(workdir) / LOCK_DIR / f"run-{Path(results).name}-{key}.lock"
+
+
+def acquire(results: str | Path, workdir: str | Path = ".") -> None:
+    """Take the run lock of ``results`` for the rest of this process (idempotent).
+
+    Raises :class:`RunInProgress` naming the holder's pid when another process has it."""
+    path = lock_file(results, workdir)
+    if str(path) in _held:
+        return
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o666)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except BlockingIOError:
+        holder = os.pread(fd, 64, 0).decode(errors="replace").strip() or "?"
+        os.close(fd)
+        raise RunInProgress(
+            f"another run is writing {results} (process {holder}, lock {path}); wait for it "
+            f"to end (nothing was changed). Dry runs (-n) work meanwhile.") from None
+    os.ftruncate(fd, 0)
+    os.pwrite(fd, f"{os.getpid()}\n".encode(), 0)
+    _held[str(path)] = fd
+
+
+def release(results: str | Path, workdir: str | Path = ".") -> None:
+    fd = _held.pop(str(lock_file(results, workdir)), None)
+    if fd is not None:
+        os.close(fd)   # closing drops the flock
+
+
+def snakemake_locked(results: str | Path, workdir: str | Path = ".") -> Path | None:
+    """A Snakemake lock file that names a file under ``results`` (a run in progress, or the
+    lock a killed master left: its orphaned jobs may still be writing), or None."""
+    prefix = os.path.normpath(str(results)) + os.sep
+    for lock in sorted(Path(workdir, ".snakemake", "locks").glob("*.lock")):
         try:
-            netCDF4.Dataset(p).close()
+            lines = lock.read_text().splitlines()
         except OSError:
-            bad.append(p)
-    return bad
+            continue
+        if any(os.path.normpath(line.strip()).startswith(prefix) for line in lines):
+            return lock
+    return None
 
 
-def changed_since_manifest(results: Path) -> list[Path]:
-    man_path = results / "archive" / "manifest.json"
-    if not man_path.exists():
-        return []
+def _results_files(results: Path):
+    for sub in sorted(results.iterdir()):
+        if sub.name in SKIP_DIRS:
+            continue
+        if sub.is_file():
+            yield sub
+            continue
+        for root, dirs, files in os.walk(sub):
+            dirs[:] = sorted(d for d in dirs if d not in SKIP_DIRS)
+            for name in sorted(files):
+                yield Path(root, name)
+
+
+def _manifest(results: Path) -> dict | None:
     try:
-        man = json.loads(man_path.read_text())
-        files = man["files"]
-    except (ValueError, KeyError):
-        return [man_path]  # an unreadable manifest is rebuilt by the archive rule
-    stamp = man_path.stat().st_mtime
-    out = []
-    for rel, sha in files.items():
-        f = results / rel
-        if f.is_file() and f.stat().st_mtime <= stamp and file_sha256(f) != sha:
-            out.append(f)
-    return out
-
-
-def _job_record(path: Path, metadata: Path) -> dict | None:
-    """Snakemake's record of the job that wrote ``path`` (its persistence layout)."""
-    b64 = base64.urlsafe_b64encode(str(path).encode()).decode()
-    try:
-        max_len = os.pathconf(metadata, "PC_NAME_MAX") or 255
-    except OSError:
-        max_len = 255
-    chunks = [b64[i:i + max_len - 1] for i in range(0, len(b64), max_len - 1)]
-    rec = metadata.joinpath(*(["@" + c for c in chunks[:-1]] + [chunks[-1]]))
-    try:
-        return json.loads(rec.read_text())
-    except (OSError, ValueError):
+        return json.loads((results / "archive" / "manifest.json").read_text())["files"]
+    except (OSError, ValueError, KeyError, TypeError):
         return None
 
 
-def modified_after_job(results: Path, workdir: Path) -> list[Path]:
-    metadata = workdir / ".snakemake" / "metadata"
-    if not metadata.is_dir():
-        return []
-    out = []
-    for sub in sorted(results.iterdir()):
-        if sub.name in ("reference", "logs") or not sub.is_dir():
-            continue
-        for f in sorted(sub.rglob("*")):
-            if not f.is_file() or "logs" in f.parts or "benchmarks" in f.parts:
-                continue
-            rec = _job_record(f, metadata)
-            # 2 s: file systems with coarse time stamps
-            if rec and rec.get("endtime") and f.stat().st_mtime > rec["endtime"] + 2.0:
-                out.append(f)
-    return out
+def _readable_netcdf(path: Path) -> bool:
+    import netCDF4
+
+    try:
+        netCDF4.Dataset(path).close()
+        return True
+    except OSError:
+        return False
 
 
-def heal(results: str | Path, workdir: str | Path = ".") -> list[str]:
+def inspect(results: str | Path):
+    """What heal would do: ([(file to remove, why)], [file whose time stamp to restore],
+    [record whose file is gone], [file restored to its previous version])."""
     results = Path(results)
+    remove, restore, orphans, reverted = [], [], [], []
     if not results.is_dir():
-        return []
+        return remove, restore, orphans, reverted
+    manifest = None
+    for f in _results_files(results):
+        name = f.name
+        if name.startswith("."):
+            if ".part" in name:
+                remove.append((f, "temporary file of an interrupted job"))
+            elif name.endswith(SUM_SUFFIX) and not (f.parent / name[1:-len(SUM_SUFFIX)]).exists():
+                orphans.append(f)   # Snakemake removed the file before rerunning its job
+            continue
+        rec = read_sum(f)
+        st = f.stat()
+        if rec is not None:
+            if st.st_size != rec["size"] or file_sha256(f) != rec["sha256"]:
+                prev = rec.get("previous")
+                if prev and st.st_size == prev["size"] and file_sha256(f) == prev["sha256"]:
+                    # the last good version, put back by Snakemake after its job failed
+                    reverted.append(f)
+                else:
+                    remove.append((f, "content differs from what its job wrote (checksum)"))
+            elif st.st_mtime_ns != rec["mtime_ns"]:
+                restore.append(f)
+            continue
+        # no record: a result of an older version of the writer
+        if manifest is None:
+            manifest = _manifest(results) or {}
+        rel = str(f.relative_to(results))
+        if rel in manifest and file_sha256(f) != manifest[rel]:
+            remove.append((f, "checksum differs from the last manifest"))
+        elif name.endswith(".nc") and not _readable_netcdf(f):
+            remove.append((f, "unreadable netCDF (truncated or corrupted)"))
+    return remove, restore, orphans, reverted
+
+
+def heal(results: str | Path, workdir: str | Path = ".", dry_run: bool = False) -> list[str]:
+    """Remove what is not what its job wrote, restore the time stamps of what is.
+
+    Takes the run lock of ``results`` first (kept by this process: a workflow that heals
+    keeps it until it ends); raises :class:`RunInProgress` if another process has it."""
+    results = Path(results)
+    if not dry_run:
+        acquire(results, workdir)
+        lock = snakemake_locked(results, workdir)
+        if lock is not None:
+            return [f"not healed: Snakemake's lock {lock} names files of {results} (a run "
+                    f"killed with its jobs still writing?); when no job is left, "
+                    f"`snakemake --unlock` and run again"]
+    remove, restore, orphans, reverted = inspect(results)
+    verb = "would remove" if dry_run else "removed"
     lines = []
-    for why, files in (("temporary file of an interrupted job", stale_parts(results)),
-                       ("unreadable netCDF (truncated or corrupted)", unreadable_netcdf(results)),
-                       ("changed after the job that wrote it", modified_after_job(results, Path(workdir))),
-                       ("checksum differs from the last manifest", changed_since_manifest(results))):
-        for f in files:
-            if f.exists():
-                f.unlink()
-                lines.append(f"removed {f}: {why}")
+    for f, why in remove:
+        if not dry_run:
+            f.unlink(missing_ok=True)
+            sum_path(f).unlink(missing_ok=True)
+        lines.append(f"{verb} {f}: {why}")
+    for f in orphans:
+        if not dry_run:
+            f.unlink(missing_ok=True)
+    for f in reverted:
+        if not dry_run:
+            # the record follows the file back; the time stamp is the restore's (newer
+            # than the job's inputs), so what depends on it is checked again
+            rec = read_sum(f)["previous"]
+            st = f.stat()
+            rec["mtime_ns"] = st.st_mtime_ns
+            sum_path(f).write_text(json.dumps(rec, sort_keys=True) + "\n")
+        lines.append(f"{'would keep' if dry_run else 'kept'} {f}: the last good version, "
+                     f"restored after its job failed")
+    for f in restore:
+        if not dry_run:
+            rec = read_sum(f)
+            os.utime(f, ns=(rec["mtime_ns"], rec["mtime_ns"]))
+    if restore and dry_run:
+        # not said in a run: Snakemake touches every output after its job, so this is
+        # every result after every run; after a copy (cp -r) it is what schedules nothing
+        lines.append(f"would restore the time stamps of {len(restore)} results whose "
+                     f"content is what their jobs wrote (e.g. {restore[0]})")
     return lines
 
 
-if __name__ == "__main__":
-    for line in heal(sys.argv[1]):
+def heal_workflow(workflow, results: str, argv: list[str] | None = None) -> None:
+    """Called while Snakemake parses the workflow: heal the results before the jobs are
+    decided, in the main process of a run only (not in a dry run, an ``--unlock``, a
+    cluster job, ...).  A run in progress on the same results stops this one here."""
+    argv = sys.argv[1:] if argv is None else argv
+    if workflow.exec_mode.name != "DEFAULT" or workflow.output_settings.dryrun \
+            or any(a.split("=")[0] in NOT_A_RUN for a in argv):
+        return
+    try:
+        for line in heal(results):
+            sys.stderr.write(f"[heal] {line}\n")
+    except RunInProgress as exc:
+        sys.stderr.write(f"\n{exc}\n\n")
+        raise SystemExit(1)
+    except OSError as exc:
+        # read-only results or .snakemake: nothing can be healed, nor written by any job;
+        # a no-op run must still say "Nothing to be done", not end in a traceback
+        sys.stderr.write(f"[heal] not healed ({exc.strerror}: {exc.filename})\n")
+
+
+def main(argv: list[str]) -> int:
+    import argparse
+
+    ap = argparse.ArgumentParser(
+        prog="python -m mechrepro.heal",
+        description="Remove results that are not what their job wrote (checked by content "
+                    "against the checksum recorded beside each result, or the last manifest), "
+                    "restore the time stamps of those that are; refused while a run writes "
+                    "the same results. The workflow does this itself before every run.")
+    ap.add_argument("results", help="results directory, e.g. results or results-ci")
+    ap.add_argument("--dry-run", "-n", action="store_true", help="only say what would be done")
+    args = ap.parse_args(argv)
+    try:
+        lines = heal(args.results, dry_run=args.dry_run)
+    except RunInProgress as exc:
+        sys.stderr.write(f"{exc}\n")
+        return 1
+    except OSError as exc:
+        sys.stderr.write(f"heal: {exc.strerror}: {exc.filename}\n")
+        return 1
+    for line in lines:
         print(f"[heal] {line}", flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))

@@ -29,12 +29,56 @@ def _umask() -> int:
     return mask
 
 
+SUM_PREFIX, SUM_SUFFIX = ".", ".sum"
+
+
+def sum_path(path: str | Path) -> Path:
+    """The record of what ``path``'s writer wrote: ``.<name>.sum`` beside it (hidden, so
+    no glob of results picks it up)."""
+    path = Path(path)
+    return path.parent / f"{SUM_PREFIX}{path.name}{SUM_SUFFIX}"
+
+
+def read_sum(path: str | Path) -> dict | None:
+    """``{"sha256", "size", "mtime_ns"}`` as the writer recorded them, or None."""
+    try:
+        rec = json.loads(sum_path(path).read_text())
+        return rec if {"sha256", "size", "mtime_ns"} <= set(rec) else None
+    except (OSError, ValueError, TypeError):
+        return None
+
+
+def _write_sum(tmp: Path, path: Path) -> None:
+    """Record the sha256, size and time stamp of ``tmp`` (about to become ``path``), so that
+    `mechrepro.heal` decides by content whether ``path`` is still what its job wrote: a
+    copy (``cp -r``) keeps the content and loses the time stamps, a paste or a bit flip
+    keeps the time stamp and changes the content."""
+    from .provenance import file_sha256
+
+    st = tmp.stat()
+    rec = {"sha256": file_sha256(tmp), "size": st.st_size, "mtime_ns": st.st_mtime_ns}
+    old = read_sum(path)
+    if old is not None:
+        # what was there before: a failed job's outputs are restored by Snakemake (the
+        # rules' update() flag), and heal must recognise them as what their job wrote
+        rec["previous"] = {k: old[k] for k in ("sha256", "size", "mtime_ns")}
+    side = sum_path(path)
+    fd, stmp = tempfile.mkstemp(prefix=side.name + ".", suffix=".part", dir=path.parent)
+    with os.fdopen(fd, "w") as f:
+        f.write(json.dumps(rec, sort_keys=True) + "\n")
+    os.chmod(stmp, 0o666 & ~_umask())
+    os.replace(stmp, side)
+
+
 @contextlib.contextmanager
-def atomic_path(path: str | Path):
+def atomic_path(path: str | Path, record: bool = True):
     """Yield a temporary path next to ``path``; rename it to ``path`` on success only.
 
     The file gets the permissions a plain ``open`` would give it (0666 less the umask):
-    ``mkstemp`` makes it 0600, which a shared results directory could not read.
+    ``mkstemp`` makes it 0600, which a shared results directory could not read.  With
+    ``record`` (the default), its checksum is kept beside it (:func:`sum_path`), written
+    before the rename: a kill between the two leaves a record that does not match, and the
+    file is rebuilt, never trusted.
     """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -45,6 +89,8 @@ def atomic_path(path: str | Path):
     try:
         yield Path(tmp)
         os.chmod(tmp, 0o666 & ~_umask())
+        if record:
+            _write_sum(Path(tmp), path)
         os.replace(tmp, path)
     except BaseException:
         with contextlib.suppress(FileNotFoundError):
@@ -52,8 +98,8 @@ def atomic_path(path: str | Path):
         raise
 
 
-def write_text(path: str | Path, text: str) -> None:
-    with atomic_path(path) as tmp:
+def write_text(path: str | Path, text: str, record: bool = True) -> None:
+    with atomic_path(path, record) as tmp:
         tmp.write_text(text)
 
 
@@ -112,6 +158,11 @@ def _cf_types(ds: xr.Dataset) -> dict:
             var.attrs["units"] = CF_UNITS[var.attrs["units"]]
         if name in ds.coords or var.dtype.kind not in "fc":
             enc["_FillValue"] = None
+        if name in ds.dims and var.dtype.kind in "USO":
+            # a label dimension (run names, timed effects) as a char array: a string
+            # coordinate variable makes CF checkers fail (monotonicity of strings); xarray
+            # and netCDF4 read it back as the same strings (its _Encoding attribute)
+            enc["dtype"] = "S1"
         if enc:
             encoding[name] = enc
     return encoding

@@ -46,19 +46,32 @@ def parse(dry_run: str) -> list[dict]:
     return jobs
 
 
-def to_html(jobs: list[dict]) -> str:
+def to_html(jobs: list[dict], status: int = 0) -> str:
     counts = Counter(j["rule"] for j in jobs)
     rows = "".join(
         f"<tr><td>{html.escape(j['rule'])}</td><td>{html.escape(j['wildcards'])}</td>"
         f"<td>{html.escape(j['kind'])}</td><td class='r'>{html.escape(j['reason'][:400])}</td></tr>"
         for j in jobs if j["rule"] != "all")
     summary = ", ".join(f"{r}: {n}" for r, n in sorted(counts.items()) if r != "all")
-    return ("<!doctype html><meta charset='utf-8'><style>body{font:12px system-ui}"
-            "td,th{border:1px solid #ccc;padding:2px 5px;vertical-align:top}"
-            "table{border-collapse:collapse}.r{color:#555;font-size:11px}</style>"
-            f"<p><b>{len(jobs) - counts.get('all', 0)} jobs</b> {html.escape(summary)}</p>"
+    failed = (f"<p><b>The run failed (exit status {status})</b>: these jobs were planned; "
+              "the failed ones and their logs are named in the console output.</p>"
+              if status else "")
+    return (HEAD + failed
+            + f"<p><b>{len(jobs) - counts.get('all', 0)} jobs</b> {html.escape(summary)}</p>"
             + ("<table><tr><th>rule</th><th>wildcards</th><th>why</th><th>snakemake's reason</th></tr>"
                f"{rows}</table>" if rows else "<p>Nothing to be done: every result is up to date.</p>"))
+
+
+HEAD = ("<!doctype html><meta charset='utf-8'><style>body{font:12px system-ui}"
+        "td,th{border:1px solid #ccc;padding:2px 5px;vertical-align:top}"
+        "table{border-collapse:collapse}.r{color:#555;font-size:11px}</style>")
+
+
+def no_run_html(status: int) -> str:
+    """The run stopped before Snakemake wrote a log (no job was planned)."""
+    return (HEAD + f"<p><b>The last run stopped before any job was planned</b> (exit status "
+            f"{status}): a refused config, another run in progress, or a locked directory; "
+            "its console output says which. The results are those of the run before.</p>")
 
 
 def latest_log(workdir: str | Path = ".") -> Path | None:
@@ -67,16 +80,30 @@ def latest_log(workdir: str | Path = ".") -> Path | None:
 
 
 def main(argv: list[str]) -> int:
-    """``python -m mechrepro.plan RESULTS [SNAKEMAKE_LOG]``"""
-    results = Path(argv[0])
-    log = Path(argv[1]) if len(argv) > 1 else latest_log()
+    """``python -m mechrepro.plan RESULTS [SNAKEMAKE_LOG] [--since EPOCH] [--status N]``:
+    with ``--since`` (the make's start), a log older than that is not this run's."""
+    import argparse
+
+    ap = argparse.ArgumentParser(prog="python -m mechrepro.plan", description=main.__doc__)
+    ap.add_argument("results")
+    ap.add_argument("log", nargs="?", help="default: the newest .snakemake/log/*.snakemake.log")
+    ap.add_argument("--since", type=float, help="start time of the run (seconds since epoch)")
+    ap.add_argument("--status", type=int, default=0, help="the run's exit status")
+    args = ap.parse_args(argv)
+    results = Path(args.results)
+    log = Path(args.log) if args.log else latest_log()
+    if args.since is not None and (log is None or not log.exists()
+                                   or log.stat().st_mtime < args.since - 1):
+        write_text(results / "rerun_plan.html", no_run_html(args.status))
+        print(f"rerun plan: no job was planned -> {results}/rerun_plan.html")
+        return 0
     if log is None or not log.exists():
         sys.stderr.write("rerun plan: no Snakemake log found\n")
         return 1
     out = log.read_text()
     jobs = parse(out)
     write_text(results / "rerun_plan.txt", out)
-    write_text(results / "rerun_plan.html", to_html(jobs))
+    write_text(results / "rerun_plan.html", to_html(jobs, args.status))
     n = sum(j["rule"] != "all" for j in jobs)
     print(f"rerun plan: {n} jobs ran -> {results}/rerun_plan.html")
     return 0

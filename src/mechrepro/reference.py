@@ -132,7 +132,7 @@ def derive(results: dict[str, Path], reference_dir: str | Path, config_dir: str 
         for q, (value, status) in base.items():
             b = basis.get(q, "value")
             others = {v: t.get(q, (math.nan, "missing")) for v, t in tables.items()}
-            if b != "timing":
+            if b != "timing" or status != "info":   # a timing verdict must not flip either
                 flips = {v: s for v, (_, s) in others.items() if s != status}
                 if flips:
                     refused.append(f"  {paper}.{q}: {status} natively, " + ", ".join(
@@ -145,7 +145,7 @@ def derive(results: dict[str, Path], reference_dir: str | Path, config_dir: str 
                 tol = math.nan
             w.writerow([q, repr(value), status, b, repr(spread), repr(tol),
                         " ".join(results)])
-        write_text(Path(reference_dir) / profile / f"{paper}.csv", buf.getvalue())
+        write_text(Path(reference_dir) / profile / f"{paper}.csv", buf.getvalue(), record=False)
         print(f"reference written: {Path(reference_dir) / profile / f'{paper}.csv'}")
     if refused:
         raise DriftError("verdicts that differ between platform variants (fix each quantity "
@@ -162,11 +162,14 @@ def compare(current: dict[str, tuple[float, str]], ref_rows: list[dict], where: 
     for q in sorted(set(current) - set(ref)):
         problems.append(f"  {q}: new quantity, not in reference")
     for i, (q, r) in enumerate(ref.items(), 2):
-        if q not in current or r["basis"] == "timing":
+        if q not in current:
             continue
         value, status = current[q]
+        # a timing row's value is never compared (wall clock), its verdict always: the
+        # criterion (e.g. a speed-up >= 100) must hold on any machine
         if status != r["status"]:
-            problems.append(f"  {q}: verdict {r['status']} in reference, now {status}")
+            problems.append(f"  {q}: verdict {r['status']} in reference, now {status}"
+                            + (f" (timing row: value {value!r})" if r["basis"] == "timing" else ""))
         if r["basis"] != "value":
             continue
         x0 = _float(r["reproduced_value"], f"{where}, line {i} ({q}), reproduced_value")
@@ -180,19 +183,54 @@ def compare(current: dict[str, tuple[float, str]], ref_rows: list[dict], where: 
     return problems
 
 
-def check(results: str, reference_dir: str, papers: list[str], profile: str) -> str:
-    """Compare every paper's validation table with the reference; raise DriftError on drift."""
+PROFILES = ("ci", "default")
+
+
+def profiles_agree(reference_dir: str | Path, paper: str, config_dir: str | Path | None
+                   ) -> list[str]:
+    """Verdicts of the committed references of the two profiles that differ, unless the
+    paper's reported row says why (``profile_differs_why``): a verdict that depends on
+    the resolution profile is not a verdict of the paper."""
+    files = {p: Path(reference_dir) / p / f"{paper}.csv" for p in PROFILES}
+    if not all(f.exists() for f in files.values()):
+        return []
+    status = {p: {r["quantity"]: r["status"] for r in _table(f, HEADER[:3])}
+              for p, f in files.items()}
+    a, b = (status[p] for p in PROFILES)
+    differ = sorted(q for q in set(a) & set(b) if a[q] != b[q])
+    if not differ:
+        return []
+    reported = {}
+    if config_dir is not None:
+        reported = load_paper(Path(config_dir) / "papers" / f"{paper}.yaml").reported
+    return [f"  {q}: verdict {a[q]} in {files['ci']}, {b[q]} in {files['default']} (the "
+            f"profiles disagree; fix it, or say why in reported.{q}.profile_differs_why)"
+            for q in differ if not (reported.get(q) or {}).get("profile_differs_why")]
+
+
+def check(results: str, reference_dir: str, papers: list[str], profile: str,
+          config_dir: str | Path | None = None) -> str:
+    """Compare every paper's validation table with the reference; raise DriftError on drift
+    or on a paper without a reference (it is not checked, so it must not be certified).
+    ``config_dir`` (default: ``config/`` beside ``results/reference``) gives the reported
+    rows' ``profile_differs_why``."""
     results, ref_root = Path(results), Path(reference_dir) / profile
+    if config_dir is None:
+        config_dir = Path(reference_dir).resolve().parents[1] / "config"
     lines, failed = [], False
     for paper in papers:
         ref_file = ref_root / f"{paper}.csv"
         if not ref_file.exists():
-            lines.append(f"{paper}: no reference at {ref_file} (not checked)")
+            failed = True
+            lines.append(f"{paper}: not checked: no reference at {ref_file} (create it with "
+                         f"`make reference REF_PROFILE={profile} REF_PAPERS={paper}`)")
             continue
         try:
             ref = _table(ref_file, HEADER[:-1])
             current = _values(results / paper / "tables" / "validation.csv")
             problems = compare(current, ref, str(ref_file))
+            problems += profiles_agree(reference_dir, paper,
+                                       config_dir if Path(config_dir).is_dir() else None)
         except ResultFileError as exc:  # one unreadable file does not hide the others
             problems = [f"  {exc}"]
         if problems:
@@ -202,7 +240,8 @@ def check(results: str, reference_dir: str, papers: list[str], profile: str) -> 
         else:
             n = sum(r["basis"] != "timing" for r in ref)
             lines.append(f"{paper}: {n} quantities within tolerance of {ref_file} "
-                         f"(same verdicts; {len(ref) - n} timing rows not compared)")
+                         f"(same verdicts, timing rows' included; {len(ref) - n} timing "
+                         f"values not compared)")
     text = "\n".join(lines) + "\n"
     if failed:
         raise DriftError(text + "If the change is deliberate, refresh with `make reference`.")

@@ -18,12 +18,28 @@ validate(config, str((BASE / "config/schema/config.schema.json").resolve()))
 PROFILE = config["profile"]
 RESULTS = config["results"]
 PAPERS = config["papers"]
+# The cross-paper report and archive of a run of some papers go beside the full ones
+# (`report-saw_chain/`), so `--config papers=[saw_chain]` never replaces the five-paper
+# report or its archive.
+import yaml  # noqa: E402
+
+_ALL = yaml.safe_load((BASE / "config/config.yaml").read_text())["papers"]
+_TAG = "" if sorted(PAPERS) == sorted(_ALL) else "-" + "+".join(PAPERS)
+REPORT = f"{RESULTS}/report{_TAG}"
+ARCHIVE = f"{RESULTS}/archive{_TAG}"
 try:
     # validated once per content of the configs, schemas and loader (a no-op start is fast)
     CFG = load_all(BASE / "config", PAPERS, PROFILE, cache_dir=CACHE_DIR)
 except ConfigError as exc:
     sys.stderr.write(f"\n{exc}\n\n")
     raise SystemExit(1)
+
+# Before the jobs are decided: take this results directory's run lock (a second run is
+# refused here, before it can touch anything), then heal by content (mechrepro.heal), in
+# the main process of a run only. `make reproduce` and a plain `snakemake` are alike.
+from mechrepro.heal import heal_workflow  # noqa: E402
+
+heal_workflow(workflow, RESULTS)
 
 # Every job runs `python -m mechrepro.<module>` with this workflow's src/ first on the path.
 # relative when the interpreter lives in the project (.venv), so a moved project keeps its
@@ -102,12 +118,22 @@ def tables_of(paper, notebook_only=False):
     return expand(f"{RESULTS}/{paper}/tables/{{t}}.csv", t=names)
 
 
-def every_output():
-    """Every declared output (the target of the workflow), so that a deleted one is restored."""
-    out = [f"{RESULTS}/report/index.html", f"{RESULTS}/archive/manifest.json",
-           f"{RESULTS}/report/cost_of_accuracy_all.png", f"{RESULTS}/report/summary.csv",
-           f"{RESULTS}/report/reference_check.txt"]
+def report_assets():
+    return [f"{REPORT}/index.html", f"{REPORT}/cost_of_accuracy_all.png",
+            f"{REPORT}/summary.csv", f"{REPORT}/reference_check.txt"]
+
+
+def archived_outputs():
+    """What the archive holds: the declared results of every paper and the report, and
+    nothing else (no glob: a renamed scene's leftovers are never certified)."""
+    out = report_assets()
     for p in PAPERS:
         out += runs_of(p, variants=True) + studies_of(p, variants=True) + figures_of(p)
         out += tables_of(p) + [f"{RESULTS}/{p}/notebook.ipynb", f"{RESULTS}/{p}/claim.json"]
     return out
+
+
+def every_output():
+    """Every declared output (the target of the workflow), so that a deleted one is restored."""
+    return archived_outputs() + [f"{ARCHIVE}/manifest.json",
+                                 f"{ARCHIVE}/mechrepro-results.tar.gz"]

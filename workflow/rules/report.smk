@@ -7,8 +7,8 @@ rule summary:
         configs=[paper_config(p) for p in PAPERS],
         code=code("cli.py", "summary.py", "config.py", "plotting.py", "validation.py"),
     output:
-        png=f"{RESULTS}/report/cost_of_accuracy_all.png",
-        csv=f"{RESULTS}/report/summary.csv",
+        png=f"{REPORT}/cost_of_accuracy_all.png",
+        csv=f"{REPORT}/summary.csv",
     params:
         papers=PAPERS,
         profile=PROFILE,
@@ -16,9 +16,9 @@ rule summary:
         results=lambda wc, output: str(Path(output[0]).parents[1]),
         base=RUN["base"],
     log:
-        f"{RESULTS}/logs/summary.log",
+        f"{RESULTS}/logs/summary{_TAG}.log",
     benchmark:
-        f"{RESULTS}/benchmarks/summary.tsv"
+        f"{RESULTS}/benchmarks/summary{_TAG}.tsv"
     shell:
         "{params.python} -m mechrepro.cli summary {output.png} {output.csv} {params.results} "
         "{params.base}/config {params.profile} {params.papers} > {log} 2>&1"
@@ -27,11 +27,14 @@ rule summary:
 rule reference_check:
     input:
         tables=expand(f"{RESULTS}/{{paper}}/tables/validation.csv", paper=PAPERS),
-        reference=[str(f) for p in PAPERS
-                   for f in [BASE / "results/reference" / PROFILE / f"{p}.csv"] if f.exists()],
+        # both profiles' references: their verdicts must agree (reference.profiles_agree);
+        # a missing one fails the check (an unchecked paper is never archived)
+        reference=[str(f) for p in PAPERS for prof in sorted({PROFILE, "ci", "default"})
+                   for f in [BASE / "results/reference" / prof / f"{p}.csv"] if f.exists()],
+        configs=[paper_config(p) for p in PAPERS],
         code=code("cli.py", "reference.py", "validation.py"),
     output:
-        f"{RESULTS}/report/reference_check.txt",
+        f"{REPORT}/reference_check.txt",
     params:
         papers=PAPERS,
         profile=PROFILE,
@@ -39,9 +42,9 @@ rule reference_check:
         results=lambda wc, output: str(Path(output[0]).parents[1]),
         base=RUN["base"],
     log:
-        f"{RESULTS}/logs/reference_check.log",
+        f"{RESULTS}/logs/reference_check{_TAG}.log",
     benchmark:
-        f"{RESULTS}/benchmarks/reference_check.tsv"
+        f"{RESULTS}/benchmarks/reference_check{_TAG}.tsv"
     shell:
         "{params.python} -m mechrepro.cli check-reference {output} {params.results} "
         "{params.base}/results/reference {params.profile} {params.papers} > {log} 2>&1"
@@ -57,7 +60,7 @@ rule report:
         configs=[paper_config(p) for p in PAPERS],
         code=code("cli.py", "report.py", "templates/report.html.j2", "config.py", "validation.py", "costs.py"),
     output:
-        f"{RESULTS}/report/index.html",
+        f"{REPORT}/index.html",
     params:
         papers=PAPERS,
         profile=PROFILE,
@@ -65,38 +68,37 @@ rule report:
         results=lambda wc, output: str(Path(output[0]).parents[1]),
         base=RUN["base"],
     log:
-        f"{RESULTS}/logs/report.log",
+        f"{RESULTS}/logs/report{_TAG}.log",
     benchmark:
-        f"{RESULTS}/benchmarks/report.tsv"
+        f"{RESULTS}/benchmarks/report{_TAG}.tsv"
     shell:
         "{params.python} -m mechrepro.cli report {output} {params.results} {params.base}/config "
         "{params.profile} {params.papers} > {log} 2>&1"
 
 
-# Only results that passed the reference check are archived (the job fails otherwise).
+# Only results that passed the reference check of every selected paper are archived.  The
+# outputs are `update()`: Snakemake neither removes them before the job nor keeps a failed
+# job's version; it restores the last good archive and manifest when the check refuses.
 rule archive:
     input:
-        report=f"{RESULTS}/report/index.html",
         check=rules.reference_check.output,
-        notebooks=expand(f"{RESULTS}/{{paper}}/notebook.ipynb", paper=PAPERS),
-        runs=[f for p in PAPERS for f in runs_of(p, variants=True)],
-        studies=[f for p in PAPERS for f in studies_of(p, variants=True)],
+        files=archived_outputs(),
         configs=[paper_config(p) for p in PAPERS],
         code=code("cli.py", "archive.py", "config.py"),
     output:
-        manifest=f"{RESULTS}/archive/manifest.json",
-        archive=f"{RESULTS}/archive/mechrepro-results.tar.gz",
+        manifest=update(f"{ARCHIVE}/manifest.json"),
+        archive=update(f"{ARCHIVE}/mechrepro-results.tar.gz"),
     params:
         papers=PAPERS,
         profile=PROFILE,
         python=RUN["python"],
-        results=lambda wc, output: str(Path(output[0]).parents[1]),
+        results=lambda wc, output: str(Path(output.manifest).parents[1]),
         base=RUN["base"],
     log:
-        f"{RESULTS}/logs/archive.log",
+        f"{RESULTS}/logs/archive{_TAG}.log",
     benchmark:
-        f"{RESULTS}/benchmarks/archive.tsv"
+        f"{RESULTS}/benchmarks/archive{_TAG}.tsv"
     shell:
-        "{params.python} -m mechrepro.cli archive {output.archive} {output.manifest} "
-        "{params.results} {params.base}/config {params.profile} {params.papers} > {log} 2>&1 "
-        "|| {{ cat {log} >&2; exit 1; }}"
+        "{params.python} -m mechrepro.cli archive {output.archive} {output.manifest} {input.check} "
+        "{params.results} {params.base}/config {params.profile} {params.papers} "
+        "--files {input.files} > {log} 2>&1 || {{ cat {log} >&2; exit 1; }}"

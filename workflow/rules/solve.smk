@@ -13,12 +13,17 @@ for _paper in PAPERS:
         rule:
             name:
                 f"solve_{_paper}__{_job}"
+            # not the paper's config file: the run records below are (as params), so an
+            # edit of one scene reruns exactly the jobs whose records it changes
             input:
-                config=paper_config(_paper),
                 code=model_code(_paper),
+            # update(): Snakemake does not remove the last results before the job and
+            # restores them if it fails, so a failing job (a solver's refusal, a crash)
+            # never loses its siblings' good results; they are rerun when their
+            # records change, as before
             output:
-                runs=[f"{RESULTS}/{_paper}/runs/{r}.nc" for r in _runs],
-                studies=[f"{RESULTS}/{_paper}/studies/{s}.nc"
+                runs=[update(f"{RESULTS}/{_paper}/runs/{r}.nc") for r in _runs],
+                studies=[update(f"{RESULTS}/{_paper}/studies/{s}.nc")
                          for s in CFG[_paper].studies_solved_with(_runs)],
             params:
                 python=RUN["python"],

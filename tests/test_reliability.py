@@ -1,0 +1,455 @@
+"""Never lose a good result, never certify an unchecked one (issue 31).
+
+Heal decides by content, under the run lock: a copy without time stamps schedules nothing
+and deletes nothing, a second run started while one writes is refused before it touches
+anything, an interrupted run keeps what it finished, a result changed behind the
+workflow's back is removed and rebuilt.  The pipeline tests run saw_chain's ci profile
+(about 10 s) in a copy of the workflow.
+"""
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+
+from conftest import copy_workflow
+from mechrepro import heal as healmod
+from mechrepro.io import read_sum, sum_path, write_text
+from mechrepro.provenance import file_sha256
+
+PAPER = "saw_chain"
+SM = [sys.executable, "-m", "snakemake", "--cores", "2", "--config", "profile=ci",
+      f"papers=[{PAPER}]"]
+
+
+def sm(work, *args, check=True):
+    proc = subprocess.run([*SM, *args], cwd=work, capture_output=True, text=True, timeout=900)
+    if check and proc.returncode != 0:
+        raise AssertionError(proc.stdout[-3000:] + proc.stderr[-3000:])
+    return proc
+
+
+def hashes(root):
+    """sha256 of every result file (records included), by path relative to ``root``."""
+    return {str(p.relative_to(root)): file_sha256(p) for p in sorted(root.rglob("*"))
+            if p.is_file() and "logs" not in p.parts and "benchmarks" not in p.parts
+            and "reference" not in p.parts}
+
+
+# --- heal on its own (no pipeline) -------------------------------------------------------
+
+def test_heal_keeps_what_its_writer_wrote_and_restores_its_time_stamp(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    res = tmp_path / "results"
+    f = res / "p" / "tables" / "t.csv"
+    write_text(f, "a,b\n1,2\n")
+    rec = read_sum(f)
+    assert rec["sha256"] == file_sha256(f) and rec["mtime_ns"] == f.stat().st_mtime_ns
+    os.utime(f, (time.time() + 100, time.time() + 100))   # as cp -r / a touch leaves it
+    assert healmod.heal(res) == []
+    healmod.release(res)
+    assert f.exists() and f.stat().st_mtime_ns == rec["mtime_ns"]
+
+
+def test_heal_removes_changed_content_even_with_the_old_time_stamp(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    res = tmp_path / "results"
+    f = res / "p" / "tables" / "t.csv"
+    write_text(f, "a,b\n1,2\n")
+    st = f.stat()
+    f.write_text("a,b\n1,7\n")            # same size, one byte flipped
+    os.utime(f, ns=(st.st_atime_ns, st.st_mtime_ns))
+    part = f.parent / ".t.x.part.csv"
+    part.write_text("half")
+    lines = healmod.heal(res)
+    healmod.release(res)
+    assert any("content differs" in l and "t.csv" in l for l in lines), lines
+    assert any("interrupted job" in l for l in lines)
+    assert not f.exists() and not sum_path(f).exists() and not part.exists()
+
+
+def test_heal_is_refused_while_another_process_holds_the_run_lock(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    res = tmp_path / "results"
+    f = res / "p" / "runs" / "r.nc"
+    write_text(f, "not netCDF, but what its writer wrote")
+    holder = subprocess.Popen(
+        [sys.executable, "-c", "import sys, time; sys.path.insert(0, sys.argv[1]);"
+         "from mechrepro import heal; heal.acquire('results'); print('held', flush=True);"
+         "time.sleep(60)", str(healmod.Path(healmod.__file__).parents[1])],
+        cwd=tmp_path, stdout=subprocess.PIPE, text=True)
+    try:
+        assert holder.stdout.readline().strip() == "held"
+        (f.parent / ".r.x.part.nc").write_text("a job of the other run is writing this")
+        with pytest.raises(healmod.RunInProgress, match=f"process {holder.pid}"):
+            healmod.heal(res)
+        assert (f.parent / ".r.x.part.nc").exists()   # nothing touched
+    finally:
+        holder.kill()
+        holder.wait()
+    assert healmod.heal(res)   # the kernel dropped the lock with the process
+    healmod.release(res)
+
+
+def test_heal_cli_has_help_and_a_dry_run(tmp_path):
+    env = {**os.environ, "PYTHONPATH": str(healmod.Path(healmod.__file__).parents[1])}
+    out = subprocess.run([sys.executable, "-m", "mechrepro.heal", "--help"], cwd=tmp_path,
+                         capture_output=True, text=True, env=env)
+    assert out.returncode == 0 and "--dry-run" in out.stdout
+
+
+# --- the pipeline (saw_chain, ci profile) -------------------------------------------------
+
+@pytest.fixture(scope="module")
+def run(tmp_path_factory):
+    work = copy_workflow(tmp_path_factory.mktemp("rel"))
+    sm(work)
+    return work
+
+
+pipeline = pytest.mark.slow
+
+
+@pipeline
+def test_a_copy_without_time_stamps_schedules_nothing_and_deletes_nothing(run, tmp_path):
+    copy = tmp_path / "copy"
+    shutil.copytree(run, copy, copy_function=shutil.copy)   # cp -r: new time stamps
+    before = hashes(copy / "results")
+    proc = sm(copy)
+    assert "Nothing to be done" in proc.stdout + proc.stderr, proc.stderr[-3000:]
+    assert "[heal] removed" not in proc.stderr
+    assert hashes(copy / "results") == before
+
+
+@pipeline
+def test_a_second_run_is_refused_while_the_first_writes(run, tmp_path):
+    work = tmp_path / "w"
+    shutil.copytree(run, work, symlinks=True)
+    first = subprocess.Popen([*SM, "--forcerun", f"solve_{PAPER}__batch"], cwd=work,
+                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                             start_new_session=True)
+    runs = work / "results" / PAPER / "runs"
+    deadline = time.time() + 120
+    while time.time() < deadline and not list(runs.glob(".*.part*")) and first.poll() is None:
+        time.sleep(0.02)
+    second = sm(work, check=False)
+    assert second.returncode != 0
+    assert "another run is writing results" in second.stderr, second.stderr[-2000:]
+    assert first.wait(timeout=600) == 0
+    assert "Nothing to be done" in sm(work, "-n").stdout
+
+
+@pipeline
+def test_an_interrupted_run_keeps_what_it_finished(run, tmp_path):
+    """Ctrl-C after the solve job ended: its runs are kept (same bytes, not rerun)."""
+    work = tmp_path / "w"
+    shutil.copytree(run, work, symlinks=True)
+    runs = work / "results" / PAPER / "runs"
+    proc = subprocess.Popen([*SM, "--forceall"], cwd=work, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE, text=True, start_new_session=True)
+    # wait for the validation job: the solve job has finished by then
+    log = work / "results" / PAPER / "logs" / "validate.log"
+    stamp = log.stat().st_mtime if log.exists() else 0
+    deadline = time.time() + 300
+    while time.time() < deadline and proc.poll() is None and not (
+            log.exists() and log.stat().st_mtime > stamp):
+        time.sleep(0.02)
+    solved = {p.name: file_sha256(p) for p in runs.glob("*.nc")}
+    os.killpg(proc.pid, signal.SIGINT)
+    proc.wait(timeout=120)
+    out = sm(work, "--rerun-incomplete")
+    assert f"solve_{PAPER}__batch" not in out.stdout + out.stderr
+    assert "[heal] removed" not in out.stderr
+    assert {p.name: file_sha256(p) for p in runs.glob("*.nc")} == solved
+    assert "Nothing to be done" in sm(work, "-n").stdout
+
+
+# --- the archive --------------------------------------------------------------------------
+
+def archive_dir(work):
+    return work / "results" / f"archive-{PAPER}"
+
+
+@pipeline
+def test_the_archive_holds_exactly_the_declared_outputs(run, tmp_path):
+    import json
+    import tarfile
+
+    work = tmp_path / "w"
+    shutil.copytree(run, work, symlinks=True)
+    stray = work / "results" / PAPER / "runs" / "renamed_scene.nc"
+    shutil.copy(next((work / "results" / PAPER / "runs").glob("*.nc")), stray)
+    (work / "results" / PAPER / "tables" / "old_table.csv").write_text("a\n1\n")
+    sm(work, "--forcerun", "archive")
+    man = json.loads((archive_dir(work) / "manifest.json").read_text())
+    with tarfile.open(archive_dir(work) / "mechrepro-results.tar.gz") as tar:
+        names = set(tar.getnames())
+    assert names == set(man["files"]) | set(man.get("extras", {})) | {"manifest.json"}
+    assert not any("renamed_scene" in n or "old_table" in n or "/." in n for n in names)
+    # every declared output of the paper is there, nothing else from its directory
+    dry = sm(work, "--list-target-rules").stdout   # the workflow parses
+    assert f"{PAPER}/claim.json" in names and f"{PAPER}/tables/validation.csv" in names, dry
+
+
+@pipeline
+@pytest.mark.parametrize("fault", ["missing reference", "drift"])
+def test_a_failed_check_archives_nothing_and_keeps_the_last_good_archive(run, tmp_path, fault):
+    work = tmp_path / "w"
+    shutil.copytree(run, work, symlinks=True)
+    keep = {n: file_sha256(archive_dir(work) / n)
+            for n in ("manifest.json", "mechrepro-results.tar.gz")}
+    if fault == "missing reference":
+        (work / "results" / "reference" / "ci" / f"{PAPER}.csv").unlink()
+    else:   # a reference value far from what the run gives
+        ref = work / "results" / "reference" / "ci" / f"{PAPER}.csv"
+        lines = ref.read_text().splitlines()
+        i = next(i for i, l in enumerate(lines) if ",value," in l)
+        cells = lines[i].split(",")
+        cells[1] = repr(float(cells[1]) * 1.5 + 1.0)
+        lines[i] = ",".join(cells)
+        ref.write_text("\n".join(lines) + "\n")
+    proc = sm(work, check=False)
+    assert proc.returncode != 0
+    check = (work / "results" / f"report-{PAPER}" / "reference_check.txt").read_text()
+    assert "OK" not in check.splitlines()[0]
+    assert ("not checked" if fault == "missing reference" else "DRIFT") in check
+    assert "not archiving" in proc.stderr
+    assert {n: file_sha256(archive_dir(work) / n) for n in keep} == keep
+    # the manifest of the last good archive stays usable: it names exactly what the failed
+    # run rewrote (the report of the failed check), so a later bit flip is still found
+    from mechrepro.archive import verify
+
+    assert {p.split(":")[0] for p in verify(work / "results", archive_dir(work) / "manifest.json")
+            } <= {f"report-{PAPER}/index.html", f"report-{PAPER}/reference_check.txt"}
+
+
+def test_timing_verdicts_are_checked_and_profiles_must_agree(tmp_path):
+    from mechrepro.reference import HEADER, compare, profiles_agree
+
+    ref = [dict(zip(HEADER, ["speedup", "11231.7", "pass", "timing", "8920", "nan", "native"]))]
+    assert compare({"speedup": (16874.0, "pass")}, ref, "ref") == []   # value not compared
+    assert "verdict pass in reference, now fail" in compare({"speedup": (3.0, "fail")}, ref,
+                                                             "ref")[0]
+    for prof, status in (("ci", "pass"), ("default", "fail")):
+        d = tmp_path / prof
+        d.mkdir()
+        (d / "p.csv").write_text(",".join(HEADER) + f"\nq,1.0,{status},value,0,1e-9,native\n")
+    problems = profiles_agree(tmp_path, "p", None)
+    assert len(problems) == 1 and "profile_differs_why" in problems[0]
+
+
+def test_cli_errors_are_readable(tmp_path):
+    env = {**os.environ, "PYTHONPATH": str(healmod.Path(healmod.__file__).parents[1])}
+
+    def cli(*args):
+        return subprocess.run([sys.executable, "-m", "mechrepro.cli", *args], cwd=tmp_path,
+                              capture_output=True, text=True, env=env)
+
+    for args, rc, text in [((), 2, "usage"), (("--help",), 0, "gather"),
+                           (("verify", "results"), 1, "no manifest"),
+                           (("archive", "x"), 2, "needs at least"),
+                           (("nonsense",), 2, "unknown command")]:
+        out = cli(*args)
+        assert out.returncode == rc and text in out.stdout + out.stderr, (args, out)
+        assert "Traceback" not in out.stderr, out.stderr
+
+
+# --- scene-precision reruns ---------------------------------------------------------------
+
+# per paper: (scene, parameter, new value) -- None: the scene gets an override of the
+# paper's first numeric parameter, 0.1 % off
+SCENE_EDITS = {
+    "saw_chain": ("speed_12000", "sprocket_speed", 11000),
+    "rolling_shear": None,
+    "joint_wear": None,
+    "disk_tension": ("buckling", "rolling_radius", [100]),
+    "chain_drive": ("fig09b", "driven_inertia", 0.0006),   # a job of its own
+}
+
+
+def _edit(raw, paper):
+    spec = SCENE_EDITS[paper]
+    if spec is None:
+        name, p = next((k, v) for k, v in raw["parameters"].items()
+                       if isinstance(v.get("value"), float) and not v.get("calibrated_on"))
+        spec = (next(iter(raw["scenes"])), name, p["value"] * 1.001)
+    scene, key, value = spec
+    raw["scenes"][scene].setdefault("parameters", {})[key] = value
+    return scene
+
+
+@pipeline
+@pytest.mark.parametrize("paper", list(SCENE_EDITS))
+def test_one_parameter_in_one_scene_reruns_exactly_its_solve_jobs(paper, tmp_path):
+    """Solve a paper's ci runs, edit one parameter of one scene, and ask Snakemake (dry
+    run, its reasons) what it would solve again: exactly the jobs holding a run whose
+    record changed, none other (the paper's config file is not an input of solve jobs)."""
+    import yaml
+
+    from mechrepro.config import load_paper
+
+    work = copy_workflow(tmp_path)
+    path = work / "config" / "papers" / f"{paper}.yaml"
+    cfg = load_paper(path, "ci")
+    targets = [f"results/{paper}/runs/{r}.nc" for r in cfg.runs] + \
+              [f"results/{paper}/studies/{s}.nc" for s in cfg.studies]
+    args = ["--cores", "2", "--config", "profile=ci", f"papers=[{paper}]"]
+    base = [sys.executable, "-m", "snakemake", *targets]
+    subprocess.run([*base, *args], cwd=work, check=True, capture_output=True)
+    raw = yaml.safe_load(path.read_text())
+    scene = _edit(raw, paper)
+    path.write_text(yaml.safe_dump(raw, sort_keys=False))
+    after = load_paper(path, "ci")
+    changed = {r for r in after.runs if after.runs[r] != cfg.runs.get(r)}
+    assert changed and all(after.runs[r]["scene"] == scene for r in changed), changed
+    expected = {f"solve_{paper}__{job}" for job, runs in after.solve_jobs().items()
+                if changed & set(runs)}
+    dry = subprocess.run([*base, "-n", *args], cwd=work, capture_output=True, text=True)
+    from test_pipeline import scheduled
+
+    jobs = scheduled(dry.stdout) - {"all"}
+    assert jobs == expected, (jobs, expected, dry.stdout[-3000:])
+    assert "Params have changed" in dry.stdout
+    if paper == "chain_drive":
+        assert jobs == {"solve_chain_drive__scene_fig09b"}
+
+
+# --- bad input: refused before any job, nothing lost --------------------------------------
+
+@pipeline
+@pytest.mark.parametrize("edit, expect", [
+    (lambda t: t.replace('{value: 32,    unit: "1", source: "Sec. 4 (M)"}',
+                         '{value: .nan,  unit: "1", source: "Sec. 4 (M)"}'),
+     "parameters.tie_straps_tight_side.value = nan"),
+    (lambda t: t + "\nscenes:\n  x: {solver: difference_method, effects: []}\n",
+     "'scenes' given twice"),
+    (lambda t: t.replace("{value: 8.91,  unit: mm,", "{value: 8.91,  unit: m,"),
+     "chain pitch between 3 mm and 200 mm"),
+    (lambda t: t.replace("Sec. 4 (p1)", "Sec. 4 (p1) \udce9"), "not UTF-8"),
+], ids=["nan", "duplicate scenes", "8.91 m pitch", "latin-1 byte"])
+def test_bad_input_stops_a_real_run_before_any_job_and_loses_nothing(run, tmp_path, edit, expect):
+    work = tmp_path / "w"
+    shutil.copytree(run, work, symlinks=True)
+    before = hashes(work / "results")
+    path = work / "config" / "papers" / f"{PAPER}.yaml"
+    path.write_bytes(edit(path.read_text()).encode("utf-8", "surrogateescape"))
+    proc = sm(work, check=False)
+    out = proc.stdout + proc.stderr
+    assert proc.returncode != 0 and expect in out and f"config/papers/{PAPER}.yaml" in out, out[-2000:]
+    assert "rule " not in out and "Traceback" not in out, out[-2000:]
+    assert hashes(work / "results") == before
+
+
+@pipeline
+def test_plain_snakemake_recovers_from_an_interrupted_run(run, tmp_path):
+    """With the workflow profile (profiles/default), a plain `snakemake` reruns the jobs a
+    kill left incomplete, as `make reproduce` does with --rerun-incomplete."""
+    from conftest import ROOT
+
+    work = tmp_path / "w"
+    shutil.copytree(run, work, symlinks=True)
+    shutil.copytree(ROOT / "profiles", work / "profiles")
+    proc = subprocess.Popen([*SM, "--forcerun", f"validate_{PAPER}"], cwd=work,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                            start_new_session=True)
+    marker = work / ".snakemake" / "incomplete"
+    deadline = time.time() + 120
+    while time.time() < deadline and proc.poll() is None and not (
+            marker.is_dir() and any(marker.iterdir())):
+        time.sleep(0.02)
+    os.killpg(proc.pid, signal.SIGKILL)
+    proc.wait()
+    sm(work, "--unlock")
+    sm(work)   # no --rerun-incomplete: the profile gives it
+    assert "Nothing to be done" in sm(work, "-n").stdout
+
+
+@pipeline
+def test_the_archived_report_is_self_contained_with_a_saved_plan(run, tmp_path):
+    import re
+    import tarfile
+
+    from mechrepro.plan import main as plan
+
+    work = tmp_path / "w"
+    shutil.copytree(run, work, symlinks=True)
+    log = sorted((work / ".snakemake" / "log").glob("*.snakemake.log"))[-1]
+    os.chdir(work)
+    try:
+        assert plan(["results", str(log)]) == 0      # what `make` does after a run
+    finally:
+        os.chdir(tmp_path)
+    sm(work, "--forcerun", "report")
+    page = (work / "results" / f"report-{PAPER}" / "index.html").read_text()
+    out = tmp_path / "x"
+    with tarfile.open(archive_dir(work) / "mechrepro-results.tar.gz") as tar:
+        tar.extractall(out, filter="data")
+    links = re.findall(r'(?:src|href)="([^"#:]+)"', page)
+    broken = [l for l in links if not (out / f"report-{PAPER}" / l).resolve().exists()]
+    assert links and not broken, broken
+
+
+@pipeline
+def test_a_failing_solve_job_keeps_its_last_good_results(run, tmp_path):
+    """The solve job fails after writing its first run (a solver crash injected into the
+    copy's code): every run and study of the batch is back as it was (update() outputs),
+    heal keeps them, and fixing the cause reruns the job."""
+    work = tmp_path / "w"
+    shutil.copytree(run, work, symlinks=True)
+    solved = {p.name: file_sha256(p) for d in ("runs", "studies")
+              for p in (work / "results" / PAPER / d).glob("*.nc")}
+    solve = work / "src" / "mechrepro" / "solve.py"
+    original = solve.read_text()
+    hook = '        write_dataset(ds, root / "runs" / f"{name}.nc", run)\n'
+    assert hook in original
+    solve.write_text(original.replace(hook, hook + '        raise RuntimeError("injected")\n'))
+    proc = sm(work, check=False)
+    assert proc.returncode != 0 and "Restored previous version" in proc.stderr
+    assert "injected" in (work / "results" / PAPER / "logs" / "solve" / "batch.log").read_text()
+    now = {p.name: file_sha256(p) for d in ("runs", "studies")
+           for p in (work / "results" / PAPER / d).glob("*.nc")}
+    assert now == solved
+    assert "[heal] removed" not in sm(work, "-n").stderr
+    before = set(healmod.inspect(work / "results")[0])
+    assert not before, before
+    solve.write_text(original)
+    out = sm(work)
+    assert "[heal] removed" not in out.stderr and f"solve_{PAPER}__batch" in out.stdout + out.stderr
+    assert "Nothing to be done" in sm(work, "-n").stdout
+
+
+def test_a_profile_difference_passes_only_with_its_reason(tmp_path, edit_config, config_copy):
+    from mechrepro.reference import HEADER, profiles_agree
+
+    q = "tight_side_velocity_max"
+    for prof, status in (("ci", "pass"), ("default", "fail")):
+        (tmp_path / prof).mkdir()
+        (tmp_path / prof / "saw_chain.csv").write_text(
+            ",".join(HEADER) + f"\n{q},14.4,{status},value,0,1e-9,native\n")
+    assert len(profiles_agree(tmp_path, "saw_chain", config_copy)) == 1
+    edit_config("saw_chain", lambda raw: raw["reported"][q].update(
+        profile_differs_why="the ci resolution cannot resolve the band (test)"))
+    assert profiles_agree(tmp_path, "saw_chain", config_copy) == []
+
+
+def test_heal_leaves_results_alone_while_snakemake_locks_name_them(tmp_path, monkeypatch):
+    """A master killed with kill -9 leaves Snakemake's locks and maybe jobs still writing:
+    heal touches nothing until `snakemake --unlock` (the README's recovery)."""
+    monkeypatch.chdir(tmp_path)
+    res = tmp_path / "results"
+    part = res / "p" / "runs" / ".r.x.part.nc"
+    part.parent.mkdir(parents=True)
+    part.write_text("an orphaned job is writing this")
+    locks = tmp_path / ".snakemake" / "locks"
+    locks.mkdir(parents=True)
+    (locks / "0.output.lock").write_text("results/p/runs/r.nc\n")
+    lines = healmod.heal("results")
+    healmod.release("results")
+    assert part.exists() and "snakemake --unlock" in lines[0]
+    (locks / "0.output.lock").write_text("results-ci/p/runs/r.nc\n")   # another results dir
+    healmod.heal("results")
+    healmod.release("results")
+    assert not part.exists()
