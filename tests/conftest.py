@@ -31,7 +31,7 @@ def edit_config(config_copy):
 
 def copy_workflow(dst: Path) -> Path:
     """What a run of the workflow needs, copied to ``dst`` (tests never touch the repo)."""
-    for item in ("Snakefile", "workflow", "config", "notebooks", "src"):
+    for item in ("Snakefile", "workflow", "config", "notebooks", "src", "profiles"):
         src = ROOT / item
         (shutil.copytree if src.is_dir() else shutil.copy2)(src, dst / item)
     shutil.copytree(ROOT / "results" / "reference", dst / "results" / "reference")

@@ -34,7 +34,7 @@ import yaml
 
 from .config import ConfigError, load_paper
 
-LINKED = ("Snakefile", "workflow", "src", "notebooks")
+LINKED = ("Snakefile", "workflow", "src", "notebooks", "profiles")
 
 
 # --- experiments -------------------------------------------------------------------------
