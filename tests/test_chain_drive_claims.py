@@ -72,3 +72,31 @@ def test_find_peaks_is_scipys():
     for x in cases:
         for p in (0.0, 0.05, 0.5, 2.0):
             assert np.array_equal(C.find_peaks(x, p), find_peaks(x, prominence=p)[0]), (x, p)
+
+
+def test_nearest_peak_is_the_one_mode_resonance_on_any_grid():
+    """1/A^2 of one damped mode is a quadratic in omega^2: the 3-point estimate is its exact
+    peak omega_n sqrt(1 - 2 zeta^2) on any speed grid (the grid point would jump by a step)."""
+    wn, zeta = 300.0, 0.03
+    peak = wn * np.sqrt(1 - 2 * zeta ** 2)
+    for n in (41, 61, 97):
+        w = np.linspace(200.0, 400.0, n)
+        a = 1.0 / np.sqrt((wn ** 2 - w ** 2) ** 2 + (2 * zeta * wn * w) ** 2)
+        assert abs(C.nearest_peak(w, a * 1e9, wn) / peak - 1) < 1e-9
+
+
+def test_dense_near_elastic_adds_speeds_around_the_resonance():
+    """Fig. 9a: n_speeds // 3 extra speeds within +-1 % of omega_c (the narrow Mathieu band
+    at 1210.9-1211.9 rpm lies 0.3 % below omega_c = 1214.6 rpm, between two 8 rpm steps)."""
+    from mechrepro.config import load_paper
+    from mechrepro.models.chain_drive import solver
+
+    run = load_paper("config/papers/chain_drive.yaml").runs["fig09a"]
+    prm = dict(run["parameters"])
+    prm["speed_min"], prm["speed_max"] = solver.elastic_speed_window(prm, [0.25, 1.25])
+    wc = prm["speed_max"] / 1.25
+    base = np.linspace(prm["speed_min"], prm["speed_max"], 150)
+    dense = solver.dense_near_elastic(run, prm, base, 0.01, 150)
+    near = dense[np.abs(dense / wc - 1) <= 0.01]
+    assert dense.size == 150 + 50 and np.all(np.diff(dense) > 0)
+    assert np.max(np.diff(near)) < 0.9 / 1214.6 * wc   # finer than the 0.9 rpm band

@@ -105,13 +105,30 @@ def peak_speeds(speed, amp, lo: float, hi: float, stable=None) -> list[float]:
 
 
 def nearest_peak(speed, amp, target: float, window: float = NEAR_PEAK):
-    """Speed of the peak closest to target within a +-window band, or nan."""
-    speed = np.asarray(speed, float)
+    """Speed of the peak closest to target within a +-window band, or nan.  Not the grid
+    point (it jumps by a step when the speed grid is refined) but the resonance of the
+    one-mode response through the peak sample and its two neighbours: for a damped single
+    mode 1/A^2 is exactly a quadratic in omega^2, so its vertex is the peak whatever the grid."""
+    speed, amp = np.asarray(speed, float), np.asarray(amp, float)
     idx = peaks(speed, amp)
     idx = idx[np.abs(speed[idx] / target - 1) <= window] if np.isfinite(target) else idx[:0]
     if idx.size == 0:
         return float("nan")
-    return float(speed[idx[np.argmin(np.abs(speed[idx] - target))]])
+    i = int(idx[np.argmin(np.abs(speed[idx] - target))])
+    x, y = speed[i - 1:i + 2], amp[i - 1:i + 2]
+    return float(np.sqrt(parabola_vertex(x * x, -1.0 / (y * y))))
+
+
+def parabola_vertex(x, y) -> float:
+    """Abscissa of the vertex of the parabola through three points (x may be non-uniform),
+    clipped to [x0, x2]; the middle point when the three are collinear."""
+    (x0, x1, x2), (y0, y1, y2) = np.asarray(x, float), np.asarray(y, float)
+    d = (x0 - x1) * (x0 - x2) * (x1 - x2)
+    a = (x2 * (y1 - y0) + x1 * (y0 - y2) + x0 * (y2 - y1)) / d
+    b = (x2 * x2 * (y0 - y1) + x1 * x1 * (y2 - y0) + x0 * x0 * (y1 - y2)) / d
+    if not np.isfinite(a) or a >= 0:
+        return float(x1)
+    return float(np.clip(-b / (2 * a), x0, x2))
 
 
 def amplification(speed, amp, target: float, window: float = 0.05) -> float:
