@@ -236,3 +236,48 @@ def plot(table: list[dict], accuracy: str | None = None, ax=None, annotate: bool
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
     return ax
+
+
+TARGET_COLUMNS = ["run", "quantity", "reduce", "knob", "requested", "estimated_error",
+                  "verified_error", "observed_order", "knob_value", "time_s", "time_all_solves_s",
+                  "default_knob_value", "default_error", "default_time_s", "unit"]
+
+
+def target_rows(cfg, root) -> list[dict]:
+    """``tables/accuracy_targets.csv``: per scene run with a ``target:``, what was asked
+    (absolute), estimated (Richardson), verified (against ``exact``), the knob value chosen
+    and its solve time, next to the scene's fixed default knob value's error and time."""
+    import xarray as xr
+
+    from pathlib import Path
+
+    out = []
+    for name, run in cfg.runs.items():
+        t = run.get("target")
+        path = Path(root) / "runs" / f"{name}.nc"
+        if not t or not path.exists():
+            continue
+        with xr.open_dataset(path) as ds:
+            g = lambda k: float(ds[f"target_{k}"].values) if f"target_{k}" in ds else float("nan")  # noqa: E731
+            out.append({"run": name, "quantity": t["quantity"], "reduce": t.get("reduce", "max"),
+                        "knob": t["knob"], "requested": g("requested"),
+                        "estimated_error": g("estimated_error"),
+                        "verified_error": g("verified_error"),
+                        "observed_order": g("observed_order"), "knob_value": g("knob_value"),
+                        "time_s": g("seconds_chosen"), "time_all_solves_s": g("seconds_all_solves"),
+                        "default_knob_value": g("default_value"),
+                        "default_error": g("default_error"), "default_time_s": g("default_seconds"),
+                        "unit": t.get("unit", "1")})
+    return out
+
+
+def write_targets(cfg, root) -> None:
+    """Write ``tables/accuracy_targets.csv`` of one paper (called from validation.write_costs)."""
+    from pathlib import Path
+
+    from .validation import write_csv
+
+    table = target_rows(cfg, root)
+    if table:
+        write_csv(Path(root) / "tables" / "accuracy_targets.csv", TARGET_COLUMNS,
+                  [[r[c] for c in TARGET_COLUMNS] for r in table])

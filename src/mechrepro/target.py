@@ -58,11 +58,12 @@ def solve(run: dict, solve_once) -> tuple[object, dict]:
         return max(1, int(round(k))) if as_int else float(k)
 
     ks = [level(k0 * ratio ** i) for i in range(3)]
-    solved, spent = [], 0.0
+    solved, spent, seconds = [], 0.0, []
     for k in ks:
         ds, s = solve_once(_with(run, knob, k))
         solved.append(ds)
         spent += s
+        seconds.append(s)
     q = [reduce(ds, t["quantity"], t.get("reduce", "max")) for ds in solved]
     p, e2 = order_and_error(q, ratio if finer_is_larger else 1 / ratio)
     tol = max(float(t.get("rtol", 0.0)) * abs(q[-1]), float(t.get("atol", 0.0)))
@@ -79,6 +80,7 @@ def solve(run: dict, solve_once) -> tuple[object, dict]:
             ds, s = solve_once(_with(run, knob, k_star))
             solved.append(ds)
             spent += s
+            seconds.append(s)
             ks.append(k_star)
             q.append(reduce(ds, t["quantity"], t.get("reduce", "max")))
             chosen, estimate = len(ks) - 1, e2 * (h_star / h[-1]) ** p
@@ -86,13 +88,17 @@ def solve(run: dict, solve_once) -> tuple[object, dict]:
         raise RuntimeError(f"{run['run']}: target {t} cannot be met: the levels {ks} give "
                            f"{q}, which do not converge (no error estimate)")
     ds = solved[chosen]
-    verified = math.nan
+    verified = exact = math.nan
     if t.get("exact"):
         exact = reduce(ds, t["exact"], t.get("reduce", "max"))
         verified = abs(q[chosen] - exact)
     record = {"knob": knob, "knob_value": ks[chosen], "levels": ks, "values": q,
               "observed_order": p, "requested": tol, "estimated_error": estimate,
-              "verified_error": verified, "seconds_all_solves": spent}
+              "verified_error": verified, "seconds_all_solves": spent,
+              "seconds": seconds, "seconds_chosen": seconds[chosen],
+              # the scene's own (fixed default) knob value is level 0
+              "default_value": ks[0], "default_error": abs(q[0] - exact),
+              "default_seconds": seconds[0]}
     return ds, record
 
 

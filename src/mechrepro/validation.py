@@ -624,6 +624,7 @@ def write_costs(cfg, results_dir: str, files: ResultFiles | None = None) -> None
     jt = costs.job_time(root, cfg.solve_jobs())
     write_csv(root / "tables" / "job_time.csv", costs.JOB_TIME_COLUMNS,
               [[r[c] for c in costs.JOB_TIME_COLUMNS] for r in jt])
+    accuracy.write_targets(cfg, root)
 
 
 def read_table(path: str | Path) -> list[dict]:
