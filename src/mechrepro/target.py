@@ -26,8 +26,12 @@ REDUCE = {"max": np.nanmax, "min": np.nanmin, "mean": np.nanmean,
           "absmax": lambda a: np.nanmax(np.abs(a))}
 
 
-def reduce(ds, name: str, how: str) -> float:
-    return float(REDUCE[how](np.asarray(ds[name].values, float)))
+def reduce(ds, name: str, how: str, select: dict | None = None) -> float:
+    """``how`` of variable ``name`` over all its points (after picking ``select``'s
+    coordinate values along the dimensions the variable has)."""
+    v = ds[name]
+    pick = {k: x for k, x in (select or {}).items() if k in v.dims}
+    return float(REDUCE[how](np.asarray(v.sel(pick).values if pick else v.values, float)))
 
 
 def order_and_error(q: list[float], ratio: float) -> tuple[float, float]:
@@ -42,7 +46,9 @@ def order_and_error(q: list[float], ratio: float) -> tuple[float, float]:
 
 
 def _with(run: dict, knob: str, value) -> dict:
-    return {**run, "resolution": {**run["resolution"], knob: value}}
+    # a solver that takes a list of grids is given a list of one
+    as_list = isinstance(run["resolution"][knob], list)
+    return {**run, "resolution": {**run["resolution"], knob: [value] if as_list else value}}
 
 
 def solve(run: dict, solve_once) -> tuple[object, dict]:
@@ -52,6 +58,10 @@ def solve(run: dict, solve_once) -> tuple[object, dict]:
     knob, ratio = t["knob"], float(t["factor"])
     finer_is_larger = ratio > 1
     k0 = run["resolution"][knob]
+    if isinstance(k0, list):
+        if len(k0) != 1:
+            raise ValueError(f"{run['run']}: target.knob {knob} = {k0}: give one value")
+        k0 = k0[0]
     as_int = isinstance(k0, int)
 
     def level(k):
@@ -64,7 +74,7 @@ def solve(run: dict, solve_once) -> tuple[object, dict]:
         solved.append(ds)
         spent += s
         seconds.append(s)
-    q = [reduce(ds, t["quantity"], t.get("reduce", "max")) for ds in solved]
+    q = [reduce(ds, t["quantity"], t.get("reduce", "max"), t.get("select")) for ds in solved]
     p, e2 = order_and_error(q, ratio if finer_is_larger else 1 / ratio)
     tol = max(float(t.get("rtol", 0.0)) * abs(q[-1]), float(t.get("atol", 0.0)))
     h = [1.0 / k if finer_is_larger else k for k in ks]       # a step: smaller is finer
@@ -82,7 +92,7 @@ def solve(run: dict, solve_once) -> tuple[object, dict]:
             spent += s
             seconds.append(s)
             ks.append(k_star)
-            q.append(reduce(ds, t["quantity"], t.get("reduce", "max")))
+            q.append(reduce(ds, t["quantity"], t.get("reduce", "max"), t.get("select")))
             chosen, estimate = len(ks) - 1, e2 * (h_star / h[-1]) ** p
     if chosen is None:
         raise RuntimeError(f"{run['run']}: target {t} cannot be met: the levels {ks} give "
@@ -90,7 +100,7 @@ def solve(run: dict, solve_once) -> tuple[object, dict]:
     ds = solved[chosen]
     verified = exact = math.nan
     if t.get("exact"):
-        exact = reduce(ds, t["exact"], t.get("reduce", "max"))
+        exact = reduce(ds, t["exact"], t.get("reduce", "max"), t.get("select"))
         verified = abs(q[chosen] - exact)
     record = {"knob": knob, "knob_value": ks[chosen], "levels": ks, "values": q,
               "observed_order": p, "requested": tol, "estimated_error": estimate,
