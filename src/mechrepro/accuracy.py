@@ -240,7 +240,8 @@ def plot(table: list[dict], accuracy: str | None = None, ax=None, annotate: bool
 
 TARGET_COLUMNS = ["run", "quantity", "reduce", "knob", "requested", "estimated_error",
                   "verified_error", "observed_order", "knob_value", "time_s", "time_all_solves_s",
-                  "default_knob_value", "default_error", "default_time_s", "unit"]
+                  "default_knob_value", "default_error", "default_estimated_error", "default_time_s",
+                  "unit"]
 
 
 def target_rows(cfg, root) -> list[dict]:
@@ -266,7 +267,9 @@ def target_rows(cfg, root) -> list[dict]:
                         "observed_order": g("observed_order"), "knob_value": g("knob_value"),
                         "time_s": g("seconds_chosen"), "time_all_solves_s": g("seconds_all_solves"),
                         "default_knob_value": g("default_value"),
-                        "default_error": g("default_error"), "default_time_s": g("default_seconds"),
+                        "default_error": g("default_error"),
+                        "default_estimated_error": g("default_estimated_error"),
+                        "default_time_s": g("default_seconds"),
                         "unit": t.get("unit", "1")})
     return out
 

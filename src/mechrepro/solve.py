@@ -42,7 +42,7 @@ def run_solver(run: dict):
                                                  "long_name": k.replace("_", " ")})
             for k in ("requested", "estimated_error", "verified_error", "knob_value",
                       "seconds_all_solves", "seconds_chosen", "default_value", "default_error",
-                      "default_seconds", "observed_order")} | {
+                      "default_seconds", "default_estimated_error", "observed_order")} | {
             "target_levels": (("target_level",), np.asarray(rec["levels"], float),
                               {"units": "1", "long_name": f"values of {rec['knob']} solved"}),
             "target_values": (("target_level",), np.asarray(rec["values"], float),

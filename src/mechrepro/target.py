@@ -88,6 +88,7 @@ def solve(run: dict, solve_once) -> tuple[object, dict]:
     while len(ks) < MAX_LEVELS:
         tol = max(float(t.get("rtol", 0.0)) * abs(q[-1]), float(t.get("atol", 0.0)))
         p, e_last = order_and_error(q[-3:], r)
+        measured = len(ks) - 1              # the level e_last is the error of
         if not (math.isfinite(e_last) and math.isfinite(p)) or p <= 0:
             add(level(ks[-1] * ratio))    # pre-asymptotic: refine and estimate again
             continue
@@ -105,7 +106,7 @@ def solve(run: dict, solve_once) -> tuple[object, dict]:
         if step(k_star) >= step(ks[-1]) / r:
             # within one refinement: the order measured here holds, solve at the prediction
             add(k_star)
-            chosen, estimate = len(ks) - 1, e_last * (step(k_star) / step(ks[-2])) ** p
+            chosen, estimate = len(ks) - 1, e_last * (step(k_star) / step(ks[measured])) ** p
             break
         # further than one refinement: the order may still change, refine and re-measure it
         add(level(ks[-1] * ratio))
@@ -124,7 +125,8 @@ def solve(run: dict, solve_once) -> tuple[object, dict]:
               "seconds": seconds, "seconds_chosen": seconds[chosen],
               # the scene's own (fixed default) knob value is level 0
               "default_value": ks[0], "default_error": abs(q[0] - exact),
-              "default_seconds": seconds[0]}
+              "default_seconds": seconds[0],
+              "default_estimated_error": e_last * (step(ks[0]) / step(ks[measured])) ** p}
     return ds, record
 
 
