@@ -123,6 +123,19 @@ def reference_error(reference: str, h, err, h_ref: float | None, given: float | 
     elif reference == "finest" and len(h) >= 2 and h_ref is not None:
         p = curve_order(h, err)
         o = np.argsort(h)
+        if len(h) >= 3:
+            # errors measured from the finest run are C (h^p - h_ref^p): their successive
+            # differences give p without that bias
+            (ha, hb, hc), (ea, eb, ec) = h[o][2::-1], err[o][2::-1]
+            if ea > eb > ec and ha / hb > 1 and hb / hc > 1:
+                pd = np.log((ea - eb) / (eb - ec)) / np.log(hb / hc)
+                if np.isfinite(pd) and abs(np.log(ha / hb) - np.log(hb / hc)) < 1e-6:
+                    p = min(p, pd)
+        if len(h) >= 2:
+            # and the last refinement must itself converge at that order (a stall in the
+            # round-off floor gives a small last-pair order, hence a large reference error)
+            (hb, hc), (eb, ec) = h[o][1::-1], err[o][1::-1]
+            p = min(p, np.log(eb / ec) / np.log(hb / hc)) if hb > hc else p
         h1, e1 = h[o][0], err[o][0]              # the finest point on the curve
         r = h1 / h_ref
         if np.isfinite(p) and p > 0 and r > 1:
