@@ -239,6 +239,12 @@ def test_timing_verdicts_are_checked_and_profiles_must_agree(tmp_path):
         (d / "p.csv").write_text(",".join(HEADER) + f"\nq,1.0,{status},value,0,1e-9,native\n")
     problems = profiles_agree(tmp_path, "p", None)
     assert len(problems) == 1 and "profile_differs_why" in problems[0]
+    # the coarser ci profile may be undecided where the default decides, not the other way
+    for ci, default in (("inconclusive", "pass"), ("not_converged", "fail"),
+                           ("pass", "inconclusive")):
+        for prof, status in (("ci", ci), ("default", default)):
+            (tmp_path / prof / "p.csv").write_text(",".join(HEADER) + f"\nq,1.0,{status},value,0,1e-9,native\n")
+        assert len(profiles_agree(tmp_path, "p", None)) == (ci == "pass"), (ci, default)
 
 
 def test_cli_errors_are_readable(tmp_path):

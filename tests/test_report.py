@@ -82,3 +82,15 @@ def test_the_claim_sentence_names_artefacts_not_row_ids():
                  "1 pass not counted (no falsifier that fails).")
     assert [artefact_title(a) for a in ("fig07", "fig6a", "table12", "text", "cost_of_accuracy")] == [
         "Fig. 7", "Fig. 6a", "Table 12", "Statements in the text", "cost of accuracy"]
+
+
+def test_a_failed_run_marks_the_report_it_leaves_behind(tmp_path):
+    from mechrepro.report import mark_stale
+
+    page = tmp_path / "index.html"
+    page.write_text('<!doctype html>\n<body>\n<header class="banner ok" id="banner">OK</header>\n</body>')
+    mark_stale(page, "exit status 1; failed: solve_saw_chain__batch")
+    mark_stale(page, "exit status 1; failed: validate_joint_wear")     # once, the newest
+    text = page.read_text()
+    assert text.count('id="stale"') == 1 and "validate_joint_wear" in text
+    assert text.index('id="stale"') < text.index('id="banner"')

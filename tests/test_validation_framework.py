@@ -212,7 +212,7 @@ def test_undeclared_reads_and_missing_functions_are_refused(paper):
     (lambda raw: raw["parameters"]["textbook_mass"].update(range=[200, 300]), "outside its range"),
     (lambda raw: raw["parameters"]["textbook_phase"].update(calibrated_on="load_max", numerical=None)
      or raw["parameters"]["textbook_phase"].pop("numerical"), "evidence: calibration"),
-    (lambda raw: raw.pop("refine"), "refine: no factor for resolution key 'K'"),
+    (lambda raw: raw.pop("refine"), "(refine: no factor for resolution key 'K'|must be a resolution key of the scene with a refine: factor)"),
     (lambda raw: raw.update(refine={"K": 1}), "refine.K = 1: a knob that is never refined"),
     (lambda raw: raw["reported"]["load_max"].update(falsifier="nope"), "not declared under falsifiers"),
     (lambda raw: raw.update(falsifiers={"x": {"why": "y", "parameters": {"nope": 1}}}), "not a parameter"),

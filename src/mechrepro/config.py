@@ -679,7 +679,7 @@ def _target(raw: dict, scene: dict, resolution: dict, where: str) -> dict:
     t = scene.get("target")
     if not t:
         return {}
-    spec = refine_spec(raw).get(t["knob"], {})
+    spec = {"factor": t["factor"]} if "factor" in t else refine_spec(raw).get(t["knob"], {})
     if t["knob"] not in resolution or "factor" not in spec:
         raise ConfigError(f"{where}: target.knob = {t['knob']!r}: must be a resolution key of the "
                           f"scene with a refine: factor (resolution: {sorted(resolution)})")

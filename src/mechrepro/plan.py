@@ -95,6 +95,11 @@ def main(argv: list[str]) -> int:
     if args.since is not None and (log is None or not log.exists()
                                    or log.stat().st_mtime < args.since - 1):
         write_text(results / "rerun_plan.html", no_run_html(args.status))
+        if args.status:
+            from .report import mark_stale
+
+            mark_stale(results / "report" / "index.html",
+                       f"exit status {args.status} before any job: see the console")
         print(f"rerun plan: no job was planned -> {results}/rerun_plan.html")
         return 0
     if log is None or not log.exists():
@@ -104,6 +109,12 @@ def main(argv: list[str]) -> int:
     jobs = parse(out)
     write_text(results / "rerun_plan.txt", out)
     write_text(results / "rerun_plan.html", to_html(jobs, args.status))
+    if args.status:
+        from .report import mark_stale
+
+        failed = sorted({m for m in re.findall(r"Error in rule (\w+):", out)})
+        mark_stale(results / "report" / "index.html",
+                   f"exit status {args.status}" + (f"; failed: {', '.join(failed)}" if failed else ""))
     n = sum(j["rule"] != "all" for j in jobs)
     print(f"rerun plan: {n} jobs ran -> {results}/rerun_plan.html")
     return 0

@@ -190,14 +190,19 @@ def profiles_agree(reference_dir: str | Path, paper: str, config_dir: str | Path
                    ) -> list[str]:
     """Verdicts of the committed references of the two profiles that differ, unless the
     paper's reported row says why (``profile_differs_why``): a verdict that depends on
-    the resolution profile is not a verdict of the paper."""
+    the resolution profile is not a verdict of the paper.  The ci profile may be undecided
+    (inconclusive, not converged) where the default decides: its error bars are wider."""
     files = {p: Path(reference_dir) / p / f"{paper}.csv" for p in PROFILES}
     if not all(f.exists() for f in files.values()):
         return []
     status = {p: {r["quantity"]: r["status"] for r in _table(f, HEADER[:3])}
               for p, f in files.items()}
     a, b = (status[p] for p in PROFILES)
-    differ = sorted(q for q in set(a) & set(b) if a[q] != b[q])
+    # the coarser profile's wider error bars may leave undecided what the finer one decides;
+    # any other difference (a decided ci verdict the default does not share) is a disagreement
+    undecided = ("inconclusive", "not_converged")
+    differ = sorted(q for q in set(a) & set(b)
+                    if a[q] != b[q] and not (a[q] in undecided and b[q] in ("pass", "fail")))
     if not differ:
         return []
     reported = {}

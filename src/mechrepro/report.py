@@ -246,3 +246,22 @@ def write_report(out: str, results: str, config_dir: str, papers: list[str], pro
         "banner": banner(out.parent / "reference_check.txt", profile),
         "papers": [paper_view(p, results, config_dir, profile, out.parent) for p in papers],
         "cost": cost, "time": time_view(results, papers)}))
+
+
+STALE = re.compile(r'<div class="banner bad" id="stale">.*?</div>\n', re.S)
+
+
+def mark_stale(page: Path, why: str) -> None:
+    """Say on the first screen of an existing report that the last run failed, so the page
+    (written by an earlier, successful run) is not read as the current state; the next
+    successful run writes the page anew, without it."""
+    import html
+
+    page = Path(page)
+    if not page.is_file():
+        return
+    text = STALE.sub("", page.read_text())
+    note = (f'<div class="banner bad" id="stale"><p class="trust"><b>The last run failed</b> '
+            f'({html.escape(why)}): this report is from an earlier run and does not show the '
+            f'current configuration.</p></div>\n')
+    write_text(page, text.replace("<body>\n", "<body>\n" + note, 1))

@@ -36,11 +36,13 @@ def run_solver(run: dict):
         ds, rec = target.solve(run, lambda r: (lambda d: (d, d.attrs["wall_time_s"]))(
             _solve_once(r)))
         return ds.assign({
-            f"target_{k}": ((), float(rec[k]), {"units": "s" if k == "seconds_all_solves" else
+            f"target_{k}": ((), float(rec[k]), {"units": "s" if "seconds" in k else "1" if k in (
+                                                 "knob_value", "default_value", "observed_order") else
                                                  run["target"].get("unit", "1"),
                                                  "long_name": k.replace("_", " ")})
             for k in ("requested", "estimated_error", "verified_error", "knob_value",
-                      "seconds_all_solves")} | {
+                      "seconds_all_solves", "seconds_chosen", "default_value", "default_error",
+                      "default_seconds", "default_estimated_error", "observed_order")} | {
             "target_levels": (("target_level",), np.asarray(rec["levels"], float),
                               {"units": "1", "long_name": f"values of {rec['knob']} solved"}),
             "target_values": (("target_level",), np.asarray(rec["values"], float),

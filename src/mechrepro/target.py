@@ -22,12 +22,19 @@ import time
 
 import numpy as np
 
+SAFETY = 0.7       # the predicted setting aims at this fraction of the request (cost <= 0.7^(-1/p))
+MAX_LEVELS = 24     # solves at most; a target not met by then is an error, not a guess
+
 REDUCE = {"max": np.nanmax, "min": np.nanmin, "mean": np.nanmean,
           "absmax": lambda a: np.nanmax(np.abs(a))}
 
 
-def reduce(ds, name: str, how: str) -> float:
-    return float(REDUCE[how](np.asarray(ds[name].values, float)))
+def reduce(ds, name: str, how: str, select: dict | None = None) -> float:
+    """``how`` of variable ``name`` over all its points (after picking ``select``'s
+    coordinate values along the dimensions the variable has)."""
+    v = ds[name]
+    pick = {k: x for k, x in (select or {}).items() if k in v.dims}
+    return float(REDUCE[how](np.asarray(v.sel(pick).values if pick else v.values, float)))
 
 
 def order_and_error(q: list[float], ratio: float) -> tuple[float, float]:
@@ -42,7 +49,9 @@ def order_and_error(q: list[float], ratio: float) -> tuple[float, float]:
 
 
 def _with(run: dict, knob: str, value) -> dict:
-    return {**run, "resolution": {**run["resolution"], knob: value}}
+    # a solver that takes a list of grids is given a list of one
+    as_list = isinstance(run["resolution"][knob], list)
+    return {**run, "resolution": {**run["resolution"], knob: [value] if as_list else value}}
 
 
 def solve(run: dict, solve_once) -> tuple[object, dict]:
@@ -52,47 +61,72 @@ def solve(run: dict, solve_once) -> tuple[object, dict]:
     knob, ratio = t["knob"], float(t["factor"])
     finer_is_larger = ratio > 1
     k0 = run["resolution"][knob]
+    if isinstance(k0, list):
+        if len(k0) != 1:
+            raise ValueError(f"{run['run']}: target.knob {knob} = {k0}: give one value")
+        k0 = k0[0]
     as_int = isinstance(k0, int)
 
     def level(k):
         return max(1, int(round(k))) if as_int else float(k)
 
-    ks = [level(k0 * ratio ** i) for i in range(3)]
-    solved, spent = [], 0.0
-    for k in ks:
+    r = ratio if finer_is_larger else 1 / ratio              # > 1
+    ks, solved, q, seconds = [], [], [], []
+
+    def add(k):
         ds, s = solve_once(_with(run, knob, k))
-        solved.append(ds)
-        spent += s
-    q = [reduce(ds, t["quantity"], t.get("reduce", "max")) for ds in solved]
-    p, e2 = order_and_error(q, ratio if finer_is_larger else 1 / ratio)
-    tol = max(float(t.get("rtol", 0.0)) * abs(q[-1]), float(t.get("atol", 0.0)))
-    h = [1.0 / k if finer_is_larger else k for k in ks]       # a step: smaller is finer
+        ks.append(k), solved.append(ds), seconds.append(s)
+        q.append(reduce(ds, t["quantity"], t.get("reduce", "max"), t.get("select")))
+
+    def step(k):                                            # smaller is finer
+        return 1.0 / k if finer_is_larger else k
+
+    for i in range(3):
+        add(level(k0 * ratio ** i))
     chosen = None
-    if math.isfinite(e2) and math.isfinite(p):
-        est = [e2 * (hi / h[-1]) ** p if p != math.inf else 0.0 for hi in h]
+    p = math.nan
+    while len(ks) < MAX_LEVELS:
+        tol = max(float(t.get("rtol", 0.0)) * abs(q[-1]), float(t.get("atol", 0.0)))
+        p, e_last = order_and_error(q[-3:], r)
+        measured = len(ks) - 1              # the level e_last is the error of
+        if not (math.isfinite(e_last) and math.isfinite(p)) or p <= 0:
+            add(level(ks[-1] * ratio))    # pre-asymptotic: refine and estimate again
+            continue
+        est = [e_last * (step(k) / step(ks[-1])) ** p if p != math.inf else 0.0 for k in ks]
         meets = [i for i, e in enumerate(est) if e <= tol]
         if meets:
             chosen, estimate = meets[0], est[meets[0]]
-        elif p > 0:
-            h_star = h[-1] * (tol / e2) ** (1.0 / p)
-            k_star = level(1.0 / h_star if finer_is_larger else h_star)
-            ds, s = solve_once(_with(run, knob, k_star))
-            solved.append(ds)
-            spent += s
-            ks.append(k_star)
-            q.append(reduce(ds, t["quantity"], t.get("reduce", "max")))
-            chosen, estimate = len(ks) - 1, e2 * (h_star / h[-1]) ** p
+            break
+        # aim below the request: a Richardson estimate is itself ~10 % uncertain
+        h_star = step(ks[-1]) * (SAFETY * tol / e_last) ** (1.0 / p)
+        k_star = 1.0 / h_star if finer_is_larger else h_star
+        if as_int:   # round towards finer
+            k_star = math.ceil(k_star) if finer_is_larger else max(1, math.floor(k_star))
+        k_star = level(k_star)
+        if step(k_star) >= step(ks[-1]) / r:
+            # within one refinement: the order measured here holds, solve at the prediction
+            add(k_star)
+            chosen, estimate = len(ks) - 1, e_last * (step(k_star) / step(ks[measured])) ** p
+            break
+        # further than one refinement: the order may still change, refine and re-measure it
+        add(level(ks[-1] * ratio))
+    spent = sum(seconds)
     if chosen is None:
         raise RuntimeError(f"{run['run']}: target {t} cannot be met: the levels {ks} give "
                            f"{q}, which do not converge (no error estimate)")
     ds = solved[chosen]
-    verified = math.nan
+    verified = exact = math.nan
     if t.get("exact"):
-        exact = reduce(ds, t["exact"], t.get("reduce", "max"))
+        exact = reduce(ds, t["exact"], t.get("reduce", "max"), t.get("select"))
         verified = abs(q[chosen] - exact)
     record = {"knob": knob, "knob_value": ks[chosen], "levels": ks, "values": q,
               "observed_order": p, "requested": tol, "estimated_error": estimate,
-              "verified_error": verified, "seconds_all_solves": spent}
+              "verified_error": verified, "seconds_all_solves": spent,
+              "seconds": seconds, "seconds_chosen": seconds[chosen],
+              # the scene's own (fixed default) knob value is level 0
+              "default_value": ks[0], "default_error": abs(q[0] - exact),
+              "default_seconds": seconds[0],
+              "default_estimated_error": e_last * (step(ks[0]) / step(ks[measured])) ** p}
     return ds, record
 
 

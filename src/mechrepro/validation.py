@@ -295,23 +295,27 @@ def band(spec: dict, value: float) -> float:
     return math.nan
 
 
-def level_error(coarse: float, base: float, fine: float, ratio: float, width: float
-                ) -> tuple[float, float, bool, str]:
+def level_error(coarse: float, base: float, fine: float, ratio: float, width: float,
+                own: float = 0.0) -> tuple[float, float, bool, str]:
     """Error estimate of ``base`` from one coarser and one finer level (every knob refined
     by ``ratio``): (error, observed order, converged, how).
 
     d1 = coarse - base and d2 = base - fine contract by q = |d1| / |d2| = ratio^p for a
     method of order p; the baseline's error is then |d2| q / (q - 1) (Richardson).
-    Differences below round-off or a thousandth of ``width`` (the tolerance band) are
-    negligible; levels that do not contract (q <= 1.05) do not converge.  ``coarse`` NaN:
-    two levels only, the error is |d2| and no order is measured."""
+    Differences below round-off, a thousandth of ``width`` (the tolerance band) or the
+    coarser level's own resolution (``own``, the extraction's error at the base level, e.g.
+    half a grid step, times ``ratio``) are negligible: a value read off a grid jitters
+    within its step; levels that do not contract (q <= 1.05) do not converge.  ``coarse``
+    NaN: two levels only, the error is |d2| and no order is measured."""
     d2 = abs(base - fine)
     if math.isnan(coarse):
         return d2, math.nan, True, f"2 levels: |base - finer| = {d2:.3g}"
     d1 = abs(coarse - base)
-    floor = max(1e-9 * abs(base), NEGLIGIBLE * width if math.isfinite(width) else 0.0)
+    floor = max(1e-9 * abs(base), NEGLIGIBLE * width if math.isfinite(width) else 0.0,
+                own * max(ratio, 1.0) if math.isfinite(ratio) else own)
     if max(d1, d2) <= floor:
-        return max(d1, d2), math.nan, True, "levels agree to within round-off / 1e-3 of the band"
+        return max(d1, d2), math.nan, True, ("levels agree to within round-off, 1e-3 of the "
+                                             "band or the quantity's own sampling step")
     if d2 == 0.0:
         return 0.0, math.inf, True, "base and finer agree exactly"
     q = d1 / d2
@@ -425,11 +429,12 @@ def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]
                 row.note = " ".join(x for x in (row.note, f"No coarser level ({why}).") if x)
             e, row.order, converged, how = level_error(
                 coarse, row.value, levels["finer"][2], _level_ratio(cfg, spec),
-                band(spec, row.value))
+                band(spec, row.value), float(r.error or 0.0))
             error += e
-        elif levels["finer"][3] != base_status:
-            flips.append(f"{levels['finer'][3]} {levels['finer'][4]}: "
-                         f"{_fmt_short(levels['finer'][2])}")
+        else:
+            # a worded claim has no error bar: it must hold at every level
+            flips += [f"{c[3]} {c[4]}: {_fmt_short(c[2])}" for c in levels.values()
+                      if c[3] != base_status]
     seeds = by_kind.get("seed", [])
     if seeds and numeric:
         error += max(abs(c[2] - row.value) for c in seeds)
@@ -619,6 +624,7 @@ def write_costs(cfg, results_dir: str, files: ResultFiles | None = None) -> None
     jt = costs.job_time(root, cfg.solve_jobs())
     write_csv(root / "tables" / "job_time.csv", costs.JOB_TIME_COLUMNS,
               [[r[c] for c in costs.JOB_TIME_COLUMNS] for r in jt])
+    accuracy.write_targets(cfg, root)
 
 
 def read_table(path: str | Path) -> list[dict]:

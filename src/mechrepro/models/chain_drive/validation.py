@@ -88,9 +88,13 @@ def fig04(R):
     pk_long, pk_short = (_curve_peak(sp, d[k].values) for k in ("peak_to_peak_long", "peak_to_peak_short"))
     wc1, wc2 = float(d.omega_c1), float(d.omega_c2)
     peak = float(max(d.peak_to_peak_long.max(), d.peak_to_peak_short.max()))
+    # a peak read off the speed grid is known to half its local step
+    step = float(np.max(np.diff(sp)))
     return {
-        "elastic_resonance_omega_c1": Reproduced(pk_long / wc1, f"peak {pk_long:.1f} rpm, omega_c1 {wc1:.1f} rpm"),
-        "elastic_resonance_omega_c2": Reproduced(pk_short / wc2, f"peak {pk_short:.1f} rpm, omega_c2 {wc2:.1f} rpm"),
+        "elastic_resonance_omega_c1": Reproduced(pk_long / wc1, f"peak {pk_long:.1f} rpm, omega_c1 {wc1:.1f} rpm",
+                                                 error=0.5 * step / wc1),
+        "elastic_resonance_omega_c2": Reproduced(pk_short / wc2, f"peak {pk_short:.1f} rpm, omega_c2 {wc2:.1f} rpm",
+                                                 error=0.5 * step / wc2),
         "elastic_load_limited_at_resonance": Reproduced(bool(np.all(np.isfinite(d.load_shape.values))),
                                                         f"max peak-to-peak {peak:.3g} N (finite)"),
         "elastic_load_peak_over_static_tension": Reproduced(
@@ -101,9 +105,12 @@ def fig04(R):
 # ----------------------------------------------------------------------------- Fig. 5
 def _resonance_ratio(ds, k):
     pred = float(ds.resonance_speed_mean.sel(order=k))
-    got = C.nearest_peak(ds.speed.values, ds.amplitude.values, pred)
+    sp = ds.speed.values
+    got = C.nearest_peak(sp, ds.amplitude.values, pred)
+    # a peak read off the speed grid is known to half its local step
+    step = float(np.max(np.diff(sp)))
     return Reproduced(got / pred, f"peak {got:.1f} rpm vs Wickert-Mote {pred:.1f} rpm (nan = no peak "
-                                  f">= 0.05 mm within 6 %)")
+                                  f">= 0.05 mm within 6 %)", error=0.5 * step / pred)
 
 
 @Q.register("resonance_speed_order1_cd20p0", "resonance_speed_order3_cd20p0",
