@@ -346,6 +346,15 @@ def fig09b(R):
 # whether a verdict on it is a measurement, not a flag set here.
 
 
+# Measured (reported.clear_coupling_near_transverse_resonance.finer_why): the coupled
+# record at the fifth transverse resonance has no steady envelope beyond 6 modes and its
+# amplitude there depends on round-off, so the mode refinement cannot decide this row the
+# same way on every CPU; the other two Fig. 10 rows are decided by their levels.
+ROUND_OFF = ["|coupled/uncoupled - 1| = 0.035 at 3 modes, 0.69 at 6; beyond 6 modes the coupled "
+             "record has no steady envelope and depends on round-off (12 modes: 0.062 natively, "
+             "0.615 under old_cpu)"]
+
+
 @Q.register("weak_coupling_near_first_longitudinal_resonance")
 def fig10_weak(R):
     c, u = R.run("fig10_longitudinal"), R.run("fig10_uncoupled")
@@ -360,7 +369,7 @@ def fig10_clear(R):
     c, u = R.run("fig10_transverse5"), R.run("fig10_transverse5_uncoupled")
     r = float(c.steady_amplitude) / float(u.steady_amplitude)
     return Reproduced(abs(r - 1), f"coupled / uncoupled = {r:.3g} at the fifth transverse resonance "
-                                  f"({float(c.speed):.0f} rpm)")
+                                  f"({float(c.speed):.0f} rpm)", flips=ROUND_OFF)
 
 
 @Q.register("fifth_transverse_resonance_near_first_longitudinal")
