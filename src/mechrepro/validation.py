@@ -329,7 +329,9 @@ def level_error(coarse: float, base: float, fine: float, ratio: float, width: fl
 def verdict_with_error(spec: dict, value: float, error: float) -> tuple[str, str]:
     """pass / fail / inconclusive of a compare or bound row whose value is known to
     +- ``error`` (and why, when inconclusive)."""
-    if not error or math.isnan(error):
+    if isinstance(error, float) and math.isnan(error):
+        return "inconclusive", "no error estimate: a resolution level gave no value"
+    if not error:
         return verdict(spec, value), ""
     if spec["kind"] == "compare":
         d, w = abs(float(value) - float(spec["value"])), band(spec, value)
