@@ -9,6 +9,13 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "src"))
 
 
+@pytest.fixture(autouse=True)
+def _in_the_repository(monkeypatch):
+    """Every test starts in the repository (paths such as config/papers/... are relative to
+    it), whatever directory an earlier test or the caller left."""
+    monkeypatch.chdir(ROOT)
+
+
 @pytest.fixture
 def config_copy(tmp_path):
     """A writable copy of config/ (schemas + paper files) for mutation tests."""

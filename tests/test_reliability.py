@@ -357,7 +357,7 @@ def test_plain_snakemake_recovers_from_an_interrupted_run(run, tmp_path):
 
     work = tmp_path / "w"
     shutil.copytree(run, work, symlinks=True)
-    shutil.copytree(ROOT / "profiles", work / "profiles")
+    shutil.copytree(ROOT / "profiles", work / "profiles", dirs_exist_ok=True)   # conftest copies it too
     proc = subprocess.Popen([*SM, "--forcerun", f"validate_{PAPER}"], cwd=work,
                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                             start_new_session=True)

@@ -1,5 +1,6 @@
 """An accuracy asked for instead of a resolution (src/mechrepro/target.py)."""
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -18,7 +19,7 @@ def test_order_and_error_of_a_first_and_a_second_order_sequence():
 
 
 def test_saw_chain_load_max_target_is_met_at_near_the_cheapest_k():
-    run = load_paper("config/papers/saw_chain.yaml").runs["load_max_target"]
+    run = load_paper(Path(__file__).resolve().parents[1] / "config/papers/saw_chain.yaml").runs["load_max_target"]
     ds = run_solver(run)
     requested = float(ds["target_requested"])
     k = float(ds["target_knob_value"])
