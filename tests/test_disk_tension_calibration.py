@@ -5,6 +5,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import yaml
 
 from mechrepro.config import load_paper
 from mechrepro.models.disk_tension import solve
@@ -13,6 +14,7 @@ from mechrepro.models.disk_tension.modal import degenerate_harmonics, harmonic_c
 
 ROOT = Path(__file__).resolve().parent.parent
 TABLE1 = np.array([-1.70e5, -3.41e4, 3.82e5, 1.16e6, 2.40e6])
+DECLARED = yaml.safe_load((ROOT / "config" / "papers" / "disk_tension.yaml").read_text())["effects"]
 
 
 @pytest.fixture(scope="module")
@@ -24,7 +26,7 @@ def table12(cfg, n_elements=64, references=False, **params):
     run = copy.deepcopy(cfg.runs["table12"])
     run["effects"] = ["stress_calibration", "roll_tension", "eigen", "eq9", "modal_matrices"]
     run["effects"] += ["exact_reference", "rolled_reference"] if references else []
-    run["contributes"] = {e: run["contributes"].get(e) for e in run["effects"]}
+    run["contributes"] = {e: DECLARED[e]["contributes"] for e in run["effects"]}
     run["resolution"] = {"n_elements": n_elements}
     run["parameters"].update(params)
     return solve(run)
@@ -92,3 +94,33 @@ def test_richardson_reference_beats_the_finest_run_on_the_exact_solution(cfg):
                                           runs[128]["axisym_f_rolled"].values), rtol=1e-12)
     with pytest.raises(ValueError, match="pair"):
         reference_pair([4, 16, 256])
+
+
+def test_one_uncertainty_per_calibrated_number_from_the_printed_digits(cfg):
+    """issue 29: each determined row's band is what the printed digits of its inputs allow
+    (434.5 +- 0.05 Hz, 2.40e6 +- 0.005e6 rad^2/s^2, propagated through the calibrations) plus
+    its own printed digits; f~ and Delta f = f~ - f share the same Hz, so one calibrated
+    number cannot read pass and fail at once."""
+    raw = yaml.safe_load((ROOT / "config" / "papers" / "disk_tension.yaml").read_text())
+    rep = raw["reported"]
+
+    def read(**p):
+        ds = table12(cfg, **p)
+        sel = dict(n_d=4, r_c=0.065)
+        f_r = float(ds["axisym_f_rolled"].sel(sel))
+        return np.array([f_r, f_r - float(ds["axisym_f_unrolled"].sel(n_d=4)),
+                         float(ds["axisym_delta_f_eq9_linearised"].sel(sel))])
+
+    p = cfg.runs["table12"]["parameters"]
+    base = read()
+    d_f = np.abs(read(calibration_frequency=p["calibration_frequency"] + 0.05) - base)
+    d_k = np.abs(read(calibration_delta_omega2=p["calibration_delta_omega2"] + 0.005e6) - base)
+    printed = np.array([0.05, 0.1, 0.05])   # 502.1; 67.6 = 502.1 - 434.5; 70.0
+    band = d_f + d_k + printed
+    for i, q in enumerate(["f_rolled_nd4_rc65_rf25", "delta_f_eigen_nd4_rc65_rf25",
+                           "delta_f_eq9_nd4_rc65_rf25"]):
+        stated = rep[q]["tolerance"] * rep[q]["value"]
+        assert stated == pytest.approx(band[i], rel=0.1), (q, stated, band[i])
+    # f~ and Delta f carry the same uncertainty in Hz (within the printing of 434.5)
+    assert abs(rep["f_rolled_nd4_rc65_rf25"]["tolerance"] * 502.1
+               - rep["delta_f_eigen_nd4_rc65_rf25"]["tolerance"] * 67.6) < 0.05

@@ -53,6 +53,41 @@ def test_axisym_converges_at_fourth_order():
     assert 3.5 < order < 5.0
 
 
+# -- exact stressed reference (uniform in-plane stress) ----------------------------------
+def test_stressed_exact_solution_reduces_to_the_unstressed_one_and_moves_with_the_stress():
+    f0 = [exact.natural_frequencies(n, a=0.025, b=B, h=H, E=E, nu=NU, rho=RHO)[0] for n in range(5)]
+    tiny = [exact.natural_frequencies(n, a=0.025, b=B, h=H, E=E, nu=NU, rho=RHO, sigma=1.0)[0]
+            for n in range(5)]
+    np.testing.assert_allclose(tiny, f0, rtol=1e-6)
+    up = [exact.natural_frequencies(n, a=0.025, b=B, h=H, E=E, nu=NU, rho=RHO, sigma=10e6)[0]
+          for n in range(5)]
+    down = [exact.natural_frequencies(n, a=0.025, b=B, h=H, E=E, nu=NU, rho=RHO, sigma=-3e6)[0]
+            for n in range(5)]
+    assert np.all(np.array(up) > f0) and np.all(np.array(down) < f0)
+    # the memoised and the fresh solve are the same numbers
+    assert exact.natural_frequencies(3, a=0.025, b=B, h=H, E=E, nu=NU, rho=RHO, sigma=10e6,
+                                     memo=False)[0] == up[3]
+
+
+@pytest.mark.parametrize("sigma0", [10e6, -3e6])
+def test_axisym_matches_the_stressed_exact_solution_at_fourth_order(sigma0):
+    """The stress-stiffening path (Eq. 3 on the harmonics, Eq. 5) against the Bessel solution
+    of the annulus under uniform in-plane stress: h^4 until round-off."""
+    fe = np.array([exact.natural_frequencies(n, a=0.025, b=B, h=H, E=E, nu=NU, rho=RHO,
+                                             sigma=sigma0)[0] for n in range(5)])
+    err = []
+    for ne in (16, 32, 64):  # asymptotic range
+        d = disk(n_elements=ne)
+        f = np.sqrt(d.rolled(d.stress_stiffness(d.uniform_stress(sigma0)))[0]) / (2 * np.pi)
+        assert np.all(f > fe)  # conforming Rayleigh-Ritz: from above
+        err.append(np.max(np.abs(f / fe - 1)))
+    order = np.log2(np.array(err[:-1]) / np.array(err[1:]))
+    assert np.all((3.5 < order) & (order < 5.0)), order
+    d = disk(n_elements=128)
+    f = np.sqrt(d.rolled(d.stress_stiffness(d.uniform_stress(sigma0)))[0]) / (2 * np.pi)
+    assert np.max(np.abs(f / fe - 1)) < 2e-7
+
+
 def test_exact_rejects_bad_ratio():
     with pytest.raises(ValueError, match="a/b"):
         exact.frequency_parameters(0, 1.2, NU)

@@ -173,6 +173,12 @@ class AxisymDisk:
             self.omega2[n], self.phi[n] = lam[0], phi[:, 0]
         return np.array([self.omega2[n] for n in self.n_d])
 
+    @staticmethod
+    def uniform_stress(sigma0):
+        """sigma_r = sigma_theta = ``sigma0`` [Pa] everywhere (the exact stressed reference)."""
+        return (lambda r: np.full_like(r, sigma0, dtype=float),
+                lambda r: np.full_like(r, sigma0, dtype=float))
+
     def stress_stiffness(self, sigma):
         sr, st = sigma
         return {n: stress_stiffness(self.mesh, n, sr, st, self.h, quad=self.quad)

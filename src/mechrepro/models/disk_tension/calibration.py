@@ -43,13 +43,15 @@ def _calibration_case(*, n_d, r_c, r_f, b, h, E, nu, rho, alpha, amplitude, s, i
     return disk, disk.stress_stiffness(sig)
 
 
-def alpha_effective(*, target, **case):
+def alpha_effective(*, target, memo=True, **case):
     """alpha [1/K] that makes Eq. (9)'s Delta omega^2 of ``n_d`` equal ``target``, and the
     handbook-alpha prediction it replaces: (alpha_eff, Delta omega^2, eigen Delta f [Hz]).
 
     A pure function of scalars, memoised: the runs of a batch share a handful of calibration
-    cases (one per Poisson ratio and in-plane condition), each solved once per process."""
-    return _alpha_effective(target, tuple(sorted(case.items())))
+    cases (one per Poisson ratio and in-plane condition), each solved once per process
+    (``memo=False`` solves afresh: what the calibration costs cold)."""
+    key = tuple(sorted(case.items()))
+    return _alpha_effective(target, key) if memo else _alpha_effective.__wrapped__(target, key)
 
 
 @lru_cache(maxsize=256)

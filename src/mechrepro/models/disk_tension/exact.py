@@ -1,10 +1,23 @@
-"""Exact natural frequencies of the unstressed annular Kirchhoff plate (Bessel solution).
+"""Exact natural frequencies of the annular Kirchhoff plate (Bessel solution), unstressed
+or under a uniform isotropic in-plane stress sigma_0 (membrane force N = sigma_0 h).
 
-Clamped at r = a (W = W' = 0), free at r = b (M_r = 0, V_r = 0).  With
-W = C1 J_n(kr) + C2 Y_n(kr) + C3 I_n(kr) + C4 K_n(kr) and k^4 = rho h omega^2 / D, the
-four boundary conditions give a 4x4 determinant in lambda = k b whose roots are the
-frequency parameters.  Columns of I_n and K_n are scaled by positive factors
-(exp(-lambda), exp(lambda a/b)) so that the determinant stays O(1) without moving a root.
+Clamped at r = a (W = W' = 0), free at r = b (M_r = 0 and, with the membrane force, the
+effective shear V_r - N W' = 0: the natural condition of the energy with N |grad w|^2,
+i.e. of the stress-stiffness term of Eq. 3).  The plate equation
+D lap^2 w - N lap w - rho h omega^2 w = 0 factors as (lap - k1^2)(lap + k2^2) w = 0 with
+
+    k1^2, -k2^2 = (N/D +- sqrt((N/D)^2 + 4 rho h omega^2 / D)) / 2,
+
+so W = C1 J_n(k2 r) + C2 Y_n(k2 r) + C3 I_n(k1 r) + C4 K_n(k1 r).  Unstressed,
+k1 = k2 = k with k^4 = rho h omega^2 / D.  In units of b = 1 the four boundary conditions
+give a 4x4 determinant in lambda = (rho h omega^2 b^4 / D)^(1/4) (= k b unstressed) and the
+stress parameter T = N b^2 / D; its roots are the frequency parameters.  Columns of I_n and
+K_n are scaled by positive factors (exp(-k1 b), exp(k1 a)) so that the determinant stays
+O(1) without moving a root.
+
+Under compression (T < 0) a harmonic whose fundamental has buckled has no real root left
+for it: the first root is then its next mode.  Callers compare with a model that flags
+buckling (effect ``stressed_reference`` refuses a buckled reference stress).
 """
 from __future__ import annotations
 
@@ -15,12 +28,22 @@ from scipy.optimize import brentq
 from scipy.special import ive, jv, jvp, kve, yv, yvp
 
 
-def boundary_matrix(lam, n, ratio, nu):
-    """Boundary matrices [..., 4, 4] (rows W(a), W'(a), M_r(b), V_r(b); columns J, Y, I, K)
-    for an array of frequency parameters ``lam``, in units of b = 1."""
+def wavenumbers(lam, tension=0.0):
+    """(k1 b, k2 b) of the I/K and J/Y columns for frequency parameter(s) ``lam`` and stress
+    parameter T = N b^2 / D (both lam unstressed)."""
     lam = np.asarray(lam, float)
-    xa, xb = lam * ratio, lam
-    shrink = np.exp(xa - xb)  # the positive column scalings e^{-lam} (I) and e^{lam a/b} (K)
+    if tension == 0.0:
+        return lam, lam
+    omega2, t = lam**4, float(tension)
+    disc = np.sqrt(t * t + 4.0 * omega2)
+    return np.sqrt(0.5 * (t + disc)), np.sqrt(0.5 * (disc - t))
+
+
+def boundary_matrix(lam, n, ratio, nu, tension=0.0):
+    """Boundary matrices [..., 4, 4] (rows W(a), W'(a), M_r(b), V_r(b) - N W'(b); columns
+    J, Y, I, K) for an array of frequency parameters ``lam``, in units of b = 1, under the
+    stress parameter ``tension`` = N b^2 / D."""
+    k1, k2 = wavenumbers(lam, tension)
 
     def bessel(kind, x, scale):
         if kind == "J":
@@ -32,24 +55,30 @@ def boundary_matrix(lam, n, ratio, nu):
         return kve(n, x) * scale, (-kve(n - 1, x) - n / x * kve(n, x)) * scale, 1.0
 
     cols = []
-    for kind, sa, sb in (("J", 1, 1), ("Y", 1, 1), ("I", shrink, 1.0), ("K", 1.0, shrink)):
+    for kind in ("J", "Y", "I", "K"):
+        k = k2 if kind in "JY" else k1
+        xa, xb = k * ratio, k
+        shrink = np.exp(xa - xb)  # the positive column scalings e^{-k} (I) and e^{k a/b} (K)
+        sa, sb = {"J": (1, 1), "Y": (1, 1), "I": (shrink, 1.0), "K": (1.0, shrink)}[kind]
         Za, dZa, _ = bessel(kind, xa, sa)
         Zb, dZb, sgn = bessel(kind, xb, sb)
-        # at r = b = 1 with W = Z(lam r): W' = lam Z', and lap W = sgn lam^2 W
-        W, dW = Zb, lam * dZb
-        moment = sgn * lam**2 * W - (1 - nu) * (dW - n * n * W)          # M_r / D
-        shear = sgn * lam**2 * dW - (1 - nu) * n * n * (dW - W)          # V_r / D
-        cols.append(np.stack([Za, lam * dZa, moment, shear], axis=-1))
+        # at r = b = 1 with W = Z(k r): W' = k Z', and lap W = sgn k^2 W
+        W, dW = Zb, k * dZb
+        moment = sgn * k**2 * W - (1 - nu) * (dW - n * n * W)                    # M_r / D
+        shear = sgn * k**2 * dW - (1 - nu) * n * n * (dW - W) - tension * dW    # (V_r - N W') / D
+        cols.append(np.stack([Za, k * dZa, moment, shear], axis=-1))
     return np.stack(cols, axis=-1)
 
 
-def frequency_determinant(lam, n, ratio, nu):
-    """det of the boundary matrix at frequency parameter(s) lam = k b."""
-    return np.linalg.det(boundary_matrix(lam, n, ratio, nu))
+def frequency_determinant(lam, n, ratio, nu, tension=0.0):
+    """det of the boundary matrix at frequency parameter(s) lam."""
+    return np.linalg.det(boundary_matrix(lam, n, ratio, nu, tension))
 
 
-def frequency_parameters(n, ratio, nu, count=1, lam_max=60.0, step=0.02, chunk=8.0):
-    """The first ``count`` roots lambda = k b of the determinant for harmonic ``n``.
+def frequency_parameters(n, ratio, nu, count=1, lam_max=60.0, step=0.02, chunk=8.0,
+                         tension=0.0):
+    """The first ``count`` roots lambda of the determinant for harmonic ``n`` (under the
+    stress parameter ``tension`` = N b^2 / D).
 
     The determinant is an entire function of lambda (no poles), so every sign change on the
     scan grid brackets a root; the scan stops at the first chunk that completes ``count``.
@@ -60,16 +89,16 @@ def frequency_parameters(n, ratio, nu, count=1, lam_max=60.0, step=0.02, chunk=8
     if not (0.0 < ratio < 1.0):
         raise ValueError(f"a/b = {ratio} must be in (0, 1) for the annular plate")
     return np.array(_roots(int(n), float(ratio), float(nu), int(count), float(lam_max),
-                           float(step), float(chunk)))
+                           float(step), float(chunk), float(tension)))
 
 
 @lru_cache(maxsize=1024)
-def _roots(n, ratio, nu, count, lam_max, step, chunk):
-    f = lambda x: float(frequency_determinant(x, n, ratio, nu))  # noqa: E731
+def _roots(n, ratio, nu, count, lam_max, step, chunk, tension=0.0):
+    f = lambda x: float(frequency_determinant(x, n, ratio, nu, tension))  # noqa: E731
     roots, lo = [], step
     while len(roots) < count and lo < lam_max:
         lams = np.arange(lo, min(lo + chunk, lam_max) + step / 2, step)
-        det = frequency_determinant(lams, n, ratio, nu)
+        det = frequency_determinant(lams, n, ratio, nu, tension)
         idx = np.nonzero(np.sign(det[:-1]) * np.sign(det[1:]) < 0)[0]
         roots += [brentq(f, lams[i], lams[i + 1], xtol=1e-15, rtol=1e-15) for i in idx]
         lo = lams[-1]
@@ -78,9 +107,16 @@ def _roots(n, ratio, nu, count, lam_max, step, chunk):
     return tuple(roots[:count])
 
 
-def natural_frequencies(n_d, *, a, b, h, E, nu, rho, count=1):
-    """Exact natural frequencies [Hz] of harmonic n_d (0 nodal circles first)."""
+def natural_frequencies(n_d, *, a, b, h, E, nu, rho, count=1, sigma=0.0, memo=True):
+    """Exact natural frequencies [Hz] of harmonic n_d (0 nodal circles first), under a
+    uniform isotropic in-plane stress ``sigma`` [Pa] (tension > 0).  ``memo=False`` solves
+    afresh (what an effect costs cold)."""
     D = E * h**3 / (12 * (1 - nu**2))
-    lam = frequency_parameters(int(n_d), a / b, nu, count=count)
+    t = float(sigma) * h * b * b / D
+    if memo:
+        lam = frequency_parameters(int(n_d), a / b, nu, count=count, tension=t)
+    else:
+        lam = np.array(_roots.__wrapped__(int(n_d), float(a / b), float(nu), int(count), 60.0,
+                                          0.02, 8.0, t))
     omega = (lam / b) ** 2 * np.sqrt(D / (rho * h))
     return omega / (2 * np.pi)

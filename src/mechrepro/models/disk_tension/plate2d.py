@@ -427,6 +427,13 @@ class PlateDisk:
         st = sxx * s * s - 2 * sxy * s * c + syy * c * c
         return np.hypot(x[0], x[1]).ravel(), sr.ravel(), st.ravel()
 
+    def uniform_stress(self, sigma0):
+        """(sxx, sxy, syy) of a uniform isotropic stress ``sigma0`` [Pa] at the bending
+        quadrature points (the exact stressed reference)."""
+        shape = np.asarray(self.basis.global_coordinates()).shape[1:]
+        s = np.full(shape, float(sigma0))
+        return s, np.zeros(shape), s.copy()
+
     def stress_stiffness(self, sigma):
         sxx, sxy, syy = sigma
         return self.forms.geometric(self.h, np.asarray(sxx), np.asarray(sxy), np.asarray(syy))

@@ -164,14 +164,19 @@ def _table1_other_zero(R):
 
 @Q.register("paper_mesh_symmetry_order")
 def _symmetry(R):
-    """Rotational symmetry order of the paper's mesh from Table 1's coupling pattern."""
+    """Rotational symmetry order of the paper's mesh from Table 1's coupling pattern (an
+    inference from the pattern, computed by the C_N selection rule)."""
     pairs = [(0, 4), (1, 3)]
     nz = [p for p in pairs if R.paper_value(f"table1_offdiag_nd{p[0]}_nd{p[1]}") != 0]
     N = harmonic_coupling_symmetry(nz, 4)
     deg = degenerate_harmonics(N, range(5)) if N else []
+    text = harmonic_coupling_symmetry([(0, 3), (1, 4)], 4)
     return Reproduced(float(N or np.nan),
-                      note=f"only these degenerate sin/cos pairs (arbitrary eigensolver rotation) "
-                           f"exist on a C{N} mesh among N_d = 0..4: {deg}")
+                      note=f"Table 1's nonzero pairs {nz} are the selection rule of a C{N} mesh, "
+                           f"on which only these N_d = 0..4 stay degenerate sin/cos pairs "
+                           f"(free rotation in an eigensolver): {deg}.  The text names (0, 3) "
+                           f"and (1, 4) instead; no C_N mesh gives that pattern "
+                           f"({'none' if text is None else 'C%d' % text}), so the table is taken")
 
 
 # --- Table 2 -------------------------------------------------------------------------------
