@@ -124,3 +124,37 @@ def test_one_uncertainty_per_calibrated_number_from_the_printed_digits(cfg):
     # f~ and Delta f carry the same uncertainty in Hz (within the printing of 434.5)
     assert abs(rep["f_rolled_nd4_rc65_rf25"]["tolerance"] * 502.1
                - rep["delta_f_eigen_nd4_rc65_rf25"]["tolerance"] * 67.6) < 0.05
+
+
+def test_the_fit_data_are_the_reported_values():
+    """effect identifiability's data (solver inputs) are the reported Table 1 and 502.1 Hz."""
+    raw = yaml.safe_load((ROOT / "config" / "papers" / "disk_tension.yaml").read_text())
+    p, rep = raw["parameters"], raw["reported"]
+    assert p["fit_table1_diagonal"]["value"][:4] == [rep[f"table1_diag_nd{n}"]["value"]
+                                                    for n in range(4)]
+    assert p["fit_table1_diagonal"]["value"][4] == p["calibration_delta_omega2"]["value"]
+    assert p["fit_rolled_frequency"]["value"] == rep["f_rolled_nd4_rc65_rf25"]["value"]
+
+
+def test_joint_fit_finds_the_constants_of_a_synthetic_paper(cfg):
+    """The identifiability fit recovers (s, c, condition) from Table 1 and f~ made by the
+    model itself at s = 7 mm, c = 1.1, clamped."""
+    from mechrepro.models.disk_tension import calibration, identifiability as idf
+    from mechrepro.models.disk_tension.axisym import AxisymDisk
+    from mechrepro.models.disk_tension.modal import eigen, frequency
+
+    E, nu, rho, b = 206e9, 0.3, 7850.0, 0.1275
+    h = calibration.thickness(f_target=434.5, n_d=4, r_f=0.025, b=b, E=E, nu=nu, rho=rho)
+    d = AxisymDisk(r_f=0.025, b=b, h=h, E=E, nu=nu, rho=rho, n_d=range(5), n_elements=32)
+    d.unrolled()
+    load = dict(r_c=0.065, amplitude=50.0, alpha=12e-6, E=E, nu=nu)
+    unit, Ks = idf.unit_table1(d, s=0.007, inplane_bc="clamped", **load)
+    t1 = 1.1 * unit
+    f4 = frequency(eigen(d.K[4] + 1.1 * Ks[4], d.M[4], 1, 3)[0][0])
+    r = idf.analyse(d, widths=np.arange(4e-3, 10.01e-3, 0.5e-3), scales=np.arange(0.8, 1.41, 0.05),
+                    fine=np.arange(0.8, 1.4001, 0.001),
+                    fine_widths=np.arange(4e-3, 10.001e-3, 0.05e-3), single_width=0.005,
+                    table1_paper=t1, f_rolled_paper=float(f4), **load)
+    assert r["best_width"][0] == pytest.approx(0.007, abs=0.05e-3)
+    assert r["best_scale"][0] == pytest.approx(1.1, abs=1e-3)
+    assert r["best_condition"][0] == 0

@@ -75,3 +75,28 @@ def buckling_series(R):
 def matrix_rows(da) -> list[list]:
     """Rows ``[N_d, entries...]`` of a modal matrix (Tables 1-2)."""
     return [[int(n)] + [float(v) for v in da.sel(row=n).values] for n in da["row"].values]
+
+
+#: memoised effects and the variable holding their cold cost (stage-3 ones carry the solver)
+COLD_TIME = {"stress_calibration": "calibration_time_cold",
+             "exact_reference": "{solver}_exact_reference_time_cold",
+             "rolled_reference": "{solver}_rolled_reference_time_cold",
+             "stressed_reference": "{solver}_stressed_reference_time_cold"}
+
+
+def effect_cold_warm(R, scenes=("table12", "table12_plate2d", "stressed_axisym",
+                                "stressed_plate2d")) -> list[list]:
+    """Rows [scene, effect, warm s, cold s] of the memoised effects: warm is the run's own
+    effect time (the fastest repetition, after the first run of the batch memoised it),
+    cold what the effect costs with nothing memoised (a fresh process)."""
+    rows = []
+    for scene in scenes:
+        ds = R.run(scene)
+        solver = "plate2d" if "plate2d_n_dofs" in ds else "axisym"
+        timed = [str(e) for e in ds["timed_effect"].values]
+        for effect, key in COLD_TIME.items():
+            key = key.format(solver=solver)
+            if effect in timed and key in ds:
+                warm = float(ds["effect_time"].values[timed.index(effect)])
+                rows.append([scene, effect, warm, float(ds[key])])
+    return rows

@@ -372,3 +372,26 @@ def _buckling(R):
     ok = bool(np.all((amp > a_cr[0]) == (buck == 1)) and np.ptp(a_cr) < 1e-6 * a_cr[0])
     return Reproduced(ok, note=f"critical amplitude N_d=2 at r_c=105 mm: {a_cr[0]:.2f} degC; "
                                f"buckled flags {buck.tolist()} for A = {amp.tolist()}")
+
+
+@Q.register("joint_fit_gaussian_width", "joint_fit_stress_scale")
+def _joint_fit(R):
+    """The joint fit to Table 1 alone (row notes: its interval, which numbers pin it, and
+    the fit with 502.1 Hz added)."""
+    from . import identifiability as idf
+
+    ds = R.run("identifiability")
+    rows = {(r[0], r[1]): r for r in idf.table(ds)}
+    read = {(r[0], r[1]): r for r in idf.readings(ds)}
+    out = {}
+    for q, const in (("joint_fit_gaussian_width", "gaussian_width"),
+                     ("joint_fit_stress_scale", "stress_scale")):
+        t, a = rows[("table1", const)], rows[("table1_and_f_rolled", const)]
+        out[q] = Reproduced(float(t[3]), note=(
+            f"Table 1 alone: {t[3]} {t[2]} [{t[4]}, {t[5]}], pinned by {t[6]}; with 502.1 Hz: "
+            f"{a[3]} [{a[4]}, {a[5]}], pinned by {a[6]}. The single-alpha calibration "
+            f"(s = 5 mm, c = {float(ds['axisym_single_scale']):.3f}) lies chi^2 "
+            f"+{read[('table1', 'single-alpha calibration')][-1]:.1f} above the joint fit "
+            f"({rows[('table1', 'inplane_bc')][3]}, "
+            f"{rows[('table1', 'inplane_bc')][6]})"))
+    return out

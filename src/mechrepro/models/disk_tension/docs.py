@@ -1,0 +1,141 @@
+"""The numbers of docs/disk_tension.md, regenerated from a run (issue 29: not typed).
+
+Blocks between ``<!-- run:NAME -->`` and ``<!-- /run:NAME -->`` in the document are
+replaced by tables made from ``results/disk_tension`` (validation.csv, claim.json,
+cost_of_accuracy.csv, effect_cold_warm.csv, identifiability.csv)::
+
+    .venv/bin/python -m mechrepro.models.disk_tension.docs results/disk_tension docs/disk_tension.md
+
+Run it on the default profile's results after the last change; tests/test_disk_tension_docs.py
+checks the verdict table against the committed default reference.
+"""
+from __future__ import annotations
+
+import csv
+import json
+import re
+import sys
+from pathlib import Path
+
+
+def _rows(path: Path) -> list[dict]:
+    with open(path, newline="") as fh:
+        return list(csv.DictReader(fh))
+
+
+def _g(x, digits=4) -> str:
+    """A number as the docs print it ('' stays '')."""
+    if x in ("", None):
+        return ""
+    v = float(x)
+    if v == int(v) and abs(v) < 1e6:
+        return f"{int(v)}"
+    return f"{v:.{digits}g}"
+
+
+def counts(root: Path) -> str:
+    c = json.loads((root / "claim.json").read_text())
+    ind = c["independent"]
+    return (f"Claim **{c['claim']}**. Independent: **{ind['pass']} pass, {ind['fail']} fail, "
+            f"{ind['inconclusive']} inconclusive, {ind['not_converged']} not converged** "
+            f"(counts by evidence class: "
+            + "; ".join(f"{k} " + ", ".join(f"{n} {s}" for s, n in sorted(v.items()))
+                        for k, v in sorted(c["counts"].items())) + ").")
+
+
+def verdicts(root: Path, evidence=("independent", "determined")) -> str:
+    """Every pass/fail/inconclusive row of the given evidence classes, with its error bar
+    and its falsifier's outcome."""
+    out = ["| row | evidence | paper | ours | ± error | verdict | falsifier |",
+           "|---|---|---|---|---|---|---|"]
+    for r in _rows(root / "tables" / "validation.csv"):
+        if r["evidence"] in evidence and r["status"] not in ("info",):
+            out.append(f"| `{r['quantity']}` | {r['evidence']} | {_g(r['paper_value'])} | "
+                       f"{_g(r['reproduced_value'], 6)} | {_g(r['error_estimate'], 2)} | "
+                       f"{r['status']} | {r['falsifier'] or '—'} |")
+    return "\n".join(out)
+
+
+def construction(root: Path) -> str:
+    rows = [r for r in _rows(root / "tables" / "validation.csv")
+            if r["evidence"] == "construction" and r["falsifier"]]
+    return "\n".join(f"* `{r['quantity']}`: {r['status']}, falsifier {r['falsifier']}"
+                     for r in rows)
+
+
+def cost(root: Path) -> str:
+    rows = _rows(root / "tables" / "cost_of_accuracy.csv")
+    out = ["| entry | quantity | reference | knob values | errors | times [s] | order |",
+           "|---|---|---|---|---|---|---|"]
+    keys = list(dict.fromkeys((r["accuracy"], r["quantity"]) for r in rows))
+    for acc, q in keys:
+        pts = [r for r in rows if r["accuracy"] == acc and r["quantity"] == q]
+        out.append(f"| {acc} | {q} | {pts[0]['reference']} | "
+                   + " / ".join(r["knob_value"] for r in pts) + " | "
+                   + " / ".join(f"{float(r['error']):.1e}" for r in pts) + " | "
+                   + " / ".join(f"{float(r['time_s']):.2g}" for r in pts) + " | "
+                   + f"{float(pts[0]['observed_order']):.2f} |")
+    return "\n".join(out)
+
+
+def cold_warm(root: Path) -> str:
+    out = ["| scene | effect | warm [s] | cold [s] |", "|---|---|---|---|"]
+    for r in _rows(root / "tables" / "effect_cold_warm.csv"):
+        out.append(f"| {r['scene']} | {r['effect']} | {float(r['warm_s']):.1e} | "
+                   f"{float(r['cold_s']):.1e} |")
+    return "\n".join(out)
+
+
+def notes(root: Path, quantities) -> str:
+    by = {r["quantity"]: r for r in _rows(root / "tables" / "validation.csv")}
+    return "\n".join(f"* `{q}` = {_g(by[q]['reproduced_value'], 6)} {by[q]['unit']}: "
+                     f"{by[q]['note']}" for q in quantities if q in by)
+
+
+def identifiability(root: Path) -> str:
+    path = root / "tables" / "identifiability.csv"
+    if not path.exists():
+        return "(not in this run)"
+    rows = _rows(path)
+    cols = list(rows[0])
+    out = ["| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
+    out += ["| " + " | ".join(r[c] for c in cols) + " |" for r in rows]
+    return "\n".join(out)
+
+
+BLOCKS = {
+    "counts": counts,
+    "verdicts": verdicts,
+    "construction": construction,
+    "cost": cost,
+    "cold_warm": cold_warm,
+    "identifiability": identifiability,
+    "calibration_notes": lambda root: notes(root, ["f_unrolled_nd4_rf25", "table1_diag_nd4",
+                                                   "inplane_bc_evidence_free_disk",
+                                                   "inplane_bc_evidence_clamped",
+                                                   "delta_f_eigen_nd4_handbook_alpha"]),
+    "explanation_notes": lambda root: notes(root, ["table2_nd3_mode_change_at_buckling",
+                                                   "table2_nd3_pair_rotation_deg",
+                                                   "paper_mesh_symmetry_order",
+                                                   "rayleigh_cap_on_delta_f_eigen"]),
+    "beyond_notes": lambda root: notes(root, ["slotted_optimal_rc_nd3", "slotted_optimal_rc_nd4",
+                                              "buckling_flag_matches_critical_load",
+                                              "eq9_speedup_over_eigen"]),
+}
+
+
+def regenerate(text: str, root: Path) -> str:
+    """``text`` with every ``<!-- run:NAME -->`` block filled from the results at ``root``."""
+    def fill(m):
+        name = m.group(1)
+        return f"<!-- run:{name} -->\n{BLOCKS[name](root)}\n<!-- /run:{name} -->"
+    return re.sub(r"<!-- run:(\w+) -->.*?<!-- /run:\1 -->", fill, text, flags=re.S)
+
+
+def main(argv=None):
+    root, doc = (Path(a) for a in (argv or sys.argv[1:]))
+    doc.write_text(regenerate(doc.read_text(), root))
+
+
+if __name__ == "__main__":
+    main()
