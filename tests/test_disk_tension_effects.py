@@ -62,6 +62,7 @@ SHOWS = {
     "exact_reference": ("axisym", [], "axisym_error_unrolled"),
     "rolled_reference": ("axisym", ["roll_tension"], "axisym_f_rolled_reference"),
     "stressed_reference": ("axisym", [], "axisym_error_stressed"),
+    "identifiability": ("axisym", [], "axisym_prof_width"),
     "eigen": ("axisym", ["roll_tension"], "axisym_f_rolled"),
     "eq9": ("axisym", ["roll_tension"], "axisym_delta_f_eq9_exact"),
     "critical_load": ("axisym", ["roll_tension"], "axisym_critical_load_factor"),
