@@ -329,6 +329,39 @@ for r in idf.table(idn):
     print(r)
 
 # %% [markdown]
+# ## The critical speed (beyond the paper: what tensioning is for)
+# Travelling-wave critical speed per N_d (the backward wave stops in the ground frame),
+# from the centrifugal stress of the spinning disk (flange gripping the blade) with and
+# without the rolled residual stress (A = 50 °C, α calibrated on Table 1). Dashed: the
+# unrolled disk. N_d = 0, 1 have none. Right: the lowest over N_d, for larger clamping ratios.
+
+# %%
+cs, cs_rf = R.run("critical_speed"), R.study("critical_speed_rf")
+RPM = 60 / (2 * np.pi)
+fig, axes = plt.subplots(1, 2, figsize=(12, 4.2))
+rc_mm = cs["r_c"].values * 1e3
+for n in (2, 3, 4):
+    line, = axes[0].plot(rc_mm, cs["axisym_critical_speed"].sel(n_d=n).values * RPM, "o-",
+                         color=COLORS[n], label=f"N_d={n}")
+    axes[0].axhline(float(cs["axisym_critical_speed_untensioned"].sel(n_d=n)) * RPM,
+                    color=COLORS[n], ls="--", lw=0.8)
+axes[0].set(xlabel="rolling radius r_c [mm]", ylabel="critical speed [rpm]",
+            title="r_f = 25 mm: rolled (solid) vs unrolled (dashed)")
+axes[0].legend(fontsize=8)
+sets = [(figures.clamp_mm(cs), cs)] + [(figures.clamp_mm(cs_rf.isel(run=i)), cs_rf.isel(run=i))
+                                      for i in range(cs_rf.sizes["run"])]
+for rf, ds in sets:
+    low = ds["axisym_critical_speed"].min(dim="n_d", skipna=False).values * RPM
+    line, = axes[1].plot(rc_mm, low, "o-", label=f"r_f = {rf:.0f} mm")
+    axes[1].axhline(float(ds["axisym_critical_speed_untensioned"].min()) * RPM,
+                    color=line.get_color(), ls="--", lw=0.8)
+axes[1].set(xlabel="rolling radius r_c [mm]", ylabel="lowest critical speed [rpm]",
+            title="the design curve: lowest critical speed over N_d")
+axes[1].legend(fontsize=8)
+R.save_figure(fig, "critical_speed")
+print("time of the critical speeds (r_f = 25 mm, 9 r_c):", float(cs["axisym_time_critical_speed"]), "s")
+
+# %% [markdown]
 # ## What the memoised effects cost, cold and warm
 # The calibration and the exact and rolled references are pure functions of scalars,
 # memoised per process: after the first run of a batch they cost ~0 (warm, the run's own

@@ -63,6 +63,7 @@ SHOWS = {
     "rolled_reference": ("axisym", ["roll_tension"], "axisym_f_rolled_reference"),
     "stressed_reference": ("axisym", [], "axisym_error_stressed"),
     "identifiability": ("axisym", [], "axisym_prof_width"),
+    "critical_speed": ("axisym", ["roll_tension"], "axisym_critical_speed"),
     "eigen": ("axisym", ["roll_tension"], "axisym_f_rolled"),
     "eq9": ("axisym", ["roll_tension"], "axisym_delta_f_eq9_exact"),
     "critical_load": ("axisym", ["roll_tension"], "axisym_critical_load_factor"),

@@ -466,3 +466,48 @@ def identifiability(ctx) -> dict:
         "single_f_rolled": var((), r["single_f_rolled"], "Hz", "f~(N_d = 4, r_c = 65 mm) of the "
                                "single-alpha calibration"),
     }
+
+
+@EFFECTS.register("critical_speed")
+def critical_speed(ctx) -> dict:
+    """The travelling-wave critical speed per N_d (:mod:`.rotation`): the spinning disk's
+    centrifugal stress (flange gripping the blade, u_r(r_f) = 0) stiffens it as Omega^2;
+    the backward wave stops at Omega_c.  Untensioned (with Southwell's first-order closed
+    form beside it) and with the rolled residual stress of every r_c."""
+    from . import rotation
+
+    model = ctx.model
+    if not hasattr(model, "phi") or not isinstance(model.K, dict):
+        raise ValueError("critical_speed needs the harmonics (solver axisym)")
+    kw = dict(omega=1.0, rho=ctx.rho, nu=ctx.nu, r_f=ctx.r_f, b=ctx.b, inplane_bc="clamped")
+    Kc = model.stress_stiffness((lambda r: rotation.centrifugal_stress(r, **kw)[0],
+                                 lambda r: rotation.centrifugal_stress(r, **kw)[1]))
+    with stopwatch() as sw:
+        free = np.array([rotation.critical_speed(model.K[n], model.M[n], Kc[n], int(n))
+                         for n in ctx.n_d])
+        sw_pairs = [rotation.southwell(model.omega2[n], model.phi[n], model.M[n], Kc[n], int(n))
+                    for n in ctx.n_d]
+        ks = ctx.k_sigma if ctx.loads is not None else []
+        rolled = np.full((len(ks), len(ctx.n_d)), np.nan)
+        for i, k in enumerate(ks):
+            for j, n in enumerate(ctx.n_d):
+                try:
+                    rolled[i, j] = rotation.critical_speed(model.K[n] + k[n], model.M[n], Kc[n],
+                                                           int(n))
+                except np.linalg.LinAlgError:   # the rolled disk has buckled: no speed at all
+                    rolled[i, j] = np.nan
+    out = {
+        "critical_speed_untensioned": var("n_d", free, "rad/s", "travelling-wave critical "
+                                          "speed of the unrolled disk (inf: none)"),
+        "critical_speed_southwell": var("n_d", [p[1] for p in sw_pairs], "rad/s",
+                                        "Southwell's first-order critical speed of the unrolled "
+                                        "disk, omega / sqrt(N_d^2 - lambda)"),
+        "southwell_coefficient": var("n_d", [p[0] for p in sw_pairs], "1", "Southwell "
+                                     "coefficient lambda = phi^T K^(c) phi / phi^T M phi"),
+        "time_critical_speed": var((), sw.seconds, "s", "wall time of the critical speeds "
+                                   "(untensioned and every r_c)"),
+    }
+    if len(ks):
+        out["critical_speed"] = var(("r_c", "n_d"), rolled, "rad/s", "travelling-wave "
+                                    "critical speed of the rolled disk (NaN: buckled; inf: none)")
+    return out

@@ -100,3 +100,10 @@ def effect_cold_warm(R, scenes=("table12", "table12_plate2d", "stressed_axisym",
                 warm = float(ds["effect_time"].values[timed.index(effect)])
                 rows.append([scene, effect, warm, float(ds[key])])
     return rows
+
+
+def clamp_mm(ds) -> float:
+    """r_f [mm] of a run or of one run of a study (a study's swept coordinate keeps the
+    config's unit, the run's own variable is SI)."""
+    v = ds["clamp_radius"]
+    return float(v) * (1e3 if v.attrs.get("units", "m") == "m" else 1.0)

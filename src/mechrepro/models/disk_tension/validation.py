@@ -9,7 +9,7 @@ import numpy as np
 
 from mechrepro.validation import Quantities, Reproduced
 
-from .figures import rc_grid
+from .figures import clamp_mm, rc_grid
 from .modal import degenerate_harmonics, harmonic_coupling_symmetry
 
 Q = Quantities("disk_tension")
@@ -395,3 +395,45 @@ def _joint_fit(R):
             f"({rows[('table1', 'inplane_bc')][3]}, "
             f"{rows[('table1', 'inplane_bc')][6]})"))
     return out
+
+
+RPM = 60.0 / TWO_PI
+
+
+@Q.register("critical_speed_untensioned_min")
+def _cs_min(R):
+    ds = R.run("critical_speed")
+    cs = ds["axisym_critical_speed_untensioned"]
+    n = int(cs["n_d"].values[int(np.argmin(cs.values))])
+    return Reproduced(float(cs.min()) * RPM, note=f"N_d = {n}; per N_d 0..4: " + ", ".join(
+        f"{v * RPM:.0f}" for v in cs.values) + " rpm (N_d = 0, 1: none)")
+
+
+@Q.register("critical_speed_best_rc")
+def _cs_best(R):
+    """r_c [mm] maximising the lowest critical speed over N_d, and the gain at each r_f."""
+    out, notes = None, []
+    runs = [R.run("critical_speed")]
+    st = R.study("critical_speed_rf")
+    runs += [st.isel(run=i) for i in range(st.sizes["run"])]
+    for ds in runs:
+        low = ds["axisym_critical_speed"].min(dim="n_d", skipna=False).values
+        k = int(np.nanargmax(low))
+        free = float(ds["axisym_critical_speed_untensioned"].min())
+        rf = clamp_mm(ds)
+        rc = float(ds["r_c"].values[k]) * 1e3
+        out = rc if out is None else out
+        notes.append(f"r_f {rf:.0f} mm: best r_c {rc:.0f} mm, {free * RPM:.0f} -> "
+                     f"{low[k] * RPM:.0f} rpm")
+    return Reproduced(out, note="; ".join(notes))
+
+
+@Q.register("critical_speed_vs_southwell")
+def _cs_southwell(R):
+    ds = R.run("critical_speed")
+    ex = ds["axisym_critical_speed_untensioned"].values
+    sw = ds["axisym_critical_speed_southwell"].values
+    ok = np.isfinite(ex)
+    rel = ex[ok] / sw[ok] - 1
+    return Reproduced(bool(np.all(rel <= 1e-9) and np.all(rel > -5e-3)),
+                      note="eigen / Southwell - 1 for N_d 2..4: " + ", ".join(f"{x:.1e}" for x in rel))

@@ -1,0 +1,63 @@
+"""Rotation: the centrifugal membrane stress of the spinning disk and the travelling-wave
+critical speed that roll-tensioning exists to raise (Sec. 2: "the critical speed instability
+in rotating disks occurs when the backward-traveling wave frequency is equal to zero").
+
+Centrifugal stress (plane stress, Timoshenko & Goodier Sec. 32): with q = rho Omega^2,
+
+    sigma_r     = A + B / r^2 - (3 + nu) / 8 q r^2
+    sigma_theta = A - B / r^2 - (1 + 3 nu) / 8 q r^2,
+
+sigma_r(b) = 0 at the free rim, and at the flange either u_r(r_f) = 0 (``clamped``: the
+flange grips the spinning blade) or the solid disk (``free_disk``: B = 0).
+
+A mode of N_d = n nodal diameters has the rotating-frame frequency omega_r(Omega), the
+eigenvalue of [K + K^(roll) + Omega^2 K^(c) - omega_r^2 M] (K^(c): Eq. 3 of the centrifugal
+stress at Omega = 1; Coriolis and in-plane inertia neglected, as in the thin-disk theory of
+Southwell and Mote).  In the ground frame it splits into forward and backward waves
+omega_r +- n Omega; the backward wave's frequency reaches zero at the critical speed,
+
+    omega_r(Omega_c) = n Omega_c   <=>   det[K + K^(roll) - Omega_c^2 (n^2 M - K^(c))] = 0.
+
+First order (Southwell): omega_r^2 = omega^2 + lambda Omega^2 with the Southwell coefficient
+lambda = phi^T K^(c) phi / phi^T M phi (Eq. 9's form), so Omega_c = omega / sqrt(n^2 - lambda);
+by Rayleigh's principle the exact Omega_c is at most this.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+
+def centrifugal_stress(r, *, omega, rho, nu, r_f, b, inplane_bc="clamped"):
+    """(sigma_r, sigma_theta) [Pa] of the disk spinning at ``omega`` [rad/s]."""
+    r = np.asarray(r, float)
+    q = rho * omega**2
+    if inplane_bc == "free_disk":
+        A, B = (3 + nu) / 8 * q * b * b, 0.0
+    elif inplane_bc == "clamped":
+        # u(r_f) = 0: (1 - nu) A - (1 + nu) B / a^2 = (1 - nu^2) / 8 q a^2;  sigma_r(b) = 0
+        a = r_f
+        M = np.array([[1 - nu, -(1 + nu) / a**2], [1.0, 1.0 / b**2]])
+        A, B = np.linalg.solve(M, [(1 - nu**2) / 8 * q * a * a, (3 + nu) / 8 * q * b * b])
+    else:
+        raise ValueError(f"inplane_bc = {inplane_bc!r}: allowed ('clamped', 'free_disk')")
+    return (A + B / r**2 - (3 + nu) / 8 * q * r**2,
+            A - B / r**2 - (1 + 3 * nu) / 8 * q * r**2)
+
+
+def critical_speed(K, M, Kc, n):
+    """Omega_c [rad/s] of harmonic ``n``: the smallest Omega with
+    det[K - Omega^2 (n^2 M - Kc)] = 0 (inf when the backward wave never reaches zero,
+    e.g. n = 0).  K (with any residual stress) must be positive definite."""
+    import scipy.linalg as sla
+
+    if n == 0:
+        return float("inf")
+    mu = sla.eigh(n * n * M - Kc, K, eigvals_only=True)   # (n^2 M - Kc) phi = mu K phi
+    top = float(mu.max())
+    return float(1.0 / np.sqrt(top)) if top > 0 else float("inf")
+
+
+def southwell(omega2, phi, M, Kc, n):
+    """(Southwell coefficient lambda, first-order Omega_c = omega / sqrt(n^2 - lambda))."""
+    lam = float(phi @ Kc @ phi / (phi @ M @ phi))
+    return lam, (float(np.sqrt(omega2 / (n * n - lam))) if n * n > lam else float("inf"))
