@@ -11,12 +11,10 @@ asserted: timings depend on the machine (and on whatever else shares its cores).
 
 Every timing is the fastest of repeated calls (mechrepro.timing.time_call), and the grid
 reference is the Richardson extrapolation of 64 and 128 elements (256 elements carry ~10x the
-round-off of 128).  BLAS threads: the axisym model solves small dense eigenproblems
-(2 n_elements unknowns).  OpenBLAS threads them from ~64 x 64 on, and on a loaded shared
-machine the threads wait for cores: that was the ~10x "cliff" of the eigen-analysis time
-between 24 and 32 elements (48 -> 64 unknowns).  The benchmark therefore runs with one BLAS
-thread unless the caller sets OPENBLAS_NUM_THREADS, and prints the multi-threaded timing of
-the same solve beside it (``--threads-compare``).
+round-off of 128).  The benchmark runs with one BLAS thread unless the caller sets
+OPENBLAS_NUM_THREADS (the axisym model solves small dense eigenproblems, which BLAS threads
+only slow down on a shared machine; a 24 -> 32 element "cliff" once blamed on it could not be
+reproduced, issue 29, and its comparison was removed).
 """
 import os
 
@@ -83,19 +81,6 @@ def grid(ctx, n_elements, min_time=0.2):
     w0 = np.array([d.unrolled() for d in disks])[:, None, :]
     return (np.sqrt(w2) / (2 * np.pi), np.sqrt(w0 + d9) / (2 * np.pi), t_setup + t_eig + t_eq9,
             t_eig, t_eq9)
-
-
-def threads_compare(n_elements=(16, 24, 32, 48, 64)):
-    """Rolled eigen-analysis time of the grid with 1 and 2 BLAS threads (fresh processes)."""
-    code = ("import sys; sys.path.insert(0, %r); import bench_disk_tension as b; c = b.setup(); "
-            "print(' '.join('%%.4f' %% b.grid(c, n, 0.2)[3] for n in %r))"
-            % (str(Path(__file__).parent), list(n_elements)))
-    for threads in ("1", "2"):
-        env = dict(os.environ, OPENBLAS_NUM_THREADS=threads)
-        out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True,
-                             text=True, check=True).stdout.split()
-        print(f"  {threads} BLAS thread(s): eigen time of the grid [s] for "
-              f"{list(n_elements)} elements: {out}")
 
 
 def exact_f(ctx):
@@ -227,6 +212,3 @@ if __name__ == "__main__":
         versus(rev, prof)
         sys.exit(0)
     test_bench_disk_tension()
-    if "--threads-compare" in sys.argv:
-        print("disk_tension: the 24 -> 32 element cliff is BLAS threading of small dense solves")
-        threads_compare()

@@ -92,15 +92,21 @@ def notes(root: Path, quantities) -> str:
                      f"{by[q]['note']}" for q in quantities if q in by)
 
 
-def identifiability(root: Path) -> str:
-    path = root / "tables" / "identifiability.csv"
-    if not path.exists():
-        return "(not in this run)"
+def _table(path: Path, fmt=lambda c, v: v) -> list[str]:
     rows = _rows(path)
     cols = list(rows[0])
     out = ["| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
-    out += ["| " + " | ".join(r[c] for c in cols) + " |" for r in rows]
-    return "\n".join(out)
+    return out + ["| " + " | ".join(fmt(c, r[c]) for c in cols) + " |" for r in rows]
+
+
+def identifiability(root: Path) -> str:
+    def num(c, v):
+        try:
+            return f"{float(v):.3g}" if c not in ("data", "reading", "inplane_bc") else v
+        except ValueError:
+            return v
+    return "\n".join(_table(root / "tables" / "identifiability.csv") + [""]
+                     + _table(root / "tables" / "identifiability_readings.csv", num))
 
 
 BLOCKS = {
