@@ -409,7 +409,8 @@ def _cs_min(R):
     cs = ds["axisym_critical_speed_untensioned"]
     n = int(cs["n_d"].values[int(np.argmin(cs.values))])
     return Reproduced(float(cs.min()) * RPM, note=f"N_d = {n}; per N_d 0..4: " + ", ".join(
-        f"{v * RPM:.0f}" for v in cs.values) + " rpm (N_d = 0, 1: none)")
+        f"{v * RPM:.0f}" for v in cs.values) + " rpm (N_d = 0, 1: none); the critical speeds "
+        f"of the unrolled disk and of 9 rolled r_c took {float(ds['axisym_time_critical_speed']):.2g} s")
 
 
 @Q.register("critical_speed_best_rc")
