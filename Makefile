@@ -58,6 +58,6 @@ screenshot:
 	bash scripts/screenshot_report.sh results/report/index.html results/report/screenshot.png
 
 clean:
-	rm -rf results/saw_chain results/rolling_shear results/joint_wear results/disk_tension \
-	  results/chain_drive results/report results/archive results/rerun_plan.* results-ci \
+	rm -rf $(patsubst config/papers/%.yaml,results/%,$(wildcard config/papers/*.yaml)) \
+	  results/report* results/archive* results/rerun_plan.* results-ci \
 	  results-default .snakemake

@@ -11,10 +11,10 @@ import yaml
 
 from mechrepro import effects as fx
 from mechrepro import timing
-from mechrepro.config import ConfigError, load_all, load_paper
+from mechrepro.config import ConfigError, discover_papers, load_all, load_paper
 
 CONFIG = Path(__file__).resolve().parents[1] / "config"
-PAPERS = ["saw_chain", "rolling_shear", "joint_wear", "disk_tension", "chain_drive"]
+PAPERS = discover_papers(CONFIG)
 
 
 def _raw(paper):

@@ -11,4 +11,3 @@ Shared framework (one way to do each thing):
 - :mod:`mechrepro.report`, :mod:`mechrepro.archive` -- report page, archive, reference check
 """
 __version__ = "0.1.0"
-PAPERS = ("saw_chain", "rolling_shear", "joint_wear", "disk_tension", "chain_drive")

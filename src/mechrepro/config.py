@@ -250,6 +250,9 @@ def load_paper(path: str | Path, profile: str = "default",
                   load_schema("paper.schema.json", sdir), f"{where} (profile {profile})")
     _check_effects(raw, where)
     paper = raw["paper"]
+    if paper != path.stem:
+        raise ConfigError(f"{where}: paper = {paper!r}: must be the file's name, {path.stem!r} "
+                          "(a paper is discovered from config/papers/<paper>.yaml)")
     run_schema = load_schema(f"{paper}.run.schema.json", sdir)
     cfg = PaperConfig(paper=paper, path=where, profile=profile,
                       source=raw.get("source", ""), raw=raw)
@@ -702,6 +705,12 @@ def _calibration(raw: dict) -> dict:
     return {"calibration": out} if out else {}
 
 
+def discover_papers(config_dir: str | Path) -> list[str]:
+    """Every paper there is: one ``config/papers/<paper>.yaml`` each (``config.yaml`` only
+    selects among them)."""
+    return sorted(f.stem for f in (Path(config_dir) / "papers").glob("*.yaml"))
+
+
 def load_all(config_dir: str | Path, papers, profile: str = "default",
              every_profile: bool = True, cache_dir: str | Path | None = None
              ) -> dict[str, PaperConfig]:
@@ -715,6 +724,11 @@ def load_all(config_dir: str | Path, papers, profile: str = "default",
                        sorted((config_dir / "papers").glob("*.yaml")),
                        config_dir.resolve() / SCHEMA_DIR_NAME,
                        lambda: load_all(config_dir, papers, profile, every_profile))
+    known = discover_papers(config_dir)
+    missing = [p for p in papers if p not in known]
+    if missing:
+        raise ConfigError(f"papers: {', '.join(map(repr, missing))} has no "
+                          f"{config_dir / 'papers'}/<paper>.yaml; allowed: {', '.join(known)}")
     out = {p: load_paper(config_dir / "papers" / f"{p}.yaml", profile) for p in papers}
     if every_profile:
         for p, cfg in out.items():

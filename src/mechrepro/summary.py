@@ -23,13 +23,26 @@ def headline(results: Path, paper: str) -> list[dict]:
             if r["accuracy"] == first["accuracy"] and r["quantity"] == first["quantity"]]
 
 
+COLUMNS = ["paper", "knob", "reference", "error_quantity", "knob_range", "best_error",
+           "wall_time_range_s", "default_resolution", "why"]
+
+
+def _raw(config_dir: Path, paper: str) -> dict:
+    return load_paper(config_dir / "papers" / f"{paper}.yaml", cache_dir=CACHE_DIR).raw
+
+
+def with_accuracy(config_dir: Path, papers: list[str]) -> list[str]:
+    """The papers that declare a cost-of-accuracy study (``accuracy:``; it is optional)."""
+    return [p for p in papers if _raw(config_dir, p).get("accuracy")]
+
+
 def rows(results: Path, config_dir: Path, papers: list[str], profile: str) -> list[dict]:
     out = []
-    for paper in papers:
+    for paper in with_accuracy(config_dir, papers):
         h = headline(results, paper)
         err = np.array([float(r["error"]) for r in h])
         t = np.array([float(r["time_s"]) for r in h])
-        default = load_paper(config_dir / "papers" / f"{paper}.yaml", cache_dir=CACHE_DIR).raw.get("default_resolution", {})
+        default = _raw(config_dir, paper).get("default_resolution", {})
         out.append({
             "paper": paper, "knob": h[0]["knob"], "reference": h[0]["reference"],
             "error_quantity": f"{h[0]['quantity']} ({h[0]['error_kind']})",
@@ -47,9 +60,9 @@ def write_summary(png: str, csv: str, results: str, config_dir: str, papers: lis
 
     results, config_dir = Path(results), Path(config_dir)
     table = rows(results, config_dir, papers, profile)
-    write_csv(csv, list(table[0]), [list(r.values()) for r in table])
+    write_csv(csv, COLUMNS, [[r[c] for c in COLUMNS] for r in table])
     fig, ax = plt.subplots(figsize=(7.5, 5))
-    for paper in papers:
+    for paper in with_accuracy(config_dir, papers):
         h = headline(results, paper)
         ax.loglog([float(r["time_s"]) for r in h], [float(r["error"]) for r in h], "o-",
                   label=f"{paper}: {h[0]['quantity']} vs {h[0]['reference']} (knob {h[0]['knob']})")

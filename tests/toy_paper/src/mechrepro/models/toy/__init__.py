@@ -1,0 +1,44 @@
+"""toy: free vibration of a damped oscillator, marched by central differences (Eq. 1).
+
+    m x'' + c x' + k x = 0,  x(0) = 1,  x'(0) = 0                                    (1)
+    c = 2 zeta sqrt(k m)                                                              (2)
+    x(t) = exp(-zeta w t) (cos(w_d t) + zeta w / w_d sin(w_d t)),  w_d = w sqrt(1 - zeta^2)  (3)
+"""
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from mechrepro.units import var
+
+from .effects import EFFECTS, Context
+
+
+def compute(run: dict) -> dict:
+    p = run["parameters"]
+    m, k = p["mass"], p["stiffness"]
+    w = np.sqrt(k / m)
+    n = run["resolution"]["steps_per_period"]
+    dt = 2 * np.pi / w / n
+    t = dt * np.arange(5 * n + 1)
+    ctx = Context(t=t, mass=m, stiffness=k, damping_ratio=p["damping_ratio"])
+    c = EFFECTS.evaluate(run, ctx)
+    damping = float(c.total("damping_coefficient")) if "damping_coefficient" in c else 0.0
+    x = np.empty_like(t)
+    x[0] = 1.0
+    x[1] = 1.0 - 0.5 * dt**2 * k / m                        # Taylor start, v(0) = 0
+    a, b = m / dt**2 + damping / (2 * dt), m / dt**2 - damping / (2 * dt)
+    for i in range(1, t.size - 1):
+        x[i + 1] = ((2 * m / dt**2 - k) * x[i] - b * x[i - 1]) / a
+    beside = {key: c.get(key) for key in c.keys() if key != "damping_coefficient"}
+    return {"t": t, "x": x, "beside": beside}
+
+
+def to_dataset(result: dict, run: dict) -> xr.Dataset:
+    return xr.Dataset({"displacement": var("t", result["x"], "m", "displacement x, Eq. (1)"),
+                       **result["beside"]},
+                      {"t": var("t", result["t"], "s", "time")})
+
+
+def solve(run: dict) -> xr.Dataset:
+    return to_dataset(compute(run), run)
