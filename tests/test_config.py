@@ -103,17 +103,6 @@ def test_every_configured_paper_loads_in_every_profile():
             assert load_paper(path, profile).runs
 
 
-def test_readme_lists_every_assumed_constant():
-    from conftest import ROOT
-
-    readme = (ROOT / "README.md").read_text()
-    papers = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())["papers"]
-    missing = [f"{p}.{name}" for p in papers
-               for name in load_paper(ROOT / "config" / "papers" / f"{p}.yaml").assumed()
-               if f"| {p} | `{name}` |" not in readme]
-    assert not missing, f"README lacks assumed constants (run scripts/assumed_constants.py): {missing}"
-
-
 @pytest.mark.parametrize("paper, edit, check", [
     ("disk_tension", lambda r: r["scenes"]["rc_grid"]["parameters"].update(rolling_radius=[65, 140]),
      "rolling_band_inside_disk"),

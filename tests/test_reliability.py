@@ -229,10 +229,14 @@ def test_a_failed_check_archives_nothing_and_keeps_the_last_good_archive(run, tm
 def test_timing_verdicts_are_checked_and_profiles_must_agree(tmp_path):
     from mechrepro.reference import HEADER, compare, profiles_agree
 
-    ref = [dict(zip(HEADER, ["speedup", "11231.7", "pass", "timing", "8920", "nan", "native"]))]
-    assert compare({"speedup": (16874.0, "pass")}, ref, "ref") == []   # value not compared
-    assert "verdict pass in reference, now fail" in compare({"speedup": (3.0, "fail")}, ref,
-                                                             "ref")[0]
+    ref = [dict(zip(HEADER, ["speedup", "11231.7", "pass", "timing", "8920", "nan", "native",
+                             "independent"]))]
+    assert compare({"speedup": (16874.0, "pass", "independent")}, ref, "ref") == []  # value not compared
+    assert "verdict pass in reference, now fail" in compare(
+        {"speedup": (3.0, "fail", "independent")}, ref, "ref")[0]
+    # a counted pass that is no longer counted (its falsifier stopped failing) is drift too
+    assert "evidence independent in reference, now construction" in compare(
+        {"speedup": (16874.0, "pass", "construction")}, ref, "ref")[0]
     for prof, status in (("ci", "pass"), ("default", "fail")):
         d = tmp_path / prof
         d.mkdir()

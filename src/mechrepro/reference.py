@@ -33,7 +33,10 @@ from .config import load_paper
 from .io import write_text
 from .validation import read_table
 
-HEADER = ["quantity", "reproduced_value", "status", "basis", "spread", "tolerance", "variants"]
+HEADER = ["quantity", "reproduced_value", "status", "basis", "spread", "tolerance", "variants",
+          "evidence"]
+# what every reference file has (older ones lack the evidence class)
+REQUIRED = HEADER[:7]
 
 
 class DriftError(RuntimeError):
@@ -99,12 +102,14 @@ def _table(path: Path, required: list[str]) -> list[dict]:
     return rows
 
 
-def _values(path: Path) -> dict[str, tuple[float, str]]:
+def _values(path: Path) -> dict[str, tuple[float, str, str]]:
+    """quantity -> (value, status, evidence class) of a validation table."""
     rows = _table(path, ["quantity", "reproduced_value", "status"])
     out = {}
     for i, r in enumerate(rows, 2):
         where = f"{path}, line {i} ({r['quantity']}), reproduced_value"
-        out[r["quantity"]] = (_float(r["reproduced_value"], where), r["status"])
+        out[r["quantity"]] = (_float(r["reproduced_value"], where), r["status"],
+                              r.get("evidence") or "")
     return out
 
 
@@ -129,9 +134,9 @@ def derive(results: dict[str, Path], reference_dir: str | Path, config_dir: str 
         buf = io.StringIO()
         w = csv.writer(buf, lineterminator="\n")
         w.writerow(HEADER)
-        for q, (value, status) in base.items():
+        for q, (value, status, evidence) in base.items():
             b = basis.get(q, "value")
-            others = {v: t.get(q, (math.nan, "missing")) for v, t in tables.items()}
+            others = {v: t.get(q, (math.nan, "missing", ""))[:2] for v, t in tables.items()}
             if b != "timing" or status != "info":   # a timing verdict must not flip either
                 flips = {v: s for v, (_, s) in others.items() if s != status}
                 if flips:
@@ -144,7 +149,7 @@ def derive(results: dict[str, Path], reference_dir: str | Path, config_dir: str 
             else:
                 tol = math.nan
             w.writerow([q, repr(value), status, b, repr(spread), repr(tol),
-                        " ".join(results)])
+                        " ".join(results), evidence])
         write_text(Path(reference_dir) / profile / f"{paper}.csv", buf.getvalue(), record=False)
         print(f"reference written: {Path(reference_dir) / profile / f'{paper}.csv'}")
     if refused:
@@ -153,7 +158,8 @@ def derive(results: dict[str, Path], reference_dir: str | Path, config_dir: str 
                          + "\n".join(refused))
 
 
-def compare(current: dict[str, tuple[float, str]], ref_rows: list[dict], where: str) -> list[str]:
+def compare(current: dict[str, tuple[float, str, str]], ref_rows: list[dict], where: str
+            ) -> list[str]:
     """Readable differences between a validation table and its reference."""
     ref = {r["quantity"]: r for r in ref_rows}
     problems = []
@@ -164,7 +170,11 @@ def compare(current: dict[str, tuple[float, str]], ref_rows: list[dict], where: 
     for i, (q, r) in enumerate(ref.items(), 2):
         if q not in current:
             continue
-        value, status = current[q]
+        value, status, evidence = current[q]
+        # a pass that became `construction` (its falsifier stopped failing) is a changed
+        # verdict too: what the claim counts moved
+        if r.get("evidence") and evidence and evidence != r["evidence"]:
+            problems.append(f"  {q}: evidence {r['evidence']} in reference, now {evidence}")
         # a timing row's value is never compared (wall clock), its verdict always: the
         # criterion (e.g. a speed-up >= 100) must hold on any machine
         if status != r["status"]:
@@ -231,7 +241,7 @@ def check(results: str, reference_dir: str, papers: list[str], profile: str,
                          f"`make reference REF_PROFILE={profile} REF_PAPERS={paper}`)")
             continue
         try:
-            ref = _table(ref_file, HEADER[:-1])
+            ref = _table(ref_file, REQUIRED)
             current = _values(results / paper / "tables" / "validation.csv")
             problems = compare(current, ref, str(ref_file))
             problems += profiles_agree(reference_dir, paper,

@@ -1,10 +1,8 @@
-"""The numbers of docs/disk_tension.md, regenerated from a run (issue 29: not typed).
+"""The blocks of docs/disk_tension.md (issue 29: numbers from a run, not typed), made from
+``results/disk_tension`` (validation.csv, claim.json, cost_of_accuracy.csv,
+effect_cold_warm.csv, identifiability.csv) and filled by :mod:`mechrepro.docs`::
 
-Blocks between ``<!-- run:NAME -->`` and ``<!-- /run:NAME -->`` in the document are
-replaced by tables made from ``results/disk_tension`` (validation.csv, claim.json,
-cost_of_accuracy.csv, effect_cold_warm.csv, identifiability.csv)::
-
-    .venv/bin/python -m mechrepro.models.disk_tension.docs results/disk_tension docs/disk_tension.md
+    .venv/bin/python -m mechrepro.docs docs/disk_tension.md results
 
 Run it on the default profile's results after the last change; tests/test_disk_tension_docs.py
 checks the verdict table against the committed default reference.
@@ -13,8 +11,6 @@ from __future__ import annotations
 
 import csv
 import json
-import re
-import sys
 from pathlib import Path
 
 
@@ -132,19 +128,3 @@ BLOCKS = {
                                               "eq9_speedup_over_eigen"]),
 }
 
-
-def regenerate(text: str, root: Path) -> str:
-    """``text`` with every ``<!-- run:NAME -->`` block filled from the results at ``root``."""
-    def fill(m):
-        name = m.group(1)
-        return f"<!-- run:{name} -->\n{BLOCKS[name](root)}\n<!-- /run:{name} -->"
-    return re.sub(r"<!-- run:(\w+) -->.*?<!-- /run:\1 -->", fill, text, flags=re.S)
-
-
-def main(argv=None):
-    root, doc = (Path(a) for a in (argv or sys.argv[1:]))
-    doc.write_text(regenerate(doc.read_text(), root))
-
-
-if __name__ == "__main__":
-    main()

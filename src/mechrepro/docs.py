@@ -1,0 +1,118 @@
+"""Numbers in the documents come from a run, never typed: marked blocks filled from results.
+
+A document marks each generated block ::
+
+    <!-- run:NAME -->
+    ...replaced...
+    <!-- /run:NAME -->
+
+and this fills them: ``README.md`` from the framework's blocks below (the claim of every
+paper from ``results/<paper>/claim.json``, the assumed constants from the paper configs),
+``docs/<paper>.md`` from the paper's own ``models/<paper>/docs.py`` (``BLOCKS``, each a
+function of ``results/<paper>``)::
+
+    .venv/bin/python -m mechrepro.docs README.md results
+    .venv/bin/python -m mechrepro.docs docs/disk_tension.md results
+
+Run it on the default profile's results (``make reproduce``) after the last change; tests
+check the filled blocks against the committed default references.
+"""
+from __future__ import annotations
+
+import importlib
+import json
+import re
+import sys
+from collections.abc import Callable
+from pathlib import Path
+
+BLOCK = re.compile(r"<!-- run:(\w+) -->.*?<!-- /run:\1 -->", flags=re.S)
+BLOCK_NAME = re.compile(r"<!-- run:(\w+) -->")
+VERDICTS = ("pass", "fail", "inconclusive", "not_converged")
+
+
+def regenerate(text: str, blocks: dict[str, Callable[[Path], str]], root: Path) -> str:
+    """``text`` with every ``<!-- run:NAME -->`` block filled by ``blocks[NAME](root)``."""
+    unknown = sorted(set(BLOCK_NAME.findall(text)) - set(blocks))
+    if unknown:
+        raise KeyError(f"no generator for the block(s) {unknown}; have {sorted(blocks)}")
+
+    def fill(m):
+        name = m.group(1)
+        return f"<!-- run:{name} -->\n{blocks[name](root)}\n<!-- /run:{name} -->"
+    return BLOCK.sub(fill, text)
+
+
+def block(text: str, name: str) -> str:
+    """The current content of block ``name`` of ``text``."""
+    m = re.search(rf"<!-- run:{name} -->\n(.*?)\n<!-- /run:{name} -->", text, flags=re.S)
+    if not m:
+        raise KeyError(f"block {name} missing")
+    return m.group(1)
+
+
+def _papers(config_dir: Path) -> list[str]:
+    import yaml
+
+    return yaml.safe_load((config_dir / "config.yaml").read_text())["papers"]
+
+
+def claims(results: Path, config_dir: Path = Path("config")) -> str:
+    """One row per paper: its claim and the counts of its independent verdicts."""
+    from .config import load_paper
+
+    out = ["| id | paper | claim | pass | fail | inconclusive | not converged | details |",
+           "|---|---|---|---|---|---|---|---|"]
+    for paper in _papers(config_dir):
+        c = json.loads((results / paper / "claim.json").read_text())
+        title = load_paper(config_dir / "papers" / f"{paper}.yaml").raw.get("title", "")
+        n = c["independent"]
+        out.append(f"| `{paper}` | {title} | {c['claim']} | "
+                   + " | ".join(str(n.get(s, 0)) for s in VERDICTS)
+                   + f" | `docs/{paper}.md` |")
+    return "\n".join(out)
+
+
+def assumed_constants(results: Path, config_dir: Path = Path("config")) -> str:
+    """Every constant a paper does not give, with its value, range or calibration, and why."""
+    from .config import load_paper
+
+    out = ["| paper | parameter | value | unit | plausible range / calibration | why |",
+           "|---|---|---|---|---|---|"]
+    for paper in _papers(config_dir):
+        cfg = load_paper(config_dir / "papers" / f"{paper}.yaml")
+        for name, p in cfg.assumed().items():
+            why = " ".join(str(p["why"]).split()).replace("|", "/")
+            how = (f"{p['range'][0]} … {p['range'][1]}" if "range" in p else
+                   f"calibrated on `{p['calibrated_on']}`" if "calibrated_on" in p else
+                   "numerical setting" if p.get("numerical") else "")
+            out.append(f"| {paper} | `{name}` | {p['value']} | {p['unit']} | {how} | {why} |")
+    return "\n".join(out)
+
+
+README_BLOCKS = {"claims": claims, "assumed_constants": assumed_constants}
+
+
+def blocks_for(doc: Path) -> tuple[dict, str | None]:
+    """The generators of a document, and the paper it belongs to (``docs/<paper>.md``)."""
+    if doc.parent.name == "docs" and (doc.parents[1] / "config" / "papers" / doc.name
+                                      ).with_suffix(".yaml").exists():
+        paper = doc.stem
+        return importlib.import_module(f"mechrepro.models.{paper}.docs").BLOCKS, paper
+    return README_BLOCKS, None
+
+
+def main(argv: list[str] | None = None) -> None:
+    argv = sys.argv[1:] if argv is None else argv
+    if len(argv) != 2 or argv[0] in ("-h", "--help"):
+        raise SystemExit("usage: python -m mechrepro.docs DOCUMENT RESULTS  "
+                         "(README.md or docs/<paper>.md; RESULTS of the default profile)")
+    doc, results = Path(argv[0]), Path(argv[1])
+    blocks, paper = blocks_for(doc)
+    root = results / paper if paper else results
+    doc.write_text(regenerate(doc.read_text(), blocks, root))
+    print(f"{doc}: {len(BLOCK.findall(doc.read_text()))} blocks filled from {root}")
+
+
+if __name__ == "__main__":
+    main()
