@@ -26,9 +26,10 @@ reproduce: $(STAMP)
 	t=$$(date +%s); $(BIN)/python -m snakemake --cores $(CORES) --rerun-incomplete; s=$$?; \
 	  $(BIN)/python -m mechrepro.plan results --since $$t --status $$s > /dev/null; exit $$s
 
-## Run every test (unit tests, config errors, pipeline + reference check on the ci profile)
+## Run every test (unit tests, config errors, pipeline + reference check on the ci profile),
+## on every core (tests/conftest.py groups what must share a worker)
 test: $(STAMP)
-	$(BIN)/python -m pytest -q
+	$(BIN)/python -m pytest -q -n $(CORES) --dist loadgroup
 
 ## The fast profile, as CI runs it, into results-ci/
 ci-reproduce: $(STAMP)

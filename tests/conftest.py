@@ -9,6 +9,17 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "src"))
 
 
+def pytest_collection_modifyitems(config, items):
+    """Under xdist (`make test`: `-n 2 --dist loadgroup`) a worker takes whole groups: every
+    test that reads the session's ci pipeline run goes to one group, so the pipeline runs
+    once; every other test stays with its module, whose module-scoped fixtures (a SLURM
+    cluster, a solved disk) are then set up once."""
+    for item in items:
+        group = "ci_pipeline" if "workflow" in getattr(item, "fixturenames", ()) else \
+            item.nodeid.split("::")[0]
+        item.add_marker(pytest.mark.xdist_group(group))
+
+
 @pytest.fixture(autouse=True)
 def _in_the_repository(monkeypatch):
     """Every test starts in the repository (paths such as config/papers/... are relative to
