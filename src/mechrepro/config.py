@@ -32,12 +32,13 @@ from pathlib import Path
 
 import yaml
 
+from .errors import Refusal
 from .units import UNITS, to_si
 
 SCHEMA_DIR_NAME = "schema"
 
 
-class ConfigError(ValueError):
+class ConfigError(Refusal):
     """A config file is malformed or a value is out of range; the message names it."""
 
 

@@ -28,16 +28,17 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable
 from typing import Any
 
+from .errors import Refusal
 from .registry import Registry
 from .timing import EFFECT, phase
 
 
-class UnknownEffect(KeyError):
-    pass
+class UnknownEffect(Refusal, KeyError):
+    """A scene names an effect no model registered."""
 
 
-class ContributionError(ValueError):
-    pass
+class ContributionError(Refusal):
+    """An effect returned keys its declaration does not contribute."""
 
 
 class Contributions:

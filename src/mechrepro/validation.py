@@ -32,6 +32,7 @@ from collections import Counter
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .errors import Refusal
 from .io import write_json, write_text
 from .registry import Registry
 
@@ -48,7 +49,7 @@ CONTRACTION_MIN = 1.05
 OPS = {">": operator.gt, ">=": operator.ge, "<": operator.lt, "<=": operator.le}
 
 
-class ValidationError(RuntimeError):
+class ValidationError(Refusal):
     """A quantity cannot be extracted as declared (the message names it)."""
 
 

@@ -60,11 +60,11 @@ def code(*relpaths):
 
 
 # The framework modules every solver job imports.
-SOLVER_CORE = ["__init__.py", "solve.py", "io.py", "provenance.py", "timing.py", "effects.py",
+SOLVER_CORE = ["__init__.py", "errors.py", "solve.py", "io.py", "provenance.py", "timing.py", "effects.py",
                "registry.py", "lazy.py", "units.py", "config.py"]
-VALIDATE_CORE = ["__init__.py", "cli.py", "config.py", "units.py", "io.py", "validation.py",
+VALIDATE_CORE = ["__init__.py", "errors.py", "cli.py", "config.py", "units.py", "io.py", "validation.py",
                  "accuracy.py", "costs.py", "registry.py", "lazy.py"]
-NOTEBOOK_CORE = ["__init__.py", "config.py", "units.py", "io.py", "results.py",
+NOTEBOOK_CORE = ["__init__.py", "errors.py", "config.py", "units.py", "io.py", "results.py",
                  "validation.py", "accuracy.py", "plotting.py", "notebook.py", "kernel.py",
                  "registry.py", "lazy.py"]
 
