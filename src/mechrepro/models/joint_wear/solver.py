@@ -190,19 +190,21 @@ def coefficient_scan(run: dict) -> dict:
         for j, a in enumerate(dirs):
             F = (E[0] + d * math.cos(math.radians(a)), E[1] + d * math.sin(math.radians(a)))
             fb_v = replace(fb, g=g, F=F)
-            try:
-                f0 = wear.period_wear_factor(quasi_static_period(fb_v, s), fb_v, fb.period)
-            except ValueError:      # contact lost: the paper's premise fails there
-                continue
+            hist = quasi_static_period(fb_v, s)
+            f0 = wear.period_wear_factor(hist, fb_v, fb.period)
             L[i, j], F_min[i, j] = f0["L_arc"], f0["F_N_min"]
 
             def factor(R_bush, fb_v=fb_v):
                 fb_w = fb_v.with_bushing_radius(R_bush)
-                return wear.period_wear_factor(quasi_static_period(fb_w, s), fb_w, fb.period)["G"]
-            for m, side in enumerate(SIDES):
-                k[m, i, j] = wear.calibrate(p[f"measured_wear_{side}"], cal_h, fb.period,
-                                            fb.R_bush, factor,
-                                            dh_measured=p[f"measured_increment_{side}"])[1]
+                return wear.period_wear_factor(continuous_contact_period(fb_w, s), fb_w,
+                                               fb.period)["G"]
+            try:
+                for m, side in enumerate(SIDES):
+                    k[m, i, j] = wear.calibrate(p[f"measured_wear_{side}"], cal_h, fb.period,
+                                                fb.R_bush, factor,
+                                                dh_measured=p[f"measured_increment_{side}"])[1]
+            except ValueError:      # contact lost: the paper's premise fails there -- refused
+                k[:, i, j] = np.nan
     return {"fb": fb, "scan": {"k": k, "L_arc": L, "F_N_min": F_min, "directions": dirs,
                                "gravity": gs, "E_mid": E, "distance": d, "sides": list(SIDES)}}
 

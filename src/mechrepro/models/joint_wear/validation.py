@@ -56,7 +56,8 @@ def coefficient_scan(R):
         lo, hi = float(np.nanmin(K)), float(np.nanmax(K))
         paper = R.cfg.reported[f"k_mean_{s}"]["value"]
         n = int(np.isfinite(K).sum())
-        note = (f"over {n} load points x gravity planes (contact kept): "
+        note = (f"over {n} of {K.size} load points x gravity planes ({K.size - n} refused: "
+                "continuous contact lost): "
                 f"K in [{lo:.3g}, {hi:.3g}] 1/Pa, a factor {hi / lo:.3g}; paper {paper:.5g}")
         out[f"k_mean_{s}_in_assumption_range"] = Reproduced(bool(lo <= paper <= hi), note)
         out[f"k_mean_{s}_scan_min"] = lo

@@ -49,12 +49,15 @@ def contact_arc(psi, in_contact=None):
     """Angular range [rad] the contact point covers on the bushing (Fig. 4, Arc^j).
 
     psi is the contact angle in the bushing's frame over one period on a uniform periodic
-    grid; it is centred on its circular mean before the range is taken, so a range
-    straddling +-pi is measured correctly.  When the contact is continuous (all samples),
-    each extreme is refined by the vertex of the parabola through it and its two
-    periodic neighbours: the range of the smooth contact-point path then converges with
-    the sampling as O(dt^3) instead of depending on where the samples fall.  With gaps
-    (free flight) the raw sample range is returned: the path is not smooth there.
+    grid.  When the contact is continuous (all samples) the path is unwrapped along time;
+    a path whose unwrapped angle drifts by a whole turn over the period (the contact point
+    runs round the bushing) covers the full circle, 2 pi.  Otherwise the range of the
+    unwrapped path is taken, each extreme refined by the vertex of the parabola through it
+    and its two periodic neighbours (differences wrapped into (-pi, pi], so the refinement
+    never runs across the +-pi cut): the range of the smooth contact-point path then
+    converges with the sampling as O(dt^3).  The result never exceeds 2 pi.  With gaps
+    (free flight) the raw sample range about the circular mean is returned: the path is
+    not smooth there.
     """
     psi = np.asarray(psi, float)
     full = in_contact is None or bool(np.all(in_contact))
@@ -62,16 +65,25 @@ def contact_arc(psi, in_contact=None):
         psi = psi[np.asarray(in_contact, bool)]
     if psi.size == 0:
         return 0.0
-    centre = np.angle(np.mean(np.exp(1j * psi)))
-    rel = np.angle(np.exp(1j * (psi - centre)))
-    if not full or rel.size < 3:
+    if not full or psi.size < 3:
+        centre = np.angle(np.mean(np.exp(1j * psi)))
+        rel = np.angle(np.exp(1j * (psi - centre)))
         return float(rel.max() - rel.min())
-    return float(_vertex(rel, int(np.argmax(rel))) - _vertex(rel, int(np.argmin(rel))))
+    step = np.angle(np.exp(1j * np.diff(np.append(psi, psi[0]))))   # wrapped, periodic
+    if abs(step.sum()) > math.pi:          # winds once round the bushing per period
+        return 2.0 * math.pi
+    path = psi[0] + np.concatenate([[0.0], np.cumsum(step[:-1])])
+    arc = _vertex(path, int(np.argmax(path))) - _vertex(path, int(np.argmin(path)))
+    return float(min(arc, 2.0 * math.pi))
 
 
 def _vertex(y, i):
-    """Extreme value of the parabola through y[i-1], y[i], y[i+1] (periodic indices)."""
-    ym, y0, yp = y[i - 1], y[i], y[(i + 1) % y.size]
+    """Extreme value of the parabola through y[i-1], y[i], y[i+1] (periodic indices; the
+    neighbours taken as y[i] plus their wrapped differences, so a path continued across
+    the period's end is not broken by a multiple of 2 pi)."""
+    y0 = y[i]
+    ym = y0 + math.remainder(y[i - 1] - y0, 2.0 * math.pi)
+    yp = y0 + math.remainder(y[(i + 1) % y.size] - y0, 2.0 * math.pi)
     curv = yp - 2.0 * y0 + ym
     if curv == 0.0:
         return float(y0)
