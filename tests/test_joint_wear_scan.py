@@ -60,3 +60,28 @@ def test_scan_refuses_the_load_points_where_contact_is_lost():
     fb0 = replace(fb, g=0.0, F=(E[0], E[1] + 0.5))
     with pytest.raises(ValueError, match="continuous contact lost"):
         solver.continuous_contact_period(fb0, {"n_steps": 360})
+
+
+def test_fit_and_sensitivity_options_are_the_configs_own_numbers():
+    """The paper's K_p the fit aims at are the reported rows; the sensitivity ends are the
+    declared ranges (SI)."""
+    fit = CFG.runs["load_point_fit"]["options"]["fit_K_paper"]
+    for m, s in enumerate(("b1", "b2")):
+        assert fit[m] == [CFG.reported[f"k_{s}_p{i}"]["value"] for i in range(1, 6)]
+    raw = CFG.raw["parameters"]
+    si = {"friction_coefficient": 1.0, "contact_exponent": 1.0, "d_max": 1e-3, "C_max_ratio": 1.0}
+    for name, ends in CFG.runs["constant_sensitivity"]["options"]["sensitivity"].items():
+        assert ends == pytest.approx([v * si[name] for v in raw[name]["range"]], rel=1e-12)
+
+
+def test_inverse_radius_formula_is_the_interval_method_with_g_over_r():
+    """The comparison without mechanics: with G = R0/R and a frozen radius it is linear in
+    time; the calibration reproduces the mean measured rate; growth lowers the 86-h wear."""
+    h = np.array([0.0229, 0.0496, 0.0779, 0.1000, 0.1221]) * 1e-3
+    dh = np.array([0.0229, 0.0267, 0.0283, 0.0221, 0.0221]) * 1e-3
+    R0 = 0.01
+    n, w = wear.inverse_radius_prediction(h, dh, 2.0, 86.0, 2.0, 6.25, R0)
+    assert n[0] == 10.0 and n[-1] == 86.0 and w[0] == h[-1]
+    linear = h[-1] + dh.mean() / 2.0 * 76.0
+    assert w[-1] < linear                                      # the rate falls as R grows
+    assert w[-1] == pytest.approx(linear, rel=0.05)

@@ -249,3 +249,19 @@ def period_by_period(h_start: float, n_periods: int, k: float, R0: float,
     for _ in range(n_periods):
         h += k * wear_factor(bushing_radius(R0, h))
     return h
+
+
+def inverse_radius_prediction(h_measured, dh_measured, interval_h: float, t_end_h: float,
+                              step_h: float, period: float, R0: float):
+    """The comparison without mechanics: the wear factor taken as G(R) = R0 / R (the arc
+    length L_arc = R * arc grows with the worn radius at a fixed arc, force and sliding
+    distance), calibrated on the same measured increments (Eqs. 32-34) and predicted by
+    the same interval method (Sec. 4.4).  No four-bar, no contact: whatever it reproduces of
+    Figs. 15-19 follows from the measured data and the 1/R geometry alone.
+    Returns (node times [h], cumulative wear at the nodes [m])."""
+    def G(R):
+        return R0 / R
+    h = np.asarray(h_measured, float)
+    _, k, _ = calibrate(h, interval_h, period, R0, G, dh_measured=dh_measured)
+    nodes, hp, _ = predict(h[-1], interval_h * h.size, t_end_h, step_h, k, period, R0, G)
+    return nodes, hp
