@@ -27,6 +27,7 @@ SMALL = {
                         "fit_secant_steps": 0}),
     "constant_sensitivity": ("constant_sensitivity", {"n_steps": 64, "interval_h": 38},
                              {"sensitivity": {"friction_coefficient": [0.05, 0.5]}}),
+    "local_wear": ("local_wear", {"n_steps": 64, "interval_h": 38, "n_theta": 64}, {}),
 }
 
 

@@ -211,10 +211,29 @@ def sensitivity_part(res: dict, run: dict):
     return coords, v
 
 
+def local_part(res: dict, run: dict):
+    """Local vs uniform wear of side B1."""
+    lw = res["local"]
+    coords = {"local_hour": var("local_hour", lw["hours"], "h", "node times of the prediction"),
+              "theta": var("theta", lw["theta"], "rad", "bushing angle, coupler frame")}
+    h = ("local_hour",)
+    v = {"local_mean_depth": var(h, lw["mean"], "m", "local model: mean depth over the 8 points of Eq. (35) in the wear range"),
+         "local_peak_depth": var(h, lw["peak"], "m", "local model: deepest point of the profile"),
+         "uniform_depth": var(h, lw["uniform"], "m", "uniform model (Eq. 29) on the same joint and schedule"),
+         "local_profile_end": var(("theta",), lw["profile"], "m", "local wear profile at the end"),
+         **_scalars({"local_k": (lw["k_local"], "m2/N", "calibrated k of the local model"),
+                     "local_k_uniform": (lw["k_uniform"], "m2/N", "calibrated k of the uniform model"),
+                     "local_wall_time": (lw["wall_local"], "s", "wall time, local model (calibration + prediction)"),
+                     "local_uniform_wall_time": (lw["wall_uniform"], "s", "wall time, uniform model"),
+                     "local_arc": (lw["arc"], "rad", "contact arc of the new bushing"),
+                     "local_AB_mean": (lw["AB_mean"], "m", "mean contact chord of the new bushing")})}
+    return coords, v
+
+
 # (part, the key of the solver's result it needs)
 PARTS = ((mechanism_part, "fb"), (period_part, "hist"), (calibration_part, "wear"),
          (prediction_part, "wear"), (period_by_period_part, "pbp"), (scan_part, "scan"),
-         (fit_part, "fit"), (sensitivity_part, "sens"))
+         (fit_part, "fit"), (sensitivity_part, "sens"), (local_part, "local"))
 
 
 def build(res: dict, run: dict) -> xr.Dataset:

@@ -353,10 +353,48 @@ def constant_sensitivity(run: dict) -> dict:
     return {"fb": base_fb, "sens": out}
 
 
+def local_wear(run: dict) -> dict:
+    """Side B1 with local Archard wear (wear.local_predict: a depth per bushing angle, the
+    profile fed back interval by interval) against the paper's uniform depth (Eq. 29) on the
+    same joint and schedule; quasi-static joint.  Option ``local_load_point``:
+    [distance m, direction deg, gravity m/s2] of F from E's mid-stroke position (default:
+    the assumed F and g)."""
+    fb, ctx = setup(run)
+    s, p = ctx.s, ctx.p
+    lp = s.get("local_load_point")
+    if lp:
+        E = kinematics.load_point_mid_stroke(fb)
+        d, a, g = (float(x) for x in lp)
+        fb = replace(fb, g=g, F=(E[0] + d * math.cos(math.radians(a)),
+                                 E[1] + d * math.sin(math.radians(a))))
+    cal_h = float(p["measurement_interval"]) / 3600.0
+    t_end, step = float(p["prediction_end"]) / 3600.0, float(s["interval_h"])
+    h = np.asarray(p["measured_wear_B1"], float)
+    dh = np.asarray(p["measured_increment_B1"], float)
+    with stopwatch() as sw_l:
+        nodes, mean, peak, k_l, prof, theta = wear.local_predict(
+            h, dh, cal_h, t_end, step, fb, fb.period,
+            lambda fb_w: continuous_contact_period(fb_w, s), n_theta=int(s["n_theta"]))
+
+    def factor(R_bush):
+        fb_w = fb.with_bushing_radius(R_bush)
+        return wear.period_wear_factor(continuous_contact_period(fb_w, s), fb_w, fb.period)["G"]
+    with stopwatch() as sw_u:
+        _, k_u, _ = wear.calibrate(h, cal_h, fb.period, fb.R_bush, factor, dh_measured=dh)
+        _, h_u, _ = wear.predict(h[-1], cal_h * h.size, t_end, step, k_u, fb.period, fb.R_bush,
+                                 factor)
+    f0 = wear.period_wear_factor(continuous_contact_period(fb, s), fb, fb.period)
+    return {"fb": fb, "local": {"hours": nodes, "mean": mean, "peak": peak, "uniform": h_u,
+                                "k_local": k_l, "k_uniform": k_u, "profile": prof,
+                                "theta": theta, "wall_local": sw_l.seconds,
+                                "wall_uniform": sw_u.seconds, "arc": f0["arc"],
+                                "AB_mean": f0["AB_mean"]}}
+
+
 SOLVERS = {"clearance_implicit": clearance_implicit, "clearance_explicit": clearance_explicit,
            "continuous_contact": continuous_contact, "period_by_period": period_by_period,
            "coefficient_scan": coefficient_scan, "load_point_fit": load_point_fit,
-           "constant_sensitivity": constant_sensitivity}
+           "constant_sensitivity": constant_sensitivity, "local_wear": local_wear}
 
 
 def warm() -> None:

@@ -356,3 +356,25 @@ def sensitivity(R):
                  for i in idx]
         out[f"sensitivity_{c.lower()}"] = Reproduced(dK, "largest |K/K_assumed - 1| at the range ends; " + "; ".join(parts))
     return out
+
+
+# ---- local vs uniform wear ------------------------------------------------------------------
+@Q.register("local_vs_uniform_86h_b1", "local_peak_to_mean_86h_b1",
+            "local_vs_uniform_86h_b1_estimated_f", "local_peak_to_mean_86h_b1_estimated_f",
+            "wall_time_local_over_uniform")
+def local_vs_uniform(R):
+    out = {}
+    for scene, tag in (("local_wear", ""), ("local_wear_estimated", "_estimated_f")):
+        ds = R.run(scene)
+        m, pk, u = (float(ds[k][-1]) for k in ("local_mean_depth", "local_peak_depth", "uniform_depth"))
+        info = (f"86 h: local mean {m * 1e3:.4f} mm, peak {pk * 1e3:.3f} mm, uniform {u * 1e3:.4f} mm; "
+                f"contact arc {math.degrees(float(ds['local_arc'])):.1f} deg, patch "
+                f"{math.degrees(float(ds['local_AB_mean']) / (float(_param_si(ds, 'pin_radius')) + float(_param_si(ds, 'radial_clearance')))):.1f} deg; "
+                f"k local/uniform {float(ds['local_k']) / float(ds['local_k_uniform']):.3f}")
+        out[f"local_vs_uniform_86h_b1{tag}"] = Reproduced(m / u - 1.0, info)
+        out[f"local_peak_to_mean_86h_b1{tag}"] = Reproduced(pk / m, info)
+    ds = R.run("local_wear")
+    out["wall_time_local_over_uniform"] = Reproduced(
+        float(ds["local_wall_time"]) / float(ds["local_uniform_wall_time"]),
+        f"local {float(ds['local_wall_time']):.3g} s, uniform {float(ds['local_uniform_wall_time']):.3g} s")
+    return out

@@ -265,3 +265,86 @@ def inverse_radius_prediction(h_measured, dh_measured, interval_h: float, t_end_
     _, k, _ = calibrate(h, interval_h, period, R0, G, dh_measured=dh_measured)
     nodes, hp, _ = predict(h[-1], interval_h * h.size, t_end_h, step_h, k, period, R0, G)
     return nodes, hp
+
+
+# --- local Archard wear: depth per bushing angle (what Fig. 14's uniform depth replaces) --------
+def local_wear_per_period(hist: dict, fb: FourBar, period: float, theta) -> np.ndarray:
+    """Archard's law applied locally (Eq. 16 before the averaging of Eqs. 22-28), per unit k:
+    the depth [m / (m2/N)] one period wears at each bushing angle theta (coupler frame),
+
+        dh(theta) / k = sum_t F_N |v_T| dt / (w |AB|)  over the samples whose contact patch
+                        (width |AB| of Eq. 19, centred on psi) covers theta,
+
+    i.e. the pressure F_N / (w |AB|) uniform over the patch, times the sliding distance.  Its
+    volume, w R sum dh dtheta, is k F_N S -- the volume Eq. (26) spreads uniformly over
+    the wear range; only the distribution differs."""
+    F_N, delta, v_T, psi = (np.asarray(hist[k], float) for k in ("F_N", "delta", "v_T", "psi"))
+    on = delta > 0.0
+    F_N, delta, v_T, psi = F_N[on], delta[on], v_T[on], psi[on]
+    dt = period / on.size
+    AB = contact.contact_chord(delta, fb.R_pin, fb.R_bush)
+    rate = F_N * np.abs(v_T) * dt / (fb.width * AB)                      # per sample
+    half = 0.5 * AB / fb.R_bush                                           # patch half-angle
+    theta = np.asarray(theta, float)
+    cell = 2.0 * math.pi / theta.size                      # theta: a uniform grid of the circle
+    d = np.angle(np.exp(1j * (theta[None, :] - psi[:, None])))
+    # the share of each grid cell the patch covers (exact overlap, not a point test: the
+    # depth then does not jump as the patch crosses grid points)
+    h = half[:, None]
+    cover = np.clip(np.minimum(d + 0.5 * cell, h) - np.maximum(d - 0.5 * cell, -h), 0.0, None)
+    return (rate[:, None] * cover / cell).sum(axis=0)
+
+
+def wear_range_points(psi, n: int = 8) -> np.ndarray:
+    """Eq. (35): n points uniformly inside the main wear range, here the contact-point arc of
+    the period (centre = circular mean, range = contact_arc); at the middle of n equal parts."""
+    psi = np.asarray(psi, float)
+    c = np.angle(np.mean(np.exp(1j * psi)))
+    a = contact_arc(psi)
+    return c + a * ((np.arange(n) + 0.5) / n - 0.5)
+
+
+def local_predict(h_measured, dh_measured, interval_h: float, t_end_h: float, step_h: float,
+                  fb: FourBar, period: float, one_period: Callable[[FourBar], dict],
+                  n_theta: int = 720, n_points: int = 8):
+    """The interval method with local wear: a depth profile h(theta) on the bushing, fed back
+    into the contact geometry interval by interval.
+
+    Geometry: the joint of an interval is the bushing circle of radius R0 + h_c / 2, h_c the
+    profile's depth averaged along the contact path (the uniform model's D0 + h convention,
+    Sec. 4.4, taken where the pin runs).  Calibration (Eqs. 33-34): in each measured interval
+    p, k_p makes the profile's mean over the n_points of Eq. (35) grow by the printed
+    increment dh^P; the profile after 10 h is the one those k_p wore.  Prediction: k = mean
+    k_p, profile grown by M periods of local wear per interval.
+    Returns (node hours, mean depth over the Eq.-35 points [m], max depth [m], k, the profile
+    at the end [m], theta)."""
+    R0 = fb.R_bush
+    theta = np.linspace(-math.pi, math.pi, n_theta, endpoint=False)
+    prof = np.zeros(n_theta)
+    hist0 = one_period(fb)
+    pts = wear_range_points(hist0["psi"], n_points)
+
+    def at_points(p):
+        return np.interp(np.angle(np.exp(1j * pts)), theta, p, period=2.0 * math.pi)
+
+    def per_period(prof):
+        h_c = float(np.mean(np.interp(hist0["psi"], theta, prof, period=2.0 * math.pi)))
+        fb_w = fb.with_bushing_radius(bushing_radius(R0, h_c))
+        return local_wear_per_period(one_period(fb_w), fb_w, period, theta)
+
+    M = periods_per_interval(interval_h, period)
+    ks = []
+    for dh in np.asarray(dh_measured, float):                          # calibration
+        inc = per_period(prof)
+        k = dh / (M * float(np.mean(at_points(inc))))
+        ks.append(k)
+        prof = prof + k * M * inc
+    k = float(np.mean(ks))
+    nodes = interval_nodes(interval_h * len(ks), t_end_h, step_h)
+    mean, peak = [float(np.mean(at_points(prof)))], [float(prof.max())]
+    for i in range(nodes.size - 1):                                     # prediction
+        inc = per_period(prof)
+        prof = prof + k * periods_per_interval(nodes[i + 1] - nodes[i], period) * inc
+        mean.append(float(np.mean(at_points(prof))))
+        peak.append(float(prof.max()))
+    return nodes, np.array(mean), np.array(peak), k, prof, theta
