@@ -85,3 +85,17 @@ def test_inverse_radius_formula_is_the_interval_method_with_g_over_r():
     linear = h[-1] + dh.mean() / 2.0 * 76.0
     assert w[-1] < linear                                      # the rate falls as R grows
     assert w[-1] == pytest.approx(linear, rel=0.05)
+
+
+def test_the_estimated_load_points_of_the_dynamic_scenes_reproduce_the_tables():
+    """The F of scenes period_dynamic_estimated_f1/f2 are zeros of the load-point fit (g 9.8):
+    our calibrated K_p there match the printed ones to 1e-3 in the mean log-ratio."""
+    from dataclasses import replace
+    p = CFG.runs["load_point_fit"]["parameters"]
+    K_paper = np.asarray(CFG.runs["load_point_fit"]["options"]["fit_K_paper"]) / 21.0
+    fb, ctx = solver.setup(CFG.runs["load_point_fit"])
+    for scene in ("period_dynamic_estimated_f1", "period_dynamic_estimated_f2"):
+        q = CFG.runs[scene]["parameters"]
+        fb_v = replace(fb, g=9.8, F=(q["load_point_x"], q["load_point_y"]))
+        m = np.mean(np.log(solver._calibrated(fb_v, {"n_steps": 360}, p) / K_paper))
+        assert abs(m) < 1e-3

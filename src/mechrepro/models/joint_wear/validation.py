@@ -136,6 +136,19 @@ def continuous_contact(R):
             "min_penetration_dynamic": d}
 
 
+@Q.register("continuous_contact_dynamic_estimated_f")
+def continuous_contact_estimated(R):
+    parts, ok = [], True
+    for name in ("period_dynamic_estimated_f1", "period_dynamic_estimated_f2"):
+        ds = R.run(name)
+        d, f = float(ds["min_penetration"]), float(ds["F_N_min"])
+        ok = ok and d > 0
+        p = run_attrs(ds)["parameters"]["values_si"]
+        parts.append(f"F = ({p['load_point_x']:.4f}, {p['load_point_y']:.4f}) m: min penetration "
+                     f"{d:.3e} m, min force {f:.3g} N of mean {float(ds['F_N_mean']):.3g} N")
+    return Reproduced(ok, "; ".join(parts))
+
+
 def _finest_radau(st):
     idx = [i for i, m in enumerate(st["method"].values) if m == "Radau"]
     i = idx[int(np.argmin(st["rtol"].values[idx]))]
