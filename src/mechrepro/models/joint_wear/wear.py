@@ -311,8 +311,9 @@ def local_predict(h_measured, dh_measured, interval_h: float, t_end_h: float, st
     into the contact geometry interval by interval.
 
     Geometry: the joint of an interval is the bushing circle of radius R0 + h_c / 2, h_c the
-    profile's depth averaged along the contact path (the uniform model's D0 + h convention,
-    Sec. 4.4, taken where the pin runs).  Calibration (Eqs. 33-34): in each measured interval
+    profile's mean over the Eq.-35 points -- the depth the paper's measurement would report,
+    fed back by the uniform model's D0 + h convention (Sec. 4.4), so that the two models differ
+    only in how the wear is distributed, not in the geometry a given measured depth implies.  Calibration (Eqs. 33-34): in each measured interval
     p, k_p makes the profile's mean over the n_points of Eq. (35) grow by the printed
     increment dh^P; the profile after 10 h is the one those k_p wore.  Prediction: k = mean
     k_p, profile grown by M periods of local wear per interval.
@@ -328,7 +329,7 @@ def local_predict(h_measured, dh_measured, interval_h: float, t_end_h: float, st
         return np.interp(np.angle(np.exp(1j * pts)), theta, p, period=2.0 * math.pi)
 
     def per_period(prof):
-        h_c = float(np.mean(np.interp(hist0["psi"], theta, prof, period=2.0 * math.pi)))
+        h_c = float(np.mean(at_points(prof)))     # the depth the paper's Eq. (35) would report
         fb_w = fb.with_bushing_radius(bushing_radius(R0, h_c))
         return local_wear_per_period(one_period(fb_w), fb_w, period, theta)
 
