@@ -11,7 +11,11 @@ Solvers
                         wear on that model
 ``period_by_period``    Fig. 6: the wear simulated one period at a time (timed sample)
 ``coefficient_scan``    the calibration (Eqs. 32-34) over load points F and gravity
-                        planes the paper leaves open
+                        planes the paper leaves open (contact loss refused)
+``load_point_fit``      F estimated from Tables 3-4 jointly, with its uncertainty, its
+                        contact arc and wear side, and the 86-h wear it predicts
+``constant_sensitivity`` friction, contact exponent, d_max, C_max reading at their range ends
+``local_wear``          local Archard wear per bushing angle vs the uniform depth (Fig. 14)
 
 Each builds a :class:`~.effects.Context`, evaluates the named effects in three stages
 (mechanism terms, wear set-up, wear) and reads their contributions by key.
