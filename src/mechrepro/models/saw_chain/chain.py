@@ -9,9 +9,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .difference import roundoff_limit
+from .difference import roundoff_limit, velocity_roundoff_limit
 from .geometry import check_meshing, initial_points, pitch_radius, stage_angles
-from .kinematics import stage_jerks
+from .kinematics import stage_derivatives, stage_jerks
 from .loads import tight_side_mass
 
 
@@ -75,6 +75,14 @@ class Chain:
         """K beyond which round-off dominates the loads (see :mod:`.difference`)."""
         return roundoff_limit(self.stage_times(), self.load_jerk_max(), self.Tx + self.R,
                               self.roundoff_mass())
+
+    def velocity_roundoff_limit(self, n=129):
+        """K beyond which round-off dominates the velocity (first difference; see
+        :mod:`.difference`); max |a| of the trailing hinge on a fixed grid of ``n`` angles."""
+        acc = [float(np.max(np.abs(stage_derivatives(np.linspace(0.0, phi[-1], n), self.R, L,
+                                                     self.omega)["trail_ax"])))
+               for L, _, phi in self.stages()]
+        return velocity_roundoff_limit(self.stage_times(), acc, self.Tx + self.R)
 
     def time(self):
         """Sample times: t = 0, then K steps of each stage [s]."""

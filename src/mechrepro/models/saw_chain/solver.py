@@ -28,14 +28,19 @@ COMPARED = {"tight_side_velocity": "tight_side_velocity_exact",
             "dynamic_load_x": "dynamic_load_x_exact"}
 
 
-def difference_method(chain: Chain, beyond_roundoff_limit: bool = False) -> dict:
+def difference_method(chain: Chain, beyond_roundoff_limit: bool = False, loads: bool = True) -> dict:
     """Tight-side velocity, acceleration and dynamic loads by backward differences.
 
     Eqs. (11)-(13) in stage 1 (drive link seating, from V^0 = R omega, a^0 = 0 at O2 and
     A1), Eqs. (17)-(19) in stage 2 (tie strap seating, from O2's values at t1 for both A2
     and O3, Sec. 3.3 (2)); loads Eqs. (14)-(16) and (20)-(22).  Also the run's error
     budget (:func:`error_budget`); K beyond the round-off limit is refused unless allowed.
+    With ``loads=False`` only the velocity (a first difference) is computed, and only its
+    own round-off limit (~250x the loads', :func:`.difference.velocity_roundoff_limit`)
+    refuses K: the loads' limit guards the second difference, which such a run never takes.
     """
+    if not loads:
+        return velocity_only(chain, beyond_roundoff_limit)
     R, w, K = chain.R, chain.omega, chain.K
     limit = chain.roundoff_limit()
     dominated = check_roundoff(K, limit, beyond_roundoff_limit)
@@ -63,6 +68,22 @@ def difference_method(chain: Chain, beyond_roundoff_limit: bool = False) -> dict
         "dynamic_load_y": var("t", Fy, "N", "dynamic load y of the seating link, difference method (Eqs. 16, 22)"),
         **error_budget(chain, limit, dominated),
     }
+
+
+def velocity_only(chain: Chain, beyond_roundoff_limit: bool = False) -> dict:
+    """The tight-side velocity alone, Eqs. (12), (18), refused only beyond its own limit."""
+    limit = chain.velocity_roundoff_limit()
+    dominated = check_roundoff(chain.K, limit, beyond_roundoff_limit, what="velocities")
+    parts = []
+    for L, _, phi in chain.stages():
+        x = stage_positions(phi, chain.R, L, chain.Tx)["trail_x"]
+        parts.append(np.diff(x) * (1.0 / ((phi[1] - phi[0]) / chain.omega)))  # as Eq. (12) in the full method
+    vx = np.concatenate([[chain.R * chain.omega], *parts])
+    return {"tight_side_velocity": var("t", vx, "m/s", "tight-side velocity, difference method (Eqs. 12, 18)"),
+            "velocity_roundoff_limit_K": var((), limit, "1",
+                                             "K beyond which round-off exceeds truncation in the velocity"),
+            "roundoff_dominated": var((), int(dominated), "1",
+                                      "1 if K is beyond the velocity's round-off limit")}
 
 
 def error_budget(chain: Chain, limit: int, dominated: bool) -> dict:
@@ -110,7 +131,8 @@ def compute(run: dict) -> dict:
     p = run["parameters"]
     ctx = Context(chain=chain, t=chain.time(), textbook_phase=p["textbook_phase"],
                   textbook_mass=p["textbook_mass"])
-    method = difference_method(chain, run.get("options", {}).get("beyond_roundoff_limit", False))
+    opts = run.get("options", {})
+    method = difference_method(chain, opts.get("beyond_roundoff_limit", False), opts.get("loads", True))
     contributions = EFFECTS.evaluate(run, ctx)
     beside = {key: contributions.get(key) for key in contributions.keys()}
     return {"chain": chain, "t": ctx.t, "data": {**method, **beside}}
@@ -139,6 +161,8 @@ def errors_against_exact(ds: xr.Dataset, K: int) -> dict:
     keep = np.arange(ds.sizes["t"]) != switch
     out = {}
     for q, exact in COMPARED.items():
+        if q not in ds:
+            continue
         ref = ds[exact].values
         scale = np.max(np.abs(ref))
         err = np.abs(ds[q].values - ref) / scale
@@ -151,6 +175,8 @@ def errors_against_exact(ds: xr.Dataset, K: int) -> dict:
         for end, fn in (("min", np.min), ("max", np.max)):
             out[f"{q}_error_of_{end}"] = var((), float(abs(fn(ds[q].values) - fn(ref)) / scale), "1",
                                              f"error of the {end} of {q} vs exact, relative to max |exact|")
+    if "dynamic_load_x" not in ds:
+        return out
     out["dynamic_load_x_switch"] = var((), float(ds["dynamic_load_x"].values[switch]), "N",
                                        "difference-method load at the stage-switch sample t1 + dt")
     out["dynamic_load_x_switch_exact"] = var((), float(ds["dynamic_load_x_exact"].values[switch]), "N",

@@ -191,11 +191,13 @@ def orders(R):
 def roundoff(R):
     st, K = _study(R)
     err = st["dynamic_load_x_error_pointwise"].values
-    K_opt, e_opt, a, b = error_model_optimum(K, err)
+    K_opt, e_opt, a, b, why = error_model_optimum(K, err)
     limit = float(st["roundoff_limit_K"].values[0])
     best = int(np.argmin(err))
     near = bool(np.isfinite(K_opt) and abs(math.log(limit / K_opt)) <= math.log(2.0))
-    return {"roundoff_optimum_k": Reproduced(K_opt, f"minimum of the fit err = {a:.3g}/K + {b:.3g} K^2 "
+    fit = (f"minimum of the fit err = {a:.3g}/K + {b:.3g} K^2 (scaled columns)" if not why
+           else f"no optimum: {why}")
+    return {"roundoff_optimum_k": Reproduced(K_opt, f"{fit} "
                                                     f"over all {K.size} runs; best sampled K = {int(K[best])} "
                                                     f"(error {err[best]:.3g})"),
             "roundoff_optimum_error": e_opt,
