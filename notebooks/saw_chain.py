@@ -155,4 +155,4 @@ R.save_figure(fig, "cost_of_accuracy")
 # %%
 for r in table.values():
     print(f"{r['status']:12s} {r['evidence']:12s} {r['quantity']:45s} paper {r['paper_value']:>10s}  "
-          f"ours {float(r['reproduced_value']):.6g}")
+          f"ours {float(r['reproduced_value'] or 'nan'):.6g}")

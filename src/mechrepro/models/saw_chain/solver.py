@@ -41,9 +41,23 @@ def difference_method(chain: Chain, beyond_roundoff_limit: bool = False, loads: 
     """
     if not loads:
         return velocity_only(chain, beyond_roundoff_limit)
-    R, w, K = chain.R, chain.omega, chain.K
     limit = chain.roundoff_limit()
-    dominated = check_roundoff(K, limit, beyond_roundoff_limit)
+    dominated = check_roundoff(chain.K, limit, beyond_roundoff_limit)
+    vx, ax, Fx, Fy = difference_arrays(chain)
+    return {
+        "tight_side_velocity": var("t", vx, "m/s", "tight-side velocity, difference method (Eqs. 12, 18)"),
+        "tight_side_acceleration": var("t", ax, "m/s2",
+                                       "tight-side acceleration, difference method (Eqs. 13, 19)"),
+        "dynamic_load_x": var("t", Fx, "N", "total tight-side dynamic load x, difference method (Eqs. 16, 22)"),
+        "dynamic_load_y": var("t", Fy, "N", "dynamic load y of the seating link, difference method (Eqs. 16, 22)"),
+        **error_budget(chain, limit, dominated),
+    }
+
+
+def difference_arrays(chain: Chain):
+    """Velocity, acceleration and loads x, y of :func:`difference_method` as plain arrays
+    (no round-off check, no packaging: the hot path of K sequences, :mod:`.richardson`)."""
+    R, w, K = chain.R, chain.omega, chain.K
     n = 2 * K + 1
     vx, ax, Fx, Fy = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
     v_trail, a_trail, v_mid, a_mid = R * w, 0.0, R * w, 0.0
@@ -60,14 +74,7 @@ def difference_method(chain: Chain, beyond_roundoff_limit: bool = False, loads: 
         vx[dst], ax[dst], Fx[dst], Fy[dst] = vt[src], at[src], Fsx[src], Fsy[src]
         v_trail = v_mid = vt[-1]
         a_trail = a_mid = at[-1]
-    return {
-        "tight_side_velocity": var("t", vx, "m/s", "tight-side velocity, difference method (Eqs. 12, 18)"),
-        "tight_side_acceleration": var("t", ax, "m/s2",
-                                       "tight-side acceleration, difference method (Eqs. 13, 19)"),
-        "dynamic_load_x": var("t", Fx, "N", "total tight-side dynamic load x, difference method (Eqs. 16, 22)"),
-        "dynamic_load_y": var("t", Fy, "N", "dynamic load y of the seating link, difference method (Eqs. 16, 22)"),
-        **error_budget(chain, limit, dominated),
-    }
+    return vx, ax, Fx, Fy
 
 
 def velocity_only(chain: Chain, beyond_roundoff_limit: bool = False) -> dict:
@@ -106,8 +113,10 @@ def error_budget(chain: Chain, limit: int, dominated: bool) -> dict:
 
 
 def load_x(chain: Chain) -> np.ndarray:
-    """The difference method's total tight-side load F_dx over one period [N]."""
-    return difference_method(chain)["dynamic_load_x"][1]
+    """The difference method's total tight-side load F_dx over one period [N] (K refused
+    beyond the round-off limit, as in :func:`difference_method`)."""
+    check_roundoff(chain.K, chain.roundoff_limit())
+    return difference_arrays(chain)[2]
 
 
 def stage_switch_index(K):

@@ -16,6 +16,7 @@ from mechrepro.validation import Quantities, Reproduced
 from .analysis import (equivalent_K, error_model_optimum, load_extreme_at, observed_order,
                        pitch_radius_readings, textbook_constants_for_range, time_mean,
                        velocity_band)
+from .richardson import to_accuracy
 from .solver import chain_from_run
 
 Q = Quantities("saw_chain")
@@ -204,3 +205,29 @@ def roundoff(R):
             "roundoff_limit_k": Reproduced(limit, "K where the solver's round-off bound reaches its "
                                                   "truncation estimate; larger K is refused"),
             "roundoff_limit_near_optimum": Reproduced(near, f"limit {limit:.0f} vs fitted optimum {K_opt:.0f}")}
+
+
+@Q.register("richardson_load_max", "richardson_k_for_rtol_1e3", "richardson_k_for_rtol_1e5",
+            "plain_k_for_rtol_1e3", "plain_k_for_rtol_1e5")
+def richardson(R):
+    """The cheapest K to a requested accuracy of the peak load: Richardson vs plain."""
+    ds = R.run(FIG)
+    ch, exact = _chain(ds), float(ds["dynamic_load_x_exact"].max())
+    out = {}
+    for rtol, tag in ((1e-3, "1e3"), (1e-5, "1e5")):
+        e = to_accuracy(ch, rtol)
+        met = math.isfinite(e.estimate)
+        out[f"richardson_k_for_rtol_{tag}"] = Reproduced(
+            float(e.K[-1]) if met else math.nan,
+            f"levels {e.K[-3:]} (doubling from K = {e.K[0]}: {e.steps} steps per stage in all); "
+            f"extrapolated {e.value:.5f} N, estimated error {e.estimate / abs(e.value):.2e}, "
+            f"verified {abs(e.value - exact) / exact:.2e} (exact {exact:.5f} N)")
+        if rtol == 1e-5:
+            out["richardson_load_max"] = Reproduced(e.value, out[f"richardson_k_for_rtol_{tag}"].note)
+        K_plain, _, at = equivalent_K(ch, exact * (1 - rtol))
+        out[f"plain_k_for_rtol_{tag}"] = Reproduced(
+            float(K_plain) if K_plain else math.nan,
+            f"smallest K whose plain maximum is within {rtol:g} of exact (bisection on the solver)"
+            if K_plain else f"not reached below the round-off limit K = {ch.roundoff_limit()}: "
+                            f"{abs(at - exact) / exact:.2e} there")
+    return out
