@@ -16,6 +16,7 @@ from mechrepro.validation import Quantities, Reproduced
 from .analysis import (equivalent_K, error_model_optimum, load_extreme_at, observed_order,
                        pitch_radius_readings, textbook_constants_for_range, time_mean,
                        velocity_band)
+from .design import design_rules
 from .richardson import to_accuracy
 from .solver import chain_from_run
 
@@ -231,3 +232,21 @@ def richardson(R):
             if K_plain else f"not reached below the round-off limit K = {ch.roundoff_limit()}: "
                             f"{abs(at - exact) / exact:.2e} there")
     return out
+
+
+DESIGN_RULES = ("design_peak_load_speed_exponent", "design_peak_load_teeth_exponent_fixed_speed",
+                "design_peak_load_teeth_exponent_fixed_chain_speed", "design_fluctuation_teeth_exponent",
+                "design_fluctuation_equal_pitch_constant", "design_peak_load_mass_exponent",
+                "design_peak_load_pitch_ratio_exponent", "design_textbook_error")
+
+
+def design_base(ch) -> dict:
+    """The design of a Chain, as :func:`.design.design_quantities` takes it."""
+    return dict(p1=ch.p1, p2=ch.p2, z=ch.z, omega=ch.omega, m_L=ch.m_L, m_C=ch.m_C, M=ch.M, N=ch.N)
+
+
+@Q.register(*DESIGN_RULES)
+def design(R):
+    """The design rules of the exact solution, at the paper's chain (:func:`.design.design_rules`)."""
+    rules = design_rules(design_base(_chain(R.run(FIG))))
+    return {k: Reproduced(rules[k][0], rules[k][1]) for k in DESIGN_RULES}
