@@ -239,3 +239,18 @@ def test_velocity_only_run_is_not_refused_at_the_load_limit():
     assert float(ds["tight_side_velocity_error_pointwise"]) < 1e-4
     with pytest.raises(RoundoffError, match="velocities"):
         solve(run(K=v_limit + 1, effects=[], **{}) | {"options": {"loads": False}})
+
+
+def test_stage_switch_sample_tends_to_the_step_weighted_value():
+    """stage_switch_index's docstring: (F(t1+) + (dt1/dt2)(m_L + m_tight) a_O2(t1-)) / 2."""
+    chain = chain_from_run(run(K=1))
+    (L1, _, _), (L2, m2, _) = chain.stages()
+    phi1, _ = chain.phases
+    minus = stage_derivatives(np.float64(phi1), chain.R, L1, chain.omega)
+    plus = stage_derivatives(np.float64(0.0), chain.R, L2, chain.omega)
+    T1, T2 = chain.stage_times()
+    F_plus = m2 * plus["mid_ax"] + chain.m_tight * plus["trail_ax"]
+    limit = (F_plus + T1 / T2 * (m2 + chain.m_tight) * minus["trail_ax"]) / 2
+    assert limit == pytest.approx(79.87, abs=0.01)
+    ds = solve(run(K=30000, effects=WITH_EXACT))
+    assert float(ds["dynamic_load_x_switch"]) == pytest.approx(limit, rel=1e-3)
