@@ -80,8 +80,8 @@ def velocity_roundoff_limit(stage_times, accel_max, x_max):
 
     The first backward difference V^i = v(t_i) - dt/2 a(t_i) + O(dt^2) has truncation
     max_s(T_s A_s)/(2K); its round-off, 2 eps x_max / dt, grows like K (not K^2), so
-    K^2 = max_s(T_s A_s) min_s(T_s) / (4 eps x).  On the paper's chain this is ~1e7,
-    250x the load limit: a velocity-only run is not refused where the loads are.
+    K^2 = max_s(T_s A_s) min_s(T_s) / (4 eps x).  On the paper's chain this is 4.17e6,
+    106x the load limit: a velocity-only run is not refused where the loads are.
     """
     trunc = max(T * A for T, A in zip(stage_times, accel_max))
     return int(math.floor(math.sqrt(trunc * min(stage_times) / (4.0 * EPS * x_max))))

@@ -36,7 +36,7 @@ def difference_method(chain: Chain, beyond_roundoff_limit: bool = False, loads: 
     and O3, Sec. 3.3 (2)); loads Eqs. (14)-(16) and (20)-(22).  Also the run's error
     budget (:func:`error_budget`); K beyond the round-off limit is refused unless allowed.
     With ``loads=False`` only the velocity (a first difference) is computed, and only its
-    own round-off limit (~250x the loads', :func:`.difference.velocity_roundoff_limit`)
+    own round-off limit (~100x the loads', :func:`.difference.velocity_roundoff_limit`)
     refuses K: the loads' limit guards the second difference, which such a run never takes.
     """
     if not loads:
