@@ -22,6 +22,12 @@ SMALL = {
     "period_by_period": ("timing_period_by_period", {"n_steps": 32}, {"period_by_period_sample": 3}),
     "coefficient_scan": ("coefficient_scan", {"n_steps": 32},
                          {"scan_load_direction_deg": [0, 180], "scan_gravity": [9.8]}),
+    "load_point_fit": ("load_point_fit", {"n_steps": 64, "interval_h": 38},
+                       {"fit_load_direction_deg": [120, 130, 140], "fit_gravity": [9.8],
+                        "fit_secant_steps": 0}),
+    "constant_sensitivity": ("constant_sensitivity", {"n_steps": 64, "interval_h": 38},
+                             {"sensitivity": {"friction_coefficient": [0.05, 0.5]}}),
+    "local_wear": ("local_wear", {"n_steps": 64, "interval_h": 38, "n_theta": 64}, {}),
 }
 
 
@@ -50,7 +56,7 @@ def test_effects_not_named_are_never_evaluated(solver, monkeypatch):
     for name in EFFECTS.names:
         if name not in run["effects"]:
             monkeypatch.setitem(EFFECTS._fn, name, boom)
-    if solver not in ("clearance_implicit", "clearance_explicit"):
+    if solver not in ("clearance_implicit", "clearance_explicit", "constant_sensitivity"):
         monkeypatch.setattr(dynamics, "simulate", boom)   # no stiff dynamics either
     ds = solve(run)
     assert ds.attrs["solver"] == solver

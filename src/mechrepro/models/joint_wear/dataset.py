@@ -161,9 +161,79 @@ def scan_part(res: dict, run: dict):
     return coords, v
 
 
+def fit_part(res: dict, run: dict):
+    """The load point estimated from Tables 3-4: the misfit over F's direction and the
+    estimates with what they predict."""
+    f = res["fit"]
+    sols = f["solutions"]
+    gd = ("fit_gravity", "fit_direction")
+    coords = {"fit_gravity": var("fit_gravity", f["gravity"], "m/s2", "gravity component in the plane of motion"),
+              "fit_direction": var("fit_direction", f["directions"], "deg", "direction of F from E's mid-stroke position"),
+              "fit_solution": var("fit_solution", np.arange(len(sols)), "1", "load point reproducing Tables 3-4"),
+              "fit_band": var("fit_band", np.array([-1.0, 0.0, 1.0]), "1", "estimate - its uncertainty, the estimate, + its uncertainty"),
+              "side": var("side", np.array(["B1", "B2"], dtype=object), *SIDE[1:])}
+
+    def col(key):
+        return np.array([x[key] for x in sols], float)
+    sv = ("fit_solution",)
+    v = {"fit_misfit": var(gd, f["misfit"], "1", "mean ln(K_p ours / K_p paper) over both sides and five intervals (NaN: contact lost)"),
+         "fit_load_distance": var((), float(f["distance"]), "m", "distance of F from E's mid-stroke position"),
+         "fit_sol_gravity": var(sv, col("gravity"), "m/s2", "gravity plane of the estimate"),
+         "fit_sol_direction": var(sv, col("direction"), "deg", "estimated direction of F"),
+         "fit_sol_sigma": var(sv, col("sigma_deg"), "deg", "its uncertainty from the tables (standard error of the ten log-ratios through the local slope)"),
+         "fit_sol_misfit": var(sv, col("misfit"), "1", "misfit left at the estimate"),
+         "fit_sol_arc": var(sv, col("arc_deg"), "deg", "contact arc on the bushing at the estimate (new bushing)"),
+         "fit_sol_F_N_mean": var(sv, col("F_N_mean"), "N", "mean joint force at the estimate"),
+         "fit_sol_F_N_min": var(sv, col("F_N_min"), "N", "minimum joint force at the estimate"),
+         "fit_sol_wear_direction": var(sv, col("wear_direction_deg"), "deg", "wear-weighted mean direction of the contact point (lab frame, from +x)"),
+         "fit_sol_upper_share": var(sv, col("upper_share"), "1", "share of the wear above the bushing centre (Sec. 4.2: the upper part)"),
+         "fit_sol_wear_86h": var(("fit_solution", "fit_band", "side"),
+                                 np.array([x["wear_86h"] for x in sols], float).reshape(len(sols), 3, 2),
+                                 "m", "wear at 86 h predicted with the estimate (and +- its uncertainty)")}
+    return coords, v
+
+
+def sensitivity_part(res: dict, run: dict):
+    """The assumed constants at their range ends."""
+    rows = res["sens"]
+    c = ("sens_case",)
+    coords = {"sens_case": var("sens_case", np.arange(len(rows)), "1", "constant at a range end (0: all assumed values)")}
+
+    def col(key):
+        return np.array([r[key] for r in rows], float)
+    v = {"sens_parameter": var(c, np.array([r["parameter"] for r in rows], dtype=object), "1", "the constant moved"),
+         "sens_value": var(c, col("value"), "1", "its value (SI)"),
+         "sens_K_table_mean": var(c, wear.table_from_k(col("K_mean"), float(run["parameters"]["hardness_bushing"])), "1/Pa", "mean coefficient of side B1 (table units)"),
+         "sens_wear_86h": var(c, col("wear_86h"), "m", "wear of B1 at 86 h"),
+         "sens_arc": var(c, col("arc_deg"), "deg", "contact arc (quasi-static, new bushing)"),
+         "sens_qs_vs_dynamic": var(c, col("qs_vs_dynamic"), "1", "quasi-static / settled dynamic wear per period - 1"),
+         "sens_dynamic_steps": var(c, col("dynamic_steps"), "1", "Radau steps of the settled dynamic period")}
+    return coords, v
+
+
+def local_part(res: dict, run: dict):
+    """Local vs uniform wear of side B1."""
+    lw = res["local"]
+    coords = {"local_hour": var("local_hour", lw["hours"], "h", "node times of the prediction"),
+              "theta": var("theta", lw["theta"], "rad", "bushing angle, coupler frame")}
+    h = ("local_hour",)
+    v = {"local_mean_depth": var(h, lw["mean"], "m", "local model: mean depth over the 8 points of Eq. (35) in the wear range"),
+         "local_peak_depth": var(h, lw["peak"], "m", "local model: deepest point of the profile"),
+         "uniform_depth": var(h, lw["uniform"], "m", "uniform model (Eq. 29) on the same joint and schedule"),
+         "local_profile_end": var(("theta",), lw["profile"], "m", "local wear profile at the end"),
+         **_scalars({"local_k": (lw["k_local"], "m2/N", "calibrated k of the local model"),
+                     "local_k_uniform": (lw["k_uniform"], "m2/N", "calibrated k of the uniform model"),
+                     "local_wall_time": (lw["wall_local"], "s", "wall time, local model (calibration + prediction)"),
+                     "local_uniform_wall_time": (lw["wall_uniform"], "s", "wall time, uniform model"),
+                     "local_arc": (lw["arc"], "rad", "contact arc of the new bushing"),
+                     "local_AB_mean": (lw["AB_mean"], "m", "mean contact chord of the new bushing")})}
+    return coords, v
+
+
 # (part, the key of the solver's result it needs)
 PARTS = ((mechanism_part, "fb"), (period_part, "hist"), (calibration_part, "wear"),
-         (prediction_part, "wear"), (period_by_period_part, "pbp"), (scan_part, "scan"))
+         (prediction_part, "wear"), (period_by_period_part, "pbp"), (scan_part, "scan"),
+         (fit_part, "fit"), (sensitivity_part, "sens"), (local_part, "local"))
 
 
 def build(res: dict, run: dict) -> xr.Dataset:

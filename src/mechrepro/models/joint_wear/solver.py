@@ -11,7 +11,11 @@ Solvers
                         wear on that model
 ``period_by_period``    Fig. 6: the wear simulated one period at a time (timed sample)
 ``coefficient_scan``    the calibration (Eqs. 32-34) over load points F and gravity
-                        planes the paper leaves open
+                        planes the paper leaves open (contact loss refused)
+``load_point_fit``      F estimated from Tables 3-4 jointly, with its uncertainty, its
+                        contact arc and wear side, and the 86-h wear it predicts
+``constant_sensitivity`` friction, contact exponent, d_max, C_max reading at their range ends
+``local_wear``          local Archard wear per bushing angle vs the uniform depth (Fig. 14)
 
 Each builds a :class:`~.effects.Context`, evaluates the named effects in three stages
 (mechanism terms, wear set-up, wear) and reads their contributions by key.
@@ -190,26 +194,211 @@ def coefficient_scan(run: dict) -> dict:
         for j, a in enumerate(dirs):
             F = (E[0] + d * math.cos(math.radians(a)), E[1] + d * math.sin(math.radians(a)))
             fb_v = replace(fb, g=g, F=F)
-            try:
-                f0 = wear.period_wear_factor(quasi_static_period(fb_v, s), fb_v, fb.period)
-            except ValueError:      # contact lost: the paper's premise fails there
-                continue
+            hist = quasi_static_period(fb_v, s)
+            f0 = wear.period_wear_factor(hist, fb_v, fb.period)
             L[i, j], F_min[i, j] = f0["L_arc"], f0["F_N_min"]
 
             def factor(R_bush, fb_v=fb_v):
                 fb_w = fb_v.with_bushing_radius(R_bush)
-                return wear.period_wear_factor(quasi_static_period(fb_w, s), fb_w, fb.period)["G"]
-            for m, side in enumerate(SIDES):
-                k[m, i, j] = wear.calibrate(p[f"measured_wear_{side}"], cal_h, fb.period,
-                                            fb.R_bush, factor,
-                                            dh_measured=p[f"measured_increment_{side}"])[1]
+                return wear.period_wear_factor(continuous_contact_period(fb_w, s), fb_w,
+                                               fb.period)["G"]
+            try:
+                for m, side in enumerate(SIDES):
+                    k[m, i, j] = wear.calibrate(p[f"measured_wear_{side}"], cal_h, fb.period,
+                                                fb.R_bush, factor,
+                                                dh_measured=p[f"measured_increment_{side}"])[1]
+            except ValueError:      # contact lost: the paper's premise fails there -- refused
+                k[:, i, j] = np.nan
     return {"fb": fb, "scan": {"k": k, "L_arc": L, "F_N_min": F_min, "directions": dirs,
                                "gravity": gs, "E_mid": E, "distance": d, "sides": list(SIDES)}}
 
 
+def _calibrated(fb_v: FourBar, s: dict, p: dict, sides=SIDES) -> np.ndarray:
+    """K_p [m2/N] of Eqs. (32)-(34) for each side (rows) and interval (columns) with the
+    mechanism fb_v on the quasi-static joint; ValueError where continuous contact is lost."""
+    cal_h = float(p["measurement_interval"]) / 3600.0
+
+    def factor(R_bush):
+        fb_w = fb_v.with_bushing_radius(R_bush)
+        return wear.period_wear_factor(continuous_contact_period(fb_w, s), fb_w,
+                                       fb_v.period)["G"]
+    return np.array([wear.calibrate(p[f"measured_wear_{side}"], cal_h, fb_v.period,
+                                    fb_v.R_bush, factor,
+                                    dh_measured=p[f"measured_increment_{side}"])[0]
+                     for side in sides])
+
+
+def _predicted_86h(fb_v: FourBar, s: dict, p: dict, k_mean) -> list:
+    """The 86-h wear [m] of each side from its calibrated k on fb_v (Sec. 4.4, 2-h steps)."""
+    out = []
+    for side, k in zip(SIDES, k_mean):
+        h = np.asarray(p[f"measured_wear_{side}"], float)
+        cal_h = float(p["measurement_interval"]) / 3600.0
+
+        def factor(R_bush):
+            fb_w = fb_v.with_bushing_radius(R_bush)
+            return wear.period_wear_factor(continuous_contact_period(fb_w, s), fb_w,
+                                           fb_v.period)["G"]
+        out.append(wear.predict(h[-1], cal_h * h.size, float(p["prediction_end"]) / 3600.0,
+                                float(s.get("interval_h", 2.0)), float(k), fb_v.period,
+                                fb_v.R_bush, factor)[1][-1])
+    return out
+
+
+def contact_side(hist: dict) -> dict:
+    """Where on the bushing the wear sits, in the lab frame: the contact point is at the
+    bushing centre + R n (n = e / |e|, Eq. 5), so its direction is n.  The wear-weighted
+    (F_N |v_T|, Archard's integrand) circular mean of n, and the share of the wear above
+    the bushing centre (n_y > 0): "the upper part of the bushing" of Sec. 4.2."""
+    w = np.asarray(hist["F_N"]) * np.abs(np.asarray(hist["v_T"]))
+    nx, ny = np.asarray(hist["nx"]), np.asarray(hist["ny"])
+    mean = math.degrees(math.atan2(float(np.sum(w * ny)), float(np.sum(w * nx))))
+    return {"wear_direction_deg": mean, "upper_share": float(np.sum(w * (ny > 0)) / np.sum(w))}
+
+
+def load_point_fit(run: dict) -> dict:
+    """The load point F estimated from Tables 3-4 jointly (Sec. 4.3-4.4 read backwards).
+
+    With Eq. (32) read as k = K/21, the printed K_p of both tables fix the wear factor G of
+    the paper's own simulation; G depends on F (and the gravity plane), which the paper
+    does not give.  For each gravity value in ``fit_gravity`` F runs over the directions
+    ``fit_load_direction_deg`` at ``fit_load_distance`` from E's mid-stroke position; the
+    misfit m = mean over both sides and the five intervals of ln(K_p ours / K_p paper) is
+    interpolated linearly in direction between grid points and its zeros are the
+    estimates.  Each zero carries the uncertainty of the tables (the scatter of the ten
+    log-ratios, i.e. the rounding of the printed increments, standard error of the mean)
+    turned into direction through the local slope dm/dtheta.  At every estimate: the
+    contact arc, where the wear sits (contact_side), and the 86-h wear of both sides, also
+    at the estimate +- its uncertainty -- the band on Fig. 15.  Contact loss is refused.
+    """
+    fb, ctx = setup(run)
+    s, p = ctx.s, ctx.p
+    E = kinematics.load_point_mid_stroke(fb)
+    d = float(s["fit_load_distance"])
+    dirs = np.asarray(s["fit_load_direction_deg"], float)
+    gs = np.asarray(s["fit_gravity"], float)
+    H = float(p["hardness_bushing"])
+    K_paper = np.asarray(s["fit_K_paper"], float) / wear.hardness_number(H)   # m2/N, 2 x 5
+
+    def mech(g, a):
+        return replace(fb, g=g, F=(E[0] + d * math.cos(math.radians(a)),
+                                   E[1] + d * math.sin(math.radians(a))))
+    m = np.full((gs.size, dirs.size), np.nan)
+    for i, g in enumerate(gs):
+        for j, a in enumerate(dirs):
+            try:
+                m[i, j] = float(np.mean(np.log(_calibrated(mech(g, a), s, p) / K_paper)))
+            except ValueError:          # contact lost: refused
+                pass
+    sols = []
+    for i, g in enumerate(gs):
+        for j in range(dirs.size):
+            j2 = (j + 1) % dirs.size
+            a0, a1 = dirs[j], dirs[j2] + (360.0 if j2 == 0 else 0.0)
+            m0, m1 = m[i, j], m[i, j2]
+            if not (np.isfinite(m0) and np.isfinite(m1)) or m0 * m1 > 0 or m0 == m1:
+                continue
+            a = a0 + (a1 - a0) * m0 / (m0 - m1)
+            for _ in range(int(s.get("fit_secant_steps", 3))):   # refine the zero: secant
+                ma = float(np.mean(np.log(_calibrated(mech(g, a), s, p) / K_paper)))
+                if ma * m0 > 0:
+                    a0, m0 = a, ma
+                else:
+                    a1, m1 = a, ma
+                a = a0 + (a1 - a0) * m0 / (m0 - m1)
+            fb_a = mech(g, a)
+            K = _calibrated(fb_a, s, p)
+            r = np.log(K / K_paper).ravel()
+            se = float(np.std(r, ddof=1) / math.sqrt(r.size))
+            slope = (m1 - m0) / (a1 - a0)                    # per degree
+            sig = abs(se / slope)
+            hist = continuous_contact_period(fb_a, s)
+            f = wear.period_wear_factor(hist, fb_a, fb.period)
+            band = []
+            for da in (-sig, 0.0, sig):
+                fb_b = mech(g, a + da)
+                band.append(_predicted_86h(fb_b, s, p, np.mean(_calibrated(fb_b, s, p), axis=1)))
+            sols.append({"gravity": float(g), "direction": float(a % 360.0), "sigma_deg": sig,
+                         "misfit": float(np.mean(r)),
+                         "misfit_se": se, "F": fb_a.F, "arc_deg": math.degrees(f["arc"]),
+                         "F_N_mean": f["F_N_mean"], "F_N_min": f["F_N_min"],
+                         **contact_side(hist), "wear_86h": np.array(band)})    # 3 x 2 sides
+    return {"fb": fb, "fit": {"misfit": m, "directions": dirs, "gravity": gs, "distance": d,
+                              "solutions": sols}}
+
+
+def constant_sensitivity(run: dict) -> dict:
+    """The assumed constants the scan does not vary, each at both ends of its declared
+    range (option ``sensitivity``: {parameter: [lo, hi]} in SI), one at a time at the
+    assumed load point: the calibrated mean coefficient of side B1, the 86-h wear of B1,
+    the contact arc (quasi-static joint), and the wear per period of the settled dynamic
+    joint (Radau, ``rtol``) against the quasi-static one -- d_max and C_max enter only
+    there (the quasi-static joint has no penetration rate, Eq. 14)."""
+    base_fb, ctx = setup(run)
+    s = ctx.s
+    rows = [("(assumed)", math.nan)]
+    for name, ends in s["sensitivity"].items():
+        rows += [(name, float(v)) for v in ends]
+    out = []
+    for name, v in rows:
+        p = dict(ctx.p) if name == "(assumed)" else {**ctx.p, name: v}
+        fb, c2 = setup({**run, "parameters": p})
+        K = _calibrated(fb, s, p, sides=("B1",))[0]
+        h86 = _predicted_86h(fb, s, p, [float(np.mean(K))])[0]
+        qs = wear.period_wear_factor(continuous_contact_period(fb, s), fb, fb.period)
+        with stopwatch() as sw:
+            dyn = finished_dynamic_period(fb, {**s, "n_out": int(s["n_steps"]), "periods": 1,
+                                               "method": "Radau", "start": "equilibrium"})
+        g_dyn = wear.period_wear_factor(dyn, fb, fb.period)["G"]
+        out.append({"parameter": name, "value": v, "K_mean": float(np.mean(K)),
+                    "wear_86h": h86, "arc_deg": math.degrees(qs["arc"]),
+                    "qs_vs_dynamic": qs["G"] / g_dyn - 1.0, "dynamic_steps": dyn["steps"],
+                    "dynamic_wall": sw.seconds})
+    return {"fb": base_fb, "sens": out}
+
+
+def local_wear(run: dict) -> dict:
+    """Side B1 with local Archard wear (wear.local_predict: a depth per bushing angle, the
+    profile fed back interval by interval) against the paper's uniform depth (Eq. 29) on the
+    same joint and schedule; quasi-static joint.  Option ``local_load_point``:
+    [distance m, direction deg, gravity m/s2] of F from E's mid-stroke position (default:
+    the assumed F and g)."""
+    fb, ctx = setup(run)
+    s, p = ctx.s, ctx.p
+    lp = s.get("local_load_point")
+    if lp:
+        E = kinematics.load_point_mid_stroke(fb)
+        d, a, g = (float(x) for x in lp)
+        fb = replace(fb, g=g, F=(E[0] + d * math.cos(math.radians(a)),
+                                 E[1] + d * math.sin(math.radians(a))))
+    cal_h = float(p["measurement_interval"]) / 3600.0
+    t_end, step = float(p["prediction_end"]) / 3600.0, float(s["interval_h"])
+    h = np.asarray(p["measured_wear_B1"], float)
+    dh = np.asarray(p["measured_increment_B1"], float)
+    with stopwatch() as sw_l:
+        nodes, mean, peak, k_l, prof, theta = wear.local_predict(
+            h, dh, cal_h, t_end, step, fb, fb.period,
+            lambda fb_w: continuous_contact_period(fb_w, s), n_theta=int(s["n_theta"]))
+
+    def factor(R_bush):
+        fb_w = fb.with_bushing_radius(R_bush)
+        return wear.period_wear_factor(continuous_contact_period(fb_w, s), fb_w, fb.period)["G"]
+    with stopwatch() as sw_u:
+        _, k_u, _ = wear.calibrate(h, cal_h, fb.period, fb.R_bush, factor, dh_measured=dh)
+        _, h_u, _ = wear.predict(h[-1], cal_h * h.size, t_end, step, k_u, fb.period, fb.R_bush,
+                                 factor)
+    f0 = wear.period_wear_factor(continuous_contact_period(fb, s), fb, fb.period)
+    return {"fb": fb, "local": {"hours": nodes, "mean": mean, "peak": peak, "uniform": h_u,
+                                "k_local": k_l, "k_uniform": k_u, "profile": prof,
+                                "theta": theta, "wall_local": sw_l.seconds,
+                                "wall_uniform": sw_u.seconds, "arc": f0["arc"],
+                                "AB_mean": f0["AB_mean"]}}
+
+
 SOLVERS = {"clearance_implicit": clearance_implicit, "clearance_explicit": clearance_explicit,
            "continuous_contact": continuous_contact, "period_by_period": period_by_period,
-           "coefficient_scan": coefficient_scan}
+           "coefficient_scan": coefficient_scan, "load_point_fit": load_point_fit,
+           "constant_sensitivity": constant_sensitivity, "local_wear": local_wear}
 
 
 def warm() -> None:

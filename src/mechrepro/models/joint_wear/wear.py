@@ -49,12 +49,15 @@ def contact_arc(psi, in_contact=None):
     """Angular range [rad] the contact point covers on the bushing (Fig. 4, Arc^j).
 
     psi is the contact angle in the bushing's frame over one period on a uniform periodic
-    grid; it is centred on its circular mean before the range is taken, so a range
-    straddling +-pi is measured correctly.  When the contact is continuous (all samples),
-    each extreme is refined by the vertex of the parabola through it and its two
-    periodic neighbours: the range of the smooth contact-point path then converges with
-    the sampling as O(dt^3) instead of depending on where the samples fall.  With gaps
-    (free flight) the raw sample range is returned: the path is not smooth there.
+    grid.  When the contact is continuous (all samples) the path is unwrapped along time;
+    a path whose unwrapped angle drifts by a whole turn over the period (the contact point
+    runs round the bushing) covers the full circle, 2 pi.  Otherwise the range of the
+    unwrapped path is taken, each extreme refined by the vertex of the parabola through it
+    and its two periodic neighbours (differences wrapped into (-pi, pi], so the refinement
+    never runs across the +-pi cut): the range of the smooth contact-point path then
+    converges with the sampling as O(dt^3).  The result never exceeds 2 pi.  With gaps
+    (free flight) the raw sample range about the circular mean is returned: the path is
+    not smooth there.
     """
     psi = np.asarray(psi, float)
     full = in_contact is None or bool(np.all(in_contact))
@@ -62,16 +65,25 @@ def contact_arc(psi, in_contact=None):
         psi = psi[np.asarray(in_contact, bool)]
     if psi.size == 0:
         return 0.0
-    centre = np.angle(np.mean(np.exp(1j * psi)))
-    rel = np.angle(np.exp(1j * (psi - centre)))
-    if not full or rel.size < 3:
+    if not full or psi.size < 3:
+        centre = np.angle(np.mean(np.exp(1j * psi)))
+        rel = np.angle(np.exp(1j * (psi - centre)))
         return float(rel.max() - rel.min())
-    return float(_vertex(rel, int(np.argmax(rel))) - _vertex(rel, int(np.argmin(rel))))
+    step = np.angle(np.exp(1j * np.diff(np.append(psi, psi[0]))))   # wrapped, periodic
+    if abs(step.sum()) > math.pi:          # winds once round the bushing per period
+        return 2.0 * math.pi
+    path = psi[0] + np.concatenate([[0.0], np.cumsum(step[:-1])])
+    arc = _vertex(path, int(np.argmax(path))) - _vertex(path, int(np.argmin(path)))
+    return float(min(arc, 2.0 * math.pi))
 
 
 def _vertex(y, i):
-    """Extreme value of the parabola through y[i-1], y[i], y[i+1] (periodic indices)."""
-    ym, y0, yp = y[i - 1], y[i], y[(i + 1) % y.size]
+    """Extreme value of the parabola through y[i-1], y[i], y[i+1] (periodic indices; the
+    neighbours taken as y[i] plus their wrapped differences, so a path continued across
+    the period's end is not broken by a multiple of 2 pi)."""
+    y0 = y[i]
+    ym = y0 + math.remainder(y[i - 1] - y0, 2.0 * math.pi)
+    yp = y0 + math.remainder(y[(i + 1) % y.size] - y0, 2.0 * math.pi)
     curv = yp - 2.0 * y0 + ym
     if curv == 0.0:
         return float(y0)
@@ -237,3 +249,103 @@ def period_by_period(h_start: float, n_periods: int, k: float, R0: float,
     for _ in range(n_periods):
         h += k * wear_factor(bushing_radius(R0, h))
     return h
+
+
+def inverse_radius_prediction(h_measured, dh_measured, interval_h: float, t_end_h: float,
+                              step_h: float, period: float, R0: float):
+    """The comparison without mechanics: the wear factor taken as G(R) = R0 / R (the arc
+    length L_arc = R * arc grows with the worn radius at a fixed arc, force and sliding
+    distance), calibrated on the same measured increments (Eqs. 32-34) and predicted by
+    the same interval method (Sec. 4.4).  No four-bar, no contact: whatever it reproduces of
+    Figs. 15-19 follows from the measured data and the 1/R geometry alone.
+    Returns (node times [h], cumulative wear at the nodes [m])."""
+    def G(R):
+        return R0 / R
+    h = np.asarray(h_measured, float)
+    _, k, _ = calibrate(h, interval_h, period, R0, G, dh_measured=dh_measured)
+    nodes, hp, _ = predict(h[-1], interval_h * h.size, t_end_h, step_h, k, period, R0, G)
+    return nodes, hp
+
+
+# --- local Archard wear: depth per bushing angle (what Fig. 14's uniform depth replaces) --------
+def local_wear_per_period(hist: dict, fb: FourBar, period: float, theta) -> np.ndarray:
+    """Archard's law applied locally (Eq. 16 before the averaging of Eqs. 22-28), per unit k:
+    the depth [m / (m2/N)] one period wears at each bushing angle theta (coupler frame),
+
+        dh(theta) / k = sum_t F_N |v_T| dt / (w |AB|)  over the samples whose contact patch
+                        (width |AB| of Eq. 19, centred on psi) covers theta,
+
+    i.e. the pressure F_N / (w |AB|) uniform over the patch, times the sliding distance.  Its
+    volume, w R sum dh dtheta, is k F_N S -- the volume Eq. (26) spreads uniformly over
+    the wear range; only the distribution differs."""
+    F_N, delta, v_T, psi = (np.asarray(hist[k], float) for k in ("F_N", "delta", "v_T", "psi"))
+    on = delta > 0.0
+    F_N, delta, v_T, psi = F_N[on], delta[on], v_T[on], psi[on]
+    dt = period / on.size
+    AB = contact.contact_chord(delta, fb.R_pin, fb.R_bush)
+    rate = F_N * np.abs(v_T) * dt / (fb.width * AB)                      # per sample
+    half = 0.5 * AB / fb.R_bush                                           # patch half-angle
+    theta = np.asarray(theta, float)
+    cell = 2.0 * math.pi / theta.size                      # theta: a uniform grid of the circle
+    d = np.angle(np.exp(1j * (theta[None, :] - psi[:, None])))
+    # the share of each grid cell the patch covers (exact overlap, not a point test: the
+    # depth then does not jump as the patch crosses grid points)
+    h = half[:, None]
+    cover = np.clip(np.minimum(d + 0.5 * cell, h) - np.maximum(d - 0.5 * cell, -h), 0.0, None)
+    return (rate[:, None] * cover / cell).sum(axis=0)
+
+
+def wear_range_points(psi, n: int = 8) -> np.ndarray:
+    """Eq. (35): n points uniformly inside the main wear range, here the contact-point arc of
+    the period (centre = circular mean, range = contact_arc); at the middle of n equal parts."""
+    psi = np.asarray(psi, float)
+    c = np.angle(np.mean(np.exp(1j * psi)))
+    a = contact_arc(psi)
+    return c + a * ((np.arange(n) + 0.5) / n - 0.5)
+
+
+def local_predict(h_measured, dh_measured, interval_h: float, t_end_h: float, step_h: float,
+                  fb: FourBar, period: float, one_period: Callable[[FourBar], dict],
+                  n_theta: int = 720, n_points: int = 8):
+    """The interval method with local wear: a depth profile h(theta) on the bushing, fed back
+    into the contact geometry interval by interval.
+
+    Geometry: the joint of an interval is the bushing circle of radius R0 + h_c / 2, h_c the
+    profile's mean over the Eq.-35 points -- the depth the paper's measurement would report,
+    fed back by the uniform model's D0 + h convention (Sec. 4.4), so that the two models differ
+    only in how the wear is distributed, not in the geometry a given measured depth implies.  Calibration (Eqs. 33-34): in each measured interval
+    p, k_p makes the profile's mean over the n_points of Eq. (35) grow by the printed
+    increment dh^P; the profile after 10 h is the one those k_p wore.  Prediction: k = mean
+    k_p, profile grown by M periods of local wear per interval.
+    Returns (node hours, mean depth over the Eq.-35 points [m], max depth [m], k, the profile
+    at the end [m], theta)."""
+    R0 = fb.R_bush
+    theta = np.linspace(-math.pi, math.pi, n_theta, endpoint=False)
+    prof = np.zeros(n_theta)
+    hist0 = one_period(fb)
+    pts = wear_range_points(hist0["psi"], n_points)
+
+    def at_points(p):
+        return np.interp(np.angle(np.exp(1j * pts)), theta, p, period=2.0 * math.pi)
+
+    def per_period(prof):
+        h_c = float(np.mean(at_points(prof)))     # the depth the paper's Eq. (35) would report
+        fb_w = fb.with_bushing_radius(bushing_radius(R0, h_c))
+        return local_wear_per_period(one_period(fb_w), fb_w, period, theta)
+
+    M = periods_per_interval(interval_h, period)
+    ks = []
+    for dh in np.asarray(dh_measured, float):                          # calibration
+        inc = per_period(prof)
+        k = dh / (M * float(np.mean(at_points(inc))))
+        ks.append(k)
+        prof = prof + k * M * inc
+    k = float(np.mean(ks))
+    nodes = interval_nodes(interval_h * len(ks), t_end_h, step_h)
+    mean, peak = [float(np.mean(at_points(prof)))], [float(prof.max())]
+    for i in range(nodes.size - 1):                                     # prediction
+        inc = per_period(prof)
+        prof = prof + k * periods_per_interval(nodes[i + 1] - nodes[i], period) * inc
+        mean.append(float(np.mean(at_points(prof))))
+        peak.append(float(prof.max()))
+    return nodes, np.array(mean), np.array(peak), k, prof, theta

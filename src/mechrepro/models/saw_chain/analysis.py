@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from typing import NamedTuple
 
 import numpy as np
 
@@ -35,20 +36,53 @@ def observed_order(K, err, truncation, roundoff, margin=100.0):
     return float(local[-1]), [float(x) for x in local], (int(k[-2]), int(k[-1]))
 
 
-def error_model_optimum(K, err):
+class Optimum(NamedTuple):
+    """The fitted error model err(K) = a/K + b K^2 and its minimum; ``reason`` says why
+    K* is NaN ("" when it is not)."""
+    K_opt: float
+    err_opt: float
+    a: float
+    b: float
+    reason: str
+
+
+#: columns whose scaled singular values are closer than this are one column (rank-deficient)
+RANK_RTOL = 1e-8
+
+
+def error_model_optimum(K, err) -> Optimum:
     """Fit err(K) = a/K + b K^2 (truncation + round-off) and return its minimum.
 
-    The fit minimises the relative residuals (linear least squares in a, b), so both
-    branches weigh alike; the optimum K* = (a / 2b)^(1/3) does not depend on where the
-    sweep happens to sample.  Returns (K*, err(K*), a, b); NaN without a round-off branch.
+    The fit minimises the relative residuals, a linear least-squares problem in a, b
+    with columns 1/(K err) and K^2/err.  Those differ by ~K^3 (1e-1 against 1e14 on a
+    study over six decades), so each column is scaled to unit norm before solving:
+    unscaled, ``lstsq`` cuts the small singular value as noise and drops the truncation
+    column (a z = 3 chain with 5:1 pitches then gave K* = 5.9e-6).  The optimum
+    K* = (a / 2b)^(1/3) does not depend on where the sweep samples.  NaN, with the
+    reason, when the scaled columns are rank-deficient (fewer than two distinct K,
+    collinear columns) or a branch is missing (a <= 0: no truncation; b <= 0: no
+    round-off, e.g. a study that stops below the limit).
     """
     K, err = np.asarray(K, float), np.asarray(err, float)
+    use = np.isfinite(err) & (err > 0) & (K > 0)
+    K, err = K[use], err[use]
+    nan = math.nan
+    if np.unique(K).size < 2:
+        return Optimum(nan, nan, nan, nan, f"rank-deficient: {np.unique(K).size} distinct K")
     A = np.column_stack([1.0 / (K * err), K**2 / err])
-    (a, b), *_ = np.linalg.lstsq(A, np.ones_like(K), rcond=None)
-    if not (a > 0 and b > 0):
-        return math.nan, math.nan, float(a), float(b)
+    scale = np.linalg.norm(A, axis=0)
+    s = np.linalg.svd(A / scale, compute_uv=False)
+    if s[-1] <= RANK_RTOL * s[0]:
+        return Optimum(nan, nan, nan, nan,
+                       f"rank-deficient: scaled singular values {s[0]:.3g}, {s[-1]:.3g}")
+    coef, *_ = np.linalg.lstsq(A / scale, np.ones_like(K), rcond=None)
+    a, b = (float(c) for c in coef / scale)
+    if not a > 0:
+        return Optimum(nan, nan, a, b, f"no truncation branch (a = {a:.3g})")
+    if not b > 0:
+        return Optimum(nan, nan, a, b, f"no round-off branch (b = {b:.3g})")
     K_opt = (a / (2.0 * b)) ** (1.0 / 3.0)
-    return float(K_opt), float(a / K_opt + b * K_opt**2), float(a), float(b)
+    return Optimum(float(K_opt), float(a / K_opt + b * K_opt**2), a, b, "")
 
 
 def load_extreme_at(chain: Chain, K: int, fn=np.max) -> float:

@@ -5,13 +5,14 @@ evaluated beside it on the same grid.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from functools import lru_cache
 
 import numpy as np
 
-from .difference import roundoff_limit
+from .difference import roundoff_limit, velocity_roundoff_limit
 from .geometry import check_meshing, initial_points, pitch_radius, stage_angles
-from .kinematics import stage_jerks
+from .kinematics import stage_derivatives, stage_jerks
 from .loads import tight_side_mass
 
 
@@ -55,17 +56,9 @@ class Chain:
         phi1, phi2 = self.phases
         return phi1 / self.omega, (phi2 - phi1) / self.omega
 
-    def load_jerk_max(self, n=129):
-        """max |dF_dx/dt| of the exact load in each stage [N/s].
-
-        The jerk is smooth within a stage, so a fixed grid of ``n`` angles (ends
-        included) gives its maximum to ~1e-6, independently of K.
-        """
-        out = []
-        for L, m_link, phi in self.stages():
-            j = stage_jerks(np.linspace(0.0, phi[-1], n), self.R, L, self.omega)
-            out.append(float(np.max(np.abs(m_link * j["mid_jx"] + self.m_tight * j["trail_jx"]))))
-        return out
+    def load_jerk_max(self):
+        """max |dF_dx/dt| of the exact load in each stage [N/s] (:func:`budget_constants`)."""
+        return list(budget_constants(self.per_chain())[0])
 
     def roundoff_mass(self):
         """Mass multiplying second differences in one load sample (tight side + seating link)."""
@@ -73,14 +66,45 @@ class Chain:
 
     def roundoff_limit(self):
         """K beyond which round-off dominates the loads (see :mod:`.difference`)."""
-        return roundoff_limit(self.stage_times(), self.load_jerk_max(), self.Tx + self.R,
-                              self.roundoff_mass())
+        return budget_constants(self.per_chain())[1]
+
+    def velocity_roundoff_limit(self):
+        """K beyond which round-off dominates the velocity (first difference; see
+        :mod:`.difference`)."""
+        return budget_constants(self.per_chain())[2]
+
+    def per_chain(self) -> "Chain":
+        """This chain with K = 1: the key of what does not depend on K."""
+        return replace(self, K=1)
 
     def time(self):
         """Sample times: t = 0, then K steps of each stage [s]."""
         phi1, phi2 = self.phases
         return np.concatenate([np.linspace(0.0, phi1, self.K + 1),
                                np.linspace(phi1, phi2, self.K + 1)[1:]]) / self.omega
+
+
+@lru_cache(maxsize=256)
+def budget_constants(chain: Chain, n: int = 129):
+    """What the error budget needs and K does not change, computed once per chain.
+
+    Returns (max |dF_dx/dt| per stage [N/s], the loads' round-off limit of K, the
+    velocity's).  The jerk and the acceleration are smooth within a stage, so a fixed
+    grid of ``n`` angles (ends included) gives their maxima to ~1e-6.  Cached: a K study
+    or a Richardson sequence solves one chain at many K, and computing these in every
+    solve was ~60 % of a solve below K = 1000 (issue 30), which flattened the
+    cost-of-accuracy curve there.
+    """
+    jerk, acc = [], []
+    phi1, phi2 = chain.phases
+    for L, m_link, span in ((chain.p2, chain.m_C, phi1), (chain.p1, chain.m_L, phi2 - phi1)):
+        phi = np.linspace(0.0, span, n)
+        j = stage_jerks(phi, chain.R, L, chain.omega)
+        jerk.append(float(np.max(np.abs(m_link * j["mid_jx"] + chain.m_tight * j["trail_jx"]))))
+        acc.append(float(np.max(np.abs(stage_derivatives(phi, chain.R, L, chain.omega)["trail_ax"]))))
+    times, x_max = chain.stage_times(), chain.Tx + chain.R
+    return (tuple(jerk), roundoff_limit(times, jerk, x_max, chain.roundoff_mass()),
+            velocity_roundoff_limit(times, acc, x_max))
 
 
 def chain_from_run(run: dict) -> Chain:

@@ -75,7 +75,19 @@ def roundoff_limit(stage_times, load_jerk_max, x_max, mass):
     return int(math.floor((trunc * min(stage_times) ** 2 / (4.0 * EPS * x_max * mass)) ** (1.0 / 3.0)))
 
 
-def check_roundoff(K, limit, allow=False):
+def velocity_roundoff_limit(stage_times, accel_max, x_max):
+    """Largest K at which the round-off of a velocity stays below its truncation.
+
+    The first backward difference V^i = v(t_i) - dt/2 a(t_i) + O(dt^2) has truncation
+    max_s(T_s A_s)/(2K); its round-off, 2 eps x_max / dt, grows like K (not K^2), so
+    K^2 = max_s(T_s A_s) min_s(T_s) / (4 eps x).  On the paper's chain this is 4.17e6,
+    106x the load limit: a velocity-only run is not refused where the loads are.
+    """
+    trunc = max(T * A for T, A in zip(stage_times, accel_max))
+    return int(math.floor(math.sqrt(trunc * min(stage_times) / (4.0 * EPS * x_max))))
+
+
+def check_roundoff(K, limit, allow=False, what="loads"):
     """Raise :class:`RoundoffError` for K beyond the round-off limit, unless ``allow``.
 
     ``allow`` is for the cost-of-accuracy study, which crosses the limit on purpose to
@@ -83,7 +95,8 @@ def check_roundoff(K, limit, allow=False):
     """
     if K > limit and not allow:
         raise RoundoffError(
-            f"K={K}: beyond K={limit} the round-off of the second backward difference "
-            f"exceeds its truncation error, so the loads get less accurate, not more. "
+            f"K={K}: beyond K={limit} the round-off of the "
+            f"{'second' if what == 'loads' else 'first'} backward difference "
+            f"exceeds its truncation error, so the {what} get less accurate, not more. "
             f"Use K <= {limit}.")
     return K > limit

@@ -16,6 +16,8 @@ from mechrepro.validation import Quantities, Reproduced
 from .analysis import (equivalent_K, error_model_optimum, load_extreme_at, observed_order,
                        pitch_radius_readings, textbook_constants_for_range, time_mean,
                        velocity_band)
+from .design import design_quantities, design_rules
+from .richardson import to_accuracy
 from .solver import chain_from_run
 
 Q = Quantities("saw_chain")
@@ -45,8 +47,8 @@ def velocity_band_rows(R):
     lo, hi = R.paper_value("tight_side_velocity_min"), R.paper_value("tight_side_velocity_max")
     note = (f"K={_K(ds)}. Rigid kinematics bound the speed by R*omega = {R_omega:.4f} m/s (Eq. 1); "
             f"the paper's band lies higher at both ends by {lo / v.min():.4f} and "
-            f"{hi / v.max():.4f}: see velocity_band_*_pair_chord for the pitch-radius reading "
-            f"that reproduces it.")
+            f"{hi / v.max():.4f}: see velocity_band_*_pair_chord for a pitch-radius reading "
+            f"that comes within 0.07 % of both ends (chosen because it matches).")
     return {"tight_side_velocity_min": Reproduced(float(v.min()), note),
             "tight_side_velocity_max": Reproduced(float(v.max()), note),
             "tight_side_velocity_fluctuation": float(v.max() - v.min())}
@@ -55,13 +57,27 @@ def velocity_band_rows(R):
 @Q.register("velocity_band_min_pair_chord", "velocity_band_max_pair_chord")
 def velocity_band_candidate(R):
     ch = _chain(R.run(FIG))
-    bands = {k: velocity_band(ch.p1, ch.p2, ch.omega, r)
-             for k, r in pitch_radius_readings(ch.p1, ch.p2, ch.z).items()}
-    others = "; ".join(f"{k} R={_in(r, 'mm'):.3f} mm: {bands[k][0]:.3f}-{bands[k][1]:.3f} m/s"
-                       for k, r in pitch_radius_readings(ch.p1, ch.p2, ch.z).items())
+    readings = pitch_radius_readings(ch.p1, ch.p2, ch.z)
+    bands = {k: velocity_band(ch.p1, ch.p2, ch.omega, r) for k, r in readings.items()}
+    others = "; ".join(f"{k} R={_in(r, 'mm'):.3f} mm: {bands[k][0]:.4f}-{bands[k][1]:.4f} m/s"
+                       for k, r in readings.items())
     lo, hi = bands["pair_chord"]
-    return {"velocity_band_min_pair_chord": Reproduced(lo, f"exact kinematics with each reading of R: {others}"),
-            "velocity_band_max_pair_chord": hi}
+    # the alternative, a uniform speed offset matching the band's top, scales every load by
+    # its square: compare the converged loads (exact closed form) with the paper's
+    base = design_base(ch)
+    scale = R.paper_value("tight_side_velocity_max") / (ch.R * ch.omega)
+    at = {k: design_quantities(**{**base, "omega": ch.omega * f}) for k, f in (("model", 1.0), ("offset", scale))}
+    F_min = R.paper_value("dynamic_load_min")
+    offset = (f"A uniform speed offset x{scale:.4f} would match the band too, but raises every load by "
+              f"{scale**2 - 1:.1%}: the converged minimum becomes {float(at['offset']['min_load']):.2f} N, "
+              f"{abs(float(at['offset']['min_load']) / F_min - 1):.1%} from the paper's {F_min} N, against "
+              f"{abs(float(at['model']['min_load']) / F_min - 1):.1%} without it (the pair chord changes R, "
+              f"not the loads of the positions). ")
+    return {"velocity_band_min_pair_chord": Reproduced(
+                lo, f"{offset}Exact kinematics with each reading of R: {others}"),
+            "velocity_band_max_pair_chord": Reproduced(
+                hi, f"R*omega with the pair-chord reading: {hi:.4f} m/s, which rounds to {hi:.2f}, "
+                    f"not the paper's 14.77 (0.07 % off); the minimum {lo:.4f} rounds to {lo:.2f}.")}
 
 
 @Q.register("measured_velocity_mean")
@@ -191,14 +207,60 @@ def orders(R):
 def roundoff(R):
     st, K = _study(R)
     err = st["dynamic_load_x_error_pointwise"].values
-    K_opt, e_opt, a, b = error_model_optimum(K, err)
+    K_opt, e_opt, a, b, why = error_model_optimum(K, err)
     limit = float(st["roundoff_limit_K"].values[0])
     best = int(np.argmin(err))
     near = bool(np.isfinite(K_opt) and abs(math.log(limit / K_opt)) <= math.log(2.0))
-    return {"roundoff_optimum_k": Reproduced(K_opt, f"minimum of the fit err = {a:.3g}/K + {b:.3g} K^2 "
+    fit = (f"minimum of the fit err = {a:.3g}/K + {b:.3g} K^2 (scaled columns)" if not why
+           else f"no optimum: {why}")
+    return {"roundoff_optimum_k": Reproduced(K_opt, f"{fit} "
                                                     f"over all {K.size} runs; best sampled K = {int(K[best])} "
                                                     f"(error {err[best]:.3g})"),
             "roundoff_optimum_error": e_opt,
             "roundoff_limit_k": Reproduced(limit, "K where the solver's round-off bound reaches its "
                                                   "truncation estimate; larger K is refused"),
             "roundoff_limit_near_optimum": Reproduced(near, f"limit {limit:.0f} vs fitted optimum {K_opt:.0f}")}
+
+
+@Q.register("richardson_load_max", "richardson_k_for_rtol_1e3", "richardson_k_for_rtol_1e5",
+            "plain_k_for_rtol_1e3", "plain_k_for_rtol_1e5")
+def richardson(R):
+    """The cheapest K to a requested accuracy of the peak load: Richardson vs plain."""
+    ds = R.run(FIG)
+    ch, exact = _chain(ds), float(ds["dynamic_load_x_exact"].max())
+    out = {}
+    for rtol, tag in ((1e-3, "1e3"), (1e-5, "1e5")):
+        e = to_accuracy(ch, rtol)
+        met = math.isfinite(e.estimate)
+        out[f"richardson_k_for_rtol_{tag}"] = Reproduced(
+            float(e.K[-1]) if met else math.nan,
+            f"levels {e.K[-3:]} (doubling from K = {e.K[0]}: {e.steps} steps per stage in all); "
+            f"extrapolated {e.value:.5f} N, estimated error {e.estimate / abs(e.value):.2e}, "
+            f"verified {abs(e.value - exact) / exact:.2e} (exact {exact:.5f} N)")
+        if rtol == 1e-5:
+            out["richardson_load_max"] = Reproduced(e.value, out[f"richardson_k_for_rtol_{tag}"].note)
+        K_plain, _, at = equivalent_K(ch, exact * (1 - rtol))
+        out[f"plain_k_for_rtol_{tag}"] = Reproduced(
+            float(K_plain) if K_plain else math.nan,
+            f"smallest K whose plain maximum is within {rtol:g} of exact (bisection on the solver)"
+            if K_plain else f"not reached below the round-off limit K = {ch.roundoff_limit()}: "
+                            f"{abs(at - exact) / exact:.2e} there")
+    return out
+
+
+DESIGN_RULES = ("design_peak_load_speed_exponent", "design_peak_load_teeth_exponent_fixed_speed",
+                "design_peak_load_teeth_exponent_fixed_chain_speed", "design_fluctuation_teeth_exponent",
+                "design_fluctuation_equal_pitch_constant", "design_peak_load_mass_exponent",
+                "design_peak_load_pitch_ratio_exponent", "design_textbook_error")
+
+
+def design_base(ch) -> dict:
+    """The design of a Chain, as :func:`.design.design_quantities` takes it."""
+    return dict(p1=ch.p1, p2=ch.p2, z=ch.z, omega=ch.omega, m_L=ch.m_L, m_C=ch.m_C, M=ch.M, N=ch.N)
+
+
+@Q.register(*DESIGN_RULES)
+def design(R):
+    """The design rules of the exact solution, at the paper's chain (:func:`.design.design_rules`)."""
+    rules = design_rules(design_base(_chain(R.run(FIG))))
+    return {k: Reproduced(rules[k][0], rules[k][1]) for k in DESIGN_RULES}
