@@ -32,3 +32,27 @@ def test_saw_chain_load_max_target_is_met_at_near_the_cheapest_k():
         errors[int(kk)] = abs(float(d["dynamic_load_x"].max()) - float(d["dynamic_load_x_exact"].max()))
     cheapest = min(kk for kk, e in errors.items() if e <= requested)
     assert k <= 2 * cheapest
+
+
+def test_extrapolation_meets_a_tight_request_at_a_far_coarser_level():
+    """A first-order method q(k) = Q + C/k + D/k^2 (the difference method's shape): asked for
+    1e-6, the plain value needs k ~ C / 1e-6, the extrapolated one a few hundred, and its
+    error estimate (two successive extrapolations) bounds its true error."""
+    import xarray as xr
+
+    from mechrepro.target import solve
+
+    Q, C, D = 10.0, 3.0, 40.0
+
+    def once(run):
+        k = run["resolution"]["K"]
+        return xr.Dataset({"q": ((), Q + C / k + D / k ** 2)}), float(k)   # cost ~ k
+
+    base = {"run": "t", "resolution": {"K": 8},
+            "target": {"quantity": "q", "reduce": "max", "rtol": 1e-6, "knob": "K", "factor": 2}}
+    _, plain = solve(base, once)
+    _, rich = solve({**base, "target": {**base["target"], "extrapolate": True}}, once)
+    assert abs(plain["value"] - Q) <= 1e-6 * Q and abs(rich["value"] - Q) <= 1e-6 * Q
+    assert abs(rich["value"] - Q) <= rich["estimated_error"]
+    assert rich["knob_value"] * 10 < plain["knob_value"]
+    assert rich["seconds_chosen"] * 10 < plain["seconds_chosen"]

@@ -251,7 +251,8 @@ def plot(table: list[dict], accuracy: str | None = None, ax=None, annotate: bool
     return ax
 
 
-TARGET_COLUMNS = ["run", "quantity", "reduce", "knob", "requested", "estimated_error",
+TARGET_COLUMNS = ["run", "quantity", "reduce", "knob", "extrapolated", "value", "requested",
+                  "estimated_error",
                   "verified_error", "observed_order", "knob_value", "time_s", "time_all_solves_s",
                   "default_knob_value", "default_error", "default_estimated_error", "default_time_s",
                   "unit"]
@@ -274,7 +275,8 @@ def target_rows(cfg, root) -> list[dict]:
         with xr.open_dataset(path) as ds:
             g = lambda k: float(ds[f"target_{k}"].values) if f"target_{k}" in ds else float("nan")  # noqa: E731
             out.append({"run": name, "quantity": t["quantity"], "reduce": t.get("reduce", "max"),
-                        "knob": t["knob"], "requested": g("requested"),
+                        "knob": t["knob"], "extrapolated": bool(t.get("extrapolate")),
+                        "value": g("value"), "requested": g("requested"),
                         "estimated_error": g("estimated_error"),
                         "verified_error": g("verified_error"),
                         "observed_order": g("observed_order"), "knob_value": g("knob_value"),

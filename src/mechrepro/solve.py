@@ -40,7 +40,7 @@ def run_solver(run: dict):
                                                  "knob_value", "default_value", "observed_order") else
                                                  run["target"].get("unit", "1"),
                                                  "long_name": k.replace("_", " ")})
-            for k in ("requested", "estimated_error", "verified_error", "knob_value",
+            for k in ("value", "requested", "estimated_error", "verified_error", "knob_value",
                       "seconds_all_solves", "seconds_chosen", "default_value", "default_error",
                       "default_seconds", "default_estimated_error", "observed_order")} | {
             "target_levels": (("target_level",), np.asarray(rec["levels"], float),
