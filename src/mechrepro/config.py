@@ -74,7 +74,10 @@ class PaperConfig:
 
     @property
     def figures(self) -> list[str]:
-        return list(self.raw.get("figures", []))
+        return list(self.raw.get("figures", {}))
+
+    def caption(self, figure: str) -> str:
+        return self.raw.get("figures", {})[figure]
 
     @property
     def tables(self) -> list[str]:
@@ -250,6 +253,7 @@ def load_paper(path: str | Path, profile: str = "default",
         _validate({k: v for k, v in raw.items() if k != "profiles"},
                   load_schema("paper.schema.json", sdir), f"{where} (profile {profile})")
     _check_effects(raw, where)
+    _check_artefacts(raw, where)
     paper = raw["paper"]
     if paper != path.stem:
         raise ConfigError(f"{where}: paper = {paper!r}: must be the file's name, {path.stem!r} "
@@ -704,6 +708,15 @@ def _calibration(raw: dict) -> dict:
             value, unit = to_si(target["value"], target["unit"])
             out[p] = {"quantity": q, "value": value, "unit": unit}
     return {"calibration": out} if out else {}
+
+
+def _check_artefacts(raw: dict, where: str) -> None:
+    """A reported row's ``artefact`` is a declared figure or table, or ``text``."""
+    allowed = [*raw.get("figures", {}), *raw.get("tables", []), "text"]
+    for q, spec in raw["reported"].items():
+        if spec["artefact"] not in allowed:
+            raise ConfigError(f"{where}: reported.{q}.artefact = {spec['artefact']!r}: allowed: "
+                              f"a figure, a table or text ({', '.join(allowed)})")
 
 
 def discover_papers(config_dir: str | Path) -> list[str]:

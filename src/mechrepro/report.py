@@ -156,7 +156,7 @@ def paper_view(paper: str, results: Path, config_dir: Path, profile: str, out_di
         a["title"] = artefact_title(a["id"])
         # ours: an artefact of no paper statement, or one whose every row cites us
         a["ours"] = not a["rows"] or all("ours" in r["source"] for r in a["rows"])
-        a["caption"] = f"{paper} {a['title']}"
+        a["caption"] = cfg.caption(a["id"]) if a["id"] in cfg.figures else a["title"]
     tables = []
     for t in cfg.tables:
         if t == "validation" or not (root / "tables" / f"{t}.csv").exists():

@@ -27,6 +27,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.polynomial.legendre import leggauss
 
+from mechrepro.errors import Refusal
+
 N_GAUSS = 6  # exact for the polynomial parts; the Gaussian stress needs a few more points
 BANDWIDTH = 3  # half-bandwidth of [K], [M]: element DOFs W, ell W' of two neighbouring nodes
 
@@ -52,9 +54,9 @@ class RadialMesh:
 def radial_mesh(r_f, b, n_elements, breakpoints=()):
     """Uniform mesh of ``n_elements`` on [r_f, b]; extra ``breakpoints`` become nodes."""
     if n_elements < 1:
-        raise ValueError(f"n_elements = {n_elements} must be >= 1")
+        raise Refusal(f"n_elements = {n_elements} must be >= 1")
     if not (0 < r_f < b):
-        raise ValueError(f"need 0 < r_f < b, got r_f = {r_f}, b = {b}")
+        raise Refusal(f"need 0 < r_f < b, got r_f = {r_f}, b = {b}")
     nodes = np.linspace(r_f, b, int(n_elements) + 1)
     ell = (b - r_f) / n_elements
     for x in breakpoints:

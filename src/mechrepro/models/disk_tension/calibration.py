@@ -19,6 +19,8 @@ from functools import lru_cache
 
 import numpy as np
 
+from mechrepro.errors import Refusal
+
 from . import exact, thermal
 from .axisym import AxisymDisk
 
@@ -61,7 +63,7 @@ def _alpha_effective(target, case):
     n = case["n_d"]
     d = float(disk.eq9(Ks)[0])
     if not np.isfinite(d) or d == 0.0 or np.sign(d) != np.sign(target):
-        raise ValueError(f"cannot calibrate alpha: Eq. (9) gives {d:g}, target {target:g}")
+        raise Refusal(f"cannot calibrate alpha: Eq. (9) gives {d:g}, target {target:g}")
     w2 = float(disk.rolled(Ks)[0][0])
     df = (np.sqrt(w2) - np.sqrt(disk.omega2[n])) / (2 * np.pi) if w2 > 0 else np.nan
     return case["alpha"] * target / d, d, df

@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from mechrepro.errors import Refusal
+
 
 def richardson(f_coarse, f_fine, ratio=2.0, order=4.0):
     """f_fine + (f_fine - f_coarse) / (ratio^order - 1): removes the leading h^order error
@@ -25,5 +27,5 @@ def reference_pair(n_elements):
     have = sorted(set(int(n) for n in n_elements))
     pairs = [(n, 2 * n) for n in have if 2 * n in have and 2 * n <= 128]
     if not pairs:
-        raise ValueError(f"no (n, 2n) pair with 2n <= 128 among element counts {have}")
+        raise Refusal(f"no (n, 2n) pair with 2n <= 128 among element counts {have}")
     return pairs[-1]

@@ -23,6 +23,7 @@ from typing import Callable
 import numpy as np
 
 from mechrepro.effects import EffectRegistry
+from mechrepro.errors import Refusal
 from mechrepro.timing import stopwatch
 from mechrepro.units import var
 
@@ -163,7 +164,7 @@ def roll_tension(ctx) -> dict:
 # --- stage 3: analyses of the discretised disk ---------------------------------------------
 def _loads(ctx):
     if ctx.loads is None:
-        raise ValueError("this analysis needs the residual stress: name 'roll_tension'")
+        raise Refusal("this analysis needs the residual stress: name 'roll_tension'")
     return ctx.loads
 
 
@@ -261,7 +262,7 @@ def stressed_reference(ctx) -> dict:
                        for s in s0])
     if np.any(~(w2 > 0)):
         bad = s0[np.any(~(w2 > 0), axis=1)]
-        raise ValueError(f"reference_stress {bad.tolist()} Pa buckles the disk: the exact "
+        raise Refusal(f"reference_stress {bad.tolist()} Pa buckles the disk: the exact "
                          "reference needs a stable disk (choose a smaller compression)")
     kw = dict(a=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho)
 
@@ -395,7 +396,7 @@ def stiffness_sensitivity(ctx) -> dict:
     r_a = np.atleast_1d(np.asarray(p["annulus_radii"], float))
     w = p["annulus_width"]
     if np.any(r_a - w / 2 < ctx.r_f - 1e-12) or np.any(r_a + w / 2 > ctx.b + 1e-12):
-        raise ValueError(f"annulus radii {r_a} +/- {w / 2} must stay inside [r_f, b]")
+        raise Refusal(f"annulus radii {r_a} +/- {w / 2} must stay inside [r_f, b]")
     d = ctx.model.sensitivity(r_a=r_a, width=w, increase=p["stiffness_increase"],
                               E=ctx.E, nu=ctx.nu, rho=ctx.rho)
     return {"r_a": var("r_a", r_a, "m", "centre radius of the stiffened annulus"),
@@ -478,7 +479,7 @@ def critical_speed(ctx) -> dict:
 
     model = ctx.model
     if not hasattr(model, "phi") or not isinstance(model.K, dict):
-        raise ValueError("critical_speed needs the harmonics (solver axisym)")
+        raise Refusal("critical_speed needs the harmonics (solver axisym)")
     kw = dict(omega=1.0, rho=ctx.rho, nu=ctx.nu, r_f=ctx.r_f, b=ctx.b, inplane_bc="clamped")
     Kc = model.stress_stiffness((lambda r: rotation.centrifugal_stress(r, **kw)[0],
                                  lambda r: rotation.centrifugal_stress(r, **kw)[1]))

@@ -27,6 +27,8 @@ import numpy as np
 from scipy.optimize import brentq
 from scipy.special import ive, jv, jvp, kve, yv, yvp
 
+from mechrepro.errors import Refusal
+
 
 def wavenumbers(lam, tension=0.0):
     """(k1 b, k2 b) of the I/K and J/Y columns for frequency parameter(s) ``lam`` and stress
@@ -87,7 +89,7 @@ def frequency_parameters(n, ratio, nu, count=1, lam_max=60.0, step=0.02, chunk=8
     the cached roots are the very numbers a fresh solve gives.
     """
     if not (0.0 < ratio < 1.0):
-        raise ValueError(f"a/b = {ratio} must be in (0, 1) for the annular plate")
+        raise Refusal(f"a/b = {ratio} must be in (0, 1) for the annular plate")
     return np.array(_roots(int(n), float(ratio), float(nu), int(count), float(lam_max),
                            float(step), float(chunk), float(tension)))
 

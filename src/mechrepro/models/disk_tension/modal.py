@@ -4,10 +4,12 @@ from __future__ import annotations
 
 import numpy as np
 
+from mechrepro.errors import Refusal
+
 TWO_PI = 2.0 * np.pi
 
 
-class BucklingError(ArithmeticError):
+class BucklingError(Refusal, ArithmeticError):
     """A requested frequency does not exist because the stressed plate has buckled."""
 
 

@@ -23,6 +23,8 @@ from skfem import Basis, BilinearForm, ElementTriArgyris, ElementTriP2, ElementV
 from skfem.element.discrete_field import DiscreteField
 from skfem.helpers import dd, ddot, div, dot, grad, sym_grad, trace
 
+from mechrepro.errors import Refusal
+
 INTORDER = 8  # mass of quintics needs 10 for exactness; 8 changes f by < 1e-6 and is faster
 
 
@@ -158,17 +160,17 @@ def polar_mesh(r_f, b, n_rings, n_sectors, slots: Slots | None = None,
                equal_area: bool = True) -> MeshTri:
     """Structured ring x sector mesh of the annulus r_f..b, minus the slot cells."""
     if n_rings < 1 or n_sectors < 8:
-        raise ValueError(f"mesh too coarse: n_rings = {n_rings} (>= 1), "
+        raise Refusal(f"mesh too coarse: n_rings = {n_rings} (>= 1), "
                          f"n_sectors = {n_sectors} (>= 8) needed")
     if not (0 < r_f < b):
-        raise ValueError(f"need 0 < r_f < b, got r_f = {r_f}, b = {b}")
+        raise Refusal(f"need 0 < r_f < b, got r_f = {r_f}, b = {b}")
     # geometric ring spacing keeps the cell aspect ratio uniform (cells near the clamp,
     # where the low-N_d curvature lives, are as fine tangentially as radially)
     r = r_f * (b / r_f) ** np.linspace(0.0, 1.0, n_rings + 1)
     th = np.linspace(0, 2 * np.pi, n_sectors, endpoint=False)
     if slots is not None and slots.count > 0:
         if not (0 < slots.depth < b - r_f):
-            raise ValueError(f"slot depth {slots.depth} must lie in (0, b - r_f)")
+            raise Refusal(f"slot depth {slots.depth} must lie in (0, b - r_f)")
         r0 = b - slots.depth
         # move the nearest ring onto the slot root instead of adding a thin ring
         r[np.argmin(np.abs(r[1:-1] - r0)) + 1] = r0 if n_rings > 1 else r[1]
@@ -289,7 +291,7 @@ class PlateDisk:
         r_in = rad.min()
         inner = self.mesh.facets_satisfying(lambda x: np.hypot(*x) < r_in * (1 + 1e-9))
         if inner.size == 0:
-            raise ValueError("no clamped facets found at r = r_f")
+            raise Refusal("no clamped facets found at r = r_f")
         fixed = self.basis.get_dofs(inner).all(["u", "u_x", "u_y", "u_n"])
         self.free = np.setdiff1d(np.arange(self.basis.N), fixed)
         self.n_modes = int(2 * self.n_d.max() + 1 + extra_modes)
@@ -389,7 +391,7 @@ class PlateDisk:
             fixed = np.array([ub.nodal_dofs[0, centre], ub.nodal_dofs[1, centre],
                               ub.nodal_dofs[1, anchor]])
         else:
-            raise ValueError(f"inplane_bc = {inplane_bc!r}: allowed 'clamped', 'free_disk'")
+            raise Refusal(f"inplane_bc = {inplane_bc!r}: allowed 'clamped', 'free_disk'")
         Kin = asm(_membrane, ub, C=self.E / (1 - self.nu**2), nu=self.nu).tocsr()
         free = np.setdiff1d(np.arange(ub.N), fixed)
         return ub, free, symmetric_lu(Kin[free][:, free])

@@ -26,6 +26,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from mechrepro.errors import Refusal
+
 
 def centrifugal_stress(r, *, omega, rho, nu, r_f, b, inplane_bc="clamped"):
     """(sigma_r, sigma_theta) [Pa] of the disk spinning at ``omega`` [rad/s]."""
@@ -39,7 +41,7 @@ def centrifugal_stress(r, *, omega, rho, nu, r_f, b, inplane_bc="clamped"):
         M = np.array([[1 - nu, -(1 + nu) / a**2], [1.0, 1.0 / b**2]])
         A, B = np.linalg.solve(M, [(1 - nu**2) / 8 * q * a * a, (3 + nu) / 8 * q * b * b])
     else:
-        raise ValueError(f"inplane_bc = {inplane_bc!r}: allowed ('clamped', 'free_disk')")
+        raise Refusal(f"inplane_bc = {inplane_bc!r}: allowed ('clamped', 'free_disk')")
     return (A + B / r**2 - (3 + nu) / 8 * q * r**2,
             A - B / r**2 - (1 + 3 * nu) / 8 * q * r**2)
 

@@ -20,6 +20,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from mechrepro.errors import Refusal
 from mechrepro.timing import stopwatch
 from mechrepro.units import var
 
@@ -65,13 +66,13 @@ class Disk:
 
     def _check(self):
         if not 0 < self.r_f < self.b:
-            raise ValueError(f"clamp_radius r_f = {self.r_f} m must lie in (0, b = {self.b} m)")
+            raise Refusal(f"clamp_radius r_f = {self.r_f} m must lie in (0, b = {self.b} m)")
         if np.any(self.n_d < 0):
-            raise ValueError(f"nodal_diameters must be >= 0, got {self.n_d.tolist()}")
+            raise Refusal(f"nodal_diameters must be >= 0, got {self.n_d.tolist()}")
         if self.bc not in thermal.INPLANE_BCS:
-            raise ValueError(f"inplane_bc = {self.bc!r}: allowed {thermal.INPLANE_BCS}")
+            raise Refusal(f"inplane_bc = {self.bc!r}: allowed {thermal.INPLANE_BCS}")
         if self.solver not in DISCRETISATIONS:
-            raise ValueError(f"solver = {self.solver!r}: allowed {list(DISCRETISATIONS)}")
+            raise Refusal(f"solver = {self.solver!r}: allowed {list(DISCRETISATIONS)}")
 
     @property
     def omega_unrolled(self):

@@ -21,6 +21,8 @@ from __future__ import annotations
 import numpy as np
 from scipy.special import erf
 
+from mechrepro.errors import Refusal
+
 INPLANE_BCS = ("clamped", "free_disk")
 
 
@@ -45,15 +47,15 @@ def thermal_stress(r, *, amplitude, r_c, s, r_f, b, E, nu, alpha, inplane_bc="cl
     sigma_theta = alpha E Q/r^2 - alpha E T + E/(1-nu^2) ((1+nu) C1 + (1-nu) C2/r^2).
     """
     if inplane_bc not in INPLANE_BCS:
-        raise ValueError(f"inplane_bc = {inplane_bc!r}: allowed {INPLANE_BCS}")
+        raise Refusal(f"inplane_bc = {inplane_bc!r}: allowed {INPLANE_BCS}")
     if not (0.0 <= r_f < b):
-        raise ValueError(f"clamp radius r_f = {r_f} must satisfy 0 <= r_f < b = {b}")
+        raise Refusal(f"clamp radius r_f = {r_f} must satisfy 0 <= r_f < b = {b}")
     if s <= 0:
-        raise ValueError(f"Gaussian width s = {s} must be > 0")
+        raise Refusal(f"Gaussian width s = {s} must be > 0")
     r = np.asarray(r, float)
     r0 = 0.0 if inplane_bc == "free_disk" else r_f
     if np.any(r < r0 - 1e-12) or np.any(r <= 0):
-        raise ValueError("thermal_stress is evaluated only on the flexible region r >= r_f > 0")
+        raise Refusal("thermal_stress is evaluated only on the flexible region r >= r_f > 0")
     G0 = _antiderivative(r0, amplitude, r_c, s)
     Q = _antiderivative(r, amplitude, r_c, s) - G0
     Qb = _antiderivative(b, amplitude, r_c, s) - G0

@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from mechrepro.accuracy import AccuracyQuantities, against_finest, finest_index
+from mechrepro.errors import Refusal
 
 ACCURACY = AccuracyQuantities("joint_wear")
 REFERENCE_METHOD = "Radau"
@@ -26,7 +27,7 @@ def against_dynamic_reference(st, variable: str) -> np.ndarray:
     against the finest Radau run (NaN for the reference itself)."""
     i_ref = finest_radau(st)
     if i_ref != finest_index(st["rtol"].values, "smaller"):
-        raise ValueError("joint_wear: the finest rtol of accuracy_dynamic must be a Radau run "
+        raise Refusal("joint_wear: the finest rtol of accuracy_dynamic must be a Radau run "
                          "(the reference of the dynamic accuracy entry)")
     q = st[variable].values.astype(float)
     err = np.abs(q / q[i_ref] - 1.0)

@@ -16,6 +16,8 @@ import math
 
 import numpy as np
 
+from mechrepro.errors import Refusal
+
 from . import loads
 from .geometry import FourBar
 
@@ -156,7 +158,7 @@ def initial_state(fb: FourBar, start: str = "concentric", t0: float = 0.0):
         qs = quasistatic.one_period(fb, 720, t0=t0, settled=True)
         return np.array([qs["theta3"][0], qs["phi2"][0], qs["w3"][0], qs["w2"][0]])
     if start != "concentric":
-        raise ValueError(f"joint_wear: initial state {start!r}: allowed concentric, equilibrium")
+        raise Refusal(f"joint_wear: initial state {start!r}: allowed concentric, equilibrium")
     th1 = fb.omega * t0
     th3, ph2 = kinematics.positions(fb, th1)
     w3, w2 = kinematics.velocities(fb, th1, th3, ph2)
@@ -193,9 +195,9 @@ def simulate(fb: FourBar, t_end: float, n_out: int, method: str = "Radau",
     from . import ivp_kernel
 
     if method not in METHODS:
-        raise ValueError(f"joint_wear: method {method!r}: allowed {', '.join(METHODS)}")
+        raise Refusal(f"joint_wear: method {method!r}: allowed {', '.join(METHODS)}")
     if kernel not in ("auto", "scipy", "numba"):
-        raise ValueError(f"joint_wear: kernel {kernel!r}: allowed auto, scipy, numba")
+        raise Refusal(f"joint_wear: kernel {kernel!r}: allowed auto, scipy, numba")
     sys_ = ClearanceJoint(fb, damping=damping)
     y0 = initial_state(fb, start, t_start)
     atol = np.array([1.0, 1.0, 10.0, 10.0]) * rtol * atol_scale

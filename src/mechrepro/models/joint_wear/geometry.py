@@ -9,6 +9,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 
+from mechrepro.errors import Refusal
+
 
 @dataclass(frozen=True)
 class FourBar:
@@ -61,7 +63,7 @@ def stiffness_K(R_pin: float, R_bush: float, h_sum: float) -> float:
     """Eq. (12): K' = 4 / (3 pi (h_i + h_j)) * (R_i R_j / (R_j - R_i))^(1/2)  [N/m^1.5]."""
     c = R_bush - R_pin
     if not c > 0.0:
-        raise ValueError(f"joint_wear: clearance R_bush - R_pin = {c!r} m must be > 0")
+        raise Refusal(f"joint_wear: clearance R_bush - R_pin = {c!r} m must be > 0")
     return 4.0 / (3.0 * math.pi * h_sum) * math.sqrt(R_pin * R_bush / c)
 
 
@@ -73,7 +75,7 @@ def from_parameters(p: dict) -> FourBar:
     """
     c = p["radial_clearance"]
     if not c > 0.0:
-        raise ValueError(f"joint_wear: radial_clearance = {c!r} m: the clearance must be > 0 "
+        raise Refusal(f"joint_wear: radial_clearance = {c!r} m: the clearance must be > 0 "
                          "(a pin as large as the bushing is an ideal joint, not a clearance joint)")
     R_bush = p["pin_radius"] + c
     h_sum = material_h(p["E_pin"], p["nu_pin"]) + material_h(p["E_bushing"], p["nu_bushing"])

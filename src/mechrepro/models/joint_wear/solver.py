@@ -28,6 +28,7 @@ from dataclasses import replace
 import numpy as np
 import xarray as xr
 
+from mechrepro.errors import Refusal
 from mechrepro.timing import stopwatch
 
 from . import dataset, dynamics, kinematics, quasistatic, wear
@@ -39,6 +40,11 @@ WEAR_SETUP = ("unbalanced_load", "wear_update")
 WEAR = ("archard_wear",)
 NO_FACTOR = dict.fromkeys(("S", "F_N_mean", "AB_mean", "A_mean", "arc", "arc_q90", "L_arc",
                            "L_wear", "G", "min_penetration", "F_N_min", "F_N_max"), math.nan)
+
+
+class ContactLost(Refusal):
+    """The joint force vanishes over the period: the continuous-contact model (Sec. 3.2)
+    does not apply there."""
 
 
 # --- the mechanism ---------------------------------------------------------------------------
@@ -100,7 +106,7 @@ def continuous_contact_period(fb: FourBar, s: dict) -> dict:
     F = np.asarray(hist["F_N"])
     if not F.min() > CONTACT_LOSS_FRACTION * F.max():
         i = int(np.argmin(F))
-        raise ValueError(
+        raise ContactLost(
             f"joint_wear: continuous contact lost: the joint-B force falls to {F[i]:.3g} N "
             f"(peak {F.max():.3g} N) at t = {hist['t'][i]:.3g} s; the continuous-contact wear "
             "model (Sec. 3.2) does not apply -- use the clearance_implicit solver")
@@ -207,7 +213,7 @@ def coefficient_scan(run: dict) -> dict:
                     k[m, i, j] = wear.calibrate(p[f"measured_wear_{side}"], cal_h, fb.period,
                                                 fb.R_bush, factor,
                                                 dh_measured=p[f"measured_increment_{side}"])[1]
-            except ValueError:      # contact lost: the paper's premise fails there -- refused
+            except ContactLost:     # the paper's premise fails there -- refused
                 k[:, i, j] = np.nan
     return {"fb": fb, "scan": {"k": k, "L_arc": L, "F_N_min": F_min, "directions": dirs,
                                "gravity": gs, "E_mid": E, "distance": d, "sides": list(SIDES)}}
@@ -288,7 +294,7 @@ def load_point_fit(run: dict) -> dict:
         for j, a in enumerate(dirs):
             try:
                 m[i, j] = float(np.mean(np.log(_calibrated(mech(g, a), s, p) / K_paper)))
-            except ValueError:          # contact lost: refused
+            except ContactLost:         # refused
                 pass
     sols = []
     for i, g in enumerate(gs):

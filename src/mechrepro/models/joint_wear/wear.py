@@ -39,6 +39,7 @@ from collections.abc import Callable
 
 import numpy as np
 
+from mechrepro.errors import Refusal
 from mechrepro.units import from_si
 
 from . import contact
@@ -136,7 +137,7 @@ def period_wear_factor(hist: dict, fb: FourBar, period: float,
     elif wear_range == "contact_point":
         L_wear = L_arc
     else:
-        raise ValueError(f"joint_wear: wear_range {wear_range!r}: allowed swept_patch, contact_point")
+        raise Refusal(f"joint_wear: wear_range {wear_range!r}: allowed swept_patch, contact_point")
     G = F_mean * S / (fb.width * L_wear) if L_wear > 0 else math.inf          # Eq. (29) / k
     return {"S": S, "F_N_mean": F_mean, "AB_mean": AB_mean, "A_mean": A_mean,
             "arc": arc, "arc_q90": arc_q90, "L_arc": L_arc, "L_wear": L_wear, "G": G,
@@ -201,7 +202,7 @@ def calibrate(h_measured, interval_h: float, period: float, R0: float,
     h = np.concatenate([[0.0], np.asarray(h_measured, float)])
     dh = np.diff(h) if dh_measured is None else np.asarray(dh_measured, float)    # Eq. (33)
     if dh.shape != h[1:].shape:
-        raise ValueError(f"joint_wear: {dh.size} increments for {h.size - 1} cumulative values")
+        raise Refusal(f"joint_wear: {dh.size} increments for {h.size - 1} cumulative values")
     M = periods_per_interval(interval_h, period)
     G = np.array([wear_factor(bushing_radius(R0, hp)) for hp in h[:-1]])
     k = dh / M / G                                                              # Eq. (34)

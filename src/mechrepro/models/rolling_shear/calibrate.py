@@ -15,15 +15,18 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
+from mechrepro.errors import Refusal
+
 from . import optimise
 from .geometry import Geometry, cut_points, with_intent
+from .design import Unreachable
 from .loops import NonAssembly
 
 #: tilts scanned for the bracket (rad): theta6_mid = pi + tilt
 TILTS = np.round(np.arange(0.0, 0.8001, 0.02), 10)
 
 
-class CalibrationError(ValueError):
+class CalibrationError(Refusal):
     pass
 
 
@@ -33,7 +36,7 @@ def H_of_tilt(g: Geometry, tilt: float, n: int, tol: float) -> float:
     try:
         gt = with_intent(g, theta6_mid=math.pi + tilt)
         return optimise.objective(gt, cut_points(gt, n)[1], tol)
-    except (NonAssembly, ValueError):
+    except (NonAssembly, Unreachable):
         return math.nan
 
 

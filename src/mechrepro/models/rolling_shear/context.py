@@ -10,14 +10,17 @@ from __future__ import annotations
 
 import numpy as np
 
+from mechrepro.errors import Refusal
+
 from . import optimise, stroke
 from .calibrate import CalibrationError
 from .geometry import cut_points, from_parameters
+from .design import Unreachable
 from .loops import NonAssembly
 from .selpso import SelPSOSettings
 
 
-class Refused(RuntimeError):
+class Refused(Refusal):
     """A lever set (``options.levers``) the run refuses by name: the family member cannot
     be calibrated on the paper's 1.4341 (``calibration``), or the lever set does not
     assemble over the stroke (``assembly``).  Such a run is a result, not a crash: its
@@ -56,7 +59,7 @@ class Context:
                 if self.calibration is not None:
                     self.calibration["H_levers"] = optimise.objective(
                         self.g, cut_points(self.g, self.calibration["n"])[1], self.tol_floor)
-            except (NonAssembly, ValueError) as exc:  # ValueError: intents unreachable
+            except (NonAssembly, Unreachable) as exc:
                 raise Refused("assembly", f"Table II lever set {dict(levers)}: {exc}") from None
         self.huch, self.x_k = cut_points(self.g, self.n)
         self.settings = self._settings()

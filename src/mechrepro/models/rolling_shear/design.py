@@ -25,6 +25,12 @@ from __future__ import annotations
 
 import math
 
+from mechrepro.errors import Refusal
+
+
+class Unreachable(Refusal):
+    """Design intents no linkage of these lever lengths can meet."""
+
 
 INTENTS = ("l1", "l3", "l5", "l6", "l9", "l10", "s", "h", "R", "y_joint", "theta6_mid",
            "elbow_angle", "blade_offset")
@@ -37,7 +43,7 @@ def design(*, l1, l3, l5, l6, l9, l10, s, h, R, y_joint, theta6_mid, elbow_angle
     D = l6 * complex(math.cos(theta6_mid), math.sin(theta6_mid))
     dy = y_joint - D.imag
     if abs(dy) >= l5:
-        raise ValueError(f"y_joint = {y_joint} unreachable from D with l5 = {l5}")
+        raise Unreachable(f"y_joint = {y_joint} unreachable from D with l5 = {l5}")
     I = complex(D.real - math.sqrt(l5 * l5 - dy * dy), y_joint)
     C = I - l9
     x_mid = I.real + (-0.5 * l9 if blade_offset is None else blade_offset)
@@ -48,7 +54,7 @@ def design(*, l1, l3, l5, l6, l9, l10, s, h, R, y_joint, theta6_mid, elbow_angle
     L = math.sqrt(l2 * l2 + l4 * l4 - 2 * l2 * l4 * math.cos(elbow_angle))
     dx = -l10 - I.real
     if abs(dx) >= L:
-        raise ValueError("crank pivot G too far sideways for the chosen elbow angle")
+        raise Unreachable("crank pivot G too far sideways for the chosen elbow angle")
     l11 = y_joint + math.sqrt(L * L - dx * dx)
     O = complex(x_mid, -s + h)
     d = abs(O - D)

@@ -21,6 +21,7 @@ from . import optimise
 from .calibrate import CalibrationError, calibrate_tilt
 from .context import Context
 from .geometry import cut_points, with_intent
+from .design import Unreachable
 from .loops import NonAssembly
 
 GRID_KEYS = ("blade_offset", "R", "width", "y_joint", "eq8_reading", "carrier_constants")
@@ -42,7 +43,7 @@ def calibrated_member(ctx: Context, member: dict, levers: dict) -> tuple[float, 
         gc, info = calibrate_tilt(member_geometry(ctx.g_uncalibrated, member),
                                   ctx.calibration_target, ctx.n, ctx.tol_floor,
                                   whole_scan=False)  # only the tilt is kept
-    except (CalibrationError, NonAssembly, ValueError):
+    except (CalibrationError, NonAssembly, Unreachable):
         return math.nan, math.nan, math.nan
     p = ctx.p
     theta = stroke.solve_exact(gc, cut_points(gc, ctx.n)[1]).theta
@@ -52,7 +53,7 @@ def calibrated_member(ctx: Context, member: dict, levers: dict) -> tuple[float, 
     try:
         gp = gc.with_levers(**levers)
         H = optimise.objective(gp, cut_points(gp, ctx.n)[1], ctx.tol_floor)
-    except (NonAssembly, ValueError):
+    except (NonAssembly, Unreachable):
         H = math.nan
     return info["tilt"], H, float(ok)
 

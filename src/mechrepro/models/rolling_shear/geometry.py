@@ -19,6 +19,8 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass, replace
 
+from mechrepro.errors import Refusal
+
 MM_PER_M = 1000.0
 
 LEVERS = ("l1", "l2", "l3", "l4", "l5", "l6", "l8", "l9", "l10", "l11")
@@ -131,7 +133,7 @@ def cut_points(g: Geometry, n: int):
     import numpy as np
 
     if n < 2:
-        raise ValueError(f"need at least 2 cut points, got {n}")
+        raise Refusal(f"need at least 2 cut points, got {n}")
     huch = np.linspace(0.0, g.width, n)
     return huch, g.x_mid + 0.5 * g.width - huch
 

@@ -17,13 +17,15 @@ import math
 
 import numpy as np
 
+from mechrepro.errors import Refusal
+
 from .geometry import Geometry
 
 #: unknowns of Eq. (9), in this order
 UNKNOWNS = ("theta1", "theta2", "theta3", "theta4")
 
 
-class NonAssembly(RuntimeError):
+class NonAssembly(Refusal):
     """The linkage does not assemble at a cut point; the message names it and why."""
 
     def __init__(self, message: str, cut_point: int | None = None, x_k: float | None = None):

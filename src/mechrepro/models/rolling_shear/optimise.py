@@ -25,6 +25,7 @@ from . import kernels, newton
 from . import pose as pose_mod
 from .branch import RANGES
 from .geometry import OPTIMISED_LEVERS, Geometry, cut_points
+from .design import Unreachable
 from .loops import NonAssembly, pivots
 from .selpso import SelPSOSettings, selpso
 from .trajectory import synthetic_horizontal_displacement
@@ -123,7 +124,7 @@ def penalised(g: Geometry, x_k, tol: float, names=OPTIMISED_LEVERS):
     def f(levers) -> float:
         try:
             return objective(g.with_levers(**dict(zip(names, map(float, levers)))), x_k, tol)
-        except (NonAssembly, ValueError):  # ValueError: design intents unreachable
+        except (NonAssembly, Unreachable):
             return PENALTY
     return f
 

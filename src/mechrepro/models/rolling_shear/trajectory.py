@@ -22,6 +22,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from mechrepro.errors import Refusal
+
 READINGS = ("rotation", "literal")
 
 
@@ -52,7 +54,7 @@ def horizontal_displacement(g, beta, x_k):
     if g.eq8 == "literal":
         return g.R * (np.sin(beta) - np.sin(_literal_theta(g, beta, x_k)))
     if g.eq8 != "rotation":
-        raise ValueError(f"eq8 reading {g.eq8!r}: allowed {READINGS}")
+        raise Refusal(f"eq8 reading {g.eq8!r}: allowed {READINGS}")
     return (x_k - x_k[0]) + g.R * (beta - beta[0])
 
 

@@ -11,6 +11,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from mechrepro.errors import Refusal
+
 from .geometry import stage_angles
 from .kinematics import stage_derivatives
 from .chain import Chain
@@ -166,12 +168,12 @@ def textbook_constants_for_range(F_low, F_high, R, omega, z):
     """
     a = 2 * math.pi / z
     if not (F_low < F_high < 0):
-        raise ValueError(f"needs F_low < F_high < 0, got {F_low}, {F_high}")
+        raise Refusal(f"needs F_low < F_high < 0, got {F_low}, {F_high}")
     r = F_low / F_high
     theta = math.atan2(math.sin(a), r - math.cos(a))
     A = -F_high / math.sin(theta)
     if theta + a >= math.pi / 2:
-        raise ValueError("the range is not monotonic over one tooth; no closed form")
+        raise Refusal("the range is not monotonic over one tooth; no closed form")
     return theta, A / (R * omega**2)
 
 

@@ -24,10 +24,12 @@ import math
 
 import numpy as np
 
+from mechrepro.errors import Refusal
+
 EPS = np.finfo(float).eps
 
 
-class RoundoffError(ValueError):
+class RoundoffError(Refusal):
     """K beyond the round-off limit: the second backward difference is dominated by round-off."""
 
 

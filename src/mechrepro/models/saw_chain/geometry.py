@@ -11,8 +11,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from mechrepro.errors import Refusal
 
-class MeshingError(ValueError):
+
+class MeshingError(Refusal):
     """The chain cannot mesh with the sprocket for the given p1, p2, z."""
 
 

@@ -20,6 +20,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from mechrepro.errors import Refusal
+
 from .chain import Chain
 from .difference import roundoff_load
 from .solver import load_x
@@ -44,7 +46,7 @@ class Extrapolated:
 
 def _levels(K: int) -> tuple:
     if K % RATIO**2 or K < 4 * RATIO**2:
-        raise ValueError(f"K={K}: the finest level must be a multiple of {RATIO**2} and >= {4 * RATIO**2}")
+        raise Refusal(f"K={K}: the finest level must be a multiple of {RATIO**2} and >= {4 * RATIO**2}")
     return (K // RATIO**2, K // RATIO, K)
 
 
