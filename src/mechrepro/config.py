@@ -92,7 +92,15 @@ class PaperConfig:
     @property
     def framework_tables(self) -> list[str]:
         return ["validation", "verdict_evidence", "effect_cost", "job_time"] + (
-            ["cost_of_accuracy"] if self.raw.get("accuracy") else [])
+            ["cost_of_accuracy"] if self.raw.get("accuracy") else []) + (
+            ["effect_marginal_cost"] if self.raw.get("marginal_cost") else [])
+
+    @property
+    def ablations(self) -> dict[str, tuple[str, str]]:
+        """``<scene>@without-<effect>`` -> (scene, effect): the runs that measure what each
+        effect of a ``marginal_cost:`` scene costs the solve (:func:`mechrepro.costs.marginal`)."""
+        return {r: (run["scene"], run["variant"][len("without-"):])
+                for r, run in self.runs.items() if run.get("variant", "").startswith("without-")}
 
     def assumed(self) -> dict[str, dict]:
         """Parameters the paper does not give, with value, unit and justification."""
@@ -279,6 +287,7 @@ def load_paper(path: str | Path, profile: str = "default",
             if name not in raw["scenes"] and name not in raw.get("studies", {}):
                 raise ConfigError(f"{where}: {key}: {name!r} is neither a scene nor a study")
     _add_variants(cfg, raw, run_schema, where)
+    _add_ablations(cfg, raw, where)
     for name, run in cfg.runs.items():
         _cross_check(raw.get("cross_checks", {}), run, f"{where} (run {name})")
     return cfg
@@ -562,6 +571,29 @@ def _add_variants(cfg: PaperConfig, raw: dict, run_schema: dict, where: str) -> 
                 if any(_differs(vr, cfg.runs[r]) for vr, r in zip(runs, cfg.studies[name])):
                     cfg.runs.update({vr["run"]: vr for vr in runs})
                     cfg.studies[f"{name}@{variant}"] = [vr["run"] for vr in runs]
+
+
+def _add_ablations(cfg: PaperConfig, raw: dict, where: str) -> None:
+    """One run per effect of each ``marginal_cost:`` scene, with that effect removed: the
+    difference of the two solves' times is what the effect costs the solver (the work it
+    causes inside the solve, not only its own evaluation). An effect another one requires
+    cannot be removed alone and gets no run."""
+    for scene in raw.get("marginal_cost", []):
+        if scene not in raw["scenes"]:
+            raise ConfigError(f"{where}: marginal_cost: {scene!r} is not a scene; scenes: "
+                              f"{', '.join(raw['scenes'])}")
+        # the times are compared by difference: each is the faster of two calls at least
+        base = cfg.runs[scene] = {**cfg.runs[scene], "timing_repeat": 2}
+        for e in base["effects"]:
+            effects = [x for x in base["effects"] if x != e]
+            try:
+                _check_scene_effects(raw, base["solver"], effects, f"{where}: marginal_cost")
+            except ConfigError:
+                continue
+            cfg.runs[f"{scene}@without-{e}"] = {
+                **base, "run": f"{scene}@without-{e}", "variant": f"without-{e}",
+                "effects": effects,
+                "contributes": {x: raw["effects"][x]["contributes"] for x in effects}}
 
 
 def _differs(variant_run: dict, base: dict) -> bool:

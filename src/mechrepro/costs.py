@@ -15,6 +15,7 @@ import numpy as np
 
 EFFECT_COST_COLUMNS = ["solver", "effect", "runs", "time_s", "share"]
 JOB_TIME_COLUMNS = ["job", "runs", "solve_s", "job_s"]
+MARGINAL_COLUMNS = ["scene", "solver", "effect", "direct_s", "marginal_s", "with_s", "without_s"]
 
 
 def run_times(path: str | Path) -> dict:
@@ -72,4 +73,19 @@ def job_time(paper_root: str | Path, jobs: dict[str, list[str]]) -> list[dict]:
         solve = sum(run_times(root / "runs" / f"{r}.nc")["wall"] for r in runs)
         rows.append({"job": job, "runs": len(runs), "solve_s": solve,
                      "job_s": benchmark_seconds(root / "benchmarks" / f"solve__{job}.tsv")})
+    return rows
+
+
+def marginal(paper_root: str | Path, ablations: dict[str, tuple[str, str]]) -> list[dict]:
+    """Per effect of an ablated scene: its direct cost (its own evaluation, timed inside the
+    solve) beside its marginal cost, the scene's solve time with it minus without it, which
+    also bills the work it causes in the solver (extra steps, a second solve per step)."""
+    root = Path(paper_root)
+    rows = []
+    for run, (scene, effect) in ablations.items():
+        full, without = (run_times(root / "runs" / f"{r}.nc") for r in (scene, run))
+        rows.append({"scene": scene, "solver": full["solver"], "effect": effect,
+                     "direct_s": full["effects"].get(effect, np.nan),
+                     "marginal_s": full["wall"] - without["wall"],
+                     "with_s": full["wall"], "without_s": without["wall"]})
     return rows

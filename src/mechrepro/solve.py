@@ -55,11 +55,13 @@ def run_solver(run: dict):
 def _solve_once(run: dict):
     min_time = float(run.get("options", {}).get("timing_min_s", 0.05))
     m = model(run["paper"])
+    # runs compared by difference (marginal cost) are timed warm, however slow
+    repeat = int(run.get("timing_repeat", 1))
     if hasattr(m, "compute") and hasattr(m, "to_dataset"):
-        result, seconds, timer = timed_run(m.compute, run, min_time=min_time)
+        result, seconds, timer = timed_run(m.compute, run, min_time=min_time, min_repeat=repeat)
         ds = m.to_dataset(result, run)
     else:
-        ds, seconds, timer = timed_run(m.solve, run, min_time=min_time)
+        ds, seconds, timer = timed_run(m.solve, run, min_time=min_time, min_repeat=repeat)
     # variables, not only attributes, so that gather stacks them along a study
     effects = list(run["effects"])
     ds = ds.assign(timing_variables(seconds, timer, effects))

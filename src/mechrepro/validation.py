@@ -624,6 +624,10 @@ def write_costs(cfg, results_dir: str, files: ResultFiles | None = None) -> None
     ec = costs.effect_cost([root / "runs" / f"{r}.nc" for r in cfg.runs])   # variants too
     write_csv(root / "tables" / "effect_cost.csv", costs.EFFECT_COST_COLUMNS,
               [[r[c] for c in costs.EFFECT_COST_COLUMNS] for r in ec])
+    if cfg.ablations:
+        mc = costs.marginal(root, cfg.ablations)
+        write_csv(root / "tables" / "effect_marginal_cost.csv", costs.MARGINAL_COLUMNS,
+                  [[r[c] for c in costs.MARGINAL_COLUMNS] for r in mc])
     jt = costs.job_time(root, cfg.solve_jobs())
     write_csv(root / "tables" / "job_time.csv", costs.JOB_TIME_COLUMNS,
               [[r[c] for c in costs.JOB_TIME_COLUMNS] for r in jt])
