@@ -71,8 +71,19 @@ def snakemake(work, *args, check=True, env=None):
 
 
 @pytest.fixture(scope="session")
-def workflow(tmp_path_factory):
-    """The ci-profile pipeline, run once per test session in a copy of the workflow."""
+def workflow(request, tmp_path_factory):
+    """The ci-profile pipeline, run once per test session in a copy of the workflow: of
+    every paper, or only of the papers the selected tests read when all of them are
+    per-artefact tests (`pytest -k saw_chain-fig07` runs saw_chain's pipeline alone)."""
     work = copy_workflow(tmp_path_factory.mktemp("wf"))
-    log = snakemake(work)
+    papers = set()
+    for item in request.session.items:
+        if "workflow" not in getattr(item, "fixturenames", ()):
+            continue
+        paper = getattr(item, "callspec", None) and item.callspec.params.get("paper")
+        if item.module.__name__ != "test_artefacts" or not paper:
+            papers = None
+            break
+        papers.add(paper)
+    log = snakemake(work, *([f"papers=[{','.join(sorted(papers))}]"] if papers else []))
     return work, log
