@@ -57,3 +57,16 @@ def test_exact_reference_is_proven_and_methods_are_separate_labelled_lines():
     orders = {r["line"]: r["observed_order"] for r in rows}
     assert abs(orders["A"] - 2) < 1e-9 and abs(orders["B"] - 3) < 1e-9
     assert all(r["reference_proven"] and r["reference_error"] == 0 for r in rows)
+
+
+def test_a_curve_at_round_off_bounds_its_reference_by_round_off():
+    """A quantity converged to the last bits from the second level on (errors 0 or ~1e-16
+    against the finest run) has no Richardson estimate, but its reference is at least as
+    good as round-off: the points above that floor are proven, the flat tail is not
+    compared."""
+    from mechrepro import accuracy
+
+    knob = np.array([16, 32, 64, 128, 256])
+    errors = np.array([2.1e-10, 0.0, 1.1e-16, 1.1e-16, 0.0])
+    assert accuracy.at_roundoff(1.0 / knob, errors)
+    assert not accuracy.at_roundoff(1.0 / knob, np.array([1e-3, 1e-4, 1e-5, 1e-6, 1e-7]))

@@ -96,6 +96,17 @@ def curve_order(h, err) -> float:
     return observed_order(h[:stop], err[:stop])
 
 
+ROUNDOFF = 1e-13   # relative: a few hundred ulp of double precision, the floor of a converged curve
+
+
+def at_roundoff(h, err) -> bool:
+    """Whether the two finest points of a curve lie at round-off (relative errors)."""
+    h, err = np.asarray(h, float), np.asarray(err, float)
+    ok = np.isfinite(err)
+    finest = err[ok][np.argsort(h[ok])][:2]
+    return len(finest) == 2 and bool(np.all(finest <= ROUNDOFF))
+
+
 def reference_error(reference: str, h, err, h_ref: float | None, given: float | None = None):
     """(error estimate of the curve's reference, proven) in the units of ``err``.
 
@@ -192,10 +203,14 @@ def rows(entries: list[dict], dataset: Callable[[str], object],
             ref_err, _ = reference_error(
                 reference, h[ref_line], err[ref_line],
                 float(h[fi]) if reference == "finest" else None, qspec.get("reference_error"))
+            floor = ROUNDOFF if qspec["error"] == "relative" else 0.0
+            if not np.isfinite(ref_err) and floor and at_roundoff(h[ref_line], err[ref_line]):
+                # the curve reaches its reference within round-off: that bounds its error
+                ref_err = floor
             for line in dict.fromkeys(lines):
                 on = on_line(line)
                 sel = np.flatnonzero(on)
-                e = err[sel][err[sel] > 0]
+                e = err[sel][err[sel] > floor]
                 proven = bool(reference == "exact" or (np.isfinite(ref_err) and len(e)
                                                        and ref_err < e.min()))
                 p = curve_order(h[sel], err[sel])
