@@ -90,7 +90,19 @@ def assumed_constants(results: Path, config_dir: Path = Path("config")) -> str:
     return "\n".join(out)
 
 
-README_BLOCKS = {"claims": claims, "assumed_constants": assumed_constants}
+def job_times(results: Path, config_dir: Path = Path("config")) -> str:
+    """Where the time of the run went, per paper (the report's table, as markdown)."""
+    from .report import time_view
+
+    view = time_view(results, _papers(config_dir))
+    if view is None:
+        return "(no job times in this run)"
+    return "\n".join(["| " + " | ".join(view["head"]) + " |",
+                      "|" + "---|" * len(view["head"])]
+                     + ["| " + " | ".join(r) + " |" for r in view["rows"]])
+
+
+README_BLOCKS = {"claims": claims, "assumed_constants": assumed_constants, "job_times": job_times}
 
 
 def blocks_for(doc: Path) -> tuple[dict, str | None]:
