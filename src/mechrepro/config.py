@@ -1,14 +1,15 @@
 """The one scene loader: paper config -> validated, fully resolved runs.
 
 A paper config (``config/papers/<paper>.yaml``) holds the paper's parameters (each with
-unit and source, or ``assumed: true`` and ``why``), named **scenes** (effects +
+unit, the values it may take (``allowed:``) and source, or ``assumed: true`` and ``why``),
+named **scenes** (effects +
 resolution + parameter overrides) and **studies** (sweeps over a scene).  Loading:
 
 1. the file is validated against ``config/schema/paper.schema.json`` (its shape);
 2. the profile overlay (``profiles: {ci: ...}``) is merged in;
 3. every scene and every study point is expanded into a **run** record and validated
-   against ``config/schema/<paper>.run.schema.json`` (allowed effects, parameter ranges,
-   resolution ranges), so a bad value is reported with file, key, value and allowed range
+   against ``config/schema/<paper>.run.schema.json`` (the parameters the solver reads,
+   resolution ranges, options) with every parameter's ``allowed:`` merged in, so a bad value is reported with file, key, value and allowed range
    before anything runs;
 4. parameters are converted to SI (:mod:`mechrepro.units`);
 5. the **variant runs** that re-check the verdicts are added (``<run>@finer``,
@@ -190,6 +191,16 @@ def load_schema(name: str, schema_dir: Path) -> dict:
     return json.loads((schema_dir / name).read_text())
 
 
+def with_parameters(run_schema: dict, raw: dict) -> dict:
+    """The run schema with its parameters' bounds from the config: the schema file names
+    what the solver reads (``required``), each parameter's ``allowed:`` says what values it
+    may take (declared once, beside its value)."""
+    params = {"type": "object", "additionalProperties": False,
+              "required": run_schema["properties"]["parameters"]["required"],
+              "properties": {k: p["allowed"] for k, p in raw["parameters"].items()}}
+    return {**run_schema, "properties": {**run_schema["properties"], "parameters": params}}
+
+
 # Where jobs keep validated configs (relative to the workflow directory they run in).
 CACHE_DIR = ".snakemake/mechrepro"
 
@@ -266,7 +277,7 @@ def load_paper(path: str | Path, profile: str = "default",
     if paper != path.stem:
         raise ConfigError(f"{where}: paper = {paper!r}: must be the file's name, {path.stem!r} "
                           "(a paper is discovered from config/papers/<paper>.yaml)")
-    run_schema = load_schema(f"{paper}.run.schema.json", sdir)
+    run_schema = with_parameters(load_schema(f"{paper}.run.schema.json", sdir), raw)
     cfg = PaperConfig(paper=paper, path=where, profile=profile,
                       source=raw.get("source", ""), raw=raw)
     for scene in raw["scenes"]:
