@@ -335,7 +335,17 @@ def test_one_parameter_in_one_scene_reruns_exactly_its_solve_jobs(paper, tmp_pat
     (lambda t: t.replace("{value: 8.91,  unit: mm,", "{value: 8.91,  unit: m,"),
      "chain pitch between 3 mm and 200 mm"),
     (lambda t: t.replace("Sec. 4 (p1)", "Sec. 4 (p1) \udce9"), "not UTF-8"),
-], ids=["nan", "duplicate scenes", "8.91 m pitch", "latin-1 byte"])
+    (lambda t: t.replace("      fig07_fig08: {resolution: {K: 300}}",
+                         "      fig07_fig08: {resolution: {K: 50000}}"),
+     "resolution.K = 50000: beyond K = 39434"),
+    (lambda t: t.replace("    effects: [textbook]", "    effects: []", 1),
+     "scenes.speed_12000.effects = []"),
+    (lambda t: t.replace("      fig07_fig08: {resolution: {K: 300}}",
+                         "      fig07_fig08: {resolution: {K: 300}}\n"
+                         "      accuracy: {resolution: {K: 9000000}}"),
+     "expected to take 2900 MB, above the solve rule's 2000 MB"),
+], ids=["nan", "duplicate scenes", "8.91 m pitch", "latin-1 byte", "K beyond round-off",
+        "emptied effects", "memory above the rule"])
 def test_bad_input_stops_a_real_run_before_any_job_and_loses_nothing(run, tmp_path, edit, expect):
     work = tmp_path / "w"
     shutil.copytree(run, work, symlinks=True)

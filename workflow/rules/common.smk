@@ -34,6 +34,18 @@ except ConfigError as exc:
     sys.stderr.write(f"\n{exc}\n\n")
     raise SystemExit(1)
 
+# Each solver's own limits and declared cost (models/<paper>/limits.py), before any job:
+# a run its solver would refuse, or a job expected above the solve rule's memory or time,
+# stops the run here with the estimate (`--config over_budget=true` runs it on purpose).
+from mechrepro.limits import LimitError, check_all, job_resources  # noqa: E402
+
+OVER_BUDGET = str(config.get("over_budget", False)).lower() == "true"   # --config gives text
+try:
+    check_all(CFG, OVER_BUDGET)
+except LimitError as exc:
+    sys.stderr.write(f"\n{exc}\n\n")
+    raise SystemExit(1)
+
 # Before the jobs are decided: take this results directory's run lock (a second run is
 # refused here, before it can touch anything), then heal by content (mechrepro.heal), in
 # the main process of a run only. `make reproduce` and a plain `snakemake` are alike.
@@ -56,7 +68,9 @@ def code(*relpaths):
     for rel in relpaths:
         p = SRC / "mechrepro" / rel
         out += sorted(str(f) for f in p.rglob("*.py")) if p.is_dir() else [str(p)]
-    return out
+    # a model's load-time limits (models/<paper>/limits.py) are read by the workflow
+    # before any job, by no job: changing them reruns nothing
+    return [f for f in out if not (Path(f).name == "limits.py" and "models" in Path(f).parts)]
 
 
 # The framework modules every solver job imports.
