@@ -261,6 +261,17 @@ def test_cli_errors_are_readable(tmp_path):
         out = cli(*args)
         assert out.returncode == rc and text in out.stdout + out.stderr, (args, out)
         assert "Traceback" not in out.stderr, out.stderr
+    # the researcher's entry point (`mechrepro`, experiment.main), outside a project
+    for args, rc, text in [((), 2, "usage"), (("--help",), 0, "project directory"),
+                           (("exp", "run", "--help"), 0, "PAPER.KEY=VALUE"),
+                           (("exp", "run", "t", "--set", "saw_chain.x=1"), 2,
+                            "run mechrepro in the project directory"),
+                           (("diff", "a", "b"), 2, "a: no such file"),
+                           (("nonsense",), 2, "invalid choice")]:
+        out = subprocess.run([sys.executable, "-m", "mechrepro.experiment", *args], cwd=tmp_path,
+                             capture_output=True, text=True, env=env)
+        assert out.returncode == rc and text in out.stdout + out.stderr, (args, out)
+        assert "Traceback" not in out.stderr, out.stderr
 
 
 # --- scene-precision reruns ---------------------------------------------------------------
