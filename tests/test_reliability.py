@@ -480,3 +480,19 @@ def test_heal_leaves_results_alone_while_snakemake_locks_name_them(tmp_path, mon
     healmod.heal("results")
     healmod.release("results")
     assert not part.exists()
+
+
+@pipeline
+def test_make_and_plain_snakemake_name_the_interpreter_alike(run):
+    """`make` runs `.venv/bin/python -m snakemake`, the script `.venv/bin/snakemake` runs
+    `.venv/bin/python3`: either way the jobs' command is the same (it is a param: a second
+    spelling reran every job)."""
+    from pathlib import Path
+
+    other = Path(sys.prefix) / "bin" / ("python3" if Path(sys.executable).name == "python"
+                                        else "python")
+    if not other.exists():
+        pytest.skip(f"{other} does not exist")
+    proc = subprocess.run([str(other), "-m", "snakemake", *SM[3:], "-n"], cwd=run,
+                          capture_output=True, text=True, timeout=300)
+    assert "Nothing to be done" in proc.stdout, proc.stdout[-3000:]

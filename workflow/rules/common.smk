@@ -56,7 +56,11 @@ heal_workflow(workflow, RESULTS)
 # Every job runs `python -m mechrepro.<module>` with this workflow's src/ first on the path.
 # relative when the interpreter lives in the project (.venv), so a moved project keeps its
 # commands; absolute when it lives elsewhere, which does not move with the project
-_exe = Path(sys.executable).absolute()
+# One name per interpreter: `make` starts `.venv/bin/python -m snakemake`, the script
+# `.venv/bin/snakemake` runs `.venv/bin/python3`; the command is a param of every job, so
+# two spellings of one venv's interpreter would rerun every job when switching between them.
+_exe = (Path(sys.prefix) / "bin" / "python" if sys.prefix != sys.base_prefix
+        and (Path(sys.prefix) / "bin" / "python").exists() else Path(sys.executable)).absolute()
 PY = (os.path.relpath(_exe) if _exe.is_relative_to(Path(workflow.basedir).absolute())
       else str(_exe))
 RUN = {"python": f"PYTHONPATH={SRC} {PY}", "profile": PROFILE, "base": str(BASE)}
