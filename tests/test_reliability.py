@@ -496,3 +496,25 @@ def test_make_and_plain_snakemake_name_the_interpreter_alike(run):
     proc = subprocess.run([str(other), "-m", "snakemake", *SM[3:], "-n"], cwd=run,
                           capture_output=True, text=True, timeout=300)
     assert "Nothing to be done" in proc.stdout, proc.stdout[-3000:]
+
+
+@pipeline
+def test_a_failing_notebook_job_keeps_its_last_good_figures(run, tmp_path):
+    """update() outputs of validate_/notebook_: a notebook failing after it drew every
+    figure gets the last good notebook, figures and tables back; fixed, it reruns."""
+    work = tmp_path / "w"
+    shutil.copytree(run, work, symlinks=True)
+    res = work / "results" / PAPER
+    drawn = {str(p.relative_to(res)): file_sha256(p) for p in
+             [*res.glob("figures/*.png"), res / "notebook.ipynb"]}
+    nb = work / "notebooks" / f"{PAPER}.py"
+    original = nb.read_text()
+    nb.write_text(original + '\n\nraise RuntimeError("injected notebook failure")\n')
+    proc = sm(work, check=False)
+    out = proc.stdout + proc.stderr
+    assert proc.returncode != 0 and "injected notebook failure" in out   # the cause, on the console
+    assert "Restored previous version" in out
+    assert {k: file_sha256(res / k) for k in drawn} == drawn
+    nb.write_text(original)
+    sm(work)
+    assert "Nothing to be done" in sm(work, "-n").stdout
