@@ -358,6 +358,22 @@ def test_one_parameter_in_one_scene_reruns_exactly_its_solve_jobs(paper, tmp_pat
 ], ids=["nan", "duplicate scenes", "8.91 m pitch", "latin-1 byte", "K beyond round-off",
         "emptied effects", "memory above the rule"])
 def test_bad_input_stops_a_real_run_before_any_job_and_loses_nothing(run, tmp_path, edit, expect):
+    _refused_and_nothing_lost(run, tmp_path, edit, [expect])
+
+
+def _bad_inputs():
+    from test_inputs import BAD
+
+    return BAD
+
+
+@pipeline
+@pytest.mark.parametrize("name, edit, expect", _bad_inputs(), ids=[b[0] for b in _bad_inputs()])
+def test_every_bad_input_class_of_test_inputs_loses_nothing(run, tmp_path, name, edit, expect):
+    _refused_and_nothing_lost(run, tmp_path, edit, expect)
+
+
+def _refused_and_nothing_lost(run, tmp_path, edit, expect):
     work = tmp_path / "w"
     shutil.copytree(run, work, symlinks=True)
     before = hashes(work / "results")
@@ -365,7 +381,8 @@ def test_bad_input_stops_a_real_run_before_any_job_and_loses_nothing(run, tmp_pa
     path.write_bytes(edit(path.read_text()).encode("utf-8", "surrogateescape"))
     proc = sm(work, check=False)
     out = proc.stdout + proc.stderr
-    assert proc.returncode != 0 and expect in out and f"config/papers/{PAPER}.yaml" in out, out[-2000:]
+    assert proc.returncode != 0 and f"config/papers/{PAPER}.yaml" in out, out[-2000:]
+    assert all(e in out for e in expect), (expect, out[-2000:])
     assert "rule " not in out and "Traceback" not in out, out[-2000:]
     assert hashes(work / "results") == before
 
