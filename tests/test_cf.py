@@ -1,5 +1,6 @@
 """Every netCDF result passes the IOOS compliance-checker's CF-1.8 check without errors
-and without an exception in any check.
+and without an exception in any check, and, where it is installed, the NCAS CF checker
+(`cfchecks`, package cfchecker, which needs the UDUNITS-2 C library) without errors.
 
 The checker takes seconds per file, and the runs of one scene (a study's points, the
 verdict variants) share one layout, so each distinct layout (variable names, types,
@@ -76,8 +77,8 @@ def cf_errors(paths):
     return errors
 
 
-def test_every_netcdf_layout_is_cf_compliant(workflow):
-    work, _ = workflow
+def layouts(work):
+    """One result file per distinct layout."""
     seen, paths = set(), []
     for path in sorted((work / "results").rglob("*.nc")):
         if path.name.startswith(".") or "reference" in path.parts:
@@ -87,5 +88,52 @@ def test_every_netcdf_layout_is_cf_compliant(workflow):
             seen.add(key)
             paths.append(path)
     assert paths
-    errors = cf_errors(paths)
+    return paths
+
+
+def test_every_netcdf_layout_is_cf_compliant(workflow):
+    errors = cf_errors(layouts(workflow[0]))
+    assert not errors, "\n".join(errors)
+
+
+def cfchecks_errors(paths, tmp):
+    """The NCAS CF checker on each file: its error count, and any exception as an error.
+    Offline: the CF standard-name table is compliance-checker's copy; the area-type and
+    region tables are one-entry stand-ins (no result uses area_type or region names)."""
+    import re
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    import compliance_checker
+
+    exe = Path(sys.executable).with_name("cfchecks")
+    names = Path(compliance_checker.__file__).parent / "data" / "cf-standard-name-table.xml"
+    tables = {}
+    for flag, root in (("-a", "area_type_table"), ("-r", "standardized_region_list")):
+        tables[flag] = tmp / f"{root}.xml"
+        tables[flag].write_text(f'<?xml version="1.0"?>\n<{root}><version_number>0'
+                                f'</version_number><date>none</date><entry id="x"/></{root}>\n')
+    errors = []
+    for path in paths:
+        proc = subprocess.run([str(exe), "-s", str(names), "-a", str(tables["-a"]),
+                               "-r", str(tables["-r"]), str(path)],
+                              capture_output=True, text=True, timeout=300)
+        out = proc.stdout + proc.stderr
+        m = re.search(r"ERRORS detected: (\d+)", out)
+        if "Traceback" in out or not m:
+            errors.append(f"{path.name}: cfchecks did not finish: {out[-600:]}")
+        elif int(m.group(1)):
+            errors.append(f"{path.name}: " + "; ".join(l for l in out.splitlines()
+                                                      if l.startswith("ERROR")))
+    return errors
+
+
+def test_every_netcdf_layout_passes_the_ncas_cf_checker(workflow, tmp_path):
+    pytest.importorskip("cfchecker")
+    try:
+        import cfunits  # noqa: F401  (needs libudunits2 on the library path)
+    except (ImportError, OSError) as exc:
+        pytest.skip(f"cfchecker installed without UDUNITS-2: {exc}")
+    errors = cfchecks_errors(layouts(workflow[0]), tmp_path)
     assert not errors, "\n".join(errors)

@@ -13,10 +13,40 @@ import sys
 import pytest
 import yaml
 
-from conftest import SNAKEMAKE, snakemake
+import conftest
+from conftest import SNAKEMAKE
 from mechrepro.archive import verify
 
 pytestmark = pytest.mark.slow
+
+# MECHREPRO_FAULT_PAPERS=saw_chain: the same faults on a one-paper run (about a minute
+# instead of the five-paper ci pipeline); its report and archive are report-<paper>/,
+# archive-<paper>/ (never the five-paper ones)
+ONLY = os.environ.get("MECHREPRO_FAULT_PAPERS", "")
+TAG = "-" + "+".join(ONLY.split(",")) if ONLY else ""
+REPORT, ARCHIVE = f"report{TAG}", f"archive{TAG}"
+if ONLY:
+    SNAKEMAKE = [*SNAKEMAKE, f"papers=[{ONLY}]"]
+
+
+def snakemake(work, *args, check=True):
+    if not ONLY:
+        return conftest.snakemake(work, *args, check=check)
+    proc = subprocess.run([*SNAKEMAKE, *args], cwd=work, capture_output=True, text=True,
+                          timeout=2400)
+    if check and proc.returncode != 0:
+        raise AssertionError(f"snakemake {' '.join(args)} failed:\n{proc.stdout[-4000:]}\n"
+                             f"{proc.stderr[-4000:]}")
+    return proc.stdout + proc.stderr
+
+
+@pytest.fixture(scope="module")
+def wf(request, tmp_path_factory):
+    """The session's five-paper ci pipeline copy, or a one-paper one (MECHREPRO_FAULT_PAPERS)."""
+    if not ONLY:
+        return request.getfixturevalue("workflow")
+    work = conftest.copy_workflow(tmp_path_factory.mktemp("faults"))
+    return work, snakemake(work)
 
 
 def heal(work):
@@ -37,16 +67,16 @@ def restored(work):
     log = heal(work)
     snakemake(work)
     assert "Nothing to be done" in snakemake(work, "-n")
-    assert verify(work / "results", work / "results" / "archive" / "manifest.json") == []
+    assert verify(work / "results", work / "results" / ARCHIVE / "manifest.json") == []
     return log
 
 
-def test_deleted_figure_run_and_summary_image_are_restored(workflow):
-    work, _ = workflow
+def test_deleted_figure_run_and_summary_image_are_restored(wf):
+    work, _ = wf
     res = work / "results"
     fig = res / "saw_chain" / "figures" / "fig07.png"
     run = res / "saw_chain" / "runs" / "speed_12000.nc"
-    summary = res / "report" / "cost_of_accuracy_all.png"
+    summary = res / REPORT / "cost_of_accuracy_all.png"
     for f in (fig, run, summary):
         f.unlink()
     jobs = planned(work)
@@ -56,8 +86,8 @@ def test_deleted_figure_run_and_summary_image_are_restored(workflow):
     assert fig.stat().st_size > 1000 and run.exists() and summary.exists()
 
 
-def test_truncated_netcdf_is_rebuilt_and_its_study_kept(workflow):
-    work, _ = workflow
+def test_truncated_netcdf_is_rebuilt_and_its_study_kept(wf):
+    work, _ = wf
     run = work / "results" / "saw_chain" / "runs" / "cost_of_accuracy-001.nc"
     study = work / "results" / "saw_chain" / "studies" / "cost_of_accuracy.nc"
     st = run.stat()
@@ -68,15 +98,15 @@ def test_truncated_netcdf_is_rebuilt_and_its_study_kept(workflow):
     assert study.exists() and run.stat().st_size > 1000
 
 
-def test_corruption_that_keeps_the_time_stamp_is_found_by_checksum(workflow):
-    work, _ = workflow
+def test_corruption_that_keeps_the_time_stamp_is_found_by_checksum(wf):
+    work, _ = wf
     table = work / "results" / "saw_chain" / "tables" / "cost_of_accuracy.csv"
     st = table.stat()
     data = bytearray(table.read_bytes())
     data[-5] = ord("7") if data[-5] != ord("7") else ord("8")
     table.write_bytes(bytes(data))
     os.utime(table, ns=(st.st_atime_ns, st.st_mtime_ns))
-    assert verify(work / "results", work / "results" / "archive" / "manifest.json") == [
+    assert verify(work / "results", work / "results" / ARCHIVE / "manifest.json") == [
         "saw_chain/tables/cost_of_accuracy.csv: sha256 differs from the manifest"]
     log = restored(work)
     assert "content differs from what its job wrote" in log
@@ -93,10 +123,10 @@ def _garbled(table):
     return buf.getvalue()
 
 
-def test_garbage_pasted_into_a_table_is_healed_by_plain_snakemake(workflow):
+def test_garbage_pasted_into_a_table_is_healed_by_plain_snakemake(wf):
     """Garbage pasted into a result (time stamp kept): the workflow's own heal finds it
     by content before any job, and the run rebuilds it."""
-    work, _ = workflow
+    work, _ = wf
     table = work / "results" / "saw_chain" / "tables" / "validation.csv"
     st = table.stat()
     table.write_text(_garbled(table))
@@ -104,46 +134,46 @@ def test_garbage_pasted_into_a_table_is_healed_by_plain_snakemake(workflow):
     log = snakemake(work)
     assert "validation.csv: content differs from what its job wrote" in log
     assert "Nothing to be done" in snakemake(work, "-n")
-    assert "OK" in (work / "results" / "report" / "reference_check.txt").read_text().splitlines()[0]
-    assert verify(work / "results", work / "results" / "archive" / "manifest.json") == []
+    assert "OK" in (work / "results" / REPORT / "reference_check.txt").read_text().splitlines()[0]
+    assert verify(work / "results", work / "results" / ARCHIVE / "manifest.json") == []
 
 
-def test_garbage_written_by_a_job_is_named_and_not_archived(workflow):
+def test_garbage_written_by_a_job_is_named_and_not_archived(wf):
     """Garbage a job itself wrote (its checksum recorded, so heal keeps it): the reference
     check names file, line and value; the archive refuses and keeps the last good one."""
     from mechrepro.io import write_text
     from mechrepro.provenance import file_sha256
 
-    work, _ = workflow
+    work, _ = wf
     table = work / "results" / "saw_chain" / "tables" / "validation.csv"
-    archive = work / "results" / "archive"
+    archive = work / "results" / ARCHIVE
     keep = {f.name: file_sha256(f) for f in archive.iterdir() if not f.name.startswith(".")}
     write_text(table, _garbled(table))
     proc = subprocess.run([*SNAKEMAKE, "--keep-going"], cwd=work, capture_output=True, text=True)
     assert proc.returncode != 0
-    check = (work / "results" / "report" / "reference_check.txt").read_text()
+    check = (work / "results" / REPORT / "reference_check.txt").read_text()
     assert "DRIFT" in check.splitlines()[0] and "line 2" in check and "'#garbage#' is not a number" in check
     assert {f.name: file_sha256(f) for f in archive.iterdir() if not f.name.startswith(".")} == keep
     snakemake(work, "--forcerun", "validate_saw_chain")
-    assert "OK" in (work / "results" / "report" / "reference_check.txt").read_text().splitlines()[0]
-    assert verify(work / "results", work / "results" / "archive" / "manifest.json") == []
+    assert "OK" in (work / "results" / REPORT / "reference_check.txt").read_text().splitlines()[0]
+    assert verify(work / "results", work / "results" / ARCHIVE / "manifest.json") == []
 
 
-def test_an_interrupted_job_leaves_nothing_that_stays(workflow):
-    work, _ = workflow
+def test_an_interrupted_job_leaves_nothing_that_stays(wf):
+    work, _ = wf
     stale = work / "results" / "saw_chain" / "runs" / ".speed_12000.abc.part.nc"
     stale.write_bytes(b"half")
     log = restored(work)
     assert "temporary file of an interrupted job" in log and not stale.exists()
 
 
-def test_a_killed_run_recovers_as_the_readme_says(workflow):
+def test_a_killed_run_recovers_as_the_readme_says(wf):
     """kill -9 in the middle of a solver job (the batch writes fig07_fig08 first); then
     `snakemake --unlock` and a normal run."""
     import signal
     import time
 
-    work, _ = workflow
+    work, _ = wf
     run = work / "results" / "saw_chain" / "runs" / "fig07_fig08.nc"
     proc = subprocess.Popen([*SNAKEMAKE, "--forcerun", "solve_saw_chain__batch"],
                             cwd=work, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
@@ -158,50 +188,50 @@ def test_a_killed_run_recovers_as_the_readme_says(workflow):
     heal(work)
     snakemake(work, "--rerun-incomplete")  # as `make reproduce` runs it
     assert "Nothing to be done" in snakemake(work, "-n")
-    assert verify(work / "results", work / "results" / "archive" / "manifest.json") == []
+    assert verify(work / "results", work / "results" / ARCHIVE / "manifest.json") == []
     assert run.stat().st_size > 1000
 
 
-def test_a_moved_project_with_its_results_schedules_nothing(workflow, tmp_path):
-    work, _ = workflow
+def test_a_moved_project_with_its_results_schedules_nothing(wf, tmp_path):
+    work, _ = wf
     moved = tmp_path / "moved"
     shutil.copytree(work, moved, symlinks=True)  # copytree keeps time stamps (copy2)
     assert "Nothing to be done" in snakemake(moved, "-n")
 
 
-def test_results_honour_the_umask(workflow):
-    work, _ = workflow
+def test_results_honour_the_umask(wf):
+    work, _ = wf
     for f in [work / "results" / "saw_chain" / "runs" / "speed_12000.nc",
-              work / "results" / "report" / "index.html",
-              work / "results" / "archive" / "mechrepro-results.tar.gz"]:
+              work / "results" / REPORT / "index.html",
+              work / "results" / ARCHIVE / "mechrepro-results.tar.gz"]:
         assert f.stat().st_mode & 0o044 == 0o044, f"{f} is not readable by others"
     import tarfile
 
-    with tarfile.open(work / "results" / "archive" / "mechrepro-results.tar.gz") as tar:
+    with tarfile.open(work / "results" / ARCHIVE / "mechrepro-results.tar.gz") as tar:
         members = tar.getmembers()
         names = {m.name for m in members}
         assert all(m.mode & 0o044 == 0o044 for m in members)
     # everything the archived report links is in the archive
-    assert {"report/index.html", "report/cost_of_accuracy_all.png", "report/summary.csv",
-            "manifest.json"} <= names
+    assert {f"{REPORT}/index.html", f"{REPORT}/cost_of_accuracy_all.png",
+            f"{REPORT}/summary.csv", "manifest.json"} <= names
 
 
-def test_the_extracted_archive_report_has_no_broken_link(workflow, tmp_path):
+def test_the_extracted_archive_report_has_no_broken_link(wf, tmp_path):
     import re
     import tarfile
 
-    work, _ = workflow
-    with tarfile.open(work / "results" / "archive" / "mechrepro-results.tar.gz") as tar:
+    work, _ = wf
+    with tarfile.open(work / "results" / ARCHIVE / "mechrepro-results.tar.gz") as tar:
         tar.extractall(tmp_path, filter="data")
-    page = (tmp_path / "report" / "index.html").read_text()
+    page = (tmp_path / REPORT / "index.html").read_text()
     links = re.findall(r'(?:src|href)="([^"#]+)"', page)
     assert links
-    broken = [l for l in links if not (tmp_path / "report" / l).resolve().exists()]
+    broken = [l for l in links if not (tmp_path / REPORT / l).resolve().exists()]
     assert not broken, broken
 
 
-def test_lint_is_clean_but_for_conda(workflow):
-    work, _ = workflow
+def test_lint_is_clean_but_for_conda(wf):
+    work, _ = wf
     proc = subprocess.run([*SNAKEMAKE, "--lint"], cwd=work, capture_output=True, text=True)
     lints = {line.strip() for line in (proc.stdout + proc.stderr).splitlines()
              if line.strip().startswith("* ")}
@@ -218,8 +248,8 @@ def test_lint_is_clean_but_for_conda(workflow):
     (lambda raw: raw["profiles"]["ci"]["scenes"].update(fig07_fig8={"resolution": {"K": 3}}),
      "'effects' is a required property"),
 ])
-def test_bad_profile_input_stops_before_any_job(workflow, edit, message):
-    work, _ = workflow
+def test_bad_profile_input_stops_before_any_job(wf, edit, message):
+    work, _ = wf
     path = work / "config" / "papers" / "saw_chain.yaml"
     original = path.read_text()
     raw = yaml.safe_load(original)

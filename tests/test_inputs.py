@@ -63,3 +63,112 @@ def test_merge_keys_may_override(tmp_path):
     p = tmp_path / "x.yaml"
     p.write_text("a: &a {x: 1, y: 2}\nb:\n  <<: *a\n  y: 3\n")
     assert read_yaml(p) == {"a": {"x": 1, "y": 2}, "b": {"x": 1, "y": 3}}
+
+
+# --- each solver's own limits, effects it needs, its declared cost (mechrepro.limits) ----
+
+PAPERS = ["saw_chain", "rolling_shear", "joint_wear", "disk_tension", "chain_drive"]
+
+
+@pytest.mark.parametrize("profile", ["default", "ci"])
+def test_the_committed_configs_pass_every_limit(profile):
+    """No false refusal: every committed config is within its solvers' limits, names the
+    effects its quantities read and fits the solve rule's memory and time."""
+    from mechrepro import limits
+    from mechrepro.config import load_all
+
+    from conftest import ROOT
+
+    cfgs = load_all(ROOT / "config", PAPERS, profile)
+    limits.check_all(cfgs)
+    for cfg in cfgs.values():
+        assert limits.missing_effects(cfg) == [] and limits.refusals(cfg) == []
+
+
+def _limit_problems(edit_config, paper, fn, profile="ci", over_budget=False):
+    from mechrepro import limits
+
+    path = edit_config(paper, fn)
+    cfg = load_paper(path, profile)
+    with pytest.raises(limits.LimitError) as err:
+        limits.check_all({paper: cfg}, over_budget)
+    return str(err.value), path
+
+
+LIMITS = [
+    ("saw_chain K beyond the round-off limit", "saw_chain",
+     lambda raw: raw["profiles"]["ci"]["scenes"]["fig07_fig08"].update(resolution={"K": 50000}),
+     ["scene fig07_fig08", "resolution.K = 50000", "K <= 39434",
+      "options.beyond_roundoff_limit: true on purpose"]),
+    ("disk_tension clamp_radius = 40 mm (Fig. 7's annuli from 30 mm)", "disk_tension",
+     lambda raw: raw["parameters"]["clamp_radius"].update(value=40),
+     ["scene fig07_sensitivity", "parameters.annulus_radii: 30 mm, 35 mm, 40 mm",
+      "[r_f, b] = [40 mm, 127.5 mm]", "45 mm <= r_a <= 122.5 mm"]),
+    ("an emptied effect list a quantity reads (saw_chain speed_12000)", "saw_chain",
+     lambda raw: raw["scenes"]["speed_12000"].update(effects=[]),
+     ["scenes.speed_12000.effects = []", "'dynamic_load_x_textbook'", "effect 'textbook'",
+      "allowed: effects including 'textbook'"]),
+    ("an emptied effect list of a solver that needs effects (saw_chain accuracy)",
+     "saw_chain", lambda raw: raw["scenes"]["accuracy"].update(effects=[]),
+     ["scenes.accuracy.effects = []", "needs effects", "allowed: at least one of"]),
+    ("an effect a quantity reads dropped (joint_wear wear_prediction)", "joint_wear",
+     lambda raw: raw["scenes"]["wear_prediction"].update(effects=["friction", "gravity"]),
+     ["scenes.wear_prediction.effects = ['friction', 'gravity']", "effect 'archard_wear'"]),
+    ("a resolution above the solve rule's memory", "saw_chain",
+     lambda raw: raw["profiles"]["ci"]["scenes"].update(accuracy={"resolution": {"K": 9000000}}),
+     ["job solve_saw_chain__batch", "run accuracy", "expected to take 2900 MB",
+      "above the solve rule's 2000 MB", "--config over_budget=true"]),
+    ("plate2d mesh above the solve rule's memory", "disk_tension",
+     lambda raw: raw["profiles"]["ci"]["scenes"].update(
+         table12_plate2d={"resolution": {"n_rings": 40, "n_sectors": 300}}),
+     ["run table12_plate2d", "MB, above the solve rule's 2000 MB"]),
+]
+
+
+@pytest.mark.parametrize("name, paper, fn, expect", LIMITS, ids=[l[0] for l in LIMITS])
+def test_a_solver_limit_is_refused_at_load_with_what_is_allowed(edit_config, name, paper,
+                                                                fn, expect):
+    msg, path = _limit_problems(edit_config, paper, fn)
+    assert str(path) in msg, msg
+    for part in expect:
+        assert part in msg, (part, msg)
+
+
+def test_over_budget_on_purpose_runs_and_asks_for_the_estimate(edit_config):
+    from mechrepro import limits
+
+    path = edit_config("saw_chain", lambda raw: raw["profiles"]["ci"]["scenes"].update(
+        accuracy={"resolution": {"K": 9000000}}))
+    cfg = load_paper(path, "ci")
+    limits.check_all({"saw_chain": cfg}, allow_over_budget=True)
+    assert limits.job_resources(cfg, "batch", True)["mem_mb"] == 2900
+    assert limits.job_resources(cfg, "batch", False)["mem_mb"] == limits.SOLVE_MEM_MB
+    # a solver's own refusal is never overridden by over_budget
+    msg, _ = _limit_problems(edit_config, "saw_chain", lambda raw: raw["profiles"]["ci"]["scenes"][
+        "fig07_fig08"].update(resolution={"K": 50000}), over_budget=True)
+    assert "round-off" in msg
+
+
+def test_the_declared_cost_is_above_a_measured_run():
+    """saw_chain's cost model against one measured solve (peak RSS of a child process)."""
+    import subprocess
+    import sys
+
+    from conftest import ROOT
+    from mechrepro import limits
+
+    cfg = load_paper(ROOT / "config" / "papers" / "saw_chain.yaml", "ci")
+    run = dict(cfg.runs["cost_of_accuracy-010"])   # K = 3e5
+    code = ("import sys, json, resource; sys.path.insert(0, sys.argv[1]);"
+            "from mechrepro.solve import run_solver; run = json.loads(sys.argv[2]);"
+            "run_solver(run).to_netcdf(sys.argv[3]);"
+            "print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024)")
+    import json
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as d:
+        out = subprocess.run([sys.executable, "-c", code, str(ROOT / "src"), json.dumps(run),
+                              f"{d}/x.nc"], capture_output=True, text=True, check=True)
+    peak = float(out.stdout.split()[-1])
+    est = limits.run_cost("saw_chain", run)["mem_mb"]
+    assert peak < est < 3 * peak, (peak, est)

@@ -265,6 +265,17 @@ def test_cli_errors_are_readable(tmp_path):
         out = cli(*args)
         assert out.returncode == rc and text in out.stdout + out.stderr, (args, out)
         assert "Traceback" not in out.stderr, out.stderr
+    # the researcher's entry point (`mechrepro`, experiment.main), outside a project
+    for args, rc, text in [((), 2, "usage"), (("--help",), 0, "project directory"),
+                           (("exp", "run", "--help"), 0, "PAPER.KEY=VALUE"),
+                           (("exp", "run", "t", "--set", "saw_chain.x=1"), 2,
+                            "run mechrepro in the project directory"),
+                           (("diff", "a", "b"), 2, "a: no such file"),
+                           (("nonsense",), 2, "invalid choice")]:
+        out = subprocess.run([sys.executable, "-m", "mechrepro.experiment", *args], cwd=tmp_path,
+                             capture_output=True, text=True, env=env)
+        assert out.returncode == rc and text in out.stdout + out.stderr, (args, out)
+        assert "Traceback" not in out.stderr, out.stderr
 
 
 # --- scene-precision reruns ---------------------------------------------------------------
@@ -339,8 +350,34 @@ def test_one_parameter_in_one_scene_reruns_exactly_its_solve_jobs(paper, tmp_pat
     (lambda t: t.replace("{value: 8.91,  unit: mm,", "{value: 8.91,  unit: m,"),
      "chain pitch between 3 mm and 200 mm"),
     (lambda t: t.replace("Sec. 4 (p1)", "Sec. 4 (p1) \udce9"), "not UTF-8"),
-], ids=["nan", "duplicate scenes", "8.91 m pitch", "latin-1 byte"])
+    (lambda t: t.replace("      fig07_fig08: {resolution: {K: 300}}",
+                         "      fig07_fig08: {resolution: {K: 50000}}"),
+     "resolution.K = 50000: beyond K = 39434"),
+    (lambda t: t.replace("    effects: [textbook]", "    effects: []", 1),
+     "scenes.speed_12000.effects = []"),
+    (lambda t: t.replace("      fig07_fig08: {resolution: {K: 300}}",
+                         "      fig07_fig08: {resolution: {K: 300}}\n"
+                         "      accuracy: {resolution: {K: 9000000}}"),
+     "expected to take 2900 MB, above the solve rule's 2000 MB"),
+], ids=["nan", "duplicate scenes", "8.91 m pitch", "latin-1 byte", "K beyond round-off",
+        "emptied effects", "memory above the rule"])
 def test_bad_input_stops_a_real_run_before_any_job_and_loses_nothing(run, tmp_path, edit, expect):
+    _refused_and_nothing_lost(run, tmp_path, edit, [expect])
+
+
+def _bad_inputs():
+    from test_inputs import BAD
+
+    return BAD
+
+
+@pipeline
+@pytest.mark.parametrize("name, edit, expect", _bad_inputs(), ids=[b[0] for b in _bad_inputs()])
+def test_every_bad_input_class_of_test_inputs_loses_nothing(run, tmp_path, name, edit, expect):
+    _refused_and_nothing_lost(run, tmp_path, edit, expect)
+
+
+def _refused_and_nothing_lost(run, tmp_path, edit, expect):
     work = tmp_path / "w"
     shutil.copytree(run, work, symlinks=True)
     before = hashes(work / "results")
@@ -348,7 +385,8 @@ def test_bad_input_stops_a_real_run_before_any_job_and_loses_nothing(run, tmp_pa
     path.write_bytes(edit(path.read_text()).encode("utf-8", "surrogateescape"))
     proc = sm(work, check=False)
     out = proc.stdout + proc.stderr
-    assert proc.returncode != 0 and expect in out and f"config/papers/{PAPER}.yaml" in out, out[-2000:]
+    assert proc.returncode != 0 and f"config/papers/{PAPER}.yaml" in out, out[-2000:]
+    assert all(e in out for e in expect), (expect, out[-2000:])
     assert "rule " not in out and "Traceback" not in out, out[-2000:]
     assert hashes(work / "results") == before
 
@@ -463,3 +501,41 @@ def test_heal_leaves_results_alone_while_snakemake_locks_name_them(tmp_path, mon
     healmod.heal("results")
     healmod.release("results")
     assert not part.exists()
+
+
+@pipeline
+def test_make_and_plain_snakemake_name_the_interpreter_alike(run):
+    """`make` runs `.venv/bin/python -m snakemake`, the script `.venv/bin/snakemake` runs
+    `.venv/bin/python3`: either way the jobs' command is the same (it is a param: a second
+    spelling reran every job)."""
+    from pathlib import Path
+
+    other = Path(sys.prefix) / "bin" / ("python3" if Path(sys.executable).name == "python"
+                                        else "python")
+    if not other.exists():
+        pytest.skip(f"{other} does not exist")
+    proc = subprocess.run([str(other), "-m", "snakemake", *SM[3:], "-n"], cwd=run,
+                          capture_output=True, text=True, timeout=300)
+    assert "Nothing to be done" in proc.stdout, proc.stdout[-3000:]
+
+
+@pipeline
+def test_a_failing_notebook_job_keeps_its_last_good_figures(run, tmp_path):
+    """update() outputs of validate_/notebook_: a notebook failing after it drew every
+    figure gets the last good notebook, figures and tables back; fixed, it reruns."""
+    work = tmp_path / "w"
+    shutil.copytree(run, work, symlinks=True)
+    res = work / "results" / PAPER
+    drawn = {str(p.relative_to(res)): file_sha256(p) for p in
+             [*res.glob("figures/*.png"), res / "notebook.ipynb"]}
+    nb = work / "notebooks" / f"{PAPER}.py"
+    original = nb.read_text()
+    nb.write_text(original + '\n\nraise RuntimeError("injected notebook failure")\n')
+    proc = sm(work, check=False)
+    out = proc.stdout + proc.stderr
+    assert proc.returncode != 0 and "injected notebook failure" in out   # the cause, on the console
+    assert "Restored previous version" in out
+    assert {k: file_sha256(res / k) for k in drawn} == drawn
+    nb.write_text(original)
+    sm(work)
+    assert "Nothing to be done" in sm(work, "-n").stdout

@@ -434,14 +434,19 @@ def restore(archive: Path, into: Path = Path(".")) -> int:
 # --- command line ------------------------------------------------------------------------
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="mechrepro", description=__doc__.split("\n\n")[0])
+    ap = argparse.ArgumentParser(
+        prog="mechrepro", description=__doc__.split("\n\n")[0],
+        epilog="Run it in the project directory (the one with config/ and Snakefile). The "
+               "full reproduction is `make reproduce`; `python -m mechrepro.heal --help` and "
+               "`python -m mechrepro.cli --help` list the workflow's own commands.")
     sub = ap.add_subparsers(dest="cmd", required=True)
     e = sub.add_parser("exp", help="what-if experiments").add_subparsers(dest="what", required=True)
     r = e.add_parser("run", help="run a parameter variant beside the baseline")
-    r.add_argument("name")
-    r.add_argument("--set", action="append", default=[], dest="sets", metavar="PAPER.KEY=VALUE")
-    r.add_argument("--cores", type=int, default=2)
-    r.add_argument("--profile")
+    r.add_argument("name", help="the experiment's name: its directory is experiments/NAME/")
+    r.add_argument("--set", action="append", default=[], dest="sets", metavar="PAPER.KEY=VALUE",
+                   help="a parameter override, e.g. chain_drive.static_tension=800 (repeatable)")
+    r.add_argument("--cores", type=int, default=2, help="cores for Snakemake (default 2)")
+    r.add_argument("--profile", help="config profile (default: the baseline's)")
     e.add_parser("show", help="list experiments")
     d = sub.add_parser("diff", help="what differs between two result sets")
     d.add_argument("a", type=Path)
@@ -476,6 +481,11 @@ def main(argv: list[str] | None = None) -> int:
         n = restore(args.archive, args.into)
         print(f"restored {n} result files from {args.archive}")
         return 0
+    except FileNotFoundError as exc:
+        where = ("; run mechrepro in the project directory (the one with config/ and "
+                 "Snakefile)" if "config" in str(exc.filename or "") else "")
+        sys.stderr.write(f"mechrepro: {exc.filename}: no such file{where}\n")
+        return 2
     except (ConfigError, ValueError, OSError) as exc:
         sys.stderr.write(f"mechrepro: {exc}\n")
         return 2

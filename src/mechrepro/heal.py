@@ -233,7 +233,7 @@ def heal_workflow(workflow, results: str, argv: list[str] | None = None) -> None
     except OSError as exc:
         # read-only results or .snakemake: nothing can be healed, nor written by any job;
         # a no-op run must still say "Nothing to be done", not end in a traceback
-        sys.stderr.write(f"[heal] not healed ({exc.strerror}: {exc.filename})\n")
+        sys.stderr.write(f"[heal] not healed ({exc.strerror}: {exc.filename or results})\n")
 
 
 def main(argv: list[str]) -> int:

@@ -142,6 +142,11 @@ def provenance_attrs(run: dict) -> dict:
 CF_UNITS = {"deg": "degree", "r/min": "rpm", "HB": "kgf/mm2", "bool": "1"}
 
 
+def _all_str(var) -> bool:
+    v = var.values
+    return v.dtype.kind in "US" or all(isinstance(x, str) for x in v.ravel())
+
+
 def _cf_types(ds: xr.Dataset) -> dict:
     """The encoding of CF-1.8 data types (no 64-bit integers) and of no _FillValue on
     coordinates; units spelled as UDUNITS knows them.  Works on ``ds``'s Variables in place
@@ -158,10 +163,11 @@ def _cf_types(ds: xr.Dataset) -> dict:
             var.attrs["units"] = CF_UNITS[var.attrs["units"]]
         if name in ds.coords or var.dtype.kind not in "fc":
             enc["_FillValue"] = None
-        if name in ds.dims and var.dtype.kind in "USO":
-            # a label dimension (run names, timed effects) as a char array: a string
-            # coordinate variable makes CF checkers fail (monotonicity of strings); xarray
-            # and netCDF4 read it back as the same strings (its _Encoding attribute)
+        if var.dtype.kind in "USO" and _all_str(var):
+            # text as char arrays: a string coordinate variable (run names, timed effects)
+            # makes CF checkers fail (monotonicity of strings), and the NCAS checker refuses
+            # variable-length strings anywhere (CF 2.2); xarray and netCDF4 read it back as
+            # the same strings (its _Encoding attribute)
             enc["dtype"] = "S1"
         if enc:
             encoding[name] = enc

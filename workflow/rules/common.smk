@@ -34,6 +34,18 @@ except ConfigError as exc:
     sys.stderr.write(f"\n{exc}\n\n")
     raise SystemExit(1)
 
+# Each solver's own limits and declared cost (models/<paper>/limits.py), before any job:
+# a run its solver would refuse, or a job expected above the solve rule's memory or time,
+# stops the run here with the estimate (`--config over_budget=true` runs it on purpose).
+from mechrepro.limits import LimitError, check_all, job_resources  # noqa: E402
+
+OVER_BUDGET = str(config.get("over_budget", False)).lower() == "true"   # --config gives text
+try:
+    check_all(CFG, OVER_BUDGET)
+except LimitError as exc:
+    sys.stderr.write(f"\n{exc}\n\n")
+    raise SystemExit(1)
+
 # Before the jobs are decided: take this results directory's run lock (a second run is
 # refused here, before it can touch anything), then heal by content (mechrepro.heal), in
 # the main process of a run only. `make reproduce` and a plain `snakemake` are alike.
@@ -44,7 +56,11 @@ heal_workflow(workflow, RESULTS)
 # Every job runs `python -m mechrepro.<module>` with this workflow's src/ first on the path.
 # relative when the interpreter lives in the project (.venv), so a moved project keeps its
 # commands; absolute when it lives elsewhere, which does not move with the project
-_exe = Path(sys.executable).absolute()
+# One name per interpreter: `make` starts `.venv/bin/python -m snakemake`, the script
+# `.venv/bin/snakemake` runs `.venv/bin/python3`; the command is a param of every job, so
+# two spellings of one venv's interpreter would rerun every job when switching between them.
+_exe = (Path(sys.prefix) / "bin" / "python" if sys.prefix != sys.base_prefix
+        and (Path(sys.prefix) / "bin" / "python").exists() else Path(sys.executable)).absolute()
 PY = (os.path.relpath(_exe) if _exe.is_relative_to(Path(workflow.basedir).absolute())
       else str(_exe))
 RUN = {"python": f"PYTHONPATH={SRC} {PY}", "profile": PROFILE, "base": str(BASE)}
@@ -56,7 +72,9 @@ def code(*relpaths):
     for rel in relpaths:
         p = SRC / "mechrepro" / rel
         out += sorted(str(f) for f in p.rglob("*.py")) if p.is_dir() else [str(p)]
-    return out
+    # a model's load-time limits (models/<paper>/limits.py) are read by the workflow
+    # before any job, by no job: changing them reruns nothing
+    return [f for f in out if not (Path(f).name == "limits.py" and "models" in Path(f).parts)]
 
 
 # The framework modules every solver job imports.

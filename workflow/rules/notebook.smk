@@ -13,11 +13,13 @@ for _paper in PAPERS:
             studies=studies_of(_paper, variants=True),
             config=paper_config(_paper),
             code=code(*VALIDATE_CORE, f"models/{_paper}"),
+        # update(): a failing job gets its last good outputs back from Snakemake instead
+        # of losing them (as the solve jobs); it reruns while its inputs are newer
         output:
-            table=f"{RESULTS}/{_paper}/tables/validation.csv",
-            claim=f"{RESULTS}/{_paper}/claim.json",
+            table=update(f"{RESULTS}/{_paper}/tables/validation.csv"),
+            claim=update(f"{RESULTS}/{_paper}/claim.json"),
             # the framework's cost tables (mechrepro.accuracy, mechrepro.costs)
-            costs=[f"{RESULTS}/{_paper}/tables/{t}.csv"
+            costs=[update(f"{RESULTS}/{_paper}/tables/{t}.csv")
                    for t in CFG[_paper].framework_tables if t != "validation"],
         params:
             paper=_paper,
@@ -48,9 +50,9 @@ for _paper in PAPERS:
             config=paper_config(_paper),
             code=code(*NOTEBOOK_CORE, f"models/{_paper}"),
         output:
-            notebook=f"{RESULTS}/{_paper}/notebook.ipynb",
-            figures=figures_of(_paper),
-            tables=tables_of(_paper, notebook_only=True),
+            notebook=update(f"{RESULTS}/{_paper}/notebook.ipynb"),
+            figures=[update(f) for f in figures_of(_paper)],
+            tables=[update(f) for f in tables_of(_paper, notebook_only=True)],
         params:
             paper=_paper,
             python=RUN["python"],

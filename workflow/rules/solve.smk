@@ -39,9 +39,10 @@ for _paper in PAPERS:
                 f"{RESULTS}/{_paper}/logs/solve/{_job}.log",
             benchmark:
                 f"{RESULTS}/{_paper}/benchmarks/solve__{_job}.tsv"
+            # the rule's declared memory and time (mechrepro.limits), or the job's estimate
+            # when a run above them was allowed on purpose (--config over_budget=true)
             resources:
-                mem_mb=2000,
-                runtime=30,
+                **job_resources(CFG[_paper], _job, OVER_BUDGET),
             # every later job waits on the solves: a free core takes a solve before a
             # validation or notebook (a critical-path-first order; results do not depend on it)
             priority: 1

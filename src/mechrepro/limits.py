@@ -1,0 +1,240 @@
+"""Each solver's own limits and its declared cost, checked when the workflow loads the
+configs: a run the solver would refuse, or one expected to exceed its job's memory or
+time, is refused before any job, with the file, the run, the key, the value, what is
+allowed and (for costs) the estimate.
+
+A model declares them in ``mechrepro/models/<paper>/limits.py``:
+
+- ``check(run) -> list[str]``: the solver's refusals, as ``"<key> = <value>: <why>;
+  allowed: <what>"`` (the same conditions the solver raises on, evaluated on the run
+  record alone, cheaply);
+- ``cost(run) -> {"mem_mb": float, "seconds": float}``: the expected peak memory and
+  solve time of one run (a measured fit, whose measurement the docstring gives);
+- ``PRODUCED_BY = {variable: effect}``: solver outputs that exist only when a scene names
+  that effect (beside the effects' declared contributions), and ``NEEDS_EFFECTS =
+  {solver: why}``: solvers whose run without effects gives nothing a reported quantity
+  reads, both for :func:`missing_effects`.
+
+A solve job solves its runs one after the other in one process: its memory is the largest
+run's, its time the sum (:func:`job_costs`).  A job expected above the solve rule's
+declared memory (:data:`SOLVE_MEM_MB`) or time (:data:`SOLVE_RUNTIME_MIN`) is refused
+unless the run is started with ``--config over_budget=true`` on purpose; then the job
+asks its executor for the estimate (a cluster gets the true request).
+"""
+from __future__ import annotations
+
+import importlib
+import math
+
+#: what the solve rule declares (workflow/rules/solve.smk reads these)
+SOLVE_MEM_MB = 2000
+SOLVE_RUNTIME_MIN = 30
+
+
+class LimitError(ValueError):
+    pass
+
+
+def _model(paper: str):
+    try:
+        return importlib.import_module(f"mechrepro.models.{paper}.limits")
+    except ModuleNotFoundError as exc:
+        if exc.name != f"mechrepro.models.{paper}.limits":
+            raise
+        return None
+
+
+def refusals(cfg) -> list[str]:
+    """The solver's own refusals of every run of a paper config (empty: none)."""
+    mod = _model(cfg.paper)
+    if mod is None or not hasattr(mod, "check"):
+        return []
+    seen: dict[tuple, list[str]] = {}   # a scene's variants repeat its refusal: once
+    for name, run in cfg.runs.items():
+        for msg in mod.check(run):
+            seen.setdefault((run["scene"], run["solver"], msg), []).append(name)
+    out = []
+    for (scene, solver, msg), names in seen.items():
+        more = f" and {len(names) - 3} more" if len(names) > 3 else ""
+        out.append(f"{cfg.path}: scene {scene} (solver {solver}; run "
+                   f"{', '.join(names[:3])}{more}): {msg}")
+    return out
+
+
+def run_cost(paper: str, run: dict) -> dict | None:
+    mod = _model(paper)
+    return mod.cost(run) if mod is not None and hasattr(mod, "cost") else None
+
+
+def job_costs(cfg) -> dict[str, dict]:
+    """{solve job: {"mem_mb", "seconds", "largest"}} for the jobs whose runs all declare a
+    cost (memory: the largest run, time: the sum; runs are solved one after the other)."""
+    out = {}
+    for job, runs in cfg.solve_jobs().items():
+        costs = {r: run_cost(cfg.paper, cfg.runs[r]) for r in runs}
+        if any(c is None for c in costs.values()):
+            continue
+        largest = max(costs, key=lambda r: costs[r]["mem_mb"])
+        out[job] = {"mem_mb": costs[largest]["mem_mb"],
+                    "seconds": sum(c["seconds"] for c in costs.values()), "largest": largest}
+    return out
+
+
+def over_budget(cfg, mem_mb: float = SOLVE_MEM_MB,
+                runtime_min: float = SOLVE_RUNTIME_MIN) -> list[str]:
+    """Solve jobs expected above the rule's memory or time, each with its estimate."""
+    out = []
+    for job, c in job_costs(cfg).items():
+        big = cfg.runs[c["largest"]]
+        if c["mem_mb"] > mem_mb:
+            out.append(f"{cfg.path}: job solve_{cfg.paper}__{job}: run {c['largest']} "
+                       f"(resolution {big['resolution']}) is expected to take "
+                       f"{c['mem_mb']:.0f} MB, above the solve rule's {mem_mb:.0f} MB; allowed: "
+                       f"a resolution within {mem_mb:.0f} MB, or `--config over_budget=true` on "
+                       f"purpose (the job then asks for {math.ceil(c['mem_mb'])} MB)")
+        if c["seconds"] > 60 * runtime_min:
+            out.append(f"{cfg.path}: job solve_{cfg.paper}__{job}: its runs are expected to "
+                       f"take {c['seconds'] / 60:.0f} min, above the solve rule's "
+                       f"{runtime_min:.0f} min; allowed: fewer or coarser runs, or "
+                       f"`--config over_budget=true` on purpose")
+    return out
+
+
+def job_resources(cfg, job: str, allow: bool) -> dict:
+    """The resources the solve job asks for: the rule's, or its estimate when above them
+    and ``allow`` (over_budget) was given."""
+    c = job_costs(cfg).get(job) if allow else None
+    mem, runtime = SOLVE_MEM_MB, SOLVE_RUNTIME_MIN
+    if c:
+        mem = max(mem, math.ceil(c["mem_mb"]))
+        runtime = max(runtime, math.ceil(c["seconds"] / 60))
+    return {"mem_mb": mem, "runtime": runtime}
+
+
+def check_all(cfgs: dict, allow_over_budget: bool = False) -> None:
+    """Raise :class:`LimitError` with every refusal of every loaded paper config."""
+    problems = []
+    for cfg in cfgs.values():
+        problems += missing_effects(cfg) + refusals(cfg)
+        if not allow_over_budget:
+            problems += over_budget(cfg)
+    if problems:
+        raise LimitError("\n".join(problems))
+
+
+# --- effects a reported quantity reads ----------------------------------------------------
+
+def _extractor_reads(paper: str) -> dict[str, list[tuple[str, str, str, int]]]:
+    """{quantity: [(kind, scene or study, variable, line)]}: what each extraction function
+    of ``models/<paper>/validation.py`` visibly reads, by a static reading of its source:
+    ``ds = R.run("scene")`` (or ``R.study``; literal or module constant), then
+    ``ds["variable"]``, or a call passing ``ds`` with a literal variable name, or a module
+    function called with ``ds`` (read the same way, transitively).  What it cannot see it
+    leaves out (no refusal), so it never refuses a config whose validation works."""
+    import ast
+    from pathlib import Path
+
+    path = Path(__file__).parent / "models" / paper / "validation.py"
+    try:
+        tree = ast.parse(path.read_text())
+    except (OSError, SyntaxError):
+        return {}
+    consts = {t.id: n.value.value for n in tree.body if isinstance(n, ast.Assign)
+              and isinstance(n.value, ast.Constant) and isinstance(n.value.value, str)
+              for t in n.targets if isinstance(t, ast.Name)}
+    funcs = {n.name: n for n in tree.body if isinstance(n, ast.FunctionDef)}
+
+    def text(node):
+        if isinstance(node, ast.Constant) and isinstance(node.value, str):
+            return node.value
+        return consts.get(node.id) if isinstance(node, ast.Name) else None
+
+    def source(node, bound):
+        if isinstance(node, ast.Name):
+            return bound.get(node.id)
+        if (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)
+                and node.func.attr in ("run", "study") and node.args
+                and text(node.args[0]) is not None):
+            return node.func.attr, text(node.args[0])
+        return None
+
+    def reads(fn, bound, depth=0):
+        bound = dict(bound)
+        for node in ast.walk(fn):   # names bound to an opened run or study
+            if isinstance(node, ast.Assign) and len(node.targets) == 1:
+                t, v = node.targets[0], node.value
+                pairs = (zip(t.elts, v.elts) if isinstance(t, ast.Tuple)
+                         and isinstance(v, ast.Tuple) else [(t, v)])
+                for tt, vv in pairs:
+                    if isinstance(tt, ast.Name) and source(vv, bound):
+                        bound[tt.id] = source(vv, bound)
+        out = []
+        for node in ast.walk(fn):
+            if isinstance(node, ast.Subscript) and source(node.value, bound) \
+                    and text(node.slice) is not None:
+                out.append((*source(node.value, bound), text(node.slice), node.lineno))
+            elif isinstance(node, ast.Call):
+                srcs = [(i, source(a, bound)) for i, a in enumerate(node.args)
+                        if source(a, bound)]
+                if len(srcs) != 1:
+                    continue
+                i, src = srcs[0]
+                out += [(*src, text(a), node.lineno) for a in node.args
+                        if text(a) is not None and a is not node.args[i]]
+                callee = funcs.get(node.func.id) if isinstance(node.func, ast.Name) else None
+                if callee is not None and depth < 4 and i < len(callee.args.args):
+                    out += reads(callee, {callee.args.args[i].arg: src}, depth + 1)
+        return out
+
+    out = {}
+    for fn in funcs.values():
+        names = [text(a) for d in fn.decorator_list if isinstance(d, ast.Call)
+                 and isinstance(d.func, ast.Attribute) and d.func.attr == "register"
+                 for a in d.args]
+        if names and None not in names:
+            found = reads(fn, {})
+            for q in names:
+                out[q] = found
+    return out
+
+
+def missing_effects(cfg) -> list[str]:
+    """A scene whose effect list lacks an effect whose contribution a reported quantity
+    reads from it (an emptied effect list would otherwise fail in validation, after the
+    solve jobs)."""
+    effects = cfg.raw.get("effects", {})
+    by_key = {k: e for e, spec in effects.items() for k in spec.get("contributes", [])}
+    # a model may name solver outputs that exist only with an effect (not its declared
+    # contributions): models/<paper>/limits.py PRODUCED_BY = {variable: effect}
+    mod = _model(cfg.paper)
+    by_key.update({k: e for k, e in getattr(mod, "PRODUCED_BY", {}).items() if e in effects})
+    out, seen = [], set()
+    for q, found in _extractor_reads(cfg.paper).items():
+        if q not in cfg.reported:
+            continue
+        for kind, name, key, line in found:
+            members = [name] if kind == "run" else cfg.studies.get(name, [])
+            if key not in by_key or not members or members[0] not in cfg.runs:
+                continue
+            run, need = cfg.runs[members[0]], by_key[key]
+            if need in run["effects"] or (run["scene"], need) in seen:
+                continue
+            seen.add((run["scene"], need))
+            out.append(f"{cfg.path}: scenes.{run['scene']}.effects = {run['effects']}: "
+                       f"reported quantity {q} reads {key!r} from {kind} {name} "
+                       f"(models/{cfg.paper}/validation.py line {line}), which effect "
+                       f"{need!r} contributes; allowed: effects including {need!r} (honoured "
+                       f"by {', '.join(effects[need]['honoured_by'])})")
+    # a solver that computes nothing a reported quantity reads without effects:
+    # models/<paper>/limits.py NEEDS_EFFECTS = {solver: why}
+    needs = getattr(mod, "NEEDS_EFFECTS", {})
+    read = {r for spec in cfg.reported.values() for r in spec.get("reads", [])}
+    for scene, spec in cfg.raw["scenes"].items():
+        studies = {s for s in cfg.studies if cfg.runs[cfg.studies[s][0]]["scene"] == scene}
+        if (spec["solver"] in needs and not cfg.runs[scene]["effects"]
+                and (scene in read or studies & read)
+                and not any(scene in o for o in out)):
+            out.append(f"{cfg.path}: scenes.{scene}.effects = []: solver {spec['solver']} "
+                       f"needs effects ({needs[spec['solver']]}); allowed: at least one of "
+                       f"{', '.join(e for e, d in effects.items() if spec['solver'] in d['honoured_by'])}")
+    return out

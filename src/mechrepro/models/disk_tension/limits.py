@@ -1,0 +1,45 @@
+"""disk_tension's load-time limits (read by :mod:`mechrepro.limits` before any job).
+
+The condition is the solver's own, evaluated on the run record: the stiffened annuli of
+Fig. 7 inside the flexible region (:func:`.effects.stiffness_sensitivity`), which
+otherwise refuses inside the job.  The clamp inside the disk, the Gaussian width and N_d
+are the config's cross-checks and schema already.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+
+def _mm(x) -> str:
+    return f"{x * 1e3:g} mm"
+
+
+def check(run: dict) -> list[str]:
+    p, out = run["parameters"], []
+    b = p["outer_diameter"] / 2
+    r_f = p["clamp_radius"]
+    if "stiffness_sensitivity" in run["effects"] and 0 < r_f < b:
+        r_a = np.atleast_1d(np.asarray(p["annulus_radii"], float))
+        w = p["annulus_width"]
+        bad = r_a[(r_a - w / 2 < r_f - 1e-12) | (r_a + w / 2 > b + 1e-12)]
+        if bad.size:
+            out.append(f"parameters.annulus_radii: {', '.join(_mm(r) for r in bad)} (+/- "
+                       f"{_mm(w / 2)}) leave the flexible region [r_f, b] = [{_mm(r_f)}, "
+                       f"{_mm(b)}] (effect stiffness_sensitivity refuses them); allowed: "
+                       f"{_mm(r_f + w / 2)} <= r_a <= {_mm(b - w / 2)}")
+    return out
+
+
+def cost(run: dict) -> dict:
+    """Peak memory and time of one run (measured on scenes stressed_axisym and
+    stressed_plate2d, exact and stressed references included, 2 shared cores):
+    axisym n_elements = 128, 1024 -> 156, 860 MB and 2.2, 112 s (time ~ n^1.9; memory
+    fitted as quadratic through both points, an upper reading: no third point);
+    plate2d n_rings x n_sectors = 6x64, 12x64, 24x64 -> 212, 285, 426 MB and 2.3, 2.0,
+    7.3 s (memory linear in the cells, 0.18 MB each).  Fits ~10 % above the points."""
+    res = run["resolution"]
+    if "n_elements" in res:
+        n = int(res["n_elements"])
+        return {"mem_mb": 160 + 7.5e-4 * n * n, "seconds": 2.5 + 1.2e-4 * n * n}
+    cells = int(res.get("n_rings", 1)) * int(res.get("n_sectors", 8))
+    return {"mem_mb": 160 + 0.2 * cells, "seconds": 1.0 + 5e-3 * cells}

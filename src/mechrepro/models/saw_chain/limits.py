@@ -1,0 +1,39 @@
+"""saw_chain's load-time limits and cost (read by :mod:`mechrepro.limits` before any job).
+
+The refusals are the solver's own (:func:`.geometry.check_meshing`,
+:func:`.difference.check_roundoff`), evaluated on the run record: a K beyond the
+round-off limit is refused when the config is loaded, not inside the solve job.
+"""
+from __future__ import annotations
+
+from .chain import chain_from_run
+
+
+def check(run: dict) -> list[str]:
+    try:
+        chain = chain_from_run(run)   # check_meshing: positive pitches, integer z >= 3
+    except ValueError as exc:
+        return [f"parameters: {exc}; allowed: positive finite pitches and teeth >= 3"]
+    K, limit = chain.K, chain.roundoff_limit()
+    if K > limit and not run.get("options", {}).get("beyond_roundoff_limit", False):
+        return [f"resolution.K = {K}: beyond K = {limit} (this run's round-off limit) the "
+                f"round-off of the second backward difference exceeds its truncation error, "
+                f"so the loads get less accurate, not more (the solver refuses it); allowed: "
+                f"K <= {limit}, or options.beyond_roundoff_limit: true on purpose"]
+    return []
+
+
+def cost(run: dict) -> dict:
+    """Peak memory and time of one run, linear in K (2K+1 samples of ~16 float64 arrays
+    plus the netCDF write).  Measured (2 cores, native): scene ``accuracy`` K = 1e3, 1e5,
+    1e6, 3e6 -> peak RSS 107, 117, 350, 869 MB and 0.23, 0.26, 0.99, 3.1 s; ``fig07_fig08``
+    K = 3e6 -> 875 MB, 4.0 s; ``cost_of_accuracy-010`` K = 3e5 in a fresh process (the
+    test) -> 212 MB.  The fit lies 25-40 % above every measurement."""
+    K = int(run["resolution"]["K"])
+    return {"mem_mb": 200 + 3.0e-4 * K, "seconds": 0.3 + 1.5e-6 * K}
+
+
+#: the difference method alone is read by no reported quantity: each compares it with
+#: the exact reference or the textbook method (effects), or reads their contributions
+NEEDS_EFFECTS = {"difference_method": "every reported quantity reads it beside the exact "
+                                      "reference or the textbook method"}
