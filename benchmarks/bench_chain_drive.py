@@ -110,19 +110,23 @@ def equal_accuracy(profile: str, ref_ppp: int, repeat: int) -> None:
            "cfl": float(res["cfl"]), "kernel": "compiled" if fd_kernel.available() else "numpy"}
     old = {"differencing": "mixed", "ppp": 4, "cfl": 0.9, "kernel": "numpy"}
 
-    def assemble(ppp, cfl):
-        return span.assemble(eff, prm, om, dict(res, points_per_pitch=ppp, cfl=cfl))
+    def assemble(ppp, cfl, differencing):
+        # the differencing goes into the assembly: it sets s* (0 for central), and
+        # fd.march(differencing="mixed") keeps the s* it is given (a central s* = 0 before:
+        # the "today" row marched central differencing under a mixed label)
+        return span.assemble(eff, prm, om, dict(res, points_per_pitch=ppp, cfl=cfl,
+                                                 differencing=differencing))
 
     t0 = time.perf_counter()
     if fd_kernel.available():   # a tiny march: imports numba, loads (or compiles) the kernel
         fd.march(c=np.ones(1), P=np.full(1, 400.0), m=0.61, c_d=0.0, grid=fd.Grid(0.25, 8, 8),
                  dt=1e-5, n_steps=4, exc=fd.Excitation(), kernel="compiled")
     t_load = time.perf_counter() - t0
-    ref_a = assemble(ref_ppp, 0.9)
+    ref_a = assemble(ref_ppp, 0.9, "central")
     ref = _peak(_march(ref_a, "central", "auto").amplitude)
     rows = {}
     for name, s in (("today", old), ("new", new)):
-        a, t_asm = _timed(lambda: assemble(s["ppp"], s["cfl"]), repeat)
+        a, t_asm = _timed(lambda: assemble(s["ppp"], s["cfl"], s["differencing"]), repeat)
         r, t_m = _timed(lambda: _march(a, s["differencing"], s["kernel"]), repeat)
         rows[name] = dict(s, peak=_peak(r.amplitude), interp=_peak_interp(r.amplitude),
                           march=t_m, sweep=t_m + t_asm, updates=_updates(a),
@@ -177,7 +181,8 @@ def schemes(profile: str, ppps, ref_ppp: int) -> None:
     cfl_new = float(res0["cfl"])
 
     def one(ppp, differencing, cfl):
-        a = span.assemble(eff, prm, om, dict(res0, points_per_pitch=ppp, cfl=cfl))
+        a = span.assemble(eff, prm, om, dict(res0, points_per_pitch=ppp, cfl=cfl,
+                                             differencing=differencing))
         r, t = _timed(lambda: _march(a, differencing, "auto"), 1)
         return _peak(r.amplitude), t
 
@@ -319,6 +324,42 @@ def fd_sweeps(profile: str, repeat: int) -> None:
           f"{tot['main'][0] / tot['here'][0]:4.1f}x (effects {tot['main'][1] / tot['here'][1]:4.1f}x)")
 
 
+def shooting_vs_march(profile: str, scene: str = "fig09a", n_uniform: int = 450) -> None:
+    """Issue 26: the peak and stability map of a figure by shooting/Floquet with adaptive
+    speed sampling (the scene as configured) vs a uniform march (n_uniform speeds, settling
+    4 decay times, growth window 2 tooth periods), side by side in one run."""
+    from threadpoolctl import threadpool_limits
+
+    from mechrepro.models.chain_drive import solver
+    run = load_paper(ROOT / "config/papers/chain_drive.yaml", profile).runs[scene]
+    prm, res = dict(run["parameters"]), dict(run["resolution"])
+    fd_kernel.warm()
+
+    def summary(sp, amp, un):
+        ok = ~un
+        i = int(np.argmax(np.where(ok, amp, -1)))
+        e = np.flatnonzero(np.diff(un.astype(int)))
+        return amp[i], sp[i], [(round(sp[j], 2), round(sp[j + 1], 2)) for j in e]
+
+    with threadpool_limits(1, user_api="blas"):
+        t0 = time.perf_counter()
+        ds = solver.speed_sweep(run, prm, res)
+        t_sh = time.perf_counter() - t0
+        res_m = {k: v for k, v in res.items() if k not in ("method", "edge_tol", "peak_tol")}
+        res_m.update(n_speeds=n_uniform, decay_times=4, window_periods=2)
+        run_m = dict(run, options={k: v for k, v in run.get("options", {}).items()
+                                   if k != "dense_near_elastic"})
+        t0 = time.perf_counter()
+        dm = solver.speed_sweep(run_m, prm, res_m)
+        t_m = time.perf_counter() - t0
+    print(f"== {scene} ({profile}): shooting + adaptive speeds vs uniform march")
+    for name, d, t in (("shooting", ds, t_sh), (f"march {n_uniform}", dm, t_m)):
+        a, w, bands = summary(d.speed.values, d.amplitude.values, d.unstable.values.astype(bool))
+        print(f"{name:12s} speeds {d.speed.size:5d}  time {t:7.2f} s  peak {a * 1e3:.4f} mm at "
+              f"{w:.2f} rpm  unstable edges {bands}")
+    print(f"time ratio march / shooting: {t_m / t_sh:.1f}x")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--profile", default="default")
@@ -326,6 +367,9 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--schemes", action="store_true",
                     help="print the cost-of-accuracy table of both schemes instead")
+    ap.add_argument("--shooting", action="store_true",
+                    help="print shooting + adaptive speeds vs the uniform march (issue 26)")
+    ap.add_argument("--scene", default="fig09a")
     ap.add_argument("--ppp", type=int, nargs="+", default=[2, 3, 4, 6, 8, 12])
     ap.add_argument("--only", choices=["galerkin", "library", "fd"], default=None,
                     help="with --speed: one of the comparisons")
@@ -333,6 +377,9 @@ def main() -> None:
                     help="print the issue-#18 comparisons (Galerkin RK4, library check, FD "
                          "sweeps against main) instead")
     a = ap.parse_args()
+    if a.shooting:
+        shooting_vs_march(a.profile, a.scene)
+        return
     if a.speed:
         if a.only in (None, "galerkin"):
             galerkin_rk4(a.profile, a.repeat)

@@ -19,7 +19,7 @@ from scipy.integrate import quad
 
 from mechrepro.units import var
 
-from . import exact, four_bar, galerkin, geometry, loads, span, timestep
+from . import exact, four_bar, galerkin, geometry, loads, shooting, span, timestep
 from .effects import EFFECTS, SpanContext, consume
 from .galerkin import envelope_statistics  # noqa: F401  (re-exported for the tests)
 from .geometry import RPM
@@ -205,14 +205,21 @@ def speed_sweep(run, prm, res):
     dense = run.get("options", {}).get("dense_near_elastic")
     if dense:
         omega1 = dense_near_elastic(run, prm, omega1, float(dense), int(res["n_speeds"]))
-    out = span.sweep(run, prm, omega1, res)
+    shooting_ = res.get("method", "march") == "shooting"
+    if shooting_:
+        out = shooting.sweep(run, prm, omega1, res)
+        omega1 = out["omega1"]
+    else:
+        out = span.sweep(run, prm, omega1, res)
     orders = np.arange(1, int(res.get("orders", 8)) + 1)
     geo = dict(out["span"])
     reso = resonance_table(prm, out["tension_coefficient"], geo, orders)
     g = out["grid"]
-    return xr.Dataset({
+    ds = xr.Dataset({
         "amplitude": var("speed", out["amplitude"], "m", "maximum steady transverse amplitude"),
         "growth": var("speed", np.minimum(out["growth"], 1e300), "1",
+                      "spectral radius of the one-period monodromy matrix (Floquet multiplier)"
+                      if shooting_ else
                       "ratio of last to first block maximum in the measuring window"),
         "unstable": var("speed", out["unstable"].astype("i1"), "1",
                         "1 where the response grows (Mathieu instability) or the span goes slack"),
@@ -234,6 +241,17 @@ def speed_sweep(run, prm, res):
                                            "omega_c of the drive's elastic four-bar (k = AE/L_ct)"),
     }, coords={**_coord("speed", omega1 * RPM, "rpm", "driving sprocket speed omega_1"),
                **_coord("order", orders, "1", "resonance order k")})
+    if shooting_:
+        ds["growth_rate"] = var("speed", out["growth_rate"], "1/s",
+                                "Floquet growth rate log(rho)/T of the span")
+        ds["steps_per_period"] = var("speed", out["steps_per_period"], "1",
+                                     "time steps per excitation period (shooting)")
+        ds["periodicity_residual"] = var("speed", out["residual"], "m",
+                                         "max |x(T) - x*| of the steady state marched once more")
+        ds["sampling_converged"] = var((), int(out["sampling_converged"]), "1",
+                                       "1 when the adaptive speed bisection finished (edges "
+                                       "and peaks at edge_tol/peak_tol)")
+    return ds
 
 
 # ---------------------------------------------------------------------------- Sec. 3.1, checks

@@ -99,7 +99,8 @@ class _Merged:
         return default
 
 
-def assemble(effects, prm: dict, omega1, res: dict, registry=EFFECTS) -> dict:
+def assemble(effects, prm: dict, omega1, res: dict, registry=EFFECTS,
+             period: float | None = None) -> dict:
     """Evaluate the named effects on the time grid of a sweep; return the march inputs.
 
     ``effects``: the run (or a list of effect names).  First every named effect is probed
@@ -108,6 +109,10 @@ def assemble(effects, prm: dict, omega1, res: dict, registry=EFFECTS) -> dict:
     length changes (a ``long`` state: the grid then covers both span lengths; otherwise
     the span is the common tangent L_ct).  Then the effects are evaluated on the time grid,
     refined until the step is stable for the dynamic tension too.
+
+    ``period`` (s): march exactly one excitation period instead of settling + window (the
+    shooting of :mod:`.shooting`): the step is the stable step shortened so that a whole
+    number (>= 3) of steps spans the period, and no settling time is added.
     """
     run = as_run(effects)
     m, T_s, c_d = prm["mass_per_length"], prm["static_tension"], prm["transverse_damping"]
@@ -123,15 +128,19 @@ def assemble(effects, prm: dict, omega1, res: dict, registry=EFFECTS) -> dict:
     P = geometry.axial_tension(T_s, k_c, c)
     sigma = c_d / (2 * m)
     tau_max = float(np.max(geometry.tooth_period(omega1, int(prm["n1"]))))
-    settle = float(res["decay_times"]) / sigma if sigma > 0 else 0.0
-    window = float(res["window_periods"]) * tau_max
+    settle = float(res.get("decay_times", 0.0)) / sigma if sigma > 0 else 0.0
+    window = float(res.get("window_periods", 0.0)) * tau_max
     # the refinement passes evaluate only the effects the dynamic tension depends on (by
     # their declared contributions); the others (end motion, sag) once, on the final grid
     dyn, rest = _tension_effects(run, probe)
     # a first dt from the static tension, refined below with the dynamic tension bound
     dt = fd.stable_time_step(grid.dx, c, P, m, float(res["cfl"]))
     for _ in range(4):
-        n_steps = int(math.ceil((settle + window) / dt))
+        if period is not None:
+            n_steps = max(int(math.ceil(period / dt * (1 - 1e-12))), 3)
+            dt = period / n_steps
+        else:
+            n_steps = int(math.ceil((settle + window) / dt))
         t = np.arange(n_steps + 1) * dt
         ctx = SpanContext(prm, omega1, t, dt, span, cache=cache)
         contrib = registry.evaluate(run, ctx, only=dyn)
@@ -154,7 +163,8 @@ def assemble(effects, prm: dict, omega1, res: dict, registry=EFFECTS) -> dict:
                         u_right=contrib.get("u_right"),
                         load=None if kappa is None else kappa[None, :] * Pt)
     return {"grid": grid, "span": span, "c": c, "P": P, "P_min": P_min, "dt": dt,
-            "n_steps": n_steps, "measure_from": int(round(settle / dt)), "exc": exc,
+            "n_steps": n_steps, "exc": exc,
+            "measure_from": 0 if period is not None else int(round(settle / dt)),
             # first-difference weight of Eq. (2-38); 0 = central differencing (second order)
             "s_star": (np.zeros_like(c) if res.get("differencing") == "central"
                        else geometry.s_star(c, T_s, m)),

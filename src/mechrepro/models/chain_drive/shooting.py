@@ -1,0 +1,219 @@
+"""Periodic steady state and Floquet stability of the linear span from ONE excitation period.
+
+The span of Eqs. (2-36)/(2-37) is linear in u and its excitation (tension P_t, end motion,
+span-length state, sag load) is periodic in the tooth period tau = 2 pi/(n1 omega1) (times
+the period of an external load when there is one, :func:`excitation_period`).  The FD
+march of :func:`.fd.march` is then an affine map of its state x = (u^{j-1}, u^j) over one
+period N dt = T:
+
+    x_N = M x_0 + b.
+
+``M`` (the monodromy matrix of the discrete scheme) and ``b`` are built by marching the
+*same* scheme (:func:`.span.assemble` for the excitation, :func:`.fd.march` for the step:
+the physics is written once) over one period, for the zero state and for every unit state,
+all as lanes of one vectorised march.  Then
+
+- the periodic steady state is one linear solve (I - M) x* = b (shooting), and its
+  amplitude is the maximum |u| over one more period marched from x* (which must come back
+  to x*: the residual is returned);
+- the span is unstable (Mathieu/parametric) iff the spectral radius rho(M) > 1 (Floquet),
+  with growth rate log(rho)/T.
+
+No settling time and no growth window enter: a slow growth is a multiplier just above 1,
+found the same way as a fast one.  :func:`adaptive_sweep` samples the speed axis
+adaptively: it bisects around every change of the stability verdict, every local maximum
+of the Floquet growth rate (a tongue narrower than the grid shows there first as a bump of
+rho) and every amplitude peak, until the intervals are below the requested widths.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import fd, fd_kernel, geometry, span
+from .effects import EFFECTS
+
+
+class PeriodicityError(ValueError):
+    """The excitation is not periodic over the shooting period (shooting would be wrong)."""
+
+
+def excitation_period(prm: dict, run: dict, omega1: float) -> tuple[float, int]:
+    """(T, q): the excitation period T = q tau.  Every effect repeats each tooth period
+    tau, except an external load cos(r omega1 t) (Eq. 2-5), whose period 2 pi/(r omega1) is
+    n1/r tooth periods: q is the smallest whole number of tooth periods holding a whole
+    number of load periods (r must be rational with a small denominator)."""
+    n1 = int(prm["n1"])
+    tau = float(geometry.tooth_period(omega1, n1))
+    q = 1
+    if "external_load" in run["effects"] and prm.get("external_load_ratio", 0.0) != 0.0:
+        r = float(prm["external_frequency_ratio"])
+        for q in range(1, 64 * n1 + 1):
+            if abs(q * r / n1 - round(q * r / n1)) < 1e-9:
+                break
+        else:
+            raise PeriodicityError(f"external load ratio {r}: no common period with the teeth")
+    return q * tau, q
+
+
+@dataclass
+class PeriodicSolution:
+    amplitude: float          # max |u| over x and one period of the periodic steady state
+    rho: float                # spectral radius of the monodromy matrix (Floquet multiplier)
+    growth_rate: float        # log(rho) / T  [1/s]
+    period: float             # T [s]
+    n_steps: int              # steps per period
+    residual: float           # max |x(T) - x*| of the steady state marched once more [m]
+    slack: bool               # P + P_t <= 0 somewhere: the string model is invalid
+    multipliers: np.ndarray   # every eigenvalue of M
+
+
+def _lanes(x, L):
+    """The (time, 1) input of one speed over levels 0..N-1, wrapped periodically to levels
+    N, N + 1 (= levels 0, 1: see :func:`periodic_solution`), repeated over L lanes.  The
+    wrap also settles the one sample a switch of the span-length state may fall on at
+    t = T exactly (which side of the switch it reads is round-off)."""
+    if x is None:
+        return None
+    x = np.asarray(x)[:-1, :1]
+    return np.ascontiguousarray(np.repeat(np.concatenate([x, x[:2]]), L, 1))
+
+
+def _kernel():
+    return "compiled" if fd_kernel.available() else "numpy"
+
+
+def _march(a, exc, u0, u1, res, c, P, s_star, n_steps, record_every=0, probes=()):
+    kw = dict(c=c, P=P, m=a["m"], c_d=a["c_d"], grid=a["grid"], dt=a["dt"], n_steps=n_steps,
+              exc=exc, s_star=s_star, measure_from=0, n_blocks=1, u_cap=np.inf, u0=u0, u1=u1,
+              differencing=res.get("differencing"), record_every=record_every, probes=probes)
+    try:
+        return fd.march(kernel=_kernel(), **kw)
+    except ValueError:           # compiled loop unavailable here (e.g. not diagonally dominant)
+        return fd.march(kernel="numpy", **kw)
+
+
+def periodic_solution(run, prm: dict, omega1: float, res: dict,
+                      registry=EFFECTS) -> PeriodicSolution:
+    """Monodromy matrix, Floquet multipliers and periodic steady state at one speed.  The
+    inputs are sampled on levels 0..N-1 and wrapped (:func:`_lanes`): the effects repeat
+    every T by construction (:func:`excitation_period`); a sample that falls exactly on a
+    pulse edge or a length switch at t = T reads either side by round-off, so the first
+    and last sample are not compared."""
+    run = span.as_run(run)
+    T, _ = excitation_period(prm, run, omega1)
+    a = span.assemble(run, prm, [omega1], res, registry, period=T)
+    N, n1 = a["n_steps"], a["grid"].n_long + 1
+    e = a["exc"]
+    # fd.march sets levels 0 and 1 and steps j = 1 .. n_steps - 1 (level j + 1 from the
+    # inputs at j): one period maps (u^0, u^1) to (u^N, u^{N+1}), N + 1 levels marched
+    L = 2 * n1 + 1
+    exc = fd.Excitation(**{k: _lanes(getattr(e, k), L)
+                           for k in ("tension", "u_left", "u_right", "long", "load")})
+    u0 = np.zeros((L, n1))
+    u1 = np.zeros((L, n1))
+    u0[1:n1 + 1] = np.eye(n1)
+    u1[n1 + 1:] = np.eye(n1)
+    c, P, s = (np.repeat(a[k], L) for k in ("c", "P", "s_star"))
+    r = _march(a, exc, u0, u1, res, c, P, s, N + 1, record_every=N, probes=np.arange(n1))
+    y = np.concatenate([r.probes[0], r.final], axis=1)      # (L, 2 n1): (u^N, u^{N+1})
+    b = y[0]
+    M = (y[1:] - b).T                                        # column k = image of unit state k
+    mult = np.linalg.eigvals(M)
+    rho = float(np.max(np.abs(mult)))
+    x = np.linalg.solve(np.eye(2 * n1) - M, b)
+    one = fd.Excitation(**{k: _lanes(getattr(e, k), 1)
+                           for k in ("tension", "u_left", "u_right", "long", "load")})
+    r1 = _march(a, one, x[None, :n1], x[None, n1:], res, a["c"], a["P"], a["s_star"], N + 1,
+                record_every=N, probes=np.arange(n1))
+    back = np.concatenate([r1.probes[0, 0], r1.final[0]])
+    amp = max(float(r1.block_max.max()), float(np.max(np.abs(x))))
+    return PeriodicSolution(amplitude=amp, rho=rho,
+                            growth_rate=math.log(max(rho, 1e-300)) / T, period=T, n_steps=N,
+                            residual=float(np.max(np.abs(back - x))),
+                            slack=bool(np.any(a["P_min"] <= 0)), multipliers=mult)
+
+
+def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
+                   peak_tol: float, rate_floor: float, prominence: float = 0.02,
+                   max_evals: int = 3000):
+    """Sample ``evaluate(omega) -> PeriodicSolution`` from the initial ``speeds`` (rad/s,
+    the scene's speed axis), then bisect
+
+    (i) every interval whose ends differ in stability, down to ``edge_tol``;
+    (ii) both intervals beside every interior local maximum of the Floquet growth rate
+         above ``rate_floor`` (1/s; e.g. half the damping-only rate -c_d/2m: a parametric
+         tongue narrower than the grid shows first as a bump of the growth rate towards
+         0), down to ``peak_tol``;
+    (iii) both intervals beside every amplitude peak of prominence >= ``prominence`` x the
+         largest amplitude, down to ``peak_tol``;
+
+    until nothing is left to bisect (the verdicts and peaks no longer change at these
+    widths).  Returns the sorted speeds, their solutions and whether the bisection finished
+    within ``max_evals`` (False: the sampling is not converged, and the caller says so)."""
+    from scipy.signal import find_peaks
+    from threadpoolctl import threadpool_limits
+
+    with threadpool_limits(1, user_api="blas"):     # many small (2n x 2n) eigenproblems
+        pts = {float(w): evaluate(float(w)) for w in np.asarray(speeds, float)}
+        done = False
+        while len(pts) < max_evals:
+            w = np.array(sorted(pts))
+            sol = [pts[v] for v in w]
+            un = np.array([s.rho > 1.0 or s.slack for s in sol])
+            slack = np.array([s.slack for s in sol])
+            g = np.array([s.growth_rate for s in sol])
+            A = np.array([s.amplitude for s in sol])
+            new = set()
+            for i in range(w.size - 1):
+                # a stability edge (a slack speed is outside the string model: its edges
+                # are drawn at the grid's width, not bisected)
+                if (un[i] != un[i + 1] and not (slack[i] or slack[i + 1])
+                        and w[i + 1] - w[i] > edge_tol):
+                    new.add(0.5 * (w[i] + w[i + 1]))
+            bumps = [i for i in range(1, w.size - 1)
+                     if rate_floor < g[i] <= 0 and g[i] >= g[i - 1] and g[i] >= g[i + 1]]
+            stable_A = np.where(un, 0.0, A)
+            peaks, _ = find_peaks(stable_A, prominence=prominence * max(stable_A.max(), 1e-300))
+            for i in [*bumps, *peaks]:
+                for j in (i - 1, i):
+                    if w[j + 1] - w[j] > peak_tol:
+                        new.add(0.5 * (w[j] + w[j + 1]))
+            new -= set(pts)
+            if not new:
+                done = True
+                break
+            for v in sorted(new):
+                pts[v] = evaluate(v)
+    w = np.array(sorted(pts))
+    return w, [pts[v] for v in w], done
+
+
+def sweep(run, prm: dict, omega1, res: dict, registry=EFFECTS) -> dict:
+    """Figs. 5-9 by shooting: :func:`periodic_solution` at every speed of an
+    :func:`adaptive_sweep` started from ``omega1``, with the outputs of :func:`.span.sweep`
+    (``growth`` is the Floquet multiplier rho here, ``unstable`` = rho > 1 or slack).
+    Resolution: ``edge_tol`` and ``peak_tol`` (rpm) the bisection widths."""
+    run = span.as_run(run)
+    sigma = prm["transverse_damping"] / (2 * prm["mass_per_length"])
+    w, sols, done = adaptive_sweep(lambda v: periodic_solution(run, prm, v, res, registry), omega1,
+                             edge_tol=float(res["edge_tol"]) / geometry.RPM,
+                             peak_tol=float(res["peak_tol"]) / geometry.RPM,
+                             rate_floor=-0.5 * sigma)
+    a = span.assemble(run, prm, w[:1], res, registry, period=sols[0].period)
+    rho = np.array([s.rho for s in sols])
+    slack = np.array([s.slack for s in sols])
+    c = geometry.chain_speed(w, int(prm["n1"]), prm["pitch"])
+    return {"omega1": w, "amplitude": np.array([s.amplitude for s in sols]), "growth": rho,
+            "growth_rate": np.array([s.growth_rate for s in sols]),
+            "unstable": (rho > 1.0) | slack, "slack": slack,
+            "steps_per_period": np.array([s.n_steps for s in sols]),
+            "residual": np.array([s.residual for s in sols]), "sampling_converged": done,
+            "grid": a["grid"], "span": a["span"], "c": c,
+            "s_star": (np.zeros_like(c) if res.get("differencing") == "central"
+                       else geometry.s_star(c, prm["static_tension"], prm["mass_per_length"])),
+            "dt": min(s.period / s.n_steps for s in sols),
+            "n_steps": int(sum(s.n_steps for s in sols)),
+            "tension_coefficient": a["tension_coefficient"]}
