@@ -342,8 +342,8 @@ def test_one_parameter_in_one_scene_reruns_exactly_its_solve_jobs(paper, tmp_pat
 
 @pipeline
 @pytest.mark.parametrize("edit, expect", [
-    (lambda t: t.replace('{value: 32,    unit: "1", source: "Sec. 4 (M)"}',
-                         '{value: .nan,  unit: "1", source: "Sec. 4 (M)"}'),
+    (lambda t: t.replace('{value: 32,    unit: "1", source: "Sec. 4 (M)"',
+                         '{value: .nan,  unit: "1", source: "Sec. 4 (M)"'),
      "parameters.tie_straps_tight_side.value = nan"),
     (lambda t: t + "\nscenes:\n  x: {solver: difference_method, effects: []}\n",
      "'scenes' given twice"),

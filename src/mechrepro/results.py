@@ -30,6 +30,11 @@ class PaperResults:
     def study(self, name: str):
         return open_dataset(self.root / "studies" / f"{name}.nc")
 
+    def study_runs(self, name: str) -> list:
+        """The run datasets of a study, in sweep order (what the study file cannot stack:
+        variables whose length differs between runs, e.g. adaptively sampled speeds)."""
+        return [self.run(r) for r in self.cfg.studies[name]]
+
     def figure_path(self, name: str) -> Path:
         return self.root / "figures" / f"{name}.png"
 

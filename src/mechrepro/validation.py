@@ -176,6 +176,12 @@ class ValidationInputs:
     def study(self, name: str):
         return self._open(self.root / "studies" / f"{self._name(name, 'study')}.nc")
 
+    def study_runs(self, name: str) -> list:
+        """The run datasets of a study, in sweep order: what a study file cannot stack
+        (variables whose length differs between its runs, e.g. adaptively sampled speeds)."""
+        return [self._open(self.root / "runs" / f"{r}.nc")
+                for r in self.cfg.studies[self._name(name, "study")]]
+
     def derived(self, key, make):
         """See :meth:`ResultFiles.derived` (read the datasets it needs through :meth:`run`
         and :meth:`study` first, so that the declared reads are checked every time)."""

@@ -22,7 +22,7 @@ def with_base(R, study: str, scene: str, key: str):
     paper (centre distance in pitches, I2, T_s, omega_ex / omega_1) are SI in the config."""
     st, base = R.study(study), R.run(scene)
     values = [parameter(base, key)] + [float(v) for v in st[key].values]
-    runs = [base] + [st.isel(run=i) for i in range(st.sizes["run"])]
+    runs = [base] + R.study_runs(study)
     order = np.argsort(values)
     return [values[i] for i in order], [runs[i] for i in order]
 

@@ -18,10 +18,10 @@ from . import fd
 Q = Quantities("chain_drive")
 
 
-def _study_runs(st, key):
-    """(values of the swept key, list of per-run datasets) of a study."""
-    vals = np.asarray(st[key].values, float)
-    return vals, [st.isel(run=i) for i in range(st.sizes["run"])]
+def _study_runs(R, study, key):
+    """(values of the swept key, list of per-run datasets) of a study, read from its run
+    files (an adaptively sampled sweep has a speed axis of its own in every run)."""
+    return np.asarray(R.study(study)[key].values, float), R.study_runs(study)
 
 
 def _stable(ds):
@@ -120,8 +120,8 @@ def fig05_system_a(R):
     return {f"resonance_speed_order{k}_cd20p0": _resonance_ratio(ds, k) for k in (1, 3, 5)}
 
 
-def _at_cd(st, cd):
-    cds, runs = _study_runs(st, "centre_distance")
+def _at_cd(R, study, cd):
+    cds, runs = _study_runs(R, study, "centre_distance")
     i = int(np.argmin(np.abs(cds - cd)))
     if abs(cds[i] - cd) > 1e-9:
         raise ValueError(f"centre distance {cd} not in the study ({list(cds)})")
@@ -130,12 +130,12 @@ def _at_cd(st, cd):
 
 @Q.register("resonance_speed_order2_cd20p5", "resonance_speed_order4_cd20p5")
 def fig05_system_b(R):
-    ds = _at_cd(R.study("fig05_plain_cd"), 20.5)
+    ds = _at_cd(R, "fig05_plain_cd", 20.5)
     return {f"resonance_speed_order{k}_cd20p5": _resonance_ratio(ds, k) for k in (2, 4)}
 
 
-def _non_integral(st):
-    cds, runs = _study_runs(st, "centre_distance")
+def _non_integral(R, study):
+    cds, runs = _study_runs(R, study, "centre_distance")
     return [(cd, ds) for cd, ds in zip(cds, runs) if float(ds.fractional_pitch) > 0]
 
 
@@ -146,7 +146,7 @@ def _windows(ds_l, k):
 
 @Q.register(*[f"two_peaks_with_length_change_order{k}" for k in (2, 3, 4, 5)])
 def fig05_two_peaks(R):
-    runs = _non_integral(R.study("fig05_length_cd"))
+    runs = _non_integral(R, "fig05_length_cd")
     out = {}
     for k in (2, 3, 4, 5):
         ok, notes = True, []
@@ -161,7 +161,7 @@ def fig05_two_peaks(R):
 
 @Q.register(*[f"one_peak_without_length_change_order{k}" for k in (2, 3, 4, 5)])
 def fig05_one_peak(R):
-    runs = _non_integral(R.study("fig05_plain_cd"))
+    runs = _non_integral(R, "fig05_plain_cd")
     out = {}
     for k in (2, 3, 4, 5):
         ok, notes = True, []
@@ -179,8 +179,8 @@ def fig05_one_peak(R):
 
 @Q.register("length_change_difference_grows_with_order")
 def fig05_difference(R):
-    plain = dict(_non_integral(R.study("fig05_plain_cd")))
-    withl = dict(_non_integral(R.study("fig05_length_cd")))
+    plain = dict(_non_integral(R, "fig05_plain_cd"))
+    withl = dict(_non_integral(R, "fig05_length_cd"))
     diffs = []
     for k in range(1, 6):
         vals = []
@@ -215,13 +215,13 @@ def fig05_system_a_amp(R):
 
 @Q.register("system_b_20p5_not_amplified_first_resonance")
 def fig05_system_b_amp(R):
-    a = _amplification(_at_cd(R.study("fig05_length_cd"), 20.5))
+    a = _amplification(_at_cd(R, "fig05_length_cd", 20.5))
     return Reproduced(bool(a < C.AMPLIFIED), f"ratio {a:.2f}")
 
 
 # ----------------------------------------------------------------------------- Fig. 6
 def _by_inertia(R):
-    vals, runs = _study_runs(R.study("fig06_i2"), "driven_inertia")
+    vals, runs = _study_runs(R, "fig06_i2", "driven_inertia")
     vals = list(vals) + [R.parameter("driven_inertia")]
     runs = runs + [R.run("fig06_inertia")]
     order = np.argsort(vals)
@@ -253,7 +253,7 @@ def fig06(R):
 # ----------------------------------------------------------------------------- Fig. 7
 @Q.register("no_instability_ts800", "instability_ts100")
 def fig07_study(R):
-    ts, runs = _study_runs(R.study("fig07_ts"), "static_tension")
+    ts, runs = _study_runs(R, "fig07_ts", "static_tension")
     out = {}
     for name, T, expect in (("no_instability_ts800", 800.0, False), ("instability_ts100", 100.0, True)):
         i = int(np.argmin(np.abs(ts - T)))
@@ -278,7 +278,7 @@ def _fig08_base(R):
 
 
 def _loaded(R):
-    ws, runs = _study_runs(R.study("fig08_wex"), "external_frequency_ratio")
+    ws, runs = _study_runs(R, "fig08_wex", "external_frequency_ratio")
     out = {float(w): d for w, d in zip(ws, runs)}
     out[R.parameter("external_frequency_ratio")] = R.run("fig08_external")
     return out
