@@ -47,7 +47,7 @@ REF_VARIANTS ?=
 REF_PAPERS ?=
 reference: $(STAMP)
 	rm -rf results-reference-$(REF_PROFILE)
-	$(BIN)/python -m mechrepro.reference $(REF_PROFILE) results-reference-$(REF_PROFILE) \
+	PYTHONPATH=src $(BIN)/python -m mechrepro.reference $(REF_PROFILE) results-reference-$(REF_PROFILE) \
 	  $(if $(REF_PAPERS),--papers $(REF_PAPERS)) $(if $(REF_VARIANTS),--variants $(REF_VARIANTS))
 
 ## Speed benchmarks (ratios measured side by side)
