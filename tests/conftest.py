@@ -59,10 +59,10 @@ def copy_workflow(dst: Path) -> Path:
 SNAKEMAKE = [sys.executable, "-m", "snakemake", "--cores", "2", "--config", "profile=ci"]
 
 
-def snakemake(work, *args, check=True, env=None):
+def snakemake(work, *args, check=True, env=None, base=SNAKEMAKE):
     import subprocess
 
-    proc = subprocess.run([*SNAKEMAKE, *args], cwd=work, capture_output=True, text=True,
+    proc = subprocess.run([*base, *args], cwd=work, capture_output=True, text=True,
                           timeout=2400, env=env)
     if check and proc.returncode != 0:
         raise AssertionError(f"snakemake {' '.join(args)} failed:\n{proc.stdout[-4000:]}\n"
