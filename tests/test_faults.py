@@ -33,13 +33,19 @@ def snakemake(work, *args, check=True):
     return conftest.snakemake(work, *args, check=check, base=SNAKEMAKE)
 
 
-@pytest.fixture(scope="module")
-def wf(request, tmp_path_factory):
-    """The session's five-paper ci pipeline copy, or a one-paper one (MECHREPRO_FAULT_PAPERS)."""
-    if not ONLY:
-        return request.getfixturevalue("workflow")
-    work = conftest.copy_workflow(tmp_path_factory.mktemp("faults"))
-    return work, snakemake(work)
+if ONLY:
+    @pytest.fixture(scope="module")
+    def wf(tmp_path_factory):
+        """A one-paper ci pipeline of its own (MECHREPRO_FAULT_PAPERS)."""
+        work = conftest.copy_workflow(tmp_path_factory.mktemp("faults"))
+        return work, snakemake(work)
+else:
+    @pytest.fixture(scope="module")
+    def wf(workflow):
+        """The session's five-paper ci pipeline copy.  Named as a fixture argument, not
+        fetched at run time, so that conftest puts these tests in the xdist group of the
+        other tests of that run (a second worker would run the whole pipeline again)."""
+        return workflow
 
 
 def heal(work):

@@ -151,7 +151,9 @@ def _format_error(err: "jsonschema.ValidationError", where: str) -> str:
     if v == "required":
         return f"{where}: {loc}: missing key ({err.message})"
     if v == "additionalProperties":
-        return f"{where}: {loc}: unknown key ({err.message})"
+        known = ", ".join(sorted(err.schema.get("properties", {}))) or "none"
+        hint = " (a resolution knob is declared under refine:)" if loc == "resolution" else ""
+        return f"{where}: {loc}: unknown key ({err.message}); allowed: {known}{hint}"
     return f"{where}: {loc}: {err.message}"
 
 
@@ -191,14 +193,20 @@ def load_schema(name: str, schema_dir: Path) -> dict:
     return json.loads((schema_dir / name).read_text())
 
 
-def with_parameters(run_schema: dict, raw: dict) -> dict:
-    """The run schema with its parameters' bounds from the config: the schema file names
-    what the solver reads (``required``), each parameter's ``allowed:`` says what values it
-    may take (declared once, beside its value)."""
+def with_declared(run_schema: dict, raw: dict) -> dict:
+    """The run schema completed from the config, where each thing is declared once: the
+    schema file names what the solver reads (``parameters.required``,
+    ``resolution.required``); each parameter's ``allowed:`` (beside its value) and each
+    resolution knob's ``allowed:`` and ``description:`` (beside its refinement, under
+    ``refine:``) say what values they may take."""
+    props = run_schema["properties"]
     params = {"type": "object", "additionalProperties": False,
-              "required": run_schema["properties"]["parameters"]["required"],
+              "required": props["parameters"]["required"],
               "properties": {k: p["allowed"] for k, p in raw["parameters"].items()}}
-    return {**run_schema, "properties": {**run_schema["properties"], "parameters": params}}
+    knobs = {k: {**v.get("allowed", {}), "description": v["description"]}
+             for k, v in raw.get("refine", {}).items()}
+    resolution = {**props["resolution"], "properties": knobs}
+    return {**run_schema, "properties": {**props, "parameters": params, "resolution": resolution}}
 
 
 # Where jobs keep validated configs (relative to the workflow directory they run in).
@@ -277,7 +285,7 @@ def load_paper(path: str | Path, profile: str = "default",
     if paper != path.stem:
         raise ConfigError(f"{where}: paper = {paper!r}: must be the file's name, {path.stem!r} "
                           "(a paper is discovered from config/papers/<paper>.yaml)")
-    run_schema = with_parameters(load_schema(f"{paper}.run.schema.json", sdir), raw)
+    run_schema = with_declared(load_schema(f"{paper}.run.schema.json", sdir), raw)
     cfg = PaperConfig(paper=paper, path=where, profile=profile,
                       source=raw.get("source", ""), raw=raw)
     for scene in raw["scenes"]:
@@ -456,11 +464,9 @@ def _check_reported(raw: dict, where: str) -> None:
 
 
 def refine_spec(raw: dict) -> dict[str, dict]:
-    """``refine:`` normalised: {key: {"factor": f} | {"fixed": why}}."""
-    out = {}
-    for key, v in raw.get("refine", {}).items():
-        out[key] = {"factor": float(v)} if isinstance(v, (int, float)) else dict(v)
-    return out
+    """``refine:`` normalised: {key: {"factor": f} | {"fixed": why}} (with its ``why``)."""
+    return {key: {k: v[k] for k in ("factor", "fixed", "why") if k in v}
+            for key, v in raw.get("refine", {}).items()}
 
 
 def family_of(raw: dict) -> dict[str, str]:

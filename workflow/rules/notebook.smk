@@ -30,6 +30,9 @@ for _paper in PAPERS:
             f"{RESULTS}/{_paper}/logs/validate.log",
         benchmark:
             f"{RESULTS}/{_paper}/benchmarks/validate.tsv"
+        # above the solves (1): a paper whose runs are done is validated and drawn on the
+        # next free core, so its figures appear while the slower papers still solve
+        priority: 2
         shell:
             "{params.python} -m mechrepro.cli validate {params.paper} {params.results} "
             "{input.config} {params.profile} > {log} 2>&1"
@@ -62,6 +65,7 @@ for _paper in PAPERS:
             f"{RESULTS}/{_paper}/logs/notebook.log",
         benchmark:
             f"{RESULTS}/{_paper}/benchmarks/notebook.tsv"
+        priority: 2
         shell:
             "{params.python} -m mechrepro.notebook {params.paper} {input.source} "
             "{output.notebook} {params.results} {input.config} {params.profile} > {log} 2>&1"

@@ -43,8 +43,9 @@ for _paper in PAPERS:
             # when a run above them was allowed on purpose (--config over_budget=true)
             resources:
                 **job_resources(CFG[_paper], _job, OVER_BUDGET),
-            # every later job waits on the solves: a free core takes a solve before a
-            # validation or notebook (a critical-path-first order; results do not depend on it)
+            # a free core takes a solve before a cross-paper job (summary, report), but a
+            # paper's validation and notebook (priority 2) before another paper's solve:
+            # the first figures appear early (results do not depend on the order)
             priority: 1
             shell:
                 "{params.python} -m mechrepro.solve {params.paper} {params.base}/config "
