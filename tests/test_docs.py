@@ -29,3 +29,11 @@ def test_the_claim_counts_are_the_committed_default_references():
         assert readme == {s: counted.count(s) for s in docs.VERDICTS}, (
             f"{paper}: README {readme}; regenerate it from a default run: "
             "python -m mechrepro.docs README.md results")
+
+
+def test_every_paper_page_lists_its_knobs_as_declared():
+    """docs/<paper>.md's knob table is its paper's refine: block (config only, no run)."""
+    for paper in docs._papers(ROOT / "config"):
+        page = (ROOT / "docs" / f"{paper}.md").read_text()
+        assert docs.block(page, "knobs") == docs.knobs(ROOT / "results" / paper, ROOT / "config"), (
+            f"docs/{paper}.md: regenerate its knobs: python -m mechrepro.docs docs/{paper}.md results")

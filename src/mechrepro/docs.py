@@ -102,7 +102,41 @@ def job_times(results: Path, config_dir: Path = Path("config")) -> str:
                      + ["| " + " | ".join(r) + " |" for r in view["rows"]])
 
 
+def knobs(results: Path, config_dir: Path = Path("config")) -> str:
+    """Every resolution knob of a paper (``refine:``, its one declaration): what it is, what
+    a scene may give it, how it refines for the verdicts' re-checks, and the values the
+    default profile's scenes give it."""
+    from .config import load_paper
+
+    paper = results.name
+    cfg = load_paper(config_dir / "papers" / f"{paper}.yaml")
+    used: dict[str, set] = {}
+    for run in cfg.runs.values():
+        if "@" in run["run"]:     # a verdict variant (coarser, finer, range ends)
+            continue
+        for k, v in run.get("resolution", {}).items():
+            used.setdefault(k, set()).add(json.dumps(v))
+    out = ["| knob | what it is | allowed | finer level | default profile |", "|---|---|---|---|---|"]
+    for key, spec in cfg.raw.get("refine", {}).items():
+        a = spec["allowed"]
+        rng = (", ".join(map(str, a["enum"])) if "enum" in a else
+               " … ".join(str(a.get(lo, a.get("exclusive" + lo.capitalize(), "")))
+                          for lo in ("minimum", "maximum")) if a.get("type") != "array" else "a list")
+        how = (f"× {spec['factor']:g}" if "factor" in spec else "fixed: " + spec["fixed"])
+        if spec.get("why"):
+            how += f" ({spec['why']})"
+        vals = sorted(used.get(key, ()), key=lambda v: (len(v), v))
+        vals = [v.strip('"') for v in vals]
+        shown = ", ".join(vals[:6]) + (f" … ({len(vals)} values)" if len(vals) > 6 else "")
+        cell = lambda t: " ".join(str(t).split()).replace("|", "/")
+        out.append(f"| `{key}` | {cell(spec['description'])} | {cell(rng)} | {cell(how)} | "
+                   f"{cell(shown) or 'not used'} |")
+    return "\n".join(out)
+
+
 README_BLOCKS = {"claims": claims, "assumed_constants": assumed_constants, "job_times": job_times}
+#: blocks every docs/<paper>.md may use, beside its own models/<paper>/docs.py BLOCKS
+PAPER_BLOCKS = {"knobs": knobs}
 
 
 def blocks_for(doc: Path) -> tuple[dict, str | None]:
@@ -110,7 +144,13 @@ def blocks_for(doc: Path) -> tuple[dict, str | None]:
     if doc.parent.name == "docs" and (doc.parents[1] / "config" / "papers" / doc.name
                                       ).with_suffix(".yaml").exists():
         paper = doc.stem
-        return importlib.import_module(f"mechrepro.models.{paper}.docs").BLOCKS, paper
+        try:
+            own = importlib.import_module(f"mechrepro.models.{paper}.docs").BLOCKS
+        except ModuleNotFoundError as exc:
+            if exc.name != f"mechrepro.models.{paper}.docs":
+                raise
+            own = {}
+        return {**PAPER_BLOCKS, **own}, paper
     return README_BLOCKS, None
 
 
