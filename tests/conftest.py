@@ -9,11 +9,14 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "src"))
 
 
+@pytest.hookimpl(tryfirst=True)
 def pytest_collection_modifyitems(config, items):
     """Under xdist (`make test`: `-n 2 --dist loadgroup`) a worker takes whole groups: every
     test that reads the session's ci pipeline run goes to one group, so the pipeline runs
     once; every other test stays with its module, whose module-scoped fixtures (a SLURM
-    cluster, a solved disk) are then set up once."""
+    cluster, a solved disk) are then set up once.  First among the hooks: xdist's own
+    (which turns the marks into the groups) must see them (without tryfirst it ran before,
+    and two workers each ran the whole ci pipeline: 857 s and 768 s of setup)."""
     for item in items:
         group = "ci_pipeline" if "workflow" in getattr(item, "fixturenames", ()) else \
             item.nodeid.split("::")[0]
