@@ -9,7 +9,7 @@ from scipy import integrate
 
 from mechrepro.config import load_paper
 from mechrepro.models.joint_wear import setup, solve
-from mechrepro.models.joint_wear import dynamics, kinematics, quasistatic, wear
+from mechrepro.models.joint_wear import clearance, dynamics, kinematics, quasistatic, wear
 
 from conftest import ROOT
 
@@ -40,11 +40,12 @@ def test_settled_start_leaves_the_rocking_mode_unexcited():
     ecc = fb.clearance + q0["delta"][0]
     th3, ph2 = kinematics.positions_from_point(fb, fb.l1 - ecc * q0["nx"][0], -ecc * q0["ny"][0])
     w3, w2 = kinematics.velocities(fb, 0.0, *kinematics.positions(fb, 0.0))
-    sys_ = dynamics.ClearanceJoint(fb, damping=True)
-    sol = integrate.solve_ivp(sys_.rhs, (0, t_end), [th3, ph2, w3, w2], method="Radau",
-                              rtol=1e-7, atol=np.array([1, 1, 10, 10]) * 1e-9, jac=sys_.jac,
-                              t_eval=r["t"][:-1])
-    old = dynamics.contact_history(sys_, sol.t, sol.y)
+    p = clearance.params(fb, damping=True)
+    sol = integrate.solve_ivp(lambda t, y: clearance.rhs(t, y, p), (0, t_end),
+                              [th3, ph2, w3, w2], method="Radau", rtol=1e-7,
+                              atol=np.array([1, 1, 10, 10]) * 1e-9,
+                              jac=lambda t, y: clearance.jac(t, y, p), t_eval=r["t"][:-1])
+    old = dynamics.contact_history(p, sol.t, sol.y)
     dold = np.degrees(np.angle(np.exp(1j * (old["psi"] - qs["psi"][:N]))))
     assert np.abs(dold).max() > 50 * np.abs(dpsi).max()
 

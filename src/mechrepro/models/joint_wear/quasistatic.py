@@ -64,9 +64,9 @@ def _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2, iterations=4) -> dict:
 
     With numba installed the element-wise stages run compiled (:mod:`.qs_numba`, the same
     operations: results equal to round-off); the numpy code otherwise."""
-    from . import ivp_kernel
+    from . import clearance
 
-    if ivp_kernel.available():
+    if clearance.available():
         return _contact_state_compiled(fb, t, th1, th3, ph2, w3, w2, a3, a2, iterations)
     M11, M22, am = loads.mass_terms(fb)
     cd = np.cos(th3 - ph2)

@@ -410,18 +410,14 @@ SOLVERS = {"clearance_implicit": clearance_implicit, "clearance_explicit": clear
 def warm() -> None:
     """Load the compiled kernels once per solver process; the runner calls this before the
     first timed run, so that no run's time carries numba's start."""
-    from . import ivp_kernel
-
-    ivp_kernel.warm()
+    dynamics.warm()
 
 
 def compute(run: dict) -> dict:
     """The physics of one run (what the runner times): the scene's solver.  The compiled
     kernels are loaded first (once per process), so that no measured period carries
     numba's start."""
-    from . import ivp_kernel
-
-    ivp_kernel.warm()
+    dynamics.warm()
     return SOLVERS[run["solver"]](run)
 
 
