@@ -12,7 +12,7 @@ import numpy as np
 from mechrepro.io import run_attrs
 from mechrepro.validation import Quantities, Reproduced
 
-from . import wear
+from . import accuracy, wear
 
 Q = Quantities("joint_wear")
 SIDES = ("b1", "b2")
@@ -150,9 +150,7 @@ def continuous_contact_estimated(R):
 
 
 def _finest_radau(st):
-    idx = [i for i, m in enumerate(st["method"].values) if m == "Radau"]
-    i = idx[int(np.argmin(st["rtol"].values[idx]))]
-    return st.isel(run=i)
+    return st.isel(run=accuracy.finest_radau(st))
 
 
 @Q.register("quasistatic_vs_dynamic_wear_per_period")
