@@ -78,3 +78,25 @@ def test_compiled_impact_path_is_scipys(fb):
     assert abs(nb - na) <= 0.01 * na
     assert Fb == pytest.approx(Fa, rel=1e-4)
     assert qb == pytest.approx(qa, rel=1e-4)
+
+
+def test_without_numba_the_same_source_runs_as_python(fb):
+    """numba hidden: the physics (clearance.py, qs_numba.py) runs as Python and Radau is
+    scipy's; the settled period agrees with the compiled one within the tolerance."""
+    import subprocess
+    import sys
+
+    code = ("import sys; sys.modules['numba'] = None\n"
+            "import numpy as np\n"
+            "from mechrepro.config import load_paper\n"
+            "from mechrepro.models.joint_wear import clearance, dynamics, setup\n"
+            "assert not clearance.available()\n"
+            "fb = setup(load_paper('config/papers/joint_wear.yaml', 'ci').runs['period_dynamic'])[0]\n"
+            "r = dynamics.simulate(fb, fb.period, 721, rtol=1e-6, start='equilibrium')\n"
+            "print(r['status'], np.mean(r['F_N']), np.min(r['delta']))\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.split()
+    b = dynamics.simulate(fb, fb.period, 721, rtol=1e-6, start="equilibrium")
+    assert int(out[0]) == b["status"] == 0
+    assert float(out[1]) == pytest.approx(np.mean(b["F_N"]), rel=1e-6)
+    assert float(out[2]) == pytest.approx(np.min(b["delta"]), rel=1e-4)
