@@ -1,8 +1,9 @@
-"""The compiled integrators of joint_wear (ivp_kernel / ivp_numba) against scipy's.
+"""The compiled Radau of joint_wear (radau.py) against scipy's, and the compiled physics
+(clearance.py) against the same source run as Python.
 
-They are the same algorithms: over the first steps (a few: the step-size controller
-amplifies round-off quickly on the stiff contact) they take the same steps with the same
-number of right-hand-side evaluations and reach the same time to round-off; over a whole
+radau.py is scipy's Radau algorithm: over the first steps (a few: the step-size controller
+amplifies round-off quickly on the stiff contact) it takes the same steps with the same
+number of right-hand-side evaluations and reaches the same time to round-off; over a whole
 period the stiff trajectory differs by round-off amplified by the step-size controller,
 i.e. well inside the integrator tolerance."""
 from __future__ import annotations
@@ -11,9 +12,9 @@ import numpy as np
 import pytest
 
 from mechrepro.config import load_paper
-from mechrepro.models.joint_wear import dynamics, ivp_kernel, setup
+from mechrepro.models.joint_wear import clearance, dynamics, setup
 
-pytestmark = pytest.mark.skipif(not ivp_kernel.available(), reason="numba not installed")
+pytestmark = pytest.mark.skipif(not clearance.available(), reason="numba not installed")
 
 
 @pytest.fixture(scope="module")
@@ -22,30 +23,27 @@ def fb():
     return setup(cfg.runs["period_dynamic"])[0]
 
 
-def test_rhs_and_jacobian_equal_the_python_ones(fb):
-    k = ivp_kernel.kernels()
-    p = ivp_kernel.params(fb, True)
-    sys_ = dynamics.ClearanceJoint(fb, damping=True)
+def test_compiled_physics_is_the_python_source(fb):
+    """One source, two executions: numba's and Python's evaluate the same right-hand side
+    and Jacobian (to round-off: libm against Python's math)."""
+    p = clearance.params(fb, True)
     y0 = dynamics.initial_state(fb, "equilibrium")
     rng = np.random.default_rng(1)
     for t in np.linspace(0.0, fb.period, 13):
         y = y0 + rng.normal(size=4) * np.array([1e-6, 1e-6, 1e-4, 1e-4])
-        f = np.empty(4)
-        k["rhs"](t, y, p, f)
-        np.testing.assert_array_equal(f, np.asarray(sys_.rhs(t, y)))
-        J = np.empty((4, 4))
-        k["jac"](t, y, p, J)
-        Jp = sys_.jac(t, y)
-        np.testing.assert_allclose(J, Jp, rtol=0, atol=1e-13 * np.abs(Jp).max())
+        f, fp = clearance.rhs(t, y, p), clearance.rhs.py_func(t, y, p)
+        np.testing.assert_allclose(f, fp, rtol=1e-12, atol=1e-12 * np.abs(fp).max())
+        J = clearance.jac(t, y, p)
+        Jp = np.empty((4, 4))
+        clearance.jac_into.py_func(t, y, p, Jp)
+        np.testing.assert_allclose(J, Jp, rtol=0, atol=1e-12 * np.abs(Jp).max())
 
 
-@pytest.mark.parametrize("method,rtol,steps", [("Radau", 1e-5, 5), ("BDF", 1e-6, 40),
-                                               ("RK45", 1e-5, 1000)])
-def test_compiled_steps_are_scipys(fb, method, rtol, steps):
-    a = dynamics.simulate(fb, fb.period, 721, method=method, rtol=rtol, start="equilibrium",
-                          max_steps=steps, kernel="scipy")
-    b = dynamics.simulate(fb, fb.period, 721, method=method, rtol=rtol, start="equilibrium",
-                          max_steps=steps, kernel="numba")
+def test_compiled_radau_steps_are_scipys(fb):
+    a = dynamics.simulate(fb, fb.period, 721, method="Radau", rtol=1e-5, start="equilibrium",
+                          max_steps=5, kernel="scipy")
+    b = dynamics.simulate(fb, fb.period, 721, method="Radau", rtol=1e-5, start="equilibrium",
+                          max_steps=5, kernel="auto")
     assert a["status"] == b["status"] == -2
     assert a["steps"] == b["steps"] and a["nfev"] == b["nfev"]
     assert b["t_reached"] == pytest.approx(a["t_reached"], rel=1e-8)
@@ -56,40 +54,11 @@ def test_compiled_steps_are_scipys(fb, method, rtol, steps):
 def test_compiled_radau_period_within_tolerance(fb):
     a = dynamics.simulate(fb, fb.period, 721, method="Radau", rtol=1e-6, start="equilibrium",
                           kernel="scipy")
-    b = dynamics.simulate(fb, fb.period, 721, method="Radau", rtol=1e-6, start="equilibrium",
-                          kernel="numba")
+    b = dynamics.simulate(fb, fb.period, 721, method="Radau", rtol=1e-6, start="equilibrium")
     assert a["status"] == b["status"] == 0
-    assert abs(b["steps"] - a["steps"]) < 0.1 * a["steps"]
+    assert abs(b["steps"] - a["steps"]) < 0.35 * a["steps"]
     assert np.mean(b["F_N"]) == pytest.approx(np.mean(a["F_N"]), rel=1e-6)
     assert np.min(b["delta"]) == pytest.approx(np.min(a["delta"]), rel=1e-4)
-
-
-def test_lsoda_with_compiled_callbacks_starts_as_scipys(fb):
-    a = dynamics.simulate(fb, fb.period, 721, method="LSODA", rtol=1e-6, start="equilibrium",
-                          max_steps=200, kernel="scipy")
-    b = dynamics.simulate(fb, fb.period, 721, method="LSODA", rtol=1e-6, start="equilibrium",
-                          max_steps=200, kernel="auto")
-    assert a["steps"] == b["steps"]
-    assert b["t_reached"] == pytest.approx(a["t_reached"], rel=1e-6)
-
-
-def test_compiled_bdf_whole_period_agrees_with_scipys(fb):
-    """BDF over a whole settled period (the default profile's BDF point of the accuracy
-    study): both finish, in the same number of steps to 2 %, with the same mean force to
-    1e-3 -- BDF rings the clearance's rocking mode (~1e-2 in the wear per period, see the
-    docs), which follows round-off, so the two agree only to the ringing's level -- and both
-    within 1e-3 of Radau's mean force."""
-    a = dynamics.simulate(fb, fb.period, 721, method="BDF", rtol=1e-5, start="equilibrium",
-                          kernel="scipy")
-    b = dynamics.simulate(fb, fb.period, 721, method="BDF", rtol=1e-5, start="equilibrium",
-                          kernel="numba")
-    r = dynamics.simulate(fb, fb.period, 721, method="Radau", rtol=1e-7, start="equilibrium")
-    assert a["status"] == b["status"] == r["status"] == 0
-    assert abs(b["steps"] - a["steps"]) < 0.02 * a["steps"]
-    assert np.mean(b["F_N"]) == pytest.approx(np.mean(a["F_N"]), rel=1e-3)
-    for x in (a, b):
-        assert np.mean(x["F_N"]) == pytest.approx(np.mean(r["F_N"]), rel=1e-3)
-        assert np.min(x["delta"]) > 0                       # contact kept over the period
 
 
 def test_compiled_impact_path_is_scipys(fb):
@@ -98,7 +67,7 @@ def test_compiled_impact_path_is_scipys(fb):
     same impact force peak and the same 90 % contact range."""
     from mechrepro.models.joint_wear import wear
     out = []
-    for kernel in ("scipy", "numba"):
+    for kernel in ("scipy", "auto"):
         r = dynamics.simulate(fb, 0.2, 2001, method="Radau", rtol=1e-6, start="concentric",
                               kernel=kernel)
         on = r["delta"] > 0
@@ -109,3 +78,25 @@ def test_compiled_impact_path_is_scipys(fb):
     assert abs(nb - na) <= 0.01 * na
     assert Fb == pytest.approx(Fa, rel=1e-4)
     assert qb == pytest.approx(qa, rel=1e-4)
+
+
+def test_without_numba_the_same_source_runs_as_python(fb):
+    """numba hidden: the physics (clearance.py, qs_numba.py) runs as Python and Radau is
+    scipy's; the settled period agrees with the compiled one within the tolerance."""
+    import subprocess
+    import sys
+
+    code = ("import sys; sys.modules['numba'] = None\n"
+            "import numpy as np\n"
+            "from mechrepro.config import load_paper\n"
+            "from mechrepro.models.joint_wear import clearance, dynamics, setup\n"
+            "assert not clearance.available()\n"
+            "fb = setup(load_paper('config/papers/joint_wear.yaml', 'ci').runs['period_dynamic'])[0]\n"
+            "r = dynamics.simulate(fb, fb.period, 721, rtol=1e-6, start='equilibrium')\n"
+            "print(r['status'], np.mean(r['F_N']), np.min(r['delta']))\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.split()
+    b = dynamics.simulate(fb, fb.period, 721, rtol=1e-6, start="equilibrium")
+    assert int(out[0]) == b["status"] == 0
+    assert float(out[1]) == pytest.approx(np.mean(b["F_N"]), rel=1e-6)
+    assert float(out[2]) == pytest.approx(np.min(b["delta"]), rel=1e-4)

@@ -9,7 +9,7 @@ from scipy import integrate
 
 from mechrepro.config import load_paper
 from mechrepro.models.joint_wear import setup, solve
-from mechrepro.models.joint_wear import dynamics, kinematics, quasistatic, wear
+from mechrepro.models.joint_wear import clearance, dynamics, kinematics, quasistatic, wear
 
 from conftest import ROOT
 
@@ -40,11 +40,12 @@ def test_settled_start_leaves_the_rocking_mode_unexcited():
     ecc = fb.clearance + q0["delta"][0]
     th3, ph2 = kinematics.positions_from_point(fb, fb.l1 - ecc * q0["nx"][0], -ecc * q0["ny"][0])
     w3, w2 = kinematics.velocities(fb, 0.0, *kinematics.positions(fb, 0.0))
-    sys_ = dynamics.ClearanceJoint(fb, damping=True)
-    sol = integrate.solve_ivp(sys_.rhs, (0, t_end), [th3, ph2, w3, w2], method="Radau",
-                              rtol=1e-7, atol=np.array([1, 1, 10, 10]) * 1e-9, jac=sys_.jac,
-                              t_eval=r["t"][:-1])
-    old = dynamics.contact_history(sys_, sol.t, sol.y)
+    p = clearance.params(fb, damping=True)
+    sol = integrate.solve_ivp(lambda t, y: clearance.rhs(t, y, p), (0, t_end),
+                              [th3, ph2, w3, w2], method="Radau", rtol=1e-7,
+                              atol=np.array([1, 1, 10, 10]) * 1e-9,
+                              jac=lambda t, y: clearance.jac(t, y, p), t_eval=r["t"][:-1])
+    old = dynamics.contact_history(p, sol.t, sol.y)
     dold = np.degrees(np.angle(np.exp(1j * (old["psi"] - qs["psi"][:N]))))
     assert np.abs(dold).max() > 50 * np.abs(dpsi).max()
 
@@ -111,3 +112,30 @@ def test_a_dataset_records_steps_and_the_quantile_arc():
     assert math.isnan(float(ds["wear_factor"]))          # no wear from an unfinished period
     qs = solve(CFG.runs["period_quasistatic"])
     assert 0 < float(qs["contact_arc_q90"]) <= float(qs["contact_arc_angle"])
+
+
+def test_dynamic_accuracy_reference_is_proven():
+    """Issue #25: the dynamic cost-of-accuracy curve's reference (the finest Radau run of
+    accuracy_dynamic) carries a Richardson error estimate below every Radau point, for
+    both quantities.  The former reference (rtol 1e-7) was off by more in the wear per
+    period (5e-6) than the differences it measured (~3e-8)."""
+    from mechrepro.accuracy import reference_error
+    from mechrepro.models.joint_wear import solver
+
+    runs = [r for n, r in CFG.runs.items()
+            if n.startswith("accuracy_dynamic-") and "@" not in n
+            and r["resolution"]["method"] == "Radau"]
+    rtol = np.array([float(r["resolution"]["rtol"]) for r in runs])
+    assert rtol.min() <= 1e-12
+    assert all(np.isclose(rtol, 10.0 ** k, rtol=1e-9).any() for k in range(-12, -4))
+    f = [solver.compute(r)["factor"] for r in runs]
+    i_ref = int(np.argmin(rtol))
+    on = np.arange(len(runs)) != i_ref
+    for q in ("G", "F_N_mean"):
+        v = np.array([x[q] for x in f])
+        err = np.abs(v / v[i_ref] - 1.0)[on]
+        est, proven = reference_error("finest", rtol[on], err, rtol[i_ref])
+        assert proven and est < err.min(), (q, est, err.min())
+    G = np.array([x["G"] for x in f])
+    at = {k: G[np.isclose(rtol, 10.0 ** k, rtol=1e-9)][0] for k in (-6, -7)}
+    assert abs(at[-7] / G[i_ref] - 1.0) > 10 * abs(at[-6] / at[-7] - 1.0)

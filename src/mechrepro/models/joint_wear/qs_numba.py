@@ -1,20 +1,17 @@
-"""Compiled element-wise parts of the quasi-static contact state (quasistatic.py).
+"""The element-wise stages of the quasi-static contact state (quasistatic.py), written once.
 
-:func:`.quasistatic._contact_state` is ~25 numpy operations on arrays of a few hundred
-samples per friction pass, each paying numpy's call overhead; here each stage is one
-loop (numba, cached on disk).  The operations and their order are those of the numpy
-code, so results agree with it to round-off (only libm's and numpy's transcendental
-functions may differ in the last bit).  The spectral derivative between the stages stays
-numpy's FFT.  Imported lazily (it imports numba); without numba the numpy code runs.
+Each stage is one loop over the samples of a period (a few hundred), rather than ~25 numpy
+operations each paying numpy's call overhead: compiled with numba where installed (cached
+on disk), the same source run as Python otherwise (slow, but the same arithmetic).  The
+spectral derivative between the stages stays numpy's FFT.
 """
 from __future__ import annotations
 
 import math
 
-import numba
 import numpy as np
 
-jit = numba.njit(cache=True, error_model="numpy")
+from .clearance import jit
 
 
 @jit

@@ -62,52 +62,11 @@ def one_period(fb: FourBar, n_steps: int, passes: int = 2, t0: float = 0.0,
 def _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2, iterations=4) -> dict:
     """Joint-B force, its normal/friction split and the penetration for given link motion.
 
-    With numba installed the element-wise stages run compiled (:mod:`.qs_numba`, the same
-    operations: results equal to round-off); the numpy code otherwise."""
-    from . import ivp_kernel
-
-    if ivp_kernel.available():
-        return _contact_state_compiled(fb, t, th1, th3, ph2, w3, w2, a3, a2, iterations)
-    M11, M22, am = loads.mass_terms(fb)
-    cd = np.cos(th3 - ph2)
-    sd = np.sin(th3 - ph2)
-    # M q'' + c(q, q') = Q_applied + J^T f + [0, R_j F_T]
-    rhs3 = M11 * a3 + am * cd * a2 + am * sd * w2 ** 2
-    rhs2 = am * cd * a3 + M22 * a2 - am * sd * w3 ** 2
-    Q3, Q2 = loads.applied_forces(fb, th3, ph2)
-    b3, b2 = rhs3 - Q3, rhs2 - Q2
-    # J^T = [[l3 u3'], [l2 u2']], u' = (-sin, cos)
-    j11, j12 = -fb.l3 * np.sin(th3), fb.l3 * np.cos(th3)
-    j21, j22 = -fb.l2 * np.sin(ph2), fb.l2 * np.cos(ph2)
-    det = j11 * j22 - j12 * j21
-    tau = np.zeros_like(t)
-    slide = fb.omega * fb.R_pin       # v_T = (c + delta) d(ang_n)/dt + slide - w2 R_j
-    w2R = w2 * fb.R_bush
-    v_T = slide - w2R
-    sgn = contact.friction_sign(v_T, fb.v_eps)
-    for _ in range(iterations):  # friction moment R_j F_T is ~1e-3 of the load terms: 4 leave 1e-9
-        c2 = b2 - tau
-        fx = (b3 * j22 - j12 * c2) / det
-        fy = (j11 * c2 - j21 * b3) / det
-        mus = fb.mu * sgn
-        F_N = np.hypot(fx, fy) / np.sqrt(1.0 + mus ** 2)
-        # f = F_N (n + mu s t): n is f turned back by the friction angle
-        ang_n = np.arctan2(fy, fx) - np.arctan(mus)
-        delta = contact.static_penetration(F_N, fb.K_contact, fb.n_exp)
-        # e = (c + delta) n moves with the contact direction: its tangential rate enters v_T
-        dang, _ = periodic_derivatives(ang_n, fb.period, second=False)
-        v_T = (fb.clearance + delta) * dang + slide - w2R
-        sgn = contact.friction_sign(v_T, fb.v_eps)   # F_T now, mus in the next pass
-        F_T = fb.mu * F_N * sgn                      # contact.friction_force(F_N, v_T, ...)
-        tau = fb.R_bush * F_T
-    nx, ny = np.cos(ang_n), np.sin(ang_n)
-    psi = np.angle(np.exp(1j * (ang_n - ph2)))  # contact point on the bushing, coupler frame
-    return {"t": t, "theta1": th1, "theta3": th3, "phi2": ph2, "F_N": F_N, "F_T": F_T,
-            "delta": delta, "v_T": v_T, "psi": psi, "nx": nx, "ny": ny}
-
-
-def _contact_state_compiled(fb, t, th1, th3, ph2, w3, w2, a3, a2, iterations) -> dict:
-    """:func:`_contact_state` with the element-wise stages of :mod:`.qs_numba`."""
+    M q'' + c(q, q') = Q_applied + J^T f + [0, R_j F_T] solved for the joint force f; the
+    friction moment R_j F_T is ~1e-3 of the load terms, so ``iterations`` passes (4 leave
+    1e-9) settle it.  The element-wise stages are :mod:`.qs_numba` (compiled with numba
+    where installed, the same source as Python otherwise); the spectral derivative of the
+    contact direction between them is numpy's FFT."""
     from . import qs_numba as k
 
     M11, M22, am = loads.mass_terms(fb)

@@ -178,6 +178,34 @@ def period_by_period(run: dict) -> dict:
 SIDES = ("B1", "B2")
 
 
+def load_point(fb: FourBar, E, distance: float, direction_deg: float, g: float) -> FourBar:
+    """The mechanism with F at ``distance`` [m] from E's mid-stroke position ``E`` in the
+    direction ``direction_deg`` (from +x, anticlockwise) and gravity ``g`` [m/s2]."""
+    a = math.radians(direction_deg)
+    return replace(fb, g=g, F=(E[0] + distance * math.cos(a), E[1] + distance * math.sin(a)))
+
+
+def load_point_grid(run: dict, prefix: str):
+    """The set-up of a solver over load points: the mechanism, its context, E's mid-stroke
+    position and the options ``<prefix>_load_distance``, ``<prefix>_load_direction_deg``,
+    ``<prefix>_gravity``."""
+    fb, ctx = setup(run)
+    s = ctx.s
+    return (fb, ctx, kinematics.load_point_mid_stroke(fb), float(s[f"{prefix}_load_distance"]),
+            np.asarray(s[f"{prefix}_load_direction_deg"], float),
+            np.asarray(s[f"{prefix}_gravity"], float))
+
+
+def wear_factor_of(fb_v: FourBar, s: dict):
+    """G(R_bush): the wear factor of one continuous-contact period of ``fb_v`` with the
+    bushing at radius R_bush (what calibration and prediction step through)."""
+    def factor(R_bush):
+        fb_w = fb_v.with_bushing_radius(R_bush)
+        return wear.period_wear_factor(continuous_contact_period(fb_w, s), fb_w,
+                                       fb_v.period)["G"]
+    return factor
+
+
 def coefficient_scan(run: dict) -> dict:
     """The mean calibrated coefficient of both sides over load points F and gravity planes.
 
@@ -186,48 +214,29 @@ def coefficient_scan(run: dict) -> dict:
     ``scan_gravity`` [m/s2] stand for planes of motion from horizontal (0) to vertical.
     Only the calibration is run (5 periods per point): it is what fixes the coefficient.
     """
-    fb, ctx = setup(run)
+    fb, ctx, E, d, dirs, gs = load_point_grid(run, "scan")
     s, p = ctx.s, ctx.p
-    E = kinematics.load_point_mid_stroke(fb)
-    d = float(s["scan_load_distance"])
-    dirs = np.asarray(s["scan_load_direction_deg"], float)
-    gs = np.asarray(s["scan_gravity"], float)
-    cal_h = float(p["measurement_interval"]) / 3600.0
     k = np.full((len(SIDES), gs.size, dirs.size), np.nan)
     L = np.full((gs.size, dirs.size), np.nan)
     F_min = np.full((gs.size, dirs.size), np.nan)
     for i, g in enumerate(gs):
         for j, a in enumerate(dirs):
-            F = (E[0] + d * math.cos(math.radians(a)), E[1] + d * math.sin(math.radians(a)))
-            fb_v = replace(fb, g=g, F=F)
-            hist = quasi_static_period(fb_v, s)
-            f0 = wear.period_wear_factor(hist, fb_v, fb.period)
+            fb_v = load_point(fb, E, d, a, g)
+            f0 = wear.period_wear_factor(quasi_static_period(fb_v, s), fb_v, fb.period)
             L[i, j], F_min[i, j] = f0["L_arc"], f0["F_N_min"]
-
-            def factor(R_bush, fb_v=fb_v):
-                fb_w = fb_v.with_bushing_radius(R_bush)
-                return wear.period_wear_factor(continuous_contact_period(fb_w, s), fb_w,
-                                               fb.period)["G"]
             try:
-                for m, side in enumerate(SIDES):
-                    k[m, i, j] = wear.calibrate(p[f"measured_wear_{side}"], cal_h, fb.period,
-                                                fb.R_bush, factor,
-                                                dh_measured=p[f"measured_increment_{side}"])[1]
-            except ContactLost:     # the paper's premise fails there -- refused
-                k[:, i, j] = np.nan
+                k[:, i, j] = [float(np.mean(K)) for K in _calibrated(fb_v, s, p)]
+            except ContactLost:     # the paper's premise fails there -- refused (k stays NaN)
+                pass
     return {"fb": fb, "scan": {"k": k, "L_arc": L, "F_N_min": F_min, "directions": dirs,
                                "gravity": gs, "E_mid": E, "distance": d, "sides": list(SIDES)}}
 
 
 def _calibrated(fb_v: FourBar, s: dict, p: dict, sides=SIDES) -> np.ndarray:
     """K_p [m2/N] of Eqs. (32)-(34) for each side (rows) and interval (columns) with the
-    mechanism fb_v on the quasi-static joint; ValueError where continuous contact is lost."""
+    mechanism fb_v on the quasi-static joint; ContactLost where continuous contact is lost."""
     cal_h = float(p["measurement_interval"]) / 3600.0
-
-    def factor(R_bush):
-        fb_w = fb_v.with_bushing_radius(R_bush)
-        return wear.period_wear_factor(continuous_contact_period(fb_w, s), fb_w,
-                                       fb_v.period)["G"]
+    factor = wear_factor_of(fb_v, s)
     return np.array([wear.calibrate(p[f"measured_wear_{side}"], cal_h, fb_v.period,
                                     fb_v.R_bush, factor,
                                     dh_measured=p[f"measured_increment_{side}"])[0]
@@ -237,14 +246,10 @@ def _calibrated(fb_v: FourBar, s: dict, p: dict, sides=SIDES) -> np.ndarray:
 def _predicted_86h(fb_v: FourBar, s: dict, p: dict, k_mean) -> list:
     """The 86-h wear [m] of each side from its calibrated k on fb_v (Sec. 4.4, 2-h steps)."""
     out = []
+    cal_h = float(p["measurement_interval"]) / 3600.0
+    factor = wear_factor_of(fb_v, s)
     for side, k in zip(SIDES, k_mean):
         h = np.asarray(p[f"measured_wear_{side}"], float)
-        cal_h = float(p["measurement_interval"]) / 3600.0
-
-        def factor(R_bush):
-            fb_w = fb_v.with_bushing_radius(R_bush)
-            return wear.period_wear_factor(continuous_contact_period(fb_w, s), fb_w,
-                                           fb_v.period)["G"]
         out.append(wear.predict(h[-1], cal_h * h.size, float(p["prediction_end"]) / 3600.0,
                                 float(s.get("interval_h", 2.0)), float(k), fb_v.period,
                                 fb_v.R_bush, factor)[1][-1])
@@ -277,18 +282,13 @@ def load_point_fit(run: dict) -> dict:
     contact arc, where the wear sits (contact_side), and the 86-h wear of both sides, also
     at the estimate +- its uncertainty -- the band on Fig. 15.  Contact loss is refused.
     """
-    fb, ctx = setup(run)
+    fb, ctx, E, d, dirs, gs = load_point_grid(run, "fit")
     s, p = ctx.s, ctx.p
-    E = kinematics.load_point_mid_stroke(fb)
-    d = float(s["fit_load_distance"])
-    dirs = np.asarray(s["fit_load_direction_deg"], float)
-    gs = np.asarray(s["fit_gravity"], float)
     H = float(p["hardness_bushing"])
     K_paper = np.asarray(s["fit_K_paper"], float) / wear.hardness_number(H)   # m2/N, 2 x 5
 
     def mech(g, a):
-        return replace(fb, g=g, F=(E[0] + d * math.cos(math.radians(a)),
-                                   E[1] + d * math.sin(math.radians(a))))
+        return load_point(fb, E, d, a, g)
     m = np.full((gs.size, dirs.size), np.nan)
     for i, g in enumerate(gs):
         for j, a in enumerate(dirs):
@@ -373,10 +373,8 @@ def local_wear(run: dict) -> dict:
     s, p = ctx.s, ctx.p
     lp = s.get("local_load_point")
     if lp:
-        E = kinematics.load_point_mid_stroke(fb)
         d, a, g = (float(x) for x in lp)
-        fb = replace(fb, g=g, F=(E[0] + d * math.cos(math.radians(a)),
-                                 E[1] + d * math.sin(math.radians(a))))
+        fb = load_point(fb, kinematics.load_point_mid_stroke(fb), d, a, g)
     cal_h = float(p["measurement_interval"]) / 3600.0
     t_end, step = float(p["prediction_end"]) / 3600.0, float(s["interval_h"])
     h = np.asarray(p["measured_wear_B1"], float)
@@ -386,9 +384,7 @@ def local_wear(run: dict) -> dict:
             h, dh, cal_h, t_end, step, fb, fb.period,
             lambda fb_w: continuous_contact_period(fb_w, s), n_theta=int(s["n_theta"]))
 
-    def factor(R_bush):
-        fb_w = fb.with_bushing_radius(R_bush)
-        return wear.period_wear_factor(continuous_contact_period(fb_w, s), fb_w, fb.period)["G"]
+    factor = wear_factor_of(fb, s)
     with stopwatch() as sw_u:
         _, k_u, _ = wear.calibrate(h, cal_h, fb.period, fb.R_bush, factor, dh_measured=dh)
         _, h_u, _ = wear.predict(h[-1], cal_h * h.size, t_end, step, k_u, fb.period, fb.R_bush,
@@ -410,18 +406,14 @@ SOLVERS = {"clearance_implicit": clearance_implicit, "clearance_explicit": clear
 def warm() -> None:
     """Load the compiled kernels once per solver process; the runner calls this before the
     first timed run, so that no run's time carries numba's start."""
-    from . import ivp_kernel
-
-    ivp_kernel.warm()
+    dynamics.warm()
 
 
 def compute(run: dict) -> dict:
     """The physics of one run (what the runner times): the scene's solver.  The compiled
     kernels are loaded first (once per process), so that no measured period carries
     numba's start."""
-    from . import ivp_kernel
-
-    ivp_kernel.warm()
+    dynamics.warm()
     return SOLVERS[run["solver"]](run)
 
 

@@ -12,7 +12,7 @@ import numpy as np
 from mechrepro.io import run_attrs
 from mechrepro.validation import Quantities, Reproduced
 
-from . import wear
+from . import accuracy, wear
 
 Q = Quantities("joint_wear")
 SIDES = ("b1", "b2")
@@ -150,18 +150,17 @@ def continuous_contact_estimated(R):
 
 
 def _finest_radau(st):
-    idx = [i for i, m in enumerate(st["method"].values) if m == "Radau"]
-    i = idx[int(np.argmin(st["rtol"].values[idx]))]
-    return st.isel(run=i)
+    return st.isel(run=accuracy.finest_radau(st))
 
 
 @Q.register("quasistatic_vs_dynamic_wear_per_period")
 def qs_vs_dynamic(R):
-    ref = _finest_radau(R.study("accuracy_dynamic"))
+    ref = R.run("period_dynamic_converged")
     qs = R.run("period_quasistatic")
     e = abs(float(qs["wear_factor"]) / float(ref["wear_factor"]) - 1.0)
     eF = abs(float(qs["F_N_mean"]) / float(ref["F_N_mean"]) - 1.0)
-    return Reproduced(e, f"against Radau rtol {float(ref['rtol']):g}; mean force {eF:.1e}")
+    rtol = float(run_attrs(ref)["resolution"]["rtol"])
+    return Reproduced(e, f"against Radau rtol {rtol:g}; mean force {eF:.1e}")
 
 
 # ---- Sec. 4.4-4.5 -------------------------------------------------------------------------
