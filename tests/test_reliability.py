@@ -539,3 +539,58 @@ def test_a_failing_notebook_job_keeps_its_last_good_figures(run, tmp_path):
     nb.write_text(original)
     sm(work)
     assert "Nothing to be done" in sm(work, "-n").stdout
+
+
+def _read_only(work, target, cmd):
+    """Run ``cmd`` in ``work`` with ``target`` read-only: a read-only bind mount in a mount
+    namespace of its own when run as root (root ignores file modes), ``chmod -R a-w``
+    otherwise (put back after)."""
+    if os.geteuid() == 0:
+        if not shutil.which("unshare"):
+            pytest.skip("root without unshare: cannot make a directory read-only")
+        # cd after the mount: a working directory entered before it stays writable
+        script = ('mount --bind "$1" "$1" && mount -o remount,bind,ro "$1" && cd "$0" '
+                  '&& shift && exec "$@"')
+        probe = subprocess.run(["unshare", "-m", "sh", "-c", script, str(work), str(target),
+                                "true"], capture_output=True)
+        if probe.returncode != 0:
+            pytest.skip(f"no read-only bind mount here: {probe.stderr.decode()[-200:]}")
+        return subprocess.run(["unshare", "-m", "sh", "-c", script, str(work), str(target), *cmd],
+                              cwd=work, capture_output=True, text=True, timeout=600)
+    subprocess.run(["chmod", "-R", "a-w", str(target)], check=True)
+    try:
+        return subprocess.run(cmd, cwd=work, capture_output=True, text=True, timeout=600)
+    finally:
+        subprocess.run(["chmod", "-R", "u+w", str(target)], check=True)
+
+
+@pipeline
+@pytest.mark.parametrize("target", ["results", "project"])
+def test_a_read_only_project_stops_with_one_line_even_on_a_no_op(run, tmp_path, target):
+    """Read-only results (or the whole project, .snakemake/ included): a run, even one with
+    nothing to do, and `make reproduce` stop before writing anything, with one line naming
+    the directory and what to do; no traceback, nothing changed."""
+    from conftest import ROOT
+
+    work = tmp_path / "w"
+    shutil.copytree(run, work, symlinks=True)
+    for f in ("Makefile", "requirements.lock", "pyproject.toml"):
+        shutil.copy2(ROOT / f, work / f)
+    assert "Nothing to be done" in sm(work, "-n").stdout   # a no-op
+    before = hashes(work / "results")
+    ro = work / "results" if target == "results" else work
+    venv = ROOT / ".venv"
+    make = ["make", f"VENV={venv}", "reproduce"] if (venv / ".installed").exists() else None
+    for cmd in [SM] + ([make] if make else []):
+        proc = _read_only(work, ro, cmd)
+        out = proc.stdout + proc.stderr
+        assert proc.returncode != 0 and "Traceback" not in out, out[-3000:]
+        lines = [l for l in proc.stderr.splitlines() if l.startswith("cannot run:")]
+        name = "results" if target == "results" else ".snakemake"
+        assert len(lines) == 1 and f"{name} is read-only" in lines[0], out[-3000:]
+        assert "chmod -R u+w" in lines[0] and "nothing was changed" in lines[0]
+    if target == "project":   # a dry run needs .snakemake/ too
+        proc = _read_only(work, ro, [*SM, "-n"])
+        assert proc.returncode != 0 and "Traceback" not in proc.stdout + proc.stderr
+        assert "cannot run: .snakemake is read-only" in proc.stderr
+    assert hashes(work / "results") == before

@@ -216,6 +216,47 @@ def heal(results: str | Path, workdir: str | Path = ".", dry_run: bool = False) 
     return lines
 
 
+def read_only(results: str | Path, workdir: str | Path = ".", run: bool = True) -> str | None:
+    """The first directory a Snakemake invocation needs to write but cannot, as one line
+    saying what to do, or None.  Snakemake writes its locks under ``.snakemake/`` in every
+    invocation (a dry run too); a run writes every directory under ``results`` (heal, job
+    outputs by atomic rename, the report).  Asked of the kernel (``os.access``): a
+    read-only mount refuses even root, ``chmod a-w`` refuses everyone else."""
+    meta = Path(workdir, ".snakemake")
+    dirs = [meta if meta.is_dir() else Path(workdir)]
+    results = Path(workdir, results)
+    if run and results.is_dir():
+        dirs.append(results)
+        dirs += [Path(root, d) for root, subs, _ in os.walk(results) for d in sorted(subs)
+                 if d not in SKIP_DIRS]
+    elif run:   # created by the run: where it will be created
+        dirs.append(next(p for p in results.parents if p.is_dir()))
+    for d in dirs:
+        if not os.access(d, os.W_OK):
+            what = "its locks (.snakemake/)" if d in (meta, Path(workdir)) \
+                and not (run and d == dirs[-1] and not results.is_dir()) \
+                else f"its results ({os.path.relpath(results, workdir)}/)"
+            return (f"cannot run: {os.path.relpath(d, workdir)} is read-only, and Snakemake "
+                    f"writes {what} there; nothing was changed. Make it writable (chmod -R "
+                    f"u+w {os.path.relpath(d, workdir)}) or work in a writable copy (cp -a)")
+    return None
+
+
+def refuse_read_only(workflow, results: str, argv: list[str] | None = None) -> None:
+    """Called while Snakemake parses the workflow, before anything is written: a read-only
+    project stops here with one line (:func:`read_only`), not a traceback from Snakemake's
+    lock directory or from the first job.  A dry run needs only ``.snakemake/``."""
+    argv = sys.argv[1:] if argv is None else argv
+    if workflow.exec_mode.name != "DEFAULT":
+        return
+    run = not (workflow.output_settings.dryrun or any(a.split("=")[0] in NOT_A_RUN
+                                                        for a in argv))
+    msg = read_only(results, run=run)
+    if msg:
+        sys.stderr.write(f"\n{msg}\n\n")
+        raise SystemExit(1)
+
+
 def heal_workflow(workflow, results: str, argv: list[str] | None = None) -> None:
     """Called while Snakemake parses the workflow: heal the results before the jobs are
     decided, in the main process of a run only (not in a dry run, an ``--unlock``, a
