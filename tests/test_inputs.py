@@ -33,6 +33,14 @@ BAD = [
     ("a unit of another scale (8.91 m chain pitch)",
      lambda t: t.replace(PITCH, "tie_strap_pitch:        {value: 8.91,  unit: m,"),
      ["parameters.tie_strap_pitch.value = 8.91", "chain pitch between 3 mm and 200 mm"]),
+    ("a link mass in kg where g is meant (scene-independent parameter)",
+     lambda t: t.replace("{value: 1.906, unit: g,", "{value: 1.906, unit: kg,"),
+     ["parameters.tie_strap_mass.value = 1.906", "1.906 kg", "a chain link", "0.1 to 50 g"]),
+    ("a speed in a scene override 1000 times the machine's",
+     lambda t: t.replace("parameters: {sprocket_speed: 12000}",
+                         "parameters: {sprocket_speed: 12000000}"),
+     ["scenes.speed_12000.parameters.sprocket_speed = 12000000", "chain-saw sprocket",
+      "100 to 30000 rpm"]),
     ("a negative pitch (schema)",
      lambda t: t.replace("value: 8.91,", "value: -8.91,"),
      ["parameters.tie_strap_pitch = -8.91", "must be > 0"]),
@@ -57,6 +65,40 @@ def test_the_committed_configs_read_as_before(config_copy):
     """The strict reader gives the same data as the plain safe loader on valid files."""
     for path in sorted((config_copy / "papers").glob("*.yaml")):
         assert read_yaml(path) == yaml.safe_load(path.read_text()), path
+
+
+def _ranged():
+    from mechrepro.inputs import RANGES
+
+    return [(p, n) for p in sorted(RANGES) for n in sorted(RANGES[p])]
+
+
+@pytest.mark.parametrize("paper, name", _ranged(), ids=[f"{p}.{n}" for p, n in _ranged()])
+def test_a_unit_slip_of_every_ranged_parameter_is_refused(paper, name):
+    """Every parameter with a machine-class range (mechrepro.inputs.RANGES) exists in its
+    paper's config, passes as committed, and is refused when its value is typed in the
+    unit 1000 times larger or smaller (an angle: in degrees where rad is declared, or the
+    reverse), naming the key, the value and the range."""
+    from conftest import ROOT
+    from mechrepro.inputs import RANGES, check_parameters
+
+    raw = yaml.safe_load((ROOT / "config" / "papers" / f"{paper}.yaml").read_text())
+    assert name in raw["parameters"], f"{paper}.{name} is not a parameter"
+    assert check_parameters(raw) == []
+    p = raw["parameters"][name]
+    lo, hi, unit, _ = RANGES[paper][name]
+    scale = lambda v, f: [x * f for x in v] if isinstance(v, list) else v * f  # noqa: E731
+    if unit == "deg":   # the declared unit's number typed in the other angle unit
+        slips = [(scale(p["value"], 180 / 3.141592653589793), "rad")] if p["unit"] == "rad" \
+            else [(p["value"], "rad")]
+    else:
+        slips = [(scale(p["value"], 1e3), p["unit"]), (scale(p["value"], 1e-3), p["unit"])]
+    for value, u in slips:
+        raw["parameters"][name] = {**p, "value": value, "unit": u}
+        msg = "; ".join(check_parameters(raw))
+        assert f"parameters.{name}.value" in msg and "not plausible" in msg, (value, u, msg)
+        assert f"{lo:g} to {hi:g} {unit}" in msg or "within one turn" in msg or \
+            "chain pitch" in msg, msg
 
 
 def test_merge_keys_may_override(tmp_path):
