@@ -594,3 +594,37 @@ def test_a_read_only_project_stops_with_one_line_even_on_a_no_op(run, tmp_path, 
         assert proc.returncode != 0 and "Traceback" not in proc.stdout + proc.stderr
         assert "cannot run: .snakemake is read-only" in proc.stderr
     assert hashes(work / "results") == before
+
+
+def test_make_venv_relocates_a_moved_project(tmp_path):
+    """`make venv` in a moved project (its .venv built elsewhere, stamp up to date) rewrites
+    the console scripts' shebangs and the editable install to where the project now is."""
+    from conftest import ROOT
+
+    if not shutil.which("make"):
+        pytest.skip("no make")
+    proj = tmp_path / "moved"
+    (proj / "scripts").mkdir(parents=True)
+    for f in ("Makefile", "requirements.lock", "pyproject.toml", "scripts/relocate_venv.py"):
+        shutil.copy2(ROOT / f, proj / f)
+    venv = proj / ".venv"
+    site = venv / "lib" / "python3.11" / "site-packages"
+    site.mkdir(parents=True)
+    (venv / "pyvenv.cfg").write_text((ROOT / ".venv" / "pyvenv.cfg").read_text()
+                                     if (ROOT / ".venv" / "pyvenv.cfg").exists() else "")
+    (venv / "bin").mkdir()
+    (venv / "bin" / "python").symlink_to(sys.executable)
+    (venv / "bin" / "python3").symlink_to(sys.executable)
+    tool = venv / "bin" / "tool"
+    tool.write_text("#!/old/place/.venv/bin/python3\nprint('ran')\n")
+    tool.chmod(0o755)
+    pth = site / "__editable__.mechrepro-0.1.pth"
+    pth.write_text("/old/place/src\n")
+    (venv / ".installed").touch()   # newer than the lock: the venv counts as built
+    out = subprocess.run(["make", "venv"], cwd=proj, capture_output=True, text=True)
+    assert out.returncode == 0, out.stdout + out.stderr
+    assert tool.read_text().splitlines()[0] == f"#!{venv / 'bin' / 'python3'}"
+    assert subprocess.run([str(tool)], capture_output=True, text=True).stdout == "ran\n"
+    assert pth.read_text().strip() == str(proj / "src")
+    again = subprocess.run(["make", "venv"], cwd=proj, capture_output=True, text=True)
+    assert "already relocated" in again.stdout
