@@ -160,6 +160,11 @@ LIMITS = [
      lambda raw: raw["profiles"]["ci"]["scenes"].update(accuracy={"resolution": {"K": 9000000}}),
      ["job solve_saw_chain__batch", "run accuracy", "expected to take 2900 MB",
       "above the solve rule's 2000 MB", "--config over_budget=true"]),
+    ("a rolling_shear selPSO budget above the solve rule's time", "rolling_shear",
+     lambda raw: raw["profiles"]["ci"]["scenes"].update(accuracy_selpso={"resolution": {
+         "n_points": 4097, "pso_swarm": 200, "pso_iter": 1000}}),
+     ["job solve_rolling_shear__batch", "expected to take 172 min",
+      "above the solve rule's 30 min", "--config over_budget=true"]),
     ("plate2d mesh above the solve rule's memory", "disk_tension",
      lambda raw: raw["profiles"]["ci"]["scenes"].update(
          table12_plate2d={"resolution": {"n_rings": 40, "n_sectors": 300}}),
@@ -189,6 +194,59 @@ def test_over_budget_on_purpose_runs_and_asks_for_the_estimate(edit_config):
     msg, _ = _limit_problems(edit_config, "saw_chain", lambda raw: raw["profiles"]["ci"]["scenes"][
         "fig07_fig08"].update(resolution={"K": 50000}), over_budget=True)
     assert "round-off" in msg
+
+
+def test_rolling_shear_over_budget_on_purpose_asks_for_the_estimate(edit_config):
+    from mechrepro import limits
+
+    path = edit_config("rolling_shear", lambda raw: raw["profiles"]["ci"]["scenes"].update(
+        accuracy_selpso={"resolution": {"n_points": 4097, "pso_swarm": 200, "pso_iter": 1000}}))
+    cfg = load_paper(path, "ci")
+    limits.check_all({"rolling_shear": cfg}, allow_over_budget=True)
+    res = limits.job_resources(cfg, "batch", True)
+    assert res["runtime"] == 173 and res["mem_mb"] == limits.SOLVE_MEM_MB
+    # memory: the schema's 4097 cut points keep a run near 335 MB; the model refuses a
+    # stroke above the rule's memory (3e6 points: 2880 MB) should the schema allow it
+    run = dict(cfg.runs["original"], resolution={"n_points": 3000000})
+    assert limits.run_cost("rolling_shear", run)["mem_mb"] == pytest.approx(2880)
+
+
+def _measured(paper, run, root):
+    """(peak MB, solve s) of one run solved in a fresh process."""
+    import json
+    import subprocess
+    import sys
+    import tempfile
+
+    # the peak of this process's own memory (VmHWM): ru_maxrss would also carry the RSS of
+    # the (large, forked) pytest worker that started it, which Linux keeps across exec
+    code = ("import sys, json, re, time; sys.path.insert(0, sys.argv[1]);"
+            "from mechrepro.solve import run_solver; run = json.loads(sys.argv[2]);"
+            "t = time.perf_counter(); run_solver(run).to_netcdf(sys.argv[3]);"
+            "t = time.perf_counter() - t;"
+            "print(t, int(re.search(r'VmHWM:\\s+(\\d+)', open('/proc/self/status').read())"
+            ".group(1)) / 1024)")
+    with tempfile.TemporaryDirectory() as d:
+        out = subprocess.run([sys.executable, "-c", code, str(root / "src"), json.dumps(run),
+                              f"{d}/x.nc"], capture_output=True, text=True, check=True)
+    t, peak = map(float, out.stdout.split()[-2:])
+    return peak, t
+
+
+def test_rolling_shear_cost_is_above_a_measured_run():
+    """rolling_shear's cost model against one measured solve: the stroke at 4097 cut points
+    (measured 280 MB, 5.4 s in a fresh process: the memory above the interpreter's is the
+    per-point term's)."""
+    from conftest import ROOT
+    from mechrepro import limits
+    from mechrepro.models.rolling_shear.limits import JOB_START_S
+
+    cfg = load_paper(ROOT / "config" / "papers" / "rolling_shear.yaml", "ci")
+    run = dict(cfg.runs["original"], resolution={"n_points": 4097, "newton_tol": 1e-11})
+    peak, seconds = _measured("rolling_shear", run, ROOT)
+    est = limits.run_cost("rolling_shear", run)
+    assert peak < est["mem_mb"] < 2 * peak, (peak, est)
+    assert seconds < est["seconds"] + JOB_START_S, (seconds, est)
 
 
 def test_the_declared_cost_is_above_a_measured_run():
