@@ -12,8 +12,9 @@ Every result is written by :func:`mechrepro.io.atomic_path`, which records besid
 (``.<name>.sum``) the sha256, size and time stamp it wrote.  Heal compares each result
 with that record: the same content with another time stamp gets its recorded time stamp
 back (a copy schedules nothing); other content is removed, named, and rebuilt by the run.
-A result without a record (written by an older version) is checked against the last
-manifest's sha256 and, for netCDF, by opening it.  Time stamps alone never remove anything.
+A result without a readable record (written by an older version, or its record garbled)
+is checked against the sha256 of every archive manifest that lists it (the full run's and
+each one-paper run's) and, for netCDF, by opening it.  Time stamps alone never remove anything.
 
 Heal runs inside the workflow (``workflow/rules/common.smk``) before Snakemake builds its
 jobs, so ``make reproduce`` and a plain ``snakemake`` are healed alike, and only while this
@@ -113,11 +114,19 @@ def _results_files(results: Path):
                 yield Path(root, name)
 
 
-def _manifest(results: Path) -> dict | None:
-    try:
-        return json.loads((results / "archive" / "manifest.json").read_text())["files"]
-    except (OSError, ValueError, KeyError, TypeError):
-        return None
+def _manifests(results: Path) -> dict[str, set[str]]:
+    """{file: every sha256 the manifests under ``results`` give it}: the full run's
+    (``archive/``) and each run of some papers' (``archive-saw_chain/``), which may hold
+    different good versions of one file."""
+    out: dict[str, set[str]] = {}
+    for path in sorted(results.glob("archive*/manifest.json")):
+        try:
+            files = json.loads(path.read_text())["files"]
+            for rel, sha in files.items():
+                out.setdefault(rel, set()).add(sha)
+        except (OSError, ValueError, KeyError, TypeError, AttributeError):
+            continue
+    return out
 
 
 def _readable_netcdf(path: Path) -> bool:
@@ -161,9 +170,9 @@ def inspect(results: str | Path):
             continue
         # no record: a result of an older version of the writer
         if manifest is None:
-            manifest = _manifest(results) or {}
+            manifest = _manifests(results)
         rel = str(f.relative_to(results))
-        if rel in manifest and file_sha256(f) != manifest[rel]:
+        if rel in manifest and file_sha256(f) not in manifest[rel]:
             remove.append((f, "checksum differs from the last manifest"))
         elif name.endswith(".nc") and not _readable_netcdf(f):
             remove.append((f, "unreadable netCDF (truncated or corrupted)"))
