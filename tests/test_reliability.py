@@ -628,3 +628,40 @@ def test_make_venv_relocates_a_moved_project(tmp_path):
     assert pth.read_text().strip() == str(proj / "src")
     again = subprocess.run(["make", "venv"], cwd=proj, capture_output=True, text=True)
     assert "already relocated" in again.stdout
+
+
+@pipeline
+def test_a_disk_full_while_archiving_is_archived_again_once_there_is_room(run, tmp_path):
+    """The disk fills while the archive is written (a tmpfs of the results' size plus a
+    little): Snakemake puts the last good archive back, but keeps the failed job's record,
+    with the checksums of its new inputs, and would call that archive up to date.  Heal
+    forgets the failed job's record, so the next run (the README's command, with room
+    again) archives the new results and the manifest matches them."""
+    if os.geteuid() != 0 or not shutil.which("unshare"):
+        pytest.skip("needs root and unshare for a small tmpfs")
+    work = tmp_path / "w"
+    shutil.copytree(run, work, symlinks=True)
+    saved = tmp_path / "saved"
+    shutil.copytree(work / "results", saved, symlinks=True)
+    used = sum(p.stat().st_size for p in saved.rglob("*") if p.is_file()) // 1024
+    sm_cmd = " ".join(SM)
+    script = f"""
+cd {work}
+mount -t tmpfs -o size={used + 600}k tmpfs results || exit 77
+cp -a {saved}/. results/
+{sm_cmd} --forcerun solve_{PAPER}__batch > full.log 2>&1; echo "full=$?"
+mount -o remount,size=200m results
+{sm_cmd} > again.log 2>&1; echo "again=$?"
+{sm_cmd} -n 2>&1 | grep -c "Nothing to be done"
+PYTHONPATH={work / 'src'} {sys.executable} -c "from mechrepro.archive import verify; \
+print('verify', verify('results', 'results/archive-{PAPER}/manifest.json'))"
+"""
+    out = subprocess.run(["unshare", "-m", "bash", "-c", script], capture_output=True,
+                         text=True, timeout=900)
+    if "full=" not in out.stdout:
+        pytest.skip(f"no tmpfs here: {out.stderr[-300:]}")
+    full = (work / "full.log").read_text()
+    assert "full=1" in out.stdout and "No space left on device" in full, full[-2000:]
+    assert "again=0" in out.stdout, (work / "again.log").read_text()[-3000:]
+    assert "rerunning the job of results/archive" in (work / "again.log").read_text()
+    assert "verify []" in out.stdout, out.stdout

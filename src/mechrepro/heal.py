@@ -129,6 +129,30 @@ def _manifests(results: Path) -> dict[str, set[str]]:
     return out
 
 
+def _snakemake_record(path: Path, workdir: Path) -> Path:
+    """Snakemake's metadata file of an output (its ``persistence._record_path``)."""
+    import base64
+
+    rel = os.path.relpath(path, workdir)
+    b64 = base64.urlsafe_b64encode(rel.encode()).decode()
+    parts = [b64[i:i + 254] for i in range(0, len(b64), 254)]
+    return Path(workdir, ".snakemake", "metadata", *["@" + s for s in parts[:-1]], parts[-1])
+
+
+def _failed_job_record(path: Path, rec: dict, workdir: Path) -> Path | None:
+    """Snakemake's metadata of ``path`` when it belongs to a job that started after the
+    file was written (its recorded time stamp) and so did not write it: a job that failed
+    and whose ``update()`` output Snakemake put back.  Snakemake keeps that job's record,
+    with its new inputs' checksums, and would then call the old output up to date."""
+    meta = _snakemake_record(path, workdir)
+    try:
+        start = json.loads(meta.read_text()).get("starttime")
+    except (OSError, ValueError, AttributeError):
+        return None
+    return meta if isinstance(start, (int, float)) and start * 1e9 > rec["mtime_ns"] + 1e9 \
+        else None
+
+
 def _readable_netcdf(path: Path) -> bool:
     import netCDF4
 
@@ -139,13 +163,14 @@ def _readable_netcdf(path: Path) -> bool:
         return False
 
 
-def inspect(results: str | Path):
+def inspect(results: str | Path, workdir: str | Path = "."):
     """What heal would do: ([(file to remove, why)], [file whose time stamp to restore],
-    [record whose file is gone], [file restored to its previous version])."""
+    [record whose file is gone], [file restored to its previous version], [Snakemake
+    record of a failed job to forget])."""
     results = Path(results)
-    remove, restore, orphans, reverted = [], [], [], []
+    remove, restore, orphans, reverted, failed = [], [], [], [], []
     if not results.is_dir():
-        return remove, restore, orphans, reverted
+        return remove, restore, orphans, reverted, failed
     manifest = None
     for f in _results_files(results):
         name = f.name
@@ -163,10 +188,17 @@ def inspect(results: str | Path):
                 if prev and st.st_size == prev["size"] and file_sha256(f) == prev["sha256"]:
                     # the last good version, put back by Snakemake after its job failed
                     reverted.append(f)
+                    meta = _snakemake_record(f, Path(workdir))
+                    if meta.exists():
+                        failed.append((f, meta))
                 else:
                     remove.append((f, "content differs from what its job wrote (checksum)"))
-            elif st.st_mtime_ns != rec["mtime_ns"]:
-                restore.append(f)
+            else:
+                if st.st_mtime_ns != rec["mtime_ns"]:
+                    restore.append(f)
+                meta = _failed_job_record(f, rec, Path(workdir))
+                if meta is not None:
+                    failed.append((f, meta))
             continue
         # no record: a result of an older version of the writer
         if manifest is None:
@@ -176,7 +208,7 @@ def inspect(results: str | Path):
             remove.append((f, "checksum differs from the last manifest"))
         elif name.endswith(".nc") and not _readable_netcdf(f):
             remove.append((f, "unreadable netCDF (truncated or corrupted)"))
-    return remove, restore, orphans, reverted
+    return remove, restore, orphans, reverted, failed
 
 
 def heal(results: str | Path, workdir: str | Path = ".", dry_run: bool = False) -> list[str]:
@@ -192,7 +224,7 @@ def heal(results: str | Path, workdir: str | Path = ".", dry_run: bool = False) 
             return [f"not healed: Snakemake's lock {lock} names files of {results} (a run "
                     f"killed with its jobs still writing?); when no job is left, "
                     f"`snakemake --unlock` and run again"]
-    remove, restore, orphans, reverted = inspect(results)
+    remove, restore, orphans, reverted, failed = inspect(results, workdir)
     verb = "would remove" if dry_run else "removed"
     lines = []
     for f, why in remove:
@@ -205,14 +237,21 @@ def heal(results: str | Path, workdir: str | Path = ".", dry_run: bool = False) 
             f.unlink(missing_ok=True)
     for f in reverted:
         if not dry_run:
-            # the record follows the file back; the time stamp is the restore's (newer
-            # than the job's inputs), so what depends on it is checked again
+            # the record and the time stamp follow the file back to its writing: older
+            # than the inputs its failed job saw, whose Snakemake record heal forgets
+            # (below), so the next run runs that job again, not only what depends on it
             rec = read_sum(f)["previous"]
-            st = f.stat()
-            rec["mtime_ns"] = st.st_mtime_ns
             sum_path(f).write_text(json.dumps(rec, sort_keys=True) + "\n")
+            os.utime(f, ns=(rec["mtime_ns"], rec["mtime_ns"]))
         lines.append(f"{'would keep' if dry_run else 'kept'} {f}: the last good version, "
                      f"restored after its job failed")
+    for f, meta in failed:
+        # its time stamp goes back to its writing (below), older than the inputs its
+        # failed job saw: without the failed job's record Snakemake runs the job again
+        if not dry_run:
+            meta.unlink(missing_ok=True)
+        lines.append(f"{'would rerun' if dry_run else 'rerunning'} the job of {f}: its last "
+                     f"job failed after it was written (the file is the last good version)")
     for f in restore:
         if not dry_run:
             rec = read_sum(f)
