@@ -151,7 +151,7 @@ RANGES: dict[str, dict[str, tuple[float, float, str, str]]] = {
         **{k: (0.01, 500, "kg", "a link of a planar four-bar linkage (10 g to 500 kg)")
            for k in ("coupler_mass", "follower_mass")},
         "load": (1, 50000, "N", "a load on a planar linkage of at most 500 kg links"),
-        "pin_radius": (0.5, 500, "mm", "a joint pin (0.5 mm to 0.5 m)"),
+        "pin_radius": (0.01, 500, "mm", "a joint pin (watch pivots of ~0.05 mm to 0.5 m)"),
         "radial_clearance": (0.001, 5, "mm", "a radial clearance of a journal (1 um to 5 mm)"),
         "width": (1, 500, "mm", "a bushing width (1 mm to 0.5 m)"),
         **{k: (1, 700, "GPa", "a pin or bushing material (polymers ~1 GPa to tungsten "
