@@ -18,7 +18,10 @@ $(STAMP): requirements.lock pyproject.toml
 	$(BIN)/python -m ipykernel install --sys-prefix --name python3 > /dev/null
 	touch $(STAMP)
 
+# also after a move or copy of the project with its .venv: the console scripts' shebangs and
+# the editable install are rewritten to this project (scripts/relocate_venv.py, idempotent)
 venv: $(STAMP)
+	$(BIN)/python scripts/relocate_venv.py "$(CURDIR)"
 
 ## Reproduce every figure and table of every paper (full resolution): results/report/index.html
 ## (the workflow heals results/ itself first, under its run lock: mechrepro.heal)

@@ -260,3 +260,78 @@ def test_bad_profile_input_stops_before_any_job(wf, edit, message):
         path.write_text(original)
     assert proc.returncode != 0
     assert message in proc.stderr + proc.stdout, (proc.stderr + proc.stdout)[-2000:]
+
+
+# --- three faults of issue 31's second round (not in its table of 25) ----------------------
+
+def _result_hashes(work):
+    from mechrepro.provenance import file_sha256
+
+    res = work / "results"
+    return {str(p.relative_to(res)): file_sha256(p) for p in sorted(res.rglob("*"))
+            if p.is_file() and not {"logs", "benchmarks", "reference"} & set(p.parts)
+            and not p.name.startswith("rerun_plan")}
+
+
+def test_a_deleted_snakemake_directory_loses_nothing(wf, tmp_path):
+    """`rm -rf .snakemake` (Snakemake's metadata, incomplete markers, the config cache and
+    the run locks, e.g. a copy that skipped hidden files): heal removes nothing, the solved
+    runs keep their bytes (no solve job reruns); without Snakemake's input checksums, jobs
+    whose inputs carry newer time stamps (here the config, edited and put back by the
+    tests above) rerun, as Snakemake's time stamp rule says."""
+    work, _ = wf
+    copy = tmp_path / "w"
+    shutil.copytree(work, copy, symlinks=True)
+    shutil.rmtree(copy / ".snakemake")
+    before = _result_hashes(copy)
+    out = snakemake(copy)
+    heal_lines = [line for line in out.splitlines() if "[heal]" in line]
+    assert not any("removed" in line for line in heal_lines), heal_lines
+    assert "solve_saw_chain__batch" not in out
+    after = _result_hashes(copy)
+    assert {k: v for k, v in after.items() if "/runs/" in k or "/studies/" in k} == \
+        {k: v for k, v in before.items() if "/runs/" in k or "/studies/" in k}
+    assert "Nothing to be done" in snakemake(copy, "-n")
+    assert verify(copy / "results", copy / "results" / ARCHIVE / "manifest.json") == []
+
+
+def test_a_clock_in_the_future_hides_no_later_edit(wf, tmp_path):
+    """Every result stamped in 2099 (a clock set wrong while they were written, or `touch`
+    on the tree): heal puts back the time stamps their jobs recorded, so a later edit of
+    the notebook is still seen and its job reruns, and nothing else does."""
+    work, _ = wf
+    copy = tmp_path / "w"
+    shutil.copytree(work, copy, symlinks=True)
+    future = 4_070_908_800 * 10**9   # 2099-01-01
+    for p in (copy / "results").rglob("*"):
+        if p.is_file() and "reference" not in p.parts:
+            os.utime(p, ns=(future, future))
+    nb = copy / "notebooks" / "saw_chain.py"
+    nb.write_text(nb.read_text() + "\n# an edit after the results were written\n")
+    log = snakemake(copy)
+    assert "rule notebook_saw_chain:" in log, log[-3000:]
+    assert "rule solve_saw_chain__batch:" not in log and "[heal] removed" not in log
+    assert "Nothing to be done" in snakemake(copy, "-n")
+
+
+def test_garbled_checksum_records_delete_no_valid_result(wf, tmp_path):
+    """Garbage in every checksum record of runs/ (`.<name>.sum`) and one run's bytes
+    flipped: heal falls back to the last manifest, keeps every run that matches it and
+    removes only the flipped one (its job, saw_chain's one solve batch, then rewrites every
+    run: they carry their wall times, so not bit for bit)."""
+    work, _ = wf
+    copy = tmp_path / "w"
+    shutil.copytree(work, copy, symlinks=True)
+    runs = copy / "results" / "saw_chain" / "runs"
+    for rec in runs.glob(".*.sum"):
+        rec.write_text("{not json")
+    flipped = runs / "speed_12000.nc"
+    data = bytearray(flipped.read_bytes())
+    data[len(data) // 2] ^= 0xFF
+    flipped.write_bytes(bytes(data))
+    log = snakemake(copy)
+    removed = [line for line in log.splitlines() if "[heal] removed" in line]
+    assert len(removed) == 1 and "speed_12000.nc" in removed[0], removed
+    assert "checksum differs from the last manifest" in removed[0]
+    assert "Nothing to be done" in snakemake(copy, "-n")
+    assert verify(copy / "results", copy / "results" / ARCHIVE / "manifest.json") == []

@@ -33,6 +33,14 @@ BAD = [
     ("a unit of another scale (8.91 m chain pitch)",
      lambda t: t.replace(PITCH, "tie_strap_pitch:        {value: 8.91,  unit: m,"),
      ["parameters.tie_strap_pitch.value = 8.91", "chain pitch between 3 mm and 200 mm"]),
+    ("a link mass in kg where g is meant (scene-independent parameter)",
+     lambda t: t.replace("{value: 1.906, unit: g,", "{value: 1.906, unit: kg,"),
+     ["parameters.tie_strap_mass.value = 1.906", "1.906 kg", "a chain link", "0.1 to 50 g"]),
+    ("a speed in a scene override 1000 times the machine's",
+     lambda t: t.replace("parameters: {sprocket_speed: 12000}",
+                         "parameters: {sprocket_speed: 12000000}"),
+     ["scenes.speed_12000.parameters.sprocket_speed = 12000000", "chain-saw sprocket",
+      "100 to 30000 rpm"]),
     ("a negative pitch (schema)",
      lambda t: t.replace("value: 8.91,", "value: -8.91,"),
      ["parameters.tie_strap_pitch = -8.91", "must be > 0"]),
@@ -57,6 +65,40 @@ def test_the_committed_configs_read_as_before(config_copy):
     """The strict reader gives the same data as the plain safe loader on valid files."""
     for path in sorted((config_copy / "papers").glob("*.yaml")):
         assert read_yaml(path) == yaml.safe_load(path.read_text()), path
+
+
+def _ranged():
+    from mechrepro.inputs import RANGES
+
+    return [(p, n) for p in sorted(RANGES) for n in sorted(RANGES[p])]
+
+
+@pytest.mark.parametrize("paper, name", _ranged(), ids=[f"{p}.{n}" for p, n in _ranged()])
+def test_a_unit_slip_of_every_ranged_parameter_is_refused(paper, name):
+    """Every parameter with a machine-class range (mechrepro.inputs.RANGES) exists in its
+    paper's config, passes as committed, and is refused when its value is typed in the
+    unit 1000 times larger or smaller (an angle: in degrees where rad is declared, or the
+    reverse), naming the key, the value and the range."""
+    from conftest import ROOT
+    from mechrepro.inputs import RANGES, check_parameters
+
+    raw = yaml.safe_load((ROOT / "config" / "papers" / f"{paper}.yaml").read_text())
+    assert name in raw["parameters"], f"{paper}.{name} is not a parameter"
+    assert check_parameters(raw) == []
+    p = raw["parameters"][name]
+    lo, hi, unit, _ = RANGES[paper][name]
+    scale = lambda v, f: [x * f for x in v] if isinstance(v, list) else v * f  # noqa: E731
+    if unit == "deg":   # the declared unit's number typed in the other angle unit
+        slips = [(scale(p["value"], 180 / 3.141592653589793), "rad")] if p["unit"] == "rad" \
+            else [(p["value"], "rad")]
+    else:
+        slips = [(scale(p["value"], 1e3), p["unit"]), (scale(p["value"], 1e-3), p["unit"])]
+    for value, u in slips:
+        raw["parameters"][name] = {**p, "value": value, "unit": u}
+        msg = "; ".join(check_parameters(raw))
+        assert f"parameters.{name}.value" in msg and "not plausible" in msg, (value, u, msg)
+        assert f"{lo:g} to {hi:g} {unit}" in msg or "within one turn" in msg or \
+            "chain pitch" in msg, msg
 
 
 def test_merge_keys_may_override(tmp_path):
@@ -118,6 +160,11 @@ LIMITS = [
      lambda raw: raw["profiles"]["ci"]["scenes"].update(accuracy={"resolution": {"K": 9000000}}),
      ["job solve_saw_chain__batch", "run accuracy", "expected to take 2900 MB",
       "above the solve rule's 2000 MB", "--config over_budget=true"]),
+    ("a rolling_shear selPSO budget above the solve rule's time", "rolling_shear",
+     lambda raw: raw["profiles"]["ci"]["scenes"].update(accuracy_selpso={"resolution": {
+         "n_points": 4097, "pso_swarm": 200, "pso_iter": 1000}}),
+     ["job solve_rolling_shear__batch", "expected to take 172 min",
+      "above the solve rule's 30 min", "--config over_budget=true"]),
     ("plate2d mesh above the solve rule's memory", "disk_tension",
      lambda raw: raw["profiles"]["ci"]["scenes"].update(
          table12_plate2d={"resolution": {"n_rings": 40, "n_sectors": 300}}),
@@ -147,6 +194,59 @@ def test_over_budget_on_purpose_runs_and_asks_for_the_estimate(edit_config):
     msg, _ = _limit_problems(edit_config, "saw_chain", lambda raw: raw["profiles"]["ci"]["scenes"][
         "fig07_fig08"].update(resolution={"K": 50000}), over_budget=True)
     assert "round-off" in msg
+
+
+def test_rolling_shear_over_budget_on_purpose_asks_for_the_estimate(edit_config):
+    from mechrepro import limits
+
+    path = edit_config("rolling_shear", lambda raw: raw["profiles"]["ci"]["scenes"].update(
+        accuracy_selpso={"resolution": {"n_points": 4097, "pso_swarm": 200, "pso_iter": 1000}}))
+    cfg = load_paper(path, "ci")
+    limits.check_all({"rolling_shear": cfg}, allow_over_budget=True)
+    res = limits.job_resources(cfg, "batch", True)
+    assert res["runtime"] == 173 and res["mem_mb"] == limits.SOLVE_MEM_MB
+    # memory: the schema's 4097 cut points keep a run near 335 MB; the model refuses a
+    # stroke above the rule's memory (3e6 points: 2880 MB) should the schema allow it
+    run = dict(cfg.runs["original"], resolution={"n_points": 3000000})
+    assert limits.run_cost("rolling_shear", run)["mem_mb"] == pytest.approx(2880)
+
+
+def _measured(paper, run, root):
+    """(peak MB, solve s) of one run solved in a fresh process."""
+    import json
+    import subprocess
+    import sys
+    import tempfile
+
+    # the peak of this process's own memory (VmHWM): ru_maxrss would also carry the RSS of
+    # the (large, forked) pytest worker that started it, which Linux keeps across exec
+    code = ("import sys, json, re, time; sys.path.insert(0, sys.argv[1]);"
+            "from mechrepro.solve import run_solver; run = json.loads(sys.argv[2]);"
+            "t = time.perf_counter(); run_solver(run).to_netcdf(sys.argv[3]);"
+            "t = time.perf_counter() - t;"
+            "print(t, int(re.search(r'VmHWM:\\s+(\\d+)', open('/proc/self/status').read())"
+            ".group(1)) / 1024)")
+    with tempfile.TemporaryDirectory() as d:
+        out = subprocess.run([sys.executable, "-c", code, str(root / "src"), json.dumps(run),
+                              f"{d}/x.nc"], capture_output=True, text=True, check=True)
+    t, peak = map(float, out.stdout.split()[-2:])
+    return peak, t
+
+
+def test_rolling_shear_cost_is_above_a_measured_run():
+    """rolling_shear's cost model against one measured solve: the stroke at 4097 cut points
+    (measured 280 MB, 5.4 s in a fresh process: the memory above the interpreter's is the
+    per-point term's)."""
+    from conftest import ROOT
+    from mechrepro import limits
+    from mechrepro.models.rolling_shear.limits import JOB_START_S
+
+    cfg = load_paper(ROOT / "config" / "papers" / "rolling_shear.yaml", "ci")
+    run = dict(cfg.runs["original"], resolution={"n_points": 4097, "newton_tol": 1e-11})
+    peak, seconds = _measured("rolling_shear", run, ROOT)
+    est = limits.run_cost("rolling_shear", run)
+    assert peak < est["mem_mb"] < 2 * peak, (peak, est)
+    assert seconds < est["seconds"] + JOB_START_S, (seconds, est)
 
 
 def test_the_declared_cost_is_above_a_measured_run():

@@ -539,3 +539,129 @@ def test_a_failing_notebook_job_keeps_its_last_good_figures(run, tmp_path):
     nb.write_text(original)
     sm(work)
     assert "Nothing to be done" in sm(work, "-n").stdout
+
+
+def _read_only(work, target, cmd):
+    """Run ``cmd`` in ``work`` with ``target`` read-only: a read-only bind mount in a mount
+    namespace of its own when run as root (root ignores file modes), ``chmod -R a-w``
+    otherwise (put back after)."""
+    if os.geteuid() == 0:
+        if not shutil.which("unshare"):
+            pytest.skip("root without unshare: cannot make a directory read-only")
+        # cd after the mount: a working directory entered before it stays writable
+        script = ('mount --bind "$1" "$1" && mount -o remount,bind,ro "$1" && cd "$0" '
+                  '&& shift && exec "$@"')
+        probe = subprocess.run(["unshare", "-m", "sh", "-c", script, str(work), str(target),
+                                "true"], capture_output=True)
+        if probe.returncode != 0:
+            pytest.skip(f"no read-only bind mount here: {probe.stderr.decode()[-200:]}")
+        return subprocess.run(["unshare", "-m", "sh", "-c", script, str(work), str(target), *cmd],
+                              cwd=work, capture_output=True, text=True, timeout=600)
+    subprocess.run(["chmod", "-R", "a-w", str(target)], check=True)
+    try:
+        return subprocess.run(cmd, cwd=work, capture_output=True, text=True, timeout=600)
+    finally:
+        subprocess.run(["chmod", "-R", "u+w", str(target)], check=True)
+
+
+@pipeline
+@pytest.mark.parametrize("target", ["results", "project"])
+def test_a_read_only_project_stops_with_one_line_even_on_a_no_op(run, tmp_path, target):
+    """Read-only results (or the whole project, .snakemake/ included): a run, even one with
+    nothing to do, and `make reproduce` stop before writing anything, with one line naming
+    the directory and what to do; no traceback, nothing changed."""
+    from conftest import ROOT
+
+    work = tmp_path / "w"
+    shutil.copytree(run, work, symlinks=True)
+    for f in ("Makefile", "requirements.lock", "pyproject.toml"):
+        shutil.copy2(ROOT / f, work / f)
+    assert "Nothing to be done" in sm(work, "-n").stdout   # a no-op
+    before = hashes(work / "results")
+    ro = work / "results" if target == "results" else work
+    venv = ROOT / ".venv"
+    make = ["make", f"VENV={venv}", "reproduce"] if (venv / ".installed").exists() else None
+    for cmd in [SM] + ([make] if make else []):
+        proc = _read_only(work, ro, cmd)
+        out = proc.stdout + proc.stderr
+        assert proc.returncode != 0 and "Traceback" not in out, out[-3000:]
+        lines = [l for l in proc.stderr.splitlines() if l.startswith("cannot run:")]
+        name = "results" if target == "results" else ".snakemake"
+        assert len(lines) == 1 and f"{name} is read-only" in lines[0], out[-3000:]
+        assert "chmod -R u+w" in lines[0] and "nothing was changed" in lines[0]
+    if target == "project":   # a dry run needs .snakemake/ too
+        proc = _read_only(work, ro, [*SM, "-n"])
+        assert proc.returncode != 0 and "Traceback" not in proc.stdout + proc.stderr
+        assert "cannot run: .snakemake is read-only" in proc.stderr
+    assert hashes(work / "results") == before
+
+
+def test_make_venv_relocates_a_moved_project(tmp_path):
+    """`make venv` in a moved project (its .venv built elsewhere, stamp up to date) rewrites
+    the console scripts' shebangs and the editable install to where the project now is."""
+    from conftest import ROOT
+
+    if not shutil.which("make"):
+        pytest.skip("no make")
+    proj = tmp_path / "moved"
+    (proj / "scripts").mkdir(parents=True)
+    for f in ("Makefile", "requirements.lock", "pyproject.toml", "scripts/relocate_venv.py"):
+        shutil.copy2(ROOT / f, proj / f)
+    venv = proj / ".venv"
+    site = venv / "lib" / "python3.11" / "site-packages"
+    site.mkdir(parents=True)
+    (venv / "pyvenv.cfg").write_text((ROOT / ".venv" / "pyvenv.cfg").read_text()
+                                     if (ROOT / ".venv" / "pyvenv.cfg").exists() else "")
+    (venv / "bin").mkdir()
+    (venv / "bin" / "python").symlink_to(sys.executable)
+    (venv / "bin" / "python3").symlink_to(sys.executable)
+    tool = venv / "bin" / "tool"
+    tool.write_text("#!/old/place/.venv/bin/python3\nprint('ran')\n")
+    tool.chmod(0o755)
+    pth = site / "__editable__.mechrepro-0.1.pth"
+    pth.write_text("/old/place/src\n")
+    (venv / ".installed").touch()   # newer than the lock: the venv counts as built
+    out = subprocess.run(["make", "venv"], cwd=proj, capture_output=True, text=True)
+    assert out.returncode == 0, out.stdout + out.stderr
+    assert tool.read_text().splitlines()[0] == f"#!{venv / 'bin' / 'python3'}"
+    assert subprocess.run([str(tool)], capture_output=True, text=True).stdout == "ran\n"
+    assert pth.read_text().strip() == str(proj / "src")
+    again = subprocess.run(["make", "venv"], cwd=proj, capture_output=True, text=True)
+    assert "already relocated" in again.stdout
+
+
+@pipeline
+def test_a_disk_full_while_archiving_is_archived_again_once_there_is_room(run, tmp_path):
+    """The disk fills while the archive is written (a tmpfs of the results' size plus a
+    little): Snakemake puts the last good archive back, but keeps the failed job's record,
+    with the checksums of its new inputs, and would call that archive up to date.  Heal
+    forgets the failed job's record, so the next run (the README's command, with room
+    again) archives the new results and the manifest matches them."""
+    if os.geteuid() != 0 or not shutil.which("unshare"):
+        pytest.skip("needs root and unshare for a small tmpfs")
+    work = tmp_path / "w"
+    shutil.copytree(run, work, symlinks=True)
+    saved = tmp_path / "saved"
+    shutil.copytree(work / "results", saved, symlinks=True)
+    used = sum(p.stat().st_size for p in saved.rglob("*") if p.is_file()) // 1024
+    sm_cmd = " ".join(SM)
+    script = f"""
+cd {work}
+mount -t tmpfs -o size={used + 600}k tmpfs results || exit 77
+cp -a {saved}/. results/
+{sm_cmd} --forcerun solve_{PAPER}__batch > full.log 2>&1; echo "full=$?"
+mount -o remount,size=200m results
+{sm_cmd} > again.log 2>&1; echo "again=$?"
+{sm_cmd} -n 2>&1 | grep -c "Nothing to be done"
+PYTHONPATH={work / 'src'} {sys.executable} -c "from mechrepro.archive import verify; \
+print('verify', verify('results', 'results/archive-{PAPER}/manifest.json'))"
+"""
+    out = subprocess.run(["unshare", "-m", "bash", "-c", script], capture_output=True,
+                         text=True, timeout=900)
+    if "full=" not in out.stdout:
+        pytest.skip(f"no tmpfs here: {out.stderr[-300:]}")
+    full = (work / "full.log").read_text()
+    assert "full=1" in out.stdout and "No space left on device" in full, full[-2000:]
+    assert "again=0" in out.stdout, (work / "again.log").read_text()[-3000:]
+    assert "rerunning the job of results/archive" in (work / "again.log").read_text()
+    assert "verify []" in out.stdout, out.stdout

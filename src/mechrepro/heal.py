@@ -12,8 +12,9 @@ Every result is written by :func:`mechrepro.io.atomic_path`, which records besid
 (``.<name>.sum``) the sha256, size and time stamp it wrote.  Heal compares each result
 with that record: the same content with another time stamp gets its recorded time stamp
 back (a copy schedules nothing); other content is removed, named, and rebuilt by the run.
-A result without a record (written by an older version) is checked against the last
-manifest's sha256 and, for netCDF, by opening it.  Time stamps alone never remove anything.
+A result without a readable record (written by an older version, or its record garbled)
+is checked against the sha256 of every archive manifest that lists it (the full run's and
+each one-paper run's) and, for netCDF, by opening it.  Time stamps alone never remove anything.
 
 Heal runs inside the workflow (``workflow/rules/common.smk``) before Snakemake builds its
 jobs, so ``make reproduce`` and a plain ``snakemake`` are healed alike, and only while this
@@ -113,11 +114,43 @@ def _results_files(results: Path):
                 yield Path(root, name)
 
 
-def _manifest(results: Path) -> dict | None:
+def _manifests(results: Path) -> dict[str, set[str]]:
+    """{file: every sha256 the manifests under ``results`` give it}: the full run's
+    (``archive/``) and each run of some papers' (``archive-saw_chain/``), which may hold
+    different good versions of one file."""
+    out: dict[str, set[str]] = {}
+    for path in sorted(results.glob("archive*/manifest.json")):
+        try:
+            files = json.loads(path.read_text())["files"]
+            for rel, sha in files.items():
+                out.setdefault(rel, set()).add(sha)
+        except (OSError, ValueError, KeyError, TypeError, AttributeError):
+            continue
+    return out
+
+
+def _snakemake_record(path: Path, workdir: Path) -> Path:
+    """Snakemake's metadata file of an output (its ``persistence._record_path``)."""
+    import base64
+
+    rel = os.path.relpath(path, workdir)
+    b64 = base64.urlsafe_b64encode(rel.encode()).decode()
+    parts = [b64[i:i + 254] for i in range(0, len(b64), 254)]
+    return Path(workdir, ".snakemake", "metadata", *["@" + s for s in parts[:-1]], parts[-1])
+
+
+def _failed_job_record(path: Path, rec: dict, workdir: Path) -> Path | None:
+    """Snakemake's metadata of ``path`` when it belongs to a job that started after the
+    file was written (its recorded time stamp) and so did not write it: a job that failed
+    and whose ``update()`` output Snakemake put back.  Snakemake keeps that job's record,
+    with its new inputs' checksums, and would then call the old output up to date."""
+    meta = _snakemake_record(path, workdir)
     try:
-        return json.loads((results / "archive" / "manifest.json").read_text())["files"]
-    except (OSError, ValueError, KeyError, TypeError):
+        start = json.loads(meta.read_text()).get("starttime")
+    except (OSError, ValueError, AttributeError):
         return None
+    return meta if isinstance(start, (int, float)) and start * 1e9 > rec["mtime_ns"] + 1e9 \
+        else None
 
 
 def _readable_netcdf(path: Path) -> bool:
@@ -130,13 +163,14 @@ def _readable_netcdf(path: Path) -> bool:
         return False
 
 
-def inspect(results: str | Path):
+def inspect(results: str | Path, workdir: str | Path = "."):
     """What heal would do: ([(file to remove, why)], [file whose time stamp to restore],
-    [record whose file is gone], [file restored to its previous version])."""
+    [record whose file is gone], [file restored to its previous version], [Snakemake
+    record of a failed job to forget])."""
     results = Path(results)
-    remove, restore, orphans, reverted = [], [], [], []
+    remove, restore, orphans, reverted, failed = [], [], [], [], []
     if not results.is_dir():
-        return remove, restore, orphans, reverted
+        return remove, restore, orphans, reverted, failed
     manifest = None
     for f in _results_files(results):
         name = f.name
@@ -154,20 +188,27 @@ def inspect(results: str | Path):
                 if prev and st.st_size == prev["size"] and file_sha256(f) == prev["sha256"]:
                     # the last good version, put back by Snakemake after its job failed
                     reverted.append(f)
+                    meta = _snakemake_record(f, Path(workdir))
+                    if meta.exists():
+                        failed.append((f, meta))
                 else:
                     remove.append((f, "content differs from what its job wrote (checksum)"))
-            elif st.st_mtime_ns != rec["mtime_ns"]:
-                restore.append(f)
+            else:
+                if st.st_mtime_ns != rec["mtime_ns"]:
+                    restore.append(f)
+                meta = _failed_job_record(f, rec, Path(workdir))
+                if meta is not None:
+                    failed.append((f, meta))
             continue
         # no record: a result of an older version of the writer
         if manifest is None:
-            manifest = _manifest(results) or {}
+            manifest = _manifests(results)
         rel = str(f.relative_to(results))
-        if rel in manifest and file_sha256(f) != manifest[rel]:
+        if rel in manifest and file_sha256(f) not in manifest[rel]:
             remove.append((f, "checksum differs from the last manifest"))
         elif name.endswith(".nc") and not _readable_netcdf(f):
             remove.append((f, "unreadable netCDF (truncated or corrupted)"))
-    return remove, restore, orphans, reverted
+    return remove, restore, orphans, reverted, failed
 
 
 def heal(results: str | Path, workdir: str | Path = ".", dry_run: bool = False) -> list[str]:
@@ -183,7 +224,7 @@ def heal(results: str | Path, workdir: str | Path = ".", dry_run: bool = False) 
             return [f"not healed: Snakemake's lock {lock} names files of {results} (a run "
                     f"killed with its jobs still writing?); when no job is left, "
                     f"`snakemake --unlock` and run again"]
-    remove, restore, orphans, reverted = inspect(results)
+    remove, restore, orphans, reverted, failed = inspect(results, workdir)
     verb = "would remove" if dry_run else "removed"
     lines = []
     for f, why in remove:
@@ -196,14 +237,21 @@ def heal(results: str | Path, workdir: str | Path = ".", dry_run: bool = False) 
             f.unlink(missing_ok=True)
     for f in reverted:
         if not dry_run:
-            # the record follows the file back; the time stamp is the restore's (newer
-            # than the job's inputs), so what depends on it is checked again
+            # the record and the time stamp follow the file back to its writing: older
+            # than the inputs its failed job saw, whose Snakemake record heal forgets
+            # (below), so the next run runs that job again, not only what depends on it
             rec = read_sum(f)["previous"]
-            st = f.stat()
-            rec["mtime_ns"] = st.st_mtime_ns
             sum_path(f).write_text(json.dumps(rec, sort_keys=True) + "\n")
+            os.utime(f, ns=(rec["mtime_ns"], rec["mtime_ns"]))
         lines.append(f"{'would keep' if dry_run else 'kept'} {f}: the last good version, "
                      f"restored after its job failed")
+    for f, meta in failed:
+        # its time stamp goes back to its writing (below), older than the inputs its
+        # failed job saw: without the failed job's record Snakemake runs the job again
+        if not dry_run:
+            meta.unlink(missing_ok=True)
+        lines.append(f"{'would rerun' if dry_run else 'rerunning'} the job of {f}: its last "
+                     f"job failed after it was written (the file is the last good version)")
     for f in restore:
         if not dry_run:
             rec = read_sum(f)
@@ -214,6 +262,47 @@ def heal(results: str | Path, workdir: str | Path = ".", dry_run: bool = False) 
         lines.append(f"would restore the time stamps of {len(restore)} results whose "
                      f"content is what their jobs wrote (e.g. {restore[0]})")
     return lines
+
+
+def read_only(results: str | Path, workdir: str | Path = ".", run: bool = True) -> str | None:
+    """The first directory a Snakemake invocation needs to write but cannot, as one line
+    saying what to do, or None.  Snakemake writes its locks under ``.snakemake/`` in every
+    invocation (a dry run too); a run writes every directory under ``results`` (heal, job
+    outputs by atomic rename, the report).  Asked of the kernel (``os.access``): a
+    read-only mount refuses even root, ``chmod a-w`` refuses everyone else."""
+    meta = Path(workdir, ".snakemake")
+    dirs = [meta if meta.is_dir() else Path(workdir)]
+    results = Path(workdir, results)
+    if run and results.is_dir():
+        dirs.append(results)
+        dirs += [Path(root, d) for root, subs, _ in os.walk(results) for d in sorted(subs)
+                 if d not in SKIP_DIRS]
+    elif run:   # created by the run: where it will be created
+        dirs.append(next(p for p in results.parents if p.is_dir()))
+    for d in dirs:
+        if not os.access(d, os.W_OK):
+            what = "its locks (.snakemake/)" if d in (meta, Path(workdir)) \
+                and not (run and d == dirs[-1] and not results.is_dir()) \
+                else f"its results ({os.path.relpath(results, workdir)}/)"
+            return (f"cannot run: {os.path.relpath(d, workdir)} is read-only, and Snakemake "
+                    f"writes {what} there; nothing was changed. Make it writable (chmod -R "
+                    f"u+w {os.path.relpath(d, workdir)}) or work in a writable copy (cp -a)")
+    return None
+
+
+def refuse_read_only(workflow, results: str, argv: list[str] | None = None) -> None:
+    """Called while Snakemake parses the workflow, before anything is written: a read-only
+    project stops here with one line (:func:`read_only`), not a traceback from Snakemake's
+    lock directory or from the first job.  A dry run needs only ``.snakemake/``."""
+    argv = sys.argv[1:] if argv is None else argv
+    if workflow.exec_mode.name != "DEFAULT":
+        return
+    run = not (workflow.output_settings.dryrun or any(a.split("=")[0] in NOT_A_RUN
+                                                        for a in argv))
+    msg = read_only(results, run=run)
+    if msg:
+        sys.stderr.write(f"\n{msg}\n\n")
+        raise SystemExit(1)
 
 
 def heal_workflow(workflow, results: str, argv: list[str] | None = None) -> None:

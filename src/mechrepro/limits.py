@@ -9,7 +9,8 @@ A model declares them in ``mechrepro/models/<paper>/limits.py``:
   allowed: <what>"`` (the same conditions the solver raises on, evaluated on the run
   record alone, cheaply);
 - ``cost(run) -> {"mem_mb": float, "seconds": float}``: the expected peak memory and
-  solve time of one run (a measured fit, whose measurement the docstring gives);
+  solve time of one run (a measured fit, whose measurement the docstring gives), and
+  optionally ``JOB_START_S``, what a solve process spends once before its first run;
 - ``PRODUCED_BY = {variable: effect}``: solver outputs that exist only when a scene names
   that effect (beside the effects' declared contributions), and ``NEEDS_EFFECTS =
   {solver: why}``: solvers whose run without effects gives nothing a reported quantity
@@ -75,8 +76,10 @@ def job_costs(cfg) -> dict[str, dict]:
         if any(c is None for c in costs.values()):
             continue
         largest = max(costs, key=lambda r: costs[r]["mem_mb"])
-        out[job] = {"mem_mb": costs[largest]["mem_mb"],
-                    "seconds": sum(c["seconds"] for c in costs.values()), "largest": largest}
+        # a model may declare what its job process spends once before its first run
+        start = getattr(_model(cfg.paper), "JOB_START_S", 0.0)
+        out[job] = {"mem_mb": costs[largest]["mem_mb"], "largest": largest,
+                    "seconds": start + sum(c["seconds"] for c in costs.values())}
     return out
 
 

@@ -90,6 +90,16 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--since", type=float, help="start time of the run (seconds since epoch)")
     ap.add_argument("--status", type=int, default=0, help="the run's exit status")
     args = ap.parse_args(argv)
+    try:
+        return save(args)
+    except OSError as exc:
+        # a read-only results directory: a failed run has said so itself (mechrepro.heal)
+        if not args.status:
+            sys.stderr.write(f"rerun plan: not saved ({exc.strerror}: {exc.filename})\n")
+        return args.status or 1
+
+
+def save(args) -> int:
     results = Path(args.results)
     log = Path(args.log) if args.log else latest_log()
     if args.since is not None and (log is None or not log.exists()

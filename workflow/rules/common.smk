@@ -27,6 +27,12 @@ _ALL = yaml.safe_load((BASE / "config/config.yaml").read_text())["papers"]
 _TAG = "" if sorted(PAPERS) == sorted(_ALL) else "-" + "+".join(PAPERS)
 REPORT = f"{RESULTS}/report{_TAG}"
 ARCHIVE = f"{RESULTS}/archive{_TAG}"
+# A read-only project (a read-only mount, `chmod -R a-w`) stops here with one line naming
+# the directory, before the config cache, the heal or Snakemake's own lock directory try to
+# write (a traceback otherwise, even for a run with nothing to do).
+from mechrepro.heal import refuse_read_only  # noqa: E402
+
+refuse_read_only(workflow, RESULTS)
 try:
     # validated once per content of the configs, schemas and loader (a no-op start is fast)
     CFG = load_all(BASE / "config", PAPERS, PROFILE, cache_dir=CACHE_DIR)
