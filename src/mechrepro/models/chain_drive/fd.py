@@ -255,8 +255,6 @@ def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
     h_prev = hs[0]
     sc = dict(m=m, c_d=c_d, c=c, W=W)
     coeffs = _step_coeffs(h_prev, hs[0], **sc)
-    fac_long = _factors(*coeffs[2:], ni=ni, ns=ns, short=False)
-    fac_short = _factors(*coeffs[2:], ni=ni, ns=ns, short=True) if length_change else None
 
     u_prev = np.zeros((S, n + 1)) if u0 is None else np.array(u0, float)
     u_prev[:, 0], u_prev[:, -1] = uL[0], uR[0]
@@ -292,6 +290,9 @@ def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
                                    exc=exc, Pt=exc.tension, uL=uL, uR=uR,
                                    longs=longs if length_change else None, u0=u_prev,
                                    u1=u_cur, probes=probes, record_every=record_every)
+    # LAPACK factors for the numpy loop only (the compiled loop factorises its own)
+    fac_long = _factors(*coeffs[2:], ni=ni, ns=ns, short=False)
+    fac_short = _factors(*coeffs[2:], ni=ni, ns=ns, short=True) if length_change else None
     return _march_numpy(hs=hs, uniform=uniform, coeffs=coeffs, sc=sc, fac_long=fac_long,
                         fac_short=fac_short, u_prev=u_prev, u_cur=u_cur, Pt=Pt, uL=uL, uR=uR,
                         q=q, longs=longs, exc=exc, P=P, W=W, dx=dx, ni=ni, ns=ns, S=S,

@@ -61,13 +61,56 @@ def excitation_period(prm: dict, run: dict, omega1: float) -> tuple[float, int]:
 @dataclass
 class PeriodicSolution:
     amplitude: float          # max |u| over x and one period of the periodic steady state
-    rho: float                # spectral radius of the monodromy matrix (Floquet multiplier)
-    growth_rate: float        # log(rho) / T  [1/s]
+    rho: float                # spectral radius of the monodromy matrix (Floquet multiplier);
+                              # nan where only bounded (rho_lower/upper) or slack
+    growth_rate: float        # log(rho) / T  [1/s] (nan with rho)
     period: float             # T [s]
     n_steps: int              # steps per period
     residual: float           # max |x(T) - x*| of the steady state marched once more [m]
     slack: bool               # P + P_t <= 0 somewhere: the string model is invalid
-    multipliers: np.ndarray   # every eigenvalue of M
+    multipliers: np.ndarray   # every eigenvalue of M (empty where rho is not computed)
+    rho_lower: float = math.nan   # certified bounds of rho (= rho where computed); where
+    rho_upper: float = math.nan   # rho is nan they prove stability or growth (rho_bounds)
+
+
+def rho_bounds(M: np.ndarray, below: float, max_squarings: int) -> tuple[float, float]:
+    """Certified (lower, upper) bounds of the spectral radius of M, cheaper than its
+    eigenvalues.  For every K, with A = M^K (dimension n):
+
+        |tr A| / n  <=  rho(M)^K = rho(A)  <=  ||A||_2 <= ||A||_F
+
+    (the trace is the sum of the K-th powers of the multipliers; Gelfand for the norm).
+    K = 2^s is reached by s matrix squarings (BLAS-3: one squaring of the 170 x 170
+    monodromy matrix costs ~1/4 of its eigenvalues' CPU time, measured).  The loop stops as soon
+    as the upper bound is below ``below`` (proven stable with margin) or the lower bound
+    above 1 (proven unstable), when the upper bound stops decreasing (it has reached rho
+    times the non-normal transient: neither will be proven) or after ``max_squarings``;
+    the caller then computes the eigenvalues.  A is rescaled at every squaring (no
+    overflow); round-off of the products is ~1e-13 relative, far below the margins the
+    bounds are compared with."""
+    A = np.array(M, float)
+    n = A.shape[0]
+    log_scale, K = 0.0, 1
+    lo, hi = 0.0, math.inf
+    for s in range(max_squarings + 1):
+        nf = float(np.linalg.norm(A))
+        if nf == 0.0:
+            return 0.0, 0.0
+        # round-off margins: 1e-10 of the norm (the products' error is ~n eps of it)
+        up = math.exp((math.log(nf * (1 + 1e-10)) + log_scale) / K)
+        tr = abs(float(np.trace(A))) - 1e-10 * nf * n
+        if tr > 0.0:
+            lo = max(lo, math.exp((math.log(tr / n) + log_scale) / K))
+        if up >= hi:                 # stopped decreasing
+            break
+        hi = up
+        if hi < below or lo > 1.0 + 1e-9 or s == max_squarings:
+            break
+        A /= nf
+        log_scale = 2.0 * (log_scale + math.log(nf))
+        A = A @ A
+        K *= 2
+    return lo, hi
 
 
 def _lanes(x, L):
@@ -96,12 +139,20 @@ def _march(a, exc, u0, u1, res, c, P, s_star, n_steps, record_every=0, probes=()
 
 
 def periodic_solution(run, prm: dict, omega1: float, res: dict,
-                      registry=EFFECTS) -> PeriodicSolution:
+                      registry=EFFECTS, rate_floor: float | None = None) -> PeriodicSolution:
     """Monodromy matrix, Floquet multipliers and periodic steady state at one speed.  The
     inputs are sampled on levels 0..N-1 and wrapped (:func:`_lanes`): the effects repeat
     every T by construction (:func:`excitation_period`); a sample that falls exactly on a
     pulse edge or a length switch at t = T reads either side by round-off, so the first
-    and last sample are not compared."""
+    and last sample are not compared.
+
+    The multipliers (eigenvalues of M, the cost of a shooting speed) are computed only where
+    they can matter: not at a slack speed (the string model is invalid there: it counts as
+    unstable whatever rho is), and, given ``rate_floor`` (1/s, < 0), not where
+    :func:`rho_bounds` proves rho < exp(rate_floor T) (stable, and too far below 1 to be a
+    growth-rate bump that :func:`adaptive_sweep` bisects) or rho > 1 (unstable: a positive
+    rate is never a bump); there ``rho`` is nan and ``rho_lower``/``rho_upper`` hold the
+    proven bounds.  Without ``rate_floor`` they are always computed."""
     run = span.as_run(run)
     T, _ = excitation_period(prm, run, omega1)
     a = span.assemble(run, prm, [omega1], res, registry, period=T)
@@ -121,8 +172,19 @@ def periodic_solution(run, prm: dict, omega1: float, res: dict,
     y = np.concatenate([r.probes[0], r.final], axis=1)      # (L, 2 n1): (u^N, u^{N+1})
     b = y[0]
     M = (y[1:] - b).T                                        # column k = image of unit state k
-    mult = np.linalg.eigvals(M)
-    rho = float(np.max(np.abs(mult)))
+    slack = bool(np.any(a["P_min"] <= 0))
+    mult = np.zeros(0, complex)
+    rho = lo = hi = math.nan
+    if not slack:
+        below = math.nan
+        if rate_floor is not None and rate_floor < 0:
+            below = math.exp(rate_floor * T)
+            # up to K T ~ 20/|rate_floor|: a non-normal transient up to e^10 may be outgrown
+            k_max = max(1, math.ceil(math.log2(max(20.0 / (abs(rate_floor) * T), 2.0))))
+            lo, hi = rho_bounds(M, below, k_max)
+        if not (hi < below or lo > 1.0 + 1e-9):   # not proven either way (or not asked): exact
+            mult = np.linalg.eigvals(M)
+            rho = lo = hi = float(np.max(np.abs(mult)))
     x = np.linalg.solve(np.eye(2 * n1) - M, b)
     one = fd.Excitation(**{k: _lanes(getattr(e, k), 1)
                            for k in ("tension", "u_left", "u_right", "long", "load")})
@@ -131,9 +193,10 @@ def periodic_solution(run, prm: dict, omega1: float, res: dict,
     back = np.concatenate([r1.probes[0, 0], r1.final[0]])
     amp = max(float(r1.block_max.max()), float(np.max(np.abs(x))))
     return PeriodicSolution(amplitude=amp, rho=rho,
-                            growth_rate=math.log(max(rho, 1e-300)) / T, period=T, n_steps=N,
+                            growth_rate=math.log(rho) / T if rho > 0 else math.nan,
+                            period=T, n_steps=N,
                             residual=float(np.max(np.abs(back - x))),
-                            slack=bool(np.any(a["P_min"] <= 0)), multipliers=mult)
+                            slack=slack, multipliers=mult, rho_lower=lo, rho_upper=hi)
 
 
 def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
@@ -162,9 +225,13 @@ def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
         while len(pts) < max_evals:
             w = np.array(sorted(pts))
             sol = [pts[v] for v in w]
-            un = np.array([s.rho > 1.0 or s.slack for s in sol])
+            un = np.array([s.rho_lower > 1.0 or s.slack for s in sol])   # exact rho, or proven
             slack = np.array([s.slack for s in sol])
-            g = np.array([s.growth_rate for s in sol])
+            # the growth rate, or a proven bound where rho was only bounded: the upper one
+            # below rate_floor (never a bump, and a bump beside it is still seen as one),
+            # the lower one above 0 (never a bump either, and above any bump beside it)
+            g = np.array([math.log(s.rho_upper if s.rho_upper < 1 else s.rho_lower) / s.period
+                          if s.rho_lower > 0 else math.nan for s in sol])
             A = np.array([s.amplitude for s in sol])
             new = set()
             for i in range(w.size - 1):
@@ -198,17 +265,20 @@ def sweep(run, prm: dict, omega1, res: dict, registry=EFFECTS) -> dict:
     Resolution: ``edge_tol`` and ``peak_tol`` (rpm) the bisection widths."""
     run = span.as_run(run)
     sigma = prm["transverse_damping"] / (2 * prm["mass_per_length"])
-    w, sols, done = adaptive_sweep(lambda v: periodic_solution(run, prm, v, res, registry), omega1,
+    w, sols, done = adaptive_sweep(lambda v: periodic_solution(run, prm, v, res, registry,
+                                                                rate_floor=-0.5 * sigma), omega1,
                              edge_tol=float(res["edge_tol"]) / geometry.RPM,
                              peak_tol=float(res["peak_tol"]) / geometry.RPM,
                              rate_floor=-0.5 * sigma)
     a = span.assemble(run, prm, w[:1], res, registry, period=sols[0].period)
     rho = np.array([s.rho for s in sols])
+    lower = np.array([s.rho_lower for s in sols])
     slack = np.array([s.slack for s in sols])
     c = geometry.chain_speed(w, int(prm["n1"]), prm["pitch"])
     return {"omega1": w, "amplitude": np.array([s.amplitude for s in sols]), "growth": rho,
             "growth_rate": np.array([s.growth_rate for s in sols]),
-            "unstable": (rho > 1.0) | slack, "slack": slack,
+            "rho_lower": lower, "rho_upper": np.array([s.rho_upper for s in sols]),
+            "unstable": (lower > 1.0) | slack, "slack": slack,
             "steps_per_period": np.array([s.n_steps for s in sols]),
             "residual": np.array([s.residual for s in sols]), "sampling_converged": done,
             "grid": a["grid"], "span": a["span"], "c": c,

@@ -218,7 +218,8 @@ def speed_sweep(run, prm, res):
     ds = xr.Dataset({
         "amplitude": var("speed", out["amplitude"], "m", "maximum steady transverse amplitude"),
         "growth": var("speed", np.minimum(out["growth"], 1e300), "1",
-                      "spectral radius of the one-period monodromy matrix (Floquet multiplier)"
+                      "spectral radius of the one-period monodromy matrix (Floquet multiplier); "
+                      "nan where only bounded (rho_lower/rho_upper) or slack"
                       if shooting_ else
                       "ratio of last to first block maximum in the measuring window"),
         "unstable": var("speed", out["unstable"].astype("i1"), "1",
@@ -244,6 +245,12 @@ def speed_sweep(run, prm, res):
     if shooting_:
         ds["growth_rate"] = var("speed", out["growth_rate"], "1/s",
                                 "Floquet growth rate log(rho)/T of the span")
+        ds["rho_lower"] = var("speed", out["rho_lower"], "1",
+                              "proven lower bound of rho (= rho where computed): |tr M^K|/n "
+                              "<= rho^K; > 1 proves growth")
+        ds["rho_upper"] = var("speed", out["rho_upper"], "1",
+                              "proven upper bound of rho (= rho where computed): rho^K <= "
+                              "||M^K||_F; below exp(-sigma T/2) proves a stable speed")
         ds["steps_per_period"] = var("speed", out["steps_per_period"], "1",
                                      "time steps per excitation period (shooting)")
         ds["periodicity_residual"] = var("speed", out["residual"], "m",
