@@ -68,7 +68,7 @@ class PeriodicSolution:
     n_steps: int              # steps per period
     residual: float           # max |x(T) - x*| of the steady state marched once more [m]
     slack: bool               # P + P_t <= 0 somewhere: the string model is invalid
-    multipliers: np.ndarray   # every eigenvalue of M (empty where rho is not computed)
+    multipliers: np.ndarray   # the nonzero-column eigenvalues of M (empty where not computed)
     rho_lower: float = math.nan   # certified bounds of rho (= rho where computed); where
     rho_upper: float = math.nan   # rho is nan they prove stability or growth (rho_bounds)
 
@@ -172,6 +172,11 @@ def periodic_solution(run, prm: dict, omega1: float, res: dict,
     y = np.concatenate([r.probes[0], r.final], axis=1)      # (L, 2 n1): (u^N, u^{N+1})
     b = y[0]
     M = (y[1:] - b).T                                        # column k = image of unit state k
+    # the states the march overwrites (the end nodes, and the long span's extra pitch when
+    # the span is short at levels 0, 1) map to exactly 0: their columns are zero, and the
+    # multipliers are 0 and those of M without them (block triangular): a smaller problem
+    live = np.flatnonzero(np.any(M != 0.0, axis=0))
+    M_live = M[np.ix_(live, live)]
     slack = bool(np.any(a["P_min"] <= 0))
     mult = np.zeros(0, complex)
     rho = lo = hi = math.nan
@@ -181,9 +186,9 @@ def periodic_solution(run, prm: dict, omega1: float, res: dict,
             below = math.exp(rate_floor * T)
             # up to K T ~ 20/|rate_floor|: a non-normal transient up to e^10 may be outgrown
             k_max = max(1, math.ceil(math.log2(max(20.0 / (abs(rate_floor) * T), 2.0))))
-            lo, hi = rho_bounds(M, below, k_max)
+            lo, hi = rho_bounds(M_live, below, k_max)
         if not (hi < below or lo > 1.0 + 1e-9):   # not proven either way (or not asked): exact
-            mult = np.linalg.eigvals(M)
+            mult = np.linalg.eigvals(M_live)
             rho = lo = hi = float(np.max(np.abs(mult)))
     x = np.linalg.solve(np.eye(2 * n1) - M, b)
     one = fd.Excitation(**{k: _lanes(getattr(e, k), 1)
@@ -199,22 +204,39 @@ def periodic_solution(run, prm: dict, omega1: float, res: dict,
                             slack=slack, multipliers=mult, rho_lower=lo, rho_upper=hi)
 
 
+def _inside(x0: float, x1: float, r: float, floor: float) -> float:
+    """The predicted point r, kept at least m = max((x1 - x0)/8, floor) from both ends of
+    [x0, x1] (the midpoint when the interval is shorter than 2 m, or r is not finite): each
+    refinement shrinks the interval by >= 1/8 or by ``floor``, so a poor prediction costs
+    at most a few more points than bisection, and a good one lands next to the target."""
+    m = max((x1 - x0) / 8.0, floor)
+    if x1 - x0 <= 2.0 * m or not math.isfinite(r):
+        return 0.5 * (x0 + x1)
+    return min(max(r, x0 + m), x1 - m)
+
+
 def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
                    peak_tol: float, rate_floor: float, prominence: float = 0.02,
                    max_evals: int = 3000):
     """Sample ``evaluate(omega) -> PeriodicSolution`` from the initial ``speeds`` (rad/s,
-    the scene's speed axis), then bisect
+    the scene's speed axis), then refine
 
-    (i) every interval whose ends differ in stability, down to ``edge_tol``;
+    (i) every interval whose ends differ in stability, down to ``edge_tol``: at the zero
+        of the growth rate interpolated between its ends when both multipliers are exact
+        (regula falsi; bisection otherwise: with a bound standing in for a rate, Fig. 9b
+        lost a narrow band the bisection's points had found), kept >= 1/8 of the interval
+        (or edge_tol/2) from its ends (:func:`_inside`: the bracket always shrinks);
     (ii) both intervals beside every interior local maximum of the Floquet growth rate
          above ``rate_floor`` (1/s; e.g. half the damping-only rate -c_d/2m: a parametric
          tongue narrower than the grid shows first as a bump of the growth rate towards
-         0), down to ``peak_tol``;
+         0), bisected down to ``peak_tol``;
     (iii) both intervals beside every amplitude peak of prominence >= ``prominence`` x the
-         largest amplitude, down to ``peak_tol``;
+         largest amplitude, bisected down to ``peak_tol`` (a one-mode vertex prediction
+         was tried: it stops 1-6 % below the sampled peak of Fig. 9a, whose peaks are not
+         one-mode shaped at 0.2 rpm, and merged a double peak of Fig. 7);
 
-    until nothing is left to bisect (the verdicts and peaks no longer change at these
-    widths).  Returns the sorted speeds, their solutions and whether the bisection finished
+    until nothing is left to refine (the verdicts and peaks no longer change at these
+    widths).  Returns the sorted speeds, their solutions and whether the refinement finished
     within ``max_evals`` (False: the sampling is not converged, and the caller says so)."""
     from scipy.signal import find_peaks
     from threadpoolctl import threadpool_limits
@@ -232,14 +254,18 @@ def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
             # the lower one above 0 (never a bump either, and above any bump beside it)
             g = np.array([math.log(s.rho_upper if s.rho_upper < 1 else s.rho_lower) / s.period
                           if s.rho_lower > 0 else math.nan for s in sol])
+            exact = np.array([math.isfinite(s.rho) and s.rho > 0 for s in sol])
             A = np.array([s.amplitude for s in sol])
             new = set()
             for i in range(w.size - 1):
                 # a stability edge (a slack speed is outside the string model: its edges
-                # are drawn at the grid's width, not bisected)
+                # are drawn at the grid's width, not refined)
                 if (un[i] != un[i + 1] and not (slack[i] or slack[i + 1])
                         and w[i + 1] - w[i] > edge_tol):
-                    new.add(0.5 * (w[i] + w[i + 1]))
+                    r = math.nan
+                    if exact[i] and exact[i + 1] and g[i] != g[i + 1]:
+                        r = w[i] - g[i] * (w[i + 1] - w[i]) / (g[i + 1] - g[i])
+                    new.add(_inside(w[i], w[i + 1], r, 0.5 * edge_tol))
             bumps = [i for i in range(1, w.size - 1)
                      if rate_floor < g[i] <= 0 and g[i] >= g[i - 1] and g[i] >= g[i + 1]]
             stable_A = np.where(un, 0.0, A)
@@ -258,7 +284,31 @@ def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
     return w, [pts[v] for v in w], done
 
 
+_SWEEPS: dict = {}
+
+
+def _sweep_key(run, prm, omega1, res, registry):
+    """Everything a sweep's result depends on (not the run's name: a falsifier that sets a
+    parameter a study sweeps, e.g. T_s = 100 N, repeats a run of the study exactly)."""
+    import json
+
+    return (id(registry), json.dumps([run["effects"], run.get("contributes", {}), prm, res],
+                                     sort_keys=True, default=repr),
+            np.asarray(omega1, float).tobytes())
+
+
 def sweep(run, prm: dict, omega1, res: dict, registry=EFFECTS) -> dict:
+    """As :func:`_sweep`; a sweep identical in every input to one already solved in this
+    process is not solved again (the result is the same, deterministic, computation's: only
+    the run's time differs)."""
+    run = span.as_run(run)
+    key = _sweep_key(run, prm, omega1, res, registry)
+    if key not in _SWEEPS:
+        _SWEEPS[key] = _sweep(run, prm, omega1, res, registry)
+    return {k: (v.copy() if isinstance(v, np.ndarray) else v) for k, v in _SWEEPS[key].items()}
+
+
+def _sweep(run, prm: dict, omega1, res: dict, registry=EFFECTS) -> dict:
     """Figs. 5-9 by shooting: :func:`periodic_solution` at every speed of an
     :func:`adaptive_sweep` started from ``omega1``, with the outputs of :func:`.span.sweep`
     (``growth`` is the Floquet multiplier rho here, ``unstable`` = rho > 1 or slack).
