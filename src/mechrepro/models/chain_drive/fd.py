@@ -38,10 +38,7 @@ import numpy as np
 from scipy.linalg import lapack
 
 from . import fd_kernel
-
-
-class StabilityError(ValueError):
-    """A time step beyond the stability limit was requested, or the tension went slack."""
+from .errors import KernelUnavailable, StabilityError, UnknownChoice  # noqa: F401 (re-exported)
 
 
 @dataclass
@@ -225,9 +222,9 @@ def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
     ``"compiled"`` requires the compiled loop.  Both give the same result to round-off.
     """
     if differencing not in (None, "central", "mixed"):
-        raise ValueError(f"differencing {differencing!r}: allowed central, mixed")
+        raise UnknownChoice(f"differencing {differencing!r}: allowed central, mixed")
     if kernel not in ("auto", "numpy", "compiled"):
-        raise ValueError(f"kernel {kernel!r}: allowed auto, numpy, compiled")
+        raise UnknownChoice(f"kernel {kernel!r}: allowed auto, numpy, compiled")
     c = np.atleast_1d(np.asarray(c, float))
     S = c.size
     if differencing == "central":
@@ -281,7 +278,7 @@ def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
                 and fd_kernel.available()
                 and bool(np.all(np.abs(diag) > np.abs(low) + np.abs(up))))
         if kernel == "compiled" and not fast:
-            raise ValueError("compiled kernel unavailable here (needs numba, a uniform step, "
+            raise KernelUnavailable("compiled kernel unavailable here (needs numba, a uniform step, "
                              "no exc.source and a diagonally dominant step matrix)")
         if fast:
             return _march_compiled(c=c, P=P, W=W, m=m, c_d=c_d, grid=grid, dt=float(hs[0]),

@@ -34,10 +34,7 @@ import numpy as np
 
 from . import fd, fd_kernel, geometry, span
 from .effects import EFFECTS
-
-
-class PeriodicityError(ValueError):
-    """The excitation is not periodic over the shooting period (shooting would be wrong)."""
+from .errors import KernelUnavailable, PeriodicityError  # noqa: F401 (re-exported)
 
 
 def excitation_period(prm: dict, run: dict, omega1: float) -> tuple[float, int]:
@@ -134,7 +131,7 @@ def _march(a, exc, u0, u1, res, c, P, s_star, n_steps, record_every=0, probes=()
               differencing=res.get("differencing"), record_every=record_every, probes=probes)
     try:
         return fd.march(kernel=_kernel(), **kw)
-    except ValueError:           # compiled loop unavailable here (e.g. not diagonally dominant)
+    except KernelUnavailable:    # compiled loop unavailable here (e.g. not diagonally dominant)
         return fd.march(kernel="numpy", **kw)
 
 
