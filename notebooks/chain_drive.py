@@ -45,6 +45,18 @@ def ms(x):
     return from_si(np.asarray(x), "ms")
 
 
+def convergence_note(name):
+    """What refinement says about a sweep's steady amplitudes (F.peak_level_spread: its
+    largest peaks at @coarser / base / @finer): the figures never show an unconverged
+    amplitude silently (issue 26)."""
+    spread, order, _ = F.peak_level_spread(R, name)
+    if not np.isfinite(spread):
+        return ""
+    if np.isfinite(order):
+        return f"peaks converge (order {order:.2g}, {100 * spread:.2g} % between levels)"
+    return f"amplitudes NOT converged: peaks move {100 * spread:.2g} % between grid levels"
+
+
 def mark_unstable(ax, ds, label="unstable (growing or capped)"):
     """Every sweep marks the speeds whose response grows (never drawn as a peak)."""
     sp, amp = F.unstable(ds)
@@ -86,19 +98,33 @@ R.save_figure(fig, "fig03")
 # ## Fig. 4 — elastic four-bar (Eqs. 2-11..2-23)
 # A X = F (Eq. 2-20) is obtained by projecting Eq. (2-19) on the nine harmonics numerically
 # (Appendix II has duplicated/garbled entries), then solved by least squares (Eq. 2-21).
+# **Scale**: at the resonances the load reaches tens of kN (the right panel's dashed line
+# is the static tension T_s = 400 N): the four-bar has no damping, so only the truncated
+# harmonic balance limits it, and a real span would go slack long before (the paper
+# comments no magnitude; the ratio is the validation row elastic_load_peak_over_static_tension).
 
 # %%
 d4 = R.run("fig04_elastic")
 fig, ax = plt.subplots(1, 2, figsize=(11, 4))
 for i, w in enumerate(d4.case.values):
     ax[0].plot(d4.phase, d4.load_shape[i], label=f"{'abcde'[i]}: {w:.0f} rpm")
-ax[0].set(xlabel="t / tooth period", ylabel="D_pol [N]", title="Fig. 4a-e: load shapes")
+ts4 = F.parameter(d4, "static_tension")
+pk4 = float(max(d4.peak_to_peak_short.max(), d4.peak_to_peak_long.max()))
+for sgn in (1, -1):
+    ax[0].axhline(sgn * ts4, color="0.4", ls="--", lw=0.8,
+                  label=f"+-T_s = {ts4:g} N" if sgn > 0 else None)
+amp4 = float(np.max(np.abs(d4.load_shape)))
+ax[0].set(xlabel="t / tooth period", ylabel="D_pol [N]",
+          title=f"Fig. 4a-e: load shapes, up to +-{amp4 / 1e3:.3g} kN = {amp4 / ts4:.0f} x T_s")
 ax[0].legend(fontsize=7)
 ax[1].semilogy(d4.curve_speed, d4.peak_to_peak_short, label="k1 = AE/L_0 (short)")
 ax[1].semilogy(d4.curve_speed, d4.peak_to_peak_long, label="k2 = AE/(L_0 + p) (long)")
+ax[1].axhline(ts4, color="0.4", ls="--", lw=0.8, label=f"static tension T_s = {ts4:g} N")
 for v in (float(d4.omega_c1), float(d4.omega_c2)):
     ax[1].axvline(v, color="k", ls=":")
-ax[1].set(xlabel="omega_1 [rpm]", ylabel="peak-to-peak D_pol [N]", title="resonances omega_c1, omega_c2")
+ax[1].set(xlabel="omega_1 [rpm]", ylabel="peak-to-peak D_pol [N]",
+          title=f"resonances omega_c1, omega_c2: peak-to-peak up to {pk4 / 1e3:.3g} kN "
+                "(undamped: grows with the speed grid's approach)")
 ax[1].legend(fontsize=8)
 R.save_figure(fig, "fig04")
 
@@ -117,13 +143,17 @@ for a, cd, dp, dl in zip(ax, cds, plain, withl):
     a.semilogy(dl.speed, mm(dl.amplitude), "--", label="with length change")
     mark_unstable(a, dp)
     mark_unstable(a, dl, label=None)
-    for v in dl.resonance_speed_short.values:
-        a.axvline(v, color="tab:green", ls=":", lw=0.7)
-    for v in dl.resonance_speed_long.values:
-        a.axvline(v, color="tab:red", ls=":", lw=0.7)
+    for k, v in enumerate(dl.resonance_speed_short.values):
+        a.axvline(v, color="tab:green", ls=":", lw=0.7,
+                  label="short span L_0: tooth = k-th string frequency" if k == 0 else None)
+    for k, v in enumerate(dl.resonance_speed_long.values):
+        a.axvline(v, color="tab:red", ls=":", lw=0.7,
+                  label="long span L_0 + p: tooth = k-th string frequency" if k == 0 else None)
     a.set(ylabel="max |u| [mm]", title=f"Fig. 5: centre distance {cd:g} pitches")
 a.set_xlabel("omega_1 [rpm]")
 ax[0].legend(fontsize=7)
+fig.suptitle(f"scene fig05_length: {convergence_note('fig05_length')}", fontsize=9)
+fig.tight_layout()
 R.save_figure(fig, "fig05")
 R.write_table("resonance_speeds", F.RESONANCE_COLUMNS, F.resonance_rows(cds, plain, withl))
 R.write_table("timings", F.TIMING_COLUMNS, F.timing_rows(
@@ -141,7 +171,8 @@ for v, d in zip(i2s, d6):
     mark_unstable(ax, d, label=f"unstable, I2 = {v:g}" if int(d.unstable.sum()) else None)
 for v in F.resonances_in_window(d6[0]):
     ax.axvline(v, color="k", ls=":", lw=0.7)
-ax.set(xlabel="omega_1 [rpm]", ylabel="max |u| [mm]", title="Fig. 6: effect of I2 (cd 20.25, length change)")
+ax.set(xlabel="omega_1 [rpm]", ylabel="max |u| [mm]",
+       title=f"Fig. 6: effect of I2 (cd 20.25, length change)\n{convergence_note('fig06_inertia')}")
 ax.legend(fontsize=8)
 R.save_figure(fig, "fig06")
 
@@ -157,6 +188,8 @@ for a, v, d in zip(ax, tss[::-1], d7[::-1]):          # the paper's order: high 
     a.set(ylabel="max |u| [mm]", title=f"Fig. 7: T_s = {v:g} N ({int(d.unstable.sum())} unstable speeds)")
     a.legend(fontsize=7)
 a.set_xlabel("omega_1 [rpm]")
+fig.suptitle(f"scene fig07_tension: {convergence_note('fig07_tension')}", fontsize=9)
+fig.tight_layout()
 R.save_figure(fig, "fig07")
 
 # %% [markdown]
@@ -168,7 +201,8 @@ base = R.run("fig08_none")
 fig, ax = plt.subplots(len(d8) + 1, 1, figsize=(8, 2.3 * (len(d8) + 1)), sharex=True)
 ax[0].semilogy(base.speed, mm(base.amplitude))
 mark_unstable(ax[0], base)
-ax[0].set(title="Fig. 8a: without external load", ylabel="max |u| [mm]")
+ax[0].set(title=f"Fig. 8a: without external load; {convergence_note('fig08_none')}",
+          ylabel="max |u| [mm]")
 for a, w, d in zip(ax[1:], ws[::-1], d8[::-1]):       # 4, 2, 1
     a.semilogy(base.speed, mm(base.amplitude), color="0.7", lw=0.8)
     a.semilogy(d.speed, mm(d.amplitude))
@@ -203,7 +237,8 @@ for a, name, lab in ((ax[0], "fig09a", "(a) n1 = n2 = 24, I2 = 0.002"),
                label="slack (P + P_t <= 0): string model invalid")
     a.axvline(float(d.elastic_resonance_speed), color="k", ls=":", lw=0.8, label="omega_c")
     a.set(title=f"Fig. 9{lab}: {int(grow.sum())} growing, {int(sl.sum())} slack of "
-                f"{sp.size} speeds", ylabel="max |u| [mm]", xlabel="omega_1 [rpm]")
+                f"{sp.size} speeds\n{convergence_note(name)}", ylabel="max |u| [mm]",
+          xlabel="omega_1 [rpm]")
     a.legend(fontsize=7)
 fig.tight_layout()
 R.save_figure(fig, "fig09")

@@ -79,3 +79,35 @@ def test_an_external_load_sets_the_period():
     prm = {"n1": 24, "external_load_ratio": 0.2, "external_frequency_ratio": 4.0}
     T, q = shooting.excitation_period(prm, {"effects": ["external_load"]}, 10.0)
     assert q == 6 and T == pytest.approx(6 * 2 * np.pi / (24 * 10.0))
+
+
+def test_rho_bounds_bracket_the_spectral_radius():
+    """The cheap bounds (matrix squarings) bracket the eigenvalues' spectral radius, on
+    random non-normal matrices and scaled to be stable, marginal or unstable."""
+    rng = np.random.default_rng(0)
+    for n in (6, 40, 120):
+        A = rng.standard_normal((n, n)) + 3 * np.triu(rng.standard_normal((n, n)), 1)
+        rho = np.max(np.abs(np.linalg.eigvals(A)))
+        for target in (0.5, 0.97, 1.0, 1.03, 3.0):
+            M = A * (target / rho)
+            lo, hi = shooting.rho_bounds(M, below=0.9, max_squarings=14)
+            assert lo <= target * (1 + 1e-9) and hi >= target * (1 - 1e-9)
+
+
+def test_bounded_speeds_keep_the_exact_verdicts(fig09a):
+    """Where rho_bounds proves a speed stable (rho < exp(-sigma T / 2)) or growing (rho > 1)
+    the eigenvalues are skipped; the verdict, bump bracket and amplitude are those of the
+    exact multipliers at every speed of a window across the 1211 rpm band."""
+    run, prm, res = fig09a
+    sigma = prm["transverse_damping"] / (2 * prm["mass_per_length"])
+    skipped = 0
+    for rpm in np.linspace(1100, 1300, 21):
+        ex = shooting.periodic_solution(run, prm, rpm / RPM, res)
+        b = shooting.periodic_solution(run, prm, rpm / RPM, res, rate_floor=-0.5 * sigma)
+        assert b.amplitude == ex.amplitude
+        assert b.rho_lower <= ex.rho * (1 + 1e-9) and b.rho_upper >= ex.rho * (1 - 1e-9)
+        if np.isnan(b.rho):
+            skipped += 1
+            assert (b.rho_lower > 1) == (ex.rho > 1)
+            assert b.rho_lower > 1 or b.rho_upper < np.exp(-0.5 * sigma * ex.period)
+    assert skipped >= 10

@@ -29,6 +29,7 @@ import numpy as np
 from mechrepro.effects import EffectRegistry
 
 from . import four_bar, geometry, loads
+from .errors import EffectNotHonoured, NoEquilibrium
 
 EFFECTS = EffectRegistry("chain_drive")
 G = 9.80665   # standard gravity [m/s^2]
@@ -125,7 +126,7 @@ def consume(contributions, keys, solver: str):
     extra = [k for k in contributions.keys() if k not in keys]
     if extra:
         by = sorted({e for k in extra for e in contributions.sources(k)})
-        raise ValueError(f"chain_drive: the {solver} solver does not honour {by} "
+        raise EffectNotHonoured(f"chain_drive: the {solver} solver does not honour {by} "
                          f"(contributions {extra})")
     return contributions
 
@@ -224,7 +225,7 @@ def sag(ctx: SpanContext) -> dict:
     m = ctx.prm["mass_per_length"]
     kappa = m * G / (ctx.prm["static_tension"] - m * ctx.c**2)
     if np.any(kappa <= 0):
-        raise ValueError("sag: P_0 - m c^2 <= 0, no small-sag equilibrium exists")
+        raise NoEquilibrium("sag: P_0 - m c^2 <= 0, no small-sag equilibrium exists")
     return {"kappa": kappa}
 
 

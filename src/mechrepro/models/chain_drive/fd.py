@@ -38,10 +38,7 @@ import numpy as np
 from scipy.linalg import lapack
 
 from . import fd_kernel
-
-
-class StabilityError(ValueError):
-    """A time step beyond the stability limit was requested, or the tension went slack."""
+from .errors import KernelUnavailable, StabilityError, UnknownChoice  # noqa: F401 (re-exported)
 
 
 @dataclass
@@ -225,9 +222,9 @@ def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
     ``"compiled"`` requires the compiled loop.  Both give the same result to round-off.
     """
     if differencing not in (None, "central", "mixed"):
-        raise ValueError(f"differencing {differencing!r}: allowed central, mixed")
+        raise UnknownChoice(f"differencing {differencing!r}: allowed central, mixed")
     if kernel not in ("auto", "numpy", "compiled"):
-        raise ValueError(f"kernel {kernel!r}: allowed auto, numpy, compiled")
+        raise UnknownChoice(f"kernel {kernel!r}: allowed auto, numpy, compiled")
     c = np.atleast_1d(np.asarray(c, float))
     S = c.size
     if differencing == "central":
@@ -255,8 +252,6 @@ def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
     h_prev = hs[0]
     sc = dict(m=m, c_d=c_d, c=c, W=W)
     coeffs = _step_coeffs(h_prev, hs[0], **sc)
-    fac_long = _factors(*coeffs[2:], ni=ni, ns=ns, short=False)
-    fac_short = _factors(*coeffs[2:], ni=ni, ns=ns, short=True) if length_change else None
 
     u_prev = np.zeros((S, n + 1)) if u0 is None else np.array(u0, float)
     u_prev[:, 0], u_prev[:, -1] = uL[0], uR[0]
@@ -283,7 +278,7 @@ def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
                 and fd_kernel.available()
                 and bool(np.all(np.abs(diag) > np.abs(low) + np.abs(up))))
         if kernel == "compiled" and not fast:
-            raise ValueError("compiled kernel unavailable here (needs numba, a uniform step, "
+            raise KernelUnavailable("compiled kernel unavailable here (needs numba, a uniform step, "
                              "no exc.source and a diagonally dominant step matrix)")
         if fast:
             return _march_compiled(c=c, P=P, W=W, m=m, c_d=c_d, grid=grid, dt=float(hs[0]),
@@ -292,6 +287,9 @@ def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
                                    exc=exc, Pt=exc.tension, uL=uL, uR=uR,
                                    longs=longs if length_change else None, u0=u_prev,
                                    u1=u_cur, probes=probes, record_every=record_every)
+    # LAPACK factors for the numpy loop only (the compiled loop factorises its own)
+    fac_long = _factors(*coeffs[2:], ni=ni, ns=ns, short=False)
+    fac_short = _factors(*coeffs[2:], ni=ni, ns=ns, short=True) if length_change else None
     return _march_numpy(hs=hs, uniform=uniform, coeffs=coeffs, sc=sc, fac_long=fac_long,
                         fac_short=fac_short, u_prev=u_prev, u_cur=u_cur, Pt=Pt, uL=uL, uR=uR,
                         q=q, longs=longs, exc=exc, P=P, W=W, dx=dx, ni=ni, ns=ns, S=S,

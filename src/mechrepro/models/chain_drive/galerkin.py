@@ -29,6 +29,7 @@ from . import four_bar, galerkin_kernel, geometry, loads
 from .effects import EFFECTS, SpanContext, consume
 from .geometry import RPM
 from .span import dynamic_tension, span_geometry
+from .errors import DivergenceError, KernelUnavailable, RecordError, UnknownChoice
 
 
 class GalerkinModel:
@@ -146,7 +147,7 @@ def rk4(f, t0, y0, dt, n_steps, record_every=1, y_cap=1e3):
         y = y + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
         t = t0 + (i + 1) * dt
         if not np.all(np.isfinite(y)) or np.max(np.abs(y)) > y_cap:
-            raise FloatingPointError(f"RK4 diverged at t = {t:.4g} s (step {dt:.3g} s too large?)")
+            raise DivergenceError(f"RK4 diverged at t = {t:.4g} s (step {dt:.3g} s too large?)")
         if (i + 1) % record_every == 0:
             out_t.append(t)
             out_y.append(y.copy())
@@ -165,12 +166,12 @@ def rk4_tabulated(model, y0, dt, n_steps, F, record_every=1, y_cap=1e3, kernel="
     compiled one.  Both give the same result to round-off.
     """
     if kernel not in ("auto", "numpy", "compiled"):
-        raise ValueError(f"kernel {kernel!r}: allowed auto, numpy, compiled")
+        raise UnknownChoice(f"kernel {kernel!r}: allowed auto, numpy, compiled")
     if kernel != "numpy":
         fast = ((kernel == "compiled" or galerkin_kernel.worth_it(n_steps))
                 and galerkin_kernel.available())
         if kernel == "compiled" and not fast:
-            raise ValueError("compiled Galerkin kernel unavailable here (needs numba)")
+            raise KernelUnavailable("compiled Galerkin kernel unavailable here (needs numba)")
         if fast:
             return galerkin_kernel.rk4_tabulated(model, y0, dt, n_steps, F,
                                                  record_every=record_every, y_cap=y_cap)
@@ -185,7 +186,7 @@ def rk4_tabulated(model, y0, dt, n_steps, F, record_every=1, y_cap=1e3, kernel="
         k4 = rv(y + dt * k3, G[i, 3], H[i, 3], GD[i, 3], HD[i, 3], P[i, 3])
         y = y + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
         if not np.all(np.isfinite(y)) or np.max(np.abs(y)) > y_cap:
-            raise FloatingPointError(f"RK4 diverged at t = {(i + 1) * dt:.4g} s")
+            raise DivergenceError(f"RK4 diverged at t = {(i + 1) * dt:.4g} s")
         if (i + 1) % record_every == 0:
             out_t.append((i + 1) * dt)
             out_y.append(y.copy())
@@ -313,7 +314,7 @@ class PiecewiseForcing:
         scale = np.maximum(np.max(np.abs(V), axis=0), 1e-300)
         self.error = float(np.max(np.abs(got - Vm) / scale))
         if self.error > check_rtol:
-            raise ValueError(f"piecewise forcing: interpolation error {self.error:.2e} > "
+            raise RecordError(f"piecewise forcing: interpolation error {self.error:.2e} > "
                              f"{check_rtol:.0e}: a non-smooth point is missing from the edges")
 
     def _interp(self, i, t):
@@ -405,7 +406,7 @@ def envelope_statistics(u, steps_per_tooth: int) -> dict:
     n_periods = (u.size - 1) // steps_per_tooth
     q = n_periods // 4
     if q < 1:
-        raise ValueError(f"record of {n_periods} tooth periods: too short for quarter statistics")
+        raise RecordError(f"record of {n_periods} tooth periods: too short for quarter statistics")
     edges = [(u.size - 1) - (4 - i) * q * steps_per_tooth for i in range(5)]
     blocks = [np.max(u[edges[i] + 1: edges[i + 1] + 1]) for i in range(4)]
     return {"steady_amplitude": blocks[3], "steady_ratio": blocks[3] / blocks[2],

@@ -19,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from .fd_kernel import available  # noqa: F401  (same dependency)
+from .errors import DivergenceError
 
 # "auto" uses the compiled loop from this many RK4 steps on: the numpy loop costs ~0.2 ms per
 # step, loading numba and the cached kernel ~0.5 s per process
@@ -218,6 +219,6 @@ def rk4_tabulated(model, y0, dt, n_steps, F, record_every=1, y_cap=1e3):
                    c2(model._Sx0), c2(model._SxL), float(model.L), float(model.m),
                    float(model.c), float(model.c_d), float(model.EA), bool(model.coupling), out_y)
     if bad:
-        raise FloatingPointError(f"RK4 diverged at t = {bad * dt:.4g} s")
+        raise DivergenceError(f"RK4 diverged at t = {bad * dt:.4g} s")
     t = np.arange(n_rec) * record_every * dt
     return t, out_y

@@ -34,10 +34,7 @@ import numpy as np
 
 from . import fd, fd_kernel, geometry, span
 from .effects import EFFECTS
-
-
-class PeriodicityError(ValueError):
-    """The excitation is not periodic over the shooting period (shooting would be wrong)."""
+from .errors import KernelUnavailable, PeriodicityError  # noqa: F401 (re-exported)
 
 
 def excitation_period(prm: dict, run: dict, omega1: float) -> tuple[float, int]:
@@ -61,13 +58,56 @@ def excitation_period(prm: dict, run: dict, omega1: float) -> tuple[float, int]:
 @dataclass
 class PeriodicSolution:
     amplitude: float          # max |u| over x and one period of the periodic steady state
-    rho: float                # spectral radius of the monodromy matrix (Floquet multiplier)
-    growth_rate: float        # log(rho) / T  [1/s]
+    rho: float                # spectral radius of the monodromy matrix (Floquet multiplier);
+                              # nan where only bounded (rho_lower/upper) or slack
+    growth_rate: float        # log(rho) / T  [1/s] (nan with rho)
     period: float             # T [s]
     n_steps: int              # steps per period
     residual: float           # max |x(T) - x*| of the steady state marched once more [m]
     slack: bool               # P + P_t <= 0 somewhere: the string model is invalid
-    multipliers: np.ndarray   # every eigenvalue of M
+    multipliers: np.ndarray   # the nonzero-column eigenvalues of M (empty where not computed)
+    rho_lower: float = math.nan   # certified bounds of rho (= rho where computed); where
+    rho_upper: float = math.nan   # rho is nan they prove stability or growth (rho_bounds)
+
+
+def rho_bounds(M: np.ndarray, below: float, max_squarings: int) -> tuple[float, float]:
+    """Certified (lower, upper) bounds of the spectral radius of M, cheaper than its
+    eigenvalues.  For every K, with A = M^K (dimension n):
+
+        |tr A| / n  <=  rho(M)^K = rho(A)  <=  ||A||_2 <= ||A||_F
+
+    (the trace is the sum of the K-th powers of the multipliers; Gelfand for the norm).
+    K = 2^s is reached by s matrix squarings (BLAS-3: one squaring of the 170 x 170
+    monodromy matrix costs ~1/4 of its eigenvalues' CPU time, measured).  The loop stops as soon
+    as the upper bound is below ``below`` (proven stable with margin) or the lower bound
+    above 1 (proven unstable), when the upper bound stops decreasing (it has reached rho
+    times the non-normal transient: neither will be proven) or after ``max_squarings``;
+    the caller then computes the eigenvalues.  A is rescaled at every squaring (no
+    overflow); round-off of the products is ~1e-13 relative, far below the margins the
+    bounds are compared with."""
+    A = np.array(M, float)
+    n = A.shape[0]
+    log_scale, K = 0.0, 1
+    lo, hi = 0.0, math.inf
+    for s in range(max_squarings + 1):
+        nf = float(np.linalg.norm(A))
+        if nf == 0.0:
+            return 0.0, 0.0
+        # round-off margins: 1e-10 of the norm (the products' error is ~n eps of it)
+        up = math.exp((math.log(nf * (1 + 1e-10)) + log_scale) / K)
+        tr = abs(float(np.trace(A))) - 1e-10 * nf * n
+        if tr > 0.0:
+            lo = max(lo, math.exp((math.log(tr / n) + log_scale) / K))
+        if up >= hi:                 # stopped decreasing
+            break
+        hi = up
+        if hi < below or lo > 1.0 + 1e-9 or s == max_squarings:
+            break
+        A /= nf
+        log_scale = 2.0 * (log_scale + math.log(nf))
+        A = A @ A
+        K *= 2
+    return lo, hi
 
 
 def _lanes(x, L):
@@ -91,17 +131,25 @@ def _march(a, exc, u0, u1, res, c, P, s_star, n_steps, record_every=0, probes=()
               differencing=res.get("differencing"), record_every=record_every, probes=probes)
     try:
         return fd.march(kernel=_kernel(), **kw)
-    except ValueError:           # compiled loop unavailable here (e.g. not diagonally dominant)
+    except KernelUnavailable:    # compiled loop unavailable here (e.g. not diagonally dominant)
         return fd.march(kernel="numpy", **kw)
 
 
 def periodic_solution(run, prm: dict, omega1: float, res: dict,
-                      registry=EFFECTS) -> PeriodicSolution:
+                      registry=EFFECTS, rate_floor: float | None = None) -> PeriodicSolution:
     """Monodromy matrix, Floquet multipliers and periodic steady state at one speed.  The
     inputs are sampled on levels 0..N-1 and wrapped (:func:`_lanes`): the effects repeat
     every T by construction (:func:`excitation_period`); a sample that falls exactly on a
     pulse edge or a length switch at t = T reads either side by round-off, so the first
-    and last sample are not compared."""
+    and last sample are not compared.
+
+    The multipliers (eigenvalues of M, the cost of a shooting speed) are computed only where
+    they can matter: not at a slack speed (the string model is invalid there: it counts as
+    unstable whatever rho is), and, given ``rate_floor`` (1/s, < 0), not where
+    :func:`rho_bounds` proves rho < exp(rate_floor T) (stable, and too far below 1 to be a
+    growth-rate bump that :func:`adaptive_sweep` bisects) or rho > 1 (unstable: a positive
+    rate is never a bump); there ``rho`` is nan and ``rho_lower``/``rho_upper`` hold the
+    proven bounds.  Without ``rate_floor`` they are always computed."""
     run = span.as_run(run)
     T, _ = excitation_period(prm, run, omega1)
     a = span.assemble(run, prm, [omega1], res, registry, period=T)
@@ -121,8 +169,24 @@ def periodic_solution(run, prm: dict, omega1: float, res: dict,
     y = np.concatenate([r.probes[0], r.final], axis=1)      # (L, 2 n1): (u^N, u^{N+1})
     b = y[0]
     M = (y[1:] - b).T                                        # column k = image of unit state k
-    mult = np.linalg.eigvals(M)
-    rho = float(np.max(np.abs(mult)))
+    # the states the march overwrites (the end nodes, and the long span's extra pitch when
+    # the span is short at levels 0, 1) map to exactly 0: their columns are zero, and the
+    # multipliers are 0 and those of M without them (block triangular): a smaller problem
+    live = np.flatnonzero(np.any(M != 0.0, axis=0))
+    M_live = M[np.ix_(live, live)]
+    slack = bool(np.any(a["P_min"] <= 0))
+    mult = np.zeros(0, complex)
+    rho = lo = hi = math.nan
+    if not slack:
+        below = math.nan
+        if rate_floor is not None and rate_floor < 0:
+            below = math.exp(rate_floor * T)
+            # up to K T ~ 20/|rate_floor|: a non-normal transient up to e^10 may be outgrown
+            k_max = max(1, math.ceil(math.log2(max(20.0 / (abs(rate_floor) * T), 2.0))))
+            lo, hi = rho_bounds(M_live, below, k_max)
+        if not (hi < below or lo > 1.0 + 1e-9):   # not proven either way (or not asked): exact
+            mult = np.linalg.eigvals(M_live)
+            rho = lo = hi = float(np.max(np.abs(mult)))
     x = np.linalg.solve(np.eye(2 * n1) - M, b)
     one = fd.Excitation(**{k: _lanes(getattr(e, k), 1)
                            for k in ("tension", "u_left", "u_right", "long", "load")})
@@ -131,27 +195,45 @@ def periodic_solution(run, prm: dict, omega1: float, res: dict,
     back = np.concatenate([r1.probes[0, 0], r1.final[0]])
     amp = max(float(r1.block_max.max()), float(np.max(np.abs(x))))
     return PeriodicSolution(amplitude=amp, rho=rho,
-                            growth_rate=math.log(max(rho, 1e-300)) / T, period=T, n_steps=N,
+                            growth_rate=math.log(rho) / T if rho > 0 else math.nan,
+                            period=T, n_steps=N,
                             residual=float(np.max(np.abs(back - x))),
-                            slack=bool(np.any(a["P_min"] <= 0)), multipliers=mult)
+                            slack=slack, multipliers=mult, rho_lower=lo, rho_upper=hi)
+
+
+def _inside(x0: float, x1: float, r: float, floor: float) -> float:
+    """The predicted point r, kept at least m = max((x1 - x0)/8, floor) from both ends of
+    [x0, x1] (the midpoint when the interval is shorter than 2 m, or r is not finite): each
+    refinement shrinks the interval by >= 1/8 or by ``floor``, so a poor prediction costs
+    at most a few more points than bisection, and a good one lands next to the target."""
+    m = max((x1 - x0) / 8.0, floor)
+    if x1 - x0 <= 2.0 * m or not math.isfinite(r):
+        return 0.5 * (x0 + x1)
+    return min(max(r, x0 + m), x1 - m)
 
 
 def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
                    peak_tol: float, rate_floor: float, prominence: float = 0.02,
                    max_evals: int = 3000):
     """Sample ``evaluate(omega) -> PeriodicSolution`` from the initial ``speeds`` (rad/s,
-    the scene's speed axis), then bisect
+    the scene's speed axis), then refine
 
-    (i) every interval whose ends differ in stability, down to ``edge_tol``;
+    (i) every interval whose ends differ in stability, down to ``edge_tol``: at the zero
+        of the growth rate interpolated between its ends when both multipliers are exact
+        (regula falsi; bisection otherwise: with a bound standing in for a rate, Fig. 9b
+        lost a narrow band the bisection's points had found), kept >= 1/8 of the interval
+        (or edge_tol/2) from its ends (:func:`_inside`: the bracket always shrinks);
     (ii) both intervals beside every interior local maximum of the Floquet growth rate
          above ``rate_floor`` (1/s; e.g. half the damping-only rate -c_d/2m: a parametric
          tongue narrower than the grid shows first as a bump of the growth rate towards
-         0), down to ``peak_tol``;
+         0), bisected down to ``peak_tol``;
     (iii) both intervals beside every amplitude peak of prominence >= ``prominence`` x the
-         largest amplitude, down to ``peak_tol``;
+         largest amplitude, bisected down to ``peak_tol`` (a one-mode vertex prediction
+         was tried: it stops 1-6 % below the sampled peak of Fig. 9a, whose peaks are not
+         one-mode shaped at 0.2 rpm, and merged a double peak of Fig. 7);
 
-    until nothing is left to bisect (the verdicts and peaks no longer change at these
-    widths).  Returns the sorted speeds, their solutions and whether the bisection finished
+    until nothing is left to refine (the verdicts and peaks no longer change at these
+    widths).  Returns the sorted speeds, their solutions and whether the refinement finished
     within ``max_evals`` (False: the sampling is not converged, and the caller says so)."""
     from scipy.signal import find_peaks
     from threadpoolctl import threadpool_limits
@@ -162,17 +244,25 @@ def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
         while len(pts) < max_evals:
             w = np.array(sorted(pts))
             sol = [pts[v] for v in w]
-            un = np.array([s.rho > 1.0 or s.slack for s in sol])
+            un = np.array([s.rho_lower > 1.0 or s.slack for s in sol])   # exact rho, or proven
             slack = np.array([s.slack for s in sol])
-            g = np.array([s.growth_rate for s in sol])
+            # the growth rate, or a proven bound where rho was only bounded: the upper one
+            # below rate_floor (never a bump, and a bump beside it is still seen as one),
+            # the lower one above 0 (never a bump either, and above any bump beside it)
+            g = np.array([math.log(s.rho_upper if s.rho_upper < 1 else s.rho_lower) / s.period
+                          if s.rho_lower > 0 else math.nan for s in sol])
+            exact = np.array([math.isfinite(s.rho) and s.rho > 0 for s in sol])
             A = np.array([s.amplitude for s in sol])
             new = set()
             for i in range(w.size - 1):
                 # a stability edge (a slack speed is outside the string model: its edges
-                # are drawn at the grid's width, not bisected)
+                # are drawn at the grid's width, not refined)
                 if (un[i] != un[i + 1] and not (slack[i] or slack[i + 1])
                         and w[i + 1] - w[i] > edge_tol):
-                    new.add(0.5 * (w[i] + w[i + 1]))
+                    r = math.nan
+                    if exact[i] and exact[i + 1] and g[i] != g[i + 1]:
+                        r = w[i] - g[i] * (w[i + 1] - w[i]) / (g[i + 1] - g[i])
+                    new.add(_inside(w[i], w[i + 1], r, 0.5 * edge_tol))
             bumps = [i for i in range(1, w.size - 1)
                      if rate_floor < g[i] <= 0 and g[i] >= g[i - 1] and g[i] >= g[i + 1]]
             stable_A = np.where(un, 0.0, A)
@@ -191,24 +281,51 @@ def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
     return w, [pts[v] for v in w], done
 
 
+_SWEEPS: dict = {}
+
+
+def _sweep_key(run, prm, omega1, res, registry):
+    """Everything a sweep's result depends on (not the run's name: a falsifier that sets a
+    parameter a study sweeps, e.g. T_s = 100 N, repeats a run of the study exactly)."""
+    import json
+
+    return (id(registry), json.dumps([run["effects"], run.get("contributes", {}), prm, res],
+                                     sort_keys=True, default=repr),
+            np.asarray(omega1, float).tobytes())
+
+
 def sweep(run, prm: dict, omega1, res: dict, registry=EFFECTS) -> dict:
+    """As :func:`_sweep`; a sweep identical in every input to one already solved in this
+    process is not solved again (the result is the same, deterministic, computation's: only
+    the run's time differs)."""
+    run = span.as_run(run)
+    key = _sweep_key(run, prm, omega1, res, registry)
+    if key not in _SWEEPS:
+        _SWEEPS[key] = _sweep(run, prm, omega1, res, registry)
+    return {k: (v.copy() if isinstance(v, np.ndarray) else v) for k, v in _SWEEPS[key].items()}
+
+
+def _sweep(run, prm: dict, omega1, res: dict, registry=EFFECTS) -> dict:
     """Figs. 5-9 by shooting: :func:`periodic_solution` at every speed of an
     :func:`adaptive_sweep` started from ``omega1``, with the outputs of :func:`.span.sweep`
     (``growth`` is the Floquet multiplier rho here, ``unstable`` = rho > 1 or slack).
     Resolution: ``edge_tol`` and ``peak_tol`` (rpm) the bisection widths."""
     run = span.as_run(run)
     sigma = prm["transverse_damping"] / (2 * prm["mass_per_length"])
-    w, sols, done = adaptive_sweep(lambda v: periodic_solution(run, prm, v, res, registry), omega1,
+    w, sols, done = adaptive_sweep(lambda v: periodic_solution(run, prm, v, res, registry,
+                                                                rate_floor=-0.5 * sigma), omega1,
                              edge_tol=float(res["edge_tol"]) / geometry.RPM,
                              peak_tol=float(res["peak_tol"]) / geometry.RPM,
                              rate_floor=-0.5 * sigma)
     a = span.assemble(run, prm, w[:1], res, registry, period=sols[0].period)
     rho = np.array([s.rho for s in sols])
+    lower = np.array([s.rho_lower for s in sols])
     slack = np.array([s.slack for s in sols])
     c = geometry.chain_speed(w, int(prm["n1"]), prm["pitch"])
     return {"omega1": w, "amplitude": np.array([s.amplitude for s in sols]), "growth": rho,
             "growth_rate": np.array([s.growth_rate for s in sols]),
-            "unstable": (rho > 1.0) | slack, "slack": slack,
+            "rho_lower": lower, "rho_upper": np.array([s.rho_upper for s in sols]),
+            "unstable": (lower > 1.0) | slack, "slack": slack,
             "steps_per_period": np.array([s.n_steps for s in sols]),
             "residual": np.array([s.residual for s in sols]), "sampling_converged": done,
             "grid": a["grid"], "span": a["span"], "c": c,

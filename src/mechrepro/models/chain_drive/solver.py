@@ -23,6 +23,7 @@ from . import exact, four_bar, galerkin, geometry, loads, shooting, span, timest
 from .effects import EFFECTS, SpanContext, consume
 from .galerkin import envelope_statistics  # noqa: F401  (re-exported for the tests)
 from .geometry import RPM
+from .errors import UnknownChoice
 
 
 def _coord(name, values, units, long_name):
@@ -192,9 +193,8 @@ def dense_near_elastic(run, prm, omega1, half_width: float, n_speeds: int) -> np
     return np.unique(np.concatenate(extra))
 
 
-def speed_sweep(run, prm, res):
-    """Figs. 5-9: maximum steady amplitude vs operating speed, one vectorised FD march
-    (:func:`.span.sweep`), with the moving-string resonance speeds of the span."""
+def speed_sweep_compute(run, prm, res) -> dict:
+    """The physics of :func:`speed_sweep` (march or shooting), without the packaging."""
     window = run.get("options", {}).get("speed_window_elastic")
     wc = None
     if window:
@@ -211,6 +211,21 @@ def speed_sweep(run, prm, res):
         omega1 = out["omega1"]
     else:
         out = span.sweep(run, prm, omega1, res)
+    return {"out": out, "omega1": omega1, "wc": wc, "prm": prm, "res": res,
+            "shooting": shooting_}
+
+
+def speed_sweep(run, prm, res):
+    """Figs. 5-9: maximum steady amplitude vs operating speed, one vectorised FD march
+    (:func:`.span.sweep`) or shooting per speed (:func:`.shooting.sweep`), with the
+    moving-string resonance speeds of the span."""
+    return speed_sweep_dataset(speed_sweep_compute(run, prm, res))
+
+
+def speed_sweep_dataset(r: dict) -> xr.Dataset:
+    """The dataset of :func:`speed_sweep` from :func:`speed_sweep_compute`."""
+    out, omega1, wc, prm, res, shooting_ = (r[k] for k in ("out", "omega1", "wc", "prm", "res",
+                                                          "shooting"))
     orders = np.arange(1, int(res.get("orders", 8)) + 1)
     geo = dict(out["span"])
     reso = resonance_table(prm, out["tension_coefficient"], geo, orders)
@@ -218,7 +233,8 @@ def speed_sweep(run, prm, res):
     ds = xr.Dataset({
         "amplitude": var("speed", out["amplitude"], "m", "maximum steady transverse amplitude"),
         "growth": var("speed", np.minimum(out["growth"], 1e300), "1",
-                      "spectral radius of the one-period monodromy matrix (Floquet multiplier)"
+                      "spectral radius of the one-period monodromy matrix (Floquet multiplier); "
+                      "nan where only bounded (rho_lower/rho_upper) or slack"
                       if shooting_ else
                       "ratio of last to first block maximum in the measuring window"),
         "unstable": var("speed", out["unstable"].astype("i1"), "1",
@@ -244,6 +260,12 @@ def speed_sweep(run, prm, res):
     if shooting_:
         ds["growth_rate"] = var("speed", out["growth_rate"], "1/s",
                                 "Floquet growth rate log(rho)/T of the span")
+        ds["rho_lower"] = var("speed", out["rho_lower"], "1",
+                              "proven lower bound of rho (= rho where computed): |tr M^K|/n "
+                              "<= rho^K; > 1 proves growth")
+        ds["rho_upper"] = var("speed", out["rho_upper"], "1",
+                              "proven upper bound of rho (= rho where computed): rho^K <= "
+                              "||M^K||_F; below exp(-sigma T/2) proves a stable speed")
         ds["steps_per_period"] = var("speed", out["steps_per_period"], "1",
                                      "time steps per excitation period (shooting)")
         ds["periodicity_residual"] = var("speed", out["residual"], "m",
@@ -289,8 +311,21 @@ def warm() -> None:
     galerkin_kernel.warm()
 
 
-def solve(run: dict) -> xr.Dataset:
+def compute(run: dict):
+    """The run's physics (what the framework times): the speed sweep's arrays before
+    packaging; the other solvers' datasets (their packaging is small next to them)."""
     solver = run.get("solver")
     if solver not in SOLVERS:
-        raise ValueError(f"chain_drive: solver {solver!r}: allowed {sorted(SOLVERS)}")
-    return SOLVERS[solver](run, run["parameters"], run["resolution"])
+        raise UnknownChoice(f"chain_drive: solver {solver!r}: allowed {sorted(SOLVERS)}")
+    if solver == "speed_sweep":
+        return solver, speed_sweep_compute(run, run["parameters"], run["resolution"])
+    return solver, SOLVERS[solver](run, run["parameters"], run["resolution"])
+
+
+def to_dataset(result, run: dict | None = None) -> xr.Dataset:
+    solver, payload = result
+    return speed_sweep_dataset(payload) if solver == "speed_sweep" else payload
+
+
+def solve(run: dict) -> xr.Dataset:
+    return to_dataset(compute(run), run)

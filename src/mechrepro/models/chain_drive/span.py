@@ -11,6 +11,7 @@ import numpy as np
 
 from . import fd, geometry
 from .effects import EFFECTS, SpanContext, consume
+from .errors import UnknownChoice
 
 # the contributions the finite-difference march consumes (effects.py lists every key)
 FD_KEYS = ("tension_coefficient", "tension", "tension_short", "tension_long", "long",
@@ -196,7 +197,7 @@ def sweep(effects, prm, omega1, res, mode: str = "vectorised", probes=(), record
         out = {"amplitude": np.array(amp), "growth": np.array(gr), "unstable": np.array(un),
                "probes": None, "t_rec": None}
     else:
-        raise ValueError(f"sweep mode {mode!r}: allowed vectorised, loop")
+        raise UnknownChoice(f"sweep mode {mode!r}: allowed vectorised, loop")
     slack = a["P_min"] <= 0
     out["unstable"] = out["unstable"] | slack
     out.update({k: a[k] for k in ("grid", "span", "c", "P", "P_min", "dt", "n_steps", "s_star",

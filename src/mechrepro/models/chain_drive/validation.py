@@ -14,6 +14,7 @@ from mechrepro.validation import Quantities, Reproduced
 
 from . import claims as C
 from . import fd
+from .errors import UnknownChoice
 
 Q = Quantities("chain_drive")
 
@@ -124,7 +125,7 @@ def _at_cd(R, study, cd):
     cds, runs = _study_runs(R, study, "centre_distance")
     i = int(np.argmin(np.abs(cds - cd)))
     if abs(cds[i] - cd) > 1e-9:
-        raise ValueError(f"centre distance {cd} not in the study ({list(cds)})")
+        raise UnknownChoice(f"centre distance {cd} not in the study ({list(cds)})")
     return runs[i]
 
 

@@ -1,0 +1,31 @@
+"""chain_drive exposes the framework's compute-only contract (only ``compute`` is timed) and
+its deliberate errors are mechrepro.errors.Refusal subclasses."""
+import numpy as np
+import pytest
+
+from mechrepro.config import load_paper
+from mechrepro.errors import Refusal
+from mechrepro.models import chain_drive
+from mechrepro.models.chain_drive import errors, fd, shooting, solver
+
+
+def test_compute_then_to_dataset_is_solve():
+    run = load_paper("config/papers/chain_drive.yaml").runs["accuracy_peak"]
+    result = chain_drive.compute(run)
+    assert result[0] == "speed_sweep" and isinstance(result[1], dict)
+    a, b = chain_drive.to_dataset(result, run), chain_drive.solve(run)
+    assert np.array_equal(a.amplitude.values, b.amplitude.values)
+    assert set(a.data_vars) == set(b.data_vars)
+
+
+def test_deliberate_errors_are_refusals():
+    for name in dir(errors):
+        obj = getattr(errors, name)
+        if isinstance(obj, type) and obj.__module__ == errors.__name__:
+            assert issubclass(obj, Refusal)
+    assert fd.StabilityError is errors.StabilityError
+    assert shooting.PeriodicityError is errors.PeriodicityError
+    with pytest.raises(errors.UnknownChoice):
+        solver.solve({"solver": "nope", "parameters": {}, "resolution": {}})
+    with pytest.raises(errors.StabilityError):
+        fd.stable_time_step(1e-3, [0.0], [-1.0], 1.0)
