@@ -265,14 +265,14 @@ def library_check(profile: str) -> None:
 _FD_SCRIPT = """
 import sys, time, json
 from mechrepro.config import load_paper
-from mechrepro.models.chain_drive import solver
+from mechrepro.solve import solve
 runs = load_paper(sys.argv[1] + "/config/papers/chain_drive.yaml", sys.argv[2]).runs
 import numpy as np
 from mechrepro.models.chain_drive import fd
 # numba import and kernel load (or compile, in a fresh copy of the source), not timed
 fd.march(c=np.ones(1), P=np.full(1, 400.0), m=0.61, c_d=0.0, grid=fd.Grid(0.25, 8, 8), dt=1e-5,
          n_steps=4, exc=fd.Excitation(), kernel="compiled")
-solver.solve(runs["accuracy_peak"])
+solve(runs["accuracy_peak"])
 from mechrepro.models.chain_drive import span
 asm = span.assemble
 spent = []
@@ -289,7 +289,7 @@ span.assemble = timed_assemble
 out = {}
 for name in sys.argv[3:]:
     spent.clear()
-    t0 = time.perf_counter(); solver.solve(runs[name])
+    t0 = time.perf_counter(); solve(runs[name])
     out[name] = (time.perf_counter() - t0, sum(spent))
 print(json.dumps(out))
 """

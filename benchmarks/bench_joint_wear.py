@@ -15,7 +15,8 @@ import time
 from pathlib import Path
 
 from mechrepro.config import load_paper
-from mechrepro.models.joint_wear import setup, solve
+from mechrepro.models.joint_wear import setup
+from mechrepro.solve import solve
 from mechrepro.models.joint_wear import dynamics, quasistatic
 
 ROOT = Path(__file__).resolve().parent.parent

@@ -6,7 +6,8 @@ import yaml
 
 from mechrepro.config import ConfigError, load_paper
 from mechrepro.io import check_cf
-from mechrepro.models.chain_drive import EFFECTS, solve
+from mechrepro.models.chain_drive import EFFECTS
+from mechrepro.solve import solve
 
 CFG = "config/papers/chain_drive.yaml"
 

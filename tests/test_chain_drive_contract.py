@@ -7,13 +7,14 @@ from mechrepro.config import load_paper
 from mechrepro.errors import Refusal
 from mechrepro.models import chain_drive
 from mechrepro.models.chain_drive import errors, fd, shooting, solver
+from mechrepro.solve import solve
 
 
-def test_compute_then_to_dataset_is_solve():
+def test_compute_then_to_dataset_is_the_frameworks_solve():
     run = load_paper("config/papers/chain_drive.yaml").runs["accuracy_peak"]
     result = chain_drive.compute(run)
     assert result[0] == "speed_sweep" and isinstance(result[1], dict)
-    a, b = chain_drive.to_dataset(result, run), chain_drive.solve(run)
+    a, b = chain_drive.to_dataset(result, run), solve(run)
     assert np.array_equal(a.amplitude.values, b.amplitude.values)
     assert set(a.data_vars) == set(b.data_vars)
 
@@ -26,6 +27,6 @@ def test_deliberate_errors_are_refusals():
     assert fd.StabilityError is errors.StabilityError
     assert shooting.PeriodicityError is errors.PeriodicityError
     with pytest.raises(errors.UnknownChoice):
-        solver.solve({"solver": "nope", "parameters": {}, "resolution": {}})
+        solver.compute({"solver": "nope", "parameters": {}, "resolution": {}})
     with pytest.raises(errors.StabilityError):
         fd.stable_time_step(1e-3, [0.0], [-1.0], 1.0)

@@ -12,7 +12,8 @@ import pytest
 import yaml
 
 from mechrepro.config import ConfigError, load_paper
-from mechrepro.models.chain_drive import EFFECTS, solve
+from mechrepro.models.chain_drive import EFFECTS
+from mechrepro.solve import solve
 from mechrepro.models.chain_drive.solver import SOLVERS
 
 CFG = Path(__file__).resolve().parents[1] / "config" / "papers" / "chain_drive.yaml"

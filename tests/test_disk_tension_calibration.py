@@ -8,7 +8,7 @@ import pytest
 import yaml
 
 from mechrepro.config import load_paper
-from mechrepro.models.disk_tension import solve
+from mechrepro.solve import solve
 from mechrepro.models.disk_tension.convergence import reference_pair, richardson
 from mechrepro.models.disk_tension.modal import degenerate_harmonics, harmonic_coupling_symmetry
 

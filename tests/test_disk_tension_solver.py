@@ -9,7 +9,8 @@ import yaml
 from mechrepro.config import ConfigError, load_paper
 from mechrepro.effects import UnknownEffect
 from mechrepro.io import check_cf
-from mechrepro.models.disk_tension import EFFECTS, solve
+from mechrepro.models.disk_tension import EFFECTS
+from mechrepro.solve import solve
 
 ROOT = Path(__file__).resolve().parent.parent
 CFG = ROOT / "config" / "papers" / "disk_tension.yaml"

@@ -3,7 +3,8 @@ import pytest
 
 from mechrepro.config import load_paper
 from mechrepro.io import check_cf
-from mechrepro.models.joint_wear import EFFECTS, solve
+from mechrepro.models.joint_wear import EFFECTS
+from mechrepro.solve import solve
 
 from conftest import ROOT
 

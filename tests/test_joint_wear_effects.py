@@ -8,7 +8,8 @@ import pytest
 import yaml
 
 from mechrepro.config import ConfigError, load_paper
-from mechrepro.models.joint_wear import EFFECTS, SOLVERS, dynamics, solve
+from mechrepro.models.joint_wear import EFFECTS, SOLVERS, dynamics
+from mechrepro.solve import solve
 
 from conftest import ROOT
 

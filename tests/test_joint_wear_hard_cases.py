@@ -7,7 +7,8 @@ import pytest
 import yaml
 
 from mechrepro.config import ConfigError, load_paper
-from mechrepro.models.joint_wear import setup, solve
+from mechrepro.models.joint_wear import setup
+from mechrepro.solve import solve
 from mechrepro.models.joint_wear import dynamics, quasistatic, wear
 from mechrepro.models.joint_wear.geometry import from_parameters
 

@@ -6,7 +6,8 @@ import pytest
 
 from mechrepro.config import load_paper
 from mechrepro.io import check_cf
-from mechrepro.models.joint_wear import EFFECTS, setup, solve
+from mechrepro.models.joint_wear import EFFECTS, setup
+from mechrepro.solve import solve
 from mechrepro.models.joint_wear import clearance, contact, dynamics, kinematics, quasistatic, wear
 from mechrepro.models.joint_wear.geometry import material_h, stiffness_K
 

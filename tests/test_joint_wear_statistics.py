@@ -8,7 +8,8 @@ import pytest
 from scipy import integrate
 
 from mechrepro.config import load_paper
-from mechrepro.models.joint_wear import setup, solve
+from mechrepro.models.joint_wear import setup
+from mechrepro.solve import solve
 from mechrepro.models.joint_wear import clearance, dynamics, kinematics, quasistatic, wear
 
 from conftest import ROOT

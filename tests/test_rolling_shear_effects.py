@@ -4,7 +4,9 @@ built to show it."""
 import numpy as np
 import pytest
 
-from mechrepro.models.rolling_shear import EFFECTS, SOLVERS, solve
+from mechrepro.models.rolling_shear import EFFECTS, SOLVERS
+
+from mechrepro.solve import solve
 
 from test_rolling_shear_helpers import config, run
 

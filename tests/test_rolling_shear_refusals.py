@@ -5,7 +5,9 @@ import math
 import numpy as np
 import pytest
 
-from mechrepro.models.rolling_shear import solve, stroke
+from mechrepro.models.rolling_shear import stroke
+
+from mechrepro.solve import solve
 from mechrepro.models.rolling_shear.accuracy import ACCURACY
 from mechrepro.models.rolling_shear.calibrate import TILTS, CalibrationError, calibrate_tilt
 from mechrepro.models.rolling_shear.constraints import violations

@@ -4,7 +4,7 @@ import math
 import numpy as np
 import pytest
 
-from mechrepro.models.saw_chain import solve
+from mechrepro.solve import solve
 from mechrepro.models.saw_chain.difference import RoundoffError
 from mechrepro.models.saw_chain.geometry import MeshingError, pitch_radius, stage_angles
 from mechrepro.models.saw_chain.kinematics import stage_derivatives, stage_positions

@@ -5,7 +5,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from mechrepro.models.saw_chain import solve
+from mechrepro.solve import solve
 from mechrepro.models.saw_chain.analysis import (equivalent_K, error_model_optimum, load_max_at,
                                                  observed_order, pitch_radius_readings,
                                                  textbook_constants_for_range, velocity_band)

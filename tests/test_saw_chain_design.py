@@ -4,7 +4,7 @@ import math
 import numpy as np
 import pytest
 
-from mechrepro.models.saw_chain import solve
+from mechrepro.solve import solve
 from mechrepro.models.saw_chain.analysis import velocity_band
 from mechrepro.models.saw_chain.design import design_quantities, design_rules
 from mechrepro.models.saw_chain.geometry import pitch_radius

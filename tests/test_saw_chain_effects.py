@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 
 from mechrepro.config import load_paper
-from mechrepro.models.saw_chain import EFFECTS, solve
+from mechrepro.models.saw_chain import EFFECTS
+from mechrepro.solve import solve
 from mechrepro.solve import run_solver
 
 CONFIG = Path(__file__).resolve().parents[1] / "config" / "papers" / "saw_chain.yaml"

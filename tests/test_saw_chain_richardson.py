@@ -5,7 +5,7 @@ import pytest
 from mechrepro.models.saw_chain.analysis import equivalent_K
 from mechrepro.models.saw_chain.richardson import extrapolate_extreme, to_accuracy
 from mechrepro.models.saw_chain.solver import chain_from_run, load_x
-from mechrepro.models.saw_chain import solve
+from mechrepro.solve import solve
 
 from test_saw_chain import run
 

@@ -215,7 +215,9 @@ def time_view(results: Path, papers: list[str]) -> dict | None:
             continue
         head, r = _read_csv(f)
         solve = sum(float(x[head.index("solve_s")]) for x in r)
-        job = sum(float(x[head.index("job_s")]) for x in r)
+        # a job without its benchmark (regrouped between solve and validation) is unknown:
+        # the paper's job total is then n/a, not a crash
+        job = sum(float(x[head.index("job_s")] or "nan") for x in r)
         runs = sum(int(x[head.index("runs")]) for x in r)
         other = [benchmark_seconds(results / paper / "benchmarks" / f"{k}.tsv")
                  for k in ("validate", "notebook")]

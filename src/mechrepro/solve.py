@@ -14,18 +14,25 @@ from .timing import timed_run, timing_variables
 
 
 def model(paper: str):
-    """The model package of a paper; it exposes ``solve(run) -> xarray.Dataset`` and may
-    expose ``compute``/``to_dataset`` (only ``compute`` is timed) and ``warm()`` (load its
-    compiled kernels; called once per solver process, before the first timed run)."""
+    """The model package of a paper.  One contract for every paper: ``compute(run)`` (the
+    physics: what is timed) and ``to_dataset(result, run) -> xarray.Dataset`` (packaging);
+    optionally ``warm()`` (load its compiled kernels; called once per solver process,
+    before the first timed run)."""
     return importlib.import_module(f"mechrepro.models.{paper}")
+
+
+def solve(run: dict):
+    """One run's Dataset, untimed (tests, benchmarks, notebooks): its paper's ``compute``,
+    then ``to_dataset``.  The pipeline's jobs time the same two calls (:func:`run_solver`)."""
+    m = model(run["paper"])
+    return m.to_dataset(m.compute(run), run)
 
 
 def run_solver(run: dict):
     """Solve one run and attach its measured time, split into solver core and effects.
 
-    A model that separates its physics (``compute(run)``) from packaging
-    (``to_dataset(result, run)``) is timed on the physics alone, so that the cost of
-    accuracy is not blurred by xarray overhead; otherwise ``solve(run)`` is timed.
+    Only the physics (``compute(run)``) is timed, not its packaging (``to_dataset``), so
+    that the cost of accuracy is not blurred by xarray overhead.
     Fast solves are repeated and the fastest call kept (:func:`mechrepro.timing.time_call`).
     A run with a ``target`` accuracy is solved at the cheapest setting that meets it
     (:mod:`mechrepro.target`), and says what it chose, estimated and verified.
@@ -80,14 +87,8 @@ def _solve_once(run: dict, timed: tuple | None = None):
     """Solve (or take the ``timed`` (result, seconds, timer) of :func:`alternated`) and
     pack the Dataset with the run's times."""
     m = model(run["paper"])
-    if timed is not None:
-        result, seconds, timer = timed
-        ds = m.to_dataset(result, run)
-    elif hasattr(m, "compute") and hasattr(m, "to_dataset"):
-        result, seconds, timer = timed_run(m.compute, run, min_time=_min_time(run))
-        ds = m.to_dataset(result, run)
-    else:
-        ds, seconds, timer = timed_run(m.solve, run, min_time=_min_time(run))
+    result, seconds, timer = timed or timed_run(m.compute, run, min_time=_min_time(run))
+    ds = m.to_dataset(result, run)
     # variables, not only attributes, so that gather stacks them along a study
     effects = list(run["effects"])
     ds = ds.assign(timing_variables(seconds, timer, effects))

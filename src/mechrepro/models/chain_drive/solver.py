@@ -1,4 +1,4 @@
-"""``solve(run) -> xarray.Dataset``: the scene's ``solver`` computes, its effects are the physics.
+"""``compute(run)`` then ``to_dataset``: the scene's ``solver`` computes, its effects are the physics.
 
 The solvers and the effects each honours are declared in ``config/papers/chain_drive.yaml``
 (a scene naming an effect its solver does not honour is refused when the config is
@@ -326,6 +326,3 @@ def to_dataset(result, run: dict | None = None) -> xr.Dataset:
     solver, payload = result
     return speed_sweep_dataset(payload) if solver == "speed_sweep" else payload
 
-
-def solve(run: dict) -> xr.Dataset:
-    return to_dataset(compute(run), run)

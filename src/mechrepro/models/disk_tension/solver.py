@@ -253,7 +253,3 @@ def to_dataset(ctx: Disk, run: dict | None = None) -> xr.Dataset:
     data = {k: v for k, v in ctx.vars.items() if k not in coords}
     return xr.Dataset(data, coords=coords)
 
-
-def solve(run: dict) -> xr.Dataset:
-    """Entry point of the pipeline: one run record in, one Dataset out."""
-    return to_dataset(compute(run), run)

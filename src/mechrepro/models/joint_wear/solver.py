@@ -420,6 +420,3 @@ def compute(run: dict) -> dict:
 def to_dataset(res: dict, run: dict) -> xr.Dataset:
     return dataset.build(res, run)
 
-
-def solve(run: dict) -> xr.Dataset:
-    return to_dataset(compute(run), run)

@@ -12,7 +12,7 @@ from __future__ import annotations
 from mechrepro.lazy import lazy_exports
 
 #: public name -> submodule that defines it
-_LAZY = {"EFFECTS": "effects", "SOLVERS": "solver", "compute": "solver", "solve": "solver",
+_LAZY = {"EFFECTS": "effects", "SOLVERS": "solver", "compute": "solver",
          "to_dataset": "solver", "warm": "kernels"}
 
 __all__ = list(_LAZY)

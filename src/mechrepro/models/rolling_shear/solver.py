@@ -60,8 +60,5 @@ def to_dataset(result: dict, run: dict) -> xr.Dataset:
     return _to_dataset(result, run)
 
 
-def solve(run: dict):
-    return to_dataset(compute(run), run)
 
-
-__all__ = ["EFFECTS", "SOLVERS", "compute", "solve", "to_dataset"]
+__all__ = ["EFFECTS", "SOLVERS", "compute", "to_dataset"]

@@ -219,6 +219,3 @@ def to_dataset(result: dict, run: dict) -> xr.Dataset:
         sprocket_speed=var((), chain.omega, "rad/s", "sprocket speed omega"),
         period=var((), t[-1], "s", "period t2 of one tooth, Eq. (6)"))
 
-
-def solve(run: dict) -> xr.Dataset:
-    return to_dataset(compute(run), run)

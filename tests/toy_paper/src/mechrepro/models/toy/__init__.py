@@ -38,7 +38,3 @@ def to_dataset(result: dict, run: dict) -> xr.Dataset:
     return xr.Dataset({"displacement": var("t", result["x"], "m", "displacement x, Eq. (1)"),
                        **result["beside"]},
                       {"t": var("t", result["t"], "s", "time")})
-
-
-def solve(run: dict) -> xr.Dataset:
-    return to_dataset(compute(run), run)
