@@ -114,6 +114,19 @@ def job_resources(cfg, job: str, allow: bool) -> dict:
     return {"mem_mb": mem, "runtime": runtime}
 
 
+#: a paper whose solve jobs together are estimated at most this long [s] is solved first
+QUICK_PAPER_S = 15.0
+
+
+def quick_paper(cfg) -> bool:
+    """Every solve job of the paper declares a cost and together they are estimated at
+    most :data:`QUICK_PAPER_S`: the workflow solves such a paper before the others (a
+    scheduling order: its figures appear within seconds; no result depends on it)."""
+    costs = job_costs(cfg)
+    return (len(costs) == len(cfg.solve_jobs())
+            and sum(c["seconds"] for c in costs.values()) <= QUICK_PAPER_S)
+
+
 def check_all(cfgs: dict, allow_over_budget: bool = False) -> None:
     """Raise :class:`LimitError` with every refusal of every loaded paper config."""
     problems = []

@@ -43,7 +43,7 @@ except ConfigError as exc:
 # Each solver's own limits and declared cost (models/<paper>/limits.py), before any job:
 # a run its solver would refuse, or a job expected above the solve rule's memory or time,
 # stops the run here with the estimate (`--config over_budget=true` runs it on purpose).
-from mechrepro.limits import LimitError, check_all, job_resources  # noqa: E402
+from mechrepro.limits import LimitError, check_all, job_resources, quick_paper  # noqa: E402
 
 OVER_BUDGET = str(config.get("over_budget", False)).lower() == "true"   # --config gives text
 try:

@@ -44,9 +44,10 @@ for _paper in PAPERS:
             resources:
                 **job_resources(CFG[_paper], _job, OVER_BUDGET),
             # a free core takes a solve before a cross-paper job (summary, report), but a
-            # paper's validation and notebook (priority 2) before another paper's solve:
+            # paper's validation and notebook (priority 2) before another paper's solve,
+            # and a paper estimated to solve in seconds (limits.quick_paper) first of all:
             # the first figures appear early (results do not depend on the order)
-            priority: 1
+            priority: 3 if quick_paper(CFG[_paper]) else 1
             shell:
                 "{params.python} -m mechrepro.solve {params.paper} {params.base}/config "
                 "{params.profile} {params.results} {params.runs} > {log} 2>&1"
