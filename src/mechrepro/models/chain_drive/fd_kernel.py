@@ -18,6 +18,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from mechrepro.compiled import available  # noqa: F401  (callers ask fd_kernel.available())
+
 LANES = 16
 # "auto" compiles/loads the kernel only for marches of at least this many point-updates
 # (S x (n + 1) x steps): importing numba and loading the cached kernel cost ~0.5-1 s per
@@ -33,12 +35,6 @@ def worth_it(updates: int) -> bool:
     return updates >= MIN_UPDATES
 
 
-def available() -> bool:
-    try:
-        import numba  # noqa: F401
-    except ImportError:
-        return False
-    return True
 
 
 def _build(lanes):

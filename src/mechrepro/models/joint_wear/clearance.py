@@ -18,27 +18,10 @@ from typing import NamedTuple
 
 import numpy as np
 
+from mechrepro.compiled import available, jit  # noqa: F401  (callers ask clearance.available())
+
 from . import loads
 from .geometry import FourBar
-
-
-def available() -> bool:
-    """Whether numba is installed (then every kernel of joint_wear runs compiled)."""
-    try:
-        import numba  # noqa: F401
-    except ImportError:
-        return False
-    return True
-
-
-def jit(fn):
-    """``numba.njit`` (cached on disk; float division as numpy's) where numba is installed,
-    the function itself otherwise: the choice depends on the installation only."""
-    if not available():
-        return fn
-    import numba
-
-    return numba.njit(cache=True, error_model="numpy")(fn)
 
 
 class Params(NamedTuple):

@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 
-from .clearance import jit
+from mechrepro.compiled import jit
 
 
 @jit

@@ -20,9 +20,9 @@ results.  Which path runs depends on nothing but whether numba is installed (and
 """
 from __future__ import annotations
 
-import os
-
 import numpy as np
+
+from mechrepro import compiled
 
 #: fitness kinds of the compiled swarm
 LOOPS, POSE = 0, 1
@@ -30,21 +30,12 @@ LOOPS, POSE = 0, 1
 CONVERGED, NON_FINITE, SINGULAR, NO_CONVERGENCE = 0, 1, 2, 3
 
 _K = None
-_AVAILABLE = None
 
 
 def available() -> bool:
-    """numba importable and not switched off by ``MECHREPRO_RS_KERNEL=numpy``."""
-    global _AVAILABLE
-    if os.environ.get("MECHREPRO_RS_KERNEL", "auto") == "numpy":
-        return False
-    if _AVAILABLE is None:
-        try:
-            import numba  # noqa: F401
-            _AVAILABLE = True
-        except ImportError:
-            _AVAILABLE = False
-    return _AVAILABLE
+    """numba importable and not switched off (``MECHREPRO_RS_KERNEL=numpy`` or
+    ``MECHREPRO_KERNEL=numpy``): :func:`mechrepro.compiled.available`."""
+    return compiled.available("MECHREPRO_RS_KERNEL")
 
 
 def kernel(name: str):
