@@ -250,28 +250,12 @@ def test_rolling_shear_cost_is_above_a_measured_run():
 
 
 def test_the_declared_cost_is_above_a_measured_run():
-    """saw_chain's cost model against one measured solve (peak RSS of a child process)."""
-    import subprocess
-    import sys
-
+    """saw_chain's cost model against one measured solve (peak memory of a child process)."""
     from conftest import ROOT
     from mechrepro import limits
 
     cfg = load_paper(ROOT / "config" / "papers" / "saw_chain.yaml", "ci")
     run = dict(cfg.runs["cost_of_accuracy-010"])   # K = 3e5
-    # the peak of this process's own memory (VmHWM): ru_maxrss would also carry the RSS of
-    # the (large, forked) pytest worker that started it, which Linux keeps across exec
-    code = ("import sys, json, re; sys.path.insert(0, sys.argv[1]);"
-            "from mechrepro.solve import run_solver; run = json.loads(sys.argv[2]);"
-            "run_solver(run).to_netcdf(sys.argv[3]);"
-            "print(int(re.search(r'VmHWM:\\s+(\\d+)', open('/proc/self/status').read())"
-            ".group(1)) / 1024)")
-    import json
-    import tempfile
-
-    with tempfile.TemporaryDirectory() as d:
-        out = subprocess.run([sys.executable, "-c", code, str(ROOT / "src"), json.dumps(run),
-                              f"{d}/x.nc"], capture_output=True, text=True, check=True)
-    peak = float(out.stdout.split()[-1])
+    peak, _ = _measured("saw_chain", run, ROOT)
     est = limits.run_cost("saw_chain", run)["mem_mb"]
     assert peak < est < 3 * peak, (peak, est)

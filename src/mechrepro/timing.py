@@ -78,15 +78,14 @@ def time_call(fn, *args, min_time: float = 0.05, max_repeat: int = 50, **kwargs)
     return result, best
 
 
-def timed_run(fn, *args, min_time: float = 0.05, max_repeat: int = 50, min_repeat: int = 1,
-              **kwargs):
+def timed_run(fn, *args, min_time: float = 0.05, max_repeat: int = 50, **kwargs):
     """As :func:`time_call`, each call under a fresh current :class:`Timer`; returns the
     fastest call's result, time and phases (so that times a model measures inside the call
     come from a warm call too; the calls are deterministic, their results equal).
-    ``min_repeat`` 2 makes even a slow call's time a warm one (times compared by difference)."""
+    Times compared by difference are taken in alternation (:func:`mechrepro.solve.alternated`)."""
     best, best_timer, result, n = float("inf"), None, None, 0
     t_start = time.perf_counter()
-    while n < min_repeat or (time.perf_counter() - t_start < min_time and n < max_repeat):
+    while n < 1 or (time.perf_counter() - t_start < min_time and n < max_repeat):
         timer = Timer()
         token = _current.set(timer)
         try:
