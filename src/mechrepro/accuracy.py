@@ -302,15 +302,3 @@ def target_rows(cfg, root) -> list[dict]:
                         "default_time_s": g("default_seconds"),
                         "unit": t.get("unit", "1")})
     return out
-
-
-def write_targets(cfg, root) -> None:
-    """Write ``tables/accuracy_targets.csv`` of one paper (called from validation.write_costs)."""
-    from pathlib import Path
-
-    from .validation import write_csv
-
-    table = target_rows(cfg, root)
-    if table:
-        write_csv(Path(root) / "tables" / "accuracy_targets.csv", TARGET_COLUMNS,
-                  [[r[c] for c in TARGET_COLUMNS] for r in table])

@@ -637,7 +637,10 @@ def write_costs(cfg, results_dir: str, files: ResultFiles | None = None) -> None
     jt = costs.job_time(root, cfg.solve_jobs())
     write_csv(root / "tables" / "job_time.csv", costs.JOB_TIME_COLUMNS,
               [[r[c] for c in costs.JOB_TIME_COLUMNS] for r in jt])
-    accuracy.write_targets(cfg, root)
+    targets = accuracy.target_rows(cfg, root)
+    if targets:
+        write_csv(root / "tables" / "accuracy_targets.csv", accuracy.TARGET_COLUMNS,
+                  [[r[c] for c in accuracy.TARGET_COLUMNS] for r in targets])
 
 
 def read_table(path: str | Path) -> list[dict]:
