@@ -21,7 +21,9 @@ Implemented once per paper: ``@EFFECTS.register("impact")`` on a pure function
 :meth:`EffectRegistry.evaluate` with its run and context and reads the returned
 :class:`Contributions` by *key* (``tension``, ``u_left``, ...), never by effect name: an
 effect that is not named is never looked up, let alone called, and each one that is
-named is timed (:mod:`mechrepro.timing`), so the report can say what it costs.
+named is timed (:mod:`mechrepro.timing`), so the report can say what it costs.  A solver
+that needs some contributions before others asks for them by key, stage by stage
+(:meth:`EffectRegistry.stages`); each effect is still evaluated once.
 """
 from __future__ import annotations
 
@@ -93,22 +95,39 @@ class EffectRegistry(Registry):
             raise UnknownEffect(f"{self.paper}: unknown effect(s) {unknown}; allowed: {self.names}")
         return {name: self._fn[name] for name in self._fn if name in wanted}
 
-    def evaluate(self, run: dict, ctx, only: Iterable[str] | None = None) -> Contributions:
-        """Evaluate each effect the run names (or the subset ``only`` of them), timed, and
-        return their contributions.  The keys an effect returns must be the ones its
-        declaration lists (``run["contributes"]``, from the config)."""
-        named = list(run["effects"])
-        if only is not None:
-            only = set(only)
-            named = [e for e in named if e in only]
-        declared = run.get("contributes", {})
+    def evaluate(self, run: dict, ctx, keys: Iterable[str] | None = None) -> Contributions:
+        """Evaluate each effect the run names (or, with ``keys``, those of them whose
+        declaration contributes any of these keys), timed, and return their contributions."""
+        return Stages(self, run, ctx)(keys)
+
+    def stages(self, run: dict, ctx) -> "Stages":
+        """The run's effects, to be evaluated stage by stage (:class:`Stages`)."""
+        return Stages(self, run, ctx)
+
+
+class Stages:
+    """A solver's named effects evaluated stage by stage, each exactly once: ``stage(keys)``
+    evaluates those not yet evaluated whose declaration contributes any of ``keys`` (what
+    the solver's next step reads), ``stage()`` all the rest.  A solver names keys, never
+    effects.  The keys an effect returns must be the ones its declaration lists
+    (``run["contributes"]``, from the config)."""
+
+    def __init__(self, registry: EffectRegistry, run: dict, ctx):
+        self.registry, self.run, self.ctx = registry, run, ctx
+        self.pending = list(run["effects"])
+
+    def __call__(self, keys: Iterable[str] | None = None) -> Contributions:
+        declared = self.run.get("contributes", {})
+        keys = None if keys is None else set(keys)
+        names = [e for e in self.pending if keys is None or set(declared.get(e, ())) & keys]
+        self.pending = [e for e in self.pending if e not in names]
         out = Contributions()
-        for name, fn in self.select(named).items():
+        for name, fn in self.registry.select(names).items():
             with phase(EFFECT + name):
-                values = fn(ctx)
+                values = fn(self.ctx)
             if name in declared and set(values) - set(declared[name]):
                 raise ContributionError(
-                    f"{self.paper}: effect {name!r} returned {sorted(values)}; its declaration "
-                    f"contributes {declared[name]}")
+                    f"{self.registry.paper}: effect {name!r} returned {sorted(values)}; its "
+                    f"declaration contributes {declared[name]}")
             out.add(name, values)
         return out

@@ -15,23 +15,41 @@ from .timing import timed_run, timing_variables
 
 def model(paper: str):
     """The model package of a paper.  One contract for every paper: ``compute(run)`` (the
-    physics: what is timed) and ``to_dataset(result, run) -> xarray.Dataset`` (packaging);
-    optionally ``warm()`` (load its compiled kernels; called once per solver process,
-    before the first timed run)."""
+    physics: what is timed) and ``variables(result, run) -> {name: var(...)}`` (what the
+    run's file holds, labelled with :func:`mechrepro.units.var`; the framework packs it,
+    :func:`pack`); optionally ``warm()`` (load its compiled kernels; called once per solver
+    process, before the first timed run)."""
     return importlib.import_module(f"mechrepro.models.{paper}")
+
+
+def pack(variables: dict, run: dict):
+    """The run's Dataset from the variables its paper names: a variable named like its only
+    dimension is that dimension's coordinate, a string is a global attribute; the run's
+    solver is one too."""
+    import xarray as xr
+
+    def dims(v):
+        return (v[0],) if isinstance(v[0], str) else tuple(v[0])
+
+    attrs = {k: v for k, v in variables.items() if isinstance(v, str)}
+    if run.get("solver"):
+        attrs["solver"] = run["solver"]
+    coords = {k: v for k, v in variables.items() if k not in attrs and dims(v) == (k,)}
+    data = {k: v for k, v in variables.items() if k not in attrs and k not in coords}
+    return xr.Dataset(data, coords, attrs)
 
 
 def solve(run: dict):
     """One run's Dataset, untimed (tests, benchmarks, notebooks): its paper's ``compute``,
-    then ``to_dataset``.  The pipeline's jobs time the same two calls (:func:`run_solver`)."""
+    packed.  The pipeline's jobs time the same call (:func:`run_solver`)."""
     m = model(run["paper"])
-    return m.to_dataset(m.compute(run), run)
+    return pack(m.variables(m.compute(run), run), run)
 
 
 def run_solver(run: dict):
     """Solve one run and attach its measured time, split into solver core and effects.
 
-    Only the physics (``compute(run)``) is timed, not its packaging (``to_dataset``), so
+    Only the physics (``compute(run)``) is timed, not its packaging (:func:`pack`), so
     that the cost of accuracy is not blurred by xarray overhead.
     Fast solves are repeated and the fastest call kept (:func:`mechrepro.timing.time_call`).
     A run with a ``target`` accuracy is solved at the cheapest setting that meets it
@@ -88,7 +106,7 @@ def _solve_once(run: dict, timed: tuple | None = None):
     pack the Dataset with the run's times."""
     m = model(run["paper"])
     result, seconds, timer = timed or timed_run(m.compute, run, min_time=_min_time(run))
-    ds = m.to_dataset(result, run)
+    ds = pack(m.variables(result, run), run)
     # variables, not only attributes, so that gather stacks them along a study
     effects = list(run["effects"])
     ds = ds.assign(timing_variables(seconds, timer, effects))
@@ -96,8 +114,6 @@ def _solve_once(run: dict, timed: tuple | None = None):
         ds = ds.assign_coords(timed_effect=("timed_effect", effects,
                                             {"long_name": "effect named by the scene"}))
     ds.attrs["wall_time_s"] = seconds
-    if run.get("solver"):
-        ds.attrs["solver"] = run["solver"]
     return ds
 
 

@@ -18,7 +18,6 @@ Variables contributed after the discretisation carry the solver's name
 from __future__ import annotations
 
 import numpy as np
-import xarray as xr
 
 from mechrepro.errors import Refusal
 from mechrepro.timing import stopwatch
@@ -223,23 +222,14 @@ def _compare(ctx: Disk):
 def compute(run: dict) -> Disk:
     """Evaluate the run's effects stage by stage around its solver's core."""
     ctx = Disk(run)
-    declared = run.get("contributes", {})
-    pending = {e: declared.get(e, []) for e in run["effects"]}
-
-    def evaluate(keys=None):
-        """The pending effects that contribute any of ``keys`` (all pending ones if None)."""
-        names = [e for e, ks in pending.items() if keys is None or set(ks) & keys]
-        for e in names:
-            del pending[e]
-        return EFFECTS.evaluate(run, ctx, only=names)
-
-    before = evaluate(BEFORE_LOAD)
+    stage = EFFECTS.stages(run, ctx)
+    before = stage(BEFORE_LOAD)
     ctx.alpha = before.get("thermal_expansion", ctx.alpha)
     ctx.slots = before.get("slots")
-    load = evaluate(LOAD)
+    load = stage(LOAD)
     ctx.loads = load.get("thermal_load")
     _discretise(ctx)
-    analyses = evaluate()
+    analyses = stage()
     for c in (before, load):
         ctx.keep(c)
     ctx.keep(analyses, prefix=f"{ctx.solver}_")
@@ -247,9 +237,6 @@ def compute(run: dict) -> Disk:
     return ctx
 
 
-def to_dataset(ctx: Disk, run: dict | None = None) -> xr.Dataset:
-    """The run's variables; those named like their only dimension are its coordinates."""
-    coords = {k: v for k, v in ctx.vars.items() if v[0] == (k,)}
-    data = {k: v for k, v in ctx.vars.items() if k not in coords}
-    return xr.Dataset(data, coords=coords)
-
+def variables(ctx: Disk, run: dict | None = None) -> dict:
+    """The run's variables (those named like their only dimension are its coordinates)."""
+    return dict(ctx.vars)

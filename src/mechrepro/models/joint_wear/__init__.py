@@ -13,7 +13,7 @@ with Lagrange multipliers, for verification).
 from mechrepro.lazy import lazy_exports  # noqa: E402
 
 #: public name -> submodule that defines it
-_LAZY = {'EFFECTS': 'effects', 'SOLVERS': 'solver', 'compute': 'solver', 'setup': 'solver', 'to_dataset': 'solver', 'warm': 'solver'}
+_LAZY = {'EFFECTS': 'effects', 'SOLVERS': 'solver', 'compute': 'solver', 'setup': 'solver', 'variables': 'solver', 'warm': 'solver'}
 
 __all__ = list(_LAZY)
 __getattr__, __dir__ = lazy_exports(__name__, _LAZY)

@@ -1,4 +1,4 @@
-"""The dataset of one joint_wear run: one function per part of a solver's result.
+"""The variables of one joint_wear run: one function per part of a solver's result.
 
 Each part returns ``(coords, variables)`` labelled with :func:`mechrepro.units.var`; a part
 whose result is absent (no wear, no scan ...) contributes nothing.
@@ -6,7 +6,6 @@ whose result is absent (no wear, no scan ...) contributes nothing.
 from __future__ import annotations
 
 import numpy as np
-import xarray as xr
 
 from mechrepro.units import var
 
@@ -236,16 +235,13 @@ PARTS = ((mechanism_part, "fb"), (period_part, "hist"), (calibration_part, "wear
          (fit_part, "fit"), (sensitivity_part, "sens"), (local_part, "local"))
 
 
-def build(res: dict, run: dict) -> xr.Dataset:
-    """The run's dataset from a solver's result (solver.py)."""
-    coords, v = {}, {}
+def variables(res: dict, run: dict) -> dict:
+    """The run's variables from a solver's result (solver.py)."""
+    out = {}
     parts = [p for p, key in PARTS if key in res]
     if "full" in res.get("hist", {}):
         parts.append(integrator_part)
     for part in parts:
-        c, d = part(res, run)
-        coords.update(c)
-        v.update(d)
-    ds = xr.Dataset(v, coords)
-    ds.attrs["solver"] = run["solver"]
-    return ds
+        coords, v = part(res, run)
+        out |= coords | v
+    return out

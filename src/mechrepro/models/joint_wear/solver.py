@@ -26,7 +26,6 @@ import math
 from dataclasses import replace
 
 import numpy as np
-import xarray as xr
 
 from mechrepro.errors import Refusal
 from mechrepro.timing import stopwatch
@@ -35,9 +34,10 @@ from . import dataset, dynamics, kinematics, quasistatic, wear
 from .effects import EFFECTS, Context
 from .geometry import FourBar, from_parameters
 
-MECHANISM = ("gravity", "friction", "contact_damping")
-WEAR_SETUP = ("unbalanced_load", "wear_update")
-WEAR = ("archard_wear",)
+#: the contributions each stage reads (the effects that contribute them are evaluated there)
+MECHANISM = ("gravity", "friction_coefficient", "damping_ceiling")
+WEAR_SETUP = ("sides", "worn_bushing")
+WEAR = ("wear",)
 NO_FACTOR = dict.fromkeys(("S", "F_N_mean", "AB_mean", "A_mean", "arc", "arc_q90", "L_arc",
                            "L_wear", "G", "min_penetration", "F_N_min", "F_N_max"), math.nan)
 
@@ -53,7 +53,7 @@ def setup(run: dict) -> tuple[FourBar, Context]:
     p = run["parameters"]
     s = {**run.get("resolution", {}), **run.get("options", {})}
     bare = from_parameters(p)
-    c = EFFECTS.evaluate(run, Context(p, s, bare), only=MECHANISM)
+    c = EFFECTS.evaluate(run, Context(p, s, bare), keys=MECHANISM)
     fb = replace(bare, g=c.total("gravity"), mu=c.total("friction_coefficient"),
                  C_max=c.total("damping_ceiling"))
     return fb, Context(p, s, fb)
@@ -131,9 +131,9 @@ def one_period(fb: FourBar, s: dict, joint) -> dict:
 def with_wear(run: dict, fb: FourBar, ctx: Context, res: dict, joint) -> dict:
     """Stages two and three: the wear set-up, then the wear effects on ``joint``."""
     ctx = replace(ctx, one_period=lambda fb_w: joint(fb_w, ctx.s))
-    c = EFFECTS.evaluate(run, ctx, only=WEAR_SETUP)
+    c = EFFECTS.evaluate(run, ctx, keys=WEAR_SETUP)
     ctx = replace(ctx, sides=c.get("sides", ["B1"]), worn_bushing=c.get("worn_bushing"))
-    c = EFFECTS.evaluate(run, ctx, only=WEAR)
+    c = EFFECTS.evaluate(run, ctx, keys=WEAR)
     if "wear" in c:
         res["wear"] = c.get("wear")
     return res
@@ -417,6 +417,5 @@ def compute(run: dict) -> dict:
     return SOLVERS[run["solver"]](run)
 
 
-def to_dataset(res: dict, run: dict) -> xr.Dataset:
-    return dataset.build(res, run)
+variables = dataset.variables
 

@@ -13,7 +13,7 @@ from mechrepro.lazy import lazy_exports
 
 #: public name -> submodule that defines it
 _LAZY = {"EFFECTS": "effects", "SOLVERS": "solver", "compute": "solver",
-         "to_dataset": "solver", "warm": "kernels"}
+         "variables": "solver", "warm": "kernels"}
 
 __all__ = list(_LAZY)
 __getattr__, __dir__ = lazy_exports(__name__, _LAZY)

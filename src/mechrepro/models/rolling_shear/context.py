@@ -24,7 +24,7 @@ class Refused(Refusal):
     """A lever set (``options.levers``) the run refuses by name: the family member cannot
     be calibrated on the paper's 1.4341 (``calibration``), or the lever set does not
     assemble over the stroke (``assembly``).  Such a run is a result, not a crash: its
-    dataset carries ``levers_assemble`` and the refusal (``solver.refusal_dataset``)."""
+    dataset carries ``levers_assemble`` and the refusal (``solver.refusal_variables``)."""
 
     def __init__(self, kind: str, message: str):
         super().__init__(f"{kind}: {message}")

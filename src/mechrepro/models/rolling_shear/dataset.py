@@ -5,7 +5,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import xarray as xr
 
 from mechrepro.units import var
 
@@ -13,7 +12,7 @@ from .context import Context
 from .geometry import GEOMETRY_KEYS, OPTIMISED_LEVERS
 from .motion_laws import ANGLE_NAMES
 
-__all__ = ["GEOMETRY_KEYS", "geometry_outputs", "to_dataset"]
+__all__ = ["GEOMETRY_KEYS", "geometry_outputs", "variables"]
 
 
 def geometry_outputs(ctx: Context) -> dict:
@@ -37,26 +36,25 @@ def geometry_outputs(ctx: Context) -> dict:
     return out
 
 
-def to_dataset(result: dict, run: dict) -> xr.Dataset:
+def variables(result: dict, run: dict) -> dict:
+    """The run's variables: the solver's outputs over the cut points (and the angles, levers
+    and loops they name), with an index coordinate for any other dimension."""
     ctx: Context = result["ctx"]
     data = result["data"]
     coords = {
-        "cut": ("cut", np.arange(ctx.n), {"units": "1", "long_name": "cut point index"}),
-        "huch": ("cut", ctx.huch, {"units": "mm", "long_name": "rolled length from the start of the cut"}),
-        "x_k_target": ("cut", ctx.x_k, {"units": "mm", "long_name": "prescribed x of the lowest point on y = -s"}),
-        "angle": ("angle", list(ANGLE_NAMES), {"units": "1", "long_name": "unknown angle"}),
-        "lever": ("lever", list(OPTIMISED_LEVERS), {"units": "1", "long_name": "optimised lever"}),
-        "loop": ("loop", ["ABCD", "GHID"], {"units": "1", "long_name": "dyad of Eq. (9)"}),
+        "cut": var("cut", np.arange(ctx.n), "1", "cut point index"),
+        "huch": var("cut", ctx.huch, "mm", "rolled length from the start of the cut"),
+        "x_k_target": var("cut", ctx.x_k, "mm", "prescribed x of the lowest point on y = -s"),
+        "angle": var("angle", list(ANGLE_NAMES), "1", "unknown angle"),
+        "lever": var("lever", list(OPTIMISED_LEVERS), "1", "optimised lever"),
+        "loop": var("loop", ["ABCD", "GHID"], "1", "dyad of Eq. (9)"),
     }
     used = {d for dims, *_ in data.values() for d in dims}
-    coords = {k: v for k, v in coords.items() if v[0] in used or k in ("cut", "huch", "x_k_target")}
-    ds = xr.Dataset(dict(data), coords)
-    for d in ds.dims:
-        if d not in ds.coords:
-            ds = ds.assign_coords({d: (d, np.arange(ds.sizes[d]),
-                                       {"units": "1", "long_name": f"{d} index"})})
-    ds.attrs["length_unit"] = "mm"
-    ds["pose_tol_used"] = var((), ctx.settings.tol_pose, "mm", "tolerance on G of Eq. (7)")
-    ds["loops_tol_used"] = var((), ctx.settings.tol_loops, "mm", "tolerance on G of Eq. (9)")
-    ds["blade_radius"] = var((), ctx.g.R, "mm", "blade arc radius R")
-    return ds
+    out = {k: v for k, v in coords.items() if v[0][0] in used or k in ("cut", "huch", "x_k_target")}
+    out |= {d: var(d, np.arange(np.shape(v[1])[v[0].index(d)]), "1", f"{d} index")
+            for v in data.values() for d in v[0] if d not in out}
+    return out | data | {
+        "length_unit": "mm",
+        "pose_tol_used": var((), ctx.settings.tol_pose, "mm", "tolerance on G of Eq. (7)"),
+        "loops_tol_used": var((), ctx.settings.tol_loops, "mm", "tolerance on G of Eq. (9)"),
+        "blade_radius": var((), ctx.g.R, "mm", "blade arc radius R")}

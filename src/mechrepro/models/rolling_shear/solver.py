@@ -1,4 +1,4 @@
-"""rolling_shear's entry point: the scene's solver, its effects, one xarray Dataset (mm, rad).
+"""rolling_shear's entry point: the scene's solver, its effects, the run's variables (mm, rad).
 
     solver               what it computes                                    effects it honours
     continuation         Newton stroke + closed form (continuation.py)       constant_rate_drive, tilt_scan
@@ -10,7 +10,6 @@
 from __future__ import annotations
 
 import numpy as np
-import xarray as xr
 
 from mechrepro.units import var
 
@@ -18,7 +17,7 @@ from .comparison import solve_method_comparison
 from .context import Context, Refused
 from .continuation import solve_continuation
 from .dataset import geometry_outputs
-from .dataset import to_dataset as _to_dataset
+from .dataset import variables as _variables
 from .effects import EFFECTS
 from .family import solve_family_scan
 from .lever_optimisation import solve_lever_optimisation
@@ -39,9 +38,9 @@ def compute(run: dict) -> dict:
     return {"ctx": ctx, "data": data}
 
 
-def refusal_dataset(exc: Refused) -> xr.Dataset:
-    """The dataset of a refused lever set: what was refused and why, no stroke."""
-    ds = xr.Dataset({
+def refusal_variables(exc: Refused) -> dict:
+    """The variables of a refused lever set: what was refused and why, no stroke."""
+    return {
         "levers_assemble": var((), 0.0 if exc.kind == "assembly" else np.nan, "1",
                                "1: the lever set assembles over the stroke; 0: refused; NaN: "
                                "the member was refused before (not calibrated, not buildable)"),
@@ -49,16 +48,13 @@ def refusal_dataset(exc: Refused) -> xr.Dataset:
                           "1: the family member reaches the paper's 1.4341 at some tilt"),
         "buildable": var((), 0.0 if exc.kind == "unbuildable" else np.nan, "1",
                          "0: the calibrated member breaks a constraint of constraints.py"),
-    })
-    ds.attrs.update(length_unit="mm", refusal_kind=exc.kind, refusal=exc.message)
-    return ds
+        "length_unit": "mm", "refusal_kind": exc.kind, "refusal": exc.message}
 
 
-def to_dataset(result: dict, run: dict) -> xr.Dataset:
+def variables(result: dict, run: dict) -> dict:
     if "refused" in result:
-        return refusal_dataset(result["refused"])
-    return _to_dataset(result, run)
+        return refusal_variables(result["refused"])
+    return _variables(result, run)
 
 
-
-__all__ = ["EFFECTS", "SOLVERS", "compute", "to_dataset"]
+__all__ = ["EFFECTS", "SOLVERS", "compute", "variables"]

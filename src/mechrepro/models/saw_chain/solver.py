@@ -10,7 +10,6 @@ scene asked for it.
 from __future__ import annotations
 
 import numpy as np
-import xarray as xr
 
 from mechrepro.units import var
 
@@ -21,7 +20,7 @@ from .kinematics import stage_positions
 from .loads import dynamic_load
 
 __all__ = ["EFFECTS", "Chain", "chain_from_run", "compute", "difference_method", "solve",
-           "stage_switch_index", "to_dataset"]
+           "stage_switch_index", "variables"]
 
 #: the difference method's outputs and the reference's contribution each is compared with
 COMPARED = {"tight_side_velocity": "tight_side_velocity_exact",
@@ -154,8 +153,8 @@ def compute(run: dict) -> dict:
     return {"chain": chain, "t": ctx.t, "data": {**method, **beside}}
 
 
-def ranges(ds: xr.Dataset) -> dict:
-    """Minimum and maximum of velocity and load x of each model present in ``ds``."""
+def ranges(ds: dict) -> dict:
+    """Minimum and maximum of velocity and load x of each model present in ``ds`` (arrays)."""
     out = {}
     for suffix, label in (("", "difference method"), ("_exact", "exact"), ("_textbook", "textbook")):
         for q, unit in (("tight_side_velocity", "m/s"), ("dynamic_load_x", "N")):
@@ -166,7 +165,7 @@ def ranges(ds: xr.Dataset) -> dict:
     return out
 
 
-def errors_against_exact(ds: xr.Dataset, K: int) -> dict:
+def errors_against_exact(ds: dict, K: int) -> dict:
     """Errors of the difference method against the exact reference, relative to max |exact|.
 
     Pointwise errors exclude the stage-switch sample (reported on its own), so that they
@@ -174,14 +173,14 @@ def errors_against_exact(ds: xr.Dataset, K: int) -> dict:
     the paper's quoted ranges see.
     """
     switch = stage_switch_index(K)
-    keep = np.arange(ds.sizes["t"]) != switch
+    keep = np.arange(ds["t"].size) != switch
     out = {}
     for q, exact in COMPARED.items():
         if q not in ds:
             continue
-        ref = ds[exact].values
+        ref = ds[exact]
         scale = np.max(np.abs(ref))
-        err = np.abs(ds[q].values - ref) / scale
+        err = np.abs(ds[q] - ref) / scale
         out[f"{q}_error_pointwise"] = var((), float(err[keep].max()), "1",
                                           f"max over samples (stage switch excluded) of |{q} - exact|, relative to max |exact|")
         out[f"{q}_error_pointwise_rms"] = var((), float(np.sqrt(np.mean(err[keep] ** 2))), "1",
@@ -189,33 +188,33 @@ def errors_against_exact(ds: xr.Dataset, K: int) -> dict:
         out[f"{q}_error_switch"] = var((), float(err[switch]), "1",
                                        f"|{q} - exact| at the stage-switch sample t1 + dt, relative to max |exact|")
         for end, fn in (("min", np.min), ("max", np.max)):
-            out[f"{q}_error_of_{end}"] = var((), float(abs(fn(ds[q].values) - fn(ref)) / scale), "1",
+            out[f"{q}_error_of_{end}"] = var((), float(abs(fn(ds[q]) - fn(ref)) / scale), "1",
                                              f"error of the {end} of {q} vs exact, relative to max |exact|")
     if "dynamic_load_x" not in ds:
         return out
-    out["dynamic_load_x_switch"] = var((), float(ds["dynamic_load_x"].values[switch]), "N",
+    out["dynamic_load_x_switch"] = var((), float(ds["dynamic_load_x"][switch]), "N",
                                        "difference-method load at the stage-switch sample t1 + dt")
-    out["dynamic_load_x_switch_exact"] = var((), float(ds["dynamic_load_x_exact"].values[switch]), "N",
+    out["dynamic_load_x_switch_exact"] = var((), float(ds["dynamic_load_x_exact"][switch]), "N",
                                              "exact load at the stage-switch sample t1 + dt")
     return out
 
 
-def to_dataset(result: dict, run: dict) -> xr.Dataset:
-    """Package a :func:`compute` result as a CF-annotated Dataset with the scalars a study
-    stacks (ranges, and errors against the exact reference when the scene named it)."""
+def variables(result: dict, run: dict) -> dict:
+    """A :func:`compute` result as labelled variables, with the scalars a study stacks
+    (ranges, and errors against the exact reference when the scene named it)."""
     chain, t = result["chain"], result["t"]
-    coords = {"t": var("t", t, "s", "time since O1 left the tangent point T")}
-    ds = xr.Dataset({"stage": var("t", np.where(np.arange(t.size) <= chain.K, 1, 2), "1",
-                                  "stage of the period (Sec. 3.1)"), **result["data"]}, coords)
-    ds = ds.assign(ranges(ds))
-    if all(exact in ds for exact in COMPARED.values()):
-        ds = ds.assign(errors_against_exact(ds, chain.K))
+    out = {"t": var("t", t, "s", "time since O1 left the tangent point T"),
+           "stage": var("t", np.where(np.arange(t.size) <= chain.K, 1, 2), "1",
+                        "stage of the period (Sec. 3.1)"), **result["data"]}
+    arrays = {k: np.asarray(v[1]) for k, v in out.items()}
+    out |= ranges(arrays)
+    if all(exact in arrays for exact in COMPARED.values()):
+        out |= errors_against_exact(arrays, chain.K)
     if not run.get("options", {}).get("keep_history", True):
         # the scalars above are what a study stacks; the history itself is 16 bytes x
         # 2K + 1 samples per variable (45 MB per run at K = 1e6) that nothing reads
-        ds = ds.drop_dims("t")
-    return ds.assign(
-        pitch_radius=var((), chain.R, "m", "sprocket pitch radius, Eq. (1)"),
-        sprocket_speed=var((), chain.omega, "rad/s", "sprocket speed omega"),
-        period=var((), t[-1], "s", "period t2 of one tooth, Eq. (6)"))
-
+        out = {k: v for k, v in out.items() if v[0] != ("t",)}
+    return out | {
+        "pitch_radius": var((), chain.R, "m", "sprocket pitch radius, Eq. (1)"),
+        "sprocket_speed": var((), chain.omega, "rad/s", "sprocket speed omega"),
+        "period": var((), t[-1], "s", "period t2 of one tooth, Eq. (6)")}

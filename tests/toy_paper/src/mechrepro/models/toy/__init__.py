@@ -7,7 +7,6 @@
 from __future__ import annotations
 
 import numpy as np
-import xarray as xr
 
 from mechrepro.units import var
 
@@ -34,7 +33,7 @@ def compute(run: dict) -> dict:
     return {"t": t, "x": x, "beside": beside}
 
 
-def to_dataset(result: dict, run: dict) -> xr.Dataset:
-    return xr.Dataset({"displacement": var("t", result["x"], "m", "displacement x, Eq. (1)"),
-                       **result["beside"]},
-                      {"t": var("t", result["t"], "s", "time")})
+def variables(result: dict, run: dict) -> dict:
+    return {"t": var("t", result["t"], "s", "time"),
+            "displacement": var("t", result["x"], "m", "displacement x, Eq. (1)"),
+            **result["beside"]}
