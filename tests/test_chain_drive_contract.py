@@ -7,14 +7,14 @@ from mechrepro.config import load_paper
 from mechrepro.errors import Refusal
 from mechrepro.models import chain_drive
 from mechrepro.models.chain_drive import errors, fd, shooting, solver
-from mechrepro.solve import solve
+from mechrepro.solve import pack, solve
 
 
-def test_compute_then_to_dataset_is_the_frameworks_solve():
+def test_compute_then_variables_is_the_frameworks_solve():
     run = load_paper("config/papers/chain_drive.yaml").runs["accuracy_peak"]
     result = chain_drive.compute(run)
     assert result[0] == "speed_sweep" and isinstance(result[1], dict)
-    a, b = chain_drive.to_dataset(result, run), solve(run)
+    a, b = pack(chain_drive.variables(result, run), run), solve(run)
     assert np.array_equal(a.amplitude.values, b.amplitude.values)
     assert set(a.data_vars) == set(b.data_vars)
 

@@ -1,4 +1,4 @@
-"""``compute(run)`` then ``to_dataset``: the scene's ``solver`` computes, its effects are the physics.
+"""``compute(run)`` then ``variables``: the scene's ``solver`` computes, its effects are the physics.
 
 The solvers and the effects each honours are declared in ``config/papers/chain_drive.yaml``
 (a scene naming an effect its solver does not honour is refused when the config is
@@ -322,7 +322,10 @@ def compute(run: dict):
     return solver, SOLVERS[solver](run, run["parameters"], run["resolution"])
 
 
-def to_dataset(result, run: dict | None = None) -> xr.Dataset:
+def variables(result, run: dict | None = None) -> dict:
+    """The run's variables for the framework's :func:`mechrepro.solve.pack` (the solvers
+    here still build Datasets: unpacked)."""
     solver, payload = result
-    return speed_sweep_dataset(payload) if solver == "speed_sweep" else payload
+    ds = speed_sweep_dataset(payload) if solver == "speed_sweep" else payload
+    return {**{k: (v.dims, v.values, v.attrs) for k, v in ds.variables.items()}, **ds.attrs}
 

@@ -144,7 +144,7 @@ def assemble(effects, prm: dict, omega1, res: dict, registry=EFFECTS,
             n_steps = int(math.ceil((settle + window) / dt))
         t = np.arange(n_steps + 1) * dt
         ctx = SpanContext(prm, omega1, t, dt, span, cache=cache)
-        contrib = registry.evaluate(run, ctx, only=dyn)
+        contrib = registry.evaluate(run if dyn is None else dict(run, effects=dyn), ctx)
         Pt = dynamic_tension(contrib, (n_steps + 1, omega1.size))
         P_max = P + np.max(Pt, axis=0)
         P_min = P + np.min(Pt, axis=0)
@@ -157,7 +157,7 @@ def assemble(effects, prm: dict, omega1, res: dict, registry=EFFECTS,
         raise fd.StabilityError("no stable time step found for the dynamic tension")
     if rest:
         # the same context: the sprocket kinematics computed for the tension is reused
-        more = registry.evaluate(run, ctx, only=rest)
+        more = registry.evaluate(dict(run, effects=rest), ctx)
         contrib = _Merged(contrib, more)
     kappa = contrib.get("kappa")
     exc = fd.Excitation(tension=Pt, long=contrib.get("long"), u_left=contrib.get("u_left"),
