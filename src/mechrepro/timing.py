@@ -8,8 +8,8 @@ split is stored in the run's netCDF (:func:`timing_variables`) and summed per pa
 the report's effect-cost table (:mod:`mechrepro.costs`).
 
 Inside a solver, cost-of-accuracy studies that time a piece of work on their own use
-:func:`time_call` (fastest of repeated calls) or :func:`stopwatch`; nothing else in the
-models reads the clock.
+:func:`time_call` (fastest of repeated calls), :func:`mean_time` (mean of repeated calls)
+or :func:`stopwatch`; nothing else in the models reads the clock.
 """
 from __future__ import annotations
 
@@ -76,6 +76,18 @@ def time_call(fn, *args, min_time: float = 0.05, max_repeat: int = 50, **kwargs)
     """
     result, best, _ = timed_run(fn, *args, min_time=min_time, max_repeat=max_repeat, **kwargs)
     return result, best
+
+
+def mean_time(fn, *args, min_time: float = 0.02, **kwargs) -> float:
+    """Mean wall time of ``fn`` (s) over calls repeated until ``min_time`` has elapsed,
+    after one call that warms the caches: for work too short to time in one call, whose
+    cost is compared as a mean (rolling_shear's time per Eq. (9) solve)."""
+    fn(*args, **kwargs)
+    n, t0 = 0, time.perf_counter()
+    while n == 0 or time.perf_counter() - t0 < min_time:
+        fn(*args, **kwargs)
+        n += 1
+    return (time.perf_counter() - t0) / n
 
 
 def timed_run(fn, *args, min_time: float = 0.05, max_repeat: int = 50, **kwargs):

@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import least_squares, root
 
-from mechrepro.timing import stopwatch, time_call
+from mechrepro.timing import mean_time, stopwatch, time_call
 
 from . import kernels
 from . import loops as loops_mod
@@ -241,14 +241,7 @@ def time_newton_loops(g: Geometry, theta: np.ndarray, settings: SolverSettings,
     fastest stroke.  Each cut point starts from the linear extrapolation of the two previous
     solutions; the first stroke warms the caches and is not counted.
     """
-    import time
-
-    _newton_loops_stroke(g, theta, settings)
-    n, t0 = 0, time.perf_counter()
-    while n == 0 or time.perf_counter() - t0 < min_time:
-        _newton_loops_stroke(g, theta, settings)
-        n += 1
-    return (time.perf_counter() - t0) / (n * len(theta))
+    return mean_time(_newton_loops_stroke, g, theta, settings, min_time=min_time) / len(theta)
 
 
 def _newton_loops_stroke(g: Geometry, theta: np.ndarray, settings: SolverSettings) -> None:
