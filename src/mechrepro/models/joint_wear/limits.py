@@ -135,8 +135,8 @@ def _solve_seconds(run: dict) -> tuple[float, float]:
         grid = len(opt.get("fit_load_direction_deg", [])) * planes * 2 * n_cal
         # each zero of the misfit (measured: 4 per gravity plane): secant steps, the
         # estimate, its period and the 86-h wear of both sides at it and +- its uncertainty
-        per_zero = (int(opt.get("fit_secant_steps", 3)) + 1) * 2 * n_cal + 1 + 3 * (
-            2 * n_cal + _wear_periods(run, interval, 2, True) - 2 * n_cal)
+        per_zero = ((int(opt.get("fit_secant_steps", 3)) + 1) * 2 * n_cal + 1
+                    + 3 * _wear_periods(run, interval, 2, True))
         return _qs(n) * (grid + 4 * planes * per_zero), qs_mb
     if solver == "local_wear":
         periods = 1 + _wear_periods(run, interval, 1, True)
@@ -144,7 +144,8 @@ def _solve_seconds(run: dict) -> tuple[float, float]:
         return periods * (2 * _qs(n) + _LOCAL_CELL_S * cells), max(qs_mb, _LOCAL_B * cells / 1e6)
     if solver == "constant_sensitivity":
         rows = 1 + 2 * len(opt.get("sensitivity", {}))
-        dyn = _dynamic({"method": "Radau", "rtol": res.get("rtol", 1e-6), "n_out": n}, "equilibrium")
+        dyn = _dynamic({"method": "Radau", "rtol": res.get("rtol", 1e-6), "n_out": n},
+                       "equilibrium")
         return rows * (_qs(n) * (1 + _wear_periods(run, interval, 1, True)) + dyn), qs_mb
     return _qs(n), qs_mb     # a solver added later: no fit yet, one quasi-static period
 
