@@ -165,6 +165,21 @@ LIMITS = [
          "n_points": 4097, "pso_swarm": 200, "pso_iter": 1000}}),
      ["job solve_rolling_shear__batch", "expected to take 172 min",
       "above the solve rule's 30 min", "--config over_budget=true"]),
+    ("joint_wear dynamic samples above the solve rule's memory", "joint_wear",
+     lambda raw: raw["profiles"]["ci"]["scenes"].update(
+         period_dynamic={"resolution": {"n_out": 200000, "periods": 50}}),
+     ["job solve_joint_wear__batch", "run period_dynamic@finer", "'n_out': 400000",
+      "'periods': 100", "expected to take 4260 MB", "above the solve rule's 2000 MB",
+      "--config over_budget=true"]),
+    ("joint_wear load-point fit samples above the solve rule's time", "joint_wear",
+     lambda raw: raw["profiles"]["ci"]["scenes"].update(
+         load_point_fit={"resolution": {"n_steps": 1000000}}),
+     ["job solve_joint_wear__batch", "run load_point_fit", "'n_steps': 1000000",
+      "182 min", "above the solve rule's 30 min", "--config over_budget=true"]),
+    ("joint_wear explicit integrator without a step budget", "joint_wear",
+     lambda raw: (raw["scenes"]["period_explicit"]["resolution"].pop("max_steps"),
+                  raw["profiles"]["ci"]["scenes"].pop("period_explicit")),
+     ["run period_explicit", "'method': 'RK45'", "above the solve rule's 30 min"]),
     ("plate2d mesh above the solve rule's memory", "disk_tension",
      lambda raw: raw["profiles"]["ci"]["scenes"].update(
          table12_plate2d={"resolution": {"n_rings": 40, "n_sectors": 300}}),
@@ -209,6 +224,23 @@ def test_rolling_shear_over_budget_on_purpose_asks_for_the_estimate(edit_config)
     # stroke above the rule's memory (3e6 points: 2880 MB) should the schema allow it
     run = dict(cfg.runs["original"], resolution={"n_points": 3000000})
     assert limits.run_cost("rolling_shear", run)["mem_mb"] == pytest.approx(2880)
+
+
+def test_joint_wear_plausible_runs_pass_and_over_budget_asks_for_the_estimate(edit_config):
+    """A finer but plausible resolution passes (the wear prediction at 8192 samples per
+    period: ~6 s); the absurd one above passes only on purpose, asking for its estimate."""
+    from mechrepro import limits
+
+    path = edit_config("joint_wear", lambda raw: raw["profiles"]["ci"]["scenes"].update(
+        wear_prediction={"resolution": {"n_steps": 8192}}))
+    cfg = load_paper(path, "ci")
+    limits.check_all({"joint_wear": cfg})
+    assert limits.run_cost("joint_wear", cfg.runs["wear_prediction"])["seconds"] < 60
+    path = edit_config("joint_wear", lambda raw: raw["profiles"]["ci"]["scenes"].update(
+        period_dynamic={"resolution": {"n_out": 200000, "periods": 50}}))
+    cfg = load_paper(path, "ci")
+    limits.check_all({"joint_wear": cfg}, allow_over_budget=True)
+    assert limits.job_resources(cfg, "batch", True)["mem_mb"] == 4260
 
 
 def _measured(paper, run, root):
@@ -259,3 +291,23 @@ def test_the_declared_cost_is_above_a_measured_run():
     peak, _ = _measured("saw_chain", run, ROOT)
     est = limits.run_cost("saw_chain", run)["mem_mb"]
     assert peak < est < 3 * peak, (peak, est)
+
+
+def test_joint_wear_cost_is_above_a_measured_run():
+    """joint_wear's cost model against one measured solve in a fresh process: the settled
+    dynamic joint over 10 periods of 100 000 samples (measured 318 MB against a 220 MB
+    process; its time within the model's declared spread, the first run of a process
+    carrying the kernels' load, JOB_START_S)."""
+    from conftest import ROOT
+    from mechrepro import limits
+    from mechrepro.models.joint_wear.limits import JOB_START_S, SPREAD, solve_seconds
+
+    cfg = load_paper(ROOT / "config" / "papers" / "joint_wear.yaml", "ci")
+    run = dict(cfg.runs["period_dynamic"], resolution={
+        **cfg.runs["period_dynamic"]["resolution"], "n_out": 100000, "periods": 10})
+    peak, seconds = _measured("joint_wear", run, ROOT)
+    est = limits.run_cost("joint_wear", run)
+    assert peak < est["mem_mb"] < 2 * peak, (peak, est)
+    lo, hi = SPREAD
+    assert lo * solve_seconds(run) < seconds < hi * solve_seconds(run) + JOB_START_S, (
+        seconds, solve_seconds(run))

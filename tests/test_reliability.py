@@ -226,6 +226,30 @@ def test_a_failed_check_archives_nothing_and_keeps_the_last_good_archive(run, tm
             } <= {f"report-{PAPER}/index.html", f"report-{PAPER}/reference_check.txt"}
 
 
+@pytest.mark.parametrize("check", [
+    None,                                                        # no check was run
+    "reference check, profile ci: DRIFT\nsaw_chain: DRIFT against ref\n",
+    # OK on its first line, but a selected paper was not checked (no reference)
+    "reference check, profile ci: OK\nsaw_chain: 3 quantities within tolerance of ref\n"
+    "joint_wear: not checked: no reference at ref\n",
+], ids=["no check", "drift", "a paper unchecked"])
+def test_no_archive_exists_without_a_passed_check_of_every_paper(tmp_path, check):
+    """The first archive of a tree is never written unless the check passed for every
+    selected paper: no tar, no manifest (the pipeline tests cover the kept last good one)."""
+    from mechrepro.archive import ArchiveRefused, write_archive
+
+    (tmp_path / "saw_chain").mkdir()
+    result = tmp_path / "saw_chain" / "claim.json"
+    result.write_text("{}")
+    if check is not None:
+        (tmp_path / "check.txt").write_text(check)
+    with pytest.raises(ArchiveRefused, match="not archiving"):
+        write_archive(str(tmp_path / "a" / "x.tar.gz"), str(tmp_path / "a" / "manifest.json"),
+                      str(tmp_path / "check.txt"), str(tmp_path), "config",
+                      ["saw_chain", "joint_wear"], "ci", [str(result)])
+    assert not (tmp_path / "a").exists() or not any((tmp_path / "a").iterdir())
+
+
 def test_timing_verdicts_are_checked_and_profiles_must_agree(tmp_path):
     from mechrepro.reference import HEADER, compare, profiles_agree
 

@@ -79,6 +79,7 @@ def job_costs(cfg) -> dict[str, dict]:
         # a model may declare what its job process spends once before its first run
         start = getattr(_model(cfg.paper), "JOB_START_S", 0.0)
         out[job] = {"mem_mb": costs[largest]["mem_mb"], "largest": largest,
+                    "longest": max(costs, key=lambda r: costs[r]["seconds"]),
                     "seconds": start + sum(c["seconds"] for c in costs.values())}
     return out
 
@@ -96,9 +97,12 @@ def over_budget(cfg, mem_mb: float = SOLVE_MEM_MB,
                        f"a resolution within {mem_mb:.0f} MB, or `--config over_budget=true` on "
                        f"purpose (the job then asks for {math.ceil(c['mem_mb'])} MB)")
         if c["seconds"] > 60 * runtime_min:
+            slow = cfg.runs[c["longest"]]
+            secs = run_cost(cfg.paper, slow)["seconds"]
             out.append(f"{cfg.path}: job solve_{cfg.paper}__{job}: its runs are expected to "
-                       f"take {c['seconds'] / 60:.0f} min, above the solve rule's "
-                       f"{runtime_min:.0f} min; allowed: fewer or coarser runs, or "
+                       f"take {c['seconds'] / 60:.0f} min (the longest, run {c['longest']} "
+                       f"(resolution {slow['resolution']}): {secs / 60:.0f} min), above the "
+                       f"solve rule's {runtime_min:.0f} min; allowed: fewer or coarser runs, or "
                        f"`--config over_budget=true` on purpose")
     return out
 
