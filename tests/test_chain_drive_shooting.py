@@ -111,3 +111,31 @@ def test_bounded_speeds_keep_the_exact_verdicts(fig09a):
             assert (b.rho_lower > 1) == (ex.rho > 1)
             assert b.rho_lower > 1 or b.rho_upper < np.exp(-0.5 * sigma * ex.period)
     assert skipped >= 10
+
+
+def _synthetic(peak_at: float):
+    """A stable sweep with one resonance peak (amplitude 1 / (1 + (w - peak)^2)), no edges
+    and no growth-rate bumps: only the amplitude-peak refinement adds speeds."""
+    def evaluate(w):
+        return shooting.PeriodicSolution(
+            amplitude=1.0 / (1.0 + (w - peak_at) ** 2), rho=0.5, growth_rate=np.log(0.5),
+            period=1.0, n_steps=10, residual=0.0, slack=False, multipliers=np.zeros(0),
+            rho_lower=0.5, rho_upper=0.5)
+    return evaluate
+
+
+def test_amplitude_peaks_are_refined_only_where_read():
+    """(iii) of adaptive_sweep bisects amplitude peaks; ``prominence=None`` (a run whose
+    amplitudes nothing reads: options.amplitude_peaks = levels, a falsifier or range-end
+    variant) leaves the initial speeds alone, with the same stability map."""
+    kw = dict(edge_tol=0.01, peak_tol=0.01, rate_floor=-0.1)   # log 0.5: below, no bumps
+    grid = np.linspace(0.0, 10.0, 11)
+    w, sols, done = shooting.adaptive_sweep(_synthetic(4.3), grid, **kw)
+    assert done and w.size > grid.size and np.min(np.abs(w - 4.3)) < 0.01
+    w0, sols0, done0 = shooting.adaptive_sweep(_synthetic(4.3), grid, prominence=None, **kw)
+    assert done0 and np.array_equal(w0, grid)
+    base = {"options": {"amplitude_peaks": "levels"}}
+    assert [shooting.refines_peaks({**base, "variant": v})
+            for v in (None, "coarser", "finer", "falsify-slack_tension",
+                      "transverse_damping-lo")] == [True, True, True, False, False]
+    assert shooting.refines_peaks({"variant": "falsify-slack_tension"})   # default: all

@@ -213,7 +213,7 @@ def _inside(x0: float, x1: float, r: float, floor: float) -> float:
 
 
 def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
-                   peak_tol: float, rate_floor: float, prominence: float = 0.02,
+                   peak_tol: float, rate_floor: float, prominence: float | None = 0.02,
                    max_evals: int = 3000):
     """Sample ``evaluate(omega) -> PeriodicSolution`` from the initial ``speeds`` (rad/s,
     the scene's speed axis), then refine
@@ -230,7 +230,8 @@ def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
     (iii) both intervals beside every amplitude peak of prominence >= ``prominence`` x the
          largest amplitude, bisected down to ``peak_tol`` (a one-mode vertex prediction
          was tried: it stops 1-6 % below the sampled peak of Fig. 9a, whose peaks are not
-         one-mode shaped at 0.2 rpm, and merged a double peak of Fig. 7);
+         one-mode shaped at 0.2 rpm, and merged a double peak of Fig. 7); not with
+         ``prominence=None`` (a run whose amplitudes nothing reads);
 
     until nothing is left to refine (the verdicts and peaks no longer change at these
     widths).  Returns the sorted speeds, their solutions and whether the refinement finished
@@ -265,8 +266,11 @@ def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
                     new.add(_inside(w[i], w[i + 1], r, 0.5 * edge_tol))
             bumps = [i for i in range(1, w.size - 1)
                      if rate_floor < g[i] <= 0 and g[i] >= g[i - 1] and g[i] >= g[i + 1]]
-            stable_A = np.where(un, 0.0, A)
-            peaks, _ = find_peaks(stable_A, prominence=prominence * max(stable_A.max(), 1e-300))
+            peaks = []
+            if prominence is not None:
+                stable_A = np.where(un, 0.0, A)
+                peaks, _ = find_peaks(stable_A,
+                                      prominence=prominence * max(stable_A.max(), 1e-300))
             for i in [*bumps, *peaks]:
                 for j in (i - 1, i):
                     if w[j + 1] - w[j] > peak_tol:
@@ -284,13 +288,25 @@ def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
 _SWEEPS: dict = {}
 
 
+def refines_peaks(run: dict) -> bool:
+    """Whether the run's adaptive sweep refines amplitude peaks (:func:`adaptive_sweep`
+    (iii)).  ``options.amplitude_peaks: levels`` declares that only the scene's base run
+    and its @coarser/@finer levels have their amplitudes read (the figure and its
+    convergence note); its other variants (falsifiers, range ends) re-check verdicts on
+    stability alone, so their peaks are not bisected (stability edges and growth-rate
+    bumps still are)."""
+    if run.get("options", {}).get("amplitude_peaks", "all") != "levels":
+        return True
+    return run.get("variant") in (None, "coarser", "finer")
+
+
 def _sweep_key(run, prm, omega1, res, registry):
     """Everything a sweep's result depends on (not the run's name: a falsifier that sets a
     parameter a study sweeps, e.g. T_s = 100 N, repeats a run of the study exactly)."""
     import json
 
-    return (id(registry), json.dumps([run["effects"], run.get("contributes", {}), prm, res],
-                                     sort_keys=True, default=repr),
+    return (id(registry), json.dumps([run["effects"], run.get("contributes", {}), prm, res,
+                                      refines_peaks(run)], sort_keys=True, default=repr),
             np.asarray(omega1, float).tobytes())
 
 
@@ -316,7 +332,8 @@ def _sweep(run, prm: dict, omega1, res: dict, registry=EFFECTS) -> dict:
                                                                 rate_floor=-0.5 * sigma), omega1,
                              edge_tol=float(res["edge_tol"]) / geometry.RPM,
                              peak_tol=float(res["peak_tol"]) / geometry.RPM,
-                             rate_floor=-0.5 * sigma)
+                             rate_floor=-0.5 * sigma,
+                             prominence=0.02 if refines_peaks(run) else None)
     a = span.assemble(run, prm, w[:1], res, registry, period=sols[0].period)
     rho = np.array([s.rho for s in sols])
     lower = np.array([s.rho_lower for s in sols])
