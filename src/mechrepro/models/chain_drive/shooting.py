@@ -236,8 +236,11 @@ def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
     until nothing is left to refine (the verdicts and peaks no longer change at these
     widths).  Returns the sorted speeds, their solutions and whether the refinement finished
     within ``max_evals`` (False: the sampling is not converged, and the caller says so)."""
-    from scipy.signal import find_peaks
     from threadpoolctl import threadpool_limits
+
+    # scipy.signal.find_peaks by the same algorithm, without importing scipy.signal and
+    # scipy.stats (~0.6-1 s in every solve process that shoots)
+    from .claims import find_peaks
 
     with threadpool_limits(1, user_api="blas"):     # many small (2n x 2n) eigenproblems
         pts = {float(w): evaluate(float(w)) for w in np.asarray(speeds, float)}
@@ -269,8 +272,7 @@ def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
             peaks = []
             if prominence is not None:
                 stable_A = np.where(un, 0.0, A)
-                peaks, _ = find_peaks(stable_A,
-                                      prominence=prominence * max(stable_A.max(), 1e-300))
+                peaks = find_peaks(stable_A, prominence * max(stable_A.max(), 1e-300))
             for i in [*bumps, *peaks]:
                 for j in (i - 1, i):
                     if w[j + 1] - w[j] > peak_tol:
