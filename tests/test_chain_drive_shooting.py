@@ -124,18 +124,39 @@ def _synthetic(peak_at: float):
     return evaluate
 
 
-def test_amplitude_peaks_are_refined_only_where_read():
-    """(iii) of adaptive_sweep bisects amplitude peaks; ``prominence=None`` (a run whose
-    amplitudes nothing reads: options.amplitude_peaks = levels, a falsifier or range-end
-    variant) leaves the initial speeds alone, with the same stability map."""
-    kw = dict(edge_tol=0.01, peak_tol=0.01, rate_floor=-0.1)   # log 0.5: below, no bumps
+def test_stability_only_variants_refine_only_the_growth_rate_bumps():
+    """(iii) of adaptive_sweep bisects amplitude peaks; ``prominence=None`` with
+    ``edge_tol=inf`` (a stability-only run: options.variants = stability, a falsifier or
+    range-end variant) leaves a stable sweep's initial speeds alone."""
+    kw = dict(peak_tol=0.01, rate_floor=-0.1)   # log 0.5 is below: no growth-rate bumps
     grid = np.linspace(0.0, 10.0, 11)
-    w, sols, done = shooting.adaptive_sweep(_synthetic(4.3), grid, **kw)
+    w, sols, done = shooting.adaptive_sweep(_synthetic(4.3), grid, edge_tol=0.01, **kw)
     assert done and w.size > grid.size and np.min(np.abs(w - 4.3)) < 0.01
-    w0, sols0, done0 = shooting.adaptive_sweep(_synthetic(4.3), grid, prominence=None, **kw)
+    w0, sols0, done0 = shooting.adaptive_sweep(_synthetic(4.3), grid, edge_tol=np.inf,
+                                               prominence=None, **kw)
     assert done0 and np.array_equal(w0, grid)
-    base = {"options": {"amplitude_peaks": "levels"}}
-    assert [shooting.refines_peaks({**base, "variant": v})
+    base = {"options": {"variants": "stability"}}
+    assert [shooting.stability_only({**base, "variant": v})
             for v in (None, "coarser", "finer", "falsify-slack_tension",
-                      "transverse_damping-lo")] == [True, True, True, False, False]
-    assert shooting.refines_peaks({"variant": "falsify-slack_tension"})   # default: all
+                      "transverse_damping-lo")] == [False, False, False, True, True]
+    assert not shooting.stability_only({"variant": "falsify-slack_tension"})
+
+
+def test_declared_cost_is_above_a_measured_run_and_refuses_a_huge_one():
+    """chain_drive's cost model (models/chain_drive/limits.py) against one march measured
+    in a fresh process (ci fig05_plain: 376 speeds x 61 points x ~2000 steps), and a
+    resolution within the schema that no 2000 MB job holds, refused before any job."""
+    from conftest import ROOT
+    from test_inputs import _measured
+
+    from mechrepro import limits
+    from mechrepro.models.chain_drive.limits import JOB_START_S
+
+    cfg = load_paper(ROOT / "config" / "papers" / "chain_drive.yaml", "ci")
+    run = dict(cfg.runs["fig05_plain"])
+    peak, seconds = _measured("chain_drive", run, ROOT)
+    est = limits.run_cost("chain_drive", run)
+    assert peak < est["mem_mb"] < 2 * peak, (peak, est)
+    assert seconds < est["seconds"] + JOB_START_S, (seconds, est)
+    huge = dict(run, resolution=dict(run["resolution"], n_speeds=5000, points_per_pitch=12))
+    assert limits.run_cost("chain_drive", huge)["mem_mb"] > limits.SOLVE_MEM_MB

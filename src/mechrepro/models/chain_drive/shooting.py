@@ -231,7 +231,7 @@ def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
          largest amplitude, bisected down to ``peak_tol`` (a one-mode vertex prediction
          was tried: it stops 1-6 % below the sampled peak of Fig. 9a, whose peaks are not
          one-mode shaped at 0.2 rpm, and merged a double peak of Fig. 7); not with
-         ``prominence=None`` (a run whose amplitudes nothing reads);
+         ``prominence=None`` (:func:`stability_only`; nor (i) there: ``edge_tol=inf``);
 
     until nothing is left to refine (the verdicts and peaks no longer change at these
     widths).  Returns the sorted speeds, their solutions and whether the refinement finished
@@ -290,16 +290,19 @@ def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
 _SWEEPS: dict = {}
 
 
-def refines_peaks(run: dict) -> bool:
-    """Whether the run's adaptive sweep refines amplitude peaks (:func:`adaptive_sweep`
-    (iii)).  ``options.amplitude_peaks: levels`` declares that only the scene's base run
-    and its @coarser/@finer levels have their amplitudes read (the figure and its
-    convergence note); its other variants (falsifiers, range ends) re-check verdicts on
-    stability alone, so their peaks are not bisected (stability edges and growth-rate
-    bumps still are)."""
-    if run.get("options", {}).get("amplitude_peaks", "all") != "levels":
-        return True
-    return run.get("variant") in (None, "coarser", "finer")
+def stability_only(run: dict) -> bool:
+    """Whether nothing but "is any speed unstable" is read from this run, so that its
+    adaptive sweep refines only what can decide that: the growth-rate bumps of
+    :func:`adaptive_sweep` (ii), where a tongue narrower than the grid first shows.  Neither
+    the positions of the stability edges (i: they bisect between a stable and an unstable
+    speed, so an unstable speed is already there) nor the amplitude peaks (iii) can.
+
+    ``options.variants: stability`` declares it for a scene whose verdict rows read only
+    that (Figs. 7 and 9): its falsifier and range-end variants are stability-only; its
+    base run and @coarser/@finer levels are not (the figure draws their amplitudes and
+    edges, and its convergence note compares their peaks)."""
+    return (run.get("options", {}).get("variants") == "stability"
+            and run.get("variant") not in (None, "coarser", "finer"))
 
 
 def _sweep_key(run, prm, omega1, res, registry):
@@ -308,7 +311,7 @@ def _sweep_key(run, prm, omega1, res, registry):
     import json
 
     return (id(registry), json.dumps([run["effects"], run.get("contributes", {}), prm, res,
-                                      refines_peaks(run)], sort_keys=True, default=repr),
+                                      stability_only(run)], sort_keys=True, default=repr),
             np.asarray(omega1, float).tobytes())
 
 
@@ -330,12 +333,12 @@ def _sweep(run, prm: dict, omega1, res: dict, registry=EFFECTS) -> dict:
     Resolution: ``edge_tol`` and ``peak_tol`` (rpm) the bisection widths."""
     run = span.as_run(run)
     sigma = prm["transverse_damping"] / (2 * prm["mass_per_length"])
+    only = stability_only(run)
     w, sols, done = adaptive_sweep(lambda v: periodic_solution(run, prm, v, res, registry,
                                                                 rate_floor=-0.5 * sigma), omega1,
-                             edge_tol=float(res["edge_tol"]) / geometry.RPM,
+                             edge_tol=math.inf if only else float(res["edge_tol"]) / geometry.RPM,
                              peak_tol=float(res["peak_tol"]) / geometry.RPM,
-                             rate_floor=-0.5 * sigma,
-                             prominence=0.02 if refines_peaks(run) else None)
+                             rate_floor=-0.5 * sigma, prominence=None if only else 0.02)
     a = span.assemble(run, prm, w[:1], res, registry, period=sols[0].period)
     rho = np.array([s.rho for s in sols])
     lower = np.array([s.rho_lower for s in sols])
