@@ -234,8 +234,9 @@ def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
          ``prominence=None``;
 
     until nothing is left to refine (the verdicts and peaks no longer change at these
-    widths), or, ``until_unstable`` (:func:`stability_only`), until one speed is unstable.  Returns the sorted speeds, their solutions and whether the refinement finished
-    within ``max_evals`` (False: the sampling is not converged, and the caller says so)."""
+    widths), or, ``until_unstable`` (:func:`stability_only`), until one speed is unstable.
+    Returns the sorted speeds, their solutions and whether the refinement finished within
+    ``max_evals`` (False: the sampling is not converged, and the caller says so)."""
     from threadpoolctl import threadpool_limits
 
     # scipy.signal.find_peaks by the same algorithm, without importing scipy.signal and
