@@ -416,10 +416,12 @@ def shooting_vs_march(profile: str, scene: str = "fig09a", n_uniform: int = 450,
     if wd > ws > 0:
         # the peak-speed error of a uniform grid falls linearly with its spacing, and the
         # march's time grows linearly with its speeds (one vectorised march)
-        print(f"at equal accuracy (peak speed by ~{n_uniform * wd / ws:.0f} uniform speeds, "
-              f"linear in speeds; amplitude by the {settled.split(', ')[1]} settling: "
-              f"{ad:.2%} against {as_:.2%}): march ~{td * wd / ws:.0f} s, ratio "
-              f"~{td * wd / ws / ts:.1f}x (extrapolated)"
+        print(f"at equal peak-speed accuracy (~{n_uniform * wd / ws:.0f} uniform speeds, the "
+              f"error linear in the spacing; time linear in the speeds): march ({settled}) "
+              f"~{td * wd / ws:.0f} s, ratio ~{td * wd / ws / ts:.1f}x (extrapolated, a lower "
+              f"bound: its amplitude error, {ad:.2%} against {as_:.2%} at {n_uniform} speeds, "
+              f"is partly the peaks missed between its speeds and partly the march's own step "
+              f"and settling, not measured at that grid)"
               + ("; the uniform marches find none of the shooting's unstable bands"
                  if bands["shooting"] and not bands[settled] else ""))
 
