@@ -111,3 +111,64 @@ def test_bounded_speeds_keep_the_exact_verdicts(fig09a):
             assert (b.rho_lower > 1) == (ex.rho > 1)
             assert b.rho_lower > 1 or b.rho_upper < np.exp(-0.5 * sigma * ex.period)
     assert skipped >= 10
+
+
+def _synthetic(peak_at: float):
+    """A stable sweep with one resonance peak (amplitude 1 / (1 + (w - peak)^2)), no edges
+    and no growth-rate bumps: only the amplitude-peak refinement adds speeds."""
+    def evaluate(w):
+        return shooting.PeriodicSolution(
+            amplitude=1.0 / (1.0 + (w - peak_at) ** 2), rho=0.5, growth_rate=np.log(0.5),
+            period=1.0, n_steps=10, residual=0.0, slack=False, multipliers=np.zeros(0),
+            rho_lower=0.5, rho_upper=0.5)
+    return evaluate
+
+
+def test_stability_only_variants_refine_only_the_growth_rate_bumps():
+    """(iii) of adaptive_sweep bisects amplitude peaks; a stability-only run
+    (options.variants = stability, a falsifier or range-end variant: ``prominence=None``,
+    ``until_unstable``) leaves a stable sweep without growth-rate bumps at its initial
+    speeds, and stops at the first unstable speed."""
+    kw = dict(peak_tol=0.01, rate_floor=-0.1)   # log 0.5 is below: no growth-rate bumps
+    grid = np.linspace(0.0, 10.0, 11)
+    w, sols, done = shooting.adaptive_sweep(_synthetic(4.3), grid, edge_tol=0.01, **kw)
+    assert done and w.size > grid.size and np.min(np.abs(w - 4.3)) < 0.01
+    w0, sols0, done0 = shooting.adaptive_sweep(_synthetic(4.3), grid, edge_tol=0.01,
+                                               prominence=None, until_unstable=True, **kw)
+    assert done0 and np.array_equal(w0, grid)
+
+    def tongue(w):      # unstable on (4.2, 4.6): edges at 4 | 5 are not bisected
+        s = _synthetic(4.3)(w)
+        s.rho = s.rho_lower = s.rho_upper = 2.0 if 4.2 < w < 4.6 else 0.5
+        return s
+    w1, _, done1 = shooting.adaptive_sweep(tongue, np.r_[grid, 4.4], edge_tol=0.01,
+                                           prominence=None, until_unstable=True, **kw)
+    assert done1 and w1.size == grid.size + 1
+    base = {"options": {"variants": "stability"}}
+    assert [shooting.stability_only({**base, "variant": v})
+            for v in (None, "coarser", "finer", "falsify-slack_tension",
+                      "transverse_damping-lo")] == [False, False, False, True, True]
+    assert not shooting.stability_only({"variant": "falsify-slack_tension"})
+
+
+def test_declared_cost_is_above_a_measured_run_and_refuses_a_huge_one():
+    """chain_drive's cost model (models/chain_drive/limits.py) against one march measured
+    in a fresh process (ci fig05_plain: 376 speeds x 61 points x ~2000 steps), and a
+    resolution within the schema that no 2000 MB job holds, refused before any job."""
+    from conftest import ROOT
+    from test_inputs import _measured
+
+    from mechrepro import limits
+    from mechrepro.models.chain_drive.limits import JOB_START_S
+
+    cfg = load_paper(ROOT / "config" / "papers" / "chain_drive.yaml", "ci")
+    run = dict(cfg.runs["fig05_plain"])
+    peak, seconds = _measured("chain_drive", run, ROOT)
+    est = limits.run_cost("chain_drive", run)
+    assert peak < est["mem_mb"] < 2 * peak, (peak, est)
+    # wall time of a fresh process (imports, kernel load) on a machine that may be loaded
+    # (the test suite runs two workers beside other jobs: 18 s measured for ~4 s idle):
+    # only the order of magnitude is checked here
+    assert seconds < 10 * (est["seconds"] + JOB_START_S), (seconds, est)
+    huge = dict(run, resolution=dict(run["resolution"], n_speeds=5000, points_per_pitch=12))
+    assert limits.run_cost("chain_drive", huge)["mem_mb"] > limits.SOLVE_MEM_MB

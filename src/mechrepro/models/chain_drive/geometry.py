@@ -7,7 +7,6 @@ length ``m`` (the paper's m_1), span length ``L``.
 from __future__ import annotations
 
 import numpy as np
-from scipy.optimize import brentq
 
 RPM = 30.0 / np.pi   # rad/s -> rpm
 
@@ -84,6 +83,8 @@ def resonance_speed(k: int, L: float, *, n1: int, p_c: float, T_s: float, m: flo
 
     Returns nan when no such speed exists below ``omega_max`` (beyond the critical speed).
     """
+    from scipy.optimize import brentq   # here: limits.cost reads this module at config load
+
     def f(w1):
         c = chain_speed(w1, n1, p_c)
         P = axial_tension(T_s, tension_coefficient, c)

@@ -213,8 +213,8 @@ def _inside(x0: float, x1: float, r: float, floor: float) -> float:
 
 
 def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
-                   peak_tol: float, rate_floor: float, prominence: float = 0.02,
-                   max_evals: int = 3000):
+                   peak_tol: float, rate_floor: float, prominence: float | None = 0.02,
+                   max_evals: int = 3000, until_unstable: bool = False):
     """Sample ``evaluate(omega) -> PeriodicSolution`` from the initial ``speeds`` (rad/s,
     the scene's speed axis), then refine
 
@@ -230,13 +230,18 @@ def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
     (iii) both intervals beside every amplitude peak of prominence >= ``prominence`` x the
          largest amplitude, bisected down to ``peak_tol`` (a one-mode vertex prediction
          was tried: it stops 1-6 % below the sampled peak of Fig. 9a, whose peaks are not
-         one-mode shaped at 0.2 rpm, and merged a double peak of Fig. 7);
+         one-mode shaped at 0.2 rpm, and merged a double peak of Fig. 7); not with
+         ``prominence=None``;
 
     until nothing is left to refine (the verdicts and peaks no longer change at these
-    widths).  Returns the sorted speeds, their solutions and whether the refinement finished
-    within ``max_evals`` (False: the sampling is not converged, and the caller says so)."""
-    from scipy.signal import find_peaks
+    widths), or, ``until_unstable`` (:func:`stability_only`), until one speed is unstable.
+    Returns the sorted speeds, their solutions and whether the refinement finished within
+    ``max_evals`` (False: the sampling is not converged, and the caller says so)."""
     from threadpoolctl import threadpool_limits
+
+    # scipy.signal.find_peaks by the same algorithm, without importing scipy.signal and
+    # scipy.stats (~0.6-1 s in every solve process that shoots)
+    from .claims import find_peaks
 
     with threadpool_limits(1, user_api="blas"):     # many small (2n x 2n) eigenproblems
         pts = {float(w): evaluate(float(w)) for w in np.asarray(speeds, float)}
@@ -245,6 +250,9 @@ def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
             w = np.array(sorted(pts))
             sol = [pts[v] for v in w]
             un = np.array([s.rho_lower > 1.0 or s.slack for s in sol])   # exact rho, or proven
+            if until_unstable and un.any():
+                done = True
+                break
             slack = np.array([s.slack for s in sol])
             # the growth rate, or a proven bound where rho was only bounded: the upper one
             # below rate_floor (never a bump, and a bump beside it is still seen as one),
@@ -265,8 +273,10 @@ def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
                     new.add(_inside(w[i], w[i + 1], r, 0.5 * edge_tol))
             bumps = [i for i in range(1, w.size - 1)
                      if rate_floor < g[i] <= 0 and g[i] >= g[i - 1] and g[i] >= g[i + 1]]
-            stable_A = np.where(un, 0.0, A)
-            peaks, _ = find_peaks(stable_A, prominence=prominence * max(stable_A.max(), 1e-300))
+            peaks = []
+            if prominence is not None:
+                stable_A = np.where(un, 0.0, A)
+                peaks = find_peaks(stable_A, prominence * max(stable_A.max(), 1e-300))
             for i in [*bumps, *peaks]:
                 for j in (i - 1, i):
                     if w[j + 1] - w[j] > peak_tol:
@@ -284,13 +294,28 @@ def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
 _SWEEPS: dict = {}
 
 
+def stability_only(run: dict) -> bool:
+    """Whether nothing but "is any speed unstable" is read from this run, so that its
+    adaptive sweep stops at the first unstable speed and bisects no amplitude peak
+    (:func:`adaptive_sweep` ``until_unstable``, ``prominence=None``): without an unstable
+    speed it still bisects every growth-rate bump (ii), where a tongue narrower than the
+    grid first shows; edges (i) need an unstable speed, which ends it.
+
+    ``options.variants: stability`` declares it for a scene whose verdict rows read only
+    that (Figs. 7 and 9): its falsifier and range-end variants are stability-only; its
+    base run and @coarser/@finer levels are not (the figure draws their amplitudes and
+    edges, and its convergence note compares their peaks)."""
+    return (run.get("options", {}).get("variants") == "stability"
+            and run.get("variant") not in (None, "coarser", "finer"))
+
+
 def _sweep_key(run, prm, omega1, res, registry):
     """Everything a sweep's result depends on (not the run's name: a falsifier that sets a
     parameter a study sweeps, e.g. T_s = 100 N, repeats a run of the study exactly)."""
     import json
 
-    return (id(registry), json.dumps([run["effects"], run.get("contributes", {}), prm, res],
-                                     sort_keys=True, default=repr),
+    return (id(registry), json.dumps([run["effects"], run.get("contributes", {}), prm, res,
+                                      stability_only(run)], sort_keys=True, default=repr),
             np.asarray(omega1, float).tobytes())
 
 
@@ -312,11 +337,13 @@ def _sweep(run, prm: dict, omega1, res: dict, registry=EFFECTS) -> dict:
     Resolution: ``edge_tol`` and ``peak_tol`` (rpm) the bisection widths."""
     run = span.as_run(run)
     sigma = prm["transverse_damping"] / (2 * prm["mass_per_length"])
+    only = stability_only(run)
     w, sols, done = adaptive_sweep(lambda v: periodic_solution(run, prm, v, res, registry,
                                                                 rate_floor=-0.5 * sigma), omega1,
                              edge_tol=float(res["edge_tol"]) / geometry.RPM,
                              peak_tol=float(res["peak_tol"]) / geometry.RPM,
-                             rate_floor=-0.5 * sigma)
+                             rate_floor=-0.5 * sigma, prominence=None if only else 0.02,
+                             until_unstable=only)
     a = span.assemble(run, prm, w[:1], res, registry, period=sols[0].period)
     rho = np.array([s.rho for s in sols])
     lower = np.array([s.rho_lower for s in sols])
