@@ -9,9 +9,11 @@ A paper declares its studies in config (``accuracy:``; see ``config/schema/paper
         finer: larger              # which direction is finer
         reference: exact           # exact solution, extrapolated (Richardson), or finest point
         time: wall_time            # the time per point [s], a variable of the study
-        quantities: {load: {error: relative}}
+        quantities:
+          load: {error: relative, variable: load_error}   # errors each run stored
 
-and registers one function per quantity in ``models/<paper>/accuracy.py``::
+A quantity whose errors each run stores names that variable; any other has a function in
+``models/<paper>/accuracy.py``::
 
     ACCURACY = AccuracyQuantities("saw_chain")
 
@@ -167,7 +169,7 @@ def _lines(ds, entry, n: int):
 
 
 def rows(entries: list[dict], dataset: Callable[[str], object],
-         quantities: AccuracyQuantities) -> list[dict]:
+         quantities: AccuracyQuantities | None) -> list[dict]:
     """The long-form cost-of-accuracy table of one paper (``dataset(name)`` opens a study
     or a run).  Sorted from coarse to fine; the reference point of ``finest`` is left out,
     and so is a point whose error is NaN (a quantity that does not apply to it).  Each row
@@ -187,9 +189,10 @@ def rows(entries: list[dict], dataset: Callable[[str], object],
         fi = finest_index(knob, entry["finer"])
         for qname, qspec in entry["quantities"].items():
             reference = qspec.get("reference", entry["reference"])
-            err = np.asarray(quantities(qname, ds, entry), float)
+            err = np.asarray(ds[qspec["variable"]].values if "variable" in qspec else
+                             quantities(qname, ds, entry), float)
             if err.shape != knob.shape:
-                raise ValueError(f"{quantities.paper}: accuracy {entry['name']}.{qname}: "
+                raise ValueError(f"accuracy {entry['name']}.{qname}: "
                                  f"{err.shape} errors for {knob.shape} knob values")
             def on_line(line):
                 on = (lines == line) & np.isfinite(err)

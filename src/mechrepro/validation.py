@@ -618,13 +618,16 @@ def write_costs(cfg, results_dir: str, files: ResultFiles | None = None) -> None
             return write_costs(cfg, results_dir, files)
     root = Path(results_dir) / cfg.paper
     if cfg.raw.get("accuracy"):
-        module = importlib.import_module(f"mechrepro.models.{cfg.paper}.accuracy")
+        try:    # a paper whose every quantity names its stored variable has none
+            quantities = importlib.import_module(f"mechrepro.models.{cfg.paper}.accuracy").ACCURACY
+        except ModuleNotFoundError:
+            quantities = None
 
         def dataset(name):
             kind = "studies" if name in cfg.studies else "runs"
             return files(root / kind / f"{name}.nc")
 
-        table = accuracy.rows(cfg.raw["accuracy"], dataset, module.ACCURACY)
+        table = accuracy.rows(cfg.raw["accuracy"], dataset, quantities)
         write_csv(root / "tables" / "cost_of_accuracy.csv", accuracy.COLUMNS,
                   [[r[c] for c in accuracy.COLUMNS] for r in table])
     ec = costs.effect_cost([root / "runs" / f"{r}.nc" for r in cfg.runs])   # variants too

@@ -18,46 +18,6 @@ def _relative(values, reference):
     return np.abs(values - reference) / np.abs(reference)
 
 
-@ACCURACY.register("selpso_motion_laws")
-def selpso_motion_laws(ds, entry):
-    """max |theta1..theta6 - closed form| over the cut (rad), stored by each run."""
-    return ds["selpso_pose_error"].values
-
-
-@ACCURACY.register("selpso_motion_laws_q50")
-def selpso_motion_laws_q50(ds, entry):
-    """Median over ``options.seeds`` strokes of the max pose error (rad)."""
-    return ds["selpso_pose_error_q50"].values
-
-
-@ACCURACY.register("selpso_motion_laws_q90")
-def selpso_motion_laws_q90(ds, entry):
-    """90 % quantile over ``options.seeds`` strokes of the max pose error (rad)."""
-    return ds["selpso_pose_error_q90"].values
-
-
-@ACCURACY.register("selpso_failure_probability")
-def selpso_failure_probability(ds, entry):
-    """1 - the probability over seeds that a whole stroke lands on the design branch."""
-    return ds["selpso_stroke_failure_probability"].values
-
-
-@ACCURACY.register("pso_standard_motion_laws_q50")
-def pso_standard_motion_laws_q50(ds, entry):
-    """The same median for the standard constricted PSO (w 0.7298, c 1.49618)."""
-    return ds["pso_standard_pose_error_q50"].values
-
-
-@ACCURACY.register("pso_standard_motion_laws_q90")
-def pso_standard_motion_laws_q90(ds, entry):
-    return ds["pso_standard_pose_error_q90"].values
-
-
-@ACCURACY.register("pso_standard_failure_probability")
-def pso_standard_failure_probability(ds, entry):
-    return ds["pso_standard_stroke_failure_probability"].values
-
-
 @ACCURACY.register("selpso_objective_h")
 def selpso_objective_h(ds, entry):
     """|H from the selPSO poses - H of the closed form| / H of the closed form."""
