@@ -401,6 +401,15 @@ def fig10_order(R):
     return Reproduced(order, f"EA/P = {R.parameter('axial_stiffness') / R.parameter('static_tension'):.3g}")
 
 
+# Measured (default reference runs of issue 26): the coupled Fig. 10a record is not steady
+# and depends on round-off: at 48 modes its last/third quarter is 0.80 natively and 0.90
+# under the old_cpu variant (worst over the four records 0.191 +- 0.010 vs 0.098 +- 0.009),
+# so its verdict would depend on the CPU.
+ROUND_OFF_10A = ["the coupled Fig. 10a record depends on round-off: worst |last / third "
+                 "quarter - 1| at 48 modes 0.191 natively, 0.098 under old_cpu (fail / "
+                 "inconclusive)"]
+
+
 @Q.register("transient_reaches_steady_state")
 def fig10_steady(R):
     names = ("fig10_longitudinal", "fig10_uncoupled", "fig10_transverse5", "fig10_transverse5_uncoupled")
@@ -410,7 +419,8 @@ def fig10_steady(R):
     at = _drawn(R, "fig10_transverse5")
     v, err, note = _over_modes(dev, at, "worst |last / third quarter - 1| =")
     return Reproduced(v, note + "; at the drawn count: " + "; ".join(
-        f"{n}: {float(runs[n][at].steady_ratio):.3f}" for n in names), error=err)
+        f"{n}: {float(runs[n][at].steady_ratio):.3f}" for n in names), error=err,
+        flips=ROUND_OFF_10A)
 
 
 @Q.register("rk4_vs_solve_ivp_coupled")
