@@ -104,6 +104,8 @@ SHOW = {
                       dict(NEAR_FIRST, external_load_ratio=0.2), "amplitude"),
     "end_excitation": ("fig05_plain", ["speed_tensioning", "polygonal_rigid"], FD_SHOW, FRACTIONAL,
                        "amplitude"),
+    "end_excitation_distributed": ("fig05_plain", ["speed_tensioning", "polygonal_rigid"], FD_SHOW,
+                                   FRACTIONAL, "amplitude"),
     "length_change": ("fig05_plain", ["speed_tensioning", "polygonal_rigid", "end_excitation"],
                       FD_SHOW, FRACTIONAL, "amplitude"),
     # without end motion the span stays straight: only the sag load kappa P_t moves it

@@ -9,21 +9,17 @@ import numpy as np
 
 from mechrepro.accuracy import AccuracyQuantities, against_finest
 
+from . import claims as C
+
 ACCURACY = AccuracyQuantities("chain_drive")
 
 
 def resonance_peak(speed, amplitude) -> tuple[float, float]:
-    """The resonance peak of a sweep (Figs. 5-9): its maximum amplitude, and its speed by
-    parabolic interpolation through the largest sample and its two neighbours on the
-    (uniform) speed grid.  Returns (amplitude, speed)."""
-    a, sp = np.asarray(amplitude, float), np.asarray(speed, float)
-    i = int(np.nanargmax(a))
-    off = 0.0
-    if 0 < i < a.size - 1:
-        y0, y1, y2 = a[i - 1], a[i], a[i + 1]
-        den = y0 - 2 * y1 + y2
-        off = 0.5 * (y0 - y2) / den if den != 0 else 0.0
-    return float(np.max(a)), float(sp[i] + off * (sp[1] - sp[0]))
+    """The resonance peak of a sweep (Figs. 5-9): its amplitude and speed at the one-mode
+    vertex through the largest sample and its neighbours (:func:`.claims.one_mode_peak`;
+    the speed axis may be adaptive).  Returns (amplitude, speed)."""
+    sp, a = C.one_mode_peak(speed, amplitude)
+    return a, sp
 
 
 def _peaks(ds) -> np.ndarray:

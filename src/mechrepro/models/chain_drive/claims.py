@@ -119,6 +119,24 @@ def nearest_peak(speed, amp, target: float, window: float = NEAR_PEAK):
     return float(np.sqrt(parabola_vertex(x * x, -1.0 / (y * y))))
 
 
+def one_mode_peak(speed, amp) -> tuple[float, float]:
+    """(speed, amplitude) of the peak of a sampled resonance curve: the vertex of 1/A^2 as a
+    quadratic in omega^2 through the largest sample and its two neighbours (exact for one
+    damped mode, whatever the spacing of the samples); the largest sample at an end."""
+    speed, amp = np.asarray(speed, float), np.asarray(amp, float)
+    i = int(np.nanargmax(amp))
+    if not 0 < i < amp.size - 1:
+        return float(speed[i]), float(amp[i])
+    x, y = speed[i - 1:i + 2] ** 2, -1.0 / amp[i - 1:i + 2] ** 2
+    xv = parabola_vertex(x, y)
+    (x0, x1, x2), (y0, y1, y2) = x, y
+    # the parabola through the three points, at its vertex (Lagrange form)
+    yv = (y0 * (xv - x1) * (xv - x2) / ((x0 - x1) * (x0 - x2))
+          + y1 * (xv - x0) * (xv - x2) / ((x1 - x0) * (x1 - x2))
+          + y2 * (xv - x0) * (xv - x1) / ((x2 - x0) * (x2 - x1)))
+    return float(np.sqrt(xv)), float(1.0 / np.sqrt(-yv)) if yv < 0 else float(amp[i])
+
+
 def parabola_vertex(x, y) -> float:
     """Abscissa of the vertex of the parabola through three points (x may be non-uniform),
     clipped to [x0, x2]; the middle point when the three are collinear."""

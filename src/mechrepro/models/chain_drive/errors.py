@@ -35,3 +35,11 @@ class DivergenceError(Refusal, FloatingPointError):
 
 class RecordError(Refusal):
     """A record or a fitted input does not meet its stated accuracy or length."""
+
+
+class PitchScaleInstability(Refusal):
+    """Central differencing asked for with an input that kicks pitch-scale waves: the
+    impulsive impact pulse in the tension, or the instantaneous span-length switch.  Without
+    numerical damping those waves (about two grid intervals long, shorter than a pitch,
+    where a roller chain has no modes) are pumped into a growth the string model cannot
+    represent; the mixed differencing of Eq. (2-38) damps them."""

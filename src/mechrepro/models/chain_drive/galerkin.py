@@ -451,7 +451,10 @@ def _library_check(run, prm, res, g, u_all, t_all, Fe) -> tuple[dict, dict]:
     integration across the kinks at the same rtol, and ~400x closer to the solution at
     rtol 1e-12 (5e-11 instead of 2e-8 relative, benchmarks/bench_chain_drive.py)."""
     model, xi, L = g["model"], g["xi"], g["L"]
-    n_lib = g["per_tooth"] * max(int(round(float(res["library_periods"]))), 1)
+    # the whole tooth periods of the record at most (a slower speed, e.g. at a lower EA,
+    # has fewer of them in the same duration)
+    n_lib = g["per_tooth"] * max(min(int(round(float(res["library_periods"]))),
+                                     (len(t_all) - 1) // g["per_tooth"]), 1)
     with stopwatch() as sw:
         edges = forcing_breakpoints(prm, g["w1"], g["geo"], g["window"], t_all[n_lib])
         pf = PiecewiseForcing(run, prm, g["w1"], g["geo"], g["window"], edges)

@@ -11,7 +11,7 @@ import numpy as np
 
 from . import fd, geometry
 from .effects import EFFECTS, SpanContext, consume
-from .errors import UnknownChoice
+from .errors import PitchScaleInstability, UnknownChoice
 
 # the contributions the finite-difference march consumes (effects.py lists every key)
 FD_KEYS = ("tension_coefficient", "tension", "tension_short", "tension_long", "long",
@@ -61,6 +61,51 @@ def dynamic_tension(c, shape) -> np.ndarray:
         Pt = Pt + (c.get("tension_short") if long is None
                    else np.where(long, c.get("tension_long"), c.get("tension_short")))
     return Pt
+
+
+# Effects whose tension is a pulse shorter than a wave's transit over one pitch (the impact:
+# t_i = 28 us against p / c_w ~ 0.5 ms): a comb of tension impulses, which pumps mode k with
+# a Mathieu parameter growing like k (docs/chain_drive.md, hard case).
+IMPULSIVE_TENSION = frozenset({"impact"})
+
+
+def pitch_scale_inputs(probe, span_geo: dict) -> list[str]:
+    """The inputs of a run (its contributions to the probe) that kick pitch-scale waves: the
+    impulsive impact in the tension, and the instantaneous length switch (a span whose two
+    lengths differ, f_p != 0)."""
+    out = []
+    impulsive = sorted(set(probe.sources("tension")) & IMPULSIVE_TENSION) if "tension" in probe \
+        else []
+    if impulsive:
+        out.append(f"the impulsive tension of {', '.join(impulsive)} (a pulse shorter than a "
+                   "wave's transit over one pitch)")
+    if "long" in probe and span_geo["L_short"] != span_geo["L_long"]:
+        out.append(f"the instantaneous span-length switch (f_p = {span_geo['f_p']:.3g})")
+    return out
+
+
+def refuse_undamped_pitch_scale(res: dict, probe, span_geo: dict) -> None:
+    """Refuse central differencing with an input that kicks pitch-scale waves
+    (:class:`.errors.PitchScaleInstability`), before anything is marched.
+
+    Measured (shooting, Floquet multipliers; T_s = 400 N, 20.25 pitches, 45 speeds over
+    470-540 rpm around the order-4 resonance, length switch without impact, cfl 0.98):
+    22 / 35 / 37 / 44 of 45 speeds unstable at 3 / 4 / 6 / 8 points per pitch, largest
+    multiplier 1.28-1.44 per tooth period; the critical Floquet mode has a wavelength of
+    ~2.2 grid intervals (0.56 pitch at 4, 0.28 at 8): it shortens with the grid, so no grid
+    converges.  The mixed differencing of Eq. (2-38) is stable there at 4 and 8 points per
+    pitch (multipliers 0.95-0.98, critical mode the span's first or second).  With the
+    impact pulse, central is unstable at 67-88 of the 200 Fig. 5 speeds on every grid."""
+    if res.get("differencing") != "central":
+        return
+    kicks = pitch_scale_inputs(probe, span_geo)
+    if kicks:
+        raise PitchScaleInstability(
+            "central differencing with " + " and ".join(kicks) + ": without numerical damping "
+            "the waves of ~2 grid intervals (shorter than a pitch, outside the string model) "
+            "that this input kicks grow at most speeds and on every grid (at 3-8 points per "
+            "pitch, 22-44 of 45 speeds around the order-4 resonance); use the paper's mixed "
+            "differencing (differencing: mixed, Eq. 2-38), whose numerical damping bounds them")
 
 
 # the contributions the dynamic tension P_t is formed from (:func:`dynamic_tension`)
@@ -123,6 +168,7 @@ def assemble(effects, prm: dict, omega1, res: dict, registry=EFFECTS,
     probe = consume(registry.evaluate(run, SpanContext(prm, omega1, np.zeros(1), 1.0, full,
                                                        cache=cache)), FD_KEYS, "finite-difference")
     span = full if "long" in probe else span_geometry(prm, False)
+    refuse_undamped_pitch_scale(res, probe, span)
     grid = make_grid(span, prm["pitch"], int(res["points_per_pitch"]))
     c = geometry.chain_speed(omega1, int(prm["n1"]), prm["pitch"])
     k_c = probe.total("tension_coefficient")
