@@ -303,6 +303,9 @@ def test_joint_wear_cost_is_above_a_measured_run():
     from mechrepro import limits
     from mechrepro.models.joint_wear.limits import JOB_START_S, SPREAD, solve_seconds
 
+    from mechrepro.models import joint_wear
+
+    joint_wear.warm()   # the kernels in the disk cache: the child loads, not compiles, them
     cfg = load_paper(ROOT / "config" / "papers" / "joint_wear.yaml", "ci")
     run = dict(cfg.runs["period_dynamic"], resolution={
         **cfg.runs["period_dynamic"]["resolution"], "n_out": 100000, "periods": 10})
