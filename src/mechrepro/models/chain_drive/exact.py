@@ -9,7 +9,6 @@
 from __future__ import annotations
 
 import numpy as np
-import xarray as xr
 
 from mechrepro.timing import stopwatch
 from mechrepro.units import var
@@ -55,7 +54,7 @@ def free_vibration(n: int, *, L, m, T, c, k=1, cfl=0.9, periods=4.0, s_star=None
     return float(err), w_fd, wk, dt, wall
 
 
-def free_vibration_check(prm: dict, res: dict) -> xr.Dataset:
+def free_vibration_check(prm: dict, res: dict) -> dict:
     """Convergence table over ``res["points"]`` (a list) for central and mixed differencing."""
     L = prm["centre_distance"] * prm["pitch"]
     m, T = prm["mass_per_length"], prm["static_tension"]
@@ -68,26 +67,29 @@ def free_vibration_check(prm: dict, res: dict) -> xr.Dataset:
             out[name].append(free_vibration(int(n), L=L, m=m, T=T, c=c, k=int(res.get("mode", 1)),
                                             cfl=float(res["cfl"]),
                                             periods=float(res.get("periods", 4)), s_star=s_star))
-    coords = {"points": ("points", pts, {"units": "1", "long_name": "grid intervals over the span"}),
-              "differencing": ("differencing", ["central", "mixed"],
-                               {"units": "1", "long_name": "first-derivative differencing"})}
 
     def col(i):
         return np.array([[r[i] for r in out[k]] for k in ("central", "mixed")])
 
-    return xr.Dataset({
-        "error_max": (("differencing", "points"), col(0),
-                      {"units": "m", "long_name": "max |u_FD - u_exact| after the march (unit mode amplitude)"}),
-        "omega_fd": (("differencing", "points"), col(1),
-                     {"units": "rad/s", "long_name": "frequency from zero crossings of the FD response"}),
+    dims = ("differencing", "points")
+    return {
+        "error_max": var(dims, col(0), "m",
+                         "max |u_FD - u_exact| after the march (unit mode amplitude)"),
+        "omega_fd": var(dims, col(1), "rad/s", "frequency from zero crossings of the FD response"),
         "omega_exact": var((), float(out["central"][0][2]), "rad/s",
                            "Wickert-Mote frequency k pi (c_w^2-c^2)/(c_w L)"),
-        "time_step": var(("differencing", "points"), col(3), "s", "time step"),
-        "march_wall_time": var(("differencing", "points"), col(4), "s", "wall time of the march"),
+        "time_step": var(dims, col(3), "s", "time step"),
+        "march_wall_time": var(dims, col(4), "s", "wall time of the march"),
         # one time per grid for each differencing (the cost-of-accuracy curves)
         "march_wall_time_central": var("points", col(4)[0], "s", "wall time of the central march"),
         "march_wall_time_mixed": var("points", col(4)[1], "s", "wall time of the mixed march"),
-    }, coords=coords)
+        **_differencing_coords(pts)}
+
+
+def _differencing_coords(pts) -> dict:
+    return {"points": var("points", pts, "1", "grid intervals over the span"),
+            "differencing": var("differencing", ["central", "mixed"], "1",
+                                "first-derivative differencing")}
 
 
 def manufactured(n: int, *, L=0.25, m=0.6, T=400.0, c=5.0, c_d=10.0, cfl=0.9, t_end=0.02,
@@ -127,7 +129,7 @@ def manufactured(n: int, *, L=0.25, m=0.6, T=400.0, c=5.0, c_d=10.0, cfl=0.9, t_
     return float(err), dt, grid.dx, wall
 
 
-def manufactured_check(prm: dict, res: dict) -> xr.Dataset:
+def manufactured_check(prm: dict, res: dict) -> dict:
     """Convergence table over ``res["points"]`` for central and mixed differencing."""
     pts = np.atleast_1d(res["points"]).astype(int)
     rows = {k: [manufactured(int(n), cfl=float(res["cfl"]), s_star=s, kappa=0.01) for n in pts]
@@ -137,11 +139,9 @@ def manufactured_check(prm: dict, res: dict) -> xr.Dataset:
         return np.array([[r[i] for r in rows[k]] for k in ("central", "mixed")])
 
     dims = ("differencing", "points")
-    return xr.Dataset({
-        "error_max": (dims, col(0), {"units": "1", "long_name": "max relative error against the manufactured solution"}),
-        "time_step": (dims, col(1), {"units": "s", "long_name": "time step"}),
-        "dx": (("points",), col(2)[0], {"units": "m", "long_name": "grid spacing"}),
-        "march_wall_time": (dims, col(3), {"units": "s", "long_name": "wall time of the march"}),
-    }, coords={"points": ("points", pts, {"units": "1", "long_name": "grid intervals over the span"}),
-               "differencing": ("differencing", ["central", "mixed"],
-                                {"units": "1", "long_name": "first-derivative differencing"})})
+    return {
+        "error_max": var(dims, col(0), "1", "max relative error against the manufactured solution"),
+        "time_step": var(dims, col(1), "s", "time step"),
+        "dx": var("points", col(2)[0], "m", "grid spacing"),
+        "march_wall_time": var(dims, col(3), "s", "wall time of the march"),
+        **_differencing_coords(pts)}

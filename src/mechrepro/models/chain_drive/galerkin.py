@@ -18,7 +18,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import xarray as xr
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
@@ -372,7 +371,6 @@ def _coord(name, values, units, long_name):
     return {name: var(name, values, units, long_name)}
 
 
-
 def _resonant_speed(run, prm, tension_coefficient, L) -> float:
     """omega1 from options.resonance: tooth frequency = ``detuning`` x the j-th longitudinal or
     the k-th transverse frequency of the span (derived, never typed in); else ``speed``."""
@@ -441,7 +439,7 @@ def _galerkin_setup(run, prm, res) -> dict:
             "window": tau / 16, "xi": float(prm["probe_fraction"]) * L}   # xi from the driven end
 
 
-def _library_check(run, prm, res, g, u_all, t_all, Fe) -> tuple[dict, dict]:
+def _library_check(run, prm, res, g, u_all, t_all, Fe) -> dict:
     """solve_ivp (DOP853) over the first tooth periods: with a tolerance far below the RK4
     error (rtol 1e-9) the difference is RK4's own error, not the adaptive controller's.
 
@@ -473,7 +471,7 @@ def _library_check(run, prm, res, g, u_all, t_all, Fe) -> tuple[dict, dict]:
         "library_wall_time": var((), sw.seconds, "s", "wall time of solve_ivp"),
         "library_nfev": var((), nfev, "1", "right-hand-side calls of solve_ivp"),
         "rk4_nfev": var((), 4 * g["n_steps"], "1", "right-hand-side calls of RK4"),
-    }, _coord("t_library", t_lib, "s", "time")
+        **_coord("t_library", t_lib, "s", "time")}
 
 
 def solve_scene(run, prm, res):
@@ -520,10 +518,7 @@ def solve_scene(run, prm, res):
                                 "(whole tooth periods)"),
         "steady_ratio": var((), stats["steady_ratio"], "1",
                             "max |u| last quarter / third quarter (whole tooth periods)"),
-    }
-    coords = _coord("t", t_all[::rec], "s", "time")
+        **_coord("t", t_all[::rec], "s", "time")}
     if opts.get("compare_library", False):
-        more, more_coords = _library_check(run, prm, res, g, u_all, t_all, Fe)
-        data.update(more)
-        coords.update(more_coords)
-    return xr.Dataset(data, coords=coords)
+        data.update(_library_check(run, prm, res, g, u_all, t_all, Fe))
+    return data

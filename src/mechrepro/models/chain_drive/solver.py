@@ -14,7 +14,6 @@ rpm; everything else SI.
 from __future__ import annotations
 
 import numpy as np
-import xarray as xr
 from scipy.integrate import quad
 
 from mechrepro.units import var
@@ -27,7 +26,8 @@ from .errors import UnknownChoice
 
 
 def _coord(name, values, units, long_name):
-    """A labelled coordinate ``{name: (name, values, attrs)}``."""
+    """A labelled coordinate ``{name: (name, values, attrs)}`` (a variable named like its
+    only dimension: :func:`mechrepro.solve.pack` makes it that dimension's coordinate)."""
     return {name: var(name, values, units, long_name)}
 
 
@@ -62,7 +62,7 @@ def impact_load(run, prm, res):
     V, eta = loads.relative_velocity(w1, p), loads.pressure_angle(n1)
     J_quad = quad(lambda s: float(loads.impact_pulse(s, V, eta, k)), 0, k["t_i"], limit=200)[0]
     J_exact = float(loads.impact_pulse_integral(np.inf, V, eta, k))
-    return xr.Dataset({
+    return {
         "impact_load_near": var("t_near", near, "N", "impact load D_imp near the impact, Eq. (2-4)"),
         "impact_load_wide": var("t_wide", wide, "N", "impact load over three tooth periods (step-averaged)"),
         "contact_time": var((), k["t_i"], "s", "contact duration pi/omega_d (Appendix I)"),
@@ -71,8 +71,8 @@ def impact_load(run, prm, res):
         "impulse_quadrature": var((), J_quad, "N*s", "impulse of one impact by quadrature of Eq. (2-4)"),
         "impulse_closed_form": var((), J_exact, "N*s", "impulse of one impact in closed form"),
         "pressure_angle": var((), np.rad2deg(eta), "deg", "angle eta, Eq. (2-3) from ANSI tooth form"),
-    }, coords={**_coord("t_near", t_near, "s", "time after impact"),
-               **_coord("t_wide", t_wide, "s", "time")})
+        **_coord("t_near", t_near, "s", "time after impact"),
+        **_coord("t_wide", t_wide, "s", "time")}
 
 
 def rigid_four_bar(run, prm, res):
@@ -115,9 +115,9 @@ def rigid_four_bar(run, prm, res):
     if out["u_left"]:
         data["u_left"] = var(("n2", "t"), out["u_left"], "m",
                              "driven-end transverse displacement u_0, Eq. (2-25)")
-    return xr.Dataset(data, coords={**_coord("t", t, "s", "time"),
-                                    **_coord("n2", cases, "1", "driven sprocket tooth number"),
-                                    **_coord("check_speed", speeds * RPM, "rpm", "check speed")})
+    return {**data, **_coord("t", t, "s", "time"),
+            **_coord("n2", cases, "1", "driven sprocket tooth number"),
+            **_coord("check_speed", speeds * RPM, "rpm", "check speed")}
 
 
 def elastic_four_bar(run, prm, res):
@@ -147,7 +147,7 @@ def elastic_four_bar(run, prm, res):
     shapes = span.dynamic_tension(_contributions(run, SpanContext(prm, cases, t_cases, None, geo,
                                                                   cache=cache),
                                                  keys, "elastic_four_bar"), t_cases.shape)
-    return xr.Dataset({
+    return {
         "load_shape": var(("case", "phase"), shapes.T, "N",
                           "elastic four-bar D_pol with the span-length switch, Eq. (2-22)"),
         "peak_to_peak_short": var("curve_speed", np.ptp(curve.get("tension_short"), axis=0), "N",
@@ -156,9 +156,9 @@ def elastic_four_bar(run, prm, res):
                                  "peak-to-peak D_pol, k2 = AE/(L_0+p)"),
         "omega_c1": var((), wc1 * RPM, "rpm", "first resonance of the elastic four-bar (long span)"),
         "omega_c2": var((), wc2 * RPM, "rpm", "second resonance of the elastic four-bar (short span)"),
-    }, coords={**_coord("case", cases * RPM, "rpm", "driving speed of Fig. 4 case"),
-               **_coord("phase", s, "1", "time in tooth periods"),
-               **_coord("curve_speed", curve_w * RPM, "rpm", "driving speed")})
+        **_coord("case", cases * RPM, "rpm", "driving speed of Fig. 4 case"),
+        **_coord("phase", s, "1", "time in tooth periods"),
+        **_coord("curve_speed", curve_w * RPM, "rpm", "driving speed")}
 
 
 def elastic_speed_window(prm, window) -> tuple[float, float]:
@@ -215,22 +215,18 @@ def speed_sweep_compute(run, prm, res) -> dict:
             "shooting": shooting_}
 
 
-def speed_sweep(run, prm, res):
+def speed_sweep(run, prm, res) -> dict:
     """Figs. 5-9: maximum steady amplitude vs operating speed, one vectorised FD march
     (:func:`.span.sweep`) or shooting per speed (:func:`.shooting.sweep`), with the
     moving-string resonance speeds of the span."""
-    return speed_sweep_dataset(speed_sweep_compute(run, prm, res))
-
-
-def speed_sweep_dataset(r: dict) -> xr.Dataset:
-    """The dataset of :func:`speed_sweep` from :func:`speed_sweep_compute`."""
+    r = speed_sweep_compute(run, prm, res)
     out, omega1, wc, prm, res, shooting_ = (r[k] for k in ("out", "omega1", "wc", "prm", "res",
                                                           "shooting"))
     orders = np.arange(1, int(res.get("orders", 8)) + 1)
     geo = dict(out["span"])
     reso = resonance_table(prm, out["tension_coefficient"], geo, orders)
     g = out["grid"]
-    ds = xr.Dataset({
+    data = {
         "amplitude": var("speed", out["amplitude"], "m", "maximum steady transverse amplitude"),
         "growth": var("speed", np.minimum(out["growth"], 1e300), "1",
                       "spectral radius of the one-period monodromy matrix (Floquet multiplier); "
@@ -255,25 +251,25 @@ def speed_sweep_dataset(r: dict) -> xr.Dataset:
         "fractional_pitch": var((), geo["f_p"], "1", "fractional pitch f_p, Eq. (2-6)"),
         "elastic_resonance_speed": var((), np.nan if wc is None else wc * RPM, "rpm",
                                            "omega_c of the drive's elastic four-bar (k = AE/L_ct)"),
-    }, coords={**_coord("speed", omega1 * RPM, "rpm", "driving sprocket speed omega_1"),
-               **_coord("order", orders, "1", "resonance order k")})
+        **_coord("speed", omega1 * RPM, "rpm", "driving sprocket speed omega_1"),
+        **_coord("order", orders, "1", "resonance order k")}
     if shooting_:
-        ds["growth_rate"] = var("speed", out["growth_rate"], "1/s",
-                                "Floquet growth rate log(rho)/T of the span")
-        ds["rho_lower"] = var("speed", out["rho_lower"], "1",
-                              "proven lower bound of rho (= rho where computed): |tr M^K|/n "
-                              "<= rho^K; > 1 proves growth")
-        ds["rho_upper"] = var("speed", out["rho_upper"], "1",
-                              "proven upper bound of rho (= rho where computed): rho^K <= "
-                              "||M^K||_F; below exp(-sigma T/2) proves a stable speed")
-        ds["steps_per_period"] = var("speed", out["steps_per_period"], "1",
-                                     "time steps per excitation period (shooting)")
-        ds["periodicity_residual"] = var("speed", out["residual"], "m",
-                                         "max |x(T) - x*| of the steady state marched once more")
-        ds["sampling_converged"] = var((), int(out["sampling_converged"]), "1",
-                                       "1 when the adaptive speed bisection finished (edges "
-                                       "and peaks at edge_tol/peak_tol)")
-    return ds
+        data["growth_rate"] = var("speed", out["growth_rate"], "1/s",
+                                  "Floquet growth rate log(rho)/T of the span")
+        data["rho_lower"] = var("speed", out["rho_lower"], "1",
+                                "proven lower bound of rho (= rho where computed): |tr M^K|/n "
+                                "<= rho^K; > 1 proves growth")
+        data["rho_upper"] = var("speed", out["rho_upper"], "1",
+                                "proven upper bound of rho (= rho where computed): rho^K <= "
+                                "||M^K||_F; below exp(-sigma T/2) proves a stable speed")
+        data["steps_per_period"] = var("speed", out["steps_per_period"], "1",
+                                       "time steps per excitation period (shooting)")
+        data["periodicity_residual"] = var("speed", out["residual"], "m",
+                                           "max |x(T) - x*| of the steady state marched once more")
+        data["sampling_converged"] = var((), int(out["sampling_converged"]), "1",
+                                         "1 when the adaptive speed bisection finished (edges "
+                                         "and peaks at edge_tol/peak_tol)")
+    return data
 
 
 # ---------------------------------------------------------------------------- Sec. 3.1, checks
@@ -282,7 +278,7 @@ def impact_timestep(run, prm, res):
     """Sec. 3.1: the non-uniform step refined near impacts vs uniform steps (error, wall time)."""
     out = timestep.compare(run, prm, res)
     names = ["uniform_sampled", "uniform_averaged", "nonuniform", "uniform_equal_accuracy"]
-    return xr.Dataset({
+    return {
         "error": var("strategy", [out[n]["error"] for n in names], "1",
                      "max |u_mid - u_ref| / max |u_ref| against a fine uniform reference"),
         "march_wall_time": var("strategy", [out[n]["wall"] for n in names], "s", "wall time of the march"),
@@ -292,7 +288,7 @@ def impact_timestep(run, prm, res):
         "dt_equal_accuracy": var((), out["uniform_equal_accuracy"]["dt"], "s",
                                      "uniform step reaching the non-uniform accuracy"),
         "contact_time": var((), out["contact_time"], "s", "impact contact time pi/omega_d"),
-    }, coords=_coord("strategy", names, "1", "time-step strategy"))
+        **_coord("strategy", names, "1", "time-step strategy")}
 
 
 SOLVERS = {"impact_load": impact_load, "rigid_four_bar": rigid_four_bar,
@@ -311,21 +307,15 @@ def warm() -> None:
     galerkin_kernel.warm()
 
 
-def compute(run: dict):
-    """The run's physics (what the framework times): the speed sweep's arrays before
-    packaging; the other solvers' datasets (their packaging is small next to them)."""
+def compute(run: dict) -> dict:
+    """The run's physics (what the framework times): the variables of its solver, labelled
+    (:func:`mechrepro.units.var`), which :func:`mechrepro.solve.pack` packs."""
     solver = run.get("solver")
     if solver not in SOLVERS:
         raise UnknownChoice(f"chain_drive: solver {solver!r}: allowed {sorted(SOLVERS)}")
-    if solver == "speed_sweep":
-        return solver, speed_sweep_compute(run, run["parameters"], run["resolution"])
-    return solver, SOLVERS[solver](run, run["parameters"], run["resolution"])
+    return SOLVERS[solver](run, run["parameters"], run["resolution"])
 
 
-def variables(result, run: dict | None = None) -> dict:
-    """The run's variables for the framework's :func:`mechrepro.solve.pack` (the solvers
-    here still build Datasets: unpacked)."""
-    solver, payload = result
-    ds = speed_sweep_dataset(payload) if solver == "speed_sweep" else payload
-    return {**{k: (v.dims, v.values, v.attrs) for k, v in ds.variables.items()}, **ds.attrs}
-
+def variables(result: dict, run: dict | None = None) -> dict:
+    """The run's variables: :func:`compute` already returns them."""
+    return result
