@@ -1,5 +1,8 @@
 """chain_drive exposes the framework's compute-only contract (only ``compute`` is timed) and
 its deliberate errors are mechrepro.errors.Refusal subclasses."""
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 
@@ -13,10 +16,19 @@ from mechrepro.solve import pack, solve
 def test_compute_then_variables_is_the_frameworks_solve():
     run = load_paper("config/papers/chain_drive.yaml").runs["accuracy_peak"]
     result = chain_drive.compute(run)
-    assert result[0] == "speed_sweep" and isinstance(result[1], dict)
+    # labelled variables (mechrepro.units.var), no Dataset: the framework packs them
+    assert all(isinstance(v, str) or (isinstance(v, tuple) and len(v) == 3)
+               for v in result.values())
     a, b = pack(chain_drive.variables(result, run), run), solve(run)
     assert np.array_equal(a.amplitude.values, b.amplitude.values)
     assert set(a.data_vars) == set(b.data_vars)
+
+
+def test_the_solvers_import_no_xarray():
+    code = ("import sys; from mechrepro.models.chain_drive import exact, galerkin, solver; "
+            "print('xarray' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"
 
 
 def test_deliberate_errors_are_refusals():

@@ -2,13 +2,18 @@
 
 Declared once in ``config/papers/chain_drive.yaml`` (``effects:``: what each contributes,
 its units, which solvers honour it).  Every solver builds a :class:`SpanContext` and calls
-``EFFECTS.evaluate(run, ctx)``; it reads the contributions by key:
+``EFFECTS.evaluate(run, ctx, keys=...)``, selecting the effects by the keys they declare
+(:func:`declared_keys`), never by name; it reads the contributions by key:
 
 =====================  ===========  =====================================================
 key                    shape        meaning
 =====================  ===========  =====================================================
 tension_coefficient    scalar       k in P = T_s + k c^2 (:func:`.geometry.axial_tension`)
 tension                (T, S)       dynamic tension P_t, summed over the effects
+tension_pulse          (T, S)       a part of P_t that is a pulse shorter than a wave's
+                                    transit over one pitch (it kicks pitch-scale waves)
+tension_external       (T, S)       a part of P_t periodic in the external load's period
+                                    2 pi/(r omega1) (Eq. 2-5), not in the tooth period
 tension_short/_long    (T, S)       P_t of the elastic four-bar on the short / long span
 long                   (T, S) bool  span-length state (True = long span)
 u_left, u_right        (T, S)       end displacements (x = 0 driven, x = L driving)
@@ -22,7 +27,8 @@ kinematics is computed lazily, only when a named effect asks for it.
 """
 from __future__ import annotations
 
-from functools import cached_property
+from functools import cache, cached_property
+from pathlib import Path
 
 import numpy as np
 
@@ -120,15 +126,46 @@ class SpanContext:
         return self.cache[key]
 
 
-def consume(contributions, keys, solver: str):
-    """Refuse contributions a solver does not consume (the config refuses such a scene at
-    load already; this guards direct calls): an effect is honoured or refused, never ignored."""
-    extra = [k for k in contributions.keys() if k not in keys]
-    if extra:
-        by = sorted({e for k in extra for e in contributions.sources(k)})
-        raise EffectNotHonoured(f"chain_drive: the {solver} solver does not honour {by} "
-                         f"(contributions {extra})")
-    return contributions
+CONFIG = Path(__file__).resolve().parents[4] / "config" / "papers" / "chain_drive.yaml"
+
+
+@cache
+def _declarations() -> dict:
+    from mechrepro.inputs import read_yaml
+
+    return {e: list(spec["contributes"]) for e, spec in read_yaml(CONFIG)["effects"].items()}
+
+
+def as_run(effects) -> dict:
+    """A run record with ``contributes`` (what each named effect declares) for every named
+    effect: a run from the config as it is, or a plain list of effect names (tests,
+    benchmarks) or a run whose effects were swapped, completed from the declarations of
+    ``config/papers/chain_drive.yaml``."""
+    run = effects if isinstance(effects, dict) else {"effects": list(effects)}
+    have = run.get("contributes", {})
+    if all(e in have for e in run["effects"]):
+        return run
+    return {**run, "contributes": {e: have.get(e, _declarations().get(e, []))
+                                   for e in run["effects"]}}
+
+
+def declared_keys(run: dict) -> set:
+    """Every key the named effects declare they contribute."""
+    return {k for e in run["effects"] for k in run["contributes"][e]}
+
+
+def refuse_unhonoured(run: dict, keys, solver: str, registry=None) -> None:
+    """Refuse, by their declarations and before anything is evaluated, named effects of
+    which the solver consumes no declared key (the config refuses such a scene at load
+    already; this guards direct calls): an effect is honoured or refused, never ignored.
+    (A key a solver does not ask for, like the end velocities outside Galerkin, is not
+    returned.)"""
+    (registry or EFFECTS).select(run["effects"])     # an unknown name is refused here
+    by = [e for e in run["effects"] if not set(run["contributes"][e]) & set(keys)]
+    if by:
+        extra = sorted({k for e in by for k in run["contributes"][e]})
+        raise EffectNotHonoured(f"chain_drive: the {solver} solver does not honour {sorted(by)} "
+                                f"(contributions {extra})")
 
 
 @EFFECTS.register("speed_tensioning")
@@ -139,15 +176,16 @@ def speed_tensioning(ctx: SpanContext) -> dict:
 
 @EFFECTS.register("impact")
 def impact(ctx: SpanContext) -> dict:
-    """Eqs. (2-2)-(2-4): impact load, averaged exactly over ``ctx.step`` (point values without)."""
+    """Eqs. (2-2)-(2-4): impact load, averaged exactly over ``ctx.step`` (point values
+    without); a pulse of t_i = 28 us, shorter than a wave's transit over one pitch."""
     k = loads.impact_constants(ctx.prm["impact_mass_links"] * ctx.p_c * ctx.prm["mass_per_length"],
                                ctx.prm["contact_stiffness"], ctx.prm["contact_damping_ratio"])
     step = ctx.step
 
     def rows(r):
         st = step[r] if np.ndim(step) == 2 else step
-        return {"tension": loads.impact_load(ctx.T[r], ctx.omega1[None, :], ctx.n1, ctx.p_c, k,
-                                             step=st)}
+        return {"tension_pulse": loads.impact_load(ctx.T[r], ctx.omega1[None, :], ctx.n1,
+                                                   ctx.p_c, k, step=st)}
     return ctx.blocked(rows)
 
 
@@ -187,10 +225,11 @@ def polygonal_elastic(ctx: SpanContext) -> dict:
 
 @EFFECTS.register("external_load")
 def external_load(ctx: SpanContext) -> dict:
-    """Eq. (2-5): T_ex cos(omega_ex t), T_ex and omega_ex relative to T_s and omega1."""
+    """Eq. (2-5): T_ex cos(omega_ex t), T_ex and omega_ex relative to T_s and omega1 (periodic
+    in 2 pi/omega_ex, not in the tooth period: ``tension_external``)."""
     T_ex = ctx.prm["external_load_ratio"] * ctx.prm["static_tension"]
     w_ex = ctx.prm["external_frequency_ratio"] * ctx.omega1[None, :]
-    return {"tension": loads.external_load(ctx.T, T_ex, w_ex)}
+    return {"tension_external": loads.external_load(ctx.T, T_ex, w_ex)}
 
 
 @EFFECTS.register("end_excitation")
@@ -229,8 +268,6 @@ def end_excitation_distributed(ctx: SpanContext) -> dict:
     (:func:`engagement_time`): the roller seats over a finite time instead of at the
     polygon's corner, so the end motion loses the kinks whose harmonics drive every span
     mode at once at a resonance (docs/chain_drive.md, amplitude convergence)."""
-    if ctx.t.size <= 1:          # the probe of the solvers: one sample, no window
-        return end_excitation(ctx)
     half = 0.5 * engagement_time(ctx.prm)
     x, w = ENGAGEMENT_NODES
     out: dict = {}

@@ -25,7 +25,7 @@ from mechrepro.timing import stopwatch
 from mechrepro.units import var
 
 from . import four_bar, galerkin_kernel, geometry, loads
-from .effects import EFFECTS, SpanContext, consume
+from .effects import EFFECTS, SpanContext, as_run, refuse_unhonoured
 from .geometry import RPM
 from .span import dynamic_tension, span_geometry
 from .errors import DivergenceError, KernelUnavailable, RecordError, UnknownChoice
@@ -211,15 +211,18 @@ def library(f, t0, y0, t_end, t_eval, rtol=1e-6, atol=1e-12, method="DOP853", ma
 
 
 # the contributions the Galerkin model consumes (no span-length state, no sag term: the
-# config refuses length_change and sag for this solver)
-GALERKIN_KEYS = ("tension_coefficient", "tension", "tension_short", "tension_long", "u_left",
-                 "u_right", "v_left", "v_right", "coupling_stiffness")
+# config refuses length_change and sag for this solver): the steady ones, evaluated once
+# (they fix the speed, P and the model), and the forcing
+STEADY_KEYS = ("tension_coefficient", "coupling_stiffness")
+FORCING_KEYS = ("tension_pulse", "tension", "tension_external", "tension_short", "tension_long", "u_left",
+                "u_right", "v_left", "v_right")
 
 
 def contributions(run: dict, prm: dict, omega1: float, geo: dict, t, step, registry=None):
-    """The named effects' contributions at the times ``t`` (flattened) of one speed."""
+    """The forcing contributions of the named effects at the times ``t`` (flattened) of one
+    speed."""
     ctx = SpanContext(prm, [omega1], np.ravel(t), step, geo, end_velocity=True)
-    return consume((registry or EFFECTS).evaluate(run, ctx), GALERKIN_KEYS, "galerkin")
+    return (registry or EFFECTS).evaluate(as_run(run), ctx, keys=FORCING_KEYS)
 
 
 def forcing_arrays(run: dict, prm: dict, omega1: float, geo: dict, t, step=None,
@@ -417,7 +420,10 @@ def _galerkin_setup(run, prm, res) -> dict:
     n1, m = int(prm["n1"]), prm["mass_per_length"]
     geo = span_geometry(prm, False)
     L = geo["L_ct"]
-    steady = contributions(run, prm, prm["speed"], geo, np.zeros(1), None)
+    run = as_run(run)
+    refuse_unhonoured(run, STEADY_KEYS + FORCING_KEYS, "galerkin")
+    steady = EFFECTS.evaluate(run, SpanContext(prm, [prm["speed"]], np.zeros(0), None, geo),
+                              keys=STEADY_KEYS)
     k_c = steady.total("tension_coefficient")
     w1 = _resonant_speed(run, prm, k_c, L)
     c = float(geometry.chain_speed(w1, n1, prm["pitch"]))

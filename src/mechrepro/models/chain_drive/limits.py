@@ -26,6 +26,7 @@ import math
 import numpy as np
 
 from . import geometry
+from .effects import as_run, declared_keys
 
 #: what a fresh solve process spends before its first run (imports, numba kernels)
 JOB_START_S = 3.0
@@ -101,13 +102,13 @@ def _speeds(run: dict, prm: dict) -> np.ndarray:
 
 def size(run: dict) -> dict:
     """Speeds, grid points and steps of a speed sweep (no effect evaluated)."""
-    prm, res, eff = run["parameters"], run["resolution"], run["effects"]
+    prm, res, keys = run["parameters"], run["resolution"], declared_keys(as_run(run))
     w = _speeds(run, prm)
-    L0, L1 = _span(prm, "length_change" in eff)
+    L0, L1 = _span(prm, "long" in keys)
     ppp, p, m = int(res["points_per_pitch"]), prm["pitch"], prm["mass_per_length"]
     n = (int(round(L0 / p)) * ppp + ppp) if L0 != L1 else max(int(round(L1 / p * ppp)), 4)
     c = geometry.chain_speed(w, int(prm["n1"]), p)
-    k = prm["lambda_support"] * m if "speed_tensioning" in eff else 0.0
+    k = prm["lambda_support"] * m if "tension_coefficient" in keys else 0.0
     P = prm["static_tension"] + k * c * c
     dt = float(res["cfl"]) * (L1 / n) / np.sqrt(np.maximum(P / m - c * c, 1e-12))
     tau = geometry.tooth_period(w, int(prm["n1"]))
@@ -116,7 +117,7 @@ def size(run: dict) -> dict:
         # the elastic four-bar's dynamic tension can shorten the step well below the static
         # limit (fig09b: 18.8 steps per period measured against 8.5 from P = T_s + k c^2;
         # fig09a 26 against 28): an upper reading takes the larger
-        out["steps_per_period"] = np.ceil(tau / dt) * (2.2 if "polygonal_elastic" in eff else 1)
+        out["steps_per_period"] = np.ceil(tau / dt) * (2.2 if "tension_short" in keys else 1)
     else:
         settle = float(res.get("decay_times", 0.0)) * 2 * m / prm["transverse_damping"]
         out["steps"] = math.ceil((settle + float(res.get("window_periods", 0.0)) * tau.max())

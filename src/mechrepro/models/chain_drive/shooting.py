@@ -39,13 +39,15 @@ from .errors import KernelUnavailable, PeriodicityError  # noqa: F401 (re-export
 
 def excitation_period(prm: dict, run: dict, omega1: float) -> tuple[float, int]:
     """(T, q): the excitation period T = q tau.  Every effect repeats each tooth period
-    tau, except an external load cos(r omega1 t) (Eq. 2-5), whose period 2 pi/(r omega1) is
-    n1/r tooth periods: q is the smallest whole number of tooth periods holding a whole
-    number of load periods (r must be rational with a small denominator)."""
+    tau, except one that declares ``tension_external``, an external load cos(r omega1 t)
+    (Eq. 2-5), whose period 2 pi/(r omega1) is n1/r tooth periods: q is the smallest whole
+    number of tooth periods holding a whole number of load periods (r must be rational with
+    a small denominator)."""
     n1 = int(prm["n1"])
     tau = float(geometry.tooth_period(omega1, n1))
     q = 1
-    if "external_load" in run["effects"] and prm.get("external_load_ratio", 0.0) != 0.0:
+    if ("tension_external" in span.declared_keys(span.as_run(run))
+            and prm.get("external_load_ratio", 0.0) != 0.0):
         r = float(prm["external_frequency_ratio"])
         for q in range(1, 64 * n1 + 1):
             if abs(q * r / n1 - round(q * r / n1)) < 1e-9:

@@ -19,7 +19,7 @@ from scipy.integrate import quad
 from mechrepro.units import var
 
 from . import exact, four_bar, galerkin, geometry, loads, shooting, span, timestep
-from .effects import EFFECTS, SpanContext, consume
+from .effects import EFFECTS, SpanContext, as_run, declared_keys, refuse_unhonoured
 from .galerkin import envelope_statistics  # noqa: F401  (re-exported for the tests)
 from .geometry import RPM
 from .errors import UnknownChoice
@@ -32,7 +32,11 @@ def _coord(name, values, units, long_name):
 
 
 def _contributions(run, ctx, keys, solver):
-    return consume(EFFECTS.evaluate(run, ctx), keys, solver)
+    """Every named effect on ``ctx`` (a figure's own time grid), after refusing those that
+    declare a key the solver does not consume."""
+    run = as_run(run)
+    refuse_unhonoured(run, keys, solver)
+    return EFFECTS.evaluate(run, ctx)
 
 
 def resonance_table(prm, tension_coefficient, span_geo, orders) -> dict:
@@ -56,8 +60,9 @@ def impact_load(run, prm, res):
     n = int(res["samples"])
     t_near, t_wide = np.linspace(0, 1.5 * k["t_i"], n), np.linspace(0, 3 * tau, n)
     geo = span.span_geometry(prm, False)
-    near, wide = (_contributions(run, SpanContext(prm, [w1], t, step, geo), ("tension",),
-                                 "impact_load").total("tension", np.zeros((n, 1)))[:, 0]
+    near, wide = (span.dynamic_tension(_contributions(run, SpanContext(prm, [w1], t, step, geo),
+                                                      ("tension_pulse",), "impact_load"),
+                                       (n, 1))[:, 0]
                   for t, step in ((t_near, None), (t_wide, t_wide[1] - t_wide[0])))
     V, eta = loads.relative_velocity(w1, p), loads.pressure_angle(n1)
     J_quad = quad(lambda s: float(loads.impact_pulse(s, V, eta, k)), 0, k["t_i"], limit=200)[0]
@@ -181,7 +186,7 @@ def dense_near_elastic(run, prm, omega1, half_width: float, n_speeds: int) -> np
     so the parametric (Mathieu) bands it pumps cluster there and are narrow (Fig. 9a: 0.9 rpm
     at 1210.9-1211.8 rpm, 0.3 % below omega_c, between two points of an 8 rpm grid).  The
     dense count scales with n_speeds, so refining n_speeds refines it too."""
-    geo = span.span_geometry(prm, "length_change" in run["effects"])
+    geo = span.span_geometry(prm, "long" in declared_keys(as_run(run)))
     r2 = geometry.pitch_radius(prm["pitch"], int(prm["n2"]))
     extra = [omega1]
     for L in sorted({geo["L_short"], geo["L_long"]}):

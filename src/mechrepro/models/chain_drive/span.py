@@ -10,12 +10,17 @@ import math
 import numpy as np
 
 from . import fd, geometry
-from .effects import EFFECTS, SpanContext, consume
+from .effects import EFFECTS, SpanContext, as_run, declared_keys, refuse_unhonoured
 from .errors import PitchScaleInstability, UnknownChoice
 
 # the contributions the finite-difference march consumes (effects.py lists every key)
-FD_KEYS = ("tension_coefficient", "tension", "tension_short", "tension_long", "long",
-           "u_left", "u_right", "kappa")
+FD_KEYS = ("tension_coefficient", "tension_pulse", "tension", "tension_external",
+           "tension_short", "tension_long", "long", "u_left", "u_right", "kappa")
+# the additive parts of the dynamic tension P_t, in the order they are summed
+# (:func:`dynamic_tension`)
+PT_KEYS = ("tension_pulse", "tension", "tension_external")
+# what the axial tension P is formed from (:func:`.geometry.axial_tension`): evaluated first
+STEADY_KEYS = ("tension_coefficient",)
 
 
 def span_geometry(prm: dict, length_change: bool = True) -> dict:
@@ -45,17 +50,13 @@ def speed_axis(prm: dict, n_speeds: int) -> np.ndarray:
     return np.linspace(prm["speed_min"], prm["speed_max"], int(n_speeds))
 
 
-def as_run(effects) -> dict:
-    """A run record (``effects``, and ``contributes`` when it comes from the config), or a
-    plain list of effect names (tests, benchmarks) made into one."""
-    return effects if isinstance(effects, dict) else {"effects": list(effects)}
-
-
 def dynamic_tension(c, shape) -> np.ndarray:
-    """P_t (Eqs. 2-36/2-37): the sum of the ``tension`` contributions, plus the elastic
-    four-bar load of the span length in force (``long``; the short span when the length
-    does not change)."""
-    Pt = c.total("tension", zero=np.zeros(shape))
+    """P_t (Eqs. 2-36/2-37): the sum of the contributions to :data:`PT_KEYS` (in that
+    order, the order in which the effects are declared), plus the elastic four-bar load of
+    the span length in force (``long``; the short span when the length does not change)."""
+    Pt = np.zeros(shape)
+    for key in PT_KEYS:
+        Pt = c.total(key, zero=Pt)
     if "tension_short" in c:
         long = c.get("long")
         Pt = Pt + (c.get("tension_short") if long is None
@@ -63,28 +64,23 @@ def dynamic_tension(c, shape) -> np.ndarray:
     return Pt
 
 
-# Effects whose tension is a pulse shorter than a wave's transit over one pitch (the impact:
-# t_i = 28 us against p / c_w ~ 0.5 ms): a comb of tension impulses, which pumps mode k with
-# a Mathieu parameter growing like k (docs/chain_drive.md, hard case).
-IMPULSIVE_TENSION = frozenset({"impact"})
-
-
-def pitch_scale_inputs(probe, span_geo: dict) -> list[str]:
-    """The inputs of a run (its contributions to the probe) that kick pitch-scale waves: the
-    impulsive impact in the tension, and the instantaneous length switch (a span whose two
-    lengths differ, f_p != 0)."""
+def pitch_scale_inputs(run: dict, span_geo: dict) -> list[str]:
+    """The inputs of a run (by what its effects declare) that kick pitch-scale waves: a
+    tension pulse shorter than a wave's transit over one pitch (``tension_pulse``: the
+    impact, t_i = 28 us against p / c_w ~ 0.5 ms, a comb of tension impulses that pumps
+    mode k with a Mathieu parameter growing like k; docs/chain_drive.md, hard case), and
+    the instantaneous length switch (a span whose two lengths differ, f_p != 0)."""
     out = []
-    impulsive = sorted(set(probe.sources("tension")) & IMPULSIVE_TENSION) if "tension" in probe \
-        else []
+    impulsive = sorted(e for e in run["effects"] if "tension_pulse" in run["contributes"][e])
     if impulsive:
         out.append(f"the impulsive tension of {', '.join(impulsive)} (a pulse shorter than a "
                    "wave's transit over one pitch)")
-    if "long" in probe and span_geo["L_short"] != span_geo["L_long"]:
+    if "long" in declared_keys(run) and span_geo["L_short"] != span_geo["L_long"]:
         out.append(f"the instantaneous span-length switch (f_p = {span_geo['f_p']:.3g})")
     return out
 
 
-def refuse_undamped_pitch_scale(res: dict, probe, span_geo: dict) -> None:
+def refuse_undamped_pitch_scale(res: dict, run: dict, span_geo: dict) -> None:
     """Refuse central differencing with an input that kicks pitch-scale waves
     (:class:`.errors.PitchScaleInstability`), before anything is marched.
 
@@ -98,7 +94,7 @@ def refuse_undamped_pitch_scale(res: dict, probe, span_geo: dict) -> None:
     impact pulse, central is unstable at 67-88 of the 200 Fig. 5 speeds on every grid."""
     if res.get("differencing") != "central":
         return
-    kicks = pitch_scale_inputs(probe, span_geo)
+    kicks = pitch_scale_inputs(as_run(run), span_geo)
     if kicks:
         raise PitchScaleInstability(
             "central differencing with " + " and ".join(kicks) + ": without numerical damping "
@@ -106,27 +102,6 @@ def refuse_undamped_pitch_scale(res: dict, probe, span_geo: dict) -> None:
             "that this input kicks grow at most speeds and on every grid (at 3-8 points per "
             "pitch, 22-44 of 45 speeds around the order-4 resonance); use the paper's mixed "
             "differencing (differencing: mixed, Eq. 2-38), whose numerical damping bounds them")
-
-
-# the contributions the dynamic tension P_t is formed from (:func:`dynamic_tension`)
-TENSION_KEYS = ("tension", "tension_short", "tension_long", "long")
-
-
-def _tension_effects(run: dict, probe) -> tuple[list | None, list]:
-    """The named effects the dynamic tension depends on, and the others, from the keys each
-    contributed to the probe (``long`` counts only with ``tension_short``: it then picks the
-    elastic load).  (None, []) when the split is not known: evaluate everything at once."""
-    keys = set(TENSION_KEYS) if "tension_short" in probe else {"tension"}
-    by_effect: dict = {}
-    for key in probe.keys():
-        for e in probe.sources(key):
-            by_effect.setdefault(e, set()).add(key)
-    named = list(run["effects"])
-    dyn = [e for e in named if by_effect.get(e, set()) & keys]
-    rest = [e for e in named if e not in dyn and e in by_effect]
-    if any(e not in by_effect for e in named):
-        return None, []      # an effect contributed nothing to the probe: keep one pass
-    return dyn, rest
 
 
 class _Merged:
@@ -149,37 +124,40 @@ def assemble(effects, prm: dict, omega1, res: dict, registry=EFFECTS,
              period: float | None = None) -> dict:
     """Evaluate the named effects on the time grid of a sweep; return the march inputs.
 
-    ``effects``: the run (or a list of effect names).  First every named effect is probed
-    on one time sample: the steady contributions fix the axial tension P (the tension
-    coefficient: hence the characteristic speeds and the time step) and whether the span
-    length changes (a ``long`` state: the grid then covers both span lengths; otherwise
-    the span is the common tangent L_ct).  Then the effects are evaluated on the time grid,
-    refined until the step is stable for the dynamic tension too.
+    ``effects``: the run (or a list of effect names).  What the named effects declare they
+    contribute (never their names) decides the order: first the steady contributions (the
+    tension coefficient) fix the axial tension P, hence the characteristic speeds and the
+    first time step; a declared span-length state (``long``) makes the grid cover both span
+    lengths (otherwise the span is the common tangent L_ct).  Then the effects that form
+    the dynamic tension are evaluated on the time grid, refined until the step is stable
+    for the dynamic tension too (each refinement evaluates them again on its finer grid),
+    and the others (end motion, sag) once, on the final grid.
 
     ``period`` (s): march exactly one excitation period instead of settling + window (the
     shooting of :mod:`.shooting`): the step is the stable step shortened so that a whole
     number (>= 3) of steps spans the period, and no settling time is added.
     """
     run = as_run(effects)
+    refuse_unhonoured(run, FD_KEYS, "finite-difference", registry)
     m, T_s, c_d = prm["mass_per_length"], prm["static_tension"], prm["transverse_damping"]
     omega1 = np.atleast_1d(np.asarray(omega1, float))
-    full = span_geometry(prm, True)
-    cache: dict = {}
-    probe = consume(registry.evaluate(run, SpanContext(prm, omega1, np.zeros(1), 1.0, full,
-                                                       cache=cache)), FD_KEYS, "finite-difference")
-    span = full if "long" in probe else span_geometry(prm, False)
-    refuse_undamped_pitch_scale(res, probe, span)
+    named = declared_keys(run)
+    span = span_geometry(prm, "long" in named)
+    refuse_undamped_pitch_scale(res, run, span)
     grid = make_grid(span, prm["pitch"], int(res["points_per_pitch"]))
     c = geometry.chain_speed(omega1, int(prm["n1"]), prm["pitch"])
-    k_c = probe.total("tension_coefficient")
+    cache: dict = {}
+    steady = registry.evaluate(run, SpanContext(prm, omega1, np.zeros(0), None, span,
+                                                cache=cache), keys=STEADY_KEYS)
+    k_c = steady.total("tension_coefficient")
     P = geometry.axial_tension(T_s, k_c, c)
     sigma = c_d / (2 * m)
     tau_max = float(np.max(geometry.tooth_period(omega1, int(prm["n1"]))))
     settle = float(res.get("decay_times", 0.0)) / sigma if sigma > 0 else 0.0
     window = float(res.get("window_periods", 0.0)) * tau_max
-    # the refinement passes evaluate only the effects the dynamic tension depends on (by
-    # their declared contributions); the others (end motion, sag) once, on the final grid
-    dyn, rest = _tension_effects(run, probe)
+    # the span-length state is part of P_t only where it picks the elastic load
+    tension = set(PT_KEYS) | (
+        {"tension_short", "tension_long", "long"} if "tension_short" in named else set())
     # a first dt from the static tension, refined below with the dynamic tension bound
     dt = fd.stable_time_step(grid.dx, c, P, m, float(res["cfl"]))
     for _ in range(4):
@@ -190,7 +168,7 @@ def assemble(effects, prm: dict, omega1, res: dict, registry=EFFECTS,
             n_steps = int(math.ceil((settle + window) / dt))
         t = np.arange(n_steps + 1) * dt
         ctx = SpanContext(prm, omega1, t, dt, span, cache=cache)
-        contrib = registry.evaluate(run if dyn is None else dict(run, effects=dyn), ctx)
+        contrib = registry.evaluate(run, ctx, keys=tension)
         Pt = dynamic_tension(contrib, (n_steps + 1, omega1.size))
         P_max = P + np.max(Pt, axis=0)
         P_min = P + np.min(Pt, axis=0)
@@ -201,10 +179,9 @@ def assemble(effects, prm: dict, omega1, res: dict, registry=EFFECTS,
                                  float(res["cfl"]))
     else:
         raise fd.StabilityError("no stable time step found for the dynamic tension")
-    if rest:
-        # the same context: the sprocket kinematics computed for the tension is reused
-        more = registry.evaluate(dict(run, effects=rest), ctx)
-        contrib = _Merged(contrib, more)
+    # the same context: the sprocket kinematics computed for the tension is reused
+    contrib = _Merged(contrib, registry.evaluate(
+        run, ctx, keys=set(FD_KEYS) - tension - set(STEADY_KEYS)))
     kappa = contrib.get("kappa")
     exc = fd.Excitation(tension=Pt, long=contrib.get("long"), u_left=contrib.get("u_left"),
                         u_right=contrib.get("u_right"),

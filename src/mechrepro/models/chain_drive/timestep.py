@@ -17,8 +17,8 @@ import numpy as np
 from mechrepro.timing import stopwatch
 
 from . import fd, geometry, loads
-from .effects import EFFECTS, SpanContext, consume
-from .span import as_run, dynamic_tension, make_grid, span_geometry
+from .effects import EFFECTS, SpanContext, as_run, refuse_unhonoured
+from .span import dynamic_tension, make_grid, span_geometry
 
 
 def nonuniform_times(t_end: float, tau: float, dt_max: float, dt_min: float, delta: float,
@@ -34,16 +34,18 @@ def nonuniform_times(t_end: float, tau: float, dt_max: float, dt_min: float, del
     return np.array(ts)
 
 
-# the contributions this march consumes (a uniform span: no length change)
-TIMESTEP_KEYS = ("tension_coefficient", "tension", "tension_short", "tension_long", "u_left",
-                 "u_right", "kappa")
+# the contributions this march consumes (a uniform span: no length change): the steady one
+# (the axial tension, once per comparison) and the forcing (once per time grid)
+STEADY_KEYS = ("tension_coefficient",)
+FORCING_KEYS = ("tension_pulse", "tension", "tension_external", "tension_short", "tension_long", "u_left",
+                "u_right", "kappa")
 
 
 def response(run: dict, prm: dict, t: np.ndarray, points_per_pitch: int, averaged: bool,
-             registry=EFFECTS):
-    """March one speed on the time points ``t`` with the named effects' contributions
-    (pulses averaged over the local step, or point-sampled); returns u at mid-span and the
-    wall time of the march."""
+             tension_coefficient: float, registry=EFFECTS):
+    """March one speed on the time points ``t`` with the named effects' forcing (pulses
+    averaged over the local step, or point-sampled) and the axial tension of
+    ``tension_coefficient``; returns u at mid-span and the wall time of the march."""
     n1, p, m = int(prm["n1"]), prm["pitch"], prm["mass_per_length"]
     w1 = np.array([prm["speed"]])
     geo = span_geometry(prm, False)
@@ -51,10 +53,9 @@ def response(run: dict, prm: dict, t: np.ndarray, points_per_pitch: int, average
     h = np.diff(t)
     # exact step average with the local step (centred window), or point values
     step = np.concatenate([[h[0]], 0.5 * (h[1:] + h[:-1]), [h[-1]]])[:, None] if averaged else None
-    contrib = consume(registry.evaluate(run, SpanContext(prm, w1, t, step, geo)), TIMESTEP_KEYS,
-                      "impact_timestep")
+    contrib = registry.evaluate(run, SpanContext(prm, w1, t, step, geo), keys=FORCING_KEYS)
     c = geometry.chain_speed(w1, n1, p)
-    P = geometry.axial_tension(prm["static_tension"], contrib.total("tension_coefficient"), c)
+    P = geometry.axial_tension(prm["static_tension"], tension_coefficient, c)
     tension = dynamic_tension(contrib, (t.size, 1))
     kappa = contrib.get("kappa")
     exc = fd.Excitation(tension=tension, u_left=contrib.get("u_left"),
@@ -70,19 +71,12 @@ def response(run: dict, prm: dict, t: np.ndarray, points_per_pitch: int, average
     return np.concatenate([[0.0, 0.0], r.probes[:, 0, 0]])[: len(t)], sw.seconds
 
 
-def _steady(run: dict, prm: dict, registry=EFFECTS):
-    """Axial tension P (Eq. 2-36 with the named effects' tension coefficient) at the speed."""
-    geo = span_geometry(prm, False)
-    probe = registry.evaluate(run, SpanContext(prm, [prm["speed"]], np.zeros(1), None, geo))
-    c = geometry.chain_speed(prm["speed"], int(prm["n1"]), prm["pitch"])
-    return geometry.axial_tension(prm["static_tension"], probe.total("tension_coefficient"), c)
-
-
 def compare(run, prm: dict, res: dict, registry=EFFECTS) -> dict:
     """Errors (vs a fine uniform reference) and wall times of the time-step strategies.
 
     ``run``: the run (or a list of effect names)."""
     run = as_run(run)
+    refuse_unhonoured(run, STEADY_KEYS + FORCING_KEYS, "impact_timestep", registry)
     n1, p, m = int(prm["n1"]), prm["pitch"], prm["mass_per_length"]
     w1 = prm["speed"]
     tau = 2 * np.pi / (n1 * w1)
@@ -92,12 +86,15 @@ def compare(run, prm: dict, res: dict, registry=EFFECTS) -> dict:
     geo = span_geometry(prm, False)
     ppp = int(res["points_per_pitch"])
     grid = make_grid(geo, p, ppp)
-    P = _steady(run, prm, registry)
+    # Eq. (2-36): P = T_s + k c^2 with the tension coefficient k of the named effects
+    k_c = registry.evaluate(run, SpanContext(prm, [w1], np.zeros(0), None, geo),
+                            keys=STEADY_KEYS).total("tension_coefficient")
+    c = geometry.chain_speed(w1, n1, p)
+    P = geometry.axial_tension(prm["static_tension"], k_c, c)
     # the point-sampled pulse peak raises the wave speed: bound it from Eq. (2-4)
     tt = np.linspace(0, kimp["t_i"], 2001)
     peak = float(np.max(loads.impact_pulse(tt, loads.relative_velocity(w1, p),
                                            loads.pressure_angle(n1), kimp)))
-    c = geometry.chain_speed(w1, n1, p)
     dt_max = fd.stable_time_step(grid.dx, c, 1.01 * (P + peak), m, float(res["cfl"]))
     dt_min = kimp["t_i"] / float(res.get("refine", 10))
 
@@ -110,7 +107,8 @@ def compare(run, prm: dict, res: dict, registry=EFFECTS) -> dict:
         return t0 + np.arange(n + 1) * ((t_end - t0) / n)
 
     t_ref = uniform(dt_min / 2)
-    u_ref, w_ref = response(run, prm, t_ref, ppp, averaged=True, registry=registry)
+    u_ref, w_ref = response(run, prm, t_ref, ppp, averaged=True, tension_coefficient=k_c,
+                            registry=registry)
 
     def err(t, u):
         return float(np.max(np.abs(np.interp(t_ref, t, u) - u_ref)) / np.max(np.abs(u_ref)))
@@ -120,14 +118,16 @@ def compare(run, prm: dict, res: dict, registry=EFFECTS) -> dict:
                          ("uniform_averaged", uniform(dt_max), True),
                          ("nonuniform", nonuniform_times(t_end, tau, dt_max, dt_min,
                                                          3 * kimp["t_i"], t0), False)):
-        u, w = response(run, prm, t, ppp, averaged=avg, registry=registry)
+        u, w = response(run, prm, t, ppp, averaged=avg, tension_coefficient=k_c,
+                        registry=registry)
         out[name] = {"error": err(t, u), "wall": w, "steps": len(t) - 1}
     # the uniform (point-sampled) step that matches the non-uniform accuracy
     target = out["nonuniform"]["error"]
     dt = dt_max
     while True:
         t = uniform(dt)
-        u, w = response(run, prm, t, ppp, averaged=False, registry=registry)
+        u, w = response(run, prm, t, ppp, averaged=False, tension_coefficient=k_c,
+                        registry=registry)
         e = err(t, u)
         if e <= target or dt <= dt_min / 2:
             out["uniform_equal_accuracy"] = {"error": e, "wall": w, "steps": len(t) - 1, "dt": dt}
