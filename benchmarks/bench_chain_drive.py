@@ -4,16 +4,17 @@
 
 Prints, measured side by side in one run:
 
-1. Equal-accuracy ratio (issue #18).  Scene ``accuracy_peak`` (default profile: 44 speeds
-   around the third resonance, polygonal action and end motion, no impact): peak amplitude
-   = the maximum of the sampled amplitude over the speeds (the definition of the
-   cost-of-accuracy table), its relative error against central differencing at
-   ``--ref-ppp`` points per pitch (cfl 0.9; 24 and 32 agree to 3e-5), and the time of
+1. Equal-accuracy ratio (issue #18).  Scene ``accuracy_peak`` of the profile (a narrow
+   sweep over the third resonance, polygonal action and end motion, no impact; its speeds,
+   settling and resolution as config/papers/chain_drive.yaml sets them, printed with the
+   results): peak amplitude = the maximum of the sampled amplitude over the speeds (the
+   definition of the cost-of-accuracy table), its relative error against central
+   differencing at ``--ref-ppp`` points per pitch (cfl 0.9), and the time of
    - today's default: the paper's mixed differencing (Eq. 2-38), 4 points per pitch,
      cfl 0.9, the numpy time loop (``kernel="numpy"``);
-   - the new default: the scene's configured resolution (central differencing, cfl 0.98,
-     3 points per pitch) with the compiled loop (numba, cached on disk; its first call,
-     which loads or compiles the cache, is timed separately).
+   - the new default: the scene's configured resolution with the compiled loop (numba,
+     cached on disk; its first call, which loads or compiles the cache, is timed
+     separately).
    Times: the march (best of ``--repeat``), and the whole sweep (effects evaluated on the
    time grid + march), both for both.
 2. The 200-speed Fig. 5 sweep with length change and impact (fig05_length, 20.25 pitches;
@@ -139,7 +140,9 @@ def equal_accuracy(profile: str, ref_ppp: int, repeat: int) -> None:
         rows[name] = dict(s, peak=_peak(r.amplitude), interp=_peak_interp(r.amplitude),
                           march=t_m, sweep=t_m + t_asm, updates=_updates(a),
                           steps=a["n_steps"], points=a["grid"].n_long + 1)
-    print(f"== equal accuracy: scene accuracy_peak ({profile}), {om.size} speeds; reference: "
+    rpm = om * 30 / np.pi
+    print(f"== equal accuracy: scene accuracy_peak ({profile}), {om.size} speeds over "
+          f"{rpm[0]:.1f}-{rpm[-1]:.1f} rpm, {res.get('decay_times')} decay times; reference: "
           f"central at {ref_ppp} points per pitch, cfl 0.9: peak {ref * 1e3:.5f} mm")
     print(f"{'':10s} {'scheme':8s} {'ppp':>4s} {'cfl':>5s} {'loop':>8s} {'points':>6s} "
           f"{'steps':>6s} {'peak mm':>9s} {'error':>7s} {'(interp.)':>9s} {'march s':>8s} "

@@ -161,3 +161,36 @@ def test_rigid_and_elastic_polygonal_action_exclude_each_other(tmp_path):
     path = _bad(lambda r: r["scenes"]["fig09a"]["effects"].append("polygonal_rigid"), tmp_path)
     with pytest.raises(ConfigError, match="excludes"):
         load_paper(path)
+
+
+# what each solver reads before its time grid exists: evaluated once per solve
+STEADY = {"speed_tensioning", "longitudinal_coupling"}
+
+
+@pytest.mark.parametrize("solver", ["speed_sweep", "galerkin", "impact_timestep"])
+def test_steady_effects_are_evaluated_once_and_selected_by_declared_keys(solver, monkeypatch):
+    """No probe: the tension coefficient (and Galerkin's coupling) are evaluated once per
+    solve, by the keys they declare; the FD sweep evaluates end motion, sag and the
+    span-length state once, on its final grid, and the dynamic tension once per pass of the
+    step refinement; Galerkin every effect once (the RK4 stages, the recorded steps and the
+    library check's nodes in one call)."""
+    scene, res, prm = SMALL[solver]
+    run = _run(scene, res, parameters=prm)
+    calls: dict = {}
+
+    def counted(name, fn):
+        def wrapped(ctx):
+            calls[name] = calls.get(name, 0) + 1
+            return fn(ctx)
+        return wrapped
+
+    monkeypatch.setattr(EFFECTS, "_fn", {n: counted(n, f) for n, f in EFFECTS._fn.items()})
+    solve(run)
+    assert set(calls) == set(run["effects"])
+    for name in STEADY & set(run["effects"]):
+        assert calls[name] == 1, (name, calls)
+    if solver == "speed_sweep":
+        forcing = {"end_excitation", "sag", "length_change"} & set(run["effects"])
+        assert forcing and all(calls[e] == 1 for e in forcing), calls
+    if solver == "galerkin":
+        assert run["options"].get("compare_library") and set(calls.values()) == {1}, calls

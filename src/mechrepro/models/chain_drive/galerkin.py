@@ -274,6 +274,30 @@ def forcing_breakpoints(prm: dict, omega1: float, geo: dict, window, t_end: floa
     return edges
 
 
+def _chebyshev(edges, n_nodes: int) -> dict:
+    """The Chebyshev nodes (and the midpoints between them) of every interval of ``edges``
+    (:class:`PiecewiseForcing`)."""
+    a, b = edges[:-1], edges[1:]
+    eps = 1e-9 * (b - a)
+    lo, hi = a + eps, b - eps
+    k = np.arange(n_nodes + 1)
+    x = np.cos(np.pi * k / n_nodes)[::-1]                      # -1 .. 1
+    mid = np.cos(np.pi * (k[:-1] + 0.5) / n_nodes)[::-1]
+
+    def at(u):
+        return 0.5 * (lo + hi)[:, None] + 0.5 * (hi - lo)[:, None] * u[None, :]
+
+    return {"a": a, "lo": lo, "hi": hi,
+            "w": (-1.0) ** k * np.where((k == 0) | (k == n_nodes), 0.5, 1.0),
+            "nodes": at(x), "mids": at(mid)}                    # (n_int, n_nodes + 1), (.., n)
+
+
+def piecewise_times(edges, n_nodes: int = 16) -> np.ndarray:
+    """The times at which :class:`PiecewiseForcing` reads the forcing: nodes, then midpoints."""
+    c = _chebyshev(np.asarray(edges, float), n_nodes)
+    return np.concatenate([c["nodes"].ravel(), c["mids"].ravel()])
+
+
 class PiecewiseForcing:
     """A cheap scalar forcing t -> (g, h, g', h', P_t) for an adaptive integrator that is
     restarted at every edge of :func:`forcing_breakpoints`.
@@ -288,30 +312,23 @@ class PiecewiseForcing:
     """
 
     def __init__(self, run, prm, omega1, geo, step, edges, n_nodes: int = 16,
-                 check_rtol: float = 1e-12, registry=None):
+                 check_rtol: float = 1e-12, registry=None, F=None):
+        """``F``: the forcing (:func:`forcing_arrays`) at :func:`piecewise_times` of
+        ``edges``, when the caller evaluated it together with its own (else evaluated here)."""
         self.edges = np.asarray(edges, float)
-        a, b = self.edges[:-1], self.edges[1:]
-        eps = 1e-9 * (b - a)
-        self.lo, self.hi = a + eps, b - eps
-        k = np.arange(n_nodes + 1)
-        x = np.cos(np.pi * k / n_nodes)[::-1]                      # -1 .. 1
-        mid = np.cos(np.pi * (k[:-1] + 0.5) / n_nodes)[::-1]
-        self.w = (-1.0) ** k * np.where((k == 0) | (k == n_nodes), 0.5, 1.0)
-
-        def at(u):
-            return (0.5 * (self.lo + self.hi)[:, None] + 0.5 * (self.hi - self.lo)[:, None]
-                    * u[None, :])
-
-        self.nodes = at(x)                                         # (n_int, n_nodes + 1)
-        tt = np.concatenate([self.nodes.ravel(), at(mid).ravel()])
-        F = forcing_arrays(run, prm, omega1, geo, tt, step, registry)
+        c = _chebyshev(self.edges, n_nodes)
+        a, self.lo, self.hi, self.w, self.nodes, mids = (c[k] for k in ("a", "lo", "hi", "w",
+                                                                        "nodes", "mids"))
+        if F is None:
+            F = forcing_arrays(run, prm, omega1, geo, piecewise_times(self.edges, n_nodes), step,
+                               registry)
         keys = ("g", "h", "gd", "hd", "Pt")
         V = np.stack([F[key] for key in keys], axis=-1)           # (n_t, 5)
         nn = self.nodes.size
         self.values = V[:nn].reshape(self.nodes.shape + (5,))
         # the check at the midpoints
         Vm = V[nn:].reshape(a.size, n_nodes, 5)
-        q = self.w / (at(mid)[:, :, None] - self.nodes[:, None, :])
+        q = self.w / (mids[:, :, None] - self.nodes[:, None, :])
         got = np.einsum("imk,ikc->imc", q, self.values) / q.sum(axis=-1)[..., None]
         scale = np.maximum(np.max(np.abs(V), axis=0), 1e-300)
         self.error = float(np.max(np.abs(got - Vm) / scale))
@@ -437,7 +454,8 @@ def _galerkin_setup(run, prm, res) -> dict:
     # on step boundaries (RK4 is only first order across a kink inside a step)
     tau = 2 * np.pi / (n1 * w1)
     per_tooth = math.ceil(tau / (float(res["rk4_cfl"]) * dt_limit))
-    return {"model": model, "geo": geo, "L": L, "w1": w1, "c": c, "P": P, "dt_limit": dt_limit,
+    return {"model": model, "prm": prm, "geo": geo, "L": L, "w1": w1, "c": c, "P": P,
+            "dt_limit": dt_limit,
             "per_tooth": per_tooth, "dt": tau / per_tooth,
             "n_steps": per_tooth * max(int(math.ceil(float(res["duration"]) / tau)), 4),
             # impact pulses shorter than the step enter with their exact impulse, spread over
@@ -445,23 +463,29 @@ def _galerkin_setup(run, prm, res) -> dict:
             "window": tau / 16, "xi": float(prm["probe_fraction"]) * L}   # xi from the driven end
 
 
-def _library_check(run, prm, res, g, u_all, t_all, Fe) -> dict:
+def _library_window(res, g, t_all) -> tuple[int, np.ndarray]:
+    """The library check's steps (whole tooth periods of the record at most: a slower
+    speed, e.g. at a lower EA, has fewer of them in the same duration) and the edges of its
+    smooth intervals (:func:`forcing_breakpoints`)."""
+    n_lib = g["per_tooth"] * max(min(int(round(float(res["library_periods"]))),
+                                     (len(t_all) - 1) // g["per_tooth"]), 1)
+    return n_lib, forcing_breakpoints(g["prm"], g["w1"], g["geo"], g["window"], t_all[n_lib])
+
+
+def _library_check(run, prm, res, g, u_all, t_all, Fe, F_lib) -> dict:
     """solve_ivp (DOP853) over the first tooth periods: with a tolerance far below the RK4
     error (rtol 1e-9) the difference is RK4's own error, not the adaptive controller's.
 
     The integration is restarted at every kink or jump of the forcing
     (:func:`forcing_breakpoints`), with the forcing interpolated on each smooth interval
-    (:class:`PiecewiseForcing`, checked to 1e-12): ~3x fewer right-hand-side calls than one
-    integration across the kinks at the same rtol, and ~400x closer to the solution at
-    rtol 1e-12 (5e-11 instead of 2e-8 relative, benchmarks/bench_chain_drive.py)."""
+    (:class:`PiecewiseForcing`, checked to 1e-12; ``F_lib``, its forcing, evaluated with
+    RK4's): ~3x fewer right-hand-side calls than one integration across the kinks at the
+    same rtol, and ~400x closer to the solution at rtol 1e-12 (5e-11 instead of 2e-8
+    relative, benchmarks/bench_chain_drive.py)."""
     model, xi, L = g["model"], g["xi"], g["L"]
-    # the whole tooth periods of the record at most (a slower speed, e.g. at a lower EA,
-    # has fewer of them in the same duration)
-    n_lib = g["per_tooth"] * max(min(int(round(float(res["library_periods"]))),
-                                     (len(t_all) - 1) // g["per_tooth"]), 1)
+    n_lib, edges = _library_window(res, g, t_all)
     with stopwatch() as sw:
-        edges = forcing_breakpoints(prm, g["w1"], g["geo"], g["window"], t_all[n_lib])
-        pf = PiecewiseForcing(run, prm, g["w1"], g["geo"], g["window"], edges)
+        pf = PiecewiseForcing(run, prm, g["w1"], g["geo"], g["window"], edges, F=F_lib)
         y_lib, nfev = library_piecewise(model.rhs_values, pf.on, edges,
                                         np.zeros(2 * (model.n_t + model.n_l)), t_all[:n_lib + 1],
                                         rtol=float(res.get("library_rtol", 1e-9)), atol=1e-14)
@@ -490,13 +514,16 @@ def solve_scene(run, prm, res):
     n1, m = int(prm["n1"]), prm["mass_per_length"]
     stages = stage_times(dt, n_steps)
     t_rec = np.arange(n_steps + 1) * dt
+    # the forcing at the RK4 stages, (for the end-motion line) at the recorded steps and at
+    # the library check's nodes: the effects evaluated once, in one call
+    times = [stages.ravel(), t_rec + 1e-9 * dt]
+    if opts.get("compare_library", False):
+        times.append(piecewise_times(_library_window(res, g, t_rec)[1]))
+    cut = np.cumsum([t.size for t in times])
     with stopwatch() as sw_rk:
-        # the forcing at the RK4 stages and (for the end-motion line) at the recorded steps
-        F = forcing_arrays(run, prm, w1, g["geo"],
-                                    np.concatenate([stages.ravel(), t_rec + 1e-9 * dt]),
-                                    step=g["window"])
-        Fs = {k: v[:stages.size].reshape(stages.shape) for k, v in F.items()}
-        Fe = {k: v[stages.size:] for k, v in F.items()}
+        F = forcing_arrays(run, prm, w1, g["geo"], np.concatenate(times), step=g["window"])
+        Fs = {k: v[:cut[0]].reshape(stages.shape) for k, v in F.items()}
+        Fe = {k: v[cut[0]:cut[1]] for k, v in F.items()}
         t_all, y_all = rk4_tabulated(model, np.zeros(2 * (model.n_t + model.n_l)), dt,
                                               n_steps, Fs, record_every=1)
     u_all = model.u2_at(y_all, xi) + (1 - xi / L) * Fe["g"] + xi / L * Fe["h"]
@@ -526,5 +553,6 @@ def solve_scene(run, prm, res):
                             "max |u| last quarter / third quarter (whole tooth periods)"),
         **_coord("t", t_all[::rec], "s", "time")}
     if opts.get("compare_library", False):
-        data.update(_library_check(run, prm, res, g, u_all, t_all, Fe))
+        data.update(_library_check(run, prm, res, g, u_all, t_all, Fe,
+                                   {k: v[cut[1]:] for k, v in F.items()}))
     return data

@@ -86,7 +86,7 @@ def _span(prm: dict, length_change: bool) -> tuple[float, float]:
 
 
 def _speeds(run: dict, prm: dict) -> np.ndarray:
-    """The initial speed axis [rad/s] (:func:`.solver.speed_sweep_compute`)."""
+    """The initial speed axis [rad/s] (:func:`.solver.speed_sweep`)."""
     res, opt = run["resolution"], run.get("options", {})
     lo, hi = prm["speed_min"], prm["speed_max"]
     window = opt.get("speed_window_elastic")

@@ -198,8 +198,10 @@ def dense_near_elastic(run, prm, omega1, half_width: float, n_speeds: int) -> np
     return np.unique(np.concatenate(extra))
 
 
-def speed_sweep_compute(run, prm, res) -> dict:
-    """The physics of :func:`speed_sweep` (march or shooting), without the packaging."""
+def speed_sweep(run, prm, res) -> dict:
+    """Figs. 5-9: maximum steady amplitude vs operating speed, one vectorised FD march
+    (:func:`.span.sweep`) or shooting per speed (:func:`.shooting.sweep`), with the
+    moving-string resonance speeds of the span."""
     window = run.get("options", {}).get("speed_window_elastic")
     wc = None
     if window:
@@ -216,17 +218,6 @@ def speed_sweep_compute(run, prm, res) -> dict:
         omega1 = out["omega1"]
     else:
         out = span.sweep(run, prm, omega1, res)
-    return {"out": out, "omega1": omega1, "wc": wc, "prm": prm, "res": res,
-            "shooting": shooting_}
-
-
-def speed_sweep(run, prm, res) -> dict:
-    """Figs. 5-9: maximum steady amplitude vs operating speed, one vectorised FD march
-    (:func:`.span.sweep`) or shooting per speed (:func:`.shooting.sweep`), with the
-    moving-string resonance speeds of the span."""
-    r = speed_sweep_compute(run, prm, res)
-    out, omega1, wc, prm, res, shooting_ = (r[k] for k in ("out", "omega1", "wc", "prm", "res",
-                                                          "shooting"))
     orders = np.arange(1, int(res.get("orders", 8)) + 1)
     geo = dict(out["span"])
     reso = resonance_table(prm, out["tension_coefficient"], geo, orders)
