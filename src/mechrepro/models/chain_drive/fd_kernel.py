@@ -10,7 +10,8 @@ the matrix is diagonally dominant, which :func:`.fd.march` checks) are computed 
 short-span state only turns the rows from node ``n_short`` on into identity rows, which
 leaves the factors of the rows above unchanged (the elimination runs top-down).
 
-Import is lazy (numba costs ~0.3 s to import); :func:`available` says whether numba is
+Compiled by :func:`mechrepro.compiled.jit` (its disk cache keyed on the package's
+sources), lazily (numba costs ~0.3 s to import); :func:`available` says whether numba is
 installed.  Without it :func:`.fd.march` runs its numpy loop, with the same results to
 round-off.
 """
@@ -18,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechrepro.compiled import available  # noqa: F401  (callers ask fd_kernel.available())
+from mechrepro.compiled import available, jit
 
 LANES = 16
 # "auto" compiles/loads the kernel only for marches of at least this many point-updates
@@ -38,11 +39,9 @@ def worth_it(updates: int) -> bool:
 
 
 def _build(lanes):
-    import numba
-
     B = lanes
 
-    @numba.njit(cache=True, fastmath={"contract"}, error_model="numpy")
+    @jit(fastmath={"contract"})
     def march_lanes(c, P, W, m, c_d, dx, dt, n, ns, n_steps, measure_from, n_blocks,
                     block_len, u_cap, Pt, has_Pt, uL, uR, longs, length_change, q, has_q,
                     u0, u1, probes, record_every, block_max, capped, final, rec):

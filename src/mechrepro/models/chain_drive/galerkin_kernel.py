@@ -10,15 +10,16 @@ products differs, so both loops agree to round-off.  Compiled without ``fastmath
 contraction into FMA, no reassociation, no libm call, so the result does not depend on
 the CPU the kernel is compiled for (``NUMBA_CPU_NAME``).
 
-Import is lazy (numba costs ~0.3 s to import and the cached kernel ~0.2 s to load): the
-choice is made by the size of the integration alone (:func:`worth_it`), never by what ran
+Compiled by :func:`mechrepro.compiled.jit` (numpy's error model: a division by zero gives
+inf, which the y_cap check refuses; the disk cache keyed on the package's sources), lazily
+(numba costs ~0.3 s to import and the cached kernel ~0.2 s to load): the choice is made by the size of the integration alone (:func:`worth_it`), never by what ran
 before in the process.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from .fd_kernel import available  # noqa: F401  (same dependency)
+from mechrepro.compiled import available, jit
 from .errors import DivergenceError
 
 # "auto" uses the compiled loop from this many RK4 steps on: the numpy loop costs ~0.2 ms per
@@ -33,14 +34,12 @@ def worth_it(n_steps: int) -> bool:
 
 
 def _build():
-    import numba
-
     # a module global, not a closure variable of rk4: numba keys its disk cache on the
     # closure's objects, so a helper defined here as a local was compiled again in every
     # process (~2 s)
     global project_add
 
-    @numba.njit(cache=True, inline="always")
+    @jit(inline="always")
     def project_add(Wt, f, out, acc, nq, n):
         """out += Wt^T f over the quadrature points: one independent sum per mode (the
         mode innermost), added to ``out`` after the sum, as the numpy path orders it."""
@@ -52,7 +51,7 @@ def _build():
         for r in range(n):
             out[r] += acc[r]
 
-    @numba.njit(cache=True)
+    @jit
     def rk4(y0, dt, n_steps, F, record_every, y_cap, nt, nl, B, SWt, Sx, Sxx, CWt, Cx, Cxx,
             a0, a1, Gt, Kt, Gl, Kl, Mti, Mli, Cend0, CendL, Sx0, SxL, L, m, c, c_d, EA,
             coupling, out_y):
