@@ -172,3 +172,15 @@ def test_declared_cost_is_above_a_measured_run_and_refuses_a_huge_one():
     assert seconds < 10 * (est["seconds"] + JOB_START_S), (seconds, est)
     huge = dict(run, resolution=dict(run["resolution"], n_speeds=5000, points_per_pitch=12))
     assert limits.run_cost("chain_drive", huge)["mem_mb"] > limits.SOLVE_MEM_MB
+
+
+def test_critical_wavelength_reads_the_growing_modes_sine_harmonic():
+    """A monodromy matrix whose dominant mode is sin(3 pi x / L) on the u^N nodes (the
+    interior ones live, the u^{N+1} half too): its wavelength is 2 L / 3."""
+    grid = fd.Grid(0.5, 20, 20)
+    n1 = grid.n_long + 1
+    live = np.r_[np.arange(1, n1 - 1), np.arange(n1 + 1, 2 * n1 - 1)]
+    x = np.arange(n1) / grid.n_long
+    v = np.r_[np.sin(3 * np.pi * x[1:-1]), 0.5 * np.sin(3 * np.pi * x[1:-1])]
+    M = 1.2 * np.outer(v, v) / (v @ v) + 0.1 * np.eye(live.size)
+    assert shooting.critical_wavelength(M, live, grid) == pytest.approx(2 * 0.5 / 3)

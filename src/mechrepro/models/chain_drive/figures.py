@@ -34,6 +34,15 @@ def unstable(ds):
     return ds.speed.values[mask], ds.amplitude.values[mask]
 
 
+def outside_validity(ds) -> np.ndarray:
+    """The growing speeds whose critical Floquet mode is shorter than the string model holds
+    (``outside_validity``; none in a march's dataset): to be drawn apart from the growth the
+    model can claim."""
+    if "outside_validity" not in ds:
+        return np.zeros(ds.speed.size, bool)
+    return np.asarray(ds.outside_validity.values, bool)
+
+
 def resonances_in_window(ds) -> np.ndarray:
     """Short- and long-span resonance speeds [rpm] of a sweep that lie inside its speed range."""
     v = np.concatenate([ds.resonance_speed_short.values, ds.resonance_speed_long.values])

@@ -36,6 +36,12 @@ from . import fd, fd_kernel, geometry, span
 from .effects import EFFECTS
 from .errors import KernelUnavailable, PeriodicityError  # noqa: F401 (re-exported)
 
+# the shortest wave the string model of a roller chain represents: a chain of rigid links has
+# no mode shorter than about two of them (docs/chain_drive.md, hard case: the modes the
+# impact comb and the length switch pump, 0.3-0.8 pitch long, follow the grid and converge
+# nowhere)
+VALID_WAVELENGTH_PITCHES = 2.0
+
 
 def excitation_period(prm: dict, run: dict, omega1: float) -> tuple[float, int]:
     """(T, q): the excitation period T = q tau.  Every effect repeats each tooth period
@@ -70,6 +76,7 @@ class PeriodicSolution:
     multipliers: np.ndarray   # the nonzero-column eigenvalues of M (empty where not computed)
     rho_lower: float = math.nan   # certified bounds of rho (= rho where computed); where
     rho_upper: float = math.nan   # rho is nan they prove stability or growth (rho_bounds)
+    mode_wavelength: float = math.nan   # of the critical Floquet mode where it grows [m]
 
 
 def rho_bounds(M: np.ndarray, below: float, max_squarings: int) -> tuple[float, float]:
@@ -189,6 +196,11 @@ def periodic_solution(run, prm: dict, omega1: float, res: dict,
         if not (hi < below or lo > 1.0 + 1e-9):   # not proven either way (or not asked): exact
             mult = np.linalg.eigvals(M_live)
             rho = lo = hi = float(np.max(np.abs(mult)))
+    # where the span grows, how long its growing mode is (the string model of a chain of
+    # rigid links holds for waves of >= VALID_WAVELENGTH_PITCHES pitches only); a separate
+    # eigen-decomposition, so that rho stays the one of eigvals
+    wavelength = (critical_wavelength(M_live, live, a["grid"]) if not slack and lo > 1.0
+                  else math.nan)
     x = np.linalg.solve(np.eye(2 * n1) - M, b)
     one = fd.Excitation(**{k: _lanes(getattr(e, k), 1)
                            for k in ("tension", "u_left", "u_right", "long", "load")})
@@ -200,7 +212,23 @@ def periodic_solution(run, prm: dict, omega1: float, res: dict,
                             growth_rate=math.log(rho) / T if rho > 0 else math.nan,
                             period=T, n_steps=N,
                             residual=float(np.max(np.abs(back - x))),
-                            slack=slack, multipliers=mult, rho_lower=lo, rho_upper=hi)
+                            slack=slack, multipliers=mult, rho_lower=lo, rho_upper=hi,
+                            mode_wavelength=wavelength)
+
+
+def critical_wavelength(M_live: np.ndarray, live: np.ndarray, grid) -> float:
+    """Wavelength [m] of the critical Floquet mode: the eigenvector of the largest |multiplier|
+    of the monodromy matrix, its displacement u^N on the nodes projected on the grid's sine
+    modes sin(k pi x / L); 2 L / k of the strongest k."""
+    vals, vecs = np.linalg.eig(M_live)
+    v = vecs[:, np.argmax(np.abs(vals))]
+    n = grid.n_long
+    u = np.zeros(n + 1, complex)
+    node = live < n + 1                      # u^N; the entries from n + 1 on are u^{N+1}
+    u[live[node]] = v[node]
+    k = np.arange(1, n)
+    amp = np.abs(np.sin(np.pi * k[:, None] * np.arange(n + 1)[None, :] / n) @ u)
+    return 2.0 * grid.L_long / float(k[np.argmax(amp)])
 
 
 def _inside(x0: float, x1: float, r: float, floor: float) -> float:
@@ -354,6 +382,7 @@ def _sweep(run, prm: dict, omega1, res: dict, registry=EFFECTS) -> dict:
     return {"omega1": w, "amplitude": np.array([s.amplitude for s in sols]), "growth": rho,
             "growth_rate": np.array([s.growth_rate for s in sols]),
             "rho_lower": lower, "rho_upper": np.array([s.rho_upper for s in sols]),
+            "mode_wavelength": np.array([s.mode_wavelength for s in sols]),
             "unstable": (lower > 1.0) | slack, "slack": slack,
             "steps_per_period": np.array([s.n_steps for s in sols]),
             "residual": np.array([s.residual for s in sols]), "sampling_converged": done,
