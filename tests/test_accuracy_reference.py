@@ -165,6 +165,9 @@ def test_the_noise_floor_is_measured_at_the_finest_levels_not_assumed():
     # a floor declared larger than the measured one is used, and says where it comes from
     big = assess("finest", rtol, err, 1e-12, floor=1e-9, floor_why="an integrator's rtol")
     assert big.floor == 1e-9 and big.error >= 1e-9 and "an integrator's rtol" in big.why
+    none = assess("finest", rtol, err, 1e-12, floor=1e-6, floor_why="an integrator's rtol")
+    assert not none.proven and none.why == ("NOT CONVERGED: no level above 10 x the noise floor "
+                                            "1e-06 (an integrator's rtol)")
 
 
 def test_a_curve_that_reaches_its_floor_and_stays_there_is_proven_by_it():

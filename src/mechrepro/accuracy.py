@@ -185,10 +185,11 @@ def assess(reference: str, h, err, h_ref: float | None = None, given: float | No
              f"noise floor {F:.2g} ({floor_why})" if floor >= measured else
              f"noise floor {F:.2g} (measured: the largest error from step {h_stall:.3g} on)")
     if not len(ea):
-        return Reference(float("nan"), False, F,
-                         f"NOT CONVERGED: not monotone: the level at step {h_stall:.3g} comes "
-                         f"no closer to the reference than the one before it, and no level "
-                         f"stands above {MARGIN:g} x the largest error from there ({F:.2g})")
+        return Reference(float("nan"), False, F, (
+            f"NOT CONVERGED: not monotone: the level at step {h_stall:.3g} comes no closer to "
+            f"the reference than the one before it, and no level stands above {MARGIN:g} x "
+            f"the largest error from there ({F:.2g})" if F == measured else
+            f"NOT CONVERGED: no level above {MARGIN:g} x the {where}"))
     if given is not None:
         est = max(float(given), F)
         return Reference(est, bool(est < ea.min()), F,
@@ -231,12 +232,6 @@ def assess(reference: str, h, err, h_ref: float | None = None, given: float | No
     est = float(max(est, F))
     return Reference(est, bool(est < ea.min()), F,
                      f"Richardson at observed order {p:.2g} from {len(ea)} levels; {where}")
-
-
-def reference_error(reference: str, h, err, h_ref: float | None, given: float | None = None):
-    """(error estimate of the curve's reference, proven): :func:`assess`."""
-    r = assess(reference, h, err, h_ref, given)
-    return r.error, r.proven
 
 
 def _lines(ds, entry, n: int):
