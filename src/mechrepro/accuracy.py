@@ -28,6 +28,7 @@ A quantity taken against the finest point uses :func:`against_finest`.  The fram
 """
 from __future__ import annotations
 
+import textwrap
 from collections.abc import Callable
 from typing import NamedTuple
 
@@ -347,9 +348,10 @@ def plot(table: list[dict], accuracy: str | None = None, ax=None, annotate: bool
     ax.set_title(f"cost of accuracy: {accuracy}")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
-    if unproven:
-        ax.text(0.02, 0.02, "\n".join(f"{q}: {why}" for q, why in unproven.items()),
-                transform=ax.transAxes, fontsize=6, color="crimson", va="bottom", wrap=True)
+    if unproven:   # wrapped to the panel: a long line would squeeze the figure's layout
+        ax.text(0.02, 0.02, "\n".join(textwrap.fill(f"{q}: {why}", 70)
+                                      for q, why in unproven.items()),
+                transform=ax.transAxes, fontsize=6, color="crimson", va="bottom")
     return ax
 
 
