@@ -165,8 +165,9 @@ def assess(reference: str, h, err, h_ref: float | None = None, given: float | No
     levels above MARGIN F follow is not monotone: no level then stands above the band.
     The estimate, never below F:
 
-    ``exact``: 0.  ``extrapolated``: the estimate the quantity gives (``given``; made from
-    another sequence, whose proof is the quantity's), else how far the finest level departs
+    ``exact``: 0.  ``extrapolated``: the estimate the quantity gives (``given``; the
+    reference was made from another sequence, whose proof is the quantity's: this curve
+    need not be monotone, only above that estimate), else how far the finest level departs
     from the power law of the two before it (a reference off by d moves the finest error by
     ~d).  ``finest``: Richardson from the last refinements,
     e_ref = e_(n-1) / ((h_(n-1)/h_ref)^p - 1), p the observed order (an error against the
@@ -177,6 +178,10 @@ def assess(reference: str, h, err, h_ref: float | None = None, given: float | No
     if reference == "exact":
         return Reference(0.0, True, 0.0, "exact solution")
     h, err = _coarse_to_fine(h, err)
+    if given is not None:     # made from another sequence: its proof is the quantity's
+        est, e = max(float(given), float(floor)), err[err > MARGIN * floor]
+        return Reference(est, bool(len(e) and est < e.min()), float(floor),
+                         f"error {float(given):.2g} given by the quantity")
     measured, h_stall = noise_floor(h, err)
     F = max(measured, float(floor))
     above = err > MARGIN * F
@@ -191,10 +196,6 @@ def assess(reference: str, h, err, h_ref: float | None = None, given: float | No
             f"the reference than the one before it, and no level stands above {MARGIN:g} x "
             f"the largest error from there ({F:.2g})" if F == measured else
             f"NOT CONVERGED: no level above {MARGIN:g} x the {where}"))
-    if given is not None:
-        est = max(float(given), F)
-        return Reference(est, bool(est < ea.min()), F,
-                         f"error {float(given):.2g} given by the quantity; {where}")
     seq_h, seq_e = list(ha), list(ea)
     if band:
         seq_h.append(h[len(ha)]), seq_e.append(err[len(ha)])
