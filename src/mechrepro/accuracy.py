@@ -349,10 +349,11 @@ def plot(table: list[dict], accuracy: str | None = None, ax=None, annotate: bool
     ax.set_title(f"cost of accuracy: {accuracy}")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
-    if unproven:   # wrapped to the panel: a long line would squeeze the figure's layout
-        ax.text(0.02, 0.02, "\n".join(textwrap.fill(f"{q}: {why}", 70)
-                                      for q, why in unproven.items()),
-                transform=ax.transAxes, fontsize=6, color="crimson", va="bottom")
+    if unproven:   # under the axis label, clear of the data and the legend; wrapped to the
+        # panel (a long line would squeeze the figure's layout)
+        ax.annotate("\n".join(textwrap.fill(f"{q}: {why}", 70) for q, why in unproven.items()),
+                    xy=(0.0, 0.0), xycoords=("axes fraction", ax.xaxis.label), xytext=(0, -3),
+                    textcoords="offset points", fontsize=6, color="crimson", va="top")
     return ax
 
 
