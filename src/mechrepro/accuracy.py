@@ -161,9 +161,9 @@ def assess(reference: str, h, err, h_ref: float | None = None, given: float | No
     approach the reference monotonically, and the differences between successive levels
     (the last one against the next level: the band's first, or the reference when that is
     the finest run) must shrink, per e-fold of the step, so that uneven knob ratios
-    (2, 3, 4, 6 ...) do not read as growth.  A curve whose errors stop decreasing while
-    levels above MARGIN F follow is not monotone: no level then stands above the band.
-    The estimate, never below F:
+    (2, 3, 4, 6 ...) do not read as growth.  A curve whose errors stop decreasing at a
+    level not within a tenth of every coarser one is not monotone: the largest error from
+    there (its measured F) leaves no level above the band.  The estimate, never below F:
 
     ``exact``: 0.  ``extrapolated``: the estimate the quantity gives (``given``; the
     reference was made from another sequence, whose proof is the quantity's: this curve
