@@ -310,14 +310,7 @@ coa = R.table("cost_of_accuracy")
 entries = list(dict.fromkeys(r["accuracy"] for r in coa))
 fig, ax = plt.subplots(2, 3, figsize=(15, 8))
 for a, entry in zip(ax.ravel(), entries):
-    accuracy.plot(coa, entry, ax=a)
-    # a curve whose finest point is not proven more accurate than every point drawn has no
-    # trusted reference: its quantity has not converged over the levels run (docs)
-    bad = sorted({r["quantity"] for r in coa if r["accuracy"] == entry
-                  and str(r["reference_proven"]).lower() != "true"})
-    if bad:
-        a.text(0.02, 0.02, "NOT CONVERGED (reference unproven): " + ", ".join(bad),
-               transform=a.transAxes, fontsize=7, color="crimson", va="bottom")
+    accuracy.plot(coa, entry, ax=a)   # an unproven reference is drawn NOT CONVERGED, with why
 for a in ax.ravel()[len(entries):]:
     a.set_axis_off()
 fig.tight_layout()

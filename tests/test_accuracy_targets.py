@@ -80,3 +80,36 @@ def test_target_is_met_at_near_the_cheapest_setting(paper):
           f"achieved {achieved:.3g} at {t['knob']}={k:g} (cheapest sampled {cheapest}) "
           f"time {float(ds['target_seconds_chosen']):.3g} s; default {t['knob']}={k0} error "
           f"{default_error:.3g} time {float(ds['target_default_seconds']):.3g} s")
+
+
+def extrapolated(run, k, r):
+    """What ``extrapolate: true`` delivers with k its finest level: Richardson's
+    extrapolation of levels k/r^2, k/r, k (order measured on the three)."""
+    q = [quantity(run, max(1, round(k / r ** j))) for j in (2, 1, 0)]
+    p = math.log(abs(q[0] - q[1]) / abs(q[1] - q[2])) / math.log(r)
+    return q[2] + (q[2] - q[1]) / (r ** p - 1)
+
+
+@pytest.mark.xfail(strict=True, reason=(
+    "saw_chain load_max_target (extrapolate: true) stops at K = 480, 2.9x the cheapest sampled "
+    "extrapolation from which on every level meets 1e-3 (K = 168; errors 0.175, 0.077, 0.019 "
+    "at K = 160, 240, 480 against a request of 0.212, measured 2026-11-28): its estimate "
+    "|R_i - R_(i-1)| is the error of the coarser extrapolation R_(i-1), three times that of "
+    "R_i (mechrepro.target; issue #25)"))
+def test_an_extrapolated_target_is_near_the_cheapest_extrapolation_that_meets_it():
+    """The check above compares an extrapolated target with plain settings, which it beats by
+    10x; here it is compared with its own method: the delivered value at each sampled finest
+    level k is the extrapolation of k/r^2, k/r, k, whose cost is ~ k."""
+    run = load_paper("config/papers/saw_chain.yaml").runs["load_max_target"]
+    t, r = run["target"], float(run["target"]["factor"])
+    ds = run_solver(run)
+    requested, k = float(ds["target_requested"]), float(ds["target_knob_value"])
+    assert float(ds["target_verified_error"]) <= requested
+    # finest levels that are multiples of r^2, so that every ratio is r
+    sample = [int(r ** 2) * int(m) for m in np.unique(np.geomspace(15, 240, 17).astype(int))]
+    ok = [abs(extrapolated(run, kk, r) - quantity(run, kk, t["exact"])) <= requested
+          for kk in sample]
+    # the cheapest from which on every sampled level meets it (not a lucky crossing of zero)
+    assert ok[-1], (sample, ok)
+    cheapest = sample[len(ok) - ok[::-1].index(False)] if False in ok else sample[0]
+    assert k <= 2 * cheapest, (k, cheapest)

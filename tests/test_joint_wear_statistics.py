@@ -117,10 +117,13 @@ def test_a_dataset_records_steps_and_the_quantile_arc():
 
 def test_dynamic_accuracy_reference_is_proven():
     """Issue #25: the dynamic cost-of-accuracy curve's reference (the finest Radau run of
-    accuracy_dynamic) carries a Richardson error estimate below every Radau point, for
-    both quantities.  The former reference (rtol 1e-7) was off by more in the wear per
-    period (5e-6) than the differences it measured (~3e-8)."""
-    from mechrepro.accuracy import reference_error
+    accuracy_dynamic) carries a Richardson error estimate below every Radau point above the
+    integrator's noise floor, for the mean force.  The former reference (rtol 1e-7) was off
+    by more in the wear per period (5e-6) than the differences it measured (~3e-8).  The
+    wear per period is not proven: it stays ~5e-6 off from rtol 1e-5 to 1e-9 and then moves
+    300x more in one decade than in the decades before, so the differences between
+    successive levels do not shrink (drawn NOT CONVERGED)."""
+    from mechrepro.accuracy import MARGIN, assess
     from mechrepro.models.joint_wear import solver
 
     runs = [r for n, r in CFG.runs.items()
@@ -135,16 +138,15 @@ def test_dynamic_accuracy_reference_is_proven():
     for q in ("G", "F_N_mean"):
         v = np.array([x[q] for x in f])
         err = np.abs(v / v[i_ref] - 1.0)[on]
-        above = np.ones_like(err, bool)
-        est, proven = reference_error("finest", rtol[on], err, rtol[i_ref])
-        if not proven:
-            # the finest points at the integrator's noise floor (the mean force: 1.1e-12
-            # and 1.5e-12 at rtol 1e-10 and 1e-11 on an AMD EPYC, not monotone, so no
-            # order): the reference must be proven below every point above 10x that floor
-            floor = err[rtol[on] <= 1e-10].max()
-            above = err > 10 * floor
-            est, proven = reference_error("finest", rtol[on][above], err[above], rtol[i_ref])
-        assert proven and est < err[above].min(), (q, est, err[above].min())
+        ref = assess("finest", rtol[on], err, rtol[i_ref])
+        if q == "G":
+            assert not ref.proven and ref.why.startswith("NOT CONVERGED"), (q, ref)
+            continue
+        # the finest points at the integrator's noise floor (1.1e-12 and 1.5e-12 at rtol
+        # 1e-10 and 1e-11 on an AMD EPYC, not monotone), measured by assess: the reference
+        # is proven below every point above MARGIN x that floor
+        above = err > MARGIN * ref.floor
+        assert ref.proven and ref.error < err[above].min() and above.sum() >= 3, (q, ref)
     G = np.array([x["G"] for x in f])
     at = {k: G[np.isclose(rtol, 10.0 ** k, rtol=1e-9)][0] for k in (-6, -7)}
     assert abs(at[-7] / G[i_ref] - 1.0) > 10 * abs(at[-6] / at[-7] - 1.0)

@@ -28,7 +28,9 @@ A quantity taken against the finest point uses :func:`against_finest`.  The fram
 """
 from __future__ import annotations
 
+import textwrap
 from collections.abc import Callable
+from typing import NamedTuple
 
 import numpy as np
 
@@ -36,7 +38,7 @@ from .registry import Registry
 
 COLUMNS = ["accuracy", "knob", "knob_value", "quantity", "line", "error", "error_kind",
            "error_unit", "reference", "reference_error", "reference_proven", "observed_order",
-           "time_s", "time_of"]
+           "time_s", "time_of", "reference_why"]
 
 
 class AccuracyQuantities(Registry):
@@ -98,63 +100,140 @@ def curve_order(h, err) -> float:
     return observed_order(h[:stop], err[:stop])
 
 
-ROUNDOFF = 1e-13   # relative: a few hundred ulp of double precision, the floor of a converged curve
+MARGIN = 10.0   # a level within 10x the noise floor may owe a tenth of its error to noise
 
 
-def at_roundoff(h, err) -> bool:
-    """Whether the two finest points of a curve lie at round-off (relative errors)."""
+def _coarse_to_fine(h, err):
     h, err = np.asarray(h, float), np.asarray(err, float)
-    ok = np.isfinite(err)
-    finest = err[ok][np.argsort(h[ok])][:2]
-    return len(finest) == 2 and bool(np.all(finest <= ROUNDOFF))
+    ok = np.isfinite(err) & np.isfinite(h)
+    o = np.argsort(h[ok])[::-1]
+    return h[ok][o], err[ok][o]
 
 
-def reference_error(reference: str, h, err, h_ref: float | None, given: float | None = None):
-    """(error estimate of the curve's reference, proven) in the units of ``err``.
+def noise_floor(h, err) -> tuple[float, float]:
+    """(noise floor, step where it starts) measured at a curve's finest levels (``err``:
+    errors against its reference): from the first level that comes no closer to the
+    reference than the level before it, the largest error up to the finest level.  Those
+    levels differ by noise (round-off, an integrator's error control), not by truncation,
+    if every coarser level stands well above it (:func:`assess`).  (0, NaN) when every
+    refinement comes closer."""
+    h, e = _coarse_to_fine(h, err)
+    stall = np.flatnonzero(np.diff(e) >= 0)
+    if not len(stall):
+        return 0.0, float("nan")
+    return float(e[stall[0] + 1:].max()), float(h[stall[0] + 1])
 
-    ``exact``: 0.  ``extrapolated``: the estimate the quantity gives (``given``), else how far
-    the finest point departs from the power law of the two before it (a reference off by d
-    moves the finest error by ~d).  ``finest``: Richardson from the last two refinements,
-    e_ref = e_(n-1) / ((h_(n-1)/h_ref)^p - 1), p the curve's observed order (an error against
-    the finest point is measured from it, so its own error is what the curve left out).
-    Proven when the estimate is finite and below the smallest error on the curve."""
-    h, err = np.asarray(h, float), np.asarray(err, float)
-    ok = np.isfinite(err) & (err > 0)
-    h, err = h[ok], err[ok]
-    smallest = float(err.min()) if len(err) else float("nan")
+
+def _difference_order(h, e) -> float:
+    """The order p of three levels' errors against the finest run, e_i = C (h_i^p - h_ref^p),
+    from their successive differences, which do not hold the reference:
+    (e_0 - e_1) / (e_1 - e_2) = (h_0^p - h_1^p) / (h_1^p - h_2^p), any step ratios.  The
+    right side grows from ln(h_0/h_1) / ln(h_1/h_2) at p -> 0: shrinking differences per
+    e-fold of the step are what give a root.  NaN without one in (0, 20)."""
+    from scipy.optimize import brentq
+
+    D = (e[0] - e[1]) / (e[1] - e[2])
+    x = np.log(np.asarray(h, float) / h[2])          # h_i^p / h_2^p = exp(p x_i)
+    g = lambda p: (np.exp(p * x[0]) - np.exp(p * x[1])) / (np.exp(p * x[1]) - 1.0) - D  # noqa: E731
+    lo, hi = 1e-6, 20.0
+    if not (np.isfinite(D) and g(lo) < 0 < g(hi)):
+        return float("nan")
+    return float(brentq(g, lo, hi, xtol=1e-10))
+
+
+class Reference(NamedTuple):
+    """A curve's reference: its error estimate (units of the curve's errors), whether that is
+    proven below every error on the curve above the noise band, the noise floor and why."""
+    error: float
+    proven: bool
+    floor: float
+    why: str
+
+
+def assess(reference: str, h, err, h_ref: float | None = None, given: float | None = None,
+           floor: float = 0.0, floor_why: str = "declared") -> Reference:
+    """The error of a curve's reference and whether it is proven (``h``: step, smaller is
+    finer; ``err``: errors against the reference; ``floor``: a noise floor known beforehand,
+    ``floor_why`` where it comes from).
+
+    The noise floor F is the larger of ``floor`` and the one the curve measures
+    (:func:`noise_floor`).  The levels above the noise band (error > MARGIN F) must
+    approach the reference monotonically, and the differences between successive levels
+    (the last one against the next level: the band's first, or the reference when that is
+    the finest run) must shrink, per e-fold of the step, so that uneven knob ratios
+    (2, 3, 4, 6 ...) do not read as growth.  A curve whose errors stop decreasing at a
+    level not within a tenth of every coarser one is not monotone: the largest error from
+    there (its measured F) leaves no level above the band.  The estimate, never below F:
+
+    ``exact``: 0.  ``extrapolated``: the estimate the quantity gives (``given``; the
+    reference was made from another sequence, whose proof is the quantity's: this curve
+    need not be monotone, only above that estimate), else how far the finest level departs
+    from the power law of the two before it (a reference off by d moves the finest error by
+    ~d).  ``finest``: Richardson from the last refinements,
+    e_ref = e_(n-1) / ((h_(n-1)/h_ref)^p - 1), p the observed order (an error against the
+    finest run is measured from it, so its own error is what the curve left out); with a
+    single level above the band, F when the band holds two levels or more (the sequence
+    reached its floor and stayed there).  Proven when the estimate is finite and below every
+    error above the band; levels inside the band are drawn, not compared."""
     if reference == "exact":
-        return 0.0, True
-    est = float("nan")
-    if given is not None:
-        est = float(given)
-    elif reference == "extrapolated" and len(h) >= 3:
-        o = np.argsort(h)[::-1]
-        (h0, h1, h2), (e0, e1, e2) = h[o][-3:], err[o][-3:]
-        if e0 > e1 > 0:
-            p = np.log(e0 / e1) / np.log(h0 / h1)
-            est = abs(e2 - e1 * (h2 / h1) ** p)
-    elif reference == "finest" and len(h) >= 2 and h_ref is not None:
-        p = curve_order(h, err)
-        o = np.argsort(h)
-        if len(h) >= 3:
-            # errors measured from the finest run are C (h^p - h_ref^p): their successive
-            # differences give p without that bias
-            (ha, hb, hc), (ea, eb, ec) = h[o][2::-1], err[o][2::-1]
-            if ea > eb > ec and ha / hb > 1 and hb / hc > 1:
-                pd = np.log((ea - eb) / (eb - ec)) / np.log(hb / hc)
-                if np.isfinite(pd) and abs(np.log(ha / hb) - np.log(hb / hc)) < 1e-6:
-                    p = min(p, pd)
-        if len(h) >= 2:
-            # and the last refinement must itself converge at that order (a stall in the
-            # round-off floor gives a small last-pair order, hence a large reference error)
-            (hb, hc), (eb, ec) = h[o][1::-1], err[o][1::-1]
-            p = min(p, np.log(eb / ec) / np.log(hb / hc)) if hb > hc else p
-        h1, e1 = h[o][0], err[o][0]              # the finest point on the curve
-        r = h1 / h_ref
+        return Reference(0.0, True, 0.0, "exact solution")
+    h, err = _coarse_to_fine(h, err)
+    if given is not None:     # made from another sequence: its proof is the quantity's
+        est, e = max(float(given), float(floor)), err[err > MARGIN * floor]
+        return Reference(est, bool(len(e) and est < e.min()), float(floor),
+                         f"error {float(given):.2g} given by the quantity")
+    measured, h_stall = noise_floor(h, err)
+    F = max(measured, float(floor))
+    above = err > MARGIN * F
+    ha, ea = h[above], err[above]          # a coarse prefix, strictly decreasing
+    band = int((~above).sum())
+    where = ("no noise floor" if F == 0 else
+             f"noise floor {F:.2g} ({floor_why})" if floor >= measured else
+             f"noise floor {F:.2g} (measured: the largest error from step {h_stall:.3g} on)")
+    if not len(ea):
+        return Reference(float("nan"), False, F, (
+            f"NOT CONVERGED: not monotone: the level at step {h_stall:.3g} comes no closer to "
+            f"the reference than the one before it, and no level stands above {MARGIN:g} x "
+            f"the largest error from there ({F:.2g})" if F == measured else
+            f"NOT CONVERGED: no level above {MARGIN:g} x the {where}"))
+    seq_h, seq_e = list(ha), list(ea)
+    if band:
+        seq_h.append(h[len(ha)]), seq_e.append(err[len(ha)])
+    elif reference == "finest" and h_ref is not None:
+        seq_h.append(h_ref), seq_e.append(0.0)
+    d = -np.diff(seq_e) / np.log(np.asarray(seq_h[:-1]) / np.asarray(seq_h[1:]))
+    grow = np.flatnonzero(np.diff(d) >= 0)
+    if len(grow):
+        k = int(grow[0])
+        return Reference(float("nan"), False, F,
+                         f"NOT CONVERGED: the differences between successive levels do not "
+                         f"shrink ({d[k]:.2g} then {d[k + 1]:.2g} per e-fold of the step, "
+                         f"levels at step {seq_h[k]:.3g}, {seq_h[k + 1]:.3g}, {seq_h[k + 2]:.3g})")
+    est, p = float("nan"), float("nan")
+    if reference == "extrapolated" and len(ha) >= 3:
+        (h0, h1, h2), (e0, e1, e2) = ha[-3:], ea[-3:]
+        p = np.log(e0 / e1) / np.log(h0 / h1)
+        est = abs(e2 - e1 * (h2 / h1) ** p)
+    elif reference == "finest" and h_ref is not None and len(ha) >= 2:
+        p = curve_order(ha, ea)
+        if len(ha) >= 3:
+            p = min(p, _difference_order(ha[-3:], ea[-3:]))
+        # and the last refinement must itself converge at that order (a stall gives a
+        # small last-pair order, hence a large reference error)
+        p = min(p, np.log(ea[-2] / ea[-1]) / np.log(ha[-2] / ha[-1]))
+        r = ha[-1] / h_ref
         if np.isfinite(p) and p > 0 and r > 1:
-            est = e1 / (r ** p - 1.0)
-    proven = bool(np.isfinite(est) and est < smallest)
-    return est, proven
+            est = ea[-1] / (r ** p - 1.0)
+    elif reference == "finest" and len(ha) == 1 and band >= 2:
+        return Reference(F, bool(F < ea[0]), F,
+                         f"reached its {where} from the second level on and stayed there")
+    if not np.isfinite(est):
+        return Reference(float("nan"), False, F,
+                         f"NOT CONVERGED: {len(ea)} level(s) above the band of the {where}: "
+                         f"no observed order")
+    est = float(max(est, F))
+    return Reference(est, bool(est < ea.min()), F,
+                     f"Richardson at observed order {p:.2g} from {len(ea)} levels; {where}")
 
 
 def _lines(ds, entry, n: int):
@@ -203,19 +282,20 @@ def rows(entries: list[dict], dataset: Callable[[str], object],
             # the reference's error comes from the line it belongs to (the finest point's
             # method) and holds for every line of the entry
             ref_line = on_line(lines[fi])
-            ref_err, _ = reference_error(
-                reference, h[ref_line], err[ref_line],
-                float(h[fi]) if reference == "finest" else None, qspec.get("reference_error"))
-            floor = ROUNDOFF if qspec["error"] == "relative" else 0.0
-            if not np.isfinite(ref_err) and floor and at_roundoff(h[ref_line], err[ref_line]):
-                # the curve reaches its reference within round-off: that bounds its error
-                ref_err = floor
+            # a relative error resolves no less than one ulp of the reference
+            ulp = np.finfo(float).eps if qspec["error"] == "relative" else 0.0
+            ref = assess(reference, h[ref_line], err[ref_line],
+                         float(h[fi]) if reference == "finest" else None,
+                         qspec.get("reference_error"), ulp, "one ulp of the reference")
             for line in dict.fromkeys(lines):
                 on = on_line(line)
                 sel = np.flatnonzero(on)
-                e = err[sel][err[sel] > floor]
-                proven = bool(reference == "exact" or (np.isfinite(ref_err) and len(e)
-                                                       and ref_err < e.min()))
+                e = err[sel][err[sel] > MARGIN * ref.floor]   # the band is drawn, not compared
+                proven = bool(reference == "exact" or (ref.proven and len(e)
+                                                       and ref.error < e.min()))
+                why = ref.why if proven or not ref.proven else (
+                    f"NOT CONVERGED: the reference's error {ref.error:.2g} is not below "
+                    f"this line's errors")
                 p = curve_order(h[sel], err[sel])
                 for i in order:
                     if not on[i]:
@@ -225,8 +305,8 @@ def rows(entries: list[dict], dataset: Callable[[str], object],
                         "knob_value": knob[i].item(), "quantity": qname, "line": line,
                         "error": float(err[i]), "error_kind": qspec["error"],
                         "error_unit": "1" if qspec["error"] == "relative" else qspec.get("unit", "1"),
-                        "reference": reference, "reference_error": ref_err,
-                        "reference_proven": proven, "observed_order": p,
+                        "reference": reference, "reference_error": ref.error,
+                        "reference_proven": proven, "reference_why": why, "observed_order": p,
                         "time_s": float(t[i]), "time_of": entry.get("time_of", "one solve"),
                     })
     return out
@@ -238,8 +318,9 @@ def _true(v) -> bool:
 
 def plot(table: list[dict], accuracy: str | None = None, ax=None, annotate: bool = True):
     """Error vs time, one labelled line per (quantity, method) of one entry (the first when
-    not given).  A line whose reference is not proven more accurate than its points is drawn
-    dashed with hollow markers and says so in its label."""
+    not given).  A line whose reference is not proven more accurate than its points has not
+    converged over the levels run: it is drawn dashed with hollow markers, its label says
+    NOT CONVERGED and the panel says why."""
     import matplotlib.pyplot as plt
 
     accuracy = accuracy or table[0]["accuracy"]
@@ -247,6 +328,7 @@ def plot(table: list[dict], accuracy: str | None = None, ax=None, annotate: bool
     if ax is None:
         _, ax = plt.subplots(figsize=(6, 4.2))
     curves = list(dict.fromkeys((r["quantity"], r.get("line", "")) for r in sel))
+    unproven = {}
     for j, (q, line) in enumerate(curves):
         pts = [r for r in sel if r["quantity"] == q and r.get("line", "") == line]
         proven = _true(pts[0].get("reference_proven", True))
@@ -254,7 +336,8 @@ def plot(table: list[dict], accuracy: str | None = None, ax=None, annotate: bool
         label = f"{q}{' ' + line if line else ''} ({pts[0]['error_kind']}"
         label += f", order {p:.2g})" if np.isfinite(p) else ")"
         if not proven:
-            label += " [reference unproven]"
+            label += " [NOT CONVERGED]"
+            unproven[q] = pts[0].get("reference_why") or "reference unproven"
         ax.loglog([float(r["time_s"]) for r in pts], [float(r["error"]) for r in pts],
                   "o-" if proven else "o--", mfc=None if proven else "none", label=label)
         if annotate and j == 0:
@@ -266,6 +349,11 @@ def plot(table: list[dict], accuracy: str | None = None, ax=None, annotate: bool
     ax.set_title(f"cost of accuracy: {accuracy}")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
+    if unproven:   # under the axis label, clear of the data and the legend; wrapped to the
+        # panel (a long line would squeeze the figure's layout)
+        ax.annotate("\n".join(textwrap.fill(f"{q}: {why}", 70) for q, why in unproven.items()),
+                    xy=(0.0, 0.0), xycoords=("axes fraction", ax.xaxis.label), xytext=(0, -3),
+                    textcoords="offset points", fontsize=6, color="crimson", va="top")
     return ax
 
 

@@ -4,10 +4,14 @@
 variant of ``config/reference.yaml`` (other BLAS kernels, numpy SIMD limited to the
 baseline, another BLAS thread count) and writes ``results/reference/<profile>/<paper>.csv``:
 
-    quantity, reproduced_value, status, basis, spread, tolerance, variants
+    quantity, reproduced_value, status, basis, spread, tolerance, variants, evidence, inputs
 
 ``spread`` is the largest difference from the native value over the variants, and
-``tolerance = max(safety * spread, floor * |value|)``.  ``basis`` says what is compared:
+``tolerance = max(safety * spread, floor * |value|)``.  ``inputs`` is a digest of what the
+row's value is computed from (:func:`row_inputs`): when a regeneration finds the committed
+row made from the same inputs, its value is one more observation (variant ``previous``,
+most often another machine's) and its spread is kept, so that the tolerance covers the
+machines the reference was ever made on.  ``basis`` says what is compared:
 ``value`` (value within tolerance and same verdict), ``verdict`` (only the status: a
 round-off-level residual, declared ``drift: verdict`` with a reason) or ``timing``
 (nothing: wall-clock quantities never enter the check).  A verdict that differs between
@@ -19,6 +23,7 @@ source.
 from __future__ import annotations
 
 import csv
+import hashlib
 import io
 import math
 import os
@@ -31,10 +36,11 @@ import yaml
 
 from .config import load_paper
 from .io import write_text
+from .provenance import SRC_ROOT, json_hash, package_versions
 from .validation import read_table
 
 HEADER = ["quantity", "reproduced_value", "status", "basis", "spread", "tolerance", "variants",
-          "evidence"]
+          "evidence", "inputs"]
 # what every reference file has (older ones lack the evidence class)
 REQUIRED = HEADER[:7]
 
@@ -120,15 +126,64 @@ def _basis(cfg) -> dict[str, str]:
     return out
 
 
+# modules that only present or book-keep results (a change there changes no value); any
+# other module of the package, and the paper's own model, is code a row may be computed by
+PRESENTATION = ("archive.py", "docs.py", "experiment.py", "heal.py", "kernel.py", "notebook.py",
+                "plan.py", "plotting.py", "reference.py", "report.py", "results.py", "summary.py")
+
+
+def code_digest(paper: str, src: Path = SRC_ROOT) -> str:
+    """sha256 of the source a paper's values are computed by: the framework's modules but
+    :data:`PRESENTATION`, and ``models/<paper>/``."""
+    files = [f for f in src.glob("*.py") if f.name not in PRESENTATION]
+    files += list((src / "models" / paper).rglob("*.py")) + [src / "models" / "__init__.py"]
+    h = hashlib.sha256()
+    for f in sorted(set(files)):
+        if f.exists():
+            h.update(str(f.relative_to(src)).encode())
+            h.update(f.read_bytes())
+    return h.hexdigest()
+
+
+# config keys that reach a row only through the records of the runs it reads (scenes,
+# studies, profiles), that are the other rows' (reported), or that only present results
+NOT_INPUTS = ("reported", "scenes", "studies", "profiles", "figures", "tables", "claim_note",
+              "title", "source")
+
+
+def row_inputs(cfg, quantity: str, code: str) -> str:
+    """A digest of what a row's value is computed from: the code (:func:`code_digest`), the
+    tracked package versions, the paper's config but :data:`NOT_INPUTS`, the row's own
+    entry and the records of every run it reads (its scenes and studies with their
+    variants; a validation job may read no other).  The same digest means the same
+    computation, whatever the machine."""
+    reads = set(cfg.reported[quantity].get("reads", []))
+    runs = {r: rec for r, rec in cfg.runs.items()
+            if {r.split("@")[0], (rec.get("study") or "").split("@")[0], rec.get("scene")} & reads}
+    packages = {k: v for k, v in package_versions().items() if k != "python"}
+    return json_hash({"code": code, "packages": packages, "profile": cfg.profile,
+                      "config": {k: v for k, v in cfg.raw.items() if k not in NOT_INPUTS},
+                      "row": cfg.reported[quantity], "runs": runs})[:16]
+
+
+def _committed(path: Path) -> dict[str, dict]:
+    """The rows of a committed reference file, by quantity ({} when there is none)."""
+    return {r["quantity"]: r for r in _table(path, REQUIRED)} if path.exists() else {}
+
+
 def derive(results: dict[str, Path], reference_dir: str | Path, config_dir: str | Path,
            papers: list[str], profile: str, native: str = "native") -> None:
-    """Write the reference of ``profile`` from the variant runs of :func:`measure`."""
+    """Write the reference of ``profile`` from the variant runs of :func:`measure`, with the
+    committed value of a row made from the same inputs as one more observation."""
     conf = settings(config_dir)
     safety, floor = float(conf["safety"]), float(conf["floor"])
     refused = []
     for paper in papers:
         cfg = load_paper(Path(config_dir) / "papers" / f"{paper}.yaml", profile)
         basis = _basis(cfg)
+        code = code_digest(paper)
+        out = Path(reference_dir) / profile / f"{paper}.csv"
+        committed = _committed(out)
         tables = {v: _values(res / paper / "tables" / "validation.csv") for v, res in results.items()}
         base = tables[native]
         buf = io.StringIO()
@@ -137,21 +192,28 @@ def derive(results: dict[str, Path], reference_dir: str | Path, config_dir: str 
         for q, (value, status, evidence) in base.items():
             b = basis.get(q, "value")
             others = {v: t.get(q, (math.nan, "missing", ""))[:2] for v, t in tables.items()}
+            inputs = row_inputs(cfg, q, code) if q in cfg.reported else ""
+            prev, carried = committed.get(q), 0.0
+            if inputs and prev and prev.get("inputs") == inputs:
+                where = f"{out}, {q}"
+                others["previous"] = (_float(prev["reproduced_value"], where), prev["status"])
+                carried = _float(prev["spread"], where)
             if b != "timing" or status != "info":   # a timing verdict must not flip either
                 flips = {v: s for v, (_, s) in others.items() if s != status}
                 if flips:
                     refused.append(f"  {paper}.{q}: {status} natively, " + ", ".join(
                         f"{s} under {v} ({others[v][0]!r})" for v, s in flips.items()))
-            spread = max((abs(x - value) for x, _ in others.values()
-                          if not (math.isnan(x) and math.isnan(value))), default=0.0)
+            spread = max([abs(x - value) for x, _ in others.values()
+                          if not (math.isnan(x) and math.isnan(value))]
+                         + ([] if math.isnan(carried) else [carried]), default=0.0)
             if b == "value" and not math.isnan(value):
                 tol = max(safety * spread, floor * abs(value))
             else:
                 tol = math.nan
             w.writerow([q, repr(value), status, b, repr(spread), repr(tol),
-                        " ".join(results), evidence])
-        write_text(Path(reference_dir) / profile / f"{paper}.csv", buf.getvalue(), record=False)
-        print(f"reference written: {Path(reference_dir) / profile / f'{paper}.csv'}")
+                        " ".join(others), evidence, inputs])
+        write_text(out, buf.getvalue(), record=False)
+        print(f"reference written: {out}")
     if refused:
         raise DriftError("verdicts that differ between platform variants (fix each quantity "
                          "at its source; a verdict must not depend on the CPU):\n"
