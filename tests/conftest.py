@@ -9,6 +9,14 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "src"))
 
 
+def pytest_configure(config):
+    """xdist hands out groups largest first (`--loadscope-reorder`, its default), which put
+    the one-test other-platform run last: it started 47 minutes into a 58-minute suite.  The
+    order below is the schedule."""
+    if hasattr(config.option, "loadscopereorder"):
+        config.option.loadscopereorder = False
+
+
 @pytest.hookimpl(tryfirst=True)
 def pytest_collection_modifyitems(config, items):
     """Under xdist (`make test`: `-n 2 --dist loadgroup`) a worker takes whole groups: every

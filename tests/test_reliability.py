@@ -326,35 +326,38 @@ def _edit(raw, paper):
     return scene
 
 
-@pipeline
 @pytest.mark.parametrize("paper", list(SCENE_EDITS))
-def test_one_parameter_in_one_scene_reruns_exactly_its_solve_jobs(paper, tmp_path):
-    """Solve a paper's ci runs, edit one parameter of one scene, and ask Snakemake (dry
-    run, its reasons) what it would solve again: exactly the jobs holding a run whose
-    record changed, none other (the paper's config file is not an input of solve jobs)."""
+def test_one_parameter_in_one_scene_reruns_exactly_its_solve_jobs(paper, workflow):
+    """In the session's ci run, edit one parameter of one scene and ask Snakemake (dry run,
+    its reasons) what it would solve again: exactly the jobs holding a run whose record
+    changed, none other (the paper's config file is not an input of solve jobs).  The edit
+    is undone after the dry run, which writes nothing (solving each paper again in a copy
+    of its own cost 1,200 s of a loaded suite)."""
     import yaml
 
     from mechrepro.config import load_paper
+    from test_pipeline import scheduled
 
-    work = copy_workflow(tmp_path)
+    work, _ = workflow
     path = work / "config" / "papers" / f"{paper}.yaml"
+    original = path.read_text()
     cfg = load_paper(path, "ci")
     targets = [f"results/{paper}/runs/{r}.nc" for r in cfg.runs] + \
               [f"results/{paper}/studies/{s}.nc" for s in cfg.studies]
     args = ["--cores", "2", "--config", "profile=ci", f"papers=[{paper}]"]
-    base = [sys.executable, "-m", "snakemake", *targets]
-    subprocess.run([*base, *args], cwd=work, check=True, capture_output=True)
-    raw = yaml.safe_load(path.read_text())
-    scene = _edit(raw, paper)
-    path.write_text(yaml.safe_dump(raw, sort_keys=False))
-    after = load_paper(path, "ci")
+    try:
+        raw = yaml.safe_load(original)
+        scene = _edit(raw, paper)
+        path.write_text(yaml.safe_dump(raw, sort_keys=False))
+        after = load_paper(path, "ci")
+        dry = subprocess.run([sys.executable, "-m", "snakemake", *targets, "-n", *args],
+                             cwd=work, capture_output=True, text=True)
+    finally:
+        path.write_text(original)
     changed = {r for r in after.runs if after.runs[r] != cfg.runs.get(r)}
     assert changed and all(after.runs[r]["scene"] == scene for r in changed), changed
     expected = {f"solve_{paper}__{job}" for job, runs in after.solve_jobs().items()
                 if changed & set(runs)}
-    dry = subprocess.run([*base, "-n", *args], cwd=work, capture_output=True, text=True)
-    from test_pipeline import scheduled
-
     jobs = scheduled(dry.stdout) - {"all"}
     assert jobs == expected, (jobs, expected, dry.stdout[-3000:])
     assert "Params have changed" in dry.stdout

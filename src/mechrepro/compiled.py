@@ -35,14 +35,52 @@ def available(switch: str | None = None) -> bool:
     return _numba()
 
 
+def _cache_root() -> Path:
+    """Where compiled kernels are kept: ``NUMBA_CACHE_DIR`` if set, else the user's cache
+    (``$XDG_CACHE_HOME``, ``~/.cache``), so that every copy of the project shares them."""
+    root = os.environ.get("NUMBA_CACHE_DIR") or os.environ.get("XDG_CACHE_HOME") \
+        or Path.home() / ".cache"
+    return Path(root) / "mechrepro" / "numba"
+
+
 @cache
 def _cache_dir(package: Path) -> str:
     """numba's disk cache for the kernels of one model package, keyed by the source of every
     file in it: numba keys a cached kernel on its own file alone, so a kernel that calls
     another file's (joint_wear's Radau calls clearance.py's right-hand side) would keep
-    running the old code after that file changed."""
+    running the old code after that file changed.  Not keyed by where the package lies:
+    numba's own locators hash the absolute path, so each copy of the project (the test
+    suite's pipelines, an experiment, a moved checkout) compiled every kernel again, about
+    50 s of CPU per copy."""
     digest = hashlib.sha256(b"".join(p.read_bytes() for p in sorted(package.glob("*.py"))))
-    return str(package / "__pycache__" / "numba" / digest.hexdigest()[:16])
+    return str(_cache_root() / f"{package.name}-{digest.hexdigest()[:16]}")
+
+
+@cache
+def _locator():
+    """numba's locator of a kernel compiled by :func:`jit` (set on the function as
+    ``_mechrepro_jit``): the cache directory is :func:`_cache_dir` of its package."""
+    from numba.core.caching import CacheImpl, UserProvidedCacheLocator
+
+    class PackageLocator(UserProvidedCacheLocator):
+        def __init__(self, py_func, py_file):
+            self._py_file = py_file
+            self._lineno = py_func.__code__.co_firstlineno
+            self._cache_path = _cache_dir(Path(py_file).resolve().parent)
+
+        @classmethod
+        def from_function(cls, py_func, py_file):
+            if not getattr(py_func, "_mechrepro_jit", False) or not os.path.exists(py_file):
+                return None
+            self = cls(py_func, py_file)
+            try:
+                self.ensure_cache_path()
+            except OSError:       # not writable: numba's own locators take over
+                return None
+            return self
+
+    CacheImpl._locator_classes.insert(0, PackageLocator)
+    return PackageLocator
 
 
 def jit(fn=None, **options):
@@ -53,11 +91,7 @@ def jit(fn=None, **options):
             return f
         import numba
 
-        before = numba.config.CACHE_DIR
-        # the cache locator reads the directory when the kernel is decorated
-        numba.config.CACHE_DIR = _cache_dir(Path(inspect.getfile(f)).resolve().parent)
-        try:
-            return numba.njit(cache=True, error_model="numpy", **options)(f)
-        finally:
-            numba.config.CACHE_DIR = before
+        _locator()
+        f._mechrepro_jit = True    # the cache locator is chosen when the kernel is decorated
+        return numba.njit(cache=True, error_model="numpy", **options)(f)
     return wrap(fn) if fn is not None else wrap
