@@ -56,3 +56,50 @@ def test_extrapolation_meets_a_tight_request_at_a_far_coarser_level():
     assert abs(rich["value"] - Q) <= rich["estimated_error"]
     assert rich["knob_value"] * 10 < plain["knob_value"]
     assert rich["seconds_chosen"] * 10 < plain["seconds_chosen"]
+
+
+@pytest.mark.parametrize("p, a, b, rtol", [
+    (1, 3.0, 40.0, 1e-5),     # the difference method's shape, same-signed terms
+    (1, 3.0, -40.0, 1e-5),    # terms of opposite sign: the extrapolations converge late
+    (1, -3.0, 5.0, 1e-4),     # ... and cross zero on the way
+    (2, 3.0, -40.0, 1e-6),    # a second-order method
+])
+def test_extrapolated_target_is_met_near_the_cheapest_extrapolation_of_an_exact_sequence(
+        p, a, b, rtol):
+    """q(h) = q* + a h^p + b h^(p+1), h = 1/K, cost ~ K: the delivered extrapolation is within
+    the request and within its own estimate, and its finest level K costs at most twice the
+    cheapest sampled extrapolation (K/4, K/2, K) from which on every one meets the request.
+    Trusting the extrapolations' observed order above p + 1 (5.3 for p = 1, b = -40: not yet
+    asymptotic) gives an estimate 8x too small and an error 8x the request."""
+    import xarray as xr
+
+    from mechrepro.target import solve
+
+    Q = 10.0
+
+    def f(k):
+        return Q + a / k ** p + b / k ** (p + 1)
+
+    def once(run):
+        k = run["resolution"]["K"]
+        return xr.Dataset({"q": ((), f(k))}), float(k)
+
+    _, rec = solve({"run": "t", "resolution": {"K": 8},
+                    "target": {"quantity": "q", "reduce": "max", "rtol": rtol, "knob": "K",
+                               "factor": 2, "extrapolate": True}}, once)
+    achieved = abs(rec["value"] - Q)
+    assert achieved <= rec["estimated_error"] <= rec["requested"]
+
+    def extrapolated_error(k):
+        q = [f(k / 4), f(k / 2), f(k)]
+        d1, d2 = abs(q[0] - q[1]), abs(q[1] - q[2])
+        if not 0 < d2 < d1:
+            return math.inf
+        s = math.log(d1 / d2) / math.log(2)
+        return abs(q[2] + (q[2] - q[1]) / (2 ** s - 1) - Q)
+
+    sample = np.arange(32, 16385, 4)
+    ok = [extrapolated_error(k) <= rec["requested"] for k in sample]
+    assert ok[-1]
+    cheapest = sample[len(ok) - ok[::-1].index(False)] if False in ok else sample[0]
+    assert rec["knob_value"] <= 2 * cheapest, (rec["knob_value"], cheapest)

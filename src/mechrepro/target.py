@@ -15,11 +15,14 @@ once more at the predicted setting k* = k2 (e(k2) / tol)^(1/p).  The dataset rec
 requested, the estimated error, the error against ``exact`` where the scene computes one (the
 verified error) and the time of every solve it took.
 
-With ``extrapolate: true`` the delivered value is Richardson's extrapolation of the two finest
-levels, R_i = q_i + (q_i - q_{i-1}) / (r^p_i - 1) with p_i measured on the three levels up to
-i, and its error estimate the difference of two successive extrapolations |R_i - R_{i-1}|
-(R_{i-1} is the less accurate, so the estimate is conservative; four levels at least); the
-levels are refined until that meets the request.
+With ``extrapolate: true`` the delivered value is Richardson's extrapolation of two levels,
+R_i = q_i + (q_i - q_{i-1}) / (r^p_i - 1) with p_i measured on the three levels up to i.  The
+extrapolations converge in turn, and their error is estimated as the plain values' is: from
+three successive ones, e(R_i) = |R_i - R_{i-1}| / (r^p_R - 1), with p_R their observed order
+(none unless |R_i - R_{i-1}| < |R_{i-1} - R_{i-2}|: the levels are refined until it is
+observed) taken at most p_i + 1, the order of what removing h^p leaves; a coarser R_j is off
+by at most |R_j - R_i| + e(R_i).  The cheapest R_j whose estimate meets the request is
+delivered (five levels at least).
 """
 from __future__ import annotations
 
@@ -95,16 +98,27 @@ def solve(run: dict, solve_once) -> tuple[object, dict]:
     R = {}                     # level -> extrapolation with the order measured up to it
     while t.get("extrapolate") and len(ks) < MAX_LEVELS:
         tol = max(float(t.get("rtol", 0.0)) * abs(q[-1]), float(t.get("atol", 0.0)))
-        i = len(ks) - 1
+        i = measured = len(ks) - 1
         p, e_last = order_and_error(q[-3:], r)
         if p == math.inf:             # the levels agree exactly: nothing to extrapolate
-            chosen, value, estimate, measured = i, q[-1], 0.0, i
+            chosen, value, estimate = i, q[-1], 0.0
             break
         if math.isfinite(p) and p > 0:
             R[i] = q[i] + (q[i] - q[i - 1]) / (r ** p - 1.0)
-            if i - 1 in R and abs(R[i] - R[i - 1]) <= tol:
-                chosen, value, estimate, measured = i, R[i], abs(R[i] - R[i - 1]), i
-                break
+        if all(j in R for j in (i - 2, i - 1, i)):
+            # the extrapolations' own Richardson estimate, none unless their differences shrink
+            p_R, _ = order_and_error([R[i - 2], R[i - 1], R[i]], r)
+            if p_R > 0:
+                # removing h^p leaves h^(p+1) or a higher power: an order observed above p + 1
+                # is pre-asymptotic, no licence for a smaller estimate
+                p_R = min(p_R, p + 1.0)
+                e_R = abs(R[i] - R[i - 1]) / (r ** p_R - 1.0)
+                # a coarser extrapolation is off by its distance to R_i and R_i's error
+                est = {j: abs(R[j] - R[i]) + e_R for j in R}
+                meets = [j for j in sorted(R) if est[j] <= tol]
+                if meets:
+                    chosen, value, estimate = meets[0], R[meets[0]], est[meets[0]]
+                    break
         add(level(ks[-1] * ratio))
     while chosen is None and len(ks) < MAX_LEVELS:
         tol = max(float(t.get("rtol", 0.0)) * abs(q[-1]), float(t.get("atol", 0.0)))
@@ -146,8 +160,9 @@ def solve(run: dict, solve_once) -> tuple[object, dict]:
               "observed_order": p, "requested": tol, "estimated_error": estimate,
               "verified_error": verified, "seconds_all_solves": spent,
               "seconds": seconds,
-              # an extrapolated value costs the levels it is made of, its estimate included
-              "seconds_chosen": (sum(seconds[max(0, chosen - 3):chosen + 1])
+              # an extrapolated value costs the three levels it is made of (its estimate, the
+              # finer levels, is in seconds_all_solves, as a plain value's is)
+              "seconds_chosen": (sum(seconds[max(0, chosen - 2):chosen + 1])
                                  if t.get("extrapolate") else seconds[chosen]),
               # the scene's own (fixed default) knob value is level 0
               "default_value": ks[0], "default_error": abs(q[0] - exact),
