@@ -44,10 +44,9 @@ def outside_validity(ds) -> np.ndarray:
 
 
 def validity_limit(ds) -> float:
-    """The shortest wavelength [pitches] the string model holds for, as the run used it."""
-    from .shooting import VALID_WAVELENGTH_PITCHES
-
-    return VALID_WAVELENGTH_PITCHES
+    """The shortest wavelength [pitches] the string model holds for, as the run used it
+    (the assumed parameter ``valid_wavelength``)."""
+    return parameter(ds, "valid_wavelength")
 
 
 def stability_classes(ds) -> dict[str, np.ndarray]:
