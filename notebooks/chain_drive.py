@@ -223,21 +223,28 @@ for a, name, lab in ((ax[0], "fig09a", "(a) n1 = n2 = 24, I2 = 0.002"),
                      (ax[1], "fig09b", "(b) n1 = 15, n2 = 40, I2 = 0.0005")):
     d = R.run(name)
     sp = d.speed.values
-    un = d.unstable.values.astype(bool)
-    sl = d.slack.values.astype(bool) if "slack" in d else np.zeros_like(un)
-    grow = un & ~sl
+    k = F.stability_classes(d)
+    grow, out, sl = k["growth"], k["outside"], k["slack"]
     # steady amplitude only where the periodic state is stable (an unstable periodic
     # orbit, or a slack span outside the string model, has no steady amplitude to draw)
-    a.semilogy(sp, np.where(un, np.nan, mm(d.amplitude)), lw=1, label="stable: steady max |u|")
+    a.semilogy(sp, np.where(k["stable"], mm(d.amplitude), np.nan), lw=1,
+               label="stable: steady max |u|")
     ymin, ymax = a.get_ylim()
     if grow.any():
         a.plot(sp[grow], np.full(grow.sum(), ymax), "r|", ms=10,
                label="growth: Floquet multiplier > 1" if "growth_rate" in d else "growth")
+    # growth the string model cannot claim: its growing mode is shorter than a string of
+    # links can carry (drawn apart from growth, like slack)
+    if out.any():
+        a.plot(sp[out], np.full(out.sum(), ymax), "v", mfc="none", color="0.35", ms=5,
+               label=f"growth in a mode shorter than {F.validity_limit(d):g} pitches: "
+                     "outside the string model")
     if sl.any():
         a.plot(sp[sl], np.full(sl.sum(), ymin), "|", color="0.5", ms=10,
                label="slack (P + P_t <= 0): string model invalid")
     a.axvline(float(d.elastic_resonance_speed), color="k", ls=":", lw=0.8, label="omega_c")
-    a.set(title=f"Fig. 9{lab}: {int(grow.sum())} growing, {int(sl.sum())} slack of "
+    outside_note = f", {int(out.sum())} outside the string model" if out.any() else ""
+    a.set(title=f"Fig. 9{lab}: {int(grow.sum())} growing{outside_note}, {int(sl.sum())} slack of "
                 f"{sp.size} speeds\n{convergence_note(name)}", ylabel="max |u| [mm]",
           xlabel="omega_1 [rpm]")
     a.legend(fontsize=7)

@@ -184,3 +184,22 @@ def test_critical_wavelength_reads_the_growing_modes_sine_harmonic():
     v = np.r_[np.sin(3 * np.pi * x[1:-1]), 0.5 * np.sin(3 * np.pi * x[1:-1])]
     M = 1.2 * np.outer(v, v) / (v @ v) + 0.1 * np.eye(live.size)
     assert shooting.critical_wavelength(M, live, grid) == pytest.approx(2 * 0.5 / 3)
+
+
+def test_fig09_classes_split_growth_outside_the_string_model_from_growth():
+    """Every speed of a sweep is in one class of Fig. 9; a flagged growing speed leaves the
+    growth class (and a march's dataset, with no flag, keeps today's growth)."""
+    import xarray as xr
+
+    from mechrepro.models.chain_drive import figures as F
+
+    ds = xr.Dataset({"unstable": ("speed", np.array([0, 1, 1, 1, 0], "i1")),
+                     "slack": ("speed", np.array([0, 0, 0, 1, 0], "i1")),
+                     "outside_validity": ("speed", np.array([0, 0, 1, 0, 0], "i1"))},
+                    coords={"speed": np.arange(5.0)})
+    k = F.stability_classes(ds)
+    assert sum(m.astype(int) for m in k.values()).tolist() == [1] * 5
+    assert k["growth"].tolist() == [False, True, False, False, False]
+    assert k["outside"].tolist() == [False, False, True, False, False]
+    k = F.stability_classes(ds.drop_vars("outside_validity"))
+    assert k["growth"].tolist() == [False, True, True, False, False] and not k["outside"].any()

@@ -43,6 +43,24 @@ def outside_validity(ds) -> np.ndarray:
     return np.asarray(ds.outside_validity.values, bool)
 
 
+def validity_limit(ds) -> float:
+    """The shortest wavelength [pitches] the string model holds for, as the run used it
+    (the assumed parameter ``valid_wavelength``)."""
+    return parameter(ds, "valid_wavelength")
+
+
+def stability_classes(ds) -> dict[str, np.ndarray]:
+    """Fig. 9: the speeds of a sweep by what the string model says there, as masks over
+    ``ds.speed``: ``stable`` (a steady amplitude), ``growth`` (a Floquet multiplier > 1 in
+    a mode the string represents), ``outside`` (growth in a mode shorter than its validity
+    limit, :func:`outside_validity`) and ``slack`` (P + P_t <= 0: no string at all).  Every
+    speed is in exactly one class."""
+    un = np.asarray(ds.unstable.values, bool)
+    slack = np.asarray(ds.slack.values, bool) if "slack" in ds else np.zeros_like(un)
+    outside = outside_validity(ds) & un & ~slack
+    return {"stable": ~un, "growth": un & ~slack & ~outside, "outside": outside, "slack": slack}
+
+
 def resonances_in_window(ds) -> np.ndarray:
     """Short- and long-span resonance speeds [rpm] of a sweep that lie inside its speed range."""
     v = np.concatenate([ds.resonance_speed_short.values, ds.resonance_speed_long.values])

@@ -36,12 +36,6 @@ from . import fd, fd_kernel, geometry, span
 from .effects import EFFECTS
 from .errors import KernelUnavailable, PeriodicityError  # noqa: F401 (re-exported)
 
-# the shortest wave the string model of a roller chain represents: a chain of rigid links has
-# no mode shorter than about two of them (docs/chain_drive.md, hard case: the modes the
-# impact comb and the length switch pump, 0.3-0.8 pitch long, follow the grid and converge
-# nowhere)
-VALID_WAVELENGTH_PITCHES = 2.0
-
 
 def excitation_period(prm: dict, run: dict, omega1: float) -> tuple[float, int]:
     """(T, q): the excitation period T = q tau.  Every effect repeats each tooth period
@@ -197,8 +191,8 @@ def periodic_solution(run, prm: dict, omega1: float, res: dict,
             mult = np.linalg.eigvals(M_live)
             rho = lo = hi = float(np.max(np.abs(mult)))
     # where the span grows, how long its growing mode is (the string model of a chain of
-    # rigid links holds for waves of >= VALID_WAVELENGTH_PITCHES pitches only); a separate
-    # eigen-decomposition, so that rho stays the one of eigvals
+    # rigid links holds for waves of >= valid_wavelength pitches only, an assumed parameter);
+    # a separate eigen-decomposition, so that rho stays the one of eigvals
     wavelength = (critical_wavelength(M_live, live, a["grid"]) if not slack and lo > 1.0
                   else math.nan)
     x = np.linalg.solve(np.eye(2 * n1) - M, b)

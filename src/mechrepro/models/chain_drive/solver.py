@@ -263,13 +263,14 @@ def speed_sweep(run, prm, res) -> dict:
         data["periodicity_residual"] = var("speed", out["residual"], "m",
                                            "max |x(T) - x*| of the steady state marched once more")
         wl = out["mode_wavelength"] / prm["pitch"]
+        limit = float(prm["valid_wavelength"])   # pitches (assumed: the config says why)
         data["critical_mode_wavelength"] = var(
             "speed", wl, "1", "wavelength of the growing Floquet mode in pitches (nan where "
             "the span does not grow)")
         data["outside_validity"] = var(
-            "speed", (out["unstable"] & (wl < shooting.VALID_WAVELENGTH_PITCHES)).astype("i1"),
+            "speed", (out["unstable"] & (wl < limit)).astype("i1"),
             "1", f"1 where the span grows in a Floquet mode shorter than "
-            f"{shooting.VALID_WAVELENGTH_PITCHES:g} pitches: outside the string model's "
+            f"{limit:g} pitches: outside the string model's "
             "validity (a chain of rigid links has no such mode); still counted as growth")
         data["sampling_converged"] = var((), int(out["sampling_converged"]), "1",
                                          "1 when the adaptive speed bisection finished (edges "
