@@ -37,26 +37,18 @@ ASSEMBLY_MARGIN = 1.0e-9
 
 
 def stroke_poses(g: Geometry, x_k, tol: float, max_iter: int = 30) -> np.ndarray:
-    """theta5, theta6 at every cut point: exact first point, warm Newton afterwards."""
+    """theta5, theta6 at every cut point: exact first point, warm Newton afterwards
+    (:func:`.closure.pose_stroke`)."""
     out = np.empty((len(x_k), 2))
     guess = pose_mod.exact_pose(g, float(x_k[0]))
-    if kernels.available():  # the same loop compiled, the same bits
-        x = np.ascontiguousarray(x_k, float)
-        i, status, G, det = kernels.kernel("pose_stroke")(
-            kernels.pose_constants(g), x, float(guess[0]), float(guess[1]), float(tol),
-            int(max_iter), abs(g.R - g.h) * g.l6, newton.SINGULAR_RTOL, out)
-        if i >= 0:
-            raise NonAssembly(f"cut point {i} (x_k = {float(x[i]):.6g} mm): blade pose (Eq. 7) "
-                              f"did not converge: {newton.reason(status, det, max_iter)}",
-                              int(i), float(x[i]))
-    else:
-        for i, xk in enumerate(x_k):
-            r = newton.pose(g, tuple(guess), float(xk), tol, max_iter)
-            if not r.converged:
-                raise NonAssembly(f"cut point {i} (x_k = {float(xk):.6g} mm): blade pose "
-                                  f"(Eq. 7) did not converge: {r.reason}", i, float(xk))
-            out[i] = r.x
-            guess = 2 * out[i] - out[i - 1] if i > 0 else out[i]
+    x = np.ascontiguousarray(x_k, float)
+    i, status, G, det = kernels.kernel("pose_stroke")(
+        g.constants, x, float(guess[0]), float(guess[1]), float(tol), int(max_iter),
+        newton.SINGULAR_RTOL, out)
+    if i >= 0:
+        raise NonAssembly(f"cut point {i} (x_k = {float(x[i]):.6g} mm): blade pose (Eq. 7) "
+                          f"did not converge: {newton.reason(status, det, max_iter)}",
+                          int(i), float(x[i]))
     t6 = np.mod(out[:, 1], 2 * math.pi)
     t5 = out[:, 0]
     bad = ~((t5 >= 0) & (t5 <= math.pi) & (t6 >= math.pi) & (t6 <= 2 * math.pi)
@@ -115,7 +107,7 @@ def objective(g: Geometry, x_k, tol: float) -> float:
     x_k = cut_points(g, len(x_k))[1]
     poses = stroke_poses(g, x_k, tol)
     if not (kernels.available() and kernels.kernel("assembles_clearly")(
-            kernels.assembly_constants(g), poses, ASSEMBLY_MARGIN)):
+            g.constants, poses, ASSEMBLY_MARGIN)):
         check_assembly(g, x_k, poses)  # decides wherever the compiled check is not clear
     return synthetic_horizontal_displacement(g, poses[:, 0] - g.beta2, x_k)
 
