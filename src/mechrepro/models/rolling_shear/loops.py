@@ -50,13 +50,14 @@ def residuals(g: Geometry, th, theta5, theta6):
 
 
 def jacobian(g: Geometry, th) -> np.ndarray:
-    """d b / d(theta1..theta4) of Eq. (9) (block diagonal in the two loops)."""
+    """d b / d(theta1..theta4) of Eq. (9): block diagonal, the two loops'
+    :func:`.closure.dyad_block` Jacobians."""
+    from .closure import python
+
     t1, t2, t3, t4 = th
     J = np.zeros((4, 4))
-    J[0, 0], J[0, 2] = -g.l1 * math.sin(t1), g.l3 * math.sin(t3)
-    J[1, 0], J[1, 2] = g.l1 * math.cos(t1), -g.l3 * math.cos(t3)
-    J[2, 1], J[2, 3] = -g.l2 * math.sin(t2), g.l4 * math.sin(t4)
-    J[3, 1], J[3, 3] = g.l2 * math.cos(t2), -g.l4 * math.cos(t4)
+    J[0, 0], J[0, 2], J[1, 0], J[1, 2] = python.dyad_block(g.l1, g.l3, 0.0, 0.0, t1, t3)[2:]
+    J[2, 1], J[2, 3], J[3, 1], J[3, 3] = python.dyad_block(g.l2, g.l4, 0.0, 0.0, t2, t4)[2:]
     return J
 
 
