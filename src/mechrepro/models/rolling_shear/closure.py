@@ -27,33 +27,17 @@ import numpy as np
 
 from mechrepro.compiled import jit
 
+from .geometry import GEOMETRY_KEYS
+
 #: fitness kinds of :func:`fitness` and blocks of :func:`newton2`
 LOOPS, POSE, ABCD, GHID = 0, 1, 2, 3
 #: status codes of :func:`newton2` (see :func:`.newton.reason`)
 CONVERGED, NON_FINITE, SINGULAR, NO_CONVERGENCE = 0, 1, 2, 3
 
 
-class Linkage(NamedTuple):
-    """The constants of :class:`.geometry.Geometry` the equations read (mm, rad), by name."""
-    l1: float
-    l2: float
-    l3: float
-    l4: float
-    l5: float
-    l6: float
-    l8: float
-    l9: float
-    l10: float
-    l11: float
-    alpha: float
-    beta1: float
-    beta2: float
-    d: float
-    h: float
-    R: float
-    s: float
-    elbow1: float
-    elbow2: float
+#: the constants of :class:`.geometry.Geometry` the equations read (mm, rad), by name; the
+#: elbows (+1/-1) as floats
+Linkage = NamedTuple("Linkage", [(k, float) for k in GEOMETRY_KEYS + ("elbow1", "elbow2")])
 
 
 def constants(g) -> np.ndarray:
@@ -70,7 +54,7 @@ def constants(g) -> np.ndarray:
 def record(c):
     """The :class:`Linkage` of an array of :func:`constants` (the order of its fields)."""
     return Linkage(c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8], c[9], c[10], c[11],
-                   c[12], c[13], c[14], c[15], c[16], c[17], c[18])
+                   c[12], c[13], c[14], c[15], c[16], c[17], c[18], c[19], c[20])
 
 
 # -- Eqs. (4)-(7): the blade ------------------------------------------------------------------
