@@ -250,6 +250,19 @@ def loops_stroke(c, theta, tol, max_iter, singular_rtol):
 
 
 @jit
+def dyad_joint(px, py, qx, qy, rp, rq, e):
+    """The joint X of a loop of Eq. (9) as a dyad: |X - P| = rp, |X - Q| = rq, on the side
+    ``e`` (the elbow, +1/-1: the sign of (X - P) x (Q - X)); returns (x, y, h2), h2 the
+    squared height of X over PQ (negative, x and y NaN: the loop cannot close)."""
+    L = np.hypot(qx - px, qy - py)
+    ux, uy = (qx - px) / L, (qy - py) / L
+    a = (rp * rp - rq * rq + L * L) / (2.0 * L)
+    h2 = rp * rp - a * a
+    hgt = np.sqrt(h2)
+    return px + a * ux + e * hgt * uy, py + a * uy - e * hgt * ux, h2
+
+
+@jit
 def assembles_clearly(c, poses, margin):
     """True when both loops of Eq. (9) close at every pose (theta5, theta6) with theta1..4
     inside the paper's ranges by more than ``margin`` (rad, and a relative margin on the
@@ -272,17 +285,9 @@ def assembles_clearly(c, poses, margin):
                 qx = dx_ + p.l5 * math.cos(t5)
                 qy = dy_ + p.l5 * math.sin(t5)
                 rp, rq, e = p.l2, p.l4, p.elbow2
-            L = math.hypot(qx - px, qy - py)
-            if not L > 0.0:
-                return False
-            ux, uy = (qx - px) / L, (qy - py) / L
-            a = (rp * rp - rq * rq + L * L) / (2.0 * L)
-            h2 = rp * rp - a * a
+            xx, xy, h2 = dyad_joint(px, py, qx, qy, rp, rq, e)
             if not h2 > margin * rp * rp:
                 return False
-            hgt = math.sqrt(h2)
-            xx = px + a * ux + e * hgt * uy
-            xy = py + a * uy - e * hgt * ux
             # theta1 / theta2 (crank, in [pi, 2 pi]) and theta3 / theta4 (rod, in [0, pi])
             crank = math.atan2(xy - py, xx - px) % two_pi
             rod = math.atan2(xy - qy, xx - qx) % two_pi

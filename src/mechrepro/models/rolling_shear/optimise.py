@@ -21,7 +21,7 @@ from scipy.optimize import differential_evolution
 
 from mechrepro.timing import stopwatch
 
-from . import kernels, newton
+from . import closure, kernels, newton
 from . import pose as pose_mod
 from .branch import RANGES
 from .geometry import OPTIMISED_LEVERS, Geometry, cut_points
@@ -62,20 +62,17 @@ def stroke_poses(g: Geometry, x_k, tol: float, max_iter: int = 30) -> np.ndarray
 
 
 def dyad_angles(g: Geometry, theta5, theta6) -> np.ndarray:
-    """Closed-form theta1..theta4 for arrays of poses (n, 4); NaN where it cannot assemble."""
+    """Closed-form theta1..theta4 for arrays of poses (n, 4) (:func:`.closure.dyad_joint`);
+    NaN where it cannot assemble."""
     A, G = pivots(g)
     D = g.l6 * np.exp(1j * theta6)
     C = D + g.l8 * np.exp(1j * (theta5 + g.alpha))
     I = D + g.l5 * np.exp(1j * theta5)
     out = []
     for P, Q, rp, rq, e in ((A, C, g.l1, g.l3, g.elbow1), (G, I, g.l2, g.l4, g.elbow2)):
-        L = np.abs(Q - P)
-        u = (Q - P) / L
-        a = (rp * rp - rq * rq + L * L) / (2 * L)
         with np.errstate(invalid="ignore"):
-            hgt = np.sqrt(rp * rp - a * a)
-        X = P + a * u - e * hgt * 1j * u
-        out += [np.angle(X - P), np.angle(X - Q)]
+            x, y, _ = closure.python.dyad_joint(P.real, P.imag, Q.real, Q.imag, rp, rq, e)
+        out += [np.arctan2(y - P.imag, x - P.real), np.arctan2(y - Q.imag, x - Q.real)]
     return np.mod(np.stack([out[0], out[2], out[1], out[3]], axis=1), 2 * math.pi)
 
 
