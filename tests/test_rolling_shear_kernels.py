@@ -1,4 +1,5 @@
-"""rolling_shear: the compiled loops (kernels.py, numba) give the numpy paths' bits.
+"""rolling_shear: the compiled loops (closure.py through kernels.py, numba) give the numpy
+paths' bits.
 
 Each test runs the same computation with the kernels switched off (MECHREPRO_RS_KERNEL=numpy)
 and on, and compares the results exactly -- and, for the swarm, the random stream after it.
@@ -8,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from mechrepro.models.rolling_shear import kernels, optimise, pose, stroke
+from mechrepro.models.rolling_shear import closure, kernels, optimise, pose, stroke
 from mechrepro.models.rolling_shear.calibrate import calibrate_tilt
 from mechrepro.models.rolling_shear.geometry import OPTIMISED_LEVERS, cut_points
 from mechrepro.models.rolling_shear.loops import NonAssembly
@@ -130,3 +131,16 @@ def test_newton_continuation_compiled_equals_numpy(monkeypatch):
     off, on = both(monkeypatch, run)
     for x, y in zip(off, on):
         assert np.array_equal(np.asarray(x), np.asarray(y)), (x, y)
+
+
+def test_one_source_for_both_paths():
+    """Physics once (issue 32): every compiled function of closure.py runs, un-jitted, the very
+    code object the numpy paths call, and the record's constants name Geometry's fields."""
+    compiled = {n: f for n, f in vars(closure).items() if hasattr(f, "py_func")}
+    assert {"lowest_point", "loop_residuals", "newton2", "pose_stroke", "guide_scan"} <= set(compiled)
+    for name, f in compiled.items():
+        plain = getattr(closure.python, name)
+        assert not hasattr(plain, "py_func") and plain.__code__ is f.py_func.__code__
+    g = geometry()
+    assert closure.record(g.constants) == closure.Linkage(
+        *(float(getattr(g, k)) for k in closure.Linkage._fields))

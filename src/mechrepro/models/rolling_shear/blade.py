@@ -55,13 +55,11 @@ def blade_angle(g: Geometry, theta5):
 
 
 def to_fixed(g: Geometry, theta5, theta6, x1, y1):
-    """Eq. (4) for arrays of poses, written out (same numbers as M20 @ M12 @ p)."""
-    theta5, theta6 = np.asarray(theta5, float), np.asarray(theta6, float)
-    b = theta5 - g.beta2
-    cb, sb = np.cos(b), np.sin(b)
-    ox = g.l6 * np.cos(theta6) + g.d * np.cos(theta5 + g.beta1)
-    oy = g.l6 * np.sin(theta6) + g.d * np.sin(theta5 + g.beta1)
-    return ox + cb * x1 - sb * y1, oy + sb * x1 + cb * y1
+    """Eq. (4) for arrays of poses (:func:`.closure.to_fixed`; the same numbers as
+    M20 @ M12 @ p)."""
+    from .closure import python
+
+    return python.to_fixed(g, np.asarray(theta5, float), np.asarray(theta6, float), x1, y1)
 
 
 def midpoint(g: Geometry, theta5, theta6):
@@ -70,10 +68,11 @@ def midpoint(g: Geometry, theta5, theta6):
 
 
 def lowest_point(g: Geometry, theta5, theta6):
-    """Eq. (7) with the corrected sign of Eq. (6): the dynamic lowest point (x_k, y_k)."""
-    xh, yh = midpoint(g, theta5, theta6)
-    b = blade_angle(g, theta5)
-    return xh - g.R * np.sin(b), yh - g.R * (1.0 - np.cos(b))
+    """Eq. (7) with the corrected sign of Eq. (6): the dynamic lowest point (x_k, y_k)
+    (:func:`.closure.lowest_point`)."""
+    from .closure import python
+
+    return python.lowest_point(g, np.asarray(theta5, float), np.asarray(theta6, float))
 
 
 def lowest_point_jacobian(g: Geometry, theta5: float, theta6: float) -> np.ndarray:

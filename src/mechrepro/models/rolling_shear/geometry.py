@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, replace
+from functools import cached_property
 
 from mechrepro.errors import Refusal
 
@@ -73,6 +74,13 @@ class Geometry:
     carrier: str = "frozen"
     #: the design intents (mm, rad) the constants were derived from, as (name, value) pairs
     intents: tuple = ()
+
+    @cached_property
+    def constants(self):
+        """:func:`.closure.constants` of this geometry, computed once (a kernel's argument)."""
+        from .closure import constants
+
+        return constants(self)
 
     def with_levers(self, **levers) -> "Geometry":
         if self.carrier == "rederived" and self.intents:

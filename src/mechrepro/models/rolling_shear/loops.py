@@ -40,28 +40,24 @@ def pivots(g: Geometry) -> tuple[complex, complex]:
 
 
 def residuals(g: Geometry, th, theta5, theta6):
-    """Eq. (9) for one or many candidate vectors ``th`` (..., 4); returns (..., 4)."""
+    """Eq. (9) for one or many candidate vectors ``th`` (..., 4); returns (..., 4)
+    (:func:`.closure.loop_residuals`)."""
+    from .closure import python
+
     th = np.asarray(th, float)
-    t1, t2, t3, t4 = th[..., 0], th[..., 1], th[..., 2], th[..., 3]
-    c6, s6 = g.l6 * math.cos(theta6), g.l6 * math.sin(theta6)
-    cx, cy = g.l8 * math.cos(theta5 + g.alpha), g.l8 * math.sin(theta5 + g.alpha)
-    ix, iy = g.l5 * math.cos(theta5), g.l5 * math.sin(theta5)
-    return np.stack([
-        g.l1 * np.cos(t1) - g.l3 * np.cos(t3) - cx - c6 - g.l10 - g.l9,
-        g.l1 * np.sin(t1) - g.l3 * np.sin(t3) - cy - s6 + g.l11,
-        g.l2 * np.cos(t2) - g.l4 * np.cos(t4) - ix - c6 - g.l10,
-        g.l2 * np.sin(t2) - g.l4 * np.sin(t4) - iy - s6 + g.l11,
-    ], axis=-1)
+    return np.stack(python.loop_residuals(g, python.loop_knowns(g, theta5, theta6), th[..., 0],
+                                          th[..., 1], th[..., 2], th[..., 3]), axis=-1)
 
 
 def jacobian(g: Geometry, th) -> np.ndarray:
-    """d b / d(theta1..theta4) of Eq. (9) (block diagonal in the two loops)."""
+    """d b / d(theta1..theta4) of Eq. (9): block diagonal, the two loops'
+    :func:`.closure.dyad_block` Jacobians."""
+    from .closure import python
+
     t1, t2, t3, t4 = th
     J = np.zeros((4, 4))
-    J[0, 0], J[0, 2] = -g.l1 * math.sin(t1), g.l3 * math.sin(t3)
-    J[1, 0], J[1, 2] = g.l1 * math.cos(t1), -g.l3 * math.cos(t3)
-    J[2, 1], J[2, 3] = -g.l2 * math.sin(t2), g.l4 * math.sin(t4)
-    J[3, 1], J[3, 3] = g.l2 * math.cos(t2), -g.l4 * math.cos(t4)
+    J[0, 0], J[0, 2], J[1, 0], J[1, 2] = python.dyad_block(g.l1, g.l3, 0.0, 0.0, t1, t3)[2:]
+    J[2, 1], J[2, 3], J[3, 1], J[3, 3] = python.dyad_block(g.l2, g.l4, 0.0, 0.0, t2, t4)[2:]
     return J
 
 

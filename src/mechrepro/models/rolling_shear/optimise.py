@@ -21,7 +21,7 @@ from scipy.optimize import differential_evolution
 
 from mechrepro.timing import stopwatch
 
-from . import kernels, newton
+from . import closure, kernels, newton
 from . import pose as pose_mod
 from .branch import RANGES
 from .geometry import OPTIMISED_LEVERS, Geometry, cut_points
@@ -37,26 +37,18 @@ ASSEMBLY_MARGIN = 1.0e-9
 
 
 def stroke_poses(g: Geometry, x_k, tol: float, max_iter: int = 30) -> np.ndarray:
-    """theta5, theta6 at every cut point: exact first point, warm Newton afterwards."""
+    """theta5, theta6 at every cut point: exact first point, warm Newton afterwards
+    (:func:`.closure.pose_stroke`)."""
     out = np.empty((len(x_k), 2))
     guess = pose_mod.exact_pose(g, float(x_k[0]))
-    if kernels.available():  # the same loop compiled, the same bits
-        x = np.ascontiguousarray(x_k, float)
-        i, status, G, det = kernels.kernel("pose_stroke")(
-            kernels.pose_constants(g), x, float(guess[0]), float(guess[1]), float(tol),
-            int(max_iter), abs(g.R - g.h) * g.l6, newton.SINGULAR_RTOL, out)
-        if i >= 0:
-            raise NonAssembly(f"cut point {i} (x_k = {float(x[i]):.6g} mm): blade pose (Eq. 7) "
-                              f"did not converge: {newton.reason(status, det, max_iter)}",
-                              int(i), float(x[i]))
-    else:
-        for i, xk in enumerate(x_k):
-            r = newton.pose(g, tuple(guess), float(xk), tol, max_iter)
-            if not r.converged:
-                raise NonAssembly(f"cut point {i} (x_k = {float(xk):.6g} mm): blade pose "
-                                  f"(Eq. 7) did not converge: {r.reason}", i, float(xk))
-            out[i] = r.x
-            guess = 2 * out[i] - out[i - 1] if i > 0 else out[i]
+    x = np.ascontiguousarray(x_k, float)
+    i, status, G, det = kernels.kernel("pose_stroke")(
+        g.constants, x, float(guess[0]), float(guess[1]), float(tol), int(max_iter),
+        newton.SINGULAR_RTOL, out)
+    if i >= 0:
+        raise NonAssembly(f"cut point {i} (x_k = {float(x[i]):.6g} mm): blade pose (Eq. 7) "
+                          f"did not converge: {newton.reason(status, det, max_iter)}",
+                          int(i), float(x[i]))
     t6 = np.mod(out[:, 1], 2 * math.pi)
     t5 = out[:, 0]
     bad = ~((t5 >= 0) & (t5 <= math.pi) & (t6 >= math.pi) & (t6 <= 2 * math.pi)
@@ -70,20 +62,17 @@ def stroke_poses(g: Geometry, x_k, tol: float, max_iter: int = 30) -> np.ndarray
 
 
 def dyad_angles(g: Geometry, theta5, theta6) -> np.ndarray:
-    """Closed-form theta1..theta4 for arrays of poses (n, 4); NaN where it cannot assemble."""
+    """Closed-form theta1..theta4 for arrays of poses (n, 4) (:func:`.closure.dyad_joint`);
+    NaN where it cannot assemble."""
     A, G = pivots(g)
     D = g.l6 * np.exp(1j * theta6)
     C = D + g.l8 * np.exp(1j * (theta5 + g.alpha))
     I = D + g.l5 * np.exp(1j * theta5)
     out = []
     for P, Q, rp, rq, e in ((A, C, g.l1, g.l3, g.elbow1), (G, I, g.l2, g.l4, g.elbow2)):
-        L = np.abs(Q - P)
-        u = (Q - P) / L
-        a = (rp * rp - rq * rq + L * L) / (2 * L)
         with np.errstate(invalid="ignore"):
-            hgt = np.sqrt(rp * rp - a * a)
-        X = P + a * u - e * hgt * 1j * u
-        out += [np.angle(X - P), np.angle(X - Q)]
+            x, y, _ = closure.python.dyad_joint(P.real, P.imag, Q.real, Q.imag, rp, rq, e)
+        out += [np.arctan2(y - P.imag, x - P.real), np.arctan2(y - Q.imag, x - Q.real)]
     return np.mod(np.stack([out[0], out[2], out[1], out[3]], axis=1), 2 * math.pi)
 
 
@@ -115,7 +104,7 @@ def objective(g: Geometry, x_k, tol: float) -> float:
     x_k = cut_points(g, len(x_k))[1]
     poses = stroke_poses(g, x_k, tol)
     if not (kernels.available() and kernels.kernel("assembles_clearly")(
-            kernels.assembly_constants(g), poses, ASSEMBLY_MARGIN)):
+            g.constants, poses, ASSEMBLY_MARGIN)):
         check_assembly(g, x_k, poses)  # decides wherever the compiled check is not clear
     return synthetic_horizontal_displacement(g, poses[:, 0] - g.beta2, x_k)
 

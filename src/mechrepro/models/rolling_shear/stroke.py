@@ -29,7 +29,7 @@ from scipy.optimize import least_squares, root
 
 from mechrepro.timing import mean_time, stopwatch, time_call
 
-from . import kernels
+from . import closure, kernels
 from . import loops as loops_mod
 from . import newton
 from . import pose as pose_mod
@@ -160,13 +160,13 @@ def _scipy_solve(kind, fun, jac, x0, tol):
 def pose_fitness(g: Geometry, xk: float) -> KernelFitness:
     """selPSO's fitness of Eq. (7): G = sum |residuals| (mm), numpy or compiled."""
     return KernelFitness(lambda X: np.abs(pose_mod.residuals(g, X, xk)).sum(-1),
-                         kernels.POSE, kernels.pose_constants(g, xk))
+                         closure.POSE, g.constants, (xk, 0.0, 0.0, 0.0, 0.0, 0.0))
 
 
 def loops_fitness(g: Geometry, t5: float, t6: float) -> KernelFitness:
     """selPSO's fitness of Eq. (9): G = sum |residuals| (mm), numpy or compiled."""
     return KernelFitness(lambda X: np.abs(loops_mod.residuals(g, X, t5, t6)).sum(-1),
-                         kernels.LOOPS, kernels.loops_constants(g, t5, t6))
+                         closure.LOOPS, g.constants, closure.python.loop_knowns(g, t5, t6))
 
 
 def _pose_by(method, g, xk, start, settings, rng):
@@ -245,16 +245,6 @@ def time_newton_loops(g: Geometry, theta: np.ndarray, settings: SolverSettings,
 
 
 def _newton_loops_stroke(g: Geometry, theta: np.ndarray, settings: SolverSettings) -> None:
-    if kernels.available():  # the same loop compiled, as selPSO's iterations are
-        kernels.kernel("loops_stroke")(kernels.newton_loops_constants(g),
-                                       np.ascontiguousarray(theta, float),
-                                       float(settings.tol_loops), int(settings.max_iter),
-                                       newton.SINGULAR_RTOL)
-        return
-    guess, prev = list(theta[0, :4]), None
-    for i in range(len(theta)):
-        r = newton.loops(g, guess, theta[i, 4], theta[i, 5], settings.tol_loops,
-                         settings.max_iter)
-        x = np.array(r.x)
-        guess = list(2 * x - prev) if prev is not None else list(x)
-        prev = x
+    kernels.kernel("loops_stroke")(g.constants, np.ascontiguousarray(theta, float),
+                                   float(settings.tol_loops), int(settings.max_iter),
+                                   newton.SINGULAR_RTOL)
