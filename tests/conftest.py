@@ -93,17 +93,20 @@ def snakemake(work, *args, check=True, env=None, base=SNAKEMAKE):
 @pytest.fixture(scope="session")
 def workflow(request, tmp_path_factory):
     """The ci-profile pipeline, run once per test session in a copy of the workflow: of
-    every paper, or only of the papers the selected tests read when all of them are
-    per-artefact tests (`pytest -k saw_chain-fig07` runs saw_chain's pipeline alone)."""
+    every paper, or, when every selected test that reads it is a per-artefact test, only
+    the runs and rows of the selected artefacts (`pytest -k chain_drive-fig05`: the
+    workflow's `--config artefacts=[fig05]`, into tables/validation-fig05.csv)."""
     work = copy_workflow(tmp_path_factory.mktemp("wf"))
-    papers = set()
+    papers, artefacts = set(), set()
     for item in request.session.items:
         if "workflow" not in getattr(item, "fixturenames", ()):
             continue
-        paper = getattr(item, "callspec", None) and item.callspec.params.get("paper")
-        if item.module.__name__ != "test_artefacts" or not paper:
+        params = getattr(item, "callspec", None) and item.callspec.params
+        if item.module.__name__ != "test_artefacts" or not params:
             papers = None
             break
-        papers.add(paper)
-    log = snakemake(work, *([f"papers=[{','.join(sorted(papers))}]"] if papers else []))
+        papers.add(params["paper"])
+        artefacts.add(f"{params['paper']}-{params['artefact']}")
+    log = snakemake(work, *([f"papers=[{','.join(sorted(papers))}]",
+                             f"artefacts=[{','.join(sorted(artefacts))}]"] if papers else []))
     return work, log

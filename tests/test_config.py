@@ -133,3 +133,24 @@ def test_papers_are_discovered_from_their_files(config_copy):
     (config_copy / "papers" / "saw_chain.yaml").rename(config_copy / "papers" / "saw.yaml")
     with pytest.raises(ConfigError, match="must be the file's name, 'saw'"):
         load_paper(config_copy / "papers" / "saw.yaml")
+
+
+def test_an_artefact_alone_keeps_its_rows_and_exactly_the_runs_they_read():
+    """`--config artefacts=[fig07]` / `pytest -k chain_drive-fig07`: the rows of one figure,
+    every run they read with its verdict variants, the same records, and nothing else."""
+    from mechrepro.config import _variant_names
+    from mechrepro.validation import for_artefacts
+
+    cfg = load_paper("config/papers/chain_drive.yaml", "ci")
+    cut = for_artefacts(cfg, ["fig07"])
+    assert cut.rows and {cfg.reported[q]["artefact"] for q in cut.rows} == {"fig07"}
+    assert all(cut.runs[r] == cfg.runs[r] for r in cut.runs)
+    reads = {(n, v) for q in cut.rows for n in cfg.reported[q]["reads"]
+             for v in [None, *_variant_names(cfg.reported[q], cfg.raw)]}
+    assert {(rec["study"] or rec["scene"], rec.get("variant")) for rec in cut.runs.values()} <= reads
+    # fig07_ts's rows and the base scene's: no run of another figure, no ablation
+    assert "fig07_ts-000" in cut.runs and "fig07_tension@finer" in cut.runs
+    assert not any(r.startswith(("fig05", "fig09", "fig10")) for r in cut.runs)
+    assert set(cut.studies) <= set(cfg.studies) and "fig07_ts@finer" in cut.studies
+    with pytest.raises(ConfigError, match="allowed: .*fig05"):
+        cfg.for_artefacts(["fig02"])

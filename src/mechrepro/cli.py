@@ -1,7 +1,7 @@
 """Command-line glue for the workflow's bookkeeping rules (one entry point).
 
     python -m mechrepro.cli gather OUT.nc RUN.nc ...
-    python -m mechrepro.cli validate PAPER RESULTS CONFIG_FILE PROFILE
+    python -m mechrepro.cli validate PAPER RESULTS CONFIG_FILE PROFILE [ARTEFACT ...]
     python -m mechrepro.cli summary PNG CSV RESULTS CONFIG_DIR PROFILE PAPER ...
     python -m mechrepro.cli report HTML RESULTS CONFIG_DIR PROFILE PAPER ...
     python -m mechrepro.cli archive TAR MANIFEST CHECK RESULTS CONFIG_DIR PROFILE PAPER ... --files FILE ...
@@ -17,7 +17,7 @@ import sys
 
 USAGE = {
     "gather": (2, "OUT.nc RUN.nc ..."),
-    "validate": (4, "PAPER RESULTS CONFIG_FILE PROFILE"),
+    "validate": (4, "PAPER RESULTS CONFIG_FILE PROFILE [ARTEFACT ...]"),
     "summary": (6, "PNG CSV RESULTS CONFIG_DIR PROFILE PAPER ..."),
     "report": (5, "HTML RESULTS CONFIG_DIR PROFILE PAPER ..."),
     "archive": (7, "TAR MANIFEST CHECK RESULTS CONFIG_DIR PROFILE PAPER ... --files FILE ..."),

@@ -24,6 +24,7 @@ trigger can see every change.
 from __future__ import annotations
 
 import copy
+import dataclasses
 import functools
 import itertools
 import json
@@ -59,6 +60,10 @@ class PaperConfig:
     # variant name -> {scene or study: why it cannot run} (a coarser level beyond a
     # solver's limits: the rows reading it get a two-level error estimate)
     variant_skipped: dict[str, dict[str, str]] = field(default_factory=dict)
+    # the figures/tables this config was cut down to and the reported rows it evaluates
+    # (:meth:`for_artefacts`); () = all
+    artefacts: tuple[str, ...] = ()
+    rows: tuple[str, ...] = ()
 
     @property
     def reported(self) -> dict[str, dict]:
@@ -133,6 +138,31 @@ class PaperConfig:
 
     def runs_of(self, study: str | None = None) -> list[str]:
         return self.studies[study] if study else list(self.runs)
+
+    def for_artefacts(self, artefacts, together=()) -> "PaperConfig":
+        """This paper cut down to the verdict rows of some figures or tables and the runs
+        those rows read: their baselines and the variants that re-check exactly these rows
+        (``--config artefacts=[fig05]``; ``pytest -k chain_drive-fig05``).  ``together``:
+        groups of rows one extraction function computes at once (its reads are read
+        whichever of its rows is asked for), each kept whole.  The rows come out as in the
+        whole paper: the same runs, the same variants."""
+        reported = self.reported
+        rows = {q for q, s in reported.items() if s["artefact"] in artefacts}
+        if not rows:
+            have = sorted({s["artefact"] for s in reported.values()})
+            raise ConfigError(f"{self.path}: artefacts {sorted(artefacts)}: none has a reported "
+                              f"row in this paper; allowed: {', '.join(have)}")
+        rows |= {q for group in together if rows & set(group) for q in group}
+        wanted = {(name, variant) for q in rows for name in reported[q]["reads"]
+                  for variant in [None, *_variant_names(reported[q], self.raw)]}
+        runs = {r: rec for r, rec in self.runs.items()
+                if (rec["study"] or rec["scene"], rec.get("variant")) in wanted}
+        return dataclasses.replace(
+            self, runs=runs, artefacts=tuple(sorted(artefacts)),
+            rows=tuple(q for q in reported if q in rows),
+            studies={s: m for s, m in self.studies.items() if set(m) <= set(runs)},
+            variants={v: kept for v, names in self.variants.items()
+                      if (kept := [n for n in names if (n, v) in wanted])})
 
 
 def _format_error(err: "jsonschema.ValidationError", where: str) -> str:

@@ -387,6 +387,8 @@ def build(cfg, quantities: Quantities, results_dir: str | Path,
     reported = cfg.reported
     missing = sorted(set(reported) - set(quantities.names))
     extra = sorted(set(quantities.names) - set(reported))
+    if cfg.rows:   # a config cut down to some artefacts (PaperConfig.for_artefacts)
+        reported = {q: reported[q] for q in cfg.rows}
     if missing or extra:
         raise ValidationError(f"{cfg.paper}: reported quantities without an extraction function: "
                               f"{missing}; functions for quantities not reported: {extra}")
@@ -586,19 +588,41 @@ def write_evidence(rows: list[Row], path: str | Path) -> Path:
                       for r in rows for v, kind, value, status, label in r.checks])
 
 
-def validate(paper: str, results_dir: str, config_file: str, profile: str) -> list[Row]:
-    """Build and write ``tables/validation.csv`` and ``claim.json`` of one paper."""
+def quantities_of(paper: str) -> Quantities:
     import importlib
 
+    return importlib.import_module(f"mechrepro.models.{paper}.validation").Q
+
+
+def for_artefacts(cfg, artefacts):
+    """``cfg`` cut down to the rows of ``artefacts`` (:meth:`PaperConfig.for_artefacts`),
+    with every row computed together with one of them."""
+    return cfg.for_artefacts(artefacts, quantities_of(cfg.paper)._names.values())
+
+
+def artefact_table(results_dir, paper: str, artefacts) -> Path:
+    """Where the validation rows of some artefacts only are written (beside the paper's
+    whole table, never over it)."""
+    return Path(results_dir) / paper / "tables" / f"validation-{'+'.join(sorted(artefacts))}.csv"
+
+
+def validate(paper: str, results_dir: str, config_file: str, profile: str,
+             *artefacts: str) -> list[Row]:
+    """Build and write ``tables/validation.csv`` and ``claim.json`` of one paper; given
+    ``artefacts``, only their rows, into :func:`artefact_table`."""
     from .config import CACHE_DIR, load_paper
 
     # as the solver jobs loaded it: from the cache keyed by the content of the config, the
     # schemas and the loader, validated once per content, not again here
     cfg = load_paper(config_file, profile, CACHE_DIR)
-    module = importlib.import_module(f"mechrepro.models.{paper}.validation")
+    if artefacts:
+        cfg = for_artefacts(cfg, artefacts)
+        rows = build(cfg, quantities_of(paper), results_dir)
+        write_table(rows, artefact_table(results_dir, paper, artefacts))
+        return rows
     root = Path(results_dir) / paper
     with ResultFiles() as files:   # one opening of each file for the tables below
-        rows = build(cfg, module.Q, results_dir, files)
+        rows = build(cfg, quantities_of(paper), results_dir, files)
         write_table(rows, root / "tables" / "validation.csv")
         write_evidence(rows, root / "tables" / "verdict_evidence.csv")
         write_json(root / "claim.json", claim(cfg, rows))
