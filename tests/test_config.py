@@ -154,3 +154,18 @@ def test_an_artefact_alone_keeps_its_rows_and_exactly_the_runs_they_read():
     assert set(cut.studies) <= set(cfg.studies) and "fig07_ts@finer" in cut.studies
     with pytest.raises(ConfigError, match="allowed: .*fig05"):
         cfg.for_artefacts(["fig02"])
+
+
+def test_a_row_re_checks_only_the_study_points_it_reads(edit_config):
+    """`members:` names the points of a study a row reads: its variants re-run those
+    points only (Fig. 7d's falsifier re-runs T_s = 100 N, not 800 and 200); a point the
+    sweep does not have is refused with the sweep's values."""
+    cfg = load_paper("config/papers/chain_drive.yaml")
+    ts = {cfg.runs[r]["sweep"]["static_tension"]: r for r in cfg.studies["fig07_ts"]}
+    assert cfg.studies["fig07_ts@falsify-overdamped"] == [f"{ts[100.0]}@falsify-overdamped"]
+    assert cfg.studies["fig07_ts@finer"] == [f"{ts[800.0]}@finer", f"{ts[100.0]}@finer"]
+    assert len(cfg.studies["fig07_ts"]) == 3     # the baseline draws every point
+    path = edit_config("chain_drive", lambda raw: raw["reported"]["instability_ts100"].__setitem__(
+        "members", {"fig07_ts": {"static_tension": [150.0]}}))
+    with pytest.raises(ConfigError, match=r"members.fig07_ts.static_tension = \[150.0\]: allowed"):
+        load_paper(path)

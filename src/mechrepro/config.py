@@ -456,6 +456,16 @@ def _check_reported(raw: dict, where: str) -> None:
             if r not in names:
                 raise ConfigError(f"{where}: reported.{q}.reads: {r!r} is neither a scene nor a "
                                   f"study; allowed: {', '.join(sorted(names))}")
+        for study, pick in spec.get("members", {}).items():
+            sweep = raw.get("studies", {}).get(study, {}).get("sweep")
+            if study not in spec["reads"] or sweep is None:
+                raise ConfigError(f"{where}: reported.{q}.members.{study}: not a study this row "
+                                  f"reads (reads: {spec['reads']})")
+            for k, vals in pick.items():
+                if k not in sweep or any(v not in sweep[k] for v in vals):
+                    raise ConfigError(f"{where}: reported.{q}.members.{study}.{k} = {vals}: "
+                                      f"allowed: values of its sweep "
+                                      f"({', '.join(f'{a}: {b}' for a, b in sweep.items())})")
         if spec.get("falsifier") and spec["falsifier"] not in falsifiers:
             raise ConfigError(f"{where}: reported.{q}.falsifier = {spec['falsifier']!r}: not "
                               f"declared under falsifiers: ({', '.join(falsifiers) or 'none'})")
@@ -594,6 +604,17 @@ def _add_variants(cfg: PaperConfig, raw: dict, run_schema: dict, where: str) -> 
         for v in _variant_names(spec, raw):
             for name in spec["reads"]:
                 wanted.setdefault(v, {}).setdefault(name, []).append(q)
+
+    def members(name, quantities):
+        """The runs of ``name`` these rows read: a study's declared ``members:`` (all
+        of its points when a row declares none)."""
+        if name in raw["scenes"]:
+            return [name]
+        picks = [cfg.reported[q].get("members", {}).get(name) for q in quantities]
+        return [r for r in cfg.studies[name]
+                if any(p is None or all(cfg.runs[r]["sweep"][k] in vals for k, vals in p.items())
+                       for p in picks)]
+
     for variant, names in wanted.items():
         cfg.variants[variant] = sorted(names)
         kind, overrides, label = _variant_overrides(raw, variant)
@@ -603,8 +624,9 @@ def _add_variants(cfg: PaperConfig, raw: dict, run_schema: dict, where: str) -> 
             # a variant identical to the baseline (a range end equal to the value) is not
             # re-run: the validation reads the baseline run for it
             try:
+                base = members(name, quantities)
                 runs = [_variant_run(raw, cfg.runs[run], variant, run_schema, where, why)
-                        for run in (cfg.studies[name] if name not in raw["scenes"] else [name])]
+                        for run in base]
             except ConfigError as exc:
                 if variant != "coarser":
                     raise
@@ -615,7 +637,7 @@ def _add_variants(cfg: PaperConfig, raw: dict, run_schema: dict, where: str) -> 
                 if _differs(runs[0], cfg.runs[name]):
                     cfg.runs[runs[0]["run"]] = runs[0]
             else:
-                if any(_differs(vr, cfg.runs[r]) for vr, r in zip(runs, cfg.studies[name])):
+                if any(_differs(vr, cfg.runs[r]) for vr, r in zip(runs, base)):
                     cfg.runs.update({vr["run"]: vr for vr in runs})
                     cfg.studies[f"{name}@{variant}"] = [vr["run"] for vr in runs]
 
