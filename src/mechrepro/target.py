@@ -46,6 +46,17 @@ def reduce(ds, name: str, how: str, select: dict | None = None) -> float:
     return float(REDUCE[how](np.asarray(v.sel(pick).values if pick else v.values, float)))
 
 
+def extrapolate(coarse: float, fine: float, ratio: float, order: float) -> float:
+    """Richardson's extrapolation of two levels of a method of order p refined by r:
+    R = q_fine + (q_fine - q_coarse) / (r^p - 1)."""
+    return fine + (fine - coarse) / (ratio ** order - 1.0)
+
+
+def richardson_error(coarse: float, fine: float, ratio: float, order: float) -> float:
+    """Richardson's error estimate of the finer of two levels of order p: |q_fine - q_coarse| / (r^p - 1)."""
+    return abs(fine - coarse) / (ratio ** order - 1.0)
+
+
 def order_and_error(q: list[float], ratio: float) -> tuple[float, float]:
     """Observed order from three levels and the Richardson error estimate of the finest."""
     d1, d2 = abs(q[0] - q[1]), abs(q[1] - q[2])
@@ -54,7 +65,7 @@ def order_and_error(q: list[float], ratio: float) -> tuple[float, float]:
     if d1 <= d2:
         return math.nan, math.inf   # not in the asymptotic range: no estimate
     p = math.log(d1 / d2) / math.log(ratio)
-    return p, d2 / (ratio ** p - 1.0)
+    return p, richardson_error(q[1], q[2], ratio, p)
 
 
 def _with(run: dict, knob: str, value) -> dict:
@@ -104,7 +115,7 @@ def solve(run: dict, solve_once) -> tuple[object, dict]:
             chosen, value, estimate = i, q[-1], 0.0
             break
         if math.isfinite(p) and p > 0:
-            R[i] = q[i] + (q[i] - q[i - 1]) / (r ** p - 1.0)
+            R[i] = extrapolate(q[i - 1], q[i], r, p)
         if all(j in R for j in (i - 2, i - 1, i)):
             # the extrapolations' own Richardson estimate, none unless their differences shrink
             p_R, _ = order_and_error([R[i - 2], R[i - 1], R[i]], r)
@@ -112,7 +123,7 @@ def solve(run: dict, solve_once) -> tuple[object, dict]:
                 # removing h^p leaves h^(p+1) or a higher power: an order observed above p + 1
                 # is pre-asymptotic, no licence for a smaller estimate
                 p_R = min(p_R, p + 1.0)
-                e_R = abs(R[i] - R[i - 1]) / (r ** p_R - 1.0)
+                e_R = richardson_error(R[i - 1], R[i], r, p_R)
                 # a coarser extrapolation is off by its distance to R_i and R_i's error
                 est = {j: abs(R[j] - R[i]) + e_R for j in R}
                 meets = [j for j in sorted(R) if est[j] <= tol]
