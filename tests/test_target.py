@@ -103,3 +103,42 @@ def test_extrapolated_target_is_met_near_the_cheapest_extrapolation_of_an_exact_
     assert ok[-1]
     cheapest = sample[len(ok) - ok[::-1].index(False)] if False in ok else sample[0]
     assert rec["knob_value"] <= 2 * cheapest, (rec["knob_value"], cheapest)
+
+
+def _plain(p, a, b, rtol, k0=8):
+    import xarray as xr
+
+    from mechrepro.target import solve
+
+    def once(run):
+        k = run["resolution"]["K"]
+        return xr.Dataset({"q": ((), 10.0 + a / k ** p + b / k ** (p + 1))}), float(k)
+
+    return solve({"run": "t", "resolution": {"K": k0},
+                  "target": {"quantity": "q", "reduce": "max", "rtol": rtol, "knob": "K",
+                             "factor": 2}}, once)[1]
+
+
+@pytest.mark.parametrize("p, a, b, rtol", [(1, 3.0, 40.0, 1e-4), (2, 3.0, 40.0, 1e-6),
+                                           (1, -3.0, 5.0, 1e-4), (1, 1.0, -2.0, 1e-3),
+                                           (1, 3.0, -40.0, 1e-4), (2, 1.0, -3.0, 1e-4)])
+def test_plain_target_is_met_and_a_coarser_levels_estimate_bounds_its_error(p, a, b, rtol):
+    """q(h) = q* + a h^p + b h^(p+1), h = 1/K, q* = 10.  A coarser sampled level's estimate
+    (the scene's default, level 0) is its distance to the finest plus the finest's Richardson
+    estimate, so it holds to within the finest's own estimate (1 %); scaling the finest's
+    estimate back by the power law fitted on the finest levels gave 0.41 (p = 1) and 0.065
+    (p = 2) for same-signed terms whose true errors are 1.0 and 0.125.  A level solved at the
+    predicted setting is taken only if its own Richardson estimate meets the request: taken on
+    the prediction alone, (1, 3, -40) delivered K = 44 at 4.8e-2 for a request of 1e-3."""
+    rec = _plain(p, a, b, rtol)
+    assert rec["default_estimated_error"] >= 0.99 * abs(rec["values"][0] - 10.0)
+    assert abs(rec["value"] - 10.0) <= rec["requested"]
+
+
+@pytest.mark.xfail(strict=True, reason="known limit: one observed order from three levels not "
+                   "yet asymptotic (7.1 for a second-order method here) is trusted; the "
+                   "extrapolating branch caps its orders, the plain one has no order to cap at")
+def test_plain_target_from_pre_asymptotic_levels():
+    rec = _plain(2, 3.0, -40.0, 1e-6)     # delivers K = 32 at 1.7e-3 for a request of 1e-5
+    assert abs(rec["value"] - 10.0) <= rec["requested"]
+
