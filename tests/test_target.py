@@ -142,3 +142,22 @@ def test_plain_target_from_pre_asymptotic_levels():
     rec = _plain(2, 3.0, -40.0, 1e-6)     # delivers K = 32 at 1.7e-3 for a request of 1e-5
     assert abs(rec["value"] - 10.0) <= rec["requested"]
 
+
+def test_a_one_off_cost_of_the_first_call_is_no_levels_time():
+    """The first call of a process pays one-off costs (joint_wear: a numba compile, 43 s
+    billed to a 16-step period): one untimed call before the levels; the values are the same."""
+    import xarray as xr
+
+    from mechrepro.target import solve
+
+    calls = []
+
+    def once(run):
+        k = run["resolution"]["K"]
+        calls.append(k)
+        return xr.Dataset({"q": ((), 10.0 + 1.0 / k)}), (100.0 if len(calls) == 1 else 1.0)
+
+    _, rec = solve({"run": "t", "resolution": {"K": 8},
+                    "target": {"quantity": "q", "reduce": "max", "rtol": 1e-3, "knob": "K",
+                               "factor": 2}}, once)
+    assert calls[0] == 8 and rec["default_seconds"] == 1.0 and set(rec["seconds"]) == {1.0}
