@@ -121,25 +121,31 @@ def _plain(p, a, b, rtol, k0=8):
 
 @pytest.mark.parametrize("p, a, b, rtol", [(1, 3.0, 40.0, 1e-4), (2, 3.0, 40.0, 1e-6),
                                            (1, -3.0, 5.0, 1e-4), (1, 1.0, -2.0, 1e-3),
-                                           (1, 3.0, -40.0, 1e-4), (2, 1.0, -3.0, 1e-4)])
+                                           (2, 1.0, -3.0, 1e-4)])
 def test_plain_target_is_met_and_a_coarser_levels_estimate_bounds_its_error(p, a, b, rtol):
     """q(h) = q* + a h^p + b h^(p+1), h = 1/K, q* = 10.  A coarser sampled level's estimate
     (the scene's default, level 0) is its distance to the finest plus the finest's Richardson
     estimate, so it holds to within the finest's own estimate (1 %); scaling the finest's
     estimate back by the power law fitted on the finest levels gave 0.41 (p = 1) and 0.065
-    (p = 2) for same-signed terms whose true errors are 1.0 and 0.125.  A level solved at the
-    predicted setting is taken only if its own Richardson estimate meets the request: taken on
-    the prediction alone, (1, 3, -40) delivered K = 44 at 4.8e-2 for a request of 1e-3."""
+    (p = 2) for same-signed terms whose true errors are 1.0 and 0.125."""
     rec = _plain(p, a, b, rtol)
     assert rec["default_estimated_error"] >= 0.99 * abs(rec["values"][0] - 10.0)
     assert abs(rec["value"] - 10.0) <= rec["requested"]
 
 
-@pytest.mark.xfail(strict=True, reason="known limit: one observed order from three levels not "
-                   "yet asymptotic (7.1 for a second-order method here) is trusted; the "
-                   "extrapolating branch caps its orders, the plain one has no order to cap at")
-def test_plain_target_from_pre_asymptotic_levels():
-    rec = _plain(2, 3.0, -40.0, 1e-6)     # delivers K = 32 at 1.7e-3 for a request of 1e-5
+@pytest.mark.xfail(strict=True, reason="known limit of the plain branch: the order observed on "
+                   "three levels not yet asymptotic is trusted, and the setting it predicts is "
+                   "delivered on that prediction, unmeasured")
+@pytest.mark.parametrize("p, a, b, rtol", [
+    (2, 3.0, -40.0, 1e-6),   # observed order 7.1 on K = 8, 16, 32: delivers K = 32 at 1.7e-3 (request 1e-5)
+    (1, 3.0, -40.0, 1e-4),   # delivers the prediction K = 44 at 4.8e-2 (request 1e-3)
+])
+def test_plain_target_from_pre_asymptotic_levels(p, a, b, rtol):
+    """Taking the predicted level only if its own Richardson estimate from the measured level
+    meets the request fixes the second case, but on joint_wear's erratic wear factor it
+    rejects K = 215 (true error 0.093 of 0.33) for 256 (0.25), above twice the cheapest
+    sampled setting (124; tests/test_accuracy_targets.py): not done, left to a decision."""
+    rec = _plain(p, a, b, rtol)
     assert abs(rec["value"] - 10.0) <= rec["requested"]
 
 
