@@ -103,3 +103,67 @@ def test_extrapolated_target_is_met_near_the_cheapest_extrapolation_of_an_exact_
     assert ok[-1]
     cheapest = sample[len(ok) - ok[::-1].index(False)] if False in ok else sample[0]
     assert rec["knob_value"] <= 2 * cheapest, (rec["knob_value"], cheapest)
+
+
+def _plain(p, a, b, rtol, k0=8):
+    import xarray as xr
+
+    from mechrepro.target import solve
+
+    def once(run):
+        k = run["resolution"]["K"]
+        return xr.Dataset({"q": ((), 10.0 + a / k ** p + b / k ** (p + 1))}), float(k)
+
+    return solve({"run": "t", "resolution": {"K": k0},
+                  "target": {"quantity": "q", "reduce": "max", "rtol": rtol, "knob": "K",
+                             "factor": 2}}, once)[1]
+
+
+@pytest.mark.parametrize("p, a, b, rtol", [(1, 3.0, 40.0, 1e-4), (2, 3.0, 40.0, 1e-6),
+                                           (1, -3.0, 5.0, 1e-4), (1, 1.0, -2.0, 1e-3),
+                                           (2, 1.0, -3.0, 1e-4)])
+def test_plain_target_is_met_and_a_coarser_levels_estimate_bounds_its_error(p, a, b, rtol):
+    """q(h) = q* + a h^p + b h^(p+1), h = 1/K, q* = 10.  A coarser sampled level's estimate
+    (the scene's default, level 0) is its distance to the finest plus the finest's Richardson
+    estimate, so it holds to within the finest's own estimate (1 %); scaling the finest's
+    estimate back by the power law fitted on the finest levels gave 0.41 (p = 1) and 0.065
+    (p = 2) for same-signed terms whose true errors are 1.0 and 0.125."""
+    rec = _plain(p, a, b, rtol)
+    assert rec["default_estimated_error"] >= 0.99 * abs(rec["values"][0] - 10.0)
+    assert abs(rec["value"] - 10.0) <= rec["requested"]
+
+
+@pytest.mark.xfail(strict=True, reason="known limit of the plain branch: the order observed on "
+                   "three levels not yet asymptotic is trusted, and the setting it predicts is "
+                   "delivered on that prediction, unmeasured")
+@pytest.mark.parametrize("p, a, b, rtol", [
+    (2, 3.0, -40.0, 1e-6),   # observed order 7.1 on K = 8, 16, 32: delivers K = 32 at 1.7e-3 (request 1e-5)
+    (1, 3.0, -40.0, 1e-4),   # delivers the prediction K = 44 at 4.8e-2 (request 1e-3)
+])
+def test_plain_target_from_pre_asymptotic_levels(p, a, b, rtol):
+    """Taking the predicted level only if its own Richardson estimate from the measured level
+    meets the request fixes the second case, but on joint_wear's erratic wear factor it
+    rejects K = 215 (true error 0.093 of 0.33) for 256 (0.25), above twice the cheapest
+    sampled setting (124; tests/test_accuracy_targets.py): not done, left to a decision."""
+    rec = _plain(p, a, b, rtol)
+    assert abs(rec["value"] - 10.0) <= rec["requested"]
+
+
+def test_a_one_off_cost_of_the_first_call_is_no_levels_time():
+    """The first call of a process pays one-off costs (joint_wear: a numba compile, 43 s
+    billed to a 16-step period): one untimed call before the levels; the values are the same."""
+    import xarray as xr
+
+    from mechrepro.target import solve
+
+    calls = []
+
+    def once(run):
+        k = run["resolution"]["K"]
+        calls.append(k)
+        return xr.Dataset({"q": ((), 10.0 + 1.0 / k)}), (100.0 if len(calls) == 1 else 1.0)
+
+    _, rec = solve({"run": "t", "resolution": {"K": 8},
+                    "target": {"quantity": "q", "reduce": "max", "rtol": 1e-3, "knob": "K",
+                               "factor": 2}}, once)
+    assert calls[0] == 8 and rec["default_seconds"] == 1.0 and set(rec["seconds"]) == {1.0}

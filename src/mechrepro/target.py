@@ -8,10 +8,14 @@ A scene may say::
 
 The runner (:func:`solve`) solves the scene at its own knob value k0 and at k0 r, k0 r^2
 (r: the knob's ``refine`` factor).  With q_i the reduced quantity, the three levels give the
-observed order p = ln(|q0 - q1| / |q1 - q2|) / ln r and, for a method of that order, the
-error of every setting k: e(k) = |q1 - q2| / (r^p - 1) (k2 / k)^p (Richardson).  It returns the
-cheapest sampled level whose estimated error meets ``rtol |q|`` (or ``atol``), or else solves
-once more at the predicted setting k* = k2 (e(k2) / tol)^(1/p).  The dataset records what was
+observed order p = ln(|q0 - q1| / |q1 - q2|) / ln r and the error of the finest level,
+e2 = |q1 - q2| / (r^p - 1) (Richardson).  A coarser level j is off by at most its distance to
+the finest plus the finest's error, e_j = |q_j - q2| + e2 (the power law e2 (k2 / k_j)^p fitted
+on the finest levels under-estimates it where the coarse levels are not yet asymptotic:
+tests/test_target.py).  It returns the cheapest sampled level whose estimated error meets
+``rtol |q|`` (or ``atol``), or else solves once more at the predicted setting
+k* = k2 (e2 / tol)^(1/p) (when within one refinement of k2), whose estimated error is that
+prediction.  The dataset records what was
 requested, the estimated error, the error against ``exact`` where the scene computes one (the
 verified error) and the time of every solve it took.
 
@@ -46,6 +50,17 @@ def reduce(ds, name: str, how: str, select: dict | None = None) -> float:
     return float(REDUCE[how](np.asarray(v.sel(pick).values if pick else v.values, float)))
 
 
+def extrapolate(coarse: float, fine: float, ratio: float, order: float) -> float:
+    """Richardson's extrapolation of two levels of a method of order p refined by r:
+    R = q_fine + (q_fine - q_coarse) / (r^p - 1)."""
+    return fine + (fine - coarse) / (ratio ** order - 1.0)
+
+
+def richardson_error(coarse: float, fine: float, ratio: float, order: float) -> float:
+    """Richardson's error estimate of the finer of two levels of order p: |q_fine - q_coarse| / (r^p - 1)."""
+    return abs(fine - coarse) / (ratio ** order - 1.0)
+
+
 def order_and_error(q: list[float], ratio: float) -> tuple[float, float]:
     """Observed order from three levels and the Richardson error estimate of the finest."""
     d1, d2 = abs(q[0] - q[1]), abs(q[1] - q[2])
@@ -54,7 +69,7 @@ def order_and_error(q: list[float], ratio: float) -> tuple[float, float]:
     if d1 <= d2:
         return math.nan, math.inf   # not in the asymptotic range: no estimate
     p = math.log(d1 / d2) / math.log(ratio)
-    return p, d2 / (ratio ** p - 1.0)
+    return p, richardson_error(q[1], q[2], ratio, p)
 
 
 def _with(run: dict, knob: str, value) -> dict:
@@ -90,6 +105,10 @@ def solve(run: dict, solve_once) -> tuple[object, dict]:
     def step(k):                                            # smaller is finer
         return 1.0 / k if finer_is_larger else k
 
+    # one untimed call first: a one-off cost of the process (a kernel compiled or loaded on
+    # first use: joint_wear's default level was billed 43 s for a 16-step period) is billed
+    # to no level
+    solve_once(_with(run, knob, level(k0)))
     for i in range(3):
         add(level(k0 * ratio ** i))
     chosen = None
@@ -104,7 +123,7 @@ def solve(run: dict, solve_once) -> tuple[object, dict]:
             chosen, value, estimate = i, q[-1], 0.0
             break
         if math.isfinite(p) and p > 0:
-            R[i] = q[i] + (q[i] - q[i - 1]) / (r ** p - 1.0)
+            R[i] = extrapolate(q[i - 1], q[i], r, p)
         if all(j in R for j in (i - 2, i - 1, i)):
             # the extrapolations' own Richardson estimate, none unless their differences shrink
             p_R, _ = order_and_error([R[i - 2], R[i - 1], R[i]], r)
@@ -112,7 +131,7 @@ def solve(run: dict, solve_once) -> tuple[object, dict]:
                 # removing h^p leaves h^(p+1) or a higher power: an order observed above p + 1
                 # is pre-asymptotic, no licence for a smaller estimate
                 p_R = min(p_R, p + 1.0)
-                e_R = abs(R[i] - R[i - 1]) / (r ** p_R - 1.0)
+                e_R = richardson_error(R[i - 1], R[i], r, p_R)
                 # a coarser extrapolation is off by its distance to R_i and R_i's error
                 est = {j: abs(R[j] - R[i]) + e_R for j in R}
                 meets = [j for j in sorted(R) if est[j] <= tol]
@@ -127,7 +146,7 @@ def solve(run: dict, solve_once) -> tuple[object, dict]:
         if not (math.isfinite(e_last) and math.isfinite(p)) or p <= 0:
             add(level(ks[-1] * ratio))    # pre-asymptotic: refine and estimate again
             continue
-        est = [e_last * (step(k) / step(ks[-1])) ** p if p != math.inf else 0.0 for k in ks]
+        est = [abs(qj - q[measured]) + e_last for qj in q]     # triangle: see module
         meets = [i for i, e in enumerate(est) if e <= tol]
         if meets:
             chosen, estimate = meets[0], est[meets[0]]
@@ -140,6 +159,8 @@ def solve(run: dict, solve_once) -> tuple[object, dict]:
         k_star = level(k_star)
         if step(k_star) >= step(ks[-1]) / r:
             # within one refinement: the order measured here holds, solve at the prediction
+            # (a prediction, not a measurement: from levels not yet asymptotic it can miss,
+            # tests/test_target.py)
             add(k_star)
             chosen, estimate = len(ks) - 1, e_last * (step(k_star) / step(ks[measured])) ** p
             break
@@ -167,7 +188,7 @@ def solve(run: dict, solve_once) -> tuple[object, dict]:
               # the scene's own (fixed default) knob value is level 0
               "default_value": ks[0], "default_error": abs(q[0] - exact),
               "default_seconds": seconds[0],
-              "default_estimated_error": e_last * (step(ks[0]) / step(ks[measured])) ** p}
+              "default_estimated_error": abs(q[0] - q[measured]) + e_last}
     return ds, record
 
 

@@ -21,12 +21,14 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from mechrepro.errors import Refusal
+from mechrepro.target import extrapolate, richardson_error
 
 from .chain import Chain
 from .difference import roundoff_load
 from .solver import load_x
 
 RATIO = 2
+ORDER = 1          # the backward second difference's, with a smooth expansion (see module)
 
 
 @dataclass(frozen=True)
@@ -58,12 +60,14 @@ def extrapolate_extreme(chain: Chain, K: int, fn=np.max) -> Extrapolated:
 
 
 def from_levels(chain: Chain, Ks, q) -> Extrapolated:
-    """The extrapolation and its estimate from three plain values at K/4, K/2, K."""
+    """The extrapolation and its estimate from three plain values at K/4, K/2, K: Richardson
+    (:mod:`mechrepro.target`) at the method's known order, plus the round-off it carries."""
     r = RATIO
-    E_coarse = (r * q[1] - q[0]) / (r - 1)
-    E_fine = (r * q[2] - q[1]) / (r - 1)
+    E_coarse = extrapolate(q[0], q[1], r, ORDER)
+    E_fine = extrapolate(q[1], q[2], r, ORDER)
     b = roundoff_load(min(chain.stage_times()) / Ks[-1], chain.Tx + chain.R, chain.roundoff_mass())
-    return Extrapolated(E_fine, abs(E_fine - E_coarse) / (r**2 - 1) + (r + r**-2) / (r - 1) * b,
+    return Extrapolated(E_fine, richardson_error(E_coarse, E_fine, r, ORDER + 1)
+                        + (r + r**-2) / (r - 1) * b,
                         tuple(int(k) for k in Ks), tuple(q))
 
 
@@ -71,7 +75,10 @@ def to_accuracy(chain: Chain, rtol: float, fn=np.max, K0: int = 16) -> Extrapola
     """The cheapest finest K = K0 2^n whose extrapolated extremum has estimate <= rtol |value|.
 
     Each doubling reuses the two finer levels of the previous one, so reaching K costs
-    the solves at K0/4, K0/2, ..., K once each (< 2K steps in all).
+    the solves at K0/4, K0/2, ..., K once each (< 2K steps in all).  The extrapolation and
+    its estimate are the framework's (:mod:`mechrepro.target`); what is saw_chain's is the
+    method's known order, the round-off bound and the stop where round-off overtakes
+    truncation, which the framework's measured-order target has no way to know.
     """
     Ks = list(_levels(K0))
     q = [float(fn(load_x(replace(chain, K=k)))) for k in Ks]
