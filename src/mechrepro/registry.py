@@ -29,5 +29,10 @@ class Registry:
     def names(self) -> list[str]:
         return list(self._fn)
 
+    @property
+    def groups(self) -> list[tuple[str, ...]]:
+        """The names each function provides together."""
+        return list(self._names.values())
+
     def __contains__(self, name: str) -> bool:
         return name in self._fn

@@ -597,7 +597,7 @@ def quantities_of(paper: str) -> Quantities:
 def for_artefacts(cfg, artefacts):
     """``cfg`` cut down to the rows of ``artefacts`` (:meth:`PaperConfig.for_artefacts`),
     with every row computed together with one of them."""
-    return cfg.for_artefacts(artefacts, quantities_of(cfg.paper)._names.values())
+    return cfg.for_artefacts(artefacts, quantities_of(cfg.paper).groups)
 
 
 def artefact_table(results_dir, paper: str, artefacts) -> Path:
