@@ -60,10 +60,9 @@ def tooth_phases(t, omega1, *, n1: int, n2: int, p_c: float, f_p: float) -> dict
     # decide it
     amb = (np.abs(u - p_c) < 1e-9 * p_c) | (d1 < 1e-9 * p_c) | (p_c - d1 < 1e-9 * p_c)
     if np.any(amb):
-        s_full = np.broadcast_to(k * (2 * r1 * np.sin(np.pi / n1)), amb.shape)[amb] + \
-            np.broadcast_to(d1, amb.shape)[amb]
-        s2 = np.array(np.broadcast_to(s2, amb.shape))
-        phase1 = np.array(np.broadcast_to(phase1, amb.shape))
+        # k, d1, s2, phase1 all have the shape of phi = omega1 t, the one of amb
+        s_full = k[amb] * (2 * r1 * np.sin(np.pi / n1)) + d1[amb]
+        s2, phase1 = np.array(s2), np.array(phase1)     # writable, also from 0-d inputs
         s2[amb] = np.mod(s_full + s_off, p_c)
         phase1[amb] = np.mod(s_full, p_c) / p_c
     return {"theta1": th1, "cos_theta1": c1, "travel2": s2, "phase1": phase1,
@@ -90,8 +89,9 @@ def rigid_kinematics(t, omega1, *, n1: int, n2: int, p_c: float, f_p: float,
     c2 = np.clip(np.cos(th20_start) - s2 / r2, -1.0, 1.0)
     th2 = np.arccos(c2)
     sn2 = np.sqrt(1.0 - c2 * c2)         # theta_2 in (0, pi)
-    w2 = omega1 * r1 * s1 / (r2 * sn2)
-    a2 = (r1 * omega1**2 * c1 - r2 * w2**2 * c2) / (r2 * sn2)
+    r2sn2 = r2 * sn2
+    w2 = omega1 * r1 * s1 / r2sn2
+    a2 = (r1 * omega1**2 * c1 - r2 * w2**2 * c2) / r2sn2
     return {"theta1": th1, "theta2": th2, "omega2": w2, "alpha2": a2, "r1": r1, "r2": r2,
             "phase1": ph["phase1"], "phase2": ph["phase2"],
             "cos_theta1": c1, "sin_theta1": s1, "cos_theta2": c2, "sin_theta2": sn2}
