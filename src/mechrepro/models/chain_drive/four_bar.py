@@ -53,12 +53,13 @@ def tooth_phases(t, omega1, *, n1: int, n2: int, p_c: float, f_p: float) -> dict
     # (chain travel + s_off) mod p_c from the travel within the tooth period (the whole
     # pitches drop out: no large numbers, no np.mod) ...
     u = d1 + s_off
-    s2 = np.where(u >= p_c, u - p_c, u)
+    past = u - p_c
+    s2 = np.where(u >= p_c, past, u)
     phase1 = d1 / p_c
     # ... except at samples within round-off of a wrap (an engagement or a driven wrap at a
     # sample instant), where the side of the jump is decided exactly as chain_travel + np.mod
     # decide it
-    amb = (np.abs(u - p_c) < 1e-9 * p_c) | (d1 < 1e-9 * p_c) | (p_c - d1 < 1e-9 * p_c)
+    amb = (np.abs(past) < 1e-9 * p_c) | (d1 < 1e-9 * p_c) | (p_c - d1 < 1e-9 * p_c)
     if np.any(amb):
         # k, d1, s2, phase1 all have the shape of phi = omega1 t, the one of amb
         s_full = k[amb] * (2 * r1 * np.sin(np.pi / n1)) + d1[amb]
