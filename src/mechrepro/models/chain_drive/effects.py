@@ -249,13 +249,13 @@ def end_excitation(ctx: SpanContext) -> dict:
     its velocity when the solver asks (the Galerkin end-motion line)."""
     def rows(r):
         k = ctx.kinematics_of(r)
-        u0, un = four_bar.end_displacements(k["theta1"], k["theta2"], k["r1"], k["r2"], ctx.n2,
-                                            sin1=k["sin_theta1"], sin2=k["sin_theta2"])
+        u0, un = four_bar.end_displacements(k["sin_theta1"], k["sin_theta2"], k["r1"], k["r2"],
+                                            ctx.n2)
         out = {"u_left": u0, "u_right": un}
         if ctx.end_velocity:
             out["v_left"], out["v_right"] = four_bar.end_velocities(
-                k["theta1"], k["theta2"], ctx.omega1[None, :], k["omega2"], k["r1"], k["r2"],
-                cos1=k["cos_theta1"], cos2=k["cos_theta2"])
+                k["cos_theta1"], k["cos_theta2"], ctx.omega1[None, :], k["omega2"], k["r1"],
+                k["r2"])
         return out
     return ctx.blocked(rows)
 
