@@ -82,6 +82,7 @@ class SpanContext:
         self.n1, self.n2 = int(prm["n1"]), int(prm["n2"])
         self.p_c = prm["pitch"]
         self.c = geometry.chain_speed(self.omega1, self.n1, self.p_c)
+        self._last: dict = {}
 
     @property
     def T(self):
@@ -99,17 +100,27 @@ class SpanContext:
         assembled; the same numbers as one call on all rows."""
         return blocked(fn, self.T.shape[0], self.omega1.size)
 
-    def phases_of(self, rows) -> dict:
-        """The tooth phases of the time rows ``rows`` (:func:`.four_bar.tooth_phases`)."""
-        return four_bar.tooth_phases(self.T[rows], self.omega1[None, :], n1=self.n1, n2=self.n2,
-                                     p_c=self.p_c, f_p=self.span["f_p"])
+    def _last_block(self, name: str, rows: slice, fn) -> dict:
+        """``fn()`` for the time rows ``rows``, kept until other rows are asked: the effects
+        of a one-block grid (every shooting speed) share one evaluation; a many-block sweep
+        keeps one block (a few MB), never its (T, S) grid."""
+        hit = self._last.get(name)
+        if hit is None or hit[0] != (rows.start, rows.stop):
+            hit = self._last[name] = ((rows.start, rows.stop), fn())
+        return hit[1]
 
-    def kinematics_of(self, rows) -> dict:
-        """The rigid four-bar kinematics of the time rows ``rows`` (computed, not stored: the
-        effects evaluate it block by block, in cache, and keep only their contributions)."""
-        return four_bar.rigid_kinematics(self.T[rows], self.omega1[None, :], n1=self.n1,
-                                         n2=self.n2, p_c=self.p_c, f_p=self.span["f_p"],
-                                         phases=self.phases_of(rows))
+    def phases_of(self, rows: slice) -> dict:
+        """The tooth phases of the time rows ``rows`` (:func:`.four_bar.tooth_phases`)."""
+        return self._last_block("phases", rows, lambda: four_bar.tooth_phases(
+            self.T[rows], self.omega1[None, :], n1=self.n1, n2=self.n2, p_c=self.p_c,
+            f_p=self.span["f_p"]))
+
+    def kinematics_of(self, rows: slice) -> dict:
+        """The rigid four-bar kinematics of the time rows ``rows`` (computed block by block,
+        in cache; the effects keep only their contributions)."""
+        return self._last_block("kinematics", rows, lambda: four_bar.rigid_kinematics(
+            self.T[rows], self.omega1[None, :], n1=self.n1, n2=self.n2, p_c=self.p_c,
+            f_p=self.span["f_p"], phases=self.phases_of(rows)))
 
     @cached_property
     def kinematics(self) -> dict:
@@ -238,13 +249,13 @@ def end_excitation(ctx: SpanContext) -> dict:
     its velocity when the solver asks (the Galerkin end-motion line)."""
     def rows(r):
         k = ctx.kinematics_of(r)
-        u0, un = four_bar.end_displacements(k["theta1"], k["theta2"], k["r1"], k["r2"], ctx.n2,
-                                            sin1=k["sin_theta1"], sin2=k["sin_theta2"])
+        u0, un = four_bar.end_displacements(k["sin_theta1"], k["sin_theta2"], k["r1"], k["r2"],
+                                            ctx.n2)
         out = {"u_left": u0, "u_right": un}
         if ctx.end_velocity:
             out["v_left"], out["v_right"] = four_bar.end_velocities(
-                k["theta1"], k["theta2"], ctx.omega1[None, :], k["omega2"], k["r1"], k["r2"],
-                cos1=k["cos_theta1"], cos2=k["cos_theta2"])
+                k["cos_theta1"], k["cos_theta2"], ctx.omega1[None, :], k["omega2"], k["r1"],
+                k["r2"])
         return out
     return ctx.blocked(rows)
 

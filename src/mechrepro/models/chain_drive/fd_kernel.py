@@ -194,7 +194,7 @@ def march_uniform(*, c, P, W, m, c_d, dx, dt, n, ns, n_steps, measure_from, n_bl
     """Run the compiled loop; returns (block_max, capped, final, rec) for the S speeds."""
     S = c.size
     Sp = -(-S // LANES) * LANES
-    pad = np.r_[np.arange(S), np.full(Sp - S, S - 1)].astype(np.int64)
+    pad = np.minimum(np.arange(Sp, dtype=np.int64), S - 1)
 
     def cols(x, dtype=float):
         # (time, speed) inputs are read unpadded (the kernel repeats the last speed in the
@@ -205,7 +205,8 @@ def march_uniform(*, c, P, W, m, c_d, dx, dt, n, ns, n_steps, measure_from, n_bl
         return np.ascontiguousarray(np.asarray(x, float)[pad])
 
     dummy = np.zeros((1, 1))
-    n_rec = sum(1 for j in range(1, n_steps) if record_every and (j + 1) % record_every == 0)
+    # the steps j = 1 .. n_steps - 1 with (j + 1) % record_every == 0
+    n_rec = max(n_steps // record_every - 1 // record_every, 0) if record_every > 0 else 0
     block_max = np.zeros((n_blocks, Sp))
     capped = np.zeros(Sp, np.bool_)
     final = np.empty((Sp, n + 1))

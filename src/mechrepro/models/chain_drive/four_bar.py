@@ -53,17 +53,17 @@ def tooth_phases(t, omega1, *, n1: int, n2: int, p_c: float, f_p: float) -> dict
     # (chain travel + s_off) mod p_c from the travel within the tooth period (the whole
     # pitches drop out: no large numbers, no np.mod) ...
     u = d1 + s_off
-    s2 = np.where(u >= p_c, u - p_c, u)
+    past = u - p_c
+    s2 = np.where(u >= p_c, past, u)
     phase1 = d1 / p_c
     # ... except at samples within round-off of a wrap (an engagement or a driven wrap at a
     # sample instant), where the side of the jump is decided exactly as chain_travel + np.mod
     # decide it
-    amb = (np.abs(u - p_c) < 1e-9 * p_c) | (d1 < 1e-9 * p_c) | (p_c - d1 < 1e-9 * p_c)
+    amb = (np.abs(past) < 1e-9 * p_c) | (d1 < 1e-9 * p_c) | (p_c - d1 < 1e-9 * p_c)
     if np.any(amb):
-        s_full = np.broadcast_to(k * (2 * r1 * np.sin(np.pi / n1)), amb.shape)[amb] + \
-            np.broadcast_to(d1, amb.shape)[amb]
-        s2 = np.array(np.broadcast_to(s2, amb.shape))
-        phase1 = np.array(np.broadcast_to(phase1, amb.shape))
+        # k, d1, s2, phase1 all have the shape of phi = omega1 t, the one of amb
+        s_full = k[amb] * (2 * r1 * np.sin(np.pi / n1)) + d1[amb]
+        s2, phase1 = np.array(s2), np.array(phase1)     # writable, also from 0-d inputs
         s2[amb] = np.mod(s_full + s_off, p_c)
         phase1[amb] = np.mod(s_full, p_c) / p_c
     return {"theta1": th1, "cos_theta1": c1, "travel2": s2, "phase1": phase1,
@@ -76,10 +76,11 @@ def rigid_kinematics(t, omega1, *, n1: int, n2: int, p_c: float, f_p: float,
 
     theta_2 follows from r2 cos theta_2 = r2 cos theta_20 - (chain travel mod p_c), the
     integrated form of Eq. (2-7) with the wrap of Eq. (2-8) at every driven tooth.
-    Returns theta1, theta2, omega2 (Eq. 2-7), alpha2 (Eq. 2-9), and the driving/driven
-    tooth phases (fraction of a pitch since the last engagement / disengagement), and the
-    sines and cosines of theta1, theta2.  ``phases``: :func:`tooth_phases` of the same
-    arguments, when already computed.
+    Returns theta1, omega2 (Eq. 2-7), alpha2 (Eq. 2-9), the driving/driven tooth phases
+    (fraction of a pitch since the last engagement / disengagement), and the sines and
+    cosines of theta1, theta2 (theta2 itself, an arccos costing ~1/10 of this function,
+    is read by no effect: arccos(cos_theta2), theta2 in (0, pi)).  ``phases``:
+    :func:`tooth_phases` of the same arguments, when already computed.
     """
     ph = tooth_phases(t, omega1, n1=n1, n2=n2, p_c=p_c, f_p=f_p) if phases is None else phases
     r1, r2 = ph["r1"], ph["r2"]
@@ -88,11 +89,11 @@ def rigid_kinematics(t, omega1, *, n1: int, n2: int, p_c: float, f_p: float,
     s1 = np.sqrt(1.0 - c1 * c1)          # theta_1 in (0, pi)
     th20_start = np.pi / 2 - np.pi / n2
     c2 = np.clip(np.cos(th20_start) - s2 / r2, -1.0, 1.0)
-    th2 = np.arccos(c2)
     sn2 = np.sqrt(1.0 - c2 * c2)         # theta_2 in (0, pi)
-    w2 = omega1 * r1 * s1 / (r2 * sn2)
-    a2 = (r1 * omega1**2 * c1 - r2 * w2**2 * c2) / (r2 * sn2)
-    return {"theta1": th1, "theta2": th2, "omega2": w2, "alpha2": a2, "r1": r1, "r2": r2,
+    r2sn2 = r2 * sn2
+    w2 = omega1 * r1 * s1 / r2sn2
+    a2 = (r1 * omega1**2 * c1 - r2 * w2**2 * c2) / r2sn2
+    return {"theta1": th1, "omega2": w2, "alpha2": a2, "r1": r1, "r2": r2,
             "phase1": ph["phase1"], "phase2": ph["phase2"],
             "cos_theta1": c1, "sin_theta1": s1, "cos_theta2": c2, "sin_theta2": sn2}
 
@@ -102,22 +103,18 @@ def polygonal_load_rigid(alpha2, I2: float, r2: float):
     return I2 * np.asarray(alpha2, float) / r2
 
 
-def end_displacements(theta1, theta2, r1: float, r2: float, n2: int, *, sin1=None, sin2=None):
+def end_displacements(sin1, sin2, r1: float, r2: float, n2: int):
     """Eqs. (2-24), (2-25): u_n = r1 (1 - sin theta1) (driving end), u_0 = r2 (1 - sin theta2)
-    (driven end), both shifted by -0.5 r2 (1 - cos(pi/n2)) as the paper states.
-    ``sin1``/``sin2``: sin theta1/2 when already known (:func:`rigid_kinematics`)."""
+    (driven end), both shifted by -0.5 r2 (1 - cos(pi/n2)) as the paper states; from
+    sin theta1/2 (:func:`rigid_kinematics`)."""
     shift = -0.5 * r2 * (1 - np.cos(np.pi / n2))
-    sin1 = np.sin(theta1) if sin1 is None else sin1
-    sin2 = np.sin(theta2) if sin2 is None else sin2
     return r2 * (1 - sin2) + shift, r1 * (1 - sin1) + shift
 
 
-def end_velocities(theta1, theta2, omega1, omega2, r1: float, r2: float, *, cos1=None,
-                   cos2=None):
+def end_velocities(cos1, cos2, omega1, omega2, r1: float, r2: float):
     """Time derivatives of Eqs. (2-25), (2-24): u_0' = -r2 cos(theta2) omega2 (driven end),
-    u_n' = -r1 cos(theta1) omega1 (driving end); they jump at every tooth (chordal kinks)."""
-    cos1 = np.cos(theta1) if cos1 is None else cos1
-    cos2 = np.cos(theta2) if cos2 is None else cos2
+    u_n' = -r1 cos(theta1) omega1 (driving end); they jump at every tooth (chordal kinks).
+    From cos theta1/2 (:func:`rigid_kinematics`)."""
     return -r2 * cos2 * omega2, -r1 * cos1 * omega1
 
 

@@ -94,9 +94,12 @@ def impact_load(t, omega1, n1: int, p_c: float, k: dict, step: float | None = No
     tau_b, J_b = np.broadcast_to(tau, shape), np.broadcast_to(J, shape)
     ka, kb = np.floor(a / tau), np.floor(b / tau)
     t_i = np.pi / k["omega_d"]
-    margin = 1e-9 * tau_b
-    near = ((a - ka * tau < t_i + margin) | (b - kb * tau < t_i + margin)
-            | (a - ka * tau > tau_b - margin) | (b - kb * tau > tau_b - margin))
+    # the window ends' times since their last impact, and the margins, formed once (per
+    # speed where they do not depend on time): ~1/3 fewer passes over a (T, S) block
+    margin = 1e-9 * tau
+    ra, rb = a - ka * tau, b - kb * tau
+    lo, hi = t_i + margin, tau - margin
+    near = (ra < lo) | (rb < lo) | (ra > hi) | (rb > hi)
     out = (kb - ka) * J_b
     if np.any(near):
         V_b = np.broadcast_to(V, shape)[near]

@@ -191,9 +191,8 @@ def periodic_solution(run, prm: dict, omega1: float, res: dict,
             mult = np.linalg.eigvals(M_live)
             rho = lo = hi = float(np.max(np.abs(mult)))
     # where the span grows, how long its growing mode is (the string model of a chain of
-    # rigid links holds for waves of >= valid_wavelength pitches only, an assumed parameter);
-    # a separate eigen-decomposition, so that rho stays the one of eigvals
-    wavelength = (critical_wavelength(M_live, live, a["grid"]) if not slack and lo > 1.0
+    # rigid links holds for waves of >= valid_wavelength pitches only, an assumed parameter)
+    wavelength = (critical_wavelength(M_live, live, a["grid"], mult) if not slack and lo > 1.0
                   else math.nan)
     x = np.linalg.solve(np.eye(2 * n1) - M, b)
     one = fd.Excitation(**{k: _lanes(getattr(e, k), 1)
@@ -210,12 +209,30 @@ def periodic_solution(run, prm: dict, omega1: float, res: dict,
                             mode_wavelength=wavelength)
 
 
-def critical_wavelength(M_live: np.ndarray, live: np.ndarray, grid) -> float:
+def critical_wavelength(M_live: np.ndarray, live: np.ndarray, grid,
+                        mult: np.ndarray | None = None) -> float:
     """Wavelength [m] of the critical Floquet mode: the eigenvector of the largest |multiplier|
     of the monodromy matrix, its displacement u^N on the nodes projected on the grid's sine
-    modes sin(k pi x / L); 2 L / k of the strongest k."""
-    vals, vecs = np.linalg.eig(M_live)
-    v = vecs[:, np.argmax(np.abs(vals))]
+    modes sin(k pi x / L); 2 L / k of the strongest k.  ``mult``: the multipliers when
+    already computed (eigvals).
+
+    The eigenvector by inverse iteration on that multiplier (one LU, three solves) instead
+    of a second eigen-decomposition with vectors (np.linalg.eig: ~1.4x the CPU of eigvals,
+    whose multipliers it would compute again, not bit-identically): only the strongest k is
+    read, and on the 81 growing speeds of Fig. 7 at T_s = 400 N the two eigenvectors pick
+    the same k, the runner-up at most 0.998 of it against a vector error ~1e-10 (measured)."""
+    from scipy.linalg import lu_factor, lu_solve
+
+    vals = np.linalg.eigvals(M_live) if mult is None or not mult.size else mult
+    lam = vals[np.argmax(np.abs(vals))]
+    n = M_live.shape[0]
+    # shifted 1e-12 off the multiplier (a relative gap far above round-off, far below the
+    # spectrum's spacing): the factorisation is never exactly singular
+    lu = lu_factor(M_live - lam * (1.0 + 1e-12) * np.eye(n), check_finite=False)
+    v = np.ones(n, complex)
+    for _ in range(3):
+        v = lu_solve(lu, v, check_finite=False)
+        v /= np.linalg.norm(v)
     n = grid.n_long
     u = np.zeros(n + 1, complex)
     node = live < n + 1                      # u^N; the entries from n + 1 on are u^{N+1}
