@@ -61,6 +61,21 @@ def params(fb: FourBar, damping: bool) -> Params:
         fb.clearance, M11, M22, am, 1.0 if damping else 0.0)))
 
 
+def flat(p: Params) -> np.ndarray:
+    """``p`` as a float array, the form scipy's callbacks (:func:`rhs`, :func:`jac`) are
+    given: numba types an array argument in ~1 us but a 24-field record in ~20-30 us,
+    on every one of the ~10^5 callbacks of a scipy period (2-3x the call itself)."""
+    return np.array(p, dtype=float)
+
+
+@jit
+def record(a):
+    """The :class:`Params` of :func:`flat`'s array (or of a record: indexing reads both)."""
+    return Params(a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], a[8], a[9], a[10], a[11],
+                  a[12], a[13], a[14], a[15], a[16], a[17], a[18], a[19], a[20], a[21], a[22],
+                  a[23])
+
+
 @jit
 def contact(t, th3, ph2, w3, w2, p):
     """Force on the bushing (fx, fy), F_N, F_T and the geometry of Eqs. (5)-(15)."""
@@ -236,15 +251,16 @@ def history(T, Y, p):
 
 
 @jit
-def rhs(t, y, p):
-    """:func:`rhs_into` into a new array (the callback of scipy's integrators)."""
+def rhs(t, y, a):
+    """:func:`rhs_into` into a new array (the callback of scipy's integrators); ``a`` is
+    :func:`flat`'s array (or the record itself)."""
     out = np.empty(4)
-    rhs_into(t, y, p, out)
+    rhs_into(t, y, record(a), out)
     return out
 
 
 @jit
-def jac(t, y, p):
+def jac(t, y, a):
     J = np.empty((4, 4))
-    jac_into(t, y, p, J)
+    jac_into(t, y, record(a), J)
     return J

@@ -88,8 +88,9 @@ def _scipy(p, method, y0, t_eval, rtol, atol, max_steps) -> dict:
 
     from mechrepro.timing import stopwatch
 
-    kw = {"jac": lambda t, y: clearance.jac(t, y, p)} if method in IMPLICIT else {}
-    solver = getattr(integrate, method)(lambda t, y: clearance.rhs(t, y, p), t_eval[0], y0,
+    a = clearance.flat(p)
+    kw = {"jac": lambda t, y: clearance.jac(t, y, a)} if method in IMPLICIT else {}
+    solver = getattr(integrate, method)(lambda t, y: clearance.rhs(t, y, a), t_eval[0], y0,
                                         t_eval[-1], rtol=rtol, atol=atol, **kw)
     T, Y = [t_eval[0]], [y0]
     k = 1
@@ -158,11 +159,12 @@ def warm() -> None:
     y, te, at = np.zeros(4), np.zeros(1), np.ones(4)
     radau(p, 0.0, y, 0.0, te, 1e-5, at, 0)
     clearance.history(te, np.zeros((4, 1)), p)
-    clearance.rhs(0.0, y, p)
-    clearance.jac(0.0, y, p)
+    clearance.rhs(0.0, y, clearance.flat(p))
+    clearance.jac(0.0, y, clearance.flat(p))
     a = np.zeros(2)
     b = q.setup(a, a, a, a, a, a, 1.0, 1.0, 0.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 2.0, 0.0, 0.0)
     F_N, ang, delta = q.force(*b, a, a, 0.0, 1.0, 1.5)
     q.friction(F_N, delta, a, 0.0, a, 1.0, 1.0, 0.0, 1.0)
     q.direction(ang, a)
+    q.unwrap_turns(np.zeros((1, 3)))
     _WARM = True

@@ -97,3 +97,46 @@ def direction(ang_n, ph2):
         x = ang_n[i] - ph2[i]
         psi[i] = math.atan2(math.sin(x), math.cos(x))
     return nx, ny, psi
+
+
+@jit
+def unwrap_turns(a):
+    """The rows of ``a`` unwrapped as ``np.unwrap(a, axis=-1)`` does (its arithmetic, step by
+    step, so the same numbers: np.mod as numpy computes it, a sequential cumulative sum),
+    applied, as before, only where some step reaches pi (else ``a`` unchanged); and the
+    rounded whole turns k each row makes per period (see periodic_derivatives).  One call in
+    place of ~8 numpy calls, each costing more than the arithmetic on a few hundred samples."""
+    rows, n = a.shape
+    step = False
+    for r in range(rows):
+        for i in range(n - 1):
+            if not abs(a[r, i + 1] - a[r, i]) < math.pi:
+                step = True
+    u = a.copy()
+    if step:
+        tau = 2.0 * math.pi
+        for r in range(rows):
+            c = 0.0
+            for i in range(n - 1):
+                dd = a[r, i + 1] - a[r, i]
+                m = np.fmod(dd + math.pi, tau)        # np.mod as numpy does it (npy_divmod)
+                if m != 0.0:
+                    if m < 0.0:
+                        m += tau
+                else:
+                    m = 0.0
+                ddmod = m + -math.pi
+                if ddmod == -math.pi and dd > 0.0:
+                    ddmod = math.pi
+                corr = ddmod - dd
+                if abs(dd) < math.pi:
+                    corr = 0.0
+                c += corr
+                u[r, i + 1] = a[r, i + 1] + c
+    k = np.empty(rows)
+    turns = False
+    for r in range(rows):
+        k[r] = np.rint((u[r, n - 1] + (u[r, 1] - u[r, 0]) - u[r, 0]) / (2 * np.pi))
+        if k[r] != 0.0:
+            turns = True
+    return u, k, turns
