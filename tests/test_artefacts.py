@@ -65,5 +65,5 @@ def test_one_artefact_alone_gives_the_rows_of_the_whole_run(workflow, tmp_path):
                   for t in (work / "results" / "saw_chain" / "tables" / "validation.csv",
                             tables / "validation-fig07.csv"))
     assert cut and cut == whole
-    out = snakemake(alone, "-n", "papers=[saw_chain]", "artefacts=[fig99]", check=False)
+    out = snakemake(alone, "papers=[saw_chain]", "artefacts=[fig99]", "-n", check=False)
     assert "artefacts: ['fig99']: no reported row" in out and "allowed:" in out
