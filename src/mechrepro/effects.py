@@ -62,12 +62,18 @@ class Contributions:
     def all(self, key: str) -> list:
         return [v for _, v in self._by_key.get(key, [])]
 
-    def total(self, key: str, zero=0.0):
-        """The sum of every contribution to ``key`` (``zero`` when none was named)."""
-        out = zero
+    def total(self, key: str, zero=0.0, out=None):
+        """The sum of every contribution to ``key`` (``zero`` when none was named); with
+        ``out`` (an array), added into it in place, in the same order (no temporary per
+        term on a large grid)."""
+        if out is not None:
+            for v in self.all(key):
+                out += v
+            return out
+        acc = zero
         for v in self.all(key):
-            out = out + v
-        return out
+            acc = acc + v
+        return acc
 
     def get(self, key: str, default=None):
         """The single contribution to ``key``; two effects contributing it is an error."""

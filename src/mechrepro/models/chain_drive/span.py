@@ -54,11 +54,9 @@ def dynamic_tension(c, shape) -> np.ndarray:
     """P_t (Eqs. 2-36/2-37): the sum of the contributions to :data:`PT_KEYS` (in that
     order, the order in which the effects are declared), plus the elastic four-bar load of
     the span length in force (``long``; the short span when the length does not change)."""
-    # summed in place, in the order of c.total (no (T, S) temporary per term)
     Pt = np.zeros(shape)
     for key in PT_KEYS:
-        for v in c.all(key):
-            Pt += v
+        c.total(key, out=Pt)
     if "tension_short" in c:
         long = c.get("long")
         Pt += (c.get("tension_short") if long is None

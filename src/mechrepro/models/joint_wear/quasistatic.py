@@ -91,6 +91,14 @@ def _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2, iterations=4) -> dict:
 HARMONICS = 64
 
 
+def _unwrap(a):
+    """``np.unwrap(a, axis=-1)``, exactly: where no step reaches pi (the usual case: the
+    angles are smooth on the grid) np.unwrap adds zero corrections and returns ``a``."""
+    if np.abs(np.diff(a, axis=-1)).max(initial=0.0) < np.pi:
+        return a
+    return np.unwrap(a, axis=-1)
+
+
 @functools.lru_cache(maxsize=64)
 def _omegas(n, period):
     """i w and -w^2 of the angular frequencies w of ``rfft`` over one period of n samples
@@ -113,12 +121,10 @@ def periodic_derivatives(angle, period, second=True, harmonics=HARMONICS):
     the clearance's rocking mode (~1e3 rad/s), where no quasi-static state exists and
     the fixed point diverges.
     """
-    from . import qs_numba
-
-    angle = np.asarray(angle, float)
-    n = angle.shape[-1]
-    a, k, turns = qs_numba.unwrap_turns(angle.reshape(-1, n))
-    a, k = a.reshape(angle.shape), k.reshape(angle.shape[:-1] + (1,))
+    a = _unwrap(np.asarray(angle, float))
+    n = a.shape[-1]
+    k = np.round((a[..., -1] + (a[..., 1] - a[..., 0]) - a[..., 0]) / (2 * np.pi))[..., None]
+    turns = bool(np.any(k))
     per = a - 2 * np.pi * k * np.arange(n) / n if turns else a
     f = np.fft.rfft(per, axis=-1)
     iw, w2 = _omegas(n, period)
