@@ -59,8 +59,10 @@ def config_copy(tmp_path):
 def edit_config(config_copy):
     """Apply ``fn`` to the parsed copy of a paper's config; return the edited file's path."""
     def edit(paper, fn):
+        from mechrepro.inputs import read_yaml
+
         path = config_copy / "papers" / f"{paper}.yaml"
-        raw = yaml.safe_load(path.read_text())
+        raw = read_yaml(path)
         fn(raw)
         path.write_text(yaml.safe_dump(raw))
         return path

@@ -10,17 +10,17 @@ the paper reports, with its tolerance and the reason for it, is in the paper's c
 import math
 
 import pytest
-import yaml
 
 from conftest import ROOT
 from mechrepro.validation import read_table
+from mechrepro.inputs import read_yaml
 
-PAPERS = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())["papers"]
+PAPERS = read_yaml((ROOT / "config" / "config.yaml"))["papers"]
 
 
 def artefacts():
     for paper in PAPERS:
-        raw = yaml.safe_load((ROOT / "config" / "papers" / f"{paper}.yaml").read_text())
+        raw = read_yaml((ROOT / "config" / "papers" / f"{paper}.yaml"))
         for art in sorted({spec["artefact"] for spec in raw.get("reported", {}).values()}):
             yield pytest.param(paper, art, id=f"{paper}-{art}", marks=pytest.mark.slow)
 

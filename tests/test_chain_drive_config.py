@@ -2,12 +2,12 @@
 import copy
 
 import pytest
-import yaml
 
 from mechrepro.config import ConfigError, load_paper
 from mechrepro.io import check_cf
 from mechrepro.models.chain_drive import EFFECTS
 from mechrepro.solve import solve
+from mechrepro.inputs import read_yaml
 
 CFG = "config/papers/chain_drive.yaml"
 
@@ -30,7 +30,7 @@ def test_config_loads_in_both_profiles(root):
 
 
 def test_every_parameter_has_a_source_or_a_reason(root):
-    raw = yaml.safe_load((root / CFG).read_text())
+    raw = read_yaml((root / CFG))
     for name, p in raw["parameters"].items():
         assert p.get("source") or (p.get("assumed") and p.get("why")), name
 

@@ -15,6 +15,7 @@ from mechrepro.config import ConfigError, load_paper
 from mechrepro.models.chain_drive import EFFECTS
 from mechrepro.solve import solve
 from mechrepro.models.chain_drive.solver import SOLVERS
+from mechrepro.inputs import read_yaml
 
 CFG = Path(__file__).resolve().parents[1] / "config" / "papers" / "chain_drive.yaml"
 FD_SMALL = {"points_per_pitch": 2, "n_speeds": 2, "decay_times": 0.3, "window_periods": 1,
@@ -48,7 +49,7 @@ def _cfg():
 
 
 def _declared():
-    return yaml.safe_load(CFG.read_text())["effects"]
+    return read_yaml(CFG)["effects"]
 
 
 def _run(scene, resolution, effects=None, parameters=None):
@@ -62,7 +63,7 @@ def _run(scene, resolution, effects=None, parameters=None):
 
 
 def test_every_solver_has_a_small_scene():
-    assert set(SMALL) == set(yaml.safe_load(CFG.read_text())["solvers"]) == set(SOLVERS)
+    assert set(SMALL) == set(read_yaml(CFG)["solvers"]) == set(SOLVERS)
     for solver, (scene, _, _) in SMALL.items():
         assert _cfg().runs[scene]["solver"] == solver
 
@@ -139,7 +140,7 @@ def test_the_timestep_comparison_takes_speed_tensioning_only_when_named():
 
 
 def _bad(mutate, tmp_path):
-    raw = yaml.safe_load(CFG.read_text())
+    raw = read_yaml(CFG)
     mutate(raw)
     d = tmp_path / "config"
     (d / "papers").mkdir(parents=True)

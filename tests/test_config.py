@@ -2,9 +2,9 @@
 import math
 
 import pytest
-import yaml
 
 from mechrepro.config import ConfigError, load_paper
+from mechrepro.inputs import read_yaml
 
 
 def test_scenes_and_studies_expand_to_si_runs(config_copy):
@@ -96,10 +96,10 @@ def test_unknown_unit_sweep_key_profile_and_source(edit_config):
 def test_every_configured_paper_loads_in_every_profile():
     from conftest import ROOT
 
-    cfg = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+    cfg = read_yaml((ROOT / "config" / "config.yaml"))
     for paper in cfg["papers"]:
         path = ROOT / "config" / "papers" / f"{paper}.yaml"
-        for profile in ["default", *yaml.safe_load(path.read_text()).get("profiles", {})]:
+        for profile in ["default", *read_yaml(path).get("profiles", {})]:
             assert load_paper(path, profile).runs
 
 

@@ -5,16 +5,16 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-import yaml
 
 from mechrepro.config import load_paper
 from mechrepro.solve import solve
 from mechrepro.models.disk_tension.convergence import reference_pair, richardson
 from mechrepro.models.disk_tension.modal import degenerate_harmonics, harmonic_coupling_symmetry
+from mechrepro.inputs import read_yaml
 
 ROOT = Path(__file__).resolve().parent.parent
 TABLE1 = np.array([-1.70e5, -3.41e4, 3.82e5, 1.16e6, 2.40e6])
-DECLARED = yaml.safe_load((ROOT / "config" / "papers" / "disk_tension.yaml").read_text())["effects"]
+DECLARED = read_yaml((ROOT / "config" / "papers" / "disk_tension.yaml"))["effects"]
 
 
 @pytest.fixture(scope="module")
@@ -101,7 +101,7 @@ def test_one_uncertainty_per_calibrated_number_from_the_printed_digits(cfg):
     (434.5 +- 0.05 Hz, 2.40e6 +- 0.005e6 rad^2/s^2, propagated through the calibrations) plus
     its own printed digits; f~ and Delta f = f~ - f share the same Hz, so one calibrated
     number cannot read pass and fail at once."""
-    raw = yaml.safe_load((ROOT / "config" / "papers" / "disk_tension.yaml").read_text())
+    raw = read_yaml((ROOT / "config" / "papers" / "disk_tension.yaml"))
     rep = raw["reported"]
 
     def read(**p):
@@ -128,7 +128,7 @@ def test_one_uncertainty_per_calibrated_number_from_the_printed_digits(cfg):
 
 def test_the_fit_data_are_the_reported_values():
     """effect identifiability's data (solver inputs) are the reported Table 1 and 502.1 Hz."""
-    raw = yaml.safe_load((ROOT / "config" / "papers" / "disk_tension.yaml").read_text())
+    raw = read_yaml((ROOT / "config" / "papers" / "disk_tension.yaml"))
     p, rep = raw["parameters"], raw["reported"]
     assert p["fit_table1_diagonal"]["value"][:4] == [rep[f"table1_diag_nd{n}"]["value"]
                                                     for n in range(4)]

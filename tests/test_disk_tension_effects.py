@@ -6,15 +6,15 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-import yaml
 
 from mechrepro.config import load_paper
 from mechrepro.models.disk_tension import EFFECTS
 from mechrepro.solve import solve
+from mechrepro.inputs import read_yaml
 
 ROOT = Path(__file__).resolve().parent.parent
 CFG = ROOT / "config" / "papers" / "disk_tension.yaml"
-DECLARED = yaml.safe_load(CFG.read_text())["effects"]
+DECLARED = read_yaml(CFG)["effects"]
 SMALL = {"axisym": {"n_elements": 8}, "plate2d": {"n_rings": 3, "n_sectors": 24}}
 
 

@@ -11,6 +11,7 @@ from mechrepro.effects import UnknownEffect
 from mechrepro.io import check_cf
 from mechrepro.models.disk_tension import EFFECTS
 from mechrepro.solve import solve
+from mechrepro.inputs import read_yaml
 
 ROOT = Path(__file__).resolve().parent.parent
 CFG = ROOT / "config" / "papers" / "disk_tension.yaml"
@@ -21,7 +22,7 @@ def cfg():
     return load_paper(CFG, "ci")
 
 
-DECLARED = yaml.safe_load(CFG.read_text())["effects"]
+DECLARED = read_yaml(CFG)["effects"]
 
 
 def run_of(cfg, scene, **over):
@@ -79,7 +80,7 @@ def test_unknown_effect_and_bad_parameters_fail_clearly(cfg):
 def test_combinations_the_solvers_cannot_honour_are_refused_at_load(config_copy, scene, solver,
                                                                     effects, match):
     path = config_copy / "papers" / "disk_tension.yaml"
-    raw = yaml.safe_load(path.read_text())
+    raw = read_yaml(path)
     raw["scenes"][scene]["effects"] = effects
     if solver:
         raw["scenes"][scene]["solver"] = solver
@@ -120,7 +121,7 @@ def test_calibration_does_not_follow_the_scene_amplitude(cfg):
 
 def test_schema_rejects_typos_and_out_of_range_values(config_copy):
     path = config_copy / "papers" / "disk_tension.yaml"
-    raw = yaml.safe_load(path.read_text())
+    raw = read_yaml(path)
     bad = copy.deepcopy(raw)
     bad["scenes"]["table12"]["resolution"] = {"n_element": 64}
     path.write_text(yaml.safe_dump(bad))
@@ -139,7 +140,7 @@ def test_schema_rejects_typos_and_out_of_range_values(config_copy):
 
 
 def test_every_assumed_constant_says_why():
-    raw = yaml.safe_load(CFG.read_text())
+    raw = read_yaml(CFG)
     assumed = {k for k, v in raw["parameters"].items() if v.get("assumed")}
     assert {"youngs_modulus", "poisson_ratio", "density", "thermal_expansion", "inplane_bc"} <= assumed
     assert all(len(raw["parameters"][k]["why"]) > 20 for k in assumed)

@@ -12,13 +12,14 @@ import yaml
 from mechrepro import effects as fx
 from mechrepro import timing
 from mechrepro.config import ConfigError, discover_papers, load_all, load_paper
+from mechrepro.inputs import read_yaml
 
 CONFIG = Path(__file__).resolve().parents[1] / "config"
 PAPERS = discover_papers(CONFIG)
 
 
 def _raw(paper):
-    return yaml.safe_load((CONFIG / "papers" / f"{paper}.yaml").read_text())
+    return read_yaml((CONFIG / "papers" / f"{paper}.yaml"))
 
 
 def _load(tmp_path, raw):

@@ -12,6 +12,7 @@ from mechrepro.models.joint_wear import EFFECTS, SOLVERS, dynamics
 from mechrepro.solve import solve
 
 from conftest import ROOT
+from mechrepro.inputs import read_yaml
 
 CFG = load_paper(ROOT / "config/papers/joint_wear.yaml")
 
@@ -44,8 +45,8 @@ def small(solver: str, effects=None) -> dict:
 
 
 def test_every_solver_has_a_small_scene():
-    assert set(SMALL) == set(SOLVERS) == set(yaml.safe_load(
-        (ROOT / "config/papers/joint_wear.yaml").read_text())["solvers"])
+    assert set(SMALL) == set(SOLVERS) == set(read_yaml(
+        (ROOT / "config/papers/joint_wear.yaml"))["solvers"])
 
 
 @pytest.mark.parametrize("solver", list(SMALL))
@@ -119,7 +120,7 @@ def test_wear_update_grows_the_bushing_between_intervals():
 ])
 def test_meaningless_combinations_are_refused_at_load(config_copy, scene, effects, message):
     path = config_copy / "papers" / "joint_wear.yaml"
-    raw = yaml.safe_load(path.read_text())
+    raw = read_yaml(path)
     raw["scenes"][scene]["effects"] = effects
     path.write_text(yaml.safe_dump(raw))
     with pytest.raises(ConfigError, match=message):

@@ -13,6 +13,7 @@ from mechrepro.models.joint_wear import dynamics, quasistatic, wear
 from mechrepro.models.joint_wear.geometry import from_parameters
 
 from conftest import ROOT
+from mechrepro.inputs import read_yaml
 
 CFG = load_paper(ROOT / "config/papers/joint_wear.yaml")
 
@@ -117,7 +118,7 @@ def test_severe_wear_breaks_the_interval_assumption_visibly():
 @pytest.mark.parametrize("value", [0.0, -0.05])
 def test_zero_or_negative_clearance_is_a_config_error(config_copy, value):
     path = config_copy / "papers" / "joint_wear.yaml"
-    raw = yaml.safe_load(path.read_text())
+    raw = read_yaml(path)
     raw["parameters"]["radial_clearance"]["value"] = value
     path.write_text(yaml.safe_dump(raw))
     with pytest.raises(ConfigError, match=r"radial_clearance = .*must be > 0"):
@@ -133,7 +134,7 @@ def test_zero_or_negative_clearance_is_a_config_error(config_copy, value):
 
 def test_unknown_effect_and_missing_resolution_are_config_errors(config_copy):
     path = config_copy / "papers" / "joint_wear.yaml"
-    raw = yaml.safe_load(path.read_text())
+    raw = read_yaml(path)
     raw["scenes"]["period_quasistatic"]["effects"].append("lubrication")
     path.write_text(yaml.safe_dump(raw))
     with pytest.raises(ConfigError, match="lubrication"):

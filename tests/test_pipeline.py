@@ -11,12 +11,12 @@ from html.parser import HTMLParser
 from pathlib import Path
 
 import pytest
-import yaml
 
 from conftest import ROOT, SNAKEMAKE, copy_workflow, snakemake
 from mechrepro.provenance import file_sha256
 from mechrepro.reference import settings, variant_env
 from mechrepro.validation import read_table
+from mechrepro.inputs import read_yaml
 
 pytestmark = pytest.mark.slow
 
@@ -49,10 +49,10 @@ class Images(HTMLParser):
 
 def test_pipeline_writes_every_output_and_matches_reference(workflow):
     work, log = workflow
-    papers = yaml.safe_load((work / "config" / "config.yaml").read_text())["papers"]
+    papers = read_yaml((work / "config" / "config.yaml"))["papers"]
     res = work / "results"
     for paper in papers:
-        cfg = yaml.safe_load((work / "config" / "papers" / f"{paper}.yaml").read_text())
+        cfg = read_yaml((work / "config" / "papers" / f"{paper}.yaml"))
         for fig in cfg["figures"]:
             assert (res / paper / "figures" / f"{fig}.png").stat().st_size > 1000
         for table in cfg.get("tables", ["validation"]):
@@ -74,8 +74,8 @@ def test_pipeline_writes_every_output_and_matches_reference(workflow):
     page = (res / "report" / "index.html").read_text()
     imgs = Images()
     imgs.feed(page)
-    n_figures = sum(len(yaml.safe_load((work / "config" / "papers" / f"{p}.yaml")
-                                       .read_text())["figures"]) for p in papers)
+    n_figures = sum(len(read_yaml((work / "config" / "papers" / f"{p}.yaml")
+                                       )["figures"]) for p in papers)
     assert len(imgs.src) == n_figures + 1  # + the cross-paper cost-of-accuracy figure
     assert "cost_of_accuracy_all.png" in imgs.src
     summary = (res / "report" / "summary.csv").read_text().splitlines()
@@ -144,7 +144,7 @@ def test_another_platform_gives_the_same_verdicts(tmp_path):
               base=[*SNAKEMAKE[:3], f"{out}/report/reference_check.txt", *SNAKEMAKE[3:]])
     check = (work / out / "report" / "reference_check.txt").read_text()
     assert check.splitlines()[0] == "reference check, profile ci: OK", check
-    papers = yaml.safe_load((work / "config" / "config.yaml").read_text())["papers"]
+    papers = read_yaml((work / "config" / "config.yaml"))["papers"]
     for paper in papers:
         ref = {r["quantity"]: r["status"] for r in
                read_table(ROOT / "results" / "reference" / "ci" / f"{paper}.csv")}

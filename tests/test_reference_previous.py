@@ -8,6 +8,7 @@ import yaml
 from mechrepro import reference as ref
 from mechrepro.config import load_paper
 from mechrepro.validation import read_table
+from mechrepro.inputs import read_yaml
 
 Q, OTHER = "dynamic_load_max", "exact_load_max"          # both read fig07_fig08 only
 
@@ -64,7 +65,7 @@ def test_changed_inputs_drop_the_previous_value(config_copy, tmp_path):
     before = committed(tmp_path)
     # a parameter of the scene the row reads: another computation, its old value says nothing
     path = config_copy / "papers" / "saw_chain.yaml"
-    raw = yaml.safe_load(path.read_text())
+    raw = read_yaml(path)
     raw["profiles"]["ci"]["scenes"]["fig07_fig08"]["resolution"]["K"] = 400
     path.write_text(yaml.safe_dump(raw))
     ref.derive(machine(tmp_path, "B", 52.0), tmp_path / "ref", config_copy, ["saw_chain"], "ci")
@@ -79,7 +80,7 @@ def test_the_digest_names_what_the_row_reads_and_nothing_else(config_copy):
     code = ref.code_digest("saw_chain")
     digest = lambda q: ref.row_inputs(load_paper(path, "ci"), q, code)  # noqa: E731
     q0, c0 = digest(Q), digest("observed_order_load")     # reads cost_of_accuracy
-    raw = yaml.safe_load(path.read_text())
+    raw = read_yaml(path)
     raw["reported"]["observed_order_load"]["why"] += " (edited)"
     path.write_text(yaml.safe_dump(raw))
     assert digest(Q) == q0 and digest("observed_order_load") != c0     # another row's entry

@@ -187,16 +187,25 @@ def _format_error(err: "jsonschema.ValidationError", where: str) -> str:
     return f"{where}: {loc}: {err.message}"
 
 
-_VALIDATORS: dict[str, object] = {}
+_VALIDATORS: dict[int, tuple] = {}
 
 
 def _validate(instance, schema, where: str) -> None:
+    """Every run of every scene and variant is checked (~180 per paper): jsonschema-rs
+    decides (~50x faster than jsonschema, whose check was 80 % of loading a paper), and
+    only an instance it refuses is checked again by jsonschema, whose errors say where and
+    what is allowed (:func:`_format_error`)."""
     key = id(schema)  # schemas come from the load_schema cache
-    validator = _VALIDATORS.get(key)
-    if validator is None:  # compiled once per schema: every run of every scene is checked
-        import jsonschema  # here: a job that reads the cached config never validates
+    pair = _VALIDATORS.get(key)
+    if pair is None:  # compiled once per schema; imported here: a job that reads the
+        import jsonschema_rs  # cached config never validates
 
-        validator = _VALIDATORS[key] = jsonschema.validators.validator_for(schema)(schema)
+        pair = _VALIDATORS[key] = (jsonschema_rs.validator_for(schema), schema)
+    if pair[0].is_valid(instance):
+        return
+    import jsonschema
+
+    validator = jsonschema.validators.validator_for(schema)(schema)
     errors = sorted(validator.iter_errors(instance), key=lambda e: list(map(str, e.absolute_path)))
     if errors:
         raise ConfigError("invalid config:\n  " + "\n  ".join(_format_error(e, where) for e in errors))
