@@ -46,8 +46,9 @@ for _paper in PAPERS:
             # a free core takes a solve before a cross-paper job (summary, report), but a
             # paper's validation and notebook (priority 2) before another paper's solve,
             # and a paper estimated to solve in seconds (limits.quick_paper) first of all:
-            # the first figures appear early (results do not depend on the order)
-            priority: 3 if quick_paper(CFG[_paper]) else 1
+            # the first figures appear early; among the others the longest estimated
+            # first (limits.solve_priorities; results do not depend on the order)
+            priority: SOLVE_PRIORITY[_paper, _job]
             shell:
                 "{params.python} -m mechrepro.solve {params.paper} {params.base}/config "
                 "{params.profile} {params.results} {params.runs} > {log} 2>&1"
