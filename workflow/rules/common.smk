@@ -48,7 +48,7 @@ from mechrepro.limits import LimitError, check_all, job_resources, solve_priorit
 
 OVER_BUDGET = str(config.get("over_budget", False)).lower() == "true"   # --config gives text
 try:
-    check_all(CFG, OVER_BUDGET)
+    check_all(CFG, OVER_BUDGET, cache_dir=CACHE_DIR)
 except LimitError as exc:
     sys.stderr.write(f"\n{exc}\n\n")
     raise SystemExit(1)
