@@ -100,8 +100,15 @@ def _assemble(mesh: RadialMesh, ke):
     return K[2:, 2:]
 
 
-def plate_matrices(mesh, n_d, *, D, nu, rho_h, quad=None, d_scale=None):
-    """([K], [M]) of harmonic ``n_d`` (Eq. 1 operators, clamped at r_f)."""
+def mass_matrix(mesh, *, rho_h, quad=None):
+    """[M] (Eq. 1 operator, clamped at r_f): the same for every harmonic N_d."""
+    r, w, N = (quad if quad is not None else quadrature(mesh))[:3]
+    return _assemble(mesh, np.einsum("eq,eqi,eqj->eij", rho_h * w * r, N, N))
+
+
+def bending_matrix(mesh, n_d, *, D, nu, quad=None, d_scale=None):
+    """[K] of harmonic ``n_d`` (Eq. 1 bending operator, clamped at r_f); ``d_scale(r)``
+    multiplies the flexural rigidity D."""
     r, w, N, dN, d2N = quad if quad is not None else quadrature(mesh)
     n2 = float(n_d) ** 2
     rr = r[..., None]
@@ -113,8 +120,7 @@ def plate_matrices(mesh, n_d, *, D, nu, rho_h, quad=None, d_scale=None):
         Dq = Dq * d_scale(r)
     ein = lambda A, B: np.einsum("eq,eqi,eqj->eij", Dq, A, B)  # noqa: E731
     ke = ein(B1, B1) + ein(B2, B2) + nu * (ein(B1, B2) + ein(B2, B1)) + 2 * (1 - nu) * ein(B3, B3)
-    me = np.einsum("eq,eqi,eqj->eij", rho_h * w * r, N, N)
-    return _assemble(mesh, ke), _assemble(mesh, me)
+    return _assemble(mesh, ke)
 
 
 def stress_stiffness(mesh, n_d, sigma_r, sigma_t, h, quad=None):
@@ -157,13 +163,15 @@ class AxisymDisk:
         self.quad = quadrature(self.mesh, n_gauss)
         self.h, self.n_d = h, np.asarray(n_d, int)
         D = E * h**3 / (12 * (1 - nu**2))
+        # [M] has no N_d in it: one matrix, shared (read only) by every harmonic
+        M = mass_matrix(self.mesh, rho_h=rho * h, quad=self.quad)
         self.K, self.M = {}, {}
         # results per K^(sigma) object (the analyses share the r_c of one run: Tables 1-2 and
         # the critical load re-read the eigen effect's solves instead of repeating them)
         self._memo = {}
         for n in self.n_d:
-            self.K[n], self.M[n] = plate_matrices(self.mesh, n, D=D, nu=nu, rho_h=rho * h,
-                                                  quad=self.quad)
+            self.K[n] = bending_matrix(self.mesh, n, D=D, nu=nu, quad=self.quad)
+            self.M[n] = M
 
     def unrolled(self):
         """omega^2 and mass-normalised mode of the fundamental of each N_d, Eq. (6)."""
@@ -255,10 +263,10 @@ class AxisymDisk:
             mesh = radial_mesh(r_f, b, self.mesh.n_elements, breakpoints=(lo, hi))
             quad = quadrature(mesh)
             scale = lambda r: 1.0 + increase * ((r >= lo) & (r <= hi))  # noqa: E731
+            M = mass_matrix(mesh, rho_h=rho * self.h, quad=quad)
             for j, n in enumerate(self.n_d):
-                K0, M = plate_matrices(mesh, n, D=D, nu=nu, rho_h=rho * self.h, quad=quad)
-                K1, _ = plate_matrices(mesh, n, D=D, nu=nu, rho_h=rho * self.h, quad=quad,
-                                       d_scale=scale)
+                K0 = bending_matrix(mesh, n, D=D, nu=nu, quad=quad)
+                K1 = bending_matrix(mesh, n, D=D, nu=nu, quad=quad, d_scale=scale)
                 w0 = eigen(K0, M, 1, BANDWIDTH)[0][0]
                 w1 = eigen(K1, M, 1, BANDWIDTH)[0][0]
                 out[i, j] = (np.sqrt(w1) - np.sqrt(w0)) / (2 * np.pi)
