@@ -123,13 +123,10 @@ def bending_matrix(mesh, n_d, *, D, nu, quad=None, d_scale=None):
     return _assemble(mesh, ke)
 
 
-def stress_stiffness(mesh, n_d, sigma_r, sigma_t, h, quad=None):
-    """Eq. (3) for the harmonic: [K^(sigma)] from sigma_r, sigma_theta at quadrature points.
-
-    ``sigma_r``/``sigma_t`` are callables of r [m] returning Pa.
-    """
+def stress_stiffness(mesh, n_d, sr, st, h, quad=None):
+    """Eq. (3) for the harmonic: [K^(sigma)] from sigma_r, sigma_theta [Pa] at the
+    quadrature points (``sr``, ``st``: arrays shaped like the quadrature radii)."""
     r, w, N, dN, _ = quad if quad is not None else quadrature(mesh)
-    sr, st = sigma_r(r), sigma_t(r)
     n2 = float(n_d) ** 2
     ke = (np.einsum("eq,eqi,eqj->eij", h * sr * w * r, dN, dN)
           + np.einsum("eq,eqi,eqj->eij", h * st * n2 * w / r, N, N))
@@ -190,7 +187,10 @@ class AxisymDisk:
                 lambda r: np.full_like(r, sigma0, dtype=float))
 
     def stress_stiffness(self, sigma):
-        sr, st = sigma
+        """[K^(sigma)] of every harmonic, Eq. (3); ``sigma`` = (sigma_r(r), sigma_theta(r)),
+        callables of r [m] returning Pa, evaluated once for all harmonics."""
+        r = self.quad[0]
+        sr, st = sigma[0](r), sigma[1](r)
         return {n: stress_stiffness(self.mesh, n, sr, st, self.h, quad=self.quad)
                 for n in self.n_d}
 
