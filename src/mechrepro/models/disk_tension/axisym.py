@@ -23,6 +23,7 @@ and the clamp r = r_f removes W, W' of the first node.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 from numpy.polynomial.legendre import leggauss
@@ -72,9 +73,18 @@ def radial_mesh(r_f, b, n_elements, breakpoints=()):
     return RadialMesh(nodes)
 
 
+@lru_cache(maxsize=None)
+def _gauss(n_gauss):
+    """Gauss-Legendre points and weights on [-1, 1] (read only: shared by every mesh; Fig. 7
+    builds a mesh per annulus radius)."""
+    xg, wg = leggauss(n_gauss)
+    xg.flags.writeable = wg.flags.writeable = False
+    return xg, wg
+
+
 def quadrature(mesh: RadialMesh, n_gauss=N_GAUSS):
     """Quadrature radii r[e, q], weights w[e, q] (incl. Jacobian) and Hermite basis."""
-    xg, wg = leggauss(n_gauss)
+    xg, wg = _gauss(n_gauss)
     xi = 0.5 * (xg + 1.0)
     L = np.diff(mesh.nodes)[:, None]
     r = mesh.nodes[:-1, None] + L * xi[None, :]

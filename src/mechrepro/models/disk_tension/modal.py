@@ -62,7 +62,7 @@ def lowest_banded(K, M, bandwidth, tol=1e-13, maxiter=200):
     n, u = len(K), int(bandwidth)
     ab = np.zeros((u + 1, n))
     for k in range(u + 1):
-        ab[u - k, k:] = np.diagonal(K, k)
+        ab[u - k, k:] = K.diagonal(k)
     c, info = dpbtrf(ab, overwrite_ab=1)
     if info != 0:
         return None
