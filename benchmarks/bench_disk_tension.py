@@ -158,11 +158,12 @@ sys.path.insert(0, {src!r})
 from mechrepro.config import load_paper
 from mechrepro.solve import run_solver
 cfg = load_paper({cfg!r}, {profile!r})
-t0 = time.perf_counter()
+t0, c0 = time.perf_counter(), time.process_time()
 solve = 0.0
 for name in {names!r}:
     solve += run_solver(cfg.runs[name]).attrs["wall_time_s"]
-print(json.dumps({{"process": time.perf_counter() - t0, "solve": solve}}))
+print(json.dumps({{"process": time.perf_counter() - t0, "cpu": time.process_time() - c0,
+                  "solve": solve}}))
 """
 
 
@@ -175,8 +176,9 @@ def _job_runs(profile):
 def versus(rev, profile="ci", repeats=3):
     """Each solver job of ``profile`` (the batch of cheap runs, and the 2-D Table 1-2 scene
     with its variant) solved by the src of git revision ``rev`` and by this worktree's,
-    in fresh processes, alternating, fastest of ``repeats``: wall of the runs (imports
-    excluded) and the sum of their recorded solve times."""
+    in fresh processes, alternating, fastest of ``repeats``: wall and process CPU time of
+    the runs (imports excluded; on a shared machine the CPU time is the comparable one) and
+    the sum of their recorded solve times."""
     import json
     import tempfile
 
@@ -188,7 +190,8 @@ def versus(rev, profile="ci", repeats=3):
     print(f"disk_tension solver jobs ({profile}), {rev} vs worktree, fastest of {repeats}, "
           f"OPENBLAS_NUM_THREADS={os.environ.get('OPENBLAS_NUM_THREADS')}")
     for job, names in _job_runs(profile).items():
-        best = {k: {"process": float("inf"), "solve": float("inf")} for k in srcs}
+        best = {k: {"process": float("inf"), "cpu": float("inf"), "solve": float("inf")}
+                for k in srcs}
         for _ in range(repeats):
             for key, src in srcs.items():
                 code = _JOB_CODE.format(src=src, cfg=str(ROOT / "config/papers/disk_tension.yaml"),
@@ -200,7 +203,8 @@ def versus(rev, profile="ci", repeats=3):
                     best[key][k] = min(best[key][k], got[k])
         a, b = best[rev], best["worktree"]
         print(f"  {job:16s} ({len(names):2d} runs): runs {a['process']:6.2f} -> {b['process']:6.2f} s "
-              f"(x{a['process'] / b['process']:.2f}); recorded solve times {a['solve']:6.2f} -> "
+              f"(x{a['process'] / b['process']:.2f}); CPU {a['cpu']:6.2f} -> {b['cpu']:6.2f} s "
+              f"(x{a['cpu'] / b['cpu']:.2f}); recorded solve times {a['solve']:6.2f} -> "
               f"{b['solve']:6.2f} s (x{a['solve'] / b['solve']:.2f})")
 
 

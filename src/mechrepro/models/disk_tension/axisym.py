@@ -23,6 +23,7 @@ and the clamp r = r_f removes W, W' of the first node.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 from numpy.polynomial.legendre import leggauss
@@ -72,9 +73,18 @@ def radial_mesh(r_f, b, n_elements, breakpoints=()):
     return RadialMesh(nodes)
 
 
+@lru_cache(maxsize=None)
+def _gauss(n_gauss):
+    """Gauss-Legendre points and weights on [-1, 1] (read only: shared by every mesh; Fig. 7
+    builds a mesh per annulus radius)."""
+    xg, wg = leggauss(n_gauss)
+    xg.flags.writeable = wg.flags.writeable = False
+    return xg, wg
+
+
 def quadrature(mesh: RadialMesh, n_gauss=N_GAUSS):
     """Quadrature radii r[e, q], weights w[e, q] (incl. Jacobian) and Hermite basis."""
-    xg, wg = leggauss(n_gauss)
+    xg, wg = _gauss(n_gauss)
     xi = 0.5 * (xg + 1.0)
     L = np.diff(mesh.nodes)[:, None]
     r = mesh.nodes[:-1, None] + L * xi[None, :]
@@ -100,8 +110,15 @@ def _assemble(mesh: RadialMesh, ke):
     return K[2:, 2:]
 
 
-def plate_matrices(mesh, n_d, *, D, nu, rho_h, quad=None, d_scale=None):
-    """([K], [M]) of harmonic ``n_d`` (Eq. 1 operators, clamped at r_f)."""
+def mass_matrix(mesh, *, rho_h, quad=None):
+    """[M] (Eq. 1 operator, clamped at r_f): the same for every harmonic N_d."""
+    r, w, N = (quad if quad is not None else quadrature(mesh))[:3]
+    return _assemble(mesh, np.einsum("eq,eqi,eqj->eij", rho_h * w * r, N, N))
+
+
+def bending_matrix(mesh, n_d, *, D, nu, quad=None, d_scale=None):
+    """[K] of harmonic ``n_d`` (Eq. 1 bending operator, clamped at r_f); ``d_scale(r)``
+    multiplies the flexural rigidity D."""
     r, w, N, dN, d2N = quad if quad is not None else quadrature(mesh)
     n2 = float(n_d) ** 2
     rr = r[..., None]
@@ -113,17 +130,13 @@ def plate_matrices(mesh, n_d, *, D, nu, rho_h, quad=None, d_scale=None):
         Dq = Dq * d_scale(r)
     ein = lambda A, B: np.einsum("eq,eqi,eqj->eij", Dq, A, B)  # noqa: E731
     ke = ein(B1, B1) + ein(B2, B2) + nu * (ein(B1, B2) + ein(B2, B1)) + 2 * (1 - nu) * ein(B3, B3)
-    me = np.einsum("eq,eqi,eqj->eij", rho_h * w * r, N, N)
-    return _assemble(mesh, ke), _assemble(mesh, me)
+    return _assemble(mesh, ke)
 
 
-def stress_stiffness(mesh, n_d, sigma_r, sigma_t, h, quad=None):
-    """Eq. (3) for the harmonic: [K^(sigma)] from sigma_r, sigma_theta at quadrature points.
-
-    ``sigma_r``/``sigma_t`` are callables of r [m] returning Pa.
-    """
+def stress_stiffness(mesh, n_d, sr, st, h, quad=None):
+    """Eq. (3) for the harmonic: [K^(sigma)] from sigma_r, sigma_theta [Pa] at the
+    quadrature points (``sr``, ``st``: arrays shaped like the quadrature radii)."""
     r, w, N, dN, _ = quad if quad is not None else quadrature(mesh)
-    sr, st = sigma_r(r), sigma_t(r)
     n2 = float(n_d) ** 2
     ke = (np.einsum("eq,eqi,eqj->eij", h * sr * w * r, dN, dN)
           + np.einsum("eq,eqi,eqj->eij", h * st * n2 * w / r, N, N))
@@ -157,13 +170,15 @@ class AxisymDisk:
         self.quad = quadrature(self.mesh, n_gauss)
         self.h, self.n_d = h, np.asarray(n_d, int)
         D = E * h**3 / (12 * (1 - nu**2))
+        # [M] has no N_d in it: one matrix, shared (read only) by every harmonic
+        M = mass_matrix(self.mesh, rho_h=rho * h, quad=self.quad)
         self.K, self.M = {}, {}
         # results per K^(sigma) object (the analyses share the r_c of one run: Tables 1-2 and
         # the critical load re-read the eigen effect's solves instead of repeating them)
         self._memo = {}
         for n in self.n_d:
-            self.K[n], self.M[n] = plate_matrices(self.mesh, n, D=D, nu=nu, rho_h=rho * h,
-                                                  quad=self.quad)
+            self.K[n] = bending_matrix(self.mesh, n, D=D, nu=nu, quad=self.quad)
+            self.M[n] = M
 
     def unrolled(self):
         """omega^2 and mass-normalised mode of the fundamental of each N_d, Eq. (6)."""
@@ -182,7 +197,10 @@ class AxisymDisk:
                 lambda r: np.full_like(r, sigma0, dtype=float))
 
     def stress_stiffness(self, sigma):
-        sr, st = sigma
+        """[K^(sigma)] of every harmonic, Eq. (3); ``sigma`` = (sigma_r(r), sigma_theta(r)),
+        callables of r [m] returning Pa, evaluated once for all harmonics."""
+        r = self.quad[0]
+        sr, st = sigma[0](r), sigma[1](r)
         return {n: stress_stiffness(self.mesh, n, sr, st, self.h, quad=self.quad)
                 for n in self.n_d}
 
@@ -255,10 +273,10 @@ class AxisymDisk:
             mesh = radial_mesh(r_f, b, self.mesh.n_elements, breakpoints=(lo, hi))
             quad = quadrature(mesh)
             scale = lambda r: 1.0 + increase * ((r >= lo) & (r <= hi))  # noqa: E731
+            M = mass_matrix(mesh, rho_h=rho * self.h, quad=quad)
             for j, n in enumerate(self.n_d):
-                K0, M = plate_matrices(mesh, n, D=D, nu=nu, rho_h=rho * self.h, quad=quad)
-                K1, _ = plate_matrices(mesh, n, D=D, nu=nu, rho_h=rho * self.h, quad=quad,
-                                       d_scale=scale)
+                K0 = bending_matrix(mesh, n, D=D, nu=nu, quad=quad)
+                K1 = bending_matrix(mesh, n, D=D, nu=nu, quad=quad, d_scale=scale)
                 w0 = eigen(K0, M, 1, BANDWIDTH)[0][0]
                 w1 = eigen(K1, M, 1, BANDWIDTH)[0][0]
                 out[i, j] = (np.sqrt(w1) - np.sqrt(w0)) / (2 * np.pi)

@@ -108,26 +108,27 @@ DATA = ["Table 1 N_d=0", "Table 1 N_d=1", "Table 1 N_d=2", "Table 1 N_d=3", "Tab
 SUBSETS = {"table1_and_f_rolled": [0, 1, 2, 3, 4, 5], "table1": [0, 1, 2, 3, 4]}
 
 
-def _profiles(fm, fine_widths, table1_paper, f_rolled_paper, use, chunk=64):
+def _profiles(fm, fine_widths, table1_paper, f_rolled_paper, uses, chunk=64):
     """Raw chi^2 profiles over s, c and the condition, and the best point (a, i, k), over
-    the fine grid (evaluated in chunks of s)."""
+    the fine grid, one (pw, pc, pa, at) per data subset of ``uses`` (evaluated in chunks of
+    s; the model and its residuals once per chunk for all subsets)."""
     nc = len(fm.fine)
-    pw = np.full(len(fine_widths), np.inf)
-    pc = np.full(nc, np.inf)
-    pa = np.full(2, np.inf)
-    best, at = np.inf, None
+    out = [[np.full(len(fine_widths), np.inf), np.full(nc, np.inf), np.full(2, np.inf),
+            np.inf, None] for _ in uses]
     for i0 in range(0, len(fine_widths), chunk):
         t1, f4 = fm(fine_widths[i0:i0 + chunk])
-        terms = chi2_terms(t1, f4, table1_paper, f_rolled_paper)[..., use]
-        raw = np.where(np.all(np.isfinite(terms), axis=-1), terms.sum(axis=-1), np.inf)
-        pw[i0:i0 + chunk] = raw.min(axis=(0, 2))
-        pc = np.minimum(pc, raw.min(axis=(0, 1)))
-        pa = np.minimum(pa, raw.min(axis=(1, 2)))
-        if raw.min() < best:
-            best = float(raw.min())
-            a, i, k = np.unravel_index(int(np.argmin(raw)), raw.shape)
-            at = (int(a), i0 + int(i), int(k))
-    return pw, pc, pa, at
+        all_terms = chi2_terms(t1, f4, table1_paper, f_rolled_paper)
+        for use, o in zip(uses, out):
+            terms = all_terms[..., use]
+            raw = np.where(np.all(np.isfinite(terms), axis=-1), terms.sum(axis=-1), np.inf)
+            o[0][i0:i0 + chunk] = raw.min(axis=(0, 2))
+            o[1] = np.minimum(o[1], raw.min(axis=(0, 1)))
+            o[2] = np.minimum(o[2], raw.min(axis=(1, 2)))
+            if raw.min() < o[3]:
+                o[3] = float(raw.min())
+                a, i, k = np.unravel_index(int(np.argmin(raw)), raw.shape)
+                o[4] = (int(a), i0 + int(i), int(k))
+    return [(pw, pc, pa, at) for pw, pc, pa, _, at in out]
 
 
 def analyse(disk, *, widths, scales, fine, fine_widths, single_width, table1_paper,
@@ -147,8 +148,8 @@ def analyse(disk, *, widths, scales, fine, fine_widths, single_width, table1_pap
     out = {k: [] for k in ("prof_width", "prof_scale", "prof_condition", "birge", "best_width",
                            "best_scale", "best_condition", "best_table1_rel", "best_f_rolled",
                            "shares", "single_chi2", "chi2_min")}
-    for use in SUBSETS.values():
-        pw, pc, pa, (a, i, k) = _profiles(fm, fine_widths, table1_paper, f_rolled_paper, use)
+    profiles = _profiles(fm, fine_widths, table1_paper, f_rolled_paper, list(SUBSETS.values()))
+    for use, (pw, pc, pa, (a, i, k)) in zip(SUBSETS.values(), profiles):
         dof = max(len(use) - 3, 1)
         birge = max(float(pw.min()) / dof, 1.0)
         out["prof_width"].append(pw / birge)
