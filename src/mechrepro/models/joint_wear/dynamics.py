@@ -166,4 +166,5 @@ def warm() -> None:
     F_N, ang, delta = q.force(*b, a, a, 0.0, 1.0, 1.5)
     q.friction(F_N, delta, a, 0.0, a, 1.0, 1.0, 0.0, 1.0)
     q.direction(ang, a)
+    q.steps(np.zeros((2, 2)))
     _WARM = True

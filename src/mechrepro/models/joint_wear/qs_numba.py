@@ -97,3 +97,21 @@ def direction(ang_n, ph2):
         x = ang_n[i] - ph2[i]
         psi[i] = math.atan2(math.sin(x), math.cos(x))
     return nx, ny, psi
+
+
+@jit
+def steps(a):
+    """Over the rows of ``a`` (2-D): the largest |a[i] - a[i-1]| (np.unwrap corrects none
+    below pi) and the largest |a[-1] + (a[1] - a[0]) - a[0]| / 2 pi (the turns per period
+    that periodic_derivatives rounds: none up to 0.5); inf where a NaN is met."""
+    step = 0.0
+    turn = 0.0
+    for r in range(a.shape[0]):
+        for i in range(1, a.shape[1]):
+            d = abs(a[r, i] - a[r, i - 1])
+            if not d <= step:
+                step = d if d == d else math.inf
+        x = abs((a[r, -1] + (a[r, 1] - a[r, 0]) - a[r, 0]) / (2.0 * math.pi))
+        if not x <= turn:
+            turn = x if x == x else math.inf
+    return step, turn
