@@ -287,13 +287,24 @@ def local_wear_per_period(hist: dict, fb: FourBar, period: float, theta) -> np.n
     rate = F_N * np.abs(v_T) * dt / (fb.width * AB)                      # per sample
     half = 0.5 * AB / fb.R_bush                                           # patch half-angle
     theta = np.asarray(theta, float)
-    cell = 2.0 * math.pi / theta.size                      # theta: a uniform grid of the circle
-    d = np.angle(np.exp(1j * (theta[None, :] - psi[:, None])))
+    n = theta.size
+    cell = 2.0 * math.pi / n                               # theta: a uniform grid of the circle
+    # only the cells a patch can reach, its centre's and w either side: the others get
+    # exact zeros, which change no sum (the sum is over samples in their order either way)
+    w = int(math.ceil(half.max(initial=0.0) / cell)) + 2
+    if 2 * w + 1 < n:
+        near = np.rint((psi - theta[0]) / cell).astype(int)
+        cells = (near[:, None] + np.arange(-w, w + 1)) % n
+    else:
+        cells = np.broadcast_to(np.arange(n), (psi.size, n))
+    d = np.angle(np.exp(1j * (theta[cells] - psi[:, None])))
     # the share of each grid cell the patch covers (exact overlap, not a point test: the
     # depth then does not jump as the patch crosses grid points)
     h = half[:, None]
     cover = np.clip(np.minimum(d + 0.5 * cell, h) - np.maximum(d - 0.5 * cell, -h), 0.0, None)
-    return (rate[:, None] * cover / cell).sum(axis=0)
+    depth = np.zeros(n)
+    np.add.at(depth, cells, rate[:, None] * cover / cell)
+    return depth
 
 
 def wear_range_points(psi, n: int = 8) -> np.ndarray:
