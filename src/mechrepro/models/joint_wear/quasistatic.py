@@ -43,15 +43,15 @@ def one_period(fb: FourBar, n_steps: int, passes: int = 2, t0: float = 0.0,
     """
     if settled:
         passes = max(passes, 4)
-    t, th1, th3, ph2, w3, w2, a3, a2 = (x.copy() for x in _ideal(
+    t, th1, th3, ph2, w3, w2, a3, a2, px, py = (x.copy() for x in _ideal(
         fb.l0, fb.l1, fb.l2, fb.l3, fb.omega, int(n_steps), float(t0)))
     # intermediate passes only steer the link angles: a rougher friction fixed point will do
     rough = 4 if settled else 2
     out = _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2, rough if passes else 4)
     for i in range(passes):
         ecc = fb.clearance + out["delta"]
-        bx = fb.l1 * np.cos(th1) - ecc * out["nx"]
-        by = fb.l1 * np.sin(th1) - ecc * out["ny"]
+        bx = px - ecc * out["nx"]
+        by = py - ecc * out["ny"]
         th3, ph2 = kinematics.positions_from_point(fb, bx, by)
         (w3, w2), (a3, a2) = periodic_derivatives(np.vstack([th3, ph2]), fb.period)
         out = _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2, 4 if i == passes - 1 else rough)
@@ -61,15 +61,16 @@ def one_period(fb: FourBar, n_steps: int, passes: int = 2, t0: float = 0.0,
 
 @functools.lru_cache(maxsize=16)
 def _ideal(l0, l1, l2, l3, omega, n_steps, t0):
-    """The grid and the ideal four-bar's motion on it (kinematics.py): the same for every
-    bushing radius, load point and gravity plane, so computed once per link geometry."""
+    """The grid, the ideal four-bar's motion on it (kinematics.py) and the pin's path: the
+    same for every bushing radius, load point and gravity plane, so computed once per
+    link geometry."""
     fb = _Links(l0, l1, l2, l3, omega)
     t = t0 + np.arange(n_steps) * (fb.period / n_steps)
     th1 = fb.omega * t
     th3, ph2 = kinematics.positions(fb, th1)
     w3, w2 = kinematics.velocities(fb, th1, th3, ph2)
     a3, a2 = kinematics.accelerations(fb, th1, th3, ph2, w3, w2)
-    return t, th1, th3, ph2, w3, w2, a3, a2
+    return t, th1, th3, ph2, w3, w2, a3, a2, fb.l1 * np.cos(th1), fb.l1 * np.sin(th1)
 
 
 class _Links(NamedTuple):
@@ -117,12 +118,13 @@ HARMONICS = 64
 
 @functools.lru_cache(maxsize=64)
 def _omegas(n, period):
-    """i w and -w^2 of the angular frequencies w of ``rfft`` over one period of n samples
-    (read-only): the factors of the first and second derivative."""
+    """i w and -w^2 (as complex, what numpy multiplies a complex spectrum by anyway) of the
+    angular frequencies w of ``rfft`` over one period of n samples, stacked (read-only):
+    the factors of the first and second derivative."""
     w = 2 * np.pi * np.fft.rfftfreq(n, period / n)
-    iw, w2 = 1j * w, -(w * w)
-    iw.flags.writeable = w2.flags.writeable = False
-    return iw, w2
+    factors = np.array([1j * w, -(w * w)])
+    factors.flags.writeable = False
+    return factors
 
 
 def periodic_derivatives(angle, period, second=True, harmonics=HARMONICS):
@@ -150,10 +152,13 @@ def periodic_derivatives(angle, period, second=True, harmonics=HARMONICS):
     else:
         per = a
     f = np.fft.rfft(per, axis=-1)
-    iw, w2 = _omegas(n, period)
+    factors = _omegas(n, period)
     f[..., min(harmonics + 1, (n - 1) // 2 + 1):] = 0.0   # incl. the Nyquist mode of an even n
-    d1 = np.fft.irfft(iw * f, n, axis=-1)
+    if second:      # both derivatives in one inverse transform
+        d1, d2 = np.fft.irfft(factors.reshape((2,) + (1,) * (f.ndim - 1) + (-1,)) * f, n,
+                              axis=-1)
+    else:
+        d1, d2 = np.fft.irfft(factors[0] * f, n, axis=-1), None
     if turns:
         d1 = d1 + 2 * np.pi * k / period
-    d2 = np.fft.irfft(w2 * f, n, axis=-1) if second else None
     return d1, d2
