@@ -55,7 +55,8 @@ def one_period(fb: FourBar, n_steps: int, passes: int = 2, t0: float = 0.0,
         th3, ph2 = kinematics.positions_from_point(fb, bx, by)
         (w3, w2), (a3, a2) = periodic_derivatives(np.vstack([th3, ph2]), fb.period)
         out = _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2, 4 if i == passes - 1 else rough)
-    out.update(w3=w3, w2=w2)
+    # the contact angle of the last pass only (the passes before steer by n alone)
+    out.update(psi=qs_numba.contact_angle(out.pop("ang_n"), ph2), w3=w3, w2=w2)
     return out
 
 
@@ -108,9 +109,9 @@ def _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2, iterations=4) -> dict:
         dang, _ = periodic_derivatives(ang_n, fb.period, second=False)
         v_T, sgn, F_T, tau = qs_numba.friction(F_N, delta, dang, slide, w2R, fb.clearance, fb.v_eps,
                                         fb.mu, fb.R_bush)
-    nx, ny, psi = qs_numba.direction(ang_n, ph2)
+    nx, ny = qs_numba.direction(ang_n)
     return {"t": t, "theta1": th1, "theta3": th3, "phi2": ph2, "F_N": F_N, "F_T": F_T,
-            "delta": delta, "v_T": v_T, "psi": psi, "nx": nx, "ny": ny}
+            "delta": delta, "v_T": v_T, "ang_n": ang_n, "nx": nx, "ny": ny}
 
 
 HARMONICS = 64
