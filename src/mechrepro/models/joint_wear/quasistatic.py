@@ -43,7 +43,8 @@ def one_period(fb: FourBar, n_steps: int, passes: int = 2, t0: float = 0.0,
     """
     if settled:
         passes = max(passes, 4)
-    t, th1, th3, ph2, w3, w2, a3, a2, px, py = (x.copy() for x in _ideal(
+    ideal = _ideal_cached if n_steps <= CACHED_GRID else _ideal
+    t, th1, th3, ph2, w3, w2, a3, a2, px, py = (x.copy() for x in ideal(
         fb.l0, fb.l1, fb.l2, fb.l3, fb.omega, int(n_steps), float(t0)))
     # intermediate passes only steer the link angles: a rougher friction fixed point will do
     rough = 4 if settled else 2
@@ -60,7 +61,6 @@ def one_period(fb: FourBar, n_steps: int, passes: int = 2, t0: float = 0.0,
     return out
 
 
-@functools.lru_cache(maxsize=16)
 def _ideal(l0, l1, l2, l3, omega, n_steps, t0):
     """The grid, the ideal four-bar's motion on it (kinematics.py) and the pin's path: the
     same for every bushing radius, load point and gravity plane, so computed once per
@@ -72,6 +72,12 @@ def _ideal(l0, l1, l2, l3, omega, n_steps, t0):
     w3, w2 = kinematics.velocities(fb, th1, th3, ph2)
     a3, a2 = kinematics.accelerations(fb, th1, th3, ph2, w3, w2)
     return t, th1, th3, ph2, w3, w2, a3, a2, fb.l1 * np.cos(th1), fb.l1 * np.sin(th1)
+
+
+#: the largest grid whose ideal motion is kept (80 B per sample): a finer one is a
+#: convergence check, solved once, and would hold its memory for the rest of the process
+CACHED_GRID = 8192
+_ideal_cached = functools.lru_cache(maxsize=16)(_ideal)
 
 
 class _Links(NamedTuple):
