@@ -27,8 +27,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from . import contact, kinematics, loads
-from . import qs_numba
+from . import contact, kinematics, loads, qs_numba
 from .geometry import FourBar
 
 
@@ -111,10 +110,10 @@ def _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2, iterations=4) -> dict:
     sgn = contact.friction_sign(slide - w2R, fb.v_eps)
     for _ in range(iterations):
         F_N, ang_n, delta = qs_numba.force(b3, b2, j11, j12, j21, j22, det, tau, sgn, fb.mu,
-                                    fb.K_contact, fb.n_exp)
+                                           fb.K_contact, fb.n_exp)
         dang, _ = periodic_derivatives(ang_n, fb.period, second=False)
-        v_T, sgn, F_T, tau = qs_numba.friction(F_N, delta, dang, slide, w2R, fb.clearance, fb.v_eps,
-                                        fb.mu, fb.R_bush)
+        v_T, sgn, F_T, tau = qs_numba.friction(F_N, delta, dang, slide, w2R, fb.clearance,
+                                               fb.v_eps, fb.mu, fb.R_bush)
     nx, ny = qs_numba.direction(ang_n)
     return {"t": t, "theta1": th1, "theta3": th3, "phi2": ph2, "F_N": F_N, "F_T": F_T,
             "delta": delta, "v_T": v_T, "ang_n": ang_n, "nx": nx, "ny": ny}
