@@ -169,7 +169,8 @@ def period_by_period(run: dict) -> dict:
     def g_of(R_bush):
         fb_w = fb.with_bushing_radius(R_bush)
         return wear.period_wear_factor(quasi_static_period(fb_w, ctx.s), fb_w, fb.period,
-                                       ctx.s.get("wear_range", "contact_point"))["G"]
+                                       ctx.s.get("wear_range", "contact_point"),
+                                       statistics=False)["G"]
     with stopwatch() as sw:
         wear.period_by_period(float(ctx.p["measured_wear_B1"][-1]), n, k, fb.R_bush, g_of)
     res["pbp"] = (n, sw.seconds)
@@ -205,7 +206,7 @@ def wear_factor_of(fb_v: FourBar, s: dict):
     def factor(R_bush):
         fb_w = fb_v.with_bushing_radius(R_bush)
         return wear.period_wear_factor(continuous_contact_period(fb_w, s), fb_w,
-                                       fb_v.period)["G"]
+                                       fb_v.period, statistics=False)["G"]
     return factor
 
 

@@ -116,21 +116,27 @@ def contact_arc_quantile(psi, weights=None, q=0.9):
 
 
 def period_wear_factor(hist: dict, fb: FourBar, period: float,
-                       wear_range: str = "contact_point") -> dict:
+                       wear_range: str = "contact_point", statistics: bool = True) -> dict:
     """Eqs. (18)-(24), (29) over one period sampled uniformly (periodic rectangle rule).
 
     hist: t, F_N, delta, v_T, psi on a uniform grid covering one period.
+    statistics=False leaves out what G does not need (the contact patch of Eqs. 23-24
+    unless the wear range adds it, the 90 % contact range: NaN), for calibration and
+    prediction, which read G alone.
     """
     F_N, delta, v_T = (np.asarray(hist[k], float) for k in ("F_N", "delta", "v_T"))
     in_contact = delta > 0.0
     S = float(np.mean(np.abs(v_T) * in_contact) * period)                     # Eq. (21)
     F_mean = float(np.mean(F_N))                                              # Eq. (22)
-    AB = contact.contact_chord(np.where(in_contact, delta, 0.0), fb.R_pin, fb.R_bush)
-    AB = np.where(in_contact, AB, 0.0)
-    AB_mean = float(np.mean(AB))                                              # Eq. (23)
-    A_mean = AB_mean * fb.width                                               # Eq. (24)
+    AB_mean = A_mean = arc_q90 = math.nan
+    if statistics or wear_range == "swept_patch":
+        AB = contact.contact_chord(np.where(in_contact, delta, 0.0), fb.R_pin, fb.R_bush)
+        AB = np.where(in_contact, AB, 0.0)
+        AB_mean = float(np.mean(AB))                                          # Eq. (23)
+        A_mean = AB_mean * fb.width                                           # Eq. (24)
     arc = contact_arc(hist["psi"], in_contact)
-    arc_q90 = contact_arc_quantile(hist["psi"], in_contact.astype(float), 0.9)
+    if statistics:
+        arc_q90 = contact_arc_quantile(hist["psi"], in_contact.astype(float), 0.9)
     L_arc = fb.R_bush * arc
     if wear_range == "swept_patch":
         L_wear = L_arc + AB_mean
