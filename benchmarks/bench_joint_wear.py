@@ -31,24 +31,29 @@ def best_of(fn, repeats):
     return best, out
 
 
-def _main_quasistatic():
-    """quasistatic.py as it is on main (before issue #18), imported as a module."""
-    import importlib.util
+def _reference_quasistatic(ref: str):
+    """quasistatic.py as it is at git ``ref``, with the kernels it calls (the whole model
+    package of that commit, imported as a package of its own beside the working tree's)."""
+    import importlib
+    import io
     import subprocess
+    import sys
+    import tarfile
     import tempfile
 
-    src = subprocess.run(["git", "show", "main:src/mechrepro/models/joint_wear/quasistatic.py"],
-                         cwd=ROOT, capture_output=True, text=True, check=True).stdout
-    path = Path(tempfile.mkdtemp()) / "quasistatic_main.py"
-    path.write_text(src)
-    spec = importlib.util.spec_from_file_location(
-        "mechrepro.models.joint_wear.quasistatic_main", path)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    tar = subprocess.run(["git", "archive", ref, "src/mechrepro/models/joint_wear"], cwd=ROOT,
+                         capture_output=True, check=True).stdout
+    tmp = Path(tempfile.mkdtemp())
+    tarfile.open(fileobj=io.BytesIO(tar)).extractall(tmp, filter="data")
+    models = str(tmp / "src" / "mechrepro" / "models")
+    sys.path.insert(0, models)
+    try:
+        return importlib.import_module("joint_wear.quasistatic")
+    finally:
+        sys.path.remove(models)
 
 
-def side_by_side(cfg, repeats):
+def side_by_side(cfg, repeats, against="main"):
     """The compiled Radau (radau.py) against scipy's Radau with the same compiled physics
     (clearance.py), in one process; BDF, LSODA and RK45 run in scipy only."""
     fb, _ = setup(cfg.runs["period_dynamic"])
@@ -71,13 +76,14 @@ def side_by_side(cfg, repeats):
         t_new, r_new = best_of(lambda: run("auto"), repeats)
         print(f"  {method:5s} rtol {rtol:.0e} {start:11s}: scipy {t_old:8.3f} s -> compiled "
               f"{t_new:8.4f} s  ({t_old / t_new:6.1f}x; steps {r_old['steps']} / {r_new['steps']})")
-    old = _main_quasistatic()
+    old = _reference_quasistatic(against)
     for n in (360, 720):
+        old.one_period(fb, n)
         quasistatic.one_period(fb, n)
         t_old, _ = best_of(lambda: old.one_period(fb, n), 20 * repeats)
         t_new, _ = best_of(lambda: quasistatic.one_period(fb, n), 20 * repeats)
-        print(f"  quasi-static period, {n} samples: {t_old * 1e3:6.2f} ms -> {t_new * 1e3:6.2f} ms "
-              f"({t_old / t_new:4.1f}x)")
+        print(f"  quasi-static period, {n} samples: {against} {t_old * 1e3:6.2f} ms -> "
+              f"{t_new * 1e3:6.2f} ms ({t_old / t_new:4.1f}x)")
 
 
 def main():
@@ -85,9 +91,11 @@ def main():
     ap.add_argument("--explicit-steps", type=int, default=20000)
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--side-by-side-only", action="store_true")
+    ap.add_argument("--against", default="main",
+                    help="git commit whose quasi-static period the working tree's is timed against")
     a = ap.parse_args()
     cfg = load_paper(ROOT / "config/papers/joint_wear.yaml")
-    side_by_side(cfg, a.repeats)
+    side_by_side(cfg, a.repeats, a.against)
     if a.side_by_side_only:
         return
     fb, _ = setup(cfg.runs["period_dynamic"])

@@ -8,6 +8,8 @@ the same steps to round-off).
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from mechrepro.errors import Refusal
@@ -96,6 +98,7 @@ def _scipy(p, method, y0, t_eval, rtol, atol, max_steps) -> dict:
     k = 1
     steps = 0
     status, message = 0, "finished"
+    te = t_eval.tolist() + [math.inf]
     with stopwatch() as sw:
         while solver.status == "running":
             msg = solver.step()
@@ -103,8 +106,8 @@ def _scipy(p, method, y0, t_eval, rtol, atol, max_steps) -> dict:
             if solver.status == "failed":
                 status, message = -1, str(msg)
                 break
-            j = np.searchsorted(t_eval, solver.t, side="right")
-            if j > k:
+            if solver.t >= te[k]:    # the step holds samples (most hold none)
+                j = np.searchsorted(t_eval, solver.t, side="right")
                 sol = solver.dense_output()
                 ts = t_eval[k:j]
                 T.extend(ts)
@@ -165,5 +168,7 @@ def warm() -> None:
     b = q.setup(a, a, a, a, a, a, 1.0, 1.0, 0.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 2.0, 0.0, 0.0)
     F_N, ang, delta = q.force(*b, a, a, 0.0, 1.0, 1.5)
     q.friction(F_N, delta, a, 0.0, a, 1.0, 1.0, 0.0, 1.0)
-    q.direction(ang, a)
+    q.direction(ang)
+    q.contact_angle(ang, a)
+    q.steps(np.zeros((2, 2)))
     _WARM = True

@@ -90,7 +90,8 @@ def archard_wear(ctx: Context) -> dict:
 
     def factor(R_bush):
         fb_w = fb.with_bushing_radius(R_bush)
-        return wear.period_wear_factor(ctx.one_period(fb_w), fb_w, fb.period, wear_range)["G"]
+        return wear.period_wear_factor(ctx.one_period(fb_w), fb_w, fb.period, wear_range,
+                                       statistics=False)["G"]
 
     cal_h = float(p["measurement_interval"]) / 3600.0
     out = {"sides": [], "k": [], "k_mean": [], "G_cal": [], "nodes": [], "h": [], "G_pred": []}

@@ -22,8 +22,9 @@ of ``compute(run)`` in one warm process, every run of the ci and default profile
   ~1.5e7 steps for a period of the stiff contact (20 000 reach 8.2 ms of 6.25 s), so a run
   without a step budget is refused by time; their dense output ~50 us and ~400 B per
   output sample (LSODA at 2e5 samples: 17.7 s, 300 MB), the compiled Radau's ~100 B;
-- local wear (``n_theta`` bushing angles): ~0.11 us and ~40 B per sample and angle
-  (n_theta 8192 at 360 samples: 12.7 s, 340 MB);
+- local wear (``n_theta`` bushing angles): ~0.13 us and ~50 B per sample and bushing cell
+  its contact patch can reach (the patch, <= ~15 deg, and 2 cells either side: 35 of 720;
+  n_theta 8192 at 360 samples: 16 ms, 5.4 MB; before issue #35 every cell: 12.7 s, 340 MB);
 - a warm solver process (interpreter, numpy, scipy, numba, xarray) peaks at 220-260 MB.
 
 The times are upper readings: the default runs took 75.6 s of CPU here, 19.1 s of wall
@@ -63,7 +64,8 @@ _RADAU_STEP_S, _RADAU_B = 3.1e-6, 100.0
 _SCIPY = {"LSODA": (45e-6, 38_000), "BDF": (5e-4, 14_000), "RK45": (2.1e-4, 1.5e7),
           "RK23": (2.1e-4, 1.5e7), "DOP853": (2.1e-4, 1.5e7)}
 _SCIPY_SAMPLE_S, _SCIPY_B = 50e-6, 400.0
-_LOCAL_CELL_S, _LOCAL_B = 0.11e-6, 40.0
+_LOCAL_CELL_S, _LOCAL_B = 0.13e-6, 50.0
+_LOCAL_PATCH = math.radians(15.0)   # the widest contact patch of the scenes (assumed F)
 #: steps from the concentric start (impact, rattling) over a settled period's at the same
 #: rtol: compiled Radau at 1e-7 (1.2 s: ~390 000 steps against 1329), LSODA (161 857
 #: against ~76 000)
@@ -140,7 +142,8 @@ def _solve_seconds(run: dict) -> tuple[float, float]:
         return _qs(n) * (grid + 4 * planes * per_zero), qs_mb
     if solver == "local_wear":
         periods = 1 + _wear_periods(run, interval, 1, True)
-        cells = n * int(res.get("n_theta", 720))
+        n_theta = int(res.get("n_theta", 720))
+        cells = n * min(n_theta, n_theta * _LOCAL_PATCH / (2 * math.pi) + 5)
         return periods * (2 * _qs(n) + _LOCAL_CELL_S * cells), max(qs_mb, _LOCAL_B * cells / 1e6)
     if solver == "constant_sensitivity":
         rows = 1 + 2 * len(opt.get("sensitivity", {}))

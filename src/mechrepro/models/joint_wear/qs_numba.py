@@ -85,15 +85,41 @@ def friction(F_N, delta, dang, slide, w2R, clearance, v_eps, mu, R_bush):
 
 
 @jit
-def direction(ang_n, ph2):
-    """n = (cos, sin) of the contact direction and the contact angle psi in (-pi, pi]."""
+def direction(ang_n):
+    """n = (cos, sin) of the contact direction."""
     n = ang_n.size
     nx = np.empty(n)
     ny = np.empty(n)
-    psi = np.empty(n)
     for i in range(n):
         nx[i] = math.cos(ang_n[i])
         ny[i] = math.sin(ang_n[i])
+    return nx, ny
+
+
+@jit
+def contact_angle(ang_n, ph2):
+    """The contact angle psi on the bushing (coupler frame), in (-pi, pi]."""
+    n = ang_n.size
+    psi = np.empty(n)
+    for i in range(n):
         x = ang_n[i] - ph2[i]
         psi[i] = math.atan2(math.sin(x), math.cos(x))
-    return nx, ny, psi
+    return psi
+
+
+@jit
+def steps(a):
+    """Over the rows of ``a`` (2-D): the largest |a[i] - a[i-1]| (np.unwrap corrects none
+    below pi) and the largest |a[-1] + (a[1] - a[0]) - a[0]| / 2 pi (the turns per period
+    that periodic_derivatives rounds: none up to 0.5); inf where a NaN is met."""
+    step = 0.0
+    turn = 0.0
+    for r in range(a.shape[0]):
+        for i in range(1, a.shape[1]):
+            d = abs(a[r, i] - a[r, i - 1])
+            if not d <= step:
+                step = d if d == d else math.inf
+        x = abs((a[r, -1] + (a[r, 1] - a[r, 0]) - a[r, 0]) / (2.0 * math.pi))
+        if not x <= turn:
+            turn = x if x == x else math.inf
+    return step, turn

@@ -22,10 +22,12 @@ correction shrinks by ~c/l per pass: ``passes`` = 2 leaves 1e-10 in the wear per
 from __future__ import annotations
 
 import functools
+import math
+from typing import NamedTuple
 
 import numpy as np
 
-from . import contact, kinematics, loads
+from . import contact, kinematics, loads, qs_numba
 from .geometry import FourBar
 
 
@@ -40,23 +42,54 @@ def one_period(fb: FourBar, n_steps: int, passes: int = 2, t0: float = 0.0,
     """
     if settled:
         passes = max(passes, 4)
-    t = t0 + np.arange(n_steps) * (fb.period / n_steps)
-    th1 = fb.omega * t
-    th3, ph2 = kinematics.positions(fb, th1)
-    w3, w2 = kinematics.velocities(fb, th1, th3, ph2)
-    a3, a2 = kinematics.accelerations(fb, th1, th3, ph2, w3, w2)
+    ideal = _ideal_cached if n_steps <= CACHED_GRID else _ideal
+    t, th1, th3, ph2, w3, w2, a3, a2, px, py = (x.copy() for x in ideal(
+        fb.l0, fb.l1, fb.l2, fb.l3, fb.omega, int(n_steps), float(t0)))
     # intermediate passes only steer the link angles: a rougher friction fixed point will do
     rough = 4 if settled else 2
     out = _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2, rough if passes else 4)
     for i in range(passes):
         ecc = fb.clearance + out["delta"]
-        bx = fb.l1 * np.cos(th1) - ecc * out["nx"]
-        by = fb.l1 * np.sin(th1) - ecc * out["ny"]
+        bx = px - ecc * out["nx"]
+        by = py - ecc * out["ny"]
         th3, ph2 = kinematics.positions_from_point(fb, bx, by)
         (w3, w2), (a3, a2) = periodic_derivatives(np.vstack([th3, ph2]), fb.period)
         out = _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2, 4 if i == passes - 1 else rough)
-    out.update(w3=w3, w2=w2)
+    # the contact angle of the last pass only (the passes before steer by n alone)
+    out.update(psi=qs_numba.contact_angle(out.pop("ang_n"), ph2), w3=w3, w2=w2)
     return out
+
+
+def _ideal(l0, l1, l2, l3, omega, n_steps, t0):
+    """The grid, the ideal four-bar's motion on it (kinematics.py) and the pin's path: the
+    same for every bushing radius, load point and gravity plane, so computed once per
+    link geometry."""
+    fb = _Links(l0, l1, l2, l3, omega)
+    t = t0 + np.arange(n_steps) * (fb.period / n_steps)
+    th1 = fb.omega * t
+    th3, ph2 = kinematics.positions(fb, th1)
+    w3, w2 = kinematics.velocities(fb, th1, th3, ph2)
+    a3, a2 = kinematics.accelerations(fb, th1, th3, ph2, w3, w2)
+    return t, th1, th3, ph2, w3, w2, a3, a2, fb.l1 * np.cos(th1), fb.l1 * np.sin(th1)
+
+
+#: the largest grid whose ideal motion is kept (80 B per sample): a finer one is a
+#: convergence check, solved once, and would hold its memory for the rest of the process
+CACHED_GRID = 8192
+_ideal_cached = functools.lru_cache(maxsize=16)(_ideal)
+
+
+class _Links(NamedTuple):
+    """What the ideal kinematics of kinematics.py read from a :class:`FourBar`."""
+    l0: float
+    l1: float
+    l2: float
+    l3: float
+    omega: float
+
+    @property
+    def period(self):
+        return 2.0 * math.pi / self.omega
 
 
 def _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2, iterations=4) -> dict:
@@ -67,10 +100,8 @@ def _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2, iterations=4) -> dict:
     1e-9) settle it.  The element-wise stages are :mod:`.qs_numba` (compiled with numba
     where installed, the same source as Python otherwise); the spectral derivative of the
     contact direction between them is numpy's FFT."""
-    from . import qs_numba as k
-
     M11, M22, am = loads.mass_terms(fb)
-    b3, b2, j11, j12, j21, j22, det = k.setup(
+    b3, b2, j11, j12, j21, j22, det = qs_numba.setup(
         th3, ph2, w3, w2, a3, a2, M11, M22, am, fb.l0, fb.l2, fb.l3, fb.m2, fb.m3, fb.P,
         float(fb.F[0]), float(fb.F[1]), fb.g)
     tau = np.zeros_like(t)
@@ -78,35 +109,28 @@ def _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2, iterations=4) -> dict:
     w2R = w2 * fb.R_bush
     sgn = contact.friction_sign(slide - w2R, fb.v_eps)
     for _ in range(iterations):
-        F_N, ang_n, delta = k.force(b3, b2, j11, j12, j21, j22, det, tau, sgn, fb.mu,
-                                    fb.K_contact, fb.n_exp)
+        F_N, ang_n, delta = qs_numba.force(b3, b2, j11, j12, j21, j22, det, tau, sgn, fb.mu,
+                                           fb.K_contact, fb.n_exp)
         dang, _ = periodic_derivatives(ang_n, fb.period, second=False)
-        v_T, sgn, F_T, tau = k.friction(F_N, delta, dang, slide, w2R, fb.clearance, fb.v_eps,
-                                        fb.mu, fb.R_bush)
-    nx, ny, psi = k.direction(ang_n, ph2)
+        v_T, sgn, F_T, tau = qs_numba.friction(F_N, delta, dang, slide, w2R, fb.clearance,
+                                               fb.v_eps, fb.mu, fb.R_bush)
+    nx, ny = qs_numba.direction(ang_n)
     return {"t": t, "theta1": th1, "theta3": th3, "phi2": ph2, "F_N": F_N, "F_T": F_T,
-            "delta": delta, "v_T": v_T, "psi": psi, "nx": nx, "ny": ny}
+            "delta": delta, "v_T": v_T, "ang_n": ang_n, "nx": nx, "ny": ny}
 
 
 HARMONICS = 64
 
 
-def _unwrap(a):
-    """``np.unwrap(a, axis=-1)``, exactly: where no step reaches pi (the usual case: the
-    angles are smooth on the grid) np.unwrap adds zero corrections and returns ``a``."""
-    if np.abs(np.diff(a, axis=-1)).max(initial=0.0) < np.pi:
-        return a
-    return np.unwrap(a, axis=-1)
-
-
 @functools.lru_cache(maxsize=64)
 def _omegas(n, period):
-    """i w and -w^2 of the angular frequencies w of ``rfft`` over one period of n samples
-    (read-only): the factors of the first and second derivative."""
+    """i w and -w^2 (as complex, what numpy multiplies a complex spectrum by anyway) of the
+    angular frequencies w of ``rfft`` over one period of n samples, stacked (read-only):
+    the factors of the first and second derivative."""
     w = 2 * np.pi * np.fft.rfftfreq(n, period / n)
-    iw, w2 = 1j * w, -(w * w)
-    iw.flags.writeable = w2.flags.writeable = False
-    return iw, w2
+    factors = np.array([1j * w, -(w * w)])
+    factors.flags.writeable = False
+    return factors
 
 
 def periodic_derivatives(angle, period, second=True, harmonics=HARMONICS):
@@ -121,16 +145,26 @@ def periodic_derivatives(angle, period, second=True, harmonics=HARMONICS):
     the clearance's rocking mode (~1e3 rad/s), where no quasi-static state exists and
     the fixed point diverges.
     """
-    a = _unwrap(np.asarray(angle, float))
+    a = np.asarray(angle, float)
     n = a.shape[-1]
-    k = np.round((a[..., -1] + (a[..., 1] - a[..., 0]) - a[..., 0]) / (2 * np.pi))[..., None]
-    turns = bool(np.any(k))
-    per = a - 2 * np.pi * k * np.arange(n) / n if turns else a
+    step, turn = qs_numba.steps(a.reshape(-1, n))
+    if not step < np.pi:    # below pi np.unwrap adds zero corrections: skipped, exactly
+        a = np.unwrap(a, axis=-1)
+        _, turn = qs_numba.steps(a.reshape(-1, n))
+    turns = not turn <= 0.5     # some row's k below is not zero
+    if turns:
+        k = np.round((a[..., -1] + (a[..., 1] - a[..., 0]) - a[..., 0]) / (2 * np.pi))[..., None]
+        per = a - 2 * np.pi * k * np.arange(n) / n
+    else:
+        per = a
     f = np.fft.rfft(per, axis=-1)
-    iw, w2 = _omegas(n, period)
+    factors = _omegas(n, period)
     f[..., min(harmonics + 1, (n - 1) // 2 + 1):] = 0.0   # incl. the Nyquist mode of an even n
-    d1 = np.fft.irfft(iw * f, n, axis=-1)
+    if second:      # both derivatives in one inverse transform
+        d1, d2 = np.fft.irfft(factors.reshape((2,) + (1,) * (f.ndim - 1) + (-1,)) * f, n,
+                              axis=-1)
+    else:
+        d1, d2 = np.fft.irfft(factors[0] * f, n, axis=-1), None
     if turns:
         d1 = d1 + 2 * np.pi * k / period
-    d2 = np.fft.irfft(w2 * f, n, axis=-1) if second else None
     return d1, d2

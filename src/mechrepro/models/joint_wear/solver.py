@@ -22,6 +22,7 @@ Each builds a :class:`~.effects.Context`, evaluates the named effects in three s
 """
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import replace
 
@@ -168,7 +169,8 @@ def period_by_period(run: dict) -> dict:
     def g_of(R_bush):
         fb_w = fb.with_bushing_radius(R_bush)
         return wear.period_wear_factor(quasi_static_period(fb_w, ctx.s), fb_w, fb.period,
-                                       ctx.s.get("wear_range", "contact_point"))["G"]
+                                       ctx.s.get("wear_range", "contact_point"),
+                                       statistics=False)["G"]
     with stopwatch() as sw:
         wear.period_by_period(float(ctx.p["measured_wear_B1"][-1]), n, k, fb.R_bush, g_of)
     res["pbp"] = (n, sw.seconds)
@@ -198,11 +200,13 @@ def load_point_grid(run: dict, prefix: str):
 
 def wear_factor_of(fb_v: FourBar, s: dict):
     """G(R_bush): the wear factor of one continuous-contact period of ``fb_v`` with the
-    bushing at radius R_bush (what calibration and prediction step through)."""
+    bushing at radius R_bush (what calibration and prediction step through).  A radius
+    met again (both sides start calibrating at the new bushing) is not solved again."""
+    @functools.cache
     def factor(R_bush):
         fb_w = fb_v.with_bushing_radius(R_bush)
         return wear.period_wear_factor(continuous_contact_period(fb_w, s), fb_w,
-                                       fb_v.period)["G"]
+                                       fb_v.period, statistics=False)["G"]
     return factor
 
 
@@ -232,22 +236,23 @@ def coefficient_scan(run: dict) -> dict:
                                "gravity": gs, "E_mid": E, "distance": d, "sides": list(SIDES)}}
 
 
-def _calibrated(fb_v: FourBar, s: dict, p: dict, sides=SIDES) -> np.ndarray:
+def _calibrated(fb_v: FourBar, s: dict, p: dict, sides=SIDES, factor=None) -> np.ndarray:
     """K_p [m2/N] of Eqs. (32)-(34) for each side (rows) and interval (columns) with the
-    mechanism fb_v on the quasi-static joint; ContactLost where continuous contact is lost."""
+    mechanism fb_v on the quasi-static joint (``factor``: its wear_factor_of, if made
+    already); ContactLost where continuous contact is lost."""
     cal_h = float(p["measurement_interval"]) / 3600.0
-    factor = wear_factor_of(fb_v, s)
+    factor = factor or wear_factor_of(fb_v, s)
     return np.array([wear.calibrate(p[f"measured_wear_{side}"], cal_h, fb_v.period,
                                     fb_v.R_bush, factor,
                                     dh_measured=p[f"measured_increment_{side}"])[0]
                      for side in sides])
 
 
-def _predicted_86h(fb_v: FourBar, s: dict, p: dict, k_mean) -> list:
+def _predicted_86h(fb_v: FourBar, s: dict, p: dict, k_mean, factor=None) -> list:
     """The 86-h wear [m] of each side from its calibrated k on fb_v (Sec. 4.4, 2-h steps)."""
     out = []
     cal_h = float(p["measurement_interval"]) / 3600.0
-    factor = wear_factor_of(fb_v, s)
+    factor = factor or wear_factor_of(fb_v, s)
     for side, k in zip(SIDES, k_mean):
         h = np.asarray(p[f"measured_wear_{side}"], float)
         out.append(wear.predict(h[-1], cal_h * h.size, float(p["prediction_end"]) / 3600.0,
@@ -313,7 +318,8 @@ def load_point_fit(run: dict) -> dict:
                     a1, m1 = a, ma
                 a = a0 + (a1 - a0) * m0 / (m0 - m1)
             fb_a = mech(g, a)
-            K = _calibrated(fb_a, s, p)
+            factor_a = wear_factor_of(fb_a, s)
+            K = _calibrated(fb_a, s, p, factor=factor_a)
             r = np.log(K / K_paper).ravel()
             se = float(np.std(r, ddof=1) / math.sqrt(r.size))
             slope = (m1 - m0) / (a1 - a0)                    # per degree
@@ -322,8 +328,13 @@ def load_point_fit(run: dict) -> dict:
             f = wear.period_wear_factor(hist, fb_a, fb.period)
             band = []
             for da in (-sig, 0.0, sig):
+                if da == 0.0:     # the estimate itself: calibrated above
+                    band.append(_predicted_86h(fb_a, s, p, np.mean(K, axis=1), factor_a))
+                    continue
                 fb_b = mech(g, a + da)
-                band.append(_predicted_86h(fb_b, s, p, np.mean(_calibrated(fb_b, s, p), axis=1)))
+                factor_b = wear_factor_of(fb_b, s)
+                band.append(_predicted_86h(fb_b, s, p, np.mean(_calibrated(
+                    fb_b, s, p, factor=factor_b), axis=1), factor_b))
             sols.append({"gravity": float(g), "direction": float(a % 360.0), "sigma_deg": sig,
                          "misfit": float(np.mean(r)),
                          "misfit_se": se, "F": fb_a.F, "arc_deg": math.degrees(f["arc"]),

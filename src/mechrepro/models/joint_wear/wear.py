@@ -116,21 +116,27 @@ def contact_arc_quantile(psi, weights=None, q=0.9):
 
 
 def period_wear_factor(hist: dict, fb: FourBar, period: float,
-                       wear_range: str = "contact_point") -> dict:
+                       wear_range: str = "contact_point", statistics: bool = True) -> dict:
     """Eqs. (18)-(24), (29) over one period sampled uniformly (periodic rectangle rule).
 
     hist: t, F_N, delta, v_T, psi on a uniform grid covering one period.
+    statistics=False leaves out what G does not need (the contact patch of Eqs. 23-24
+    unless the wear range adds it, the 90 % contact range: NaN), for calibration and
+    prediction, which read G alone.
     """
     F_N, delta, v_T = (np.asarray(hist[k], float) for k in ("F_N", "delta", "v_T"))
     in_contact = delta > 0.0
     S = float(np.mean(np.abs(v_T) * in_contact) * period)                     # Eq. (21)
     F_mean = float(np.mean(F_N))                                              # Eq. (22)
-    AB = contact.contact_chord(np.where(in_contact, delta, 0.0), fb.R_pin, fb.R_bush)
-    AB = np.where(in_contact, AB, 0.0)
-    AB_mean = float(np.mean(AB))                                              # Eq. (23)
-    A_mean = AB_mean * fb.width                                               # Eq. (24)
+    AB_mean = A_mean = arc_q90 = math.nan
+    if statistics or wear_range == "swept_patch":
+        AB = contact.contact_chord(np.where(in_contact, delta, 0.0), fb.R_pin, fb.R_bush)
+        AB = np.where(in_contact, AB, 0.0)
+        AB_mean = float(np.mean(AB))                                          # Eq. (23)
+        A_mean = AB_mean * fb.width                                           # Eq. (24)
     arc = contact_arc(hist["psi"], in_contact)
-    arc_q90 = contact_arc_quantile(hist["psi"], in_contact.astype(float), 0.9)
+    if statistics:
+        arc_q90 = contact_arc_quantile(hist["psi"], in_contact.astype(float), 0.9)
     L_arc = fb.R_bush * arc
     if wear_range == "swept_patch":
         L_wear = L_arc + AB_mean
@@ -287,13 +293,24 @@ def local_wear_per_period(hist: dict, fb: FourBar, period: float, theta) -> np.n
     rate = F_N * np.abs(v_T) * dt / (fb.width * AB)                      # per sample
     half = 0.5 * AB / fb.R_bush                                           # patch half-angle
     theta = np.asarray(theta, float)
-    cell = 2.0 * math.pi / theta.size                      # theta: a uniform grid of the circle
-    d = np.angle(np.exp(1j * (theta[None, :] - psi[:, None])))
+    n = theta.size
+    cell = 2.0 * math.pi / n                               # theta: a uniform grid of the circle
+    # only the cells a patch can reach, its centre's and w either side: the others get
+    # exact zeros, which change no sum (the sum is over samples in their order either way)
+    w = int(math.ceil(half.max(initial=0.0) / cell)) + 2
+    if 2 * w + 1 < n:
+        near = np.rint((psi - theta[0]) / cell).astype(int)
+        cells = (near[:, None] + np.arange(-w, w + 1)) % n
+    else:
+        cells = np.broadcast_to(np.arange(n), (psi.size, n))
+    d = np.angle(np.exp(1j * (theta[cells] - psi[:, None])))
     # the share of each grid cell the patch covers (exact overlap, not a point test: the
     # depth then does not jump as the patch crosses grid points)
     h = half[:, None]
     cover = np.clip(np.minimum(d + 0.5 * cell, h) - np.maximum(d - 0.5 * cell, -h), 0.0, None)
-    return (rate[:, None] * cover / cell).sum(axis=0)
+    depth = np.zeros(n)
+    np.add.at(depth, cells, rate[:, None] * cover / cell)
+    return depth
 
 
 def wear_range_points(psi, n: int = 8) -> np.ndarray:
