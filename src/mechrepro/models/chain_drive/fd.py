@@ -235,12 +235,20 @@ def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
     ni = n - 1
     s = c / np.sqrt(P / m) if s_star is None else np.broadcast_to(s_star, (S,))
     W = mixed_weights(np.clip(s, 0, 1), dx)              # (S, 3)
-    zeros = np.zeros((n_steps + 1, S))
-    Pt = exc.tension if exc.tension is not None else zeros
-    uL = exc.u_left if exc.u_left is not None else zeros
-    uR = exc.u_right if exc.u_right is not None else zeros
-    q = exc.load
-    longs = exc.long
+    # inputs shaped (time, 1) are shared by every speed (the lanes of a shooting march): the
+    # compiled loop reads them as they are, the numpy loop and the first levels as (time, S)
+    # views; the absent ones are zeros of the same width
+    widths = {np.shape(x)[1] for x in (exc.tension, exc.u_left, exc.u_right, exc.load, exc.long)
+              if x is not None}
+    if len(widths) > 1 or widths - {1, S}:
+        raise ValueError(f"excitation widths {sorted(widths)}: every input has 1 or {S} columns")
+    zeros = np.zeros((n_steps + 1, widths.pop() if widths else S))
+    raw = dict(Pt=exc.tension, uL=exc.u_left if exc.u_left is not None else zeros,
+               uR=exc.u_right if exc.u_right is not None else zeros, q=exc.load,
+               longs=exc.long)
+    Pt, uL, uR, q, longs = (None if x is None else np.broadcast_to(x, (x.shape[0], S))
+                            for x in (raw["Pt"] if exc.tension is not None else zeros,
+                                      raw["uL"], raw["uR"], raw["q"], raw["longs"]))
     length_change = longs is not None and ns != n
 
     uniform = dt_series is None
@@ -284,8 +292,8 @@ def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
             return _march_compiled(c=c, P=P, W=W, m=m, c_d=c_d, grid=grid, dt=float(hs[0]),
                                    n_steps=n_steps, measure_from=measure_from,
                                    n_blocks=n_blocks, block_len=block_len, u_cap=u_cap,
-                                   exc=exc, Pt=exc.tension, uL=uL, uR=uR,
-                                   longs=longs if length_change else None, u0=u_prev,
+                                   exc=exc, Pt=raw["Pt"], uL=raw["uL"], uR=raw["uR"],
+                                   longs=raw["longs"] if length_change else None, u0=u_prev,
                                    u1=u_cur, probes=probes, record_every=record_every)
     # LAPACK factors for the numpy loop only (the compiled loop factorises its own)
     fac_long = _factors(*coeffs[2:], ni=ni, ns=ns, short=False)
