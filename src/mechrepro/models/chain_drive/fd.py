@@ -198,6 +198,17 @@ def _factors(low, diag, up, *, ni, ns, short: bool):
     return _factor(dl.ravel()[1:], dd.ravel(), du.ravel()[:-1])
 
 
+def set_ends(u, u_left, u_right, long, n_short: int) -> None:
+    """Impose on the given first levels u (S, n + 1) what :func:`march` imposes on every
+    level: the end displacements, and the end value on the long span's extra pitch (nodes
+    from ``n_short`` on) in the rows whose span is short (``long`` False; None: no length
+    change).  u_left, u_right, long: (S,) values at that level."""
+    u[:, 0], u[:, -1] = u_left, u_right
+    if long is not None:
+        sh = ~long
+        u[sh, n_short:] = u_right[sh, None]
+
+
 def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
           exc: Excitation, s_star=None, measure_from: int | None = None, n_blocks: int = 4,
           u_cap: float = 1.0, probes=(), record_every: int = 0, u0=None, v0=None,
@@ -262,19 +273,13 @@ def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
     coeffs = _step_coeffs(h_prev, hs[0], **sc)
 
     u_prev = np.zeros((S, n + 1)) if u0 is None else np.array(u0, float)
-    u_prev[:, 0], u_prev[:, -1] = uL[0], uR[0]
-    if length_change:
-        sh = ~longs[0]
-        u_prev[sh, ns:] = uR[0, sh, None]
+    set_ends(u_prev, uL[0], uR[0], longs[0] if length_change else None, ns)
     # second level from a Taylor step (rest or given velocity, no acceleration)
     if u1 is not None:
         u_cur = np.array(u1, float)
     else:
         u_cur = u_prev + (0.0 if v0 is None else hs[0] * np.asarray(v0, float))
-    u_cur[:, 0], u_cur[:, -1] = uL[1], uR[1]
-    if length_change:
-        sh = ~longs[1]
-        u_cur[sh, ns:] = uR[1, sh, None]
+    set_ends(u_cur, uL[1], uR[1], longs[1] if length_change else None, ns)
 
     measure_from = n_steps // 2 if measure_from is None else int(measure_from)
     win = max(n_steps - measure_from, 1)

@@ -191,21 +191,30 @@ def periodic_solution(run, prm: dict, omega1: float, res: dict,
     e = a["exc"]
     # fd.march sets levels 0 and 1 and steps j = 1 .. n_steps - 1 (level j + 1 from the
     # inputs at j): one period maps (u^0, u^1) to (u^N, u^{N+1}), N + 1 levels marched
-    L = 2 * n1 + 1
     exc = fd.Excitation(**{k: _wrapped(getattr(e, k))
                            for k in ("tension", "u_left", "u_right", "long", "load")})
-    u0 = np.zeros((L, n1))
-    u1 = np.zeros((L, n1))
-    u0[1:n1 + 1] = np.eye(n1)
-    u1[n1 + 1:] = np.eye(n1)
+    # the unit states the march keeps: it overwrites the end nodes, and the long span's
+    # extra pitch where the span is short, at levels 0 and 1 (fd.set_ends), so those lanes
+    # would march the zero state again and their columns of M are exactly 0; one lane
+    # fewer in 2n + 1 saves a lane group of the compiled march where it crosses a multiple
+    kept = np.full((2, n1), np.nan)
+    length_change = exc.long is not None and a["grid"].n_short != a["grid"].n_long
+    for k in (0, 1):
+        fd.set_ends(kept[k:k + 1], np.zeros(1), np.zeros(1),
+                    exc.long[k, :1] if length_change else None, a["grid"].n_short)
+    kept = np.flatnonzero(np.isnan(kept.ravel()))
+    L = kept.size + 1
+    u01 = np.zeros((L, 2 * n1))
+    u01[np.arange(1, L), kept] = 1.0
+    u0, u1 = u01[:, :n1], u01[:, n1:]
     c, P, s = (np.repeat(a[k], L) for k in ("c", "P", "s_star"))
     r = _march(a, exc, u0, u1, res, c, P, s, N + 1, record_every=N, probes=np.arange(n1))
     y = np.concatenate([r.probes[0], r.final], axis=1)      # (L, 2 n1): (u^N, u^{N+1})
     b = y[0]
-    M = (y[1:] - b).T                                        # column k = image of unit state k
-    # the states the march overwrites (the end nodes, and the long span's extra pitch when
-    # the span is short at levels 0, 1) map to exactly 0: their columns are zero, and the
-    # multipliers are 0 and those of M without them (block triangular): a smaller problem
+    M = np.zeros((2 * n1, 2 * n1))
+    M[:, kept] = (y[1:] - b).T                               # column k = image of unit state k
+    # the overwritten states map to exactly 0 (their columns are zero), and the multipliers
+    # are 0 and those of M without them (block triangular): a smaller problem
     live = np.flatnonzero(np.any(M != 0.0, axis=0))
     M_live = M[np.ix_(live, live)]
     slack = bool(np.any(a["P_min"] <= 0))
