@@ -94,6 +94,39 @@ def test_rho_bounds_bracket_the_spectral_radius():
             assert lo <= target * (1 + 1e-9) and hi >= target * (1 - 1e-9)
 
 
+def test_bounds_undecided_only_where_the_squarings_prove_nothing():
+    """Where bounds_undecided says so (from the eigenvalues), rho_bounds proves neither
+    rho < below nor rho > 1: skipping its squarings changes no result."""
+    rng = np.random.default_rng(1)
+    undecided = 0
+    for n in (6, 40, 120):
+        A = rng.standard_normal((n, n)) + 3 * np.triu(rng.standard_normal((n, n)), 1)
+        rho = np.max(np.abs(np.linalg.eigvals(A)))
+        for target in (0.5, 0.93, 0.97, 0.999, 1.0, 1.001, 1.03, 3.0):
+            M = A * (target / rho)
+            moduli = np.abs(np.linalg.eigvals(M))
+            for k in (3, 8, 11):
+                if shooting.bounds_undecided(moduli, 0.9, k):
+                    undecided += 1
+                    lo, hi = shooting.rho_bounds(M, below=0.9, max_squarings=k)
+                    assert not (hi < 0.9 or lo > 1.0 + 1e-9), (n, target, k, lo, hi)
+    assert undecided >= 10
+
+
+def test_work_order_leaves_the_solution_unchanged(fig09a):
+    """likely_undecided (eigenvalues before bounds) only reorders periodic_solution's
+    work: every field is bit-identical, at stable, marginal and growing speeds."""
+    run, prm, res = fig09a
+    sigma = prm["transverse_damping"] / (2 * prm["mass_per_length"])
+    for rpm in (1100.0, 1211.3, 1211.5, 1250.0):
+        a, b = (shooting.periodic_solution(run, prm, rpm / RPM, res, rate_floor=-0.5 * sigma,
+                                           likely_undecided=first) for first in (False, True))
+        for f in ("amplitude", "rho", "growth_rate", "residual", "rho_lower", "rho_upper",
+                  "mode_wavelength", "n_steps", "slack"):
+            assert np.array_equal(getattr(a, f), getattr(b, f), equal_nan=True), (rpm, f)
+        assert np.array_equal(a.multipliers, b.multipliers)
+
+
 def test_bounded_speeds_keep_the_exact_verdicts(fig09a):
     """Where rho_bounds proves a speed stable (rho < exp(-sigma T / 2)) or growing (rho > 1)
     the eigenvalues are skipped; the verdict, bump bracket and amplitude are those of the

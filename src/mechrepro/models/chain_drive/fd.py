@@ -198,6 +198,17 @@ def _factors(low, diag, up, *, ni, ns, short: bool):
     return _factor(dl.ravel()[1:], dd.ravel(), du.ravel()[:-1])
 
 
+def set_ends(u, u_left, u_right, long, n_short: int) -> None:
+    """Impose on the given first levels u (S, n + 1) what :func:`march` imposes on every
+    level: the end displacements, and the end value on the long span's extra pitch (nodes
+    from ``n_short`` on) in the rows whose span is short (``long`` False; None: no length
+    change).  u_left, u_right, long: (S,) values at that level."""
+    u[:, 0], u[:, -1] = u_left, u_right
+    if long is not None:
+        sh = ~long
+        u[sh, n_short:] = u_right[sh, None]
+
+
 def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
           exc: Excitation, s_star=None, measure_from: int | None = None, n_blocks: int = 4,
           u_cap: float = 1.0, probes=(), record_every: int = 0, u0=None, v0=None,
@@ -235,12 +246,20 @@ def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
     ni = n - 1
     s = c / np.sqrt(P / m) if s_star is None else np.broadcast_to(s_star, (S,))
     W = mixed_weights(np.clip(s, 0, 1), dx)              # (S, 3)
-    zeros = np.zeros((n_steps + 1, S))
-    Pt = exc.tension if exc.tension is not None else zeros
-    uL = exc.u_left if exc.u_left is not None else zeros
-    uR = exc.u_right if exc.u_right is not None else zeros
-    q = exc.load
-    longs = exc.long
+    # inputs shaped (time, 1) are shared by every speed (the lanes of a shooting march): the
+    # compiled loop reads them as they are, the numpy loop and the first levels as (time, S)
+    # views; the absent ones are zeros of the same width
+    widths = {np.shape(x)[1] for x in (exc.tension, exc.u_left, exc.u_right, exc.load, exc.long)
+              if x is not None}
+    if len(widths) > 1 or widths - {1, S}:
+        raise ValueError(f"excitation widths {sorted(widths)}: every input has 1 or {S} columns")
+    zeros = np.zeros((n_steps + 1, widths.pop() if widths else S))
+    raw = dict(Pt=exc.tension, uL=exc.u_left if exc.u_left is not None else zeros,
+               uR=exc.u_right if exc.u_right is not None else zeros, q=exc.load,
+               longs=exc.long)
+    Pt, uL, uR, q, longs = (None if x is None else np.broadcast_to(x, (x.shape[0], S))
+                            for x in (raw["Pt"] if exc.tension is not None else zeros,
+                                      raw["uL"], raw["uR"], raw["q"], raw["longs"]))
     length_change = longs is not None and ns != n
 
     uniform = dt_series is None
@@ -254,19 +273,13 @@ def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
     coeffs = _step_coeffs(h_prev, hs[0], **sc)
 
     u_prev = np.zeros((S, n + 1)) if u0 is None else np.array(u0, float)
-    u_prev[:, 0], u_prev[:, -1] = uL[0], uR[0]
-    if length_change:
-        sh = ~longs[0]
-        u_prev[sh, ns:] = uR[0, sh, None]
+    set_ends(u_prev, uL[0], uR[0], longs[0] if length_change else None, ns)
     # second level from a Taylor step (rest or given velocity, no acceleration)
     if u1 is not None:
         u_cur = np.array(u1, float)
     else:
         u_cur = u_prev + (0.0 if v0 is None else hs[0] * np.asarray(v0, float))
-    u_cur[:, 0], u_cur[:, -1] = uL[1], uR[1]
-    if length_change:
-        sh = ~longs[1]
-        u_cur[sh, ns:] = uR[1, sh, None]
+    set_ends(u_cur, uL[1], uR[1], longs[1] if length_change else None, ns)
 
     measure_from = n_steps // 2 if measure_from is None else int(measure_from)
     win = max(n_steps - measure_from, 1)
@@ -284,8 +297,8 @@ def march(*, c, P, m: float, c_d: float, grid: Grid, dt, n_steps: int,
             return _march_compiled(c=c, P=P, W=W, m=m, c_d=c_d, grid=grid, dt=float(hs[0]),
                                    n_steps=n_steps, measure_from=measure_from,
                                    n_blocks=n_blocks, block_len=block_len, u_cap=u_cap,
-                                   exc=exc, Pt=exc.tension, uL=uL, uR=uR,
-                                   longs=longs if length_change else None, u0=u_prev,
+                                   exc=exc, Pt=raw["Pt"], uL=raw["uL"], uR=raw["uR"],
+                                   longs=raw["longs"] if length_change else None, u0=u_prev,
                                    u1=u_cur, probes=probes, record_every=record_every)
     # LAPACK factors for the numpy loop only (the compiled loop factorises its own)
     fac_long = _factors(*coeffs[2:], ni=ni, ns=ns, short=False)

@@ -27,6 +27,7 @@ rho) and every amplitude peak, until the intervals are below the requested width
 """
 from __future__ import annotations
 
+import bisect
 import math
 from dataclasses import dataclass
 
@@ -113,15 +114,39 @@ def rho_bounds(M: np.ndarray, below: float, max_squarings: int) -> tuple[float, 
     return lo, hi
 
 
-def _lanes(x, L):
+def bounds_undecided(moduli: np.ndarray, below: float, max_squarings: int) -> bool:
+    """Whether :func:`rho_bounds` (M, below, max_squarings) cannot prove either way, read
+    from the moduli of M's eigenvalues: its upper bound is never below ``rho`` (Gelfand), so
+    never below ``below`` where rho > below, and its lower bound at K = 2^s is at most
+
+        (|tr M^K| / n)^(1/K)  <=  (sum_i |lambda_i|^K / n)^(1/K),
+
+    so never above 1 where that is <= 1 for every K it may reach.  The moduli are inflated
+    (and rho deflated) by 1e-6 against the eigenvalues' round-off, which is amplified by the
+    condition of a non-normal M; the bounds' own round-off margins only lower their
+    reach.  True means the squarings would be spent only to compute the eigenvalues next."""
+    n = moduli.size
+    if n == 0 or float(np.max(moduli)) * (1.0 - 1e-6) < below:
+        return False
+    lg = np.log(moduli[moduli > 0] * (1.0 + 1e-6))
+    top = float(lg.max())
+    for s in range(max_squarings + 1):
+        K = float(2 ** s)
+        if top + math.log(float(np.sum(np.exp((lg - top) * K))) / n) / K > 0.0:
+            return False
+    return True
+
+
+def _wrapped(x):
     """The (time, 1) input of one speed over levels 0..N-1, wrapped periodically to levels
-    N, N + 1 (= levels 0, 1: see :func:`periodic_solution`), repeated over L lanes.  The
-    wrap also settles the one sample a switch of the span-length state may fall on at
-    t = T exactly (which side of the switch it reads is round-off)."""
+    N, N + 1 (= levels 0, 1: see :func:`periodic_solution`); one column, shared by every
+    lane of a march (:func:`.fd.march`).  The wrap also settles the one sample a switch of
+    the span-length state may fall on at t = T exactly (which side of the switch it reads
+    is round-off)."""
     if x is None:
         return None
     x = np.asarray(x)[:-1, :1]
-    return np.ascontiguousarray(np.repeat(np.concatenate([x, x[:2]]), L, 1))
+    return np.concatenate([x, x[:2]])
 
 
 def _kernel():
@@ -139,9 +164,10 @@ def _march(a, exc, u0, u1, res, c, P, s_star, n_steps, record_every=0, probes=()
 
 
 def periodic_solution(run, prm: dict, omega1: float, res: dict,
-                      registry=EFFECTS, rate_floor: float | None = None) -> PeriodicSolution:
+                      registry=EFFECTS, rate_floor: float | None = None,
+                      likely_undecided: bool = False) -> PeriodicSolution:
     """Monodromy matrix, Floquet multipliers and periodic steady state at one speed.  The
-    inputs are sampled on levels 0..N-1 and wrapped (:func:`_lanes`): the effects repeat
+    inputs are sampled on levels 0..N-1 and wrapped (:func:`_wrapped`): the effects repeat
     every T by construction (:func:`excitation_period`); a sample that falls exactly on a
     pulse edge or a length switch at t = T reads either side by round-off, so the first
     and last sample are not compared.
@@ -152,7 +178,12 @@ def periodic_solution(run, prm: dict, omega1: float, res: dict,
     :func:`rho_bounds` proves rho < exp(rate_floor T) (stable, and too far below 1 to be a
     growth-rate bump that :func:`adaptive_sweep` bisects) or rho > 1 (unstable: a positive
     rate is never a bump); there ``rho`` is nan and ``rho_lower``/``rho_upper`` hold the
-    proven bounds.  Without ``rate_floor`` they are always computed."""
+    proven bounds.  Without ``rate_floor`` they are always computed.
+
+    ``likely_undecided`` (a neighbouring speed's bounds proved nothing) only orders the work,
+    never its result: the multipliers first, and the bounds only where
+    :func:`bounds_undecided` leaves them a chance (at the edges of the stability tongues
+    the squarings prove nothing and cost ~1/4 of the eigenvalues)."""
     run = span.as_run(run)
     T, _ = excitation_period(prm, run, omega1)
     a = span.assemble(run, prm, [omega1], res, registry, period=T)
@@ -160,44 +191,55 @@ def periodic_solution(run, prm: dict, omega1: float, res: dict,
     e = a["exc"]
     # fd.march sets levels 0 and 1 and steps j = 1 .. n_steps - 1 (level j + 1 from the
     # inputs at j): one period maps (u^0, u^1) to (u^N, u^{N+1}), N + 1 levels marched
-    L = 2 * n1 + 1
-    exc = fd.Excitation(**{k: _lanes(getattr(e, k), L)
+    exc = fd.Excitation(**{k: _wrapped(getattr(e, k))
                            for k in ("tension", "u_left", "u_right", "long", "load")})
-    u0 = np.zeros((L, n1))
-    u1 = np.zeros((L, n1))
-    u0[1:n1 + 1] = np.eye(n1)
-    u1[n1 + 1:] = np.eye(n1)
+    # the unit states the march keeps: it overwrites the end nodes, and the long span's
+    # extra pitch where the span is short, at levels 0 and 1 (fd.set_ends), so those lanes
+    # would march the zero state again and their columns of M are exactly 0; one lane
+    # fewer in 2n + 1 saves a lane group of the compiled march where it crosses a multiple
+    kept = np.full((2, n1), np.nan)
+    length_change = exc.long is not None and a["grid"].n_short != a["grid"].n_long
+    for k in (0, 1):
+        fd.set_ends(kept[k:k + 1], np.zeros(1), np.zeros(1),
+                    exc.long[k, :1] if length_change else None, a["grid"].n_short)
+    kept = np.flatnonzero(np.isnan(kept.ravel()))
+    L = kept.size + 1
+    u01 = np.zeros((L, 2 * n1))
+    u01[np.arange(1, L), kept] = 1.0
+    u0, u1 = u01[:, :n1], u01[:, n1:]
     c, P, s = (np.repeat(a[k], L) for k in ("c", "P", "s_star"))
     r = _march(a, exc, u0, u1, res, c, P, s, N + 1, record_every=N, probes=np.arange(n1))
     y = np.concatenate([r.probes[0], r.final], axis=1)      # (L, 2 n1): (u^N, u^{N+1})
     b = y[0]
-    M = (y[1:] - b).T                                        # column k = image of unit state k
-    # the states the march overwrites (the end nodes, and the long span's extra pitch when
-    # the span is short at levels 0, 1) map to exactly 0: their columns are zero, and the
-    # multipliers are 0 and those of M without them (block triangular): a smaller problem
+    M = np.zeros((2 * n1, 2 * n1))
+    M[:, kept] = (y[1:] - b).T                               # column k = image of unit state k
+    # the overwritten states map to exactly 0 (their columns are zero), and the multipliers
+    # are 0 and those of M without them (block triangular): a smaller problem
     live = np.flatnonzero(np.any(M != 0.0, axis=0))
     M_live = M[np.ix_(live, live)]
     slack = bool(np.any(a["P_min"] <= 0))
     mult = np.zeros(0, complex)
     rho = lo = hi = math.nan
+    early = np.zeros(0, complex)      # multipliers computed before the bounds proved
     if not slack:
         below = math.nan
         if rate_floor is not None and rate_floor < 0:
             below = math.exp(rate_floor * T)
             # up to K T ~ 20/|rate_floor|: a non-normal transient up to e^10 may be outgrown
             k_max = max(1, math.ceil(math.log2(max(20.0 / (abs(rate_floor) * T), 2.0))))
-            lo, hi = rho_bounds(M_live, below, k_max)
+            if likely_undecided:
+                early = np.linalg.eigvals(M_live)
+            if not (early.size and bounds_undecided(np.abs(early), below, k_max)):
+                lo, hi = rho_bounds(M_live, below, k_max)
         if not (hi < below or lo > 1.0 + 1e-9):   # not proven either way (or not asked): exact
-            mult = np.linalg.eigvals(M_live)
+            mult = early if early.size else np.linalg.eigvals(M_live)
             rho = lo = hi = float(np.max(np.abs(mult)))
     # where the span grows, how long its growing mode is (the string model of a chain of
     # rigid links holds for waves of >= valid_wavelength pitches only, an assumed parameter)
-    wavelength = (critical_wavelength(M_live, live, a["grid"], mult) if not slack and lo > 1.0
-                  else math.nan)
+    wavelength = (critical_wavelength(M_live, live, a["grid"], mult if mult.size else early)
+                  if not slack and lo > 1.0 else math.nan)
     x = np.linalg.solve(np.eye(2 * n1) - M, b)
-    one = fd.Excitation(**{k: _lanes(getattr(e, k), 1)
-                           for k in ("tension", "u_left", "u_right", "long", "load")})
-    r1 = _march(a, one, x[None, :n1], x[None, n1:], res, a["c"], a["P"], a["s_star"], N + 1,
+    r1 = _march(a, exc, x[None, :n1], x[None, n1:], res, a["c"], a["P"], a["s_star"], N + 1,
                 record_every=N, probes=np.arange(n1))
     back = np.concatenate([r1.probes[0, 0], r1.final[0]])
     amp = max(float(r1.block_max.max()), float(np.max(np.abs(x))))
@@ -379,8 +421,22 @@ def _sweep(run, prm: dict, omega1, res: dict, registry=EFFECTS) -> dict:
     run = span.as_run(run)
     sigma = prm["transverse_damping"] / (2 * prm["mass_per_length"])
     only = stability_only(run)
-    w, sols, done = adaptive_sweep(lambda v: periodic_solution(run, prm, v, res, registry,
-                                                                rate_floor=-0.5 * sigma), omega1,
+    seen_w: list = []        # the speeds solved so far (sorted) and their solutions
+    seen: dict = {}
+
+    def evaluate(v):
+        # whether the nearest speed solved so far needed its multipliers (its bounds proved
+        # nothing): only orders periodic_solution's work, never changes its result
+        i = bisect.bisect(seen_w, v)
+        near = min(seen_w[max(i - 1, 0):i + 1], key=lambda u: abs(u - v), default=None)
+        sol = periodic_solution(run, prm, v, res, registry, rate_floor=-0.5 * sigma,
+                                likely_undecided=near is not None
+                                and math.isfinite(seen[near].rho))
+        bisect.insort(seen_w, v)
+        seen[v] = sol
+        return sol
+
+    w, sols, done = adaptive_sweep(evaluate, omega1,
                              edge_tol=float(res["edge_tol"]) / geometry.RPM,
                              peak_tol=float(res["peak_tol"]) / geometry.RPM,
                              rate_floor=-0.5 * sigma, prominence=None if only else 0.02,
