@@ -169,3 +169,35 @@ def test_a_row_re_checks_only_the_study_points_it_reads(edit_config):
         "members", {"fig07_ts": {"static_tension": [150.0]}}))
     with pytest.raises(ConfigError, match=r"members.fig07_ts.static_tension = \[150.0\]: allowed"):
         load_paper(path)
+
+
+def test_a_run_repeating_another_is_solved_once_in_its_job(tmp_path):
+    """Runs equal in everything but their names (a scene that is also a study point) share
+    one job and one solve, written under both names with the same values; a model that
+    reads more of the run (chain_drive: stability-only sweeps, by variant) keeps apart what
+    it would solve differently, and runs timed against each other are never merged."""
+    import xarray as xr
+
+    from conftest import ROOT
+    from mechrepro import solve
+
+    cfg = load_paper(ROOT / "config" / "papers" / "saw_chain.yaml", "ci")
+    same = cfg.same_solve()
+    assert same == {"cost_of_accuracy-003": "accuracy"}
+    (job,) = [runs for runs in cfg.solve_jobs().values() if "accuracy" in runs]
+    assert "cost_of_accuracy-003" in job
+    assert not any(cfg.runs[r].get("timing_repeat") for r in same)   # fig07_fig08 is timed
+    solve.main(["saw_chain", str(ROOT / "config"), "ci", str(tmp_path), "accuracy",
+                "cost_of_accuracy-003"])
+    a, b = (xr.load_dataset(tmp_path / "saw_chain" / "runs" / f"{r}.nc")
+            for r in ("accuracy", "cost_of_accuracy-003"))
+    assert b.attrs["run"] == "cost_of_accuracy-003" and a.attrs["run"] == "accuracy"
+    for v in a.data_vars:
+        assert a[v].equals(b[v]), v      # the timings too: one solve, one measured time
+    cd = load_paper(ROOT / "config" / "papers" / "chain_drive.yaml", "ci")
+    base = next(r for r in cd.runs.values() if r["solver"] == "speed_sweep"
+                and r.get("options", {}).get("variants") == "stability" and not r.get("variant"))
+    cd.runs = {"a": {**base, "run": "a", "variant": "coarser"},
+               "b": {**base, "run": "b", "variant": "transverse_damping-lo"},
+               "c": {**base, "run": "c", "variant": "falsify-slack_tension"}}
+    assert cd.same_solve() == {"c": "b"}   # b and c stop at the first unstable speed, a not

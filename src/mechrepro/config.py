@@ -39,6 +39,9 @@ from .units import UNITS, to_si
 
 SCHEMA_DIR_NAME = "schema"
 
+#: the fields of a run record that name it; everything else is what its solve computes
+RUN_IDENTITY = ("run", "scene", "study", "sweep", "sweep_units", "variant")
+
 
 class ConfigError(Refusal):
     """A config file is malformed or a value is out of range; the message names it."""
@@ -112,21 +115,49 @@ class PaperConfig:
         """Parameters the paper does not give, with value, unit and justification."""
         return {k: v for k, v in self.raw["parameters"].items() if v.get("assumed")}
 
+    def same_solve(self) -> dict[str, str]:
+        """{run: the earlier run it repeats}: runs equal in everything but their names (a
+        scene that is also a point of a study, a falsifier that sets a value a study
+        sweeps), which the solve job solves once and writes under each name with the one
+        measured time (:func:`mechrepro.solve.main`).  Runs timed against each other
+        (``marginal_cost:``) or solved to an accuracy target are never merged."""
+        from .limits import solve_key
+
+        first: dict[str, str] = {}
+        out: dict[str, str] = {}
+        for name, run in self.runs.items():
+            if run.get("target") or run.get("timing_repeat"):
+                continue
+            key = json.dumps([{k: v for k, v in run.items() if k not in RUN_IDENTITY},
+                              solve_key(self.paper, run)], sort_keys=True, default=repr)
+            if key in first:
+                out[name] = first[key]
+            else:
+                first[key] = name
+        return out
+
     def solve_jobs(self) -> dict[str, list[str]]:
         """{job name: runs it solves}, granularity by cost as the config declares it:
         a study under ``fan_out:`` gets one job per run (its points cost seconds each);
         a scene or study under ``alone:`` one job with its verdict variants; every other
-        run of the paper shares one ``batch`` job (one interpreter start and import)."""
+        run of the paper shares one ``batch`` job (one interpreter start and import).  A
+        run that repeats another (:meth:`same_solve`) goes to that run's job, which solves
+        it once."""
         fan, alone = set(self.raw.get("fan_out", [])), set(self.raw.get("alone", []))
+        same = self.same_solve()
+        job_of: dict[str, str] = {}
         jobs: dict[str, list[str]] = {}
         for run, rec in self.runs.items():
             group = rec["study"] or rec["scene"]
-            if group in fan:
+            if run in same:
+                key = job_of[same[run]]
+            elif group in fan:
                 key = run
             elif group in alone:
                 key = ("study_" if rec["study"] else "scene_") + group
             else:
                 key = "batch"
+            job_of[run] = key
             jobs.setdefault(key.replace("@", "__").replace("-", "_"), []).append(run)
         return jobs
 

@@ -68,6 +68,14 @@ def run_cost(paper: str, run: dict) -> dict | None:
     return mod.cost(run) if mod is not None and hasattr(mod, "cost") else None
 
 
+def solve_key(paper: str, run: dict):
+    """What a model's solve reads of a run beyond its record's physics and resolution (its
+    ``models/<paper>/limits.py`` ``solve_key(run)``, e.g. chain_drive's stability-only
+    sweeps, decided by the variant); None for a model that reads nothing more."""
+    mod = _model(paper)
+    return mod.solve_key(run) if mod is not None and hasattr(mod, "solve_key") else None
+
+
 def job_costs(cfg) -> dict[str, dict]:
     """{solve job: {"mem_mb", "seconds", "largest"}} for the jobs whose runs all declare a
     cost (memory: the largest run, time: the sum; runs are solved one after the other)."""

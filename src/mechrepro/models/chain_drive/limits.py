@@ -28,6 +28,28 @@ import numpy as np
 from . import geometry
 from .effects import as_run, declared_keys
 
+def stability_only(run: dict) -> bool:
+    """Whether nothing but "is any speed unstable" is read from this run, so that its
+    adaptive sweep stops at the first unstable speed and bisects no amplitude peak
+    (:func:`adaptive_sweep` ``until_unstable``, ``prominence=None``): without an unstable
+    speed it still bisects every growth-rate bump (ii), where a tongue narrower than the
+    grid first shows; edges (i) need an unstable speed, which ends it.
+
+    ``options.variants: stability`` declares it for a scene whose verdict rows read only
+    that (Figs. 7 and 9): its falsifier and range-end variants are stability-only; its
+    base run and @coarser/@finer levels are not (the figure draws their amplitudes and
+    edges, and its convergence note compares their peaks)."""
+    return (run.get("options", {}).get("variants") == "stability"
+            and run.get("variant") not in (None, "coarser", "finer"))
+
+
+def solve_key(run: dict):
+    """What the solve reads of a run's identity beyond its record (:meth:`mechrepro.config.
+    PaperConfig.same_solve`): whether its sweep is stability-only, which follows from its
+    variant (:func:`stability_only`)."""
+    return stability_only(run)
+
+
 #: what a fresh solve process spends before its first run (imports, numba kernels)
 JOB_START_S = 3.0
 

@@ -36,6 +36,7 @@ import numpy as np
 from . import fd, fd_kernel, geometry, span
 from .effects import EFFECTS
 from .errors import KernelUnavailable, PeriodicityError  # noqa: F401 (re-exported)
+from .limits import stability_only  # noqa: F401 (re-exported)
 
 
 def excitation_period(prm: dict, run: dict, omega1: float) -> tuple[float, int]:
@@ -375,21 +376,6 @@ def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
 
 
 _SWEEPS: dict = {}
-
-
-def stability_only(run: dict) -> bool:
-    """Whether nothing but "is any speed unstable" is read from this run, so that its
-    adaptive sweep stops at the first unstable speed and bisects no amplitude peak
-    (:func:`adaptive_sweep` ``until_unstable``, ``prominence=None``): without an unstable
-    speed it still bisects every growth-rate bump (ii), where a tongue narrower than the
-    grid first shows; edges (i) need an unstable speed, which ends it.
-
-    ``options.variants: stability`` declares it for a scene whose verdict rows read only
-    that (Figs. 7 and 9): its falsifier and range-end variants are stability-only; its
-    base run and @coarser/@finer levels are not (the figure draws their amplitudes and
-    edges, and its convergence note compares their peaks)."""
-    return (run.get("options", {}).get("variants") == "stability"
-            and run.get("variant") not in (None, "coarser", "finer"))
 
 
 def _sweep_key(run, prm, omega1, res, registry):
