@@ -375,32 +375,9 @@ def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
     return w, [pts[v] for v in w], done
 
 
-_SWEEPS: dict = {}
-
-
-def _sweep_key(run, prm, omega1, res, registry):
-    """Everything a sweep's result depends on (not the run's name: a falsifier that sets a
-    parameter a study sweeps, e.g. T_s = 100 N, repeats a run of the study exactly)."""
-    import json
-
-    return (id(registry), json.dumps([run["effects"], run.get("contributes", {}), prm, res,
-                                      stability_only(run)], sort_keys=True, default=repr),
-            np.asarray(omega1, float).tobytes())
-
-
 def sweep(run, prm: dict, omega1, res: dict, registry=EFFECTS) -> dict:
-    """As :func:`_sweep`; a sweep identical in every input to one already solved in this
-    process is not solved again (the result is the same, deterministic, computation's: only
-    the run's time differs)."""
-    run = span.as_run(run)
-    key = _sweep_key(run, prm, omega1, res, registry)
-    if key not in _SWEEPS:
-        _SWEEPS[key] = _sweep(run, prm, omega1, res, registry)
-    return {k: (v.copy() if isinstance(v, np.ndarray) else v) for k, v in _SWEEPS[key].items()}
-
-
-def _sweep(run, prm: dict, omega1, res: dict, registry=EFFECTS) -> dict:
-    """Figs. 5-9 by shooting: :func:`periodic_solution` at every speed of an
+    """Figs. 5-9 by shooting (a run repeating another is solved once by the framework:
+    :meth:`mechrepro.config.PaperConfig.same_solve`): :func:`periodic_solution` at every speed of an
     :func:`adaptive_sweep` started from ``omega1``, with the outputs of :func:`.span.sweep`
     (``growth`` is the Floquet multiplier rho here, ``unstable`` = rho > 1 or slack).
     Resolution: ``edge_tol`` and ``peak_tol`` (rpm) the bisection widths."""
