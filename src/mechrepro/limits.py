@@ -14,7 +14,11 @@ A model declares them in ``mechrepro/models/<paper>/limits.py``:
 - ``PRODUCED_BY = {variable: effect}``: solver outputs that exist only when a scene names
   that effect (beside the effects' declared contributions), and ``NEEDS_EFFECTS =
   {solver: why}``: solvers whose run without effects gives nothing a reported quantity
-  reads, both for :func:`missing_effects`.
+  reads, both for :func:`missing_effects`;
+- ``solve_key(run)``: what the solve reads of a run's name fields (``variant``, ...)
+  beyond its physics and resolution, so that runs equal in all else are not taken for
+  one solve (:meth:`mechrepro.config.PaperConfig.same_solve`; chain_drive's stability-only
+  sweeps).
 
 A solve job solves its runs one after the other in one process: its memory is the largest
 run's, its time the sum (:func:`job_costs`).  A job expected above the solve rule's
