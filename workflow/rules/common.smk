@@ -125,8 +125,15 @@ def model_code(paper):
             if f != str(SRC / "mechrepro" / "models" / paper / "validation.py")]
 
 
+_SOLVE_JOBS = {}
+
+
 def solve_jobs(paper):
-    return CFG[paper].solve_jobs()
+    """The paper's solve jobs (PaperConfig.solve_jobs), worked out once per workflow start:
+    every study asks which job holds it whole."""
+    if paper not in _SOLVE_JOBS:
+        _SOLVE_JOBS[paper] = CFG[paper].solve_jobs()
+    return _SOLVE_JOBS[paper]
 
 
 def fanned_out_studies():
