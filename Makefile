@@ -24,10 +24,10 @@ venv: $(STAMP)
 	$(BIN)/python scripts/relocate_venv.py "$(CURDIR)"
 
 ## Reproduce every figure and table of every paper (full resolution): results/report/index.html
-## (the workflow heals results/ itself first, under its run lock: mechrepro.heal)
+## (the workflow heals results/ itself first, under its run lock: mechrepro.heal; when no
+## file changed since the last successful run, nothing starts at all: mechrepro.reproduce)
 reproduce: $(STAMP)
-	t=$$(date +%s); $(BIN)/python -m snakemake --cores $(CORES) --rerun-incomplete; s=$$?; \
-	  $(BIN)/python -m mechrepro.plan results --since $$t --status $$s > /dev/null; exit $$s
+	$(BIN)/python -m mechrepro.reproduce results -- --cores $(CORES) --rerun-incomplete
 
 ## Run every test (unit tests, config errors, pipeline + reference check on the ci profile),
 ## on every core (tests/conftest.py groups what must share a worker)
@@ -36,9 +36,8 @@ test: $(STAMP)
 
 ## The fast profile, as CI runs it, into results-ci/
 ci-reproduce: $(STAMP)
-	t=$$(date +%s); $(BIN)/python -m snakemake --cores $(CORES) --rerun-incomplete --config profile=ci \
-	  results=results-ci; s=$$?; \
-	  $(BIN)/python -m mechrepro.plan results-ci --since $$t --status $$s > /dev/null; exit $$s
+	$(BIN)/python -m mechrepro.reproduce results-ci -- --cores $(CORES) --rerun-incomplete \
+	  --config profile=ci results=results-ci
 
 ## Deliberately refresh the committed reference numbers of a profile (ci by default;
 ## `make reference REF_PROFILE=default` for the full one): the profile is run once per

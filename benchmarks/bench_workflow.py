@@ -4,7 +4,8 @@
 
 For each version (``REV`` checked out with ``git archive``, and the working tree without
 its ``__pycache__``, like a fresh clone) in a fresh temporary copy, per profile: the pipeline from clean (numba compiling its kernels on
-the way), then a no-op run, then a dry run (the no-op *decision*), and with ``--warm`` once
+the way), then a no-op run, then a dry run (the no-op *decision*), then `make reproduce`'s
+no-op (``mechrepro.reproduce``, which starts nothing when no file changed), and with ``--warm`` once
 more from clean results with the compiled kernels cached.  Then, per paper (from the last
 run), the solver jobs' wall time (Snakemake's
 benchmark files) against the solves' own time (``wall_time`` of each run), i.e. how much
@@ -22,6 +23,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import os
 import shutil
 import subprocess
 import sys
@@ -102,13 +104,28 @@ def import_seconds(module: str) -> float:
     return time.perf_counter() - t0
 
 
+def make_noop(work: Path, cores: int, cfg: list[str]) -> float:
+    """`make reproduce` with nothing changed (mechrepro.reproduce: once to record the state,
+    then timed); NaN in a tree without it (Snakemake and the plan ran every time)."""
+    if not (work / "src" / "mechrepro" / "reproduce.py").exists():
+        return float("nan")
+    cmd = [sys.executable, "-m", "mechrepro.reproduce", cfg[-1].split("=", 1)[1], "--",
+           "--cores", str(cores), *cfg]
+    env = {**os.environ, "PYTHONPATH": str(work / "src")}
+    subprocess.run(cmd, cwd=work, capture_output=True, check=True, env=env)
+    t0 = time.perf_counter()
+    subprocess.run(cmd, cwd=work, capture_output=True, check=True, env=env)
+    return time.perf_counter() - t0
+
+
 def measure(label: str, work: Path, profile: str, cores: int, warm_too: bool) -> dict:
     cfg = ["--config", f"profile={profile}", f"results=results-{profile}"]
     full = snakemake(work, "--cores", str(cores), *cfg)
     noop = snakemake(work, "--cores", str(cores), *cfg)
     dry = snakemake(work, "-n", *cfg)
+    made = make_noop(work, cores, cfg)
     print(f"  {label:>8s} {profile:8s} from clean {full:7.1f} s   no-op run {noop:5.2f} s   "
-          f"no-op decision (-n) {dry:5.2f} s", flush=True)
+          f"no-op decision (-n) {dry:5.2f} s   no-op make reproduce {made:5.2f} s", flush=True)
     warm = float("nan")
     if warm_too:
         # results deleted, compiled kernels kept: every later reproduction on this clone

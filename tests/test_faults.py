@@ -114,6 +114,33 @@ def test_corruption_that_keeps_the_time_stamp_is_found_by_checksum(wf):
     assert "content differs from what its job wrote" in log
 
 
+def test_make_reproduce_with_nothing_changed_starts_nothing_but_sees_a_kept_time_stamp(wf):
+    """`make ci-reproduce`'s driver (mechrepro.reproduce): after a successful run, the next
+    one with no file changed starts neither Snakemake nor the heal; a result rewritten
+    with its time stamp kept has a new change time, so the run after it goes through the
+    heal, which rebuilds it by content."""
+    work, _ = wf
+    env = {**os.environ, "PYTHONPATH": str(work / "src")}
+
+    def reproduce():
+        proc = subprocess.run([sys.executable, "-m", "mechrepro.reproduce", "results", "--",
+                               *SNAKEMAKE[3:]], cwd=work, capture_output=True, text=True,
+                              env=env, timeout=2400)
+        assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
+        return proc.stdout + proc.stderr
+
+    assert "Building DAG" in reproduce()         # no record yet: Snakemake decides
+    fast = reproduce()
+    assert "changed since the last successful run" in fast and "Building DAG" not in fast
+    table = work / "results" / "saw_chain" / "tables" / "validation.csv"
+    st = table.stat()
+    table.write_text(_garbled(table))
+    os.utime(table, ns=(st.st_atime_ns, st.st_mtime_ns))
+    assert "validation.csv: content differs from what its job wrote" in reproduce()
+    assert verify(work / "results", work / "results" / ARCHIVE / "manifest.json") == []
+    assert "changed since the last successful run" in reproduce()
+
+
 def _garbled(table):
     import csv
     import io

@@ -1,6 +1,6 @@
 """Every rerun explained: the jobs of the last run (job, wildcards, reason) as a page.
 
-`make reproduce` calls ``python -m mechrepro.plan <results>`` after Snakemake: it reads the
+`make reproduce` (:mod:`mechrepro.reproduce`) calls :func:`main` after Snakemake: it reads the
 run's own log (the newest ``.snakemake/log/*.snakemake.log``, where Snakemake writes each
 job's reason as it starts it; so the workflow is parsed once, not a second time for a dry
 run) and writes ``<results>/rerun_plan.txt`` (the log) and ``<results>/rerun_plan.html``
