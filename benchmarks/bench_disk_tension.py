@@ -1,6 +1,9 @@
 """disk_tension speed: Eq. (9) vs eigen-analysis, and axisym vs 2-D at equal accuracy.
 
 Run: `make benchmark` or `.venv/bin/python benchmarks/bench_disk_tension.py`;
+`... bench_disk_tension.py --floor [--profile ci] [--measure]` prints only the solve floor of
+the profile's runs from operation counts (:func:`floor`; the default run prints it last),
+with ``--measure`` beside their measured solve (benchmarks/_floor.py);
 `... bench_disk_tension.py --versus <git rev> [ci|default]` times the paper's solver jobs
 (the batch and the 2-D Table 1-2 scene) under that revision's src and this worktree's, side
 by side in alternating fresh processes (issue 18).
@@ -36,6 +39,8 @@ from mechrepro.config import load_paper  # noqa: E402
 from mechrepro.models.disk_tension import compute, exact  # noqa: E402
 from mechrepro.models.disk_tension.axisym import AxisymDisk  # noqa: E402
 from mechrepro.models.disk_tension.convergence import richardson  # noqa: E402
+
+import _floor  # noqa: E402
 
 CFG = load_paper(ROOT / "config/papers/disk_tension.yaml")
 RC = CFG.runs["rc_grid"]["parameters"]["rolling_radius"]
@@ -208,7 +213,125 @@ def versus(rev, profile="ci", repeats=3):
               f"{b['solve']:6.2f} s (x{a['solve'] / b['solve']:.2f})")
 
 
+# --- the solve floor from operation counts (issue 35) --------------------------------------
+#: flops of one axisymmetric element matrix (4 x 4 Hermite, 6 Gauss points, ~8 flops per
+#: entry and point): [K] per N_d, [M] once, [K^(sigma)] per stress state and N_d
+AXI_ELEMENT = 6 * 16 * 8
+
+
+def axi_eigen_flops(n: int) -> float:
+    """Flops of one fundamental of a pencil of n unknowns as :func:`.modal.eigen` solves it:
+    in the banded range (64 <= n <= 128) inverse iteration, the banded Cholesky factor
+    n (u + 1)^2 and ~17 steps of a triangular solve pair 4 n (u + 1), a banded product with
+    M 2 n (2 u + 1) and 6 n of scaling (u = 3: ~660 n); otherwise LAPACK's subset driver
+    sygvx, Cholesky n^3 / 3 + reduction to standard form n^3 + tridiagonalisation 4/3 n^3
+    (8/3 n^3), plus the dense Rayleigh quotient 4 n^2."""
+    u = 3
+    if 64 <= n <= 128:
+        return n * (u + 1) ** 2 + 17 * (4 * n * (u + 1) + 2 * n * (2 * u + 1) + 6 * n)
+    return 8 / 3 * n ** 3 + 4 * n ** 2
+
+
+def _count(p, key):
+    return len(np.atleast_1d(p[key])) if key in p else 0
+
+
+def axisym_flops(run: dict) -> float:
+    """An axisym run: every (stress state, N_d) its effects solve, each an element assembly
+    of [K^(sigma)] (n_e AXI_ELEMENT) and :func:`axi_eigen_flops` of n = 2 n_e unknowns:
+    the unrolled disk; eigen, critical_load: each r_c; stressed_reference: each
+    reference_stress; stiffness_sensitivity: two solves per annulus radius (with their
+    meshes' [K], [M]); rolled_reference: the 64- and 128-element models, unrolled and at
+    each r_c (solved once per process for the same parameters: counted once, see
+    :func:`floor`); critical_speed: untensioned and each r_c, a full dense eigh of
+    (n^2 M - K^c, K), 8/3 n^3; identifiability: 2 in-plane conditions x the scan's widths
+    x stress scales, one N_d each (and a [K^(sigma)] per condition and width)."""
+    p, eff, ne = run["parameters"], run["effects"], int(run["resolution"]["n_elements"])
+    nd, rc = _count(p, "nodal_diameters"), _count(p, "rolling_radius")
+    n = 2 * ne
+    one = ne * AXI_ELEMENT + axi_eigen_flops(n)
+    states = 1 + rc * (("eigen" in eff) + ("critical_load" in eff))
+    states += _count(p, "reference_stress") * ("stressed_reference" in eff)
+    flops = ne * AXI_ELEMENT * (1 + nd) + states * nd * one
+    if "stiffness_sensitivity" in eff:
+        flops += _count(p, "annulus_radii") * nd * 2 * (2 * ne * AXI_ELEMENT + axi_eigen_flops(n))
+    if "critical_speed" in eff:
+        flops += (1 + rc) * nd * (8 / 3 * n ** 3 + ne * AXI_ELEMENT)
+    if "identifiability" in eff:
+        (w0, w1, dw), (c0, c1, dc) = p["scan_gaussian_width"], p["scan_stress_scale"]
+        widths = np.arange(w0, w1 + dw / 2, dw).size
+        scales = np.arange(c0, c1 + dc / 2, dc).size
+        flops += 2 * widths * (nd * ne * AXI_ELEMENT + scales * axi_eigen_flops(n))
+    return flops
+
+
+def rolled_reference_flops(run: dict) -> float:
+    """The 64- and 128-element reference of effect rolled_reference (:func:`axisym_flops`)."""
+    p = run["parameters"]
+    nd, rc = _count(p, "nodal_diameters"), _count(p, "rolling_radius")
+    return sum((1 + rc) * nd * (ne * AXI_ELEMENT + axi_eigen_flops(2 * ne)) + ne * AXI_ELEMENT
+               for ne in (64, 128))
+
+
+#: per triangle of the 2-D mesh: the Argyris basis at the 16 points of quadrature order 8
+#: (21 functions, value and derivatives to second order, ~30 flops each through the affine
+#: map) and one bilinear form, 21^2 entries x 16 points x ~6 flops
+PLATE_BASIS, PLATE_FORM = 21 * 16 * 6 * 30, 21 * 21 * 16 * 6
+
+
+def plate2d_flops(run: dict) -> float:
+    """A plate2d run on the polar mesh of n_r rings x n_s sectors (2 n_r n_s triangles):
+    N ~ 6 (n_r + 1) n_s + (3 n_r + 1) n_s Argyris unknowns (6 per vertex, 1 per edge);
+    ordered sector by sector, the matrix has a half-bandwidth b ~ 2 x the unknowns of a
+    radial line, 2 (6 (n_r + 1) + 3 n_r); per eigen-analysis (the unrolled disk, each r_c of
+    eigen and critical_load, each reference_stress) the shift-inverted LU 2 N b^2 and the
+    Lanczos iterations of ARPACK (~3 ncv operator applications, ncv = max(2k + 1, 20) for
+    the k = 2 max N_d + 5 modes), each a triangular solve pair 4 N b, a product with M
+    (~150 N) and the orthogonalisation 4 N ncv; assembly of [K], [M] and each [K^(sigma)]
+    per triangle (PLATE_BASIS + PLATE_FORM each).  The in-plane residual-stress problem
+    and the modal labelling are not counted."""
+    p, eff, res = run["parameters"], run["effects"], run["resolution"]
+    nr, ns = int(res["n_rings"]), int(res["n_sectors"])
+    tri, N = 2 * nr * ns, 6 * (nr + 1) * ns + (3 * nr + 1) * ns
+    b = 2 * (6 * (nr + 1) + 3 * nr)
+    k = 2 * int(np.max(p["nodal_diameters"])) + 5
+    ncv = max(2 * k + 1, 20)
+    rc = _count(p, "rolling_radius")
+    states = 1 + rc * (("eigen" in eff) + ("critical_load" in eff))
+    states += _count(p, "reference_stress") * ("stressed_reference" in eff)
+    eig = 2 * N * b * b + 3 * ncv * (4 * N * b + 150 * N + 4 * N * ncv)
+    return tri * (PLATE_BASIS + PLATE_FORM * (2 + states - 1)) + states * eig
+
+
+def floor(profile="default", measure=False):
+    """disk_tension's solve floor from operation counts: every run sized from its run
+    record (n_elements, or n_rings x n_sectors; N_d, r_c and the effects' own lists), its
+    eigen-analyses and assemblies counted as :func:`axisym_flops` and
+    :func:`plate2d_flops` say, at :data:`_floor.RATE`.  Not counted: the exact Bessel
+    references (root finding, a few ms, cached), the thermal stress fields, the
+    calibration of alpha (one eigen-analysis, cached per process), Eq. (9) and the
+    bookkeeping; a rolled_reference is counted once per set of parameters, as the process
+    solves it once (the measured runs share it in config order, as a job does)."""
+    from mechrepro.models.disk_tension import limits
+
+    cfg = load_paper(ROOT / "config/papers/disk_tension.yaml", profile)
+    rows, seen = [], set()
+    for name, run in cfg.runs.items():
+        flops = axisym_flops(run) if run["solver"] == "axisym" else plate2d_flops(run)
+        key = str(sorted(run["parameters"].items()))
+        if "rolled_reference" in run["effects"] and key not in seen:
+            seen.add(key)
+            flops += rolled_reference_flops(run)
+        rows.append((name, run["solver"], flops, limits.cost(run)["seconds"]))
+    _floor.report("disk_tension", profile, rows, "limits.cost, per run",
+                  _floor.measure("disk_tension", cfg.runs) if measure else None)
+
+
 if __name__ == "__main__":
+    if "--floor" in sys.argv:
+        prof = sys.argv[sys.argv.index("--profile") + 1] if "--profile" in sys.argv else "default"
+        floor(prof, "--measure" in sys.argv)
+        sys.exit(0)
     if "--versus" in sys.argv:
         i = sys.argv.index("--versus")
         rev = sys.argv[i + 1]
@@ -216,3 +339,4 @@ if __name__ == "__main__":
         versus(rev, prof)
         sys.exit(0)
     test_bench_disk_tension()
+    floor()

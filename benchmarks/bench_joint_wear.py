@@ -2,6 +2,11 @@
 and of the whole 86-hour prediction.  Not a test: it prints numbers against the targets.
 
     PYTHONPATH=src .venv/bin/python benchmarks/bench_joint_wear.py [--explicit-steps 20000]
+    PYTHONPATH=src .venv/bin/python benchmarks/bench_joint_wear.py --floor [--profile ci] [--measure]
+
+The second prints only the solve floor of the profile's runs from operation counts
+(:func:`floor`), with ``--measure`` beside their measured solve (benchmarks/_floor.py);
+the default run prints it last.
 
 Timings are the best of a few repeats; other jobs sharing the 2 cores make them
 pessimistic.  The explicit integrator cannot finish a period on the stiff contact in any
@@ -11,8 +16,16 @@ and its time per period is extrapolated from the simulated time it reached.
 from __future__ import annotations
 
 import argparse
+import math
+import os
 import time
 from pathlib import Path
+from unittest import mock
+
+# must precede the first numpy import: OpenBLAS reads it when it loads
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import _floor  # noqa: E402
 
 from mechrepro.config import load_paper
 from mechrepro.models.joint_wear import setup
@@ -86,14 +99,95 @@ def side_by_side(cfg, repeats, against="main"):
               f"{t_new * 1e3:6.2f} ms ({t_old / t_new:4.1f}x)")
 
 
+_T, _S = _floor.TRANSCENDENTAL, _floor.SQRT
+
+#: flops of one quasi-static period of n samples (:func:`.quasistatic.one_period`, two
+#: position passes, the friction fixed point 2, 2 and 4 times), per sample:
+#: 3 contact states x (setup: 6 sin/cos, a hypot, 2 divisions, ~45 mul/add; direction:
+#: sin, cos) + 8 friction iterations x (force: hypot, sqrt, atan2, atan, pow, 2 divisions,
+#: ~15; friction: sqrt, division, ~10) + 2 position passes x (positions from the bushing
+#: centre: ~3 transcendentals, a sqrt, ~24) + the contact angle, plus the FFTs: per
+#: friction iteration one real FFT pair of the contact angle (5 log2 n), per pass two
+#: angles' first and second derivatives (15 log2 n)
+QS_PER_SAMPLE = (3 * (45 + 6 * _T + 3 * _S + 2 * _T) + 8 * ((15 + 3 * _T + 4 * _S + _T)
+                 + (10 + 2 * _S)) + 2 * (24 + 3 * _T + _S) + (5 + _T))
+QS_PER_SAMPLE_LOG2N = 8 * 5 + 2 * 15
+
+
+def qs_flops(n: int) -> float:
+    """Flops of one quasi-static period of ``n`` samples (:data:`QS_PER_SAMPLE`)."""
+    return n * (QS_PER_SAMPLE + QS_PER_SAMPLE_LOG2N * math.log2(n))
+
+
+#: flops of one step of the compiled Radau IIA (3 stages, 4 states): ~3 simplified Newton
+#: iterations x (3 right-hand sides of the clearance contact, ~110 mul/add + a sqrt, a pow
+#: and an atan2 each; the real and the complex 4 x 4 back substitutions, 32 + 128; the
+#: 3 x 3 stage transforms, ~150), the error estimate (a right-hand side and a solve), the
+#: LU factors of both 4 x 4 matrices (2/3 n^3 real, 4x that complex) and step control
+RADAU_STEP = (3 * (3 * (110 + _S + 2 * _T) + 32 + 128 + 150) + (110 + _S + 2 * _T + 32)
+              + (43 + 172) + 50)
+#: scipy's integrators, flops per step: LSODA, BDF ~1.5 Newton iterations of a right-hand
+#: side and a 4 x 4 solve; the explicit pairs their stages' right-hand sides (RK45 6,
+#: RK23 3, DOP853 12) and the combination
+_RHS = 110 + _S + 2 * _T
+SCIPY_STEP = {"LSODA": 1.5 * (_RHS + 32) + 50, "BDF": 1.5 * (_RHS + 32) + 50,
+              "RK45": 6 * _RHS + 100, "RK23": 3 * _RHS + 50, "DOP853": 12 * _RHS + 300}
+#: a dense-output sample of scipy's integrators (4 states x a degree-4 polynomial); per
+#: (sample, bushing cell) of the local wear: the Archard increment, ~10
+SAMPLE, LOCAL_CELL = 40, 10
+
+
+def floor(profile="default", measure=False):
+    """joint_wear's solve floor from operation counts.  A run is counted as its cost
+    model counts it (:func:`.limits.solve_seconds`: quasi-static periods of n samples per
+    solver, dynamic periods of the Radau steps it estimates from rtol, scipy's steps,
+    local-wear cells), each unit priced in flops instead of fitted seconds:
+
+    - a quasi-static period of n samples, :func:`qs_flops`:
+      n (QS_PER_SAMPLE + QS_PER_SAMPLE_LOG2N log2 n), ~2300 flops per sample at n = 720;
+    - a compiled Radau step: RADAU_STEP (~3000 flops: Newton iterations on the 3-stage
+      collocation system of 4 states, 4 x 4 real and complex LU);
+    - a scipy step: SCIPY_STEP[method]; a dense-output sample SAMPLE; a local-wear
+      (sample, cell) LOCAL_CELL;
+
+    at :data:`_floor.RATE`.  The compiled Radau's own output samples are not counted.
+    The Radau step counts are the cost model's estimates from rtol (a run whose contact
+    rattles takes up to 50x more, which no run record announces)."""
+    from mechrepro.models.joint_wear import limits
+
+    cfg = load_paper(ROOT / "config/papers/joint_wear.yaml", profile)
+    scipy = {k: (SCIPY_STEP[k], steps) for k, (_, steps) in limits._SCIPY.items()}
+    rows = []
+    for name, run in cfg.runs.items():
+        est = limits.solve_seconds(run)
+        with mock.patch.multiple(limits, _qs=qs_flops, _RADAU_STEP_S=RADAU_STEP,
+                                 _SCIPY=scipy, _SCIPY_SAMPLE_S=SAMPLE,
+                                 _LOCAL_CELL_S=LOCAL_CELL):
+            flops = limits.solve_seconds(run)
+        kind = run["solver"]
+        if kind.startswith("clearance"):
+            kind += " " + run["resolution"].get("method", "Radau")
+        rows.append((name, kind, flops, est))
+    _floor.report("joint_wear", profile, rows, "limits.solve_seconds, one compute per run",
+                  _floor.measure("joint_wear", cfg.runs) if measure else None)
+
+
 def main():
     ap = argparse.ArgumentParser()
+    ap.add_argument("--profile", default="default")
+    ap.add_argument("--floor", action="store_true",
+                    help="print only the solve floor from operation counts")
+    ap.add_argument("--measure", action="store_true",
+                    help="with the floor, the measured solve of the same runs")
     ap.add_argument("--explicit-steps", type=int, default=20000)
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--side-by-side-only", action="store_true")
     ap.add_argument("--against", default="main",
                     help="git commit whose quasi-static period the working tree's is timed against")
     a = ap.parse_args()
+    if a.floor:
+        floor(a.profile, a.measure)
+        return
     cfg = load_paper(ROOT / "config/papers/joint_wear.yaml")
     side_by_side(cfg, a.repeats, a.against)
     if a.side_by_side_only:
@@ -139,6 +233,7 @@ def main():
     print(f"  whole 86-h prediction with the worn bushing fed back into the stiff dynamic joint, "
           f"B1 ({int(dd['n_simulations_per_side'])} + 5 periods): {t_d:8.1f} s; wear at 86 h "
           f"{float(dd['wear_at_end_B1']) * 1e3:.5f} mm vs quasi-static {float(ds['wear_at_end_B1']) * 1e3:.5f} mm")
+    floor(a.profile, a.measure)
 
 
 if __name__ == "__main__":

@@ -1,11 +1,22 @@
-"""saw_chain speed: vectorised difference method vs a per-step Python loop, and the study.
+"""saw_chain speed: vectorised difference method vs a per-step Python loop, the study, and
+the solve floor.
 
 Run: `make benchmark` or `.venv/bin/python benchmarks/bench_saw_chain.py`.
 Targets (issue 2): vectorised >= 50x the loop; the whole saw_chain study including its
 cost-of-accuracy sweep <= 10 s.  Printed, never asserted: timings depend on the machine.
+
+    .venv/bin/python benchmarks/bench_saw_chain.py --floor [--profile ci] [--measure]
+
+prints only the solve floor of the profile's runs from operation counts (:func:`floor`),
+with ``--measure`` beside their measured solve (benchmarks/_floor.py).
 """
+import argparse
+import os
 import sys
 from pathlib import Path
+
+# must precede the first numpy import: OpenBLAS reads it when it loads
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "src"))
@@ -16,6 +27,8 @@ from mechrepro.models.saw_chain.solver import chain_from_run, difference_method 
 from mechrepro.timing import stopwatch  # noqa: E402
 from mechrepro.models.saw_chain.reference_loop import difference_method_loop  # noqa: E402
 from mechrepro.solve import run_solver  # noqa: E402
+
+import _floor  # noqa: E402
 
 
 def vectorised_vs_loop(K=10000):
@@ -101,5 +114,57 @@ def test_bench_saw_chain():
           f"{t_study:.2f} s (target <= 10 s)")
 
 
+#: flops per sample of one stage (benchmarks/_floor.py counts a sin or cos as
+#: TRANSCENDENTAL, a sqrt or division as SQRT):
+#: the difference method: positions (Eqs. 7-10: one sin of phi/2, two sqrt, 15 mul/add),
+#: three backward differences (Eqs. 12-13, 17-19: 4 each) and the loads (Eqs. 14-16: 4)
+FLOPS_METHOD = 31 + 2 * _floor.SQRT + _floor.TRANSCENDENTAL
+#: ``options.loads: false``: the trailing hinge's x (one sin, two sqrt, 10) and Eq. (12)
+FLOPS_VELOCITY = 12 + 2 * _floor.SQRT + _floor.TRANSCENDENTAL
+#: effect exact_reference: the exact derivatives (a sin, a cos, a sqrt, two divisions,
+#: ~30 mul/add) and the loads (4)
+FLOPS_EXACT = 34 + 3 * _floor.SQRT + 2 * _floor.TRANSCENDENTAL
+#: effect textbook, Eq. (23): a sin, a cos and 5 mul/add
+FLOPS_TEXTBOOK = 5 + 2 * _floor.TRANSCENDENTAL
+
+
+def floor(profile="default", measure=False):
+    """saw_chain's solve floor from operation counts.  A run samples two stages of K steps
+    each (K + 1 samples per stage, Sec. 3.3), and each sample costs
+
+        FLOPS_METHOD (or FLOPS_VELOCITY for a velocity-only run)
+        + FLOPS_EXACT if the scene names exact_reference + FLOPS_TEXTBOOK if textbook,
+
+    so a run's flops are 2 (K + 1) x that sum, ~60-230 flops per sample, at
+    :data:`_floor.RATE`.  Nothing else is counted: the error budget and the effects'
+    bookkeeping are O(1) per run.  A run with a ``target`` accuracy is sized at its
+    configured K, as ``compute(run)`` solves it (the job's refinement repeats it at
+    doubled K; the cost model's estimate includes that and the ~0.3 s of writing)."""
+    from mechrepro.models.saw_chain import limits
+
+    cfg = load_paper(ROOT / "config/papers/saw_chain.yaml", profile)
+    rows = []
+    for name, run in cfg.runs.items():
+        K, eff = int(run["resolution"]["K"]), run["effects"]
+        per = FLOPS_METHOD if run.get("options", {}).get("loads", True) else FLOPS_VELOCITY
+        per += FLOPS_EXACT * ("exact_reference" in eff) + FLOPS_TEXTBOOK * ("textbook" in eff)
+        rows.append((name, run["solver"], 2 * (K + 1) * per, limits.cost(run)["seconds"]))
+    _floor.report("saw_chain", profile, rows, "limits.cost, per run written (0.3 s each)",
+                  _floor.measure("saw_chain", cfg.runs) if measure else None)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--profile", default="default")
+    ap.add_argument("--floor", action="store_true",
+                    help="print only the solve floor from operation counts")
+    ap.add_argument("--measure", action="store_true",
+                    help="with the floor, the measured solve of the same runs")
+    a = ap.parse_args()
+    if not a.floor:
+        test_bench_saw_chain()
+    floor(a.profile, a.measure)
+
+
 if __name__ == "__main__":
-    test_bench_saw_chain()
+    main()

@@ -1,0 +1,77 @@
+"""A paper's solve floor beside its cost model and its measured solve (issue #35).
+
+Each paper's benchmark sizes every run of a profile from its run record (no solve), counts
+the flops of the algorithm its solver uses and passes them here as rows
+``(run, solver kind, flops, cost-model seconds)``.  The floor of a run is
+
+    t_floor = flops / RATE,    RATE = 10 GFlop/s (one core, SIMD, operands in cache),
+
+the rate bench_chain_drive.py's floor uses: a lower bound that no implementation on one
+core of this machine beats, not a prediction.  With ``measure`` the runs are solved in one
+warm process as a solve job does (``compute(run)`` after the model's ``warm()``, BLAS on
+one thread, in config order, so caches shared between runs count as in a job), each
+timed by the process's CPU time, and the ratio measured / floor is printed per kind, in
+total and for the runs that take longest.  Timings are printed, never asserted.
+"""
+from __future__ import annotations
+
+import os
+import time
+from collections import defaultdict
+
+#: flops per second of one core (SIMD, in cache): the floor's rate, as chain_drive's
+RATE = 1e10
+#: what a transcendental (sin, cos, atan2, exp, pow) and a sqrt or a division count as in
+#: the floors: a vectorised libm call costs ~10-20 multiply-adds, vsqrtpd / vdivpd ~4
+TRANSCENDENTAL, SQRT = 20, 4
+
+
+def measure(paper: str, runs: dict) -> dict:
+    """CPU seconds of ``compute(run)`` per run, in one warm process (module docstring)."""
+    if os.environ.get("OPENBLAS_NUM_THREADS") != "1":
+        raise SystemExit("--measure needs OPENBLAS_NUM_THREADS=1 set before numpy loads "
+                         "(the benchmark sets it unless the caller set another value)")
+    from mechrepro.solve import model
+
+    m = model(paper)
+    if hasattr(m, "warm"):
+        m.warm()
+    out = {}
+    for name, run in runs.items():
+        c0 = time.process_time()
+        m.compute(run)
+        out[name] = time.process_time() - c0
+    return out
+
+
+def report(paper: str, profile: str, rows: list, estimate_note: str,
+           measured: dict | None = None, top: int = 5) -> None:
+    """Print the floor per solver kind and in total, the cost model's estimate and, given
+    ``measured`` (:func:`measure`), the measured CPU time and its ratio to the floor."""
+    kinds = defaultdict(lambda: [0, 0.0, 0.0, 0.0])
+    for name, kind, flops, est in rows:
+        k = kinds[kind]
+        k[0] += 1
+        k[1] += flops
+        k[2] += est
+        k[3] += measured[name] if measured else 0.0
+    print(f"== solve floor of {paper} ({profile}) from operation counts at "
+          f"{RATE / 1e9:g} GFlop/s; cost-model estimate: {estimate_note}")
+    head = f"  {'solver':26s} {'runs':>5s} {'flops':>9s} {'floor s':>9s} {'estimate s':>10s}"
+    if measured:
+        head += f" {'measured s':>10s} {'measured/floor':>14s}"
+    print(head)
+    total = [sum(k[i] for k in kinds.values()) for i in range(4)]
+    for kind, (n, fl, est, got) in sorted(kinds.items()) + [("total", total)]:
+        line = f"  {kind:26s} {n:5d} {fl:9.3g} {fl / RATE:9.4f} {est:10.2f}"
+        if measured:
+            line += f" {got:10.3f} {got / (fl / RATE):13.0f}x"
+        print(line)
+    if measured:
+        small = [r for r in rows if r[2] / RATE < 1e-3]
+        print(f"  runs whose floor is below 1 ms: {len(small)}, measured "
+              f"{sum(measured[r[0]] for r in small):.3f} s")
+        print(f"  the {top} runs that take longest (CPU s, floor s, ratio):")
+        for name, kind, flops, est in sorted(rows, key=lambda r: -measured[r[0]])[:top]:
+            print(f"    {name:38s} {kind:26s} {measured[name]:8.3f} {flops / RATE:9.5f} "
+                  f"{measured[name] / (flops / RATE):8.0f}x")
