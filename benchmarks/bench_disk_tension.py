@@ -223,7 +223,7 @@ def axi_eigen_flops(n: int) -> float:
     """Flops of one fundamental of a pencil of n unknowns as :func:`.modal.eigen` solves it:
     in the banded range (64 <= n <= 128) inverse iteration, the banded Cholesky factor
     n (u + 1)^2 and ~17 steps of a triangular solve pair 4 n (u + 1), a banded product with
-    M 2 n (2 u + 1) and 6 n of scaling (u = 3: ~660 n); otherwise LAPACK's subset driver
+    M 2 n (2 u + 1) and 6 n of scaling (u = 3: ~630 n); otherwise LAPACK's subset driver
     sygvx, Cholesky n^3 / 3 + reduction to standard form n^3 + tridiagonalisation 4/3 n^3
     (8/3 n^3), plus the dense Rayleigh quotient 4 n^2."""
     u = 3

@@ -144,8 +144,8 @@ def floor(profile="default", measure=False):
     local-wear cells), each unit priced in flops instead of fitted seconds:
 
     - a quasi-static period of n samples, :func:`qs_flops`:
-      n (QS_PER_SAMPLE + QS_PER_SAMPLE_LOG2N log2 n), ~2300 flops per sample at n = 720;
-    - a compiled Radau step: RADAU_STEP (~3000 flops: Newton iterations on the 3-stage
+      n (QS_PER_SAMPLE + QS_PER_SAMPLE_LOG2N log2 n), ~2500 flops per sample at n = 720;
+    - a compiled Radau step: RADAU_STEP (~2800 flops: Newton iterations on the 3-stage
       collocation system of 4 states, 4 x 4 real and complex LU);
     - a scipy step: SCIPY_STEP[method]; a dense-output sample SAMPLE; a local-wear
       (sample, cell) LOCAL_CELL;

@@ -135,8 +135,11 @@ def floor(profile="default", measure=False):
         FLOPS_METHOD (or FLOPS_VELOCITY for a velocity-only run)
         + FLOPS_EXACT if the scene names exact_reference + FLOPS_TEXTBOOK if textbook,
 
-    so a run's flops are 2 (K + 1) x that sum, ~60-230 flops per sample, at
-    :data:`_floor.RATE`.  Nothing else is counted: the error budget and the effects'
+    so a run's flops are 2 (K + 1) x that sum, 59-190 flops per sample, at
+    :data:`_floor.RATE`.  Flops bound it, not memory: a loop that fused the stages would
+    write at most 8 arrays of 8 B per sample, ~6 ns per sample at ~10 GB/s against 6-19 ns
+    of flops (numpy's temporaries are what makes today's solve memory-bound at large K).
+    Nothing else is counted: the error budget and the effects'
     bookkeeping are O(1) per run.  A run with a ``target`` accuracy is sized at its
     configured K, as ``compute(run)`` solves it (the job's refinement repeats it at
     doubled K; the cost model's estimate includes that and the ~0.3 s of writing)."""
@@ -148,7 +151,8 @@ def floor(profile="default", measure=False):
         K, eff = int(run["resolution"]["K"]), run["effects"]
         per = FLOPS_METHOD if run.get("options", {}).get("loads", True) else FLOPS_VELOCITY
         per += FLOPS_EXACT * ("exact_reference" in eff) + FLOPS_TEXTBOOK * ("textbook" in eff)
-        rows.append((name, run["solver"], 2 * (K + 1) * per, limits.cost(run)["seconds"]))
+        kind = "+".join([run["solver"], *sorted(eff)])
+        rows.append((name, kind, 2 * (K + 1) * per, limits.cost(run)["seconds"]))
     _floor.report("saw_chain", profile, rows, "limits.cost, per run written (0.3 s each)",
                   _floor.measure("saw_chain", cfg.runs) if measure else None)
 
