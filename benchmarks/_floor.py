@@ -44,10 +44,21 @@ def measure(paper: str, runs: dict) -> dict:
     return out
 
 
+def arguments(ap) -> None:
+    """The floor's options of a paper's benchmark (argparse parser ``ap``)."""
+    ap.add_argument("--profile", default="default")
+    ap.add_argument("--floor", action="store_true",
+                    help="print only the solve floor from operation counts")
+    ap.add_argument("--measure", action="store_true",
+                    help="with the floor, the measured solve of the same runs")
+
+
 def report(paper: str, profile: str, rows: list, estimate_note: str,
-           measured: dict | None = None) -> None:
+           runs: dict | None = None) -> None:
     """Print the floor per solver kind and in total, the cost model's estimate and, given
-    ``measured`` (:func:`measure`), the measured CPU time and its ratio to the floor."""
+    the profile's ``runs``, their measured CPU time (:func:`measure`) and its ratio to the
+    floor."""
+    measured = measure(paper, runs) if runs else None
     kinds = defaultdict(lambda: [0, 0.0, 0.0, 0.0])
     for name, kind, flops, est in rows:
         k = kinds[kind]

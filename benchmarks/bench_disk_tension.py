@@ -324,7 +324,7 @@ def floor(profile="default", measure=False):
             flops += rolled_reference_flops(run)
         rows.append((name, run["solver"], flops, limits.cost(run)["seconds"]))
     _floor.report("disk_tension", profile, rows, "limits.cost, per run",
-                  _floor.measure("disk_tension", cfg.runs) if measure else None)
+                  cfg.runs if measure else None)
 
 
 if __name__ == "__main__":

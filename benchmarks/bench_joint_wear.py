@@ -169,16 +169,12 @@ def floor(profile="default", measure=False):
             kind += " " + run["resolution"].get("method", "Radau")
         rows.append((name, kind, flops, est))
     _floor.report("joint_wear", profile, rows, "limits.solve_seconds, one compute per run",
-                  _floor.measure("joint_wear", cfg.runs) if measure else None)
+                  cfg.runs if measure else None)
 
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--profile", default="default")
-    ap.add_argument("--floor", action="store_true",
-                    help="print only the solve floor from operation counts")
-    ap.add_argument("--measure", action="store_true",
-                    help="with the floor, the measured solve of the same runs")
+    _floor.arguments(ap)
     ap.add_argument("--explicit-steps", type=int, default=20000)
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--side-by-side-only", action="store_true")

@@ -154,16 +154,12 @@ def floor(profile="default", measure=False):
         kind = "+".join([run["solver"], *sorted(eff)])
         rows.append((name, kind, 2 * (K + 1) * per, limits.cost(run)["seconds"]))
     _floor.report("saw_chain", profile, rows, "limits.cost, per run written (0.3 s each)",
-                  _floor.measure("saw_chain", cfg.runs) if measure else None)
+                  cfg.runs if measure else None)
 
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--profile", default="default")
-    ap.add_argument("--floor", action="store_true",
-                    help="print only the solve floor from operation counts")
-    ap.add_argument("--measure", action="store_true",
-                    help="with the floor, the measured solve of the same runs")
+    _floor.arguments(ap)
     a = ap.parse_args()
     if not a.floor:
         test_bench_saw_chain()
