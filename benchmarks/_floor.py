@@ -7,7 +7,7 @@ the flops of the algorithm its solver uses and passes them here as rows
     t_floor = flops / RATE,    RATE = 10 GFlop/s (one core, SIMD, operands in cache),
 
 the rate bench_chain_drive.py's floor uses: a lower bound that no implementation on one
-core of this machine beats, not a prediction.  With ``measure`` the runs are solved in one
+core of this machine beats, not a prediction.  With ``--measure`` the runs are solved in one
 warm process as a solve job does (``compute(run)`` after the model's ``warm()``, BLAS on
 one thread, in config order, so caches shared between runs count as in a job), each
 timed by the process's CPU time, and the ratio measured / floor is printed per kind, in
