@@ -24,7 +24,9 @@ import numpy as np
 
 from mechrepro.compiled import available, jit
 
-LANES = 16
+# 32 speeds per lane group: eight AVX2 vectors per grid row hide the latency of the
+# recurrences along the span better than four (the group's arrays still fit in L2)
+LANES = 32
 # "auto" compiles/loads the kernel only for marches of at least this many point-updates
 # (S x (n + 1) x steps): importing numba and loading the cached kernel cost ~0.5-1 s per
 # process, more than the numpy loop needs for a small march (exact-solution checks, a
