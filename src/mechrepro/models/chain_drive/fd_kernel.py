@@ -4,11 +4,14 @@ The scheme is exactly the one of :mod:`.fd` (same three-level stencils, same bou
 span-length handling, same block maxima and capping); only the loop is compiled.  The
 speeds are independent, so they are marched in lanes of ``LANES`` speeds at a time: every
 array of a lane group is (n + 1, LANES) and stays in cache (L1/L2) for the whole record,
-and the inner loops run over the lanes (SIMD).  The tridiagonal step matrix is constant
-in time for a uniform step, so each speed's Thomas factors (no pivoting; used only when
-the matrix is diagonally dominant, which :func:`.fd.march` checks) are computed once; the
-short-span state only turns the rows from node ``n_short`` on into identity rows, which
-leaves the factors of the rows above unchanged (the elimination runs top-down).
+and the inner loops run over the lanes (SIMD).  The sweeps along the span (elimination,
+back substitution, maximum) take four grid rows per pass over the lanes: the row just
+computed stays in a register and the loop overhead is shared, each row's operations
+unchanged.  The tridiagonal step matrix is constant in time for a uniform step, so each
+speed's Thomas factors (no pivoting; used only when the matrix is diagonally dominant,
+which :func:`.fd.march` checks) are computed once; the short-span state only turns the
+rows from node ``n_short`` on into identity rows, which leaves the factors of the rows
+above unchanged (the elimination runs top-down).
 
 Compiled by :func:`mechrepro.compiled.jit` (its disk cache keyed on the package's
 sources), lazily (numba costs ~0.3 s to import); :func:`available` says whether numba is
@@ -21,7 +24,9 @@ import numpy as np
 
 from mechrepro.compiled import available, jit
 
-LANES = 16
+# 32 speeds per lane group: eight AVX2 vectors per grid row hide the latency of the
+# recurrences along the span better than four (the group's arrays still fit in L2)
+LANES = 32
 # "auto" compiles/loads the kernel only for marches of at least this many point-updates
 # (S x (n + 1) x steps): importing numba and loading the cached kernel cost ~0.5-1 s per
 # process, more than the numpy loop needs for a small march (exact-solution checks, a
@@ -114,12 +119,38 @@ def _build(lanes):
                     r[0, k] = (kl[k] * u_cur[0, k] + kc[k] * u_cur[1, k] + ku[k] * u_cur[2, k]
                                + ql[k] * u_prev[0, k] + qc[k] * u_prev[1, k]
                                + qu[k] * u_prev[2, k] + ld[k] - low[k] * uLn[k])
-                for i in range(2, k0 + 1):
+                # four rows per pass over the lanes: the row eliminated just above stays in
+                # a register and the per-row loop overhead (numba's alias checks between the
+                # lane arrays, reloaded pointers) is shared; each row's operations and their
+                # order are those of the one-row loop below, so the result is bit for bit
+                i = 2
+                while i + 3 <= k0:
+                    for k in range(B):
+                        a = kl[k]; b = kc[k]; e = ku[k]; f = ql[k]; g = qc[k]; h = qu[k]
+                        y = (a * u_cur[i - 1, k] + b * u_cur[i, k] + e * u_cur[i + 1, k]
+                             + f * u_prev[i - 1, k] + g * u_prev[i, k] + h * u_prev[i + 1, k]
+                             + ld[k] - w[i - 1, k] * r[i - 2, k])
+                        r[i - 1, k] = y
+                        y = (a * u_cur[i, k] + b * u_cur[i + 1, k] + e * u_cur[i + 2, k]
+                             + f * u_prev[i, k] + g * u_prev[i + 1, k] + h * u_prev[i + 2, k]
+                             + ld[k] - w[i, k] * y)
+                        r[i, k] = y
+                        y = (a * u_cur[i + 1, k] + b * u_cur[i + 2, k] + e * u_cur[i + 3, k]
+                             + f * u_prev[i + 1, k] + g * u_prev[i + 2, k] + h * u_prev[i + 3, k]
+                             + ld[k] - w[i + 1, k] * y)
+                        r[i + 1, k] = y
+                        y = (a * u_cur[i + 2, k] + b * u_cur[i + 3, k] + e * u_cur[i + 4, k]
+                             + f * u_prev[i + 2, k] + g * u_prev[i + 3, k] + h * u_prev[i + 4, k]
+                             + ld[k] - w[i + 2, k] * y)
+                        r[i + 2, k] = y
+                    i += 4
+                while i <= k0:
                     for k in range(B):
                         r[i - 1, k] = (kl[k] * u_cur[i - 1, k] + kc[k] * u_cur[i, k]
                                        + ku[k] * u_cur[i + 1, k] + ql[k] * u_prev[i - 1, k]
                                        + qc[k] * u_prev[i, k] + qu[k] * u_prev[i + 1, k]
                                        + ld[k] - w[i - 1, k] * r[i - 2, k])
+                    i += 1
                 # rows from node n_short on: identity rows (= the end value) in short lanes
                 for i in range(max(k0 + 1, 2), n):
                     for k in range(B):
@@ -142,17 +173,43 @@ def _build(lanes):
                     for k in range(B):
                         x = (r[i - 1, k] - upc[k] * u_new[i + 1, k]) * invd[i - 1, k]
                         u_new[i, k] = keep[k] * x + (1.0 - keep[k]) * r[i - 1, k]
-                for i in range(min(k0, n - 1), 0, -1):
+                # four rows per pass, as the elimination (unrolled one row at a time the
+                # lane loop stayed scalar: the row just stored is read by the next)
+                i = min(k0, n - 1)
+                while i >= 4:
+                    for k in range(B):
+                        a = upc[k]
+                        x = (r[i - 1, k] - a * u_new[i + 1, k]) * invd[i - 1, k]
+                        u_new[i, k] = x
+                        x = (r[i - 2, k] - a * x) * invd[i - 2, k]
+                        u_new[i - 1, k] = x
+                        x = (r[i - 3, k] - a * x) * invd[i - 3, k]
+                        u_new[i - 2, k] = x
+                        x = (r[i - 4, k] - a * x) * invd[i - 4, k]
+                        u_new[i - 3, k] = x
+                    i -= 4
+                while i >= 1:
                     for k in range(B):
                         u_new[i, k] = (r[i - 1, k] - upc[k] * u_new[i + 1, k]) * invd[i - 1, k]
+                    i -= 1
                 measuring = j + 1 >= measure_from
                 check = j % 16 == 0
                 if measuring or check:
                     for k in range(B):
                         amp[k] = 0.0
-                    for i in range(n + 1):
+                    # four rows per pass, the maxima taken in the same order of rows
+                    i = 0
+                    while i + 3 <= n:
+                        for k in range(B):
+                            x = max(amp[k], abs(u_new[i, k]))
+                            x = max(x, abs(u_new[i + 1, k]))
+                            x = max(x, abs(u_new[i + 2, k]))
+                            amp[k] = max(x, abs(u_new[i + 3, k]))
+                        i += 4
+                    while i <= n:
                         for k in range(B):
                             amp[k] = max(amp[k], abs(u_new[i, k]))
+                        i += 1
                     if measuring:
                         b = min((j + 1 - measure_from) // block_len, n_blocks - 1)
                         for k in range(B):
