@@ -76,7 +76,7 @@ def report(paper: str, profile: str, rows: list, estimate_note: str,
     for kind, (n, fl, est, got) in sorted(kinds.items()) + [("total", total)]:
         line = f"  {kind:42s} {n:5d} {fl:9.3g} {fl / RATE:9.4f} {est:10.2f}"
         if measured:
-            line += f" {got:10.3f} {got / (fl / RATE):13.0f}x"
+            line += f" {got:10.3f} {_ratio(got, fl):>14s}"
         print(line)
     if measured:
         small = [r for r in rows if r[2] / RATE < 1e-3]
@@ -88,4 +88,9 @@ def report(paper: str, profile: str, rows: list, estimate_note: str,
         print("  the longest run of each kind (CPU s, floor s, ratio):")
         for name, kind, flops, est in sorted(longest.values(), key=lambda r: -measured[r[0]]):
             print(f"    {kind:42s} {name:38s} {measured[name]:8.3f} {flops / RATE:9.5f} "
-                  f"{measured[name] / (flops / RATE):8.0f}x")
+                  f"{_ratio(measured[name], flops):>9s}")
+
+
+def _ratio(seconds: float, flops: float) -> str:
+    """measured / floor, or "-" for work a benchmark does not count (0 flops)."""
+    return f"{seconds / (flops / RATE):.0f}x" if flops else "-"

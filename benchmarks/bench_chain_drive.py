@@ -23,7 +23,8 @@ Prints, measured side by side in one run:
    (grid points x steps x speeds x ~19 flops per point-update) against the time.
 
 3. The solve floor of the profile's chain_drive runs from operation counts (:func:`floor`;
-   also alone with ``--floor``).
+   also alone with ``--floor``, and with ``--measure`` beside the measured solve of the
+   same runs, benchmarks/_floor.py).
 
 Timings on a shared machine are pessimistic; the ratios are measured in one run.
 
@@ -56,11 +57,17 @@ prints the issue-#18 side-by-side comparisons instead:
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 import time
 from pathlib import Path
 
-import numpy as np
+# must precede the first numpy import: OpenBLAS reads it when it loads
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import numpy as np  # noqa: E402
+
+import _floor  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "src"))
@@ -181,9 +188,10 @@ def fig05(profile: str, repeat: int) -> None:
     print(f"numpy / compiled: {tn / tc:.1f}x; largest amplitude difference {dmax:.1e} "
           f"(relative, stable speeds), unstable speeds equal: "
           f"{bool(np.array_equal(rn.unstable, rc.unstable))}")
-    print(f"operation-count floor: {FLOPS_PER_UPDATE * up:.3g} flops = {FLOPS_PER_UPDATE * up / 1e10:.2f} s "
-          f"at 10 GFlop/s (one core, SIMD); compiled loop at {tc / (FLOPS_PER_UPDATE * up / 1e10):.1f}x "
-          f"the floor")
+    fl = FLOPS_PER_UPDATE * up
+    print(f"operation-count floor: {fl:.3g} flops = {fl / _floor.RATE:.2f} s at "
+          f"{_floor.RATE / 1e9:g} GFlop/s (one core, SIMD); compiled loop at "
+          f"{tc / (fl / _floor.RATE):.1f}x the floor")
 
 
 def schemes(profile: str, ppps, ref_ppp: int) -> None:
@@ -430,7 +438,7 @@ def shooting_vs_march(profile: str, scene: str = "fig09a", n_uniform: int = 450,
                  if bands["shooting"] and not bands[settled] else ""))
 
 
-def floor(profile: str) -> None:
+def floor(profile: str, measure: bool = False) -> None:
     """chain_drive's solve floor from operation counts: every run of the profile sized by
     its declared cost model (:func:`.limits.size`, no solve), its flops counted as
 
@@ -439,34 +447,35 @@ def floor(profile: str) -> None:
       ~1.7, :data:`.limits.SHOOTING_REFINE`; a method that needed no refinement would
       still need these): :func:`.limits.shooting_flops`, the monodromy march of 2n + 1
       lanes over one period, one LU solve and one Hessenberg reduction;
-    - Galerkin and the checks: not counted (their own seconds are small);
+    - Galerkin and the checks: not counted (their rows show 0 flops beside the cost model's
+      estimate; in the default profile Galerkin's estimate is the largest of all, so the
+      total floor is the speed sweeps' alone);
 
-    at 10 GFlop/s (one core, SIMD, in cache).  The effects' evaluation on the time grid
+    at :data:`_floor.RATE` (benchmarks/_floor.py).  The effects' evaluation on the time grid
     (transcendentals, ~30-60 % of a march today) is not in the floor."""
     from mechrepro.models.chain_drive import limits
     cfg = load_paper(ROOT / "config/papers/chain_drive.yaml", profile)
-    rate = 1e10
-    tot = {"march": 0.0, "shooting": 0.0}
+    rows = []
     for name, run in cfg.runs.items():
+        est = limits.cost(run)["seconds"]
         if run["solver"] != "speed_sweep":
+            rows.append((name, f"{run['solver']} (not counted)", 0.0, est))
             continue
         z = limits.size(run)
         n = z["points"]
         if "steps" in z:
-            tot["march"] += z["speeds"] * n * z["steps"] * FLOPS_PER_UPDATE
+            rows.append((name, "speed_sweep march", z["speeds"] * n * z["steps"]
+                         * FLOPS_PER_UPDATE, est))
         else:
-            tot["shooting"] += float(limits.shooting_flops(n, z["steps_per_period"]).sum())
-    est = sum(limits.cost(r)["seconds"] for r in cfg.runs.values())
-    print(f"== solve floor of chain_drive ({profile}) from operation counts at 10 GFlop/s: "
-          f"marches {tot['march']:.3g} flops = {tot['march'] / rate:.1f} s, shooting "
-          f"{tot['shooting']:.3g} flops = {tot['shooting'] / rate:.1f} s; total "
-          f"{(tot['march'] + tot['shooting']) / rate:.1f} s (the cost model's estimate of "
-          f"its solve, an upper reading fitted on loaded cores: {est:.0f} s)")
+            rows.append((name, "speed_sweep shooting",
+                         float(limits.shooting_flops(n, z["steps_per_period"]).sum()), est))
+    _floor.report("chain_drive", profile, rows, "limits.cost, per run: an upper reading "
+                  "fitted on loaded cores", cfg.runs if measure else None)
 
 
 def main() -> None:
     ap = argparse.ArgumentParser()
-    ap.add_argument("--profile", default="default")
+    _floor.arguments(ap)
     ap.add_argument("--ref-ppp", type=int, default=24)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--schemes", action="store_true",
@@ -474,8 +483,6 @@ def main() -> None:
     ap.add_argument("--shooting", action="store_true",
                     help="print shooting + adaptive speeds vs the uniform march (issue 26)")
     ap.add_argument("--scene", default="fig09a")
-    ap.add_argument("--floor", action="store_true",
-                    help="print only the solve floor from operation counts")
     ap.add_argument("--ppp", type=int, nargs="+", default=[2, 3, 4, 6, 8, 12])
     ap.add_argument("--only", choices=["galerkin", "library", "fd"], default=None,
                     help="with --speed: one of the comparisons")
@@ -484,11 +491,11 @@ def main() -> None:
                          "sweeps against main) instead")
     a = ap.parse_args()
     if a.floor:
-        floor(a.profile)
+        floor(a.profile, a.measure)
         return
     if a.shooting:
         shooting_vs_march(a.profile, a.scene)
-        floor(a.profile)
+        floor(a.profile, a.measure)
         return
     if a.speed:
         if a.only in (None, "galerkin"):
@@ -506,7 +513,7 @@ def main() -> None:
         return
     equal_accuracy(a.profile, a.ref_ppp, a.repeat)
     fig05(a.profile, a.repeat)
-    floor(a.profile)
+    floor(a.profile, a.measure)
 
 
 if __name__ == "__main__":

@@ -23,8 +23,16 @@ extracted by ``git archive``), this worktree's code with the compiled loops
 own process: one untimed pass (imports, numba's cache), then ``repeats`` passes, the fastest
 per run kept; the variants alternate pass by pass, so that another process's load hits all
 of them alike.  Prints per-run seconds and the ratios.
+
+`.venv/bin/python benchmarks/bench_rolling_shear.py floor [--profile ci] [--measure]` (or
+``--floor``) -- issue 35: the solve floor of every run of the profile from operation counts
+(:func:`floor`), with ``--measure`` beside the measured solve (benchmarks/_floor.py).  The
+default run (no argument, as ``make benchmark`` calls it) prints it last, for the default
+profile.
 """
+import argparse
 import json
+import math
 import os
 import subprocess
 import sys
@@ -32,7 +40,12 @@ import tempfile
 from dataclasses import replace
 from pathlib import Path
 
-import numpy as np
+# must precede the first numpy import: OpenBLAS reads it when it loads
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import numpy as np  # noqa: E402
+
+import _floor  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "src"))
@@ -197,10 +210,169 @@ def speed(profile: str = "ci", revision: str = "", repeats: int = 2) -> None:
           f"numpy loops / compiled loops {tot[1] / tot[2]:.1f}")
 
 
+_T, _S = _floor.TRANSCENDENTAL, _floor.SQRT
+
+#: flops of one evaluation of Eq. (7) in Newton form with its Jacobian and Cramer step
+#: (:func:`.closure.pose_block`, :func:`.closure.newton2`): 6 sin/cos, ~22 mul/add, G 3,
+#: det and the two updates 9 + 2 divisions
+NEWTON_POSE_EVAL = 6 * _T + 34 + 2 * _S
+#: one evaluation of a loop of Eq. (9) in Newton form (:func:`.closure.dyad_block`): 4 sin/cos,
+#: 8 mul/add, G 3, Cramer 9 + 2 divisions; the knowns of a cut point (:func:`.closure.loop_knowns`)
+NEWTON_DYAD_EVAL, LOOP_KNOWNS = 4 * _T + 20 + 2 * _S, 6 * _T + 6
+#: evaluations per cut point and system of the warm-started Newton (its iterations + the
+#: evaluation that finds G < tol): 2.2 iterations on Eq. (7) and on each loop of Eq. (9) at
+#: newton_tol 1e-11, 1.1 at 0.1 (counted on the ci profile's continuation runs)
+NEWTON_EVALS, NEWTON_EVALS_LOOSE = 3.2, 2.1
+#: :func:`.pose.exact_pose`: the 601-point scan of |ED(beta)| - l6 (:func:`.closure.guide_scan`:
+#: 4 sin/cos, ~18 mul/add and a hypot per point) and one Brent root of ~10 steps of the same
+#: function (+ ~15 of Brent's own) and an atan2
+EXACT_POSE = 601 * (4 * _T + 18 + _S) + 10 * (4 * _T + 33 + _S) + _T
+#: the rest of a closed-form cut point (:func:`.stroke.solve_exact`): both dyads in closed
+#: form (knowns 6 sin/cos; per dyad a hypot, a sqrt, 2 divisions, 2 atan2, ~15) and the
+#: residuals of Eqs. (7) and (9) (14 sin/cos, ~45)
+EXACT_REST = 6 * _T + 2 * (3 * _S + 2 * _S + 2 * _T + 15) + 14 * _T + 45
+#: per cut point of the lever objective (:func:`.optimise.objective`) besides its Newton on
+#: Eq. (7): the assembly check (:func:`.closure.assembles_clearly`: 6 sin/cos; per dyad a
+#: hypot, a sqrt, 2 divisions, 2 atan2, 2 fmod, ~25) and H (Eq. 8: 2 sin, ~10)
+OBJECTIVE_POINT = 6 * _T + 2 * (4 * _S + 2 * _T + 33) + 2 * _T + 10
+#: the calibration of every run (:func:`.calibrate.calibrate_tilt`, whole_scan False): the
+#: tilt scan stops after 4 tilts at min(33, calibration_points) cut points, Brent then takes
+#: 9 objectives at calibration_points, and H of the original levers one more; a family
+#: member (:func:`.family.calibrated_member`) takes 22 objectives at the run's cut points
+#: on average (many scan every tilt and none calibrates) and 0.6 of the members a
+#: closed-form stroke (all counted on the ci and default profiles' runs: 22.4 and 22.0,
+#: 0.67 and 0.55)
+CAL_SCAN, CAL_BRENT, MEMBER_OBJECTIVES, MEMBER_EXACT = 4, 10, 22, 0.6
+#: the tilt scan effect: the 41 tilts less those the calibration scanned, at 33 cut points
+TILT_SCAN = 41 - CAL_SCAN
+#: the constant-rate drive (:func:`.forward.drive`) per cut point: ~3 Newton iterations on
+#: Eq. (9) in 4 unknowns (residual 8 sin/cos, Jacobian 8, a 4 x 4 LU and solve ~60) and the
+#: lowest point (8 sin/cos)
+DRIVE_POINT = 3 * (16 * _T + 60 + 20) + 8 * _T + 10
+#: a particle of a swarm per iteration (:func:`.selpso.iterate`): the fitness G of Eq. (9)
+#: (8 sin/cos, ~23) or of Eq. (7) (8 sin/cos, ~20), per unknown the velocity and position
+#: update with two uniform draws (~26), the natural selection's sort (~14)
+PSO_LOOPS, PSO_POSE = 8 * _T + 23 + 4 * 26 + 14, 8 * _T + 20 + 2 * 26 + 14
+#: iterations of a swarm that stops at its tolerance (pso_tol > 0; Eq. 7's swarm always
+#: stops at pose_tol): ~300 on Eq. (9), ~130 on Eq. (7) at 60 particles (counted on the ci
+#: profile's solver_comparison and coa_selpso runs); min(that, pso_iter)
+PSO_LOOPS_ITERS, PSO_POSE_ITERS = 300, 130
+#: scipy's root / least_squares per solve: ~14 evaluations (counted) of the residual and its
+#: Jacobian (Eq. 9: ~300 + 300) and the solver's own small dense algebra (~200)
+SCIPY_SOLVE = 14 * 800
+
+
+def _objective(n: int) -> float:
+    """Flops of :func:`.optimise.objective` at n cut points (the exact first pose, then the
+    warm Newton on Eq. (7) and the assembly check per point)."""
+    return EXACT_POSE + n * (NEWTON_EVALS * NEWTON_POSE_EVAL + OBJECTIVE_POINT)
+
+
+def _newton_stroke(n: int, tol: float) -> float:
+    e = NEWTON_EVALS if tol < 1e-3 else NEWTON_EVALS_LOOSE
+    return n * (e * NEWTON_POSE_EVAL + LOOP_KNOWNS + 2 * e * NEWTON_DYAD_EVAL)
+
+
+def _swarm_solves(res: dict, p: dict, pso_tol: float) -> float:
+    """Flops of one swarm solve of Eq. (7) and one of Eq. (9) at a cut point."""
+    swarm = int(res.get("pso_swarm", p["pso_swarm"]))
+    iters = int(res.get("pso_iter", p["pso_max_iter"]))
+    it_loops = iters if pso_tol == 0 else min(iters, PSO_LOOPS_ITERS)
+    return swarm * ((it_loops + 1) * PSO_LOOPS + (min(iters, PSO_POSE_ITERS) + 1) * PSO_POSE)
+
+
+def run_flops(run: dict) -> float:
+    """Flops of one run of rolling_shear from its record (:func:`floor`)."""
+    p, res, opt = run["parameters"], run["resolution"], run.get("options", {})
+    n, n_cal = int(res["n_points"]), int(p["calibration_points"])
+    tol = float(res.get("newton_tol", p["loops_tol"] * 1e3))
+    effects = run.get("effects", [])
+    solver = run["solver"]
+    flops = (CAL_SCAN * _objective(min(33, n_cal)) + (CAL_BRENT + 1) * _objective(n_cal)
+             + EXACT_POSE)                      # calibration, H original, the initial value
+    if "levers" in opt and solver != "family_scan":   # buildable check, H of the levers
+        flops += n_cal * (EXACT_POSE + EXACT_REST) + _objective(n_cal)
+    if solver in ("continuation", "method_comparison"):
+        flops += _newton_stroke(n, tol) + n * (EXACT_POSE + EXACT_REST)
+        flops += ("tilt_scan" in effects) * TILT_SCAN * _objective(33)
+        flops += ("constant_rate_drive" in effects) * n * DRIVE_POINT
+    if solver == "method_comparison":
+        methods = opt.get("methods", [])
+        pso_tol = float(opt.get("pso_tol", p["loops_tol"] * 1e3))
+        strokes = max(1, int(opt.get("seeds", 0)))
+        swarms = sum(m in ("selpso", "pso_standard") for m in methods)
+        flops += swarms * strokes * n * _swarm_solves(res, p, pso_tol)
+        flops += (len(methods) - swarms) * n * 2 * SCIPY_SOLVE
+        if "initial_values" in effects:
+            swarm = int(res.get("pso_swarm", p["pso_swarm"]))
+            iters = min(int(res.get("pso_iter", p["pso_max_iter"])), PSO_LOOPS_ITERS)
+            flops += EXACT_POSE + len(opt["initial_values"]) * swarm * (iters + 1) * PSO_LOOPS
+    elif solver == "lever_optimisation":
+        swarm, iters = int(res["opt_swarm"]), int(res["opt_iter"])
+        evals = (len(opt.get("optimisers", ["selpso"])) * swarm * (iters + 1) + 1
+                 + ("lever_scan" in effects) * 5 * int(res.get("scan_points", 21)))
+        flops += evals * _objective(n) + len(opt.get("optimisers", ["selpso"])) * (
+            EXACT_POSE + _newton_stroke(n, tol))
+    elif solver == "family_scan":
+        members = math.prod(len(v) if isinstance(v, list) else 1 for v in opt["grid"].values())
+        flops += members * (MEMBER_OBJECTIVES * _objective(min(33, n))
+                            + MEMBER_EXACT * n * (EXACT_POSE + EXACT_REST))
+    return flops
+
+
+def floor(profile: str = "default", measure: bool = False) -> None:
+    """rolling_shear's solve floor from operation counts: every run of the profile sized
+    from its record (its solver, n_points, calibration_points, newton_tol, swarm, iterations,
+    pso_tol, seeds, methods, optimisers, scan points, family grid members, effects), its
+    flops counted as :func:`run_flops` does, at :data:`_floor.RATE`.  With T = 20 for a
+    transcendental and S = 4 for a sqrt or division (:mod:`_floor`), n cut points, n_c
+    calibration points:
+
+    - a Newton evaluation of Eq. (7) 6T + 2S + 34 = 162, of a loop of Eq. (9)
+      4T + 2S + 20 = 108, 3.2 evaluations per point and system (2.1 at a loose tolerance):
+      a Newton stroke ~1.4k flops per cut point;
+    - a closed-form pose (:func:`.pose.exact_pose`) ~63k: its 601-point scan of |ED| - l6
+      (4T + S + 18 each) is 97 % of it; a closed-form cut point ~64k;
+    - the lever objective (:func:`.optimise.objective`) 63k + ~840 n: the exact first pose
+      and per point Newton on Eq. (7), the assembly check and H;
+    - every run's calibration (4 objectives at min(33, n_c) + 10 at n_c = 129, counted):
+      ~2.1 Mflop; with a lever set the buildable check adds n_c closed-form points (8 Mflop);
+    - continuation: the Newton stroke, n closed-form points, the tilt scan (37 objectives at
+      33 points) and the constant-rate drive (~1.1k per point) when named;
+    - method_comparison: the continuation, then per swarm method, seed and cut point a swarm
+      on Eq. (7) and one on Eq. (9), swarm x (iterations + 1) x (PSO_POSE 246 or PSO_LOOPS
+      301; iterations: pso_iter when pso_tol = 0, else at most 130 on Eq. 7 and 300 on Eq. 9,
+      counted); a scipy method 2 x ~11k per cut point; Fig. 12's 6 swarms on Eq. (9);
+    - lever_optimisation: swarm x (iterations + 1) objectives per optimiser, 5 x scan points
+      for the scan, the optimum's stroke;
+    - family_scan: per grid member 22 objectives at n points and 0.6 closed-form strokes
+      (counted averages: most members scan every tilt and do not calibrate).
+
+    Left out: the strokes that ``newton_stroke`` and ``time_newton_loops`` repeat only to time
+    them (``min_time``: wall-clock bound, not the algorithm; in the measured time), the
+    geometry derivation of each lever set or tilt (:func:`.design.design`, ~100 flops), the
+    objectives that raise (non-assembling tilts and lever sets: less than one objective
+    each), the outputs (motion laws, errors against the closed form), the numpy and Python
+    bookkeeping of the comparison methods and the random draws of the cold starts."""
+    from mechrepro.models.rolling_shear import limits
+
+    cfg = load_paper(CONFIG, profile)
+    rows = [(name, run["solver"], run_flops(run), limits.cost(run)["seconds"])
+            for name, run in cfg.runs.items()]
+    _floor.report("rolling_shear", profile, rows, "limits.cost, per run",
+                  cfg.runs if measure else None)
+
+
 if __name__ == "__main__":
     if sys.argv[1:2] == ["paths"]:
         paths(*(sys.argv[2:3]), *(int(a) for a in sys.argv[3:4]))
     elif sys.argv[1:2] == ["speed"]:
         speed(*(sys.argv[2:4]), *(int(a) for a in sys.argv[4:5]))
+    elif sys.argv[1:2] == ["floor"] or "--floor" in sys.argv:
+        ap = argparse.ArgumentParser()
+        _floor.arguments(ap)
+        a = ap.parse_args([v for v in sys.argv[1:] if v != "floor"])
+        floor(a.profile, a.measure)
     else:
         like_for_like(*(int(a) for a in sys.argv[1:2]))
+        floor()
