@@ -57,7 +57,7 @@ def warm() -> None:
     closure.loops_newton(c, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1, 1e-12)
     closure.loops_stroke(c, np.zeros((2, 6)), 1.0, 1, 1e-12)
     closure.assembles_clearly(c, z2, 1e-9)
-    closure.guide_joint(c, 0.0, 0.0)
     betas = np.zeros(2)
     betas.setflags(write=False)   # the scan grid of pose.exact_pose is read-only
-    closure.guide_scan(c, betas, 0.0, np.empty(2), np.empty(2), np.empty(2))
+    closure.guide_pose(c, betas, np.zeros(2), np.zeros(2), False, 0.0, -1.0, 0.0, 1e-15,
+                       1e-15, 1)
