@@ -31,8 +31,9 @@ from .geometry import GEOMETRY_KEYS
 
 #: fitness kinds of :func:`fitness` and blocks of :func:`newton2`
 LOOPS, POSE, ABCD, GHID = 0, 1, 2, 3
-#: status codes of :func:`newton2` (see :func:`.newton.reason`) and :func:`guide_brent`
-CONVERGED, NON_FINITE, SINGULAR, NO_CONVERGENCE, NO_BRACKET = 0, 1, 2, 3, 4
+#: status codes of :func:`newton2` (see :func:`.newton.reason`), :func:`guide_brent` and
+#: :func:`pose_stroke`
+CONVERGED, NON_FINITE, SINGULAR, NO_CONVERGENCE, NO_BRACKET, OFF_BRANCH = 0, 1, 2, 3, 4, 5
 
 
 #: the constants of :class:`.geometry.Geometry` the equations read (mm, rad), by name; the
@@ -327,10 +328,12 @@ def loops_newton(c, t1, t2, t3, t4, theta5, theta6, tol, max_iter, singular_rtol
 
 
 @jit
-def pose_stroke(c, x_k, t5, t6, tol, max_iter, singular_rtol, out):
+def pose_stroke(c, x_k, t5, t6, tol, max_iter, singular_rtol, guide_mode, out):
     """:func:`pose_newton` at every cut point, out[i] = (theta5, theta6), each point from the
-    linear extrapolation of the two previous.  Returns (index of the first point that fails
-    or -1, its status, G, det)."""
+    linear extrapolation of the two previous; then theta6 taken mod 2 pi and every pose
+    checked on the guide rod's design branch (theta5 in [0, pi], theta6 in [pi, 2 pi],
+    ``guide_mode`` cos theta6 > 0).  Returns (index of the first point that fails or -1,
+    its status (``OFF_BRANCH``: off the design branch), G, det)."""
     for i in range(x_k.size):
         a, b, G, k, status, det = pose_newton(c, t5, t6, x_k[i], tol, max_iter, singular_rtol)
         if status != CONVERGED:
@@ -340,6 +343,14 @@ def pose_stroke(c, x_k, t5, t6, tol, max_iter, singular_rtol, out):
             t5, t6 = 2 * out[i, 0] - out[i - 1, 0], 2 * out[i, 1] - out[i - 1, 1]
         else:
             t5, t6 = a, b
+    two_pi = 2 * math.pi
+    for i in range(x_k.size):
+        out[i, 1] = out[i, 1] % two_pi
+    for i in range(x_k.size):
+        t5, t6 = out[i, 0], out[i, 1]
+        if not (t5 >= 0 and t5 <= math.pi and t6 >= math.pi and t6 <= two_pi
+                and guide_mode * math.cos(t6) > 0):
+            return i, OFF_BRANCH, 0.0, 0.0
     return -1, CONVERGED, 0.0, 0.0
 
 

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, replace
-from functools import cached_property
+from functools import cached_property, lru_cache
 
 from mechrepro.errors import Refusal
 
@@ -138,10 +138,19 @@ def cut_points(g: Geometry, n: int):
     the rolled length ``width`` centred on ``x_mid``; ``n`` equally spaced stations.
     Returns (huch, x_k): rolled length from the start of the cut and station abscissa.
     """
-    import numpy as np
-
     if n < 2:
         raise Refusal(f"need at least 2 cut points, got {n}")
-    huch = np.linspace(0.0, g.width, n)
-    return huch, g.x_mid + 0.5 * g.width - huch
+    huch = _stations(g.width, n)
+    return huch.copy(), g.x_mid + 0.5 * g.width - huch
+
+
+@lru_cache(maxsize=64)
+def _stations(width: float, n: int):
+    """``n`` equally spaced stations over [0, width] (read-only): a family scan asks for the
+    same few thousands of times."""
+    import numpy as np
+
+    huch = np.linspace(0.0, width, n)
+    huch.setflags(write=False)
+    return huch
 

@@ -52,7 +52,7 @@ def warm() -> None:
     gen = np.random.default_rng(0)
     iterate(closure.LOOPS, c, q, z2.copy(), z2.copy(), z2.copy(), np.ones(2), np.zeros(2), 1.0,
             gen, 1, 0.9, 0.4, 2.0, 2.0, 0.0, 1.0, True, True, np.empty(2))
-    closure.pose_stroke(c, np.zeros(2), 0.0, 0.0, 1.0, 1, 1e-12, z2.copy())
+    closure.pose_stroke(c, np.zeros(2), 0.0, 0.0, 1.0, 1, 1e-12, -1.0, z2.copy())
     closure.pose_newton(c, 0.0, 0.0, 0.0, 1.0, 1, 1e-12)
     closure.loops_newton(c, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1, 1e-12)
     closure.loops_stroke(c, np.zeros((2, 6)), 1.0, 1, 1e-12)
