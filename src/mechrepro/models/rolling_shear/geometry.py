@@ -22,6 +22,8 @@ from functools import cached_property, lru_cache
 
 from mechrepro.errors import Refusal
 
+from .design import INTENTS, design
+
 MM_PER_M = 1000.0
 
 LEVERS = ("l1", "l2", "l3", "l4", "l5", "l6", "l8", "l9", "l10", "l11")
@@ -100,8 +102,6 @@ INTENT_LENGTHS = ("l1", "l3", "l5", "l6", "l9", "l10", "s", "h", "R", "y_joint",
 
 def derive(intents: dict, base: "Geometry | None" = None, **modes) -> Geometry:
     """Geometry derived from design intents (mm, rad) by :func:`design.design`."""
-    from .design import INTENTS, design
-
     kw = {k: getattr(base, k) for k in ("elbow1", "elbow2", "guide_mode", "eq8", "carrier")} \
         if base is not None else {}
     kw.update(modes)

@@ -13,18 +13,17 @@ import functools
 import numpy as np
 
 from . import closure, kernels
-from .blade import lowest_point
 from .geometry import Geometry
-from .loops import NonAssembly
+from .loops import NonAssembly, columns, stacked
 
 UNKNOWNS = ("theta5", "theta6")
 
 
 def residuals(g: Geometry, th, x_target: float):
-    """Eq. (7) residuals for one or many (theta5, theta6) candidates (..., 2)."""
-    th = np.asarray(th, float)
-    xk, yk = lowest_point(g, th[..., 0], th[..., 1])
-    return np.stack([xk - x_target, yk + g.s], axis=-1)
+    """Eq. (7) residuals for one or many (theta5, theta6) candidates (..., 2)
+    (:func:`.closure.lowest_point`)."""
+    xk, yk = closure.python.lowest_point(g, *columns(th))
+    return stacked([xk - x_target, yk + g.s])
 
 
 def _guide_distance_scan(g: Geometry, betas: np.ndarray, x_target: float) -> tuple:
@@ -40,11 +39,16 @@ def _guide_distance_scan(g: Geometry, betas: np.ndarray, x_target: float) -> tup
     return f, dx
 
 
+#: Brent's relative tolerance (scipy's least)
+RTOL = 4 * np.finfo(float).eps
+
+
 @functools.lru_cache(maxsize=8)
-def _scan_grid(beta_window: float, n_scan: int) -> np.ndarray:
+def _scan_grid(beta_window: float, n_scan: int) -> tuple[np.ndarray, float]:
+    """The scan grid of :func:`exact_pose` (read-only) and its step squared."""
     betas = np.linspace(-beta_window, beta_window, n_scan)
     betas.setflags(write=False)
-    return betas
+    return betas, (betas[1] - betas[0]) ** 2
 
 
 def exact_pose(g: Geometry, x_target: float, beta_window: float = 0.3, n_scan: int = 601):
@@ -55,7 +59,7 @@ def exact_pose(g: Geometry, x_target: float, beta_window: float = 0.3, n_scan: i
     the paper's ranges, and returns the one with the smallest |beta| (the cutting stroke
     turns the blade by a few degrees).  Raises NonAssembly when no root qualifies.
     """
-    betas = _scan_grid(float(beta_window), int(n_scan))
+    betas, step2 = _scan_grid(float(beta_window), int(n_scan))
     k = kernels.chosen()
     if k is closure:
         f, dx, known = np.empty_like(betas), np.empty_like(betas), False
@@ -64,10 +68,9 @@ def exact_pose(g: Geometry, x_target: float, beta_window: float = 0.3, n_scan: i
     # a root between two grid points where D lies clearly on the other side of E (the
     # other assembly mode of the guide rod) cannot qualify: x of D is within
     # (|R - h| + d) (d beta)^2 / 8 of the chord between the grid points, so it keeps its sign
-    margin = (abs(g.R - g.h) + g.d) * (betas[1] - betas[0]) ** 2
+    margin = (abs(g.R - g.h) + g.d) * step2
     found, t5, t6, status = k.guide_pose(g.constants, betas, f, dx, known, float(x_target),
-                                         float(g.guide_mode), float(margin), 1e-15,
-                                         4 * np.finfo(float).eps, 200)
+                                         float(g.guide_mode), float(margin), 1e-15, RTOL, 200)
     if status == closure.NO_CONVERGENCE:
         raise RuntimeError(f"Brent's method did not converge in 200 iterations (x_k = {x_target})")
     if status != closure.CONVERGED:
