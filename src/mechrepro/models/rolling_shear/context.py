@@ -77,6 +77,7 @@ class Context:
         self.g, cal = calibrate_tilt(self.g, self.calibration_target, n_cal, self.tol_floor,
                                      whole_scan=False)
         cal["n"] = n_cal
+        cal["H_original"] = cal.pop("H")    # the levers calibrated on are the original ones
         return cal
 
     def _check_buildable(self) -> None:

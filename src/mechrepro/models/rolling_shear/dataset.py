@@ -27,7 +27,7 @@ def geometry_outputs(ctx: Context) -> dict:
     if ctx.calibration is not None:
         n = ctx.calibration["n"]
         out["calibrated_H_original"] = var(
-            (), ctx.calibration["H"], "mm",
+            (), ctx.calibration["H_original"], "mm",
             f"synthetic horizontal displacement of the original levers after calibration, {n} cut points")
         if "H_levers" in ctx.calibration:
             out["calibrated_H_levers"] = var(
