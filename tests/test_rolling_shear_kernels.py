@@ -9,6 +9,7 @@ import math
 import numpy as np
 import pytest
 
+from mechrepro import compiled
 from mechrepro.models.rolling_shear import closure, kernels, optimise, pose, stroke
 from mechrepro.models.rolling_shear.calibrate import calibrate_tilt
 from mechrepro.models.rolling_shear.geometry import OPTIMISED_LEVERS, cut_points
@@ -21,11 +22,13 @@ pytestmark = pytest.mark.skipif(not kernels.available(), reason="numba not insta
 
 
 def both(monkeypatch, fn):
-    """fn() with the kernels off, then on."""
+    """fn() with the kernels off, then on (the switch is read once per process: cleared)."""
     monkeypatch.setenv("MECHREPRO_RS_KERNEL", "numpy")
+    compiled.available.cache_clear()
     assert not kernels.available()
     off = fn()
     monkeypatch.delenv("MECHREPRO_RS_KERNEL")
+    compiled.available.cache_clear()
     assert kernels.available()
     return off, fn()
 
@@ -69,6 +72,33 @@ def test_pose_stroke_exact_pose_and_objective_compiled_equal_numpy(monkeypatch):
     off, on = both(monkeypatch, run)
     for x, y in zip(off, on):
         assert np.array_equal(x, y)
+
+
+def test_guide_brent_is_scipys_brentq():
+    """closure.guide_brent, compiled and as Python, is scipy.optimize.brentq's C code step for
+    step: the same root to the bit in brackets of every width, the scan grid's and wider
+    (more steps, both interpolation and extrapolation), about roots of both assembly modes."""
+    from scipy.optimize import brentq
+
+    g = geometry()
+    p, eps4 = closure.record(g.constants), 4 * np.finfo(float).eps
+    rng = np.random.default_rng(5)
+    n = 0
+    for x in g.x_mid + rng.uniform(-1500.0, 1500.0, 40):
+        f = lambda b: closure.python.guide_distance(p, b, float(x))
+        betas = np.linspace(-0.3, 0.3, 13)
+        for a, b in zip(betas[:-1], betas[1:]):
+            if f(a) * f(b) > 0:
+                continue
+            for lo, hi in ((a, b), (a - rng.uniform(0, 0.1), b + rng.uniform(0, 0.1))):
+                if f(lo) * f(hi) > 0:
+                    continue
+                ref = brentq(f, lo, hi, xtol=1e-15, rtol=eps4, maxiter=200)
+                for k in (closure, closure.python):
+                    root, status = k.guide_brent(p, float(x), lo, hi, 1e-15, eps4, 200)
+                    assert status == closure.CONVERGED and root == ref, (x, lo, hi, root, ref)
+                n += 1
+    assert n > 30
 
 
 def test_objective_decides_alike_over_the_lever_bounds(monkeypatch):
@@ -137,7 +167,7 @@ def test_one_source_for_both_paths():
     """Physics once (issue 32): every compiled function of closure.py runs, un-jitted, the very
     code object the numpy paths call, and the record's constants name Geometry's fields."""
     compiled = {n: f for n, f in vars(closure).items() if hasattr(f, "py_func")}
-    assert {"lowest_point", "loop_residuals", "newton2", "pose_stroke", "guide_scan"} <= set(compiled)
+    assert {"lowest_point", "loop_residuals", "newton2", "pose_stroke", "guide_pose"} <= set(compiled)
     for name, f in compiled.items():
         plain = getattr(closure.python, name)
         assert not hasattr(plain, "py_func") and plain.__code__ is f.py_func.__code__

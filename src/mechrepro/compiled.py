@@ -2,8 +2,8 @@
 
 Every model asks :func:`available` whether its compiled path may run, and compiles with
 :func:`jit`: the choice depends on the installation (and on an explicit switch a test or
-benchmark sets, ``MECHREPRO_KERNEL=numpy``), never on what ran before, and the compiled
-and the Python path execute the same source.
+benchmark sets before the process first asks, ``MECHREPRO_KERNEL=numpy``), never on what
+ran before, and the compiled and the Python path execute the same source.
 """
 from __future__ import annotations
 
@@ -26,9 +26,13 @@ def _numba() -> bool:
     return True
 
 
+@cache
 def available(switch: str | None = None) -> bool:
     """numba is installed and neither :data:`SWITCH` nor the model's own ``switch``
-    variable says ``numpy``."""
+    variable says ``numpy``.  Read once per process and switch (a model asks per solve,
+    tens of thousands of times a run, and each read of the environment costs microseconds):
+    a switch set before the process first asks is honoured; a test that switches in-process
+    calls ``available.cache_clear()``."""
     for name in (SWITCH, switch):
         if name and os.environ.get(name, "auto") == "numpy":
             return False

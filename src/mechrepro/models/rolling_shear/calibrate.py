@@ -59,7 +59,8 @@ def calibrate_tilt(g: Geometry, target: float, n: int, tol: float,
 
     Scans ``TILTS`` at ``n_scan`` cut points (cheap), takes the first sign change of
     H - target among assembling members (H rises with the tilt), moves that bracket until it
-    brackets the root at ``n`` points, and refines it by Brent's method.  Raises
+    brackets the root at ``n`` points, and refines it by Brent's method (``H``: at the root,
+    ``n`` points; brentq returns a tilt it has evaluated).  Raises
     CalibrationError when no member of the family reaches the target.  With
     ``whole_scan=False`` the scan stops at that first sign change (the same tilt; ``H_scan``,
     ``tilt_min`` and ``H_at_min_tilt`` then cover only the tilts scanned).
@@ -80,12 +81,14 @@ def calibrate_tilt(g: Geometry, target: float, n: int, tol: float,
             f"{np.nanmin(H):.4g}..{np.nanmax(H):.4g} mm (at {n_scan} cut points)")
     i = idx[0]
 
-    seen = {}  # brentq starts by evaluating the bracket the loop below has just evaluated
+    # H at n points by tilt: brentq starts by evaluating the bracket the loop below has just
+    # evaluated, and at n_scan = n the scan has evaluated that bracket already
+    seen = {TILTS[i]: H[i], TILTS[i + 1]: H[i + 1]} if n_scan == n else {}
 
     def fn(t):
         if t not in seen:
-            seen[t] = H_of_tilt(g, t, n, tol) - target
-        return seen[t]
+            seen[t] = H_of_tilt(g, t, n, tol)
+        return seen[t] - target
 
     lo, hi = TILTS[i], TILTS[i + 1]
     for _ in range(len(TILTS)):  # the root moves little between n_scan and n points
@@ -98,6 +101,6 @@ def calibrate_tilt(g: Geometry, target: float, n: int, tol: float,
         lo, hi = (lo - step, lo) if flo > 0 else (hi, hi + step)
     tilt = brentq(fn, lo, hi, xtol=1e-13, rtol=1e-13)
     gc = with_intent(g, theta6_mid=math.pi + tilt)
-    return gc, {"tilt": tilt, "tilt_min": float(TILTS[ok].min()), "H_scan": H,
+    return gc, {"tilt": tilt, "H": float(seen[tilt]), "tilt_min": float(TILTS[ok].min()), "H_scan": H,
                 "n_scan": n_scan, "H_at_min_tilt": float(H[ok][0]),
                 "n_scanned": len(TILTS) if whole_scan else i + 2}

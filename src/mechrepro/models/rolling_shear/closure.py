@@ -31,8 +31,9 @@ from .geometry import GEOMETRY_KEYS
 
 #: fitness kinds of :func:`fitness` and blocks of :func:`newton2`
 LOOPS, POSE, ABCD, GHID = 0, 1, 2, 3
-#: status codes of :func:`newton2` (see :func:`.newton.reason`)
-CONVERGED, NON_FINITE, SINGULAR, NO_CONVERGENCE = 0, 1, 2, 3
+#: status codes of :func:`newton2` (see :func:`.newton.reason`), :func:`guide_brent` and
+#: :func:`pose_stroke`
+CONVERGED, NON_FINITE, SINGULAR, NO_CONVERGENCE, NO_BRACKET, OFF_BRANCH = 0, 1, 2, 3, 4, 5
 
 
 #: the constants of :class:`.geometry.Geometry` the equations read (mm, rad), by name; the
@@ -89,18 +90,132 @@ def guide_point(p, beta, x_target):
 
 
 @jit
-def guide_joint(c, beta, x_target):
-    """:func:`guide_point` of the constants ``c`` (Brent's steps in :func:`.pose.exact_pose`)."""
-    return guide_point(record(c), beta, x_target)
+def guide_distance(p, beta, x_target):
+    """|ED| - l6 at blade angle beta (:func:`guide_point`): zero where the guide rod closes.
+    |ED| as ``abs(complex)``, the C library's hypot both compiled and in Python (Python's
+    ``math.hypot`` is its own, and differs from it in the last bit)."""
+    dx, dy = guide_point(p, beta, x_target)
+    return abs(complex(dx, dy)) - p.l6
 
 
 @jit
-def guide_scan(c, betas, x_target, dx, dy, f):
-    """D and |ED| - l6 over the scan grid of :func:`.pose.exact_pose` (into dx, dy, f)."""
+def guide_brent(p, x_target, xpre, xcur, xtol, rtol, max_iter):
+    """The root of :func:`guide_distance` in [xpre, xcur] by Brent's method: the C code of
+    ``scipy.optimize.brentq`` (scipy/optimize/Zeros/brentq.c) step for step, so the same
+    root to the bit, without a call into Python per step.  Returns (root, status): status
+    ``NON_FINITE`` for a NaN value, ``NO_BRACKET`` when f has one sign at both ends."""
+    fpre = guide_distance(p, xpre, x_target)
+    fcur = guide_distance(p, xcur, x_target)
+    if math.isnan(fpre) or math.isnan(fcur):
+        return xcur, NON_FINITE
+    if fpre == 0:
+        return xpre, CONVERGED
+    if fcur == 0:
+        return xcur, CONVERGED
+    if (math.copysign(1.0, fpre) < 0) == (math.copysign(1.0, fcur) < 0):
+        return 0.0, NO_BRACKET
+    xblk = fblk = spre = scur = 0.0
+    for _ in range(max_iter):
+        if fpre != 0 and fcur != 0 and (math.copysign(1.0, fpre) < 0) != (
+                math.copysign(1.0, fcur) < 0):
+            xblk, fblk = xpre, fpre
+            spre = scur = xcur - xpre
+        if abs(fblk) < abs(fcur):
+            xpre, xcur, xblk = xcur, xblk, xcur
+            fpre, fcur, fblk = fcur, fblk, fcur
+        delta = (xtol + rtol * abs(xcur)) / 2
+        sbis = (xblk - xcur) / 2
+        if fcur == 0 or abs(sbis) < delta:
+            return xcur, CONVERGED
+        if abs(spre) > delta and abs(fcur) < abs(fpre):
+            if xpre == xblk:     # interpolate
+                stry = -fcur * (xcur - xpre) / (fcur - fpre)
+            else:                # extrapolate
+                dpre = (fpre - fcur) / (xpre - xcur)
+                dblk = (fblk - fcur) / (xblk - xcur)
+                stry = -fcur * (fblk * dblk - fpre * dpre) / (dblk * dpre * (fblk - fpre))
+            bound = abs(spre) if abs(spre) < 3 * abs(sbis) - delta else 3 * abs(sbis) - delta
+            if 2 * abs(stry) < bound:
+                spre, scur = scur, stry
+            else:
+                spre = scur = sbis
+        else:
+            spre = scur = sbis
+        xpre, fpre = xcur, fcur
+        xcur += scur if abs(scur) > delta else (delta if sbis > 0 else -delta)
+        fcur = guide_distance(p, xcur, x_target)
+        if math.isnan(fcur):
+            return xcur, NON_FINITE
+    return xcur, NO_CONVERGENCE
+
+
+@jit
+def _bracket_floor(betas, j):
+    """The least |beta| a root in [betas[j], betas[j + 1]] can have."""
+    if betas[j] <= 0.0 <= betas[j + 1]:
+        return 0.0
+    return min(abs(betas[j]), abs(betas[j + 1]))
+
+
+@jit
+def guide_pose(c, betas, f, dx, known, x_target, guide_mode, margin, xtol, rtol, max_iter):
+    """The pose of :func:`.pose.exact_pose` from the scan of |ED| - l6 (f) and of the x of D
+    (dx) over the grid betas: :func:`guide_brent` in every bracket (a sign change, or a
+    zero) that does not lie clearly (``margin``) in the other assembly mode of the guide
+    rod, and of the roots whose pose is in the paper's ranges (design mode ``guide_mode``)
+    the one with the smallest (|beta|, theta5, theta6).
+
+    The brackets are taken outwards from beta = 0, in the order of the least |beta| they can
+    hold, and no further than the best root so far: the brackets left out cannot hold a
+    smaller |beta|, so the pose is that of the whole grid.  Unless ``known``, f and dx are
+    filled in as the brackets reach them (:func:`guide_point`, |ED| as in
+    :func:`guide_distance`, whose values Brent's steps take).  Returns (found, theta5,
+    theta6, status): status is :func:`guide_brent`'s of the first bracket it could not
+    solve."""
     p = record(c)
-    for i in range(betas.size):
-        dx[i], dy[i] = guide_point(p, betas[i], x_target)
-        f[i] = math.hypot(dx[i], dy[i]) - p.l6
+    two_pi = 2 * math.pi
+    nb = betas.size - 1
+    lo = 0                                       # the first bracket: the least floor
+    for j in range(1, nb):
+        if _bracket_floor(betas, j) < _bracket_floor(betas, lo):
+            lo = j
+    hi = lo
+    if not known:                                # points scanned: lo .. hi + 1
+        for i in (lo, lo + 1):
+            dx[i], dy = guide_point(p, betas[i], x_target)
+            f[i] = abs(complex(dx[i], dy)) - p.l6
+    found, best, t5b, t6b = False, 0.0, 0.0, 0.0
+    j = lo
+    while True:
+        f0, f1 = f[j], f[j + 1]
+        if ((f0 <= 0.0 and f1 >= 0.0) or (f0 >= 0.0 and f1 <= 0.0)) and not (
+                guide_mode * dx[j] < -margin and guide_mode * dx[j + 1] < -margin):
+            b, status = guide_brent(p, x_target, betas[j], betas[j + 1], xtol, rtol, max_iter)
+            if status != CONVERGED:
+                return False, b, 0.0, status
+            ex, ey = guide_point(p, b, x_target)
+            t5, t6 = b + p.beta2, math.atan2(ey, ex) % two_pi
+            if (0.0 <= t5 <= math.pi and math.pi <= t6 <= two_pi
+                    and guide_mode * math.cos(t6) > 0):
+                key = abs(b)
+                if not found or key < best or (key == best and (
+                        t5 < t5b or (t5 == t5b and t6 < t6b))):
+                    found, best, t5b, t6b = True, key, t5, t6
+        # the next bracket outwards: the one beside the scanned ones with the least floor
+        left = _bracket_floor(betas, lo - 1) if lo > 0 else math.inf
+        right = _bracket_floor(betas, hi + 1) if hi + 1 < nb else math.inf
+        nxt = min(left, right)
+        if nxt == math.inf or (found and nxt > best):
+            return found, t5b, t6b, CONVERGED
+        if left <= right:
+            lo -= 1
+            j, i = lo, lo
+        else:
+            hi += 1
+            j, i = hi, hi + 1
+        if not known:
+            dx[i], dy = guide_point(p, betas[i], x_target)
+            f[i] = abs(complex(dx[i], dy)) - p.l6
 
 
 @jit
@@ -213,10 +328,12 @@ def loops_newton(c, t1, t2, t3, t4, theta5, theta6, tol, max_iter, singular_rtol
 
 
 @jit
-def pose_stroke(c, x_k, t5, t6, tol, max_iter, singular_rtol, out):
+def pose_stroke(c, x_k, t5, t6, tol, max_iter, singular_rtol, guide_mode, out):
     """:func:`pose_newton` at every cut point, out[i] = (theta5, theta6), each point from the
-    linear extrapolation of the two previous.  Returns (index of the first point that fails
-    or -1, its status, G, det)."""
+    linear extrapolation of the two previous; then theta6 taken mod 2 pi and every pose
+    checked on the guide rod's design branch (theta5 in [0, pi], theta6 in [pi, 2 pi],
+    ``guide_mode`` cos theta6 > 0).  Returns (index of the first point that fails or -1,
+    its status (``OFF_BRANCH``: off the design branch), G, det)."""
     for i in range(x_k.size):
         a, b, G, k, status, det = pose_newton(c, t5, t6, x_k[i], tol, max_iter, singular_rtol)
         if status != CONVERGED:
@@ -226,6 +343,14 @@ def pose_stroke(c, x_k, t5, t6, tol, max_iter, singular_rtol, out):
             t5, t6 = 2 * out[i, 0] - out[i - 1, 0], 2 * out[i, 1] - out[i - 1, 1]
         else:
             t5, t6 = a, b
+    two_pi = 2 * math.pi
+    for i in range(x_k.size):
+        out[i, 1] = out[i, 1] % two_pi
+    for i in range(x_k.size):
+        t5, t6 = out[i, 0], out[i, 1]
+        if not (t5 >= 0 and t5 <= math.pi and t6 >= math.pi and t6 <= two_pi
+                and guide_mode * math.cos(t6) > 0):
+            return i, OFF_BRANCH, 0.0, 0.0
     return -1, CONVERGED, 0.0, 0.0
 
 

@@ -77,8 +77,7 @@ class Context:
         self.g, cal = calibrate_tilt(self.g, self.calibration_target, n_cal, self.tol_floor,
                                      whole_scan=False)
         cal["n"] = n_cal
-        cal["H_original"] = optimise.objective(self.g, cut_points(self.g, n_cal)[1],
-                                               self.tol_floor)
+        cal["H_original"] = cal.pop("H")    # the levers calibrated on are the original ones
         return cal
 
     def _check_buildable(self) -> None:
@@ -87,7 +86,7 @@ class Context:
         from .constraints import violations
 
         p, n = self.p, self.calibration["n"]
-        theta = stroke.solve_exact(self.g, cut_points(self.g, n)[1]).theta
+        theta = stroke.exact_theta(self.g, cut_points(self.g, n)[1])
         broken = violations(self.g, theta, clearance=float(p["clearance"]) * 1e3,
                             plate_top=float(p["plate_thickness_max"]) * 1e3,
                             mu_min=float(p["transmission_min"]), opening=float(p["opening"]) * 1e3)
@@ -108,7 +107,7 @@ class Context:
         if self.calibration is not None:
             # the geometry is derived in-run: the rough initial value is its pose at the first
             # cut point rounded to 0.1 rad, as the configured one is for the default geometry
-            first = stroke.solve_exact(self.g, self.x_k[:1]).theta[0]
+            first = stroke.exact_theta(self.g, self.x_k[:1])[0]
             initial = tuple(float(v) for v in np.round(first, 1))
         std = dict(pso, w_start=p["pso_std_w"], w_end=p["pso_std_w"], c1=p["pso_std_c"],
                    c2=p["pso_std_c"])

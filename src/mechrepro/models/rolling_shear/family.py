@@ -46,7 +46,7 @@ def calibrated_member(ctx: Context, member: dict, levers: dict) -> tuple[float, 
     except (CalibrationError, NonAssembly, Unreachable):
         return math.nan, math.nan, math.nan
     p = ctx.p
-    theta = stroke.solve_exact(gc, cut_points(gc, ctx.n)[1]).theta
+    theta = stroke.exact_theta(gc, cut_points(gc, ctx.n)[1])
     ok = not violations(gc, theta, clearance=float(p["clearance"]) * 1e3,
                         plate_top=float(p["plate_thickness_max"]) * 1e3,
                         mu_min=float(p["transmission_min"]), opening=float(p["opening"]) * 1e3)

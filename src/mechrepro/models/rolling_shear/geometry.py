@@ -18,9 +18,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, replace
-from functools import cached_property
+from functools import cached_property, lru_cache
 
 from mechrepro.errors import Refusal
+
+from .design import INTENTS, design
 
 MM_PER_M = 1000.0
 
@@ -100,8 +102,6 @@ INTENT_LENGTHS = ("l1", "l3", "l5", "l6", "l9", "l10", "s", "h", "R", "y_joint",
 
 def derive(intents: dict, base: "Geometry | None" = None, **modes) -> Geometry:
     """Geometry derived from design intents (mm, rad) by :func:`design.design`."""
-    from .design import INTENTS, design
-
     kw = {k: getattr(base, k) for k in ("elbow1", "elbow2", "guide_mode", "eq8", "carrier")} \
         if base is not None else {}
     kw.update(modes)
@@ -138,10 +138,19 @@ def cut_points(g: Geometry, n: int):
     the rolled length ``width`` centred on ``x_mid``; ``n`` equally spaced stations.
     Returns (huch, x_k): rolled length from the start of the cut and station abscissa.
     """
-    import numpy as np
-
     if n < 2:
         raise Refusal(f"need at least 2 cut points, got {n}")
-    huch = np.linspace(0.0, g.width, n)
-    return huch, g.x_mid + 0.5 * g.width - huch
+    huch = _stations(g.width, n)
+    return huch.copy(), g.x_mid + 0.5 * g.width - huch
+
+
+@lru_cache(maxsize=64)
+def _stations(width: float, n: int):
+    """``n`` equally spaced stations over [0, width] (read-only): a family scan asks for the
+    same few thousands of times."""
+    import numpy as np
+
+    huch = np.linspace(0.0, width, n)
+    huch.setflags(write=False)
+    return huch
 

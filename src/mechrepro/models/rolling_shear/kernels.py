@@ -52,12 +52,12 @@ def warm() -> None:
     gen = np.random.default_rng(0)
     iterate(closure.LOOPS, c, q, z2.copy(), z2.copy(), z2.copy(), np.ones(2), np.zeros(2), 1.0,
             gen, 1, 0.9, 0.4, 2.0, 2.0, 0.0, 1.0, True, True, np.empty(2))
-    closure.pose_stroke(c, np.zeros(2), 0.0, 0.0, 1.0, 1, 1e-12, z2.copy())
+    closure.pose_stroke(c, np.zeros(2), 0.0, 0.0, 1.0, 1, 1e-12, -1.0, z2.copy())
     closure.pose_newton(c, 0.0, 0.0, 0.0, 1.0, 1, 1e-12)
     closure.loops_newton(c, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1, 1e-12)
     closure.loops_stroke(c, np.zeros((2, 6)), 1.0, 1, 1e-12)
     closure.assembles_clearly(c, z2, 1e-9)
-    closure.guide_joint(c, 0.0, 0.0)
     betas = np.zeros(2)
     betas.setflags(write=False)   # the scan grid of pose.exact_pose is read-only
-    closure.guide_scan(c, betas, 0.0, np.empty(2), np.empty(2), np.empty(2))
+    closure.guide_pose(c, betas, np.zeros(2), np.zeros(2), False, 0.0, -1.0, 0.0, 1e-15,
+                       1e-15, 1)

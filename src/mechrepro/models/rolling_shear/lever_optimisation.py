@@ -47,7 +47,7 @@ def anchored_settings(ctx: Context, g: Geometry, x_k) -> stroke.SolverSettings:
     Lever sets far from the original move the cranks by more than the rough initial value
     can absorb; the continuation is anchored on the exact first point instead.
     """
-    first = stroke.solve_exact(g, x_k[:1]).theta[0]
+    first = stroke.exact_theta(g, x_k[:1])[0]
     return replace(ctx.settings, initial_value=tuple(first))
 
 

@@ -39,14 +39,25 @@ def pivots(g: Geometry) -> tuple[complex, complex]:
     return complex(-g.l10 - g.l9, g.l11), complex(-g.l10, g.l11)
 
 
+def columns(th) -> tuple:
+    """The unknowns of one candidate (n,) as numpy scalars, or of many (..., n) as arrays:
+    a scipy solve asks for one candidate per call, thousands of times, and arithmetic on
+    scalars costs a fraction of that on 0-d arrays (the same operations, the same bits)."""
+    th = np.asarray(th, float)
+    return tuple(th) if th.ndim == 1 else tuple(th[..., k] for k in range(th.shape[-1]))
+
+
+def stacked(values):
+    """The inverse of :func:`columns`: (n,) from scalars, (..., n) from arrays."""
+    return np.stack(values, axis=-1) if np.ndim(values[0]) else np.array(values)
+
+
 def residuals(g: Geometry, th, theta5, theta6):
     """Eq. (9) for one or many candidate vectors ``th`` (..., 4); returns (..., 4)
     (:func:`.closure.loop_residuals`)."""
     from .closure import python
 
-    th = np.asarray(th, float)
-    return np.stack(python.loop_residuals(g, python.loop_knowns(g, theta5, theta6), th[..., 0],
-                                          th[..., 1], th[..., 2], th[..., 3]), axis=-1)
+    return stacked(python.loop_residuals(g, python.loop_knowns(g, theta5, theta6), *columns(th)))
 
 
 def jacobian(g: Geometry, th) -> np.ndarray:

@@ -37,28 +37,24 @@ ASSEMBLY_MARGIN = 1.0e-9
 
 
 def stroke_poses(g: Geometry, x_k, tol: float, max_iter: int = 30) -> np.ndarray:
-    """theta5, theta6 at every cut point: exact first point, warm Newton afterwards
-    (:func:`.closure.pose_stroke`)."""
+    """theta5, theta6 at every cut point: exact first point, warm Newton afterwards, theta6
+    in [0, 2 pi) (:func:`.closure.pose_stroke`); raises NonAssembly off the guide rod's
+    design branch."""
     out = np.empty((len(x_k), 2))
     guess = pose_mod.exact_pose(g, float(x_k[0]))
     x = np.ascontiguousarray(x_k, float)
     i, status, G, det = kernels.kernel("pose_stroke")(
         g.constants, x, float(guess[0]), float(guess[1]), float(tol), int(max_iter),
-        newton.SINGULAR_RTOL, out)
+        newton.SINGULAR_RTOL, float(g.guide_mode), out)
+    if status == closure.OFF_BRANCH:
+        raise NonAssembly(f"cut point {i} (x_k = {float(x_k[i]):.6g} mm): blade pose leaves "
+                          f"the guide rod's design branch (theta5 = {out[i, 0]:.4g}, "
+                          f"theta6 = {out[i, 1]:.4g} rad)", int(i), float(x_k[i]))
     if i >= 0:
         raise NonAssembly(f"cut point {i} (x_k = {float(x[i]):.6g} mm): blade pose (Eq. 7) "
                           f"did not converge: {newton.reason(status, det, max_iter)}",
                           int(i), float(x[i]))
-    t6 = np.mod(out[:, 1], 2 * math.pi)
-    t5 = out[:, 0]
-    bad = ~((t5 >= 0) & (t5 <= math.pi) & (t6 >= math.pi) & (t6 <= 2 * math.pi)
-            & (g.guide_mode * np.cos(t6) > 0))
-    if bad.any():
-        i = int(np.argmax(bad))
-        raise NonAssembly(f"cut point {i} (x_k = {float(x_k[i]):.6g} mm): blade pose leaves "
-                          f"the guide rod's design branch (theta5 = {t5[i]:.4g}, "
-                          f"theta6 = {t6[i]:.4g} rad)", i, float(x_k[i]))
-    return np.stack([t5, t6], axis=1)
+    return out
 
 
 def dyad_angles(g: Geometry, theta5, theta6) -> np.ndarray:

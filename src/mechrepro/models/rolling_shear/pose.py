@@ -3,62 +3,52 @@
 Two unknowns, two equations (Sec. 3.2):  x_k(theta5, theta6) = x_k*,  y_k(theta5, theta6) = -s.
 :func:`exact_pose` is the trusted reference: for a blade angle beta the pose with the
 lowest point at (x_k*, -s) is fixed, and the guide rod closes only if |ED| = l6 -- one
-scalar equation in beta, bracketed and solved by Brent's method.
+scalar equation in beta, bracketed on a grid and solved by Brent's method
+(:func:`.closure.guide_brent`).
 """
 from __future__ import annotations
 
 import functools
-import math
 
 import numpy as np
-from scipy.optimize import brentq
 
 from . import closure, kernels
-from .blade import lowest_point
 from .geometry import Geometry
-from .loops import NonAssembly
+from .loops import NonAssembly, columns, stacked
 
 UNKNOWNS = ("theta5", "theta6")
 
 
 def residuals(g: Geometry, th, x_target: float):
-    """Eq. (7) residuals for one or many (theta5, theta6) candidates (..., 2)."""
-    th = np.asarray(th, float)
-    xk, yk = lowest_point(g, th[..., 0], th[..., 1])
-    return np.stack([xk - x_target, yk + g.s], axis=-1)
+    """Eq. (7) residuals for one or many (theta5, theta6) candidates (..., 2)
+    (:func:`.closure.lowest_point`)."""
+    xk, yk = closure.python.lowest_point(g, *columns(th))
+    return stacked([xk - x_target, yk + g.s])
 
 
-def _guide_joint(g: Geometry, k):
-    """beta, x_target -> carrier joint D (complex) when the blade has angle beta and touches
-    (x_target, -s): :func:`.closure.guide_point` of ``k`` (:func:`.kernels.chosen`, chosen
-    once: Brent calls it ~20 times per root)."""
-    joint, c = k.guide_joint, g.constants
-    return lambda beta, x_target: complex(*joint(c, float(beta), float(x_target)))
-
-
-def _guide_distance_scan(g: Geometry, betas: np.ndarray, x_target: float, k) -> tuple:
-    """(|ED(beta)| - l6, x of D) on the scan grid (:func:`.closure.guide_scan` compiled where
-    numba is installed, :func:`.closure.guide_point` on the whole grid in numpy otherwise);
+def _guide_distance_scan(g: Geometry, betas: np.ndarray, x_target: float) -> tuple:
+    """(|ED(beta)| - l6, x of D) on the whole scan grid in numpy (:func:`.closure.guide_point`);
     the few values of |ED| - l6 within 1e-6 mm of zero (where a round-off difference could
-    flip a sign) are recomputed by the scalar :func:`_guide_joint`, so the brackets are
-    exactly those of a scalar scan."""
-    if k is closure:
-        dx, dy, f = np.empty_like(betas), np.empty_like(betas), np.empty_like(betas)
-        closure.guide_scan(g.constants, betas, float(x_target), dx, dy, f)
-    else:
-        dx, dy = closure.python.guide_point(g, betas, x_target)
-        f = np.hypot(dx, dy) - g.l6
-    joint = _guide_joint(g, k)
+    flip a sign) are recomputed by the scalar :func:`.closure.guide_distance`, so the brackets
+    are exactly those of a scalar scan (the compiled :func:`.closure.guide_pose` scans
+    itself, by the scalar)."""
+    dx, dy = closure.python.guide_point(g, betas, x_target)
+    f = np.hypot(dx, dy) - g.l6
     for i in np.nonzero(np.abs(f) < 1e-6)[0]:
-        f[i] = abs(joint(betas[i], x_target)) - g.l6
+        f[i] = closure.python.guide_distance(g, float(betas[i]), float(x_target))
     return f, dx
 
 
+#: Brent's relative tolerance (scipy's least)
+RTOL = 4 * np.finfo(float).eps
+
+
 @functools.lru_cache(maxsize=8)
-def _scan_grid(beta_window: float, n_scan: int) -> np.ndarray:
+def _scan_grid(beta_window: float, n_scan: int) -> tuple[np.ndarray, float]:
+    """The scan grid of :func:`exact_pose` (read-only) and its step squared."""
     betas = np.linspace(-beta_window, beta_window, n_scan)
     betas.setflags(write=False)
-    return betas
+    return betas, (betas[1] - betas[0]) ** 2
 
 
 def exact_pose(g: Geometry, x_target: float, beta_window: float = 0.3, n_scan: int = 601):
@@ -69,28 +59,24 @@ def exact_pose(g: Geometry, x_target: float, beta_window: float = 0.3, n_scan: i
     the paper's ranges, and returns the one with the smallest |beta| (the cutting stroke
     turns the blade by a few degrees).  Raises NonAssembly when no root qualifies.
     """
-    betas = _scan_grid(float(beta_window), int(n_scan))
+    betas, step2 = _scan_grid(float(beta_window), int(n_scan))
     k = kernels.chosen()
-    f, dx = _guide_distance_scan(g, betas, x_target, k)
+    if k is closure:
+        f, dx, known = np.empty_like(betas), np.empty_like(betas), False
+    else:
+        (f, dx), known = _guide_distance_scan(g, betas, x_target), True
     # a root between two grid points where D lies clearly on the other side of E (the
     # other assembly mode of the guide rod) cannot qualify: x of D is within
     # (|R - h| + d) (d beta)^2 / 8 of the chord between the grid points, so it keeps its sign
-    other = g.guide_mode * dx < -(abs(g.R - g.h) + g.d) * (betas[1] - betas[0]) ** 2
-    roots = []
-    joint = _guide_joint(g, k)
-    for i in np.nonzero(np.sign(f[:-1]) * np.sign(f[1:]) <= 0)[0]:
-        if other[i] and other[i + 1]:
-            continue
-        b = brentq(lambda x: abs(joint(x, x_target)) - g.l6, betas[i], betas[i + 1],
-                   xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
-        D = joint(b, x_target)
-        t5, t6 = b + g.beta2, math.atan2(D.imag, D.real) % (2 * math.pi)
-        if (0.0 <= t5 <= math.pi and math.pi <= t6 <= 2 * math.pi
-                and g.guide_mode * math.cos(t6) > 0):
-            roots.append((abs(b), t5, t6))
-    if not roots:
+    margin = (abs(g.R - g.h) + g.d) * step2
+    found, t5, t6, status = k.guide_pose(g.constants, betas, f, dx, known, float(x_target),
+                                         float(g.guide_mode), float(margin), 1e-15, RTOL, 200)
+    if status == closure.NO_CONVERGENCE:
+        raise RuntimeError(f"Brent's method did not converge in 200 iterations (x_k = {x_target})")
+    if status != closure.CONVERGED:
+        raise ValueError(f"|ED| - l6 is NaN or keeps its sign in a bracket (x_k = {x_target})")
+    if not found:
         raise NonAssembly(f"guide rod l6 = {g.l6:.6g} mm cannot reach the carrier with the "
                           f"lowest point at x_k = {x_target:.6g} mm (no root of |ED| = l6 for "
                           f"|beta| <= {beta_window})", x_k=x_target)
-    _, t5, t6 = min(roots)
     return np.array([t5, t6])

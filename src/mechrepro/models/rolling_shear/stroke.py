@@ -133,15 +133,27 @@ def _continue(g, x_k, settings, guess, theta, fp, fl, it) -> None:
         guess = list(2 * th - theta[i - 1]) if i > 0 else list(th)
 
 
-def solve_exact(g: Geometry, x_k) -> StrokeSolution:
-    n = len(x_k)
-    theta = np.empty((n, 6))
+def _exact(g: Geometry, x_k) -> np.ndarray:
+    theta = np.empty((len(x_k), 6))
     for i, xk in enumerate(x_k):
         try:
             p = pose_mod.exact_pose(g, float(xk))
             theta[i] = [*loops_mod.exact_angles(g, *p), *p]
         except NonAssembly as exc:
             raise NonAssembly(f"cut point {i} (x_k = {float(xk):.6g} mm): {exc}", i, float(xk)) from None
+    return theta
+
+
+def exact_theta(g: Geometry, x_k) -> np.ndarray:
+    """theta1..theta6 (n x 6, mod 2 pi) of the closed form at every cut point
+    (:func:`.pose.exact_pose`, :func:`.loops.exact_angles`): :func:`solve_exact`'s theta
+    without its residuals."""
+    return wrap(_exact(g, x_k))
+
+
+def solve_exact(g: Geometry, x_k) -> StrokeSolution:
+    n = len(x_k)
+    theta = _exact(g, x_k)
     fp = np.array([np.abs(pose_mod.residuals(g, t[4:], xk)).sum() for t, xk in zip(theta, x_k)])
     fl = np.array([np.abs(loops_mod.residuals(g, t[:4], t[4], t[5])).sum() for t in theta])
     ok = np.ones(n, bool)
