@@ -607,7 +607,10 @@ def test_a_read_only_project_stops_with_one_line_even_on_a_no_op(run, tmp_path, 
     before = hashes(work / "results")
     ro = work / "results" if target == "results" else work
     venv = ROOT / ".venv"
-    make = ["make", f"VENV={venv}", "reproduce"] if (venv / ".installed").exists() else None
+    # -o: never remake the project's venv from this copy (a stamp older than
+    # requirements.lock would reinstall it, its editable install pointing here)
+    make = (["make", f"VENV={venv}", "-o", str(venv / ".installed"), "reproduce"]
+            if (venv / ".installed").exists() else None)
     for cmd in [SM] + ([make] if make else []):
         proc = _read_only(work, ro, cmd)
         out = proc.stdout + proc.stderr
