@@ -16,6 +16,10 @@ same equations, evaluated in a different order; each is written once.
 
 No fast-math, no contraction into FMA; numba's and numpy's sin/cos are the C library's, so
 the compiled and the Python path give the same bits (``tests/test_rolling_shear_kernels.py``).
+
+:func:`guide_brent` is adapted from SciPy's ``brentq`` (scipy/optimize/Zeros/brentq.c),
+Copyright (c) 2001-2002 Enthought, Inc. 2003, SciPy Developers, under the BSD 3-clause
+licence whose full text :mod:`mechrepro.models.joint_wear.radau` carries.
 """
 from __future__ import annotations
 
