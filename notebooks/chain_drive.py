@@ -48,7 +48,7 @@ def ms(x):
 
 def convergence_note(name):
     """What refinement says about a sweep's steady amplitudes (F.peak_level_spread: its
-    largest peaks at @coarser / base / @finer): the figures never show an unconverged
+    largest peaks at @coarsest / @coarser / base): the figures never show an unconverged
     amplitude silently (issue 26)."""
     spread, order, _ = F.peak_level_spread(R, name)
     if not np.isfinite(spread):

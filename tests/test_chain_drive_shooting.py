@@ -179,7 +179,7 @@ def test_stability_only_variants_refine_only_the_growth_rate_bumps():
     assert done1 and w1.size == grid.size + 1
     base = {"options": {"variants": "stability"}}
     assert [shooting.stability_only({**base, "variant": v})
-            for v in (None, "coarser", "finer", "falsify-slack_tension",
+            for v in (None, "coarser", "coarsest", "falsify-slack_tension",
                       "transverse_damping-lo")] == [False, False, False, True, True]
     assert not shooting.stability_only({"variant": "falsify-slack_tension"})
 

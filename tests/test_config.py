@@ -149,9 +149,9 @@ def test_an_artefact_alone_keeps_its_rows_and_exactly_the_runs_they_read():
              for v in [None, *_variant_names(cfg.reported[q], cfg.raw)]}
     assert {(rec["study"] or rec["scene"], rec.get("variant")) for rec in cut.runs.values()} <= reads
     # fig07_ts's rows and the base scene's: no run of another figure, no ablation
-    assert "fig07_ts-000" in cut.runs and "fig07_tension@finer" in cut.runs
+    assert "fig07_ts-000" in cut.runs and "fig07_tension@coarser" in cut.runs
     assert not any(r.startswith(("fig05", "fig09", "fig10")) for r in cut.runs)
-    assert set(cut.studies) <= set(cfg.studies) and "fig07_ts@finer" in cut.studies
+    assert set(cut.studies) <= set(cfg.studies) and "fig07_ts@coarser" in cut.studies
     with pytest.raises(ConfigError, match="allowed: .*fig05"):
         cfg.for_artefacts(["fig02"])
 
@@ -163,7 +163,7 @@ def test_a_row_re_checks_only_the_study_points_it_reads(edit_config):
     cfg = load_paper("config/papers/chain_drive.yaml")
     ts = {cfg.runs[r]["sweep"]["static_tension"]: r for r in cfg.studies["fig07_ts"]}
     assert cfg.studies["fig07_ts@falsify-overdamped"] == [f"{ts[100.0]}@falsify-overdamped"]
-    assert cfg.studies["fig07_ts@finer"] == [f"{ts[800.0]}@finer", f"{ts[100.0]}@finer"]
+    assert cfg.studies["fig07_ts@coarser"] == [f"{ts[800.0]}@coarser", f"{ts[100.0]}@coarser"]
     assert len(cfg.studies["fig07_ts"]) == 3     # the baseline draws every point
     path = edit_config("chain_drive", lambda raw: raw["reported"]["instability_ts100"].__setitem__(
         "members", {"fig07_ts": {"static_tension": [150.0]}}))

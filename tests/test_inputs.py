@@ -167,8 +167,8 @@ LIMITS = [
       "above the solve rule's 30 min", "--config over_budget=true"]),
     ("joint_wear dynamic samples above the solve rule's memory", "joint_wear",
      lambda raw: raw["profiles"]["ci"]["scenes"].update(
-         period_dynamic={"resolution": {"n_out": 200000, "periods": 50}}),
-     ["job solve_joint_wear__batch", "run period_dynamic@finer", "'n_out': 400000",
+         period_dynamic={"resolution": {"n_out": 400000, "periods": 100}}),
+     ["job solve_joint_wear__batch", "run period_dynamic", "'n_out': 400000",
       "'periods': 100", "expected to take 4260 MB", "above the solve rule's 2000 MB",
       "--config over_budget=true"]),
     ("joint_wear load-point fit samples above the solve rule's time", "joint_wear",
@@ -237,7 +237,7 @@ def test_joint_wear_plausible_runs_pass_and_over_budget_asks_for_the_estimate(ed
     limits.check_all({"joint_wear": cfg})
     assert limits.run_cost("joint_wear", cfg.runs["wear_prediction"])["seconds"] < 60
     path = edit_config("joint_wear", lambda raw: raw["profiles"]["ci"]["scenes"].update(
-        period_dynamic={"resolution": {"n_out": 200000, "periods": 50}}))
+        period_dynamic={"resolution": {"n_out": 400000, "periods": 100}}))
     cfg = load_paper(path, "ci")
     limits.check_all({"joint_wear": cfg}, allow_over_budget=True)
     assert limits.job_resources(cfg, "batch", True)["mem_mb"] == 4260

@@ -78,12 +78,18 @@ def paper(edit_config, tmp_path):
 
 def test_variant_runs_are_made_for_what_verdicts_read(paper):
     cfg, _ = paper
-    assert cfg.runs["fig07_fig08@finer"]["resolution"]["K"] == 2 * cfg.runs["fig07_fig08"]["resolution"]["K"]
+    K = cfg.runs["fig07_fig08"]["resolution"]["K"]
+    assert cfg.runs["fig07_fig08@coarser"]["resolution"]["K"] == K // 2
+    assert cfg.runs["fig07_fig08@coarsest"]["resolution"]["K"] == K // 4
+    assert "fig07_fig08@finer" not in cfg.runs   # the baseline is the finest level
     assert cfg.runs["fig07_fig08@textbook_mass-lo"]["parameters"]["textbook_mass"] == pytest.approx(1.296e-3)
-    assert "cost_of_accuracy@finer" in cfg.studies
+    assert "cost_of_accuracy@coarser" in cfg.studies
+    # its coarsest level (K = 1) is outside the run schema: skipped with the reason, and the
+    # row gets the two-level estimate
+    assert "K = 1: must be >= 2" in cfg.variant_skipped["coarsest"]["cost_of_accuracy"]
     # info rows are not re-checked, and the check row does not read the study
     assert "cost_of_accuracy@textbook_mass-lo" not in cfg.studies
-    assert "speed_12000@finer" not in cfg.runs
+    assert "speed_12000@coarser" not in cfg.runs
 
 
 def K(run):
@@ -109,8 +115,8 @@ def test_a_verdict_whose_error_bar_straddles_the_tolerance_is_inconclusive(paper
 
 def test_levels_that_do_not_contract_are_not_converged(paper):
     cfg, results = paper
-    # 100.5 at K and at K / 2, 100.2 at 2 K: the finer difference is the larger
-    write_runs(cfg, results, lambda run: 100.2 if "@finer" in run["run"] else 100.5)
+    # 100.5 at K / 4 and K / 2, 100.2 at K: the finer difference is the larger
+    write_runs(cfg, results, lambda run: 100.5 if "@coarse" in run["run"] else 100.2)
     rows = {r.quantity: r for r in build(cfg, quantities(), results)}
     assert rows["load_max"].status == "not_converged"
     assert "does not converge" in rows["load_max"].cells()[9]
@@ -124,9 +130,12 @@ def test_level_error_is_richardson_with_the_observed_order():
         exact = 3.0
         v = [exact + 0.7 * h ** p for h in (0.4, 0.2, 0.1)]
         e, order, ok, _ = level_error(*v, ratio=2.0, width=1.0)
-        assert ok and order == pytest.approx(p) and e == pytest.approx(v[1] - exact)
+        assert ok and order == pytest.approx(p) and e == pytest.approx(v[2] - exact)
     assert level_error(1.0, 1.0, 1.0 + 1e-13, 2.0, 1.0)[2]          # round-off: negligible
     assert not level_error(1.0, 1.1, 1.3, 2.0, 1e-3)[2]               # diverging
+    # chain_drive Fig. 8b: the change of the peaks under the load at 2 / 3 / 4 points per pitch
+    e, order, ok, how = level_error(-0.02, -0.09, -0.06, 1.5, 1.0)   # oscillating
+    assert ok and e == pytest.approx(0.07) and math.isnan(order) and "oscillate" in how
     e, order, ok, how = level_error(math.nan, 1.0, 1.1, 2.0, 1.0)     # two levels
     assert ok and e == pytest.approx(0.1) and math.isnan(order)
 

@@ -12,11 +12,12 @@ resolution + parameter overrides) and **studies** (sweeps over a scene).  Loadin
    resolution ranges, options) with every parameter's ``allowed:`` merged in, so a bad value is reported with file, key, value and allowed range
    before anything runs;
 4. parameters are converted to SI (:mod:`mechrepro.units`);
-5. the **variant runs** that re-check the verdicts are added (``<run>@finer``,
-   ``<run>@<param>-lo|hi``; see docs/VALIDATION.md): for every verdict row of the
-   ``reported:`` block, each scene or study it ``reads`` is re-run at the next finer
-   resolution (``refine:``) and at both ends of the ``range`` of every assumed constant the
-   row ``depends_on``.
+5. the **variant runs** that re-check the verdicts are added (``<run>@coarser``,
+   ``<run>@coarsest``, ``<run>@<param>-lo|hi``; see docs/VALIDATION.md): for every verdict
+   row of the ``reported:`` block, each scene or study it ``reads`` is re-run one and two
+   levels coarser (``refine:``; the baseline is the finest level, as in a grid convergence
+   index study) and at both ends of the ``range`` of every assumed constant the row
+   ``depends_on``.
 
 A run record is plain JSON (str, int, float, list, dict) so that Snakemake's params
 trigger can see every change.
@@ -404,6 +405,11 @@ def _cross_check(checks: dict, run: dict, where: str) -> None:
 
 
 VERDICT_KINDS = ("compare", "bound", "check")
+# The resolution levels that give a verdict its error bar, by how many levels each lies
+# below the baseline: the reported value is the finest run, its error is extrapolated from
+# the two coarser ones (Richardson; Roache's grid convergence index), so the re-checks cost
+# a fraction of the baseline instead of a multiple of it.
+LEVELS = {"coarsest": 2, "coarser": 1}
 
 
 def _check_effects(raw: dict, where: str) -> None:
@@ -559,9 +565,7 @@ def _variant_names(spec: dict, raw: dict | None = None) -> list[str]:
     levels, other seeds, range ends (one constant) or members (a family), the falsifier."""
     if spec["kind"] not in VERDICT_KINDS:
         return []
-    out = []
-    if spec.get("finer", True):
-        out += (["coarser"] if spec.get("coarser", True) else []) + ["finer"]
+    out = list(LEVELS) if spec.get("levels", True) else []
     out += [f"seed{k}" for k in range(1, int(spec.get("seeds", 0)) + 1)]
     families = (raw or {}).get("families", {})
     for p in spec.get("depends_on", []):
@@ -611,7 +615,7 @@ def family_values(raw: dict, name: str, member: str) -> dict:
 
 def _variant_overrides(raw: dict, variant: str) -> tuple[str, dict, str]:
     """(kind, parameter overrides in paper units, label) of a variant name."""
-    if variant in ("coarser", "finer"):
+    if variant in LEVELS:
         return "level", {}, f"at the {variant} resolution"
     if variant.startswith("seed") and variant[4:].isdigit():
         return "seed", {}, f"at seed + {variant[4:]}"
@@ -668,9 +672,9 @@ def _add_variants(cfg: PaperConfig, raw: dict, run_schema: dict, where: str) -> 
                 runs = [_variant_run(raw, cfg.runs[run], variant, run_schema, where, why)
                         for run in base]
             except ConfigError as exc:
-                if variant != "coarser":
+                if variant not in LEVELS:
                     raise
-                # one level coarser is beyond what the run schema allows (a stability limit)
+                # a coarser level beyond what the run schema allows (a stability limit)
                 cfg.variant_skipped.setdefault(variant, {})[name] = str(exc).split("\n")[-1].strip()
                 continue
             if name in raw["scenes"]:
@@ -711,8 +715,9 @@ def _differs(variant_run: dict, base: dict) -> bool:
                for k in ("parameters", "resolution", "effects", "solver", "options", "seed"))
 
 
-def _refined(raw, base: dict, direction: str, where: str, why: str) -> dict:
-    """The run's resolution one level finer or coarser (every knob together)."""
+def _refined(raw, base: dict, variant: str, where: str, why: str) -> dict:
+    """The run's resolution ``LEVELS[variant]`` levels coarser (every knob together, each
+    divided by its factor that many times, integers rounded)."""
     refine = refine_spec(raw)
     resolution = copy.deepcopy(base["resolution"])
     for key, value in resolution.items():
@@ -724,9 +729,8 @@ def _refined(raw, base: dict, direction: str, where: str, why: str) -> dict:
                               "(a factor, or {fixed: why} if it is not an accuracy knob)")
         if "fixed" in refine[key]:
             continue
-        f = refine[key]["factor"] if direction == "finer" else 1.0 / refine[key]["factor"]
-        fine = value * f
-        resolution[key] = max(1, int(round(fine))) if isinstance(value, int) else float(fine)
+        coarse = value / refine[key]["factor"] ** LEVELS[variant]
+        resolution[key] = max(1, int(round(coarse))) if isinstance(value, int) else float(coarse)
     return resolution
 
 

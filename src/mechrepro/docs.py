@@ -112,11 +112,11 @@ def knobs(results: Path, config_dir: Path = Path("config")) -> str:
     cfg = load_paper(config_dir / "papers" / f"{paper}.yaml")
     used: dict[str, set] = {}
     for run in cfg.runs.values():
-        if "@" in run["run"]:     # a verdict variant (coarser, finer, range ends)
+        if "@" in run["run"]:     # a verdict variant (coarser levels, range ends)
             continue
         for k, v in run.get("resolution", {}).items():
             used.setdefault(k, set()).add(json.dumps(v))
-    out = ["| knob | what it is | allowed | finer level | default profile |", "|---|---|---|---|---|"]
+    out = ["| knob | what it is | allowed | per level (coarser: ÷) | default profile |", "|---|---|---|---|---|"]
     for key, spec in cfg.raw.get("refine", {}).items():
         a = spec["allowed"]
         rng = (", ".join(map(str, a["enum"])) if "enum" in a else

@@ -6,9 +6,9 @@ which assumed constants it depends on).  ``models/<paper>/validation.py`` only r
 functions that extract the reproduced values (:class:`Quantities`).  :func:`build` then
 
 1. evaluates every quantity on the baseline runs;
-2. re-evaluates every verdict row on its variant runs: one level coarser and one finer
-   (every knob together) give the value's error estimate and observed order, or show that
-   it does not converge (``not_converged``); other seeds add their spread; both ends of an
+2. re-evaluates every verdict row on its variant runs: one and two levels coarser (every
+   knob together) give the baseline value's error estimate and observed order, or show
+   that it does not converge (``not_converged``); other seeds add their spread; both ends of an
    assumed constant's range, or the corners and seeded members of a declared family, must
    not flip the verdict (else ``inconclusive``, saying what flips it); the row's falsifier
    (a model change) must make it fail;
@@ -44,7 +44,7 @@ EVIDENCE = ("independent", "calibration", "determined", "construction", "target"
 STATUSES = ("pass", "fail", "inconclusive", "not_converged", "info")
 # differences between levels below this share of the tolerance band cannot move a verdict
 NEGLIGIBLE = 1e-3
-# |coarser - base| / |base - finer| at or below this: the levels do not contract
+# |coarsest - coarser| / |coarser - base| at or below this: the levels do not contract
 CONTRACTION_MIN = 1.05
 OPS = {">": operator.gt, ">=": operator.ge, "<": operator.lt, "<=": operator.le}
 
@@ -302,35 +302,43 @@ def band(spec: dict, value: float) -> float:
     return math.nan
 
 
-def level_error(coarse: float, base: float, fine: float, ratio: float, width: float,
+def level_error(coarsest: float, coarse: float, base: float, ratio: float, width: float,
                 own: float = 0.0) -> tuple[float, float, bool, str]:
-    """Error estimate of ``base`` from one coarser and one finer level (every knob refined
-    by ``ratio``): (error, observed order, converged, how).
+    """Error estimate of ``base``, the finest level, from the two levels below it (every
+    knob coarsened by ``ratio`` per level): (error, observed order, converged, how).
 
-    d1 = coarse - base and d2 = base - fine contract by q = |d1| / |d2| = ratio^p for a
-    method of order p; the baseline's error is then |d2| q / (q - 1) (Richardson).
+    d1 = coarsest - coarse and d2 = coarse - base contract by q = |d1| / |d2| = ratio^p
+    for a method of order p; the baseline's error is then |d2| / (q - 1), its distance to
+    the Richardson extrapolate (Roache's grid convergence index without a safety factor).
     Differences below round-off, a thousandth of ``width`` (the tolerance band) or the
-    coarser level's own resolution (``own``, the extraction's error at the base level, e.g.
-    half a grid step, times ``ratio``) are negligible: a value read off a grid jitters
-    within its step; levels that do not contract (q <= 1.05) do not converge.  ``coarse``
-    NaN: two levels only, the error is |d2| and no order is measured."""
-    d2 = abs(base - fine)
-    if math.isnan(coarse):
-        return d2, math.nan, True, f"2 levels: |base - finer| = {d2:.3g}"
-    d1 = abs(coarse - base)
+    coarsest level's own resolution (``own``, the extraction's error at the base level, e.g.
+    half a grid step, times ``ratio``^2) are negligible: a value read off a grid jitters
+    within its step; levels that do not contract (q <= 1.05) do not converge; levels that
+    oscillate (d1 and d2 of opposite sign) have no extrapolate, their spread max(|d1|, |d2|)
+    is the error.  ``coarsest`` NaN: two levels only, the error is |d2| and no order is
+    measured."""
+    d2 = abs(coarse - base)
+    if math.isnan(coarsest):
+        return d2, math.nan, True, f"2 levels: |coarser - base| = {d2:.3g}"
+    d1 = abs(coarsest - coarse)
     floor = max(1e-9 * abs(base), NEGLIGIBLE * width if math.isfinite(width) else 0.0,
-                own * max(ratio, 1.0) if math.isfinite(ratio) else own)
+                own * max(ratio, 1.0) ** 2 if math.isfinite(ratio) else own)
     if max(d1, d2) <= floor:
         return max(d1, d2), math.nan, True, ("levels agree to within round-off, 1e-3 of the "
                                              "band or the quantity's own sampling step")
     if d2 == 0.0:
-        return 0.0, math.inf, True, "base and finer agree exactly"
+        return 0.0, math.inf, True, "coarser and base agree exactly"
+    if min(d1, d2) > floor and (coarsest - coarse) * (coarse - base) < 0:
+        # oscillating levels have no Richardson extrapolate: the spread is the error
+        return max(d1, d2), math.nan, True, (f"levels oscillate: coarsest {coarsest:.6g}, "
+                                             f"coarser {coarse:.6g}, base {base:.6g}")
     q = d1 / d2
     if q <= CONTRACTION_MIN:
-        return math.inf, math.nan, False, (f"does not converge: coarser {coarse:.6g}, base "
-                                           f"{base:.6g}, finer {fine:.6g} (|d1|/|d2| = {q:.3g})")
+        return math.inf, math.nan, False, (f"does not converge: coarsest {coarsest:.6g}, "
+                                           f"coarser {coarse:.6g}, base {base:.6g} "
+                                           f"(|d1|/|d2| = {q:.3g})")
     order = math.log(q) / math.log(ratio) if ratio > 1 else math.nan
-    return d2 * q / (q - 1.0), order, True, f"3 levels, |d1|/|d2| = {q:.3g}"
+    return d2 / (q - 1.0), order, True, f"3 levels, |d1|/|d2| = {q:.3g}"
 
 
 def verdict_with_error(spec: dict, value: float, error: float) -> tuple[str, str]:
@@ -431,15 +439,15 @@ def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]
     converged, how = True, ""
     error = float(r.error or 0.0)
     levels = {c[0]: c for c in by_kind.get("level", [])}
-    if "finer" in levels:
+    if "coarser" in levels:
         if numeric:
-            coarse = levels["coarser"][2] if "coarser" in levels else math.nan
-            if "coarser" not in levels and spec.get("coarser", True):
-                why = "; ".join(f"{n}: {m}" for n, m in cfg.variant_skipped.get("coarser", {}).items()
+            coarsest = levels["coarsest"][2] if "coarsest" in levels else math.nan
+            if "coarsest" not in levels:
+                why = "; ".join(f"{n}: {m}" for n, m in cfg.variant_skipped.get("coarsest", {}).items()
                                 if n in spec["reads"])
-                row.note = " ".join(x for x in (row.note, f"No coarser level ({why}).") if x)
+                row.note = " ".join(x for x in (row.note, f"No coarsest level ({why}).") if x)
             e, row.order, converged, how = level_error(
-                coarse, row.value, levels["finer"][2], _level_ratio(cfg, spec),
+                coarsest, levels["coarser"][2], row.value, _level_ratio(cfg, spec),
                 band(spec, row.value), float(r.error or 0.0))
             error += e
         else:

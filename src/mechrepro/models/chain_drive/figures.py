@@ -109,16 +109,16 @@ def timing_rows(named_sweeps: dict) -> list[list]:
 
 def peak_level_spread(R, name: str, n_peaks: int = 5, window: float = 3.0):
     """How far the steady amplitude of the ``n_peaks`` largest stable peaks of run ``name``
-    moves between its @coarser, base and @finer levels (the framework runs all three for
+    moves between its @coarsest, @coarser and base levels (the framework runs all three for
     every verdict's reads): (max relative spread, observed order or nan, peak speeds).  The
     amplitude at a level is its largest stable value within +-``window`` rpm of the base
     peak.  An observed order needs a contracting sequence (|d1| > 1.05 |d2|); a spread with
     none is an amplitude that does not converge under refinement, and the figure says so."""
     try:
-        ds = [R.run(f"{name}{s}") for s in ("@coarser", "", "@finer")]
+        ds = [R.run(f"{name}{s}") for s in ("@coarsest", "@coarser", "")]
     except FileNotFoundError:
         return float("nan"), float("nan"), []
-    base = ds[1]
+    base = ds[2]
     A = np.where(np.asarray(base.unstable.values, bool), 0.0, base.amplitude.values)
     idx = C.peaks(base.speed.values, A)
     idx = idx[np.argsort(A[idx])[::-1][:n_peaks]]
@@ -130,9 +130,9 @@ def peak_level_spread(R, name: str, n_peaks: int = 5, window: float = 3.0):
             m = np.abs(d.speed.values - s0) <= window
             a = np.where(np.asarray(d.unstable.values, bool)[m], np.nan, d.amplitude.values[m])
             vals.append(np.nanmax(a) if np.isfinite(a).any() else np.nan)
-        c, b, f = vals
-        spread = max(spread, np.nanmax(np.abs(np.array([c, f]) - b)) / b)
-        d1, d2 = abs(c - b), abs(b - f)
+        c2, c, b = vals
+        spread = max(spread, np.nanmax(np.abs(np.array([c2, c]) - b)) / b)
+        d1, d2 = abs(c2 - c), abs(c - b)
         orders.append(np.log(d1 / d2) / np.log(1.5) if d2 > 0 and d1 > 1.05 * d2 else np.nan)
     order = float(np.nanmin(orders)) if np.isfinite(orders).all() and orders else float("nan")
     return float(spread), order, [float(base.speed.values[i]) for i in idx]

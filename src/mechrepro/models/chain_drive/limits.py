@@ -37,10 +37,10 @@ def stability_only(run: dict) -> bool:
 
     ``options.variants: stability`` declares it for a scene whose verdict rows read only
     that (Figs. 7 and 9): its falsifier and range-end variants are stability-only; its
-    base run and @coarser/@finer levels are not (the figure draws their amplitudes and
+    base run and @coarser/@coarsest levels are not (the figure draws their amplitudes and
     edges, and its convergence note compares their peaks)."""
     return (run.get("options", {}).get("variants") == "stability"
-            and run.get("variant") not in (None, "coarser", "finer"))
+            and run.get("variant") not in (None, "coarser", "coarsest"))
 
 
 def solve_key(run: dict):

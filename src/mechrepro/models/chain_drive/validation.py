@@ -309,8 +309,8 @@ def fig08(R):
         tag = f"{w:g}"
         if tag in ("4", "1"):
             out[f"external_load_lowers_peaks_w{tag}"] = Reproduced(
-                bool(level < level0), f"mean at the {len(pk)} unloaded peaks ({[round(float(x)) for x in pk]} rpm): "
-                f"{level * 1e3:.3g} mm vs {level0 * 1e3:.3g} mm ({level / level0 - 1:+.0%})")
+                float(level / level0 - 1.0), f"mean at the {len(pk)} unloaded peaks ({[round(float(x)) for x in pk]} rpm): "
+                f"{level * 1e3:.3g} mm vs {level0 * 1e3:.3g} mm")
             out[f"external_load_raises_offpeak_w{tag}"] = Reproduced(
                 bool(med > med0), f"off-peak median {med * 1e3:.3g} mm vs {med0 * 1e3:.3g} mm")
     ws = sorted(ratios, reverse=True)
