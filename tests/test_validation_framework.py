@@ -123,6 +123,22 @@ def test_levels_that_do_not_contract_are_not_converged(paper):
     assert claim(cfg, list(rows.values()))["independent"]["not_converged"] == 1
 
 
+def test_a_verdict_without_a_level_below_its_baseline_is_inconclusive(edit_config, tmp_path):
+    """A baseline at the grid's minimum has no coarser level to estimate its error from:
+    the row says so and is not decided (never a verdict without an error bar)."""
+    def edit(raw):
+        reported_config(raw)
+        raw["profiles"]["ci"]["scenes"]["fig07_fig08"] = {"resolution": {"K": 2}}
+    cfg = load_paper(edit_config("saw_chain", edit), "ci")
+    assert "fig07_fig08" in cfg.variant_skipped["coarser"]
+    results = tmp_path / "results"
+    write_runs(cfg, results, lambda run: 100.5)
+    row = {r.quantity: r for r in build(cfg, quantities(), results)}["load_max"]
+    assert row.status == "inconclusive"
+    assert "no resolution level below the baseline" in row.flips[0]
+    assert "K = 1: must be >= 2" in row.flips[0]
+
+
 def test_level_error_is_richardson_with_the_observed_order():
     from mechrepro.validation import level_error
 

@@ -454,6 +454,10 @@ def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]
             # a worded claim has no error bar: it must hold at every level
             flips += [f"{c[3]} {c[4]}: {_fmt_short(c[2])}" for c in levels.values()
                       if c[3] != base_status]
+    elif spec.get("levels", True):
+        why = "; ".join(f"{n}: {m}" for n, m in cfg.variant_skipped.get("coarser", {}).items()
+                        if n in spec["reads"])
+        flips.append(f"no error estimate: no resolution level below the baseline runs ({why})")
     seeds = by_kind.get("seed", [])
     if seeds and numeric:
         error += max(abs(c[2] - row.value) for c in seeds)
