@@ -7,7 +7,7 @@ configfile: "config/config.yaml"
 include: "workflow/rules/common.smk"
 wildcard_constraints:
     paper="|".join(PAPERS),
-    # variants: @finer, @coarser, @seed1, @<param>-lo|hi, @<family>-c00|s00, @falsify-<name>
+    # variants: @coarser, @coarsest, @seed1, @<param>-lo|hi, @<family>-c00|s00, @falsify-<name>
     run="[a-z0-9_]+(-[0-9]{3})?(@[A-Za-z0-9_]+(-[A-Za-z0-9_]+)?)?",
     study="[a-z0-9_]+(@[A-Za-z0-9_]+(-[A-Za-z0-9_]+)?)?",
 

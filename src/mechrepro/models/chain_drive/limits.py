@@ -55,7 +55,7 @@ JOB_START_S = 3.0
 
 #: evaluated speeds / initial speeds of an adaptive shooting sweep (edges, growth-rate bumps
 #: and peaks bisected): measured 1.2-2.9 over the 24 shooting runs of the default batch
-#: (mean 1.7), 3.2-3.6 for fig09b and its @finer (many unstable bands); a falsifier with a
+#: (mean 1.7), 3.2-3.6 for fig09b and its former @finer level (many unstable bands); a falsifier with a
 #: flat growth rate can reach ~4.6 (fig07_ts-001 overdamped)
 SHOOTING_REFINE = 3.5
 
@@ -68,7 +68,7 @@ FLOPS_PER_UPDATE = 19
 # job's estimate lies 1.1-2.7x above its measured CPU (batch 279 s, fig09b 99-140 s,
 # fig07_ts 184 s, fig05_plain_cd 56 s, fig05_length_cd 93 s); single runs scatter 0.3-3x
 # around the fit (the load came and went).  Anchors: fig05_plain (751 speeds
-# x 81 points x 5290 steps) 3.05 s CPU and fig05_plain@finer (1126 x 121 x 12866) 15.3 s
+# x 81 points x 5290 steps) 3.05 s CPU and fig05_plain at the former @finer level (1126 x 121 x 12866) 15.3 s
 # (~7 ns per update, ~0.18 us per (step, speed) sample of the effects); peak memory 344 and
 # 686 MB in fresh processes (34 bytes per sample above ~215 MB); shooting fig07_tension
 # (85 points, ~81 steps per period) 26 ms per speed for the ~42 Mflop of
