@@ -152,6 +152,7 @@ def test_level_error_is_richardson_with_the_observed_order():
     # chain_drive Fig. 8b: the change of the peaks under the load at 2 / 3 / 4 points per pitch
     e, order, ok, how = level_error(-0.02, -0.09, -0.06, 1.5, 1.0)   # oscillating
     assert ok and e == pytest.approx(0.07) and math.isnan(order) and "oscillate" in how
+    assert not level_error(1.0, 1.1, 0.9, 1.5, 1e-3)[2]               # oscillating, growing
     e, order, ok, how = level_error(math.nan, 1.0, 1.1, 2.0, 1.0)     # two levels
     assert ok and e == pytest.approx(0.1) and math.isnan(order)
 

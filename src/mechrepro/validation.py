@@ -313,9 +313,9 @@ def level_error(coarsest: float, coarse: float, base: float, ratio: float, width
     Differences below round-off, a thousandth of ``width`` (the tolerance band) or the
     coarsest level's own resolution (``own``, the extraction's error at the base level, e.g.
     half a grid step, times ``ratio``^2) are negligible: a value read off a grid jitters
-    within its step; levels that do not contract (q <= 1.05) do not converge; levels that
-    oscillate (d1 and d2 of opposite sign) have no extrapolate, their spread max(|d1|, |d2|)
-    is the error.  ``coarsest`` NaN: two levels only, the error is |d2| and no order is
+    within its step; levels that do not contract (q <= 1.05) do not converge; contracting
+    levels that oscillate (d1 and d2 of opposite sign) have no extrapolate, their spread
+    max(|d1|, |d2|) is the error.  ``coarsest`` NaN: two levels only, the error is |d2| and no order is
     measured."""
     d2 = abs(coarse - base)
     if math.isnan(coarsest):
@@ -328,15 +328,15 @@ def level_error(coarsest: float, coarse: float, base: float, ratio: float, width
                                              "band or the quantity's own sampling step")
     if d2 == 0.0:
         return 0.0, math.inf, True, "coarser and base agree exactly"
-    if min(d1, d2) > floor and (coarsest - coarse) * (coarse - base) < 0:
-        # oscillating levels have no Richardson extrapolate: the spread is the error
-        return max(d1, d2), math.nan, True, (f"levels oscillate: coarsest {coarsest:.6g}, "
-                                             f"coarser {coarse:.6g}, base {base:.6g}")
     q = d1 / d2
     if q <= CONTRACTION_MIN:
         return math.inf, math.nan, False, (f"does not converge: coarsest {coarsest:.6g}, "
                                            f"coarser {coarse:.6g}, base {base:.6g} "
                                            f"(|d1|/|d2| = {q:.3g})")
+    if min(d1, d2) > floor and (coarsest - coarse) * (coarse - base) < 0:
+        # oscillating levels have no Richardson extrapolate: the spread is the error
+        return max(d1, d2), math.nan, True, (f"levels oscillate: coarsest {coarsest:.6g}, "
+                                             f"coarser {coarse:.6g}, base {base:.6g}")
     order = math.log(q) / math.log(ratio) if ratio > 1 else math.nan
     return d2 / (q - 1.0), order, True, f"3 levels, |d1|/|d2| = {q:.3g}"
 
