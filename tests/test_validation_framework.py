@@ -155,6 +155,9 @@ def test_level_error_is_richardson_with_the_observed_order():
     assert not level_error(1.0, 1.1, 0.9, 1.5, 1e-3)[2]               # oscillating, growing
     e, order, ok, how = level_error(math.nan, 1.0, 1.1, 2.0, 1.0)     # two levels
     assert ok and e == pytest.approx(0.1) and math.isnan(order)
+    # two levels 1.5x apart, first order assumed: twice their difference
+    assert level_error(math.nan, 1.0, 1.1, 1.5, 1.0)[0] == pytest.approx(0.2)
+    assert level_error(math.nan, 1.0, 1.1, 10.0, 1.0)[0] == pytest.approx(0.1)   # >= |d2|
 
 
 def with_falsifier(raw, changes):

@@ -315,11 +315,14 @@ def level_error(coarsest: float, coarse: float, base: float, ratio: float, width
     half a grid step, times ``ratio``^2) are negligible: a value read off a grid jitters
     within its step; levels that do not contract (q <= 1.05) do not converge; contracting
     levels that oscillate (d1 and d2 of opposite sign) have no extrapolate, their spread
-    max(|d1|, |d2|) is the error.  ``coarsest`` NaN: two levels only, the error is |d2| and no order is
-    measured."""
+    max(|d1|, |d2|) is the error.  ``coarsest`` NaN: two levels only, no order is measured:
+    the error is Richardson's at first order, |d2| / (ratio - 1), and at least |d2|."""
     d2 = abs(coarse - base)
     if math.isnan(coarsest):
-        return d2, math.nan, True, f"2 levels: |coarser - base| = {d2:.3g}"
+        # no order measured: first order, the lowest of any scheme here, and never below |d2|
+        e = d2 * max(1.0, 1.0 / (ratio - 1.0)) if math.isfinite(ratio) and ratio > 1 else d2
+        return e, math.nan, True, (f"2 levels: |coarser - base| = {d2:.3g}, taken as first "
+                                   f"order at ratio {ratio:.3g}")
     d1 = abs(coarsest - coarse)
     floor = max(1e-9 * abs(base), NEGLIGIBLE * width if math.isfinite(width) else 0.0,
                 own * max(ratio, 1.0) ** 2 if math.isfinite(ratio) else own)
