@@ -446,9 +446,8 @@ def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]
         if numeric:
             coarsest = levels["coarsest"][2] if "coarsest" in levels else math.nan
             if "coarsest" not in levels:
-                why = "; ".join(f"{n}: {m}" for n, m in cfg.variant_skipped.get("coarsest", {}).items()
-                                if n in spec["reads"])
-                row.note = " ".join(x for x in (row.note, f"No coarsest level ({why}).") if x)
+                row.note = " ".join(x for x in (row.note, f"No coarsest level "
+                                                f"({_skipped_why(cfg, 'coarsest', spec)}).") if x)
             e, row.order, converged, how = level_error(
                 coarsest, levels["coarser"][2], row.value, _level_ratio(cfg, spec),
                 band(spec, row.value), float(r.error or 0.0))
@@ -458,9 +457,8 @@ def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]
             flips += [f"{c[3]} {c[4]}: {_fmt_short(c[2])}" for c in levels.values()
                       if c[3] != base_status]
     elif spec.get("levels", True):
-        why = "; ".join(f"{n}: {m}" for n, m in cfg.variant_skipped.get("coarser", {}).items()
-                        if n in spec["reads"])
-        flips.append(f"no error estimate: no resolution level below the baseline runs ({why})")
+        flips.append("no error estimate: no resolution level below the baseline runs "
+                     f"({_skipped_why(cfg, 'coarser', spec)})")
     seeds = by_kind.get("seed", [])
     if seeds and numeric:
         error += max(abs(c[2] - row.value) for c in seeds)
@@ -511,6 +509,12 @@ def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]
                                             f"{spec['falsifier']} does not make it fail "
                                             f"({_fmt_short(fal[0][2])}): not counted.") if x)
     return row
+
+
+def _skipped_why(cfg, variant: str, spec: dict) -> str:
+    """Why a level was not run for a row's reads (the run schema's refusal per read)."""
+    return "; ".join(f"{n}: {m}" for n, m in cfg.variant_skipped.get(variant, {}).items()
+                     if n in spec["reads"])
 
 
 def _fmt(x) -> str:
