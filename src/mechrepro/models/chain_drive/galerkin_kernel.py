@@ -37,7 +37,19 @@ def _build():
     # a module global, not a closure variable of rk4: numba keys its disk cache on the
     # closure's objects, so a helper defined here as a local was compiled again in every
     # process (~2 s)
-    global project_add
+    global matvec, project_add
+
+    @jit(inline="always")
+    def matvec(At, x, acc, n_in, n):
+        """acc = A x from A's transpose At (n_in, n): each acc[r] sums A[r, j] x[j] over
+        j = 0, 1, ... from 0.0, the order of a dot product per row, with r innermost:
+        independent lanes that vectorise without reordering any sum (bit-identical)."""
+        for r in range(n):
+            acc[r] = 0.0
+        for j in range(n_in):
+            xj = x[j]
+            for r in range(n):
+                acc[r] += At[j, r] * xj
 
     @jit(inline="always")
     def project_add(Wt, f, out, acc, nq, n):
@@ -53,15 +65,17 @@ def _build():
 
     @jit
     def rk4(y0, dt, n_steps, F, record_every, y_cap, nt, nl, B, SWt, Sx, Sxx, CWt, Cx, Cxx,
-            a0, a1, Gt, Kt, Gl, Kl, Mti, Mli, Cend0, CendL, Sx0, SxL, L, m, c, c_d, EA,
+            a0, a1, GtT, KtT, GlT, KlT, MtiT, MliT, Cend0, CendL, Sx0, SxL, L, m, c, c_d, EA,
             coupling, out_y):
-        """F: (5, n_steps, 4) = g, h, g', h', P_t at the four stage times of every step."""
+        """F: (5, n_steps, 4) = g, h, g', h', P_t at the four stage times of every step;
+        the model's matrices are passed transposed (``GtT`` = Gt^T, ...: :func:`matvec`)."""
         n = y0.size
         nq = Sx.shape[1]
         y = y0.copy()
         K = np.empty((4, n))               # the stages k1..k4
         ys = np.empty(n)                   # the state a stage is evaluated at
         ft = np.empty(nt); fl = np.empty(nl); acc = np.empty(max(nt, nl))
+        m1 = np.empty(max(nt, nl)); m2 = np.empty(max(nt, nl))
         fq = np.empty(nq); fc = np.empty(nq)
         u2x = np.empty(nq); u2xx = np.empty(nq); u1x = np.empty(nq); u1xx = np.empty(nq)
         for j in range(n):
@@ -93,22 +107,14 @@ def _build():
                     out[nt + r] = ys[2 * nt + nl + r]
                 ub_x = (h - g) / L
                 ub_xt = (hd - gd) / L
+                matvec(GtT, out, m1, nt, nt)
+                matvec(KtT, ys, m2, nt, nt)
                 for r in range(nt):
-                    s1 = 0.0
-                    for j in range(nt):
-                        s1 += Gt[r, j] * out[j]
-                    s2 = 0.0
-                    for j in range(nt):
-                        s2 += Kt[r, j] * ys[j]
-                    ft[r] = -s1 - s2
+                    ft[r] = -m1[r] - m2[r]
+                matvec(GlT, out[nt:], m1, nl, nl)
+                matvec(KlT, ys[nt:], m2, nl, nl)
                 for r in range(nl):
-                    s1 = 0.0
-                    for j in range(nl):
-                        s1 += Gl[r, j] * out[nt + j]
-                    s2 = 0.0
-                    for j in range(nl):
-                        s2 += Kl[r, j] * ys[nt + j]
-                    fl[r] = -s1 - s2
+                    fl[r] = -m1[r] - m2[r]
                 # end-motion loads without its acceleration (gyroscopic and damping) and the
                 # coupling terms at the quadrature points (the points innermost: independent
                 # lanes, vectorised without reordering any sum)
@@ -153,16 +159,12 @@ def _build():
                 # boundary terms of Eq. (2-40)
                 for r in range(nl):
                     fl[r] += (ex0 - Pt) * Cend0[r] + (-exL + Pt) * CendL[r]
+                matvec(MtiT, ft, m1, nt, nt)
                 for r in range(nt):
-                    s1 = 0.0
-                    for j in range(nt):
-                        s1 += Mti[r, j] * ft[j]
-                    out[nt + nl + r] = s1
+                    out[nt + nl + r] = m1[r]
+                matvec(MliT, fl, m2, nl, nl)
                 for r in range(nl):
-                    s1 = 0.0
-                    for j in range(nl):
-                        s1 += Mli[r, j] * fl[j]
-                    out[2 * nt + nl + r] = s1
+                    out[2 * nt + nl + r] = m2[r]
             bad = False
             for j in range(n):
                 y[j] = y[j] + h6 * (K[0, j] + 2 * K[1, j] + 2 * K[2, j] + K[3, j])
@@ -213,8 +215,8 @@ def rk4_tabulated(model, y0, dt, n_steps, F, record_every=1, y_cap=1e3):
     bad = kernel()(c2(y0), float(dt), int(n_steps), Fs, int(record_every), float(y_cap), nt, nl,
                    c2(model.B), c2(model.SW.T), c2(model.Sx), c2(model.Sxx),
                    c2(model.CW.T), c2(model.Cx), c2(model.Cxx), c2(model.lin[0]),
-                   c2(model.lin[1]), c2(model.Gt), c2(model.Kt), c2(model.Gl), c2(model.Kl),
-                   c2(model.Mt_inv), c2(model.Ml_inv), c2(model.Cend0), c2(model.CendL),
+                   c2(model.lin[1]), c2(model.Gt.T), c2(model.Kt.T), c2(model.Gl.T),
+                   c2(model.Kl.T), c2(model.Mt_inv.T), c2(model.Ml_inv.T), c2(model.Cend0), c2(model.CendL),
                    c2(model._Sx0), c2(model._SxL), float(model.L), float(model.m),
                    float(model.c), float(model.c_d), float(model.EA), bool(model.coupling), out_y)
     if bad:
