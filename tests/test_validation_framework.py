@@ -190,6 +190,35 @@ def test_a_counted_pass_needs_a_falsifier_that_fails(edit_config, tmp_path):
     assert "does not make it fail" in rows["load_max"].cells()[9]
 
 
+def test_a_falsifier_runs_one_level_coarser_where_the_check_passes_too(edit_config, tmp_path):
+    """The falsifier's run is the coarser level's resolution with the model change; it
+    counts only where the check passes at that level without the change."""
+    results = tmp_path / "results"
+    cfg = load_paper(edit_config("saw_chain", lambda raw: with_falsifier(
+        raw, {"parameters": {"tie_strap_mass": 190.6, "drive_link_mass": 129.6}})), "ci")
+    fal = cfg.runs["fig07_fig08@falsify-heavy"]
+    assert fal["resolution"] == cfg.runs["fig07_fig08@coarser"]["resolution"]
+    assert fal["resolution"] != cfg.runs["fig07_fig08"]["resolution"]
+    assert cfg.variant_info["falsify-heavy"]["level_of"] == {"fig07_fig08": "coarser"}
+
+    def load(run):      # the levels by variant; the falsifier runs heavy at the coarser one
+        heavy = run["parameters"]["tie_strap_mass"] / 1.906e-3
+        return {"coarsest": coarsest, "coarser": coarser}.get(run.get("variant"), base) * (
+            coarser / base if run.get("variant") == "falsify-heavy" else 1.0) * heavy
+    coarsest, coarser, base = 100.0, 100.0, 100.0
+    write_runs(cfg, results, load)
+    rows = {r.quantity: r for r in build(cfg, quantities(), results)}
+    assert rows["load_max"].status == "pass" and rows["load_max"].evidence == "independent"
+    assert rows["load_max"].falsifier.endswith("at the coarser level")
+    # contracting levels 104 / 101.2 / 100.2: a pass by its error bar (100.2 +- 0.56 within
+    # 1 %), but the coarser level alone fails, so failing there under the change shows nothing
+    coarsest, coarser, base = 104.0, 101.2, 100.2
+    write_runs(cfg, results, load)
+    row = {r.quantity: r for r in build(cfg, quantities(), results)}["load_max"]
+    assert row.status == "pass" and row.evidence == "construction"
+    assert "ran at the coarser level" in row.cells()[9]
+
+
 def test_a_family_is_checked_at_its_joint_corners_and_samples(edit_config, tmp_path):
     def fam(raw):
         reported_config(raw)

@@ -665,11 +665,17 @@ def _add_variants(cfg: PaperConfig, raw: dict, run_schema: dict, where: str) -> 
         cfg.variant_info[variant] = {"kind": kind, "parameters": overrides, "label": label}
         for name, quantities in sorted(names.items()):
             why = f"variant {variant} of {name!r}, needed by {', '.join(quantities)}"
+            # a falsifier runs one level coarser where every row reading it has levels: it
+            # shows that the model change makes the check fail, and the validation compares
+            # it with the check at that same level (validation._row), which costs a
+            # fraction of the baseline
+            at = ("coarser" if kind == "falsifier"
+                  and all(cfg.reported[q].get("levels", True) for q in quantities) else None)
             # a variant identical to the baseline (a range end equal to the value) is not
             # re-run: the validation reads the baseline run for it
             try:
                 base = members(name, quantities)
-                runs = [_variant_run(raw, cfg.runs[run], variant, run_schema, where, why)
+                runs = [_variant_run(raw, cfg.runs[run], variant, run_schema, where, why, at)
                         for run in base]
             except ConfigError as exc:
                 if variant not in LEVELS:
@@ -677,6 +683,9 @@ def _add_variants(cfg: PaperConfig, raw: dict, run_schema: dict, where: str) -> 
                 # a coarser level beyond what the run schema allows (a stability limit)
                 cfg.variant_skipped.setdefault(variant, {})[name] = str(exc).split("\n")[-1].strip()
                 continue
+            if at and any(vr["resolution"] != cfg.runs[r]["resolution"]
+                          for vr, r in zip(runs, base)):
+                cfg.variant_info[variant].setdefault("level_of", {})[name] = at
             if name in raw["scenes"]:
                 if _differs(runs[0], cfg.runs[name]):
                     cfg.runs[runs[0]["run"]] = runs[0]
@@ -734,7 +743,10 @@ def _refined(raw, base: dict, variant: str, where: str, why: str) -> dict:
     return resolution
 
 
-def _variant_run(raw, base: dict, variant: str, run_schema, where, why) -> dict:
+def _variant_run(raw, base: dict, variant: str, run_schema, where, why,
+                 at: str | None = None) -> dict:
+    """The run record of ``variant`` of run ``base``; a falsifier ``at`` a level runs at that
+    level's resolution, or at the baseline's where the run schema refuses the level."""
     scene = raw["scenes"][base["scene"]]
     resolution = copy.deepcopy(base["resolution"])
     params = {k: v["value"] for k, v in raw["parameters"].items()}
@@ -761,6 +773,13 @@ def _variant_run(raw, base: dict, variant: str, run_schema, where, why) -> dict:
                        if p not in scene.get("parameters", {}) and p not in base["sweep"]})
     record = {"effects": effects, "resolution": resolution, "parameters": params,
               "options": options}
+    if kind == "falsifier" and at:
+        try:
+            _validate({**record, "resolution": _refined(raw, base, at, where, why)}, run_schema,
+                      f"{where} ({why})")
+            record["resolution"] = resolution = _refined(raw, base, at, where, why)
+        except ConfigError:
+            pass      # the level is beyond what the schema allows: the baseline's resolution
     _validate(record, run_schema, f"{where} ({why})")
     si, units = {}, {}
     for k, v in params.items():

@@ -494,9 +494,14 @@ def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]
     if how and numeric and converged and error:
         row.note = " ".join(x for x in (row.note, f"Error estimate {error:.3g} ({how}).") if x)
     fal = by_kind.get("falsifier", [])
+    # the level the falsifier ran at (config._add_variants): the check must pass there
+    # without the model change for the change to be what makes it fail
+    at = {info[c[0]].get("level_of", {}).get(n) for c in fal for n in spec["reads"]} - {None}
+    at = next(iter(at), None)
     if fal:
         c = fal[0]
-        row.falsifier = f"{spec['falsifier']}: {c[3]} ({_fmt_short(c[2])})"
+        row.falsifier = (f"{spec['falsifier']}: {c[3]} ({_fmt_short(c[2])})"
+                         + (f" at the {at} level" if at else ""))
     if row.status == "pass" and spec["evidence"] == "independent":
         if not fal:
             row.evidence = "construction"
@@ -508,6 +513,12 @@ def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]
             row.note = " ".join(x for x in (row.note, f"[construction] its falsifier "
                                             f"{spec['falsifier']} does not make it fail "
                                             f"({_fmt_short(fal[0][2])}): not counted.") if x)
+        elif at and (at not in levels or levels[at][3] != "pass"):
+            row.evidence = "construction"
+            got = f"{levels[at][3]} ({_fmt_short(levels[at][2])})" if at in levels else "no value"
+            row.note = " ".join(x for x in (row.note, f"[construction] its falsifier ran at the "
+                                            f"{at} level, where the check without it gives "
+                                            f"{got}, not a pass: not counted.") if x)
     return row
 
 
