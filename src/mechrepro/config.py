@@ -410,6 +410,9 @@ VERDICT_KINDS = ("compare", "bound", "check")
 # the two coarser ones (Richardson; Roache's grid convergence index), so the re-checks cost
 # a fraction of the baseline instead of a multiple of it.
 LEVELS = {"coarsest": 2, "coarser": 1}
+# the level a falsifier's run is made at (docs/VALIDATION.md, falsifiers): the change must
+# make a check fail that passes there without it, which one level below shows as well
+FALSIFIER_LEVEL = "coarser"
 
 
 def _check_effects(raw: dict, where: str) -> None:
@@ -665,11 +668,9 @@ def _add_variants(cfg: PaperConfig, raw: dict, run_schema: dict, where: str) -> 
         cfg.variant_info[variant] = {"kind": kind, "parameters": overrides, "label": label}
         for name, quantities in sorted(names.items()):
             why = f"variant {variant} of {name!r}, needed by {', '.join(quantities)}"
-            # a falsifier runs one level coarser where every row reading it has levels: it
-            # shows that the model change makes the check fail, and the validation compares
-            # it with the check at that same level (validation._row), which costs a
-            # fraction of the baseline
-            at = ("coarser" if kind == "falsifier"
+            # a falsifier runs at FALSIFIER_LEVEL where every row reading it has levels
+            # (validation._row compares it with the check at that same level)
+            at = (FALSIFIER_LEVEL if kind == "falsifier"
                   and all(cfg.reported[q].get("levels", True) for q in quantities) else None)
             # a variant identical to the baseline (a range end equal to the value) is not
             # re-run: the validation reads the baseline run for it
@@ -775,9 +776,9 @@ def _variant_run(raw, base: dict, variant: str, run_schema, where, why,
               "options": options}
     if kind == "falsifier" and at:
         try:
-            _validate({**record, "resolution": _refined(raw, base, at, where, why)}, run_schema,
-                      f"{where} ({why})")
-            record["resolution"] = resolution = _refined(raw, base, at, where, why)
+            coarse = _refined(raw, base, at, where, why)
+            _validate({**record, "resolution": coarse}, run_schema, f"{where} ({why})")
+            record["resolution"] = resolution = coarse
         except ConfigError:
             pass      # the level is beyond what the schema allows: the baseline's resolution
     _validate(record, run_schema, f"{where} ({why})")
