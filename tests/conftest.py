@@ -92,23 +92,46 @@ def snakemake(work, *args, check=True, env=None, base=SNAKEMAKE):
     return proc.stdout + proc.stderr
 
 
+def check_artefacts(work: Path, artefacts) -> tuple[Path, str]:
+    """What `python -m mechrepro.cli artefact` runs, in ``work`` (a copy of config/ and the
+    reference): the rows of ``artefacts`` (``chain_drive-fig05``) in
+    ``work/results/<paper>/tables/validation-<artefacts>.csv``."""
+    import contextlib
+    import io
+    import os
+
+    from mechrepro.validation import check_artefacts as check
+
+    shutil.copytree(ROOT / "config", work / "config")
+    shutil.copytree(ROOT / "results" / "reference", work / "results" / "reference")
+    here, log = os.getcwd(), io.StringIO()
+    os.chdir(work)      # the config cache (.snakemake/mechrepro) goes to the copy
+    try:
+        with contextlib.redirect_stdout(log):
+            check(artefacts, "results", "config", "ci", read_yaml_papers(work))
+    finally:
+        os.chdir(here)
+    return work, log.getvalue()
+
+
+def read_yaml_papers(work: Path) -> list[str]:
+    return yaml.safe_load((work / "config" / "config.yaml").read_text())["papers"]
+
+
 @pytest.fixture(scope="session")
 def workflow(request, tmp_path_factory):
-    """The ci-profile pipeline, run once per test session in a copy of the workflow: of
-    every paper, or, when every selected test that reads it is a per-artefact test, only
-    the runs and rows of the selected artefacts (`pytest -k chain_drive-fig05`: the
-    workflow's `--config artefacts=[fig05]`, into tables/validation-fig05.csv)."""
-    work = copy_workflow(tmp_path_factory.mktemp("wf"))
-    papers, artefacts = set(), set()
+    """The ci-profile pipeline, run once per test session in a copy of the workflow; or,
+    when every selected test that reads it is a per-artefact test (`pytest -k
+    chain_drive-fig05`), no pipeline: only the selected artefacts' runs, solved in this
+    process tree, and their rows (:func:`check_artefacts`)."""
+    work = tmp_path_factory.mktemp("wf")
+    artefacts = set()
     for item in request.session.items:
         if "workflow" not in getattr(item, "fixturenames", ()):
             continue
         params = getattr(item, "callspec", None) and item.callspec.params
         if item.module.__name__ != "test_artefacts" or not params:
-            papers = None
-            break
-        papers.add(params["paper"])
+            copy_workflow(work)
+            return work, snakemake(work)
         artefacts.add(f"{params['paper']}-{params['artefact']}")
-    log = snakemake(work, *([f"papers=[{','.join(sorted(papers))}]",
-                             f"artefacts=[{','.join(sorted(artefacts))}]"] if papers else []))
-    return work, log
+    return check_artefacts(work, sorted(artefacts))

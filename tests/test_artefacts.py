@@ -1,13 +1,14 @@
 """One test per figure or table of each paper (`pytest -k fig08`, `pytest -k saw_chain`).
 
 Each test reads the rows of one artefact from the ci pipeline's validation table (the
-session's run of the workflow; when only these tests are selected, a run of the selected
-artefacts' runs and rows alone) and holds them to the committed reference: the same
+session's run of the workflow; when only these tests are selected, no pipeline: the
+selected artefacts' runs and rows alone, `python -m mechrepro.cli artefact`) and holds them to the committed reference: the same
 verdict, and the value within the tolerance measured across platform variants.  What
 the paper reports, with its tolerance and the reason for it, is in the paper's config
 (`reported:`); the rows' evidence classes say what each pass or fail is evidence of.
 """
 import math
+import os
 
 import pytest
 
@@ -50,20 +51,34 @@ def test_artefact_matches_reference(workflow, paper, artefact):
 
 
 def test_one_artefact_alone_gives_the_rows_of_the_whole_run(workflow, tmp_path):
-    """The workflow cut down to one figure (`--config artefacts=[...]`, what `pytest -k
-    saw_chain-fig07` runs) solves only that figure's runs and writes its rows exactly as
-    the whole paper's run does, and refuses an artefact no paper has."""
-    from conftest import copy_workflow, snakemake
+    """`python -m mechrepro.cli artefact` (what `pytest -k saw_chain-fig07` runs, without
+    the workflow) solves only the runs that figure's rows read and writes its rows exactly
+    as the whole paper's run does, and refuses an artefact no paper has."""
+    import shutil
+    import subprocess
+    import sys
+
+    from mechrepro.config import load_paper
+    from mechrepro.validation import for_artefacts
 
     work, _ = workflow
-    alone = copy_workflow(tmp_path)
-    snakemake(alone, "papers=[saw_chain]", "artefacts=[saw_chain-fig07]")
-    tables = alone / "results" / "saw_chain" / "tables"
+    shutil.copytree(ROOT / "config", tmp_path / "config")
+    cli = [sys.executable, "-m", "mechrepro.cli", "artefact", "results", "config", "ci"]
+    env = {**os.environ, "PYTHONPATH": str(ROOT / "src")}
+    out = subprocess.run([*cli, "saw_chain-fig07"], cwd=tmp_path, capture_output=True,
+                         text=True, env=env)
+    assert out.returncode == 0, out.stderr[-3000:]
+    res = tmp_path / "results"
+    assert [p.name for p in res.iterdir()] == ["saw_chain"]
+    tables = res / "saw_chain" / "tables"
     assert [f.name for f in tables.glob("*.csv")] == ["validation-fig07.csv"]
-    assert not (alone / "results" / "saw_chain" / "notebook.ipynb").exists()
-    whole, cut = ([r for r in read_table(t) if r["artefact"] == "fig07"]
-                  for t in (work / "results" / "saw_chain" / "tables" / "validation.csv",
-                            tables / "validation-fig07.csv"))
-    assert cut and cut == whole
-    out = snakemake(alone, "papers=[saw_chain]", "artefacts=[fig99]", "-n", check=False)
-    assert "artefacts: ['fig99']: no reported row" in out and "allowed:" in out
+    cut = for_artefacts(load_paper(tmp_path / "config" / "papers" / "saw_chain.yaml", "ci"),
+                        ["fig07"])
+    assert {f.stem for f in (res / "saw_chain" / "runs").glob("*.nc")} == set(cut.runs)
+    whole, alone = ([r for r in read_table(t) if r["artefact"] == "fig07"]
+                    for t in (work / "results" / "saw_chain" / "tables" / "validation.csv",
+                              tables / "validation-fig07.csv"))
+    assert alone and alone == whole
+    out = subprocess.run([*cli, "fig99"], cwd=tmp_path, capture_output=True, text=True, env=env)
+    assert out.returncode == 2
+    assert "artefacts ['fig99']: no reported row" in out.stderr and "allowed:" in out.stderr

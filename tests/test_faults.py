@@ -2,8 +2,8 @@
 interrupted or moved is detected, named and rebuilt; bad input is refused before any job.
 
 Each test breaks a ci pipeline copy (saw_chain's, see ONLY below), runs what
-`make ci-reproduce` runs (heal, then Snakemake) and checks that exactly the broken
-results and what depends on them were rebuilt, and that the tree is whole again.
+`make ci-reproduce` runs (Snakemake, whose workflow heals before any job) and checks
+that exactly the broken results and what depends on them were rebuilt, and that the tree is whole again.
 """
 import os
 import shutil
@@ -51,13 +51,6 @@ else:
         return workflow
 
 
-def heal(work):
-    proc = subprocess.run([sys.executable, "-m", "mechrepro.heal", "results"], cwd=work,
-                          capture_output=True, text=True, check=True,
-                          env={**os.environ, "PYTHONPATH": str(work / "src")})
-    return proc.stdout
-
-
 def planned(work):
     from test_pipeline import scheduled
 
@@ -65,9 +58,9 @@ def planned(work):
 
 
 def restored(work):
-    """Heal, rerun, and check the whole tree against the fresh manifest."""
-    log = heal(work)
-    snakemake(work)
+    """Rerun (the workflow heals first: its log has the heal's lines), and check the whole
+    tree against the fresh manifest."""
+    log = snakemake(work)
     assert "Nothing to be done" in snakemake(work, "-n")
     assert verify(work / "results", work / "results" / ARCHIVE / "manifest.json") == []
     return log
@@ -214,8 +207,7 @@ def test_a_killed_run_recovers_as_the_readme_says(wf):
     os.killpg(proc.pid, signal.SIGKILL)
     proc.wait()
     snakemake(work, "--unlock")
-    heal(work)
-    snakemake(work, "--rerun-incomplete")  # as `make reproduce` runs it
+    snakemake(work, "--rerun-incomplete")  # as `make reproduce` runs it: heal, then the jobs
     assert "Nothing to be done" in snakemake(work, "-n")
     assert verify(work / "results", work / "results" / ARCHIVE / "manifest.json") == []
     assert run.stat().st_size > 1000

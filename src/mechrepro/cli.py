@@ -1,14 +1,19 @@
 """Command-line glue for the workflow's bookkeeping rules (one entry point).
 
     python -m mechrepro.cli gather OUT.nc RUN.nc ...
-    python -m mechrepro.cli validate PAPER RESULTS CONFIG_FILE PROFILE [ARTEFACT ...]
+    python -m mechrepro.cli validate PAPER RESULTS CONFIG_FILE PROFILE
+    python -m mechrepro.cli artefact RESULTS CONFIG_DIR PROFILE ARTEFACT ...
     python -m mechrepro.cli summary PNG CSV RESULTS CONFIG_DIR PROFILE PAPER ...
     python -m mechrepro.cli report HTML RESULTS CONFIG_DIR PROFILE PAPER ...
     python -m mechrepro.cli archive TAR MANIFEST CHECK RESULTS CONFIG_DIR PROFILE PAPER ... --files FILE ...
     python -m mechrepro.cli check-reference OUT RESULTS REFERENCE_DIR PROFILE PAPER ...
     python -m mechrepro.cli verify RESULTS [MANIFEST]
 
-These are shell rules on purpose: Snakemake 9 runs a `run:` block in a fresh Snakemake
+`artefact` is the one command not run by a rule: it solves and checks the verdict rows of
+some figures or tables (fig05, chain_drive-fig05) without the workflow, in seconds
+(mechrepro.validation.check_artefacts; what `pytest -k fig05` runs).
+
+The others are shell rules on purpose: Snakemake 9 runs a `run:` block in a fresh Snakemake
 subprocess that re-parses the whole workflow, which costs seconds per job.
 """
 from __future__ import annotations
@@ -17,7 +22,8 @@ import sys
 
 USAGE = {
     "gather": (2, "OUT.nc RUN.nc ..."),
-    "validate": (4, "PAPER RESULTS CONFIG_FILE PROFILE [ARTEFACT ...]"),
+    "validate": (4, "PAPER RESULTS CONFIG_FILE PROFILE"),
+    "artefact": (4, "RESULTS CONFIG_DIR PROFILE ARTEFACT ..."),
     "summary": (6, "PNG CSV RESULTS CONFIG_DIR PROFILE PAPER ..."),
     "report": (5, "HTML RESULTS CONFIG_DIR PROFILE PAPER ..."),
     "archive": (7, "TAR MANIFEST CHECK RESULTS CONFIG_DIR PROFILE PAPER ... --files FILE ..."),
@@ -60,6 +66,24 @@ def main(argv: list[str]) -> int:
         rows = validate(*args)
         for r in rows:
             print(f"{r.status:12s} {r.spec['evidence']:12s} {r.quantity}")
+    elif cmd == "artefact":
+        from .config import ConfigError
+        from .inputs import read_yaml
+        from .solve import blas_threads
+        from .validation import artefact_table, check_artefacts
+
+        blas_threads()
+        results, config_dir, profile, *artefacts = args
+        papers = read_yaml(f"{config_dir}/config.yaml")["papers"]
+        try:
+            out = check_artefacts(artefacts, results, config_dir, profile, papers)
+        except ConfigError as exc:
+            sys.stderr.write(f"artefact: {exc}\n")
+            return 2
+        for paper, rows in out.items():
+            for r in rows:
+                print(f"{r.status:12s} {r.spec['evidence']:12s} {paper} {r.quantity}")
+            print(f"-> {artefact_table(results, paper, sorted({r.spec['artefact'] for r in rows}))}")
     elif cmd == "summary":
         from .summary import write_summary
 

@@ -174,7 +174,7 @@ class PaperConfig:
     def for_artefacts(self, artefacts, together=()) -> "PaperConfig":
         """This paper cut down to the verdict rows of some figures or tables and the runs
         those rows read: their baselines and the variants that re-check exactly these rows
-        (``--config artefacts=[fig05]``; ``pytest -k chain_drive-fig05``).  ``together``:
+        (``mechrepro.cli artefact``; ``pytest -k chain_drive-fig05``).  ``together``:
         groups of rows one extraction function computes at once (its reads are read
         whichever of its rows is asked for), each kept whole.  The rows come out as in the
         whole paper: the same runs, the same variants."""

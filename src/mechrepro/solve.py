@@ -198,5 +198,37 @@ def main(argv: list[str]) -> None:
             print(f"[{paper}] study {study}: {len(runs)} runs stacked", flush=True)
 
 
+def solve_jobs(cfg, config_dir: str | Path, results: str | Path, cores: int = 2) -> None:
+    """Every run of ``cfg`` (a paper's config, perhaps cut down to some artefacts:
+    :meth:`PaperConfig.for_artefacts`) solved without the workflow, by the jobs the workflow
+    would run (:meth:`PaperConfig.solve_jobs`, each one :func:`main` call, longest estimated
+    first) on ``cores`` processes forked from this one, then every study not stacked by its
+    job gathered: ``mechrepro.cli artefact``, ``pytest -k fig05``."""
+    import multiprocessing
+
+    from .io import gather_study, write_dataset
+    from .limits import job_costs
+
+    jobs = cfg.solve_jobs()
+    est = {j: c["seconds"] for j, c in job_costs(cfg).items()}
+    argvs = [[cfg.paper, str(config_dir), cfg.profile, str(results), *jobs[j]]
+             for j in sorted(jobs, key=lambda j: -est.get(j, 0.0))]
+    warm = getattr(model(cfg.paper), "warm", None)
+    if warm is not None:     # once, before the fork: every job inherits the loaded kernels
+        warm()
+    if cores > 1 and len(argvs) > 1:
+        with multiprocessing.get_context("fork").Pool(min(cores, len(argvs))) as pool:
+            list(pool.imap_unordered(main, argvs))
+    else:
+        for argv in argvs:
+            main(argv)
+    root = Path(results) / cfg.paper
+    stacked = {s for runs in jobs.values() for s in cfg.studies_solved_with(runs)}
+    for study, runs in cfg.studies.items():
+        if study not in stacked:
+            write_dataset(gather_study([root / "runs" / f"{r}.nc" for r in runs]),
+                          root / "studies" / f"{study}.nc")
+
+
 if __name__ == "__main__":
     main(sys.argv[1:])

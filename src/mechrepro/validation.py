@@ -636,20 +636,13 @@ def artefact_table(results_dir, paper: str, artefacts) -> Path:
     return Path(results_dir) / paper / "tables" / f"validation-{'+'.join(sorted(artefacts))}.csv"
 
 
-def validate(paper: str, results_dir: str, config_file: str, profile: str,
-             *artefacts: str) -> list[Row]:
-    """Build and write ``tables/validation.csv`` and ``claim.json`` of one paper; given
-    ``artefacts``, only their rows, into :func:`artefact_table`."""
+def validate(paper: str, results_dir: str, config_file: str, profile: str) -> list[Row]:
+    """Build and write ``tables/validation.csv`` and ``claim.json`` of one paper."""
     from .config import CACHE_DIR, load_paper
 
     # as the solver jobs loaded it: from the cache keyed by the content of the config, the
     # schemas and the loader, validated once per content, not again here
     cfg = load_paper(config_file, profile, CACHE_DIR)
-    if artefacts:
-        cfg = for_artefacts(cfg, artefacts)
-        rows = build(cfg, quantities_of(paper), results_dir)
-        write_table(rows, artefact_table(results_dir, paper, artefacts))
-        return rows
     root = Path(results_dir) / paper
     with ResultFiles() as files:   # one opening of each file for the tables below
         rows = build(cfg, quantities_of(paper), results_dir, files)
@@ -658,6 +651,35 @@ def validate(paper: str, results_dir: str, config_file: str, profile: str,
         write_json(root / "claim.json", claim(cfg, rows))
         write_costs(cfg, results_dir, files)
     return rows
+
+
+def check_artefacts(artefacts, results_dir: str | Path, config_dir: str | Path,
+                    profile: str, papers, cores: int = 2) -> dict[str, list[Row]]:
+    """{paper: rows} of some figures or tables (``fig05`` of every paper that reports one,
+    or ``chain_drive-fig05``), without the workflow: each paper cut down to those rows and
+    the runs they read (:func:`for_artefacts`), its solve jobs run in this process tree
+    (:func:`mechrepro.solve.solve_jobs`), its rows built and written to
+    :func:`artefact_table`.  An artefact no paper reports is refused first, with what is
+    allowed.  ``pytest -k fig05`` runs this, not a pipeline."""
+    from .config import CACHE_DIR, ConfigError, load_paper
+    from .solve import solve_jobs
+
+    cfgs = {p: load_paper(Path(config_dir) / "papers" / f"{p}.yaml", profile, CACHE_DIR)
+            for p in papers}
+    have = {(p, s["artefact"]) for p, cfg in cfgs.items() for s in cfg.reported.values()}
+    pick = {a: {(p, x) for p, x in have if a in (x, f"{p}-{x}")} for a in artefacts}
+    if not all(pick.values()):
+        raise ConfigError(f"artefacts {[a for a, h in pick.items() if not h]}: no reported row "
+                          f"of {list(cfgs)} has them; allowed: "
+                          f"{sorted({x for _, x in have} | {f'{p}-{x}' for p, x in have})}")
+    out = {}
+    for paper in sorted({p for h in pick.values() for p, _ in h}):
+        arts = sorted({x for h in pick.values() for p, x in h if p == paper})
+        cut = for_artefacts(cfgs[paper], arts)
+        solve_jobs(cut, config_dir, results_dir, cores)
+        out[paper] = build(cut, quantities_of(paper), results_dir)
+        write_table(out[paper], artefact_table(results_dir, paper, arts))
+    return out
 
 
 def write_costs(cfg, results_dir: str, files: ResultFiles | None = None) -> None:

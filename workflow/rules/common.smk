@@ -53,27 +53,6 @@ except LimitError as exc:
     sys.stderr.write(f"\n{exc}\n\n")
     raise SystemExit(1)
 
-# `--config artefacts=[fig05]` (or [chain_drive-fig05], one paper's): each paper cut down to
-# those figures' verdict rows and the runs they read (mechrepro.validation.for_artefacts);
-# the targets are their tables only
-ARTEFACTS = config.get("artefacts", [])
-if ARTEFACTS:
-    from mechrepro.validation import artefact_table, for_artefacts  # noqa: E402
-
-    _have = {(p, s["artefact"]) for p in PAPERS for s in CFG[p].reported.values()}
-    _pick = {a: {(p, x) for p, x in _have if a in (x, f"{p}-{x}")} for a in ARTEFACTS}
-    if not all(_pick.values()):
-        sys.stderr.write(f"\nartefacts: {[a for a, h in _pick.items() if not h]}: no reported "
-                         f"row of {PAPERS} has them; allowed: "
-                         f"{sorted({x for _, x in _have} | {f'{p}-{x}' for p, x in _have})}\n\n")
-        raise SystemExit(1)
-    try:   # a selected paper without any of them is refused (for_artefacts says which)
-        CFG = {p: for_artefacts(CFG[p], {x for h in _pick.values() for q, x in h if q == p})
-               for p in PAPERS}
-    except ConfigError as exc:
-        sys.stderr.write(f"\n{exc}\n\n")
-        raise SystemExit(1)
-
 # the order in which free cores take solve jobs (longest estimated first)
 SOLVE_PRIORITY = solve_priorities(CFG)
 
@@ -193,14 +172,7 @@ def archived_outputs():
     return out
 
 
-def artefacts_tag(paper):
-    """How a cut-down run's validation log is told from the whole paper's."""
-    return "-" + "+".join(CFG[paper].artefacts) if CFG[paper].artefacts else ""
-
-
 def every_output():
     """Every declared output (the target of the workflow), so that a deleted one is restored."""
-    if ARTEFACTS:
-        return [str(artefact_table(RESULTS, p, CFG[p].artefacts)) for p in PAPERS]
     return archived_outputs() + [f"{ARCHIVE}/manifest.json",
                                  f"{ARCHIVE}/mechrepro-results.tar.gz"]

@@ -16,29 +16,26 @@ for _paper in PAPERS:
         # update(): a failing job gets its last good outputs back from Snakemake instead
         # of losing them (as the solve jobs); it reruns while its inputs are newer
         output:
-            **({"table": str(artefact_table(RESULTS, _paper, CFG[_paper].artefacts))}
-               if ARTEFACTS else dict(
             table=update(f"{RESULTS}/{_paper}/tables/validation.csv"),
             claim=update(f"{RESULTS}/{_paper}/claim.json"),
             # the framework's cost tables (mechrepro.accuracy, mechrepro.costs)
             costs=[update(f"{RESULTS}/{_paper}/tables/{t}.csv")
-                   for t in CFG[_paper].framework_tables if t != "validation"])),
+                   for t in CFG[_paper].framework_tables if t != "validation"],
         params:
             paper=_paper,
             python=RUN["python"],
             results=lambda wc, output: str(Path(output.table).parents[2]),
             profile=RUN["profile"],
-            artefacts=" ".join(CFG[_paper].artefacts),
         log:
-            f"{RESULTS}/{_paper}/logs/validate{artefacts_tag(_paper)}.log",
+            f"{RESULTS}/{_paper}/logs/validate.log",
         benchmark:
-            f"{RESULTS}/{_paper}/benchmarks/validate{artefacts_tag(_paper)}.tsv"
+            f"{RESULTS}/{_paper}/benchmarks/validate.tsv"
         # above the solves (1): a paper whose runs are done is validated and drawn on the
         # next free core, so its figures appear while the slower papers still solve
         priority: 2
         shell:
             "{params.python} -m mechrepro.cli validate {params.paper} {params.results} "
-            "{input.config} {params.profile} {params.artefacts} > {log} 2>&1"
+            "{input.config} {params.profile} > {log} 2>&1"
 
 
 for _paper in PAPERS:
