@@ -136,7 +136,7 @@ def test_papers_are_discovered_from_their_files(config_copy):
 
 
 def test_an_artefact_alone_keeps_its_rows_and_exactly_the_runs_they_read():
-    """`--config artefacts=[fig07]` / `pytest -k chain_drive-fig07`: the rows of one figure,
+    """`mechrepro.cli artefact ... fig07` / `pytest -k chain_drive-fig07`: the rows of one figure,
     every run they read with its verdict variants, the same records, and nothing else."""
     from mechrepro.config import _variant_names
     from mechrepro.validation import for_artefacts
