@@ -67,8 +67,8 @@ def _reference_quasistatic(ref: str):
 
 
 def side_by_side(cfg, repeats, against="main"):
-    """The compiled Radau (radau.py) against scipy's Radau with the same compiled physics
-    (clearance.py), in one process; BDF, LSODA and RK45 run in scipy only."""
+    """The compiled Radau and RK45 (radau.py, rk45.py) against scipy's with the same
+    compiled physics (clearance.py), in one process; BDF and LSODA run in scipy only."""
     fb, _ = setup(cfg.runs["period_dynamic"])
     T = fb.period
     print("side by side (scipy -> compiled, best of repeats; the first compiled call is excluded)")
@@ -82,7 +82,7 @@ def side_by_side(cfg, repeats, against="main"):
                                                start=start, max_steps=steps, kernel=kernel)
         run("auto")
         t_old, r_old = best_of(lambda: run("scipy"), 1)
-        if method != "Radau":
+        if method not in dynamics.COMPILED:
             print(f"  {method:5s} rtol {rtol:.0e} {start:11s}: scipy {t_old:8.3f} s "
                   f"({r_old['steps']} steps)")
             continue

@@ -1,5 +1,5 @@
-"""The compiled Radau of joint_wear (radau.py) against scipy's, and the compiled physics
-(clearance.py) against the same source run as Python.
+"""The compiled Radau and RK45 of joint_wear (radau.py, rk45.py) against scipy's, and the
+compiled physics (clearance.py) against the same source run as Python.
 
 radau.py is scipy's Radau algorithm: over the first steps (a few: the step-size controller
 amplifies round-off quickly on the stiff contact) it takes the same steps with the same
@@ -49,6 +49,24 @@ def test_compiled_radau_steps_are_scipys(fb):
     assert b["t_reached"] == pytest.approx(a["t_reached"], rel=1e-8)
     assert a["t"].size == b["t"].size
     np.testing.assert_allclose(b["y"], a["y"], rtol=1e-8, atol=1e-12)
+
+
+def test_compiled_rk45_steps_are_scipys(fb):
+    """rk45.py is scipy's RK45: on the stiff contact's step budget (the cost-of-accuracy
+    study's explicit run) it takes the same steps with the same evaluations, and reaches
+    the same time to round-off amplified by the step-size controller."""
+    for budget, rel in ((200, 1e-14), (5000, 1e-8)):
+        a, b = (dynamics.simulate(fb, fb.period, 721, method="RK45", rtol=1e-5,
+                                  start="equilibrium", max_steps=budget, kernel=k)
+                for k in ("scipy", "auto"))
+        assert a["status"] == b["status"] == -2
+        assert a["steps"] == b["steps"] == budget and a["nfev"] == b["nfev"]
+        assert b["t_reached"] == pytest.approx(a["t_reached"], rel=rel)
+    # the dense output sampled where the budget reaches past a sample
+    a, b = (dynamics.simulate(fb, 2e-3, 41, method="RK45", rtol=1e-5, start="equilibrium",
+                              max_steps=5000, kernel=k) for k in ("scipy", "auto"))
+    assert a["t"].size == b["t"].size > 10
+    np.testing.assert_allclose(b["y"], a["y"], rtol=1e-7, atol=1e-12)
 
 
 def test_compiled_radau_period_within_tolerance(fb):

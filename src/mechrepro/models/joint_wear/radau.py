@@ -5,8 +5,9 @@ Why it stays: the dynamic period is a 4-state system integrated in a few hundred
 ~100 000 steps, and scipy's ``Radau`` spends ~0.6 ms of Python per step around ~1 us of
 arithmetic even with the compiled right-hand side and Jacobian of :mod:`.clearance`
 (``benchmarks/bench_joint_wear.py``: 5.4 ms vs 253 ms for the default period, 47x; the
-default profile integrates ~380 000 Radau steps, ~4 minutes of extra CPU).  Only Radau is
-kept compiled: BDF, LSODA and RK45 run in scipy (a few runs each).
+default profile integrates ~380 000 Radau steps, ~4 minutes of extra CPU).  RK45 has its
+compiled copy too (:mod:`.rk45`, which shares this module's start, norm and dense
+output sampling); BDF and LSODA run in scipy (a few runs each).
 
 The code is scipy 1.17's ``Radau`` (``scipy/integrate/_ivp/radau.py``, ``common.py``): the
 initial step, the simplified Newton iteration on the transformed collocation system, its
@@ -90,6 +91,20 @@ def initial_step(t0, y0, t_bound, f0, order, rtol, atol, p, nfev):
     else:
         h1 = (0.01 / max(d1, d2)) ** (1.0 / (order + 1))
     return min(100 * h0, h1, interval_length)
+
+@jit
+def start(p, t0, y0, t_bound, t_eval, order, rtol, atol):
+    """What an integrator does first: the samples with the first one filled, the state and
+    its derivative, the evaluation counter and scipy's initial step for ``order``."""
+    nfev = np.zeros(1, dtype=np.int64)
+    Yout = np.empty((t_eval.size, y0.size))
+    Yout[0] = y0
+    y = y0.copy()
+    f = np.empty(y0.size)
+    rhs_into(t0, y, p, f)
+    nfev[0] += 1
+    return Yout, y, f, nfev, initial_step(t0, y, t_bound, f, order, rtol, atol, p, nfev)
+
 
 @jit
 def lu_factor(A, piv):
@@ -190,16 +205,9 @@ def radau(p, t0, y0, t_bound, t_eval, rtol, atol, max_steps):
     """scipy Radau (analytic Jacobian, max_step inf) from t0 to t_bound, sampled at
     t_eval (t_eval[0] = t0).  Returns (Y, n_samples, nfev, steps, status, t)."""
     n = 4
-    nfev = np.zeros(1, dtype=np.int64)
-    Yout = np.empty((t_eval.size, n))
-    Yout[0] = y0
+    Yout, y, f, nfev, h_abs_s = start(p, t0, y0, t_bound, t_eval, 3, rtol, atol)
     kk = 1
-    y = y0.copy()
     t = t0
-    f = np.empty(n)
-    rhs_into(t, y, p, f)
-    nfev[0] += 1
-    h_abs_s = initial_step(t, y, t_bound, f, 3, rtol, atol, p, nfev)
     h_abs_old_s = -1.0
     error_norm_old_s = -1.0
     newton_tol = max(10 * EPS / rtol, min(0.03, rtol ** 0.5))
