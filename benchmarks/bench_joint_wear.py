@@ -67,8 +67,8 @@ def _reference_quasistatic(ref: str):
 
 
 def side_by_side(cfg, repeats, against="main"):
-    """The compiled Radau and RK45 (radau.py, rk45.py) against scipy's with the same
-    compiled physics (clearance.py), in one process; BDF and LSODA run in scipy only."""
+    """The compiled Radau, BDF and RK45 (radau.py, bdf.py, rk45.py) against scipy's with
+    the same compiled physics (clearance.py), in one process; LSODA runs in scipy only."""
     fb, _ = setup(cfg.runs["period_dynamic"])
     T = fb.period
     print("side by side (scipy -> compiled, best of repeats; the first compiled call is excluded)")

@@ -1,5 +1,5 @@
-"""The compiled Radau and RK45 of joint_wear (radau.py, rk45.py) against scipy's, and the
-compiled physics (clearance.py) against the same source run as Python.
+"""The compiled Radau, BDF and RK45 of joint_wear (radau.py, bdf.py, rk45.py) against
+scipy's, and the compiled physics (clearance.py) against the same source run as Python.
 
 radau.py is scipy's Radau algorithm: over the first steps (a few: the step-size controller
 amplifies round-off quickly on the stiff contact) it takes the same steps with the same
@@ -67,6 +67,24 @@ def test_compiled_rk45_steps_are_scipys(fb):
                               max_steps=5000, kernel=k) for k in ("scipy", "auto"))
     assert a["t"].size == b["t"].size > 10
     np.testing.assert_allclose(b["y"], a["y"], rtol=1e-7, atol=1e-12)
+
+
+def test_compiled_bdf_steps_are_scipys_and_its_period_within_tolerance(fb):
+    """bdf.py is scipy's BDF: over its first steps it takes scipy's steps with the same
+    evaluations (the order and step controller amplify round-off to ~1e-8 in the time
+    reached after 40 steps); over the whole period the mean contact force agrees within
+    the integrator tolerance."""
+    a, b = (dynamics.simulate(fb, fb.period, 721, method="BDF", rtol=1e-6,
+                              start="equilibrium", max_steps=40, kernel=k)
+            for k in ("scipy", "auto"))
+    assert a["status"] == b["status"] == -2
+    assert a["steps"] == b["steps"] == 40 and a["nfev"] == b["nfev"]
+    assert b["t_reached"] == pytest.approx(a["t_reached"], rel=1e-7)
+    a, b = (dynamics.simulate(fb, fb.period, 721, method="BDF", rtol=1e-6,
+                              start="equilibrium", kernel=k) for k in ("scipy", "auto"))
+    assert a["status"] == b["status"] == 0
+    assert abs(b["steps"] - a["steps"]) < 0.05 * a["steps"]
+    assert np.mean(b["F_N"]) == pytest.approx(np.mean(a["F_N"]), rel=1e-5)
 
 
 def test_compiled_radau_period_within_tolerance(fb):

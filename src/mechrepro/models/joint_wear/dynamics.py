@@ -2,10 +2,10 @@
 
 The right-hand side and its analytic contact Jacobian are :mod:`.clearance` (written once,
 compiled with numba where installed).  The integrators are scipy's (``Radau``, ``BDF``,
-``LSODA``, ``RK45``); Radau, the default and the pipeline's workhorse, and RK45, the
-explicit cost reference, run in compiled copies of scipy's algorithms (:mod:`.radau`,
-:mod:`.rk45`) when numba is installed (47x and 34x faster per period, the same steps to
-round-off).
+``LSODA``, ``RK45``); Radau, the default and the pipeline's workhorse, BDF and RK45, the
+cost-of-accuracy study's other stiff and explicit methods, run in compiled copies of scipy's
+algorithms (:mod:`.radau`, :mod:`.bdf`, :mod:`.rk45`) when numba is installed (47x, ~100x
+and 46x faster per period, the same steps to round-off); LSODA is scipy's.
 """
 from __future__ import annotations
 
@@ -47,7 +47,7 @@ def initial_state(fb: FourBar, start: str = "concentric", t0: float = 0.0):
 METHODS = ("Radau", "BDF", "LSODA", "RK45", "DOP853", "RK23")
 IMPLICIT = ("Radau", "BDF", "LSODA")
 #: the methods with a compiled copy of scipy's algorithm (the others step scipy's)
-COMPILED = ("Radau", "RK45")
+COMPILED = ("Radau", "BDF", "RK45")
 TOO_SMALL_STEP = "Required step size is less than spacing between numbers."
 
 
@@ -65,8 +65,8 @@ def simulate(fb: FourBar, t_end: float, n_out: int, method: str = "Radau",
     stops must not depend on the machine's load.
     status: 0 finished, -1 integrator failure, -2 step budget spent.
 
-    ``kernel``: ``"auto"`` runs Radau and RK45 in the compiled copies of :mod:`.radau` and
-    :mod:`.rk45` when numba is installed; ``"scipy"`` (and every other method, and
+    ``kernel``: ``"auto"`` runs the methods of :data:`COMPILED` in their compiled copies
+    when numba is installed; ``"scipy"`` (and every other method, and
     everything without numba) steps scipy's solver.  The two paths agree to round-off.
     """
     if method not in METHODS:
@@ -128,11 +128,13 @@ def _compiled(method, p, y0, t_eval, rtol, atol, max_steps) -> dict:
     """:func:`_scipy` for a method of :data:`COMPILED`, its compiled copy (one call)."""
     from mechrepro.timing import stopwatch
 
+    from .bdf import bdf
     from .radau import radau
     from .rk45 import rk45
 
     with stopwatch() as sw:
-        Yout, m, nfev, steps, status, t_reached = {"Radau": radau, "RK45": rk45}[method](
+        Yout, m, nfev, steps, status, t_reached = {"Radau": radau, "BDF": bdf,
+                                                   "RK45": rk45}[method](
             p, float(t_eval[0]), np.asarray(y0, float), float(t_eval[-1]), t_eval,
             float(rtol), np.asarray(atol, float), int(max_steps or 0))
     message = {0: "finished", -1: TOO_SMALL_STEP}.get(
@@ -160,6 +162,7 @@ def warm() -> None:
     if _WARM or not clearance.available():
         return
     from . import qs_numba as q
+    from .bdf import bdf
     from .radau import radau
     from .rk45 import rk45
 
@@ -167,6 +170,7 @@ def warm() -> None:
     y, te, at = np.zeros(4), np.zeros(1), np.ones(4)
     radau(p, 0.0, y, 0.0, te, 1e-5, at, 0)
     rk45(p, 0.0, y, 0.0, te, 1e-5, at, 0)
+    bdf(p, 0.0, y, 0.0, te, 1e-5, at, 0)
     clearance.history(te, np.zeros((4, 1)), p)
     clearance.rhs(0.0, y, clearance.flat(p))
     clearance.jac(0.0, y, clearance.flat(p))
