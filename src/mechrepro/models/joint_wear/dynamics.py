@@ -4,7 +4,7 @@ The right-hand side and its analytic contact Jacobian are :mod:`.clearance` (wri
 compiled with numba where installed).  The integrators are scipy's (``Radau``, ``BDF``,
 ``LSODA``, ``RK45``); Radau, the default and the pipeline's workhorse, BDF and RK45, the
 cost-of-accuracy study's other stiff and explicit methods, run in compiled copies of scipy's
-algorithms (:mod:`.radau`, :mod:`.bdf`, :mod:`.rk45`) when numba is installed (47x, ~100x
+algorithms (:mod:`.radau`, :mod:`.bdf`, :mod:`.rk45`) when numba is installed (47x, ~250x
 and 46x faster per period, the same steps to round-off); LSODA is scipy's.
 """
 from __future__ import annotations
