@@ -93,29 +93,25 @@ def snakemake(work, *args, check=True, env=None, base=SNAKEMAKE):
 
 
 def check_artefacts(work: Path, artefacts) -> tuple[Path, str]:
-    """What `python -m mechrepro.cli artefact` runs, in ``work`` (a copy of config/ and the
-    reference): the rows of ``artefacts`` (``chain_drive-fig05``) in
+    """What `python -m mechrepro.cli artefact` runs, in ``work`` (with a copy of config/):
+    the rows of ``artefacts`` (``chain_drive-fig05``) in
     ``work/results/<paper>/tables/validation-<artefacts>.csv``."""
     import contextlib
     import io
     import os
 
+    from mechrepro.inputs import read_yaml
     from mechrepro.validation import check_artefacts as check
 
     shutil.copytree(ROOT / "config", work / "config")
-    shutil.copytree(ROOT / "results" / "reference", work / "results" / "reference")
     here, log = os.getcwd(), io.StringIO()
     os.chdir(work)      # the config cache (.snakemake/mechrepro) goes to the copy
     try:
         with contextlib.redirect_stdout(log):
-            check(artefacts, "results", "config", "ci", read_yaml_papers(work))
+            check(artefacts, "results", "config", "ci", read_yaml("config/config.yaml")["papers"])
     finally:
         os.chdir(here)
     return work, log.getvalue()
-
-
-def read_yaml_papers(work: Path) -> list[str]:
-    return yaml.safe_load((work / "config" / "config.yaml").read_text())["papers"]
 
 
 @pytest.fixture(scope="session")
