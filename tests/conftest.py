@@ -30,6 +30,8 @@ def pytest_collection_modifyitems(config, items):
         group = "ci_pipeline" if "workflow" in getattr(item, "fixturenames", ()) else \
             item.nodeid.split("::")[0]
         item.add_marker(pytest.mark.xdist_group(group))
+        if group == "ci_pipeline":     # it reads a pipeline run: `-m "not slow"` leaves it out
+            item.add_marker(pytest.mark.slow)
         groups[item.nodeid] = group
     # the groups that run pipelines of their own go first (a worker takes groups in this
     # order): the other-platform ci run and the session's ci run start at once, one per
