@@ -17,8 +17,8 @@ def model(paper: str):
     """The model package of a paper.  One contract for every paper: ``compute(run)`` (the
     physics: what is timed) and ``variables(result, run) -> {name: var(...)}`` (what the
     run's file holds, labelled with :func:`mechrepro.units.var`; the framework packs it,
-    :func:`pack`); optionally ``warm()`` (load its compiled kernels; called once per solver
-    process, before the first timed run)."""
+    :func:`pack`); optionally ``warm(runs)`` (load the compiled kernels those runs use;
+    called once per solver process, before the first timed run)."""
     return importlib.import_module(f"mechrepro.models.{paper}")
 
 
@@ -153,7 +153,7 @@ def main(argv: list[str]) -> None:
     warm = getattr(model(paper), "warm", None)
     if warm is not None:
         t0 = time.perf_counter()
-        warm()
+        warm([cfg.runs[r] for r in names])
         print(f"[{paper}] compiled kernels loaded in {time.perf_counter() - t0:.3g} s", flush=True)
     # a marginal_cost: scene and its ablations, when this job solves them all, are timed
     # in alternation before the loop below packs and writes them
@@ -215,7 +215,7 @@ def solve_jobs(cfg, config_dir: str | Path, results: str | Path, cores: int = 2)
              for j in sorted(jobs, key=lambda j: -est.get(j, 0.0))]
     warm = getattr(model(cfg.paper), "warm", None)
     if warm is not None:     # once, before the fork: every job inherits the loaded kernels
-        warm()
+        warm(list(cfg.runs.values()))
     if cores > 1 and len(argvs) > 1:
         with multiprocessing.get_context("fork").Pool(min(cores, len(argvs))) as pool:
             list(pool.imap_unordered(main, argvs))

@@ -304,13 +304,18 @@ SOLVERS = {"impact_load": impact_load, "rigid_four_bar": rigid_four_bar,
            "manufactured": lambda run, prm, res: exact.manufactured_check(prm, res)}
 
 
-def warm() -> None:
-    """Load both compiled loops once per solver process (the runner calls this before the
-    first timed solve), so that no run's time carries numba's start."""
+def warm(runs=None) -> None:
+    """Load the compiled loops ``runs`` use (both without them) once per solver process
+    (the runner calls this before the first timed solve), so that no run's time carries
+    numba's start: the Galerkin RK4 for a galerkin run, the lane march for any other (a
+    job of march sweeps does not compile the RK4 on a fresh machine)."""
     from . import fd_kernel, galerkin_kernel
 
-    fd_kernel.warm()
-    galerkin_kernel.warm()
+    solvers = None if runs is None else {r.get("solver") for r in runs}
+    if solvers is None or solvers - {"galerkin"}:
+        fd_kernel.warm()
+    if solvers is None or "galerkin" in solvers:
+        galerkin_kernel.warm()
 
 
 def compute(run: dict) -> dict:

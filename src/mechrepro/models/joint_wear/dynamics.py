@@ -151,15 +151,21 @@ def contact_history(p: clearance.Params, T, Y) -> dict:
             "psi": np.angle(np.exp(1j * h[4])), "theta3": Y[0], "phi2": Y[1]}
 
 
-_WARM = False
+_WARM: set = set()     # what warm() has loaded in this process: "physics" and methods
 
 
-def warm() -> None:
-    """Load (or, on a fresh clone, compile) every compiled kernel once per process, with the
+def warm(methods=COMPILED) -> None:
+    """Load (or, on a fresh clone, compile) the compiled kernels once per process, with the
     argument types the solvers use, so that a period's measured time is the period's and
-    not numba's one-time start (~1 s per process).  Changes no result."""
-    global _WARM
-    if _WARM or not clearance.available():
+    not numba's one-time start (~1 s per process): the physics, the quasi-static stages,
+    Radau (every dynamic joint's default: constant_sensitivity steps it whatever the scene
+    names) and the other integrators of ``methods`` that are compiled (COMPILED).  An
+    integrator no run of the process steps is not compiled: on a fresh machine BDF alone
+    takes ~9 s to compile, RK45 ~5 s.  Changes no result."""
+    if not clearance.available():
+        return
+    todo = [m for m in COMPILED if m in {"Radau", *methods} and m not in _WARM]
+    if not todo and "physics" in _WARM:
         return
     from . import qs_numba as q
     from .bdf import bdf
@@ -168,9 +174,11 @@ def warm() -> None:
 
     p = clearance.Params(*np.ones(len(clearance.Params._fields)))
     y, te, at = np.zeros(4), np.zeros(1), np.ones(4)
-    radau(p, 0.0, y, 0.0, te, 1e-5, at, 0)
-    rk45(p, 0.0, y, 0.0, te, 1e-5, at, 0)
-    bdf(p, 0.0, y, 0.0, te, 1e-5, at, 0)
+    for m in todo:
+        {"Radau": radau, "BDF": bdf, "RK45": rk45}[m](p, 0.0, y, 0.0, te, 1e-5, at, 0)
+        _WARM.add(m)
+    if "physics" in _WARM:
+        return
     clearance.history(te, np.zeros((4, 1)), p)
     clearance.rhs(0.0, y, clearance.flat(p))
     clearance.jac(0.0, y, clearance.flat(p))
@@ -181,4 +189,4 @@ def warm() -> None:
     q.direction(ang)
     q.contact_angle(ang, a)
     q.steps(np.zeros((2, 2)))
-    _WARM = True
+    _WARM.add("physics")

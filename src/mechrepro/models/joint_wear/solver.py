@@ -414,17 +414,22 @@ SOLVERS = {"clearance_implicit": clearance_implicit, "clearance_explicit": clear
            "constant_sensitivity": constant_sensitivity, "local_wear": local_wear}
 
 
-def warm() -> None:
-    """Load the compiled kernels once per solver process; the runner calls this before the
-    first timed run, so that no run's time carries numba's start."""
-    dynamics.warm()
+def _methods(runs) -> set:
+    return {r.get("resolution", {}).get("method") for r in runs}
+
+
+def warm(runs=None) -> None:
+    """Load the compiled kernels ``runs`` use (all without them) once per solver process;
+    the runner calls this before the first timed run, so that no run's time carries numba's
+    start."""
+    dynamics.warm(dynamics.COMPILED if runs is None else _methods(runs))
 
 
 def compute(run: dict) -> dict:
     """The physics of one run (what the runner times): the scene's solver.  The compiled
-    kernels are loaded first (once per process), so that no measured period carries
-    numba's start."""
-    dynamics.warm()
+    kernels it uses are loaded first (once per process; the runner has, see warm), so that
+    no measured period carries numba's start."""
+    dynamics.warm(_methods([run]))
     return SOLVERS[run["solver"]](run)
 
 

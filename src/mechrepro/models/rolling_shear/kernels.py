@@ -37,8 +37,8 @@ def kernel(name: str):
     return getattr(chosen(), name)
 
 
-def warm() -> None:
-    """Load every kernel (numba's disk cache, or a compile) by calling it once on tiny
+def warm(runs=None) -> None:
+    """Load every kernel (whatever ``runs`` use: they are small) (numba's disk cache, or a compile) by calling it once on tiny
     inputs of the production types, so that this one-time cost of a process (~0.2-0.5 s)
     is paid at import, not inside the first timed solve (it would inflate e.g. the first
     selPSO run's time per solve).  Nothing is computed that a run uses."""
