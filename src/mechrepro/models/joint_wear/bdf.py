@@ -75,8 +75,8 @@ def bdf(p, t0, y0, t_bound, t_eval, rtol, atol, max_steps):
     """scipy BDF (analytic Jacobian, max_step inf) from ``t0`` to ``t_bound``, sampled at
     ``t_eval``; ``(Yout, samples filled, nfev, steps, status, t reached)`` as :func:`.radau.radau`."""
     n = 4
-    Yout, y0, f, nfev, h_abs_s = start(p, t0, y0, t_bound, t_eval, 1, rtol, atol)
-    kk = 1
+    Yout, y0, f, nfev, h_abs_s = start(p, t0, y0, t_bound, t_eval, np.int64(1), rtol, atol)
+    kk = np.int64(1)     # typed, not a Literal: one compiled sample() per integrator
     t = t0
     newton_tol = max(10 * EPS / rtol, min(0.03, rtol ** 0.5))
     J = np.empty((n, n))
@@ -85,7 +85,7 @@ def bdf(p, t0, y0, t_bound, t_eval, rtol, atol, max_steps):
     for r in range(n):
         D[0, r] = y0[r]
         D[1, r] = f[r] * h_abs_s
-    order_s = 1
+    order_s = np.int64(1)
     n_equal_steps = 0
     have_lu = False
     LU = np.empty((n, n))

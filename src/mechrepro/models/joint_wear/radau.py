@@ -205,8 +205,10 @@ def radau(p, t0, y0, t_bound, t_eval, rtol, atol, max_steps):
     """scipy Radau (analytic Jacobian, max_step inf) from t0 to t_bound, sampled at
     t_eval (t_eval[0] = t0).  Returns (Y, n_samples, nfev, steps, status, t)."""
     n = 4
-    Yout, y, f, nfev, h_abs_s = start(p, t0, y0, t_bound, t_eval, 3, rtol, atol)
-    kk = 1
+    # the order typed (int64, not a numba Literal): start and initial_step are compiled once
+    # for the three integrators instead of once per order
+    Yout, y, f, nfev, h_abs_s = start(p, t0, y0, t_bound, t_eval, np.int64(3), rtol, atol)
+    kk = np.int64(1)     # typed, not a Literal: one compiled sample() per integrator
     t = t0
     h_abs_old_s = -1.0
     error_norm_old_s = -1.0

@@ -48,8 +48,8 @@ def rk45(p, t0, y0, t_bound, t_eval, rtol, atol, max_steps):
     """Integrate from ``t0`` to ``t_bound`` (``max_steps`` > 0: stop after that many steps);
     ``(Yout, samples filled, nfev, steps, status, t reached)`` as :func:`.radau.radau`."""
     n = y0.size
-    Yout, y, f, nfev, h_abs = start(p, t0, y0, t_bound, t_eval, 4, rtol, atol)
-    kk = 1
+    Yout, y, f, nfev, h_abs = start(p, t0, y0, t_bound, t_eval, np.int64(4), rtol, atol)
+    kk = np.int64(1)     # typed, not a Literal: one compiled sample() per integrator
     t = t0
     K = np.empty((7, n))
     yi = np.empty(n)
