@@ -65,3 +65,17 @@ def test_content_cut_by_the_canvas_edge_is_kept(tmp_path):
     fig.savefig(tmp_path / "tight.png", bbox_inches="tight")
     assert _png(tmp_path / "fig.png").shape == _png(tmp_path / "tight.png").shape
     plt.close(fig)
+
+
+def test_an_annotation_wholly_below_the_canvas_is_kept(tmp_path):
+    # as accuracy.plot's NOT CONVERGED note under the x label: no pixel of it on the canvas,
+    # so no drawn content at the edge to say it is there
+    fig = _figure()
+    ax = fig.axes[0]
+    ax.annotate("a note far below", xy=(0.0, 0.0), xycoords="axes fraction", xytext=(0, -200),
+                textcoords="offset points", va="top")
+    assert content_crop(fig) is None
+    height = fig.canvas.get_width_height()[1]
+    savefig(fig, tmp_path / "fig.png", close=False)
+    assert _png(tmp_path / "fig.png").shape[0] > height + 100
+    plt.close(fig)

@@ -14,6 +14,10 @@ import numpy as np  # noqa: E402
 from .io import atomic_path  # noqa: E402
 
 plt.rcParams.update({"figure.dpi": 110, "savefig.dpi": 110, "font.size": 9,
+                     # room for the x label below the axes (0.11 leaves ~0.4 in: on the figures
+                     # 3.6-4 in high the label crossed the canvas edge, and a figure whose content
+                     # crosses it is drawn twice, see content_crop)
+                     "figure.subplot.bottom": 0.14,
                      "axes.grid": True, "grid.alpha": 0.3})
 
 
@@ -30,7 +34,7 @@ def _figure_level_extents(fig, renderer):
 def content_crop(fig, pad_inches: float | None = None):
     """Draw ``fig`` once and return its RGBA pixels cropped to the drawn content plus
     ``pad_inches`` (savefig.pad_inches), or None when content may lie outside the canvas
-    (drawn content touching its edge, or a legend or figure text beyond it).
+    (drawn content touching its edge, or a legend, figure text or axes text beyond it).
 
     This is ``bbox_inches="tight"`` measured on the pixels already drawn: matplotlib's
     tight bbox needs a layout pass over every tick label before the drawing pass (~40 %
@@ -45,6 +49,15 @@ def content_crop(fig, pad_inches: float | None = None):
         if bb.x0 < 0 or bb.y0 < 0 or bb.x1 > w or bb.y1 > h:
             return None
     fig.canvas.draw()
+    # an axes' text wholly outside the canvas leaves no pixel at its edge (accuracy.plot's
+    # NOT CONVERGED note under an axis label was cut off so): found by its extent, read
+    # after the draw has placed it
+    for ax in fig.axes:
+        for t in ax.texts:
+            if t.get_visible() and t.get_text():
+                bb = t.get_window_extent(renderer)
+                if bb.x0 < 0 or bb.y0 < 0 or bb.x1 > w or bb.y1 > h:
+                    return None
     img = np.asarray(fig.canvas.buffer_rgba())
     h, w = img.shape[:2]
     background = img[0, 0]
