@@ -38,10 +38,11 @@ def kernel(name: str):
 
 
 def warm(runs=None) -> None:
-    """Load every kernel (whatever ``runs`` use: they are small) (numba's disk cache, or a compile) by calling it once on tiny
-    inputs of the production types, so that this one-time cost of a process (~0.2-0.5 s)
-    is paid at import, not inside the first timed solve (it would inflate e.g. the first
-    selPSO run's time per solve).  Nothing is computed that a run uses."""
+    """Load every kernel, whatever ``runs`` use (they are small), from numba's disk cache or
+    by a compile, calling each once on tiny inputs of the production types, so that this
+    one-time cost of a process (~0.2-0.5 s) is paid before the first timed solve, not inside
+    it (it would inflate e.g. the first selPSO run's time per solve).  Nothing is computed
+    that a run uses."""
     if not available():
         return
     from .selpso import iterate
