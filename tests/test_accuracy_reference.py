@@ -87,12 +87,14 @@ def test_a_monotone_convergent_sequence_gets_its_error_and_is_proven_where_it_ho
     error h_ref^p within a factor 2 (the order is measured).  It is proven where that is
     below the finest level's error, i.e. where the last ratio r has r^p > 2: at orders 2
     and 4, not at 0.5 and 1, where the finest run is not more accurate than the level before
-    it by as much as that level's error."""
+    it by as much as that level's error.  At order 1 and ratio 2 the estimate equals that
+    error in exact arithmetic: a tie is no proof, whichever side of it round-off falls on
+    (this CPU's libm put it 1 ulp below, and the test failed there only)."""
     h, err, h_ref = finest(1.0 + (1.0 / np.asarray(n, float)) ** p, n)
     ref = assess("finest", h, err, h_ref)
     assert ref.why.startswith("Richardson"), ref.why
     assert 0.5 < ref.error / h_ref ** p < 2.0, (ref.error, h_ref ** p)
-    assert ref.proven == (p >= 2) == (ref.error < err.min())
+    assert ref.proven == (p >= 2) == (ref.error < (1 - 1e-6) * err.min())
 
 
 @pytest.mark.parametrize("q, why", [

@@ -101,6 +101,15 @@ def curve_order(h, err) -> float:
 
 
 MARGIN = 10.0   # a level within 10x the noise floor may owe a tenth of its error to noise
+# a reference error proven below a curve's smallest error must be below it by more than the
+# round-off of the estimate: an estimate that equals that error in exact arithmetic (order 1
+# halved once more: e/(2 - 1) = e) came out 1 ulp below it on one CPU and 1 ulp above on another
+PROOF_RTOL = 1e-9
+
+
+def _below(est: float, err) -> bool:
+    """Whether ``est`` is below every error in ``err`` by more than round-off."""
+    return bool(len(err)) and bool(est < (1.0 - PROOF_RTOL) * float(np.min(err)))
 
 
 def _coarse_to_fine(h, err):
@@ -180,7 +189,7 @@ def assess(reference: str, h, err, h_ref: float | None = None, given: float | No
     h, err = _coarse_to_fine(h, err)
     if given is not None:     # made from another sequence: its proof is the quantity's
         est, e = max(float(given), float(floor)), err[err > MARGIN * floor]
-        return Reference(est, bool(len(e) and est < e.min()), float(floor),
+        return Reference(est, _below(est, e), float(floor),
                          f"error {float(given):.2g} given by the quantity")
     measured, h_stall = noise_floor(h, err)
     F = max(measured, float(floor))
@@ -225,14 +234,14 @@ def assess(reference: str, h, err, h_ref: float | None = None, given: float | No
         if np.isfinite(p) and p > 0 and r > 1:
             est = ea[-1] / (r ** p - 1.0)
     elif reference == "finest" and len(ha) == 1 and band >= 2:
-        return Reference(F, bool(F < ea[0]), F,
+        return Reference(F, _below(F, ea[:1]), F,
                          f"reached its {where} from the second level on and stayed there")
     if not np.isfinite(est):
         return Reference(float("nan"), False, F,
                          f"NOT CONVERGED: {len(ea)} level(s) above the band of the {where}: "
                          f"no observed order")
     est = float(max(est, F))
-    return Reference(est, bool(est < ea.min()), F,
+    return Reference(est, _below(est, ea), F,
                      f"Richardson at observed order {p:.2g} from {len(ea)} levels; {where}")
 
 
