@@ -55,15 +55,16 @@ def test_floquet_multiplier_is_the_measured_growth_per_period(fig09a, rpm):
 
 def test_fig09a_band_below_the_elastic_resonance_and_map_unchanged_by_a_finer_grid(fig09a):
     """The principal parametric band just below omega_c2 (issue 25/26: 1210.9-1211.8 rpm by
-    the march) is found from the coarse initial grid, with the same edges (within the
-    bisection width) from a grid 1.5x finer."""
+    the march) is found from the scene's initial grid, with the same edges (within the
+    bisection width) from a grid twice as fine."""
     run, prm, res = fig09a
     window = run["options"]["speed_window_elastic"]
     prm["speed_min"], prm["speed_max"] = solver.elastic_speed_window(prm, window)
     sigma = prm["transverse_damping"] / (2 * prm["mass_per_length"])
     bands = []
     with threadpool_limits(1):
-        for n in (100, 150):
+        n0 = int(res["n_speeds"])
+        for n in (n0, 2 * n0):
             om = solver.dense_near_elastic(run, prm, span.speed_axis(prm, n), 0.01, n)
             w, sols, done = shooting.adaptive_sweep(
                 lambda v: shooting.periodic_solution(run, prm, v, res), om,
