@@ -410,9 +410,11 @@ VERDICT_KINDS = ("compare", "bound", "check")
 # the two coarser ones (Richardson; Roache's grid convergence index), so the re-checks cost
 # a fraction of the baseline instead of a multiple of it.
 LEVELS = {"coarsest": 2, "coarser": 1}
-# the level a falsifier's run is made at (docs/VALIDATION.md, falsifiers): the change must
-# make a check fail that passes there without it, which one level below shows as well
-FALSIFIER_LEVEL = "coarser"
+# the level a falsifier's run and a range end's run are made at (docs/VALIDATION.md): a
+# falsifier must make a check fail that passes there without it, and a range end moves the
+# value by what it moves the value at that level (validation._row); one level below shows
+# either as well as the baseline would, at a fraction of its cost
+VARIANT_LEVEL = "coarser"
 
 
 def _check_effects(raw: dict, where: str) -> None:
@@ -668,16 +670,20 @@ def _add_variants(cfg: PaperConfig, raw: dict, run_schema: dict, where: str) -> 
         cfg.variant_info[variant] = {"kind": kind, "parameters": overrides, "label": label}
         for name, quantities in sorted(names.items()):
             why = f"variant {variant} of {name!r}, needed by {', '.join(quantities)}"
-            # a falsifier runs at FALSIFIER_LEVEL where every row reading it has levels
-            # (validation._row compares it with the check at that same level)
-            at = (FALSIFIER_LEVEL if kind == "falsifier"
+            # a falsifier or a range end runs at VARIANT_LEVEL where every row reading it
+            # has levels (validation._row compares it with the check at that same level)
+            at = (VARIANT_LEVEL if kind in ("falsifier", "range")
                   and all(cfg.reported[q].get("levels", True) for q in quantities) else None)
             # a variant identical to the baseline (a range end equal to the value) is not
             # re-run: the validation reads the baseline run for it
             try:
                 base = members(name, quantities)
-                runs = [_variant_run(raw, cfg.runs[run], variant, run_schema, where, why, at)
-                        for run in base]
+                runs = [_variant_run(raw, cfg.runs[run], variant, run_schema, where, why,
+                                     at if kind == "falsifier" else None) for run in base]
+                if at and kind == "range" and any(_differs(vr, cfg.runs[r])
+                                                  for vr, r in zip(runs, base)):
+                    runs = [_variant_run(raw, cfg.runs[run], variant, run_schema, where, why,
+                                         at) for run in base]
             except ConfigError as exc:
                 if variant not in LEVELS:
                     raise
@@ -746,8 +752,9 @@ def _refined(raw, base: dict, variant: str, where: str, why: str) -> dict:
 
 def _variant_run(raw, base: dict, variant: str, run_schema, where, why,
                  at: str | None = None) -> dict:
-    """The run record of ``variant`` of run ``base``; a falsifier ``at`` a level runs at that
-    level's resolution, or at the baseline's where the run schema refuses the level."""
+    """The run record of ``variant`` of run ``base``; a falsifier or a range end ``at`` a
+    level runs at that level's resolution, or at the baseline's where the run schema refuses
+    the level."""
     scene = raw["scenes"][base["scene"]]
     resolution = copy.deepcopy(base["resolution"])
     params = {k: v["value"] for k, v in raw["parameters"].items()}
@@ -774,7 +781,7 @@ def _variant_run(raw, base: dict, variant: str, run_schema, where, why,
                        if p not in scene.get("parameters", {}) and p not in base["sweep"]})
     record = {"effects": effects, "resolution": resolution, "parameters": params,
               "options": options}
-    if kind == "falsifier" and at:
+    if kind in ("falsifier", "range") and at:
         try:
             coarse = _refined(raw, base, at, where, why)
             _validate({**record, "resolution": coarse}, run_schema, f"{where} ({why})")

@@ -462,7 +462,8 @@ def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]
     seeds = by_kind.get("seed", [])
     if seeds and numeric:
         error += max(abs(c[2] - row.value) for c in seeds)
-    for c in seeds + by_kind.get("range", []):
+    for c in seeds + [_range_end(c, _level_of(info, c[0], spec), levels, row, spec, numeric)
+                      for c in by_kind.get("range", [])]:
         if c[3] != base_status:
             flips.append(f"{c[3]} {c[4]}: {_fmt_short(c[2])}")
     fam = [c for c in by_kind.get("family", [])]
@@ -496,8 +497,7 @@ def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]
     fal = by_kind.get("falsifier", [])
     # the level the falsifier ran at (config._add_variants): the check must pass there
     # without the model change for the change to be what makes it fail
-    at = {info[c[0]].get("level_of", {}).get(n) for c in fal for n in spec["reads"]} - {None}
-    at = next(iter(at), None)
+    at = _level_of(info, fal[0][0], spec) if fal else None
     if fal:
         c = fal[0]
         row.falsifier = (f"{spec['falsifier']}: {c[3]} ({_fmt_short(c[2])})"
@@ -520,6 +520,34 @@ def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]
                                             f"{at} level, where the check without it gives "
                                             f"{got}, not a pass: not counted.") if x)
     return row
+
+
+def _level_of(info: dict, variant: str, spec: dict) -> str | None:
+    """The resolution level a variant of the row's reads ran at (config._add_variants),
+    None at the baseline's."""
+    return next(iter({info[variant].get("level_of", {}).get(n) for n in spec["reads"]}
+                     - {None}), None)
+
+
+def _range_end(c: tuple, at: str | None, levels: dict, row: Row, spec: dict,
+               numeric: bool) -> tuple:
+    """A range end's check, as the baseline would give it.  Run at the level ``at``
+    (config.VARIANT_LEVEL), a numeric row's range end moves the baseline's value by what
+    it moves the value at that level, v + (v_end - v_level), and is judged there; a worded
+    check must give the baseline's status at that level as the level itself must.  The
+    shift is the constant's effect, the level's own error cancels in it.  The check (its
+    value, status and label) replaces the range end's own in ``row.checks``."""
+    if at is None:
+        return c
+    ref = levels.get(at)
+    if ref is None or not numeric or not (math.isfinite(c[2]) and math.isfinite(ref[2])):
+        return c
+    value = row.value + (c[2] - ref[2])
+    out = (c[0], c[1], value, verdict(spec, value),
+           f"{c[4]}: the baseline moved by its shift at the {at} level "
+           f"({_fmt_short(ref[2])} -> {_fmt_short(c[2])})")
+    row.checks[row.checks.index(c)] = out
+    return out
 
 
 def _skipped_why(cfg, variant: str, spec: dict) -> str:
