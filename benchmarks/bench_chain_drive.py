@@ -358,8 +358,15 @@ def _top_peaks(sp, amp, un, k: int = 3):
 
 
 def _bands(sp, un):
-    e = np.flatnonzero(np.diff(un.astype(int)))
-    return [(round(float(sp[j]), 1), round(float(sp[j + 1]), 1)) for j in e]
+    """The unstable bands of a sampled stability map: (first, last) unstable speed of each
+    run of consecutive unstable samples (it printed the edges' brackets before, which read
+    as two one-point bands for Fig. 9a's one band)."""
+    idx = np.flatnonzero(un)
+    if not idx.size:
+        return []
+    cut = np.flatnonzero(np.diff(idx) > 1)
+    return [(round(float(sp[a]), 1), round(float(sp[b]), 1))
+            for a, b in zip(np.r_[idx[0], idx[cut + 1]], np.r_[idx[cut], idx[-1]])]
 
 
 def shooting_vs_march(profile: str, scene: str = "fig09a", n_uniform: int = 450,
