@@ -462,8 +462,10 @@ def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]
     seeds = by_kind.get("seed", [])
     if seeds and numeric:
         error += max(abs(c[2] - row.value) for c in seeds)
-    for c in seeds + [_range_end(c, _level_of(info, c[0], spec), levels, row, spec, numeric)
-                      for c in by_kind.get("range", [])]:
+    moved = {c: _range_end(c, _level_of(info, c[0], spec), levels, row.value, spec, numeric)
+             for c in by_kind.get("range", [])}
+    row.checks = [moved.get(c, c) for c in row.checks]
+    for c in seeds + list(moved.values()):
         if c[3] != base_status:
             flips.append(f"{c[3]} {c[4]}: {_fmt_short(c[2])}")
     fam = [c for c in by_kind.get("family", [])]
@@ -529,25 +531,21 @@ def _level_of(info: dict, variant: str, spec: dict) -> str | None:
                      - {None}), None)
 
 
-def _range_end(c: tuple, at: str | None, levels: dict, row: Row, spec: dict,
+def _range_end(c: tuple, at: str | None, levels: dict, base: float, spec: dict,
                numeric: bool) -> tuple:
-    """A range end's check, as the baseline would give it.  Run at the level ``at``
-    (config.VARIANT_LEVEL), a numeric row's range end moves the baseline's value by what
-    it moves the value at that level, v + (v_end - v_level), and is judged there; a worded
-    check must give the baseline's status at that level as the level itself must.  The
-    shift is the constant's effect, the level's own error cancels in it.  The check (its
-    value, status and label) replaces the range end's own in ``row.checks``."""
-    if at is None:
-        return c
-    ref = levels.get(at)
+    """A range end's check (variant, kind, value, status, label) as the baseline ``base``
+    would give it.  Run at the level ``at`` (config.VARIANT_LEVEL), a numeric row's range
+    end moves the baseline by what it moves the value at that level, v + (v_end - v_level),
+    and is judged there: the shift is the constant's effect, the level's own error cancels
+    in it.  A worded check is its own status at that level, which must be the baseline's
+    (as the level's own must)."""
+    ref = levels.get(at) if at else None
     if ref is None or not numeric or not (math.isfinite(c[2]) and math.isfinite(ref[2])):
         return c
-    value = row.value + (c[2] - ref[2])
-    out = (c[0], c[1], value, verdict(spec, value),
-           f"{c[4]}: the baseline moved by its shift at the {at} level "
-           f"({_fmt_short(ref[2])} -> {_fmt_short(c[2])})")
-    row.checks[row.checks.index(c)] = out
-    return out
+    value = base + (c[2] - ref[2])
+    return (c[0], c[1], value, verdict(spec, value),
+            f"{c[4]}: the baseline moved by its shift at the {at} level "
+            f"({_fmt_short(ref[2])} -> {_fmt_short(c[2])})")
 
 
 def _skipped_why(cfg, variant: str, spec: dict) -> str:
