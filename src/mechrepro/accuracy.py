@@ -377,9 +377,9 @@ def target_rows(cfg, root) -> list[dict]:
     """``tables/accuracy_targets.csv``: per scene run with a ``target:``, what was asked
     (absolute), estimated (Richardson), verified (against ``exact``), the knob value chosen
     and its solve time, next to the scene's fixed default knob value's error and time."""
-    import xarray as xr
-
     from pathlib import Path
+
+    from .io import open_dataset
 
     out = []
     for name, run in cfg.runs.items():
@@ -387,7 +387,7 @@ def target_rows(cfg, root) -> list[dict]:
         path = Path(root) / "runs" / f"{name}.nc"
         if not t or not path.exists():
             continue
-        with xr.open_dataset(path) as ds:
+        with open_dataset(path) as ds:
             g = lambda k: float(ds[f"target_{k}"].values) if f"target_{k}" in ds else float("nan")  # noqa: E731
             out.append({"run": name, "quantity": t["quantity"], "reduce": t.get("reduce", "max"),
                         "knob": t["knob"], "extrapolated": bool(t.get("extrapolate")),

@@ -33,7 +33,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from .errors import Refusal
-from .io import write_json, write_text
+from .io import ENGINE, write_json, write_text
 from .registry import Registry
 
 COLUMNS = ["quantity", "source", "paper_value", "reproduced_value", "unit", "rel_error",
@@ -116,7 +116,7 @@ class ResultFiles:
 
         path = Path(path)
         if path not in self._open:
-            self._open[path] = xr.open_dataset(path, engine="netcdf4")
+            self._open[path] = xr.open_dataset(path, engine=ENGINE)
         return self._open[path]
 
     def derived(self, key, make):
