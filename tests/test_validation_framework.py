@@ -252,6 +252,43 @@ def test_a_range_end_runs_one_level_coarser_and_moves_the_baseline_by_its_shift(
     assert r.status == "inconclusive" and "fail" in " ".join(r.flips)
 
 
+def test_a_family_member_runs_one_level_coarser_and_moves_the_baseline_by_its_shift(
+        edit_config, tmp_path):
+    """As a range end: every member of a family a numeric row depends on runs at the
+    coarser level's resolution, and the row judges the baseline moved by the member's shift
+    at that level (the family's distribution is of those moved values)."""
+    def config(raw):
+        reported_config(raw)
+        ph = raw["parameters"]["textbook_phase"]
+        ph.pop("numerical")
+        ph.update(range=[-22.5, 22.5], range_why="one tooth")
+        raw["families"] = {"textbook": {"members": ["textbook_mass", "textbook_phase"],
+                                        "why": "Eq. (23)'s two unknowns", "samples": 2}}
+        raw["reported"]["load_max"]["depends_on"] = ["textbook"]
+        raw["reported"]["mass_claim"].pop("depends_on")     # a row without levels
+    cfg = load_paper(edit_config("saw_chain", config), "ci")
+    members = [v for v in cfg.variants if v.startswith("textbook-")
+               and f"fig07_fig08@{v}" in cfg.runs]
+    assert members
+    for v in members:
+        assert cfg.runs[f"fig07_fig08@{v}"]["resolution"] == cfg.runs["fig07_fig08@coarser"]["resolution"]
+        assert cfg.variant_info[v]["level_of"] == {"fig07_fig08": "coarser"}
+    results = tmp_path / "results"
+
+    def row(shift):
+        write_runs(cfg, results, lambda run: {"coarsest": 104.0, "coarser": 101.2}.get(
+            run.get("variant"), 100.2) + (101.2 - 100.2 + shift
+                                          if run.get("variant", "").startswith("textbook-") else 0.0))
+        return {r.quantity: r for r in build(cfg, quantities(), results)}["load_max"]
+    r = row(0.5)
+    assert r.status == "pass", r.flips
+    moved = [c for c in r.checks if c[0] in members]
+    assert moved and all(c[2] == pytest.approx(100.7) and c[3] == "pass" for c in moved)
+    assert all("shift at the coarser level" in c[4] for c in moved)
+    r = row(2.0)
+    assert r.status == "inconclusive" and "family textbook" in " ".join(r.flips)
+
+
 def test_a_family_is_checked_at_its_joint_corners_and_samples(edit_config, tmp_path):
     def fam(raw):
         reported_config(raw)

@@ -411,9 +411,9 @@ VERDICT_KINDS = ("compare", "bound", "check")
 # a fraction of the baseline instead of a multiple of it.
 LEVELS = {"coarsest": 2, "coarser": 1}
 # the level a falsifier's run and a range end's run are made at (docs/VALIDATION.md): a
-# falsifier must make a check fail that passes there without it, and a range end moves the
-# value by what it moves the value at that level (validation._row); one level below shows
-# either as well as the baseline would, at a fraction of its cost
+# falsifier must make a check fail that passes there without it, and a range end or a
+# family member moves the value by what it moves the value at that level (validation._row);
+# one level below shows either as well as the baseline would, at a fraction of its cost
 VARIANT_LEVEL = "coarser"
 
 
@@ -670,9 +670,10 @@ def _add_variants(cfg: PaperConfig, raw: dict, run_schema: dict, where: str) -> 
         cfg.variant_info[variant] = {"kind": kind, "parameters": overrides, "label": label}
         for name, quantities in sorted(names.items()):
             why = f"variant {variant} of {name!r}, needed by {', '.join(quantities)}"
-            # a falsifier or a range end runs at VARIANT_LEVEL where every row reading it
-            # has levels (validation._row compares it with the check at that same level)
-            at = (VARIANT_LEVEL if kind in ("falsifier", "range")
+            # a falsifier, a range end or a family member runs at VARIANT_LEVEL where every
+            # row reading it has levels (validation._row compares it with the check at that
+            # same level)
+            at = (VARIANT_LEVEL if kind in ("falsifier", "range", "family")
                   and all(cfg.reported[q].get("levels", True) for q in quantities) else None)
             # a variant identical to the baseline (a range end equal to the value) is not
             # re-run: the validation reads the baseline run for it
@@ -680,8 +681,8 @@ def _add_variants(cfg: PaperConfig, raw: dict, run_schema: dict, where: str) -> 
                 base = members(name, quantities)
                 runs = [_variant_run(raw, cfg.runs[run], variant, run_schema, where, why,
                                      at if kind == "falsifier" else None) for run in base]
-                if at and kind == "range" and any(_differs(vr, cfg.runs[r])
-                                                  for vr, r in zip(runs, base)):
+                if at and kind in ("range", "family") and any(_differs(vr, cfg.runs[r])
+                                                              for vr, r in zip(runs, base)):
                     runs = [_variant_run(raw, cfg.runs[run], variant, run_schema, where, why,
                                          at) for run in base]
             except ConfigError as exc:
@@ -752,9 +753,9 @@ def _refined(raw, base: dict, variant: str, where: str, why: str) -> dict:
 
 def _variant_run(raw, base: dict, variant: str, run_schema, where, why,
                  at: str | None = None) -> dict:
-    """The run record of ``variant`` of run ``base``; a falsifier or a range end ``at`` a
-    level runs at that level's resolution, or at the baseline's where the run schema refuses
-    the level."""
+    """The run record of ``variant`` of run ``base``; a falsifier, a range end or a family
+    member ``at`` a level runs at that level's resolution, or at the baseline's where the
+    run schema refuses the level."""
     scene = raw["scenes"][base["scene"]]
     resolution = copy.deepcopy(base["resolution"])
     params = {k: v["value"] for k, v in raw["parameters"].items()}
@@ -781,7 +782,7 @@ def _variant_run(raw, base: dict, variant: str, run_schema, where, why,
                        if p not in scene.get("parameters", {}) and p not in base["sweep"]})
     record = {"effects": effects, "resolution": resolution, "parameters": params,
               "options": options}
-    if kind in ("falsifier", "range") and at:
+    if kind in ("falsifier", "range", "family") and at:
         try:
             coarse = _refined(raw, base, at, where, why)
             _validate({**record, "resolution": coarse}, run_schema, f"{where} ({why})")

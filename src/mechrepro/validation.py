@@ -463,12 +463,12 @@ def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]
     if seeds and numeric:
         error += max(abs(c[2] - row.value) for c in seeds)
     moved = {c: _range_end(c, _level_of(info, c[0], spec), levels, row.value, spec, numeric)
-             for c in by_kind.get("range", [])}
+             for c in by_kind.get("range", []) + by_kind.get("family", [])}
     row.checks = [moved.get(c, c) for c in row.checks]
-    for c in seeds + list(moved.values()):
+    for c in seeds + [moved[c] for c in by_kind.get("range", [])]:
         if c[3] != base_status:
             flips.append(f"{c[3]} {c[4]}: {_fmt_short(c[2])}")
-    fam = [c for c in by_kind.get("family", [])]
+    fam = [moved[c] for c in by_kind.get("family", [])]
     if fam:
         names = sorted({c[0].rsplit("-", 1)[0] for c in fam})
         for name in names:
@@ -533,14 +533,16 @@ def _level_of(info: dict, variant: str, spec: dict) -> str | None:
 
 def _range_end(c: tuple, at: str | None, levels: dict, base: float, spec: dict,
                numeric: bool) -> tuple:
-    """A range end's check (variant, kind, value, status, label) as the baseline ``base``
-    would give it.  Run at the level ``at`` (config.VARIANT_LEVEL), a numeric row's range
-    end moves the baseline by what it moves the value at that level, v + (v_end - v_level),
-    and is judged there: the shift is the constant's effect, the level's own error cancels
-    in it.  A worded check is its own status at that level, which must be the baseline's
-    (as the level's own must)."""
+    """A range end's or family member's check (variant, kind, value, status, label) as the
+    baseline ``base`` would give it.  Run at the level ``at`` (config.VARIANT_LEVEL), a
+    numeric row's range end moves the baseline by what it moves the value at that level,
+    v + (v_end - v_level), and is judged there: the shift is the constants' effect, the
+    level's own error cancels in it.  A worded check is its own status at that level, which
+    must be the baseline's (as the level's own must); a member the model refuses (no value)
+    stays refused."""
     ref = levels.get(at) if at else None
-    if ref is None or not numeric or not (math.isfinite(c[2]) and math.isfinite(ref[2])):
+    if (ref is None or not numeric or c[3] == "excluded"
+            or not (math.isfinite(c[2]) and math.isfinite(ref[2]))):
         return c
     value = base + (c[2] - ref[2])
     return (c[0], c[1], value, verdict(spec, value),
