@@ -219,21 +219,46 @@ def test_a_falsifier_runs_one_level_coarser_where_the_check_passes_too(edit_conf
     assert "ran at the coarser level" in row.cells()[9]
 
 
-def test_a_range_end_runs_one_level_coarser_and_moves_the_baseline_by_its_shift(
-        edit_config, tmp_path):
-    """A range end's run is the coarser level's resolution; the row judges the baseline
-    moved by what the constant moves the value at that level: the level's own error
-    cancels (101.2 + 0.5 judged alone would fail the 1 % band, 100.2 + 0.5 passes), a
-    shift that takes the baseline out of the band flips the verdict.  (The baseline sits
-    at the upper end of textbook_mass: that end is the baseline run, read as it is.)"""
+def _range_ends(raw):
+    raw["reported"]["load_max"]["depends_on"] = ["textbook_mass"]
+    return "textbook_mass-"
+
+
+def textbook_family(raw, samples: int):
+    """textbook_mass and textbook_phase, Eq. (23)'s two unknowns, as one family."""
+    ph = raw["parameters"]["textbook_phase"]
+    ph.pop("numerical")
+    ph.update(range=[-22.5, 22.5], range_why="one tooth")
+    raw["families"] = {"textbook": {"members": ["textbook_mass", "textbook_phase"],
+                                    "why": "Eq. (23)'s two unknowns", "samples": samples}}
+
+
+def _family(raw):
+    textbook_family(raw, 2)
+    raw["reported"]["load_max"]["depends_on"] = ["textbook"]
+    raw["reported"]["mass_claim"].pop("depends_on")     # a row without levels
+    return "textbook-"
+
+
+@pytest.mark.parametrize("variants", [_range_ends, _family], ids=["range_end", "family"])
+def test_a_variant_of_an_assumed_constant_runs_one_level_coarser_and_moves_the_baseline(
+        edit_config, tmp_path, variants):
+    """A range end's or family member's run is the coarser level's resolution; the row
+    judges the baseline moved by what the constants move the value at that level: the
+    level's own error cancels (101.2 + 0.5 judged alone would fail the 1 % band, 100.2 +
+    0.5 passes), a shift that takes the baseline out of the band flips the verdict.  (The
+    baseline sits at the upper end of textbook_mass: that end is the baseline run, read as
+    it is.)"""
+    prefix = []
+
     def config(raw):
         reported_config(raw)
-        raw["reported"]["load_max"]["depends_on"] = ["textbook_mass"]
+        prefix.append(variants(raw))
     cfg = load_paper(edit_config("saw_chain", config), "ci")
-    ends = [v for v in ("textbook_mass-lo", "textbook_mass-hi")
-            if f"fig07_fig08@{v}" in cfg.runs]
-    assert ends
-    for v in ends:
+    names = [v for v in cfg.variants
+             if v.startswith(prefix[0]) and f"fig07_fig08@{v}" in cfg.runs]
+    assert names
+    for v in names:
         assert cfg.runs[f"fig07_fig08@{v}"]["resolution"] == cfg.runs["fig07_fig08@coarser"]["resolution"]
         assert cfg.variant_info[v]["level_of"] == {"fig07_fig08": "coarser"}
     results = tmp_path / "results"
@@ -241,62 +266,21 @@ def test_a_range_end_runs_one_level_coarser_and_moves_the_baseline_by_its_shift(
     def row(shift):
         write_runs(cfg, results, lambda run: {"coarsest": 104.0, "coarser": 101.2}.get(
             run.get("variant"), 100.2) + (101.2 - 100.2 + shift
-                                          if run.get("variant", "").startswith("textbook_mass") else 0.0))
+                                          if run.get("variant", "").startswith(prefix[0]) else 0.0))
         return {r.quantity: r for r in build(cfg, quantities(), results)}["load_max"]
     r = row(0.5)
     assert r.status == "pass", r.flips
-    moved = [c for c in r.checks if c[0] in ends]
+    moved = [c for c in r.checks if c[0] in names]
     assert moved and all(c[2] == pytest.approx(100.7) and c[3] == "pass" for c in moved)
     assert all("shift at the coarser level" in c[4] for c in moved)
     r = row(2.0)
     assert r.status == "inconclusive" and "fail" in " ".join(r.flips)
 
 
-def test_a_family_member_runs_one_level_coarser_and_moves_the_baseline_by_its_shift(
-        edit_config, tmp_path):
-    """As a range end: every member of a family a numeric row depends on runs at the
-    coarser level's resolution, and the row judges the baseline moved by the member's shift
-    at that level (the family's distribution is of those moved values)."""
-    def config(raw):
-        reported_config(raw)
-        ph = raw["parameters"]["textbook_phase"]
-        ph.pop("numerical")
-        ph.update(range=[-22.5, 22.5], range_why="one tooth")
-        raw["families"] = {"textbook": {"members": ["textbook_mass", "textbook_phase"],
-                                        "why": "Eq. (23)'s two unknowns", "samples": 2}}
-        raw["reported"]["load_max"]["depends_on"] = ["textbook"]
-        raw["reported"]["mass_claim"].pop("depends_on")     # a row without levels
-    cfg = load_paper(edit_config("saw_chain", config), "ci")
-    members = [v for v in cfg.variants if v.startswith("textbook-")
-               and f"fig07_fig08@{v}" in cfg.runs]
-    assert members
-    for v in members:
-        assert cfg.runs[f"fig07_fig08@{v}"]["resolution"] == cfg.runs["fig07_fig08@coarser"]["resolution"]
-        assert cfg.variant_info[v]["level_of"] == {"fig07_fig08": "coarser"}
-    results = tmp_path / "results"
-
-    def row(shift):
-        write_runs(cfg, results, lambda run: {"coarsest": 104.0, "coarser": 101.2}.get(
-            run.get("variant"), 100.2) + (101.2 - 100.2 + shift
-                                          if run.get("variant", "").startswith("textbook-") else 0.0))
-        return {r.quantity: r for r in build(cfg, quantities(), results)}["load_max"]
-    r = row(0.5)
-    assert r.status == "pass", r.flips
-    moved = [c for c in r.checks if c[0] in members]
-    assert moved and all(c[2] == pytest.approx(100.7) and c[3] == "pass" for c in moved)
-    assert all("shift at the coarser level" in c[4] for c in moved)
-    r = row(2.0)
-    assert r.status == "inconclusive" and "family textbook" in " ".join(r.flips)
-
-
 def test_a_family_is_checked_at_its_joint_corners_and_samples(edit_config, tmp_path):
     def fam(raw):
         reported_config(raw)
-        ph = raw["parameters"]["textbook_phase"]
-        ph.pop("numerical")
-        ph.update(range=[-22.5, 22.5], range_why="one tooth")
-        raw["families"] = {"textbook": {"members": ["textbook_mass", "textbook_phase"],
-                                        "why": "Eq. (23)'s two unknowns", "samples": 3}}
+        textbook_family(raw, 3)
         raw["reported"]["mass_claim"]["depends_on"] = ["textbook"]
     cfg = load_paper(edit_config("saw_chain", fam), "ci")
     members = sorted(v for v in cfg.variants if v.startswith("textbook-"))
