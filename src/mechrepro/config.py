@@ -410,10 +410,11 @@ VERDICT_KINDS = ("compare", "bound", "check")
 # the two coarser ones (Richardson; Roache's grid convergence index), so the re-checks cost
 # a fraction of the baseline instead of a multiple of it.
 LEVELS = {"coarsest": 2, "coarser": 1}
-# the level a falsifier's run and a range end's run are made at (docs/VALIDATION.md): a
-# falsifier must make a check fail that passes there without it, and a range end or a
-# family member moves the value by what it moves the value at that level (validation._row);
-# one level below shows either as well as the baseline would, at a fraction of its cost
+# the level a falsifier's, a range end's and a family member's run are made at
+# (docs/VALIDATION.md): a falsifier must make a check fail that passes there without it,
+# and a range end or a family member moves the value by what it moves the value at that
+# level (validation._row); one level below shows either as well as the baseline would, at
+# a fraction of its cost
 VARIANT_LEVEL = "coarser"
 
 

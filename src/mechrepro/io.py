@@ -138,13 +138,13 @@ def provenance_attrs(run: dict) -> dict:
     }
 
 
-# config spellings that UDUNITS (and so the CF checker) does not know
 # every result is written as netCDF-3 by scipy's writer (:func:`write_dataset`) and read back
 # by the same library: 7-9 ms per run file against 11-15 ms through netCDF4/HDF5 (the
 # ~650 runs of a default run, read by gather, validation and notebooks), the decoded
 # datasets identical (xarray's ``identical``) on every file of a default run tried
 ENGINE = "scipy"
 
+# config spellings that UDUNITS (and so the CF checker) does not know
 CF_UNITS = {"deg": "degree", "r/min": "rpm", "HB": "kgf/mm2", "bool": "1"}
 
 
