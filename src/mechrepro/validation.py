@@ -462,7 +462,7 @@ def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]
     seeds = by_kind.get("seed", [])
     if seeds and numeric:
         error += max(abs(c[2] - row.value) for c in seeds)
-    moved = {c: _range_end(c, _level_of(info, c[0], spec), levels, row.value, spec, numeric)
+    moved = {c: _at_baseline(c, _level_of(info, c[0], spec), levels, row.value, spec, numeric)
              for c in by_kind.get("range", []) + by_kind.get("family", [])}
     row.checks = [moved.get(c, c) for c in row.checks]
     for c in seeds + [moved[c] for c in by_kind.get("range", [])]:
@@ -531,7 +531,7 @@ def _level_of(info: dict, variant: str, spec: dict) -> str | None:
                      - {None}), None)
 
 
-def _range_end(c: tuple, at: str | None, levels: dict, base: float, spec: dict,
+def _at_baseline(c: tuple, at: str | None, levels: dict, base: float, spec: dict,
                numeric: bool) -> tuple:
     """A range end's or family member's check (variant, kind, value, status, label) as the
     baseline ``base`` would give it.  Run at the level ``at`` (config.VARIANT_LEVEL), a
