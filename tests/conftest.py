@@ -1,3 +1,4 @@
+import os
 import shutil
 import sys
 from pathlib import Path
@@ -114,6 +115,31 @@ def check_artefacts(work: Path, artefacts) -> tuple[Path, str]:
     finally:
         os.chdir(here)
     return work, log.getvalue()
+
+
+def one_paper_pipeline(tmp_path_factory, papers: str, dst: Path) -> tuple[Path, str]:
+    """A copy in ``dst`` of the ci pipeline of ``papers`` (`papers=[saw_chain]`), run once
+    per test session whichever xdist worker asks first: the fault and reliability tests
+    each break a copy of saw_chain's (13-16 s to run), and built twice it was run twice.
+    The copy keeps the time stamps (a moved project with its results schedules nothing:
+    test_faults), so the copy is as the run left it."""
+    import fcntl
+
+    base = tmp_path_factory.getbasetemp()
+    # the workers' base directories share one parent per session (pytest-N/popen-gwK);
+    # without xdist the base itself is the session's
+    shared = base.parent if os.environ.get("PYTEST_XDIST_WORKER") else base
+    built = shared / f"pipeline-{papers.replace(',', '+')}"
+    log = built.with_suffix(".log")           # written last: the run finished
+    with open(built.with_suffix(".lock"), "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)      # the other workers wait for the one building
+        if not log.exists():
+            shutil.rmtree(built, ignore_errors=True)
+            built.mkdir()
+            copy_workflow(built)
+            log.write_text(snakemake(built, base=[*SNAKEMAKE, f"papers=[{papers}]"]))
+    shutil.copytree(built, dst, symlinks=True, dirs_exist_ok=True)
+    return dst, log.read_text()
 
 
 @pytest.fixture(scope="session")

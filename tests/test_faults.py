@@ -39,9 +39,9 @@ def snakemake(work, *args, check=True):
 if ONLY:
     @pytest.fixture(scope="module")
     def wf(tmp_path_factory):
-        """A one-paper ci pipeline of its own (MECHREPRO_FAULT_PAPERS)."""
-        work = conftest.copy_workflow(tmp_path_factory.mktemp("faults"))
-        return work, snakemake(work)
+        """A copy of the one-paper ci pipeline (MECHREPRO_FAULT_PAPERS)."""
+        return conftest.one_paper_pipeline(tmp_path_factory, ONLY,
+                                           tmp_path_factory.mktemp("faults"))
 else:
     @pytest.fixture(scope="module")
     def wf(workflow):

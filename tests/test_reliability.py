@@ -15,7 +15,7 @@ import time
 
 import pytest
 
-from conftest import copy_workflow
+from conftest import one_paper_pipeline
 from mechrepro import heal as healmod
 from mechrepro.io import read_sum, sum_path, write_text
 from mechrepro.provenance import file_sha256
@@ -105,9 +105,7 @@ def test_heal_cli_has_help_and_a_dry_run(tmp_path):
 
 @pytest.fixture(scope="module")
 def run(tmp_path_factory):
-    work = copy_workflow(tmp_path_factory.mktemp("rel"))
-    sm(work)
-    return work
+    return one_paper_pipeline(tmp_path_factory, PAPER, tmp_path_factory.mktemp("rel"))[0]
 
 
 pipeline = pytest.mark.slow
