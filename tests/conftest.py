@@ -34,11 +34,15 @@ def pytest_collection_modifyitems(config, items):
         if group == "ci_pipeline":     # it reads a pipeline run: `-m "not slow"` leaves it out
             item.add_marker(pytest.mark.slow)
         groups[item.nodeid] = group
-    # the groups that run pipelines of their own go first (a worker takes groups in this
+    # the groups that take minutes go first, longest first (a worker takes groups in this
     # order): the other-platform ci run and the session's ci run start at once, one per
-    # worker, and the faults' run next; collected in file order, the other-platform run
-    # started after 30 of a 36-minute suite
-    first = ("tests/test_pipeline.py", "ci_pipeline", "tests/test_faults.py")
+    # worker, the faults, the reliability tests and SLURM next, and the many short groups
+    # last, where they even out the workers' ends.  Collected in file order, the
+    # other-platform run started after 30 of a 36-minute suite; with the reliability tests
+    # (212 s) among the short groups, they started at 441 s and ended 120 s after the
+    # other worker had gone idle (654 s, against 534 s)
+    first = ("tests/test_pipeline.py", "ci_pipeline", "tests/test_faults.py",
+             "tests/test_reliability.py", "tests/test_slurm.py")
     items.sort(key=lambda i: first.index(groups[i.nodeid]) if groups[i.nodeid] in first
                else len(first))
 
