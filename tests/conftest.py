@@ -34,7 +34,7 @@ def pytest_collection_modifyitems(config, items):
         if group == "ci_pipeline":     # it reads a pipeline run: `-m "not slow"` leaves it out
             item.add_marker(pytest.mark.slow)
         groups[item.nodeid] = group
-    # the groups that take minutes go first, longest first (a worker takes groups in this
+    # the groups that take minutes go first (a worker takes groups in this
     # order): the other-platform ci run and the session's ci run start at once, one per
     # worker, the faults, the reliability tests and SLURM next, and the many short groups
     # last, where they even out the workers' ends.  Collected in file order, the
