@@ -532,7 +532,7 @@ def _level_of(info: dict, variant: str, spec: dict) -> str | None:
 
 
 def _at_baseline(c: tuple, at: str | None, levels: dict, base: float, spec: dict,
-               numeric: bool) -> tuple:
+                 numeric: bool) -> tuple:
     """A range end's or family member's check (variant, kind, value, status, label) as the
     baseline ``base`` would give it.  Run at the level ``at`` (config.VARIANT_LEVEL), a
     numeric row's range end moves the baseline by what it moves the value at that level,
