@@ -187,3 +187,37 @@ def test_warm_loads_the_signatures_the_solvers_call():
     out = subprocess.run([sys.executable, "-c", WARM_THEN_SOLVE], env=env, capture_output=True,
                          text=True, check=True).stdout
     assert out.split() == ["1", "1"]
+
+
+@needs_numba
+@pytest.mark.parametrize("n1, n2, f_p", [(24, 24, 0.0), (19, 38, 0.3), (15, 40, 0.5)])
+def test_compiled_sample_loops_equal_the_formulas_on_arrays(monkeypatch, n1, n2, f_p):
+    """The excitation's per-sample loops (samples.py) run the elementwise formulas of
+    four_bar and loads: on a (time, speed) block with samples exactly at engagements and
+    wraps (the round-off branch), on shared and on per-speed times, every output equals
+    the numpy evaluation of the same formulas (to a cosine's last bit: numpy's may be a
+    SIMD one)."""
+    from mechrepro.models.chain_drive import four_bar, loads, samples
+
+    p_c = PRM["pitch"]
+    k = loads.impact_constants(2 * p_c * M, 2e8, 0.1)
+    om = np.linspace(20.0, 400.0, 37)[None, :]
+    tau = 2 * np.pi / (n1 * om)
+    shared = np.concatenate([np.arange(60)[:, None] * tau[:, :1] / 7,
+                             np.random.default_rng(1).uniform(0, 0.05, (40, 1))])
+    own = np.arange(50)[:, None] * tau / 9
+
+    def evaluate():
+        out = []
+        for t, step in ((shared, 2.3e-5), (own, np.broadcast_to(tau / 9, own.shape))):
+            kin = four_bar.rigid_kinematics(t, om, n1=n1, n2=n2, p_c=p_c, f_p=f_p)
+            out += [kin[q] for q in ("theta1", "cos_theta1", "sin_theta1", "cos_theta2",
+                                     "sin_theta2", "omega2", "alpha2", "phase1", "phase2")]
+            out.append(loads.impact_load(t, om, n1, p_c, k, step=step))
+        return out
+
+    compiled = evaluate()
+    assert samples.block(shared, om) and samples.block(own, om)
+    monkeypatch.setattr(samples, "block", lambda t, omega1: None)
+    for got, ref in zip(compiled, evaluate()):
+        np.testing.assert_allclose(got, ref, rtol=0, atol=4e-16 * max(np.max(np.abs(ref)), 1))

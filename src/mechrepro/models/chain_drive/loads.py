@@ -64,6 +64,22 @@ def impact_pulse_integral(t_local, V_rel, eta: float, k: dict):
     return np.cos(eta) * (ci * x0 + ki * X0)
 
 
+def _whole_pulses(t, tau, J, step, t_i):
+    """The impulse over the window [t - step/2, t + step/2] counted in whole pulses J
+    (impacts at t = 0, tau, 2 tau, ...), and whether an end of the window lies within a
+    contact (t_i after an impact), where :func:`impact_load` integrates the pulse exactly.
+
+    Elementwise on arrays, and the body of the compiled per-sample loop (:mod:`.samples`):
+    the one source of the formula."""
+    a, b = t - step / 2, t + step / 2
+    ka, kb = np.floor(a / tau), np.floor(b / tau)
+    # the window ends' times since their last impact, against margins of round-off
+    margin = 1e-9 * tau
+    ra, rb = a - ka * tau, b - kb * tau
+    lo, hi = t_i + margin, tau - margin
+    return (kb - ka) * J, (ra < lo) | (rb < lo) | (ra > hi) | (rb > hi)
+
+
 def impact_load(t, omega1, n1: int, p_c: float, k: dict, step: float | None = None):
     """D_imp(t) repeated every tooth period, impacts at t = 0, tau, 2 tau, ... .
 
@@ -71,6 +87,8 @@ def impact_load(t, omega1, n1: int, p_c: float, k: dict, step: float | None = No
     preserved), so a contact pulse much shorter than the time step is neither missed
     nor aliased.  Broadcasts t against omega1.
     """
+    from . import samples
+
     t = np.asarray(t, float)
     omega1 = np.asarray(omega1, float)
     tau = 2 * np.pi / (n1 * omega1)
@@ -78,38 +96,28 @@ def impact_load(t, omega1, n1: int, p_c: float, k: dict, step: float | None = No
     eta = pressure_angle(n1)
     if step is None:
         return impact_pulse(np.mod(t, tau), V, eta, k)
-    a, b = t - step / 2, t + step / 2
-    # cumulative impulse I(t) = floor(t/tau) * J + Ipulse(t mod tau)
+    # the cumulative impulse is I(t) = floor(t/tau) J + Ipulse(t mod tau).  Only the
+    # samples whose window reaches into a contact see a partial pulse; every other window
+    # holds whole impulses only, I(b) - I(a) = (floor(b/tau) - floor(a/tau)) J exactly, and
+    # the pulse (exp, sin, cos) is evaluated on those few samples (~(t_i + step)/tau) alone
     J = impact_pulse_integral(np.inf * np.ones_like(V), V, eta, k)
-
-    def cum(s):
-        return np.floor(s / tau) * J + impact_pulse_integral(np.mod(s, tau), V, eta, k)
-
-    # Only the samples whose window [a, b] reaches into a contact (a or b within t_i after
-    # an impact) see a partial pulse; every other window holds whole impulses only, so
-    # I(b) - I(a) = (floor(b/tau) - floor(a/tau)) J exactly.  The pulse (exp, sin, cos)
-    # is evaluated on those few samples (~(t_i + step)/tau of them) alone.
-    shape = np.broadcast_shapes(t.shape, tau.shape)
-    a, b = np.broadcast_to(a, shape), np.broadcast_to(b, shape)
-    tau_b, J_b = np.broadcast_to(tau, shape), np.broadcast_to(J, shape)
-    ka, kb = np.floor(a / tau), np.floor(b / tau)
     t_i = np.pi / k["omega_d"]
-    # the window ends' times since their last impact, and the margins, formed once (per
-    # speed where they do not depend on time): ~1/3 fewer passes over a (T, S) block
-    margin = 1e-9 * tau
-    ra, rb = a - ka * tau, b - kb * tau
-    lo, hi = t_i + margin, tau - margin
-    near = (ra < lo) | (rb < lo) | (ra > hi) | (rb > hi)
-    out = (kb - ka) * J_b
+    shape = samples.block(t, omega1)
+    if shape:
+        out, near = samples.whole_pulses(t, tau, J, step, t_i, shape)
+    else:
+        out, near = _whole_pulses(t, tau, J, step, t_i)
+        out = np.array(out, float)                      # writable, also from 0-d inputs
     if np.any(near):
-        V_b = np.broadcast_to(V, shape)[near]
-        sub = dict(tau=tau_b[near], J=J_b[near])
+        shape = near.shape
+        tau_n, J_n, V_n = (np.broadcast_to(x, shape)[near] for x in (tau, J, V))
 
         def cum_near(s):
-            return (np.floor(s / sub["tau"]) * sub["J"]
-                    + impact_pulse_integral(np.mod(s, sub["tau"]), V_b, eta, k))
+            return (np.floor(s / tau_n) * J_n
+                    + impact_pulse_integral(np.mod(s, tau_n), V_n, eta, k))
 
-        out[near] = cum_near(b[near]) - cum_near(a[near])
+        t_n, step_n = np.broadcast_to(t, shape)[near], np.broadcast_to(step, shape)[near]
+        out[near] = cum_near(t_n + step_n / 2) - cum_near(t_n - step_n / 2)
     return out / step
 
 
