@@ -90,3 +90,15 @@ def whole_pulses(t, tau, J, step, t_i, shape):
                 np.ascontiguousarray(np.broadcast_to(J, (1, shape[1]))[0], float),
                 np.broadcast_to(np.asarray(step, float), shape), float(t_i), out, near)
     return out, near
+
+
+def warm() -> None:
+    """Load the loops (numba's disk cache, or a compile) by one call each on a tiny block of
+    the production types (times shared by the speeds, a fixed step): a solver process pays
+    this once, before any timed solve."""
+    if not available():
+        return
+    t, w = np.linspace(0.0, 1e-3, 3)[:, None], np.array([[50.0, 60.0]])
+    kin = four_bar.rigid_kinematics(t, w, n1=19, n2=38, p_c=0.0127, f_p=0.3)
+    assert kin["alpha2"].shape == (3, 2)
+    loads.impact_load(t, w, 19, 0.0127, loads.impact_constants(0.02, 2e8, 0.1), step=1e-4)

@@ -307,13 +307,15 @@ SOLVERS = {"impact_load": impact_load, "rigid_four_bar": rigid_four_bar,
 def warm(runs=None) -> None:
     """Load the compiled loops ``runs`` use (both without them) once per solver process
     (the runner calls this before the first timed solve), so that no run's time carries
-    numba's start: the Galerkin RK4 for a galerkin run, the lane march for any other (a
-    job of march sweeps does not compile the RK4 on a fresh machine)."""
-    from . import fd_kernel, galerkin_kernel
+    numba's start: the Galerkin RK4 for a galerkin run, the lane march and the excitation's
+    per-sample loops for any other (a job of march sweeps does not compile the RK4 on a
+    fresh machine)."""
+    from . import fd_kernel, galerkin_kernel, samples
 
     solvers = None if runs is None else {r.get("solver") for r in runs}
     if solvers is None or solvers - {"galerkin"}:
         fd_kernel.warm()
+        samples.warm()
     if solvers is None or "galerkin" in solvers:
         galerkin_kernel.warm()
 
