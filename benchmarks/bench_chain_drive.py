@@ -50,9 +50,10 @@ prints the issue-#18 side-by-side comparisons instead:
    evaluated through the effects at every scalar time (the former path) against the
    segmented integration with the piecewise (interpolated) forcing; right-hand-side calls,
    time, and each one's distance to the segmented solution at rtol 1e-12.
-5. FD speed sweeps: the whole scene (effects + march) with the source of the ``main``
-   branch (``git archive``, run in a subprocess) against this checkout's source, the same
-   scenes and profile, interleaved, best of ``--repeat``.
+5. FD speed sweeps: the whole scene (effects + march) with the source of ``--base`` (a git
+   revision, ``main`` by default; ``git archive``, run in a subprocess) against this
+   checkout's source, the same scenes and profile, interleaved, best of ``--repeat``; the
+   effects' share (their evaluation on the time grid, :func:`.span.assemble`) apart.
 """
 from __future__ import annotations
 
@@ -316,13 +317,13 @@ print(json.dumps(out))
 """
 
 
-def fd_sweeps(profile: str, repeat: int) -> None:
+def fd_sweeps(profile: str, repeat: int, base: str = "main") -> None:
     import json
     import subprocess
     import tempfile
     names = ["fig05_plain", "fig05_length", "fig07_tension", "fig08_external", "fig09a", "fig09b"]
     with tempfile.TemporaryDirectory() as tmp:
-        subprocess.run(f"git -C {ROOT} archive main src | tar -x -C {tmp}", shell=True,
+        subprocess.run(f"git -C {ROOT} archive {base} src | tar -x -C {tmp}", shell=True,
                        check=True)
         times = {"main": [], "here": []}
         for _ in range(repeat):
@@ -331,8 +332,8 @@ def fd_sweeps(profile: str, repeat: int) -> None:
                                    env={"PYTHONPATH": src, "PATH": "/usr/bin:/bin"},
                                    capture_output=True, text=True, check=True)
                 times[label].append(json.loads(r.stdout.strip().splitlines()[-1]))
-    print(f"== FD speed sweeps ({profile}): whole scene (effects + march), main vs this checkout, "
-          f"best of {repeat}")
+    print(f"== FD speed sweeps ({profile}): whole scene (effects + march), {base} ('main' "
+          f"below) vs this checkout, best of {repeat}")
     tot = {"main": np.zeros(2), "here": np.zeros(2)}
     for n in names:
         b = {k: np.min([t[n] for t in v], axis=0) for k, v in times.items()}
@@ -495,7 +496,9 @@ def main() -> None:
                     help="with --speed: one of the comparisons")
     ap.add_argument("--speed", action="store_true",
                     help="print the issue-#18 comparisons (Galerkin RK4, library check, FD "
-                         "sweeps against main) instead")
+                         "sweeps against --base) instead")
+    ap.add_argument("--base", default="main",
+                    help="with --speed: the git revision the FD sweeps are compared with")
     a = ap.parse_args()
     if a.floor:
         floor(a.profile, a.measure)
@@ -510,7 +513,7 @@ def main() -> None:
         if a.only in (None, "library"):
             library_check(a.profile)
         if a.only in (None, "fd"):
-            fd_sweeps(a.profile, a.repeat)
+            fd_sweeps(a.profile, a.repeat, a.base)
         return
     if not fd_kernel.available():
         print("numba is not installed: the compiled loop is unavailable (pip install -r "
