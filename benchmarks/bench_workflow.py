@@ -3,7 +3,8 @@
     python benchmarks/bench_workflow.py [--before REV] [--profiles ci default] [--cores 2] [--warm]
 
 For each version (``REV`` checked out with ``git archive``, and the working tree without
-its ``__pycache__``, like a fresh clone) in a fresh temporary copy, per profile: the pipeline from clean (numba compiling its kernels on
+its ``__pycache__``, like a fresh clone; then its package bytecode compiled where that
+version's Makefile does it before a run) in a fresh temporary copy, per profile: the pipeline from clean (numba compiling its kernels on
 the way), then a no-op run, then a dry run (the no-op *decision*), then `make reproduce`'s
 no-op (``mechrepro.reproduce``, which starts nothing when no file changed), and with ``--warm`` once
 more from clean results with the compiled kernels cached.  Then, per paper (from the last
@@ -49,6 +50,12 @@ def checkout(rev: str | None, dst: Path) -> Path:
         tar = subprocess.run(["git", "archive", rev, *ITEMS], cwd=ROOT, capture_output=True,
                              check=True).stdout
         subprocess.run(["tar", "x"], cwd=dst, input=tar, check=True)
+    # the package's bytecode, where that version's `make reproduce` compiles it first
+    makefile = ((ROOT / "Makefile").read_text() if rev is None else subprocess.run(
+        ["git", "show", f"{rev}:Makefile"], cwd=ROOT, capture_output=True, text=True).stdout)
+    if "compileall" in makefile:
+        subprocess.run([sys.executable, "-m", "compileall", "-q", "src"], cwd=dst, check=True,
+                       stdout=subprocess.DEVNULL)
     return dst
 
 
