@@ -99,6 +99,5 @@ def warm() -> None:
     if not available():
         return
     t, w = np.linspace(0.0, 1e-3, 3)[:, None], np.array([[50.0, 60.0]])
-    kin = four_bar.rigid_kinematics(t, w, n1=19, n2=38, p_c=0.0127, f_p=0.3)
-    assert kin["alpha2"].shape == (3, 2)
+    four_bar.rigid_kinematics(t, w, n1=19, n2=38, p_c=0.0127, f_p=0.3)
     loads.impact_load(t, w, 19, 0.0127, loads.impact_constants(0.02, 2e8, 0.1), step=1e-4)
