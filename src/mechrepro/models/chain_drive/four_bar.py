@@ -40,13 +40,12 @@ def _tooth(n1: int) -> tuple:
 
 def _travel(phi, tooth, r1):
     """theta_1 within the tooth period at phi = omega1 t (Eq. 2-7, as :func:`chain_travel`),
-    cos theta_1, the whole tooth periods k since t = 0 and the chain travel since the last
-    engagement d1 = r1 (cos theta_10 - cos theta_1) in [0, p_c); ``tooth``: :func:`_tooth`."""
+    cos theta_1 and the chain travel since the last engagement d1 = r1 (cos theta_10 -
+    cos theta_1) in [0, p_c); ``tooth``: :func:`_tooth`."""
     step, th10, c10 = tooth
-    k = np.floor(phi / step)
-    th1 = th10 + (phi - k * step)
+    th1 = th10 + (phi - np.floor(phi / step) * step)
     c1 = np.cos(th1)
-    return k, th1, c1, r1 * (c10 - c1)
+    return th1, c1, r1 * (c10 - c1)
 
 
 def _driven_offset(n2, r2, f_p):
@@ -63,7 +62,7 @@ def _phases(phi, tooth, r1, s_off, p_c):
     Elementwise on arrays, and the body of the compiled per-sample loop (:mod:`.samples`):
     the one source of these formulas.  The wrap is written as arithmetic (w a + (1 - w) b
     with a bool w: exactly a or b, both finite), which both read alike."""
-    _, th1, c1, d1 = _travel(phi, tooth, r1)
+    th1, c1, d1 = _travel(phi, tooth, r1)
     # (chain travel + s_off) mod p_c from the travel within the tooth period: the whole
     # pitches drop out (no large numbers, no mod) ...
     u = d1 + s_off
@@ -107,9 +106,8 @@ def tooth_phases(t, omega1, *, n1: int, n2: int, p_c: float, f_p: float) -> dict
         th1, c1, s2, phase1, near = _phases(omega1 * t, tooth, r1, s_off, p_c)
     if np.any(near):
         # the side of the jump decided exactly as chain_travel + np.mod decide it
-        phi = np.broadcast_to(omega1, near.shape)[near] * np.broadcast_to(t, near.shape)[near]
-        k, _, _, d1 = _travel(phi, tooth, r1)
-        s_full = k * (2 * r1 * np.sin(np.pi / n1)) + d1
+        s_full, _ = chain_travel(np.broadcast_to(t, near.shape)[near],
+                                 np.broadcast_to(omega1, near.shape)[near], n1, r1)
         s2, phase1 = np.array(s2), np.array(phase1)     # writable, also from 0-d inputs
         s2[near] = np.mod(s_full + s_off, p_c)
         phase1[near] = np.mod(s_full, p_c) / p_c

@@ -2,8 +2,8 @@
 
 The sprocket kinematics and the step-averaged impact are evaluated at every sample of a
 (time, speed) block; as numpy expressions each formula is ~10-30 passes over the block, the
-compiled loop one pass per sample (the cosine of theta_1 is then most of the cost: the
-Fig. 5 sweeps spent ~1/3 of their time here).  The loops call the formulas themselves
+compiled loop one pass per sample (the cosine of theta_1 is then most of the cost; profiled,
+these formulas were about half of a Fig. 5 march sweep's time).  The loops call the formulas themselves
 (:func:`.four_bar._phases`, :func:`.four_bar._kinematics`, :func:`.loads._whole_pulses`,
 written elementwise so that numpy and numba read the same source), with the same bits.
 
