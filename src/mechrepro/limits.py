@@ -144,18 +144,26 @@ def quick_paper(cfg) -> bool:
             and sum(c["seconds"] for c in costs.values()) <= QUICK_PAPER_S)
 
 
-def solve_priorities(cfgs: dict) -> dict[tuple[str, str], float]:
-    """{(paper, solve job): scheduling priority}: 3 for a quick paper's jobs
-    (:func:`quick_paper`), else 1 plus the job's estimated time as a fraction of the
-    longest estimate, in [1, 2): a free core takes the longest remaining solve first
-    (longest processing time first), after a paper's validation and notebook (2).  On equal
-    priorities the default run started chain_drive's batch, its longest job (251 s), 4 min
-    40 s in, and waited 4 min for it at the end.  An order only: no result depends on it."""
+def priorities(cfgs: dict) -> dict[tuple[str, str], float]:
+    """{(paper, job): scheduling priority}, the job a solve job's name or ``validate`` or
+    ``notebook``: 3 for every job of a quick paper (:func:`quick_paper`: its figures appear
+    within seconds); else 1 plus a solve's estimated time as a fraction of the longest
+    estimate, in [1, 2) (longest processing time first), and 0.5 for a paper's validation
+    and notebook, after every solve: the seconds-long validations and notebooks then fill
+    both cores at the end, where with priority 2 (a paper drawn as soon as its runs
+    existed) chain_drive's solves, then its notebook, ran last on one core with the other
+    idle.  An order only: no result depends on it.  On equal priorities the default run
+    started chain_drive's batch, its longest job, 4 min 40 s in, and waited 4 min for it at
+    the end."""
     est = {(p, j): c["seconds"] for p, cfg in cfgs.items() for j, c in job_costs(cfg).items()}
     top = 1.0001 * max(est.values(), default=1.0)
-    quick = {p for p, cfg in cfgs.items() if quick_paper(cfg)}
-    return {(p, j): 3.0 if p in quick else 1.0 + est.get((p, j), 0.0) / top
-            for p, cfg in cfgs.items() for j in cfg.solve_jobs()}
+    out = {}
+    for p, cfg in cfgs.items():
+        quick = quick_paper(cfg)
+        for j in cfg.solve_jobs():
+            out[p, j] = 3.0 if quick else 1.0 + est.get((p, j), 0.0) / top
+        out[p, "validate"] = out[p, "notebook"] = 3.0 if quick else 0.5
+    return out
 
 
 def check_all(cfgs: dict, allow_over_budget: bool = False, cache_dir=None) -> None:

@@ -44,7 +44,7 @@ except ConfigError as exc:
 # Each solver's own limits and declared cost (models/<paper>/limits.py), before any job:
 # a run its solver would refuse, or a job expected above the solve rule's memory or time,
 # stops the run here with the estimate (`--config over_budget=true` runs it on purpose).
-from mechrepro.limits import LimitError, check_all, job_resources, solve_priorities  # noqa: E402
+from mechrepro.limits import LimitError, check_all, job_resources, priorities  # noqa: E402
 
 OVER_BUDGET = str(config.get("over_budget", False)).lower() == "true"   # --config gives text
 try:
@@ -54,7 +54,7 @@ except LimitError as exc:
     raise SystemExit(1)
 
 # the order in which free cores take solve jobs (longest estimated first)
-SOLVE_PRIORITY = solve_priorities(CFG)
+PRIORITY = priorities(CFG)
 
 # Before the jobs are decided: take this results directory's run lock (a second run is
 # refused here, before it can touch anything), then heal by content (mechrepro.heal), in

@@ -30,9 +30,8 @@ for _paper in PAPERS:
             f"{RESULTS}/{_paper}/logs/validate.log",
         benchmark:
             f"{RESULTS}/{_paper}/benchmarks/validate.tsv"
-        # above the solves (1): a paper whose runs are done is validated and drawn on the
-        # next free core, so its figures appear while the slower papers still solve
-        priority: 2
+        # after every solve, except a quick paper's (limits.priorities)
+        priority: PRIORITY[_paper, "validate"]
         shell:
             "{params.python} -m mechrepro.cli validate {params.paper} {params.results} "
             "{input.config} {params.profile} > {log} 2>&1"
@@ -65,7 +64,7 @@ for _paper in PAPERS:
             f"{RESULTS}/{_paper}/logs/notebook.log",
         benchmark:
             f"{RESULTS}/{_paper}/benchmarks/notebook.tsv"
-        priority: 2
+        priority: PRIORITY[_paper, "notebook"]
         shell:
             "{params.python} -m mechrepro.notebook {params.paper} {input.source} "
             "{output.notebook} {params.results} {input.config} {params.profile} > {log} 2>&1"

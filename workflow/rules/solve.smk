@@ -43,12 +43,11 @@ for _paper in PAPERS:
             # when a run above them was allowed on purpose (--config over_budget=true)
             resources:
                 **job_resources(CFG[_paper], _job, OVER_BUDGET),
-            # a free core takes a solve before a cross-paper job (summary, report), but a
-            # paper's validation and notebook (priority 2) before another paper's solve,
-            # and a paper estimated to solve in seconds (limits.quick_paper) first of all:
-            # the first figures appear early; among the others the longest estimated
-            # first (limits.solve_priorities; results do not depend on the order)
-            priority: SOLVE_PRIORITY[_paper, _job]
+            # a paper estimated to solve in seconds (limits.quick_paper) first of all (the
+            # first figures appear early), then the longest estimated solve, then the
+            # validations and notebooks, then the cross-paper jobs (summary, report):
+            # limits.priorities; results do not depend on the order
+            priority: PRIORITY[_paper, _job]
             shell:
                 "{params.python} -m mechrepro.solve {params.paper} {params.base}/config "
                 "{params.profile} {params.results} {params.runs} > {log} 2>&1"
