@@ -89,10 +89,12 @@ SNAKEMAKE = [sys.executable, "-m", "snakemake", "--cores", "2", "--config", "pro
 
 
 def snakemake(work, *args, check=True, env=None, base=SNAKEMAKE):
-    import subprocess
+    """`python -m snakemake` (``base``, then ``args``) in ``work``: forked from a process
+    that has imported Snakemake (:mod:`snakemake_fork`), or a fresh one given ``env``."""
+    import snakemake_fork
 
-    proc = subprocess.run([*base, *args], cwd=work, capture_output=True, text=True,
-                          timeout=2400, env=env)
+    assert base[:3] == SNAKEMAKE[:3], base
+    proc = snakemake_fork.run([*base[3:], *args], work, env=env, timeout=2400)
     if check and proc.returncode != 0:
         raise AssertionError(f"snakemake {' '.join(args)} failed:\n{proc.stdout[-4000:]}\n"
                              f"{proc.stderr[-4000:]}")

@@ -15,6 +15,7 @@ import time
 
 import pytest
 
+import snakemake_fork
 from conftest import one_paper_pipeline
 from mechrepro import heal as healmod
 from mechrepro.io import read_sum, sum_path, write_text
@@ -26,7 +27,7 @@ SM = [sys.executable, "-m", "snakemake", "--cores", "2", "--config", "profile=ci
 
 
 def sm(work, *args, check=True):
-    proc = subprocess.run([*SM, *args], cwd=work, capture_output=True, text=True, timeout=900)
+    proc = snakemake_fork.run([*SM[3:], *args], work, timeout=900)
     if check and proc.returncode != 0:
         raise AssertionError(proc.stdout[-3000:] + proc.stderr[-3000:])
     return proc
@@ -348,8 +349,7 @@ def test_one_parameter_in_one_scene_reruns_exactly_its_solve_jobs(paper, workflo
         scene = _edit(raw, paper)
         path.write_text(yaml.safe_dump(raw, sort_keys=False))
         after = load_paper(path, "ci")
-        dry = subprocess.run([sys.executable, "-m", "snakemake", *targets, "-n", *args],
-                             cwd=work, capture_output=True, text=True)
+        dry = snakemake_fork.run([*targets, "-n", *args], work)
     finally:
         path.write_text(original)
     changed = {r for r in after.runs if after.runs[r] != cfg.runs.get(r)}
