@@ -35,14 +35,16 @@ def pytest_collection_modifyitems(config, items):
             item.add_marker(pytest.mark.slow)
         groups[item.nodeid] = group
     # the groups that take minutes go first (a worker takes groups in this
-    # order): the other-platform ci run and the session's ci run start at once, one per
-    # worker, the faults, the reliability tests and SLURM next, and the many short groups
-    # last, where they even out the workers' ends.  Collected in file order, the
+    # order): the session's ci run on one worker, SLURM on the other (its 78 s are nearly
+    # all the executor waiting between status checks: the ci run's two-core jobs get both
+    # cores meanwhile; last of these, it kept a core idle for a minute), then the
+    # other-platform ci run, the faults and the reliability tests, and the many short
+    # groups last, where they even out the workers' ends.  Collected in file order, the
     # other-platform run started after 30 of a 36-minute suite; with the reliability tests
     # (212 s) among the short groups, they started at 441 s and ended 120 s after the
     # other worker had gone idle (654 s, against 534 s)
-    first = ("tests/test_pipeline.py", "ci_pipeline", "tests/test_faults.py",
-             "tests/test_reliability.py", "tests/test_slurm.py")
+    first = ("ci_pipeline", "tests/test_slurm.py", "tests/test_pipeline.py",
+             "tests/test_faults.py", "tests/test_reliability.py")
     items.sort(key=lambda i: first.index(groups[i.nodeid]) if groups[i.nodeid] in first
                else len(first))
 
