@@ -53,7 +53,7 @@ except LimitError as exc:
     sys.stderr.write(f"\n{exc}\n\n")
     raise SystemExit(1)
 
-# the order in which free cores take solve jobs (longest estimated first)
+# the order in which free cores take jobs (limits.priorities)
 PRIORITY = priorities(CFG)
 
 # Before the jobs are decided: take this results directory's run lock (a second run is
