@@ -1,7 +1,7 @@
 """`python -m snakemake ...` for the tests, forked from a process that has imported it.
 
-The suite starts Snakemake about 140 times (every fault, reliability and pipeline test runs
-it, and a dry run after), and every start imported it again: ~1.3 s of CPU, half of a
+The suite starts Snakemake over a hundred times (every fault, reliability and pipeline test
+runs it, and a dry run after), and every start imported it again: ~1.3 s of CPU, half of a
 no-op run of the one-paper workflow.  Here a multiprocessing fork server imports it once
 per test process; each run is a child forked from that server, which is single-threaded
 (forking a pytest-xdist worker, whose I/O thread may hold a lock, is not), and does then
