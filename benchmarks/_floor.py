@@ -93,4 +93,7 @@ def report(paper: str, profile: str, rows: list, estimate_note: str,
 
 def _ratio(seconds: float, flops: float) -> str:
     """measured / floor, or "-" for work a benchmark does not count (0 flops)."""
-    return f"{seconds / (flops / RATE):.0f}x" if flops else "-"
+    if not flops:
+        return "-"
+    r = seconds / (flops / RATE)
+    return f"{r:.1f}x" if r < 10 else f"{r:.0f}x"
