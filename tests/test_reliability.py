@@ -147,8 +147,12 @@ def test_an_interrupted_run_keeps_what_it_finished(run, tmp_path):
     work = tmp_path / "w"
     shutil.copytree(run, work, symlinks=True)
     runs = work / "results" / PAPER / "runs"
-    proc = subprocess.Popen([*SM, "--forceall"], cwd=work, stdout=subprocess.DEVNULL,
-                            stderr=subprocess.PIPE, text=True, start_new_session=True)
+    # stderr to a file, not a pipe: nothing reads a pipe while the test waits, and a child
+    # that fills one blocks in its write (the Popen.wait deadlock the Python docs warn of)
+    err = tmp_path / "snakemake.stderr"
+    with open(err, "w") as sink:
+        proc = subprocess.Popen([*SM, "--forceall"], cwd=work, stdout=subprocess.DEVNULL,
+                                stderr=sink, start_new_session=True)
     # wait for the validation job: the solve job has finished by then
     log = work / "results" / PAPER / "logs" / "validate.log"
     stamp = log.stat().st_mtime if log.exists() else 0
@@ -158,7 +162,16 @@ def test_an_interrupted_run_keeps_what_it_finished(run, tmp_path):
         time.sleep(0.02)
     solved = {p.name: file_sha256(p) for p in runs.glob("*.nc")}
     os.killpg(proc.pid, signal.SIGINT)
-    proc.wait(timeout=120)
+    try:
+        proc.wait(timeout=120)
+    except subprocess.TimeoutExpired:
+        # seen once (a fresh-clone CI run, both cores loaded): name what was still running
+        tree = subprocess.run(["ps", "-o", "pid,ppid,stat,etime,args", "-s", str(proc.pid)],
+                              capture_output=True, text=True).stdout
+        os.killpg(proc.pid, signal.SIGKILL)
+        proc.wait()
+        pytest.fail(f"Snakemake still running 120 s after Ctrl-C; its session:\n{tree}\n"
+                    f"its stderr (end):\n{err.read_text()[-4000:]}")
     out = sm(work, "--rerun-incomplete")
     assert f"solve_{PAPER}__batch" not in out.stdout + out.stderr
     assert "[heal] removed" not in out.stderr
