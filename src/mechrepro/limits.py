@@ -154,7 +154,12 @@ def priorities(cfgs: dict) -> dict[tuple[str, str], float]:
     existed) chain_drive's solves, then its notebook, ran last on one core with the other
     idle.  An order only: no result depends on it.  On equal priorities the default run
     started chain_drive's batch, its longest job, 4 min 40 s in, and waited 4 min for it at
-    the end."""
+    the end.
+
+    ``("all", "summary")`` and ``("all", "reference_check")``: 0.75, above the notebooks.
+    They read only the validation tables, so they slip in between the notebooks and the run
+    ends on the report and the archive alone; at priority 0 both waited for the last
+    notebook, ~3 s with one core idle (default profile from clean)."""
     est = {(p, j): c["seconds"] for p, cfg in cfgs.items() for j, c in job_costs(cfg).items()}
     top = 1.0001 * max(est.values(), default=1.0)
     out = {}
@@ -163,6 +168,7 @@ def priorities(cfgs: dict) -> dict[tuple[str, str], float]:
         for j in cfg.solve_jobs():
             out[p, j] = 3.0 if quick else 1.0 + est.get((p, j), 0.0) / top
         out[p, "validate"] = out[p, "notebook"] = 3.0 if quick else 0.5
+    out["all", "summary"] = out["all", "reference_check"] = 0.75
     return out
 
 

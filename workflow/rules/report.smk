@@ -21,6 +21,7 @@ rule summary:
         f"{RESULTS}/logs/summary{_TAG}.log",
     benchmark:
         f"{RESULTS}/benchmarks/summary{_TAG}.tsv"
+    priority: PRIORITY["all", "summary"]
     shell:
         "{params.python} -m mechrepro.cli summary {output.png} {output.csv} {params.results} "
         "{params.base}/config {params.profile} {params.papers} > {log} 2>&1"
@@ -47,6 +48,7 @@ rule reference_check:
         f"{RESULTS}/logs/reference_check{_TAG}.log",
     benchmark:
         f"{RESULTS}/benchmarks/reference_check{_TAG}.tsv"
+    priority: PRIORITY["all", "reference_check"]
     shell:
         "{params.python} -m mechrepro.cli check-reference {output} {params.results} "
         "{params.base}/results/reference {params.profile} {params.papers} > {log} 2>&1"
