@@ -158,8 +158,8 @@ def priorities(cfgs: dict) -> dict[tuple[str, str], float]:
 
     ``("all", "summary")`` and ``("all", "reference_check")``: 0.75, above the notebooks.
     They read only the validation tables, so they slip in between the notebooks and the run
-    ends on the report and the archive alone; at priority 0 both waited for the last
-    notebook, ~3 s with one core idle (default profile from clean)."""
+    ends on the report and the archive alone: 2 s after the last notebook, where at
+    priority 0 (both waiting for it) it ended 4 s after (default profile from clean)."""
     est = {(p, j): c["seconds"] for p, cfg in cfgs.items() for j, c in job_costs(cfg).items()}
     top = 1.0001 * max(est.values(), default=1.0)
     out = {}

@@ -45,8 +45,9 @@ for _paper in PAPERS:
                 **job_resources(CFG[_paper], _job, OVER_BUDGET),
             # a paper estimated to solve in seconds (limits.quick_paper) first of all (the
             # first figures appear early), then the longest estimated solve, then the
-            # validations and notebooks, then the cross-paper jobs (summary, report):
-            # limits.priorities; results do not depend on the order
+            # validations, the summary and reference check (validation tables only), the
+            # notebooks, and the report and archive last: limits.priorities; results do
+            # not depend on the order
             priority: PRIORITY[_paper, _job]
             shell:
                 "{params.python} -m mechrepro.solve {params.paper} {params.base}/config "
