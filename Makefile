@@ -38,9 +38,11 @@ bytecode: $(STAMP)
 
 ## Reproduce every figure and table of every paper (full resolution): results/report/index.html
 ## (the workflow heals results/ itself first, under its run lock: mechrepro.heal; when no
-## file changed since the last successful run, nothing starts at all: mechrepro.reproduce)
+## file changed since the last successful run, nothing starts at all: mechrepro.reproduce).
+## PYTHONPATH=src: this project's package even where the venv's editable install points
+## elsewhere (a project moved or copied with its .venv), as in every other target
 reproduce: bytecode
-	$(BIN)/python -m mechrepro.reproduce results -- --cores $(CORES) --rerun-incomplete
+	PYTHONPATH=src $(BIN)/python -m mechrepro.reproduce results -- --cores $(CORES) --rerun-incomplete
 
 ## Run every test (unit tests, config errors, pipeline + reference check on the ci profile),
 ## on every core (tests/conftest.py groups what must share a worker)
@@ -49,7 +51,7 @@ test: bytecode
 
 ## The fast profile, as CI runs it, into results-ci/
 ci-reproduce: bytecode
-	$(BIN)/python -m mechrepro.reproduce results-ci -- --cores $(CORES) --rerun-incomplete \
+	PYTHONPATH=src $(BIN)/python -m mechrepro.reproduce results-ci -- --cores $(CORES) --rerun-incomplete \
 	  --config profile=ci results=results-ci
 
 ## Deliberately refresh the committed reference numbers of a profile (ci by default;

@@ -5,13 +5,15 @@
 #          one node named after `hostname -s` at 127.0.0.1 with this machine's CPUs and
 #          memory, starts the daemons in the background, waits until the node is idle,
 #          and prints `export SLURM_CONF=...` for the clients (sbatch, squeue, snakemake).
-#   stop:  ends exactly the daemons that `start` started (pids recorded in the state dir)
-#          and removes the slurm.conf it wrote.
+#   stop:  ends exactly the daemons that `start` started (pids recorded in the state dir,
+#          each checked to still be that daemon) and removes the slurm.conf it wrote; a state
+#          dir that `start` did not use (MECHREPRO_SLURM_DIR set otherwise) is refused, and
+#          nothing is touched.
 # The config goes to Debian's default /etc/slurm/slurm.conf, because srun inside a job does
 # not inherit SLURM_CONF; an existing slurm.conf not written by this script is never touched.
 set -euo pipefail
 STATE=${MECHREPRO_SLURM_DIR:-/tmp/mechrepro-slurm}
-CONF=/etc/slurm/slurm.conf
+CONF=${MECHREPRO_SLURM_CONF:-/etc/slurm/slurm.conf}   # another path only for tests
 MARK="# one node on loopback, written by scripts/slurm_local.sh"
 PARTITION=${MECHREPRO_SLURM_PARTITION:-debug}
 
@@ -116,12 +118,34 @@ start() {
   echo "export SLURM_CONF=$CONF"
 }
 
+# The state directory of the cluster our slurm.conf was written for (empty: none of ours).
+conf_state() {
+  if [ -f "$CONF" ] && grep -qF "$MARK" "$CONF"; then
+    sed -n 's|^StateSaveLocation=\(.*\)/state$|\1|p' "$CONF" | head -1
+  fi
+}
+
 stop() {
+  local ours pid f d
+  ours=$(conf_state)
+  # another state dir than start's: it holds no pids of these daemons, and removing the conf
+  # would leave them running without one
+  if [ -n "$ours" ] && [ "$(realpath -m "$ours")" != "$(realpath -m "$STATE")" ]; then
+    log "refusing to stop: $CONF belongs to the cluster started with state dir $ours, not $STATE" \
+        "(MECHREPRO_SLURM_DIR=$ours $0 stop); nothing touched"
+    exit 1
+  fi
+  if [ -z "$ours" ] && ! compgen -G "$STATE/*.pid" >/dev/null; then
+    log "refusing to stop: nothing was started with state dir $STATE; nothing touched"
+    exit 1
+  fi
   for d in slurmd slurmctld munged; do
     f=$STATE/$d.pid
     [ -s "$f" ] || continue
     pid=$(cat "$f")
-    if kill "$pid" 2>/dev/null; then
+    if [ "$(cat "/proc/$pid/comm" 2>/dev/null)" != "$d" ]; then
+      log "pid $pid of $f is not $d (it ended; the pid may be reused): left alone"
+    elif kill "$pid" 2>/dev/null; then
       for _ in $(seq 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
       log "stopped $d ($pid)"
     fi
@@ -129,7 +153,7 @@ stop() {
   done
   # With a slurm.conf but no controller, `scontrol show config` blocks for 10 s, and the
   # SLURM executor plugin runs it on import, i.e. at every snakemake start: remove ours.
-  if [ -f "$CONF" ] && grep -qF "$MARK" "$CONF"; then
+  if [ -n "$ours" ]; then
     rm -f "$CONF"
   fi
 }

@@ -201,3 +201,69 @@ def test_a_run_repeating_another_is_solved_once_in_its_job(tmp_path):
                "b": {**base, "run": "b", "variant": "transverse_damping-lo"},
                "c": {**base, "run": "c", "variant": "falsify-slack_tension"}}
     assert cd.same_solve() == {"c": "b"}   # b and c stop at the first unstable speed, a not
+
+
+# --- config/config.yaml through the same strict reader (issue 57, item 4) -----------------
+
+TOP = [
+    ("a duplicate key", lambda t: t + b"profile: ci\n", ["key 'profile' given twice"]),
+    ("a non-UTF-8 byte", lambda t: t.replace(b"results: results", b"results: r\xe9sults"),
+     ["not UTF-8", "results: r"]),
+    ("a schema error", lambda t: t.replace(b"profile: default", b"profile: CI"),
+     ["profile: 'CI' does not match"]),
+    ("an unknown key", lambda t: t + b"profil: ci\n", ["'profil' was unexpected"]),
+]
+
+
+@pytest.mark.parametrize("name, edit, expect", TOP, ids=[t[0] for t in TOP])
+def test_the_workflow_config_is_read_strictly_naming_the_file_and_key(config_copy, name, edit,
+                                                                        expect):
+    from mechrepro.config import workflow_config
+
+    path = config_copy / "config.yaml"
+    path.write_bytes(edit(path.read_bytes()))
+    with pytest.raises(ConfigError) as err:
+        workflow_config(path)
+    msg = str(err.value)
+    assert str(path) in msg and all(part in msg for part in expect), msg
+
+
+def test_the_workflow_config_takes_the_command_line_over_the_file(config_copy):
+    from mechrepro.config import workflow_config
+
+    path = config_copy / "config.yaml"
+    cfg = workflow_config(path, {"profile": "ci", "papers": ["saw_chain"]})
+    assert cfg["profile"] == "ci" and cfg["papers"] == ["saw_chain"] and cfg["results"] == "results"
+    with pytest.raises(ConfigError, match=r"with --config profile: profile = 3: must be of type"):
+        workflow_config(path, {"profile": 3})
+
+
+def test_a_workflow_config_error_stops_snakemake_before_any_job(tmp_path):
+    """The wiring: the Snakefile reads config/config.yaml through workflow_config, not
+    Snakemake's `configfile:` (which kept the second `profile:` and ran)."""
+    import shutil
+    import subprocess
+    import sys
+
+    from conftest import ROOT
+
+    for item in ("Snakefile", "workflow", "config", "src", "profiles"):
+        (shutil.copytree if (ROOT / item).is_dir() else shutil.copy2)(ROOT / item, tmp_path / item)
+    top = tmp_path / "config" / "config.yaml"
+    top.write_text(top.read_text() + "profile: ci\n")
+    proc = subprocess.run([sys.executable, "-m", "snakemake", "--cores", "1", "-n"],
+                          cwd=tmp_path, capture_output=True, text=True, timeout=120)
+    out = proc.stdout + proc.stderr
+    assert proc.returncode == 1, out
+    assert "config/config.yaml: cannot read: key 'profile' given twice" in out, out
+    assert "rule " not in out and "Traceback" not in out, out
+
+
+def test_a_misspelt_scene_in_a_profile_overlay_is_named_as_such(edit_config):
+    path = edit_config("saw_chain", lambda raw: raw["profiles"]["ci"]["scenes"].update(
+        fig07_fig8={"resolution": {"K": 3}}))
+    with pytest.raises(ConfigError) as err:
+        load_paper(path, "ci")
+    msg = str(err.value)
+    assert f"{path}: profiles.ci.scenes.fig07_fig8: not one of the file's scenes" in msg, msg
+    assert "fig07_fig08" in msg and "missing key" not in msg, msg

@@ -1,6 +1,8 @@
 """The numbers in README.md come from the run (mechrepro.docs), never typed: its blocks
 match what the configs and the committed default references say."""
 import csv
+import re
+from pathlib import Path
 
 from conftest import ROOT
 from mechrepro import docs
@@ -37,3 +39,57 @@ def test_every_paper_page_lists_its_knobs_as_declared():
         page = (ROOT / "docs" / f"{paper}.md").read_text()
         assert docs.block(page, "knobs") == docs.knobs(ROOT / "results" / paper, ROOT / "config"), (
             f"docs/{paper}.md: regenerate its knobs: python -m mechrepro.docs docs/{paper}.md results")
+
+
+def _output_table() -> list[list[str]]:
+    """The path patterns of README's "What comes out", one list per row: a name without a
+    directory lies in the directory of the full path before it in the same cell."""
+    section = README.split("## What comes out", 1)[1].split("\n## ", 1)[0]
+    rows = []
+    for line in section.splitlines():
+        if not line.startswith("| `"):
+            continue
+        pats, here = [], ""
+        for item in re.findall(r"`([^`]+)`", line.split(" | ", 1)[0]):
+            if item.startswith("results/"):
+                here = item if item.endswith("/") else item.rsplit("/", 1)[0] + "/"
+                pats.append(item)
+            else:
+                pats.append(here + item)
+        rows.append(pats)
+    return rows
+
+
+def _regex(pattern: str, papers: list[str]) -> re.Pattern:
+    parts = re.split(r"(<paper>|<[a-z]+>|\*)", pattern)
+    rx = "".join("(" + "|".join(papers) + ")" if p == "<paper>" else "[^/@]+" if p.startswith("<")
+                 else "[^/]*" if p == "*" else re.escape(p) for p in parts)
+    return re.compile(rx + (".+" if pattern.endswith("/") else ""))
+
+
+def test_the_readme_output_table_is_what_a_run_writes(tmp_path):
+    """Every path pattern of README's "What comes out" names a file the workflow declares
+    (a dry run of a fresh ci copy: outputs, logs, benchmarks) or one `make reproduce` writes
+    after Snakemake (mechrepro.plan); and every such file is in the table."""
+    from conftest import copy_workflow, snakemake
+    from mechrepro.plan import main as plan
+
+    work = copy_workflow(tmp_path)
+    out = snakemake(work, "-n")
+    files = {f.replace(" (update)", "").strip()
+             for kind, line in re.findall(r"^\s+(output|log|benchmark): (.*)$", out, re.M)
+             for f in line.split(", ")}
+    log = tmp_path / "plan" / "run.snakemake.log"
+    log.parent.mkdir()
+    log.write_text("rule report:\nError in rule report:\n")
+    assert plan([str(work / "results"), str(log), "--status", "1"]) == 0
+    files |= {str(f.relative_to(work)) for f in (work / "results").iterdir() if f.is_file()}
+    files = {f for f in files if not Path(f).name.startswith(".")}  # records, bookkeeping
+    assert "results/report/summary.csv" in files and "results/rerun_plan.html" in files
+    papers = docs._papers(ROOT / "config")
+    table = {p: _regex(p, papers) for row in _output_table() for p in row}
+    assert len(table) > 10
+    unmatched = [p for p, rx in table.items() if not any(rx.fullmatch(f) for f in files)]
+    assert not unmatched, f"README names paths no run writes: {unmatched}"
+    untold = sorted(f for f in files if not any(rx.fullmatch(f) for rx in table.values()))
+    assert not untold, f"README's output table misses: {untold[:20]}"

@@ -5,6 +5,7 @@ Each test breaks a ci pipeline copy (saw_chain's, see ONLY below), runs what
 `make ci-reproduce` runs (Snakemake, whose workflow heals before any job) and checks
 that exactly the broken results and what depends on them were rebuilt, and that the tree is whole again.
 """
+import json
 import os
 import shutil
 import subprocess
@@ -163,14 +164,18 @@ def test_garbage_pasted_into_a_table_is_healed_by_plain_snakemake(wf):
 def test_garbage_written_by_a_job_is_named_and_not_archived(wf):
     """Garbage a job itself wrote (its checksum recorded, so heal keeps it): the reference
     check names file, line and value; the archive refuses and keeps the last good one."""
-    from mechrepro.io import write_text
+    from mechrepro.io import read_sum, sum_path, write_text
     from mechrepro.provenance import file_sha256
 
     work, _ = wf
     table = work / "results" / "saw_chain" / "tables" / "validation.csv"
     archive = work / "results" / ARCHIVE
     keep = {f.name: file_sha256(f) for f in archive.iterdir() if not f.name.startswith(".")}
+    made_by = read_sum(table)["made_by"]
     write_text(table, _garbled(table))
+    # as its job writes it: with the record of what made it
+    side = sum_path(table)
+    side.write_text(json.dumps({**json.loads(side.read_text()), "made_by": made_by}))
     proc = subprocess.run([*SNAKEMAKE, "--keep-going"], cwd=work, capture_output=True, text=True)
     assert proc.returncode != 0
     check = (work / "results" / REPORT / "reference_check.txt").read_text()
@@ -267,7 +272,7 @@ def test_lint_is_clean_but_for_conda(wf):
      "should be non-empty"),
     # a misspelt scene in the overlay
     (lambda raw: raw["profiles"]["ci"]["scenes"].update(fig07_fig8={"resolution": {"K": 3}}),
-     "'effects' is a required property"),
+     "profiles.ci.scenes.fig07_fig8: not one of the file's scenes"),
 ])
 def test_bad_profile_input_stops_before_any_job(wf, edit, message):
     work, _ = wf

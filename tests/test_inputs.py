@@ -40,7 +40,7 @@ BAD = [
      lambda t: t.replace("parameters: {sprocket_speed: 12000}",
                          "parameters: {sprocket_speed: 12000000}"),
      ["scenes.speed_12000.parameters.sprocket_speed = 12000000", "chain-saw sprocket",
-      "100 to 30000 rpm"]),
+      "2000 to 16000 rpm"]),
     ("a negative pitch (schema)",
      lambda t: t.replace("value: 8.91,", "value: -8.91,"),
      ["parameters.tie_strap_pitch = -8.91", "must be > 0"]),
@@ -78,7 +78,9 @@ def test_a_unit_slip_of_every_ranged_parameter_is_refused(paper, name):
     """Every parameter with a machine-class range (mechrepro.inputs.RANGES) exists in its
     paper's config, passes as committed, and is refused when its value is typed in the
     unit 1000 times larger or smaller (an angle: in degrees where rad is declared, or the
-    reverse), naming the key, the value and the range."""
+    reverse; an angular speed whose range is narrower than 60 / (2 pi): also its rad/s
+    number typed for r/min and its r/min number with unit rad/s), naming the key, the
+    value and the range."""
     from conftest import ROOT
     from mechrepro.inputs import RANGES, check_parameters
 
@@ -93,12 +95,34 @@ def test_a_unit_slip_of_every_ranged_parameter_is_refused(paper, name):
             else [(p["value"], "rad")]
     else:
         slips = [(scale(p["value"], 1e3), p["unit"]), (scale(p["value"], 1e-3), p["unit"])]
+    if unit in ("rpm", "r/min") and hi / lo < 60 / (2 * 3.141592653589793):
+        slips += [(scale(p["value"], 2 * 3.141592653589793 / 60), p["unit"]),
+                  (p["value"], "rad/s")]
     for value, u in slips:
         raw["parameters"][name] = {**p, "value": value, "unit": u}
         msg = "; ".join(check_parameters(raw))
         assert f"parameters.{name}.value" in msg and "not plausible" in msg, (value, u, msg)
         assert f"{lo:g} to {hi:g} {unit}" in msg or "within one turn" in msg or \
             "chain pitch" in msg, msg
+
+
+@pytest.mark.parametrize("typed, shown", [
+    ("{value: 1.005, unit: r/min", "1.005 r/min"),    # the rad/s number typed for r/min
+    ("{value: 9.6, unit: rad/s", "9.6 rad/s"),         # the r/min number given as rad/s
+])
+def test_an_angular_speed_in_the_wrong_unit_is_refused_at_load(config_copy, typed, shown):
+    """joint_wear's crank speed typed in rad/s where r/min is meant ran into the job and
+    failed there (ContactLost), the unit never named: refused at load, naming it."""
+    path = config_copy / "papers" / "joint_wear.yaml"
+    text = path.read_text()
+    assert "{value: 9.6, unit: r/min" in text
+    path.write_text(text.replace("{value: 9.6, unit: r/min", typed))
+    with pytest.raises(ConfigError) as err:
+        load_paper(path, "ci")
+    msg = str(err.value)
+    for part in (str(path), "parameters.crank_speed.value", shown, "not plausible",
+                 "3 to 28 r/min"):
+        assert part in msg, (part, msg)
 
 
 def test_merge_keys_may_override(tmp_path):

@@ -60,3 +60,46 @@ def test_a_failed_run_says_it_failed(tmp_path):
     log.write_text(DRY_RUN)
     assert main([str(tmp_path / "results"), str(log), "--status", "1"]) == 0
     assert "The run failed" in (tmp_path / "results" / "rerun_plan.html").read_text()
+
+
+def test_a_reason_line_is_cut_to_counts_and_a_few_names():
+    """Snakemake's reason for a validation job named every run it reads: 45,140 characters
+    on one console line.  `make` shows each list's count and first names."""
+    from mechrepro.plan import cap_reason
+
+    runs = [f"results/disk_tension/runs/fig06-{i:03d}@unstated_model-c{i % 16:02d}.nc"
+            for i in range(800)]
+    line = ("    reason: Missing output files: results/disk_tension/tables/validation.csv; "
+            f"Input files updated by another job: {', '.join(runs)}; Params have changed "
+            "since last execution\n")
+    assert len(line) > 45000
+    short = cap_reason(line)
+    assert len(short) < 400 and short.endswith("\n"), short
+    assert short == ("    reason: Missing output files: results/disk_tension/tables/validation.csv; "
+                     f"Input files updated by another job: 800 ({', '.join(runs[:3])}, …); "
+                     "Params have changed since last execution\n")
+    for other in ("    input: a, b, c, d, e\n", "rule all:\n", "    reason: Forced execution\n"):
+        assert cap_reason(other) == other
+
+
+def test_make_reproduce_shows_snakemakes_output_with_reasons_cut(tmp_path, monkeypatch, capfd):
+    """mechrepro.reproduce passes Snakemake's console output through, line by line, with
+    each reason cut (a stand-in Snakemake: the real one's reasons are in its log)."""
+    from mechrepro import reproduce
+
+    fake = tmp_path / "snakemake"      # a regular package: it shadows the installed one
+    fake.mkdir()
+    (fake / "__init__.py").write_text("")
+    names = ", ".join(f"results/x/runs/r{i}.nc" for i in range(2000))
+    (fake / "__main__.py").write_text(
+        "import sys\n"
+        "sys.stderr.write('rule validate_x:\\n')\n"
+        f"sys.stderr.write('    reason: Updated input files: {names}\\n')\n"
+        "sys.stderr.write('caf\\xe9 done\\n')\n"
+        "sys.exit(3)\n")
+    monkeypatch.setenv("PYTHONPATH", str(tmp_path))
+    monkeypatch.chdir(tmp_path)        # no Snakefile here, whatever snakemake starts
+    assert reproduce.snakemake(["--cores", "1"]) == 3
+    err = capfd.readouterr().err
+    assert err == ("rule validate_x:\n    reason: Updated input files: 2000 (results/x/runs/r0.nc, "
+                   "results/x/runs/r1.nc, results/x/runs/r2.nc, …)\ncafé done\n"), err[:500]

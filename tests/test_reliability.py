@@ -348,7 +348,7 @@ def _edit(raw, paper):
 def test_one_parameter_in_one_scene_reruns_exactly_its_solve_jobs(paper, workflow):
     """In the session's ci run, edit one parameter of one scene and ask Snakemake (dry run,
     its reasons) what it would solve again: exactly the jobs holding a run whose record
-    changed, none other (the paper's config file is not an input of solve jobs).  The edit
+    changed, none other (a job's results record the digest of its own run records).  The edit
     is undone after the dry run, which writes nothing (solving each paper again in a copy
     of its own cost 1,200 s of a loaded suite)."""
     import yaml
@@ -377,7 +377,7 @@ def test_one_parameter_in_one_scene_reruns_exactly_its_solve_jobs(paper, workflo
                 if changed & set(runs)}
     jobs = scheduled(dry.stdout) - {"all"}
     assert jobs == expected, (jobs, expected, dry.stdout[-3000:])
-    assert "Params have changed" in dry.stdout
+    assert "changed since it was made: its run records" in dry.stderr
     if paper == "chain_drive":
         assert jobs == {"solve_chain_drive__scene_fig09b"}
 
@@ -488,7 +488,8 @@ def test_the_archived_report_is_self_contained_with_a_saved_plan(run, tmp_path):
 def test_a_failing_solve_job_keeps_its_last_good_results(run, tmp_path):
     """The solve job fails after writing its first run (a solver crash injected into the
     copy's code): every run and study of the batch is back as it was (update() outputs),
-    heal keeps them, and fixing the cause reruns the job."""
+    heal keeps them, and fixing the cause reruns the job (the kept runs were made by other
+    code than the fixed one)."""
     work = tmp_path / "w"
     shutil.copytree(run, work, symlinks=True)
     solved = {p.name: file_sha256(p) for d in ("runs", "studies")
@@ -507,7 +508,9 @@ def test_a_failing_solve_job_keeps_its_last_good_results(run, tmp_path):
     assert "[heal] removed" not in sm(work, "-n").stderr
     before = set(healmod.inspect(work / "results")[0])
     assert not before, before
-    solve.write_text(original)
+    # the cause fixed by another edit than the original: what made the kept results (the
+    # original code) is not today's code, so the job reruns
+    solve.write_text(original + "\n# fixed\n")
     out = sm(work)
     assert "[heal] removed" not in out.stderr and f"solve_{PAPER}__batch" in out.stdout + out.stderr
     assert "Nothing to be done" in sm(work, "-n").stdout

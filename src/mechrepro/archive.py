@@ -5,13 +5,18 @@ scene's leftovers in ``runs/`` are not certified) and the reference check of the
 refuses unless the check passed *and* names every selected paper as checked (a paper
 without a reference is not checked, so not archived).  Its outputs are ``update()`` in
 the workflow: Snakemake keeps the last good archive and manifest while the job runs and
-restores them when it fails.  :func:`verify` re-hashes a results tree
-against the manifest and names every mismatch.
+restores them when it fails.  It certifies only current results: given the workflow's job
+table (:mod:`mechrepro.staleness`), every archived file's record of what made it must equal
+what today's code, config, packages and inputs would make, recomputed when the archive is
+written; the manifest keeps each job's record, and :func:`verify` re-hashes a results tree
+against the manifest, re-checks those records against today's files and names every
+mismatch.
 """
 from __future__ import annotations
 
 import io
 import json
+import os
 import re
 import tarfile
 from pathlib import Path
@@ -19,6 +24,7 @@ from pathlib import Path
 from .config import CACHE_DIR, load_paper
 from .io import atomic_path, write_json
 from .provenance import code_version, file_sha256, json_hash, package_versions
+from .staleness import ENV_INPUTS, _file_digest, read_table, uncertified
 
 MANIFEST = "manifest.json"
 
@@ -81,11 +87,32 @@ def linked_extras(results: Path, files: dict) -> list[str]:
     return out
 
 
+def certify(results: Path, files: list[str], table: str | Path) -> list[dict]:
+    """The records of the jobs that made ``files`` (relative to ``results``), refused
+    unless every file is current (:func:`mechrepro.staleness.uncertified`)."""
+    jobs = read_table(table, results)
+    problems = uncertified(jobs, results, files)
+    if problems:
+        raise ArchiveRefused("not archiving: results that are not current (a rerun makes "
+                             "them so):\n  " + "\n  ".join(problems[:10])
+                             + (f"\n  ... and {len(problems) - 10} more" if len(problems) > 10
+                                else ""))
+    wanted = {os.path.normpath(f) for f in files}
+    return [{**j.as_dict(results), "made_by": j.made_by(results)} for j in jobs
+            if wanted & {os.path.normpath(o) for o in j.outputs}]
+
+
 def write_archive(archive: str, manifest_path: str, check: str, results: str,
-                  config_dir: str, papers: list[str], profile: str, files: list[str]) -> dict:
+                  config_dir: str, papers: list[str], profile: str, files: list[str],
+                  jobs: str | None = None) -> dict:
     results = Path(results)
     check_passed(Path(check), papers)
+    # what made the archive itself: the check and every file it holds
+    os.environ.setdefault(ENV_INPUTS, " ".join([check, *files]))
+    made = certify(results, files, jobs) if jobs else None
     man = manifest(results, files, Path(config_dir), papers, profile)
+    if made is not None:
+        man["jobs"] = made
     extras = linked_extras(results, man["files"])
     if extras:
         man["extras"] = {rel: file_sha256(results / rel) for rel in extras}
@@ -108,8 +135,11 @@ class ManifestError(ValueError):
     pass
 
 
-def verify(results: str, manifest_path: str) -> list[str]:
-    """Re-hash every file of the manifest; return the mismatches (empty: all verified)."""
+def verify(results: str, manifest_path: str, root: str | None = None) -> list[str]:
+    """Re-hash every file of the manifest and re-check what made them against today's
+    sources in the project ``root`` (by default the directory holding ``results``);
+    return the mismatches (empty: all verified)."""
+    _file_digest.cache_clear()
     results, manifest_path = Path(results), Path(manifest_path)
     try:
         man = json.loads(manifest_path.read_text())
@@ -126,4 +156,17 @@ def verify(results: str, manifest_path: str) -> list[str]:
             problems.append(f"{rel}: missing")
         elif file_sha256(f) != sha:
             problems.append(f"{rel}: sha256 differs from the manifest")
+    if "jobs" not in man:
+        problems.append(f"{manifest_path}: no record of what made the files (an archive of "
+                        f"an older version): nothing certifies they are current")
+        return problems
+    # what made them, then and now: the manifest's record of each job against today's
+    # code, config, packages and inputs (the run records as the archive saw them)
+    from .staleness import Job, _why
+
+    for d in man["jobs"]:
+        job = Job.from_dict(d, results, results.parent if root is None else root)
+        why = _why(d["made_by"], job.made_by(results))
+        if why:
+            problems += [f"{o}: {why} (job {d['rule']})" for o in d["outputs"] if o in files]
     return problems

@@ -5,7 +5,7 @@
     python -m mechrepro.cli artefact RESULTS CONFIG_DIR PROFILE ARTEFACT ...
     python -m mechrepro.cli summary PNG CSV RESULTS CONFIG_DIR PROFILE PAPER ...
     python -m mechrepro.cli report HTML RESULTS CONFIG_DIR PROFILE PAPER ...
-    python -m mechrepro.cli archive TAR MANIFEST CHECK RESULTS CONFIG_DIR PROFILE PAPER ... --files FILE ...
+    python -m mechrepro.cli archive TAR MANIFEST CHECK RESULTS CONFIG_DIR PROFILE PAPER ... [--jobs TABLE] --files FILE ...
     python -m mechrepro.cli check-reference OUT RESULTS REFERENCE_DIR PROFILE PAPER ...
     python -m mechrepro.cli verify RESULTS [MANIFEST]
 
@@ -26,7 +26,8 @@ USAGE = {
     "artefact": (4, "RESULTS CONFIG_DIR PROFILE ARTEFACT ..."),
     "summary": (6, "PNG CSV RESULTS CONFIG_DIR PROFILE PAPER ..."),
     "report": (5, "HTML RESULTS CONFIG_DIR PROFILE PAPER ..."),
-    "archive": (7, "TAR MANIFEST CHECK RESULTS CONFIG_DIR PROFILE PAPER ... --files FILE ..."),
+    "archive": (7, "TAR MANIFEST CHECK RESULTS CONFIG_DIR PROFILE PAPER ... [--jobs TABLE] "
+                "--files FILE ..."),
     "check-reference": (5, "OUT RESULTS REFERENCE_DIR PROFILE PAPER ..."),
     "verify": (1, "RESULTS [MANIFEST]"),
 }
@@ -102,10 +103,14 @@ def main(argv: list[str]) -> int:
                              + _usage(cmd))
             return 2
         i = args.index("--files")
-        tar, manifest, check, results, config_dir, profile, *papers = args[:i]
+        head, jobs = args[:i], None
+        if "--jobs" in head:
+            j = head.index("--jobs")
+            head, jobs = head[:j] + head[j + 2:], head[j + 1]
+        tar, manifest, check, results, config_dir, profile, *papers = head
         try:
             man = write_archive(tar, manifest, check, results, config_dir, papers, profile,
-                                args[i + 1:])
+                                args[i + 1:], jobs)
         except ArchiveRefused as exc:
             sys.stderr.write(f"{exc}\n(the last archive that passed, if any, is kept: "
                              f"{tar})\n")

@@ -346,6 +346,7 @@ def load_paper(path: str | Path, profile: str = "default",
         if profile not in profiles:
             raise ConfigError(f"{where}: profile {profile!r} not defined (have: default, "
                               f"{', '.join(profiles)})")
+        _check_overlay_names(raw, profiles[profile], f"{where}: profiles.{profile}")
         raw = _deep_merge(raw, profiles[profile])
         # an overlay can break what the file alone satisfied: check the merged result too
         _validate({k: v for k, v in raw.items() if k != "profiles"},
@@ -894,10 +895,47 @@ def _check_artefacts(raw: dict, where: str) -> None:
                               f"a figure, a table or text ({', '.join(allowed)})")
 
 
+def _check_overlay_names(raw: dict, overlay, at: str) -> None:
+    """A profile overlay changes scenes, studies and parameters the file declares, never
+    adds one: a misspelt name is refused as such (merged in, it became a new scene and the
+    schema said only "missing key ('solver')")."""
+    if not isinstance(overlay, dict):
+        return   # the merged file's schema check names what is wrong
+    for kind in ("scenes", "studies", "parameters"):
+        names, known = overlay.get(kind), raw.get(kind) or {}
+        for name in (names if isinstance(names, dict) else {}):
+            if name not in known:
+                raise ConfigError(f"{at}.{kind}.{name}: not one of the file's {kind} (a "
+                                  f"misspelt name?); allowed: {', '.join(known) or 'none'}")
+
+
 def discover_papers(config_dir: str | Path) -> list[str]:
     """Every paper there is: one ``config/papers/<paper>.yaml`` each (``config.yaml`` only
     selects among them)."""
     return sorted(f.stem for f in (Path(config_dir) / "papers").glob("*.yaml"))
+
+
+def workflow_config(path: str | Path = "config/config.yaml", overrides=None) -> dict:
+    """``config/config.yaml`` read as the paper configs are (:func:`mechrepro.inputs.read_yaml`:
+    UTF-8, each key once, finite numbers) and checked against ``config.schema.json``, then
+    with ``overrides`` (Snakemake's ``--config key=value``) merged over it and checked
+    again: Snakemake's own reader kept a duplicate ``profile:`` silently and named neither
+    file nor key for a bad byte or a schema error.  A :class:`ConfigError` names the file
+    (and ``--config`` where an override is at fault) and the key."""
+    path = Path(path)
+    try:
+        from .inputs import read_yaml; raw = read_yaml(path)  # noqa: E702
+    except (OSError, yaml.YAMLError) as exc:
+        raise ConfigError(f"{path}: cannot read: {exc}") from exc
+    schema = load_schema("config.schema.json", path.resolve().parent / SCHEMA_DIR_NAME)
+    if not isinstance(raw, dict):
+        raise ConfigError(f"{path}: must be a mapping of {', '.join(schema['properties'])}")
+    # the file alone (its keys may come from --config instead), then what will run
+    _validate(raw, {k: v for k, v in schema.items() if k != "required"}, str(path))
+    merged = {**raw, **(overrides or {})}
+    _validate(merged, schema, f"{path} with --config {', '.join(overrides)}" if overrides
+              else str(path))
+    return merged
 
 
 def load_all(config_dir: str | Path, papers, profile: str = "default",

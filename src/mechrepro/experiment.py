@@ -9,19 +9,30 @@ results restored from an archive.
 An experiment lives in ``experiments/NAME/``: a working directory whose ``Snakefile``,
 ``workflow/``, ``src/`` and ``notebooks/`` are links to the project's, whose ``config/`` is
 the project's with the overrides applied (validated exactly as the configs are, before any
-job), and whose ``results/`` starts with hard links to every baseline result the change does
+job), and whose ``results/`` starts with copies of every baseline result the change does
 not touch: a run whose resolved record is unchanged, and every file of a paper whose config
 is unchanged.  Snakemake then runs only what is missing or out of date, into the
-experiment's own directory; the baseline is never written.
+experiment's own directory.
+
+The baseline is never written because none of its results is shared: they are copied with
+their checksum records, never hard-linked (only the committed reference, which no job
+writes, is a link).  Snakemake writes in place into files it did not
+create (it rewrites a job's benchmark file, puts a failed job's ``update()`` outputs back by
+copying a backup over them, touches outputs after their job), so through a link an
+experiment's job would write the baseline.  For the same reason an experiment runs the
+profile its baseline was made with (the resolution its run files record) or is refused:
+reused results of another profile would pass for this one's.
 """
 from __future__ import annotations
 
 import argparse
 import csv
 import datetime as _dt
+import html
 import json
 import math
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -50,7 +61,10 @@ def parse_sets(sets: list[str]) -> dict[str, dict[str, object]]:
         if not sep or not dot or not path:
             raise ConfigError(f"--set {item!r}: expected PAPER.PARAMETER=VALUE "
                               "(e.g. chain_drive.static_tension=800)")
-        out.setdefault(paper, {})[path] = yaml.safe_load(value)
+        value = yaml.safe_load(value)
+        if isinstance(value, str) and re.fullmatch(r"[-+]?\d+[eE][-+]?\d+", value):
+            value = float(value)    # YAML 1.1 reads 1e-14 as text
+        out.setdefault(paper, {})[path] = value
     return out
 
 
@@ -73,36 +87,77 @@ def apply_sets(raw: dict, sets: dict[str, object], where: str) -> dict:
     return raw
 
 
-def _link_tree(src: Path, dst: Path) -> int:
-    """Hard-link every file under ``src`` into ``dst`` (a copy across file systems)."""
-    n = 0
-    for f in src.rglob("*"):
-        if f.is_file() and not f.name.startswith("."):
-            n += _link(f, dst / f.relative_to(src))
-    return n
+def _copy_tree(src: Path, dst: Path) -> int:
+    """Copy every result under ``src`` into ``dst`` (temporary files of killed jobs left out)."""
+    return sum(_copy(f, dst / f.relative_to(src)) for f in sorted(src.rglob("*"))
+               if f.is_file() and not f.name.startswith("."))
 
 
-def _link(f: Path, target: Path) -> int:
+def _copy(f: Path, target: Path) -> int:
+    """Copy a result and its checksum record, time stamps kept: to heal and Snakemake the
+    copy is the result its job wrote."""
+    from .io import sum_path
+
     target.parent.mkdir(parents=True, exist_ok=True)
-    if target.exists():
-        return 0
-    try:
-        os.link(f, target)
-    except OSError:
-        shutil.copy2(f, target)
+    for src, dst in ((f, target), (sum_path(f), sum_path(target))):
+        if src.is_file():
+            shutil.copy2(src, dst)
     return 1
+
+
+def _made_with(results: Path, config: Path, paper: str) -> tuple[set[str], str] | None:
+    """The profiles of ``config`` whose resolution of a run is the one its baseline file
+    records, judged on the first run whose resolution differs between the profiles and
+    whose file is there, with the evidence (None: no such file tells the profiles apart)."""
+    import netCDF4
+
+    cfgs = {"default": load_paper(config)}
+    cfgs.update({p: load_paper(config, p) for p in cfgs["default"].raw.get("profiles", {})})
+    for run in sorted(set.intersection(*(set(c.runs) for c in cfgs.values()))):
+        res = {p: json.dumps(c.runs[run]["resolution"], sort_keys=True) for p, c in cfgs.items()}
+        f = results / paper / "runs" / f"{run}.nc"
+        if len(set(res.values())) == 1 or not f.is_file():
+            continue
+        try:
+            with netCDF4.Dataset(f) as ds:
+                got = ds.getncattr("resolution") if "resolution" in ds.ncattrs() else ""
+        except OSError:
+            continue     # unreadable: heal removes it, another run tells
+        return {p for p, r in res.items() if r == got}, f"{f} records resolution {got}"
+    return None
+
+
+def _profile(name: str, profile: str | None, top: dict, results: Path, base: Path) -> str:
+    """The experiment's profile: the baseline's (or ``profile``, refused unless it is)."""
+    made = {p: m for p in top["papers"]
+            if (m := _made_with(results, base / "config" / "papers" / f"{p}.yaml", p))}
+    if profile is None:
+        common = set.intersection(*(m[0] for m in made.values())) if made else set()
+        profile = top["profile"] if not common or top["profile"] in common else min(common)
+    for paper, (profiles, why) in made.items():
+        if profile not in profiles:
+            fix = (f"run it with --profile {min(profiles)}" if profiles else
+                   "the baseline is older than its config: run it again first")
+            raise ConfigError(
+                f"experiment {name!r}: profile {profile!r}, but the baseline's {paper} results "
+                f"were made with profile {' or '.join(map(repr, sorted(profiles))) or 'none'} "
+                f"({why}); an experiment reuses the baseline's results, so the profiles must "
+                f"match: {fix}")
+    return profile
 
 
 def prepare(name: str, sets: list[str], base: Path = Path("."), profile: str | None = None
             ) -> tuple[Path, dict]:
-    """Make ``experiments/NAME``: links, overridden configs (validated), reused results."""
+    """Make ``experiments/NAME``: links to the code, overridden configs (validated), copies
+    of the reused results.  ``profile`` defaults to the baseline's."""
     base = base.resolve()
     top = yaml.safe_load((base / "config" / "config.yaml").read_text())
-    profile = profile or top["profile"]
     overrides = parse_sets(sets)
     unknown = sorted(set(overrides) - set(top["papers"]))
     if unknown:
         raise ConfigError(f"--set: no paper {unknown}; papers: {', '.join(top['papers'])}")
+    results = base / top["results"]
+    profile = _profile(name, profile, top, results, base)
     exp = base / "experiments" / name
     if exp.exists():
         raise ConfigError(f"experiment {name!r} exists ({exp}); remove it or choose another name")
@@ -116,13 +171,12 @@ def prepare(name: str, sets: list[str], base: Path = Path("."), profile: str | N
                                                                exp / "config"))
         for extra in ("reference.yaml",):
             shutil.copy2(base / "config" / extra, tmp / "config" / extra)
-        shutil.copy2(base / "config" / "config.yaml", tmp / "config" / "config.yaml")
-        with open(tmp / "config" / "config.yaml", "a") as f:
-            f.write(f"\n# experiment {name}\nprofile: {profile}\nresults: results\n")
+        (tmp / "config" / "config.yaml").write_text(
+            f"# config/config.yaml of the project for experiment {name}\n"
+            + yaml.safe_dump({**top, "profile": profile, "results": "results"}, sort_keys=False))
         (tmp / "results").mkdir()
         (tmp / "results" / "reference").symlink_to(os.path.relpath(
             base / "results" / "reference", exp / "results"))
-        results = base / top["results"]
         reused = 0
         for paper in top["papers"]:
             src = base / "config" / "papers" / f"{paper}.yaml"
@@ -139,18 +193,18 @@ def prepare(name: str, sets: list[str], base: Path = Path("."), profile: str | N
             new = load_paper(dst, profile)            # refused here, before any job
             if paper not in overrides:
                 if (results / paper).is_dir():
-                    reused += _link_tree(results / paper, tmp / "results" / paper)
+                    reused += _copy_tree(results / paper, tmp / "results" / paper)
                 continue
             old = load_paper(src, profile)
             same = [r for r, rec in new.runs.items() if old.runs.get(r) == rec]
             for r in same:
                 f = results / paper / "runs" / f"{r}.nc"
                 if f.is_file():
-                    reused += _link(f, tmp / "results" / paper / "runs" / f.name)
+                    reused += _copy(f, tmp / "results" / paper / "runs" / f.name)
             for s, members in new.studies.items():
                 f = results / paper / "studies" / f"{s}.nc"
                 if set(members) <= set(same) and old.studies.get(s) == members and f.is_file():
-                    reused += _link(f, tmp / "results" / paper / "studies" / f.name)
+                    reused += _copy(f, tmp / "results" / paper / "studies" / f.name)
         record = {"name": name, "sets": sets, "profile": profile, "baseline": str(results),
                   "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
                   "reused_files": reused, "status": "prepared"}
@@ -167,22 +221,36 @@ def _mk(p: Path) -> Path:
     return p
 
 
+def _record(exp: Path, record: dict, **changes) -> None:
+    from .io import write_text
+
+    record.update(changes)
+    write_text(exp / "experiment.json", json.dumps(record, indent=2) + "\n", record=False)
+
+
 def run(name: str, sets: list[str], base: Path = Path("."), cores: int = 2,
         profile: str | None = None) -> dict:
-    """Prepare the experiment and run the workflow in it; its record says what ran."""
+    """Prepare the experiment and run the workflow in it.  Its record says "running" (with
+    this process's id) while Snakemake runs, then "done" or "failed" (also when interrupted),
+    and what ran."""
     exp, record = prepare(name, sets, base, profile)
-    t0 = time.perf_counter()
-    # up to the report: an experiment's numbers differ from the committed reference by
-    # design, so its reference check reports the drift and nothing is archived
-    proc = subprocess.run([sys.executable, "-m", "snakemake", "--cores", str(cores),
-                           "results/report/index.html"], cwd=exp, capture_output=True, text=True)
-    (exp / "snakemake.log").write_text(proc.stdout + proc.stderr)
-    record.update(status="done" if proc.returncode == 0 else "failed",
-                  seconds=round(time.perf_counter() - t0, 1),
-                  jobs=_jobs_run(proc.stdout + proc.stderr))
-    (exp / "experiment.json").write_text(json.dumps(record, indent=2) + "\n")
-    if proc.returncode:
-        sys.stderr.write((proc.stdout + proc.stderr)[-3000:])
+    _record(exp, record, status="running", pid=os.getpid())
+    t0, log = time.perf_counter(), None
+    try:
+        # up to the report, never the archive: an experiment's numbers differ from the
+        # committed reference by design, so its reference check reports the drift
+        proc = subprocess.run([sys.executable, "-m", "snakemake", "--cores", str(cores),
+                               "--omit-from", "archive", "results/report/index.html"],
+                              cwd=exp, capture_output=True, text=True)
+        log = proc.stdout + proc.stderr
+        (exp / "snakemake.log").write_text(log)
+    finally:
+        record.pop("pid")
+        ok = log is not None and proc.returncode == 0
+        _record(exp, record, status="done" if ok else "failed",
+                seconds=round(time.perf_counter() - t0, 1), jobs=_jobs_run(log or ""))
+    if record["status"] != "done":
+        sys.stderr.write(log[-3000:])
     return record
 
 
@@ -204,13 +272,27 @@ def _jobs_run(log: str) -> dict[str, int]:
 
 
 def show(base: Path = Path(".")) -> list[dict]:
-    """Every experiment's record, with each paper's claim counts."""
+    """Every experiment's record, with each paper's claim counts when it is done (the
+    results of one not done are partly the baseline's copies).  One still "running" whose
+    process is gone was killed: failed."""
     out = []
     for f in sorted((base / "experiments").glob("*/experiment.json")):
         rec = json.loads(f.read_text())
-        rec["claims"] = _claims(f.parent / "results")
+        if rec.get("status") == "running" and not _alive(rec.get("pid")):
+            rec["status"] = "failed"
+        rec["claims"] = _claims(f.parent / "results") if rec.get("status") == "done" else {}
         out.append(rec)
     return out
+
+
+def _alive(pid) -> bool:
+    try:
+        os.kill(int(pid), 0)
+    except (TypeError, ValueError, ProcessLookupError):
+        return False
+    except PermissionError:
+        pass
+    return True
 
 
 # --- diffs -------------------------------------------------------------------------------
@@ -263,7 +345,7 @@ def _data_differs(a: Path, b: Path) -> bool:
 
     from .io import open_dataset
 
-    # an experiment hard-links the runs it reuses: the same bytes need no reading as data
+    # an experiment copies the runs it reuses: the same bytes need no reading as data
     # (the diff of a ci result set with itself took 124 s of a loaded test suite)
     if a.exists() and b.exists() and (os.path.samefile(a, b) or filecmp.cmp(a, b, shallow=False)):
         return False
@@ -285,23 +367,50 @@ def _data_differs(a: Path, b: Path) -> bool:
     return False
 
 
+def _extract(archive: Path, into: Path) -> None:
+    """Extract ``archive`` into ``into`` after checking every member: one with an absolute
+    path, one climbing out (``..``) or one tarfile's data filter refuses (a link out, a
+    device) is named and nothing is extracted (the filter alone strips a leading ``/`` and
+    extracts the members before a bad one)."""
+    try:
+        with tarfile.open(archive) as tar:
+            members = tar.getmembers()
+            for m in members:
+                name = Path(m.name)
+                why = ("has an absolute path" if name.is_absolute() else
+                       "climbs out of the destination" if ".." in name.parts else None)
+                if why is None:
+                    try:
+                        tarfile.data_filter(m, str(into))
+                    except tarfile.FilterError as exc:
+                        why = f"is refused by tarfile's data filter ({type(exc).__name__})"
+                if why:
+                    raise ValueError(f"{archive}: member {m.name!r} {why}; nothing was extracted")
+            tar.extractall(into, members=members, filter="data")
+    except tarfile.TarError as exc:
+        raise ValueError(f"{archive}: not a readable archive ({exc})") from None
+
+
 def _unpack(path: Path, into: Path) -> Path:
     """A results directory, or an archive extracted (members checked) into ``into``."""
     if path.is_dir():
         return path
-    with tarfile.open(path) as tar:
-        tar.extractall(into, filter="data")
+    _extract(path, into)
     return into
 
 
 def diff(a: Path, b: Path, reference: Path = Path("results/reference"),
-         profile: str = "default") -> dict:
+         profile: str = "default", out: Path | None = None) -> dict:
     """What differs between two result sets (directories or archives): parameters, validation
     rows that moved beyond their reference tolerance or changed verdict, claims, figures
-    whose data changed, and the time each took."""
+    whose data changed, and the time each took.  With ``out``, the page (:func:`write_diff`)
+    is written there while an archive side is still extracted."""
     with tempfile.TemporaryDirectory() as tmp:
-        a, b = _unpack(Path(a), Path(tmp) / "a"), _unpack(Path(b), Path(tmp) / "b")
-        return _diff(a, b, reference, profile)
+        da, db = _unpack(Path(a), Path(tmp) / "a"), _unpack(Path(b), Path(tmp) / "b")
+        d = {**_diff(da, db, reference, profile), "a": str(a), "b": str(b)}
+        if out is not None:
+            write_diff(d, Path(out), da, db)
+    return d
 
 
 def _diff(a: Path, b: Path, reference: Path, profile: str) -> dict:
@@ -356,6 +465,21 @@ def _time(results: Path, paper: str) -> float:
     return round(sum(_float(r.get("job_s")) for r in t.values() if math.isfinite(_float(r.get("job_s")))), 2)
 
 
+def _fmt(v) -> str:
+    """A value as a reader wants it: numbers to 10 digits, structures as JSON, none as -."""
+    if v is None:
+        return "-"
+    if isinstance(v, float):
+        return f"{v:.10g}"
+    return v if isinstance(v, str) else json.dumps(v, sort_keys=True)
+
+
+def _claim(c: dict) -> str:
+    """``partial (pass 2, fail 5)``: a claim and its independent rows' verdicts."""
+    counts = ", ".join(f"{k} {v}" for k, v in (c.get("independent") or {}).items())
+    return f"{c.get('claim') or 'none'} ({counts or 'no independent rows'})"
+
+
 def markdown(d: dict) -> str:
     if not d["papers"]:
         return f"No differences between {d['a']} and {d['b']}.\n"
@@ -363,9 +487,9 @@ def markdown(d: dict) -> str:
     for paper, p in d["papers"].items():
         lines += [f"## {paper}", ""]
         for k, (x, y) in p["parameters"].items():
-            lines.append(f"- parameter `{k}`: {x} -> {y} (SI)")
+            lines.append(f"- parameter `{k}`: {_fmt(x)} -> {_fmt(y)} (SI)")
         if p["claim"]:
-            lines.append(f"- claim: {p['claim']['a']} -> {p['claim']['b']}")
+            lines.append(f"- claim: {_claim(p['claim']['a'])} -> {_claim(p['claim']['b'])}")
         if p["rows"]:
             lines += ["", "| quantity | A | B | unit | verdict A | verdict B |", "|---|---|---|---|---|---|"]
             lines += [f"| {r['quantity']} | {r['a']} | {r['b']} | {r['unit']} | {r['status_a']} "
@@ -376,28 +500,66 @@ def markdown(d: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
-def write_diff(d: dict, out: Path) -> None:
-    """``diff.json``, ``diff.md`` and ``diff.html`` (changed figures side by side)."""
-    import html
+def _html_table(head: list[str], rows: list[list]) -> str:
+    def tr(tag, cells):
+        return "<tr>" + "".join(f"<{tag}>{html.escape(_fmt(c))}</{tag}>" for c in cells) + "</tr>"
+    return "<table>" + tr("th", head) + "".join(tr("td", r) for r in rows) + "</table>"
 
+
+STYLE = ("body{font-family:system-ui,sans-serif;max-width:1180px;margin:1em auto;padding:0 12px}"
+         "table{border-collapse:collapse;margin:.5em 0}th,td{border:1px solid #ccc;padding:2px 6px;"
+         "text-align:left}.pair{display:grid;grid-template-columns:1fr 1fr;gap:8px}"
+         ".pair img{width:100%}.note{color:#555}")
+
+
+def write_diff(d: dict, out: Path, a: Path | None = None, b: Path | None = None) -> None:
+    """``diff.json``, ``diff.md`` and ``diff.html``: per paper tables of the parameters,
+    claims and validation rows that differ, and the changed figures of both sides at one
+    width, copied from the result sets ``a`` and ``b`` (default: the diff's own) into
+    ``out/figures/``, so that the page outlives an extracted archive."""
     from .io import write_json, write_text
 
+    esc = html.escape
     out.mkdir(parents=True, exist_ok=True)
     write_json(out / "diff.json", d)
-    md = markdown(d)
-    write_text(out / "diff.md", md)
-    parts = [f"<!doctype html><html><head><meta charset='utf-8'><title>diff</title><style>"
-             "body{font-family:system-ui,sans-serif;max-width:1180px;margin:1em auto;padding:0 12px}"
-             "img{max-width:100%}.pair{display:grid;grid-template-columns:1fr 1fr;gap:8px}"
-             "pre{white-space:pre-wrap}</style></head><body>", f"<pre>{html.escape(md)}</pre>"]
+    write_text(out / "diff.md", markdown(d))
+    parts = [f"<!doctype html><html><head><meta charset='utf-8'><title>diff</title><style>{STYLE}"
+             f"</style></head><body><h1>Diff</h1><p>A: <code>{esc(d['a'])}</code><br>B: "
+             f"<code>{esc(d['b'])}</code></p>" + ("" if d["papers"] else "<p>No differences.</p>")]
     for paper, p in d["papers"].items():
+        parts.append(f"<h2>{esc(paper)}</h2>")
+        if p["parameters"]:
+            parts += ["<h3>Parameters that differ (SI)</h3>", _html_table(
+                ["parameter", "A", "B"], [[k, x, y] for k, (x, y) in p["parameters"].items()])]
+        if p["claim"]:
+            parts += ["<h3>Claim</h3>", _html_table(["", "A", "B"], [[
+                "claim (independent rows)", _claim(p["claim"]["a"]), _claim(p["claim"]["b"])]])]
+        if p["rows"]:
+            parts += ["<h3>Validation rows that moved beyond their tolerance or changed "
+                      "verdict</h3>", _html_table(
+                          ["quantity", "A", "B", "unit", "verdict A", "verdict B"],
+                          [[r["quantity"], r["a"], r["b"], r["unit"],
+                            f"{r['status_a']} ({r['evidence_a']})",
+                            f"{r['status_b']} ({r['evidence_b']})"] for r in p["rows"]])]
+        parts.append(f"<p>Runs whose data changed: {len(p['runs_changed'])}. Solver job time: "
+                     f"A {_fmt(p['time']['a'])} s, B {_fmt(p['time']['b'])} s.</p>")
+        if p["figures_changed"]:
+            parts.append("<h3>Figures drawn from the changed runs</h3><p class='note'>Each side "
+                         "as its notebook drew it, at the same width; each keeps its own axes: "
+                         "compare the tick labels, not the positions.</p>")
         for fig in p["figures_changed"]:
-            fa = os.path.relpath(Path(d["a"]) / paper / "figures" / fig, out)
-            fb = os.path.relpath(Path(d["b"]) / paper / "figures" / fig, out)
-            parts.append(f"<h3>{paper} {html.escape(fig)}</h3><div class='pair'>"
-                         f"<figure><img src='{html.escape(fa)}' alt='A {fig}'><figcaption>A</figcaption></figure>"
-                         f"<figure><img src='{html.escape(fb)}' alt='B {fig}'><figcaption>B</figcaption></figure></div>")
-    write_text(out / "diff.html", "".join(parts) + "</body></html>")
+            cells = []
+            for side, root in (("A", a or d["a"]), ("B", b or d["b"])):
+                src, rel = Path(root, paper, "figures", fig), Path("figures", side, paper, fig)
+                if not src.is_file():
+                    cells.append(f"<p>{side}: not drawn</p>")
+                    continue
+                (out / rel).parent.mkdir(parents=True, exist_ok=True)
+                shutil.copy2(src, out / rel)
+                cells.append(f"<figure><img src=\"{esc(rel.as_posix())}\" alt=\"{side} "
+                             f"{esc(fig)}\"><figcaption>{side}</figcaption></figure>")
+            parts.append(f"<h4>{esc(fig)}</h4><div class='pair'>{''.join(cells)}</div>")
+    write_text(out / "diff.html", "".join(parts) + "</body></html>\n")
 
 
 # --- restore -----------------------------------------------------------------------------
@@ -411,8 +573,7 @@ def restore(archive: Path, into: Path = Path(".")) -> int:
     into = Path(into)
     with tempfile.TemporaryDirectory(dir=into) as tmp:
         tmp = Path(tmp)
-        with tarfile.open(archive) as tar:
-            tar.extractall(tmp, filter="data")
+        _extract(archive, tmp)
         man = json.loads((tmp / "manifest.json").read_text())
         bad = [rel for rel, sha in man["files"].items()
                if not (tmp / rel).is_file() or file_sha256(tmp / rel) != sha]
@@ -458,7 +619,8 @@ def main(argv: list[str] | None = None) -> int:
     d = sub.add_parser("diff", help="what differs between two result sets")
     d.add_argument("a", type=Path)
     d.add_argument("b", type=Path)
-    d.add_argument("--out", type=Path, help="write diff.json, diff.md, diff.html here")
+    d.add_argument("--out", type=Path, help="write diff.json, diff.md, diff.html (with the "
+                   "figures it shows) here")
     d.add_argument("--profile", default="default", help="whose reference tolerances to use")
     s = sub.add_parser("restore", help="put an archive's results into this checkout")
     s.add_argument("archive", type=Path)
@@ -469,21 +631,18 @@ def main(argv: list[str] | None = None) -> int:
             rec = run(args.name, args.sets, cores=args.cores, profile=args.profile)
             print(json.dumps(rec, indent=2))
             if rec["status"] == "done":
-                d = diff(Path(rec["baseline"]), Path("experiments") / args.name / "results",
-                         profile=rec["profile"])
-                write_diff(d, Path("experiments") / args.name / "diff")
-                print(markdown(d))
+                exp = Path("experiments") / args.name
+                print(markdown(diff(Path(rec["baseline"]), exp / "results",
+                                    profile=rec["profile"], out=exp / "diff")))
             return 0 if rec["status"] == "done" else 1
         if args.cmd == "exp":
             for rec in show():
-                counts = {p: c["independent"] for p, c in rec["claims"].items()}
-                print(f"{rec['name']}: {rec['status']} {' '.join(rec['sets'])} {counts}")
+                claims = "; ".join(f"{p} {_claim(c)}" for p, c in rec["claims"].items())
+                print(f"{rec['name']}: {rec['status']} {' '.join(rec['sets']) or '(no --set)'}"
+                      + (f": {claims}" if claims else ""))
             return 0
         if args.cmd == "diff":
-            d = diff(args.a, args.b, profile=args.profile)
-            if args.out:
-                write_diff(d, args.out)
-            print(markdown(d), end="")
+            print(markdown(diff(args.a, args.b, profile=args.profile, out=args.out)), end="")
             return 0
         n = restore(args.archive, args.into)
         print(f"restored {n} result files from {args.archive}")

@@ -12,9 +12,12 @@ Every result is written by :func:`mechrepro.io.atomic_path`, which records besid
 (``.<name>.sum``) the sha256, size and time stamp it wrote.  Heal compares each result
 with that record: the same content with another time stamp gets its recorded time stamp
 back (a copy schedules nothing); other content is removed, named, and rebuilt by the run.
-A result without a readable record (written by an older version, or its record garbled)
-is checked against the sha256 of every archive manifest that lists it (the full run's and
-each one-paper run's) and, for netCDF, by opening it.  Time stamps alone never remove anything.
+A result without a readable record (restored from an archive, written by an older version,
+or its record garbled) is checked against the sha256 of every archive manifest that lists
+it (the full run's and each one-paper run's) and, when it matches, gets the record of what
+made it from that manifest; a netCDF file is also opened.  Time stamps alone never remove
+anything.  Whether a result is current is then decided by what made it
+(:mod:`mechrepro.staleness`, :func:`steer_workflow`), never by time stamps.
 
 Heal runs inside the workflow (``workflow/rules/common.smk``) before Snakemake builds its
 jobs, so ``make reproduce`` and a plain ``snakemake`` are healed alike, and only while this
@@ -32,7 +35,7 @@ import os
 import sys
 from pathlib import Path
 
-from .io import SUM_SUFFIX, read_sum, sum_path
+from .io import SUM_SUFFIX, read_sum, sum_path, write_text
 from .provenance import file_sha256
 
 LOCK_DIR = Path(".snakemake") / "mechrepro"
@@ -114,16 +117,17 @@ def _results_files(results: Path):
                 yield Path(root, name)
 
 
-def _manifests(results: Path) -> dict[str, set[str]]:
-    """{file: every sha256 the manifests under ``results`` give it}: the full run's
-    (``archive/``) and each run of some papers' (``archive-saw_chain/``), which may hold
-    different good versions of one file."""
-    out: dict[str, set[str]] = {}
+def _manifests(results: Path) -> dict[str, dict[str, dict | None]]:
+    """{file: {sha256: what made it, or None}} as the manifests under ``results`` give it:
+    the full run's (``archive/``) and each run of some papers' (``archive-saw_chain/``),
+    which may hold different good versions of one file."""
+    out: dict[str, dict[str, dict | None]] = {}
     for path in sorted(results.glob("archive*/manifest.json")):
         try:
-            files = json.loads(path.read_text())["files"]
-            for rel, sha in files.items():
-                out.setdefault(rel, set()).add(sha)
+            man = json.loads(path.read_text())
+            made = {o: j["made_by"] for j in man.get("jobs", []) for o in j["outputs"]}
+            for rel, sha in man["files"].items():
+                out.setdefault(rel, {})[sha] = made.get(rel)
         except (OSError, ValueError, KeyError, TypeError, AttributeError):
             continue
     return out
@@ -166,11 +170,12 @@ def _readable_netcdf(path: Path) -> bool:
 def inspect(results: str | Path, workdir: str | Path = "."):
     """What heal would do: ([(file to remove, why)], [file whose time stamp to restore],
     [record whose file is gone], [file restored to its previous version], [Snakemake
-    record of a failed job to forget])."""
+    record of a failed job to forget], [(file without a record, the record its manifest
+    gives it)])."""
     results = Path(results)
-    remove, restore, orphans, reverted, failed = [], [], [], [], []
+    remove, restore, orphans, reverted, failed, adopt = [], [], [], [], [], []
     if not results.is_dir():
-        return remove, restore, orphans, reverted, failed
+        return remove, restore, orphans, reverted, failed, adopt
     manifest = None
     for f in _results_files(results):
         name = f.name
@@ -204,11 +209,19 @@ def inspect(results: str | Path, workdir: str | Path = "."):
         if manifest is None:
             manifest = _manifests(results)
         rel = str(f.relative_to(results))
-        if rel in manifest and file_sha256(f) not in manifest[rel]:
+        sha = file_sha256(f) if rel in manifest else None
+        if rel in manifest and sha not in manifest[rel]:
             remove.append((f, "checksum differs from the last manifest"))
         elif name.endswith(".nc") and not _readable_netcdf(f):
             remove.append((f, "unreadable netCDF (truncated or corrupted)"))
-    return remove, restore, orphans, reverted, failed
+        elif sha is not None:
+            # a restored archive: the record of what made it comes from the manifest (an
+            # archive without one leaves the file unrecorded: its job reruns)
+            rec = {"sha256": sha, "size": st.st_size, "mtime_ns": st.st_mtime_ns}
+            if manifest[rel][sha] is not None:
+                rec["made_by"] = manifest[rel][sha]
+            adopt.append((f, rec))
+    return remove, restore, orphans, reverted, failed, adopt
 
 
 def heal(results: str | Path, workdir: str | Path = ".", dry_run: bool = False) -> list[str]:
@@ -224,7 +237,7 @@ def heal(results: str | Path, workdir: str | Path = ".", dry_run: bool = False) 
             return [f"not healed: Snakemake's lock {lock} names files of {results} (a run "
                     f"killed with its jobs still writing?); when no job is left, "
                     f"`snakemake --unlock` and run again"]
-    remove, restore, orphans, reverted, failed = inspect(results, workdir)
+    remove, restore, orphans, reverted, failed, adopt = inspect(results, workdir)
     verb = "would remove" if dry_run else "removed"
     lines = []
     for f, why in remove:
@@ -256,6 +269,12 @@ def heal(results: str | Path, workdir: str | Path = ".", dry_run: bool = False) 
         if not dry_run:
             rec = read_sum(f)
             os.utime(f, ns=(rec["mtime_ns"], rec["mtime_ns"]))
+    for f, rec in adopt:
+        if not dry_run:
+            write_text(sum_path(f), json.dumps(rec, sort_keys=True) + "\n", record=False)
+    if adopt:
+        lines.append(f"{'would record' if dry_run else 'recorded'} what made {len(adopt)} "
+                     f"results from their archive's manifest (e.g. {adopt[0][0]})")
     if restore and dry_run:
         # not said in a run: Snakemake touches every output after its job, so this is
         # every result after every run; after a copy (cp -r) it is what schedules nothing
@@ -323,6 +342,41 @@ def heal_workflow(workflow, results: str, argv: list[str] | None = None) -> None
         # read-only results or .snakemake: nothing can be healed, nor written by any job;
         # a no-op run must still say "Nothing to be done", not end in a traceback
         sys.stderr.write(f"[heal] not healed ({exc.strerror}: {exc.filename or results})\n")
+
+
+def steer_workflow(workflow, jobs, results: str, table: str,
+                   argv: list[str] | None = None) -> None:
+    """Called while Snakemake parses the workflow, after every rule: when Snakemake builds
+    its DAG, let it run exactly the jobs whose results are not what today's records, code,
+    packages and inputs would make, and what depends on them
+    (:func:`mechrepro.staleness.steer`), in a run or a dry run of the main process; a run
+    also writes the job table the archive checks.
+
+    Snakemake hands the workflow its DAG settings only after parsing, and decides which
+    jobs need to run after it made the DAG: this wraps the step between the two
+    (``Workflow._prepare_dag``, Snakemake 9; tests/test_staleness.py pins it) to force the
+    stale jobs first and to restrict the DAG's jobs that may run to those rules after
+    (every rule stays in the DAG, so a target made by another is still found)."""
+    from .staleness import steer, write_table
+
+    argv = sys.argv[1:] if argv is None else argv
+    dry = workflow.output_settings.dryrun
+    if workflow.exec_mode.name != "DEFAULT" or (
+            not dry and any(a.split("=")[0] in NOT_A_RUN for a in argv)):
+        return
+    prepare = workflow._prepare_dag
+
+    def _prepare_dag(*args, **kwargs):
+        allowed = steer(workflow, jobs, results,
+                        say=lambda line: sys.stderr.write(line + "\n"))
+        if not dry:
+            write_table(jobs, results, table)
+        out = prepare(*args, **kwargs)
+        if allowed is not None:
+            workflow._dag.rules_allowed_for_needrun = allowed
+        return out
+
+    workflow._prepare_dag = _prepare_dag
 
 
 def main(argv: list[str]) -> int:

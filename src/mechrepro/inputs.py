@@ -1,10 +1,11 @@
 """Reading a paper config: what YAML and the JSON schema let through, refused here.
 
-:func:`read_yaml` is the one reader of ``config/papers/<paper>.yaml`` (called by
-:func:`mechrepro.config.load_paper` before the schema).  It refuses, naming the file, the
-key, the value and what is allowed:
+:func:`read_yaml` is the one reader of ``config/papers/<paper>.yaml`` and of
+``config/config.yaml`` (called by :func:`mechrepro.config.load_paper` and
+:func:`mechrepro.config.workflow_config` before the schema).  It refuses, naming the file,
+the key, the value and what is allowed:
 
-- bytes that are not UTF-8 (line and column of the first bad byte);
+- bytes that are not UTF-8 (line, column and text of the line of the first bad byte);
 - a key given twice in one mapping, at any level (YAML keeps the last silently: a second
   ``scenes:`` block would replace the first);
 - NaN or infinity anywhere (``.nan``, ``.inf``): JSON-schema comparisons with NaN are
@@ -97,9 +98,12 @@ NAMED = {
 # where the class allows it (then every value inside it leaves it when typed in the unit
 # one step of 1000 away: m for mm, kg for g, MPa for GPa), and wide enough never to refuse
 # a design choice of that class.  Zero is never refused here (no unit makes a zero; the
-# schema decides).  Parameters without a machine class (stiffnesses, damping, tolerances,
-# fitted values) and units whose slips are not a factor 1000 (r/min for rad/s) are left
-# to the schema's `allowed`.
+# schema decides).  An angular speed's slip is a factor 60 / (2 pi) = 9.55 (the rad/s
+# number typed for r/min, or the r/min number with unit rad/s): its range is narrower than
+# that where the machine runs at one speed (saw_chain, joint_wear), so both slips leave
+# it; chain_drive's own speeds span 50-800 r/min, and its range only catches larger slips.
+# Parameters without a machine class (stiffnesses, damping, tolerances, fitted values) are
+# left to the schema's `allowed`.
 _ANGLE = (-360.0, 360.0, "deg", "an angle within one turn (a value in degrees given in "
                                 "rad is ~57x too large)")
 RANGES: dict[str, dict[str, tuple[float, float, str, str]]] = {
@@ -111,8 +115,8 @@ RANGES: dict[str, dict[str, tuple[float, float, str, str]]] = {
         "textbook_mass": (0.5, 300, "g", "the textbook's moving mass, between one link "
                                          "(1.3 g) and the whole tight side (102 g) of a saw "
                                          "chain, with margin"),
-        "sprocket_speed": (100, 30000, "rpm", "a chain-saw sprocket (idle ~2800 r/min, "
-                                              "cutting 9000-14000 r/min)"),
+        "sprocket_speed": (2000, 16000, "rpm", "a chain-saw sprocket (idle ~2800 r/min, "
+                                               "cutting 9000-14000 r/min)"),
         "textbook_phase": _ANGLE,
     },
     "chain_drive": {
@@ -151,6 +155,9 @@ RANGES: dict[str, dict[str, tuple[float, float, str, str]]] = {
         **{k: (0.01, 500, "kg", "a link of a planar four-bar linkage (10 g to 500 kg)")
            for k in ("coupler_mass", "follower_mass")},
         "load": (1, 50000, "N", "a load on a planar linkage of at most 500 kg links"),
+        "crank_speed": (3, 28, "r/min", "the crank of a low-speed wear test of a linkage "
+                                        "(the paper's rig 9.6 r/min; its continuous-contact "
+                                        "model, Sec. 3.2, assumes low speed)"),
         "pin_radius": (0.01, 500, "mm", "a joint pin (watch pivots of ~0.05 mm to 0.5 m)"),
         "radial_clearance": (0.001, 5, "mm", "a radial clearance of a journal (1 um to 5 mm)"),
         "width": (1, 500, "mm", "a bushing width (1 mm to 0.5 m)"),
@@ -252,10 +259,12 @@ def read_yaml(path: str | Path):
         text = data.decode("utf-8")
     except UnicodeDecodeError as exc:
         line = data[:exc.start].count(b"\n") + 1
-        col = exc.start - (data.rfind(b"\n", 0, exc.start) + 1) + 1
+        bol = data.rfind(b"\n", 0, exc.start) + 1
+        eol = data.find(b"\n", exc.start)
+        text = data[bol:eol if eol >= 0 else len(data)].decode("utf-8", "replace")
         raise InputError(f"byte {data[exc.start:exc.start + 1]!r} at line {line}, column "
-                         f"{col} is not UTF-8: allowed is UTF-8 text (save the file as "
-                         f"UTF-8)") from None
+                         f"{exc.start - bol + 1} ({text.strip()!r}) is not UTF-8: allowed is "
+                         f"UTF-8 text (save the file as UTF-8)") from None
     raw = yaml.load(text, Loader=StrictLoader)
     bad = list(_non_finite(raw))
     if bad:

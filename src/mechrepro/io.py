@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .provenance import code_version, package_versions
+from .staleness import job_made_by
 
 if TYPE_CHECKING:   # xarray (with pandas, ~0.5 s) is imported where datasets are read:
     import xarray as xr   # the report, archive and reference jobs write files only
@@ -40,7 +41,8 @@ def sum_path(path: str | Path) -> Path:
 
 
 def read_sum(path: str | Path) -> dict | None:
-    """``{"sha256", "size", "mtime_ns"}`` as the writer recorded them, or None."""
+    """``{"sha256", "size", "mtime_ns"}`` as the writer recorded them (and ``made_by``,
+    what made it: :mod:`mechrepro.staleness`), or None."""
     try:
         rec = json.loads(sum_path(path).read_text())
         return rec if {"sha256", "size", "mtime_ns"} <= set(rec) else None
@@ -57,11 +59,15 @@ def _write_sum(tmp: Path, path: Path) -> None:
 
     st = tmp.stat()
     rec = {"sha256": file_sha256(tmp), "size": st.st_size, "mtime_ns": st.st_mtime_ns}
+    made_by = job_made_by()
+    if made_by is not None:
+        rec["made_by"] = made_by    # what made it (mechrepro.staleness)
     old = read_sum(path)
     if old is not None:
         # what was there before: a failed job's outputs are restored by Snakemake (the
         # rules' update() flag), and heal must recognise them as what their job wrote
-        rec["previous"] = {k: old[k] for k in ("sha256", "size", "mtime_ns")}
+        rec["previous"] = {k: old[k] for k in ("sha256", "size", "mtime_ns", "made_by")
+                           if k in old}
     side = sum_path(path)
     fd, stmp = tempfile.mkstemp(prefix=side.name + ".", suffix=".part", dir=path.parent)
     with os.fdopen(fd, "w") as f:
@@ -133,6 +139,9 @@ def provenance_attrs(run: dict) -> dict:
                                  sort_keys=True),
         "code_version": code_version(),
         "package_versions": json.dumps(package_versions(), sort_keys=True),
+        # what made it (mechrepro.staleness): kept inside the file, so a copy without its
+        # record beside it still says so
+        "made_by": json.dumps(job_made_by() or {}, sort_keys=True),
         "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
         "Conventions": "CF-1.8",
     }

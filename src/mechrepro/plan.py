@@ -5,8 +5,15 @@ run's own log (the newest ``.snakemake/log/*.snakemake.log``, where Snakemake wr
 job's reason as it starts it; so the workflow is parsed once, not a second time for a dry
 run) and writes ``<results>/rerun_plan.txt`` (the log) and ``<results>/rerun_plan.html``
 (one row per job with its reason: params changed, code changed, input changed, missing
-output ...).  The report page embeds the last plan.  The plan is not an input of any rule,
-so saving it never triggers a rerun by itself.
+output ...).  The plan is not an input of any rule, so saving it never triggers a rerun by
+itself.
+
+A run that failed leaves a failure mark, ``<results>/last_run_failed.js`` (:func:`mark_failed`):
+what failed, when, and when that run started.  Every report page of the results directory
+loads it and says on its first screen that the last run failed, and whether that run wrote
+the page or left an earlier one.  The next run that completes removes it.  The mark is no
+declared output and no page names it in a ``src``/``href`` attribute, so no archive holds it:
+a failure never outlives the fix, nor is it certified with the results.
 """
 from __future__ import annotations
 
@@ -15,8 +22,6 @@ import re
 import sys
 from collections import Counter
 from pathlib import Path
-
-from .io import write_text
 
 KINDS = (("Params have changed", "params changed"), ("Code has changed", "code changed"),
          ("Updated input files", "input changed"), ("Missing output files", "missing output"),
@@ -44,6 +49,24 @@ def parse(dry_run: str) -> list[dict]:
     for job in jobs:
         job["kind"] = "; ".join(k for key, k in KINDS if key in job["reason"]) or "other"
     return jobs
+
+
+def cap_reason(line: str, names: int = 3) -> str:
+    """A ``reason:`` line of Snakemake's console output with each of its file lists cut to
+    the count and the first ``names`` ("Input files updated by another job: 226 (a.nc,
+    b.nc, c.nc, ...)"): a validation job's reason named every run, 45,140 characters on
+    one line.  The whole reasons stay in Snakemake's log and ``rerun_plan.txt``."""
+    m = re.match(r"(\s*reason: )(.*?)(\s*)$", line, re.S)
+    if m is None:
+        return line
+    clauses = []
+    for clause in m.group(2).split("; "):
+        label, sep, items = clause.partition(": ")
+        files = items.split(", ")
+        if sep and len(files) > names:
+            clause = f"{label}: {len(files)} ({', '.join(files[:names])}, …)"
+        clauses.append(clause)
+    return m.group(1) + "; ".join(clauses) + m.group(3)
 
 
 def to_html(jobs: list[dict], status: int = 0) -> str:
@@ -99,17 +122,35 @@ def main(argv: list[str]) -> int:
         return args.status or 1
 
 
+def mark_failed(results: str | Path, status: int, why: str, since: float | None) -> None:
+    """Leave the failure mark of the run that started at ``since`` (epoch seconds), or
+    remove it when the run completed (``status`` 0).  The mark is a script calling the
+    report's ``mechreproLastRun``: the page compares its own writing time with ``since``."""
+    import datetime as dt
+    import json
+
+    from .io import write_text
+    from .report import MARK
+
+    path = Path(results) / MARK
+    if not status:
+        path.unlink(missing_ok=True)
+        return
+    when = dt.datetime.now().astimezone().isoformat(timespec="seconds")
+    write_text(path, "mechreproLastRun(" + json.dumps(
+        {"status": status, "why": why, "start": since, "when": when}) + ");\n", record=False)
+
+
 def save(args) -> int:
+    from .io import write_text
+
     results = Path(args.results)
     log = Path(args.log) if args.log else latest_log()
     if args.since is not None and (log is None or not log.exists()
                                    or log.stat().st_mtime < args.since - 1):
         write_text(results / "rerun_plan.html", no_run_html(args.status))
-        if args.status:
-            from .report import mark_stale
-
-            mark_stale(results / "report" / "index.html",
-                       f"exit status {args.status} before any job: see the console")
+        mark_failed(results, args.status, f"exit status {args.status} before any job: see "
+                    "the console", args.since)
         print(f"rerun plan: no job was planned -> {results}/rerun_plan.html")
         return 0
     if log is None or not log.exists():
@@ -119,12 +160,9 @@ def save(args) -> int:
     jobs = parse(out)
     write_text(results / "rerun_plan.txt", out)
     write_text(results / "rerun_plan.html", to_html(jobs, args.status))
-    if args.status:
-        from .report import mark_stale
-
-        failed = sorted({m for m in re.findall(r"Error in rule (\w+):", out)})
-        mark_stale(results / "report" / "index.html",
-                   f"exit status {args.status}" + (f"; failed: {', '.join(failed)}" if failed else ""))
+    failed = sorted({m for m in re.findall(r"Error in rule (\w+):", out)})
+    mark_failed(results, args.status, f"exit status {args.status}"
+                + (f"; failed: {', '.join(failed)}" if failed else ""), args.since)
     n = sum(j["rule"] != "all" for j in jobs)
     print(f"rerun plan: {n} jobs ran -> {results}/rerun_plan.html")
     return 0

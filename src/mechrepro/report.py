@@ -20,6 +20,9 @@ from .io import write_text
 from .provenance import code_version
 
 VERDICTS = ("pass", "fail", "inconclusive", "not_converged")
+#: the failure mark of a run that did not complete, in the results directory
+#: (written and removed by :func:`mechrepro.plan.mark_failed`, loaded by every report page)
+MARK = "last_run_failed.js"
 
 CSS = """
 body{font-family:system-ui,sans-serif;margin:1em auto;max-width:1180px;padding:0 12px;color:#222;line-height:1.4}
@@ -123,15 +126,46 @@ def _row(r: dict, spec: dict) -> dict:
             "why": why, "details": details}
 
 
-def claim_sentence(claim: dict) -> str:
-    """One plain sentence from claim.json's structured fields (artefact titles, no row ids)."""
+def artefact_verdicts(rows: list[dict]) -> dict[str, list[tuple[str, dict]]]:
+    """Each figure or table scored by independent rows (validation.csv), by their
+    majority: ``agree`` when more than half pass, ``disagree`` when more than half fail,
+    else ``not settled``; with its rows' counts by verdict.  One failing row among many
+    passes does not make a figure disagree (the rows say which)."""
+    by: dict[str, dict[str, int]] = {}
+    for r in rows:
+        if r["evidence"] == "independent" and r["status"] != "info":
+            n = by.setdefault(r["artefact"], {})
+            n[r["status"]] = n.get(r["status"], 0) + 1
+    out: dict[str, list] = {"agree": [], "disagree": [], "not settled": []}
+    for a, n in sorted(by.items()):
+        total = sum(n.values())
+        key = ("agree" if 2 * n.get("pass", 0) > total else
+               "disagree" if 2 * n.get("fail", 0) > total else "not settled")
+        out[key].append((a, n))
+    return out
+
+
+def claim_sentence(claim: dict, rows: list[dict]) -> str:
+    """One plain sentence from claim.json's counts and the validation rows: the artefacts
+    that agree, disagree and are not settled by their rows' majority, with the counts
+    (artefact titles, no row ids)."""
     n = claim["independent"]
     total = sum(n.values())
     parts = [f"{n.get('pass', 0)} of {total} independent checks pass"]
-    for key, word in (("agree", "agrees on"), ("disagree", "disagrees on"),
-                      ("inconclusive", "not settled on")):
-        if claim.get(key):
-            parts.append(f"{word} {', '.join(artefact_title(a) for a in claim[key])}")
+
+    def counts(c: dict, key: str) -> str:
+        rows_n = sum(c.values())
+        if key != "not settled":
+            word, k = ("pass", "passes") if key == "agree" else ("fail", "fails")
+            m = c.get(word, 0)
+            return f"{m} of {rows_n} row{'s' * (rows_n != 1)} {k if m == 1 else word}"
+        return ", ".join(f"{c[s]} {s.replace('_', ' ')}" for s in VERDICTS if c.get(s))
+
+    for key, arts in artefact_verdicts(rows).items():
+        if arts:
+            word = {"agree": "agrees on", "disagree": "disagrees on"}.get(key, "not settled on")
+            parts.append(f"{word} " + ", ".join(f"{artefact_title(a)} ({counts(c, key)})"
+                                               for a, c in arts))
     n_nc = len(claim.get("not_counted_passes", []))
     if n_nc:
         parts.append(f"{n_nc} pass{'es' if n_nc != 1 else ''} not counted (no falsifier "
@@ -174,7 +208,7 @@ def paper_view(paper: str, results: Path, config_dir: Path, profile: str, out_di
     counts = [(s, n) for s in VERDICTS for n in [claim["independent"].get(s, 0)]
               if n or s in ("pass", "fail")]
     return {"id": paper, "title": cfg.raw.get("title", ""), "source": cfg.source,
-            "claim": claim["claim"], "counts": counts, "sentence": claim_sentence(claim),
+            "claim": claim["claim"], "counts": counts, "sentence": claim_sentence(claim, rows),
             "paper_note": cfg.raw.get("claim_note", ""), "artefacts": list(artefacts.values()),
             "tables": tables, "assumed": assumed}
 
@@ -197,7 +231,10 @@ def banner(check_file: Path, profile: str) -> dict:
     return {"ok": ok, "headline": headline, "detail": detail, "lines": bad[:12],
             "profile": profile, "code": code_version(),
             "platform": f"{platform.machine()} {platform.system()}, Python {platform.python_version()}",
-            "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")}
+            "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+            # the page's writing time, against which a failure mark (mechrepro.plan) says
+            # whether the failed run wrote this page or left an earlier one
+            "written": f"{_dt.datetime.now().timestamp():.3f}"}
 
 
 def time_view(results: Path, papers: list[str]) -> dict | None:
@@ -249,23 +286,5 @@ def write_report(out: str, results: str, config_dir: str, papers: list[str], pro
     write_text(out, render({
         "banner": banner(out.parent / "reference_check.txt", profile),
         "papers": [paper_view(p, results, config_dir, profile, out.parent) for p in papers],
-        "cost": cost, "time": time_view(results, papers)}))
-
-
-STALE = re.compile(r'<div class="banner bad" id="stale">.*?</div>\n', re.S)
-
-
-def mark_stale(page: Path, why: str) -> None:
-    """Say on the first screen of an existing report that the last run failed, so the page
-    (written by an earlier, successful run) is not read as the current state; the next
-    successful run writes the page anew, without it."""
-    import html
-
-    page = Path(page)
-    if not page.is_file():
-        return
-    text = STALE.sub("", page.read_text())
-    note = (f'<div class="banner bad" id="stale"><p class="trust"><b>The last run failed</b> '
-            f'({html.escape(why)}): this report is from an earlier run and does not show the '
-            f'current configuration.</p></div>\n')
-    write_text(page, text.replace("<body>\n", "<body>\n" + note, 1))
+        "cost": cost, "time": time_view(results, papers),
+        "mark": Path(os.path.relpath(results / MARK, out.parent)).as_posix()}))

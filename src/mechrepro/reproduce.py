@@ -102,10 +102,17 @@ def remember(results: str | Path, args: list[str], root: str | Path = ".") -> No
 def snakemake(args: list[str]) -> int:
     """Snakemake's exit status.  Ctrl-C reaches Snakemake itself (same process group),
     which marks its jobs incomplete and releases its locks; this process waits for that
-    instead of being interrupted first."""
-    with subprocess.Popen([sys.executable, "-m", "snakemake", *args]) as proc:
+    instead of being interrupted first.  Its console output (stderr) passes through line by
+    line with each ``reason:`` cut to counts and a few names (:func:`mechrepro.plan.cap_reason`)."""
+    with subprocess.Popen([sys.executable, "-m", "snakemake", *args], stderr=subprocess.PIPE,
+                          text=True, errors="replace", bufsize=1) as proc:
         old = {s: signal.signal(s, signal.SIG_IGN) for s in (signal.SIGINT, signal.SIGTERM)}
         try:
+            from .plan import cap_reason   # while Snakemake starts
+
+            for line in proc.stderr:
+                sys.stderr.write(cap_reason(line))
+                sys.stderr.flush()
             return proc.wait()
         finally:
             for s, h in old.items():

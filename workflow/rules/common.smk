@@ -2,6 +2,7 @@
 import hashlib
 import json
 import os
+import re
 import sys
 from pathlib import Path
 
@@ -15,7 +16,15 @@ sys.path.insert(0, str(SRC.resolve()))  # this workflow's own package, not whate
 
 from mechrepro.config import CACHE_DIR, ConfigError, load_all  # noqa: E402
 
-validate(config, str((BASE / "config/schema/config.schema.json").resolve()))
+# config/config.yaml through the papers' strict reader and its schema, --config merged over
+# it (the Snakefile has no `configfile:`: Snakemake's reader let a duplicate key through)
+try:
+    from mechrepro.config import workflow_config  # noqa: E402
+
+    config.update(workflow_config(BASE / "config/config.yaml", dict(config)))
+except ConfigError as exc:
+    sys.stderr.write(f"\n{exc}\n\n")
+    raise SystemExit(1)
 PROFILE = config["profile"]
 RESULTS = config["results"]
 PAPERS = config["papers"]
@@ -24,7 +33,7 @@ PAPERS = config["papers"]
 # report or its archive.
 import yaml  # noqa: E402
 
-_ALL = yaml.safe_load((BASE / "config/config.yaml").read_text())["papers"]
+_ALL = workflow_config(BASE / "config/config.yaml")["papers"]
 _TAG = "" if sorted(PAPERS) == sorted(_ALL) else "-" + "+".join(PAPERS)
 REPORT = f"{RESULTS}/report{_TAG}"
 ARCHIVE = f"{RESULTS}/archive{_TAG}"
@@ -56,13 +65,6 @@ except LimitError as exc:
 # the order in which free cores take jobs (limits.priorities)
 PRIORITY = priorities(CFG)
 
-# Before the jobs are decided: take this results directory's run lock (a second run is
-# refused here, before it can touch anything), then heal by content (mechrepro.heal), in
-# the main process of a run only. `make reproduce` and a plain `snakemake` are alike.
-from mechrepro.heal import heal_workflow  # noqa: E402
-
-heal_workflow(workflow, RESULTS)
-
 # Every job runs `python -m mechrepro.<module>` with this workflow's src/ first on the path.
 # relative when the interpreter lives in the project (.venv), so a moved project keeps its
 # commands; absolute when it lives elsewhere, which does not move with the project
@@ -77,24 +79,28 @@ RUN = {"python": f"PYTHONPATH={SRC} {PY}", "profile": PROFILE, "base": str(BASE)
 
 
 def code(*relpaths):
-    """Source files a job depends on (Snakemake does not track imported modules)."""
+    """Source files a job imports (Snakemake does not track imported modules): their
+    bytes are part of what made its results (mechrepro.staleness), never their times."""
     out = []
+    relpaths = (*CORE, *relpaths)
     for rel in relpaths:
         p = SRC / "mechrepro" / rel
         out += sorted(str(f) for f in p.rglob("*.py")) if p.is_dir() else [str(p)]
     # a model's load-time limits (models/<paper>/limits.py) are read by the workflow
     # before any job, by no job: changing them reruns nothing
-    return [f for f in out if not (Path(f).name == "limits.py" and "models" in Path(f).parts)]
+    return sorted({f for f in out
+                   if not (Path(f).name == "limits.py" and "models" in Path(f).parts)})
 
 
-# The framework modules every solver job imports.
-SOLVER_CORE = ["__init__.py", "errors.py", "solve.py", "io.py", "provenance.py", "timing.py", "effects.py",
-               "registry.py", "lazy.py", "units.py", "config.py"]
-VALIDATE_CORE = ["__init__.py", "errors.py", "cli.py", "config.py", "units.py", "io.py", "validation.py",
-                 "accuracy.py", "costs.py", "registry.py", "lazy.py"]
-NOTEBOOK_CORE = ["__init__.py", "errors.py", "config.py", "units.py", "io.py", "results.py",
-                 "validation.py", "accuracy.py", "plotting.py", "notebook.py", "kernel.py",
-                 "registry.py", "lazy.py"]
+# The framework modules every job imports (it writes through io.py, which records what
+# made each file: staleness.py), and those of each kind of job.
+CORE = ["__init__.py", "errors.py", "io.py", "provenance.py", "staleness.py"]
+SOLVER_CORE = CORE + ["solve.py", "timing.py", "effects.py", "registry.py", "lazy.py",
+                      "units.py", "config.py"]
+VALIDATE_CORE = CORE + ["cli.py", "config.py", "units.py", "validation.py", "accuracy.py",
+                        "costs.py", "registry.py", "lazy.py"]
+NOTEBOOK_CORE = CORE + ["config.py", "units.py", "results.py", "validation.py", "accuracy.py",
+                        "plotting.py", "notebook.py", "kernel.py", "registry.py", "lazy.py"]
 
 
 def model_code(paper):
@@ -124,12 +130,31 @@ def fanned_out_studies():
 
 
 def records_of(paper, runs):
-    """The digest of a job's run records (params: any change reruns it).  A digest, not the
-    records: Snakemake stores a job's params in the metadata of each of its outputs, and a
-    batch job's records there (394 kB per output, 64 MB for two papers) took a no-op run
-    6 s of JSON parsing."""
+    """The digest of a job's run records.  A digest, not the records: Snakemake stores a
+    job's params in the metadata of each of its outputs, and a batch job's records there
+    (394 kB per output, 64 MB for two papers) took a no-op run 6 s of JSON parsing."""
     return hashlib.sha256(json.dumps({r: CFG[paper].runs[r] for r in runs},
                                      sort_keys=True).encode()).hexdigest()
+
+
+# Every job, declared once: its result inputs, its outputs and the files whose bytes made
+# them besides (mechrepro.staleness).  Rules take their inputs, outputs and the `made_by`
+# param from it, and start their command with what made it, the inputs it reads and the
+# results directory (MECHREPRO_MADE_BY, MECHREPRO_INPUTS, MECHREPRO_RESULTS); before any
+# job, the records of what made each result are compared with these (end of the Snakefile).
+from mechrepro.staleness import Job  # noqa: E402
+
+JOBS = []
+
+
+def job(rule, inputs, outputs, record=None, **sources):
+    JOBS.append(Job(rule, [str(f) for f in inputs], [str(f) for f in outputs],
+                    {k: [str(f) for f in v] for k, v in sources.items()}, record))
+    return JOBS[-1]
+
+
+# the job table of this start, which the archive job checks every archived file against
+JOB_TABLE = f"{RESULTS}/.jobs{_TAG}.json"
 
 
 def paper_config(paper):

@@ -9,32 +9,31 @@
 
 for _paper in PAPERS:
     for _job, _runs in solve_jobs(_paper).items():
+        _J = job(f"solve_{_paper}__{_job}", [],
+                 [f"{RESULTS}/{_paper}/runs/{r}.nc" for r in _runs]
+                 + [f"{RESULTS}/{_paper}/studies/{s}.nc"
+                    for s in CFG[_paper].studies_solved_with(_runs)],
+                 record=records_of(_paper, _runs), code=model_code(_paper))
 
         rule:
             name:
-                f"solve_{_paper}__{_job}"
-            # not the paper's config file: the run records below are (as params), so an
-            # edit of one scene reruns exactly the jobs whose records it changes
-            input:
-                code=model_code(_paper),
+                _J.rule
             # update(): Snakemake does not remove the last results before the job and
             # restores them if it fails, so a failing job (a solver's refusal, a crash)
-            # never loses its siblings' good results; they are rerun when their
-            # records change, as before
+            # never loses its siblings' good results; they are rerun when what made them
+            # changes, as before
             output:
-                runs=[update(f"{RESULTS}/{_paper}/runs/{r}.nc") for r in _runs],
-                studies=[update(f"{RESULTS}/{_paper}/studies/{s}.nc")
-                         for s in CFG[_paper].studies_solved_with(_runs)],
+                [update(f) for f in _J.outputs],
             params:
                 python=RUN["python"],
                 paper=_paper,
                 profile=PROFILE,
                 base=RUN["base"],
-                results=lambda wc, output: str(Path(output.runs[0]).parents[2]),
+                results=lambda wc, output: str(Path(output[0]).parents[2]),
                 runs=" ".join(_runs),
-                # the resolved run records: Snakemake's params trigger reruns this job
-                # when one of them changes, and only then
-                records=records_of(_paper, _runs),
+                # what made its results: the run records, code and package set (digests);
+                # a changed record reruns exactly the job that solves it
+                made_by=_J.env,
             log:
                 f"{RESULTS}/{_paper}/logs/solve/{_job}.log",
             benchmark:
@@ -50,24 +49,35 @@ for _paper in PAPERS:
             # not depend on the order
             priority: PRIORITY[_paper, _job]
             shell:
+                "{params.made_by} MECHREPRO_INPUTS='{input}' MECHREPRO_RESULTS={params.results} "
                 "{params.python} -m mechrepro.solve {params.paper} {params.base}/config "
                 "{params.profile} {params.results} {params.runs} > {log} 2>&1"
+
+
+for _paper in PAPERS:
+    for _study in CFG[_paper].studies:
+        if re.fullmatch(fanned_out_studies(), _study):
+            _G = job("gather", [f"{RESULTS}/{_paper}/runs/{r}.nc"
+                                for r in CFG[_paper].studies[_study]],
+                     [f"{RESULTS}/{_paper}/studies/{_study}.nc"], code=code("cli.py"))
 
 
 rule gather:
     input:
         runs=lambda wc: expand(f"{RESULTS}/{wc.paper}/runs/{{run}}.nc",
                                run=CFG[wc.paper].studies[wc.study]),
-        code=code("io.py", "cli.py"),
     output:
         f"{RESULTS}/{{paper}}/studies/{{study}}.nc",
     wildcard_constraints:
         study=fanned_out_studies(),
     params:
         python=RUN["python"],
+        results=lambda wc, output: str(Path(output[0]).parents[2]),
+        made_by=Job("gather", [], [], {"code": code("cli.py")}).env,
     log:
         f"{RESULTS}/{{paper}}/logs/gather/{{study}}.log",
     benchmark:
         f"{RESULTS}/{{paper}}/benchmarks/gather__{{study}}.tsv"
     shell:
+        "{params.made_by} MECHREPRO_INPUTS='{input}' MECHREPRO_RESULTS={params.results} "
         "{params.python} -m mechrepro.cli gather {output} {input.runs} > {log} 2>&1"

@@ -1,0 +1,151 @@
+"""Results decide their own staleness (mechrepro.staleness): a restored, metadata-less,
+copied or touched project reruns exactly the jobs whose results were made by something
+else than today's run records, code and packages, never by time stamps, and the archive
+certifies only current results.
+
+Each test breaks a copy of saw_chain's ci pipeline (conftest.one_paper_pipeline) as a user
+would, then runs Snakemake as `make ci-reproduce` does.
+"""
+import json
+import os
+import shutil
+
+import pytest
+import yaml
+
+import conftest
+from mechrepro.archive import verify
+from mechrepro.io import open_dataset, read_sum, run_attrs
+
+pytestmark = pytest.mark.slow
+
+PAPER, TAG = "saw_chain", "-saw_chain"
+SOLVE = f"rule solve_{PAPER}__batch:"
+OLD_TIME = 946_684_800 * 10**9     # 2000-01-01: an edit that keeps an old time stamp
+
+
+def snakemake(work, *args, check=True):
+    return conftest.snakemake(work, *args, check=check,
+                              base=[*conftest.SNAKEMAKE, f"papers=[{PAPER}]"])
+
+
+@pytest.fixture(scope="module")
+def wf(tmp_path_factory):
+    return conftest.one_paper_pipeline(tmp_path_factory, PAPER, tmp_path_factory.mktemp("st"))
+
+
+@pytest.fixture
+def copy(wf, tmp_path):
+    work, _ = wf
+    shutil.copytree(work, tmp_path / "w", symlinks=True)
+    return tmp_path / "w"
+
+
+def set_speed(work, rpm=12500, keep_time=False):
+    """The saw_chain scene speed_12000's sprocket speed (r/min), edited in its config."""
+    path = work / "config" / "papers" / f"{PAPER}.yaml"
+    st = path.stat()
+    raw = yaml.safe_load(path.read_text())
+    raw["scenes"]["speed_12000"]["parameters"]["sprocket_speed"] = rpm
+    path.write_text(yaml.safe_dump(raw, sort_keys=False))
+    if keep_time:
+        os.utime(path, ns=(st.st_atime_ns, st.st_mtime_ns))
+
+
+def speed_recorded(work):
+    ds = open_dataset(work / "results" / PAPER / "runs" / "speed_12000.nc")
+    return run_attrs(ds)["parameters"]
+
+
+def rerun_after_the_edit(work, before):
+    """The edited scene is solved again: its result records the new speed, the reference
+    check sees the new numbers drift and the archive refuses them (the last one is kept)."""
+    log = snakemake(work, check=False)
+    assert SOLVE in log, log[-3000:]
+    assert speed_recorded(work)["values_si"]["sprocket_speed"] == pytest.approx(
+        before * 12500 / 12000, rel=1e-12)
+    assert "dynamic_load_max_at_12000rpm: reference" in log and "not archiving" in log
+    return log
+
+
+def current(work):
+    """Nothing left to do, and the archive's records match today's config and code."""
+    assert "Nothing to be done" in snakemake(work, "-n")
+    assert verify(work / "results", work / "results" / f"archive{TAG}" / "manifest.json") == []
+
+
+def test_every_result_records_what_made_it(wf):
+    work, _ = wf
+    results = work / "results" / PAPER
+    for f in [*results.glob("runs/*.nc"), *results.glob("tables/*.csv"),
+              *results.glob("figures/*.png"), results / "notebook.ipynb"]:
+        made_by = read_sum(f)["made_by"]
+        assert {"code", "packages", "inputs"} <= set(made_by), f
+    attrs = run_attrs(open_dataset(results / "runs" / "speed_12000.nc"))
+    assert json.loads(attrs["made_by"])["record"] == read_sum(
+        results / "runs" / "speed_12000.nc")["made_by"]["record"]
+
+
+def test_restore_then_edit_reruns_the_solve(wf, tmp_path):
+    """The archive restored into a fresh checkout schedules no solve; an edit of one scene
+    then reruns its solve job, and the new archive certifies the new numbers."""
+    from mechrepro.experiment import restore
+
+    work, _ = wf
+    (tmp_path / "fresh").mkdir()
+    fresh = conftest.copy_workflow(tmp_path / "fresh")
+    restore(work / "results" / f"archive{TAG}" / "mechrepro-results.tar.gz", fresh)
+    plan = snakemake(fresh, "-n")
+    assert SOLVE not in plan and "rule validate_" not in plan, plan[-3000:]
+    set_speed(fresh)
+    log = rerun_after_the_edit(fresh, speed_recorded(work)["values_si"]["sprocket_speed"])
+    assert "changed since it was made: its run records" in log
+
+
+def test_no_metadata_then_edit_with_an_old_time_stamp(copy):
+    """`rm -rf .snakemake`, then the config edited with its old time stamp kept (as `cp -p`
+    from a backup leaves it): the solve reruns, from what the result records."""
+    shutil.rmtree(copy / ".snakemake")
+    before = speed_recorded(copy)["values_si"]["sprocket_speed"]
+    set_speed(copy, keep_time=True)
+    rerun_after_the_edit(copy, before)
+
+
+def test_a_source_edit_with_an_old_time_stamp_reruns_its_jobs(copy):
+    src = copy / "src" / "mechrepro" / "models" / PAPER / "solver.py"
+    src.write_text(src.read_text() + "\n# an edit restored from a backup with cp -p\n")
+    os.utime(src, ns=(OLD_TIME, OLD_TIME))
+    log = snakemake(copy)
+    assert SOLVE in log and "the code it imports" in log, log[-3000:]
+    current(copy)
+
+
+def test_time_stamps_never_decide(copy):
+    """Without metadata, every source, config and benchmark file touched: nothing reruns
+    (their contents did not change); then an edit with benchmarks touched reruns the solve."""
+    shutil.rmtree(copy / ".snakemake")
+    for top in ("src", "config", "notebooks", "workflow", "results"):
+        for p in (copy / top).rglob("*"):
+            if p.is_file() and (top != "results" or "benchmarks" in p.parts):
+                os.utime(p)
+    assert "Nothing to be done" in snakemake(copy, "-n")
+    before = speed_recorded(copy)["values_si"]["sprocket_speed"]
+    set_speed(copy, keep_time=True)
+    for p in (copy / "results").rglob("benchmarks/*"):
+        os.utime(p)
+    rerun_after_the_edit(copy, before)
+
+
+def test_the_archive_refuses_a_result_that_is_not_current(copy):
+    """A result whose record says another package set made it is named, not archived."""
+    from mechrepro.archive import ArchiveRefused, certify
+
+    results = copy / "results"
+    f = results / PAPER / "runs" / "speed_12000.nc"
+    side = f.parent / f".{f.name}.sum"
+    rec = json.loads(side.read_text())
+    rec["made_by"]["packages"] = "0" * 64
+    side.write_text(json.dumps(rec))
+    with pytest.raises(ArchiveRefused, match="speed_12000.nc: changed since it was made: the "
+                                             "package set"):
+        certify(results, [str(f)], results / f".jobs{TAG}.json")
