@@ -71,11 +71,15 @@ def test_target_is_met_at_near_the_cheapest_setting(paper):
     assert meets, (paper, "no sampled setting meets the request", errors)
     cheapest = min(meets)
     assert k ** c <= 2 * cheapest ** c, (paper, k, cheapest)
-    # the fixed default is recorded next to it; it misses the request (so this check can fail)
+    # the fixed default is recorded next to it; it misses the request (so this check can fail):
+    # the scene's own first level, coarser than the chosen one, or the setting of the scene it
+    # is compared with (compare_with: saw_chain's paper scene, K = 1000, finer than the
+    # extrapolated target's K and still 4x off)
     k0 = int(ds["target_default_value"])
     default_error = (abs(quantity(run, k0) - quantity(run, k0, t["exact"])) if ref == "exact"
                      else abs(quantity(run, k0) - reference))
-    assert k0 < k and default_error > requested
+    assert default_error > requested
+    assert k0 < k or t.get("compare_with")
     print(f"{paper}: requested {requested:.3g} estimated {float(ds['target_estimated_error']):.3g} "
           f"achieved {achieved:.3g} at {t['knob']}={k:g} (cheapest sampled {cheapest}) "
           f"time {float(ds['target_seconds_chosen']):.3g} s; default {t['knob']}={k0} error "

@@ -254,3 +254,39 @@ def test_stage_switch_sample_tends_to_the_step_weighted_value():
     assert limit == pytest.approx(79.87, abs=0.01)
     ds = solve(run(K=30000, effects=WITH_EXACT))
     assert float(ds["dynamic_load_x_switch"]) == pytest.approx(limit, rel=1e-3)
+
+
+def _velocity_only_scene(K):
+    """An edit of saw_chain's config: a scene of the velocity alone (``loads: false``) at K."""
+    def edit(raw):
+        raw["scenes"]["velocity_only"] = {
+            "description": "the tight-side velocity alone (issue 63)", "solver": "difference_method",
+            "effects": ["exact_reference"], "resolution": {"K": K},
+            "options": {"loads": False, "keep_history": False}}
+    return edit
+
+
+def test_velocity_only_run_beyond_the_load_limit_is_accepted_at_load(edit_config):
+    """Issue 63: the loader refused a velocity-only scene at the loads' limit (K = 1e5 at
+    39,434) although the solver, the run schema and docs/saw_chain.md accept it; the loader
+    (config load + mechrepro.limits.check_all) now applies the velocity's own limit, and the
+    run it built is solved as loaded."""
+    from mechrepro import limits
+    from mechrepro.config import load_paper
+
+    chain = chain_from_run(run(K=1))
+    limit, v_limit = chain.roundoff_limit(), chain.velocity_roundoff_limit()
+    K = 100_000
+    assert limit < K < v_limit
+    cfg = load_paper(edit_config("saw_chain", _velocity_only_scene(K)), "ci")
+    limits.check_all({"saw_chain": cfg})                 # not refused at load
+    assert limits.refusals(cfg) == []
+    ds = solve(cfg.runs["velocity_only"])                # and the solver takes it as loaded
+    assert "dynamic_load_x_max" not in ds and int(ds["roundoff_dominated"]) == 0
+    assert float(ds["tight_side_velocity_error_pointwise"]) < 1e-4
+    # beyond the velocity's own limit it is refused at load, naming that limit
+    cfg = load_paper(edit_config("saw_chain", _velocity_only_scene(v_limit + 1)), "ci")
+    with pytest.raises(limits.LimitError) as err:
+        limits.check_all({"saw_chain": cfg}, allow_over_budget=True)
+    msg = str(err.value)
+    assert "scene velocity_only" in msg and f"K <= {v_limit}" in msg and "velocit" in msg, msg

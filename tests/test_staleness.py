@@ -87,16 +87,18 @@ def test_every_result_records_what_made_it(wf):
 
 
 def test_restore_then_edit_reruns_the_solve(wf, tmp_path):
-    """The archive restored into a fresh checkout schedules no solve; an edit of one scene
-    then reruns its solve job, and the new archive certifies the new numbers."""
+    """The archive restored into a fresh checkout schedules nothing but its own archive; an
+    edit of one scene then reruns its solve job, whose new numbers the reference check sees."""
     from mechrepro.experiment import restore
 
     work, _ = wf
     (tmp_path / "fresh").mkdir()
     fresh = conftest.copy_workflow(tmp_path / "fresh")
     restore(work / "results" / f"archive{TAG}" / "mechrepro-results.tar.gz", fresh)
-    plan = snakemake(fresh, "-n")
-    assert SOLVE not in plan and "rule validate_" not in plan, plan[-3000:]
+    from test_pipeline import scheduled
+
+    # restore puts the archive under archive/, where this one-paper run's is archive-saw_chain/
+    assert scheduled(snakemake(fresh, "-n")) <= {"archive", "all"}
     set_speed(fresh)
     log = rerun_after_the_edit(fresh, speed_recorded(work)["values_si"]["sprocket_speed"])
     assert "changed since it was made: its run records" in log
@@ -146,6 +148,6 @@ def test_the_archive_refuses_a_result_that_is_not_current(copy):
     rec = json.loads(side.read_text())
     rec["made_by"]["packages"] = "0" * 64
     side.write_text(json.dumps(rec))
-    with pytest.raises(ArchiveRefused, match="speed_12000.nc: changed since it was made: the "
+    with pytest.raises(ArchiveRefused, match="speed_12000.nc: changed since it was made: .*the "
                                              "package set"):
         certify(results, [str(f)], results / f".jobs{TAG}.json")

@@ -330,7 +330,8 @@ def test_undeclared_reads_and_missing_functions_are_refused(paper):
     (lambda raw: raw.update(falsifiers={"x": {"why": "y", "parameters": {"nope": 1}}}), "not a parameter"),
     (lambda raw: raw["reported"]["order"].pop("evidence_why"), "evidence_why"),
     (lambda raw: raw["reported"]["load_max"].pop("why"), "why"),
-    (lambda raw: raw["profiles"]["ci"]["scenes"].update(typo={"resolution": {"K": 3}}), "effects"),
+    (lambda raw: raw["profiles"]["ci"]["scenes"].update(typo={"resolution": {"K": 3}}),
+     "profiles.ci.scenes.typo: not one of the file's scenes"),
 ])
 def test_reported_block_errors_name_the_key(edit_config, edit, message):
     path = edit_config("saw_chain", lambda raw: (reported_config(raw), edit(raw)))

@@ -24,7 +24,7 @@ from pathlib import Path
 from .config import CACHE_DIR, load_paper
 from .io import atomic_path, write_json
 from .provenance import code_version, file_sha256, json_hash, package_versions
-from .staleness import ENV_INPUTS, _file_digest, read_table, uncertified
+from .staleness import ENV_INPUTS, _file_digest, job_made_by, read_table, uncertified
 
 MANIFEST = "manifest.json"
 
@@ -65,6 +65,23 @@ def manifest(results: Path, files: list[str], config_dir: Path, papers: list[str
     return {"profile": profile, "papers": papers, "code_version": code_version(),
             "package_versions": package_versions(), "config_hash": json_hash(configs),
             "files": rels}
+
+
+def archive_record(path: Path) -> dict | None:
+    """What made an archive's manifest or tarball without a record beside it (restored):
+    the record the manifest keeps of its own job, when the tarball holds that very
+    manifest; else None."""
+    try:
+        man_path = path if path.name == MANIFEST else path.with_name(MANIFEST)
+        text = man_path.read_bytes()
+        made_by = json.loads(text).get("made_by")
+        if made_by and path.name != MANIFEST:
+            with tarfile.open(path) as tar:
+                member = tar.extractfile(MANIFEST)
+                made_by = made_by if member is not None and member.read() == text else None
+        return made_by
+    except (OSError, ValueError, AttributeError, KeyError, tarfile.TarError):
+        return None
 
 
 def linked_extras(results: Path, files: dict) -> list[str]:
@@ -113,6 +130,8 @@ def write_archive(archive: str, manifest_path: str, check: str, results: str,
     man = manifest(results, files, Path(config_dir), papers, profile)
     if made is not None:
         man["jobs"] = made
+        # what made the archive itself, so a restored one is current (heal.archive_record)
+        man["made_by"] = job_made_by()
     extras = linked_extras(results, man["files"])
     if extras:
         man["extras"] = {rel: file_sha256(results / rel) for rel in extras}

@@ -103,7 +103,8 @@ class PaperConfig:
     def framework_tables(self) -> list[str]:
         return ["validation", "verdict_evidence", "effect_cost", "job_time"] + (
             ["cost_of_accuracy"] if self.raw.get("accuracy") else []) + (
-            ["effect_marginal_cost"] if self.raw.get("marginal_cost") else [])
+            ["effect_marginal_cost"] if self.raw.get("marginal_cost") else []) + (
+            ["accuracy_targets"] if any(r.get("target") for r in self.runs.values()) else [])
 
     @property
     def ablations(self) -> dict[str, tuple[str, str]]:
@@ -867,7 +868,15 @@ def _target(raw: dict, scene: dict, resolution: dict, where: str) -> dict:
     if t["knob"] not in resolution or "factor" not in spec:
         raise ConfigError(f"{where}: target.knob = {t['knob']!r}: must be a resolution key of the "
                           f"scene with a refine: factor (resolution: {sorted(resolution)})")
-    return {"target": {"reduce": "max", **t, "factor": spec["factor"]}}
+    default = {}
+    if "compare_with" in t:   # the fixed setting compared with: another scene's knob value
+        other = raw["scenes"].get(t["compare_with"], {}).get("resolution", {})
+        if t["knob"] not in other:
+            raise ConfigError(f"{where}: target.compare_with = {t['compare_with']!r}: must be a "
+                              f"scene whose resolution sets {t['knob']!r}; allowed: "
+                              f"{', '.join(n for n, s in raw['scenes'].items() if t['knob'] in s.get('resolution', {}))}")
+        default = {"default": other[t["knob"]]}
+    return {"target": {"reduce": "max", **t, "factor": spec["factor"], **default}}
 
 
 def _calibration(raw: dict) -> dict:

@@ -35,6 +35,7 @@ import os
 import sys
 from pathlib import Path
 
+from .archive import archive_record
 from .io import SUM_SUFFIX, read_sum, sum_path, write_text
 from .provenance import file_sha256
 
@@ -48,6 +49,10 @@ NOT_A_RUN = {"-n", "--dry-run", "--dryrun", "--unlock", "--lint", "-t", "--touch
              "--filegraph", "--d3dag", "--containerize", "--archive", "--cleanup-shadow",
              "--delete-all-output", "--delete-temp-output", "--report", "--export-cwl",
              "--print-compilation", "--help", "-h", "--version", "-v"}
+
+
+# an archive's own outputs (rules/report.smk), recorded from its manifest after a restore
+ARCHIVE_FILES = ("manifest.json", "mechrepro-results.tar.gz")
 
 
 class RunInProgress(RuntimeError):
@@ -209,6 +214,12 @@ def inspect(results: str | Path, workdir: str | Path = "."):
         if manifest is None:
             manifest = _manifests(results)
         rel = str(f.relative_to(results))
+        if f.parent.name.startswith("archive") and f.name in ARCHIVE_FILES:
+            made_by = archive_record(f)
+            if made_by is not None:
+                adopt.append((f, {"sha256": file_sha256(f), "size": st.st_size,
+                                  "mtime_ns": st.st_mtime_ns, "made_by": made_by}))
+            continue
         sha = file_sha256(f) if rel in manifest else None
         if rel in manifest and sha not in manifest[rel]:
             remove.append((f, "checksum differs from the last manifest"))
@@ -367,8 +378,11 @@ def steer_workflow(workflow, jobs, results: str, table: str,
     prepare = workflow._prepare_dag
 
     def _prepare_dag(*args, **kwargs):
-        allowed = steer(workflow, jobs, results,
-                        say=lambda line: sys.stderr.write(line + "\n"))
+        from snakemake.logging import logger
+
+        # through Snakemake's logger: on the console and in the run's log, which the rerun
+        # plan reads (mechrepro.plan)
+        allowed = steer(workflow, jobs, results, say=logger.info)
         if not dry:
             write_table(jobs, results, table)
         out = prepare(*args, **kwargs)

@@ -27,7 +27,8 @@ KINDS = (("Params have changed", "params changed"), ("Code has changed", "code c
          ("Updated input files", "input changed"), ("Missing output files", "missing output"),
          ("Input files updated by another job", "upstream job reruns"),
          ("Set of input files has changed", "input set changed"),
-         ("Forced execution", "forced"), ("Rules with a run or shell", "always"))
+         ("stale: ", "stale"), ("Forced execution", "forced"),
+         ("Rules with a run or shell", "always"))
 
 
 def parse(dry_run: str) -> list[dict]:
@@ -46,7 +47,12 @@ def parse(dry_run: str) -> list[dict]:
             job["wildcards"] = s.split(":", 1)[1].strip()
         elif s.startswith("reason:"):
             job["reason"] = s.split(":", 1)[1].strip()
+    # the workflow's own reason for a job it forced (mechrepro.staleness): what changed
+    stale = dict(re.findall(r"^\[stale\] (\w+): (.*)$", dry_run, re.M))
     for job in jobs:
+        if "Forced execution" in job["reason"] and job["rule"] in stale:
+            job["reason"] = job["reason"].replace("Forced execution",
+                                                  f"stale: {stale[job['rule']]}")
         job["kind"] = "; ".join(k for key, k in KINDS if key in job["reason"]) or "other"
     return jobs
 

@@ -62,6 +62,9 @@ TABLE_TITLES = {
     "cost_of_accuracy": "Cost of accuracy: error against the reference vs time (long form)",
     "verdict_evidence": "Every re-check of every verdict (levels, seeds, range ends, family "
                         "members, falsifiers)",
+    "accuracy_targets": "Accuracy asked for instead of a resolution (mechrepro.target): "
+                        "requested, estimated and verified error at the chosen setting, beside "
+                        "the fixed setting it is compared with (default_*)",
 }
 
 

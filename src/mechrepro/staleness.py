@@ -192,9 +192,13 @@ class _Recorded:
         rec = read_sum(f)
         if rec is not None:
             return rec.get("made_by")
-        if self.manifests is None:
-            from .heal import _manifests
+        from .heal import ARCHIVE_FILES, _manifests
+        from .archive import archive_record
 
+        f = Path(f)
+        if f.parent.name.startswith("archive") and f.name in ARCHIVE_FILES:
+            return archive_record(f)
+        if self.manifests is None:
             self.manifests = _manifests(self.results)
         made = self.manifests.get(os.path.relpath(f, self.results))
         return made.get(file_sha256(Path(f))) if made else None

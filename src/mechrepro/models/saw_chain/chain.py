@@ -45,6 +45,14 @@ class Chain:
     def m_tight(self):
         return tight_side_mass(self.M, self.N, self.m_L, self.m_C)
 
+    @property
+    def chain_speed(self):
+        """The pitch-line speed z (p1 + p2) omega / (2 pi) [m/s]: one pair of pitches per tooth
+        period t2 = 2 pi / (z omega).  The time mean of the tight-side velocity of any model
+        that conserves the chain length (Eqs. 7-10 included), and the constant speed of the
+        rival without the polygon effect (:func:`.solver.constant_speed`)."""
+        return self.z * (self.p1 + self.p2) * self.omega / (2.0 * np.pi)
+
     def stages(self):
         """(lead-link length, link mass, local angles phi_i, i = 0..K) for each stage."""
         phi1, phi2 = self.phases

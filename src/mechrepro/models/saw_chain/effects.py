@@ -29,17 +29,30 @@ EFFECTS = EffectRegistry("saw_chain")
 
 @dataclass(frozen=True)
 class Context:
-    """What an effect sees: the chain of the run, its time grid and the constants of Eq. (23)."""
+    """What an effect sees: the chain of the run, its time grid, the constants of Eq. (23)
+    and whether the polygon effect is on (off: the constant-speed rival,
+    :func:`.solver.constant_speed`)."""
     chain: Chain
     t: np.ndarray
     textbook_phase: float
     textbook_mass: float
+    polygon: bool = True
 
 
 @EFFECTS.register("exact_reference")
 def exact_reference(ctx: Context) -> dict:
-    """Velocity, acceleration and loads from the exact derivatives of Eqs. (7)-(10)."""
+    """Velocity, acceleration and loads from the exact derivatives of Eqs. (7)-(10) (of the
+    rival's positions, linear in time, when the polygon effect is off)."""
     chain = ctx.chain
+    if not ctx.polygon:
+        v, zero = np.full(ctx.t.size, chain.chain_speed), np.zeros(ctx.t.size)
+        return {"tight_side_velocity_exact": var("t", v, "m/s", "tight-side velocity, exact (constant speed)"),
+                "tight_side_acceleration_exact": var("t", zero, "m/s2",
+                                                     "tight-side acceleration, exact (constant speed)"),
+                "dynamic_load_x_exact": var("t", zero.copy(), "N",
+                                            "total tight-side dynamic load x, exact (constant speed)"),
+                "dynamic_load_y_exact": var("t", zero.copy(), "N",
+                                            "dynamic load y of the seating link, exact (constant speed)")}
     vx, ax, Fx, Fy = [], [], [], []
     for L, m_link, phi in chain.stages():
         d = stage_derivatives(phi, chain.R, L, chain.omega)

@@ -10,16 +10,25 @@ from .chain import chain_from_run
 
 
 def check(run: dict) -> list[str]:
+    """The solver's refusals of one run record, as :func:`.solver.difference_method` raises
+    them: K beyond the loads' round-off limit, or, for a velocity-only run
+    (``options.loads: false``, the first difference alone), beyond the velocity's own limit
+    (~100x the loads'), unless ``options.beyond_roundoff_limit``."""
     try:
         chain = chain_from_run(run)   # check_meshing: positive pitches, integer z >= 3
     except ValueError as exc:
         return [f"parameters: {exc}; allowed: positive finite pitches and teeth >= 3"]
-    K, limit = chain.K, chain.roundoff_limit()
-    if K > limit and not run.get("options", {}).get("beyond_roundoff_limit", False):
+    opts = run.get("options", {})
+    loads = opts.get("loads", True)
+    K = chain.K
+    limit = chain.roundoff_limit() if loads else chain.velocity_roundoff_limit()
+    if K > limit and not opts.get("beyond_roundoff_limit", False):
+        what = ("second backward difference exceeds its truncation error, so the loads"
+                if loads else "first backward difference exceeds its truncation error, so "
+                "the velocities (options.loads: false)")
         return [f"resolution.K = {K}: beyond K = {limit} (this run's round-off limit) the "
-                f"round-off of the second backward difference exceeds its truncation error, "
-                f"so the loads get less accurate, not more (the solver refuses it); allowed: "
-                f"K <= {limit}, or options.beyond_roundoff_limit: true on purpose"]
+                f"round-off of the {what} get less accurate, not more (the solver refuses "
+                f"it); allowed: K <= {limit}, or options.beyond_roundoff_limit: true on purpose"]
     return []
 
 

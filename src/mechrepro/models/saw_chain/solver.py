@@ -19,7 +19,7 @@ from .effects import EFFECTS, Context
 from .kinematics import stage_positions
 from .loads import dynamic_load
 
-__all__ = ["EFFECTS", "Chain", "chain_from_run", "compute", "difference_method", "solve",
+__all__ = ["EFFECTS", "Chain", "chain_from_run", "compute", "constant_speed", "difference_method", "solve",
            "stage_switch_index", "variables"]
 
 #: the difference method's outputs and the reference's contribution each is compared with
@@ -92,6 +92,38 @@ def velocity_only(chain: Chain, beyond_roundoff_limit: bool = False) -> dict:
                                       "1 if K is beyond the velocity's round-off limit")}
 
 
+def constant_speed(chain: Chain, loads: bool = True, beyond_roundoff_limit: bool = False) -> dict:
+    """The rival without the polygon effect (``options.polygon: false``): every point of the
+    tight side moves at the constant pitch-line speed :attr:`.Chain.chain_speed`, so the
+    velocity is that speed and every acceleration and load is zero, on the method's time
+    grid.  Backward differences of positions linear in time give exactly this (up to
+    round-off, which is left out so that the rival's numbers do not depend on the CPU).
+    Not a model of the paper: what a reviewer would propose if the polygon effect did not
+    matter; a check the paper's model passes and this passes too does not test the polygon
+    effect (``falsifiers.constant_speed`` in the config).  The same K is refused as in the
+    method, so that the rival runs wherever the method would."""
+    n = 2 * chain.K + 1
+    v = np.full(n, chain.chain_speed)
+    if not loads:
+        limit = chain.velocity_roundoff_limit()
+        dominated = check_roundoff(chain.K, limit, beyond_roundoff_limit, what="velocities")
+        return {"tight_side_velocity": var("t", v, "m/s", "tight-side velocity, constant speed (rival)"),
+                "velocity_roundoff_limit_K": var((), limit, "1",
+                                                 "K beyond which round-off exceeds truncation in the velocity"),
+                "roundoff_dominated": var((), int(dominated), "1",
+                                          "1 if K is beyond the velocity's round-off limit")}
+    limit = chain.roundoff_limit()
+    dominated = check_roundoff(chain.K, limit, beyond_roundoff_limit)
+    zero = np.zeros(n)
+    return {
+        "tight_side_velocity": var("t", v, "m/s", "tight-side velocity, constant speed (rival)"),
+        "tight_side_acceleration": var("t", zero, "m/s2", "tight-side acceleration, constant speed (rival)"),
+        "dynamic_load_x": var("t", zero, "N", "total tight-side dynamic load x, constant speed (rival)"),
+        "dynamic_load_y": var("t", zero.copy(), "N", "dynamic load y, constant speed (rival)"),
+        **error_budget(chain, limit, dominated),
+    }
+
+
 def error_budget(chain: Chain, limit: int, dominated: bool) -> dict:
     """The run's error budget (:mod:`.difference`): round-off bound and truncation estimate
     of one load sample, the round-off limit of K and whether this K is beyond it."""
@@ -144,10 +176,15 @@ def compute(run: dict) -> dict:
     """
     chain = chain_from_run(run)
     p = run["parameters"]
-    ctx = Context(chain=chain, t=chain.time(), textbook_phase=p["textbook_phase"],
-                  textbook_mass=p["textbook_mass"])
     opts = run.get("options", {})
-    method = difference_method(chain, opts.get("beyond_roundoff_limit", False), opts.get("loads", True))
+    polygon = opts.get("polygon", True)
+    ctx = Context(chain=chain, t=chain.time(), textbook_phase=p["textbook_phase"],
+                  textbook_mass=p["textbook_mass"], polygon=polygon)
+    if polygon:
+        method = difference_method(chain, opts.get("beyond_roundoff_limit", False),
+                                   opts.get("loads", True))
+    else:   # the rival without the polygon effect (falsifiers.constant_speed)
+        method = constant_speed(chain, opts.get("loads", True), opts.get("beyond_roundoff_limit", False))
     contributions = EFFECTS.evaluate(run, ctx)
     beside = {key: contributions.get(key) for key in contributions.keys()}
     return {"chain": chain, "t": ctx.t, "data": {**method, **beside}}
@@ -179,7 +216,8 @@ def errors_against_exact(ds: dict, K: int) -> dict:
         if q not in ds:
             continue
         ref = ds[exact]
-        scale = np.max(np.abs(ref))
+        # absolute where the exact is identically zero (the loads of the constant-speed rival)
+        scale = np.max(np.abs(ref)) or 1.0
         err = np.abs(ds[q] - ref) / scale
         out[f"{q}_error_pointwise"] = var((), float(err[keep].max()), "1",
                                           f"max over samples (stage switch excluded) of |{q} - exact|, relative to max |exact|")
