@@ -52,9 +52,9 @@ def block(text: str, name: str) -> str:
 
 
 def _papers(config_dir: Path) -> list[str]:
-    import yaml
+    from .config import workflow_config
 
-    return yaml.safe_load((config_dir / "config.yaml").read_text())["papers"]
+    return workflow_config(config_dir / "config.yaml")["papers"]
 
 
 def claims(results: Path, config_dir: Path = Path("config")) -> str:

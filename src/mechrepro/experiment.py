@@ -43,7 +43,7 @@ from pathlib import Path
 
 import yaml
 
-from .config import ConfigError, load_paper
+from .config import ConfigError, load_paper, workflow_config
 
 LINKED = ("Snakefile", "workflow", "src", "notebooks", "profiles")
 
@@ -151,7 +151,7 @@ def prepare(name: str, sets: list[str], base: Path = Path("."), profile: str | N
     """Make ``experiments/NAME``: links to the code, overridden configs (validated), copies
     of the reused results.  ``profile`` defaults to the baseline's."""
     base = base.resolve()
-    top = yaml.safe_load((base / "config" / "config.yaml").read_text())
+    top = workflow_config(base / "config" / "config.yaml")
     overrides = parse_sets(sets)
     unknown = sorted(set(overrides) - set(top["papers"]))
     if unknown:

@@ -34,7 +34,7 @@ from pathlib import Path
 
 import yaml
 
-from .config import load_paper
+from .config import load_paper, workflow_config
 from .io import write_text
 from .provenance import SRC_ROOT, json_hash, package_versions
 from .validation import read_table
@@ -337,7 +337,7 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--cores", type=int, default=2)
     args = ap.parse_args(argv)
     config_dir = Path("config")
-    papers = args.papers or yaml.safe_load((config_dir / "config.yaml").read_text())["papers"]
+    papers = args.papers or workflow_config(config_dir / "config.yaml")["papers"]
     results = measure(args.profile, papers, args.workdir, config_dir, cores=args.cores,
                       variants=args.variants or None)
     try:

@@ -129,25 +129,6 @@ def _row(r: dict, spec: dict) -> dict:
             "why": why, "details": details}
 
 
-def artefact_verdicts(rows: list[dict]) -> dict[str, list[tuple[str, dict]]]:
-    """Each figure or table scored by independent rows (validation.csv), by their
-    majority: ``agree`` when more than half pass, ``disagree`` when more than half fail,
-    else ``not settled``; with its rows' counts by verdict.  One failing row among many
-    passes does not make a figure disagree (the rows say which)."""
-    by: dict[str, dict[str, int]] = {}
-    for r in rows:
-        if r["evidence"] == "independent" and r["status"] != "info":
-            n = by.setdefault(r["artefact"], {})
-            n[r["status"]] = n.get(r["status"], 0) + 1
-    out: dict[str, list] = {"agree": [], "disagree": [], "not settled": []}
-    for a, n in sorted(by.items()):
-        total = sum(n.values())
-        key = ("agree" if 2 * n.get("pass", 0) > total else
-               "disagree" if 2 * n.get("fail", 0) > total else "not settled")
-        out[key].append((a, n))
-    return out
-
-
 def claim_sentence(claim: dict, rows: list[dict]) -> str:
     """One plain sentence from claim.json's counts and the validation rows: the artefacts
     that agree, disagree and are not settled by their rows' majority, with the counts
@@ -163,6 +144,8 @@ def claim_sentence(claim: dict, rows: list[dict]) -> str:
             m = c.get(word, 0)
             return f"{m} of {rows_n} row{'s' * (rows_n != 1)} {k if m == 1 else word}"
         return ", ".join(f"{c[s]} {s.replace('_', ' ')}" for s in VERDICTS if c.get(s))
+
+    from .validation import artefact_verdicts
 
     for key, arts in artefact_verdicts(rows).items():
         if arts:

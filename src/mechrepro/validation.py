@@ -590,19 +590,37 @@ def counts(rows) -> dict[str, dict[str, int]]:
     return {e: {s: c[s] for s in STATUSES if c[s]} for e, c in out.items() if c}
 
 
+def artefact_verdicts(rows) -> dict[str, list[tuple[str, dict]]]:
+    """Each figure or table scored by its independent rows (Row objects or validation.csv
+    dicts), by their majority: ``agree`` when more than half pass, ``disagree`` when more
+    than half fail, else ``not settled``; with its rows' counts by verdict.  One failing
+    row among many passes does not make a figure disagree (the rows say which)."""
+    by: dict[str, dict[str, int]] = {}
+    for r in rows:
+        art, ev, st = ((r.spec["artefact"], r.evidence, r.status) if isinstance(r, Row)
+                       else (r["artefact"], r["evidence"], r["status"]))
+        if ev == "independent" and st != "info":
+            n = by.setdefault(art, {})
+            n[st] = n.get(st, 0) + 1
+    out: dict[str, list] = {"agree": [], "disagree": [], "not settled": []}
+    for a, n in sorted(by.items()):
+        total = sum(n.values())
+        key = ("agree" if 2 * n.get("pass", 0) > total else
+               "disagree" if 2 * n.get("fail", 0) > total else "not settled")
+        out[key].append((a, n))
+    return out
+
+
 def claim(cfg, rows: list[Row]) -> dict:
     """The replication claim: full / partial / none, from the independent rows only."""
     verdicts = ("pass", "fail", "inconclusive", "not_converged")
     ind = [r for r in rows if r.evidence == "independent" and r.status != "info"]
     by = {s: [r for r in ind if r.status == s] for s in verdicts}
-    arts = {}
-    for r in ind:
-        arts.setdefault(r.spec["artefact"], set()).add(r.status)
-    agree = sorted(a for a, s in arts.items() if s == {"pass"})
-    disagree = sorted(a for a, s in arts.items() if "fail" in s)
-    unsettled = sorted(a for a, s in arts.items() if "fail" not in s and s - {"pass"})
+    av = artefact_verdicts(ind)
+    agree, disagree, unsettled = ([a for a, _ in av[k]] for k in ("agree", "disagree",
+                                                                  "not settled"))
     # an artefact the paper reports but no independent verdict scores (only info rows)
-    unscored = sorted({r.spec["artefact"] for r in rows} - set(arts))
+    unscored = sorted({r.spec["artefact"] for r in rows} - {r.spec["artefact"] for r in ind})
     if ind and len(by["pass"]) == len(ind) and not unscored:
         kind = "full"
     elif by["pass"]:
@@ -615,9 +633,9 @@ def claim(cfg, rows: list[Row]) -> dict:
     demoted = [r.quantity for r in rows if r.spec["evidence"] == "independent"
                and r.evidence == "construction"]
     if agree:
-        parts.append(f"Agree: {', '.join(agree)}.")
+        parts.append(f"Agree (most rows pass): {', '.join(agree)}.")
     if disagree:
-        parts.append(f"Disagree: {', '.join(disagree)}.")
+        parts.append(f"Disagree (most rows fail): {', '.join(disagree)}.")
     if unsettled:
         parts.append(f"Not settled: {', '.join(unsettled)}.")
     if unscored:

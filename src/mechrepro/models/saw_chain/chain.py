@@ -116,9 +116,13 @@ def budget_constants(chain: Chain, n: int = 129):
 
 
 def chain_from_run(run: dict) -> Chain:
+    """The run's chain; ``options.single_pitch``: the rival of one pitch (the tie strap's) for
+    both links, as in a roller chain (falsifiers.single_pitch), the paper's numbers kept."""
     p = run["parameters"]
-    check_meshing(p["tie_strap_pitch"], p["drive_link_pitch"], p["teeth"])  # before int()
-    return Chain(p1=p["tie_strap_pitch"], p2=p["drive_link_pitch"], z=int(p["teeth"]),
+    p2 = p["tie_strap_pitch"] if run.get("options", {}).get("single_pitch") else \
+        p["drive_link_pitch"]
+    check_meshing(p["tie_strap_pitch"], p2, p["teeth"])  # before int()
+    return Chain(p1=p["tie_strap_pitch"], p2=p2, z=int(p["teeth"]),
                  omega=p["sprocket_speed"], m_L=p["tie_strap_mass"],
                  m_C=p["drive_link_mass"], M=int(p["tie_straps_tight_side"]),
                  N=int(p["drive_links_tight_side"]), K=int(run["resolution"]["K"]))
