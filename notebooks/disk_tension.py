@@ -294,36 +294,83 @@ for row in coa:
 # ## What the paper's numbers pin down (identifiability)
 # The joint fit of the stress scale c = E·α·A, the band width s and the in-plane condition
 # to Table 1 (and Fig. 6a's 502.1 Hz), χ² with the printed digits as uncertainties, scaled
-# (Birge) to χ²/dof = 1 at the best fit; profiles: min over the other constants. Dotted:
-# profile minimum + 1 (68 %). Crosses: the single-α calibration (s = 5 mm, c on Table 1's
-# N_d = 4 entry).
+# (Birge) to χ²/dof = 1 at the best fit; profiles: min over the other constants (each point
+# minimised continuously, not on a grid). Dotted: profile minimum + 1 (68 %); dashed: + 4
+# (95 %). Crosses: the single-α calibration (s = 5 mm, c on Table 1's N_d = 4 entry).
+# Right: the valley floor (the c that minimises χ² at each s) inside the 95 % region, thick
+# inside the 68 %: Table 1 fixes the product c·s (grey: c·s constant), not s and c apart; the
+# 95 % valley runs into the s scan's lower end (1 mm, a rolled band 4 mm wide), so that end
+# of the intervals is the scan's, not the data's (the table says which end is which).
 
 # %%
+import matplotlib.ticker as mticker
+
 from mechrepro.models.disk_tension import identifiability as idf
 
 idn = R.run("identifiability")
-R.write_table("identifiability", ["data", "constant", "unit", "best", "lo", "hi", "pinned_by"],
-              idf.table(idn))
+R.write_table("identifiability", idf.COLUMNS, idf.table(idn))
 R.write_table("identifiability_readings",
               ["data", "reading", "inplane_bc", "s_mm", "stress_scale"]
               + [f"table1_nd{n}_rel" for n in range(5)] + ["f_rolled_hz", "delta_chi2"],
               idf.readings(idn))
-fig, axes = plt.subplots(1, 2, figsize=(12, 4))
+s_mm, c_grid = idn["scan_width"].values * 1e3, idn["scan_scale"].values
+fig, axes = plt.subplots(1, 3, figsize=(15.5, 4.6))
 for j, name in enumerate(idf.SUBSETS):
-    for ax, var, x, sx in ((axes[0], "axisym_prof_width", idn["scan_width"].values * 1e3,
-                            float(idn["axisym_single_width"]) * 1e3),
-                           (axes[1], "axisym_prof_scale", idn["scan_scale"].values,
-                            float(idn["axisym_single_scale"]))):
-        y = idn[var].values[j]
-        line, = ax.plot(x, y - np.nanmin(y), label=name)
-        ax.plot([sx], [float(idn["axisym_single_chi2"].values[j] - idn["axisym_chi2_min"].values[j])],
-                "x", color=line.get_color(), ms=9)
-for ax, xl in zip(axes, ("Gaussian width s [mm]", "stress scale c = E·α·A / handbook")):
+    base = float(idn["axisym_chi2_min"].values[j])
+    single = float(idn["axisym_single_chi2"].values[j]) - base
+    best_s = float(idn["axisym_best_width"].values[j]) * 1e3
+    best_c = float(idn["axisym_best_scale"].values[j])
+    ys = idn["axisym_prof_width"].values[j] - base
+    yc = idn["axisym_prof_scale"].values[j] - base
+    line, = axes[0].plot(s_mm, ys, label=name)
+    color = line.get_color()
+    floor = idn["axisym_prof_scale_width"].values[j] * 1e3      # s minimising at each c
+    # where that s sits at an end of the s scan, the scan bounds the c profile, not the data
+    step = s_mm[1] - s_mm[0]
+    walled = (floor <= s_mm.min() + step) | (floor >= s_mm.max() - step)
+    axes[1].plot(c_grid, np.where(walled, np.nan, yc), color=color, label=name)
+    axes[1].plot(c_grid, np.where(walled, yc, np.nan), ":", color=color,
+                 label=f"{name}: s at its scan's end" if walled.any() else None)
+    axes[0].plot([float(idn["axisym_single_width"]) * 1e3], [single], "x", color=color, ms=9)
+    axes[1].plot([float(idn["axisym_single_scale"])], [single], "x", color=color, ms=9)
+    for level, lw in ((4.0, 1.0), (1.0, 3.0)):
+        inside = np.where(yc <= level, floor, np.nan)
+        axes[2].plot(inside, c_grid, color=color, lw=lw,
+                     label=f"{name}: Δχ² ≤ {level:g}")
+    axes[2].plot([best_s], [best_c], "o", color=color, ms=5)
+    axes[2].plot([float(idn["axisym_single_width"]) * 1e3], [float(idn["axisym_single_scale"])],
+                 "x", color=color, ms=9)
+for ax, xl in zip(axes[:2], ("Gaussian width s [mm]", "stress scale c = E·α·A / handbook [1]")):
     ax.axhline(1, color="k", ls=":", lw=0.8)
-    ax.set(xlabel=xl, ylabel="profile Δχ² (Birge-scaled)", ylim=(0, 12))
-    ax.legend(fontsize=8)
-axes[0].set_title("which s the paper's numbers allow")
-axes[1].set_title("which stress scale they allow")
+    ax.axhline(4, color="k", ls="--", lw=0.8)
+    ax.set(xlabel=xl, ylabel="profile Δχ² (Birge-scaled) [1]", ylim=(0, 14))
+axes[0].legend(fontsize=8, loc="upper center")
+axes[1].legend(fontsize=8, loc="center", bbox_to_anchor=(0.63, 0.6))   # clear of the walls
+axes[1].set_xscale("log")
+axes[0].set_xlim(0, s_mm.max() * 1.02)
+axes[0].set_title(f"profile over s (scan {s_mm.min():g}-{s_mm.max():g} mm: the axis)")
+axes[1].set_title(f"profile over c (scan {c_grid.min():g}-{c_grid.max():g})")
+ax = axes[2]
+ref = float(idn["axisym_best_width"].values[1]) * 1e3 * float(idn["axisym_best_scale"].values[1])
+ss = np.geomspace(0.7, s_mm.max() * 1.3, 50)
+for k in (0.8, 1.0, 1.25):
+    ax.plot(ss, k * ref / ss, color="0.75", lw=0.8, ls="--", zorder=0)
+ax.axvspan(0.5, s_mm.min(), color="0.92", zorder=0)
+ax.axvspan(s_mm.max(), s_mm.max() * 1.5, color="0.92", zorder=0)
+ax.text(s_mm.min() * 0.96, 0.3, "outside the s scan", rotation=90, ha="right", va="bottom",
+        fontsize=7, color="0.4")
+ax.set(xscale="log", yscale="log", xlim=(0.6, s_mm.max() * 1.4), ylim=(0.25, 12),
+       xlabel="Gaussian width s [mm]", ylabel="stress scale c [1]",
+       title=f"the valley: c·s fixed (grey: c·s = {ref:.2g} mm × 0.8, 1, 1.25)")
+ax.legend(fontsize=7, loc="upper right")
+for a in axes[1:]:     # log axes: plain numbers, no minor labels
+    a.xaxis.set_minor_formatter(mticker.NullFormatter())
+    a.yaxis.set_minor_formatter(mticker.NullFormatter())
+axes[1].set_xticks([0.25, 0.5, 1, 2, 4, 8])
+axes[2].set_xticks([1, 2, 5, 10, 20])
+axes[2].set_yticks([0.25, 0.5, 1, 2, 4, 8])
+for axis in (axes[1].xaxis, axes[2].xaxis, axes[2].yaxis):
+    axis.set_major_formatter(mticker.FuncFormatter(lambda v, _: f"{v:g}"))
 R.save_figure(fig, "identifiability")
 for r in idf.table(idn):
     print(r)
@@ -331,12 +378,17 @@ for r in idf.table(idn):
 # %% [markdown]
 # ## The critical speed (beyond the paper: what tensioning is for)
 # Travelling-wave critical speed per N_d (the backward wave stops in the ground frame),
-# from the centrifugal stress of the spinning disk (flange gripping the blade) with and
-# without the rolled residual stress (A = 50 °C, α calibrated on Table 1). Dashed: the
-# unrolled disk. N_d = 0, 1 have none. Right: the lowest over N_d, for larger clamping ratios.
+# from the centrifugal stress of the spinning disk with and without the rolled residual
+# stress (A = 50 °C, α calibrated on Table 1). How the flange holds the spinning blade in its
+# plane is assumed (`centrifugal_bc`): solid lines grip it (clamped, u_r(r_f) = 0); dotted,
+# r_f = 25 mm only, the other end of the range (free_disk: no radial grip). Dashed: the
+# unrolled disk. N_d = 0, 1 have none; a buckled rolled disk has none either (a gap, never a
+# number). Right: the lowest over N_d, for larger clamping ratios.
 
 # %%
 cs, cs_rf = R.run("critical_speed"), R.study("critical_speed_rf")
+cs_free = R.run("critical_speed_centrifugal_free")
+from mechrepro.models.disk_tension.validation import lowest_critical_speed
 RPM = 60 / (2 * np.pi)
 fig, axes = plt.subplots(1, 2, figsize=(12, 4.2))
 rc_mm = cs["r_c"].values * 1e3
@@ -345,19 +397,25 @@ for n in (2, 3, 4):
                          color=COLORS[n], label=f"N_d={n}")
     axes[0].axhline(float(cs["axisym_critical_speed_untensioned"].sel(n_d=n)) * RPM,
                     color=COLORS[n], ls="--", lw=0.8)
+    axes[0].plot(rc_mm, cs_free["axisym_critical_speed"].sel(n_d=n).values * RPM, ":",
+                 color=COLORS[n], lw=1, label="dotted: free_disk" if n == 2 else None)
 axes[0].set(xlabel="rolling radius r_c [mm]", ylabel="critical speed [rpm]",
-            title="r_f = 25 mm: rolled (solid) vs unrolled (dashed)")
+            title="r_f = 25 mm: rolled (solid; dotted: free_disk) vs unrolled (dashed)")
 axes[0].legend(fontsize=8)
 sets = [(figures.clamp_mm(cs), cs)] + [(figures.clamp_mm(cs_rf.isel(run=i)), cs_rf.isel(run=i))
                                       for i in range(cs_rf.sizes["run"])]
 for rf, ds in sets:
-    low = ds["axisym_critical_speed"].min(dim="n_d", skipna=False).values * RPM
+    low = lowest_critical_speed(ds) * RPM
     line, = axes[1].plot(rc_mm, low, "o-", label=f"r_f = {rf:.0f} mm")
     axes[1].axhline(float(ds["axisym_critical_speed_untensioned"].min()) * RPM,
                     color=line.get_color(), ls="--", lw=0.8)
+    if ds is cs:
+        axes[1].plot(rc_mm, lowest_critical_speed(cs_free) * RPM, "o:", ms=3,
+                     color=line.get_color(), label=f"r_f = {rf:.0f} mm, free_disk")
 axes[1].set(xlabel="rolling radius r_c [mm]", ylabel="lowest critical speed [rpm]",
             title="the design curve: lowest critical speed over N_d")
-axes[1].legend(fontsize=8)
+# below every untensioned (dashed) line and left of the curves' drop at the rim
+axes[1].legend(fontsize=8, loc="lower center", bbox_to_anchor=(0.42, 0.0))
 R.save_figure(fig, "critical_speed")
 print("time of the critical speeds (r_f = 25 mm, 9 r_c):", float(cs["axisym_time_critical_speed"]), "s")
 

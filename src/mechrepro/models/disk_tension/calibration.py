@@ -34,14 +34,17 @@ def thickness(*, f_target, n_d, r_f, b, E, nu, rho):
     return trial * f_target / f_trial
 
 
-def _calibration_case(*, n_d, r_c, r_f, b, h, E, nu, rho, alpha, amplitude, s, inplane_bc):
-    """(disk, K^(sigma)) of the calibration case on a fine axisymmetric mesh."""
+def _calibration_case(*, n_d, r_c, r_f, b, h, E, nu, rho, alpha, amplitude, s, inplane_bc,
+                      stress_model="thermal_analogy"):
+    """(disk, K^(sigma)) of the calibration case on a fine axisymmetric mesh (``stress_model``:
+    a rival's, :func:`.thermal.residual_stress`, re-calibrated on its own stress)."""
     disk = AxisymDisk(r_f=r_f, b=b, h=h, E=E, nu=nu, rho=rho, n_d=[n_d],
                       n_elements=CALIBRATION_ELEMENTS)
     disk.unrolled()
     kw = dict(amplitude=amplitude, r_c=r_c, s=s, r_f=r_f, b=b, E=E, nu=nu, alpha=alpha,
-              inplane_bc=inplane_bc)
-    sig = (lambda r: thermal.thermal_stress(r, **kw)[0], lambda r: thermal.thermal_stress(r, **kw)[1])
+              inplane_bc=inplane_bc, stress_model=stress_model, profile_rc=r_c)
+    sig = (lambda r: thermal.residual_stress(r, **kw)[0],
+           lambda r: thermal.residual_stress(r, **kw)[1])
     return disk, disk.stress_stiffness(sig)
 
 

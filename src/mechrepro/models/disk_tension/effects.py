@@ -84,11 +84,12 @@ def thermal_load(ctx, r_c) -> ThermalLoad:
     """Eq. (4) at ``r_c`` with the context's amplitude, width, alpha and in-plane condition."""
     rc = float(r_c)
     kw = dict(amplitude=ctx.A, r_c=rc, s=ctx.s, r_f=ctx.r_f, b=ctx.b, E=ctx.E, nu=ctx.nu,
-              alpha=ctx.alpha, inplane_bc=ctx.bc)
+              alpha=ctx.alpha, inplane_bc=ctx.bc, stress_model=ctx.stress_model,
+              profile_rc=ctx.p["calibration_rolling_radius"])
     return ThermalLoad(r_c=rc, alpha=ctx.alpha, inplane_bc=ctx.bc,
                        temperature=lambda r: thermal.temperature(r, ctx.A, rc, ctx.s),
-                       sigma=(lambda r: thermal.thermal_stress(r, **kw)[0],
-                              lambda r: thermal.thermal_stress(r, **kw)[1]))
+                       sigma=(lambda r: thermal.residual_stress(r, **kw)[0],
+                              lambda r: thermal.residual_stress(r, **kw)[1]))
 
 
 # --- stage 1: what the load and the mesh need ---------------------------------------------
@@ -100,6 +101,8 @@ def stress_calibration(ctx) -> dict:
                 r_f=p["calibration_clamp_radius"], b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu,
                 rho=ctx.rho, alpha=ctx.alpha, amplitude=p["calibration_temperature_amplitude"],
                 s=p["calibration_gaussian_width"], inplane_bc=ctx.bc)
+    if ctx.stress_model != "thermal_analogy":   # a rival is re-calibrated on its own stress
+        case["stress_model"] = ctx.stress_model
     target = p["calibration_delta_omega2"]
     m0 = _misses(calibration._alpha_effective)
     with stopwatch() as sw:
@@ -382,10 +385,13 @@ def modal_matrices(ctx) -> dict:
         lam = float(np.min(model.critical_load(ks)))
         out["buckling_load_factor"] = var((), lam, "1", "smallest load factor on the residual "
                                           "stress that buckles any N_d (first r_c)")
+        # a stress that buckles no harmonic (lam = inf: an all-tensile stress) has no "just
+        # below buckling": NaN, not a solve at an infinite load
         out["m_hat_diag_at_buckling"] = var(
-            "n_d", model.m_hat_diag(ks, scale=(1 - 1e-6) * lam), "1",
+            "n_d", model.m_hat_diag(ks, scale=(1 - 1e-6) * lam) if np.isfinite(lam)
+            else np.full(len(ctx.n_d), np.nan), "1",
             "diagonal of Eq. (17) with the residual stress scaled to just below the buckling "
-            "load: the largest mode change a stable disk can show")
+            "load: the largest mode change a stable disk can show (NaN if none buckles)")
     return out
 
 
@@ -404,6 +410,12 @@ def stiffness_sensitivity(ctx) -> dict:
                                        "stiffer 10 mm annulus at r_a (Fig. 7)")}
 
 
+#: the identifiability profiles' fine grids: this many steps per coarse step of the scan
+#: (c: per eigen-analysis step; s: per Table 1 step); each profile point is then minimised
+#: continuously (:func:`.identifiability._profiles`)
+FINE_SCALE, FINE_WIDTH = 40, 5
+
+
 @EFFECTS.register("identifiability")
 def identifiability(ctx) -> dict:
     """What the paper's numbers pin down (:mod:`.identifiability`): the joint fit of the
@@ -416,9 +428,10 @@ def identifiability(ctx) -> dict:
     c0, c1, dc = p["scan_stress_scale"]
     widths = np.arange(w0, w1 + dw / 2, dw)
     scales = np.arange(c0, c1 + dc / 2, dc)
-    fine = np.arange(c0, c1 + dc / 100, dc / 50)
+    fine = np.linspace(c0, c1, int(round((c1 - c0) / (dc / FINE_SCALE))) + 1)
+    fine_widths = np.linspace(w0, w1, int(round((w1 - w0) / (dw / FINE_WIDTH))) + 1)
     r = idf.analyse(ctx.model, widths=widths, scales=scales, fine=fine,
-                    fine_widths=np.arange(w0, w1 + dw / 20, dw / 10),
+                    fine_widths=fine_widths,
                     single_width=p["calibration_gaussian_width"],
                     table1_paper=np.asarray(p["fit_table1_diagonal"], float),
                     f_rolled_paper=float(p["fit_rolled_frequency"]),
@@ -434,7 +447,7 @@ def identifiability(ctx) -> dict:
         "fit_parameter": var("fit_parameter", [0, 1], "1", "0 gaussian width, 1 stress scale"),
         "scan_condition": var("scan_condition", [0, 1], "1", "in-plane condition: "
                               + ", ".join(f"{i} {k}" for i, k in enumerate(idf.CONDITIONS))),
-        "scan_width": var("scan_width", np.arange(w0, w1 + dw / 20, dw / 10), "m",
+        "scan_width": var("scan_width", fine_widths, "m",
                           "Gaussian width s of the scan (fine grid)"),
         "scan_scale": var("scan_scale", fine, "1", "stress scale c = E alpha A relative to the "
                           "handbook steel at the paper's A (the scan)"),
@@ -444,6 +457,12 @@ def identifiability(ctx) -> dict:
                           "profile chi^2 over c (Birge-scaled, min over s and condition)"),
         "prof_condition": var((sub, "scan_condition"), r["prof_condition"], "1",
                               "profile chi^2 over the in-plane condition"),
+        "prof_width_scale": var((sub, "scan_width"), r["prof_width_scale"], "1",
+                                "the stress scale c minimising chi^2 at each s (the valley "
+                                "floor along the s profile)"),
+        "prof_scale_width": var((sub, "scan_scale"), r["prof_scale_width"], "m",
+                                "the Gaussian width s minimising chi^2 at each c (the valley "
+                                "floor along the c profile)"),
         "birge": var(sub, r["birge"], "1", "Birge factor: chi^2 per degree of freedom of the "
                      "best fit with the printed digits as uncertainties"),
         "chi2_min": var(sub, r["chi2_min"], "1", "Birge-scaled chi^2 of the best fit"),
@@ -472,15 +491,17 @@ def identifiability(ctx) -> dict:
 @EFFECTS.register("critical_speed")
 def critical_speed(ctx) -> dict:
     """The travelling-wave critical speed per N_d (:mod:`.rotation`): the spinning disk's
-    centrifugal stress (flange gripping the blade, u_r(r_f) = 0) stiffens it as Omega^2;
-    the backward wave stops at Omega_c.  Untensioned (with Southwell's first-order closed
-    form beside it) and with the rolled residual stress of every r_c."""
+    centrifugal stress (the flange's in-plane hold is the assumed ``centrifugal_bc``)
+    stiffens it as Omega^2; the backward wave stops at Omega_c.  Untensioned (with
+    Southwell's first-order closed form beside it) and with the rolled residual stress of
+    every r_c; a rolled disk that has buckled has none (NaN, never a number)."""
     from . import rotation
 
     model = ctx.model
     if not hasattr(model, "phi") or not isinstance(model.K, dict):
         raise Refusal("critical_speed needs the harmonics (solver axisym)")
-    kw = dict(omega=1.0, rho=ctx.rho, nu=ctx.nu, r_f=ctx.r_f, b=ctx.b, inplane_bc="clamped")
+    bc = ctx.p["centrifugal_bc"]
+    kw = dict(omega=1.0, rho=ctx.rho, nu=ctx.nu, r_f=ctx.r_f, b=ctx.b, inplane_bc=bc)
     Kc = model.stress_stiffness((lambda r: rotation.centrifugal_stress(r, **kw)[0],
                                  lambda r: rotation.centrifugal_stress(r, **kw)[1]))
     with stopwatch() as sw:
@@ -489,26 +510,23 @@ def critical_speed(ctx) -> dict:
         sw_pairs = [rotation.southwell(model.omega2[n], model.phi[n], model.M[n], Kc[n], int(n))
                     for n in ctx.n_d]
         ks = ctx.k_sigma if ctx.loads is not None else []
-        rolled = np.full((len(ks), len(ctx.n_d)), np.nan)
-        for i, k in enumerate(ks):
-            for j, n in enumerate(ctx.n_d):
-                try:
-                    rolled[i, j] = rotation.critical_speed(model.K[n] + k[n], model.M[n], Kc[n],
-                                                           int(n))
-                except np.linalg.LinAlgError:   # the rolled disk has buckled: no speed at all
-                    rolled[i, j] = np.nan
+        rolled = np.array([[rotation.critical_speed(model.K[n] + k[n], model.M[n], Kc[n], int(n))
+                            for n in ctx.n_d] for k in ks]).reshape(len(ks), len(ctx.n_d))
     out = {
         "critical_speed_untensioned": var("n_d", free, "rad/s", "travelling-wave critical "
-                                          "speed of the unrolled disk (inf: none)"),
+                                          "speed of the unrolled disk (inf: none)",
+                                          centrifugal_bc=bc),
         "critical_speed_southwell": var("n_d", [p[1] for p in sw_pairs], "rad/s",
                                         "Southwell's first-order critical speed of the unrolled "
-                                        "disk, omega / sqrt(N_d^2 - lambda)"),
+                                        "disk, omega / sqrt(N_d^2 - lambda)", centrifugal_bc=bc),
         "southwell_coefficient": var("n_d", [p[0] for p in sw_pairs], "1", "Southwell "
-                                     "coefficient lambda = phi^T K^(c) phi / phi^T M phi"),
+                                     "coefficient lambda = phi^T K^(c) phi / phi^T M phi",
+                                     centrifugal_bc=bc),
         "time_critical_speed": var((), sw.seconds, "s", "wall time of the critical speeds "
                                    "(untensioned and every r_c)"),
     }
     if len(ks):
         out["critical_speed"] = var(("r_c", "n_d"), rolled, "rad/s", "travelling-wave "
-                                    "critical speed of the rolled disk (NaN: buckled; inf: none)")
+                                    "critical speed of the rolled disk (NaN: buckled, it does "
+                                    "not exist; inf: none)", centrifugal_bc=bc)
     return out

@@ -14,13 +14,22 @@ Misfit: chi^2 = sum ((model_k - paper_k) / u_k)^2 with u_k half a unit of the la
 digit, scaled (Birge) so that the best fit has chi^2 per degree of freedom 1: the model
 cannot meet the paper to its printed digits, and the scaling turns the remaining misfit
 into the uncertainty.  Profiles: the minimum of chi^2 over the other constants at each value
-of one; the interval is where the profile stays within 1 of its minimum (68 %).  Which
-number pins which constant: each number's share of the Fisher information about s and c at
-the best fit, and the fit with and without 502.1 Hz.
+of one; the intervals are where the profile stays within 1 (68 %) and 4 (95 %) of its
+minimum.  An interval end is the data's only where neither scan bounds it: at its own scan's
+end it is open, and where the other constant's minimiser sits at that constant's scan end it
+is the scan's, not the data's (the table says which).  Table 1 constrains mainly the product
+c s (the rolled band's integrated stress): the valley runs along c s ~ const, and its floor
+is stored as the minimiser of the other constant along each profile.  Which number pins
+which constant: each number's share of the Fisher information about s and c at the best
+fit, and the fit with and without 502.1 Hz.
 
 Eq. (9) is linear in c, so Table 1 is computed once per (s, condition) for c = 1; the
-eigen-analysis of N_d = 4 is solved on a coarse (s, c) grid; both are interpolated (cubic
-splines, smooth functions) onto fine grids, on which the narrow chi^2 valley is resolved.
+eigen-analysis of N_d = 4 is solved on a coarse (s, c) grid (up to the first scale that
+buckles it) and omega~^2 (smooth in c, also through buckling, unlike f) is interpolated by
+cubic splines onto a fine c grid and along s.  The profiles are minimised on the fine grid
+and then, point by point, continuously (golden section between the grid neighbours of the
+grid minimum): the valley is narrower than any affordable grid step at small s, and the
+grid minimum alone makes the c profile jagged.  The best fit is polished by Nelder-Mead.
 """
 from __future__ import annotations
 
@@ -42,46 +51,108 @@ def unit_table1(disk, *, s, inplane_bc, r_c, amplitude, alpha, E, nu):
     return disk.eq9(Ks), Ks
 
 
+def _lowest_stable(K, M, bandwidth=3):
+    """omega^2 of the lowest mode of (K, M), or None when K is not positive definite (the
+    stressed disk has buckled in this harmonic): never the dense driver's cost for a buckled
+    point (:func:`.modal.eigen` falls back to it when inverse iteration fails)."""
+    from .modal import BANDED_MAX, BANDED_MIN, lowest_banded
+
+    if BANDED_MIN <= len(K) <= BANDED_MAX:
+        x = lowest_banded(K, M, bandwidth)
+        if x is not None:
+            return float((x @ K @ x) / (x @ M @ x))
+    if not _positive_definite_banded(K, bandwidth):
+        return None
+    return float(eigen(K, M, 1, bandwidth)[0][0])
+
+
+def _positive_definite_banded(K, bandwidth) -> bool:
+    """Whether the banded symmetric K has a Cholesky factor (LAPACK dpbtrf: O(n), where the
+    dense factorisation of a 128 x 128 matrix cost ~10 ms here)."""
+    from scipy.linalg.lapack import dpbtrf
+
+    u = int(bandwidth)
+    ab = np.zeros((u + 1, len(K)))
+    for k in range(u + 1):
+        ab[u - k, k:] = K.diagonal(k)
+    return dpbtrf(ab, overwrite_ab=1)[1] == 0
+
+
 def scan(disk, *, widths, scales, fine, conditions, n_d_eigen=4, **load):
     """The model on the coarse s grid: Table 1 for c = 1 [condition, s, N_d] (Eq. 9 is
-    linear in c) and f~(N_d = 4) [condition, s, c] on the ``fine`` c grid, the
-    eigen-analysis solved on the coarse ``scales`` and interpolated (a cubic spline of a
-    smooth, monotone function; NaN beyond a buckled scale)."""
+    linear in c) and omega~^2(N_d = 4) [condition, s, c] on the ``fine`` c grid: the
+    eigen-analysis solved on the coarse ``scales`` up to the first that buckles N_d = 4 and
+    interpolated by a cubic spline (NaN beyond the last stable scale)."""
     from scipy.interpolate import CubicSpline
 
     unit = np.empty((len(conditions), len(widths), len(disk.n_d)))
-    f4 = np.empty((len(conditions), len(widths), len(fine)))
+    w2 = np.full((len(conditions), len(widths), len(fine)), np.nan)
     K, M = disk.K[n_d_eigen], disk.M[n_d_eigen]
     for a, bc in enumerate(conditions):
         for i, s in enumerate(widths):
             unit[a, i], Ks = unit_table1(disk, s=s, inplane_bc=bc, **load)
-            w2 = np.array([eigen(K + c * Ks[n_d_eigen], M, 1, 3)[0][0] for c in scales])
-            ok = w2 > 0
-            f = CubicSpline(scales[ok], frequency(w2[ok]))(fine)
-            f4[a, i] = np.where(fine <= scales[ok].max(), f, np.nan)
-    return unit, f4
+            coarse = []
+            for c in scales:
+                v = _lowest_stable(K + c * Ks[n_d_eigen], M)
+                if v is None or v <= 0:
+                    break
+                coarse.append(v)
+            m = len(coarse)
+            if m >= 2:
+                inside = fine <= scales[m - 1]
+                w2[a, i, inside] = CubicSpline(scales[:m], coarse)(fine[inside])
+    return unit, w2
 
 
 class FineModel:
     """The model between the coarse s points: cubic splines along s of Table 1 (c = 1) and
-    of f~ (both smooth in s), so that the chi^2 valley -- narrower than the coarse step --
-    is resolved on ``fine_widths``."""
+    of omega~^2 on each fine c (both smooth in s); ``__call__`` on a grid of s, :meth:`at`
+    at single points (s, condition, any c)."""
 
-    def __init__(self, widths, unit, f4, fine):
+    def __init__(self, widths, unit, w2, fine):
         from scipy.interpolate import CubicSpline
 
-        self.fine, self.widths = fine, np.asarray(widths)
-        self._nan = ~np.isfinite(f4)   # buckled: no f~ there, nor between it and its neighbours
-        self._t = CubicSpline(widths, unit, axis=1)
-        self._f = CubicSpline(widths, np.where(self._nan, 0.0, f4), axis=1)
+        self.fine, self.widths = np.asarray(fine, float), np.asarray(widths, float)
+        self._nan = ~np.isfinite(w2)   # buckled: no f~ there, nor between it and its neighbours
+        self._t = CubicSpline(self.widths, unit, axis=1)
+        self._w = CubicSpline(self.widths, np.where(self._nan, 0.0, w2), axis=1)
+        self._dc = (self.fine[-1] - self.fine[0]) / (len(self.fine) - 1)   # uniform c grid
+
+    def _interval(self, w):
+        return np.clip(np.searchsorted(self.widths, w, side="right") - 1, 0,
+                       len(self.widths) - 2)
 
     def __call__(self, w):
         """(Table 1 [condition, len(w), c, N_d], f~ [condition, len(w), c])."""
         w = np.atleast_1d(w)
         t1 = self._t(w)[:, :, None, :] * self.fine[None, None, :, None]
-        j = np.clip(np.searchsorted(self.widths, w), 1, len(self.widths) - 1)
-        bad = self._nan[:, j - 1] | self._nan[:, j]
-        return t1, np.where(bad, np.nan, self._f(w))
+        j = self._interval(w)
+        bad = self._nan[:, j] | self._nan[:, j + 1]
+        return t1, np.where(bad, np.nan, frequency(self._w(w)))
+
+    def at(self, w, a, c):
+        """(Table 1 [N, N_d], f~ [N]) at the points (s = w, condition a, stress scale c):
+        Table 1 linear in c; f~ from the along-s splines of the four fine-c columns around c
+        (cubic Lagrange in c, exact at a column)."""
+        w, a, c = (x.ravel() for x in np.broadcast_arrays(np.asarray(w, float),
+                                                          np.asarray(a, int),
+                                                          np.asarray(c, float)))
+        t1 = self._t(w)[a, np.arange(w.size)] * c[:, None]
+        j = self._interval(w)
+        dx = w - self.widths[j]
+        u = (c - self.fine[0]) / self._dc
+        k0 = np.clip(np.floor(u).astype(int) - 1, 0, len(self.fine) - 4)
+        t = u - k0
+        w2 = np.zeros(w.size)
+        bad = np.zeros(w.size, bool)
+        for m in range(4):
+            k = k0 + m
+            coef = self._w.c[:, j, a, k]
+            val = ((coef[0] * dx + coef[1]) * dx + coef[2]) * dx + coef[3]
+            weight = np.prod([(t - q) / (m - q) for q in range(4) if q != m], axis=0)
+            w2 += weight * val
+            bad |= self._nan[a, j, k] | self._nan[a, j + 1, k]
+        return t1, np.where(bad, np.nan, frequency(w2))
 
 
 def chi2_terms(t1, f4, table1_paper, f_rolled_paper):
@@ -91,12 +162,33 @@ def chi2_terms(t1, f4, table1_paper, f_rolled_paper):
     return np.concatenate([r**2, rf[..., None] ** 2], axis=-1)
 
 
-def interval(values, prof, level=1.0):
-    """(best, lo, hi) of a profile: argmin and the range where prof <= min + level (grid
-    resolution; an end of the grid means the data do not bound it there)."""
+def _chi2(terms, use):
+    """chi^2 of the data ``use`` (inf where a used term does not exist: buckled)."""
+    terms = terms[..., use]
+    return np.where(np.all(np.isfinite(terms), axis=-1), terms.sum(axis=-1), np.inf)
+
+
+LEVELS = {"68": 1.0, "95": 4.0}
+
+
+def interval(values, prof, level=1.0, floor=None):
+    """(best, lo, hi) of a profile: argmin and the range where prof <= min + level (min:
+    ``floor`` if given, the polished best fit's chi^2), each end interpolated linearly
+    between the grid points that straddle the level (an end at the grid's end means the
+    scan, not the data, bounds it there)."""
     k = int(np.nanargmin(prof))
-    ok = np.nonzero(prof <= prof[k] + level)[0]
-    return float(values[k]), float(values[ok.min()]), float(values[ok.max()])
+    top = (prof[k] if floor is None else min(floor, prof[k])) + level
+    ok = np.nonzero(prof <= top)[0]
+    lo_i, hi_i = int(ok.min()), int(ok.max())
+
+    def cross(i, o):   # between the inside point i and the outside point o
+        y0, y1 = prof[i], prof[o]
+        if not np.isfinite(y1) or y1 == y0:
+            return float(values[i])
+        return float(values[i] + (values[o] - values[i]) * (top - y0) / (y1 - y0))
+    lo = float(values[0]) if lo_i == 0 else cross(lo_i, lo_i - 1)
+    hi = float(values[-1]) if hi_i == len(values) - 1 else cross(hi_i, hi_i + 1)
+    return float(values[k]), lo, hi
 
 
 CONDITIONS = ("clamped", "free_disk")
@@ -108,69 +200,141 @@ DATA = ["Table 1 N_d=0", "Table 1 N_d=1", "Table 1 N_d=2", "Table 1 N_d=3", "Tab
 SUBSETS = {"table1_and_f_rolled": [0, 1, 2, 3, 4, 5], "table1": [0, 1, 2, 3, 4]}
 
 
+def _golden(f, lo, hi, iters=40):
+    """Elementwise minimum of ``f`` over [lo, hi] (unimodal there): (x, f(x))."""
+    g = (np.sqrt(5.0) - 1.0) / 2.0
+    a, b = np.asarray(lo, float).copy(), np.asarray(hi, float).copy()
+    x1, x2 = b - g * (b - a), a + g * (b - a)
+    f1, f2 = f(x1), f(x2)
+    for _ in range(iters):
+        left = f1 <= f2                       # the minimum is in [a, x2]
+        a, b = np.where(left, a, x1), np.where(left, x2, b)
+        xn = np.where(left, b - g * (b - a), a + g * (b - a))
+        fn = f(xn)
+        x1, x2, f1, f2 = (np.where(left, xn, x2), np.where(left, x1, xn),
+                          np.where(left, fn, f2), np.where(left, f1, fn))
+    first = f1 <= f2
+    return np.where(first, x1, x2), np.where(first, f1, f2)
+
+
 def _profiles(fm, fine_widths, table1_paper, f_rolled_paper, uses, chunk=64):
-    """Raw chi^2 profiles over s, c and the condition, and the best point (a, i, k), over
-    the fine grid, one (pw, pc, pa, at) per data subset of ``uses`` (evaluated in chunks of
-    s; the model and its residuals once per chunk for all subsets)."""
-    nc = len(fm.fine)
-    out = [[np.full(len(fine_widths), np.inf), np.full(nc, np.inf), np.full(2, np.inf),
-            np.inf, None] for _ in uses]
-    for i0 in range(0, len(fine_widths), chunk):
+    """Raw chi^2 profiles over s and c per condition, with the other constant's minimiser
+    along each (the valley floor), one dict per data subset of ``uses``: the fine grid
+    first (the model and its residuals once per chunk of s for all subsets), then each
+    profile point minimised continuously between its grid neighbours."""
+    nw, nc, na = len(fine_widths), len(fm.fine), len(CONDITIONS)
+    grid = [{"ps": np.full((na, nw), np.inf), "ks": np.zeros((na, nw), int),
+             "pc": np.full((na, nc), np.inf), "is": np.zeros((na, nc), int)} for _ in uses]
+    for i0 in range(0, nw, chunk):
         t1, f4 = fm(fine_widths[i0:i0 + chunk])
-        all_terms = chi2_terms(t1, f4, table1_paper, f_rolled_paper)
-        for use, o in zip(uses, out):
-            terms = all_terms[..., use]
-            raw = np.where(np.all(np.isfinite(terms), axis=-1), terms.sum(axis=-1), np.inf)
-            o[0][i0:i0 + chunk] = raw.min(axis=(0, 2))
-            o[1] = np.minimum(o[1], raw.min(axis=(0, 1)))
-            o[2] = np.minimum(o[2], raw.min(axis=(1, 2)))
-            if raw.min() < o[3]:
-                o[3] = float(raw.min())
-                a, i, k = np.unravel_index(int(np.argmin(raw)), raw.shape)
-                o[4] = (int(a), i0 + int(i), int(k))
-    return [(pw, pc, pa, at) for pw, pc, pa, _, at in out]
+        terms = chi2_terms(t1, f4, table1_paper, f_rolled_paper)
+        for use, g in zip(uses, grid):
+            raw = _chi2(terms, use)                          # [condition, s, c]
+            g["ps"][:, i0:i0 + chunk] = raw.min(axis=2)
+            g["ks"][:, i0:i0 + chunk] = raw.argmin(axis=2)
+            m, am = raw.min(axis=1), raw.argmin(axis=1) + i0
+            better = m < g["pc"]
+            g["pc"] = np.where(better, m, g["pc"])
+            g["is"] = np.where(better, am, g["is"])
+    out = []
+    conds = np.arange(na)[:, None]
+    for use, g in zip(uses, grid):
+        def chi2_at(w, a, c, use=use):
+            t1, f4 = fm.at(w, a, c)
+            return _chi2(chi2_terms(t1, f4, table1_paper, f_rolled_paper), use)
+
+        # s profile: c between the grid neighbours of the grid minimum at each (condition, s)
+        k = g["ks"]
+        W, A = np.broadcast_arrays(fine_widths[None, :], conds)
+        c_s, p_s = _golden(lambda c: chi2_at(W, A, c).reshape(c.shape),
+                           fm.fine[np.maximum(k - 1, 0)], fm.fine[np.minimum(k + 1, nc - 1)])
+        keep = g["ps"] <= p_s
+        p_s, c_s = np.where(keep, g["ps"], p_s), np.where(keep, fm.fine[k], c_s)
+        # c profile: s between the grid neighbours of the grid minimum at each (condition, c)
+        i = g["is"]
+        C, A = np.broadcast_arrays(fm.fine[None, :], conds)
+        s_c, p_c = _golden(lambda w: chi2_at(w, A, C).reshape(w.shape),
+                           fine_widths[np.maximum(i - 1, 0)],
+                           fine_widths[np.minimum(i + 1, nw - 1)])
+        keep = g["pc"] <= p_c
+        p_c, s_c = np.where(keep, g["pc"], p_c), np.where(keep, fine_widths[i], s_c)
+        # the best point: polished from the best profile point (Nelder-Mead in grid units)
+        a = int(np.argmin(p_s.min(axis=1)))
+        ib = int(np.argmin(p_s[a]))
+        best = _polish(chi2_at, a, fine_widths, fm.fine, fine_widths[ib], c_s[a, ib], p_s[a, ib])
+        ca, wa = p_s.argmin(axis=0), p_c.argmin(axis=0)
+        out.append({"prof_width": p_s.min(axis=0), "prof_condition": p_s.min(axis=1),
+                    "prof_scale": p_c.min(axis=0),
+                    "prof_width_scale": c_s[ca, np.arange(nw)],
+                    "prof_scale_width": s_c[wa, np.arange(nc)],
+                    "best": (a, *best)})
+    return out
+
+
+def _polish(chi2_at, a, widths, scales, s0, c0, f0):
+    """(s, c, chi^2) of the minimum near (s0, c0) in condition ``a`` inside the scan box
+    (Nelder-Mead in units of the fine grid steps; never worse than the start)."""
+    from scipy.optimize import minimize
+
+    ds, dc = widths[1] - widths[0], scales[1] - scales[0]
+
+    def fun(x):
+        s, c = x[0] * ds, x[1] * dc
+        if not (widths[0] <= s <= widths[-1] and scales[0] <= c <= scales[-1]):
+            return np.inf
+        return float(chi2_at(np.array([s]), np.array([a]), np.array([c]))[0])
+
+    x0 = np.array([s0 / ds, c0 / dc])
+    r = minimize(fun, x0, method="Nelder-Mead",
+                 options={"xatol": 1e-6, "fatol": 1e-10, "maxiter": 2000,
+                          "initial_simplex": x0 + np.array([[0, 0], [0.5, 0], [0, 0.5]])})
+    if r.fun < f0:
+        return float(r.x[0] * ds), float(r.x[1] * dc), float(r.fun)
+    return float(s0), float(c0), float(f0)
 
 
 def analyse(disk, *, widths, scales, fine, fine_widths, single_width, table1_paper,
             f_rolled_paper, **load):
     """The joint fit of (c, s, in-plane condition) to each data subset (:data:`SUBSETS`) and
     the single-alpha reading (s = ``single_width``, free_disk, c on Table 1's N_d = 4 entry
-    alone), as arrays: Birge-scaled profiles over s, c and the condition, the best point, its
-    Table 1 relative errors and f~, Fisher shares, Birge factors."""
-    unit, f4 = scan(disk, widths=widths, scales=scales, fine=fine, conditions=CONDITIONS, **load)
-    fm = FineModel(widths, unit, f4, fine)
+    alone), as arrays: Birge-scaled profiles over s, c and the condition with the valley
+    floor along each, the best point, its Table 1 relative errors and f~, Fisher shares,
+    Birge factors.  ``fine`` must be a uniform grid."""
+    unit, w2 = scan(disk, widths=widths, scales=scales, fine=fine, conditions=CONDITIONS, **load)
+    fm = FineModel(widths, unit, w2, fine)
     u = np.r_[PRINTED["table1"], PRINTED["f_rolled"]]
     # the single-alpha reading, solved directly (not on the grid)
     u1, Ks = unit_table1(disk, s=single_width, inplane_bc="free_disk", **load)
     c1 = table1_paper[4] / u1[4]
     f1 = frequency(eigen(disk.K[4] + c1 * Ks[4], disk.M[4], 1, 3)[0][0])
     single_terms = chi2_terms(c1 * u1, np.asarray(f1), table1_paper, f_rolled_paper)
-    out = {k: [] for k in ("prof_width", "prof_scale", "prof_condition", "birge", "best_width",
-                           "best_scale", "best_condition", "best_table1_rel", "best_f_rolled",
-                           "shares", "single_chi2", "chi2_min")}
+    out = {k: [] for k in ("prof_width", "prof_scale", "prof_condition", "prof_width_scale",
+                           "prof_scale_width", "birge", "best_width", "best_scale",
+                           "best_condition", "best_table1_rel", "best_f_rolled", "shares",
+                           "single_chi2", "chi2_min")}
     profiles = _profiles(fm, fine_widths, table1_paper, f_rolled_paper, list(SUBSETS.values()))
-    for use, (pw, pc, pa, (a, i, k)) in zip(SUBSETS.values(), profiles):
+    for use, pr in zip(SUBSETS.values(), profiles):
+        a, w, c, chi2 = pr["best"]
         dof = max(len(use) - 3, 1)
-        birge = max(float(pw.min()) / dof, 1.0)
-        out["prof_width"].append(pw / birge)
-        out["prof_scale"].append(pc / birge)
-        out["prof_condition"].append(pa / birge)
+        birge = max(chi2 / dof, 1.0)
+        for key in ("prof_width", "prof_scale", "prof_condition"):
+            out[key].append(pr[key] / birge)
+        out["prof_width_scale"].append(pr["prof_width_scale"])
+        out["prof_scale_width"].append(pr["prof_scale_width"])
         out["birge"].append(birge)
-        out["chi2_min"].append(float(pw.min()) / birge)
-        w = fine_widths[i]
-        t1, f4b = fm(w)
+        out["chi2_min"].append(chi2 / birge)
+        t1, f4 = fm.at(w, a, c)
         out["best_width"].append(w)
-        out["best_scale"].append(fine[k])
+        out["best_scale"].append(c)
         out["best_condition"].append(a)
-        out["best_table1_rel"].append(t1[a, 0, k] / table1_paper - 1)
-        out["best_f_rolled"].append(f4b[a, 0, k])
-        # Fisher shares at the best point: derivatives along s and c on the fine grids
-        lo, hi = fine_widths[max(i - 1, 0)], fine_widths[min(i + 1, len(fine_widths) - 1)]
-        (tl, fl), (th, fh) = fm(lo), fm(hi)
-        d_s = (np.r_[th[a, 0, k], fh[a, 0, k]] - np.r_[tl[a, 0, k], fl[a, 0, k]]) / (hi - lo)
-        k0, k1 = max(k - 1, 0), min(k + 1, len(fine) - 1)
-        d_c = (np.r_[t1[a, 0, k1], f4b[a, 0, k1]] - np.r_[t1[a, 0, k0], f4b[a, 0, k0]]) \
-            / (fine[k1] - fine[k0])
+        out["best_table1_rel"].append(t1[0] / table1_paper - 1)
+        out["best_f_rolled"].append(f4[0])
+        # Fisher shares at the best point: central differences along s and c
+        hs, hc = 1e-3 * (fine_widths[1] - fine_widths[0]), 1e-3 * (fine[1] - fine[0])
+        (tl, fl), (th, fh) = fm.at(w - hs, a, c), fm.at(w + hs, a, c)
+        d_s = (np.r_[th[0], fh] - np.r_[tl[0], fl]) / (2 * hs)
+        (tl, fl), (th, fh) = fm.at(w, a, c - hc), fm.at(w, a, c + hc)
+        d_c = (np.r_[th[0], fh] - np.r_[tl[0], fl]) / (2 * hc)
         sh = np.zeros((2, len(u)))
         for row, d in enumerate((d_s, d_c)):
             info = (d[use] / u[use]) ** 2
@@ -182,28 +346,69 @@ def analyse(disk, *, widths, scales, fine, fine_widths, single_width, table1_pap
     return out
 
 
+def _bound(end, grid, other, other_grid, name, other_name):
+    """What bounds an interval end: its own scan's end (open), the other constant's scan end
+    (its minimiser there sits at that end: the scan, not the data), or the data."""
+    step = abs(grid[1] - grid[0])
+    if end <= grid.min() + 1e-9 * step or end >= grid.max() - 1e-9 * step:
+        return f"open: the {name} scan's end"
+    o = float(np.interp(end, grid, other))
+    ostep = abs(other_grid[1] - other_grid[0])
+    if o <= other_grid.min() + ostep or o >= other_grid.max() - ostep:
+        return f"the {other_name} scan's end"
+    return ""
+
+
 def table(ds, prefix="axisym_") -> list[list]:
     """Rows of ``identifiability.csv`` from a run of effect ``identifiability``: per data
-    subset and constant [data, constant, unit, best, lo, hi, pinned by], then the two readings
-    [data, reading, condition, s, c, Table 1 relative errors, f~, chi^2]."""
+    subset and constant [data, constant, unit, best, lo_68, hi_68, lo_95, hi_95, pinned by]
+    (an end the data do not fix says what does: a scan's end), the product c s along the
+    valley floor (the direction Table 1 fixes), and the in-plane condition."""
     g = lambda k: ds[prefix + k if prefix + k in ds else k].values  # noqa: E731
     widths, fine = g("scan_width") * 1e3, g("scan_scale")
     rows = []
     for j, name in enumerate(SUBSETS):
-        for const, prof, grid, unit, sh in (("gaussian_width", g("prof_width")[j], widths, "mm",
-                                             g("shares")[j, 0]),
-                                            ("stress_scale", g("prof_scale")[j], fine,
-                                             "x handbook E alpha A", g("shares")[j, 1])):
-            best, lo, hi = interval(grid, prof)
+        floors = {"gaussian_width": g("prof_width_scale")[j],
+                  "stress_scale": g("prof_scale_width")[j] * 1e3}
+        for const, prof, grid, unit, sh, other_grid, names in (
+                ("gaussian_width", g("prof_width")[j], widths, "mm", g("shares")[j, 0], fine,
+                 ("s", "c")),
+                ("stress_scale", g("prof_scale")[j], fine, "x handbook E alpha A",
+                 g("shares")[j, 1], widths, ("c", "s"))):
+            cells = []
+            for level in LEVELS.values():
+                _, lo, hi = interval(grid, prof, level, floor=float(g("chi2_min")[j]))
+                for end in (lo, hi):
+                    why = _bound(end, grid, floors[const], other_grid, *names)
+                    cells.append(f"{end:.3g}" + (f" ({why})" if why else ""))
             top = np.argsort(sh)[::-1][:2]
-            edge = " (open: the scan's end)" if hi >= grid.max() or lo <= grid.min() else ""
-            rows.append([name, const, unit, f"{best:.3g}", f"{lo:.3g}", f"{hi:.3g}{edge}",
+            best = (float(g("best_width")[j]) * 1e3 if const == "gaussian_width"
+                    else float(g("best_scale")[j]))
+            rows.append([name, const, unit, f"{best:.3g}", *cells,
                          "; ".join(f"{DATA[t]} {sh[t]:.0%}" for t in top)])
+        # the degenerate direction: c s along the c profile's valley floor
+        prof, s_floor = g("prof_scale")[j], g("prof_scale_width")[j] * 1e3
+        floor = fine * s_floor
+        step = widths[1] - widths[0]
+        walled = (s_floor <= widths.min() + step) | (s_floor >= widths.max() - step)
+        base = min(float(g("chi2_min")[j]), float(np.nanmin(prof)))
+        cells = []
+        for level in LEVELS.values():
+            inside = np.nonzero(prof <= base + level)[0]
+            for k in (inside[np.argmin(floor[inside])], inside[np.argmax(floor[inside])]):
+                cells.append(f"{floor[k]:.3g}" + (" (the s scan's end)" if walled[k] else ""))
+        rows.append([name, "stress_scale_x_width", "mm (c s along the valley floor)",
+                     f"{float(g('best_width')[j]) * 1e3 * float(g('best_scale')[j]):.3g}", *cells,
+                     "the direction Table 1 fixes: the ranges of s and c above are mostly "
+                     "motion along it"])
         pc = g("prof_condition")[j]
         a = int(np.nanargmin(pc))
-        rows.append([name, "inplane_bc", "1", CONDITIONS[a], "", "",
+        rows.append([name, "inplane_bc", "1", CONDITIONS[a], "", "", "", "",
                      f"chi^2 to {CONDITIONS[1 - a]} +{pc[1 - a] - pc[a]:.1f}"])
     return rows
+
+
+COLUMNS = ["data", "constant", "unit", "best", "lo_68", "hi_68", "lo_95", "hi_95", "pinned_by"]
 
 
 def readings(ds, prefix="axisym_") -> list[list]:

@@ -70,3 +70,44 @@ def thermal_stress(r, *, amplitude, r_c, s, r_f, b, E, nu, alpha, inplane_bc="cl
     sig_r = -alpha * E * Q / r**2 + k * ((1 + nu) * c1 - (1 - nu) * c2 / r**2)
     sig_t = alpha * E * Q / r**2 - alpha * E * T + k * ((1 + nu) * c1 + (1 - nu) * c2 / r**2)
     return sig_r, sig_t
+
+
+
+#: the residual-stress model of the thermal analogy (``options.residual_stress``): the paper's
+#: plane-stress field, or one of the rivals a skeptical reviewer would propose in its place
+#: (config ``falsifiers:``; never a scene of the paper)
+STRESS_MODELS = ("thermal_analogy", "hoop_only", "fixed_profile")
+
+
+def residual_stress(r, *, stress_model="thermal_analogy", profile_rc=None, **kw):
+    """(sigma_r, sigma_theta) [Pa] of the run's stress model at radii ``r`` (``kw``: those of
+    :func:`thermal_stress`).
+
+    ``thermal_analogy``
+        the paper's field, :func:`thermal_stress` (both components, in equilibrium).
+    ``hoop_only``
+        the same hoop stress with sigma_r = 0, as in simple tensioning theories that judge a
+        rolled blade by its hoop stress alone.  It violates radial equilibrium
+        d(r sigma_r)/dr = sigma_theta, which the paper's plane-stress field keeps (Fig. 5
+        draws both components; both enter Eq. 3).
+    ``fixed_profile``
+        rolling without location: the stress profile of the rolling radius ``profile_rc``
+        (the paper's operating point of Table 1, r_c = 65 mm) wherever one rolls, its level
+        set by the rim hoop stress sigma_theta(b) the paper's field has at the run's r_c (the
+        one number by which tension is judged in practice).  At r_c = ``profile_rc`` it is the
+        paper's field; elsewhere the band does not move with r_c, which Eq. (4) centres on it.
+    """
+    if stress_model not in STRESS_MODELS:
+        raise Refusal(f"options.residual_stress = {stress_model!r}: allowed {STRESS_MODELS}")
+    if stress_model == "fixed_profile":
+        if profile_rc is None:
+            raise Refusal("stress model fixed_profile needs profile_rc (the profile's r_c)")
+        ref = {**kw, "r_c": profile_rc}
+        rim = np.array([kw["b"]])
+        scale = thermal_stress(rim, **kw)[1][0] / thermal_stress(rim, **ref)[1][0]
+        sig_r, sig_t = thermal_stress(r, **ref)
+        return scale * sig_r, scale * sig_t
+    sig_r, sig_t = thermal_stress(r, **kw)
+    if stress_model == "hoop_only":
+        return np.zeros_like(sig_r), sig_t
+    return sig_r, sig_t

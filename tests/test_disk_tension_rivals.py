@@ -1,0 +1,113 @@
+"""disk_tension's rivals (config falsifiers:): solver options with every paper number kept,
+what physics each removes, and that each fails the rows it is named by and not the rest."""
+import copy
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mechrepro.config import load_paper
+from mechrepro.errors import Refusal
+from mechrepro.inputs import read_yaml
+from mechrepro.models.disk_tension import thermal
+from mechrepro.solve import solve
+
+ROOT = Path(__file__).resolve().parent.parent
+RAW = read_yaml(ROOT / "config" / "papers" / "disk_tension.yaml")
+KW = dict(amplitude=50.0, s=0.005, r_f=0.025, b=0.1275, E=206e9, nu=0.3, alpha=12e-6,
+          inplane_bc="free_disk")
+R = np.linspace(0.026, 0.1275, 400)
+
+
+@pytest.fixture(scope="module")
+def cfg():
+    return load_paper(ROOT / "config" / "papers" / "disk_tension.yaml", "ci")
+
+
+def test_every_rival_is_a_solver_option_with_the_papers_numbers_kept():
+    fal = RAW["falsifiers"]
+    assert set(fal) == {"hoop_only", "fixed_profile"}
+    for name, spec in fal.items():
+        assert set(spec) == {"why", "options"}, name
+        assert spec["options"] == {"residual_stress": name}
+
+
+def test_every_counted_row_with_a_rival_names_one_that_tests_its_physics():
+    rep = RAW["reported"]
+    named = {q: s.get("falsifier") for q, s in rep.items() if s.get("evidence") == "independent"
+             and s.get("kind", "value") != "info"}
+    assert {q for q, f in named.items() if f == "hoop_only"} == {
+        "table1_diag_nd0", "table1_diag_nd1", "table1_diag_nd2", "table1_diag_nd3",
+        "fig6bc_nd2_little_change"}
+    assert {q for q, f in named.items() if f == "fixed_profile"} == {
+        "fig6a_nd2to4_max_near_rc65", "fig6a_nd2to4_below_unrolled_near_edge",
+        "fig6a_nd0_1_min_near_rc45", "fig6_optimal_rc_moves_outward_with_rf",
+        "eq9_frequency_error_over_grid"}
+
+
+def test_hoop_only_drops_the_radial_stress_and_breaks_radial_equilibrium():
+    sr, st = thermal.residual_stress(R, stress_model="hoop_only", r_c=0.065, **KW)
+    pr, pt = thermal.thermal_stress(R, r_c=0.065, **KW)
+    assert np.all(sr == 0) and np.array_equal(st, pt)
+    # the paper's field: d(r sigma_r)/dr = sigma_theta; the rival's: 0 = sigma_theta, violated
+    lhs = np.gradient(R * pr, R)
+    assert np.max(np.abs(lhs - pt)[5:-5]) < 1e-3 * np.max(np.abs(pt))
+    assert np.max(np.abs(st)) > 1e6
+
+
+def test_fixed_profile_is_the_papers_field_at_its_own_rc_and_does_not_move_with_rc():
+    same = thermal.residual_stress(R, stress_model="fixed_profile", profile_rc=0.065,
+                                   r_c=0.065, **KW)
+    paper = thermal.thermal_stress(R, r_c=0.065, **KW)
+    for a, b in zip(same, paper):
+        np.testing.assert_allclose(a, b, rtol=1e-12, atol=1e-6)
+    sr, st = thermal.residual_stress(R, stress_model="fixed_profile", profile_rc=0.065,
+                                     r_c=0.095, **KW)
+    far = thermal.thermal_stress(R, r_c=0.095, **KW)
+    assert np.argmin(st) == np.argmin(paper[1]) != np.argmin(far[1])   # the band stays at 65
+    assert st[-1] == pytest.approx(far[1][-1], rel=1e-12)               # the rim level moves
+    with pytest.raises(Refusal):
+        thermal.residual_stress(R, stress_model="fixed_profile", r_c=0.065, **KW)
+
+
+def test_an_unknown_stress_model_and_a_rival_on_the_2d_mesh_are_refused(cfg):
+    with pytest.raises(Refusal):
+        thermal.residual_stress(R, stress_model="membrane", r_c=0.065, **KW)
+    run = copy.deepcopy(cfg.runs["table12_plate2d"])
+    run["options"] = {"residual_stress": "hoop_only"}
+    with pytest.raises(Refusal, match="axisym"):
+        solve(run)
+
+
+def _table1_ratios(run, model):
+    run = copy.deepcopy(run)
+    run["options"] = {**run.get("options", {}), "residual_stress": model}
+    ds = solve(run)
+    k = np.diag(ds["axisym_k_sigma_hat"].values)
+    return k, float(ds["alpha_effective"])
+
+
+def test_hoop_only_is_recalibrated_and_fails_table1_which_the_paper_passes(cfg):
+    run = cfg.runs["table12@falsify-hoop_only"]
+    paper = np.asarray(RAW["parameters"]["fit_table1_diagonal"]["value"], float)
+    k0, a0 = _table1_ratios(run, "thermal_analogy")
+    k1, a1 = _table1_ratios(run, "hoop_only")
+    assert k1[4] == pytest.approx(paper[4], rel=1e-6) and a1 != a0   # re-calibrated
+    assert np.all(np.abs(k0[:4] / paper[:4] - 1) < 0.03)
+    assert np.all(np.abs(k1[:4] / paper[:4] - 1) > 0.03)
+    assert k1[0] == 0.0 and k1[1] > 0   # no radial stress: N_d = 0 unmoved, N_d = 1 stiffened
+
+
+def test_fixed_profile_leaves_table1_and_flattens_the_location_of_the_maximum(cfg):
+    run = cfg.runs["table12@falsify-hoop_only"]
+    k0, a0 = _table1_ratios(run, "thermal_analogy")
+    k1, a1 = _table1_ratios(run, "fixed_profile")
+    np.testing.assert_allclose(k1, k0, rtol=1e-12)
+    assert a1 == a0
+    grid = copy.deepcopy(cfg.runs["rc_grid@falsify-fixed_profile"])
+    base = copy.deepcopy(grid)
+    base["options"] = {}
+    f_p = solve(base)["axisym_f_rolled"].sel(n_d=4).values
+    f_r = solve(grid)["axisym_f_rolled"].sel(n_d=4).values
+    rc = np.asarray(RAW["scenes"]["rc_grid"]["parameters"]["rolling_radius"])
+    assert 55 <= rc[np.nanargmax(f_p)] <= 75 < rc[np.nanargmax(f_r)]
