@@ -267,3 +267,23 @@ def test_a_misspelt_scene_in_a_profile_overlay_is_named_as_such(edit_config):
     msg = str(err.value)
     assert f"{path}: profiles.ci.scenes.fig07_fig8: not one of the file's scenes" in msg, msg
     assert "fig07_fig08" in msg and "missing key" not in msg, msg
+
+
+# --- a falsifier is a rival: a model the paper rules out, never an edit of its numbers -------
+
+@pytest.mark.parametrize("paper, falsifier, message", [
+    # the paper's drive-link pitch (Sec. 4): an edit of a number the paper gives
+    ("saw_chain", {"why": "w", "parameters": {"drive_link_pitch": 8.0}},
+     "parameters.drive_link_pitch = 8.0: the paper gives drive_link_pitch"),
+    # an assumed tension inside its own plausible range: a range end
+    ("chain_drive", {"why": "w", "parameters": {"static_tension": 300.0}},
+     "inside static_tension's plausible range"),
+    # gravity switched off, while its assumed strength's range reaches zero: a range end
+    ("joint_wear", {"why": "w", "effects_off": ["gravity"]},
+     "its strength gravity is assumed with a plausible range .* that reaches zero"),
+])
+def test_the_loader_refuses_a_rival_that_edits_a_paper_value_or_stays_in_range(
+        edit_config, paper, falsifier, message):
+    path = edit_config(paper, lambda r: r.setdefault("falsifiers", {}).update(x=falsifier))
+    with pytest.raises(ConfigError, match=f"falsifiers.x.*{message}"):
+        load_paper(path)

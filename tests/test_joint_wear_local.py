@@ -67,3 +67,23 @@ def test_local_prediction_reproduces_the_uniform_one_in_the_limit():
     assert mean[0] == pytest.approx(h_meas[-1], rel=1e-9)       # calibrated on Table 3
     assert mean[-1] == pytest.approx(h_u[-1], rel=2e-2)
     assert peak[-1] / mean[-1] < 1.05                            # flat: the uniform profile
+
+
+def test_measuring_points_lie_on_the_arc_centred_on_its_midpoint():
+    """Eq. (33)'s 8 points "uniformly distributed within the main wear range": at the middle
+    of 8 equal parts of the contact arc, so every point lies on the arc, also where the
+    contact point dwells near one end of it (there the time-weighted mean angle, the former
+    centre, lies a quarter of the arc off the midpoint and 2 points fell off the arc)."""
+    t = np.arange(720) / 720
+    arc, mid = math.radians(60.0), 3.0          # the arc straddles the +-pi cut
+    psi = np.angle(np.exp(1j * (mid + arc * (np.sin(np.pi * t) ** 8 - 0.5))))
+    pts = wear.wear_range_points(psi)
+    off = np.angle(np.exp(1j * (pts - mid)))
+    assert np.all(np.abs(off) < 0.5 * arc)
+    assert off == pytest.approx(arc * ((np.arange(8) + 0.5) / 8 - 0.5), abs=1e-4)
+    # the contact path of the wear scenes (assumed F): all 8 on the arc
+    from mechrepro.models.joint_wear import quasistatic
+    h = quasistatic.one_period(FB, 360)
+    lo, hi = wear.contact_arc_bounds(h["psi"])
+    rel = np.angle(np.exp(1j * (wear.wear_range_points(h["psi"]) - lo)))
+    assert np.all((rel > 0) & (rel < hi - lo))

@@ -151,3 +151,18 @@ def test_the_archive_refuses_a_result_that_is_not_current(copy):
     with pytest.raises(ArchiveRefused, match="speed_12000.nc: changed since it was made: .*the "
                                              "package set"):
         certify(results, [str(f)], results / f".jobs{TAG}.json")
+
+
+def test_the_snakemake_step_steered_is_there():
+    """heal.steer_workflow wraps Workflow._prepare_dag and sets the DAG's
+    rules_allowed_for_needrun (Snakemake 9): an upgrade that renames either fails here,
+    not silently in a run."""
+    import inspect
+
+    import snakemake.api  # noqa: F401  (Snakemake's modules import each other in this order)
+    from snakemake.dag import DAG
+    from snakemake.workflow import Workflow
+
+    assert "rules_allowed_for_needrun" in inspect.signature(DAG.__init__).parameters
+    src = inspect.getsource(Workflow._prepare_dag)
+    assert "self._dag = DAG(" in src and "forcerun" in src

@@ -476,6 +476,37 @@ def _udunits_like(unit: str) -> bool:
     return bool(re.fullmatch(r"[A-Za-z0-9*/^() .-]+", unit))
 
 
+def _check_rival(raw: dict, name: str, spec: dict, where: str) -> None:
+    """A falsifier is a rival: a model the paper's text or physics rules out, never an edit of
+    a number the paper gives, and never a change that stays inside what the config itself
+    calls plausible (that is a range end, checked as such).  Refused here: a parameter with a
+    paper ``source``; an assumed value inside its ``range``; an effect switched off whose
+    strength is an assumed constant whose range reaches zero."""
+    params = raw["parameters"]
+    at = f"{where}: falsifiers.{name}"
+    for p, v in spec.get("parameters", {}).items():
+        d = params[p]
+        if d.get("source") and not d.get("assumed"):
+            raise ConfigError(f"{at}.parameters.{p} = {v!r}: the paper gives {p} "
+                              f"({d['source']}); a rival is a model the paper rules out, never "
+                              "an edit of its numbers (a solver option or an effect switched "
+                              "off, with the paper's values kept)")
+        lo_hi = d.get("range")
+        if lo_hi and all(isinstance(x, (int, float)) for x in [*lo_hi, v]) \
+                and min(lo_hi) <= v <= max(lo_hi):
+            raise ConfigError(f"{at}.parameters.{p} = {v!r}: inside {p}'s plausible range "
+                              f"{lo_hi}: a range end, not a rival (verdicts are re-checked "
+                              "there already)")
+    for e in spec.get("effects_off", []):
+        for key in raw.get("effects", {}).get(e, {}).get("contributes", []):
+            lo_hi = params.get(key, {}).get("range")
+            if params.get(key, {}).get("assumed") and lo_hi and \
+                    all(isinstance(x, (int, float)) for x in lo_hi) and min(lo_hi) <= 0:
+                raise ConfigError(f"{at}.effects_off: {e!r}: its strength {key} is assumed with "
+                                  f"a plausible range {lo_hi} that reaches zero: switching it "
+                                  "off is a range end, not a rival")
+
+
 def _check_reported(raw: dict, where: str) -> None:
     """Cross-references of the reported block: reads, depends_on, calibrations, ranges."""
     names = set(raw["scenes"]) | set(raw.get("studies", {}))
@@ -500,6 +531,7 @@ def _check_reported(raw: dict, where: str) -> None:
         for p in spec.get("parameters", {}):
             if p not in params:
                 raise ConfigError(f"{where}: falsifiers.{f}.parameters: {p!r} is not a parameter")
+        _check_rival(raw, f, spec, where)
     for key, spec in refine_spec(raw).items():
         if spec.get("factor") == 1:
             raise ConfigError(f"{where}: refine.{key} = 1: a knob that is never refined; give "
@@ -931,9 +963,11 @@ def workflow_config(path: str | Path = "config/config.yaml", overrides=None) -> 
     again: Snakemake's own reader kept a duplicate ``profile:`` silently and named neither
     file nor key for a bad byte or a schema error.  A :class:`ConfigError` names the file
     (and ``--config`` where an override is at fault) and the key."""
+    from .inputs import read_yaml
+
     path = Path(path)
     try:
-        from .inputs import read_yaml; raw = read_yaml(path)  # noqa: E702
+        raw = read_yaml(path)
     except (OSError, yaml.YAMLError) as exc:
         raise ConfigError(f"{path}: cannot read: {exc}") from exc
     schema = load_schema("config.schema.json", path.resolve().parent / SCHEMA_DIR_NAME)

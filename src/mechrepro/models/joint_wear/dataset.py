@@ -5,6 +5,8 @@ whose result is absent (no wear, no scan ...) contributes nothing.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from mechrepro.units import var
@@ -175,7 +177,7 @@ def fit_part(res: dict, run: dict):
     def col(key):
         return np.array([x[key] for x in sols], float)
     sv = ("fit_solution",)
-    v = {"fit_misfit": var(gd, f["misfit"], "1", "mean ln(K_p ours / K_p paper) over both sides and five intervals (NaN: contact lost)"),
+    v = {"fit_misfit": var(gd, f["misfit"], "1", "mean ln(K_p ours / K_p paper) over both sides and five intervals, every interval at the new bushing's wear factor (within 0.01 of the misfit; it places the zeros, the misfit refines them; NaN: contact lost)"),
          "fit_load_distance": var((), float(f["distance"]), "m", "distance of F from E's mid-stroke position"),
          "fit_sol_gravity": var(sv, col("gravity"), "m/s2", "gravity plane of the estimate"),
          "fit_sol_direction": var(sv, col("direction"), "deg", "estimated direction of F"),
@@ -189,6 +191,45 @@ def fit_part(res: dict, run: dict):
          "fit_sol_wear_86h": var(("fit_solution", "fit_band", "side"),
                                  np.array([x["wear_86h"] for x in sols], float).reshape(len(sols), 3, 2),
                                  "m", "wear at 86 h predicted with the estimate (and +- its uncertainty)")}
+    return coords, v
+
+
+def fitted_part(res: dict, run: dict):
+    """Continuous contact at the load points re-fitted to Tables 3-4 in the run (solver
+    fitted_contact): the misfit over F's direction and, per fitted F, the contact margins.
+    A run without a fitted F keeps one row of NaN (netCDF-3 has no empty dimension)."""
+    f = res["fitted"]
+    sols = f["solutions"] or [dict.fromkeys(("direction", "misfit", "qs_F_min", "qs_F_max",
+                                             "qs_margin", "dyn_F_min", "dyn_F_max",
+                                             "dyn_margin", "dyn_min_penetration", "dyn_steps",
+                                             "margin", "wear_direction_deg", "upper_share"),
+                                            math.nan) | {"F": (math.nan, math.nan)}]
+    sv = ("fitted_f",)
+
+    def col(key):
+        return np.array([x[key] for x in sols], float)
+    coords = {"fitted_direction": var("fitted_direction", f["directions"], "deg", "direction of F from E's mid-stroke position"),
+              "fitted_f": var("fitted_f", np.arange(len(sols)), "1", "load point reproducing Tables 3-4 (fitted in this run)")}
+    F = np.array([x["F"] for x in sols], float).reshape(len(sols), 2)
+    v = {"fitted_misfit": var(("fitted_direction",), f["misfit"], "1", "mean ln(K_p ours / K_p paper) over both sides and five intervals, every interval at the new bushing's wear factor (within 0.01 of the misfit; it places the zeros, the misfit refines them)"),
+         "fitted_F_x": var(sv, F[:, 0], "m", "fitted load point F, x"),
+         "fitted_F_y": var(sv, F[:, 1], "m", "fitted load point F, y"),
+         "fitted_F_direction": var(sv, col("direction"), "deg", "fitted direction of F from E's mid-stroke position"),
+         "fitted_F_misfit": var(sv, col("misfit"), "1", "misfit left at the fitted F"),
+         "fitted_qs_F_N_min": var(sv, col("qs_F_min"), "N", "smallest joint force over the quasi-static period"),
+         "fitted_qs_F_N_max": var(sv, col("qs_F_max"), "N", "largest joint force over the quasi-static period"),
+         "fitted_qs_margin": var(sv, col("qs_margin"), "1", "quasi-static contact margin min F_N / max F_N"),
+         "fitted_dyn_F_N_min": var(sv, col("dyn_F_min"), "N", "smallest joint force over the settled dynamic period (NaN: not solved, the quasi-static margin is below the rule)"),
+         "fitted_dyn_F_N_max": var(sv, col("dyn_F_max"), "N", "largest joint force over the settled dynamic period"),
+         "fitted_dyn_margin": var(sv, col("dyn_margin"), "1", "dynamic contact margin min F_N / max F_N (0 where the pin leaves the bushing)"),
+         "fitted_dyn_min_penetration": var(sv, col("dyn_min_penetration"), "m", "smallest penetration over the settled dynamic period"),
+         "fitted_dyn_steps": var(sv, col("dyn_steps"), "1", "integrator steps of the dynamic periods"),
+         "fitted_margin": var(sv, col("margin"), "1", "contact margin at the fitted F (the dynamic one where solved)"),
+         "fitted_upper_share": var(sv, col("upper_share"), "1", "share of the wear above the bushing centre (quasi-static)"),
+         **_scalars({"fitted_margin_min": (f["margin"], "1", "smallest contact margin over the fitted load points (NaN: none fits)"),
+                     "fitted_n": (len(f["solutions"]), "1", "load points reproducing Tables 3-4 at this distance"),
+                     "fitted_load_distance": (f["distance"], "m", "distance of F from E's mid-stroke position"),
+                     "fitted_gravity": (f["gravity"], "m/s2", "gravity of the fit")})}
     return coords, v
 
 
@@ -214,12 +255,15 @@ def local_part(res: dict, run: dict):
     """Local vs uniform wear of side B1."""
     lw = res["local"]
     coords = {"local_hour": var("local_hour", lw["hours"], "h", "node times of the prediction"),
-              "theta": var("theta", lw["theta"], "rad", "bushing angle, coupler frame")}
+              "theta": var("theta", lw["theta"], "rad", "bushing angle, coupler frame"),
+              "local_point": var("local_point", np.arange(len(lw["points"])), "1", "measuring point of Eq. (33)")}
     h = ("local_hour",)
     v = {"local_mean_depth": var(h, lw["mean"], "m", "local model: mean depth over the 8 points of Eq. (35) in the wear range"),
          "local_peak_depth": var(h, lw["peak"], "m", "local model: deepest point of the profile"),
          "uniform_depth": var(h, lw["uniform"], "m", "uniform model (Eq. 29) on the same joint and schedule"),
          "local_profile_end": var(("theta",), lw["profile"], "m", "local wear profile at the end"),
+         "local_point_angle": var(("local_point",), np.angle(np.exp(1j * np.asarray(lw["points"]))), "rad",
+                                  "bushing angle of the measuring points of Eq. (33): the middles of 8 equal parts of the contact arc (coupler frame)"),
          **_scalars({"local_k": (lw["k_local"], "m2/N", "calibrated k of the local model"),
                      "local_k_uniform": (lw["k_uniform"], "m2/N", "calibrated k of the uniform model"),
                      "local_wall_time": (lw["wall_local"], "s", "wall time, local model (calibration + prediction)"),
@@ -232,7 +276,8 @@ def local_part(res: dict, run: dict):
 # (part, the key of the solver's result it needs)
 PARTS = ((mechanism_part, "fb"), (period_part, "hist"), (calibration_part, "wear"),
          (prediction_part, "wear"), (period_by_period_part, "pbp"), (scan_part, "scan"),
-         (fit_part, "fit"), (sensitivity_part, "sens"), (local_part, "local"))
+         (fit_part, "fit"), (fitted_part, "fitted"), (sensitivity_part, "sens"),
+         (local_part, "local"))
 
 
 def variables(res: dict, run: dict) -> dict:

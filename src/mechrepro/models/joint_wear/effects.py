@@ -42,6 +42,9 @@ class Context:
     one_period: Callable[[FourBar], dict] | None = None
     sides: list = field(default_factory=lambda: ["B1"])
     worn_bushing: Callable[[float, float], float] | None = None
+    #: G(R_bush) in place of the joint model's wear factor (a rival without mechanics:
+    #: solver.closed_form_factor); None: one period of ``one_period`` per radius
+    wear_factor: Callable[[float], float] | None = None
 
 
 # --- mechanism terms ----------------------------------------------------------------------
@@ -89,6 +92,8 @@ def archard_wear(ctx: Context) -> dict:
     wear_range = s.get("wear_range", "contact_point")
 
     def factor(R_bush):
+        if ctx.wear_factor is not None:
+            return ctx.wear_factor(R_bush)
         fb_w = fb.with_bushing_radius(R_bush)
         return wear.period_wear_factor(ctx.one_period(fb_w), fb_w, fb.period, wear_range,
                                        statistics=False)["G"]

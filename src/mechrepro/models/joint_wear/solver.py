@@ -14,6 +14,9 @@ Solvers
                         planes the paper leaves open (contact loss refused)
 ``load_point_fit``      F estimated from Tables 3-4 jointly, with its uncertainty, its
                         contact arc and wear side, and the 86-h wear it predicts
+``fitted_contact``      F re-fitted to Tables 3-4 in the run (its own gravity, friction,
+                        distance), the contact margin of the quasi-static and the dynamic
+                        joint at every fitted F (Sec. 3.2)
 ``constant_sensitivity`` friction, contact exponent, d_max, C_max reading at their range ends
 ``local_wear``          local Archard wear per bushing angle vs the uniform depth (Fig. 14)
 
@@ -27,6 +30,7 @@ import math
 from dataclasses import replace
 
 import numpy as np
+from scipy import optimize
 
 from mechrepro.errors import Refusal
 from mechrepro.timing import stopwatch
@@ -129,9 +133,21 @@ def one_period(fb: FourBar, s: dict, joint) -> dict:
     return out
 
 
+def closed_form_factor(R0: float, p: float):
+    """The wear factor of a rival without mechanics: G(R) = (R0 / R)^p, no four-bar, no
+    contact (option ``closed_form_growth: p``).  p = 1 is the worn arc's length growing
+    with the radius at a fixed arc, force and sliding (wear.inverse_radius_prediction); the
+    calibration absorbs G's scale, so only its growth law enters the prediction."""
+    return lambda R_bush: (R0 / R_bush) ** p
+
+
 def with_wear(run: dict, fb: FourBar, ctx: Context, res: dict, joint) -> dict:
-    """Stages two and three: the wear set-up, then the wear effects on ``joint``."""
+    """Stages two and three: the wear set-up, then the wear effects on ``joint`` (or on the
+    closed-form wear factor of option ``closed_form_growth``, a rival)."""
     ctx = replace(ctx, one_period=lambda fb_w: joint(fb_w, ctx.s))
+    if "closed_form_growth" in ctx.s:
+        ctx = replace(ctx, wear_factor=closed_form_factor(fb.R_bush,
+                                                          float(ctx.s["closed_form_growth"])))
     c = EFFECTS.evaluate(run, ctx, keys=WEAR_SETUP)
     ctx = replace(ctx, sides=c.get("sides", ["B1"]), worn_bushing=c.get("worn_bushing"))
     c = EFFECTS.evaluate(run, ctx, keys=WEAR)
@@ -198,15 +214,18 @@ def load_point_grid(run: dict, prefix: str):
             np.asarray(s[f"{prefix}_gravity"], float))
 
 
-def wear_factor_of(fb_v: FourBar, s: dict):
+def wear_factor_of(fb_v: FourBar, s: dict, joint=None):
     """G(R_bush): the wear factor of one continuous-contact period of ``fb_v`` with the
     bushing at radius R_bush (what calibration and prediction step through).  A radius
-    met again (both sides start calibrating at the new bushing) is not solved again."""
+    met again (both sides start calibrating at the new bushing) is not solved again.
+    ``joint``: the period model (default continuous_contact_period, which refuses contact
+    loss; quasi_static_period where a margin is measured, not assumed)."""
+    joint = joint or continuous_contact_period
+
     @functools.cache
     def factor(R_bush):
         fb_w = fb_v.with_bushing_radius(R_bush)
-        return wear.period_wear_factor(continuous_contact_period(fb_w, s), fb_w,
-                                       fb_v.period, statistics=False)["G"]
+        return wear.period_wear_factor(joint(fb_w, s), fb_w, fb_v.period, statistics=False)["G"]
     return factor
 
 
@@ -272,57 +291,134 @@ def contact_side(hist: dict) -> dict:
     return {"wear_direction_deg": mean, "upper_share": float(np.sum(w * (ny > 0)) / np.sum(w))}
 
 
+#: the largest |misfit| a fitted load point may keep: a tenth of the tables' own scatter
+#: (the standard error of the ten log-ratios, ~0.01); the config's calibration row
+#: fitted_load_point_misfit states the same tolerance.  A sign change the secant steps do
+#: not bring below it is a jump of the misfit, not a zero.
+FIT_TOLERANCE = 1e-3
+
+
+def tables_misfit(fb_v: FourBar, s: dict, p: dict, K_paper, factor=None) -> float:
+    """m = mean over both sides and the five intervals of ln(K_p ours / K_p paper): zero
+    where the load point of ``fb_v`` reproduces Tables 3-4 (Eq. 32 read as k = K/21)."""
+    return float(np.mean(np.log(_calibrated(fb_v, s, p, factor=factor) / K_paper)))
+
+
+def fit_zeros(fb: FourBar, s: dict, p: dict, E, d: float, dirs, g: float, K_paper,
+              joint=None) -> tuple[np.ndarray, list]:
+    """The load points F at distance ``d`` from ``E`` (gravity ``g``) whose calibration
+    reproduces Tables 3-4, the zeros over F's direction of the misfit (tables_misfit).
+
+    The grid ``dirs`` places the sign changes with the misfit of the new bushing's wear
+    factor G(R0) taken for every interval (one period per direction instead of nine: it
+    differs from the misfit by the mean ln(G(R_p) / G(R0)), below 0.01, the wear factor
+    changing by less than 1 % over the first 10 h); each sign change is then bracketed by
+    the misfit itself at the grid points (widened by one grid step where a zero sits
+    within that difference of a grid point) and refined by ``fit_secant_steps`` secant
+    steps, by Brent's method where they stall, to FIT_TOLERANCE.  ``joint``: the period
+    model of the calibration (default: the continuous-contact one, contact loss refused:
+    NaN misfit there).  Returns (the grid's misfit, one dict per zero: direction [deg],
+    the bracket and misfits of the last secant step, the mechanism there, its wear
+    factor function and calibrated K_p)."""
+    def mech(a):
+        return load_point(fb, E, d, a, g)
+
+    @functools.cache
+    def misfit(a):
+        """The misfit at direction a [deg] (NaN where contact loss is refused)."""
+        fb_v = mech(a)
+        try:
+            return tables_misfit(fb_v, s, p, K_paper, wear_factor_of(fb_v, s, joint))
+        except ContactLost:
+            return math.nan
+
+    def grid_misfit(a):
+        fb_v = mech(a)
+        try:
+            G0 = wear_factor_of(fb_v, s, joint)(fb_v.R_bush)
+            return tables_misfit(fb_v, s, p, K_paper, lambda R: G0)
+        except ContactLost:         # refused
+            return math.nan
+    m = np.array([grid_misfit(a) for a in dirs])
+    n = dirs.size
+    at = lambda j: float(dirs[j % n]) + 360.0 * (j // n)          # noqa: E731  unwrapped
+    zeros = []
+    for j in range(n):
+        if not (np.isfinite(m[j]) and np.isfinite(m[(j + 1) % n])) or m[j] * m[(j + 1) % n] > 0 \
+                or m[j] == m[(j + 1) % n]:
+            continue
+        for lo, hi in ((j, j + 1), (j - 1, j + 1), (j, j + 2)):
+            a0, a1 = at(lo), at(hi)
+            m0, m1 = misfit(a0 % 360.0), misfit(a1 % 360.0)
+            if np.isfinite(m0) and np.isfinite(m1) and m0 * m1 <= 0 and m0 != m1:
+                break
+        else:
+            continue
+        a = a0 + (a1 - a0) * m0 / (m0 - m1)
+        for _ in range(int(s.get("fit_secant_steps", 3))):   # refine the zero: secant
+            ma = misfit(a % 360.0)
+            if not np.isfinite(ma):
+                break        # contact refused inside the bracket: no zero to refine there
+            if ma * m0 > 0:
+                a0, m0 = a, ma
+            else:
+                a1, m1 = a, ma
+            a = a0 + (a1 - a0) * m0 / (m0 - m1)
+        if np.isfinite(misfit(a % 360.0)) and not abs(misfit(a % 360.0)) <= FIT_TOLERANCE:
+            # a steep zero (where the smallest joint force nears zero the contact arc, and
+            # with it the misfit, changes by decades within a degree) that the secant steps
+            # have not reached: Brent's method on the bracket they leave
+            try:
+                a = float(optimize.brentq(lambda x: misfit(x % 360.0), a0, a1, xtol=1e-9,
+                                          rtol=4 * np.finfo(float).eps, maxiter=200))
+            except (ValueError, RuntimeError):
+                continue     # no sign change left (a refused point inside): no zero
+        if not abs(misfit(a % 360.0)) <= FIT_TOLERANCE:
+            continue     # a jump of the misfit, no zero
+        if any(abs(math.remainder(a - z["direction"], 360.0)) < 1e-6 for z in zeros):
+            continue     # found from a neighbouring sign change already
+        fb_a = mech(a % 360.0)
+        factor_a = wear_factor_of(fb_a, s, joint)
+        zeros.append({"direction": float(a % 360.0), "a0": a0, "a1": a1, "m0": m0, "m1": m1,
+                      "fb": fb_a, "factor": factor_a,
+                      "K": _calibrated(fb_a, s, p, factor=factor_a)})
+    return m, zeros
+
+
+def _K_paper(s: dict, p: dict) -> np.ndarray:
+    """Tables 3-4 as printed (option fit_K_paper, 1/Pa) as k = K/21 [m2/N], 2 x 5."""
+    return np.asarray(s["fit_K_paper"], float) / wear.hardness_number(float(p["hardness_bushing"]))
+
+
 def load_point_fit(run: dict) -> dict:
     """The load point F estimated from Tables 3-4 jointly (Sec. 4.3-4.4 read backwards).
 
     With Eq. (32) read as k = K/21, the printed K_p of both tables fix the wear factor G of
     the paper's own simulation; G depends on F (and the gravity plane), which the paper
     does not give.  For each gravity value in ``fit_gravity`` F runs over the directions
-    ``fit_load_direction_deg`` at ``fit_load_distance`` from E's mid-stroke position; the
-    misfit m = mean over both sides and the five intervals of ln(K_p ours / K_p paper) is
-    interpolated linearly in direction between grid points and its zeros are the
-    estimates.  Each zero carries the uncertainty of the tables (the scatter of the ten
-    log-ratios, i.e. the rounding of the printed increments, standard error of the mean)
-    turned into direction through the local slope dm/dtheta.  At every estimate: the
-    contact arc, where the wear sits (contact_side), and the 86-h wear of both sides, also
-    at the estimate +- its uncertainty -- the band on Fig. 15.  Contact loss is refused.
+    ``fit_load_direction_deg`` at the distance ``load_point_distance`` from E's mid-stroke
+    position; the zeros of the misfit are the estimates (fit_zeros).  Each zero carries
+    the uncertainty of the tables (the scatter of the ten log-ratios, i.e. the rounding of
+    the printed increments, standard error of the mean) turned into direction through the
+    local slope dm/dtheta.  At every estimate: the contact arc, where the wear sits
+    (contact_side), and the 86-h wear of both sides, also at the estimate +- its
+    uncertainty -- the band on Fig. 15.  Contact loss is refused.
     """
-    fb, ctx, E, d, dirs, gs = load_point_grid(run, "fit")
+    fb, ctx = setup(run)
     s, p = ctx.s, ctx.p
-    H = float(p["hardness_bushing"])
-    K_paper = np.asarray(s["fit_K_paper"], float) / wear.hardness_number(H)   # m2/N, 2 x 5
-
-    def mech(g, a):
-        return load_point(fb, E, d, a, g)
+    E, d = kinematics.load_point_mid_stroke(fb), float(p["load_point_distance"])
+    dirs = np.asarray(s["fit_load_direction_deg"], float)
+    gs = np.asarray(s["fit_gravity"], float)
+    K_paper = _K_paper(s, p)
     m = np.full((gs.size, dirs.size), np.nan)
-    for i, g in enumerate(gs):
-        for j, a in enumerate(dirs):
-            try:
-                m[i, j] = float(np.mean(np.log(_calibrated(mech(g, a), s, p) / K_paper)))
-            except ContactLost:         # refused
-                pass
     sols = []
     for i, g in enumerate(gs):
-        for j in range(dirs.size):
-            j2 = (j + 1) % dirs.size
-            a0, a1 = dirs[j], dirs[j2] + (360.0 if j2 == 0 else 0.0)
-            m0, m1 = m[i, j], m[i, j2]
-            if not (np.isfinite(m0) and np.isfinite(m1)) or m0 * m1 > 0 or m0 == m1:
-                continue
-            a = a0 + (a1 - a0) * m0 / (m0 - m1)
-            for _ in range(int(s.get("fit_secant_steps", 3))):   # refine the zero: secant
-                ma = float(np.mean(np.log(_calibrated(mech(g, a), s, p) / K_paper)))
-                if ma * m0 > 0:
-                    a0, m0 = a, ma
-                else:
-                    a1, m1 = a, ma
-                a = a0 + (a1 - a0) * m0 / (m0 - m1)
-            fb_a = mech(g, a)
-            factor_a = wear_factor_of(fb_a, s)
-            K = _calibrated(fb_a, s, p, factor=factor_a)
+        m[i], zeros = fit_zeros(fb, s, p, E, d, dirs, g, K_paper)
+        for z in zeros:
+            a, fb_a, factor_a, K = z["direction"], z["fb"], z["factor"], z["K"]
             r = np.log(K / K_paper).ravel()
             se = float(np.std(r, ddof=1) / math.sqrt(r.size))
-            slope = (m1 - m0) / (a1 - a0)                    # per degree
+            slope = (z["m1"] - z["m0"]) / (z["a1"] - z["a0"])      # per degree
             sig = abs(se / slope)
             hist = continuous_contact_period(fb_a, s)
             f = wear.period_wear_factor(hist, fb_a, fb.period)
@@ -331,7 +427,7 @@ def load_point_fit(run: dict) -> dict:
                 if da == 0.0:     # the estimate itself: calibrated above
                     band.append(_predicted_86h(fb_a, s, p, np.mean(K, axis=1), factor_a))
                     continue
-                fb_b = mech(g, a + da)
+                fb_b = load_point(fb, E, d, a + da, g)
                 factor_b = wear_factor_of(fb_b, s)
                 band.append(_predicted_86h(fb_b, s, p, np.mean(_calibrated(
                     fb_b, s, p, factor=factor_b), axis=1), factor_b))
@@ -342,6 +438,55 @@ def load_point_fit(run: dict) -> dict:
                          **contact_side(hist), "wear_86h": np.array(band)})    # 3 x 2 sides
     return {"fb": fb, "fit": {"misfit": m, "directions": dirs, "gravity": gs, "distance": d,
                               "solutions": sols}}
+
+
+def fitted_contact(run: dict) -> dict:
+    """Sec. 3.2's continuous contact at every load point F that reproduces Tables 3-4, F
+    re-fitted in the run (the load point is calibrated, so every variant -- a level, a
+    member of the load-point family, a range end -- fits it again at its own gravity,
+    friction and distance ``load_point_distance``).
+
+    The fit (fit_zeros) calibrates on the quasi-static joint without refusing contact loss:
+    the margin is what is measured here, not assumed.  At each zero the contact margin is
+    the smallest joint force over its peak, min F_N / max F_N, first of the quasi-static
+    period; where that is at least CONTACT_LOSS_FRACTION the dynamic clearance joint
+    (resolution.method, rtol; ``periods`` periods from the settled start, the last one
+    read) is solved and its own margin taken (0 if the pin leaves the bushing).  Below the
+    fraction the quasi-static margin stands: the project's rule already calls that contact
+    lost, whatever the dynamics adds (and a rattling pin would cost 100x the steps).
+    The result's margin is the smallest over the zeros, NaN where none exists (no load
+    point at that distance reproduces the tables: a family member the model refuses)."""
+    fb, ctx = setup(run)
+    s, p = ctx.s, ctx.p
+    E, d = kinematics.load_point_mid_stroke(fb), float(p["load_point_distance"])
+    dirs = np.asarray(s["fit_load_direction_deg"], float)
+    K_paper = _K_paper(s, p)
+    misfit, zeros = fit_zeros(fb, s, p, E, d, dirs, fb.g, K_paper, joint=quasi_static_period)
+    sols = []
+    for z in zeros:
+        fb_a = z["fb"]
+        qs = quasi_static_period(fb_a, s)
+        F = np.asarray(qs["F_N"])
+        row = {"direction": z["direction"] % 360.0, "F": fb_a.F,
+               "misfit": float(np.mean(np.log(z["K"] / K_paper))),
+               "qs_F_min": float(F.min()), "qs_F_max": float(F.max()),
+               "qs_margin": float(F.min() / F.max()), "dyn_F_min": math.nan,
+               "dyn_F_max": math.nan, "dyn_margin": math.nan, "dyn_min_penetration": math.nan,
+               "dyn_steps": math.nan, **contact_side(qs)}
+        if row["qs_margin"] >= CONTACT_LOSS_FRACTION:
+            hist = dynamic_period(fb_a, s)
+            if not hist["completed"]:
+                raise RuntimeError(f"joint_wear: {hist['message']}: no settled period")
+            Fd = np.where(np.asarray(hist["delta"]) > 0.0, np.asarray(hist["F_N"]), 0.0)
+            row.update(dyn_F_min=float(Fd.min()), dyn_F_max=float(Fd.max()),
+                       dyn_margin=float(Fd.min() / Fd.max()),
+                       dyn_min_penetration=float(np.min(hist["delta"])),
+                       dyn_steps=float(hist["steps"]))
+        row["margin"] = float(np.nanmin([row["qs_margin"], row["dyn_margin"]]))
+        sols.append(row)
+    margin = min((r["margin"] for r in sols), default=math.nan)
+    return {"fb": fb, "fitted": {"misfit": misfit, "directions": dirs, "distance": d,
+                                 "gravity": fb.g, "solutions": sols, "margin": margin}}
 
 
 def constant_sensitivity(run: dict) -> dict:
@@ -378,14 +523,14 @@ def local_wear(run: dict) -> dict:
     """Side B1 with local Archard wear (wear.local_predict: a depth per bushing angle, the
     profile fed back interval by interval) against the paper's uniform depth (Eq. 29) on the
     same joint and schedule; quasi-static joint.  Option ``local_load_point``:
-    [distance m, direction deg, gravity m/s2] of F from E's mid-stroke position (default:
-    the assumed F and g)."""
+    [distance m, direction deg] of F from E's mid-stroke position (default: the assumed F);
+    gravity is the gravity effect's, as in every other solver."""
     fb, ctx = setup(run)
     s, p = ctx.s, ctx.p
     lp = s.get("local_load_point")
     if lp:
-        d, a, g = (float(x) for x in lp)
-        fb = load_point(fb, kinematics.load_point_mid_stroke(fb), d, a, g)
+        d, a = (float(x) for x in lp)
+        fb = load_point(fb, kinematics.load_point_mid_stroke(fb), d, a, fb.g)
     cal_h = float(p["measurement_interval"]) / 3600.0
     t_end, step = float(p["prediction_end"]) / 3600.0, float(s["interval_h"])
     h = np.asarray(p["measured_wear_B1"], float)
@@ -400,8 +545,10 @@ def local_wear(run: dict) -> dict:
         _, k_u, _ = wear.calibrate(h, cal_h, fb.period, fb.R_bush, factor, dh_measured=dh)
         _, h_u, _ = wear.predict(h[-1], cal_h * h.size, t_end, step, k_u, fb.period, fb.R_bush,
                                  factor)
-    f0 = wear.period_wear_factor(continuous_contact_period(fb, s), fb, fb.period)
+    h0 = continuous_contact_period(fb, s)
+    f0 = wear.period_wear_factor(h0, fb, fb.period)
     return {"fb": fb, "local": {"hours": nodes, "mean": mean, "peak": peak, "uniform": h_u,
+                                "points": wear.wear_range_points(h0["psi"]),
                                 "k_local": k_l, "k_uniform": k_u, "profile": prof,
                                 "theta": theta, "wall_local": sw_l.seconds,
                                 "wall_uniform": sw_u.seconds, "arc": f0["arc"],
@@ -411,7 +558,8 @@ def local_wear(run: dict) -> dict:
 SOLVERS = {"clearance_implicit": clearance_implicit, "clearance_explicit": clearance_explicit,
            "continuous_contact": continuous_contact, "period_by_period": period_by_period,
            "coefficient_scan": coefficient_scan, "load_point_fit": load_point_fit,
-           "constant_sensitivity": constant_sensitivity, "local_wear": local_wear}
+           "constant_sensitivity": constant_sensitivity, "local_wear": local_wear,
+           "fitted_contact": fitted_contact}
 
 
 def _methods(runs) -> set:

@@ -136,17 +136,26 @@ def continuous_contact(R):
             "min_penetration_dynamic": d}
 
 
-@Q.register("continuous_contact_dynamic_estimated_f")
-def continuous_contact_estimated(R):
-    parts, ok = [], True
-    for name in ("period_dynamic_estimated_f1", "period_dynamic_estimated_f2"):
-        ds = R.run(name)
-        d, f = float(ds["min_penetration"]), float(ds["F_N_min"])
-        ok = ok and d > 0
-        p = run_attrs(ds)["parameters"]["values_si"]
-        parts.append(f"F = ({p['load_point_x']:.4f}, {p['load_point_y']:.4f}) m: min penetration "
-                     f"{d:.3e} m, min force {f:.3g} N of mean {float(ds['F_N_mean']):.3g} N")
-    return Reproduced(ok, "; ".join(parts))
+@Q.register("continuous_contact_margin_fitted_f", "fitted_load_point_misfit")
+def continuous_contact_fitted(R):
+    ds = R.run("contact_fitted_f")
+    n = int(ds["fitted_n"])
+    g, d = float(ds["fitted_gravity"]), float(ds["fitted_load_distance"])
+    mu = float(_param_si(ds, "friction_coefficient"))
+    parts = []
+    for i in range(n):
+        r = ds.isel(fitted_f=i)
+        dyn = (f"dynamic {float(r['fitted_dyn_F_N_min']):.3g} / {float(r['fitted_dyn_F_N_max']):.3g} N"
+               if np.isfinite(float(r["fitted_dyn_margin"])) else "dynamic not solved (below the rule)")
+        parts.append(f"{float(r['fitted_F_direction']):.2f} deg: quasi-static "
+                     f"{float(r['fitted_qs_F_N_min']):.3g} / {float(r['fitted_qs_F_N_max']):.3g} N, {dyn}")
+    where = f"g {g:g} m/s2, mu {mu:g}, F {d:g} m from E"
+    margin = float(ds["fitted_margin_min"])
+    note = (f"{n} load points reproduce Tables 3-4 at {where}: " + "; ".join(parts)
+            if n else f"no load point reproduces Tables 3-4 at {where}")
+    misfit = float(np.nanmax(np.abs(ds["fitted_F_misfit"].values))) if n else math.nan
+    return {"continuous_contact_margin_fitted_f": Reproduced(margin, note),
+            "fitted_load_point_misfit": Reproduced(misfit, f"largest |mean ln(K ours / K paper)| over the {n} fitted F ({where})")}
 
 
 def _finest_radau(st):

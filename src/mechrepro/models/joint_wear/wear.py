@@ -70,12 +70,25 @@ def contact_arc(psi, in_contact=None):
         centre = np.angle(np.mean(np.exp(1j * psi)))
         rel = np.angle(np.exp(1j * (psi - centre)))
         return float(rel.max() - rel.min())
-    step = np.angle(np.exp(1j * np.diff(np.append(psi, psi[0]))))   # wrapped, periodic
-    if abs(step.sum()) > math.pi:          # winds once round the bushing per period
+    bounds = contact_arc_bounds(psi)
+    if bounds is None:                     # winds once round the bushing per period
         return 2.0 * math.pi
+    return float(min(bounds[1] - bounds[0], 2.0 * math.pi))
+
+
+def contact_arc_bounds(psi):
+    """(lo, hi) [rad]: the ends of the arc a continuous contact path covers (contact_arc),
+    on the path unwrapped from psi[0] (hi - lo may exceed pi; the ends are angles modulo
+    2 pi), each refined by the vertex of the parabola through it; None when the path winds
+    round the bushing (the arc is the whole circle and has no ends)."""
+    psi = np.asarray(psi, float)
+    if psi.size < 3:
+        return float(psi.min()), float(psi.max())
+    step = np.angle(np.exp(1j * np.diff(np.append(psi, psi[0]))))   # wrapped, periodic
+    if abs(step.sum()) > math.pi:
+        return None
     path = psi[0] + np.concatenate([[0.0], np.cumsum(step[:-1])])
-    arc = _vertex(path, int(np.argmax(path))) - _vertex(path, int(np.argmin(path)))
-    return float(min(arc, 2.0 * math.pi))
+    return _vertex(path, int(np.argmin(path))), _vertex(path, int(np.argmax(path)))
 
 
 def _vertex(y, i):
@@ -314,11 +327,19 @@ def local_wear_per_period(hist: dict, fb: FourBar, period: float, theta) -> np.n
 
 
 def wear_range_points(psi, n: int = 8) -> np.ndarray:
-    """Eq. (35): n points uniformly inside the main wear range, here the contact-point arc of
-    the period (centre = circular mean, range = contact_arc); at the middle of n equal parts."""
+    """Eq. (33): n points "uniformly distributed within the main wear range", here the
+    contact-point arc of the period (contact_arc_bounds), at the middle of n equal parts of
+    it: centred on the arc's midpoint, so every point lies on the arc.  (Centred on the
+    time-weighted mean contact angle instead, as before issue 60, the points sat 16.2 deg /
+    24.5 deg off the midpoint of the 73 / 82 deg arcs of the two upper-part estimates of F,
+    and 2 of 8 fell off the arc; 0.3 deg of the assumed F's 3.3 deg arc.)  A path that winds round the bushing covers the whole circle: the points then
+    divide the circle, starting from the circular mean."""
     psi = np.asarray(psi, float)
-    c = np.angle(np.mean(np.exp(1j * psi)))
-    a = contact_arc(psi)
+    bounds = contact_arc_bounds(psi) if psi.size >= 3 else None
+    if bounds is None:
+        c, a = float(np.angle(np.mean(np.exp(1j * psi)))), 2.0 * math.pi
+    else:
+        c, a = 0.5 * (bounds[0] + bounds[1]), bounds[1] - bounds[0]
     return c + a * ((np.arange(n) + 0.5) / n - 0.5)
 
 
