@@ -284,7 +284,7 @@ def _swarm_solves(res: dict, p: dict, pso_tol: float) -> float:
 def run_flops(run: dict) -> float:
     """Flops of one run of rolling_shear from its record (:func:`floor`)."""
     p, res, opt = run["parameters"], run["resolution"], run.get("options", {})
-    n, n_cal = int(res["n_points"]), int(p["calibration_points"])
+    n, n_cal = int(res["n_points"]), int(res["calibration_points"])
     tol = float(res.get("newton_tol", p["loops_tol"] * 1e3))
     effects = run.get("effects", [])
     solver = run["solver"]

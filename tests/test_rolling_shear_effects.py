@@ -17,7 +17,7 @@ def small(scene, effects, **options):
     r = run(scene, "ci")
     r["effects"] = list(effects)
     r["contributes"] = {e: config("ci").raw["effects"][e]["contributes"] for e in effects}
-    r["parameters"]["calibration_points"] = 17
+    r["resolution"]["calibration_points"] = 17
     r["resolution"]["n_points"] = 5
     r["options"] = {**r.get("options", {}), **options}
     return r

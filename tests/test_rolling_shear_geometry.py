@@ -143,7 +143,7 @@ def test_every_run_recalibrates_for_its_own_intents():
     for width in (1.5, 2.35):     # m: the narrowest and the configured plate (3.2 m has no root)
         r = run("original", "ci")
         r["parameters"]["width"] = width
-        r["parameters"]["calibration_points"] = 17
+        r["resolution"]["calibration_points"] = 17
         ctx = Context(r)
         assert abs(ctx.calibration["H_original"] - 1.4341) < 1e-9
         tilts.append(ctx.calibration["tilt"])

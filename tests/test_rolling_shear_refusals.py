@@ -15,24 +15,11 @@ from mechrepro.models.rolling_shear.geometry import cut_points
 from mechrepro.models.rolling_shear.solver import compute
 from mechrepro.models.rolling_shear.validation import paper_levers
 
-from test_rolling_shear_helpers import config, run
+from test_rolling_shear_helpers import Results, config, run
 
 UNBUILDABLE = {"blade_offset": 1.2, "R": 70.0, "width": 1.826, "y_joint": 0.4,
                "carrier_constants": "rederived"}   # m: the member of issue 25 (H = 0.919 mm)
 NO_ROOT = {"blade_offset": -1.2, "R": 35.0, "width": 3.2, "y_joint": 0.1}
-
-
-class _Results:
-    """The two things an extraction reads, for one dataset."""
-
-    def __init__(self, ds, r):
-        self.ds, self.r = ds, r
-
-    def run(self, name):
-        return self.ds
-
-    def parameter(self, name):
-        return self.r["parameters"][name]
 
 
 def _paper_levers(**params):
@@ -52,8 +39,9 @@ def test_configured_member_is_buildable_and_the_constraints_have_teeth():
     theta = stroke.solve_exact(g, cut_points(g, 33)[1]).theta
     lim = _limits(ctx.p)
     assert violations(g, theta, **lim) == []
-    # the guide rod passes ~600 mm beside the plate: a 2 m clearance breaks it
-    assert any("guide rod ED" in v for v in violations(g, theta, **dict(lim, clearance=2000.0)))
+    # the guide rod's joint D passes ~245 mm beside the plate (its pivot E ~1.2 m): a
+    # 0.3 m clearance breaks it (test_rolling_shear_buildability: D, not only E)
+    assert any("guide rod ED" in v for v in violations(g, theta, **dict(lim, clearance=300.0)))
     assert any("rod joints" in v for v in violations(g, theta, **dict(lim, plate_top=400.0)))
     assert any("dyad" in v for v in violations(g, theta, **dict(lim, mu_min=math.radians(80))))
     assert any("open degree" in v for v in violations(g, theta, **dict(lim, opening=10.0)))
@@ -64,7 +52,7 @@ def test_unbuildable_member_is_refused_by_name_and_has_no_table2_value():
     r, ds = _paper_levers(**UNBUILDABLE)
     assert ds.attrs["refusal_kind"] == "unbuildable"
     assert "guide rod ED" in ds.attrs["refusal"]
-    got = paper_levers(_Results(ds, r))
+    got = paper_levers(Results(r, paper_optimised=ds))
     assert math.isnan(got["horizontal_displacement_reduction"].value)
     assert "unbuildable" in got["horizontal_displacement_reduction"].note
 
@@ -81,13 +69,16 @@ def test_calibration_without_a_root_is_refused_in_a_lever_scene_and_raises_elsew
 
 
 def test_lever_set_that_does_not_assemble_is_refused_and_fails_the_check():
-    r = config().runs["paper_optimised@falsify-short_rods"]
+    # Table II's levers with both rods shortened to 300 mm: the dyads cannot close (a test of
+    # the refusal, not a rival: it edits a number the paper gives)
+    r = run("paper_optimised")
+    r["options"]["levers"] = dict(r["options"]["levers"], l3=300.0)
     ds = solve(r)
     assert ds.attrs["refusal_kind"] == "assembly" and "loop ABCD" in ds.attrs["refusal"]
     assert float(ds["levers_assemble"]) == 0.0
-    assert paper_levers(_Results(ds, r))["paper_levers_assemble"].value is False
+    assert paper_levers(Results(r, paper_optimised=ds))["paper_levers_assemble"].value is False
     base = run("paper_optimised")
-    assert paper_levers(_Results(solve(base), base))["paper_levers_assemble"].value is True
+    assert paper_levers(Results(base, paper_optimised=solve(base)))["paper_levers_assemble"].value is True
 
 
 def test_selpso_error_over_seeds_is_measured_not_one_draw():

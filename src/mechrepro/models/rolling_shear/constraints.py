@@ -5,20 +5,30 @@ blade's edge (the overlap line is y = -s, Eqs. 6-7); the plate (Table I: 6-50 mm
 lies on the lower blade over the rolled length x in [x_mid - width/2, x_mid + width/2].
 A member whose equations close can still be a machine nobody can build:
 
-1. **Nothing fixed or moving below the pass line inside the plate.**  The guide rod ED
-   hangs below the horizontal through E (theta6 in [pi, 2 pi]), so E, D and the rod between
-   them must lie beside the plate, ``clearance`` (bearings, housing, guards) clear of its
-   edges, over the whole stroke; otherwise the rod sweeps through the plate or the lower
-   blade.
+1. **Nothing fixed or moving below the pass line inside the plate** (``guide_rod_plane``
+   ``planar``, the reading of the paper's planar kinematic diagrams).  The guide rod ED
+   hangs below the horizontal through E (theta6 in [pi, 2 pi]), so both of its ends -- the
+   fixed pivot E *and the moving joint D* -- and the rod between them must lie beside the
+   plate, ``clearance`` (bearings, housing, guards) clear of its edges, over the whole
+   stroke; otherwise the rod sweeps through the plate or the lower blade.  The other
+   reading, ``out_of_plane`` (the rod and its pivot beside the plane of the cut, along the
+   rolling direction), drops this constraint: the paper's figures are lost and its text
+   does not say (config ``guide_rod_plane``, an assumed choice with both readings).
 2. **The carrier's rod joints pass over the plate.**  C and I ride on the blade holder:
    they must stay above the thickest plate (``plate_top`` = 50 mm) over the stroke.
 3. **Transmission.**  Each dyad (crank AB - rod BC, crank GH - rod HI) keeps its angle
    between crank and rod inside [mu_min, 180 deg - mu_min] over the stroke: near 0 or 180 deg
    (the toggle) the cylinder's force has no lever arm on the carrier.
 4. **Opening (Table I, 150 mm).**  The blade's far end over the plate rises
-   width^2 / (2 R) above its lowest point; it must stay inside the open degree.
+   width^2 / (2 R) above its lowest point; it must stay inside the open degree.  Within the
+   declared ranges this never binds: R's lower end (35 m) is where the widest plate
+   (3200 mm) rises 146 mm, so R's range is this constraint; it stays as a guard for a
+   configuration outside the ranges.
 
-:func:`violations` returns what a member breaks (empty: buildable), with the margins.
+:func:`margins` measures how far a member is from each constraint (what the family scan
+stores, so that a verdict can ask for buildability at any clearance or transmission floor
+of their ranges and under either reading), :func:`violations` what it breaks at the given
+settings (empty: buildable), with the margins.
 """
 from __future__ import annotations
 
@@ -30,35 +40,72 @@ from .blade import carrier_points
 from .geometry import Geometry
 from .loops import pivots
 
+#: the readings of constraint 1 (config ``guide_rod_plane``)
+PLANES = ("planar", "out_of_plane")
 
-def violations(g: Geometry, theta: np.ndarray, *, clearance: float, plate_top: float,
-               mu_min: float, opening: float) -> list[str]:
-    """Constraints 1-4 of the module docstring broken by machine ``g`` over its stroke
-    ``theta`` (n x 6: theta1..theta6, rad); lengths in mm, ``mu_min`` in rad."""
-    out = []
-    t1, t2, t3, t4, t5, t6 = (theta[:, k] for k in range(6))
+
+def margins(g: Geometry, theta: np.ndarray) -> dict:
+    """What constraints 1-4 measure on machine ``g`` over its stroke ``theta`` (n x 6:
+    theta1..theta6, rad), mm and deg:
+
+    ``rod_gap``: how far the guide rod ED (its pivot E, its joint D at every cut point and
+    the rod between them) stays beside the plate, to the nearer edge (negative: the rod
+    reaches over the plate's span); ``rod_x``: the x-interval the rod sweeps;
+    ``joint_height``: the lowest y of the rod joints C, I; ``mu``: {dyad: (smallest,
+    largest) crank-rod angle}; ``rise``: the blade end's rise over the plate."""
+    t1, t2 = theta[:, 0], theta[:, 1]
+    t5, t6 = theta[:, 4], theta[:, 5]
     P = carrier_points(g, t5, t6)
     lo, hi = g.x_mid - 0.5 * g.width, g.x_mid + 0.5 * g.width
-    xs = np.concatenate([[0.0], P["D"].real])   # the rod ED: its ends bound it
-    left, right = (lo - clearance) - xs.max(), xs.min() - (hi + clearance)
-    if max(left, right) < 0.0:
-        out.append(f"guide rod ED (x {xs.min():.0f}..{xs.max():.0f} mm, below the pass line) "
-                   f"within {clearance:.0f} mm of the plate x in [{lo:.0f}, {hi:.0f}] mm")
-    y_joint = min(P["C"].imag.min(), P["I"].imag.min())
-    if y_joint < plate_top:
-        out.append(f"rod joints C, I down to y = {y_joint:.0f} mm, below the top of the "
-                   f"thickest plate ({plate_top:.0f} mm)")
+    xs = np.concatenate([[0.0], P["D"].real])   # the rod ED: E at the origin, D over the stroke
     A, G = pivots(g)
-    for name, piv, crank, tc, rod, joint in (("AB-BC", A, g.l1, t1, g.l3, P["C"]),
-                                             ("GH-HI", G, g.l2, t2, g.l4, P["I"])):
+    mu = {}
+    for name, piv, crank, tc, joint in (("AB-BC", A, g.l1, t1, P["C"]),
+                                        ("GH-HI", G, g.l2, t2, P["I"])):
         tip = piv + crank * np.exp(1j * tc)
-        mu = np.abs(np.angle((piv - tip) / (joint - tip)))   # angle at the crank tip
-        if mu.min() < mu_min or mu.max() > math.pi - mu_min:
-            out.append(f"dyad {name}: crank-rod angle {math.degrees(mu.min()):.0f}.."
-                       f"{math.degrees(mu.max()):.0f} deg outside [{math.degrees(mu_min):.0f}, "
-                       f"{180 - math.degrees(mu_min):.0f}] deg")
-    rise = g.width ** 2 / (2.0 * g.R)
-    if rise > opening:
-        out.append(f"blade end rises {rise:.0f} mm over the plate, more than the open degree "
-                   f"{opening:.0f} mm")
+        m = np.degrees(np.abs(np.angle((piv - tip) / (joint - tip))))   # angle at the crank tip
+        mu[name] = (float(m.min()), float(m.max()))
+    return {"rod_gap": float(max(lo - xs.max(), xs.min() - hi)),
+            "rod_x": (float(xs.min()), float(xs.max())), "plate_x": (float(lo), float(hi)),
+            "joint_height": float(min(P["C"].imag.min(), P["I"].imag.min())),
+            "mu": mu, "rise": float(g.width ** 2 / (2.0 * g.R))}
+
+
+def broken(m: dict, *, clearance: float, plate_top: float, mu_min: float, opening: float,
+           guide_rod_plane: str = "planar") -> list[str]:
+    """The constraints of the module docstring that margins ``m`` (:func:`margins`) break
+    at these settings (mm; ``mu_min`` in deg)."""
+    if guide_rod_plane not in PLANES:
+        raise ValueError(f"guide_rod_plane = {guide_rod_plane!r}: one of {PLANES}")
+    out = []
+    if guide_rod_plane == "planar" and m["rod_gap"] < clearance:
+        (a, b), (lo, hi) = m["rod_x"], m["plate_x"]
+        out.append(f"guide rod ED (x {a:.0f}..{b:.0f} mm, below the pass line) "
+                   f"within {clearance:.0f} mm of the plate x in [{lo:.0f}, {hi:.0f}] mm "
+                   f"({m['rod_gap']:.0f} mm beside it)")
+    if m["joint_height"] < plate_top:
+        out.append(f"rod joints C, I down to y = {m['joint_height']:.0f} mm, below the top of "
+                   f"the thickest plate ({plate_top:.0f} mm)")
+    for name, (a, b) in m["mu"].items():
+        if a < mu_min or b > 180.0 - mu_min:
+            out.append(f"dyad {name}: crank-rod angle {a:.0f}..{b:.0f} deg outside "
+                       f"[{mu_min:.0f}, {180 - mu_min:.0f}] deg")
+    if m["rise"] > opening:
+        out.append(f"blade end rises {m['rise']:.0f} mm over the plate, more than the open "
+                   f"degree {opening:.0f} mm")
     return out
+
+
+def violations(g: Geometry, theta: np.ndarray, *, clearance: float, plate_top: float,
+               mu_min: float, opening: float, guide_rod_plane: str = "planar") -> list[str]:
+    """Constraints 1-4 of the module docstring broken by machine ``g`` over its stroke
+    ``theta`` (n x 6: theta1..theta6, rad); lengths in mm, ``mu_min`` in rad."""
+    return broken(margins(g, theta), clearance=clearance, plate_top=plate_top,
+                  mu_min=math.degrees(mu_min), opening=opening, guide_rod_plane=guide_rod_plane)
+
+
+def settings(p: dict) -> dict:
+    """The constraint settings of a run's SI parameters, as :func:`violations` takes them."""
+    return dict(clearance=float(p["clearance"]) * 1e3, plate_top=float(p["plate_thickness_max"]) * 1e3,
+                mu_min=float(p["transmission_min"]), opening=float(p["opening"]) * 1e3,
+                guide_rod_plane=str(p.get("guide_rod_plane", "planar")))

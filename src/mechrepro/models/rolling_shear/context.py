@@ -71,7 +71,7 @@ class Context:
         variants of the other intents re-calibrate); the scene's levers come afterwards."""
         from .calibrate import calibrate_tilt
 
-        n_cal = int(self.p["calibration_points"])
+        n_cal = int(self.res["calibration_points"])
         # the scan stops at the bracket it uses; the effect tilt_scan, when the scene names
         # it, scans the rest (so its cost is booked to it, issue 27)
         self.g, cal = calibrate_tilt(self.g, self.calibration_target, n_cal, self.tol_floor,
@@ -81,15 +81,14 @@ class Context:
         return cal
 
     def _check_buildable(self) -> None:
-        """Refuse a calibrated member nobody could build (constraints.py, issue 27): its
-        original levers over the stroke at the calibration's cut points."""
-        from .constraints import violations
+        """Refuse a calibrated member nobody could build (constraints.py, issue 27, under the
+        run's ``guide_rod_plane`` reading): its original levers over the stroke at the
+        calibration's cut points."""
+        from .constraints import settings, violations
 
-        p, n = self.p, self.calibration["n"]
+        n = self.calibration["n"]
         theta = stroke.exact_theta(self.g, cut_points(self.g, n)[1])
-        broken = violations(self.g, theta, clearance=float(p["clearance"]) * 1e3,
-                            plate_top=float(p["plate_thickness_max"]) * 1e3,
-                            mu_min=float(p["transmission_min"]), opening=float(p["opening"]) * 1e3)
+        broken = violations(self.g, theta, **settings(self.p))
         self.calibration["violations"] = broken
         if broken:
             raise Refused("unbuildable", "; ".join(broken) + f" (tilt {self.calibration['tilt']:.4f} "

@@ -33,29 +33,31 @@ def member_geometry(base, member: dict):
                    eq8=member["eq8_reading"], carrier=member["carrier_constants"])
 
 
-def calibrated_member(ctx: Context, member: dict, levers: dict) -> tuple[float, float, float]:
-    """(calibrated tilt, H of the lever set, buildable 1/0) of one member; NaN where it
-    cannot reach the target (or the lever set does not assemble)."""
+def calibrated_member(ctx: Context, member: dict, levers: dict) -> tuple[float, ...]:
+    """(calibrated tilt, H of the lever set, buildable 1/0 at the run's constraint settings,
+    then the member's margins to the constraints: rod gap mm, rod-joint height mm, smallest
+    and largest crank-rod angle deg, blade-end rise mm) of one member; NaN where it cannot
+    reach the target (H NaN: the lever set does not assemble)."""
     from . import stroke
-    from .constraints import violations
+    from .constraints import broken, margins, settings
 
     try:
         gc, info = calibrate_tilt(member_geometry(ctx.g_uncalibrated, member),
                                   ctx.calibration_target, ctx.n, ctx.tol_floor,
                                   whole_scan=False)  # only the tilt is kept
     except (CalibrationError, NonAssembly, Unreachable):
-        return math.nan, math.nan, math.nan
-    p = ctx.p
-    theta = stroke.exact_theta(gc, cut_points(gc, ctx.n)[1])
-    ok = not violations(gc, theta, clearance=float(p["clearance"]) * 1e3,
-                        plate_top=float(p["plate_thickness_max"]) * 1e3,
-                        mu_min=float(p["transmission_min"]), opening=float(p["opening"]) * 1e3)
+        return (math.nan,) * 8
+    m = margins(gc, stroke.exact_theta(gc, cut_points(gc, ctx.n)[1]))
+    s = settings(ctx.p)
+    ok = not broken(m, **dict(s, mu_min=math.degrees(s["mu_min"])))
     try:
         gp = gc.with_levers(**levers)
         H = optimise.objective(gp, cut_points(gp, ctx.n)[1], ctx.tol_floor)
     except (NonAssembly, Unreachable):
         H = math.nan
-    return info["tilt"], H, float(ok)
+    mu = np.array(list(m["mu"].values()))
+    return (info["tilt"], H, float(ok), m["rod_gap"], m["joint_height"], float(mu[:, 0].min()),
+            float(mu[:, 1].max()), m["rise"])
 
 
 def solve_family_scan(run: dict, ctx: Context) -> dict:
@@ -65,15 +67,30 @@ def solve_family_scan(run: dict, ctx: Context) -> dict:
                for combo in itertools.product(*(grid[k] for k in GRID_KEYS))]
     rows = np.asarray([calibrated_member(ctx, m, levers) for m in members])
     target = ctx.calibration_target
+    cal = np.isfinite(rows[:, 0])
     out = {"family_member_tilt": var("member", rows[:, 0], "rad",
                                      "calibrated guide-rod tilt (NaN: the member cannot reach the target)"),
            "family_member_H_levers": var("member", rows[:, 1], "mm",
                                          "synthetic horizontal displacement of the scene's levers"),
            "family_member_reduction": var("member", 100.0 * (rows[:, 1] / target - 1.0), "%",
                                           "reduction of the scene's levers against the calibrated original"),
+           "family_member_assembles": var("member", np.where(cal, np.isfinite(rows[:, 1]), np.nan), "1",
+                                          "1: the scene's levers assemble on the design branch inside the "
+                                          "paper's ranges over the stroke (NaN: not calibrated)"),
            "family_member_buildable": var("member", rows[:, 2], "1",
                                           "1: the calibrated member meets the constraints of constraints.py "
-                                          "(NaN: not calibrated)")}
+                                          "at the run's settings and guide_rod_plane reading (NaN: not "
+                                          "calibrated)"),
+           "family_member_rod_gap": var("member", rows[:, 3], "mm",
+                                        "how far the guide rod ED (E, D over the stroke) stays beside the "
+                                        "plate (negative: over its span), constraints.margins"),
+           "family_member_joint_height": var("member", rows[:, 4], "mm",
+                                             "lowest y of the rod joints C, I over the stroke"),
+           "family_member_mu_min": var("member", rows[:, 5], "deg",
+                                       "smallest crank-rod angle of both dyads over the stroke"),
+           "family_member_mu_max": var("member", rows[:, 6], "deg",
+                                       "largest crank-rod angle of both dyads over the stroke"),
+           "family_member_rise": var("member", rows[:, 7], "mm", "blade end's rise over the plate")}
     for k in GRID_KEYS:
         vals = [m[k] for m in members]
         if isinstance(vals[0], str):

@@ -11,7 +11,7 @@ import math
 import numpy as np
 import xarray as xr
 
-from mechrepro.validation import Quantities, Reproduced
+from mechrepro.validation import Quantities, Reproduced, verdict
 
 from .geometry import OPTIMISED_LEVERS
 
@@ -60,10 +60,72 @@ def original(R):
     }
 
 
+GRID_MEMBER = ("blade_offset", "R", "width", "y_joint", "eq8_reading", "carrier_constants")
+
+
+def admissible_members(R, fam) -> dict[str, np.ndarray]:
+    """The family-grid members (scene ``family``) that calibrate and can be built under each
+    reading of ``guide_rod_plane`` at the most permissive ends of the constraints' declared
+    ranges (clearance, transmission_min; the plate and the opening are Table I's): a member
+    some plausible machine builds is a plausible machine, so a verdict it flips is not
+    settled (issue 62).  Under the planar reading the blade offset also stays inside its
+    range (its upper end is the planar argument); under the out-of-plane reading the grid's
+    offsets right of I count.  {reading: boolean mask over the members}."""
+    P = R.cfg.raw["parameters"]
+    clearance = float(P["clearance"]["range"][0])                  # mm
+    mu_min = float(min(P["transmission_min"]["range"]))           # deg
+    plate_top = float(R.parameter("plate_thickness_max")) * 1e3
+    opening = float(R.parameter("opening")) * 1e3
+    v = {k: fam[f"family_member_{k}"].values for k in
+         ("tilt", "rod_gap", "joint_height", "mu_min", "mu_max", "rise", "blade_offset")}
+    with np.errstate(invalid="ignore"):
+        other = (np.isfinite(v["tilt"]) & (v["joint_height"] >= plate_top)
+                 & (v["mu_min"] >= mu_min) & (v["mu_max"] <= 180.0 - mu_min) & (v["rise"] <= opening))
+        lo, hi = P["blade_offset"]["range"]
+        planar = other & (v["rod_gap"] >= clearance) & (v["blade_offset"] >= lo) & (v["blade_offset"] <= hi)
+    return {"planar": planar, "out_of_plane": other}
+
+
+def _member(fam, i) -> str:
+    return ", ".join(f"{k} {fam[f'family_member_{k}'].values[i]}" for k in GRID_MEMBER)
+
+
+def grid_flips(R, quantity: str, base_status: str, values: np.ndarray, fam, what: str) -> tuple[list, str]:
+    """Re-check a Table II verdict over the admissible grid members (:func:`admissible_members`)
+    under both readings of the guide rod: the members whose own verdict (``values``, the
+    row's value per member, NaN: no value) differs from ``base_status`` flip it.  Returns
+    (flips, note)."""
+    spec = R.reported(quantity)
+    adm = admissible_members(R, fam)
+    flips, counts = [], []
+    configured = str(R.cfg.raw["parameters"]["guide_rod_plane"]["value"])
+    seen = np.zeros(values.shape, bool)
+    for reading in (configured, *(r for r in adm if r != configured)):
+        sel = adm[reading]
+        ok = sel & np.isfinite(values)
+        status = np.array([verdict(spec, float(x)) if np.isfinite(x) else "" for x in values])
+        flipped = [i for i in np.flatnonzero(ok & (status != base_status) & ~seen)]
+        seen |= sel
+        counts.append(f"{int(sel.sum())} under the {reading} reading"
+                      + (f" ({len(flipped)} flip it)" if flipped else ""))
+        only = "" if reading == configured else f"buildable only with guide_rod_plane = {reading}: "
+        for i in flipped[:2]:
+            flips.append(f"{status[i]} in family-grid member {_member(fam, i)} ({only}{what} "
+                         f"{values[i]:.4g} at {fam.sizes['cut']} cut points)")
+        if len(flipped) > 2:
+            flips.append(f"and {len(flipped) - 2} more grid members under the {reading} reading")
+    note = (f"Re-checked over the family grid's members that calibrate and can be built at "
+            f"clearance {R.cfg.raw['parameters']['clearance']['range'][0]} mm and a "
+            f"{min(R.cfg.raw['parameters']['transmission_min']['range'])} deg transmission floor: "
+            + "; ".join(counts) + ".")
+    return flips, note
+
+
 @Q.register("synthetic_horizontal_displacement_optimised", "horizontal_displacement_reduction",
             "paper_levers_assemble", "theta1_range_paper_levers", "theta2_range_paper_levers")
 def paper_levers(R):
     ds = R.run("paper_optimised")
+    fam = R.run("family")
     how = (f"Table II's optimised levers, carrier constants {R.parameter('carrier_constants')}, "
            f"Eq. (8) '{R.parameter('eq8_reading')}'")
     if "refusal" in ds.attrs:
@@ -71,29 +133,38 @@ def paper_levers(R):
         # 1.4341 has no H (NaN); a lever set that does not assemble fails the check
         why = f"refused ({ds.attrs['refusal_kind']}): {ds.attrs['refusal']}"
         assembles = float(ds["levers_assemble"])
-        return {
-            "synthetic_horizontal_displacement_optimised": Reproduced(math.nan, note=f"{how}; {why}"),
-            "horizontal_displacement_reduction": Reproduced(math.nan, note=f"{how}; {why}"),
-            "paper_levers_assemble": Reproduced(bool(assembles == 1.0) if math.isfinite(assembles)
-                                                else math.nan, note=why),
-            "theta1_range_paper_levers": math.nan,
-            "theta2_range_paper_levers": math.nan,
-        }
-    H0 = float(ds["calibrated_H_original"])
-    Hp = float(ds["calibrated_H_levers"])
-    how = f"{how}, {_geometry_note(ds)}"
-    return {
-        "synthetic_horizontal_displacement_optimised": Reproduced(Hp, note=how),
-        "horizontal_displacement_reduction": Reproduced(
-            _reduction(Hp, H0), note=f"{Hp:.4g} mm against {H0:.4g} mm; {how}"),
-        "paper_levers_assemble": Reproduced(
-            bool(float(ds["levers_assemble"]) == 1.0
-                 and float(ds["newton_right_branch_rate"]) == 1.0),
-            note="every cut point on the design branch inside the paper's ranges (a lever set "
-                 "that does not assemble is refused by name and fails this check)"),
-        "theta1_range_paper_levers": float(np.ptp(ds["newton_theta1"].values)),
-        "theta2_range_paper_levers": float(np.ptp(ds["newton_theta2"].values)),
-    }
+        H0 = Hp = math.nan
+        ok = bool(assembles == 1.0) if math.isfinite(assembles) else math.nan
+        notes = {q: f"{how}; {why}" for q in ("synthetic_horizontal_displacement_optimised",
+                                                "horizontal_displacement_reduction")}
+        notes["paper_levers_assemble"] = why
+        thetas = (math.nan, math.nan)
+    else:
+        H0 = float(ds["calibrated_H_original"])
+        Hp = float(ds["calibrated_H_levers"])
+        how = f"{how}, {_geometry_note(ds)}"
+        ok = bool(float(ds["levers_assemble"]) == 1.0 and float(ds["newton_right_branch_rate"]) == 1.0)
+        notes = {"synthetic_horizontal_displacement_optimised": how,
+                 "horizontal_displacement_reduction": f"{Hp:.4g} mm against {H0:.4g} mm; {how}",
+                 "paper_levers_assemble": "every cut point on the design branch inside the paper's "
+                                          "ranges (a lever set that does not assemble is refused "
+                                          "by name and fails this check)"}
+        thetas = (float(np.ptp(ds["newton_theta1"].values)), float(np.ptp(ds["newton_theta2"].values)))
+    values = {"synthetic_horizontal_displacement_optimised": Hp,
+              "horizontal_displacement_reduction": _reduction(Hp, H0),
+              "paper_levers_assemble": ok}
+    per_member = {"synthetic_horizontal_displacement_optimised": (fam["family_member_H_levers"].values, "H"),
+                  "horizontal_displacement_reduction": (fam["family_member_reduction"].values, "reduction"),
+                  "paper_levers_assemble": (fam["family_member_assembles"].values, "assembles")}
+    out = {}
+    for q, value in values.items():
+        base = verdict(R.reported(q), value) if not (isinstance(value, float) and math.isnan(value)) else ""
+        member_values, what = per_member[q]
+        flips, note = (grid_flips(R, q, base, member_values, fam, what) if base in ("pass", "fail")
+                       else ([], ""))
+        out[q] = Reproduced(value, note=" ".join(x for x in (notes[q], note) if x), flips=flips)
+    out["theta1_range_paper_levers"], out["theta2_range_paper_levers"] = thetas
+    return out
 
 
 @Q.register("our_optimisation_reduction", "our_optimised_h", "optimised_l1", "optimised_l3",
