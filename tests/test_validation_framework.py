@@ -160,9 +160,17 @@ def test_level_error_is_richardson_with_the_observed_order():
     assert level_error(math.nan, 1.0, 1.1, 10.0, 1.0)[0] == pytest.approx(0.1)   # >= |d2|
 
 
+RIVAL = {"options": {"polygon": False}}   # a model change, the paper's numbers kept
+
+
+def heavier(run):
+    """The synthetic loads of the falsifier's model: 100x those of the paper's."""
+    return 100.0 if run.get("options", {}).get("polygon") is False else 1.0
+
+
 def with_falsifier(raw, changes):
     reported_config(raw)
-    raw["falsifiers"] = {"heavy": {"why": "a tight side 100x heavier", **changes}}
+    raw["falsifiers"] = {"heavy": {"why": "a model whose loads are 100x larger", **changes}}
     raw["reported"]["load_max"]["falsifier"] = "heavy"
 
 
@@ -175,11 +183,11 @@ def test_a_counted_pass_needs_a_falsifier_that_fails(edit_config, tmp_path):
     assert rows["load_max"].status == "pass" and rows["load_max"].evidence == "construction"
     assert "no falsifier" in rows["load_max"].cells()[9]
     assert claim(cfg, list(rows.values()))["independent"]["pass"] == 0
-    # a falsifier (a model change: the masses x 100) under which the check fails: counted
-    cfg = load_paper(edit_config("saw_chain", lambda raw: with_falsifier(
-        raw, {"parameters": {"tie_strap_mass": 190.6, "drive_link_mass": 129.6}})), "ci")
-    assert cfg.runs["fig07_fig08@falsify-heavy"]["parameters"]["tie_strap_mass"] == pytest.approx(0.1906)
-    write_runs(cfg, results, lambda run: 100.5 * run["parameters"]["tie_strap_mass"] / 1.906e-3)
+    # a falsifier (a model change, a solver option: the loads stand for a model 100x heavier
+    # here) under which the check fails: counted
+    cfg = load_paper(edit_config("saw_chain", lambda raw: with_falsifier(raw, RIVAL)), "ci")
+    assert cfg.runs["fig07_fig08@falsify-heavy"]["options"] == {"polygon": False}
+    write_runs(cfg, results, lambda run: 100.5 * heavier(run))
     rows = {r.quantity: r for r in build(cfg, quantities(), results)}
     assert rows["load_max"].status == "pass" and rows["load_max"].evidence == "independent"
     assert rows["load_max"].falsifier.startswith("heavy: fail")
@@ -194,15 +202,14 @@ def test_a_falsifier_runs_one_level_coarser_where_the_check_passes_too(edit_conf
     """The falsifier's run is the coarser level's resolution with the model change; it
     counts only where the check passes at that level without the change."""
     results = tmp_path / "results"
-    cfg = load_paper(edit_config("saw_chain", lambda raw: with_falsifier(
-        raw, {"parameters": {"tie_strap_mass": 190.6, "drive_link_mass": 129.6}})), "ci")
+    cfg = load_paper(edit_config("saw_chain", lambda raw: with_falsifier(raw, RIVAL)), "ci")
     fal = cfg.runs["fig07_fig08@falsify-heavy"]
     assert fal["resolution"] == cfg.runs["fig07_fig08@coarser"]["resolution"]
     assert fal["resolution"] != cfg.runs["fig07_fig08"]["resolution"]
     assert cfg.variant_info["falsify-heavy"]["level_of"] == {"fig07_fig08": "coarser"}
 
     def load(run):      # the levels by variant; the falsifier runs heavy at the coarser one
-        heavy = run["parameters"]["tie_strap_mass"] / 1.906e-3
+        heavy = heavier(run)
         return {"coarsest": coarsest, "coarser": coarser}.get(run.get("variant"), base) * (
             coarser / base if run.get("variant") == "falsify-heavy" else 1.0) * heavy
     coarsest, coarser, base = 100.0, 100.0, 100.0

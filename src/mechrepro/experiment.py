@@ -653,7 +653,9 @@ def main(argv: list[str] | None = None) -> int:
         sys.stderr.write(f"mechrepro: {exc.filename}: no such file{where}\n")
         return 2
     except (ConfigError, ValueError, OSError) as exc:
-        sys.stderr.write(f"mechrepro: {exc}\n")
+        where = ("; run mechrepro in the project directory (the one with config/ and "
+                 "Snakefile)" if not Path("config/config.yaml").is_file() else "")
+        sys.stderr.write(f"mechrepro: {exc}{where}\n")
         return 2
 
 
