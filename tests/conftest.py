@@ -78,6 +78,23 @@ def edit_config(config_copy):
     return edit
 
 
+def moved_venv(proj: Path) -> Path:
+    """A stand-in `.venv` of a project moved from /old/place: this interpreter, an editable
+    install naming the old place, a stamp newer than the lock (the venv counts as built).
+    Returns its site-packages."""
+    venv = proj / ".venv"
+    site = venv / "lib" / "python3.11" / "site-packages"
+    site.mkdir(parents=True)
+    cfg = ROOT / ".venv" / "pyvenv.cfg"
+    (venv / "pyvenv.cfg").write_text(cfg.read_text() if cfg.exists() else "")
+    (venv / "bin").mkdir()
+    for name in ("python", "python3"):
+        (venv / "bin" / name).symlink_to(sys.executable)
+    (site / "__editable__.mechrepro-0.1.pth").write_text("/old/place/src\n")
+    (venv / ".installed").touch()
+    return site
+
+
 def copy_workflow(dst: Path) -> Path:
     """What a run of the workflow needs, copied to ``dst`` (tests never touch the repo)."""
     for item in ("Snakefile", "workflow", "config", "notebooks", "src", "profiles"):

@@ -649,7 +649,7 @@ def test_a_read_only_project_stops_with_one_line_even_on_a_no_op(run, tmp_path, 
 def test_make_venv_relocates_a_moved_project(tmp_path):
     """`make venv` in a moved project (its .venv built elsewhere, stamp up to date) rewrites
     the console scripts' shebangs and the editable install to where the project now is."""
-    from conftest import ROOT
+    from conftest import ROOT, moved_venv
 
     if not shutil.which("make"):
         pytest.skip("no make")
@@ -657,20 +657,11 @@ def test_make_venv_relocates_a_moved_project(tmp_path):
     (proj / "scripts").mkdir(parents=True)
     for f in ("Makefile", "requirements.lock", "pyproject.toml", "scripts/relocate_venv.py"):
         shutil.copy2(ROOT / f, proj / f)
-    venv = proj / ".venv"
-    site = venv / "lib" / "python3.11" / "site-packages"
-    site.mkdir(parents=True)
-    (venv / "pyvenv.cfg").write_text((ROOT / ".venv" / "pyvenv.cfg").read_text()
-                                     if (ROOT / ".venv" / "pyvenv.cfg").exists() else "")
-    (venv / "bin").mkdir()
-    (venv / "bin" / "python").symlink_to(sys.executable)
-    (venv / "bin" / "python3").symlink_to(sys.executable)
+    site, venv = moved_venv(proj), proj / ".venv"
     tool = venv / "bin" / "tool"
     tool.write_text("#!/old/place/.venv/bin/python3\nprint('ran')\n")
     tool.chmod(0o755)
     pth = site / "__editable__.mechrepro-0.1.pth"
-    pth.write_text("/old/place/src\n")
-    (venv / ".installed").touch()   # newer than the lock: the venv counts as built
     out = subprocess.run(["make", "venv"], cwd=proj, capture_output=True, text=True)
     assert out.returncode == 0, out.stdout + out.stderr
     assert tool.read_text().splitlines()[0] == f"#!{venv / 'bin' / 'python3'}"
@@ -684,9 +675,10 @@ def test_make_venv_relocates_a_moved_project(tmp_path):
 def test_a_disk_full_while_archiving_is_archived_again_once_there_is_room(run, tmp_path):
     """The disk fills while the archive is written (a tmpfs of the results' size plus a
     little): Snakemake puts the last good archive back, but keeps the failed job's record,
-    with the checksums of its new inputs, and would call that archive up to date.  Heal
-    forgets the failed job's record, so the next run (the README's command, with room
-    again) archives the new results and the manifest matches them."""
+    with the checksums of its new inputs, and would call that archive up to date.  The
+    archive records what made it (its inputs' contents), which is not what would make it
+    now, so the next run (the README's command, with room again) archives the new results
+    and the manifest matches them."""
     if os.geteuid() != 0 or not shutil.which("unshare"):
         pytest.skip("needs root and unshare for a small tmpfs")
     work = tmp_path / "w"
@@ -713,5 +705,5 @@ print('verify', verify('results', 'results/archive-{PAPER}/manifest.json'))"
     full = (work / "full.log").read_text()
     assert "full=1" in out.stdout and "No space left on device" in full, full[-2000:]
     assert "again=0" in out.stdout, (work / "again.log").read_text()[-3000:]
-    assert "rerunning the job of results/archive" in (work / "again.log").read_text()
+    assert f"[stale] archive: results/archive-{PAPER}/" in (work / "again.log").read_text()
     assert "verify []" in out.stdout, out.stdout

@@ -7,7 +7,7 @@ import sys
 
 import pytest
 
-from conftest import ROOT
+from conftest import ROOT, moved_venv
 
 
 def test_make_reproduce_finds_this_projects_package_in_a_moved_project(tmp_path):
@@ -22,15 +22,7 @@ def test_make_reproduce_finds_this_projects_package_in_a_moved_project(tmp_path)
     for f in ("Makefile", "requirements.lock", "pyproject.toml"):
         shutil.copy2(ROOT / f, proj / f)
     shutil.copytree(ROOT / "src", proj / "src", ignore=shutil.ignore_patterns("__pycache__"))
-    venv = proj / ".venv"
-    site = venv / "lib" / "python3.11" / "site-packages"
-    site.mkdir(parents=True)
-    (venv / "pyvenv.cfg").write_text((ROOT / ".venv" / "pyvenv.cfg").read_text()
-                                     if (ROOT / ".venv" / "pyvenv.cfg").exists() else "")
-    (venv / "bin").mkdir()
-    (venv / "bin" / "python").symlink_to(sys.executable)
-    (site / "__editable__.mechrepro-0.1.pth").write_text("/old/place/src\n")
-    (venv / ".installed").touch()   # newer than the lock: the venv counts as built
+    moved_venv(proj)
     env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
     for target in ("reproduce", "ci-reproduce"):
         out = subprocess.run(["make", target], cwd=proj, capture_output=True, text=True,

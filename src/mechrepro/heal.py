@@ -138,30 +138,6 @@ def _manifests(results: Path) -> dict[str, dict[str, dict | None]]:
     return out
 
 
-def _snakemake_record(path: Path, workdir: Path) -> Path:
-    """Snakemake's metadata file of an output (its ``persistence._record_path``)."""
-    import base64
-
-    rel = os.path.relpath(path, workdir)
-    b64 = base64.urlsafe_b64encode(rel.encode()).decode()
-    parts = [b64[i:i + 254] for i in range(0, len(b64), 254)]
-    return Path(workdir, ".snakemake", "metadata", *["@" + s for s in parts[:-1]], parts[-1])
-
-
-def _failed_job_record(path: Path, rec: dict, workdir: Path) -> Path | None:
-    """Snakemake's metadata of ``path`` when it belongs to a job that started after the
-    file was written (its recorded time stamp) and so did not write it: a job that failed
-    and whose ``update()`` output Snakemake put back.  Snakemake keeps that job's record,
-    with its new inputs' checksums, and would then call the old output up to date."""
-    meta = _snakemake_record(path, workdir)
-    try:
-        start = json.loads(meta.read_text()).get("starttime")
-    except (OSError, ValueError, AttributeError):
-        return None
-    return meta if isinstance(start, (int, float)) and start * 1e9 > rec["mtime_ns"] + 1e9 \
-        else None
-
-
 def _readable_netcdf(path: Path) -> bool:
     import netCDF4
 
@@ -174,13 +150,12 @@ def _readable_netcdf(path: Path) -> bool:
 
 def inspect(results: str | Path, workdir: str | Path = "."):
     """What heal would do: ([(file to remove, why)], [file whose time stamp to restore],
-    [record whose file is gone], [file restored to its previous version], [Snakemake
-    record of a failed job to forget], [(file without a record, the record its manifest
-    gives it)])."""
+    [record whose file is gone], [file restored to its previous version], [(file without
+    a record, the record its manifest gives it)])."""
     results = Path(results)
-    remove, restore, orphans, reverted, failed, adopt = [], [], [], [], [], []
+    remove, restore, orphans, reverted, adopt = [], [], [], [], []
     if not results.is_dir():
-        return remove, restore, orphans, reverted, failed, adopt
+        return remove, restore, orphans, reverted, adopt
     manifest = None
     for f in _results_files(results):
         name = f.name
@@ -198,17 +173,11 @@ def inspect(results: str | Path, workdir: str | Path = "."):
                 if prev and st.st_size == prev["size"] and file_sha256(f) == prev["sha256"]:
                     # the last good version, put back by Snakemake after its job failed
                     reverted.append(f)
-                    meta = _snakemake_record(f, Path(workdir))
-                    if meta.exists():
-                        failed.append((f, meta))
                 else:
                     remove.append((f, "content differs from what its job wrote (checksum)"))
             else:
                 if st.st_mtime_ns != rec["mtime_ns"]:
                     restore.append(f)
-                meta = _failed_job_record(f, rec, Path(workdir))
-                if meta is not None:
-                    failed.append((f, meta))
             continue
         # no record: a result of an older version of the writer
         if manifest is None:
@@ -232,7 +201,7 @@ def inspect(results: str | Path, workdir: str | Path = "."):
             if manifest[rel][sha] is not None:
                 rec["made_by"] = manifest[rel][sha]
             adopt.append((f, rec))
-    return remove, restore, orphans, reverted, failed, adopt
+    return remove, restore, orphans, reverted, adopt
 
 
 def heal(results: str | Path, workdir: str | Path = ".", dry_run: bool = False) -> list[str]:
@@ -248,7 +217,7 @@ def heal(results: str | Path, workdir: str | Path = ".", dry_run: bool = False) 
             return [f"not healed: Snakemake's lock {lock} names files of {results} (a run "
                     f"killed with its jobs still writing?); when no job is left, "
                     f"`snakemake --unlock` and run again"]
-    remove, restore, orphans, reverted, failed, adopt = inspect(results, workdir)
+    remove, restore, orphans, reverted, adopt = inspect(results, workdir)
     verb = "would remove" if dry_run else "removed"
     lines = []
     for f, why in remove:
@@ -261,21 +230,14 @@ def heal(results: str | Path, workdir: str | Path = ".", dry_run: bool = False) 
             f.unlink(missing_ok=True)
     for f in reverted:
         if not dry_run:
-            # the record and the time stamp follow the file back to its writing: older
-            # than the inputs its failed job saw, whose Snakemake record heal forgets
-            # (below), so the next run runs that job again, not only what depends on it
+            # the record (what made it) and the time stamp follow the file back to its
+            # writing: the run then compares that record with today's (staleness), so the
+            # failed job runs again while what made the file is not what would make it now
             rec = read_sum(f)["previous"]
             sum_path(f).write_text(json.dumps(rec, sort_keys=True) + "\n")
             os.utime(f, ns=(rec["mtime_ns"], rec["mtime_ns"]))
         lines.append(f"{'would keep' if dry_run else 'kept'} {f}: the last good version, "
                      f"restored after its job failed")
-    for f, meta in failed:
-        # its time stamp goes back to its writing (below), older than the inputs its
-        # failed job saw: without the failed job's record Snakemake runs the job again
-        if not dry_run:
-            meta.unlink(missing_ok=True)
-        lines.append(f"{'would rerun' if dry_run else 'rerunning'} the job of {f}: its last "
-                     f"job failed after it was written (the file is the last good version)")
     for f in restore:
         if not dry_run:
             rec = read_sum(f)

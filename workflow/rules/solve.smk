@@ -54,12 +54,13 @@ for _paper in PAPERS:
                 "{params.profile} {params.results} {params.runs} > {log} 2>&1"
 
 
+# one gather job per fanned-out study, made by the same code
+_GATHER = Job("gather", [], [], {"code": code("cli.py")})
 for _paper in PAPERS:
     for _study in CFG[_paper].studies:
         if re.fullmatch(fanned_out_studies(), _study):
-            _G = job("gather", [f"{RESULTS}/{_paper}/runs/{r}.nc"
-                                for r in CFG[_paper].studies[_study]],
-                     [f"{RESULTS}/{_paper}/studies/{_study}.nc"], code=code("cli.py"))
+            job("gather", [f"{RESULTS}/{_paper}/runs/{r}.nc" for r in CFG[_paper].studies[_study]],
+                [f"{RESULTS}/{_paper}/studies/{_study}.nc"], **_GATHER.sources)
 
 
 rule gather:
@@ -73,7 +74,7 @@ rule gather:
     params:
         python=RUN["python"],
         results=lambda wc, output: str(Path(output[0]).parents[2]),
-        made_by=Job("gather", [], [], {"code": code("cli.py")}).env,
+        made_by=_GATHER.env,
     log:
         f"{RESULTS}/{{paper}}/logs/gather/{{study}}.log",
     benchmark:
