@@ -1,5 +1,5 @@
 """docs/ADDING_A_PAPER.md followed literally: a toy paper (tests/toy_paper/: one solver, two
-effects, one figure, one reported number with its falsifier) added to a copy of the
+effects, one figure, one reported number with its rival) added to a copy of the
 workflow by its own new files only, then its references made and the pipeline run to the
 report, as the document says."""
 import json
@@ -43,4 +43,4 @@ def test_a_new_paper_needs_only_its_own_files(tmp_path):
     claim = json.loads((out / "toy" / "claim.json").read_text())
     assert claim["independent"]["pass"] == 1 and claim["claim"] == "full", claim
     evidence = (out / "toy" / "tables" / "verdict_evidence.csv").read_text()
-    assert "falsify-stiffer_spring" in evidence and ",fail" in evidence
+    assert "rival-stiffer_spring" in evidence and ",fail" in evidence

@@ -188,7 +188,7 @@ def test_the_refused_scheme_grows_in_grid_scale_modes_and_mixed_does_not(fig07, 
 
 @pytest.mark.parametrize("profile", ["default", "ci"])
 def test_no_scene_or_variant_is_refused_for_a_pitch_scale_kick(profile):
-    """Every speed sweep of both profiles (levels, range ends, falsifiers) passes the check."""
+    """Every speed sweep of both profiles (levels, range ends, rivals) passes the check."""
     from mechrepro.config import load_paper
 
     cfg = load_paper("config/papers/chain_drive.yaml", profile=profile)

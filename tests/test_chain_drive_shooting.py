@@ -160,7 +160,7 @@ def _synthetic(peak_at: float):
 
 def test_stability_only_variants_refine_only_the_growth_rate_bumps():
     """(iii) of adaptive_sweep bisects amplitude peaks; a stability-only run
-    (options.variants = stability, a falsifier or range-end variant: ``prominence=None``,
+    (options.variants = stability, a rival or range-end variant: ``prominence=None``,
     ``until_unstable``) leaves a stable sweep without growth-rate bumps at its initial
     speeds, and stops at the first unstable speed."""
     kw = dict(peak_tol=0.01, rate_floor=-0.1)   # log 0.5 is below: no growth-rate bumps
@@ -180,9 +180,9 @@ def test_stability_only_variants_refine_only_the_growth_rate_bumps():
     assert done1 and w1.size == grid.size + 1
     base = {"options": {"variants": "stability"}}
     assert [shooting.stability_only({**base, "variant": v})
-            for v in (None, "coarser", "coarsest", "falsify-slack_tension",
+            for v in (None, "coarser", "coarsest", "rival-slack_tension",
                       "transverse_damping-lo")] == [False, False, False, True, True]
-    assert not shooting.stability_only({"variant": "falsify-slack_tension"})
+    assert not shooting.stability_only({"variant": "rival-slack_tension"})
 
 
 def test_declared_cost_is_above_a_measured_run_and_refuses_a_huge_one():

@@ -158,11 +158,11 @@ def test_an_artefact_alone_keeps_its_rows_and_exactly_the_runs_they_read():
 
 def test_a_row_re_checks_only_the_study_points_it_reads(edit_config):
     """`members:` names the points of a study a row reads: its variants re-run those
-    points only (Fig. 7d's falsifier re-runs T_s = 100 N, not 800 and 200); a point the
+    points only (Fig. 7d's rival re-runs T_s = 100 N, not 800 and 200); a point the
     sweep does not have is refused with the sweep's values."""
     cfg = load_paper("config/papers/chain_drive.yaml")
     ts = {cfg.runs[r]["sweep"]["static_tension"]: r for r in cfg.studies["fig07_ts"]}
-    assert cfg.studies["fig07_ts@falsify-overdamped"] == [f"{ts[100.0]}@falsify-overdamped"]
+    assert cfg.studies["fig07_ts@rival-overdamped"] == [f"{ts[100.0]}@rival-overdamped"]
     assert cfg.studies["fig07_ts@coarser"] == [f"{ts[800.0]}@coarser", f"{ts[100.0]}@coarser"]
     assert len(cfg.studies["fig07_ts"]) == 3     # the baseline draws every point
     path = edit_config("chain_drive", lambda raw: raw["reported"]["instability_ts100"].__setitem__(
@@ -199,7 +199,7 @@ def test_a_run_repeating_another_is_solved_once_in_its_job(tmp_path):
                 and r.get("options", {}).get("variants") == "stability" and not r.get("variant"))
     cd.runs = {"a": {**base, "run": "a", "variant": "coarser"},
                "b": {**base, "run": "b", "variant": "transverse_damping-lo"},
-               "c": {**base, "run": "c", "variant": "falsify-slack_tension"}}
+               "c": {**base, "run": "c", "variant": "rival-slack_tension"}}
     assert cd.same_solve() == {"c": "b"}   # b and c stop at the first unstable speed, a not
 
 
@@ -269,9 +269,9 @@ def test_a_misspelt_scene_in_a_profile_overlay_is_named_as_such(edit_config):
     assert "fig07_fig08" in msg and "missing key" not in msg, msg
 
 
-# --- a falsifier is a rival: a model the paper rules out, never an edit of its numbers -------
+# --- a rival: a model the paper rules out, never an edit of its numbers -----------------------
 
-@pytest.mark.parametrize("paper, falsifier, message", [
+@pytest.mark.parametrize("paper, rival, message", [
     # the paper's drive-link pitch (Sec. 4): an edit of a number the paper gives
     ("saw_chain", {"why": "w", "parameters": {"drive_link_pitch": 8.0}},
      "parameters.drive_link_pitch = 8.0: the paper gives drive_link_pitch"),
@@ -283,7 +283,8 @@ def test_a_misspelt_scene_in_a_profile_overlay_is_named_as_such(edit_config):
      "its strength gravity is assumed with a plausible range .* that reaches zero"),
 ])
 def test_the_loader_refuses_a_rival_that_edits_a_paper_value_or_stays_in_range(
-        edit_config, paper, falsifier, message):
-    path = edit_config(paper, lambda r: r.setdefault("falsifiers", {}).update(x=falsifier))
-    with pytest.raises(ConfigError, match=f"falsifiers.x.*{message}"):
+        edit_config, paper, rival, message):
+    path = edit_config(paper, lambda r: r.setdefault("rivals", {}).update(
+        x={"removes": "r", **rival}))
+    with pytest.raises(ConfigError, match=f"rivals.x.*{message}"):
         load_paper(path)

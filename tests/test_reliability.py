@@ -276,7 +276,7 @@ def test_timing_verdicts_are_checked_and_profiles_must_agree(tmp_path):
     assert compare({"speedup": (16874.0, "pass", "independent")}, ref, "ref") == []  # value not compared
     assert "verdict pass in reference, now fail" in compare(
         {"speedup": (3.0, "fail", "independent")}, ref, "ref")[0]
-    # a counted pass that is no longer counted (its falsifier stopped failing) is drift too
+    # a counted pass that is no longer counted (no rival fails it any more) is drift too
     assert "evidence independent in reference, now construction" in compare(
         {"speedup": (16874.0, "pass", "construction")}, ref, "ref")[0]
     for prof, status in (("ci", "pass"), ("default", "fail")):

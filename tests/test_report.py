@@ -86,11 +86,11 @@ def test_the_claim_sentence_names_artefacts_by_their_rows_majority_with_counts()
          *rows("fig07", "fail", "fail", evidence="calibration")]
     s = claim_sentence({"independent": {"pass": 14, "fail": 6, "inconclusive": 1,
                                         "not_converged": 1},
-                        "not_counted_passes": ["tight_side_velocity_fluctuation"]}, r)
+                        "not_discriminating": ["tight_side_velocity_fluctuation"]}, r)
     assert s == ("14 of 22 independent checks pass; agrees on Fig. 5 (12 of 16 rows pass); "
                  "disagrees on Table 2 (1 of 1 row fails); not settled on Fig. 9 (1 pass, "
                  "1 fail), Fig. 10 (1 pass, 1 inconclusive, 1 not converged); "
-                 "1 pass not counted (no falsifier that fails).")
+                 "1 pass reproduced, not discriminating (no rival fails them; not counted).")
     assert [artefact_title(a) for a in ("fig07", "fig6a", "table12", "text", "cost_of_accuracy")] == [
         "Fig. 7", "Fig. 6a", "Table 12", "Statements in the text", "cost of accuracy"]
 

@@ -7,7 +7,7 @@ import pytest
 
 from mechrepro.config import load_paper
 from mechrepro.solve import run_solver
-from mechrepro.target import order_and_error
+from mechrepro.levels import order_and_error
 
 
 def test_order_and_error_of_a_first_and_a_second_order_sequence():

@@ -9,8 +9,9 @@ import yaml
 from mechrepro import io as mio
 from mechrepro import reference as ref
 from mechrepro.config import ConfigError, load_paper
-from mechrepro.validation import (Quantities, Reproduced, ValidationError, build, claim,
-                                  read_table, write_table)
+from mechrepro.validation import (Quantities, Reproduced, Row, ValidationError, build, claim,
+                                  discrimination, grade_rivals, read_table, sledgehammers,
+                                  write_table)
 
 
 def reported_config(raw):
@@ -81,7 +82,8 @@ def test_variant_runs_are_made_for_what_verdicts_read(paper):
     K = cfg.runs["fig07_fig08"]["resolution"]["K"]
     assert cfg.runs["fig07_fig08@coarser"]["resolution"]["K"] == K // 2
     assert cfg.runs["fig07_fig08@coarsest"]["resolution"]["K"] == K // 4
-    assert "fig07_fig08@finer" not in cfg.runs   # the baseline is the finest level
+    # a counted row's reads also run one level finer (the error bar from both sides)
+    assert cfg.runs["fig07_fig08@finer"]["resolution"]["K"] == 2 * K
     assert cfg.runs["fig07_fig08@textbook_mass-lo"]["parameters"]["textbook_mass"] == pytest.approx(1.296e-3)
     assert "cost_of_accuracy@coarser" in cfg.studies
     # its coarsest level (K = 1) is outside the run schema: skipped with the reason, and the
@@ -121,6 +123,25 @@ def test_levels_that_do_not_contract_are_not_converged(paper):
     assert rows["load_max"].status == "not_converged"
     assert "does not converge" in rows["load_max"].cells()[9]
     assert claim(cfg, list(rows.values()))["independent"]["not_converged"] == 1
+
+
+def test_a_value_that_drifts_one_level_finer_is_not_converged(paper, edit_config):
+    """Levels on both sides: coarser levels that agree prove nothing if the value moves when
+    refined once more; a row without the finer level says its error bar is one-sided."""
+    cfg, results = paper
+    write_runs(cfg, results, lambda run: 102.0 if run.get("variant") == "finer" else 100.5)
+    row = {r.quantity: r for r in build(cfg, quantities(), results)}["load_max"]
+    assert row.status == "not_converged" and "refined once more" in row.flips[0]
+    # contracting on both sides at first order: the finer level's distance and error count
+    write_runs(cfg, results, lambda run: 100.2 + 60.0 / K(run))    # base K = 300: 100.4
+    row = {r.quantity: r for r in build(cfg, quantities(), results)}["load_max"]
+    assert row.status == "pass" and row.error == pytest.approx(0.2)
+    assert "one level finer" in row.note
+    cfg = load_paper(edit_config("saw_chain", lambda raw: (reported_config(raw), raw["reported"][
+        "load_max"].update(finer=False, finer_why="it would cost 4x the baseline"))), "ci")
+    write_runs(cfg, results, lambda run: 100.5)
+    row = {r.quantity: r for r in build(cfg, quantities(), results)}["load_max"]
+    assert "Levels on one side only: no run one level finer (it would cost 4x" in row.note
 
 
 def test_a_verdict_without_a_level_below_its_baseline_is_inconclusive(edit_config, tmp_path):
@@ -164,66 +185,94 @@ RIVAL = {"options": {"polygon": False}}   # a model change, the paper's numbers 
 
 
 def heavier(run):
-    """The synthetic loads of the falsifier's model: 100x those of the paper's."""
+    """The synthetic loads of the rival's model: 100x those of the paper's."""
     return 100.0 if run.get("options", {}).get("polygon") is False else 1.0
 
 
-def with_falsifier(raw, changes):
+def with_rival(raw, changes):
     reported_config(raw)
-    raw["falsifiers"] = {"heavy": {"why": "a model whose loads are 100x larger", **changes}}
-    raw["reported"]["load_max"]["falsifier"] = "heavy"
+    raw["rivals"] = {"heavy": {"why": "a model whose loads are 100x larger",
+                               "removes": "the light chain", **changes}}
 
 
-def test_a_counted_pass_needs_a_falsifier_that_fails(edit_config, tmp_path):
+def test_a_counted_pass_needs_a_rival_that_fails(edit_config, tmp_path):
     results = tmp_path / "results"
-    # no falsifier: the robust pass is graded construction, not counted
-    cfg = load_paper(edit_config("saw_chain", reported_config), "ci")
+    # no rival: the robust pass is reproduced, not discriminating, and not counted
+    cfg = load_paper(edit_config("saw_chain", lambda raw: (reported_config(raw),
+                                                           raw.update(rivals={}))), "ci")
     write_runs(cfg, results, lambda run: 100.5)
     rows = {r.quantity: r for r in build(cfg, quantities(), results)}
-    assert rows["load_max"].status == "pass" and rows["load_max"].evidence == "construction"
-    assert "no falsifier" in rows["load_max"].cells()[9]
+    assert rows["load_max"].status == "pass" and rows["load_max"].evidence == "not_discriminating"
+    assert "no rival of the paper is declared" in rows["load_max"].cells()[9]
     assert claim(cfg, list(rows.values()))["independent"]["pass"] == 0
-    # a falsifier (a model change, a solver option: the loads stand for a model 100x heavier
-    # here) under which the check fails: counted
-    cfg = load_paper(edit_config("saw_chain", lambda raw: with_falsifier(raw, RIVAL)), "ci")
-    assert cfg.runs["fig07_fig08@falsify-heavy"]["options"] == {"polygon": False}
+    # a rival (a model change, a solver option: the loads stand for a model 100x heavier
+    # here) under which the check fails: counted, and every counted row runs under it
+    cfg = load_paper(edit_config("saw_chain", lambda raw: with_rival(raw, RIVAL)), "ci")
+    assert cfg.runs["fig07_fig08@rival-heavy"]["options"] == {"polygon": False}
     write_runs(cfg, results, lambda run: 100.5 * heavier(run))
     rows = {r.quantity: r for r in build(cfg, quantities(), results)}
     assert rows["load_max"].status == "pass" and rows["load_max"].evidence == "independent"
-    assert rows["load_max"].falsifier.startswith("heavy: fail")
-    # a falsifier that does not fail: construction, said so
+    assert rows["load_max"].rivals["heavy"][2] == "fails"
+    assert rows["load_max"].rivals_text.startswith("heavy: fails (10050")
+    assert "heavy" in rows["mass_claim"].rivals and not rows["order"].rivals
+    # a rival that does not fail: not discriminating, said so
     write_runs(cfg, results, lambda run: 100.5)
     rows = {r.quantity: r for r in build(cfg, quantities(), results)}
-    assert rows["load_max"].evidence == "construction"
-    assert "does not make it fail" in rows["load_max"].cells()[9]
+    assert rows["load_max"].evidence == "not_discriminating"
+    assert "no rival fails it" in rows["load_max"].cells()[9]
+    table = discrimination(cfg, list(rows.values()))
+    assert ["load_max", "fig08", "pass", "not_discriminating", "heavy", "the light chain",
+            "100.5", "pass", "passes", False, False] in table
 
 
-def test_a_falsifier_runs_one_level_coarser_where_the_check_passes_too(edit_config, tmp_path):
-    """The falsifier's run is the coarser level's resolution with the model change; it
+def test_a_rival_runs_one_level_coarser_where_the_check_passes_too(edit_config, tmp_path):
+    """The rival's run is the coarser level's resolution with the model change; it
     counts only where the check passes at that level without the change."""
     results = tmp_path / "results"
-    cfg = load_paper(edit_config("saw_chain", lambda raw: with_falsifier(raw, RIVAL)), "ci")
-    fal = cfg.runs["fig07_fig08@falsify-heavy"]
+    cfg = load_paper(edit_config("saw_chain", lambda raw: with_rival(raw, RIVAL)), "ci")
+    fal = cfg.runs["fig07_fig08@rival-heavy"]
     assert fal["resolution"] == cfg.runs["fig07_fig08@coarser"]["resolution"]
     assert fal["resolution"] != cfg.runs["fig07_fig08"]["resolution"]
-    assert cfg.variant_info["falsify-heavy"]["level_of"] == {"fig07_fig08": "coarser"}
+    assert cfg.variant_info["rival-heavy"]["level_of"] == {"fig07_fig08": "coarser"}
 
-    def load(run):      # the levels by variant; the falsifier runs heavy at the coarser one
+    def load(run):      # the levels by variant; the rival runs heavy at the coarser one
         heavy = heavier(run)
         return {"coarsest": coarsest, "coarser": coarser}.get(run.get("variant"), base) * (
-            coarser / base if run.get("variant") == "falsify-heavy" else 1.0) * heavy
+            coarser / base if run.get("variant") == "rival-heavy" else 1.0) * heavy
     coarsest, coarser, base = 100.0, 100.0, 100.0
     write_runs(cfg, results, load)
     rows = {r.quantity: r for r in build(cfg, quantities(), results)}
     assert rows["load_max"].status == "pass" and rows["load_max"].evidence == "independent"
-    assert rows["load_max"].falsifier.endswith("at the coarser level")
+    assert rows["load_max"].rivals_text.endswith("at the coarser level)")
     # contracting levels 104 / 101.2 / 100.2: a pass by its error bar (100.2 +- 0.56 within
     # 1 %), but the coarser level alone fails, so failing there under the change shows nothing
     coarsest, coarser, base = 104.0, 101.2, 100.2
     write_runs(cfg, results, load)
     row = {r.quantity: r for r in build(cfg, quantities(), results)}["load_max"]
-    assert row.status == "pass" and row.evidence == "construction"
-    assert "ran at the coarser level" in row.cells()[9]
+    assert row.status == "pass" and row.evidence == "not_discriminating"
+    assert row.rivals["heavy"][2] == "fail, but the check gives fail at that level without it"
+
+
+def test_a_rival_that_fails_most_counted_passes_credits_none_by_itself():
+    """A sledgehammer (fails more than half of the counted passes, at least two) credits no
+    row alone; a row another rival fails stays counted."""
+    def row(q, **rivals):
+        r = Row(q, {"evidence": "independent", "kind": "check", "artefact": "fig01"}, 1.0,
+                status="pass")
+        r.rivals = {n: ("fail" if o == "fails" else "pass", 0.0, o, "coarser")
+                    for n, o in rivals.items()}
+        return r
+    rows = [row("a", blunt="fails", sharp="fails"), row("b", blunt="fails", sharp="passes"),
+            row("c", blunt="passes", sharp="passes")]
+    assert sledgehammers(rows) == {"blunt": 2}
+    grade_rivals(rows)
+    assert [r.evidence for r in rows] == ["independent", "not_discriminating",
+                                          "not_discriminating"]
+    assert "only the sledgehammer blunt (failing 2 of 3 counted passes) fails it" in rows[1].note
+    assert "no rival fails it" in rows[2].note
+    # one pass, one rival failing it: no sledgehammer (a rule for many rows, not one)
+    rows = [row("a", blunt="fails")]
+    assert sledgehammers(rows) == {}
 
 
 def _range_ends(raw):
@@ -333,8 +382,10 @@ def test_undeclared_reads_and_missing_functions_are_refused(paper):
      or raw["parameters"]["textbook_phase"].pop("numerical"), "evidence: calibration"),
     (lambda raw: raw.pop("refine"), r"resolution: unknown key .*'K' was unexpected.*allowed: none \(a resolution knob is declared under refine:\)"),
     (lambda raw: raw["refine"]["K"].update(factor=1), "refine.K = 1: a knob that is never refined"),
-    (lambda raw: raw["reported"]["load_max"].update(falsifier="nope"), "not declared under falsifiers"),
-    (lambda raw: raw.update(falsifiers={"x": {"why": "y", "parameters": {"nope": 1}}}), "not a parameter"),
+    (lambda raw: raw["reported"]["load_max"].update(rivals=["nope"]), "not declared under rivals"),
+    (lambda raw: raw.update(rivals={"x": {"why": "y", "removes": "z", "parameters": {"nope": 1}}}),
+     "not a parameter"),
+    (lambda raw: raw.update(rivals={"x": {"why": "y"}}), "removes"),
     (lambda raw: raw["reported"]["order"].pop("evidence_why"), "evidence_why"),
     (lambda raw: raw["reported"]["load_max"].pop("why"), "why"),
     (lambda raw: raw["profiles"]["ci"]["scenes"].update(typo={"resolution": {"K": 3}}),

@@ -34,6 +34,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from .levels import richardson_error
 from .registry import Registry
 
 COLUMNS = ["accuracy", "knob", "knob_value", "quantity", "line", "error", "error_kind",
@@ -189,6 +190,11 @@ def assess(reference: str, h, err, h_ref: float | None = None, given: float | No
     h, err = _coarse_to_fine(h, err)
     if given is not None:     # made from another sequence: its proof is the quantity's
         est, e = max(float(given), float(floor)), err[err > MARGIN * floor]
+        if np.any(np.diff(e) >= 0):   # a curve that does not approach it proves nothing
+            k = int(np.flatnonzero(np.diff(e) >= 0)[0])
+            return Reference(est, False, float(floor),
+                             f"error {float(given):.2g} given by the quantity; NOT PROVEN: "
+                             f"not monotone (error {e[k]:.2g} then {e[k + 1]:.2g})")
         return Reference(est, _below(est, e), float(floor),
                          f"error {float(given):.2g} given by the quantity")
     measured, h_stall = noise_floor(h, err)
@@ -232,7 +238,7 @@ def assess(reference: str, h, err, h_ref: float | None = None, given: float | No
         p = min(p, np.log(ea[-2] / ea[-1]) / np.log(ha[-2] / ha[-1]))
         r = ha[-1] / h_ref
         if np.isfinite(p) and p > 0 and r > 1:
-            est = ea[-1] / (r ** p - 1.0)
+            est = richardson_error(ea[-1], 0.0, r, p)   # an error against the finest: its d2
     elif reference == "finest" and len(ha) == 1 and band >= 2:
         return Reference(F, _below(F, ea[:1]), F,
                          f"reached its {where} from the second level on and stayed there")

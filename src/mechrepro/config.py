@@ -101,7 +101,8 @@ class PaperConfig:
 
     @property
     def framework_tables(self) -> list[str]:
-        return ["validation", "verdict_evidence", "effect_cost", "job_time"] + (
+        return ["validation", "verdict_evidence", "discrimination", "effect_cost",
+                "job_time"] + (
             ["cost_of_accuracy"] if self.raw.get("accuracy") else []) + (
             ["effect_marginal_cost"] if self.raw.get("marginal_cost") else []) + (
             ["accuracy_targets"] if any(r.get("target") for r in self.runs.values()) else [])
@@ -119,7 +120,7 @@ class PaperConfig:
 
     def same_solve(self) -> dict[str, str]:
         """{run: the earlier run it repeats}: runs equal in everything but their names (a
-        scene that is also a point of a study, a falsifier that sets a value a study
+        scene that is also a point of a study, a rival that sets a value a study
         sweeps), which the solve job solves once and writes under each name with the one
         measured time (:func:`mechrepro.solve.main`).  Runs timed against each other
         (``marginal_cost:``) or solved to an accuracy target are never merged."""
@@ -408,12 +409,12 @@ def _cross_check(checks: dict, run: dict, where: str) -> None:
 
 VERDICT_KINDS = ("compare", "bound", "check")
 # The resolution levels that give a verdict its error bar, by how many levels each lies
-# below the baseline: the reported value is the finest run, its error is extrapolated from
-# the two coarser ones (Richardson; Roache's grid convergence index), so the re-checks cost
-# a fraction of the baseline instead of a multiple of it.
-LEVELS = {"coarsest": 2, "coarser": 1}
-# the level a falsifier's, a range end's and a family member's run are made at
-# (docs/VALIDATION.md): a falsifier must make a check fail that passes there without it,
+# below the baseline: its error is extrapolated from the two coarser ones (Richardson;
+# Roache's grid convergence index) and, for a counted row, checked one level finer: a value
+# that drifts when refined is seen, and a verdict the finer level changes is not decided.
+LEVELS = {"finer": -1, "coarser": 1, "coarsest": 2}
+# the level a rival's, a range end's and a family member's run are made at
+# (docs/VALIDATION.md): a rival must make a check fail that passes there without it,
 # and a range end or a family member moves the value by what it moves the value at that
 # level (validation._row); one level below shows either as well as the baseline would, at
 # a fraction of its cost
@@ -446,7 +447,7 @@ def _check_effects(raw: dict, where: str) -> None:
 
 
 def _check_scene_effects(raw: dict, solver: str, named: list[str], at: str) -> None:
-    """One scene's (or falsifier's) solver and effects against the declarations."""
+    """One scene's (or rival's) solver and effects against the declarations."""
     solvers, effects = raw["solvers"], raw["effects"]
     if solver not in solvers:
         raise ConfigError(f"{at}.solver = {solver!r}: not declared; solvers: "
@@ -477,13 +478,13 @@ def _udunits_like(unit: str) -> bool:
 
 
 def _check_rival(raw: dict, name: str, spec: dict, where: str) -> None:
-    """A falsifier is a rival: a model the paper's text or physics rules out, never an edit of
+    """A rival is a model the paper's text or physics rules out, never an edit of
     a number the paper gives, and never a change that stays inside what the config itself
     calls plausible (that is a range end, checked as such).  Refused here: a parameter with a
     paper ``source``; an assumed value inside its ``range``; an effect switched off whose
     strength is an assumed constant whose range reaches zero."""
     params = raw["parameters"]
-    at = f"{where}: falsifiers.{name}"
+    at = f"{where}: rivals.{name}"
     for p, v in spec.get("parameters", {}).items():
         d = params[p]
         if d.get("source") and not d.get("assumed"):
@@ -512,7 +513,7 @@ def _check_reported(raw: dict, where: str) -> None:
     names = set(raw["scenes"]) | set(raw.get("studies", {}))
     params = raw["parameters"]
     reported = raw["reported"]
-    families, falsifiers = raw.get("families", {}), raw.get("falsifiers", {})
+    families, rivals = raw.get("families", {}), raw.get("rivals", {})
     in_family = family_of(raw)
     for f, fam in families.items():
         for p in fam["members"]:
@@ -527,10 +528,10 @@ def _check_reported(raw: dict, where: str) -> None:
                               "corners: true (use corners: false and samples: N)")
         if f in params:
             raise ConfigError(f"{where}: families.{f}: a family cannot share a parameter's name")
-    for f, spec in falsifiers.items():
+    for f, spec in rivals.items():
         for p in spec.get("parameters", {}):
             if p not in params:
-                raise ConfigError(f"{where}: falsifiers.{f}.parameters: {p!r} is not a parameter")
+                raise ConfigError(f"{where}: rivals.{f}.parameters: {p!r} is not a parameter")
         _check_rival(raw, f, spec, where)
     for key, spec in refine_spec(raw).items():
         if spec.get("factor") == 1:
@@ -552,9 +553,10 @@ def _check_reported(raw: dict, where: str) -> None:
                     raise ConfigError(f"{where}: reported.{q}.members.{study}.{k} = {vals}: "
                                       f"allowed: values of its sweep "
                                       f"({', '.join(f'{a}: {b}' for a, b in sweep.items())})")
-        if spec.get("falsifier") and spec["falsifier"] not in falsifiers:
-            raise ConfigError(f"{where}: reported.{q}.falsifier = {spec['falsifier']!r}: not "
-                              f"declared under falsifiers: ({', '.join(falsifiers) or 'none'})")
+        for r in spec.get("rivals", []):
+            if r not in rivals:
+                raise ConfigError(f"{where}: reported.{q}.rivals: {r!r} is not declared under "
+                                  f"rivals: ({', '.join(rivals) or 'none'})")
         for p in spec.get("depends_on", []):
             if p in families:
                 continue
@@ -602,10 +604,13 @@ def family_of(raw: dict) -> dict[str, str]:
 
 def _variant_names(spec: dict, raw: dict | None = None) -> list[str]:
     """The variants that re-check one reported row (docs/VALIDATION.md): the resolution
-    levels, other seeds, range ends (one constant) or members (a family), the falsifier."""
+    levels, other seeds, range ends (one constant) or members (a family), and for a counted
+    (independent) row every rival of its paper (or those the row restricts itself to)."""
     if spec["kind"] not in VERDICT_KINDS:
         return []
-    out = list(LEVELS) if spec.get("levels", True) else []
+    out = [v for v in LEVELS if v != "finer" or (spec.get("evidence") == "independent"
+                                                 and spec.get("finer", True))] \
+        if spec.get("levels", True) else []
     out += [f"seed{k}" for k in range(1, int(spec.get("seeds", 0)) + 1)]
     families = (raw or {}).get("families", {})
     for p in spec.get("depends_on", []):
@@ -613,9 +618,17 @@ def _variant_names(spec: dict, raw: dict | None = None) -> list[str]:
             out += _family_members(p, families[p], raw)
         else:
             out += [f"{p}-lo", f"{p}-hi"]
-    if spec.get("falsifier"):
-        out.append(f"falsify-{spec['falsifier']}")
+    if spec.get("evidence") == "independent":
+        out += [f"rival-{r}" for r in rivals_of(spec, raw)]
     return out
+
+
+def rivals_of(spec: dict, raw: dict | None) -> list[str]:
+    """The rivals a counted row is re-run under: every rival of its paper, or the subset its
+    ``rivals:`` names (a rival that cannot touch what the row reads, or whose runs would cost
+    a multiple of the paper's solve; the discrimination matrix shows the others as not run)."""
+    declared = list((raw or {}).get("rivals", {}))
+    return [r for r in declared if r in spec["rivals"]] if "rivals" in spec else declared
 
 
 def _family_members(name: str, fam: dict, raw: dict) -> list[str]:
@@ -659,10 +672,10 @@ def _variant_overrides(raw: dict, variant: str) -> tuple[str, dict, str]:
         return "level", {}, f"at the {variant} resolution"
     if variant.startswith("seed") and variant[4:].isdigit():
         return "seed", {}, f"at seed + {variant[4:]}"
-    if variant.startswith("falsify-"):
-        f = variant[len("falsify-"):]
-        return "falsifier", dict(raw["falsifiers"][f].get("parameters", {})), \
-            f"under falsifier {f} ({raw['falsifiers'][f]['why']})"
+    if variant.startswith("rival-"):
+        f = variant[len("rival-"):]
+        return "rival", dict(raw["rivals"][f].get("parameters", {})), \
+            f"under rival {f} ({raw['rivals'][f]['removes']})"
     p, end = variant.rsplit("-", 1)
     if p in raw.get("families", {}):
         vals = family_values(raw, p, end)
@@ -705,17 +718,17 @@ def _add_variants(cfg: PaperConfig, raw: dict, run_schema: dict, where: str) -> 
         cfg.variant_info[variant] = {"kind": kind, "parameters": overrides, "label": label}
         for name, quantities in sorted(names.items()):
             why = f"variant {variant} of {name!r}, needed by {', '.join(quantities)}"
-            # a falsifier, a range end or a family member runs at VARIANT_LEVEL where every
+            # a rival, a range end or a family member runs at VARIANT_LEVEL where every
             # row reading it has levels (validation._row compares it with the check at that
             # same level)
-            at = (VARIANT_LEVEL if kind in ("falsifier", "range", "family")
+            at = (VARIANT_LEVEL if kind in ("rival", "range", "family")
                   and all(cfg.reported[q].get("levels", True) for q in quantities) else None)
             # a variant identical to the baseline (a range end equal to the value) is not
             # re-run: the validation reads the baseline run for it
             try:
                 base = members(name, quantities)
                 runs = [_variant_run(raw, cfg.runs[run], variant, run_schema, where, why,
-                                     at if kind == "falsifier" else None) for run in base]
+                                     at if kind == "rival" else None) for run in base]
                 if at and kind in ("range", "family") and any(_differs(vr, cfg.runs[r])
                                                               for vr, r in zip(runs, base)):
                     runs = [_variant_run(raw, cfg.runs[run], variant, run_schema, where, why,
@@ -732,10 +745,12 @@ def _add_variants(cfg: PaperConfig, raw: dict, run_schema: dict, where: str) -> 
             if name in raw["scenes"]:
                 if _differs(runs[0], cfg.runs[name]):
                     cfg.runs[runs[0]["run"]] = runs[0]
+                    cfg.variant_info[variant].setdefault("changed", []).append(name)
             else:
                 if any(_differs(vr, cfg.runs[r]) for vr, r in zip(runs, base)):
                     cfg.runs.update({vr["run"]: vr for vr in runs})
                     cfg.studies[f"{name}@{variant}"] = [vr["run"] for vr in runs]
+                    cfg.variant_info[variant].setdefault("changed", []).append(name)
 
 
 def _add_ablations(cfg: PaperConfig, raw: dict, where: str) -> None:
@@ -769,7 +784,7 @@ def _differs(variant_run: dict, base: dict) -> bool:
 
 def _refined(raw, base: dict, variant: str, where: str, why: str) -> dict:
     """The run's resolution ``LEVELS[variant]`` levels coarser (every knob together, each
-    divided by its factor that many times, integers rounded)."""
+    divided by its factor that many times, integers rounded; finer: multiplied once)."""
     refine = refine_spec(raw)
     resolution = copy.deepcopy(base["resolution"])
     for key, value in resolution.items():
@@ -788,7 +803,7 @@ def _refined(raw, base: dict, variant: str, where: str, why: str) -> dict:
 
 def _variant_run(raw, base: dict, variant: str, run_schema, where, why,
                  at: str | None = None) -> dict:
-    """The run record of ``variant`` of run ``base``; a falsifier, a range end or a family
+    """The run record of ``variant`` of run ``base``; a rival, a range end or a family
     member ``at`` a level runs at that level's resolution, or at the baseline's where the
     run schema refuses the level."""
     scene = raw["scenes"][base["scene"]]
@@ -803,8 +818,8 @@ def _variant_run(raw, base: dict, variant: str, run_schema, where, why,
         resolution = _refined(raw, base, variant, where, why)
     elif kind == "seed":
         seed = base["seed"] + int(variant[4:])
-    elif kind == "falsifier":
-        spec = raw["falsifiers"][variant[len("falsify-"):]]
+    elif kind == "rival":
+        spec = raw["rivals"][variant[len("rival-"):]]
         params.update(overrides)   # a model change: it overrides the scene's own values
         effects = [e for e in effects if e not in spec.get("effects_off", [])]
         effects += [e for e in spec.get("effects_on", []) if e not in effects]
@@ -817,7 +832,7 @@ def _variant_run(raw, base: dict, variant: str, run_schema, where, why,
                        if p not in scene.get("parameters", {}) and p not in base["sweep"]})
     record = {"effects": effects, "resolution": resolution, "parameters": params,
               "options": options}
-    if kind in ("falsifier", "range", "family") and at:
+    if kind in ("rival", "range", "family") and at:
         try:
             coarse = _refined(raw, base, at, where, why)
             _validate({**record, "resolution": coarse}, run_schema, f"{where} ({why})")

@@ -61,7 +61,10 @@ TABLE_TITLES = {
     "job_time": "Solver jobs: the solves' own time against the job's wall time",
     "cost_of_accuracy": "Cost of accuracy: error against the reference vs time (long form)",
     "verdict_evidence": "Every re-check of every verdict (levels, seeds, range ends, family "
-                        "members, falsifiers)",
+                        "members, rivals)",
+    "discrimination": "Which physics each counted verdict tests: every counted row under every "
+                      "rival model (fails: the row discriminates the paper's model from it; a "
+                      "sledgehammer fails most rows and credits none by itself)",
     "accuracy_targets": "Accuracy asked for instead of a resolution (mechrepro.target): "
                         "requested, estimated and verified error at the chosen setting, beside "
                         "the fixed setting it is compared with (default_*)",
@@ -121,7 +124,7 @@ def _row(r: dict, spec: dict) -> dict:
     details = [(k, v) for k, v in (
         ("criterion", r.get("criterion", "")), ("tolerance", r.get("tolerance", "")),
         ("observed order", _num(r.get("observed_order", ""))),
-        ("falsifier", r.get("falsifier", "")), ("note", r.get("note", "")),
+        ("rivals", r.get("rivals", "")), ("note", r.get("note", "")),
         ("tolerance why", spec.get("why", ""))) if v]
     return {"quantity": r["quantity"].replace("_", " "), "source": r["source"], "paper": paper,
             "ours": ours, "status": r["status"], "evidence": r["evidence"],
@@ -152,10 +155,10 @@ def claim_sentence(claim: dict, rows: list[dict]) -> str:
             word = {"agree": "agrees on", "disagree": "disagrees on"}.get(key, "not settled on")
             parts.append(f"{word} " + ", ".join(f"{artefact_title(a)} ({counts(c, key)})"
                                                for a, c in arts))
-    n_nc = len(claim.get("not_counted_passes", []))
+    n_nc = len(claim.get("not_discriminating", []))
     if n_nc:
-        parts.append(f"{n_nc} pass{'es' if n_nc != 1 else ''} not counted (no falsifier "
-                     "that fails)")
+        parts.append(f"{n_nc} pass{'es' if n_nc != 1 else ''} reproduced, not discriminating "
+                     "(no rival fails them; not counted)")
     return "; ".join(parts) + "."
 
 
@@ -181,7 +184,7 @@ def paper_view(paper: str, results: Path, config_dir: Path, profile: str, out_di
         a["caption"] = cfg.caption(a["id"]) if a["id"] in cfg.figures else a["title"]
     tables = []
     for t in cfg.tables:
-        if t == "validation" or not (root / "tables" / f"{t}.csv").exists():
+        if t in ("validation", "discrimination") or not (root / "tables" / f"{t}.csv").exists():
             continue
         head, body = _read_csv(root / "tables" / f"{t}.csv")
         tables.append({"title": TABLE_TITLES.get(t, f"Table {t}"), "head": head,
@@ -196,7 +199,37 @@ def paper_view(paper: str, results: Path, config_dir: Path, profile: str, out_di
     return {"id": paper, "title": cfg.raw.get("title", ""), "source": cfg.source,
             "claim": claim["claim"], "counts": counts, "sentence": claim_sentence(claim, rows),
             "paper_note": cfg.raw.get("claim_note", ""), "artefacts": list(artefacts.values()),
-            "tables": tables, "assumed": assumed}
+            "tables": tables, "assumed": assumed,
+            "matrix": matrix_view(root / "tables" / "discrimination.csv", cfg.raw.get("rivals", {}))}
+
+
+#: a discrimination cell as the report shows it: (text, css class)
+CELL = {"fails": ("fails", "b-pass"), "passes": ("passes", "b-fail"), "unchanged": ("—", ""),
+        "no value": ("no value", "b-inconclusive")}
+
+
+def matrix_view(path: Path, rivals: dict) -> dict | None:
+    """The discrimination matrix pivoted: one line per counted row, one column per rival,
+    and the physics the row tests (what the rivals that credit it remove)."""
+    if not path.exists() or not rivals:
+        return None
+    with open(path, newline="") as f:
+        long = list(csv.DictReader(f))
+    sledge = {r["rival"] for r in long if r["sledgehammer"] == "True"}
+    rows: dict[str, dict] = {}
+    for r in long:
+        row = rows.setdefault(r["quantity"], {
+            "quantity": r["quantity"].replace("_", " "), "artefact": artefact_title(r["artefact"]),
+            "status": r["status"], "evidence": r["evidence"], "cells": {}, "tests": []})
+        text, css = CELL.get(r["outcome"], ("not run" if r["outcome"].startswith("not run")
+                                            else "not decisive", ""))
+        row["cells"][r["rival"]] = (text, css, r["outcome"])
+        if r["credits"] == "True":
+            row["tests"].append(rivals[r["rival"]]["removes"])
+    return {"rivals": [{"name": n, "removes": v["removes"], "sledgehammer": n in sledge}
+                       for n, v in rivals.items()],
+            "rows": [{**row, "cells": [row["cells"].get(n, ("not run", "", "not run"))
+                                       for n in rivals]} for row in rows.values()]}
 
 
 def banner(check_file: Path, profile: str) -> dict:

@@ -37,6 +37,8 @@ import time
 
 import numpy as np
 
+from .levels import extrapolate, order_and_error, richardson_error
+
 SAFETY = 0.7       # the predicted setting aims at this fraction of the request (cost <= 0.7^(-1/p))
 MAX_LEVELS = 24     # solves at most; a target not met by then is an error, not a guess
 
@@ -50,28 +52,6 @@ def reduce(ds, name: str, how: str, select: dict | None = None) -> float:
     v = ds[name]
     pick = {k: x for k, x in (select or {}).items() if k in v.dims}
     return float(REDUCE[how](np.asarray(v.sel(pick).values if pick else v.values, float)))
-
-
-def extrapolate(coarse: float, fine: float, ratio: float, order: float) -> float:
-    """Richardson's extrapolation of two levels of a method of order p refined by r:
-    R = q_fine + (q_fine - q_coarse) / (r^p - 1)."""
-    return fine + (fine - coarse) / (ratio ** order - 1.0)
-
-
-def richardson_error(coarse: float, fine: float, ratio: float, order: float) -> float:
-    """Richardson's error estimate of the finer of two levels of order p: |q_fine - q_coarse| / (r^p - 1)."""
-    return abs(fine - coarse) / (ratio ** order - 1.0)
-
-
-def order_and_error(q: list[float], ratio: float) -> tuple[float, float]:
-    """Observed order from three levels and the Richardson error estimate of the finest."""
-    d1, d2 = abs(q[0] - q[1]), abs(q[1] - q[2])
-    if d2 == 0.0:
-        return math.inf, 0.0
-    if d1 <= d2:
-        return math.nan, math.inf   # not in the asymptotic range: no estimate
-    p = math.log(d1 / d2) / math.log(ratio)
-    return p, richardson_error(q[1], q[2], ratio, p)
 
 
 def _with(run: dict, knob: str, value) -> dict:

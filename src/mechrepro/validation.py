@@ -10,14 +10,15 @@ functions that extract the reproduced values (:class:`Quantities`).  :func:`buil
    knob together) give the baseline value's error estimate and observed order, or show
    that it does not converge (``not_converged``); other seeds add their spread; both ends of an
    assumed constant's range, or the corners and seeded members of a declared family, must
-   not flip the verdict (else ``inconclusive``, saying what flips it); the row's falsifier
-   (a model change) must make it fail;
+   not flip the verdict (else ``inconclusive``, saying what flips it); a counted row is
+   re-run under every rival model of its paper (the discrimination matrix);
 3. decides each verdict with its error bar: ``pass`` when |value - paper| + error is within
    the tolerance, ``fail`` when |value - paper| - error is beyond it, else ``inconclusive``;
-   a counted (``independent``) pass without a falsifier that fails is graded
-   ``construction``;
+   a counted (``independent``) pass that no rival fails (other than a sledgehammer, which
+   fails most rows) is graded ``not_discriminating``: reproduced, not counted;
 4. returns the rows; :func:`write_table` writes ``validation.csv``, :func:`write_evidence`
-   every re-check (``verdict_evidence.csv``) and :func:`claim` the replication claim, which
+   every re-check (``verdict_evidence.csv``), :func:`discrimination` the rows x rivals
+   matrix and :func:`claim` the replication claim, which
    counts only ``independent`` rows.
 
 See docs/VALIDATION.md for the contract.
@@ -34,18 +35,20 @@ from pathlib import Path
 
 from .errors import Refusal
 from .io import ENGINE, write_json, write_text
+from .levels import NEGLIGIBLE, level_error  # noqa: F401  (the one estimator; tests import it here)
 from .registry import Registry
 
 COLUMNS = ["quantity", "source", "paper_value", "reproduced_value", "unit", "rel_error",
            "tolerance", "status", "evidence", "note", "artefact", "criterion",
-           "error_estimate", "observed_order", "falsifier"]
+           "error_estimate", "observed_order", "rivals"]
 EVIDENCE_COLUMNS = ["quantity", "variant", "kind", "value", "status", "label"]
-EVIDENCE = ("independent", "calibration", "determined", "construction", "target")
+# not_discriminating: a counted pass no rival fails (reproduced, not evidence for the model)
+EVIDENCE = ("independent", "not_discriminating", "calibration", "determined", "construction",
+            "target")
+NOT_RUN = "not run (the row names the rivals it runs under)"
+DISCRIMINATION_COLUMNS = ["quantity", "artefact", "status", "evidence", "rival", "removes",
+                          "value", "rival_status", "outcome", "sledgehammer", "credits"]
 STATUSES = ("pass", "fail", "inconclusive", "not_converged", "info")
-# differences between levels below this share of the tolerance band cannot move a verdict
-NEGLIGIBLE = 1e-3
-# |coarsest - coarser| / |coarser - base| at or below this: the levels do not contract
-CONTRACTION_MIN = 1.05
 OPS = {">": operator.gt, ">=": operator.ge, "<": operator.lt, "<=": operator.le}
 
 
@@ -214,8 +217,8 @@ class Row:
     flips: list[str] = field(default_factory=list)
     error: float = math.nan          # error estimate of value (levels + seeds + own)
     order: float = math.nan          # observed order across the levels
-    evidence: str = ""               # as graded (a pass without a failing falsifier: construction)
-    falsifier: str = ""              # its name and what it gave
+    evidence: str = ""               # as graded (a pass no rival fails: not_discriminating)
+    rivals: dict = field(default_factory=dict)   # rival -> (status, value, outcome, level)
     checks: list[tuple] = field(default_factory=list)   # (variant, kind, value, status, label)
 
     def __post_init__(self):
@@ -264,7 +267,12 @@ class Row:
         return [self.quantity, self.spec["source"], _fmt(self.paper_value), _fmt(self.value),
                 self.unit, _fmt(self.rel_error), _fmt(tol), self.status, self.evidence,
                 " ".join(notes), self.spec["artefact"], self.criterion,
-                _fmt(self.error), _fmt(self.order), self.falsifier]
+                _fmt(self.error), _fmt(self.order), self.rivals_text]
+
+    @property
+    def rivals_text(self) -> str:
+        return "; ".join(f"{r}: {o} ({_fmt_short(v)}{f' at the {at} level' if at else ''})"
+                         for r, (_, v, o, at) in self.rivals.items() if o != NOT_RUN)
 
 
 def rel_error(paper: float, reproduced: float) -> float:
@@ -285,7 +293,7 @@ def verdict(spec: dict, value) -> str:
         return "pass" if bool(value) else "fail"
     x = float(value)
     if math.isnan(x):
-        return "fail"
+        return "no_value"   # the quantity does not exist there (its note says why)
     if kind == "bound":
         return "pass" if OPS[spec["op"]](x, float(spec["value"])) else "fail"
     return "pass" if abs(rel_error(spec["value"], x)) <= float(spec["tolerance"]) else "fail"
@@ -300,48 +308,6 @@ def band(spec: dict, value: float) -> float:
     if spec["kind"] == "bound":
         return abs(float(value) - float(spec["value"]))
     return math.nan
-
-
-def level_error(coarsest: float, coarse: float, base: float, ratio: float, width: float,
-                own: float = 0.0) -> tuple[float, float, bool, str]:
-    """Error estimate of ``base``, the finest level, from the two levels below it (every
-    knob coarsened by ``ratio`` per level): (error, observed order, converged, how).
-
-    d1 = coarsest - coarse and d2 = coarse - base contract by q = |d1| / |d2| = ratio^p
-    for a method of order p; the baseline's error is then |d2| / (q - 1), its distance to
-    the Richardson extrapolate (Roache's grid convergence index without a safety factor).
-    Differences below round-off, a thousandth of ``width`` (the tolerance band) or the
-    coarsest level's own resolution (``own``, the extraction's error at the base level, e.g.
-    half a grid step, times ``ratio``^2) are negligible: a value read off a grid jitters
-    within its step; levels that do not contract (q <= 1.05) do not converge; contracting
-    levels that oscillate (d1 and d2 of opposite sign) have no extrapolate, their spread
-    max(|d1|, |d2|) is the error.  ``coarsest`` NaN: two levels only, no order is measured:
-    the error is Richardson's at first order, |d2| / (ratio - 1), and at least |d2|."""
-    d2 = abs(coarse - base)
-    if math.isnan(coarsest):
-        # no order measured: first order, the lowest of any scheme here, and never below |d2|
-        e = d2 * max(1.0, 1.0 / (ratio - 1.0)) if math.isfinite(ratio) and ratio > 1 else d2
-        return e, math.nan, True, (f"2 levels: |coarser - base| = {d2:.3g}, taken as first "
-                                   f"order at ratio {ratio:.3g}")
-    d1 = abs(coarsest - coarse)
-    floor = max(1e-9 * abs(base), NEGLIGIBLE * width if math.isfinite(width) else 0.0,
-                own * max(ratio, 1.0) ** 2 if math.isfinite(ratio) else own)
-    if max(d1, d2) <= floor:
-        return max(d1, d2), math.nan, True, ("levels agree to within round-off, 1e-3 of the "
-                                             "band or the quantity's own sampling step")
-    if d2 == 0.0:
-        return 0.0, math.inf, True, "coarser and base agree exactly"
-    q = d1 / d2
-    if q <= CONTRACTION_MIN:
-        return math.inf, math.nan, False, (f"does not converge: coarsest {coarsest:.6g}, "
-                                           f"coarser {coarse:.6g}, base {base:.6g} "
-                                           f"(|d1|/|d2| = {q:.3g})")
-    if min(d1, d2) > floor and (coarsest - coarse) * (coarse - base) < 0:
-        # oscillating levels have no Richardson extrapolate: the spread is the error
-        return max(d1, d2), math.nan, True, (f"levels oscillate: coarsest {coarsest:.6g}, "
-                                             f"coarser {coarse:.6g}, base {base:.6g}")
-    order = math.log(q) / math.log(ratio) if ratio > 1 else math.nan
-    return d2 / (q - 1.0), order, True, f"3 levels, |d1|/|d2| = {q:.3g}"
 
 
 def verdict_with_error(spec: dict, value: float, error: float) -> tuple[str, str]:
@@ -414,9 +380,11 @@ def build(cfg, quantities: Quantities, results_dir: str | Path,
         variant: quantities.evaluate([q for q in qs if q not in skipped[variant]],
                                      ValidationInputs(cfg, results_dir, variant, files))
         for variant, qs in by_variant.items()}
-    return [_row(cfg, q, spec, base[q], {v: got[v][q] for v in _variant_names(spec, cfg.raw)
+    rows = [_row(cfg, q, spec, base[q], {v: got[v][q] for v in _variant_names(spec, cfg.raw)
                                          if q in got[v]})
             for q, spec in reported.items()]
+    grade_rivals(rows)
+    return rows
 
 
 def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]) -> Row:
@@ -428,7 +396,8 @@ def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]
     numeric = spec["kind"] in ("compare", "bound") and math.isfinite(row.value)
     base_status = row.status
     if base_status == "no_value":
-        row.status, row.flips = "inconclusive", ["the check could not be evaluated (no value)"]
+        row.status = "inconclusive"
+        row.flips = [f"no value: {r.note or 'the quantity could not be evaluated'}"]
         return row
     for v, got in variants.items():
         s = verdict(spec, got.value)
@@ -448,9 +417,28 @@ def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]
             if "coarsest" not in levels:
                 row.note = " ".join(x for x in (row.note, f"No coarsest level "
                                                 f"({_skipped_why(cfg, 'coarsest', spec)}).") if x)
-            e, row.order, converged, how = level_error(
-                coarsest, levels["coarser"][2], row.value, _level_ratio(cfg, spec),
-                band(spec, row.value), float(r.error or 0.0))
+            ratio, width, own = _level_ratio(cfg, spec), band(spec, row.value), float(r.error or 0.0)
+            e, row.order, converged, how = level_error(coarsest, levels["coarser"][2], row.value,
+                                                       ratio, width, own)
+            if "finer" in levels and converged:
+                # both sides: the baseline is off by at least its distance to the finer
+                # level, plus that level's own error from the three finest levels
+                fine = levels["finer"][2]
+                ef, order_f, converged, how_f = level_error(levels["coarser"][2], row.value,
+                                                            fine, ratio, width, own)
+                if not converged:
+                    how = f"refined once more, {how_f}"
+                elif abs(row.value - fine) + ef > e:
+                    e = abs(row.value - fine) + ef
+                    how = (f"{how}; one level finer {fine:.6g}: |base - finer| + its error "
+                           f"{ef:.3g}")
+                    row.order = order_f
+                if verdict(spec, fine) != base_status:
+                    flips.append(f"{verdict(spec, fine)} one level finer: {_fmt_short(fine)}")
+            elif spec["evidence"] == "independent" and converged:
+                why = spec.get("finer_why") or _skipped_why(cfg, "finer", spec)
+                row.note = " ".join(x for x in (row.note, f"Levels on one side only: no run "
+                                                f"one level finer ({why}).") if x)
             error += e
         else:
             # a worded claim has no error bar: it must hold at every level
@@ -496,32 +484,63 @@ def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]
             row.flips = [why]
     if how and numeric and converged and error:
         row.note = " ".join(x for x in (row.note, f"Error estimate {error:.3g} ({how}).") if x)
-    fal = by_kind.get("falsifier", [])
-    # the level the falsifier ran at (config._add_variants): the check must pass there
-    # without the model change for the change to be what makes it fail
-    at = _level_of(info, fal[0][0], spec) if fal else None
-    if fal:
-        c = fal[0]
-        row.falsifier = (f"{spec['falsifier']}: {c[3]} ({_fmt_short(c[2])})"
-                         + (f" at the {at} level" if at else ""))
-    if row.status == "pass" and spec["evidence"] == "independent":
-        if not fal:
-            row.evidence = "construction"
-            row.note = " ".join(x for x in (row.note, "[construction] no falsifier declared: a "
-                                            "pass no model change was shown to fail is not "
-                                            "counted.") if x)
-        elif fal[0][3] != "fail":
-            row.evidence = "construction"
-            row.note = " ".join(x for x in (row.note, f"[construction] its falsifier "
-                                            f"{spec['falsifier']} does not make it fail "
-                                            f"({_fmt_short(fal[0][2])}): not counted.") if x)
-        elif at and (at not in levels or levels[at][3] != "pass"):
-            row.evidence = "construction"
-            got = f"{levels[at][3]} ({_fmt_short(levels[at][2])})" if at in levels else "no value"
-            row.note = " ".join(x for x in (row.note, f"[construction] its falsifier ran at the "
-                                            f"{at} level, where the check without it gives "
-                                            f"{got}, not a pass: not counted.") if x)
+    for c in by_kind.get("rival", []):
+        at = _level_of(info, c[0], spec)
+        ref = levels.get(at)[3] if at and at in levels else base_status if not at else None
+        outcome = ("unchanged" if not set(spec["reads"]) & set(info[c[0]].get("changed", ()))
+                   else
+                   "no value" if c[3] == "no_value" else
+                   "passes" if c[3] == "pass" else
+                   f"{c[3]}, but the check gives {ref or 'no value'} at that level without it"
+                   if ref != "pass" else "fails" if c[3] == "fail" else c[3])
+        row.rivals[c[0][len("rival-"):]] = (c[3], c[2], outcome, at)
+    if spec["evidence"] == "independent":   # the matrix is whole: a restricted row says so
+        row.rivals = {n: row.rivals.get(n, ("", math.nan, NOT_RUN, None))
+                      for n in cfg.raw.get("rivals", {})}
     return row
+
+
+def _counted_passes(rows) -> list[Row]:
+    return [r for r in rows if r.spec["evidence"] == "independent" and r.status == "pass"]
+
+
+def sledgehammers(rows: list[Row]) -> dict[str, int]:
+    """{rival: counted passes it fails} of the rivals that fail more than half of their
+    paper's counted passes (and at least two): a rival that fails nearly everything tests
+    no physics in particular and credits no row by itself."""
+    passes = _counted_passes(rows)
+    fails = Counter(name for r in passes for name, c in r.rivals.items() if c[2] == "fails")
+    return {name: n for name, n in fails.items() if n >= 2 and 2 * n > len(passes)}
+
+
+def grade_rivals(rows: list[Row]) -> None:
+    """The discrimination matrix's verdict on the counted passes: one that no rival other
+    than a sledgehammer (:func:`sledgehammers`) fails is ``not_discriminating``
+    (reproduced, not counted as evidence for the paper's model)."""
+    passes = _counted_passes(rows)
+    sledge = sledgehammers(rows)
+    for r in passes:
+        credit = [n for n, c in r.rivals.items() if c[2] == "fails" and n not in sledge]
+        if credit:
+            continue
+        r.evidence = "not_discriminating"
+        by = [n for n, c in r.rivals.items() if c[2] == "fails"]
+        why = (f"only the sledgehammer{'s' * (len(by) > 1)} {', '.join(by)} (failing "
+               f"{', '.join(str(sledge[n]) for n in by)} of {len(passes)} counted passes) "
+               f"fail{'s' * (len(by) == 1)} it" if by else
+               "no rival of the paper is declared" if not r.rivals else "no rival fails it")
+        r.note = " ".join(x for x in (r.note, f"[not discriminating] reproduced, not counted: "
+                                      f"{why}.") if x)
+
+
+def discrimination(cfg, rows: list[Row]) -> list[list]:
+    """Rows x rivals, long form (:data:`DISCRIMINATION_COLUMNS`): which physics each verdict
+    tests."""
+    rivals, sledge = cfg.raw.get("rivals", {}), sledgehammers(rows)
+    return [[r.quantity, r.spec["artefact"], r.status, r.evidence, name, rivals[name]["removes"],
+             _fmt_short(v), st, outcome, name in sledge,
+             r.evidence == "independent" and outcome == "fails" and name not in sledge]
+            for r in rows for name, (st, v, outcome, _) in r.rivals.items()]
 
 
 def _level_of(info: dict, variant: str, spec: dict) -> str | None:
@@ -630,8 +649,8 @@ def claim(cfg, rows: list[Row]) -> dict:
     n = {s: len(v) for s, v in by.items()}
     parts = [f"{n['pass']} of {len(ind)} independent checks pass, {n['fail']} fail, "
              f"{n['inconclusive']} inconclusive, {n['not_converged']} not converged."]
-    demoted = [r.quantity for r in rows if r.spec["evidence"] == "independent"
-               and r.evidence == "construction"]
+    demoted = [r.quantity for r in rows if r.evidence == "not_discriminating"]
+    sledge = sledgehammers(rows)
     if agree:
         parts.append(f"Agree (most rows pass): {', '.join(agree)}.")
     if disagree:
@@ -641,7 +660,12 @@ def claim(cfg, rows: list[Row]) -> dict:
     if unscored:
         parts.append(f"Not scored by an independent verdict: {', '.join(unscored)}.")
     if demoted:
-        parts.append(f"Passes not counted (no falsifier that fails): {', '.join(demoted)}.")
+        parts.append(f"Reproduced, not discriminating (no rival fails them; not counted): "
+                     f"{', '.join(demoted)}.")
+    for name, k in sledge.items():
+        parts.append(f"Rival {name} ({cfg.raw['rivals'][name]['removes']}) fails {k} of the "
+                     f"{len(by['pass']) + len(demoted)} counted passes: a sledgehammer, it "
+                     "credits no row by itself.")
     for r in by["fail"]:
         why = r.spec.get("note") or r.note
         parts.append(f"{r.quantity} fails{': ' + why if why else ''}")
@@ -654,7 +678,7 @@ def claim(cfg, rows: list[Row]) -> dict:
     return {"paper": cfg.paper, "claim": kind, "text": " ".join(parts),
             "independent": n, "counts": counts(rows),
             "agree": agree, "disagree": disagree, "inconclusive": unsettled,
-            "unscored": unscored, "not_counted_passes": demoted}
+            "unscored": unscored, "not_discriminating": demoted, "sledgehammers": sledge}
 
 
 def write_evidence(rows: list[Row], path: str | Path) -> Path:
@@ -694,6 +718,8 @@ def validate(paper: str, results_dir: str, config_file: str, profile: str) -> li
         rows = build(cfg, quantities_of(paper), results_dir, files)
         write_table(rows, root / "tables" / "validation.csv")
         write_evidence(rows, root / "tables" / "verdict_evidence.csv")
+        write_csv(root / "tables" / "discrimination.csv", DISCRIMINATION_COLUMNS,
+                  discrimination(cfg, rows))
         write_json(root / "claim.json", claim(cfg, rows))
         write_costs(cfg, results_dir, files)
     return rows

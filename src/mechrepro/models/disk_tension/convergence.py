@@ -12,13 +12,13 @@ from __future__ import annotations
 import numpy as np
 
 from mechrepro.errors import Refusal
+from mechrepro.levels import extrapolate
 
 
 def richardson(f_coarse, f_fine, ratio=2.0, order=4.0):
-    """f_fine + (f_fine - f_coarse) / (ratio^order - 1): removes the leading h^order error
-    of two runs whose element sizes differ by ``ratio``."""
-    f_coarse, f_fine = np.asarray(f_coarse, float), np.asarray(f_fine, float)
-    return f_fine + (f_fine - f_coarse) / (ratio**order - 1.0)
+    """The h^4 Hermite elements' Richardson extrapolation of two runs whose element sizes
+    differ by ``ratio`` (:func:`mechrepro.levels.extrapolate`)."""
+    return extrapolate(np.asarray(f_coarse, float), np.asarray(f_fine, float), ratio, order)
 
 
 def reference_pair(n_elements):

@@ -21,7 +21,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from mechrepro.errors import Refusal
-from mechrepro.target import extrapolate, richardson_error
+from mechrepro.levels import extrapolate, richardson_error
 
 from .chain import Chain
 from .difference import roundoff_load

@@ -16,7 +16,7 @@ from .effects import EFFECTS, Context
 def compute(run: dict) -> dict:
     p = run["parameters"]
     # options.springs = parallel: the rival reading of the textbook's spring as its two equal
-    # halves side by side instead of in series, four times as stiff (falsifiers.stiffer_spring)
+    # halves side by side instead of in series, four times as stiff (rivals.stiffer_spring)
     parallel = run.get("options", {}).get("springs") == "parallel"
     m, k = p["mass"], p["stiffness"] * (4.0 if parallel else 1.0)
     w = np.sqrt(k / m)
