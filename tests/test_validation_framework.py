@@ -139,9 +139,26 @@ def test_a_value_that_drifts_one_level_finer_is_not_converged(paper, edit_config
     assert "one level finer" in row.note
     cfg = load_paper(edit_config("saw_chain", lambda raw: (reported_config(raw), raw["reported"][
         "load_max"].update(finer=False, finer_why="it would cost 4x the baseline"))), "ci")
-    write_runs(cfg, results, lambda run: 100.5)
+    # the baseline as the middle level: the coarser run's value, the error from both sides
+    write_runs(cfg, results, lambda run: 100.2 + 60.0 / K(run))    # K 75 / 150 / 300
     row = {r.quantity: r for r in build(cfg, quantities(), results)}["load_max"]
-    assert "Levels on one side only: no run one level finer (it would cost 4x" in row.note
+    assert row.value == pytest.approx(100.6) and row.error == pytest.approx(0.4)
+    assert "The baseline is the middle level" in row.note and "4x" in row.note
+
+
+def test_a_quantity_that_does_not_exist_is_reported_not_scored(paper):
+    """An extractor that finds no such quantity (an unstable orbit has no steady amplitude)
+    returns NaN with its reason: the row says so and is not decided, never a fail."""
+    cfg, results = paper
+    Q = Quantities("saw_chain")
+    Q.register("load_max", "exact")(lambda R: {"load_max": Reproduced(
+        math.nan, note="the orbit is unstable: no steady amplitude"), "exact": 1.0})
+    Q.register("mass_claim")(lambda R: True)
+    Q.register("order")(lambda R: 1.0)
+    write_runs(cfg, results, lambda run: 100.0)
+    row = {r.quantity: r for r in build(cfg, Q, results)}["load_max"]
+    assert row.status == "inconclusive"
+    assert row.flips == ["no value: the orbit is unstable: no steady amplitude"]
 
 
 def test_a_verdict_without_a_level_below_its_baseline_is_inconclusive(edit_config, tmp_path):

@@ -101,8 +101,8 @@ class PaperConfig:
 
     @property
     def framework_tables(self) -> list[str]:
-        return ["validation", "verdict_evidence", "discrimination", "effect_cost",
-                "job_time"] + (
+        return ["validation", "verdict_evidence", "discrimination", "verification_cost",
+                "effect_cost", "job_time"] + (
             ["cost_of_accuracy"] if self.raw.get("accuracy") else []) + (
             ["effect_marginal_cost"] if self.raw.get("marginal_cost") else []) + (
             ["accuracy_targets"] if any(r.get("target") for r in self.runs.values()) else [])

@@ -16,6 +16,8 @@ import numpy as np
 EFFECT_COST_COLUMNS = ["solver", "effect", "runs", "time_s", "share"]
 JOB_TIME_COLUMNS = ["job", "runs", "solve_s", "job_s"]
 MARGINAL_COLUMNS = ["scene", "solver", "effect", "direct_s", "marginal_s", "with_s", "without_s"]
+VERIFICATION_COLUMNS = ["variant", "kind", "runs", "solve_s", "share", "rows", "decides",
+                        "decided_rows"]
 
 
 def run_times(path: str | Path) -> dict:
@@ -89,3 +91,40 @@ def marginal(paper_root: str | Path, ablations: dict[str, tuple[str, str]]) -> l
                      "marginal_s": full["wall"] - without["wall"],
                      "with_s": full["wall"], "without_s": without["wall"]})
     return rows
+
+
+def verification(paper_root: str | Path, cfg, rows) -> list[dict]:
+    """What each verification variant costs and what it decides: its runs' solve time (and
+    share of the paper's), the verdict rows it re-checks, and those whose verdict its outcome
+    decides -- a level, seed, range end or family member that flips the baseline's verdict
+    or sets the row's error bar, a rival that fails a counted row.  The baseline's own runs
+    (what the figures draw) are the first line."""
+    root = Path(paper_root)
+    solve = {r: run_times(root / "runs" / f"{r}.nc")["wall"] for r in cfg.runs
+             if (root / "runs" / f"{r}.nc").exists()}
+    total = sum(solve.values()) or np.nan
+    by_variant: dict[str, list[str]] = {}
+    for r, rec in cfg.runs.items():
+        by_variant.setdefault(rec.get("variant") or "", []).append(r)
+    out = []
+    for v, runs in sorted(by_variant.items(), key=lambda kv: (kv[0] != "", kv[0])):
+        kind = "baseline" if not v else cfg.variant_info.get(v, {}).get("kind", "ablation")
+        served = [r for r in rows if any(c[0] == v for c in r.checks)] if v else []
+        decided = [r.quantity for r in served if _decides(r, v)]
+        t = sum(solve.get(r, 0.0) for r in runs)
+        out.append({"variant": v or "(baseline)", "kind": kind, "runs": len(runs), "solve_s": t,
+                    "share": t / total, "rows": len(served), "decides": len(decided),
+                    "decided_rows": " ".join(decided)})
+    return out
+
+
+def _decides(row, variant: str) -> bool:
+    """Whether the check ``variant`` of a row decides its verdict (see :func:`verification`)."""
+    if variant.startswith("rival-"):
+        return row.rivals.get(variant[len("rival-"):], ("", 0, ""))[2].startswith("fails")
+    from .validation import verdict
+
+    c = next(c for c in row.checks if c[0] == variant)
+    if c[1] == "level" and row.kind in ("compare", "bound"):
+        return True   # the error bar is made of the levels: without them no verdict
+    return c[3] not in ("excluded", verdict(row.spec, row.value))

@@ -59,6 +59,9 @@ TABLE_TITLES = {
     "effect_marginal_cost": "What each effect costs the solve: its own evaluation (direct) "
                             "beside the scene's time with it minus without it (marginal)",
     "job_time": "Solver jobs: the solves' own time against the job's wall time",
+    "verification_cost": "What verification costs and what it decides: each re-check's runs, "
+                         "their solve time and share, the verdict rows it re-checks and those "
+                         "whose verdict it decides (a flip, the error bar, a failing rival)",
     "cost_of_accuracy": "Cost of accuracy: error against the reference vs time (long form)",
     "verdict_evidence": "Every re-check of every verdict (levels, seeds, range ends, family "
                         "members, rivals)",
@@ -200,7 +203,25 @@ def paper_view(paper: str, results: Path, config_dir: Path, profile: str, out_di
             "claim": claim["claim"], "counts": counts, "sentence": claim_sentence(claim, rows),
             "paper_note": cfg.raw.get("claim_note", ""), "artefacts": list(artefacts.values()),
             "tables": tables, "assumed": assumed,
-            "matrix": matrix_view(root / "tables" / "discrimination.csv", cfg.raw.get("rivals", {}))}
+            "matrix": matrix_view(root / "tables" / "discrimination.csv", cfg.raw.get("rivals", {})),
+            "verification": verification_sentence(root / "tables" / "verification_cost.csv")}
+
+
+def verification_sentence(path: Path) -> str:
+    """What verification costs and what it decides, in one sentence (verification_cost.csv)."""
+    if not path.exists():
+        return ""
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    checks = [r for r in rows if r["kind"] not in ("baseline", "ablation")]
+    base = sum(float(r["solve_s"]) for r in rows if r["kind"] == "baseline")
+    spent = sum(float(r["solve_s"]) for r in checks)
+    idle = [r for r in checks if r["decides"] == "0"]
+    idle_s = sum(float(r["solve_s"]) for r in idle)
+    return (f"Verification re-runs cost {spent:.3g} s of solve beside the baseline's {base:.3g} s; "
+            f"{len(checks) - len(idle)} of {len(checks)} re-checks decide a verdict (a flip, "
+            f"the error bar or a failing rival); the other {len(idle)} ({idle_s:.3g} s) decide "
+            "none.")
 
 
 #: a discrimination cell as the report shows it: (text, css class)
@@ -221,7 +242,8 @@ def matrix_view(path: Path, rivals: dict) -> dict | None:
         row = rows.setdefault(r["quantity"], {
             "quantity": r["quantity"].replace("_", " "), "artefact": artefact_title(r["artefact"]),
             "status": r["status"], "evidence": r["evidence"], "cells": {}, "tests": []})
-        text, css = CELL.get(r["outcome"], ("not run" if r["outcome"].startswith("not run")
+        text, css = CELL.get(r["outcome"][:5] if r["outcome"].startswith("fails") else r["outcome"],
+                             ("not run" if r["outcome"].startswith("not run")
                                             else "not decisive", ""))
         row["cells"][r["rival"]] = (text, css, r["outcome"])
         if r["credits"] == "True":

@@ -435,8 +435,22 @@ def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]
                     row.order = order_f
                 if verdict(spec, fine) != base_status:
                     flips.append(f"{verdict(spec, fine)} one level finer: {_fmt_short(fine)}")
+            elif spec.get("finer") is False and converged:
+                # the baseline is the middle level: the value is the coarser run's, its error
+                # its distance to the baseline plus the baseline's own (both sides)
+                fine, row.value = row.value, levels["coarser"][2]
+                e = abs(row.value - fine) + e
+                how = f"{how}; the baseline {fine:.6g} is the level above this coarser value"
+                row.note = " ".join(x for x in (row.note, f"The baseline is the middle level: "
+                                                f"the value is the coarser level's, the baseline "
+                                                f"run one level finer ({spec['finer_why']}).")
+                                    if x)
+                if verdict(spec, fine) != verdict(spec, row.value):
+                    flips.append(f"{verdict(spec, fine)} one level finer (the baseline run): "
+                                 f"{_fmt_short(fine)}")
+                base_status = row.status = verdict(spec, row.value)
             elif spec["evidence"] == "independent" and converged:
-                why = spec.get("finer_why") or _skipped_why(cfg, "finer", spec)
+                why = _skipped_why(cfg, "finer", spec)
                 row.note = " ".join(x for x in (row.note, f"Levels on one side only: no run "
                                                 f"one level finer ({why}).") if x)
             error += e
@@ -489,7 +503,9 @@ def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]
         ref = levels.get(at)[3] if at and at in levels else base_status if not at else None
         outcome = ("unchanged" if not set(spec["reads"]) & set(info[c[0]].get("changed", ()))
                    else
-                   "no value" if c[3] == "no_value" else
+                   # the statement the paper makes has no value under the rival: failed
+                   "fails (no such quantity under it)" if c[3] == "no_value" and ref == "pass"
+                   else "no value" if c[3] == "no_value" else
                    "passes" if c[3] == "pass" else
                    f"{c[3]}, but the check gives {ref or 'no value'} at that level without it"
                    if ref != "pass" else "fails" if c[3] == "fail" else c[3])
@@ -504,12 +520,16 @@ def _counted_passes(rows) -> list[Row]:
     return [r for r in rows if r.spec["evidence"] == "independent" and r.status == "pass"]
 
 
+def _fails(cell: tuple) -> bool:
+    return cell[2].startswith("fails")
+
+
 def sledgehammers(rows: list[Row]) -> dict[str, int]:
     """{rival: counted passes it fails} of the rivals that fail more than half of their
     paper's counted passes (and at least two): a rival that fails nearly everything tests
     no physics in particular and credits no row by itself."""
     passes = _counted_passes(rows)
-    fails = Counter(name for r in passes for name, c in r.rivals.items() if c[2] == "fails")
+    fails = Counter(name for r in passes for name, c in r.rivals.items() if _fails(c))
     return {name: n for name, n in fails.items() if n >= 2 and 2 * n > len(passes)}
 
 
@@ -520,11 +540,11 @@ def grade_rivals(rows: list[Row]) -> None:
     passes = _counted_passes(rows)
     sledge = sledgehammers(rows)
     for r in passes:
-        credit = [n for n, c in r.rivals.items() if c[2] == "fails" and n not in sledge]
+        credit = [n for n, c in r.rivals.items() if _fails(c) and n not in sledge]
         if credit:
             continue
         r.evidence = "not_discriminating"
-        by = [n for n, c in r.rivals.items() if c[2] == "fails"]
+        by = [n for n, c in r.rivals.items() if _fails(c)]
         why = (f"only the sledgehammer{'s' * (len(by) > 1)} {', '.join(by)} (failing "
                f"{', '.join(str(sledge[n]) for n in by)} of {len(passes)} counted passes) "
                f"fail{'s' * (len(by) == 1)} it" if by else
@@ -539,7 +559,7 @@ def discrimination(cfg, rows: list[Row]) -> list[list]:
     rivals, sledge = cfg.raw.get("rivals", {}), sledgehammers(rows)
     return [[r.quantity, r.spec["artefact"], r.status, r.evidence, name, rivals[name]["removes"],
              _fmt_short(v), st, outcome, name in sledge,
-             r.evidence == "independent" and outcome == "fails" and name not in sledge]
+             r.evidence == "independent" and outcome.startswith("fails") and name not in sledge]
             for r in rows for name, (st, v, outcome, _) in r.rivals.items()]
 
 
@@ -722,6 +742,10 @@ def validate(paper: str, results_dir: str, config_file: str, profile: str) -> li
                   discrimination(cfg, rows))
         write_json(root / "claim.json", claim(cfg, rows))
         write_costs(cfg, results_dir, files)
+        from . import costs
+        write_csv(root / "tables" / "verification_cost.csv", costs.VERIFICATION_COLUMNS,
+                  [[r[c] for c in costs.VERIFICATION_COLUMNS]
+                   for r in costs.verification(root, cfg, rows)])
     return rows
 
 
