@@ -76,9 +76,10 @@ def test_textbook_adds_eq23_which_differs_from_the_difference_method():
 
 
 def test_contributions_carry_the_declared_units():
-    ds = solve(small("fig07_fig08"))
+    runs = {"fig07_fig08": solve(small("fig07_fig08")), "identification": solve(small("identification"))}
     for name, spec in CFG.raw["effects"].items():
         assert set(spec["units"]) == set(spec["contributes"])
+        ds = runs["identification" if name == "identification" else "fig07_fig08"]
         for key, unit in spec["units"].items():
             assert ds[key].attrs["units"] == unit, (name, key)
 

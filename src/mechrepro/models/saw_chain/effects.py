@@ -10,6 +10,8 @@ the names its declaration ``contributes``; it is evaluated, and timed, only when
   Eqs. (7)-(10), loaded as Eqs. (14)-(16), (20)-(22): the converged reference the
   difference method is measured against.
 - ``textbook``: the textbook model of the polygon effect, Eq. (23).
+- ``identification``: not a model of the period but an analysis of the paper's six numbers
+  (:mod:`.identification`): which unstated choices of the authors' program they select.
 """
 from __future__ import annotations
 
@@ -37,6 +39,7 @@ class Context:
     textbook_phase: float
     textbook_mass: float
     polygon: bool = True
+    parameters: dict | None = None
 
 
 @EFFECTS.register("exact_reference")
@@ -82,3 +85,23 @@ def textbook(ctx: Context) -> dict:
                                                 "tight-side acceleration, textbook Eq. (23)"),
         "dynamic_load_x_textbook": var("t", F, "N", "dynamic load, textbook Eq. (23)"),
     }
+
+
+@EFFECTS.register("identification")
+def identification(ctx: Context) -> dict:
+    """The paper's six numbers fitted by every explanation of :mod:`.identification`, at the
+    declared model error and at both ends of its range."""
+    from . import identification as idf
+
+    p, ch = ctx.parameters, ctx.chain
+    design = idf.Design(ch.p1, ch.p2, ch.z, ch.omega, ch.m_L, ch.m_C, ch.M, ch.N)
+    paper = np.array([*p["identification_velocities"], *p["identification_loads"]], float)
+    s0, s1, ds = p["identification_scan_speed"]
+    e0, e1, de = p["identification_scan_stretch"]
+    speeds = np.linspace(s0, s1, int(round((s1 - s0) / ds)) + 1)
+    stretches = np.linspace(e0, e1, int(round((e1 - e0) / de)) + 1)
+    errors = list(p["identification_model_errors"])
+    K = np.arange(2, ch.roundoff_limit() + 1)
+    res = [idf.analyse(design, paper, idf.PRINTED, idf.INPUTS_HALF, me, speeds, stretches, K)
+           for me in errors]
+    return idf.as_variables(res, paper, errors, speeds, stretches)
