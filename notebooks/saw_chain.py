@@ -274,71 +274,75 @@ fig.suptitle(f"peak load to 1e-3: K = {value('plain_k_for_rtol_1e3'):.0f} plain,
 R.save_figure(fig, "richardson")
 
 # %% [markdown]
-# ## Design maps — the guidelines the paper's conclusion promises
+# ## Design maps and rules — the guidelines the paper's conclusion promises
 # Peak dynamic load, relative speed fluctuation and the textbook's error from the exact
-# closed form (`analysis`-free: `design.design_quantities`, the exact derivatives of
-# Eqs. 7–10 on a fixed grid, no K), against z, the pitch ratio p1/p2 (at the paper's
-# p1 + p2), the sprocket speed and the tight-side links M = N. The paper's chain is the
-# star. The scaling laws read off them are the `design_*` rows of the validation table,
-# each checked against the closed form in `tests/test_saw_chain_design.py`.
+# closed form (run `design_maps`: the exact derivatives of Eqs. 7–10 over many designs, no
+# K), against z, the pitch ratio p1/p2 (at the paper's p1 + p2), the sprocket speed and the
+# tight-side links M = N; the peak load against z also at the paper's chain speed (dashed:
+# the cutting-speed specification, more teeth then turn the sprocket slower). The paper's
+# chain is the star. Bottom: the closed-form rules (`design.py`) against the exact solution
+# over teeth 6–40 and pitch ratios 1–2 (table `design_rules.csv`).
 
 # %%
-import time
+from mechrepro.models.saw_chain import design
 
-from mechrepro.models.saw_chain.design import design_quantities
-from mechrepro.models.saw_chain.validation import design_base
-from mechrepro.models.saw_chain.solver import chain_from_run
-
-base = design_base(chain_from_run({"parameters": run_attrs(fig_run)["parameters"]["values_si"],
-                                   "resolution": {"K": 1}}))
-zs = np.arange(3, 61)
-ratios = np.geomspace(0.2, 5.0, 121)
-speeds = np.linspace(1000, 14000, 131) * np.pi / 30
-links = np.arange(2, 101)
-s = base["p1"] + base["p2"]
-started = time.perf_counter()
-maps = {
-    "z": {r: design_quantities(**{**base, "z": zs, "p1": s * r / (1 + r), "p2": s / (1 + r)})
-          for r in (1.0, base["p1"] / base["p2"], 2.0, 5.0)},
-    "ratio": {z: design_quantities(**{**base, "z": z, "p1": s * ratios / (1 + ratios), "p2": s / (1 + ratios)})
-              for z in (4, 8, 16)},
-    "speed": design_quantities(**{**base, "omega": speeds}),
-    "links": design_quantities(**{**base, "M": links, "N": links}),
-}
-n_designs = zs.size * 4 + ratios.size * 3 + speeds.size + links.size
-seconds = time.perf_counter() - started
-paper_q = design_quantities(**base)
-fig, ax = plt.subplots(3, 4, figsize=(14, 9), sharex="col")
+dm = R.run("design_maps")
+R.write_table("design_rules", design.RULE_COLUMNS, design.rule_table(dm))
+zs, ratios, links = dm["map_teeth"].values, dm["map_ratio"].values, dm["map_links"].values
+speeds_rpm = from_si(dm["map_speed"].values, "rpm")
+p = run_attrs(dm)["parameters"]["values_si"]
+paper_x = (p["teeth"], p["tie_strap_pitch"] / p["drive_link_pitch"], from_si(p["sprocket_speed"], "rpm"),
+           p["tie_straps_tight_side"] + p["drive_links_tight_side"])
+fig, ax = plt.subplots(4, 4, figsize=(14, 11.5))
 rows = (("peak_load", "peak load F_dx [N]"), ("speed_fluctuation", "(Rω − v_min)/(Rω)"),
         ("textbook_error", "textbook / exact peak − 1"))
 for i, (q, label) in enumerate(rows):
-    for r, d in maps["z"].items():
-        ax[i, 0].plot(zs, d[q], label=f"p1/p2 = {r:.3g}")
-    for z, d in maps["ratio"].items():
-        ax[i, 1].semilogx(ratios, d[q], label=f"z = {z}")
-    ax[i, 2].plot(speeds * 30 / np.pi, maps["speed"][q])
-    ax[i, 3].plot(2 * links, maps["links"][q])
-    for a, x in zip(ax[i], (base["z"], base["p1"] / base["p2"], base["omega"] * 30 / np.pi,
-                            base["M"] + base["N"])):
-        a.plot(x, paper_q[q], "*", color="tab:red", ms=11, zorder=5)
+    for k, r in enumerate(dm["map_z_ratio"].values):
+        line, = ax[i, 0].plot(zs, dm[f"z_{q}"].values[k], label=f"p1/p2 = {r:.3g}")
+        if q == "peak_load":
+            ax[i, 0].plot(zs, dm["z_peak_load_fixed_chain_speed"].values[k], "--", color=line.get_color())
+    for k, z in enumerate(dm["map_ratio_teeth"].values):
+        ax[i, 1].semilogx(ratios, dm[f"ratio_{q}"].values[k], label=f"z = {int(z)}")
+    ax[i, 2].plot(speeds_rpm, dm[f"speed_{q}"].values)
+    ax[i, 3].plot(2 * links, dm[f"links_{q}"].values)
+    for a, x in zip(ax[i], paper_x):
+        a.plot(x, float(dm[f"paper_{q}"]), "*", color="tab:red", ms=11, zorder=5)
     ax[i, 0].set_ylabel(label)
+ax[0, 0].plot([], [], "k-", label="fixed sprocket speed")
+ax[0, 0].plot([], [], "k--", label="fixed chain speed")
+ax[0, 0].set_yscale("log")
 ax[1, 0].set_yscale("log")
-for a in ax[1:, 2:].ravel():   # independent of speed (and fluctuation of M, N): no offset noise
+for a in ax[1:3, 2:].ravel():   # independent of speed (and fluctuation of M, N): no offset noise
     a.ticklabel_format(axis="y", useOffset=False, style="plain")
-    lo, hi = a.get_lines()[0].get_ydata().min(), a.get_lines()[0].get_ydata().max()
+    hi = a.get_lines()[0].get_ydata().max()
     a.set_ylim(0, 1.3 * max(hi, 1e-12))
-for a in ax[:, 1]:
+for a in ax[:3, 1]:
     a.set_xticks([0.2, 0.5, 1, 2, 5], ["0.2", "0.5", "1", "2", "5"])
     a.minorticks_off()
-ax[-1, 2].set_xticks([2000, 6000, 10000, 14000])
-ax[0, 0].legend(fontsize=7), ax[0, 1].legend(fontsize=7)
-for a, xl in zip(ax[-1], ("teeth z", "p1 / p2 (p1 + p2 fixed)", "sprocket speed [r/min]",
-                          "tight-side links M + N (M = N)")):
+ax[2, 2].set_xticks([2000, 6000, 10000, 14000])
+ax[0, 1].legend(fontsize=7)
+for a, xl in zip(ax[2], ("teeth z", "p1 / p2 (p1 + p2 fixed)", "sprocket speed [r/min]",
+                         "tight-side links M + N (M = N)")):
     a.set_xlabel(xl)
-fig.suptitle(f"saw_chain design maps from the exact solution ({n_designs} designs, "
-             f"{seconds * 1e6 / n_designs:.0f} µs per design); ★ the paper's chain")
+rule_teeth, rule_ratios = dm["rule_teeth"].values, dm["rule_ratio"].values
+err = np.abs(dm["rule_error"].values)
+for k, rule in enumerate(design.RULES):
+    ax[3, 0].semilogy(rule_teeth, np.maximum(err[k].max(axis=1), 1e-17), label=rule)
+    ax[3, 1].semilogy(rule_ratios, np.maximum(err[k].max(axis=0), 1e-17), label=rule)
+ax[3, 0].set(xlabel="teeth z (worst pitch ratio 1-2)", ylabel="|rule / exact − 1|")
+ax[3, 1].set(xlabel="p1 / p2 (worst teeth 6-40)")
+ax[3, 1].set_xscale("linear")
+for a in ax[3, 2:]:       # the legends of the first column, clear of the data
+    a.axis("off")
+ax[3, 2].legend(*ax[0, 0].get_legend_handles_labels(), fontsize=8, loc="center",
+                title="maps over teeth z (first column)", title_fontsize=8)
+ax[3, 3].legend(*ax[3, 0].get_legend_handles_labels(), fontsize=8, loc="center",
+                title="closed-form rules (bottom row)", title_fontsize=8)
+fig.suptitle(f"saw_chain design maps from the exact solution; ★ the paper's chain")
+fig.subplots_adjust(hspace=0.35, wspace=0.3)
 R.save_figure(fig, "design_maps")
-print(f"{n_designs} designs in {seconds * 1e3:.1f} ms")
+for row in design.rule_table(dm):
+    print(f"{row[0]:30s} max |error| {row[2]:.2e} (worst z = {row[3]}, p1/p2 = {row[4]:.2f}): {row[1]}")
 for q in (k for k in table if k.startswith("design_")):
     print(f"{q:52s} {float(table[q]['reproduced_value']):+.5f}  {table[q]['note'].split(':', 1)[1].strip()}")
 

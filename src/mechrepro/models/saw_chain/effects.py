@@ -10,6 +10,8 @@ the names its declaration ``contributes``; it is evaluated, and timed, only when
   Eqs. (7)-(10), loaded as Eqs. (14)-(16), (20)-(22): the converged reference the
   difference method is measured against.
 - ``textbook``: the textbook model of the polygon effect, Eq. (23).
+- ``design_maps``: the exact closed form over many designs and the design rules' errors
+  (:mod:`.design`), beside the paper's chain.
 - ``identification``: not a model of the period but an analysis of the paper's six numbers
   (:mod:`.identification`): which unstated choices of the authors' program they select.
 """
@@ -105,3 +107,46 @@ def identification(ctx: Context) -> dict:
     res = [idf.analyse(design, paper, idf.PRINTED, idf.INPUTS_HALF, me, speeds, stretches, K)
            for me in errors]
     return idf.as_variables(res, paper, errors, speeds, stretches)
+
+
+#: what the design maps span: teeth, pitch ratios p1/p2, sprocket speeds [r/min], links
+#: M = N; the rules are checked over teeth 6-40 and pitch ratios 1-2
+MAP_TEETH, MAP_RATIOS = np.arange(3, 61), np.geomspace(0.2, 5.0, 121)
+MAP_SPEEDS_RPM, MAP_LINKS = np.linspace(1000, 14000, 131), np.arange(2, 101)
+RULE_TEETH, RULE_RATIOS = np.arange(6, 41), np.linspace(1.0, 2.0, 101)
+
+
+@EFFECTS.register("design_maps")
+def design_maps(ctx: Context) -> dict:
+    """Design maps from the exact closed form and the design rules' errors
+    (:func:`.design.design_maps`) around the run's chain."""
+    from . import design
+
+    ch = ctx.chain
+    base = dict(p1=ch.p1, p2=ch.p2, z=ch.z, omega=ch.omega, m_L=ch.m_L, m_C=ch.m_C, M=ch.M, N=ch.N)
+    speeds = MAP_SPEEDS_RPM * np.pi / 30
+    d = design.design_maps(base, MAP_TEETH, MAP_RATIOS, speeds, MAP_LINKS, RULE_TEETH, RULE_RATIOS)
+    units = {"peak_load": "N", "speed_fluctuation": "1", "textbook_error": "1"}
+    long = {"peak_load": "exact peak tight-side load", "speed_fluctuation":
+            "relative speed fluctuation (R omega - v_min)/(R omega)", "textbook_error":
+            "textbook (Eq. 23) peak / exact peak - 1"}
+    dims = {"z": ("map_z_ratio", "map_teeth"), "ratio": ("map_ratio_teeth", "map_ratio"),
+            "speed": "map_speed", "links": "map_links", "paper": ()}
+    out = {"map_teeth": var("map_teeth", MAP_TEETH, "1", "teeth z"),
+           "map_z_ratio": var("map_z_ratio", d["z_ratio"], "1", "pitch ratio p1/p2 of the map over z"),
+           "map_ratio": var("map_ratio", MAP_RATIOS, "1", "pitch ratio p1/p2 (p1 + p2 fixed)"),
+           "map_ratio_teeth": var("map_ratio_teeth", d["ratio_teeth"], "1", "teeth of the map over p1/p2"),
+           "map_speed": var("map_speed", speeds, "rad/s", "sprocket speed"),
+           "map_links": var("map_links", MAP_LINKS, "1", "tight-side tie straps M = drive links N"),
+           "rule": var("rule", np.arange(len(design.RULES)), "1", "design rule: " + ", ".join(
+               f"{i} {k}" for i, k in enumerate(design.RULES))),
+           "rule_teeth": var("rule_teeth", RULE_TEETH, "1", "teeth z of the rules' check"),
+           "rule_ratio": var("rule_ratio", RULE_RATIOS, "1", "pitch ratio p1/p2 of the rules' check"),
+           "rule_error": var(("rule", "rule_teeth", "rule_ratio"), d["rule_error"], "1",
+                             "rule / exact - 1 (p1 + p2, masses, links and speed of the run)"),
+           "z_peak_load_fixed_chain_speed": var(dims["z"], d["z_peak_load_fixed_chain_speed"], "N",
+                                                "exact peak load at the run's chain speed")}
+    for m, dd in dims.items():
+        for q in design.MAP_QUANTITIES:
+            out[f"{m}_{q}"] = var(dd, d[f"{m}_{q}"], units[q], f"{long[q]} ({m} map)")
+    return out

@@ -294,3 +294,25 @@ def design(R):
     """The design rules of the exact solution, at the paper's chain (:func:`.design.design_rules`)."""
     rules = design_rules(design_base(_chain(R.run(FIG))))
     return {k: Reproduced(rules[k][0], rules[k][1]) for k in DESIGN_RULES}
+
+
+@Q.register("design_rule_fluctuation_error", "design_rule_peak_load_error",
+            "design_rule_peak_load_simple_error")
+def rule_errors(R):
+    """Each closed-form design rule's largest error against the exact solution (:mod:`.design`)."""
+    from . import design
+
+    ds = R.run("design_maps")
+    ch = _chain(ds)
+    teeth, ratios = ds["rule_teeth"].values, ds["rule_ratio"].values
+    at = design.rule_errors(design_base(ch), [ch.z], [ch.p1 / ch.p2])
+    out = {}
+    for row, rule in zip(("design_rule_fluctuation_error", "design_rule_peak_load_error",
+                          "design_rule_peak_load_simple_error"), design.RULES):
+        e = ds["rule_error"].values[list(design.RULES).index(rule)]
+        i, j = np.unravel_index(int(np.argmax(np.abs(e))), e.shape)
+        out[row] = Reproduced(float(np.abs(e).max()),
+                              f"{rule}: worst at z = {int(teeth[i])}, p1/p2 = {ratios[j]:.2f} "
+                              f"({e[i, j]:+.2e}); at the paper's chain (z = {ch.z}, p1/p2 = "
+                              f"{ch.p1 / ch.p2:.3f}) {float(at[rule][0, 0]):+.2e}")
+    return out
