@@ -12,6 +12,8 @@ the names its declaration ``contributes``; it is evaluated, and timed, only when
 - ``textbook``: the textbook model of the polygon effect, Eq. (23).
 - ``design_maps``: the exact closed form over many designs and the design rules' errors
   (:mod:`.design`), beside the paper's chain.
+- ``richardson_levels``: the peak load of the difference method at K = 4 ... 32768 and its
+  Richardson extrapolation across them (:mod:`.richardson`), against the exact peak.
 - ``identification``: not a model of the period but an analysis of the paper's six numbers
   (:mod:`.identification`): which unstated choices of the authors' program they select.
 """
@@ -150,3 +152,46 @@ def design_maps(ctx: Context) -> dict:
         for q in design.MAP_QUANTITIES:
             out[f"{m}_{q}"] = var(dd, d[f"{m}_{q}"], units[q], f"{long[q]} ({m} map)")
     return out
+
+
+#: the levels of effect richardson_levels: K = 4 ... 32768, doubling (below the round-off
+#: limit 39 434 of the paper's chain)
+RICHARDSON_K = 2 ** np.arange(2, 16)
+
+
+@EFFECTS.register("richardson_levels")
+def richardson_levels(ctx: Context) -> dict:
+    """The peak load of the difference method at each K of :data:`RICHARDSON_K`, and its
+    Richardson extrapolation from K/4, K/2, K (:func:`.richardson.from_levels`), relative
+    errors against the exact peak (:func:`.design.rule_peak_load`, exact); the work of each
+    as samples computed (2K + 1 per solve), counted."""
+    from dataclasses import replace
+
+    from .design import rule_peak_load
+    from .richardson import from_levels
+    from .solver import load_x
+
+    ch = ctx.chain
+    exact = float(rule_peak_load(ch.p1, ch.p2, ch.z, ch.omega, ch.m_L, ch.m_C, ch.M, ch.N))
+    Ks = RICHARDSON_K[RICHARDSON_K <= ch.roundoff_limit()]
+    plain = np.array([float(load_x(replace(ch, K=int(k))).max()) for k in Ks])
+    nan = np.full(Ks.size, np.nan)
+    value, estimate, samples = nan.copy(), nan.copy(), nan.copy()
+    for i in range(2, Ks.size):
+        e = from_levels(ch, Ks[i - 2:i + 1], plain[i - 2:i + 1])
+        value[i], estimate[i] = e.value, e.estimate
+        samples[i] = float(sum(2 * k + 1 for k in Ks[i - 2:i + 1]))
+    k = "richardson_k"
+    return {
+        k: var(k, Ks, "1", "finest steps per stage K of the level"),
+        "richardson_exact_peak": var((), exact, "N", "exact peak load (closed form at the stage end)"),
+        "richardson_plain_error": var(k, np.abs(plain - exact) / exact, "1",
+                                      "relative error of the plain difference-method peak at K"),
+        "richardson_error": var(k, np.abs(value - exact) / exact, "1",
+                                "relative error of the extrapolation from K/4, K/2, K"),
+        "richardson_estimate": var(k, estimate / np.abs(value), "1",
+                                   "its estimated relative error (levels + round-off bound)"),
+        "richardson_plain_samples": var(k, 2.0 * Ks + 1, "1", "samples computed by one solve at K"),
+        "richardson_samples": var(k, samples, "1",
+                                  "samples computed by the three solves K/4, K/2, K"),
+    }
