@@ -99,3 +99,71 @@ def test_rule_textbook_error_is_the_textbook_effects_own_peak():
     d = q()
     assert d["textbook_peak"] == pytest.approx(tb, rel=1e-6)
     assert d["textbook_error"] == pytest.approx(tb / float(ds["dynamic_load_x_exact"].max()) - 1, rel=1e-5)
+
+
+# --- the design rules in closed form (design.rule_*), against the exact solution ----------
+TEETH, RATIOS = np.arange(6, 41), np.linspace(1.0, 2.0, 101)
+
+
+def test_rule_peak_load_is_the_exact_peak_over_teeth_and_pitch_ratios():
+    """The stage-end closed form is exact (not an approximation): it equals the sampled exact
+    peak over teeth 6-40 and pitch ratios 1-2, and either link being the longer (p1/p2 < 1)."""
+    from mechrepro.models.saw_chain import design
+
+    e = design.rule_errors(BASE, TEETH, RATIOS)["peak_load_stage_end"]
+    assert np.abs(e).max() < 1e-12
+    e_inv = design.rule_errors(BASE, TEETH, 1.0 / RATIOS)["peak_load_stage_end"]
+    assert np.abs(e_inv).max() < 1e-12
+
+
+@pytest.mark.parametrize("over", [{}] + OTHERS)
+def test_rule_peak_load_matches_the_solvers_exact_reference(over):
+    from mechrepro.models.saw_chain import design
+
+    names = dict(p1="tie_strap_pitch", p2="drive_link_pitch", z="teeth", M="tie_straps_tight_side",
+                 N="drive_links_tight_side")
+    ds = solve(run(K=200, effects=["exact_reference"], **{names[k]: v for k, v in over.items()}))
+    assert float(design.rule_peak_load(**{**BASE, **over})) == pytest.approx(
+        float(ds["dynamic_load_x_exact"].max()), rel=1e-12)
+
+
+def test_rule_speed_fluctuation_is_leading_order_in_the_chord_angle():
+    """2 alpha^2 / 27 is within 1.1 % over teeth 6-40 and ratios 1-2, its relative error falls
+    like alpha^2 (halving alpha quarters it), and equal pitches give 2 pi^2 / 27 z^-2."""
+    from mechrepro.models.saw_chain import design
+
+    e = design.rule_errors(BASE, TEETH, RATIOS)["speed_fluctuation_2alpha2_27"]
+    assert np.abs(e).max() < 0.011
+    e40, e80 = (abs(float(design.rule_errors(BASE, [z], [1.0])["speed_fluctuation_2alpha2_27"][0, 0]))
+                for z in (40, 80))
+    assert e80 / e40 == pytest.approx(0.25, abs=0.01)
+    z = 400.0
+    assert float(design.rule_speed_fluctuation(0.01, 0.01, z)) * z**2 == pytest.approx(
+        2 * math.pi**2 / 27, rel=1e-5)
+
+
+def test_rule_peak_load_simple_from_mass_speed_and_pitch():
+    """(M m_L + N m_C) omega^2 p_long / 2 within 5.5 % over teeth 6-40 and ratios 1-2, and
+    exact to O(alpha) as z grows (for a tight side much heavier than the seating link)."""
+    from mechrepro.models.saw_chain import design
+
+    e = design.rule_errors(BASE, TEETH, RATIOS)["peak_load_m_omega2_p_2"]
+    assert np.abs(e).max() < 0.055
+    heavy = {**BASE, "M": 3200, "N": 3200}
+    far = abs(float(design.rule_errors(heavy, [400], [1.0])["peak_load_m_omega2_p_2"][0, 0]))
+    assert far < 1e-4
+
+
+def test_design_maps_effect_and_rule_table():
+    from mechrepro.models.saw_chain import design
+
+    ds = solve(run(K=10, effects=["design_maps"]))
+    rows = {r[0]: r for r in design.rule_table(ds)}
+    assert rows["peak_load_stage_end"][2] < 1e-12
+    assert 0.005 < rows["speed_fluctuation_2alpha2_27"][2] < 0.011
+    assert rows["speed_fluctuation_2alpha2_27"][3] == 6      # worst at the fewest teeth
+    # at a fixed chain speed the peak load falls like z^-2 (the map's dashed lines)
+    z = ds["map_teeth"].values
+    F = ds["z_peak_load_fixed_chain_speed"].values[1]
+    slope = np.polyfit(np.log(z[z >= 20]), np.log(F[z >= 20]), 1)[0]
+    assert slope == pytest.approx(-2.0, abs=0.05)

@@ -146,3 +146,20 @@ def test_plain_method_needs_33x_the_K_for_1e3_and_cannot_reach_1e5(chain_exact):
     assert K_plain == 4273 and to_accuracy(chain, 1e-3).K[-1] == 128
     assert equivalent_K(chain, exact * (1 - 1e-5))[0] is None
     assert to_accuracy(chain, 1e-5).K[-1] == 1024
+
+
+def test_richardson_run_is_what_the_figures_draw(chain_exact):
+    """Effect richardson_levels (the notebook's figures read it, no solve of their own): its
+    exact peak is the 60-digit one, its errors are the plain and extrapolated peaks' true
+    errors, and its work counts 2K + 1 samples per solve."""
+    chain, exact = chain_exact
+    ds = solve(run(K=10, effects=["richardson_levels"]))
+    assert float(ds["richardson_exact_peak"]) == pytest.approx(exact, rel=1e-13)
+    Ks = ds["richardson_k"].values
+    i = int(np.flatnonzero(Ks == 128)[0])
+    plain = abs(float(load_x(replace(chain, K=128)).max()) - exact) / exact
+    assert float(ds["richardson_plain_error"][i]) == pytest.approx(plain, rel=1e-9)
+    assert float(ds["richardson_error"][i]) == pytest.approx(
+        abs(extrapolate_extreme(chain, 128).value - exact) / exact, rel=1e-6)
+    assert float(ds["richardson_samples"][i]) == (2 * 32 + 1) + (2 * 64 + 1) + (2 * 128 + 1)
+    assert np.isnan(ds["richardson_error"].values[:2]).all()      # K = 4, 8: no K/4 level

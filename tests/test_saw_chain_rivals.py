@@ -53,14 +53,14 @@ def test_constant_speed_is_the_pitch_line_speed_with_no_load():
     np.testing.assert_allclose(solve(only)["tight_side_velocity"].values, v, rtol=1e-15)
 
 
-def test_the_closer_to_measurement_row_is_checked_under_the_constant_speed_rival():
+def test_the_closer_to_measurement_row_is_not_counted_and_says_why():
+    """Issue 63: the constant-speed rival (no paper number edited) passes the comparison of
+    time means, so the row is declared construction, with the rival named in its reason."""
     cfg = load_paper(CONFIG, "ci")
     assert cfg.raw["falsifiers"]["constant_speed"]["options"] == {"polygon": False}
     spec = cfg.reported["proposed_closer_to_measurement_than_textbook"]
-    assert spec["falsifier"] == "constant_speed"
-    fal = cfg.runs["fig07_fig08@falsify-constant_speed"]
-    assert fal["options"]["polygon"] is False
-    assert fal["parameters"] == cfg.runs["fig07_fig08"]["parameters"]   # no paper number edited
+    assert spec["evidence"] == "construction" and "falsifier" not in spec
+    assert "constant-speed rival" in spec["evidence_why"]
 
 
 @pytest.fixture(scope="module")
@@ -73,12 +73,9 @@ def fig07_rows(tmp_path_factory):
 
 def test_a_pass_the_constant_speed_rival_also_passes_is_not_counted(fig07_rows):
     """Issue 63: "closer to the measurement than the textbook" was counted, but the rival
-    without the polygon effect passes it too (the same mean, 14.3838 m/s): graded
-    construction by the framework, with the reason in its note."""
+    without the polygon effect passes it too (the same mean, 14.3838 m/s): construction."""
     row = fig07_rows["proposed_closer_to_measurement_than_textbook"]
     assert row.status == "pass" and row.evidence == "construction"
-    assert row.falsifier.startswith("constant_speed: pass")
-    assert "does not make it fail" in row.cells()[9]
     # the band's width does discriminate: its falsifier (one pitch) fails it
     fl = fig07_rows["tight_side_velocity_fluctuation"]
     assert fl.status == "pass" and fl.evidence == "independent", fl.cells()
@@ -86,6 +83,8 @@ def test_a_pass_the_constant_speed_rival_also_passes_is_not_counted(fig07_rows):
 
 def _every_counted_row_under(falsifier):
     def edit(raw):
+        # the closer-to-measurement row as it was counted, to show what the rival does to it
+        raw["reported"]["proposed_closer_to_measurement_than_textbook"]["evidence"] = "independent"
         for spec in raw["reported"].values():
             if (spec["evidence"] == "independent" and spec.get("kind", "compare") != "info"
                     and spec["artefact"] in ("fig07", "fig08")):

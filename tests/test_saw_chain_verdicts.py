@@ -147,5 +147,5 @@ def test_text_about_the_paper_numbers_comes_from_the_run():
     nb = (ROOT / "notebooks" / "saw_chain.py").read_text()
     for stale in ("reproduces both ends", "re-checked at 2K", "matches none"):
         assert stale not in nb, stale
-    # the notebook prints the comparison of the pair-chord band with the paper's from the run
-    assert 'value("velocity_band_max_pair_chord")' in nb and "rounds to" in nb
+    # the notebook prints the preferred explanation's band beside the paper's from the run
+    assert "rounds to" in nb and "preferred explanation" in nb

@@ -135,3 +135,135 @@ def design_rules(base: dict) -> dict:
             f"z = 60: {float(design_quantities(**{**base, 'z': 60})['textbook_error']):.3f}; p1/p2 = 5: "
             f"{float(at_ratio(5.0)['textbook_error']):.3f}"),
     }
+
+
+def chord_angle(p, R):
+    """Angle a link of pitch p subtends on the pitch circle, 2 asin(p / 2R) (Eqs. 5-6) [rad]."""
+    return 2.0 * np.arcsin(p / (2.0 * R))
+
+
+def rule_speed_fluctuation(p1, p2, z):
+    """Relative speed fluctuation (R omega - v_min) / (R omega) ~ 2 alpha^2 / 27, alpha the
+    chord angle of the longer link (closed form, leading order in alpha: relative error
+    O(alpha^2), 1.1 % at z = 6, p1/p2 = 2).
+
+    While a link of length L seats, its leading hinge runs on the pitch circle
+    (phi = omega t) and its trailing one on the tight side (Eqs. 7, 9), so with
+    lambda = L / R the trailing hinge moves at
+    v / (R omega) = cos phi + (1 - cos phi) sin phi / sqrt(lambda^2 - (1 - cos phi)^2)
+                  = 1 - phi^2 / 2 + phi^3 / (2 lambda) + O(phi^4),
+    lowest at phi = 2 lambda / 3 with 1 - 2 lambda^2 / 27; lambda -> alpha, and the
+    longer link dips deeper.  Equal pitches on 2z links: alpha = pi / z, z^2 x fluctuation
+    -> 2 pi^2 / 27 (row design_fluctuation_equal_pitch_constant)."""
+    R = _radius(*(np.asarray(a, float) for a in (p1, p2, z)))
+    return 2.0 * chord_angle(np.maximum(p1, p2), R) ** 2 / 27.0
+
+
+def _stage_end_load(p, m_link, m_tight, R, omega):
+    """F_dx at the end of the stage in which a link of pitch p and mass m_link seats."""
+    a = chord_angle(p, R)
+    return omega**2 * R * ((m_tight + 0.5 * m_link) * np.tan(0.5 * a) - 0.5 * m_link * np.sin(a))
+
+
+def rule_peak_load(p1, p2, z, omega, m_L, m_C, M, N):
+    """Peak tight-side load, exact closed form: the larger of the two stage ends,
+    F = omega^2 R [(M m_L + N m_C + m/2) tan(alpha/2) - m sin(alpha) / 2], alpha = 2 asin(p/2R)
+    the seating link's chord angle, m its mass (Eqs. 14-16, 20-22 at t1-, t2-).
+
+    At the stage end the trailing hinge reaches the tangent point: with g(phi) the velocity
+    ratio of :func:`rule_speed_fluctuation` and lambda = 2 sin(alpha/2),
+    g'(alpha) = (1 - cos alpha) / sin alpha = tan(alpha/2), so a_trail = R omega^2 tan(alpha/2);
+    the leading hinge's a_x = -R omega^2 sin(alpha), the midpoint's the mean of the two.
+    The load peaks there (the trailing hinge's acceleration grows through the stage;
+    checked against the sampled exact solution in the tests)."""
+    args = [np.asarray(a, float) for a in (p1, p2, z, omega, m_L, m_C, M, N)]
+    p1, p2, z, omega, m_L, m_C, M, N = np.broadcast_arrays(*args)
+    R, m_tight = _radius(p1, p2, z), tight_side_mass(M, N, m_L, m_C)
+    return np.maximum(_stage_end_load(p1, m_L, m_tight, R, omega),
+                      _stage_end_load(p2, m_C, m_tight, R, omega))
+
+
+def rule_peak_load_simple(p1, p2, M, N, m_L, m_C, omega):
+    """Peak load ~ (M m_L + N m_C) omega^2 p_long / 2: :func:`rule_peak_load` to leading order
+    in alpha (R tan(alpha/2) -> p/2; the seating link's own terms cancel to O(alpha^2)): from
+    the tight side's mass, the sprocket speed and the longer pitch, independent of z."""
+    return tight_side_mass(M, N, m_L, m_C) * np.asarray(omega, float) ** 2 * np.maximum(p1, p2) / 2.0
+
+
+#: the rules checked against the exact solution over teeth and pitch ratios (rule_errors)
+RULES = {"speed_fluctuation_2alpha2_27": "speed_fluctuation",
+         "peak_load_stage_end": "peak_load",
+         "peak_load_m_omega2_p_2": "peak_load"}
+
+
+def rule_errors(base: dict, teeth, ratios, n=257) -> dict:
+    """Relative error of each rule of :data:`RULES` against the exact solution
+    (:func:`design_quantities` on ``n`` angles per stage) over teeth x pitch ratios p1/p2 at
+    the base's p1 + p2, masses and links.  Returns {rule: array [teeth, ratios]}."""
+    s = base["p1"] + base["p2"]
+    z = np.asarray(teeth, float)[:, None]
+    r = np.asarray(ratios, float)[None, :]
+    d = {**base, "z": z, "p1": s * r / (1 + r), "p2": s / (1 + r)}
+    exact = design_quantities(**d, n=n)
+    rules = {"speed_fluctuation_2alpha2_27": rule_speed_fluctuation(d["p1"], d["p2"], z),
+             "peak_load_stage_end": rule_peak_load(**d),
+             "peak_load_m_omega2_p_2": rule_peak_load_simple(d["p1"], d["p2"], d["M"], d["N"],
+                                                              d["m_L"], d["m_C"], d["omega"])}
+    return {k: v / exact[RULES[k]] - 1.0 for k, v in rules.items()}
+
+
+#: the quantities each design map shows (rows of figure design_maps)
+MAP_QUANTITIES = ("peak_load", "speed_fluctuation", "textbook_error")
+#: the pitch ratios of the map over teeth, the teeth of the map over pitch ratios
+Z_RATIOS, RATIO_TEETH = (1.0, None, 2.0, 5.0), (4, 8, 16)   # None: the base design's ratio
+
+
+def design_maps(base: dict, teeth, ratios, speeds, links, rule_teeth, rule_ratios) -> dict:
+    """The design maps of figure design_maps and the rules' errors (:func:`rule_errors`), as
+    plain arrays: over teeth (at the ratios of :data:`Z_RATIOS`, and the peak load also at
+    the base's chain speed z (p1 + p2) omega / 2 pi, the cutting-speed specification), over
+    pitch ratios p1/p2 at p1 + p2 fixed (at :data:`RATIO_TEETH`), over sprocket speed and
+    over the tight side's links M = N, and at the base design itself."""
+    s = base["p1"] + base["p2"]
+    r0 = base["p1"] / base["p2"]
+    zr = np.array([r0 if r is None else r for r in Z_RATIOS])[:, None]
+    z = np.asarray(teeth, float)[None, :]
+    by_z = {**base, "z": z, "p1": s * zr / (1 + zr), "p2": s / (1 + zr)}
+    ra = np.asarray(ratios, float)[None, :]
+    rz = np.asarray(RATIO_TEETH, float)[:, None]
+    out = {"z_ratio": zr[:, 0], "ratio_teeth": rz[:, 0]}
+    maps = {"z": design_quantities(**by_z),
+            "ratio": design_quantities(**{**base, "z": rz, "p1": s * ra / (1 + ra), "p2": s / (1 + ra)}),
+            "speed": design_quantities(**{**base, "omega": np.asarray(speeds, float)}),
+            "links": design_quantities(**{**base, "M": np.asarray(links), "N": np.asarray(links)}),
+            "paper": design_quantities(**base)}
+    for m, d in maps.items():
+        for q in MAP_QUANTITIES:
+            out[f"{m}_{q}"] = d[q]
+    out["z_peak_load_fixed_chain_speed"] = design_quantities(
+        **{**by_z, "omega": base["omega"] * base["z"] / z})["peak_load"]
+    errors = rule_errors(base, rule_teeth, rule_ratios)
+    out["rule_error"] = np.stack([errors[k] for k in RULES])
+    return out
+
+
+#: each rule's formula, as the table prints it
+RULE_FORMULAS = {
+    "speed_fluctuation_2alpha2_27": "(R omega - v_min)/(R omega) ~ 2 alpha_long^2 / 27, alpha = 2 asin(p / 2R)",
+    "peak_load_stage_end": "F_peak = omega^2 R [(M m_L + N m_C + m/2) tan(alpha/2) - m sin(alpha)/2], longer link's stage end",
+    "peak_load_m_omega2_p_2": "F_peak ~ (M m_L + N m_C) omega^2 p_long / 2",
+}
+RULE_COLUMNS = ["rule", "formula", "max_abs_error", "worst_teeth", "worst_ratio", "teeth", "ratios"]
+
+
+def rule_table(ds) -> list[list]:
+    """Rows of ``design_rules.csv`` from a run of effect ``design_maps``: each rule's largest
+    relative error against the exact solution over the checked teeth and pitch ratios."""
+    teeth, ratios = ds["rule_teeth"].values, ds["rule_ratio"].values
+    rows = []
+    for k, rule in enumerate(RULES):
+        e = np.abs(ds["rule_error"].values[k])
+        i, j = np.unravel_index(int(np.argmax(e)), e.shape)
+        rows.append([rule, RULE_FORMULAS[rule], float(e.max()), int(teeth[i]), float(ratios[j]),
+                     f"{int(teeth[0])}-{int(teeth[-1])}", f"{ratios[0]:g}-{ratios[-1]:g}"])
+    return rows

@@ -10,6 +10,12 @@ the names its declaration ``contributes``; it is evaluated, and timed, only when
   Eqs. (7)-(10), loaded as Eqs. (14)-(16), (20)-(22): the converged reference the
   difference method is measured against.
 - ``textbook``: the textbook model of the polygon effect, Eq. (23).
+- ``design_maps``: the exact closed form over many designs and the design rules' errors
+  (:mod:`.design`), beside the paper's chain.
+- ``richardson_levels``: the peak load of the difference method at K = 4 ... 32768 and its
+  Richardson extrapolation across them (:mod:`.richardson`), against the exact peak.
+- ``identification``: not a model of the period but an analysis of the paper's six numbers
+  (:mod:`.identification`): which unstated choices of the authors' program they select.
 """
 from __future__ import annotations
 
@@ -37,6 +43,7 @@ class Context:
     textbook_phase: float
     textbook_mass: float
     polygon: bool = True
+    parameters: dict | None = None
 
 
 @EFFECTS.register("exact_reference")
@@ -81,4 +88,110 @@ def textbook(ctx: Context) -> dict:
         "tight_side_acceleration_textbook": var("t", a, "m/s2",
                                                 "tight-side acceleration, textbook Eq. (23)"),
         "dynamic_load_x_textbook": var("t", F, "N", "dynamic load, textbook Eq. (23)"),
+    }
+
+
+@EFFECTS.register("identification")
+def identification(ctx: Context) -> dict:
+    """The paper's six numbers fitted by every explanation of :mod:`.identification`, at the
+    declared model error and at both ends of its range."""
+    from . import identification as idf
+
+    p, ch = ctx.parameters, ctx.chain
+    design = idf.Design(ch.p1, ch.p2, ch.z, ch.omega, ch.m_L, ch.m_C, ch.M, ch.N)
+    paper = np.array([*p["identification_velocities"], *p["identification_loads"]], float)
+    s0, s1, ds = p["identification_scan_speed"]
+    e0, e1, de = p["identification_scan_stretch"]
+    speeds = np.linspace(s0, s1, int(round((s1 - s0) / ds)) + 1)
+    stretches = np.linspace(e0, e1, int(round((e1 - e0) / de)) + 1)
+    errors = list(p["identification_model_errors"])
+    K = np.arange(2, ch.roundoff_limit() + 1)
+    res = [idf.analyse(design, paper, idf.PRINTED, idf.INPUTS_HALF, me, speeds, stretches, K)
+           for me in errors]
+    return idf.as_variables(res, paper, errors, speeds, stretches)
+
+
+#: what the design maps span: teeth, pitch ratios p1/p2, sprocket speeds [r/min], links
+#: M = N; the rules are checked over teeth 6-40 and pitch ratios 1-2
+MAP_TEETH, MAP_RATIOS = np.arange(3, 61), np.geomspace(0.2, 5.0, 121)
+MAP_SPEEDS_RPM, MAP_LINKS = np.linspace(1000, 14000, 131), np.arange(2, 101)
+RULE_TEETH, RULE_RATIOS = np.arange(6, 41), np.linspace(1.0, 2.0, 101)
+
+
+@EFFECTS.register("design_maps")
+def design_maps(ctx: Context) -> dict:
+    """Design maps from the exact closed form and the design rules' errors
+    (:func:`.design.design_maps`) around the run's chain."""
+    from . import design
+
+    ch = ctx.chain
+    base = dict(p1=ch.p1, p2=ch.p2, z=ch.z, omega=ch.omega, m_L=ch.m_L, m_C=ch.m_C, M=ch.M, N=ch.N)
+    speeds = MAP_SPEEDS_RPM * np.pi / 30
+    d = design.design_maps(base, MAP_TEETH, MAP_RATIOS, speeds, MAP_LINKS, RULE_TEETH, RULE_RATIOS)
+    units = {"peak_load": "N", "speed_fluctuation": "1", "textbook_error": "1"}
+    long = {"peak_load": "exact peak tight-side load", "speed_fluctuation":
+            "relative speed fluctuation (R omega - v_min)/(R omega)", "textbook_error":
+            "textbook (Eq. 23) peak / exact peak - 1"}
+    dims = {"z": ("map_z_ratio", "map_teeth"), "ratio": ("map_ratio_teeth", "map_ratio"),
+            "speed": "map_speed", "links": "map_links", "paper": ()}
+    out = {"map_teeth": var("map_teeth", MAP_TEETH, "1", "teeth z"),
+           "map_z_ratio": var("map_z_ratio", d["z_ratio"], "1", "pitch ratio p1/p2 of the map over z"),
+           "map_ratio": var("map_ratio", MAP_RATIOS, "1", "pitch ratio p1/p2 (p1 + p2 fixed)"),
+           "map_ratio_teeth": var("map_ratio_teeth", d["ratio_teeth"], "1", "teeth of the map over p1/p2"),
+           "map_speed": var("map_speed", speeds, "rad/s", "sprocket speed"),
+           "map_links": var("map_links", MAP_LINKS, "1", "tight-side tie straps M = drive links N"),
+           "rule": var("rule", np.arange(len(design.RULES)), "1", "design rule: " + ", ".join(
+               f"{i} {k}" for i, k in enumerate(design.RULES))),
+           "rule_teeth": var("rule_teeth", RULE_TEETH, "1", "teeth z of the rules' check"),
+           "rule_ratio": var("rule_ratio", RULE_RATIOS, "1", "pitch ratio p1/p2 of the rules' check"),
+           "rule_error": var(("rule", "rule_teeth", "rule_ratio"), d["rule_error"], "1",
+                             "rule / exact - 1 (p1 + p2, masses, links and speed of the run)"),
+           "z_peak_load_fixed_chain_speed": var(dims["z"], d["z_peak_load_fixed_chain_speed"], "N",
+                                                "exact peak load at the run's chain speed")}
+    for m, dd in dims.items():
+        for q in design.MAP_QUANTITIES:
+            out[f"{m}_{q}"] = var(dd, d[f"{m}_{q}"], units[q], f"{long[q]} ({m} map)")
+    return out
+
+
+#: the levels of effect richardson_levels: K = 4 ... 32768, doubling (below the round-off
+#: limit 39 434 of the paper's chain)
+RICHARDSON_K = 2 ** np.arange(2, 16)
+
+
+@EFFECTS.register("richardson_levels")
+def richardson_levels(ctx: Context) -> dict:
+    """The peak load of the difference method at each K of :data:`RICHARDSON_K`, and its
+    Richardson extrapolation from K/4, K/2, K (:func:`.richardson.from_levels`), relative
+    errors against the exact peak (:func:`.design.rule_peak_load`, exact); the work of each
+    as samples computed (2K + 1 per solve), counted."""
+    from dataclasses import replace
+
+    from .design import rule_peak_load
+    from .richardson import from_levels
+    from .solver import load_x
+
+    ch = ctx.chain
+    exact = float(rule_peak_load(ch.p1, ch.p2, ch.z, ch.omega, ch.m_L, ch.m_C, ch.M, ch.N))
+    Ks = RICHARDSON_K[RICHARDSON_K <= ch.roundoff_limit()]
+    plain = np.array([float(load_x(replace(ch, K=int(k))).max()) for k in Ks])
+    nan = np.full(Ks.size, np.nan)
+    value, estimate, samples = nan.copy(), nan.copy(), nan.copy()
+    for i in range(2, Ks.size):
+        e = from_levels(ch, Ks[i - 2:i + 1], plain[i - 2:i + 1])
+        value[i], estimate[i] = e.value, e.estimate
+        samples[i] = float(sum(2 * k + 1 for k in Ks[i - 2:i + 1]))
+    k = "richardson_k"
+    return {
+        k: var(k, Ks, "1", "finest steps per stage K of the level"),
+        "richardson_exact_peak": var((), exact, "N", "exact peak load (closed form at the stage end)"),
+        "richardson_plain_error": var(k, np.abs(plain - exact) / exact, "1",
+                                      "relative error of the plain difference-method peak at K"),
+        "richardson_error": var(k, np.abs(value - exact) / exact, "1",
+                                "relative error of the extrapolation from K/4, K/2, K"),
+        "richardson_estimate": var(k, estimate / np.abs(value), "1",
+                                   "its estimated relative error (levels + round-off bound)"),
+        "richardson_plain_samples": var(k, 2.0 * Ks + 1, "1", "samples computed by one solve at K"),
+        "richardson_samples": var(k, samples, "1",
+                                  "samples computed by the three solves K/4, K/2, K"),
     }

@@ -179,7 +179,7 @@ def compute(run: dict) -> dict:
     opts = run.get("options", {})
     polygon = opts.get("polygon", True)
     ctx = Context(chain=chain, t=chain.time(), textbook_phase=p["textbook_phase"],
-                  textbook_mass=p["textbook_mass"], polygon=polygon)
+                  textbook_mass=p["textbook_mass"], polygon=polygon, parameters=p)
     if polygon:
         method = difference_method(chain, opts.get("beyond_roundoff_limit", False),
                                    opts.get("loads", True))

@@ -15,9 +15,8 @@ from mechrepro.units import to_si
 from mechrepro.validation import Quantities, Reproduced
 
 from .analysis import (equivalent_K, error_model_optimum, interior_minimum, observed_order,
-                       pitch_radius_readings, textbook_constants_for_range, time_mean,
-                       velocity_band)
-from .design import design_quantities, design_rules
+                       textbook_constants_for_range, time_mean)
+from .design import design_rules
 from .richardson import to_accuracy
 from .solver import chain_from_run, load_x
 
@@ -48,37 +47,57 @@ def velocity_band_rows(R):
     lo, hi = R.paper_value("tight_side_velocity_min"), R.paper_value("tight_side_velocity_max")
     note = (f"K={_K(ds)}. Rigid kinematics bound the speed by R*omega = {R_omega:.4f} m/s (Eq. 1); "
             f"the paper's band lies higher at both ends by {lo / v.min():.4f} and "
-            f"{hi / v.max():.4f}: see velocity_band_*_pair_chord for a pitch-radius reading "
-            f"that comes within 0.07 % of both ends (chosen because it matches).")
+            f"{hi / v.max():.4f}: one cause for both ends, weighed against the other explanations "
+            f"in the identification rows.")
     return {"tight_side_velocity_min": Reproduced(float(v.min()), note),
             "tight_side_velocity_max": Reproduced(float(v.max()), note),
             "tight_side_velocity_fluctuation": float(v.max() - v.min())}
 
 
-@Q.register("velocity_band_min_pair_chord", "velocity_band_max_pair_chord")
-def velocity_band_candidate(R):
-    ch = _chain(R.run(FIG))
-    readings = pitch_radius_readings(ch.p1, ch.p2, ch.z)
-    bands = {k: velocity_band(ch.p1, ch.p2, ch.omega, r) for k, r in readings.items()}
-    others = "; ".join(f"{k} R={_in(r, 'mm'):.3f} mm: {bands[k][0]:.4f}-{bands[k][1]:.4f} m/s"
-                       for k, r in readings.items())
-    lo, hi = bands["pair_chord"]
-    # the alternative, a uniform speed offset matching the band's top, scales every load by
-    # its square: compare the converged loads (exact closed form) with the paper's
-    base = design_base(ch)
-    scale = R.paper_value("tight_side_velocity_max") / (ch.R * ch.omega)
-    at = {k: design_quantities(**{**base, "omega": ch.omega * f}) for k, f in (("model", 1.0), ("offset", scale))}
-    F_min = R.paper_value("dynamic_load_min")
-    offset = (f"A uniform speed offset x{scale:.4f} would match the band too, but raises every load by "
-              f"{scale**2 - 1:.1%}: the converged minimum becomes {float(at['offset']['min_load']):.2f} N, "
-              f"{abs(float(at['offset']['min_load']) / F_min - 1):.1%} from the paper's {F_min} N, against "
-              f"{abs(float(at['model']['min_load']) / F_min - 1):.1%} without it (the pair chord changes R, "
-              f"not the loads of the positions). ")
-    return {"velocity_band_min_pair_chord": Reproduced(
-                lo, f"{offset}Exact kinematics with each reading of R: {others}"),
-            "velocity_band_max_pair_chord": Reproduced(
-                hi, f"R*omega with the pair-chord reading: {hi:.4f} m/s, which rounds to {hi:.2f}, "
-                    f"not the paper's 14.77 (0.07 % off); the minimum {lo:.4f} rounds to {lo:.2f}.")}
+@Q.register("identification_preferred_weight", "identification_speed", "identification_stretch")
+def identified(R):
+    """What the paper's six numbers select (effect identification, :mod:`.identification`)."""
+    from . import identification as idf
+
+    ds = R.run("identification")
+    rpm = _in(_chain(ds).omega, "rpm")
+    rows = idf.table(ds, rpm)
+    by_me = {}
+    for r in rows:
+        by_me.setdefault(r[0], []).append(dict(zip(idf.COLUMNS, r)))
+    readings = idf.reading_table(ds, rpm)
+    errors = [float(x) for x in ds["model_error"].values]
+
+    def best(me):
+        return min(by_me[me], key=lambda r: r["chi2"])
+
+    def weight(me):
+        w = [r for r in readings if r[0] == me]
+        top = max(w, key=lambda r: r[3])
+        return top[1], top[3], sorted(w, key=lambda r: -r[3])[1]
+
+    b = best(errors[0])
+    reading, w0, runner = weight(errors[0])
+    printed = next(r for r in by_me[errors[0]] if r["explanation"] == "as printed")
+    ends = "; ".join(f"at model error {me:.1%}: {weight(me)[0]} {weight(me)[1]:.3f}, best "
+                     f"explanation '{best(me)['explanation']}' ({best(me)['reading']})"
+                     for me in errors[1:])
+    why = (f"at model error {errors[0]:.1%}: {reading} {w0:.3f} (next {runner[1]} {runner[3]:.3g}); "
+           f"{ends}. Best explanation '{b['explanation']}' with {b['reading']}: chi^2 {b['chi2']:.2f} "
+           f"(p = {b['p_value']:.2f}) against {printed['chi2']:.1f} as printed (likelihood ratio "
+           f"{math.exp((printed['chi2'] - b['chi2']) / 2):.3g}); the band's two ends share this one "
+           f"cause and count as one finding")
+    return {
+        "identification_preferred_weight": Reproduced(w0, why),
+        "identification_speed": Reproduced(
+            b["speed_rpm"], f"{b['speed_rpm']:.0f} r/min, 68 % {b['speed_lo_68']:.0f}-"
+                            f"{b['speed_hi_68']:.0f}, 95 % {b['speed_lo_95']:.0f}-{b['speed_hi_95']:.0f} "
+                            f"({b['explanation']}, {b['reading']}, model error {errors[0]:.1%}; the "
+                            f"paper's 209.4 N then at K = {b['K_209_4']})"),
+        "identification_stretch": Reproduced(
+            b["stretch_pct"] / 100, f"{b['stretch_pct']:.2f} %, 68 % {b['stretch_lo_68']:.2f}-"
+                                    f"{b['stretch_hi_68']:.2f} % (scan 0-3 %)"),
+    }
 
 
 @Q.register("measured_velocity_mean")
@@ -275,3 +294,25 @@ def design(R):
     """The design rules of the exact solution, at the paper's chain (:func:`.design.design_rules`)."""
     rules = design_rules(design_base(_chain(R.run(FIG))))
     return {k: Reproduced(rules[k][0], rules[k][1]) for k in DESIGN_RULES}
+
+
+@Q.register("design_rule_fluctuation_error", "design_rule_peak_load_error",
+            "design_rule_peak_load_simple_error")
+def rule_errors(R):
+    """Each closed-form design rule's largest error against the exact solution (:mod:`.design`)."""
+    from . import design
+
+    ds = R.run("design_maps")
+    ch = _chain(ds)
+    teeth, ratios = ds["rule_teeth"].values, ds["rule_ratio"].values
+    at = design.rule_errors(design_base(ch), [ch.z], [ch.p1 / ch.p2])
+    out = {}
+    for row, rule in zip(("design_rule_fluctuation_error", "design_rule_peak_load_error",
+                          "design_rule_peak_load_simple_error"), design.RULES):
+        e = ds["rule_error"].values[list(design.RULES).index(rule)]
+        i, j = np.unravel_index(int(np.argmax(np.abs(e))), e.shape)
+        out[row] = Reproduced(float(np.abs(e).max()),
+                              f"{rule}: worst at z = {int(teeth[i])}, p1/p2 = {ratios[j]:.2f} "
+                              f"({e[i, j]:+.2e}); at the paper's chain (z = {ch.z}, p1/p2 = "
+                              f"{ch.p1 / ch.p2:.3f}) {float(at[rule][0, 0]):+.2e}")
+    return out
