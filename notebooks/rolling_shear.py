@@ -246,6 +246,58 @@ for r in rows2:
 R.write_table("lever_scan", *V.lever_scan(opt))
 
 # %% [markdown]
+# ## Design under buildability: H against the force transmission
+# Scene `design` (front.py): lever sets of the configured member (original levers
+# calibrated on 1.4341) sampled over a wide box and refined, each judged by its H and its
+# worst transmission angle over the stroke; grey the designs that cannot be built (a loop
+# does not close inside the paper's ranges, or a constraint of constraints.py breaks),
+# blue those that can, the line the Pareto front; the paper's original and Table II designs
+# and the design we recommend (buildable at the strict ends of the constraints' ranges).
+
+# %%
+des = R.run("design")
+strict = V.strict_ends(R)
+P = R.cfg.raw["parameters"]
+cons = dict(clearance=float(P["clearance"]["value"]), mu_min=float(P["transmission_min"]["value"]),
+            plate_top=float(P["plate_thickness_max"]["value"]), opening=float(P["opening"]["value"]))
+fig, ax = plt.subplots(1, 2, figsize=(12, 4.2))
+sb = des["sample_buildable"].values == 1.0
+sH, smu = des["sample_H"].values, des["sample_mu_worst"].values
+ax[0].plot(sH[~sb], smu[~sb], ".", ms=2, color="0.75", label="not buildable (a loop closes)")
+ax[0].plot(sH[sb], smu[sb], ".", ms=2, color="tab:blue", label="buildable")
+on = des["envelope_on_front"].values == 1.0
+ax[0].plot(des["envelope_H"].values[on], des["envelope_mu_worst"].values[on], "k-o", ms=4, label="Pareto front")
+for k, (name, mk) in enumerate((("paper, original levers", "s"), ("paper, Table II levers", "D"))):
+    ax[0].plot(des["paper_H"].values[k], des["paper_mu_worst"].values[k], mk, ms=8, mfc="none",
+               mew=1.5, color=f"C{k + 1}", label=name)
+rec = V.recommended(des, **strict)
+if rec is not None:
+    ax[0].plot(des["envelope_H"].values[rec[0]], V.recommended_design(des, rec)["mu_worst"], "*", ms=14,
+               color="tab:red", label="recommended (buildable at the strict range ends)")
+ax[0].axhline(cons["mu_min"], color="k", ls=":", lw=0.8, label=f"transmission floor {cons['mu_min']:.0f} deg")
+ax[0].set(xlabel="synthetic horizontal displacement H [mm]",
+          ylabel="worst transmission angle over the stroke [deg]", title="objectives of the lever sets")
+fig.legend(*ax[0].get_legend_handles_labels(), fontsize=7, loc="lower left", ncol=4,
+           bbox_to_anchor=(0.02, 0.0))
+l6 = des["envelope_levers"].sel(lever="l6").values
+ax[1].plot(l6, des["envelope_rod_gap"].values, "o-", ms=3, label="guide rod beside the plate [mm]")
+ax[1].axhline(cons["clearance"], color="k", ls=":", lw=0.8, label=f"clearance {cons['clearance']:.0f} mm")
+ax[1].axhspan(min(P["clearance"]["range"]), max(P["clearance"]["range"]), color="k", alpha=0.1, lw=0,
+              label="clearance's range")
+ax[1].set(xlabel="guide rod l6 [mm]", ylabel="rod gap [mm]", title="what bounds l6: the rod's gap to the plate")
+a2 = ax[1].twinx()
+a2.plot(l6, des["envelope_H"].values, "s--", ms=3, color="tab:green", label="H [mm]")
+a2.set_ylabel("H [mm]")
+h1, l1_ = ax[1].get_legend_handles_labels()
+h2, l2_ = a2.get_legend_handles_labels()
+ax[1].legend(h1 + h2, l1_ + l2_, fontsize=7, loc="upper right")
+fig.tight_layout(rect=(0, 0.1, 1, 1))
+R.save_figure(fig, "design_front")
+R.write_table("design_front", *V.design_front(des, strict=strict, **cons))
+for r in V.design_front(des, strict=strict, **cons)[1]:
+    print(r)
+
+# %% [markdown]
 # ## Solver comparison
 
 # %%

@@ -334,3 +334,128 @@ def solver_comparison(comp: xr.Dataset) -> tuple[list, list]:
                     float(comp[f"{m}_right_branch_rate"]), float(np.median(fl)), float(np.max(fl)),
                     t, float(comp.get(f"{m}_time_per_pose_solve", np.nan))])
     return header, out
+
+
+def recommended(ds, *, clearance: float, mu_min: float) -> tuple[int, str] | None:
+    """The design this project recommends from scene ``design``: the lowest H buildable with
+    the guide rod ``clearance`` beside the plate and a worst transmission angle of at least
+    ``mu_min`` (deg) -- pass the strict ends of those constraints' declared ranges, so that
+    it can be built at every plausible setting.  H depends on l6 alone, so at that l6 the
+    design that changes nothing else (``kept``) is preferred where it qualifies, the
+    envelope's otherwise.  Returns (index over ``l6_grid``, "kept" or "envelope"), or None."""
+    gap, H = ds["envelope_rod_gap"].values, ds["envelope_H"].values
+    with np.errstate(invalid="ignore"):
+        kept = (gap >= clearance) & (ds["kept_mu_worst"].values >= mu_min) & (ds["kept_buildable"].values == 1.0)
+        env = (gap >= clearance) & (ds["envelope_mu_worst"].values >= mu_min)
+    best = None
+    for which, ok in (("kept", kept), ("envelope", env)):
+        if ok.any():
+            i = int(np.flatnonzero(ok)[np.argmin(H[ok])])
+            if best is None or H[i] < H[best[0]]:
+                best = (i, which)
+    return best
+
+
+def recommended_design(ds, rec) -> dict:
+    """Levers (OPTIMISED_LEVERS order), worst transmission angle and joint height of
+    :func:`recommended`'s design."""
+    i, which = rec
+    if which == "kept":
+        lv = ds["paper_levers"].values[0].copy()
+        lv[OPTIMISED_LEVERS.index("l6")] = ds["envelope_levers"].sel(lever="l6").values[i]
+        return {"levers": lv, "mu_worst": float(ds["kept_mu_worst"][i]),
+                "joint_height": float(ds["kept_joint_height"][i])}
+    return {"levers": ds["envelope_levers"].values[i], "mu_worst": float(ds["envelope_mu_worst"][i]),
+            "joint_height": float(ds["envelope_joint_height"][i])}
+
+
+def strict_ends(R) -> dict:
+    """The constraints' strict range ends (clearance mm, transmission floor deg)."""
+    P = R.cfg.raw["parameters"]
+    return {"clearance": float(max(P["clearance"]["range"])),
+            "mu_min": float(max(P["transmission_min"]["range"]))}
+
+
+def design_front(ds, *, clearance: float, mu_min: float, plate_top: float, opening: float,
+                 strict: dict) -> tuple[list, list]:
+    """The design-front table: the paper's designs, every front design and the recommended
+    one, with their levers, objectives and buildability margins (mm, deg; the box margin
+    relative to the box width)."""
+    header = ["design", *[f"{k}_mm" for k in OPTIMISED_LEVERS], "H_mm", "reduction_pct",
+              "mu_worst_deg", "rod_gap_margin_mm", "joint_height_margin_mm",
+              "transmission_margin_deg", "opening_margin_mm", "box_margin", "buildable"]
+    H0 = float(ds["paper_H"].values[0])
+    rise = float(ds["geometry_width"]) ** 2 / (2.0 * float(ds["geometry_R"]))
+
+    def row(name, levers, H, mu, gap, height, box, ok):
+        return [name, *[round(float(v), 1) for v in levers], float(H), _reduction(float(H), H0),
+                float(mu), float(gap) - clearance, float(height) - plate_top, float(mu) - mu_min,
+                opening - rise, float(box), int(ok)]
+
+    out = [row(f"paper_{d}", ds["paper_levers"].values[i], ds["paper_H"].values[i],
+               ds["paper_mu_worst"].values[i], ds["paper_rod_gap"].values[i],
+               ds["paper_joint_height"].values[i], math.nan, ds["paper_buildable"].values[i])
+           for i, d in enumerate(ds["paper_design"].values.astype(str))]
+    box = np.nanmin(ds["envelope_box_margin"].values, axis=1)
+    for i in np.flatnonzero(ds["envelope_on_front"].values == 1.0):
+        out.append(row("front", ds["envelope_levers"].values[i], ds["envelope_H"].values[i],
+                       ds["envelope_mu_worst"].values[i], ds["envelope_rod_gap"].values[i],
+                       ds["envelope_joint_height"].values[i], box[i], 1))
+    rec = recommended(ds, **strict)
+    if rec is not None:
+        d, i = recommended_design(ds, rec), rec[0]
+        lo, hi = ds["front_box"].values.T
+        margin = float(np.min(np.minimum(d["levers"] - lo, hi - d["levers"]) / (hi - lo)))
+        out.append(row(f"recommended ({'only l6 changed' if rec[1] == 'kept' else 'front envelope'})",
+                       d["levers"], ds["envelope_H"].values[i], d["mu_worst"],
+                       ds["envelope_rod_gap"].values[i], d["joint_height"], margin, 1))
+    return header, out
+
+
+@Q.register("design_recommended_h", "design_recommended_reduction", "design_lowest_buildable_h",
+            "design_table2_buildable", "design_original_mu_worst", "design_table2_mu_worst")
+def design(R):
+    ds = R.run("design")
+    strict = strict_ends(R)
+    H0 = float(ds["paper_H"].values[0])
+    H = ds["envelope_H"].values
+    built = np.isfinite(ds["envelope_mu_worst"].values)
+    rec = recommended(ds, **strict)
+    j = int(np.flatnonzero(built)[np.argmin(H[built])]) if built.any() else None
+    clearance = float(R.parameter("clearance")) * 1e3
+
+    def describe(levers, mu, k, height):
+        lv = ", ".join(f"{n} {v:.0f}" for n, v in zip(OPTIMISED_LEVERS, levers))
+        return (f"levers {lv} mm; worst transmission angle {mu:.1f} deg, guide rod "
+                f"{float(ds['envelope_rod_gap'][k]):.0f} mm beside the plate, rod joints "
+                f"{height:.0f} mm above the lower blade")
+    grid = (f"{int(ds['front_evaluated'])} designs evaluated ({int(ds['front_buildable_count'])} buildable) "
+            f"over {ds.sizes['l6_grid']} guide-rod lengths at {ds.sizes['cut']} cut points")
+    if rec is not None:
+        d = recommended_design(ds, rec)
+        rec_note = (f"the lowest H buildable at clearance {strict['clearance']:.0f} mm and a "
+                    f"{strict['mu_min']:.0f} deg transmission floor (the strict range ends)"
+                    + (", only l6 changed: " if rec[1] == "kept" else ": ")
+                    + describe(d["levers"], d["mu_worst"], rec[0], d["joint_height"]) + f"; {grid}")
+        Hr = float(H[rec[0]])
+    else:
+        rec_note, Hr = f"no design qualifies; {grid}", math.nan
+    box = np.nanmin(ds["envelope_box_margin"].values, axis=1)
+    table2 = bool(ds["paper_buildable"].values[1] == 1.0)
+    return {
+        "design_recommended_h": Reproduced(Hr, note=rec_note),
+        "design_recommended_reduction": _reduction(Hr, H0),
+        "design_lowest_buildable_h": Reproduced(
+            float(H[j]) if j is not None else math.nan,
+            note=(f"at the configured clearance {clearance:.0f} mm, the envelope's design of the largest "
+                  f"worst transmission angle: {describe(ds['envelope_levers'].values[j], float(ds['envelope_mu_worst'][j]), j, float(ds['envelope_joint_height'][j]))}, "
+                  f"levers at least {box[j]:.0%} of the sampling box's width inside it; a longer guide rod "
+                  "takes D within the clearance of the plate" if j is not None else "none buildable")),
+        "design_table2_buildable": Reproduced(
+            table2, note=f"Table II's levers in the configured member: guide rod "
+                         f"{float(ds['paper_rod_gap'].values[1]):.0f} mm beside the plate, rod joints "
+                         f"{float(ds['paper_joint_height'].values[1]):.0f} mm up, worst transmission angle "
+                         f"{float(ds['paper_mu_worst'].values[1]):.1f} deg"),
+        "design_original_mu_worst": float(ds["paper_mu_worst"].values[0]),
+        "design_table2_mu_worst": float(ds["paper_mu_worst"].values[1]),
+    }
