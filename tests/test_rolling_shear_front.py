@@ -45,11 +45,11 @@ def test_a_front_design_is_buildable_by_the_constraints_module(searched):
     assert on.size
     for i in on:
         g = ctx.g_original.with_levers(**dict(zip(OPTIMISED_LEVERS, res["levers"][i])))
-        m = margins(g, exact_theta(g, cut_points(g, ctx.n)[1]))
+        m = margins(g, exact_theta(g, cut_points(g, ctx.n)[1]), opening=cons["opening"])
         assert m["rod_gap"] >= cons["clearance"]
         assert m["joint_height"] >= cons["plate_top"]
         worst = min(min(a, 180 - b) for a, b in m["mu"].values())
-        assert worst >= cons["mu_min"]
+        assert worst >= cons["mu_min"] and m["open_mu"] >= cons["mu_min"]
         assert worst == pytest.approx(res["mu_worst"][i], abs=1e-9)
 
 
@@ -63,12 +63,12 @@ def test_no_independently_sampled_buildable_design_dominates_the_front(searched)
     seen = 0
     for l6 in l6s:
         g6 = ctx.g_original.with_levers(l6=float(l6))
-        s = front.stroke_of(g6, ctx.n, ctx.tol_floor)
+        s = front.stroke_of(g6, ctx.n, ctx.tol_floor, cons["opening"])
         if s is None:
             continue
-        poses, H, gap = s
+        poses, H, gap, q_open = s
         X = box[jo, 0] + (box[jo, 1] - box[jo, 0]) * rng.random((3000, 4))
-        m = front.dyad_metrics(g6, poses, X)
+        m = front.dyad_metrics(g6, poses, X, q_open)
         ok = front.buildable(m, gap, rise=rise, **cons)
         seen += int(ok.sum())
         mu = m["mu_worst"][ok]

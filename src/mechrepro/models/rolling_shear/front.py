@@ -39,6 +39,7 @@ from mechrepro.units import var
 
 from . import closure, optimise
 from .branch import RANGES
+from .constraints import open_pose
 from .constraints import settings as constraint_settings
 from .context import Context
 from .design import Unreachable
@@ -50,7 +51,7 @@ from .trajectory import synthetic_horizontal_displacement
 OTHERS = ("l1", "l3", "l5", "l10")
 
 
-def dyad_metrics(g, poses: np.ndarray, levers: np.ndarray) -> dict:
+def dyad_metrics(g, poses: np.ndarray, levers: np.ndarray, open_q=None) -> dict:
     """Eq. (9)'s two dyads for many lever sets at one stroke, vectorised.
 
     ``poses`` (n, 2): theta5, theta6 of the stroke (depend on l6 only); ``levers`` (m, 4):
@@ -84,13 +85,36 @@ def dyad_metrics(g, poses: np.ndarray, levers: np.ndarray) -> dict:
             mu_hi = np.maximum(mu_hi, mu.max(axis=1))
     worst = np.minimum(mu_lo, 180.0 - mu_hi)
     height = np.minimum(C.imag.min(), I.imag.min(axis=1))
-    return {"assembles": ok & np.isfinite(worst), "mu_worst": np.where(ok, worst, np.nan),
-            "mu_min": mu_lo, "mu_max": mu_hi, "joint_height": height}
+    out = {"assembles": ok & np.isfinite(worst), "mu_worst": np.where(ok, worst, np.nan),
+           "mu_min": mu_lo, "mu_max": mu_hi, "joint_height": height}
+    out["open_mu"] = (np.full(levers.shape[0], np.nan) if open_q is None
+                      else _open_transmission(g, open_q, levers))
+    return out
 
 
-def stroke_of(g, n: int, tol: float):
-    """(poses, H, rod gap, x of the cut) of the run's member with guide rod ``g.l6``, or
-    None where the blade pose leaves the guide rod's design branch."""
+def _open_transmission(g, q, levers: np.ndarray) -> np.ndarray:
+    """Worst min(mu, 180 - mu) (deg) of both dyads at the open pose ``q`` for many lever
+    sets (NaN where a dyad does not close; the paper's ranges are the cut's, not asked)."""
+    l1, l3, l5, l10 = (levers[:, k] for k in range(4))
+    D = g.l6 * np.exp(1j * q[1])
+    C = D + g.l8 * np.exp(1j * (q[0] + g.alpha))
+    I = D + l5 * np.exp(1j * q[0])
+    A, G = -l10 - g.l9 + 1j * g.l11, -l10 + 1j * g.l11
+    worst = np.full(levers.shape[0], np.inf)
+    for P, Q, rp, rq, e in ((A, np.full_like(A, C), l1, l3, g.elbow1), (G, I, g.l2, g.l4, g.elbow2)):
+        with np.errstate(invalid="ignore"):
+            x, y, _ = closure.python.dyad_joint(P.real, P.imag, Q.real, Q.imag, rp, rq, e)
+            B = x + 1j * y
+            mu = np.degrees(np.abs(np.angle((P - B) / (Q - B))))
+            worst = np.fmin(worst, np.minimum(mu, 180.0 - mu))
+        worst[~np.isfinite(x)] = np.nan
+    return worst
+
+
+def stroke_of(g, n: int, tol: float, opening: float):
+    """(poses, H, rod gap, open pose) of the run's member with guide rod ``g.l6``, or None
+    where the blade pose leaves the guide rod's design branch (open pose None: the open
+    position is not reached, :func:`.constraints.open_pose`)."""
     x_k = cut_points(g, n)[1]
     try:
         poses = optimise.stroke_poses(g, x_k, tol)
@@ -99,7 +123,7 @@ def stroke_of(g, n: int, tol: float):
     H = synthetic_horizontal_displacement(g, poses[:, 0] - g.beta2, x_k)
     lo, hi = g.x_mid - 0.5 * g.width, g.x_mid + 0.5 * g.width
     xs = np.concatenate([[0.0], g.l6 * np.cos(poses[:, 1])])   # E, then D over the stroke
-    return poses, float(H), float(max(lo - xs.max(), xs.min() - hi))
+    return poses, float(H), float(max(lo - xs.max(), xs.min() - hi)), open_pose(g, opening)
 
 
 def buildable(m: dict, rod_gap, *, clearance: float, plate_top: float, mu_min: float,
@@ -108,7 +132,7 @@ def buildable(m: dict, rod_gap, *, clearance: float, plate_top: float, mu_min: f
     rod_ok = rod_gap >= clearance if guide_rod_plane == "planar" else True
     with np.errstate(invalid="ignore"):
         return (m["assembles"] & rod_ok & (m["joint_height"] >= plate_top)
-                & (m["mu_worst"] >= mu_min) & (rise <= opening))
+                & (m["mu_worst"] >= mu_min) & (rise <= opening) & (m["open_mu"] >= mu_min))
 
 
 def pareto_mask(H: np.ndarray, mu: np.ndarray) -> np.ndarray:
@@ -144,11 +168,11 @@ def search(g, n: int, tol: float, box: np.ndarray, constraints: dict, *, l6_poin
     env, cloud = [], []
     for l6 in np.linspace(box[j6, 0], box[j6, 1], l6_points):
         g6 = g.with_levers(l6=float(l6))
-        s = stroke_of(g6, n, tol)
+        s = stroke_of(g6, n, tol, constraints["opening"])
         if s is None:
             continue
-        poses, H, gap = s
-        m0 = dyad_metrics(g6, poses, x0[None, :])
+        poses, H, gap, q_open = s
+        m0 = dyad_metrics(g6, poses, x0[None, :], q_open)
         kept = (float(m0["mu_worst"][0]), float(m0["joint_height"][0]),
                 bool(buildable(m0, gap, rise=rise, **constraints)[0]))
         best, best_mu, height, spread = None, math.nan, math.nan, 0.25 * (hi - lo)
@@ -158,7 +182,7 @@ def search(g, n: int, tol: float, box: np.ndarray, constraints: dict, *, l6_poin
             else:
                 X = np.clip(best + spread * rng.standard_normal((samples, 4)), lo, hi)
                 spread = 0.5 * spread
-            m = dyad_metrics(g6, poses, X)
+            m = dyad_metrics(g6, poses, X, q_open)
             ok = buildable(m, gap, rise=rise, **constraints)
             cloud.append((np.full(samples, H), m["mu_worst"], ok))
             if ok.any():
@@ -183,13 +207,13 @@ def search(g, n: int, tol: float, box: np.ndarray, constraints: dict, *, l6_poin
 def evaluate(g, levers: dict, n: int, tol: float, constraints: dict) -> dict:
     """H, worst transmission angle, buildability and margins of one lever set (a paper design)."""
     gl = g.with_levers(**levers)
-    s = stroke_of(gl, n, tol)
+    s = stroke_of(gl, n, tol, constraints["opening"])
     if s is None:
         return {"H": math.nan, "mu_worst": math.nan, "buildable": False, "rod_gap": math.nan,
                 "joint_height": math.nan}
-    poses, H, gap = s
+    poses, H, gap, q_open = s
     X = np.array([[levers.get(k, getattr(g, k)) for k in OTHERS]], float)
-    m = dyad_metrics(gl, poses, X)
+    m = dyad_metrics(gl, poses, X, q_open)
     ok = buildable(m, gap, rise=g.width ** 2 / (2.0 * g.R), **constraints)
     return {"H": H, "mu_worst": float(m["mu_worst"][0]), "buildable": bool(ok[0]), "rod_gap": gap,
             "joint_height": float(m["joint_height"][0])}

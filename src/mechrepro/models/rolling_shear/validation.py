@@ -77,10 +77,11 @@ def admissible_members(R, fam) -> dict[str, np.ndarray]:
     plate_top = float(R.parameter("plate_thickness_max")) * 1e3
     opening = float(R.parameter("opening")) * 1e3
     v = {k: fam[f"family_member_{k}"].values for k in
-         ("tilt", "rod_gap", "joint_height", "mu_min", "mu_max", "rise", "blade_offset")}
+         ("tilt", "rod_gap", "joint_height", "mu_min", "mu_max", "rise", "blade_offset", "open_mu")}
     with np.errstate(invalid="ignore"):
         other = (np.isfinite(v["tilt"]) & (v["joint_height"] >= plate_top)
-                 & (v["mu_min"] >= mu_min) & (v["mu_max"] <= 180.0 - mu_min) & (v["rise"] <= opening))
+                 & (v["mu_min"] >= mu_min) & (v["mu_max"] <= 180.0 - mu_min) & (v["rise"] <= opening)
+                 & (v["open_mu"] >= mu_min))
         lo, hi = P["blade_offset"]["range"]
         planar = other & (v["rod_gap"] >= clearance) & (v["blade_offset"] >= lo) & (v["blade_offset"] <= hi)
     return {"planar": planar, "out_of_plane": other}
