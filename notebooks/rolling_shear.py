@@ -277,7 +277,7 @@ cons = dict(clearance=float(P["clearance"]["value"]), mu_min=float(P["transmissi
 fig, ax = plt.subplots(1, 2, figsize=(12, 4.2))
 sb = des["sample_buildable"].values == 1.0
 sH, smu = des["sample_H"].values, des["sample_mu_worst"].values
-ax[0].plot(sH[~sb], smu[~sb], ".", ms=2, color="0.75", label="not buildable (a loop closes)")
+ax[0].plot(sH[~sb], smu[~sb], ".", ms=2, color="0.75", label="loops close, not buildable")
 ax[0].plot(sH[sb], smu[sb], ".", ms=2, color="tab:blue", label="buildable")
 on = des["envelope_on_front"].values == 1.0
 ax[0].plot(des["envelope_H"].values[on], des["envelope_mu_worst"].values[on], "k-o", ms=4, label="Pareto front")
@@ -377,8 +377,11 @@ for a, (name, kind) in zip(ax.flat, panels):
         # alternate above / below, so that labels of close points never overlap
         a.annotate(f"{r['knob_value']}", (float(r["time_s"]), float(r["error"])), fontsize=6.5,
                    textcoords="offset points", xytext=(3, 5 if k % 2 == 0 else -11))
-    a.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
-    a.yaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+    for axis, lim in ((a.xaxis, a.get_xlim()), (a.yaxis, a.get_ylim())):
+        if lim[1] < 10 * lim[0]:   # within a decade: a few plain ticks, no crowded minor labels
+            axis.set_major_locator(matplotlib.ticker.MaxNLocator(4))
+            axis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%.3g"))
+        axis.set_minor_formatter(matplotlib.ticker.NullFormatter())
     a.set_title(f"{name} ({first[0]['knob']} labelled): {kind} error", fontsize=9)
     handles, labels = a.get_legend_handles_labels()
     if name in stochastic:   # an order fitted to quantiles over seeds means nothing
