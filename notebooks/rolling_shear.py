@@ -35,6 +35,7 @@ config_file = "config/papers/rolling_shear.yaml"
 profile = "default"
 
 # %%
+import matplotlib.ticker
 import numpy as np
 
 from mechrepro import accuracy
@@ -45,7 +46,7 @@ from mechrepro.results import PaperResults
 
 R = PaperResults(paper, results_dir, config_file, profile)
 orig, popt, opt = R.run("original"), R.run("paper_optimised"), R.run("optimisation")
-comp = iv = R.run("solver_comparison")
+comp, iv = R.run("solver_comparison"), R.run("selpso_initial_values")
 paper_value = {r["quantity"]: r["paper_value"] for r in R.validation()}
 s = float(orig["geometry_s"])  # overlap (mm): the lowest point is held on y = -s
 huch = orig["huch"].values
@@ -105,7 +106,8 @@ with np.errstate(invalid="ignore"):   # buildable with the guide rod out of the 
            & (fam["family_member_joint_height"].values >= P["plate_thickness_max"]["value"])
            & (fam["family_member_mu_min"].values >= P["transmission_min"]["value"])
            & (fam["family_member_mu_max"].values <= 180 - P["transmission_min"]["value"])
-           & (fam["family_member_rise"].values <= P["opening"]["value"]) & ~built)
+           & (fam["family_member_rise"].values <= P["opening"]["value"])
+           & (fam["family_member_open_mu"].values >= P["transmission_min"]["value"]) & ~built)
 car = fam["family_member_carrier_constants"].values.astype(str)
 eq8 = fam["family_member_eq8_reading"].values.astype(str)
 bins = np.arange(-60, 50, 2.5)
@@ -176,10 +178,17 @@ R.save_figure(fig, "fig09")
 
 # %%
 def midpoint_figure(ds, pre, title, extra=None):
-    fig, ax = plt.subplots(1, 2, figsize=(10, 3.8))
-    ax[0].plot(ds[f"{pre}_x_h"], ds[f"{pre}_y_h"], "o", ms=3, label="midpoint, Eq. (5)")
-    ax[0].plot(ds[f"{pre}_x_traj1"], ds[f"{pre}_y_traj1"], "-", label="trajectory 1, Eq. (8)")
-    ax[0].set(xlabel="x [mm]", ylabel="y [mm]", title=title)
+    fig, ax = plt.subplots(1, 2, figsize=(10, 4.4))
+    # both trajectories span millimetres in x over a metres-long cut: x is drawn from the
+    # midpoint's first position, padded so that neither curve sits on the frame
+    x0 = float(ds[f"{pre}_x_h"].values[0])
+    xh, xt = ds[f"{pre}_x_h"].values - x0, ds[f"{pre}_x_traj1"].values - x0
+    ax[0].plot(xh, ds[f"{pre}_y_h"], "o-", ms=3, lw=0.8, label="midpoint, Eq. (5)")
+    ax[0].plot(xt, ds[f"{pre}_y_traj1"], "s--", ms=3, mfc="none", lw=0.8, label="trajectory 1, Eq. (8)")
+    lo, hi = min(xh.min(), xt.min()), max(xh.max(), xt.max())
+    ax[0].set_xlim(lo - 0.15 * (hi - lo), hi + 0.15 * (hi - lo))
+    ax[0].set(xlabel="x - x of the midpoint at the first cut point [mm]", ylabel="y [mm]",
+              title=f"{title} (cut of {float(ds['huch'].values[-1]):.0f} mm)")
     ax[1].plot(ds["huch"], ds[f"{pre}_horizontal_displacement"], "o-", ms=3,
                label=f"H = {float(ds[f'{pre}_synthetic_horizontal_displacement']):.3f} mm")
     if extra is not None:
@@ -189,7 +198,8 @@ def midpoint_figure(ds, pre, title, extra=None):
     ax[1].axhline(0, color="k", lw=0.6)
     ax[1].set(xlabel="rolled length huch [mm]", ylabel="x_h - x_traj1 [mm]", title="horizontal displacement")
     for a in ax:
-        a.legend(fontsize=7)
+        a.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2)
+    fig.tight_layout()
     return fig
 
 
@@ -201,16 +211,20 @@ R.save_figure(midpoint_figure(popt, "newton", "Fig. 11: the paper's optimised le
 # ## Fig. 12 — selPSO fitness against iterations from different initial values (Eq. 9)
 
 # %%
-fig, ax = plt.subplots(figsize=(6.5, 4))
+fig, ax = plt.subplots(figsize=(10, 4))
 hist = iv["iv_fitness_history"].values
 for k in range(hist.shape[0]):
     x0 = np.round(iv["iv_initial_value"].values[k], 2).tolist()
-    branch = "design branch" if iv["iv_design_branch"].values[k] else "other assembly mode"
-    ax.semilogy(np.arange(hist.shape[1]), hist[k], label=f"x0 = {x0} ({branch})")
+    branch = ("design branch" if iv["iv_design_branch"].values[k] else
+              "mirror mode, in the paper's ranges" if iv["iv_in_ranges"].values[k] else
+              "outside the paper's ranges")
+    ax.semilogy(np.arange(hist.shape[1]), hist[k], ["-", "--", ":", "-."][k % 4], lw=1.4,
+                label=f"x0 = {x0}: {branch}")
 ax.axhline(1e-11, color="k", ls=":", lw=0.8, label="G = 1e-11")
 ax.set(xlabel="iteration", ylabel="fitness G [mm]",
        title=f"Fig. 12: selPSO on Eq. (9) at x_k = {float(iv['iv_cut_point_x_k']):.0f} mm")
-ax.legend(fontsize=6)
+ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+fig.tight_layout()
 R.save_figure(fig, "fig12")
 
 # %% [markdown]
@@ -246,6 +260,58 @@ for r in rows2:
 R.write_table("lever_scan", *V.lever_scan(opt))
 
 # %% [markdown]
+# ## Design under buildability: H against the force transmission
+# Scene `design` (front.py): lever sets of the configured member (original levers
+# calibrated on 1.4341) sampled over a wide box and refined, each judged by its H and its
+# worst transmission angle over the stroke; grey the designs that cannot be built (a loop
+# does not close inside the paper's ranges, or a constraint of constraints.py breaks),
+# blue those that can, the line the Pareto front; the paper's original and Table II designs
+# and the design we recommend (buildable at the strict ends of the constraints' ranges).
+
+# %%
+des = R.run("design")
+strict = V.strict_ends(R)
+P = R.cfg.raw["parameters"]
+cons = dict(clearance=float(P["clearance"]["value"]), mu_min=float(P["transmission_min"]["value"]),
+            plate_top=float(P["plate_thickness_max"]["value"]), opening=float(P["opening"]["value"]))
+fig, ax = plt.subplots(1, 2, figsize=(12, 4.2))
+sb = des["sample_buildable"].values == 1.0
+sH, smu = des["sample_H"].values, des["sample_mu_worst"].values
+ax[0].plot(sH[~sb], smu[~sb], ".", ms=2, color="0.75", label="loops close, not buildable")
+ax[0].plot(sH[sb], smu[sb], ".", ms=2, color="tab:blue", label="buildable")
+on = des["envelope_on_front"].values == 1.0
+ax[0].plot(des["envelope_H"].values[on], des["envelope_mu_worst"].values[on], "k-o", ms=4, label="Pareto front")
+for k, (name, mk) in enumerate((("paper, original levers", "s"), ("paper, Table II levers", "D"))):
+    ax[0].plot(des["paper_H"].values[k], des["paper_mu_worst"].values[k], mk, ms=8, mfc="none",
+               mew=1.5, color=f"C{k + 1}", label=name)
+rec = V.recommended(des, **strict)
+if rec is not None:
+    ax[0].plot(des["envelope_H"].values[rec[0]], V.recommended_design(des, rec)["mu_worst"], "*", ms=14,
+               color="tab:red", label="recommended (buildable at the strict range ends)")
+ax[0].axhline(cons["mu_min"], color="k", ls=":", lw=0.8, label=f"transmission floor {cons['mu_min']:.0f} deg")
+ax[0].set(xlabel="synthetic horizontal displacement H [mm]",
+          ylabel="worst transmission angle over the stroke [deg]", title="objectives of the lever sets")
+fig.legend(*ax[0].get_legend_handles_labels(), fontsize=7, loc="lower left", ncol=4,
+           bbox_to_anchor=(0.02, 0.0))
+l6 = des["envelope_levers"].sel(lever="l6").values
+ax[1].plot(l6, des["envelope_rod_gap"].values, "o-", ms=3, label="guide rod beside the plate [mm]")
+ax[1].axhline(cons["clearance"], color="k", ls=":", lw=0.8, label=f"clearance {cons['clearance']:.0f} mm")
+ax[1].axhspan(min(P["clearance"]["range"]), max(P["clearance"]["range"]), color="k", alpha=0.1, lw=0,
+              label="clearance's range")
+ax[1].set(xlabel="guide rod l6 [mm]", ylabel="rod gap [mm]", title="what bounds l6: the rod's gap to the plate")
+a2 = ax[1].twinx()
+a2.plot(l6, des["envelope_H"].values, "s--", ms=3, color="tab:green", label="H [mm]")
+a2.set_ylabel("H [mm]")
+h1, l1_ = ax[1].get_legend_handles_labels()
+h2, l2_ = a2.get_legend_handles_labels()
+ax[1].legend(h1 + h2, l1_ + l2_, fontsize=7, loc="upper right")
+fig.tight_layout(rect=(0, 0.1, 1, 1))
+R.save_figure(fig, "design_front")
+R.write_table("design_front", *V.design_front(des, strict=strict, **cons))
+for r in V.design_front(des, strict=strict, **cons)[1]:
+    print(r)
+
+# %% [markdown]
 # ## Solver comparison
 
 # %%
@@ -253,6 +319,38 @@ header, rows3 = V.solver_comparison(comp)
 R.write_table("solver_comparison", header, rows3)
 for r in rows3:
     print(r)
+
+# %% [markdown]
+# ## selPSO's branch benchmark: success against the initial spread
+# Study `branch_spread`: selPSO with the paper's constants and early stop (G < 1e-11 mm) on
+# Eq. (9) at every cut point, over seeds; left, the fraction of the cut points that converge
+# on the design branch (median and the 10-90 % band over seeds) against the spread σ of the
+# initial swarm about the rough initial value (`pso_init_scale`, assumed in [0.1, 1] rad);
+# right, the time per Eq. (9) solve of selPSO and of warm Newton, both the mean over whole
+# strokes with the poses given.
+
+# %%
+bs = R.study("branch_spread")
+sig = bs["pso_init_scale"].values
+rates = bs["selpso_branch_rate_seeds"].values          # run x seed
+fig, ax = plt.subplots(1, 2, figsize=(11, 3.8))
+ax[0].fill_between(sig, np.quantile(rates, 0.1, axis=1), np.quantile(rates, 0.9, axis=1),
+                   color="tab:blue", alpha=0.25, lw=0, label="10-90 % over seeds")
+ax[0].plot(sig, np.median(rates, axis=1), "o-", color="tab:blue", label="median over seeds")
+ax[0].plot(sig, rates.mean(axis=1), "s--", ms=3, color="tab:orange", label="mean over seeds")
+ax[0].axvspan(min(P["pso_init_scale"]["range"]), max(P["pso_init_scale"]["range"]), color="k",
+              alpha=0.06, lw=0, label="pso_init_scale's range")
+ax[0].set(xlabel="initial spread sigma [rad]", ylabel="cut points on the design branch [1]",
+          ylim=(-0.02, 1.05), title=f"selPSO branch success ({rates.shape[1]} seeds, "
+                                    f"{bs.sizes['cut']} cut points, early stop)")
+ax[0].legend(fontsize=7, loc="lower left")
+ax[1].semilogy(sig, bs["selpso_time_per_solve"].values, "o-", label="selPSO (seed 0)")
+ax[1].semilogy(sig, bs["newton_time_per_loops_solve"].values, "s-", label="warm Newton")
+ax[1].set(xlabel="initial spread sigma [rad]", ylabel="time per Eq. (9) solve [s]",
+          title="time per solve, timed alike")
+ax[1].legend(fontsize=7, loc="center right")
+fig.tight_layout()
+R.save_figure(fig, "selpso_branch")
 
 # %% [markdown]
 # ## Cost of accuracy
@@ -264,10 +362,33 @@ for r in rows3:
 
 # %%
 coa = R.table("cost_of_accuracy")
-entries = list(dict.fromkeys(r["accuracy"] for r in coa))
-fig, ax = plt.subplots(1, len(entries), figsize=(15, 4.2))
-for a, name in zip(np.atleast_1d(ax), entries):
-    accuracy.plot(coa, name, a)
+# one panel per (entry, error kind): radians and relative errors never share an axis
+panels = list(dict.fromkeys((r["accuracy"], r["error_kind"]) for r in coa))
+stochastic = {e["name"] for e in R.cfg.raw["accuracy"] if e["study"] == "coa_selpso"}
+ncol = 3
+nrow = -(-len(panels) // ncol)
+fig, ax = plt.subplots(nrow, ncol, figsize=(15, 4.6 * nrow), squeeze=False)
+for a, (name, kind) in zip(ax.flat, panels):
+    sel = [r for r in coa if r["error_kind"] == kind]
+    accuracy.plot(sel, name, a, annotate=False)
+    first = [r for r in sel if r["accuracy"] == name]
+    q0 = first[0]["quantity"]
+    for k, r in enumerate(r for r in first if r["quantity"] == q0):
+        # alternate above / below, so that labels of close points never overlap
+        a.annotate(f"{r['knob_value']}", (float(r["time_s"]), float(r["error"])), fontsize=6.5,
+                   textcoords="offset points", xytext=(3, 5 if k % 2 == 0 else -11))
+    for axis, lim in ((a.xaxis, a.get_xlim()), (a.yaxis, a.get_ylim())):
+        if lim[1] < 10 * lim[0]:   # within a decade: a few plain ticks, no crowded minor labels
+            axis.set_major_locator(matplotlib.ticker.MaxNLocator(4))
+            axis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%.3g"))
+        axis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+    a.set_title(f"{name} ({first[0]['knob']} labelled): {kind} error", fontsize=9)
+    handles, labels = a.get_legend_handles_labels()
+    if name in stochastic:   # an order fitted to quantiles over seeds means nothing
+        labels = [lab.split(", order")[0] + (")" if ", order" in lab else "") for lab in labels]
+    a.legend(handles, labels, fontsize=6.5, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=1)
+for a in ax.flat[len(panels):]:
+    a.set_visible(False)
 fig.tight_layout()
 R.save_figure(fig, "cost_of_accuracy")
 

@@ -47,6 +47,9 @@ SMALL_SCENES = {
     "family_scan": lambda: small("family", [], grid={
         "blade_offset": [1200], "R": [35000], "width": [3200], "y_joint": [250],
         "eq8_reading": ["rotation"], "carrier_constants": ["frozen"]}),
+    "design_front": lambda: {**(r := small("design", [])),
+                             "resolution": {**r["resolution"], "front_l6_points": 3,
+                                            "front_samples": 4, "front_rounds": 1}},
 }
 
 

@@ -73,7 +73,7 @@ def test_initial_spread_is_an_assumed_constant_the_selpso_verdicts_depend_on():
     assert lo < p["value"] <= hi == 1.0          # the standard normal itself is the upper end
     for q in ("selpso_branch_success_rate", "selpso_converges_from_each_initial_value"):
         assert "pso_init_scale" in raw["reported"][q]["depends_on"], q
-    assert "solver_comparison@pso_init_scale-lo" in config().runs
+    assert "selpso_initial_values@pso_init_scale-lo" in config().runs
 
 
 @pytest.mark.parametrize("end,branch_rate_is_one", [("lo", True), ("hi", False)])
@@ -185,3 +185,20 @@ def test_table2_fails_are_unsettled_where_the_other_reading_builds_a_member_that
                if hasattr(v, "flips"))
     adm = admissible_members(Results(r, paper_optimised=ds), oop)
     assert adm["planar"].tolist() == [True, False] and adm["out_of_plane"].tolist() == [True, True]
+
+
+def test_the_unclamped_swarm_is_a_range_end_not_a_rival():
+    """Eq. (1) as printed has no velocity clamp: the unclamped swarm is pso_v_max's upper
+    range end (the loader would refuse it as a rival), re-run for the Fig. 12 row, on the
+    selPSO-only scene (its re-runs never solve the other five methods)."""
+    cfg = config()
+    raw = cfg.raw
+    assert not raw["falsifiers"]
+    spec = raw["reported"]["selpso_converges_from_each_initial_value"]
+    assert "pso_v_max" in spec["depends_on"] and "falsifier" not in spec
+    assert max(raw["parameters"]["pso_v_max"]["range"]) == 100.0
+    assert "selpso_initial_values@pso_v_max-hi" in cfg.runs
+    for name, r in cfg.runs.items():
+        if name.startswith("selpso_initial_values@"):
+            assert r["options"]["methods"] == ["selpso"], name
+    assert not any(n.startswith("solver_comparison@seed") for n in cfg.runs)

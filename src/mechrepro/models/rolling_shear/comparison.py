@@ -89,17 +89,20 @@ def _over_seeds(ctx: Context, method: str, sol: stroke.StrokeSolution, err: np.n
     """A stochastic method judged over ``options.seeds`` strokes, not one draw (issue 27):
     the largest pose error of each stroke against the closed form (a wrong assembly mode is
     an error of order 1 rad), its quantiles, the probability that a whole stroke lands on
-    the design branch (every cut point converged on it) and the mean stroke time.  Seed 0 is
+    the design branch (every cut point converged on it), the fraction of each stroke's cut
+    points that converge on it and the mean stroke time.  Seed 0 is
     the run's own stream (the stroke above); seed k > 0 the stream (run seed, salt, k)."""
     k_seeds = int(ctx.options["seeds"])
     salt = METHOD_STREAMS[method]
     errs, ok, times = [float(np.max(err))], [bool(sol.right.all())], \
         [ctx.n * (sol.time_pose + sol.time_loops)]
+    rates = [float(sol.right.mean())]
     for k in range(1, k_seeds):
         s = stroke.solve_compare(ctx.g, ctx.x_k, method, ctx.settings,
                                  np.random.default_rng([ctx.seed, salt, k]))
         errs.append(float(np.max(pose_error(s.theta, ctx.reference.theta))))
         ok.append(bool(s.right.all()))
+        rates.append(float(s.right.mean()))
         times.append(ctx.n * (s.time_pose + s.time_loops))
     errs = np.asarray(errs)
     w = method
@@ -113,6 +116,8 @@ def _over_seeds(ctx: Context, method: str, sol: stroke.StrokeSolution, err: np.n
         f"{w}_stroke_failure_probability": var(
             (), 1.0 - float(np.mean(ok)), "1",
             f"fraction of seeds whose stroke leaves the design branch or does not converge, {w}"),
+        f"{w}_branch_rate_seeds": var("seed", np.asarray(rates), "1",
+                                      f"fraction of the cut points converged on the design branch, per seed, {w}"),
         f"{w}_stroke_time_seeds": var((), float(np.mean(times)), "s",
                                       f"mean wall time of the whole stroke over seeds, {w}"),
     }

@@ -64,7 +64,7 @@ def initial_values(ctx) -> dict:
     """Fig. 12: selPSO fitness G of Eq. (9) against the iterations at mid-cut, from each
     initial value of ``options.initial_values`` (the pose from the closed form)."""
     from . import pose as pose_mod
-    from .branch import on_design_branch
+    from .branch import in_ranges, on_design_branch
     from .selpso import selpso
     from .stroke import loops_fitness
 
@@ -74,7 +74,7 @@ def initial_values(ctx) -> dict:
     rng = ctx.rng(4)
     st = ctx.settings.pso_loops
     hist = np.full((len(inits), st.max_iter + 1), np.nan)
-    iters, fit, conv, design, times = [], [], [], [], []
+    iters, fit, conv, design, inr, times = [], [], [], [], [], []
     for k, x0 in enumerate(inits):
         with stopwatch() as sw:
             r = selpso(loops_fitness(ctx.g, t5, t6), x0, st, rng, period=2 * math.pi)
@@ -84,6 +84,7 @@ def initial_values(ctx) -> dict:
         fit.append(r.fitness)
         conv.append(r.converged)
         design.append(on_design_branch(ctx.g, np.array([*r.x, t5, t6])))
+        inr.append(in_ranges(np.array([*r.x, t5, t6])))
     return {
         "iv_initial_value": var(("initial_value", "unknown"), inits, "rad",
                                 "initial values theta1..theta4 of selPSO"),
@@ -95,6 +96,8 @@ def initial_values(ctx) -> dict:
         "iv_converged": var("initial_value", np.asarray(conv, np.int8), "1", "G < tol reached"),
         "iv_design_branch": var("initial_value", np.asarray(design, np.int8), "1",
                                 "solution on the design branch"),
+        "iv_in_ranges": var("initial_value", np.asarray(inr, np.int8), "1",
+                            "solution inside the paper's ranges (on the design branch or its mirror mode)"),
         "iv_time": var("initial_value", np.asarray(times), "s", "wall time of the solve"),
         "iv_cut_point_x_k": var((), ctx.x_k[i_mid], "mm", "cut point of Fig. 12 solves"),
     }

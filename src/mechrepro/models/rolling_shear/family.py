@@ -36,7 +36,8 @@ def member_geometry(base, member: dict):
 def calibrated_member(ctx: Context, member: dict, levers: dict) -> tuple[float, ...]:
     """(calibrated tilt, H of the lever set, buildable 1/0 at the run's constraint settings,
     then the member's margins to the constraints: rod gap mm, rod-joint height mm, smallest
-    and largest crank-rod angle deg, blade-end rise mm) of one member; NaN where it cannot
+    and largest crank-rod angle deg, blade-end rise mm, worst transmission angle at the open
+    position deg) of one member; NaN where it cannot
     reach the target (H NaN: the lever set does not assemble)."""
     from . import stroke
     from .constraints import broken, margins, settings
@@ -46,9 +47,9 @@ def calibrated_member(ctx: Context, member: dict, levers: dict) -> tuple[float, 
                                   ctx.calibration_target, ctx.n, ctx.tol_floor,
                                   whole_scan=False)  # only the tilt is kept
     except (CalibrationError, NonAssembly, Unreachable):
-        return (math.nan,) * 8
-    m = margins(gc, stroke.exact_theta(gc, cut_points(gc, ctx.n)[1]))
+        return (math.nan,) * 9
     s = settings(ctx.p)
+    m = margins(gc, stroke.exact_theta(gc, cut_points(gc, ctx.n)[1]), opening=s["opening"])
     ok = not broken(m, **dict(s, mu_min=math.degrees(s["mu_min"])))
     try:
         gp = gc.with_levers(**levers)
@@ -57,7 +58,7 @@ def calibrated_member(ctx: Context, member: dict, levers: dict) -> tuple[float, 
         H = math.nan
     mu = np.array(list(m["mu"].values()))
     return (info["tilt"], H, float(ok), m["rod_gap"], m["joint_height"], float(mu[:, 0].min()),
-            float(mu[:, 1].max()), m["rise"])
+            float(mu[:, 1].max()), m["rise"], m["open_mu"])
 
 
 def solve_family_scan(run: dict, ctx: Context) -> dict:
@@ -90,7 +91,9 @@ def solve_family_scan(run: dict, ctx: Context) -> dict:
                                        "smallest crank-rod angle of both dyads over the stroke"),
            "family_member_mu_max": var("member", rows[:, 6], "deg",
                                        "largest crank-rod angle of both dyads over the stroke"),
-           "family_member_rise": var("member", rows[:, 7], "mm", "blade end's rise over the plate")}
+           "family_member_rise": var("member", rows[:, 7], "mm", "blade end's rise over the plate"),
+           "family_member_open_mu": var("member", rows[:, 8], "deg",
+                                        "worst transmission angle at the open position (NaN: not reached)")}
     for k in GRID_KEYS:
         vals = [m[k] for m in members]
         if isinstance(vals[0], str):

@@ -67,6 +67,11 @@ def cost(run: dict) -> dict:
         seconds = 0.2 + 1e-5 * evals * n
     elif solver == "family_scan":
         seconds = 0.2 + _members(opt.get("grid", {})) * (0.01 + 1.5e-4 * n)
+    elif solver == "design_front":
+        # a stroke per l6, then every round's samples at once: ~2 us per sample and cut point
+        points = int(res.get("front_l6_points", 41))
+        samples = points * int(res.get("front_samples", 400)) * (int(res.get("front_rounds", 6)) + 1)
+        seconds = 0.2 + points * 2e-3 * n + 2e-6 * samples * n
     else:   # a solver added later: no fit yet, the continuation's
         seconds = 0.2 + 1.2e-3 * n
     return {"mem_mb": mem, "seconds": seconds}

@@ -6,6 +6,7 @@
                          (comparison.py)                                      initial_values
     lever_optimisation   levers by options.optimisers (lever_optimisation.py) lever_scan
     family_scan          the admissible family on a grid (family.py)          (none)
+    design_front         H against transmission, buildable levers (front.py)  (none)
 """
 from __future__ import annotations
 
@@ -20,10 +21,12 @@ from .dataset import geometry_outputs
 from .dataset import variables as _variables
 from .effects import EFFECTS
 from .family import solve_family_scan
+from .front import solve_design_front
 from .lever_optimisation import solve_lever_optimisation
 
 SOLVERS = {"continuation": solve_continuation, "method_comparison": solve_method_comparison,
-           "lever_optimisation": solve_lever_optimisation, "family_scan": solve_family_scan}
+           "lever_optimisation": solve_lever_optimisation, "family_scan": solve_family_scan,
+           "design_front": solve_design_front}
 
 
 def compute(run: dict) -> dict:

@@ -77,10 +77,11 @@ def admissible_members(R, fam) -> dict[str, np.ndarray]:
     plate_top = float(R.parameter("plate_thickness_max")) * 1e3
     opening = float(R.parameter("opening")) * 1e3
     v = {k: fam[f"family_member_{k}"].values for k in
-         ("tilt", "rod_gap", "joint_height", "mu_min", "mu_max", "rise", "blade_offset")}
+         ("tilt", "rod_gap", "joint_height", "mu_min", "mu_max", "rise", "blade_offset", "open_mu")}
     with np.errstate(invalid="ignore"):
         other = (np.isfinite(v["tilt"]) & (v["joint_height"] >= plate_top)
-                 & (v["mu_min"] >= mu_min) & (v["mu_max"] <= 180.0 - mu_min) & (v["rise"] <= opening))
+                 & (v["mu_min"] >= mu_min) & (v["mu_max"] <= 180.0 - mu_min) & (v["rise"] <= opening)
+                 & (v["open_mu"] >= mu_min))
         lo, hi = P["blade_offset"]["range"]
         planar = other & (v["rod_gap"] >= clearance) & (v["blade_offset"] >= lo) & (v["blade_offset"] <= hi)
     return {"planar": planar, "out_of_plane": other}
@@ -256,40 +257,47 @@ def our_optimisation_rederived(R):
 
 
 @Q.register("selpso_converges_from_each_initial_value", "selpso_design_branch_rate_initial_values",
-            "selpso_success_in_paper_ranges", "selpso_branch_success_rate", "selpso_mean_solve_time",
-            "speedup_like_for_like", "newton_all_design_branch")
-def solvers(R):
-    c = R.run("solver_comparison")
+            "selpso_success_in_paper_ranges", "selpso_branch_success_rate")
+def selpso_rows(R):
+    """The selPSO rows, from the selPSO-only scene (their re-runs solve selPSO alone)."""
+    c = R.run("selpso_initial_values")
     n_iv = int(c["iv_converged"].size)
-    t_newton = float(c["newton_time_per_loops_solve"])
-    t_std, r_std = float(c["pso_standard_time_per_solve"]), float(c["pso_standard_right_branch_rate"])
-    t_sel, r_sel = float(c["selpso_time_per_solve"]), float(c["selpso_right_branch_rate"])
-    # time per solve that lands on the design branch: a solve off it must be repeated
-    best = min(t_std / r_std if r_std > 0 else math.inf, t_sel / r_sel if r_sel > 0 else math.inf)
+    r_sel = float(c["selpso_right_branch_rate"])
     conv_in = (c["selpso_converged"].values.astype(bool) & c["selpso_in_ranges"].values.astype(bool))
     return {
         "selpso_converges_from_each_initial_value": Reproduced(
             bool(c["iv_converged"].values.all()),
             note=f"{int(c['iv_converged'].sum())}/{n_iv} reach G < 1e-11 mm (max "
                  f"{int(c['iv_iterations'].max())} iterations); {int(c['iv_design_branch'].sum())}/{n_iv} "
-                 "on the design branch"),
+                 f"on the design branch, {int(c['iv_in_ranges'].sum())}/{n_iv} inside the paper's ranges"),
         "selpso_design_branch_rate_initial_values": float(c["iv_design_branch"].mean()),
         "selpso_success_in_paper_ranges": Reproduced(
             float(conv_in.mean()), note=f"{conv_in.mean():.0%} of the cut points converged inside "
                                         "the paper's ranges (a solve on the mirror mode counts)"),
         "selpso_branch_success_rate": Reproduced(
-            r_sel, note=f"standard constriction PSO {r_std:.0%}; cold scipy root "
-                        f"{float(c['cold_root_right_branch_rate']):.0%}, warm Newton "
-                        f"{float(c['newton_right_branch_rate']):.0%}"),
+            r_sel, note=f"warm Newton {float(c['newton_right_branch_rate']):.0%}; the other methods "
+                        "in solver_comparison.csv"),
+    }
+
+
+@Q.register("selpso_mean_solve_time", "speedup_like_for_like", "newton_all_design_branch")
+def solvers(R):
+    c = R.run("solver_comparison")
+    t_newton = float(c["newton_time_per_loops_solve"])
+    t_std, r_std = float(c["pso_standard_time_per_solve"]), float(c["pso_standard_right_branch_rate"])
+    t_sel, r_sel = float(c["selpso_time_per_solve"]), float(c["selpso_right_branch_rate"])
+    # time per solve that lands on the design branch: a solve off it must be repeated
+    best = min(t_std / r_std if r_std > 0 else math.inf, t_sel / r_sel if r_sel > 0 else math.inf)
+    return {
         "selpso_mean_solve_time": Reproduced(
             t_sel, note="compiled swarm loop (numba; the NumPy loop where numba is missing), "
                         "shared machine"),
         "speedup_like_for_like": Reproduced(
             best / t_newton,
-            note=f"Eq. (9) only: Newton {t_newton * 1e6:.1f} us per solve (100 % design branch); "
-                 f"selPSO {t_sel * 1e3:.1f} ms at {r_sel:.0%}, standard constriction PSO "
-                 f"{t_std * 1e3:.1f} ms at {r_std:.0%} on the design branch; the faster per "
-                 "design-branch solve is used"),
+            note=f"Eq. (9) only, both the mean per solve over whole strokes: Newton "
+                 f"{t_newton * 1e6:.2f} us per solve (100 % design branch); selPSO {t_sel * 1e3:.1f} ms "
+                 f"at {r_sel:.0%}, standard constriction PSO {t_std * 1e3:.1f} ms at {r_std:.0%} on the "
+                 "design branch; the faster per design-branch solve is used"),
         "newton_all_design_branch": bool(float(c["newton_right_branch_rate"]) == 1.0),
     }
 
@@ -334,3 +342,128 @@ def solver_comparison(comp: xr.Dataset) -> tuple[list, list]:
                     float(comp[f"{m}_right_branch_rate"]), float(np.median(fl)), float(np.max(fl)),
                     t, float(comp.get(f"{m}_time_per_pose_solve", np.nan))])
     return header, out
+
+
+def recommended(ds, *, clearance: float, mu_min: float) -> tuple[int, str] | None:
+    """The design this project recommends from scene ``design``: the lowest H buildable with
+    the guide rod ``clearance`` beside the plate and a worst transmission angle of at least
+    ``mu_min`` (deg) -- pass the strict ends of those constraints' declared ranges, so that
+    it can be built at every plausible setting.  H depends on l6 alone, so at that l6 the
+    design that changes nothing else (``kept``) is preferred where it qualifies, the
+    envelope's otherwise.  Returns (index over ``l6_grid``, "kept" or "envelope"), or None."""
+    gap, H = ds["envelope_rod_gap"].values, ds["envelope_H"].values
+    with np.errstate(invalid="ignore"):
+        kept = (gap >= clearance) & (ds["kept_mu_worst"].values >= mu_min) & (ds["kept_buildable"].values == 1.0)
+        env = (gap >= clearance) & (ds["envelope_mu_worst"].values >= mu_min)
+    best = None
+    for which, ok in (("kept", kept), ("envelope", env)):
+        if ok.any():
+            i = int(np.flatnonzero(ok)[np.argmin(H[ok])])
+            if best is None or H[i] < H[best[0]]:
+                best = (i, which)
+    return best
+
+
+def recommended_design(ds, rec) -> dict:
+    """Levers (OPTIMISED_LEVERS order), worst transmission angle and joint height of
+    :func:`recommended`'s design."""
+    i, which = rec
+    if which == "kept":
+        lv = ds["paper_levers"].values[0].copy()
+        lv[OPTIMISED_LEVERS.index("l6")] = ds["envelope_levers"].sel(lever="l6").values[i]
+        return {"levers": lv, "mu_worst": float(ds["kept_mu_worst"][i]),
+                "joint_height": float(ds["kept_joint_height"][i])}
+    return {"levers": ds["envelope_levers"].values[i], "mu_worst": float(ds["envelope_mu_worst"][i]),
+            "joint_height": float(ds["envelope_joint_height"][i])}
+
+
+def strict_ends(R) -> dict:
+    """The constraints' strict range ends (clearance mm, transmission floor deg)."""
+    P = R.cfg.raw["parameters"]
+    return {"clearance": float(max(P["clearance"]["range"])),
+            "mu_min": float(max(P["transmission_min"]["range"]))}
+
+
+def design_front(ds, *, clearance: float, mu_min: float, plate_top: float, opening: float,
+                 strict: dict) -> tuple[list, list]:
+    """The design-front table: the paper's designs, every front design and the recommended
+    one, with their levers, objectives and buildability margins (mm, deg; the box margin
+    relative to the box width)."""
+    header = ["design", *[f"{k}_mm" for k in OPTIMISED_LEVERS], "H_mm", "reduction_pct",
+              "mu_worst_deg", "rod_gap_margin_mm", "joint_height_margin_mm",
+              "transmission_margin_deg", "opening_margin_mm", "box_margin", "buildable"]
+    H0 = float(ds["paper_H"].values[0])
+    rise = float(ds["geometry_width"]) ** 2 / (2.0 * float(ds["geometry_R"]))
+
+    def row(name, levers, H, mu, gap, height, box, ok):
+        return [name, *[round(float(v), 1) for v in levers], float(H), _reduction(float(H), H0),
+                float(mu), float(gap) - clearance, float(height) - plate_top, float(mu) - mu_min,
+                opening - rise, float(box), int(ok)]
+
+    out = [row(f"paper_{d}", ds["paper_levers"].values[i], ds["paper_H"].values[i],
+               ds["paper_mu_worst"].values[i], ds["paper_rod_gap"].values[i],
+               ds["paper_joint_height"].values[i], math.nan, ds["paper_buildable"].values[i])
+           for i, d in enumerate(ds["paper_design"].values.astype(str))]
+    box = np.nanmin(ds["envelope_box_margin"].values, axis=1)
+    for i in np.flatnonzero(ds["envelope_on_front"].values == 1.0):
+        out.append(row("front", ds["envelope_levers"].values[i], ds["envelope_H"].values[i],
+                       ds["envelope_mu_worst"].values[i], ds["envelope_rod_gap"].values[i],
+                       ds["envelope_joint_height"].values[i], box[i], 1))
+    rec = recommended(ds, **strict)
+    if rec is not None:
+        d, i = recommended_design(ds, rec), rec[0]
+        lo, hi = ds["front_box"].values.T
+        margin = float(np.min(np.minimum(d["levers"] - lo, hi - d["levers"]) / (hi - lo)))
+        out.append(row(f"recommended ({'only l6 changed' if rec[1] == 'kept' else 'front envelope'})",
+                       d["levers"], ds["envelope_H"].values[i], d["mu_worst"],
+                       ds["envelope_rod_gap"].values[i], d["joint_height"], margin, 1))
+    return header, out
+
+
+@Q.register("design_recommended_h", "design_recommended_reduction", "design_lowest_buildable_h",
+            "design_table2_buildable", "design_original_mu_worst", "design_table2_mu_worst")
+def design(R):
+    ds = R.run("design")
+    strict = strict_ends(R)
+    H0 = float(ds["paper_H"].values[0])
+    H = ds["envelope_H"].values
+    built = np.isfinite(ds["envelope_mu_worst"].values)
+    rec = recommended(ds, **strict)
+    j = int(np.flatnonzero(built)[np.argmin(H[built])]) if built.any() else None
+    clearance = float(R.parameter("clearance")) * 1e3
+
+    def describe(levers, mu, k, height):
+        lv = ", ".join(f"{n} {v:.0f}" for n, v in zip(OPTIMISED_LEVERS, levers))
+        return (f"levers {lv} mm; worst transmission angle {mu:.1f} deg, guide rod "
+                f"{float(ds['envelope_rod_gap'][k]):.0f} mm beside the plate, rod joints "
+                f"{height:.0f} mm above the lower blade")
+    grid = (f"{int(ds['front_evaluated'])} designs evaluated ({int(ds['front_buildable_count'])} buildable) "
+            f"over {ds.sizes['l6_grid']} guide-rod lengths at {ds.sizes['cut']} cut points")
+    if rec is not None:
+        d = recommended_design(ds, rec)
+        rec_note = (f"the lowest H buildable at clearance {strict['clearance']:.0f} mm and a "
+                    f"{strict['mu_min']:.0f} deg transmission floor (the strict range ends)"
+                    + (", only l6 changed: " if rec[1] == "kept" else ": ")
+                    + describe(d["levers"], d["mu_worst"], rec[0], d["joint_height"]) + f"; {grid}")
+        Hr = float(H[rec[0]])
+    else:
+        rec_note, Hr = f"no design qualifies; {grid}", math.nan
+    box = np.nanmin(ds["envelope_box_margin"].values, axis=1)
+    table2 = bool(ds["paper_buildable"].values[1] == 1.0)
+    return {
+        "design_recommended_h": Reproduced(Hr, note=rec_note),
+        "design_recommended_reduction": _reduction(Hr, H0),
+        "design_lowest_buildable_h": Reproduced(
+            float(H[j]) if j is not None else math.nan,
+            note=(f"at the configured clearance {clearance:.0f} mm, the envelope's design of the largest "
+                  f"worst transmission angle: {describe(ds['envelope_levers'].values[j], float(ds['envelope_mu_worst'][j]), j, float(ds['envelope_joint_height'][j]))}, "
+                  f"levers at least {box[j]:.0%} of the sampling box's width inside it; a longer guide rod "
+                  "takes D within the clearance of the plate" if j is not None else "none buildable")),
+        "design_table2_buildable": Reproduced(
+            table2, note=f"Table II's levers in the configured member: guide rod "
+                         f"{float(ds['paper_rod_gap'].values[1]):.0f} mm beside the plate, rod joints "
+                         f"{float(ds['paper_joint_height'].values[1]):.0f} mm up, worst transmission angle "
+                         f"{float(ds['paper_mu_worst'].values[1]):.1f} deg"),
+        "design_original_mu_worst": float(ds["paper_mu_worst"].values[0]),
+        "design_table2_mu_worst": float(ds["paper_mu_worst"].values[1]),
+    }
