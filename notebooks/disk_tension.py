@@ -420,6 +420,73 @@ R.save_figure(fig, "critical_speed")
 print("time of the critical speeds (r_f = 25 mm, 9 r_c):", float(cs["axisym_time_critical_speed"]), "s")
 
 # %% [markdown]
+# ## The tensioning design map (beyond the paper: where to roll, and how hard)
+# The lowest travelling-wave critical speed over N_d = 2–10 against the rolling radius r_c and
+# the rolling amplitude A of Eq. (4) (α calibrated on Table 1, so A = 50 °C is the paper's
+# stress), one panel per flange radius r_f. The rolled stress is limited by buckling at rest:
+# at most 1/m of the stress that buckles any harmonic (white line: the stated margin m = 1.5;
+# dashed: its range's ends 1.25 and 2; blank: buckled or beyond the scan). Star: the optimum at
+# the stated margin; circle: the paper's r_c = 65 mm at A = 50 °C. Last panel: the at-rest
+# frequency of N_d = 0 and 1 at each r_c's best amplitude over the unrolled one — the margins
+# tensioning spends (they reach zero at buckling).
+
+# %%
+from mechrepro.models.disk_tension import design
+
+dm_runs = [(figures.clamp_mm(R.run("design_map")), R.run("design_map"))]
+dm_st = R.study("design_map_rf")
+dm_runs += [(figures.clamp_mm(dm_st.isel(run=i)), dm_st.isel(run=i)) for i in range(dm_st.sizes["run"])]
+dm_rows = design.table(dm_runs)
+R.write_table("design_map", design.COLUMNS, dm_rows)
+fig, axes = plt.subplots(2, 3, figsize=(15, 8.8), constrained_layout=True)
+maps = [axes[0, 0], axes[0, 1], axes[0, 2], axes[1, 0]]
+for ax, (rf, ds) in zip(maps, dm_runs):
+    rc_mm = ds["r_c"].values * 1e3
+    amp = ds["axisym_design_amplitude"].values
+    low = design.lowest_map(ds) * RPM
+    pc = ax.pcolormesh(np.broadcast_to(rc_mm[:, None], amp.shape), amp, low,
+                       shading="gouraud", cmap="viridis")
+    fig.colorbar(pc, ax=ax, label="lowest critical speed [rpm]")
+    a_cr = ds["axisym_design_buckling_amplitude"].values
+    for m, ls in zip(ds["design_margin"].values, ("--", "-", "--")):
+        ax.plot(rc_mm, a_cr / m, ls, color="w", lw=1.4 if ls == "-" else 0.8)
+    q = int(np.argmin(np.abs(ds["design_margin"].values - float(ds["axisym_design_stated_margin"]))))
+    k, v = design.best(ds, q)
+    ax.plot(rc_mm[k], ds["axisym_design_best_amplitude"].values[q, k], "*", color="r", ms=13, mec="k")
+    j65 = int(np.argmin(np.abs(rc_mm - 65)))
+    ax.plot(65, 50, "o", color="w", mec="k", ms=7)
+    ax.set(xlabel="rolling radius r_c [mm]", ylabel="rolling amplitude A [°C]",
+           ylim=(0, np.nanmax(amp) * 1.02),
+           title=f"r_f = {rf:.0f} mm: ★ {v * RPM:.0f}, ○ "
+                 f"{float(ds['axisym_design_paper_amplitude_speed'][j65]) * RPM:.0f}, "
+                 f"untensioned {float(np.nanmin(low[:, 0])):.0f} rpm")
+ax = axes[1, 1]
+for (rf, ds), c in zip(dm_runs, ("C0", "C1", "C2", "C3")):
+    q = int(np.argmin(np.abs(ds["design_margin"].values - float(ds["axisym_design_stated_margin"]))))
+    unt = float(np.nanmin(design.lowest_map(ds)[:, 0]))
+    rc_mm = ds["r_c"].values * 1e3
+    ax.plot(rc_mm, 100 * (ds["axisym_design_best_speed"].values[q] / unt - 1), "o-", ms=3,
+            color=c, label=f"r_f {rf:.0f} mm, best A")
+    ax.plot(rc_mm, 100 * (ds["axisym_design_paper_amplitude_speed"].values / unt - 1), ":",
+            color=c, label=f"r_f {rf:.0f} mm, A = 50 °C")
+ax.axhline(0, color="k", lw=0.8)
+ax.set(xlabel="rolling radius r_c [mm]", ylabel="lowest critical speed over untensioned [%]",
+       title="the design curve (stated margin; a gap: buckled)", ylim=(-90, 90))
+ax.legend(fontsize=7, ncol=2, loc="upper left")
+ax = axes[1, 2]
+for (rf, ds), c in zip(dm_runs, ("C0", "C1", "C2", "C3")):
+    q = int(np.argmin(np.abs(ds["design_margin"].values - float(ds["axisym_design_stated_margin"]))))
+    fr = ds["axisym_design_best_frequency_ratio"].values[q]
+    ax.plot(ds["r_c"].values * 1e3, fr[:, 0], "-", color=c, label=f"r_f {rf:.0f} mm, N_d = 0")
+    ax.plot(ds["r_c"].values * 1e3, fr[:, 1], ":", color=c, label=f"r_f {rf:.0f} mm, N_d = 1")
+ax.set(xlabel="rolling radius r_c [mm]", ylabel="f̃ / f at rest, best A [1]", ylim=(0, 1.7),
+       title="N_d = 0, 1 frequency margins (stated margin)")
+ax.legend(fontsize=7, ncol=2, loc="upper left")
+R.save_figure(fig, "design_map")
+for r in dm_rows:
+    print(r)
+
+# %% [markdown]
 # ## What the memoised effects cost, cold and warm
 # The calibration and the exact and rolled references are pure functions of scalars,
 # memoised per process: after the first run of a batch they cost ~0 (warm, the run's own

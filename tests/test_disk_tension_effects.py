@@ -65,6 +65,7 @@ SHOWS = {
     "stressed_reference": ("axisym", [], "axisym_error_stressed"),
     "identifiability": ("axisym", [], "axisym_prof_width"),
     "critical_speed": ("axisym", ["roll_tension"], "axisym_critical_speed"),
+    "design_map": ("axisym", ["roll_tension"], "axisym_design_best_speed"),
     "eigen": ("axisym", ["roll_tension"], "axisym_f_rolled"),
     "eq9": ("axisym", ["roll_tension"], "axisym_delta_f_eq9_exact"),
     "critical_load": ("axisym", ["roll_tension"], "axisym_critical_load_factor"),

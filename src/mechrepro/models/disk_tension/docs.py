@@ -106,6 +106,28 @@ def identifiability(root: Path) -> str:
                      + _table(root / "tables" / "identifiability_readings.csv", num))
 
 
+def design_map(root: Path) -> str:
+    """The design table (tables/design_map.csv): per flange radius and buckling margin."""
+    keep = {"r_f_mm": "r_f [mm]", "buckling_margin": "m", "r_c_opt_mm": "r_c* [mm]",
+            "amplitude_opt_degc": "A* [°C]", "binds": "binds", "lowest_mode_nd": "N_d",
+            "critical_speed_opt_rpm": "Ω_c* [rpm]", "gain_vs_untensioned": "vs untensioned",
+            "gain_vs_paper": "vs r_c 65, A 50", "f_ratio_nd0": "f̃/f N_d=0",
+            "f_ratio_nd1": "f̃/f N_d=1"}
+    out = ["| " + " | ".join(keep.values()) + " |", "|" + "---|" * len(keep)]
+    for r in _rows(root / "tables" / "design_map.csv"):
+        cell = {k: r[k] for k in keep}
+        for k in ("r_f_mm", "r_c_opt_mm", "amplitude_opt_degc", "critical_speed_opt_rpm"):
+            cell[k] = f"{float(r[k]):.0f}"
+        for k in ("gain_vs_untensioned", "gain_vs_paper"):
+            cell[k] = f"{float(r[k]):+.1%}"
+        for k in ("f_ratio_nd0", "f_ratio_nd1"):
+            cell[k] = f"{float(r[k]):.2f}"
+        cell["buckling_margin"] = f"{float(r['buckling_margin']):g}" + (
+            " (stated)" if r["stated"] == "True" else "")
+        out.append("| " + " | ".join(cell.values()) + " |")
+    return "\n".join(out)
+
+
 def targets(root: Path) -> str:
     """The accuracy targets (framework table accuracy_targets.csv): what was asked, chosen,
     estimated and verified."""
@@ -128,6 +150,7 @@ BLOCKS = {
     "cold_warm": cold_warm,
     "identifiability": identifiability,
     "targets": targets,
+    "design_map": design_map,
     "calibration_notes": lambda root: notes(root, ["f_unrolled_nd4_rf25", "table1_diag_nd4",
                                                    "inplane_bc_evidence_free_disk",
                                                    "inplane_bc_evidence_clamped",
@@ -139,6 +162,7 @@ BLOCKS = {
     "critical_speed_notes": lambda root: notes(root, ["critical_speed_untensioned_min",
                                                       "critical_speed_best_rc",
                                                       "critical_speed_vs_southwell"]),
+    "design_notes": lambda root: notes(root, ["design_map_optimum_rc"]),
     "beyond_notes": lambda root: notes(root, ["slotted_optimal_rc_nd3", "slotted_optimal_rc_nd4",
                                               "buckling_flag_matches_critical_load",
                                               "eq9_speedup_over_eigen"]),

@@ -488,6 +488,19 @@ def identifiability(ctx) -> dict:
     }
 
 
+def _centrifugal_stiffness(ctx, effect):
+    """K^(c) of every harmonic: Eq. (3) of the centrifugal stress at Omega = 1 rad/s, the
+    flange's in-plane hold the assumed ``centrifugal_bc`` (:mod:`.rotation`)."""
+    from . import rotation
+
+    if not hasattr(ctx.model, "phi") or not isinstance(ctx.model.K, dict):
+        raise Refusal(f"{effect} needs the harmonics (solver axisym)")
+    kw = dict(omega=1.0, rho=ctx.rho, nu=ctx.nu, r_f=ctx.r_f, b=ctx.b,
+              inplane_bc=ctx.p["centrifugal_bc"])
+    return ctx.model.stress_stiffness((lambda r: rotation.centrifugal_stress(r, **kw)[0],
+                                       lambda r: rotation.centrifugal_stress(r, **kw)[1]))
+
+
 @EFFECTS.register("critical_speed")
 def critical_speed(ctx) -> dict:
     """The travelling-wave critical speed per N_d (:mod:`.rotation`): the spinning disk's
@@ -497,13 +510,8 @@ def critical_speed(ctx) -> dict:
     every r_c; a rolled disk that has buckled has none (NaN, never a number)."""
     from . import rotation
 
-    model = ctx.model
-    if not hasattr(model, "phi") or not isinstance(model.K, dict):
-        raise Refusal("critical_speed needs the harmonics (solver axisym)")
-    bc = ctx.p["centrifugal_bc"]
-    kw = dict(omega=1.0, rho=ctx.rho, nu=ctx.nu, r_f=ctx.r_f, b=ctx.b, inplane_bc=bc)
-    Kc = model.stress_stiffness((lambda r: rotation.centrifugal_stress(r, **kw)[0],
-                                 lambda r: rotation.centrifugal_stress(r, **kw)[1]))
+    model, bc = ctx.model, ctx.p["centrifugal_bc"]
+    Kc = _centrifugal_stiffness(ctx, "critical_speed")
     with stopwatch() as sw:
         free = np.array([rotation.critical_speed(model.K[n], model.M[n], Kc[n], int(n))
                          for n in ctx.n_d])
@@ -530,3 +538,86 @@ def critical_speed(ctx) -> dict:
                                     "critical speed of the rolled disk (NaN: buckled, it does "
                                     "not exist; inf: none)", centrifugal_bc=bc)
     return out
+
+
+@EFFECTS.register("design_map")
+def design_map(ctx) -> dict:
+    """The tensioning design map (:mod:`.design`): the lowest critical speed over N_d >= 2 of
+    every r_c against the rolling amplitude A, from 0 to the smallest buckling margin's limit
+    A_cr / m (A_cr: the amplitude that buckles any harmonic of the scene at rest), and the
+    best A per r_c at every margin of ``buckling_margin`` (the stated one is the middle)."""
+    from . import design
+
+    p, model = ctx.p, ctx.model
+    Kc = _centrifugal_stiffness(ctx, "design_map")
+    if not ctx.A > 0:
+        raise Refusal("design_map scales the rolled stress of the scene's amplitude: "
+                      f"temperature_amplitude must be > 0, got {ctx.A}")
+    margins = np.sort(np.atleast_1d(np.asarray(p["buckling_margin"], float)))
+    stated = float(np.median(margins))
+    cap = float(p["design_amplitude_cap"]) / ctx.A       # as a load factor on the scene's A
+    steps, n_d, ks = int(p["design_steps"]), ctx.n_d, _stiffened(ctx)
+    nr, nm, nn = len(ks), len(margins), len(n_d)
+    cs, f_rest, amp = np.full((nr, steps, nn), np.nan), np.full((nr, steps, nn), np.nan), \
+        np.zeros((nr, steps))
+    lam_cr, mode_cr, paper = np.full(nr, np.inf), np.full(nr, -1), np.full(nr, np.nan)
+    best = {k: np.full((nm, nr), np.nan) for k in ("a", "v", "binds", "mode")}
+    best_f = np.full((nm, nr, nn), np.nan)
+    w0 = np.array([model.omega2[n] for n in n_d])
+    with stopwatch() as sw:
+        for i, k in enumerate(ks):
+            pen = design.pencils(model.K, k, model.M, Kc, n_d)
+
+            def low(x, pen=pen):
+                return design.lowest(pen, x)
+
+            lam = model.critical_load(k)
+            lam_cr[i], mode_cr[i] = float(np.min(lam)), int(n_d[np.argmin(lam)])
+            tops = np.minimum(lam_cr[i] / margins, cap)
+            grid = np.linspace(0.0, tops.max(), steps)
+            v, _, c, w2 = low(np.r_[grid, tops, 1.0])
+            cs[i], amp[i], paper[i] = c[:steps], grid * ctx.A, v[-1]
+            f_rest[i] = np.sqrt(np.clip(w2[:steps], 0, None)) / (2 * np.pi)
+            for q, top in enumerate(tops):
+                sel = grid < top
+                x, val, bnd = design.optimum(lambda a: float(low([a])[0][0]),
+                                             np.r_[grid[sel], top], np.r_[v[:steps][sel], v[steps + q]],
+                                             capped=bool(top >= cap))
+                _, md, _, w2x = low([x])
+                best["a"][q, i], best["v"][q, i] = x * ctx.A, val
+                best["binds"][q, i], best["mode"][q, i] = bnd, md[0]
+                best_f[q, i] = np.sqrt(np.clip(w2x[0], 0, None) / w0)
+    dims, bc = ("design_margin", "r_c"), {"centrifugal_bc": p["centrifugal_bc"]}
+    return {
+        "design_margin": var("design_margin", margins, "1", "buckling margin m: the rolled "
+                             "stress at most 1/m of the one that buckles the disk at rest"),
+        "design_step": var("design_step", np.arange(steps), "1", "step of the amplitude scan "
+                           "from 0 to min(A_cr / m, design_amplitude_cap), m the smallest margin"),
+        "design_stated_margin": var((), stated, "1", "the stated buckling margin (the map's)"),
+        "design_amplitude": var(("r_c", "design_step"), amp, "K", "rolling amplitude A of "
+                                "Eq. (4) (calibrated alpha), scanned to the smallest margin"),
+        "design_critical_speed": var(("r_c", "design_step", "n_d"), cs, "rad/s",
+                                     "travelling-wave critical speed (NaN: buckled; inf: none)",
+                                     **bc),
+        "design_frequency_at_rest": var(("r_c", "design_step", "n_d"), f_rest, "Hz",
+                                        "rolled natural frequency of the disk at rest, Eq. (5)"),
+        "design_buckling_amplitude": var("r_c", lam_cr * ctx.A, "K", "amplitude A_cr that "
+                                         "buckles the disk at rest (any N_d of the scene)"),
+        "design_buckling_mode": var("r_c", mode_cr, "1", "N_d that buckles first"),
+        "design_amplitude_cap": var((), cap * ctx.A, "K", "the amplitude scan's end (a bound "
+                                    "of the scan, not of the physics)"),
+        "design_paper_amplitude_speed": var("r_c", paper, "rad/s", "lowest critical speed over "
+                                            "N_d >= 2 at the scene's amplitude (the paper's "
+                                            "A = 50 degC)", **bc),
+        "design_best_amplitude": var(dims, best["a"], "K", "amplitude maximising the lowest "
+                                     "critical speed at each r_c and margin"),
+        "design_best_speed": var(dims, best["v"], "rad/s", "the lowest critical speed over "
+                                 "N_d >= 2 there", **bc),
+        "design_best_binds": var(dims, best["binds"], "1", "what binds there: "
+                                 + ", ".join(f"{i} {b}" for i, b in enumerate(design.BINDS))),
+        "design_best_mode": var(dims, best["mode"], "1", "N_d of the lowest critical speed there"),
+        "design_best_frequency_ratio": var(dims + ("n_d",), best_f, "1", "rolled over unrolled "
+                                           "natural frequency at rest there (the N_d = 0, 1 "
+                                           "margins)"),
+        "time_design_map": var((), sw.seconds, "s", "wall time of the design map"),
+    }

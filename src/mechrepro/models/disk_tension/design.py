@@ -1,0 +1,153 @@
+"""The tensioning design map: where to roll (r_c) and how hard (the amplitude A of Eq. 4) for
+the highest critical speed a blade can keep, under a buckling margin.
+
+The rolled residual stress is linear in A (Eq. 4 is, and so is plane-stress elasticity), so
+one [K^(sigma)] per r_c at the scene's amplitude A_0 gives every intensity: K + (A / A_0)
+K^(sigma).  Per harmonic n and amplitude A, with B_n = n^2 M - K^(c) (:mod:`.rotation`):
+
+    omega~^2 (at rest)   the eigenvalues of (K + a K^(sigma), M)               Eq. (5)
+    Omega_c              1 / sqrt(mu_max),  B_n phi = mu (K + a K^(sigma)) phi  (rotation)
+
+both from one symmetric eigen-decomposition per (r_c, A, n): with M = L L^T and
+L^-1 (K + a K^(sigma)) L^-T = V D V^T, omega~^2 = D and mu are the eigenvalues of
+D^-1/2 V^T L^-1 B_n L^-T V D^-1/2.  A disk whose D has a non-positive entry has buckled at rest
+and has no critical speed (NaN); N_d = 0 never reaches one (inf).
+
+Constraint: the rolled stress at most 1 / m of the one that buckles the disk at rest
+(A <= A_cr / m, A_cr over every harmonic of the scene), m the assumed ``buckling_margin``;
+the intensity scan stops at ``design_amplitude_cap`` (a bound of the scan, not physics).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from mechrepro.errors import Refusal
+
+#: what binds at an optimum (stored as this code)
+BINDS = ("untensioned", "buckling margin", "interior", "scan cap")
+
+
+def pencils(K, Kr, M, Kc, n_d):
+    """Per harmonic n: (n, K', K^(sigma)', B') = L^-1 (K, K^(sigma), n^2 M - K^(c)) L^-T with
+    M = L L^T, what :func:`lowest` reads at every load factor."""
+    out = []
+    for n in n_d:
+        Li = np.linalg.inv(np.linalg.cholesky(M[n]))
+        out.append((int(n), Li @ K[n] @ Li.T, Li @ Kr[n] @ Li.T,
+                    n * n * np.eye(len(Li)) - Li @ Kc[n] @ Li.T))
+    return out
+
+
+def speeds(pencil, factors):
+    """(Omega_c [rad/s], lowest omega~^2 at rest [rad^2/s^2]) of one harmonic's ``pencil``
+    (:func:`pencils`) for the stiffness K + a K^(sigma) at every load factor a of
+    ``factors``: NaN Omega_c where the disk has buckled at rest (omega~^2 <= 0), inf where
+    the backward wave never stops."""
+    n, Kw, Krw, Bw = pencil
+    a = np.atleast_1d(np.asarray(factors, float))
+    d, V = np.linalg.eigh(Kw[None] + a[:, None, None] * Krw[None])
+    ok = d[:, 0] > 0
+    if n == 0:
+        return np.where(ok, np.inf, np.nan), d[:, 0]
+    s = 1.0 / np.sqrt(np.where(d > 0, d, 1.0))
+    C = np.swapaxes(V, 1, 2) @ Bw @ V * s[:, :, None] * s[:, None, :]
+    mu = np.linalg.eigvalsh(C)[:, -1]
+    omega_c = np.where(mu > 0, 1.0 / np.sqrt(np.where(mu > 0, mu, 1.0)), np.inf)
+    return np.where(ok, omega_c, np.nan), d[:, 0]
+
+
+def lowest(pencils_, factors, n_min=2):
+    """(min over N_d >= ``n_min`` of Omega_c, its N_d, Omega_c per N_d, omega~^2 per N_d)
+    at every load factor; NaN (and N_d -1) where any harmonic has buckled at rest."""
+    n_d = np.array([p[0] for p in pencils_])
+    cs, w2 = zip(*(speeds(p, factors) for p in pencils_))
+    cs, w2 = np.stack(cs, -1), np.stack(w2, -1)
+    buckled = np.any(np.isnan(cs), axis=-1)
+    sel = n_d >= n_min
+    sub = np.where(np.isnan(cs[..., sel]), np.inf, cs[..., sel])
+    k = np.argmin(sub, axis=-1)
+    low = np.where(buckled, np.nan, np.take_along_axis(sub, k[..., None], -1)[..., 0])
+    return low, np.where(buckled, -1, n_d[sel][k]), cs, w2
+
+
+def optimum(fn, grid, vals, *, capped, xatol=1e-4):
+    """(a*, value, binds) maximising ``fn`` (load factor -> lowest Omega_c) over [0, grid[-1]]
+    given its ``vals`` on ``grid`` (ascending, from 0): the best grid point, refined
+    continuously between its neighbours when inside; ``binds`` indexes :data:`BINDS` (the
+    top is the buckling margin's, or the scan cap's when ``capped``)."""
+    from scipy.optimize import minimize_scalar
+
+    vals = np.where(np.isnan(vals), -np.inf, vals)
+    k = int(np.argmax(vals))
+    if k == len(grid) - 1:
+        return float(grid[k]), float(vals[k]), BINDS.index("scan cap" if capped else "buckling margin")
+    if k == 0:
+        return 0.0, float(vals[0]), BINDS.index("untensioned")
+    res = minimize_scalar(lambda a: -fn(a), bounds=(grid[k - 1], grid[k + 1]), method="bounded",
+                          options={"xatol": xatol * grid[-1]})
+    if -res.fun > vals[k]:
+        return float(res.x), -float(res.fun), BINDS.index("interior")
+    return float(grid[k]), float(vals[k]), BINDS.index("interior")
+
+
+RPM = 60.0 / (2 * np.pi)
+COLUMNS = ["r_f_mm", "buckling_margin", "stated", "r_c_opt_mm", "r_c_step_mm", "amplitude_opt_degc",
+           "intensity_vs_paper", "binds", "lowest_mode_nd", "critical_speed_opt_rpm",
+           "untensioned_rpm", "gain_vs_untensioned", "paper_rc65_a50_rpm", "gain_vs_paper",
+           "best_at_rc65_rpm", "buckling_amplitude_at_opt_degc", "buckling_mode_at_opt_nd",
+           "f_ratio_nd0", "f_ratio_nd1"]
+
+
+def best(ds, q):
+    """(index of the r_c maximising the lowest critical speed at margin index ``q``, that
+    speed [rad/s]) of one design_map run; (-1, NaN) when every r_c has buckled."""
+    v = np.asarray(ds["axisym_design_best_speed"].values[q], float)
+    if np.isnan(v).all():
+        return -1, float("nan")
+    k = int(np.nanargmax(v))
+    return k, float(v[k])
+
+
+def table(runs, paper_rc=0.065, paper_amplitude=50.0) -> list[list]:
+    """The design table: per flange radius (``runs``: [(r_f [mm], design_map dataset)]) and
+    buckling margin, the optimum r_c and amplitude, what binds, its lowest critical speed
+    against the untensioned disk and against the paper's r_c = 65 mm (at the paper's
+    A = 50 degC, and at the best A there), and the N_d = 0, 1 frequency margins at rest."""
+    rows = []
+    for rf, ds in runs:
+        rc = ds["r_c"].values
+        stated = float(ds["axisym_design_stated_margin"])
+        j65 = int(np.argmin(np.abs(rc - paper_rc)))
+        if abs(rc[j65] - paper_rc) > 1e-9:
+            raise Refusal(f"the design map's r_c grid has no {paper_rc * 1e3:g} mm")
+        unt = float(np.nanmin(ds["axisym_critical_speed_untensioned"].sel(
+            n_d=ds["n_d"].values[ds["n_d"].values >= 2]).values))
+        at65 = float(ds["axisym_design_paper_amplitude_speed"].values[j65])
+        step = float(np.diff(rc).max() * 1e3) if len(rc) > 1 else float("nan")
+        for q, m in enumerate(ds["design_margin"].values):
+            k, v = best(ds, q)
+            head = [rf, float(m), bool(abs(m - stated) < 1e-12)]
+            if k < 0:       # every r_c buckled: no optimum, no number
+                rows.append(head + [float("nan"), step, float("nan"), float("nan"), "buckled", -1]
+                            + [float("nan")] * 6 + [-1, float("nan"), float("nan")])
+                continue
+            a = float(ds["axisym_design_best_amplitude"].values[q, k])
+            fr = ds["axisym_design_best_frequency_ratio"].values[q, k]
+            rows.append(head + [
+                float(rc[k] * 1e3), step, a, a / paper_amplitude,
+                BINDS[int(ds["axisym_design_best_binds"].values[q, k])],
+                int(ds["axisym_design_best_mode"].values[q, k]),
+                v * RPM, unt * RPM, v / unt - 1, at65 * RPM, v / at65 - 1,
+                float(ds["axisym_design_best_speed"].values[q, j65]) * RPM,
+                float(ds["axisym_design_buckling_amplitude"].values[k]),
+                int(ds["axisym_design_buckling_mode"].values[k]), float(fr[0]), float(fr[1])])
+    return rows
+
+
+def lowest_map(ds) -> np.ndarray:
+    """The map [rad/s] of one design_map run, (r_c, design_step): the lowest critical speed
+    over N_d >= 2; NaN where any harmonic has buckled at rest."""
+    cs = np.asarray(ds["axisym_design_critical_speed"].values, float)
+    sel = ds["n_d"].values >= 2
+    gone = np.isnan(cs).any(axis=-1)
+    return np.where(gone, np.nan, np.min(np.where(np.isnan(cs[..., sel]), np.inf, cs[..., sel]), -1))
