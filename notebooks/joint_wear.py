@@ -36,7 +36,6 @@ profile = "default"
 import numpy as np
 
 from mechrepro import accuracy
-from mechrepro.config import family_values
 from mechrepro.io import run_attrs
 from mechrepro.models.joint_wear import figures as F
 from mechrepro.plotting import plt
@@ -170,52 +169,62 @@ for q in ("load_point_fit_solutions", "load_point_fit_upper_part", "local_vs_uni
     print(q, table[q]["reproduced_value"], table[q]["note"])
 
 # %% [markdown]
-# ## Continuous contact where Tables 3–4 put F (Sec. 3.2)
-# The counted contact row: F is fitted to Tables 3–4 in every run (its direction, at the run's
-# gravity, μ and distance of F), then the contact margin min F_N / max F_N is measured at every
-# fitted F (quasi-static, and the dynamic clearance joint where the quasi-static margin keeps
-# the 1 % rule).  Left: the baseline's fitted load points.  Right: the smallest margin at every
-# re-check of the row (resolution levels, the corners of the load-point family, the contact
-# constants' range ends; a member's value is the baseline moved by its shift at the coarser
-# level): at g = 0 the re-fitted F keep contact by 0.03–0.2 % of the peak force, below the
-# rule, so the row is inconclusive.
+# ## The load point as a distribution, and continuous contact over it (Sec. 3.2)
+# F's direction and distance, the gravity plane and μ weighed by how well they reproduce the ten
+# K_p of Tables 3–4 at the rounding of their printed increments, with the wear on the upper part
+# of the bushing (Sec. 4.2).  Every point is a zero of the mean misfit at a prior node (the
+# tables fix the direction to ~0.001°); colour: Δχ² from the best point (the likelihood ratio
+# is exp(−Δχ²/2)); filled: inside the 95 % likelihood region (the credible set), open: outside,
+# grey crosses: wear below the bushing centre.  Left: direction × distance.  Middle: the contact
+# margin min F_N / max F_N against g — the counted row is the smallest margin in the credible set.
+# Right: that smallest margin at every re-check of the row (resolution levels, the contact
+# constants' range ends).
 
 # %%
-cf = R.run("contact_fitted_f")
+post = R.run("load_point_posterior")
 rows = [r for r in R.table("verdict_evidence") if r["quantity"] == "continuous_contact_margin_fitted_f"]
-fig, ax = plt.subplots(1, 2, figsize=(12, 4.3), gridspec_kw={"width_ratios": [1, 2]})
-n_f = int(cf["fitted_n"])
-x = np.arange(n_f)
-ax[0].bar(x - 0.2, cf["fitted_qs_margin"].values[:n_f], 0.4, label="quasi-static")
-ax[0].bar(x + 0.2, cf["fitted_dyn_margin"].values[:n_f], 0.4, label="dynamic (Radau, settled)")
-ax[0].set_xticks(x, [f"{a:.1f}°" for a in cf["fitted_F_direction"].values[:n_f]])
-ax[0].axhline(0.01, color="r", lw=1, ls="--", label="1 % rule")
-ax[0].set(xlabel="fitted direction of F from E", ylabel="min F_N / max F_N",
-          title=f"fitted F, g = {float(cf['fitted_gravity']):g} m/s², {float(cf['fitted_load_distance']):g} m")
-ax[0].legend(fontsize=7)
-vals = [float(r["value"]) for r in rows]
-cols = ["tab:green" if r["status"] == "pass" else "tab:red" if r["status"] == "fail" else "gray" for r in rows]
-ax[1].bar(np.arange(len(rows)), np.maximum(vals, 1e-5), color=cols)
-ax[1].axhline(float(table["continuous_contact_margin_fitted_f"]["reproduced_value"]), color="k", lw=0.8,
-              label="baseline")
+pt = {k: post[f"post_point_{k}"].values for k in ("direction", "distance", "gravity", "chi2", "credible",
+                                                   "upper_share", "qs_margin")}
+up, cred = pt["upper_share"] > 0.5, pt["credible"] == 1
+dchi2 = np.clip(pt["chi2"] - np.nanmin(np.where(up, pt["chi2"], np.nan)), 0, 50)
+fig, ax = plt.subplots(1, 3, figsize=(16, 4.6), gridspec_kw={"width_ratios": [1.2, 1.2, 1]},
+                       layout="constrained")
+norm = plt.Normalize(0, 50)
+cmap = plt.get_cmap("viridis_r")
+for a, (x, y) in zip(ax[:2], ((pt["direction"], pt["distance"]), (pt["gravity"], pt["qs_margin"]))):
+    a.plot(x[~up], y[~up], "x", color="0.6", ms=4, label="wear below the centre (excluded)")
+    out = up & ~cred
+    a.scatter(x[out], y[out], facecolors="none", edgecolors=cmap(norm(dchi2[out])), marker="o", s=28,
+              label="outside the 95 % region (open)")
+    sc = a.scatter(x[cred], y[cred], c=dchi2[cred], cmap=cmap, norm=norm, marker="o", s=28,
+                   edgecolors="k", linewidths=0.5, label="credible (95 % region)")
+wg, wm = float(post["post_worst_gravity"]), float(post["post_worst_qs_margin"])
+ax[1].plot(wg, wm, "*", color="tab:red", ms=12, label=f"credible set's edge, smallest margin ({wm:.3g})")
+fig.colorbar(sc, ax=ax[1], label="Δχ² from the best point\n(likelihood ratio exp(−Δχ²/2))")
+ax[0].set(xlabel="direction of F from E's mid-stroke position [deg]", ylabel="distance of F from E [m]",
+          title="load points the tables allow (all g, μ)")
+ax[0].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2)
 ax[1].axhline(0.01, color="r", lw=1, ls="--", label="1 % rule")
 ax[1].set_yscale("log")
-
-
-def _tick(variant):
-    if not variant.startswith("load_point_prior-"):
-        return variant
-    v = family_values(R.cfg.raw, "load_point_prior", variant.split("-")[-1])
-    return f"g {v['gravity']:g}, μ {v['friction_coefficient']:g}, {v['load_point_distance']:g} m"
-
-
-ax[1].set_xticks(np.arange(len(rows)), [_tick(r["variant"]) for r in rows], rotation=60, ha="right",
-                 fontsize=7)
-ax[1].set(ylabel="smallest margin over the fitted F",
-          title=f"every re-check (green pass, red fail): row {table['continuous_contact_margin_fitted_f']['status']}")
-ax[1].legend(fontsize=7)
+ax[1].set(xlabel="gravity component in the plane of motion [m/s²]", ylabel="contact margin min F_N / max F_N",
+          title="contact margin of every load point")
+ax[1].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2)
+vals = [float(r["value"]) for r in rows]
+cols = ["tab:green" if r["status"] == "pass" else "tab:red" if r["status"] == "fail" else "gray" for r in rows]
+ax[2].bar(np.arange(len(rows)), 100 * np.asarray(vals), color=cols)
+ax[2].axhline(1.0, color="r", lw=1, ls="--", label="1 % rule")
+ax[2].set_xticks(np.arange(len(rows)), [r["variant"] for r in rows], rotation=60, ha="right", fontsize=7)
+ax[2].set(ylabel="smallest margin over the credible set [%]", ylim=(0, 1.3 * 100 * max(vals + [0.01])),
+          title=f"every re-check (green pass, red fail): {table['continuous_contact_margin_fitted_f']['status']}")
+ax[2].legend(fontsize=7, loc="upper right")
 R.save_figure(fig, "contact_margin")
+post_rows = F.posterior_table(post)
+R.write_table("load_point_posterior", list(post_rows[0]), [list(r.values()) for r in post_rows])
 print(table["continuous_contact_margin_fitted_f"]["status"], table["continuous_contact_margin_fitted_f"]["note"])
+for q in ("load_point_posterior_g_credible_min", "load_point_posterior_arc_deg_median",
+          "load_point_posterior_k_archard_b1_median", "load_point_posterior_wear_86h_b1_median",
+          "load_point_posterior_wear_86h_b2_median"):
+    print(q, table[q]["reproduced_value"], table[q]["note"])
 for r in rows:
     print(f"{r['variant']:28s} {float(r['value']):.4g} {r['status']:6s} {r['label']}")
 

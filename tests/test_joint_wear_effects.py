@@ -30,8 +30,10 @@ SMALL = {
     "constant_sensitivity": ("constant_sensitivity", {"n_steps": 64, "interval_h": 38},
                              {"sensitivity": {"friction_coefficient": [0.05, 0.5]}}),
     "local_wear": ("local_wear", {"n_steps": 64, "interval_h": 38, "n_theta": 64}, {}),
-    "fitted_contact": ("contact_fitted_f", {"n_steps": 64, "n_out": 64, "periods": 1},
-                       {"fit_load_direction_deg": [120, 130, 140], "fit_secant_steps": 0}),
+    "load_point_posterior": ("load_point_posterior",
+                             {"n_steps": 64, "n_out": 64, "periods": 1, "n_gravity": 1, "edge_bisections": 1},
+                             {"fit_load_direction_deg": [120, 130, 140], "fit_secant_steps": 0,
+                              "posterior_distance": [0.65], "posterior_friction": [0.15811]}),
 }
 
 
@@ -61,7 +63,7 @@ def test_effects_not_named_are_never_evaluated(solver, monkeypatch):
         if name not in run["effects"]:
             monkeypatch.setitem(EFFECTS._fn, name, boom)
     if solver not in ("clearance_implicit", "clearance_explicit", "constant_sensitivity",
-                      "fitted_contact"):
+                      "load_point_posterior"):
         monkeypatch.setattr(dynamics, "simulate", boom)   # no stiff dynamics either
     ds = solve(run)
     assert ds.attrs["solver"] == solver

@@ -65,7 +65,7 @@ def test_scan_refuses_the_load_points_where_contact_is_lost():
 def test_fit_and_sensitivity_options_are_the_configs_own_numbers():
     """The paper's K_p the fit aims at are the reported rows; the sensitivity ends are the
     declared ranges (SI)."""
-    for scene in ("load_point_fit", "contact_fitted_f"):
+    for scene in ("load_point_fit", "load_point_posterior"):
         fit = CFG.runs[scene]["options"]["fit_K_paper"]
         for m, s in enumerate(("b1", "b2")):
             assert fit[m] == [CFG.reported[f"k_{s}_p{i}"]["value"] for i in range(1, 6)]

@@ -194,42 +194,62 @@ def fit_part(res: dict, run: dict):
     return coords, v
 
 
-def fitted_part(res: dict, run: dict):
-    """Continuous contact at the load points re-fitted to Tables 3-4 in the run (solver
-    fitted_contact): the misfit over F's direction and, per fitted F, the contact margins.
-    A run without a fitted F keeps one row of NaN (netCDF-3 has no empty dimension)."""
-    f = res["fitted"]
-    sols = f["solutions"] or [dict.fromkeys(("direction", "misfit", "qs_F_min", "qs_F_max",
-                                             "qs_margin", "dyn_F_min", "dyn_F_max",
-                                             "dyn_margin", "dyn_min_penetration", "dyn_steps",
-                                             "margin", "wear_direction_deg", "upper_share"),
-                                            math.nan) | {"F": (math.nan, math.nan)}]
-    sv = ("fitted_f",)
+def posterior_part(res: dict, run: dict):
+    """The load point as a distribution (solver load_point_posterior): the mean misfit over
+    the prior grid and every point the tables allow (a zero of the misfit at a node), with
+    its posterior weight, whether it is credible and what the mechanics give there.  A run
+    without a point keeps one row of NaN (netCDF-3 has no empty dimension)."""
+    f = res["posterior"]
+    keys = ("distance", "gravity", "friction", "direction", "misfit", "chi2", "width",
+            "log_lik", "qs_margin", "F_N_min", "arc_deg", "G", "K_b1", "K_b2",
+            "upper_share", "wear_direction_deg", "credible")
+    pts = f["points"] or [dict.fromkeys(keys, math.nan) | {"wear_86h": [math.nan] * 2}]
+    w = np.asarray(f["weight"], float) if f["points"] else np.array([math.nan])
+    sv = ("post_point",)
 
     def col(key):
-        return np.array([x[key] for x in sols], float)
-    coords = {"fitted_direction": var("fitted_direction", f["directions"], "deg", "direction of F from E's mid-stroke position"),
-              "fitted_f": var("fitted_f", np.arange(len(sols)), "1", "load point reproducing Tables 3-4 (fitted in this run)")}
-    F = np.array([x["F"] for x in sols], float).reshape(len(sols), 2)
-    v = {"fitted_misfit": var(("fitted_direction",), f["misfit"], "1", "mean ln(K_p ours / K_p paper) over both sides and five intervals, every interval at the new bushing's wear factor (within 0.01 of the misfit; it places the zeros, the misfit refines them)"),
-         "fitted_F_x": var(sv, F[:, 0], "m", "fitted load point F, x"),
-         "fitted_F_y": var(sv, F[:, 1], "m", "fitted load point F, y"),
-         "fitted_F_direction": var(sv, col("direction"), "deg", "fitted direction of F from E's mid-stroke position"),
-         "fitted_F_misfit": var(sv, col("misfit"), "1", "misfit left at the fitted F"),
-         "fitted_qs_F_N_min": var(sv, col("qs_F_min"), "N", "smallest joint force over the quasi-static period"),
-         "fitted_qs_F_N_max": var(sv, col("qs_F_max"), "N", "largest joint force over the quasi-static period"),
-         "fitted_qs_margin": var(sv, col("qs_margin"), "1", "quasi-static contact margin min F_N / max F_N"),
-         "fitted_dyn_F_N_min": var(sv, col("dyn_F_min"), "N", "smallest joint force over the settled dynamic period (NaN: not solved, the quasi-static margin is below the rule)"),
-         "fitted_dyn_F_N_max": var(sv, col("dyn_F_max"), "N", "largest joint force over the settled dynamic period"),
-         "fitted_dyn_margin": var(sv, col("dyn_margin"), "1", "dynamic contact margin min F_N / max F_N (0 where the pin leaves the bushing)"),
-         "fitted_dyn_min_penetration": var(sv, col("dyn_min_penetration"), "m", "smallest penetration over the settled dynamic period"),
-         "fitted_dyn_steps": var(sv, col("dyn_steps"), "1", "integrator steps of the dynamic periods"),
-         "fitted_margin": var(sv, col("margin"), "1", "contact margin at the fitted F (the dynamic one where solved)"),
-         "fitted_upper_share": var(sv, col("upper_share"), "1", "share of the wear above the bushing centre (quasi-static)"),
-         **_scalars({"fitted_margin_min": (f["margin"], "1", "smallest contact margin over the fitted load points (NaN: none fits)"),
-                     "fitted_n": (len(f["solutions"]), "1", "load points reproducing Tables 3-4 at this distance"),
-                     "fitted_load_distance": (f["distance"], "m", "distance of F from E's mid-stroke position"),
-                     "fitted_gravity": (f["gravity"], "m/s2", "gravity of the fit")})}
+        return np.array([q[key] for q in pts], float)
+    H = float(run["parameters"]["hardness_bushing"])
+    grid = ("post_distance", "post_gravity", "post_friction", "post_direction")
+    dyn = f["worst_margins"] or {}
+    worst = f["worst"] or {}
+    if not f["points"]:
+        f = {**f, "chi2_new_bushing": math.nan, "new_bushing_credible": False}
+    coords = {"post_distance": var("post_distance", f["distance"], "m", "prior node: F's distance from E's mid-stroke position"),
+              "post_gravity": var("post_gravity", f["gravity"], "m/s2", "prior node: gravity component in the plane of motion"),
+              "post_friction": var("post_friction", f["friction"], "1", "prior node: friction coefficient"),
+              "post_direction": var("post_direction", f["directions"], "deg", "direction of F from E's mid-stroke position"),
+              "post_point": var("post_point", np.arange(len(pts)), "1", "load point reproducing the mean of Tables 3-4 at a prior node"),
+              "side": var("side", np.array(["B1", "B2"], dtype=object), *SIDE[1:])}
+    v = {"post_misfit": var(grid, f["misfit"], "1", "mean ln(K_p ours / K_p paper), every interval at the new bushing's wear factor (NaN: contact lost)"),
+         "post_point_distance": var(sv, col("distance"), "m", "F's distance from E"),
+         "post_point_gravity": var(sv, col("gravity"), "m/s2", "gravity in the plane of motion"),
+         "post_point_friction": var(sv, col("friction"), "1", "friction coefficient"),
+         "post_point_direction": var(sv, col("direction"), "deg", "F's direction from E (a zero of the mean misfit)"),
+         "post_point_misfit": var(sv, col("misfit"), "1", "mean misfit left at the zero"),
+         "post_point_chi2": var(sv, col("chi2"), "1", "chi2 of the ten log-ratios about their best common level, rounding noise of the printed increments"),
+         "post_point_width": var(sv, col("width"), "deg", "sd of F's direction the tables allow about the zero"),
+         "post_point_log_likelihood": var(sv, col("log_lik"), "1", "log of the likelihood integrated over the direction [log deg]"),
+         "post_point_weight": var(sv, w, "1", "posterior mass (0: the wear is not on the upper part of the bushing)"),
+         "post_point_credible": var(sv, col("credible"), "1", "1 inside the credible set"),
+         "post_point_upper_share": var(sv, col("upper_share"), "1", "share of the wear above the bushing centre (Sec. 4.2)"),
+         "post_point_qs_margin": var(sv, col("qs_margin"), "1", "quasi-static contact margin min F_N / max F_N"),
+         "post_point_F_N_min": var(sv, col("F_N_min"), "N", "smallest joint force over the quasi-static period"),
+         "post_point_arc": var(sv, col("arc_deg"), "deg", "contact arc on the new bushing (Fig. 13's psi)"),
+         "post_point_wear_factor": var(sv, col("G"), "N/m", "wear factor of the new bushing, Eq. (29)"),
+         "post_point_K_table": var(("post_point", "side"), wear.table_from_k(np.c_[col("K_b1"), col("K_b2")], H), "1/Pa", "mean calibrated coefficient (table units)"),
+         "post_point_wear_86h": var(("post_point", "side"), np.array([q["wear_86h"] for q in pts], float), "m", "86-h wear (NaN outside the credible set)"),
+         **_scalars({"post_margin_min": (f["margin"], "1", "smallest contact margin over the credible set (dynamic at its worst quasi-static point; NaN: no credible point)"),
+                     "post_worst_dyn_margin": (dyn.get("dyn_margin", math.nan), "1", "dynamic margin at the credible point of the smallest quasi-static margin"),
+                     **{f"post_worst_{k}": (worst.get(k, math.nan), u, f"credible point of the smallest quasi-static margin (a node or a branch's lower edge in g): {ln}")
+                        for k, u, ln in (("gravity", "m/s2", "gravity"), ("distance", "m", "F's distance from E"),
+                                         ("friction", "1", "friction coefficient"), ("direction", "deg", "F's direction from E"),
+                                         ("qs_margin", "1", "quasi-static margin"))},
+                     "post_edges": (len(f.get("edges", [])), "1", "branches whose lower edge in g was followed (region_edge)"),
+                     "post_worst_dyn_steps": (dyn.get("dyn_steps", math.nan), "1", "Radau steps of its dynamic periods"),
+                     "post_credible_level": (f["level"], "1", "level of the likelihood region (chi2 quantile, 4 degrees of freedom)"),
+                     "post_chi2_new_bushing": (f["chi2_new_bushing"], "1", "chi2 of Tables 3-4 read with every calibration interval on the new bushing (the same at every load point)"),
+                     "post_new_bushing_credible": (f["new_bushing_credible"], "1", "1 if that reading is inside the likelihood region")})}
     return coords, v
 
 
@@ -258,7 +278,7 @@ def local_part(res: dict, run: dict):
               "theta": var("theta", lw["theta"], "rad", "bushing angle, coupler frame"),
               "local_point": var("local_point", np.arange(len(lw["points"])), "1", "measuring point of Eq. (33)")}
     h = ("local_hour",)
-    v = {"local_mean_depth": var(h, lw["mean"], "m", "local model: mean depth over the 8 points of Eq. (35) in the wear range"),
+    v = {"local_mean_depth": var(h, lw["mean"], "m", "local model: mean depth over the 8 points of Eq. (33) in the wear range"),
          "local_peak_depth": var(h, lw["peak"], "m", "local model: deepest point of the profile"),
          "uniform_depth": var(h, lw["uniform"], "m", "uniform model (Eq. 29) on the same joint and schedule"),
          "local_profile_end": var(("theta",), lw["profile"], "m", "local wear profile at the end"),
@@ -276,7 +296,7 @@ def local_part(res: dict, run: dict):
 # (part, the key of the solver's result it needs)
 PARTS = ((mechanism_part, "fb"), (period_part, "hist"), (calibration_part, "wear"),
          (prediction_part, "wear"), (period_by_period_part, "pbp"), (scan_part, "scan"),
-         (fit_part, "fit"), (fitted_part, "fitted"), (sensitivity_part, "sens"),
+         (fit_part, "fit"), (posterior_part, "posterior"), (sensitivity_part, "sens"),
          (local_part, "local"))
 
 

@@ -104,7 +104,8 @@ def archard_wear(ctx: Context) -> dict:
         for side in ctx.sides:
             h_meas = np.asarray(p[f"measured_wear_{side}"], float)
             k, k_mean, G = wear.calibrate(h_meas, cal_h, fb.period, R0, factor,
-                                          dh_measured=p[f"measured_increment_{side}"])
+                                          dh_measured=p[f"measured_increment_{side}"],
+                                          feedback=float(p["calibration_wear_feedback"]))
             t_start = cal_h * h_meas.size
             nodes, h, Gp = wear.predict(h_meas[-1], t_start, float(p["prediction_end"]) / 3600.0,
                                         float(s["interval_h"]), k_mean, fb.period, R0, factor,

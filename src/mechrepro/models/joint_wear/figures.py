@@ -8,7 +8,7 @@ import numpy as np
 
 from mechrepro.io import run_attrs
 
-from . import accuracy
+from . import accuracy, wear
 
 SIDES = ("B1", "B2")
 
@@ -91,3 +91,35 @@ def explicit_points(st_exp) -> list[dict]:
              "t_reached": float(st_exp["t_reached"][i]),
              "period_wall_time": float(st_exp["period_wall_time"][i])}
             for i in range(st_exp.sizes["run"])]
+
+
+def posterior_table(ds) -> list[dict]:
+    """The load-point distribution's statements (scene load_point_posterior): per
+    quantity its posterior 2.5 / 50 / 97.5 % (mass-weighted, wear on the upper part) and its
+    range over the credible set (the 95 % likelihood region)."""
+    from .validation import weighted_quantiles
+    w = ds["post_point_weight"].values
+    cred = ds["post_point_credible"].values == 1
+    H = float(run_attrs(ds)["parameters"]["values_si"]["hardness_bushing"])
+    K = ds["post_point_K_table"]
+    cols = {
+        ("gravity", "m/s2"): ds["post_point_gravity"].values,
+        ("distance_F_E", "m"): ds["post_point_distance"].values,
+        ("friction_coefficient", "1"): ds["post_point_friction"].values,
+        ("direction_F_E", "deg"): ds["post_point_direction"].values,
+        ("contact_margin_quasistatic", "1"): ds["post_point_qs_margin"].values,
+        ("contact_arc", "deg"): ds["post_point_arc"].values,
+        ("wear_factor_new_bushing", "N/m"): ds["post_point_wear_factor"].values,
+        ("k_archard_b1", "1"): wear.archard_dimensionless(wear.k_from_table(K.sel(side="B1").values, H), H),
+        ("k_archard_b2", "1"): wear.archard_dimensionless(wear.k_from_table(K.sel(side="B2").values, H), H),
+        ("wear_86h_b1", "mm"): ds["post_point_wear_86h"].sel(side="B1").values * 1e3,
+        ("wear_86h_b2", "mm"): ds["post_point_wear_86h"].sel(side="B2").values * 1e3,
+    }
+    out = []
+    for (name, unit), x in cols.items():
+        q = weighted_quantiles(x, w) if np.any(w > 0) else np.full(3, np.nan)
+        xc = x[cred & np.isfinite(x)]
+        out.append({"quantity": name, "unit": unit, "q025": q[0], "median": q[1], "q975": q[2],
+                    "credible_min": xc.min() if xc.size else np.nan,
+                    "credible_max": xc.max() if xc.size else np.nan})
+    return out

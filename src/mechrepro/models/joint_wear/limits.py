@@ -34,8 +34,8 @@ run of both profiles (105 ci, 125 default): CPU 0.81-9.3, median 0.94 (ci) and 0
 3 (before issue 58): the dynamic joint at the load points estimated from Tables 3-4 and
 their variants (2.5-9x the assumed point's Radau steps), and 50-52 for the former
 no-gravity falsifier there, whose contact rattled (110 000 steps where the assumed point
-takes 740 per period) -- nothing in a run record announces that; fitted_contact solves the
-dynamic joint only where the quasi-static margin keeps the contact rule.  Wall time over the estimate at that load
+takes 740 per period) -- nothing in a run record announces that; load_point_posterior solves
+the dynamic joint only where the quasi-static margin keeps the contact rule.  Wall time over the estimate at that load
 (wall ~2-3x CPU): 0.9-19, those two 105-265; on the idle machine ~4x less.
 :data:`SPREAD` is the band a run's measured compute wall time keeps around its estimate,
 from an idle machine to this load.
@@ -141,15 +141,18 @@ def _solve_seconds(run: dict) -> tuple[float, float]:
         per_zero = ((int(opt.get("fit_secant_steps", 3)) + 1) * 2 * n_cal + 1
                     + 3 * _wear_periods(run, interval, 2, True))
         return _qs(n) * (grid + 4 * planes * per_zero), qs_mb
-    if solver == "fitted_contact":
+    if solver == "load_point_posterior":
+        nodes = (len(opt.get("posterior_distance", [])) * len(opt.get("posterior_friction", []))
+                 * int(res.get("n_gravity", 1)))
         grid = len(opt.get("fit_load_direction_deg", [])) * 2 * n_cal
-        # each zero (4 at 0.5 m): secant steps (Brent's where they stall, ~20 more misfits
-        # near contact loss), the estimate, a quasi-static period, and the dynamic joint,
-        # whose Radau steps at a fitted F are ~2x the assumed point's (measured: 1350-1780
-        # per period at rtol 1e-6 against ~800); skipped below the contact rule (g ~ 0)
-        per_zero = ((int(opt.get("fit_secant_steps", 3)) + 2) * 2 * n_cal + 2) * _qs(n)
-        dyn = 2.0 * _dynamic(res, opt.get("start", "equilibrium"))
-        return _qs(n) * grid + 4 * (per_zero + dyn), max(qs_mb, _dynamic_mb(res))
+        # each node: ~4 zeros, each with its secant steps (Brent's where they stall, ~20 more
+        # misfits near contact loss), a quasi-static period, and, where credible, the 86-h
+        # wear; the dynamic joint once, at the credible point of the smallest margin
+        # (measured: 9 000-62 000 Radau steps for four periods at rtol 1e-7 near the rule)
+        per_zero = ((int(opt.get("fit_secant_steps", 3)) + 2) * 2 * n_cal + 2
+                    + _wear_periods(run, interval, 2, True)) * _qs(n)
+        dyn = 10.0 * _dynamic(res, opt.get("start", "equilibrium"))
+        return nodes * (_qs(n) * grid / (2 * n_cal) + 4 * per_zero) + dyn, max(qs_mb, _dynamic_mb(res))
     if solver == "local_wear":
         periods = 1 + _wear_periods(run, interval, 1, True)
         n_theta = int(res.get("n_theta", 720))

@@ -14,9 +14,9 @@ Solvers
                         planes the paper leaves open (contact loss refused)
 ``load_point_fit``      F estimated from Tables 3-4 jointly, with its uncertainty, its
                         contact arc and wear side, and the 86-h wear it predicts
-``fitted_contact``      F re-fitted to Tables 3-4 in the run (its own gravity, friction,
-                        distance), the contact margin of the quasi-static and the dynamic
-                        joint at every fitted F (Sec. 3.2)
+``load_point_posterior`` F's direction and distance, g and mu as a distribution
+                        conditioned on Tables 3-4 and "upper part"; every mechanics statement
+                        over it, the contact margin over its credible set (Sec. 3.2)
 ``constant_sensitivity`` friction, contact exponent, d_max, C_max reading at their range ends
 ``local_wear``          local Archard wear per bushing angle vs the uniform depth (Fig. 14)
 
@@ -30,7 +30,7 @@ import math
 from dataclasses import replace
 
 import numpy as np
-from scipy import optimize
+from scipy import optimize, stats
 
 from mechrepro.errors import Refusal
 from mechrepro.timing import stopwatch
@@ -263,7 +263,8 @@ def _calibrated(fb_v: FourBar, s: dict, p: dict, sides=SIDES, factor=None) -> np
     factor = factor or wear_factor_of(fb_v, s)
     return np.array([wear.calibrate(p[f"measured_wear_{side}"], cal_h, fb_v.period,
                                     fb_v.R_bush, factor,
-                                    dh_measured=p[f"measured_increment_{side}"])[0]
+                                    dh_measured=p[f"measured_increment_{side}"],
+                                    feedback=float(p["calibration_wear_feedback"]))[0]
                      for side in sides])
 
 
@@ -305,7 +306,7 @@ def tables_misfit(fb_v: FourBar, s: dict, p: dict, K_paper, factor=None) -> floa
 
 
 def fit_zeros(fb: FourBar, s: dict, p: dict, E, d: float, dirs, g: float, K_paper,
-              joint=None) -> tuple[np.ndarray, list]:
+              joint=None, xtol: float = 1e-9) -> tuple[np.ndarray, list]:
     """The load points F at distance ``d`` from ``E`` (gravity ``g``) whose calibration
     reproduces Tables 3-4, the zeros over F's direction of the misfit (tables_misfit).
 
@@ -369,7 +370,7 @@ def fit_zeros(fb: FourBar, s: dict, p: dict, E, d: float, dirs, g: float, K_pape
             # with it the misfit, changes by decades within a degree) that the secant steps
             # have not reached: Brent's method on the bracket they leave
             try:
-                a = float(optimize.brentq(lambda x: misfit(x % 360.0), a0, a1, xtol=1e-9,
+                a = float(optimize.brentq(lambda x: misfit(x % 360.0), a0, a1, xtol=xtol,
                                           rtol=4 * np.finfo(float).eps, maxiter=200))
             except (ValueError, RuntimeError):
                 continue     # no sign change left (a refused point inside): no zero
@@ -440,53 +441,232 @@ def load_point_fit(run: dict) -> dict:
                               "solutions": sols}}
 
 
-def fitted_contact(run: dict) -> dict:
-    """Sec. 3.2's continuous contact at every load point F that reproduces Tables 3-4, F
-    re-fitted in the run (the load point is calibrated, so every variant -- a level, a
-    member of the load-point family, a range end -- fits it again at its own gravity,
-    friction and distance ``load_point_distance``).
+def contact_margins(fb_a: FourBar, s: dict) -> dict:
+    """The contact margin min F_N / max F_N at the load point of ``fb_a``: of the
+    quasi-static period, and where that keeps CONTACT_LOSS_FRACTION, of the dynamic
+    clearance joint (resolution.method, rtol; ``periods`` periods from the settled start,
+    the last one read; 0 where the pin leaves the bushing).  Below the fraction the
+    quasi-static margin stands: the project's rule already calls that contact lost, whatever
+    the dynamics adds (and a rattling pin would cost 100x the steps)."""
+    qs = quasi_static_period(fb_a, s)
+    F = np.asarray(qs["F_N"])
+    row = {"qs_F_min": float(F.min()), "qs_F_max": float(F.max()),
+           "qs_margin": float(F.min() / F.max()), "dyn_F_min": math.nan, "dyn_F_max": math.nan,
+           "dyn_margin": math.nan, "dyn_min_penetration": math.nan, "dyn_steps": math.nan}
+    if row["qs_margin"] >= CONTACT_LOSS_FRACTION:
+        hist = dynamic_period(fb_a, s)
+        if not hist["completed"]:
+            raise RuntimeError(f"joint_wear: {hist['message']}: no settled period")
+        Fd = np.where(np.asarray(hist["delta"]) > 0.0, np.asarray(hist["F_N"]), 0.0)
+        row.update(dyn_F_min=float(Fd.min()), dyn_F_max=float(Fd.max()),
+                   dyn_margin=float(Fd.min() / Fd.max()),
+                   dyn_min_penetration=float(np.min(hist["delta"])), dyn_steps=float(hist["steps"]))
+    row["margin"] = float(np.nanmin([row["qs_margin"], row["dyn_margin"]]))
+    return row
 
-    The fit (fit_zeros) calibrates on the quasi-static joint without refusing contact loss:
-    the margin is what is measured here, not assumed.  At each zero the contact margin is
-    the smallest joint force over its peak, min F_N / max F_N, first of the quasi-static
-    period; where that is at least CONTACT_LOSS_FRACTION the dynamic clearance joint
-    (resolution.method, rtol; ``periods`` periods from the settled start, the last one
-    read) is solved and its own margin taken (0 if the pin leaves the bushing).  Below the
-    fraction the quasi-static margin stands: the project's rule already calls that contact
-    lost, whatever the dynamics adds (and a rattling pin would cost 100x the steps).
-    The result's margin is the smallest over the zeros, NaN where none exists (no load
-    point at that distance reproduces the tables: a family member the model refuses)."""
+
+def printed_step(x: float) -> float:
+    """The unit of the last digit a number is printed with (0.0229 -> 1e-4, 0.01956 -> 1e-5)."""
+    for k in range(13):
+        if abs(round(x, k) - x) <= 1e-9 * abs(x):
+            return 10.0 ** -k
+    return 10.0 ** -12
+
+
+def rounding_sigma(dh_printed_mm) -> np.ndarray:
+    """Relative standard deviation of a printed increment from its rounding: the true value
+    is uniform within half a unit of the last printed digit either side, sd = step / sqrt(12),
+    relative to the value.  It is the noise of ln(K_p ours / K_p paper): our K_p divides the
+    printed increment, the paper's the one it measured (its K_p are printed to five digits,
+    a rounding of 1e-5, negligible beside it)."""
+    x = np.asarray(dh_printed_mm, float)
+    return np.array([printed_step(v) for v in x.ravel()]).reshape(x.shape) / math.sqrt(12.0) / x
+
+
+def laplace_log_weight(r, sigma, slope: float) -> tuple[float, float, float, float]:
+    """The likelihood of the log-ratios r (Gaussian, sd ``sigma``) integrated over F's
+    direction about a zero of their mean, where each moves by ``slope`` per degree:
+    the integral of exp(-chi2(delta) / 2) over delta by the exact Gaussian integral of
+    the linearised ratios (Laplace).  Returns (chi2 at the best direction, the direction's
+    sd [deg], log of the integral [log deg] -- the posterior mass of the zero under a
+    prior uniform in direction, up to a constant --, the best direction's offset from the
+    zero [deg])."""
+    r, w = np.ravel(r), 1.0 / np.ravel(sigma) ** 2
+    A, B = float(np.sum(w)), float(np.sum(r * w))
+    chi2 = float(np.sum(r * r * w)) - B * B / A
+    width = 1.0 / (abs(slope) * math.sqrt(A))
+    return chi2, width, -0.5 * chi2 + math.log(math.sqrt(2.0 * math.pi) * width), -B / (A * slope)
+
+
+def likelihood_region(chi2, level: float, dof: int = 4) -> np.ndarray:
+    """The points whose likelihood is within the ``level`` quantile of the chi2
+    distribution with ``dof`` degrees of freedom of the best (a likelihood-ratio region:
+    decided point by point, so a finer grid adds points to it but never moves one out,
+    unlike a share of the mass, which a grid that misses a narrow ridge gets wrong); NaN
+    chi2 are points the conditioning excluded."""
+    c = np.asarray(chi2, float)
+    if not np.isfinite(c).any():
+        return np.zeros(c.shape, bool)
+    return np.isfinite(c) & (c <= np.nanmin(c) + stats.chi2.ppf(level, dof))
+
+
+def gravity_nodes(lo: float, hi: float, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """n cells of [lo, hi], edges at lo + (hi - lo) (i / n)^3 (denser towards lo, where the
+    joint nears contact loss and the likelihood changes by decades within 0.1 m/s2): their
+    midpoints and their shares of the range (the prior mass of each node, uniform in g)."""
+    e = lo + (hi - lo) * (np.arange(n + 1) / n) ** 3
+    return 0.5 * (e[1:] + e[:-1]), np.diff(e) / (hi - lo)
+
+
+def _branch_point(fb: FourBar, s: dict, p: dict, E, d: float, a0: float, g: float, K_paper, sigma):
+    """The zero of the misfit within 3 deg of direction ``a0`` at gravity ``g`` (one
+    branch of the load points the tables allow), with its chi2 and quasi-static period;
+    None where the branch has no zero there (contact refused or the branch ended)."""
+    # xtol 1e-5 deg: the misfit moves by < 1e-4 of FIT_TOLERANCE there, and chi2, taken
+    # about the ratios' common level, not at all
+    _, zeros = fit_zeros(fb, s, p, E, d, np.array([a0 - 3.0, a0 + 3.0]), g, K_paper,
+                         joint=quasi_static_period, xtol=1e-5)
+    zeros = [z for z in zeros if abs(math.remainder(z["direction"] - a0, 360.0)) <= 3.0]
+    if not zeros:
+        return None
+    z = min(zeros, key=lambda z: abs(math.remainder(z["direction"] - a0, 360.0)))
+    chi2 = laplace_log_weight(np.log(z["K"] / K_paper), sigma, (z["m1"] - z["m0"]) / (z["a1"] - z["a0"]))[0]
+    return {"gravity": g, "direction": z["direction"] % 360.0, "chi2": chi2,
+            "qs": quasi_static_period(z["fb"], s), "fb": z["fb"]}
+
+
+def region_edge(fb: FourBar, s: dict, p: dict, E, d: float, branch: list, K_paper, sigma,
+                threshold: float, bisections: int):
+    """The lowest gravity on one branch of load points (``branch``: its points at the prior
+    nodes, ascending g) inside the likelihood region (chi2 within ``threshold``, wear on the
+    upper part): between the branch's lowest credible node and the node below it (or g's
+    range end) by ``bisections`` bisections, the branch's direction interpolated between
+    its nodes.  The contact margin grows with g along a branch (the link weights carry it),
+    so the credible set's smallest margin sits at such an edge -- which the nodes alone
+    place only to within their spacing, while the likelihood changes by e^-1000 within
+    0.3 m/s2 there.  Returns the edge point (the lowest credible g reached) or the node."""
+    gb = np.array([q["gravity"] for q in branch])
+    ab = np.unwrap(np.radians([q["direction"] for q in branch]))
+    k = next(i for i, q in enumerate(branch) if q["credible"])
+    lo = float(gb[k - 1]) if k else float(s["posterior_gravity_range"][0])
+    hi, best = float(gb[k]), None
+    for _ in range(bisections):
+        mid = 0.5 * (lo + hi)
+        r = _branch_point(fb, s, p, E, d, math.degrees(float(np.interp(mid, gb, ab))), mid, K_paper, sigma)
+        if r is not None and r["chi2"] <= threshold and contact_side(r["qs"])["upper_share"] > 0.5:
+            hi, best = mid, r
+        else:
+            lo = mid
+    return best
+
+
+def load_point_posterior(run: dict) -> dict:
+    """The load point F as a distribution the tables allow (Secs. 3.2, 4.2-4.3).
+
+    Unknowns: F's direction and distance from E's mid-stroke position, the gravity
+    component in the plane of motion and mu.  Prior: uniform over the nodes
+    ``posterior_distance``, ``posterior_friction`` (cell midpoints of each declared range,
+    mu's in log), the ``n_gravity`` cells of ``posterior_gravity_range`` (gravity_nodes: a
+    resolution, the likelihood falls by e^-1000 within 0.3 m/s2 where the joint nears
+    contact loss) and uniform in direction.  Likelihood: the ten K_p of
+    Tables 3-4 (both sides) with the rounding of the printed increments as their noise
+    (rounding_sigma), and the wear on the upper part of the bushing (Sec. 4.2 (2), the
+    wear-weighted share above the centre > 1/2) as an indicator.  At each node the
+    direction is integrated exactly about every zero of the mean misfit (fit_zeros,
+    laplace_log_weight): the tables fix it to ~0.003 deg, so a grid in direction would
+    need 1e5 points.  At every point: the contact margin, contact arc, wear coefficients
+    and wear factor, and the posterior mass (what the distributions of these statements
+    weigh by).  The credible set is the likelihood region at ``posterior_credible``
+    (likelihood_region: prior-free, so the contested prior of g does not enter it); there
+    the 86-h wear of both sides, and the dynamic margin (contact_margins) at its point of the
+    smallest quasi-static margin.  The contact statement holds only with margin everywhere
+    in the credible set: its smallest margin is the result."""
     fb, ctx = setup(run)
     s, p = ctx.s, ctx.p
-    E, d = kinematics.load_point_mid_stroke(fb), float(p["load_point_distance"])
+    E = kinematics.load_point_mid_stroke(fb)
     dirs = np.asarray(s["fit_load_direction_deg"], float)
     K_paper = _K_paper(s, p)
-    misfit, zeros = fit_zeros(fb, s, p, E, d, dirs, fb.g, K_paper, joint=quasi_static_period)
-    sols = []
-    for z in zeros:
-        fb_a = z["fb"]
-        qs = quasi_static_period(fb_a, s)
-        F = np.asarray(qs["F_N"])
-        row = {"direction": z["direction"] % 360.0, "F": fb_a.F,
-               "misfit": float(np.mean(np.log(z["K"] / K_paper))),
-               "qs_F_min": float(F.min()), "qs_F_max": float(F.max()),
-               "qs_margin": float(F.min() / F.max()), "dyn_F_min": math.nan,
-               "dyn_F_max": math.nan, "dyn_margin": math.nan, "dyn_min_penetration": math.nan,
-               "dyn_steps": math.nan, **contact_side(qs)}
-        if row["qs_margin"] >= CONTACT_LOSS_FRACTION:
-            hist = dynamic_period(fb_a, s)
-            if not hist["completed"]:
-                raise RuntimeError(f"joint_wear: {hist['message']}: no settled period")
-            Fd = np.where(np.asarray(hist["delta"]) > 0.0, np.asarray(hist["F_N"]), 0.0)
-            row.update(dyn_F_min=float(Fd.min()), dyn_F_max=float(Fd.max()),
-                       dyn_margin=float(Fd.min() / Fd.max()),
-                       dyn_min_penetration=float(np.min(hist["delta"])),
-                       dyn_steps=float(hist["steps"]))
-        row["margin"] = float(np.nanmin([row["qs_margin"], row["dyn_margin"]]))
-        sols.append(row)
-    margin = min((r["margin"] for r in sols), default=math.nan)
-    return {"fb": fb, "fitted": {"misfit": misfit, "directions": dirs, "distance": d,
-                                 "gravity": fb.g, "solutions": sols, "margin": margin}}
+    ds_, mus = (np.asarray(s[f"posterior_{k}"], float) for k in ("distance", "friction"))
+    gs, g_prior = gravity_nodes(*(float(x) for x in s["posterior_gravity_range"]), int(s["n_gravity"]))
+    sigma = rounding_sigma(np.array([p[f"measured_increment_{side}"] for side in SIDES]) * 1e3)
+    misfit = np.full((ds_.size, gs.size, mus.size, dirs.size), np.nan)
+    pts = []
+    for i, d in enumerate(ds_):
+        for j, g in enumerate(gs):
+            for k, mu in enumerate(mus):
+                fb_n = replace(fb, mu=float(mu))
+                misfit[i, j, k], zeros = fit_zeros(fb_n, s, p, E, float(d), dirs, float(g), K_paper,
+                                                   joint=quasi_static_period)
+                for z in zeros:
+                    r = np.log(z["K"] / K_paper)
+                    chi2, width, logw, shift = laplace_log_weight(
+                        r, sigma, (z["m1"] - z["m0"]) / (z["a1"] - z["a0"]))
+                    qs = quasi_static_period(z["fb"], s)
+                    f = wear.period_wear_factor(qs, z["fb"], fb.period)
+                    F = np.asarray(qs["F_N"])
+                    pts.append({"distance": float(d), "gravity": float(g), "friction": float(mu),
+                                "direction": (z["direction"] + shift) % 360.0, "misfit": float(np.mean(r)),
+                                "chi2": chi2, "width": width, "log_lik": logw,
+                                "log_prior": math.log(g_prior[j]),
+                                "qs_margin": float(F.min() / F.max()), "F_N_min": float(F.min()),
+                                "arc_deg": math.degrees(f["arc"]), "G": f["G"],
+                                "K_b1": float(np.mean(z["K"][0])), "K_b2": float(np.mean(z["K"][1])),
+                                **contact_side(qs), "fb": z["fb"], "factor": z["factor"]})
+    upper = np.array([q["upper_share"] > 0.5 for q in pts], bool)
+    log_post = np.array([q["log_lik"] + q["log_prior"] for q in pts], float)
+    log_post[~upper] = np.nan
+    chi2 = np.array([q["chi2"] if u else math.nan for q, u in zip(pts, upper)], float)
+    # the other reading of Sec. 4.3, every interval calibrated on the new bushing: the
+    # wear factor is then one number per load point, the ten log-ratios differ only by the
+    # printed increments over the paper's K_p, and their chi2 about a common level is the
+    # same at every load point that fits the level -- no fit needed to weigh it
+    chi2_new = laplace_log_weight(
+        np.log(np.array([p[f"measured_increment_{side}"] for side in SIDES]) / K_paper), sigma, 1.0)[0]
+    inside = likelihood_region(np.r_[chi2, chi2_new], float(s["posterior_credible"]))
+    new_inside, inside = bool(inside[-1]), inside[:-1]
+    if new_inside:      # the new-bushing reading is credible: so is every load point it fits
+        inside = upper.copy()
+    for q, c in zip(pts, inside):
+        q["credible"] = bool(c)
+        q["wear_86h"] = (_predicted_86h(q["fb"], s, p, [q["K_b1"], q["K_b2"]], q["factor"])
+                         if c else [math.nan, math.nan])
+    # the credible set's lower edge in g on every branch through a credible node
+    # (region_edge), where its margin is smallest
+    threshold = (np.nanmin(chi2) if np.isfinite(chi2).any() else math.nan) \
+        + stats.chi2.ppf(float(s["posterior_credible"]), 4)
+    edges = []
+    for q in [] if new_inside else pts:
+        branch = sorted((r for r in pts if r["distance"] == q["distance"] and r["friction"] == q["friction"]
+                         and r["upper_share"] > 0.5
+                         and abs(math.remainder(r["direction"] - q["direction"], 360.0)) < 15.0),
+                        key=lambda r: r["gravity"])
+        if not q["credible"] or q is not next(r for r in branch if r["credible"]):
+            continue            # one edge per branch: at its lowest credible node
+        e = region_edge(replace(fb, mu=q["friction"]), s, p, E, q["distance"], branch, K_paper,
+                        sigma, threshold, int(s["edge_bisections"]))
+        if e is not None:
+            F = np.asarray(e["qs"]["F_N"])
+            edges.append({"distance": q["distance"], "friction": q["friction"],
+                          "gravity": e["gravity"], "direction": e["direction"], "chi2": e["chi2"],
+                          "qs_margin": float(F.min() / F.max()), "fb": e["fb"]})
+    worst = min([q for q in pts if q["credible"]] + edges, key=lambda q: q["qs_margin"], default=None)
+    dyn = contact_margins(worst["fb"], s) if worst else {}
+    margin = dyn.get("margin", math.nan)
+    for q in pts:
+        del q["fb"], q["factor"]
+    for e in edges:
+        del e["fb"]
+    w = np.zeros(len(pts))
+    if upper.any():
+        lp = log_post[upper]
+        w[upper] = np.exp(lp - lp.max()) / np.sum(np.exp(lp - lp.max()))
+    return {"fb": fb, "posterior": {"misfit": misfit, "directions": dirs, "distance": ds_,
+                                    "gravity": gs, "friction": mus, "points": pts,
+                                    "weight": w, "worst": worst and {k: worst[k] for k in (
+                                        "distance", "gravity", "friction", "direction", "qs_margin")},
+                                    "worst_margins": dyn, "margin": margin, "edges": edges,
+                                    "chi2_new_bushing": chi2_new, "new_bushing_credible": new_inside,
+                                    "level": float(s["posterior_credible"])}}
 
 
 def constant_sensitivity(run: dict) -> dict:
@@ -559,7 +739,7 @@ SOLVERS = {"clearance_implicit": clearance_implicit, "clearance_explicit": clear
            "continuous_contact": continuous_contact, "period_by_period": period_by_period,
            "coefficient_scan": coefficient_scan, "load_point_fit": load_point_fit,
            "constant_sensitivity": constant_sensitivity, "local_wear": local_wear,
-           "fitted_contact": fitted_contact}
+           "load_point_posterior": load_point_posterior}
 
 
 def _methods(runs) -> set:

@@ -136,26 +136,60 @@ def continuous_contact(R):
             "min_penetration_dynamic": d}
 
 
-@Q.register("continuous_contact_margin_fitted_f", "fitted_load_point_misfit")
-def continuous_contact_fitted(R):
-    ds = R.run("contact_fitted_f")
-    n = int(ds["fitted_n"])
-    g, d = float(ds["fitted_gravity"]), float(ds["fitted_load_distance"])
-    mu = float(_param_si(ds, "friction_coefficient"))
-    parts = []
-    for i in range(n):
-        r = ds.isel(fitted_f=i)
-        dyn = (f"dynamic {float(r['fitted_dyn_F_N_min']):.3g} / {float(r['fitted_dyn_F_N_max']):.3g} N"
-               if np.isfinite(float(r["fitted_dyn_margin"])) else "dynamic not solved (below the rule)")
-        parts.append(f"{float(r['fitted_F_direction']):.2f} deg: quasi-static "
-                     f"{float(r['fitted_qs_F_N_min']):.3g} / {float(r['fitted_qs_F_N_max']):.3g} N, {dyn}")
-    where = f"g {g:g} m/s2, mu {mu:g}, F {d:g} m from E"
-    margin = float(ds["fitted_margin_min"])
-    note = (f"{n} load points reproduce Tables 3-4 at {where}: " + "; ".join(parts)
-            if n else f"no load point reproduces Tables 3-4 at {where}")
-    misfit = float(np.nanmax(np.abs(ds["fitted_F_misfit"].values))) if n else math.nan
-    return {"continuous_contact_margin_fitted_f": Reproduced(margin, note),
-            "fitted_load_point_misfit": Reproduced(misfit, f"largest |mean ln(K ours / K paper)| over the {n} fitted F ({where})")}
+def weighted_quantiles(x, w, qs=(0.025, 0.5, 0.975)) -> np.ndarray:
+    """Quantiles of a discrete distribution (values x, masses w): the smallest x whose
+    cumulative mass reaches each q."""
+    x, w = np.asarray(x, float), np.asarray(w, float)
+    ok = np.isfinite(x) & (w > 0)
+    o = np.argsort(x[ok])
+    c = np.cumsum(w[ok][o]) / np.sum(w[ok])
+    return np.array([x[ok][o][min(int(np.searchsorted(c, q)), c.size - 1)] for q in qs])
+
+
+@Q.register("continuous_contact_margin_fitted_f", "fitted_load_point_misfit",
+            "load_point_posterior_g_credible_min", "load_point_posterior_arc_deg_median",
+            "load_point_posterior_k_archard_b1_median", "load_point_posterior_wear_86h_b1_median",
+            "load_point_posterior_wear_86h_b2_median")
+def load_point_posterior(R):
+    ds = R.run("load_point_posterior")
+    w = ds["post_point_weight"].values
+    cred = ds["post_point_credible"].values == 1
+    fb = float(_param_si(ds, "calibration_wear_feedback"))
+    col = {k: ds[f"post_point_{k}"].values for k in ("gravity", "distance", "friction", "direction",
+                                                     "qs_margin", "arc", "chi2")}
+    n, nc = int(np.isfinite(col["direction"]).sum()), int(cred.sum())
+    margin = float(ds["post_margin_min"])
+    if nc:
+        wv = {k: float(ds[f"post_worst_{k}"]) for k in ("gravity", "friction", "distance", "direction", "qs_margin")}
+        worst = (f"smallest at the credible set's edge g {wv['gravity']:.3g} m/s2, mu {wv['friction']:.3g}, "
+                 f"F {wv['distance']:.3g} m at {wv['direction']:.2f} deg: quasi-static "
+                 f"{wv['qs_margin']:.4g}, dynamic {float(ds['post_worst_dyn_margin']):.4g}; "
+                 f"chi2 of the new-bushing reading {float(ds['post_chi2_new_bushing']):.1f} "
+                 f"({'inside' if int(ds['post_new_bushing_credible']) else 'outside'} the region)")
+        q_m = weighted_quantiles(col["qs_margin"], w)
+        g_cred = np.unique(col["gravity"][cred])
+        note = (f"{n} load points reproduce the mean of Tables 3-4 over the prior grid "
+                f"(calibration_wear_feedback {fb:g}); {nc} form the {float(ds['post_credible_level']):.0%} "
+                f"credible set (wear on the upper part), gravity nodes {', '.join(f'{g:.3g}' for g in g_cred)} "
+                f"m/s2; quasi-static margin 2.5/50/97.5 % {q_m[0]:.3g} / {q_m[1]:.3g} / {q_m[2]:.3g}; {worst}")
+    else:
+        note = "no load point reproduces Tables 3-4 with the wear on the upper part"
+    misfit = float(np.nanmax(np.abs(ds["post_point_misfit"].values))) if n else math.nan
+    out = {"continuous_contact_margin_fitted_f": Reproduced(margin, note),
+           "fitted_load_point_misfit": Reproduced(misfit, f"largest |mean ln(K ours / K paper)| over the {n} fitted F")}
+    H = float(_param_si(ds, "hardness_bushing"))
+    K = ds["post_point_K_table"].sel(side="B1").values
+    h86 = {s: ds["post_point_wear_86h"].sel(side=s).values * 1e3 for s in ("B1", "B2")}
+    kA = wear.archard_dimensionless(wear.k_from_table(K, H), H)
+    for key, x, fmt in (("arc_deg_median", col["arc"], ".1f"), ("k_archard_b1_median", kA, ".4g"),
+                        ("wear_86h_b1_median", h86["B1"], ".4f"), ("wear_86h_b2_median", h86["B2"], ".4f")):
+        q = weighted_quantiles(x, w) if nc else np.full(3, math.nan)
+        out[f"load_point_posterior_{key}"] = Reproduced(
+            float(q[1]), f"posterior 2.5 / 50 / 97.5 %: {q[0]:{fmt}} / {q[1]:{fmt}} / {q[2]:{fmt}}")
+    out["load_point_posterior_g_credible_min"] = Reproduced(
+        float(col["gravity"][cred].min()) if nc else math.nan,
+        f"prior nodes {', '.join(f'{g:.3g}' for g in ds['post_gravity'].values)} m/s2")
+    return out
 
 
 def _finest_radau(st):

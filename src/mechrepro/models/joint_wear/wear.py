@@ -210,11 +210,13 @@ def periods_per_interval(hours: float, period: float) -> float:
 
 
 def calibrate(h_measured, interval_h: float, period: float, R0: float,
-              wear_factor: Callable[[float], float], dh_measured=None):
+              wear_factor: Callable[[float], float], dh_measured=None, feedback: float = 1.0):
     """Eqs. (32)-(34): k_p = (dh^P / M) / G(R at the start of interval p).
 
     h_measured: cumulative measured wear h^P after each interval (Tables 3-4), which
-    sets the bushing radius at the start of each interval (Sec. 4.4 step 1);
+    sets the bushing radius at the start of each interval (Sec. 4.4 step 1), times
+    ``feedback`` (Sec. 4.3 does not say whether the calibration grew the bushing: 1, it did,
+    as the prediction's step 1; 0, every interval on the new bushing);
     dh_measured: the increments dh^P the tables print (default: differences of h^P).
     Returns (k_p per interval, mean k, the wear factors G_p used).
     """
@@ -223,7 +225,7 @@ def calibrate(h_measured, interval_h: float, period: float, R0: float,
     if dh.shape != h[1:].shape:
         raise Refusal(f"joint_wear: {dh.size} increments for {h.size - 1} cumulative values")
     M = periods_per_interval(interval_h, period)
-    G = np.array([wear_factor(bushing_radius(R0, hp)) for hp in h[:-1]])
+    G = np.array([wear_factor(bushing_radius(R0, feedback * hp)) for hp in h[:-1]])
     k = dh / M / G                                                              # Eq. (34)
     return k, float(np.mean(k)), G
 
@@ -350,13 +352,13 @@ def local_predict(h_measured, dh_measured, interval_h: float, t_end_h: float, st
     into the contact geometry interval by interval.
 
     Geometry: the joint of an interval is the bushing circle of radius R0 + h_c / 2, h_c the
-    profile's mean over the Eq.-35 points -- the depth the paper's measurement would report,
+    profile's mean over the Eq.-33 points -- the depth the paper's measurement would report,
     fed back by the uniform model's D0 + h convention (Sec. 4.4), so that the two models differ
     only in how the wear is distributed, not in the geometry a given measured depth implies.  Calibration (Eqs. 33-34): in each measured interval
-    p, k_p makes the profile's mean over the n_points of Eq. (35) grow by the printed
+    p, k_p makes the profile's mean over the n_points of Eq. (33) grow by the printed
     increment dh^P; the profile after 10 h is the one those k_p wore.  Prediction: k = mean
     k_p, profile grown by M periods of local wear per interval.
-    Returns (node hours, mean depth over the Eq.-35 points [m], max depth [m], k, the profile
+    Returns (node hours, mean depth over the Eq.-33 points [m], max depth [m], k, the profile
     at the end [m], theta)."""
     R0 = fb.R_bush
     theta = np.linspace(-math.pi, math.pi, n_theta, endpoint=False)
@@ -368,7 +370,7 @@ def local_predict(h_measured, dh_measured, interval_h: float, t_end_h: float, st
         return np.interp(np.angle(np.exp(1j * pts)), theta, p, period=2.0 * math.pi)
 
     def per_period(prof):
-        h_c = float(np.mean(at_points(prof)))     # the depth the paper's Eq. (35) would report
+        h_c = float(np.mean(at_points(prof)))     # the depth the paper's Eq. (33) would report
         fb_w = fb.with_bushing_radius(bushing_radius(R0, h_c))
         return local_wear_per_period(one_period(fb_w), fb_w, period, theta)
 
