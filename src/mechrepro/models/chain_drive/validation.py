@@ -30,6 +30,9 @@ def _stable(ds):
     return ~np.asarray(ds.unstable.values, bool)
 
 
+NO_STEADY = "no steady amplitude: an unstable periodic orbit has none"
+
+
 # ----------------------------------------------------------------------------- Fig. 1
 @Q.register("impact_single_pulse_per_tooth", "impact_impulse_closed_form_error",
             "impact_load_min_during_contact", "impact_peak_load_300rpm", "impact_contact_time",
@@ -108,7 +111,7 @@ def fig04(R):
 def _resonance_ratio(ds, k):
     pred = float(ds.resonance_speed_mean.sel(order=k))
     sp = ds.speed.values
-    got = C.nearest_peak(sp, ds.amplitude.values, pred)
+    got = C.nearest_peak(sp, ds.amplitude.values, pred, stable=_stable(ds))
     # a peak read off the speed grid is known to half its local step
     step = float(np.max(np.diff(sp)))
     return Reproduced(got / pred, f"peak {got:.1f} rpm vs Wickert-Mote {pred:.1f} rpm (nan = no peak "
@@ -190,8 +193,12 @@ def fig05_difference(R):
             dp, dl = plain[cd], withl[cd]
             r = float(dp.resonance_speed_mean.sel(order=k))
             band = np.abs(dp.speed.values / r - 1) <= 0.04
-            vals.append(np.mean(np.abs(np.log(dl.amplitude.values[band] / dp.amplitude.values[band]))))
+            al, ap = (C.steady(d.amplitude.values, _stable(d))[band] for d in (dl, dp))
+            vals.append(np.mean(np.abs(np.log(al / ap))))
         diffs.append(float(np.mean(vals)))
+    if not np.all(np.isfinite(diffs)):
+        return Reproduced(math.nan, f"{NO_STEADY}: unstable speeds within 4 % of a resonance "
+                                    f"(mean |log| per order {[f'{d:.3f}' for d in diffs]})")
     return Reproduced(bool(np.mean(diffs[3:]) > np.mean(diffs[:2])),
                       f"mean |log(amp_with / amp_without)| within 4 % of orders 1-5 over the "
                       f"non-integral centre distances: {[f'{d:.3f}' for d in diffs]} (orders 4-5 vs 1-2)")
@@ -206,19 +213,26 @@ def fig05_integral(R):
 
 def _amplification(ds):
     return C.amplification(ds.speed.values, ds.amplitude.values,
-                           float(ds.resonance_speed_mean.sel(order=1)))
+                           float(ds.resonance_speed_mean.sel(order=1)), stable=_stable(ds))
+
+
+def _amplified(a: float, expect: bool) -> Reproduced:
+    if not np.isfinite(a):
+        return Reproduced(math.nan, f"{NO_STEADY}: a speed within 5 % of the first resonance "
+                                    "is unstable")
+    return Reproduced(bool((a >= C.AMPLIFIED) == expect),
+                      f"ratio {a:.2f} (amplified: >= {C.AMPLIFIED:g}; quasi-static amplitude "
+                      "at the lowest stable speed)")
 
 
 @Q.register("system_a_20p_amplified_first_resonance")
 def fig05_system_a_amp(R):
-    a = _amplification(R.run("fig05_length"))
-    return Reproduced(bool(a >= C.AMPLIFIED), f"ratio {a:.2f} (amplified: >= {C.AMPLIFIED:g})")
+    return _amplified(_amplification(R.run("fig05_length")), True)
 
 
 @Q.register("system_b_20p5_not_amplified_first_resonance")
 def fig05_system_b_amp(R):
-    a = _amplification(_at_cd(R, "fig05_length_cd", 20.5))
-    return Reproduced(bool(a < C.AMPLIFIED), f"ratio {a:.2f}")
+    return _amplified(_amplification(_at_cd(R, "fig05_length_cd", 20.5)), False)
 
 
 # ----------------------------------------------------------------------------- Fig. 6
@@ -234,21 +248,32 @@ def _by_inertia(R):
             "inertia_adds_peaks")
 def fig06(R):
     i2s, runs = _by_inertia(R)
+    i2 = [f"{v:g}" for v in i2s]
+    un = [int(d.unstable.sum()) for d in runs]
+    rho = [float(np.nanmax(d.growth.values[~_stable(d)])) if un[j] else math.nan
+           for j, d in enumerate(runs)]
     out = {}
     for k in (3, 4):
-        lv = [C.resonance_peak_level(d.speed.values, d.amplitude.values,
-                                     [float(d.resonance_speed_short.sel(order=k)),
-                                      float(d.resonance_speed_long.sel(order=k))]) for d in runs]
-        un = [int(d.unstable.sum()) for d in runs]
-        out[f"inertia_raises_resonance_amplitude_order{k}"] = Reproduced(
-            C.monotone_increasing(lv), f"peak levels {[f'{x * 1e3:.3g}' for x in lv]} mm for I2 = "
-            f"{[f'{v:g}' for v in i2s]} kg m^2 (unstable speeds {un}; an unstable speed counts "
-            f"at the 50 mm cap)")
+        res = [[float(d.resonance_speed_short.sel(order=k)), float(d.resonance_speed_long.sel(order=k))]
+               for d in runs]
+        near = [C.unstable_in_bands(d.speed.values, _stable(d), r, 0.02) for d, r in zip(runs, res)]
+        lv = [C.resonance_peak_level(d.speed.values, d.amplitude.values, r, stable=_stable(d))
+              for d, r in zip(runs, res)]
+        where = f"unstable speeds within 2 % of the order-{k} resonances {near} for I2 = {i2} kg m^2"
+        if any(near):
+            out[f"inertia_raises_resonance_amplitude_order{k}"] = Reproduced(
+                math.nan, f"{NO_STEADY}: {where} (largest Floquet multiplier "
+                f"{[f'{x:.4g}' for x in rho]}); peak levels {[f'{x * 1e3:.3g}' for x in lv]} mm")
+        else:
+            out[f"inertia_raises_resonance_amplitude_order{k}"] = Reproduced(
+                C.monotone_increasing(lv), f"peak levels {[f'{x * 1e3:.3g}' for x in lv]} mm "
+                f"for I2 = {i2} kg m^2 (every speed within 2 % of a resonance stable)")
     npk = [len(C.peaks(d.speed.values, d.amplitude.values, stable=_stable(d))) for d in runs]
-    un = [int(d.unstable.sum()) for d in runs]
-    out["inertia_adds_peaks"] = Reproduced(bool(npk[-1] > npk[0]),
-                                           f"peaks {npk}, unstable speeds {un} for I2 = "
-                                           f"{[f'{v:g}' for v in i2s]} kg m^2")
+    note = f"peaks {npk}, unstable speeds {un} of {[d.speed.size for d in runs]} for I2 = {i2} kg m^2"
+    out["inertia_adds_peaks"] = (
+        Reproduced(math.nan, f"{NO_STEADY}, and peaks cannot be counted across unstable bands: "
+                             f"{note} (largest Floquet multiplier {[f'{x:.4g}' for x in rho]})")
+        if any(un) else Reproduced(bool(npk[-1] > npk[0]), note))
     return out
 
 
@@ -287,10 +312,12 @@ def _loaded(R):
 
 
 def _fig08_effects(base, pk_speeds, d):
+    """Peak levels (nan where a peak's band holds an unstable speed) and off-peak medians
+    over the speeds stable with and without the load."""
     sp = base.speed.values
-    level0 = C.level_at(sp, base.amplitude.values, pk_speeds)
-    level = C.level_at(d.speed.values, d.amplitude.values, pk_speeds)
-    off = C.off_peak_mask(sp, pk_speeds)
+    level0 = C.level_at(sp, base.amplitude.values, pk_speeds, stable=_stable(base))
+    level = C.level_at(d.speed.values, d.amplitude.values, pk_speeds, stable=_stable(d))
+    off = C.off_peak_mask(sp, pk_speeds) & _stable(base) & _stable(d)
     med0 = float(np.median(base.amplitude.values[off]))
     med = float(np.median(d.amplitude.values[off]))
     return level, level0, med, med0
@@ -308,9 +335,12 @@ def fig08(R):
         ratios[w] = med / med0
         tag = f"{w:g}"
         if tag in ("4", "1"):
+            n_un = C.unstable_in_bands(d.speed.values, _stable(d), pk, 0.01)
             out[f"external_load_lowers_peaks_w{tag}"] = Reproduced(
                 float(level / level0 - 1.0), f"mean at the {len(pk)} unloaded peaks ({[round(float(x)) for x in pk]} rpm): "
-                f"{level * 1e3:.3g} mm vs {level0 * 1e3:.3g} mm")
+                f"{level * 1e3:.3g} mm vs {level0 * 1e3:.3g} mm" + (
+                    f" ({NO_STEADY}: {n_un} loaded speeds within 1 % of a peak are unstable)"
+                    if n_un else ""))
             out[f"external_load_raises_offpeak_w{tag}"] = Reproduced(
                 bool(med > med0), f"off-peak median {med * 1e3:.3g} mm vs {med0 * 1e3:.3g} mm")
     ws = sorted(ratios, reverse=True)
