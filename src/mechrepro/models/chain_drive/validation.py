@@ -278,22 +278,43 @@ def fig06(R):
 
 
 # ----------------------------------------------------------------------------- Fig. 7
+def _bands(ds) -> str:
+    """The unstable bands of a sweep [rpm] as 'lo-hi' (a band is a run of unstable speeds
+    of the adaptively sampled axis)."""
+    u, sp = np.asarray(ds.unstable.values, bool), ds.speed.values
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], u.astype(int), [0]])))
+    return ", ".join(f"{sp[a]:.2f}-{sp[b - 1]:.2f}" for a, b in zip(edges[::2], edges[1::2])) or "none"
+
+
+def _ppp(ds) -> int:
+    return int(run_attrs(ds)["resolution"]["points_per_pitch"])
+
+
+def _stability_verdict(base, finer, expect_unstable: bool) -> Reproduced:
+    """No instability (or some) at the baseline, checked one level finer: a verdict that
+    changes there is inconclusive (flips), with the bands at both resolutions."""
+    n, nf = int(base.unstable.sum()), int(finer.unstable.sum())
+    note = (f"{n} of {base.speed.size} speeds grow or go slack at {_ppp(base)} points per pitch "
+            f"(bands {_bands(base)} rpm); {nf} of {finer.speed.size} at {_ppp(finer)} (bands "
+            f"{_bands(finer)} rpm)")
+    flips = ([f"the verdict changes one level finer ({_ppp(finer)} points per pitch): {nf} "
+              f"unstable speeds (bands {_bands(finer)} rpm)"] if (n > 0) != (nf > 0) else [])
+    return Reproduced(bool((n > 0) == expect_unstable), note, flips=flips)
+
+
 @Q.register("no_instability_ts800", "instability_ts100")
 def fig07_study(R):
     ts, runs = _study_runs(R, "fig07_ts", "static_tension")
-    out = {}
-    for name, T, expect in (("no_instability_ts800", 800.0, False), ("instability_ts100", 100.0, True)):
-        i = int(np.argmin(np.abs(ts - T)))
-        n = int(runs[i].unstable.sum())
-        out[name] = Reproduced(bool((n > 0) == expect), f"{n} of {runs[i].speed.size} speeds grow or go slack")
-    return out
+    d800 = runs[int(np.argmin(np.abs(ts - 800.0)))]
+    d100 = runs[int(np.argmin(np.abs(ts - 100.0)))]
+    n = int(d100.unstable.sum())
+    return {"no_instability_ts800": _stability_verdict(d800, R.study_runs("fig07_ts_finer")[0], False),
+            "instability_ts100": Reproduced(bool(n > 0), f"{n} of {d100.speed.size} speeds grow or go slack")}
 
 
 @Q.register("no_instability_ts400")
 def fig07_base(R):
-    d = R.run("fig07_tension")
-    n = int(d.unstable.sum())
-    return Reproduced(bool(n == 0), f"{n} of {d.speed.size} speeds grow or go slack")
+    return _stability_verdict(R.run("fig07_tension"), R.run("fig07_tension_finer"), False)
 
 
 # ----------------------------------------------------------------------------- Fig. 8
@@ -406,22 +427,67 @@ def _over_modes(values: dict, at: int, what: str) -> tuple[float, float, str]:
     return v, err, note
 
 
+#: a record whose envelope changes by more than this from its third to its last quarter is
+#: not steady (the bound of transient_reaches_steady_state): its "steady amplitude" has not
+#: converged in record length
+STEADY = 0.1
+
+
+def _converged_coupling(R, q: str, coupled: str, uncoupled: str, f) -> Reproduced:
+    """f(coupled / uncoupled steady amplitude) at the drawn count, refined in modes and step.
+
+    Modes: the drawn count n and n/2, n/4 (the mode studies) at the drawn RK4 step give the
+    error and order by the one estimator (:func:`mechrepro.validation.level_error`, ratio
+    2); step: the drawn count at half the step adds |difference| (two levels).  The value
+    does not converge (``not_converged``) where the mode levels do not contract, or where
+    a drawn record is not steady (envelope change > :data:`STEADY` per quarter: the steady
+    amplitude is still moving with the record length)."""
+    from mechrepro.validation import band, level_error
+
+    r = _ratios(R, coupled, uncoupled)
+    n = _drawn(R, coupled)
+    step = {float(run_attrs(d)["resolution"]["rk4_cfl"]): (d, u) for d, u in
+            zip(R.study_runs(coupled + "_step"), R.study_runs(uncoupled + "_step"))}
+    (dc, du), = step.values()
+    v = f(r[n])
+    v_half = f(float(dc.steady_amplitude) / float(du.steady_amplitude))
+    e_m, order, ok, how = level_error(f(r[n // 4]), f(r[n // 2]), v, 2.0, band(R.reported(q), v))
+    e_s = abs(v_half - v)
+    unsteady = {name: float(R.run(name).steady_ratio) for name in (coupled, uncoupled)
+                if abs(float(R.run(name).steady_ratio) - 1) > STEADY}
+    note = (f"{' / '.join(f'{f(r[k]):.3g}' for k in (n // 4, n // 2, n))} at {n // 4} / "
+            f"{n // 2} / {n} transverse modes ({how}); {v_half:.3g} at half the RK4 step "
+            f"({next(iter(step)):g}); last / third quarter of the drawn records "
+            f"{float(R.run(coupled).steady_ratio):.3f} (coupled), "
+            f"{float(R.run(uncoupled).steady_ratio):.3f} (uncoupled)")
+    why = []
+    if not ok:
+        why.append(f"the mode levels do not contract: {how}")
+    if unsteady:
+        why.append("the drawn record is not steady (" + ", ".join(
+            f"{k}: last / third quarter {x:.3f}" for k, x in unsteady.items())
+            + f", more than {STEADY:g} apart): its steady amplitude still moves with the "
+            "record length")
+    return Reproduced(v, note, error=0.0 if why else e_m + e_s, not_converged="; ".join(why))
+
+
 @Q.register("weak_coupling_near_first_longitudinal_resonance")
 def fig10_weak(R):
-    r = _ratios(R, "fig10_longitudinal", "fig10_uncoupled")
-    v, err, note = _over_modes(r, _drawn(R, "fig10_longitudinal"), "coupled / uncoupled")
     d = R.run("fig10_longitudinal")
-    return Reproduced(v, f"{note}; {float(d.speed):.0f} rpm (tooth frequency "
-                         f"{float(d.detuning):g} x the first longitudinal frequency)", error=err)
+    out = _converged_coupling(R, "weak_coupling_near_first_longitudinal_resonance",
+                              "fig10_longitudinal", "fig10_uncoupled", lambda x: x)
+    out.note += (f"; {float(d.speed):.0f} rpm (tooth frequency {float(d.detuning):g} x the "
+                 "first longitudinal frequency)")
+    return out
 
 
 @Q.register("clear_coupling_near_transverse_resonance")
 def fig10_clear(R):
-    r = _ratios(R, "fig10_transverse5", "fig10_transverse5_uncoupled")
-    v, err, note = _over_modes({n: abs(x - 1) for n, x in r.items()},
-                               _drawn(R, "fig10_transverse5"), "|coupled / uncoupled - 1| =")
-    return Reproduced(v, f"{note}; fifth transverse resonance "
-                         f"({float(R.run('fig10_transverse5').speed):.0f} rpm)", error=err)
+    out = _converged_coupling(R, "clear_coupling_near_transverse_resonance", "fig10_transverse5",
+                              "fig10_transverse5_uncoupled", lambda x: abs(x - 1))
+    out.note = (f"|coupled / uncoupled - 1| = {out.note}; fifth transverse resonance "
+                f"({float(R.run('fig10_transverse5').speed):.0f} rpm)")
+    return out
 
 
 @Q.register("fifth_transverse_resonance_near_first_longitudinal")
