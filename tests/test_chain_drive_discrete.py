@@ -99,3 +99,15 @@ def test_floquet_multipliers_do_not_move_under_step_refinement():
     assert all(g["residual"] < 1e-9 * max(amp) + 1e-15 for g in got)
     assert abs(rho[2] - rho[1]) < 1e-3 and abs(amp[2] / amp[1] - 1) < 1e-3, (rho, amp)
     assert abs(rho[2] - rho[1]) <= abs(rho[1] - rho[0]) + 1e-12
+
+
+def test_a_step_beyond_rk4s_stability_is_refused():
+    """At 50 rpm and 800 N, 100 steps per tooth period put the highest roller mode outside
+    RK4's stability interval: refused with the steps needed, never a blown-up multiplier."""
+    from mechrepro.models.chain_drive.errors import StabilityError
+
+    run, prm = _prm(static_tension=800.0)
+    w = 50.0 / geometry.RPM
+    with pytest.raises(StabilityError, match="at least"):
+        D.period_map(run, prm, w, 100)
+    assert D.periodic_orbit(run, prm, w, 200)["rho"] < 1.0
