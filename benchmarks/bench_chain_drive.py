@@ -39,6 +39,11 @@ finer shooting reference and the time ratio (measured, and extrapolated to equal
 instead prints the cost-of-accuracy table of both schemes on ``accuracy_peak`` (error and
 compiled march time per points per pitch, at cfl 0.9 and at the new default's cfl).
 
+    .venv/bin/python benchmarks/bench_chain_drive.py --discrete [--profile ci]
+
+prints the discrete-link span's cost (models/chain_drive/discrete.py) beside the string
+march's on ``accuracy_peak`` (no impact), each to rtol 1e-3 of its own converged peak.
+
     .venv/bin/python benchmarks/bench_chain_drive.py --speed [--profile ci] [--repeat 3]
 
 prints the issue-#18 side-by-side comparisons instead:
@@ -503,6 +508,60 @@ def floor(profile: str, measure: bool = False) -> None:
                   "fitted on loaded cores", cfg.runs if measure else None)
 
 
+def _to_rtol(values: dict, order: float, rtol: float):
+    """(converged value, cheapest knob whose error against it is <= rtol, errors): the
+    converged value is the finest level's Richardson extrapolate at ``order``; an error is
+    |value / converged - 1|."""
+    knobs = sorted(values)
+    fine, finer = values[knobs[-2]], values[knobs[-1]]
+    r = knobs[-1] / knobs[-2]
+    conv = finer + (finer - fine) / (r ** order - 1)
+    errs = {k: abs(values[k] / conv - 1) for k in knobs}
+    ok = [k for k in knobs if errs[k] <= rtol]
+    return conv, (ok[0] if ok else None), errs
+
+
+def discrete_vs_string(profile: str, rtol: float = 1e-3) -> None:
+    """The discrete-link span (:mod:`.discrete`) beside the string march on scene
+    ``accuracy_peak`` (third resonance, no impact): each one's peak amplitude (one-mode
+    vertex through the sampled speeds) against its own converged value (Richardson from its
+    two finest levels: RK4 steps per tooth period at order 4, central differencing's points
+    per pitch at order 2), and the time of the cheapest level within ``rtol``."""
+    from mechrepro.models.chain_drive import claims as C, discrete as D, geometry
+
+    run = load_paper(ROOT / "config/papers/chain_drive.yaml", profile).runs["accuracy_peak"]
+    prm, res = dict(run["parameters"]), dict(run["resolution"])
+    w = np.linspace(prm["speed_min"], prm["speed_max"], 13)       # rad/s (SI)
+    speeds = w * geometry.RPM
+    disc, t_disc = {}, {}
+    # 50 steps per tooth period is beyond RK4's stability interval for the pitch-scale mode
+    for steps in (100, 200, 400, 800):
+        t0 = time.perf_counter()
+        amp = [D.periodic_orbit(run, prm, x, steps)["amplitude"] for x in w]
+        t_disc[steps] = time.perf_counter() - t0
+        disc[steps] = C.one_mode_peak(speeds, amp)[1]
+    string, t_str = {}, {}
+    for ppp in (3, 4, 6, 8, 12, 16):
+        r = dict(res, points_per_pitch=ppp, differencing="central", cfl=0.98)
+        t0 = time.perf_counter()
+        out = span.sweep(run, prm, w, r)
+        t_str[ppp] = time.perf_counter() - t0
+        string[ppp] = C.one_mode_peak(speeds, out["amplitude"])[1]
+    print(f"\n== discrete span vs string, scene accuracy_peak ({profile}), 13 speeds "
+          f"{speeds[0]:.1f}-{speeds[-1]:.1f} rpm, peak amplitude to rtol {rtol:g} against each "
+          "one's own converged value")
+    for name, vals, times, order, unit in (("discrete (RK4)", disc, t_disc, 4.0, "steps/period"),
+                                           ("string (central, cfl 0.98)", string, t_str, 2.0,
+                                            "points/pitch")):
+        conv, ok, errs = _to_rtol(vals, order, rtol)
+        print(f"{name}: converged {conv * 1e3:.5g} mm")
+        for k in sorted(vals):
+            print(f"   {k:5d} {unit}: {vals[k] * 1e3:.6g} mm, error {errs[k]:.2e}, {times[k]:.2f} s")
+        print(f"   cheapest within {rtol:g}: " + (f"{ok} {unit}, {times[ok]:.2f} s" if ok else "none"))
+    print(f"discrete converged / string converged - 1 = "
+          f"{_to_rtol(disc, 4.0, rtol)[0] / _to_rtol(string, 2.0, rtol)[0] - 1:+.3%}")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     _floor.arguments(ap)
@@ -519,11 +578,17 @@ def main() -> None:
     ap.add_argument("--speed", action="store_true",
                     help="print the issue-#18 comparisons (Galerkin RK4, library check, FD "
                          "sweeps against --base) instead")
+    ap.add_argument("--discrete", action="store_true",
+                    help="print the discrete-link span's cost beside the string march's "
+                         "(each to rtol 1e-3 of its own converged peak, no impact)")
     ap.add_argument("--base", default="main",
                     help="with --speed: the git revision the FD sweeps are compared with")
     a = ap.parse_args()
     if a.floor:
         floor(a.profile, a.measure)
+        return
+    if a.discrete:
+        discrete_vs_string(a.profile)
         return
     if a.shooting:
         shooting_vs_march(a.profile, a.scene)

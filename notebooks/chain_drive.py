@@ -58,11 +58,20 @@ def convergence_note(name):
     return f"amplitudes NOT converged: peaks move {100 * spread:.2g} % between grid levels"
 
 
-def mark_unstable(ax, ds, label="unstable (growing or capped)"):
-    """Every sweep marks the speeds whose response grows (never drawn as a peak)."""
-    sp, amp = F.unstable(ds)
+def steady(ds):
+    """The steady amplitude [mm], nan at unstable speeds (an unstable orbit has none)."""
+    return mm(F.steady(ds))
+
+
+def mark_unstable(ax, ds, label="unstable: no steady amplitude", color="r"):
+    """Every sweep marks the speeds whose periodic orbit is unstable (or whose span goes
+    slack) as ticks along the top of the axis, never as amplitudes; call after the curves
+    (the ticks sit at the axis's upper limit, which they do not move)."""
+    sp, _ = F.unstable(ds)
     if sp.size:
-        ax.plot(sp, mm(amp), "rx", ms=4, label=label)
+        top = ax.get_ylim()[1]
+        ax.plot(sp, np.full(sp.size, top), "|", color=color, ms=8, label=label)
+        ax.set_ylim(top=top)
 
 
 # %% [markdown]
@@ -140,8 +149,8 @@ cds, plain = F.with_base(R, "fig05_plain_cd", "fig05_plain", "centre_distance")
 _, withl = F.with_base(R, "fig05_length_cd", "fig05_length", "centre_distance")
 fig, ax = plt.subplots(len(cds), 1, figsize=(9, 2.6 * len(cds)), sharex=True)
 for a, cd, dp, dl in zip(ax, cds, plain, withl):
-    a.semilogy(dp.speed, mm(dp.amplitude), "-", label="without length change")
-    a.semilogy(dl.speed, mm(dl.amplitude), "--", label="with length change")
+    a.semilogy(dp.speed, steady(dp), "-", label="without length change")
+    a.semilogy(dl.speed, steady(dl), "--", label="with length change")
     mark_unstable(a, dp)
     mark_unstable(a, dl, label=None)
     for k, v in enumerate(dl.resonance_speed_short.values):
@@ -167,9 +176,10 @@ R.write_table("timings", F.TIMING_COLUMNS, F.timing_rows(
 # %%
 i2s, d6 = F.with_base(R, "fig06_i2", "fig06_inertia", "driven_inertia")
 fig, ax = plt.subplots(figsize=(8, 3.6))
-for v, d in zip(i2s, d6):
-    ax.semilogy(d.speed, mm(d.amplitude), label=f"I2 = {v:g} kg m^2")
-    mark_unstable(ax, d, label=f"unstable, I2 = {v:g}" if int(d.unstable.sum()) else None)
+lines6 = [ax.semilogy(d.speed, steady(d), label=f"I2 = {v:g} kg m^2")[0] for v, d in zip(i2s, d6)]
+for v, d, ln in zip(i2s, d6, lines6):
+    mark_unstable(ax, d, label=f"unstable, I2 = {v:g}: no steady amplitude" if int(d.unstable.sum())
+                  else None, color=ln.get_color())
 for v in F.resonances_in_window(d6[0]):
     ax.axvline(v, color="k", ls=":", lw=0.7)
 ax.set(xlabel="omega_1 [rpm]", ylabel="max |u| [mm]",
@@ -184,7 +194,7 @@ R.save_figure(fig, "fig06")
 tss, d7 = F.with_base(R, "fig07_ts", "fig07_tension", "static_tension")
 fig, ax = plt.subplots(len(tss), 1, figsize=(8, 2.3 * len(tss)), sharex=True)
 for a, v, d in zip(ax, tss[::-1], d7[::-1]):          # the paper's order: high to low tension
-    a.semilogy(d.speed, mm(d.amplitude))
+    a.semilogy(d.speed, steady(d))
     mark_unstable(a, d)
     a.set(ylabel="max |u| [mm]", title=f"Fig. 7: T_s = {v:g} N ({int(d.unstable.sum())} unstable speeds)")
     a.legend(fontsize=7)
@@ -200,13 +210,13 @@ R.save_figure(fig, "fig07")
 ws, d8 = F.with_base(R, "fig08_wex", "fig08_external", "external_frequency_ratio")
 base = R.run("fig08_none")
 fig, ax = plt.subplots(len(d8) + 1, 1, figsize=(8, 2.3 * (len(d8) + 1)), sharex=True)
-ax[0].semilogy(base.speed, mm(base.amplitude))
+ax[0].semilogy(base.speed, steady(base))
 mark_unstable(ax[0], base)
 ax[0].set(title=f"Fig. 8a: without external load; {convergence_note('fig08_none')}",
           ylabel="max |u| [mm]")
 for a, w, d in zip(ax[1:], ws[::-1], d8[::-1]):       # 4, 2, 1
-    a.semilogy(base.speed, mm(base.amplitude), color="0.7", lw=0.8)
-    a.semilogy(d.speed, mm(d.amplitude))
+    a.semilogy(base.speed, steady(base), color="0.7", lw=0.8)
+    a.semilogy(d.speed, steady(d))
     mark_unstable(a, d)
     a.set(title=f"Fig. 8: T_ex = 0.2 T_s, omega_ex = {w:g} omega_1", ylabel="max |u| [mm]")
 a.set_xlabel("omega_1 [rpm]")

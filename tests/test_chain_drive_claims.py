@@ -100,3 +100,22 @@ def test_dense_near_elastic_adds_speeds_around_the_resonance():
     near = dense[np.abs(dense / wc - 1) <= 0.01]
     assert dense.size == 150 + 50 and np.all(np.diff(dense) > 0)
     assert np.max(np.diff(near)) < 0.9 / 1214.6 * wc   # finer than the 0.9 rpm band
+
+
+def test_no_steady_amplitude_is_read_at_an_unstable_speed():
+    """An unstable periodic orbit has no steady amplitude: a band that holds an unstable
+    speed has no level (nan), whatever the orbit's "amplitude" there; the quasi-static
+    reference of the amplification is the lowest stable speed."""
+    sp = np.linspace(100.0, 200.0, 101)
+    amp = np.full(sp.size, 1e-3)
+    amp[50] = 25.0                       # an unstable orbit's huge "amplitude" at 150 rpm
+    stable = np.ones(sp.size, bool)
+    stable[50] = False
+    assert math.isnan(C.level_at(sp, amp, [150.0], 0.01, stable))
+    assert C.level_at(sp, amp, [120.0], 0.01, stable) == 1e-3
+    assert C.unstable_in_bands(sp, stable, [150.0, 120.0], 0.01) == 1
+    assert math.isnan(C.amplification(sp, amp, 150.0, 0.05, stable))
+    stable[:] = True
+    stable[0] = False
+    amp[0], amp[50] = 9.0, 4e-3
+    assert C.amplification(sp, amp, 150.0, 0.05, stable) == 4.0

@@ -63,7 +63,6 @@ def test_rows_allowed_to_differ_between_profiles_read_a_coarser_ci_grid():
 
     default, ci = (load_paper("config/papers/chain_drive.yaml", p) for p in ("default", "ci"))
     rows = [q for q, s in default.reported.items() if s.get("profile_differs_why")]
-    assert rows
     for q in rows:
         for name in default.reported[q]["reads"]:
             for run in set(default.studies.get(name, [name])) & set(ci.runs):

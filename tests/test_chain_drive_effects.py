@@ -103,6 +103,9 @@ SHOW = {
                           NEAR_FIRST, "amplitude"),
     "external_load": ("fig05_plain", ["speed_tensioning", "end_excitation"], FD_SHOW,
                       dict(NEAR_FIRST, external_load_ratio=0.2), "amplitude"),
+    # the static_external_load rival's effect: a constant pre-load moves the resonances
+    "external_load_static": ("fig05_plain", ["speed_tensioning", "end_excitation"], FD_SHOW,
+                             dict(NEAR_FIRST, external_load_ratio=0.2), "amplitude"),
     "end_excitation": ("fig05_plain", ["speed_tensioning", "polygonal_rigid"], FD_SHOW, FRACTIONAL,
                        "amplitude"),
     "end_excitation_distributed": ("fig05_plain", ["speed_tensioning", "polygonal_rigid"], FD_SHOW,

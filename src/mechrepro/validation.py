@@ -64,12 +64,15 @@ class Reproduced:
     corner of several assumed constants, which the one-at-a-time variants do not reach);
     a pass or fail with flips is ``inconclusive``.  ``error``: an error the extraction
     knows of its own (e.g. half the step of the grid a peak was read from), added to the
-    error estimate from the resolution levels and seeds.
+    error estimate from the resolution levels and seeds.  ``not_converged``: why the
+    extraction's own refinement study (runs it reads at several resolutions) shows that the
+    value does not converge; the row is then ``not_converged`` whatever its levels say.
     """
     value: float | bool
     note: str = ""
     flips: list[str] = field(default_factory=list)
     error: float = 0.0
+    not_converged: str = ""
 
 
 class Quantities(Registry):
@@ -487,6 +490,8 @@ def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]
             if len(flipped) > 3:
                 flips.append(f"and {len(flipped) - 3} more members of {name}")
     row.error = error if numeric else math.nan
+    if r.not_converged:
+        converged, how = False, r.not_converged
     if not converged:
         row.status = "not_converged"
         row.flips = [how]

@@ -104,13 +104,14 @@ def peak_speeds(speed, amp, lo: float, hi: float, stable=None) -> list[float]:
     return [float(s) for s in speed[idx] if lo <= s <= hi]
 
 
-def nearest_peak(speed, amp, target: float, window: float = NEAR_PEAK):
+def nearest_peak(speed, amp, target: float, window: float = NEAR_PEAK, stable=None):
     """Speed of the peak closest to target within a +-window band, or nan.  Not the grid
     point (it jumps by a step when the speed grid is refined) but the resonance of the
     one-mode response through the peak sample and its two neighbours: for a damped single
-    mode 1/A^2 is exactly a quadratic in omega^2, so its vertex is the peak whatever the grid."""
+    mode 1/A^2 is exactly a quadratic in omega^2, so its vertex is the peak whatever the grid.
+    ``stable``: as in :func:`peaks` (a peak and its neighbours are stable speeds)."""
     speed, amp = np.asarray(speed, float), np.asarray(amp, float)
-    idx = peaks(speed, amp)
+    idx = peaks(speed, amp, stable=stable)
     idx = idx[np.abs(speed[idx] / target - 1) <= window] if np.isfinite(target) else idx[:0]
     if idx.size == 0:
         return float("nan")
@@ -149,13 +150,23 @@ def parabola_vertex(x, y) -> float:
     return float(np.clip(-b / (2 * a), x0, x2))
 
 
-def amplification(speed, amp, target: float, window: float = 0.05) -> float:
-    """Largest amplitude within +-window of target over the amplitude at the lowest speed."""
-    speed, amp = np.asarray(speed, float), np.asarray(amp, float)
+def steady(amp, stable=None) -> np.ndarray:
+    """The steady amplitude: nan at unstable speeds, where the periodic orbit is unstable and
+    has no steady amplitude (its shooting "amplitude" is no response; a march's is a
+    growing transient)."""
+    amp = np.asarray(amp, float)
+    return amp if stable is None else np.where(np.asarray(stable, bool), amp, np.nan)
+
+
+def amplification(speed, amp, target: float, window: float = 0.05, stable=None) -> float:
+    """Largest amplitude within +-window of target over the amplitude at the lowest stable
+    speed; nan where a speed of the band is unstable (no steady amplitude there)."""
+    speed, a = np.asarray(speed, float), steady(amp, stable)
     band = np.abs(speed / target - 1) <= window
-    if not band.any():
+    ok = np.isfinite(a)
+    if not band.any() or not ok.any() or not ok[band].all():
         return float("nan")
-    return float(np.nanmax(amp[band]) / amp[0])
+    return float(np.max(a[band]) / a[np.argmax(ok)])
 
 
 def off_peak_mask(speed, peak_speeds_, width: float = 0.04):
@@ -167,22 +178,35 @@ def off_peak_mask(speed, peak_speeds_, width: float = 0.04):
     return np.all(np.abs(speed[:, None] / r[None, :] - 1) > width, axis=1)
 
 
-def level_at(speed, amp, at_speeds, window: float = 0.01) -> float:
-    """Mean over the given speeds of the max amplitude within +-window of each."""
-    speed, amp = np.asarray(speed, float), np.asarray(amp, float)
+def level_at(speed, amp, at_speeds, window: float = 0.01, stable=None) -> float:
+    """Mean over the given speeds of the max amplitude within +-window of each; nan when a
+    band holds an unstable speed (``stable`` mask): an unstable orbit has no steady
+    amplitude, so the band's maximum does not exist."""
+    speed, amp = np.asarray(speed, float), steady(amp, stable)
     vals = []
     for r in np.ravel(at_speeds):
         band = np.abs(speed / r - 1) <= window
         if band.any():
-            vals.append(np.nanmax(amp[band]))
+            vals.append(np.max(amp[band]))
     return float(np.mean(vals)) if vals else float("nan")
 
 
-def resonance_peak_level(speed, amp, resonances, window: float = 0.02) -> float:
-    """Mean over predicted resonances (inside the speed range) of the max amplitude near each."""
+def unstable_in_bands(speed, stable, at_speeds, window: float) -> int:
+    """How many speeds within +-window (relative) of any of ``at_speeds`` are unstable."""
+    speed = np.asarray(speed, float)
+    r = np.asarray([x for x in np.ravel(at_speeds) if np.isfinite(x)])
+    if r.size == 0:
+        return 0
+    near = np.any(np.abs(speed[:, None] / r[None, :] - 1) <= window, axis=1)
+    return int(np.sum(near & ~np.asarray(stable, bool)))
+
+
+def resonance_peak_level(speed, amp, resonances, window: float = 0.02, stable=None) -> float:
+    """Mean over predicted resonances (inside the speed range) of the max amplitude near
+    each; nan when a band holds an unstable speed (:func:`level_at`)."""
     speed = np.asarray(speed, float)
     inside = [r for r in np.ravel(resonances) if np.isfinite(r) and speed[0] <= r <= speed[-1]]
-    return level_at(speed, amp, inside, window)
+    return level_at(speed, amp, inside, window, stable)
 
 
 def monotone_increasing(values) -> bool:

@@ -243,6 +243,15 @@ def external_load(ctx: SpanContext) -> dict:
     return {"tension_external": loads.external_load(ctx.T, T_ex, w_ex)}
 
 
+@EFFECTS.register("external_load_static")
+def external_load_static(ctx: SpanContext) -> dict:
+    """The rival of Eq. (2-5): the external load's amplitude T_ex as a constant tension (a
+    static +T_ex / T_s pre-load) instead of T_ex cos(omega_ex t): periodic in every period,
+    hence a part of P_t like the tooth-periodic loads (``tension``)."""
+    T_ex = ctx.prm["external_load_ratio"] * ctx.prm["static_tension"]
+    return {"tension": np.full((ctx.T.shape[0], ctx.omega1.size), T_ex)}
+
+
 @EFFECTS.register("end_excitation")
 def end_excitation(ctx: SpanContext) -> dict:
     """Eqs. (2-24), (2-25): transverse motion of the span ends (with the stated shift), and

@@ -34,6 +34,12 @@ def unstable(ds):
     return ds.speed.values[mask], ds.amplitude.values[mask]
 
 
+def steady(ds) -> np.ndarray:
+    """A sweep's steady amplitude [m], nan where the speed is unstable: an unstable periodic
+    orbit has no steady amplitude (:func:`.claims.steady`)."""
+    return C.steady(ds.amplitude.values, ~np.asarray(ds.unstable.values, bool))
+
+
 def outside_validity(ds) -> np.ndarray:
     """The growing speeds whose critical Floquet mode is shorter than the string model holds
     (``outside_validity``; none in a march's dataset): to be drawn apart from the growth the

@@ -146,6 +146,10 @@ def assemble(effects, prm: dict, omega1, res: dict, registry=EFFECTS,
     refuse_undamped_pitch_scale(res, run, span)
     grid = make_grid(span, prm["pitch"], int(res["points_per_pitch"]))
     c = geometry.chain_speed(omega1, int(prm["n1"]), prm["pitch"])
+    # the stationary-string rival (option stationary_string): the transport speed leaves
+    # the string's operator (no 2 c u_xt, no c^2 u_xx); the sprockets still turn, so the
+    # excitation, its tooth frequency and the speed tensioning keep the chain speed
+    c_op = np.zeros_like(c) if run.get("options", {}).get("stationary_string") else c
     cache: dict = {}
     steady = registry.evaluate(run, SpanContext(prm, omega1, np.zeros(0), None, span,
                                                 cache=cache), keys=STEADY_KEYS)
@@ -159,7 +163,7 @@ def assemble(effects, prm: dict, omega1, res: dict, registry=EFFECTS,
     tension = set(PT_KEYS) | (
         {"tension_short", "tension_long", "long"} if "tension_short" in named else set())
     # a first dt from the static tension, refined below with the dynamic tension bound
-    dt = fd.stable_time_step(grid.dx, c, P, m, float(res["cfl"]))
+    dt = fd.stable_time_step(grid.dx, c_op, P, m, float(res["cfl"]))
     for _ in range(4):
         if period is not None:
             n_steps = max(int(math.ceil(period / dt * (1 - 1e-12))), 3)
@@ -172,10 +176,10 @@ def assemble(effects, prm: dict, omega1, res: dict, registry=EFFECTS,
         Pt = dynamic_tension(contrib, (n_steps + 1, omega1.size))
         P_max = P + np.max(Pt, axis=0)
         P_min = P + np.min(Pt, axis=0)
-        if fd.stable_time_step(grid.dx, c, P_max, m, float(res["cfl"])) >= dt * (1 - 1e-12):
+        if fd.stable_time_step(grid.dx, c_op, P_max, m, float(res["cfl"])) >= dt * (1 - 1e-12):
             break
         # re-evaluate on a finer grid, with a margin so that one more pass normally suffices
-        dt = fd.stable_time_step(grid.dx, c, P + 1.1 * np.max(np.abs(Pt), axis=0), m,
+        dt = fd.stable_time_step(grid.dx, c_op, P + 1.1 * np.max(np.abs(Pt), axis=0), m,
                                  float(res["cfl"]))
     else:
         raise fd.StabilityError("no stable time step found for the dynamic tension")
@@ -186,12 +190,12 @@ def assemble(effects, prm: dict, omega1, res: dict, registry=EFFECTS,
     exc = fd.Excitation(tension=Pt, long=contrib.get("long"), u_left=contrib.get("u_left"),
                         u_right=contrib.get("u_right"),
                         load=None if kappa is None else kappa[None, :] * Pt)
-    return {"grid": grid, "span": span, "c": c, "P": P, "P_min": P_min, "dt": dt,
+    return {"grid": grid, "span": span, "c": c_op, "P": P, "P_min": P_min, "dt": dt,
             "n_steps": n_steps, "exc": exc,
             "measure_from": 0 if period is not None else int(round(settle / dt)),
             # first-difference weight of Eq. (2-38); 0 = central differencing (second order)
             "s_star": (np.zeros_like(c) if res.get("differencing") == "central"
-                       else geometry.s_star(c, T_s, m)),
+                       else geometry.s_star(c_op, T_s, m)),
             "omega1": omega1, "m": m, "c_d": c_d,
             "tension_coefficient": k_c}
 

@@ -30,6 +30,9 @@ def _stable(ds):
     return ~np.asarray(ds.unstable.values, bool)
 
 
+NO_STEADY = "no steady amplitude: an unstable periodic orbit has none"
+
+
 # ----------------------------------------------------------------------------- Fig. 1
 @Q.register("impact_single_pulse_per_tooth", "impact_impulse_closed_form_error",
             "impact_load_min_during_contact", "impact_peak_load_300rpm", "impact_contact_time",
@@ -108,7 +111,7 @@ def fig04(R):
 def _resonance_ratio(ds, k):
     pred = float(ds.resonance_speed_mean.sel(order=k))
     sp = ds.speed.values
-    got = C.nearest_peak(sp, ds.amplitude.values, pred)
+    got = C.nearest_peak(sp, ds.amplitude.values, pred, stable=_stable(ds))
     # a peak read off the speed grid is known to half its local step
     step = float(np.max(np.diff(sp)))
     return Reproduced(got / pred, f"peak {got:.1f} rpm vs Wickert-Mote {pred:.1f} rpm (nan = no peak "
@@ -190,8 +193,12 @@ def fig05_difference(R):
             dp, dl = plain[cd], withl[cd]
             r = float(dp.resonance_speed_mean.sel(order=k))
             band = np.abs(dp.speed.values / r - 1) <= 0.04
-            vals.append(np.mean(np.abs(np.log(dl.amplitude.values[band] / dp.amplitude.values[band]))))
+            al, ap = (C.steady(d.amplitude.values, _stable(d))[band] for d in (dl, dp))
+            vals.append(np.mean(np.abs(np.log(al / ap))))
         diffs.append(float(np.mean(vals)))
+    if not np.all(np.isfinite(diffs)):
+        return Reproduced(math.nan, f"{NO_STEADY}: unstable speeds within 4 % of a resonance "
+                                    f"(mean |log| per order {[f'{d:.3f}' for d in diffs]})")
     return Reproduced(bool(np.mean(diffs[3:]) > np.mean(diffs[:2])),
                       f"mean |log(amp_with / amp_without)| within 4 % of orders 1-5 over the "
                       f"non-integral centre distances: {[f'{d:.3f}' for d in diffs]} (orders 4-5 vs 1-2)")
@@ -206,19 +213,26 @@ def fig05_integral(R):
 
 def _amplification(ds):
     return C.amplification(ds.speed.values, ds.amplitude.values,
-                           float(ds.resonance_speed_mean.sel(order=1)))
+                           float(ds.resonance_speed_mean.sel(order=1)), stable=_stable(ds))
+
+
+def _amplified(a: float, expect: bool) -> Reproduced:
+    if not np.isfinite(a):
+        return Reproduced(math.nan, f"{NO_STEADY}: a speed within 5 % of the first resonance "
+                                    "is unstable")
+    return Reproduced(bool((a >= C.AMPLIFIED) == expect),
+                      f"ratio {a:.2f} (amplified: >= {C.AMPLIFIED:g}; quasi-static amplitude "
+                      "at the lowest stable speed)")
 
 
 @Q.register("system_a_20p_amplified_first_resonance")
 def fig05_system_a_amp(R):
-    a = _amplification(R.run("fig05_length"))
-    return Reproduced(bool(a >= C.AMPLIFIED), f"ratio {a:.2f} (amplified: >= {C.AMPLIFIED:g})")
+    return _amplified(_amplification(R.run("fig05_length")), True)
 
 
 @Q.register("system_b_20p5_not_amplified_first_resonance")
 def fig05_system_b_amp(R):
-    a = _amplification(_at_cd(R, "fig05_length_cd", 20.5))
-    return Reproduced(bool(a < C.AMPLIFIED), f"ratio {a:.2f}")
+    return _amplified(_amplification(_at_cd(R, "fig05_length_cd", 20.5)), False)
 
 
 # ----------------------------------------------------------------------------- Fig. 6
@@ -234,41 +248,73 @@ def _by_inertia(R):
             "inertia_adds_peaks")
 def fig06(R):
     i2s, runs = _by_inertia(R)
+    i2 = [f"{v:g}" for v in i2s]
+    un = [int(d.unstable.sum()) for d in runs]
+    rho = [float(np.nanmax(d.growth.values[~_stable(d)])) if un[j] else math.nan
+           for j, d in enumerate(runs)]
     out = {}
     for k in (3, 4):
-        lv = [C.resonance_peak_level(d.speed.values, d.amplitude.values,
-                                     [float(d.resonance_speed_short.sel(order=k)),
-                                      float(d.resonance_speed_long.sel(order=k))]) for d in runs]
-        un = [int(d.unstable.sum()) for d in runs]
-        out[f"inertia_raises_resonance_amplitude_order{k}"] = Reproduced(
-            C.monotone_increasing(lv), f"peak levels {[f'{x * 1e3:.3g}' for x in lv]} mm for I2 = "
-            f"{[f'{v:g}' for v in i2s]} kg m^2 (unstable speeds {un}; an unstable speed counts "
-            f"at the 50 mm cap)")
+        res = [[float(d.resonance_speed_short.sel(order=k)), float(d.resonance_speed_long.sel(order=k))]
+               for d in runs]
+        near = [C.unstable_in_bands(d.speed.values, _stable(d), r, 0.02) for d, r in zip(runs, res)]
+        lv = [C.resonance_peak_level(d.speed.values, d.amplitude.values, r, stable=_stable(d))
+              for d, r in zip(runs, res)]
+        where = f"unstable speeds within 2 % of the order-{k} resonances {near} for I2 = {i2} kg m^2"
+        if any(near):
+            out[f"inertia_raises_resonance_amplitude_order{k}"] = Reproduced(
+                math.nan, f"{NO_STEADY}: {where} (largest Floquet multiplier "
+                f"{[f'{x:.4g}' for x in rho]}); peak levels {[f'{x * 1e3:.3g}' for x in lv]} mm")
+        else:
+            out[f"inertia_raises_resonance_amplitude_order{k}"] = Reproduced(
+                C.monotone_increasing(lv), f"peak levels {[f'{x * 1e3:.3g}' for x in lv]} mm "
+                f"for I2 = {i2} kg m^2 (every speed within 2 % of a resonance stable)")
     npk = [len(C.peaks(d.speed.values, d.amplitude.values, stable=_stable(d))) for d in runs]
-    un = [int(d.unstable.sum()) for d in runs]
-    out["inertia_adds_peaks"] = Reproduced(bool(npk[-1] > npk[0]),
-                                           f"peaks {npk}, unstable speeds {un} for I2 = "
-                                           f"{[f'{v:g}' for v in i2s]} kg m^2")
+    note = f"peaks {npk}, unstable speeds {un} of {[d.speed.size for d in runs]} for I2 = {i2} kg m^2"
+    out["inertia_adds_peaks"] = (
+        Reproduced(math.nan, f"{NO_STEADY}, and peaks cannot be counted across unstable bands: "
+                             f"{note} (largest Floquet multiplier {[f'{x:.4g}' for x in rho]})")
+        if any(un) else Reproduced(bool(npk[-1] > npk[0]), note))
     return out
 
 
 # ----------------------------------------------------------------------------- Fig. 7
+def _bands(ds) -> str:
+    """The unstable bands of a sweep [rpm] as 'lo-hi' (a band is a run of unstable speeds
+    of the adaptively sampled axis)."""
+    u, sp = np.asarray(ds.unstable.values, bool), ds.speed.values
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], u.astype(int), [0]])))
+    return ", ".join(f"{sp[a]:.2f}-{sp[b - 1]:.2f}" for a, b in zip(edges[::2], edges[1::2])) or "none"
+
+
+def _ppp(ds) -> int:
+    return int(run_attrs(ds)["resolution"]["points_per_pitch"])
+
+
+def _stability_verdict(base, finer, expect_unstable: bool) -> Reproduced:
+    """No instability (or some) at the baseline, checked one level finer: a verdict that
+    changes there is inconclusive (flips), with the bands at both resolutions."""
+    n, nf = int(base.unstable.sum()), int(finer.unstable.sum())
+    note = (f"{n} of {base.speed.size} speeds grow or go slack at {_ppp(base)} points per pitch "
+            f"(bands {_bands(base)} rpm); {nf} of {finer.speed.size} at {_ppp(finer)} (bands "
+            f"{_bands(finer)} rpm)")
+    flips = ([f"the verdict changes one level finer ({_ppp(finer)} points per pitch): {nf} "
+              f"unstable speeds (bands {_bands(finer)} rpm)"] if (n > 0) != (nf > 0) else [])
+    return Reproduced(bool((n > 0) == expect_unstable), note, flips=flips)
+
+
 @Q.register("no_instability_ts800", "instability_ts100")
 def fig07_study(R):
     ts, runs = _study_runs(R, "fig07_ts", "static_tension")
-    out = {}
-    for name, T, expect in (("no_instability_ts800", 800.0, False), ("instability_ts100", 100.0, True)):
-        i = int(np.argmin(np.abs(ts - T)))
-        n = int(runs[i].unstable.sum())
-        out[name] = Reproduced(bool((n > 0) == expect), f"{n} of {runs[i].speed.size} speeds grow or go slack")
-    return out
+    d800 = runs[int(np.argmin(np.abs(ts - 800.0)))]
+    d100 = runs[int(np.argmin(np.abs(ts - 100.0)))]
+    n = int(d100.unstable.sum())
+    return {"no_instability_ts800": _stability_verdict(d800, R.study_runs("fig07_ts_finer")[0], False),
+            "instability_ts100": Reproduced(bool(n > 0), f"{n} of {d100.speed.size} speeds grow or go slack")}
 
 
 @Q.register("no_instability_ts400")
 def fig07_base(R):
-    d = R.run("fig07_tension")
-    n = int(d.unstable.sum())
-    return Reproduced(bool(n == 0), f"{n} of {d.speed.size} speeds grow or go slack")
+    return _stability_verdict(R.run("fig07_tension"), R.run("fig07_tension_finer"), False)
 
 
 # ----------------------------------------------------------------------------- Fig. 8
@@ -287,10 +333,12 @@ def _loaded(R):
 
 
 def _fig08_effects(base, pk_speeds, d):
+    """Peak levels (nan where a peak's band holds an unstable speed) and off-peak medians
+    over the speeds stable with and without the load."""
     sp = base.speed.values
-    level0 = C.level_at(sp, base.amplitude.values, pk_speeds)
-    level = C.level_at(d.speed.values, d.amplitude.values, pk_speeds)
-    off = C.off_peak_mask(sp, pk_speeds)
+    level0 = C.level_at(sp, base.amplitude.values, pk_speeds, stable=_stable(base))
+    level = C.level_at(d.speed.values, d.amplitude.values, pk_speeds, stable=_stable(d))
+    off = C.off_peak_mask(sp, pk_speeds) & _stable(base) & _stable(d)
     med0 = float(np.median(base.amplitude.values[off]))
     med = float(np.median(d.amplitude.values[off]))
     return level, level0, med, med0
@@ -308,9 +356,12 @@ def fig08(R):
         ratios[w] = med / med0
         tag = f"{w:g}"
         if tag in ("4", "1"):
+            n_un = C.unstable_in_bands(d.speed.values, _stable(d), pk, 0.01)
             out[f"external_load_lowers_peaks_w{tag}"] = Reproduced(
                 float(level / level0 - 1.0), f"mean at the {len(pk)} unloaded peaks ({[round(float(x)) for x in pk]} rpm): "
-                f"{level * 1e3:.3g} mm vs {level0 * 1e3:.3g} mm")
+                f"{level * 1e3:.3g} mm vs {level0 * 1e3:.3g} mm" + (
+                    f" ({NO_STEADY}: {n_un} loaded speeds within 1 % of a peak are unstable)"
+                    if n_un else ""))
             out[f"external_load_raises_offpeak_w{tag}"] = Reproduced(
                 bool(med > med0), f"off-peak median {med * 1e3:.3g} mm vs {med0 * 1e3:.3g} mm")
     ws = sorted(ratios, reverse=True)
@@ -376,22 +427,67 @@ def _over_modes(values: dict, at: int, what: str) -> tuple[float, float, str]:
     return v, err, note
 
 
+#: a record whose envelope changes by more than this from its third to its last quarter is
+#: not steady (the bound of transient_reaches_steady_state): its "steady amplitude" has not
+#: converged in record length
+STEADY = 0.1
+
+
+def _converged_coupling(R, q: str, coupled: str, uncoupled: str, f) -> Reproduced:
+    """f(coupled / uncoupled steady amplitude) at the drawn count, refined in modes and step.
+
+    Modes: the drawn count n and n/2, n/4 (the mode studies) at the drawn RK4 step give the
+    error and order by the one estimator (:func:`mechrepro.validation.level_error`, ratio
+    2); step: the drawn count at half the step adds |difference| (two levels).  The value
+    does not converge (``not_converged``) where the mode levels do not contract, or where
+    a drawn record is not steady (envelope change > :data:`STEADY` per quarter: the steady
+    amplitude is still moving with the record length)."""
+    from mechrepro.validation import band, level_error
+
+    r = _ratios(R, coupled, uncoupled)
+    n = _drawn(R, coupled)
+    step = {float(run_attrs(d)["resolution"]["rk4_cfl"]): (d, u) for d, u in
+            zip(R.study_runs(coupled + "_step"), R.study_runs(uncoupled + "_step"))}
+    (dc, du), = step.values()
+    v = f(r[n])
+    v_half = f(float(dc.steady_amplitude) / float(du.steady_amplitude))
+    e_m, order, ok, how = level_error(f(r[n // 4]), f(r[n // 2]), v, 2.0, band(R.reported(q), v))
+    e_s = abs(v_half - v)
+    unsteady = {name: float(R.run(name).steady_ratio) for name in (coupled, uncoupled)
+                if abs(float(R.run(name).steady_ratio) - 1) > STEADY}
+    note = (f"{' / '.join(f'{f(r[k]):.3g}' for k in (n // 4, n // 2, n))} at {n // 4} / "
+            f"{n // 2} / {n} transverse modes ({how}); {v_half:.3g} at half the RK4 step "
+            f"({next(iter(step)):g}); last / third quarter of the drawn records "
+            f"{float(R.run(coupled).steady_ratio):.3f} (coupled), "
+            f"{float(R.run(uncoupled).steady_ratio):.3f} (uncoupled)")
+    why = []
+    if not ok:
+        why.append(f"the mode levels do not contract: {how}")
+    if unsteady:
+        why.append("the drawn record is not steady (" + ", ".join(
+            f"{k}: last / third quarter {x:.3f}" for k, x in unsteady.items())
+            + f", more than {STEADY:g} apart): its steady amplitude still moves with the "
+            "record length")
+    return Reproduced(v, note, error=0.0 if why else e_m + e_s, not_converged="; ".join(why))
+
+
 @Q.register("weak_coupling_near_first_longitudinal_resonance")
 def fig10_weak(R):
-    r = _ratios(R, "fig10_longitudinal", "fig10_uncoupled")
-    v, err, note = _over_modes(r, _drawn(R, "fig10_longitudinal"), "coupled / uncoupled")
     d = R.run("fig10_longitudinal")
-    return Reproduced(v, f"{note}; {float(d.speed):.0f} rpm (tooth frequency "
-                         f"{float(d.detuning):g} x the first longitudinal frequency)", error=err)
+    out = _converged_coupling(R, "weak_coupling_near_first_longitudinal_resonance",
+                              "fig10_longitudinal", "fig10_uncoupled", lambda x: x)
+    out.note += (f"; {float(d.speed):.0f} rpm (tooth frequency {float(d.detuning):g} x the "
+                 "first longitudinal frequency)")
+    return out
 
 
 @Q.register("clear_coupling_near_transverse_resonance")
 def fig10_clear(R):
-    r = _ratios(R, "fig10_transverse5", "fig10_transverse5_uncoupled")
-    v, err, note = _over_modes({n: abs(x - 1) for n, x in r.items()},
-                               _drawn(R, "fig10_transverse5"), "|coupled / uncoupled - 1| =")
-    return Reproduced(v, f"{note}; fifth transverse resonance "
-                         f"({float(R.run('fig10_transverse5').speed):.0f} rpm)", error=err)
+    out = _converged_coupling(R, "clear_coupling_near_transverse_resonance", "fig10_transverse5",
+                              "fig10_transverse5_uncoupled", lambda x: abs(x - 1))
+    out.note = (f"|coupled / uncoupled - 1| = {out.note}; fifth transverse resonance "
+                f"({float(R.run('fig10_transverse5').speed):.0f} rpm)")
+    return out
 
 
 @Q.register("fifth_transverse_resonance_near_first_longitudinal")

@@ -1,0 +1,273 @@
+"""The discrete-link span (issue 59): the chain as it is at the pitch scale.
+
+The rollers of the span are particles of mass m_r = m p with transverse freedom y_i, a
+pitch apart; the links carry the axial tension P + P_t (the same effects as the string's,
+:mod:`.effects`) and the transverse damping acts per roller (c_d p on its velocity).  The
+end rollers sit on the sprockets and follow the polygon, Eqs. (2-24), (2-25).  Per tooth
+period one roller is released from the driven sprocket (x = 0; the span gains a pitch) and
+one is seated on the driving sprocket (x = L; it loses one), at the phases of the four-bar
+(:func:`.four_bar.tooth_phases`): that *is* the periodic length change and the polygonal
+action, and it needs no convective operator: the rollers move with the chain (Lagrangian),
+so the moving string's Coriolis and centripetal terms come from the relabelling.
+
+Assumed choices (declared, not tuned): rigid axial motion (the rollers a pitch apart,
+links inextensible along the span); the impact of Eq. (2-4) as a tension pulse in every
+link, as in the string model; a seated roller's transverse state is dropped (the
+sprocket takes it over: a perfectly inelastic seating); a released roller starts with the
+driven end's position and velocity.
+
+Equation of roller i (i = 1..N, y_0 and y_(N+1) the end rollers):
+    m_r y_i'' = (P + P_t)/p (y_(i+1) - 2 y_i + y_(i-1)) - c_d p y_i'.
+Between events it is linear with time-periodic coefficients; one tooth period with its
+events is an affine map x -> M x + b of the free rollers' state (positions, velocities),
+so the periodic steady state is one linear solve and its stability the eigenvalues of M
+(Floquet multipliers), the relabelling included.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from . import span
+from .effects import EFFECTS, SpanContext, as_run, declared_keys
+
+
+def beaded_frequencies(n: int, tension: float, mass: float, spacing: float) -> np.ndarray:
+    """Exact natural frequencies [rad/s] of n beads of ``mass`` at ``spacing`` under
+    ``tension`` between fixed ends: omega_k = 2 sqrt(T / (m a)) sin(k pi / (2 (n + 1)))."""
+    k = np.arange(1, n + 1)
+    return 2.0 * np.sqrt(tension / (mass * spacing)) * np.sin(k * np.pi / (2 * (n + 1)))
+
+
+def stiffness(n: int, tension: float, spacing: float) -> np.ndarray:
+    """Transverse stiffness matrix of n rollers between fixed ends: T/a tridiag(-1, 2, -1)."""
+    return tension / spacing * (2 * np.eye(n) - np.eye(n, k=1) - np.eye(n, k=-1))
+
+
+def modal_frequencies(n: int, tension: float, mass: float, spacing: float) -> np.ndarray:
+    """Natural frequencies [rad/s] of the roller set without motion (eigenvalues of K / m)."""
+    return np.sqrt(np.linalg.eigvalsh(stiffness(n, tension, spacing)) / mass)
+
+
+def energy(y, v, y_left, y_right, tension: float, mass: float, spacing: float):
+    """Kinetic + elastic transverse energy of the rollers (ends included in the links);
+    y, v: (N, ...) with the end positions broadcasting against one roller's row."""
+    y = np.asarray(y, float)
+    row = y.shape[1:]
+    full = np.concatenate([np.broadcast_to(y_left, row)[None], y,
+                           np.broadcast_to(y_right, row)[None]])
+    return 0.5 * mass * np.sum(v * v, axis=0) + 0.5 * tension / spacing * np.sum(
+        np.diff(full, axis=0) ** 2, axis=0)
+
+
+def _accel(y, v, left, right, k_over_m, damp):
+    """Roller accelerations: (P/(m_r p)) (second difference with the end rollers) - damp v."""
+    a = -2.0 * y
+    a[1:] += y[:-1]
+    a[:-1] += y[1:]
+    a[0] += left
+    a[-1] += right
+    return k_over_m * a - damp * v
+
+
+def rk4(y, v, times, left, right, k_over_m, damp):
+    """Classical RK4 over ``times`` (n + 1 nodes); ``left``/``right``: the end rollers'
+    positions at the 2 n + 1 half-step nodes, (2n+1,) or (2n+1, K) for K state columns;
+    ``k_over_m``: (P + P_t) / (m_r p) per step (n,).  y, v: (N, K).  Returns the states at
+    every node (n + 1, N, K) for y and v."""
+    n = len(times) - 1
+    Y = np.empty((n + 1,) + y.shape)
+    V = np.empty_like(Y)
+    Y[0], V[0] = y, v
+    for j in range(n):
+        h = times[j + 1] - times[j]
+        kom = k_over_m[j]
+        l0, l1, l2 = left[2 * j], left[2 * j + 1], left[2 * j + 2]
+        r0, r1, r2 = right[2 * j], right[2 * j + 1], right[2 * j + 2]
+        a1 = _accel(y, v, l0, r0, kom, damp)
+        y2, v2 = y + 0.5 * h * v, v + 0.5 * h * a1
+        a2 = _accel(y2, v2, l1, r1, kom, damp)
+        y3, v3 = y + 0.5 * h * v2, v + 0.5 * h * a2
+        a3 = _accel(y3, v3, l1, r1, kom, damp)
+        y4, v4 = y + h * v3, v + h * a3
+        a4 = _accel(y4, v4, l2, r2, kom, damp)
+        y = y + h / 6.0 * (v + 2 * v2 + 2 * v3 + v4)
+        v = v + h / 6.0 * (a1 + 2 * a2 + 2 * a3 + a4)
+        Y[j + 1], V[j + 1] = y, v
+    return Y, V
+
+
+def events(prm: dict, omega1: float) -> tuple[float, float, int]:
+    """(tau, t_r, n_short): the tooth period, the release time in [0, tau) of the roller
+    leaving the driven sprocket (the driven tooth phase of :func:`.four_bar.tooth_phases`
+    wraps there; the driving sprocket seats one at t = 0, tau, ...) and the free rollers of
+    the short span.  Chain travel since the last engagement d1 = r1 (cos theta_10 - cos
+    theta_1) reaches p - s_off at the release (s_off: the driven sprocket's phase f_p)."""
+    from . import four_bar, geometry
+
+    p, n1, n2 = prm["pitch"], int(prm["n1"]), int(prm["n2"])
+    geo = span.span_geometry(prm, True)
+    r1, r2 = geometry.pitch_radius(p, n1), geometry.pitch_radius(p, n2)
+    tau = float(geometry.tooth_period(omega1, n1))
+    s_off = four_bar._driven_offset(n2, r2, geo["f_p"])
+    th10 = np.pi / 2 - np.pi / n1
+    if s_off < 1e-12 * p or geo["f_p"] == 0.0:
+        t_r = 0.0
+    else:
+        th1 = math.acos(math.cos(th10) - (p - s_off) / r1)
+        t_r = (th1 - th10) / omega1
+    return tau, float(t_r), int(round(geo["L_short"] / p)) - 1
+
+
+def _drive(run, prm, omega1, times, dt):
+    """The end rollers' positions at the half-step nodes and the link tension per step,
+    from the scene's effects (the string's: :mod:`.effects`) on this time grid."""
+    half = np.empty(2 * len(times) - 1)
+    half[0::2] = times
+    half[1::2] = 0.5 * (times[:-1] + times[1:])
+    geo = span.span_geometry(prm, True)
+    ctx = SpanContext(prm, omega1, half, None, geo, end_velocity=True)
+    ends = EFFECTS.evaluate(run, ctx, keys={"u_left", "u_right", "v_left", "v_right"})
+    mid = SpanContext(prm, omega1, half[1::2], dt, geo)
+    tens = EFFECTS.evaluate(run, mid, keys=set(span.PT_KEYS))
+    Pt = span.dynamic_tension(tens, (len(times) - 1, 1))[:, 0]
+    return ends, Pt
+
+
+def _axial_tension(run, prm, omega1) -> float:
+    """P = T_s + k c^2 (:func:`.geometry.axial_tension`, k from the scene's effects)."""
+    from . import geometry
+
+    k_c = EFFECTS.evaluate(run, SpanContext(prm, omega1, np.zeros(0), None,
+                                            span.span_geometry(prm, True)),
+                           keys={"tension_coefficient"}).total("tension_coefficient")
+    c = float(geometry.chain_speed(omega1, int(prm["n1"]), prm["pitch"]))
+    return float(geometry.axial_tension(prm["static_tension"], k_c, c))
+
+
+#: RK4's stability interval on the imaginary axis is |omega dt| <= 2 sqrt(2); a margin
+#: for the dynamic tension's peaks
+RK4_LIMIT = 2.5
+
+
+def _refuse_unstable_step(P, m_r, p, n_free, dt, steps, tau) -> None:
+    """Refuse a step beyond RK4's stability interval for the span's highest mode (at the
+    static axial tension; the dynamic part is the margin of :data:`RK4_LIMIT`): the march
+    would blow up (a multiplier of 15 at 50 rpm, 100 steps, 800 N), never silently."""
+    from .errors import StabilityError
+
+    w_max = float(beaded_frequencies(n_free, P, m_r, p)[-1])
+    if w_max * dt > RK4_LIMIT:
+        need = int(math.ceil(w_max * tau / RK4_LIMIT))
+        raise StabilityError(f"discrete span: {steps} RK4 steps per tooth period give omega_max "
+                             f"dt = {w_max * dt:.3g} > {RK4_LIMIT} (highest roller mode "
+                             f"{w_max:.4g} rad/s at P = {P:.4g} N): at least {need} steps")
+
+
+def _end(ends, key: str, n: int) -> np.ndarray:
+    """An end roller's position or velocity at the nodes (zero without end motion)."""
+    x = ends.get(key)
+    return np.zeros(n) if x is None else np.asarray(x, float).reshape(n, -1)[:, 0]
+
+
+def period_map(run, prm: dict, omega1: float, steps_per_period: int, record: bool = False):
+    """One tooth period of the discrete span from just after the seating at t = 0, events
+    included: the affine map x -> M x + b of the free rollers' state x = (y, v), and, with
+    ``record``, the roller histories of the forced response from x = 0 (for the amplitude of
+    a given start, :func:`periodic_orbit`)."""
+    run = as_run(run)
+    named = declared_keys(run)
+    if "tension_short" in named:
+        raise NotImplementedError("discrete span: the elastic four-bar load is not wired in")
+    m, p = prm["mass_per_length"], prm["pitch"]
+    m_r, damp = m * p, prm["transverse_damping"] * p / (m * p)
+    tau, t_r, n_s = events(prm, omega1)
+    P = _axial_tension(run, prm, omega1)
+    _refuse_unstable_step(P, m_r, p, n_s + 1, tau / steps_per_period, steps_per_period, tau)
+    # two segments, release at t_r (none when it coincides with the seating)
+    cuts = [0.0, t_r, tau] if t_r > 0 else [0.0, tau]
+    segs = []
+    for a, b in zip(cuts[:-1], cuts[1:]):
+        n = max(int(math.ceil(steps_per_period * (b - a) / tau)), 2)
+        segs.append(np.linspace(a, b, n + 1))
+    n_free = [n_s] if t_r == 0 else [n_s, n_s + 1]
+    N0 = n_s
+    K = 2 * N0 + 1                               # unit columns + the forced column
+    y = np.zeros((N0, K))
+    v = np.zeros((N0, K))
+    y[np.arange(N0), np.arange(N0)] = 1.0
+    v[np.arange(N0), N0 + np.arange(N0)] = 1.0
+    forced = np.zeros(K)
+    forced[-1] = 1.0
+    hist = []
+    for seg, n_f in zip(segs, n_free):
+        if y.shape[0] < n_f:                     # release: a roller enters at the driven end
+            ends, _ = _drive(run, prm, omega1, seg[:2], seg[1] - seg[0])
+            y = np.vstack([forced * _end(ends, "u_left", 3)[0], y])
+            v = np.vstack([forced * _end(ends, "v_left", 3)[0], v])
+        dt = np.diff(seg)
+        ends, Pt = _drive(run, prm, omega1, seg, dt[0])
+        nh = 2 * len(seg) - 1
+        left = _end(ends, "u_left", nh)[:, None] * forced[None, :]
+        right = _end(ends, "u_right", nh)[:, None] * forced[None, :]
+        Y, V = rk4(y, v, seg, left, right, (P + Pt) / (m_r * p), damp)
+        y, v = Y[-1], V[-1]
+        if record:
+            hist.append((seg, Y[..., -1], left[:, -1], right[:, -1]))
+    # seating at tau: the last roller goes onto the driving sprocket (state dropped) ...
+    y, v = y[:-1], v[:-1]
+    if t_r == 0:                                 # ... and one leaves the driven sprocket
+        ends, _ = _drive(run, prm, omega1, np.array([tau, tau + 1e-9 * tau]), 1e-9 * tau)
+        y = np.vstack([forced * _end(ends, "u_left", 3)[0], y])
+        v = np.vstack([forced * _end(ends, "v_left", 3)[0], v])
+    x = np.vstack([y, v])
+    M, b = x[:, :-1], x[:, -1]
+    return {"M": M, "b": b, "tau": tau, "t_r": t_r, "n_short": n_s, "P": P,
+            "history": hist if record else None}
+
+
+def floquet(M: np.ndarray) -> np.ndarray:
+    """Floquet multipliers of the tooth-period map (eigenvalues of M), largest first."""
+    mu = np.linalg.eigvals(M)
+    return mu[np.argsort(-np.abs(mu))]
+
+
+def periodic_orbit(run, prm: dict, omega1: float, steps_per_period: int) -> dict:
+    """Periodic steady state x* = (I - M)^-1 b of the tooth-period map, its largest
+    Floquet multiplier and its amplitude (max |y| over the free rollers and one period:
+    the map is affine, so the orbit from x* is the forced response plus M's columns)."""
+    pm = period_map(run, prm, omega1, steps_per_period, record=True)
+    M, b = pm["M"], pm["b"]
+    x = np.linalg.solve(np.eye(M.shape[0]) - M, b)
+    rho = float(np.max(np.abs(floquet(M))))
+    # the orbit from x*: march once more with the start as the forced column's state
+    amp = _orbit_amplitude(run, prm, omega1, steps_per_period, x)
+    return {"x": x, "rho": rho, "amplitude": amp, "tau": pm["tau"], "n_short": pm["n_short"],
+            "residual": float(np.max(np.abs(M @ x + b - x)))}
+
+
+def _orbit_amplitude(run, prm, omega1, steps_per_period, x0) -> float:
+    """max |y| over the free rollers along one period started from the state x0."""
+    run = as_run(run)
+    m, p = prm["mass_per_length"], prm["pitch"]
+    m_r, damp = m * p, prm["transverse_damping"] * p / (m * p)
+    pm = period_map(run, prm, omega1, steps_per_period)
+    tau, t_r, P = pm["tau"], pm["t_r"], pm["P"]
+    n_s = pm["n_short"]
+    y, v = x0[:n_s, None].copy(), x0[n_s:, None].copy()
+    cuts = [0.0, t_r, tau] if t_r > 0 else [0.0, tau]
+    amp = 0.0
+    for i, (a, b) in enumerate(zip(cuts[:-1], cuts[1:])):
+        n = max(int(math.ceil(steps_per_period * (b - a) / tau)), 2)
+        seg = np.linspace(a, b, n + 1)
+        ends, Pt = _drive(run, prm, omega1, seg, seg[1] - seg[0])
+        nh = 2 * len(seg) - 1
+        if i == 1:
+            y = np.vstack([[[_end(ends, "u_left", nh)[0]]], y])
+            v = np.vstack([[[_end(ends, "v_left", nh)[0]]], v])
+        Y, V = rk4(y, v, seg, _end(ends, "u_left", nh)[:, None], _end(ends, "u_right", nh)[:, None],
+                   (P + Pt) / (m_r * p), damp)
+        amp = max(amp, float(np.max(np.abs(Y))))
+        y, v = Y[-1], V[-1]
+    return amp

@@ -1,0 +1,113 @@
+"""chain_drive: the discrete-link span (models/chain_drive/discrete.py) against exact
+solutions: the beaded string's modes, the string limit at O(N^-2), energy conservation of
+the roller set, the release / seating schedule against the four-bar's tooth phases, and
+Floquet multipliers that a refined step does not move."""
+import copy
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mechrepro.config import load_paper
+from mechrepro.models.chain_drive import discrete as D
+from mechrepro.models.chain_drive import four_bar, geometry
+
+CONFIG = Path(__file__).resolve().parents[1] / "config" / "papers" / "chain_drive.yaml"
+
+
+def test_modes_without_motion_are_the_beaded_strings():
+    """N masses m at spacing a under tension T between fixed ends:
+    omega_k = 2 sqrt(T / (m a)) sin(k pi / (2 (N + 1)))."""
+    for n, T, m, a in ((1, 400.0, 7.7e-3, 12.7e-3), (19, 400.0, 7.7e-3, 12.7e-3),
+                       (40, 123.0, 1e-2, 5e-3)):
+        got = D.modal_frequencies(n, T, m, a)
+        assert np.allclose(got, D.beaded_frequencies(n, T, m, a), rtol=1e-12, atol=0)
+
+
+def test_modes_approach_the_strings_at_second_order():
+    """At fixed span L and mass rho L the first five frequencies tend to k pi sqrt(T/rho)/L
+    with an error ~ (k pi/(N+1))^2 / 24: observed order 2."""
+    L, rho, T = 20 * 12.7e-3, 0.61, 400.0
+    exact = np.arange(1, 6) * np.pi / L * math.sqrt(T / rho)
+    errs = []
+    for n in (15, 31, 63, 127):
+        a = L / (n + 1)
+        errs.append(np.abs(D.modal_frequencies(n, T, rho * a, a)[:5] / exact - 1))
+    order = np.log2(np.array(errs[:-1]) / np.array(errs[1:]))
+    assert np.all(np.abs(order[-1] - 2.0) < 0.02), order
+    assert np.all(np.diff(np.array(errs), axis=0) < 0)
+
+
+def test_energy_of_a_fixed_roller_set_is_conserved_to_the_integrators_order():
+    """No release, no seating, no damping, fixed ends, constant tension: RK4 loses energy
+    at its own order (>= 4 in the step), and little of it."""
+    n, T, m, a = 12, 400.0, 0.61 * 12.7e-3, 12.7e-3
+    rng = np.random.default_rng(0)
+    y0, v0 = rng.normal(size=(n, 1)) * 1e-3, rng.normal(size=(n, 1)) * 1e-2
+    w_max = D.beaded_frequencies(n, T, m, a)[-1]
+    t_end = 20 * 2 * np.pi / D.beaded_frequencies(n, T, m, a)[0]
+    drift = []
+    for steps in (8000, 16000):
+        t = np.linspace(0.0, t_end, steps + 1)
+        assert w_max * (t[1] - t[0]) < 2.0        # inside RK4's stability interval
+        zeros = np.zeros(2 * steps + 1)
+        Y, V = D.rk4(y0, v0, t, zeros, zeros, np.full(steps, T / (m * a)), 0.0)
+        e = D.energy(Y[:, :, 0].T, V[:, :, 0].T, 0.0, 0.0, T, m, a)
+        drift.append(abs(e[-1] / e[0] - 1))
+    assert drift[0] < 1e-3
+    assert math.log2(drift[0] / drift[1]) > 3.9, drift
+
+
+def _prm(scene="fig07_tension", **over):
+    cfg = load_paper(CONFIG, "ci")
+    run = copy.deepcopy(cfg.runs[scene])
+    run["parameters"].update(over)
+    return run, run["parameters"]
+
+
+@pytest.mark.parametrize("cd", [20.25, 20.5, 19.7])
+def test_release_and_seating_follow_the_four_bar(cd):
+    """The driving sprocket seats a roller when its tooth phase wraps (t = 0, tau) and the
+    driven one releases a roller when its phase wraps (t_r): the phases of four_bar."""
+    run, prm = _prm(centre_distance=cd * 12.7e-3)
+    w = 400.0 / geometry.RPM
+    tau, t_r, n_s = D.events(prm, w)
+    geo = D.span.span_geometry(prm, True)
+    assert n_s == round(geo["L_short"] / prm["pitch"]) - 1
+    t = np.linspace(0.0, tau, 200001)[1:-1]
+    ph = four_bar.tooth_phases(t, w, n1=int(prm["n1"]), n2=int(prm["n2"]), p_c=prm["pitch"],
+                               f_p=geo["f_p"])
+    assert np.all(np.diff(ph["phase1"]) > 0)                 # no engagement inside (0, tau)
+    wraps = np.flatnonzero(np.diff(ph["phase2"]) < -0.5)
+    assert len(wraps) == 1
+    assert abs(t[wraps[0]] - t_r) <= 2 * (t[1] - t[0])
+    # the span is long from the release to the next seating (four_bar.long_span)
+    long = four_bar.long_span(ph["phase1"], ph["phase2"])
+    assert np.all(long[t > t_r + 1e-6 * tau]) and not np.any(long[t < t_r - 1e-6 * tau])
+
+
+def test_floquet_multipliers_do_not_move_under_step_refinement():
+    """The largest multiplier and the periodic amplitude at 200 and 400 steps per tooth
+    period agree to within 1e-3 (RK4: the difference shrinks ~16x per halving)."""
+    run, prm = _prm()
+    run["effects"] = [e for e in run["effects"] if e != "impact"]
+    w = 450.0 / geometry.RPM
+    got = [D.periodic_orbit(run, prm, w, n) for n in (100, 200, 400)]
+    rho = [g["rho"] for g in got]
+    amp = [g["amplitude"] for g in got]
+    assert all(g["residual"] < 1e-9 * max(amp) + 1e-15 for g in got)
+    assert abs(rho[2] - rho[1]) < 1e-3 and abs(amp[2] / amp[1] - 1) < 1e-3, (rho, amp)
+    assert abs(rho[2] - rho[1]) <= abs(rho[1] - rho[0]) + 1e-12
+
+
+def test_a_step_beyond_rk4s_stability_is_refused():
+    """At 50 rpm and 800 N, 100 steps per tooth period put the highest roller mode outside
+    RK4's stability interval: refused with the steps needed, never a blown-up multiplier."""
+    from mechrepro.models.chain_drive.errors import StabilityError
+
+    run, prm = _prm(static_tension=800.0)
+    w = 50.0 / geometry.RPM
+    with pytest.raises(StabilityError, match="at least"):
+        D.period_map(run, prm, w, 100)
+    assert D.periodic_orbit(run, prm, w, 200)["rho"] < 1.0
