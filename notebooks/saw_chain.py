@@ -352,9 +352,9 @@ for q in (k for k in table if k.startswith("design_")):
 # ## Validation table
 # Built by the framework (`validate_saw_chain`): evidence class per row, verdicts
 # re-checked one and two levels coarser (K/2, K/4: the error bar), at the range ends of the
-# assumed textbook constants and, for a counted pass, under its falsifier (a rival that
-# must make it fail, e.g. the chain at constant speed; a pass the rival passes too is
-# graded construction and not counted).
+# assumed textbook constants and, for a counted row, under every rival (a model the paper
+# rules out, e.g. the chain at constant speed; a pass no rival fails is graded
+# not_discriminating and not counted: tables/discrimination.csv).
 
 # %%
 for r in table.values():

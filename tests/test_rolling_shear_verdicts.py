@@ -25,14 +25,14 @@ TABLE2 = {"l1": 926.7, "l3": 689.3, "l5": 984.6, "l6": 809.3, "l10": 1704.3}
 
 # --- 1. no rival edits a paper value; paper_levers_assemble is not credited by one ----------
 
-def test_no_falsifier_changes_a_value_the_paper_gives():
+def test_no_rival_changes_a_value_the_paper_gives():
     """The framework's rule (issue 58): a rival never edits a number with a paper source --
     neither a sourced parameter nor one of Table II's levers (the old short_rods set l3 to
     300 mm)."""
     raw = config().raw
     sourced = {k for k, v in raw["parameters"].items() if "source" in v}
     paper_levers_ = set(TABLE2.values()) | {raw["parameters"][k]["value"] for k in TABLE2}
-    for name, spec in raw.get("falsifiers", {}).items():
+    for name, spec in raw.get("rivals", {}).items():
         assert not set(spec.get("parameters", {})) & sourced, name
         for k, v in spec.get("options", {}).get("levers", {}).items():
             assert v in paper_levers_, (name, k, v)
@@ -193,7 +193,7 @@ def test_the_unclamped_swarm_is_a_range_end_not_a_rival():
     selPSO-only scene (its re-runs never solve the other five methods)."""
     cfg = config()
     raw = cfg.raw
-    assert not raw["falsifiers"]
+    assert not raw["rivals"]
     spec = raw["reported"]["selpso_converges_from_each_initial_value"]
     assert "pso_v_max" in spec["depends_on"] and "falsifier" not in spec
     assert max(raw["parameters"]["pso_v_max"]["range"]) == 100.0

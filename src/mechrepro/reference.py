@@ -233,7 +233,7 @@ def compare(current: dict[str, tuple[float, str, str]], ref_rows: list[dict], wh
         if q not in current:
             continue
         value, status, evidence = current[q]
-        # a pass that became `construction` (its falsifier stopped failing) is a changed
+        # a pass that became `not_discriminating` (no rival fails it any more) is a changed
         # verdict too: what the claim counts moved
         if r.get("evidence") and evidence and evidence != r["evidence"]:
             problems.append(f"  {q}: evidence {r['evidence']} in reference, now {evidence}")

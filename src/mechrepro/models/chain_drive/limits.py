@@ -36,7 +36,7 @@ def stability_only(run: dict) -> bool:
     grid first shows; edges (i) need an unstable speed, which ends it.
 
     ``options.variants: stability`` declares it for a scene whose verdict rows read only
-    that (Figs. 7 and 9): its falsifier and range-end variants are stability-only; its
+    that (Figs. 7 and 9): its rival and range-end variants are stability-only; its
     base run and @coarser/@coarsest levels are not (the figure draws their amplitudes and
     edges, and its convergence note compares their peaks)."""
     return (run.get("options", {}).get("variants") == "stability"
@@ -55,7 +55,7 @@ JOB_START_S = 3.0
 
 #: evaluated speeds / initial speeds of an adaptive shooting sweep (edges, growth-rate bumps
 #: and peaks bisected): measured 1.2-2.9 over the 24 shooting runs of the default batch
-#: (mean 1.7), 3.2-3.6 for fig09b and its former @finer level (many unstable bands); a falsifier with a
+#: (mean 1.7), 3.2-3.6 for fig09b and its former @finer level (many unstable bands); a rival with a
 #: flat growth rate can reach ~4.6 (fig07_ts-001 overdamped)
 SHOOTING_REFINE = 3.5
 

@@ -49,7 +49,7 @@ class Disk:
         self.alpha = p["thermal_expansion"]
         self.A, self.s = p["temperature_amplitude"], p["gaussian_width"]
         self.bc = p["inplane_bc"]
-        #: the residual-stress model: the paper's, or a rival's (config falsifiers:)
+        #: the residual-stress model: the paper's, or a rival's (config rivals:)
         self.stress_model = run.get("options", {}).get("residual_stress", "thermal_analogy")
         self._check()
         self.h = calibration.thickness(f_target=p["calibration_frequency"],

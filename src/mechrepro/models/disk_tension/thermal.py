@@ -75,7 +75,7 @@ def thermal_stress(r, *, amplitude, r_c, s, r_f, b, E, nu, alpha, inplane_bc="cl
 
 #: the residual-stress model of the thermal analogy (``options.residual_stress``): the paper's
 #: plane-stress field, or one of the rivals a skeptical reviewer would propose in its place
-#: (config ``falsifiers:``; never a scene of the paper)
+#: (config ``rivals:``; never a scene of the paper)
 STRESS_MODELS = ("thermal_analogy", "hoop_only", "fixed_profile")
 
 

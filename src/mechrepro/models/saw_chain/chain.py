@@ -117,7 +117,7 @@ def budget_constants(chain: Chain, n: int = 129):
 
 def chain_from_run(run: dict) -> Chain:
     """The run's chain; ``options.single_pitch``: the rival of one pitch (the tie strap's) for
-    both links, as in a roller chain (falsifiers.single_pitch), the paper's numbers kept."""
+    both links, as in a roller chain (rivals.single_pitch), the paper's numbers kept."""
     p = run["parameters"]
     p2 = p["tie_strap_pitch"] if run.get("options", {}).get("single_pitch") else \
         p["drive_link_pitch"]

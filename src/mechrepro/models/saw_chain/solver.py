@@ -100,7 +100,7 @@ def constant_speed(chain: Chain, loads: bool = True, beyond_roundoff_limit: bool
     round-off, which is left out so that the rival's numbers do not depend on the CPU).
     Not a model of the paper: what a reviewer would propose if the polygon effect did not
     matter; a check the paper's model passes and this passes too does not test the polygon
-    effect (``falsifiers.constant_speed`` in the config).  The same K is refused as in the
+    effect (``rivals.constant_speed`` in the config).  The same K is refused as in the
     method, so that the rival runs wherever the method would."""
     n = 2 * chain.K + 1
     v = np.full(n, chain.chain_speed)
@@ -183,7 +183,7 @@ def compute(run: dict) -> dict:
     if polygon:
         method = difference_method(chain, opts.get("beyond_roundoff_limit", False),
                                    opts.get("loads", True))
-    else:   # the rival without the polygon effect (falsifiers.constant_speed)
+    else:   # the rival without the polygon effect (rivals.constant_speed)
         method = constant_speed(chain, opts.get("loads", True), opts.get("beyond_roundoff_limit", False))
     contributions = EFFECTS.evaluate(run, ctx)
     beside = {key: contributions.get(key) for key in contributions.keys()}
