@@ -15,7 +15,8 @@ import numpy as np
 
 EFFECT_COST_COLUMNS = ["solver", "effect", "runs", "time_s", "share"]
 JOB_TIME_COLUMNS = ["job", "runs", "solve_s", "job_s"]
-MARGINAL_COLUMNS = ["scene", "solver", "effect", "direct_s", "marginal_s", "with_s", "without_s"]
+MARGINAL_COLUMNS = ["scene", "solver", "effect", "direct_s", "marginal_s", "marginal_median_s",
+                    "marginal_min_s", "marginal_max_s", "below_noise", "with_s", "without_s"]
 VERIFICATION_COLUMNS = ["variant", "kind", "runs", "solve_s", "share", "rows", "decides",
                         "decided_rows"]
 
@@ -34,7 +35,9 @@ def _run_times(path: str) -> dict:
         out = {"solver": getattr(nc, "solver", "") or "(undeclared)",
                "wall": float(nc["wall_time"][...]),
                "core": float(nc["core_time"][...]) if "core_time" in nc.variables else np.nan,
-               "effects": {}}
+               "effects": {},
+               "rounds": (np.asarray(nc["timing_rounds"][...], float)
+                          if "timing_rounds" in nc.variables else np.array([]))}
         if "effect_time" in nc.variables:
             names = [str(x) for x in nc["timed_effect"][...]]
             out["effects"] = dict(zip(names, np.asarray(nc["effect_time"][...], float)))
@@ -81,14 +84,21 @@ def job_time(paper_root: str | Path, jobs: dict[str, list[str]]) -> list[dict]:
 def marginal(paper_root: str | Path, ablations: dict[str, tuple[str, str]]) -> list[dict]:
     """Per effect of an ablated scene: its direct cost (its own evaluation, timed inside the
     solve) beside its marginal cost, the scene's solve time with it minus without it, which
-    also bills the work it causes in the solver (extra steps, a second solve per step)."""
+    also bills the work it causes in the solver (extra steps, a second solve per step); with
+    the spread of that difference over the alternated rounds (median, min, max) and
+    ``below_noise`` where the rounds disagree on its sign."""
     root = Path(paper_root)
     rows = []
     for run, (scene, effect) in ablations.items():
         full, without = (run_times(root / "runs" / f"{r}.nc") for r in (scene, run))
+        n = min(len(full["rounds"]), len(without["rounds"]))
+        d = full["rounds"][:n] - without["rounds"][:n] if n else np.array([np.nan])
         rows.append({"scene": scene, "solver": full["solver"], "effect": effect,
                      "direct_s": full["effects"].get(effect, np.nan),
                      "marginal_s": full["wall"] - without["wall"],
+                     "marginal_median_s": float(np.median(d)), "marginal_min_s": float(d.min()),
+                     "marginal_max_s": float(d.max()),
+                     "below_noise": bool(n) and bool(d.min() <= 0.0 <= d.max()),
                      "with_s": full["wall"], "without_s": without["wall"]})
     return rows
 

@@ -58,18 +58,19 @@ def _papers(config_dir: Path) -> list[str]:
 
 
 def claims(results: Path, config_dir: Path = Path("config")) -> str:
-    """One row per paper: its claim and the counts of its independent verdicts."""
+    """One row per paper: its claim, the counts of its independent verdicts and its passes
+    that no rival fails (reproduced, not counted)."""
     from .config import load_paper
 
-    out = ["| id | paper | claim | pass | fail | inconclusive | not converged | details |",
-           "|---|---|---|---|---|---|---|---|"]
+    out = ["| id | paper | claim | pass | fail | inconclusive | not converged | reproduced, not "
+           "discriminating | details |", "|---|---|---|---|---|---|---|---|---|"]
     for paper in _papers(config_dir):
         c = json.loads((results / paper / "claim.json").read_text())
         title = load_paper(config_dir / "papers" / f"{paper}.yaml").raw.get("title", "")
         n = c["independent"]
         out.append(f"| `{paper}` | {title} | {c['claim']} | "
                    + " | ".join(str(n.get(s, 0)) for s in VERDICTS)
-                   + f" | `docs/{paper}.md` |")
+                   + f" | {len(c.get('not_discriminating', []))} | `docs/{paper}.md` |")
     return "\n".join(out)
 
 
