@@ -138,6 +138,8 @@ for k, r in enumerate(readings):
                ls="--" if r == "mean_pitch" else "-", alpha=0.6 if r == "eq1" else 1.0, label=f"{r} (min Δχ² {idn['joint_chi2'].values[0, k] - c0:.1f})")
 for lev, ls in (("68", ":"), ("95", "--")):
     ax[0].axhline(idf.DCHI2[lev], color="gray", lw=0.8, ls=ls)
+    ax[0].annotate(f"{lev} %", (1.0, idf.DCHI2[lev]), xycoords=("axes fraction", "data"),
+                   xytext=(3, 0), textcoords="offset points", va="center", fontsize=7, color="gray")
 ax[0].set_yscale("symlog", linthresh=10)
 ax[0].set(xlabel="sprocket speed run [r/min]", ylabel=f"Δχ² (model error {errors[0]:.1%}; linear below 10)",
           ylim=(0, 3e3), xlim=(6380, 6830))
@@ -155,8 +157,10 @@ x = np.arange(len(idf.DATA))
 ax[2].bar(x - 0.2, idn["fit_pull"].values[0, printed], 0.4, label="as printed")
 ax[2].bar(x + 0.2, idn["fit_pull"].values[0, best], 0.4, label=f"preferred: {best_name}")
 ax[2].axhline(0, color="k", lw=0.6)
-ax[2].set_xticks(x, ["band\nmin", "band\nmax", "measured\nmean", "measured\nfluct.", "load\nmin",
+ax[2].set_xticks(x, ["band\nmin", "band\nmax", "meas.\nmean", "meas.\nfluct.", "load\nmin",
                      "load\nmax"], fontsize=7)
+ax[2].annotate("K fitted:\n≈ 0", (x[-1], 0), xytext=(0, 6), textcoords="offset points", ha="center",
+               fontsize=7)
 ax[2].set(ylabel="(prediction − paper) / σ")
 ax[2].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=1)
 R.save_figure(fig, "identification")

@@ -96,3 +96,14 @@ def test_which_counted_rows_the_constant_speed_rival_passes(edit_config, tmp_pat
     under = {r.quantity: r.rivals["constant_speed"][0] for r in rows if r.rivals}
     assert len(under) == 8, under
     assert {q for q, s in under.items() if s == "pass"} == RIVAL_PASSES, under
+
+
+def test_the_band_ends_count_as_one_finding_in_the_claim(fig07_rows):
+    """Issue 63: the band's two ends fail by one cause (a 2 % offset of both): the claim
+    counts the rows, and beside them the findings, where the two ends are one."""
+    from mechrepro.validation import claim
+
+    cfg = load_paper(CONFIG, "ci")
+    c = claim(cfg, list(fig07_rows.values()))
+    assert c["independent"]["fail"] == c["findings"]["fail"] + 1
+    assert "velocity_band_offset = tight_side_velocity_min + tight_side_velocity_max" in c["text"]

@@ -674,6 +674,19 @@ def claim(cfg, rows: list[Row]) -> dict:
     n = {s: len(v) for s, v in by.items()}
     parts = [f"{n['pass']} of {len(ind)} independent checks pass, {n['fail']} fail, "
              f"{n['inconclusive']} inconclusive, {n['not_converged']} not converged."]
+    # rows that name one finding (reported.<q>.finding) share one cause: counted once more
+    groups: dict[str, list] = {}
+    for r in ind:
+        groups.setdefault(r.spec.get("finding", r.quantity), []).append(r)
+    findings = {s: sum(1 for g in groups.values() if {r.status for r in g} == {s}) for s in verdicts}
+    findings["inconclusive"] += sum(1 for g in groups.values() if len({r.status for r in g}) > 1)
+    shared = {k: [r.quantity for r in g] for k, g in groups.items() if len(g) > 1}
+    if shared:
+        parts.append(f"As findings (rows of one cause counted once: "
+                     f"{'; '.join(f'{k} = ' + ' + '.join(v) for k, v in shared.items())}): "
+                     f"{findings['pass']} pass, {findings['fail']} fail, "
+                     f"{findings['inconclusive']} inconclusive, {findings['not_converged']} not "
+                     f"converged.")
     demoted = [r.quantity for r in rows if r.evidence == "not_discriminating"]
     sledge = sledgehammers(rows)
     if agree:
@@ -701,7 +714,7 @@ def claim(cfg, rows: list[Row]) -> dict:
     if cfg.raw.get("claim_note"):
         parts.append(cfg.raw["claim_note"])
     return {"paper": cfg.paper, "claim": kind, "text": " ".join(parts),
-            "independent": n, "counts": counts(rows),
+            "independent": n, "findings": findings, "counts": counts(rows),
             "agree": agree, "disagree": disagree, "inconclusive": unsettled,
             "unscored": unscored, "not_discriminating": demoted, "sledgehammers": sledge}
 

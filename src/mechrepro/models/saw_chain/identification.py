@@ -36,7 +36,7 @@ the printed speed.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -207,11 +207,12 @@ def analyse(d: Design, paper, printed_half, inputs_half, model_error, speeds, st
         return Fit(name, r, float(c[a, b]), int(speed_free) + int(stretch_free), float(s[a]),
                    float(e[b]), int(Ks[a, b]), pred[a, b], pull, p_s, p_e)
 
+    joint = {r: fit("reading + speed + stretch", r, True, True) for r in readings}
     fits = []
     for name, allowed, sf, ef in EXPLANATIONS:
-        best = min((fit(name, r, sf, ef) for r in (allowed or readings)), key=lambda f: f.chi2)
+        best = min((replace(joint[r], explanation=name) if sf and ef else fit(name, r, sf, ef)
+                    for r in (allowed or readings)), key=lambda f: f.chi2)
         fits.append(best)
-    joint = {r: fit("reading + speed + stretch", r, True, True) for r in readings}
     return fits, joint
 
 
