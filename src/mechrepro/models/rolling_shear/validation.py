@@ -208,9 +208,12 @@ def family(R):
         def member(i):
             return ", ".join(f"{k} {ds[f'family_member_{k}'].values[i]}" for k in
                              ("blade_offset", "R", "width", "y_joint", "eq8_reading"))
+        lev = ds["family_member_levers_buildable"].values == 1.0 if "family_member_levers_buildable" in ds \
+            else np.zeros_like(sel)
         note = (f"{int(sel.sum())} buildable of {int(cal.sum())} grid members that reach 1.4341 "
-                f"(of {int((carrier == c).sum())}; {ds.sizes['cut']} cut points); over every "
-                f"calibrated member {np.nanmin(red[cal]):.1f} .. {np.nanmax(red[cal]):.1f} %")
+                f"(of {int((carrier == c).sum())}; {ds.sizes['cut']} cut points), in "
+                f"{int((sel & lev).sum())} of them the machine with Table II's levers can be built too; "
+                f"over every calibrated member {np.nanmin(red[cal]):.1f} .. {np.nanmax(red[cal]):.1f} %")
         if not sel.any():
             out[f"table2_reduction_family_{c}_min"] = Reproduced(math.nan, note=note)
             out[f"table2_reduction_family_{c}_max"] = Reproduced(math.nan, note=note)
