@@ -394,7 +394,7 @@ def design_front(ds, *, clearance: float, mu_min: float, plate_top: float, openi
     relative to the box width)."""
     header = ["design", *[f"{k}_mm" for k in OPTIMISED_LEVERS], "H_mm", "reduction_pct",
               "mu_worst_deg", "rod_gap_margin_mm", "joint_height_margin_mm",
-              "transmission_margin_deg", "opening_margin_mm", "box_margin", "buildable"]
+              "transmission_margin_deg", "blade_rise_margin_mm", "box_margin", "buildable"]
     H0 = float(ds["paper_H"].values[0])
     rise = float(ds["geometry_width"]) ** 2 / (2.0 * float(ds["geometry_R"]))
 
