@@ -280,7 +280,8 @@ sH, smu = des["sample_H"].values, des["sample_mu_worst"].values
 ax[0].plot(sH[~sb], smu[~sb], ".", ms=2, color="0.75", label="loops close, not buildable")
 ax[0].plot(sH[sb], smu[sb], ".", ms=2, color="tab:blue", label="buildable")
 on = des["envelope_on_front"].values == 1.0
-ax[0].plot(des["envelope_H"].values[on], des["envelope_mu_worst"].values[on], "k-o", ms=4, label="Pareto front")
+ax[0].plot(des["envelope_H"].values[on], des["envelope_mu_worst"].values[on], "k-o", ms=7, mfc="none",
+           mew=1.5, label=f"Pareto front ({int(on.sum())} design{'s' if on.sum() != 1 else ''})")
 for k, (name, mk) in enumerate((("paper, original levers", "s"), ("paper, Table II levers", "D"))):
     ax[0].plot(des["paper_H"].values[k], des["paper_mu_worst"].values[k], mk, ms=8, mfc="none",
                mew=1.5, color=f"C{k + 1}", label=name)

@@ -38,7 +38,7 @@ def grid(**columns):
     n = len(next(iter(columns.values()))) if columns else 1
     base = {"tilt": 0.05, "H_levers": 1.4341 * 1.1, "assembles": 1.0, "buildable": 1.0,
             "rod_gap": 500.0, "joint_height": 200.0, "mu_min": 80.0, "mu_max": 120.0,
-            "rise": 40.0, "open_mu": 80.0, "blade_offset": -650.0, "R": 70000.0, "width": 2350.0,
+            "rise": 40.0, "open_mu": 80.0, "levers_buildable": 1.0, "blade_offset": -650.0, "R": 70000.0, "width": 2350.0,
             "y_joint": 250.0, "eq8_reading": "rotation", "carrier_constants": "frozen"}
     data = {k: np.asarray(columns.get(k, [v] * n)) for k, v in base.items()}
     data["reduction"] = columns.get("reduction", 100.0 * (data["H_levers"] / 1.4341 - 1.0))

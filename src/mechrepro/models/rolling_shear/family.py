@@ -37,7 +37,7 @@ def calibrated_member(ctx: Context, member: dict, levers: dict) -> tuple[float, 
     """(calibrated tilt, H of the lever set, buildable 1/0 at the run's constraint settings,
     then the member's margins to the constraints: rod gap mm, rod-joint height mm, smallest
     and largest crank-rod angle deg, blade-end rise mm, worst transmission angle at the open
-    position deg) of one member; NaN where it cannot
+    position deg, and whether the machine with the lever set is buildable too) of one member; NaN where it cannot
     reach the target (H NaN: the lever set does not assemble)."""
     from . import stroke
     from .constraints import broken, margins, settings
@@ -47,18 +47,21 @@ def calibrated_member(ctx: Context, member: dict, levers: dict) -> tuple[float, 
                                   ctx.calibration_target, ctx.n, ctx.tol_floor,
                                   whole_scan=False)  # only the tilt is kept
     except (CalibrationError, NonAssembly, Unreachable):
-        return (math.nan,) * 9
+        return (math.nan,) * 10
     s = settings(ctx.p)
     m = margins(gc, stroke.exact_theta(gc, cut_points(gc, ctx.n)[1]), opening=s["opening"])
     ok = not broken(m, **dict(s, mu_min=math.degrees(s["mu_min"])))
     try:
         gp = gc.with_levers(**levers)
         H = optimise.objective(gp, cut_points(gp, ctx.n)[1], ctx.tol_floor)
+        # the machine with the scene's levers, judged by the same constraints
+        mp = margins(gp, stroke.exact_theta(gp, cut_points(gp, ctx.n)[1]), opening=s["opening"])
+        ok_levers = float(not broken(mp, **dict(s, mu_min=math.degrees(s["mu_min"]))))
     except (NonAssembly, Unreachable):
-        H = math.nan
+        H = ok_levers = math.nan
     mu = np.array(list(m["mu"].values()))
     return (info["tilt"], H, float(ok), m["rod_gap"], m["joint_height"], float(mu[:, 0].min()),
-            float(mu[:, 1].max()), m["rise"], m["open_mu"])
+            float(mu[:, 1].max()), m["rise"], m["open_mu"], ok_levers)
 
 
 def solve_family_scan(run: dict, ctx: Context) -> dict:
@@ -93,7 +96,10 @@ def solve_family_scan(run: dict, ctx: Context) -> dict:
                                        "largest crank-rod angle of both dyads over the stroke"),
            "family_member_rise": var("member", rows[:, 7], "mm", "blade end's rise over the plate"),
            "family_member_open_mu": var("member", rows[:, 8], "deg",
-                                        "worst transmission angle at the open position (NaN: not reached)")}
+                                        "worst transmission angle at the open position (NaN: not reached)"),
+           "family_member_levers_buildable": var("member", rows[:, 9], "1",
+                                                 "1: the machine with the scene's levers meets the constraints "
+                                                 "too (NaN: not calibrated, or the levers do not assemble)")}
     for k in GRID_KEYS:
         vals = [m[k] for m in members]
         if isinstance(vals[0], str):

@@ -33,6 +33,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from scipy.optimize import brentq
 
 from mechrepro.errors import Refusal
 from mechrepro.units import var
@@ -44,7 +45,7 @@ from .constraints import settings as constraint_settings
 from .context import Context
 from .design import Unreachable
 from .geometry import OPTIMISED_LEVERS, cut_points
-from .loops import NonAssembly, pivots
+from .loops import NonAssembly
 from .trajectory import synthetic_horizontal_displacement
 
 #: the four levers sampled at each l6 (OPTIMISED_LEVERS without l6)
@@ -111,10 +112,10 @@ def _open_transmission(g, q, levers: np.ndarray) -> np.ndarray:
     return worst
 
 
-def stroke_of(g, n: int, tol: float, opening: float):
+def stroke_of(g, n: int, tol: float, opening: float | None):
     """(poses, H, rod gap, open pose) of the run's member with guide rod ``g.l6``, or None
     where the blade pose leaves the guide rod's design branch (open pose None: the open
-    position is not reached, :func:`.constraints.open_pose`)."""
+    position is not reached, :func:`.constraints.open_pose`, or not asked: ``opening`` None)."""
     x_k = cut_points(g, n)[1]
     try:
         poses = optimise.stroke_poses(g, x_k, tol)
@@ -123,7 +124,8 @@ def stroke_of(g, n: int, tol: float, opening: float):
     H = synthetic_horizontal_displacement(g, poses[:, 0] - g.beta2, x_k)
     lo, hi = g.x_mid - 0.5 * g.width, g.x_mid + 0.5 * g.width
     xs = np.concatenate([[0.0], g.l6 * np.cos(poses[:, 1])])   # E, then D over the stroke
-    return poses, float(H), float(max(lo - xs.max(), xs.min() - hi)), open_pose(g, opening)
+    return (poses, float(H), float(max(lo - xs.max(), xs.min() - hi)),
+            None if opening is None else open_pose(g, opening))
 
 
 def buildable(m: dict, rod_gap, *, clearance: float, plate_top: float, mu_min: float,
@@ -166,11 +168,13 @@ def search(g, n: int, tol: float, box: np.ndarray, constraints: dict, *, l6_poin
     x0 = np.array([getattr(g, k) for k in OTHERS])
     rise = g.width ** 2 / (2.0 * g.R)
     env, cloud = [], []
-    for l6 in np.linspace(box[j6, 0], box[j6, 1], l6_points):
+
+    def at(l6):
+        """The envelope entry at guide rod l6 (None: no stroke), its samples into ``cloud``."""
         g6 = g.with_levers(l6=float(l6))
         s = stroke_of(g6, n, tol, constraints["opening"])
         if s is None:
-            continue
+            return None
         poses, H, gap, q_open = s
         m0 = dyad_metrics(g6, poses, x0[None, :], q_open)
         kept = (float(m0["mu_worst"][0]), float(m0["joint_height"][0]),
@@ -193,7 +197,28 @@ def search(g, n: int, tol: float, box: np.ndarray, constraints: dict, *, l6_poin
         levers[j6] = l6
         if best is not None:
             levers[jo] = best
-        env.append((levers, H, gap, best_mu, height, *kept))
+        return (levers, H, gap, best_mu, height, *kept)
+
+    for l6 in np.linspace(box[j6, 0], box[j6, 1], l6_points):
+        e = at(l6)
+        if e is not None:
+            env.append(e)
+    # the guide rod's joint D reaches the clearance between two grid lengths: that length, where
+    # H is lowest among the buildable ones (H falls with l6), is solved for and searched too
+    if constraints["guide_rod_plane"] == "planar":
+        gaps = np.array([e[2] for e in env])
+        cross = np.flatnonzero((gaps[:-1] >= constraints["clearance"]) & (gaps[1:] < constraints["clearance"]))
+        for k in cross:
+            a_, b_ = env[k][0][j6], env[k + 1][0][j6]
+
+            def gap_minus(l6):
+                s = stroke_of(g.with_levers(l6=float(l6)), n, tol, None)
+                return (s[2] if s is not None else -np.inf) - constraints["clearance"]
+            l6_star = brentq(gap_minus, a_, b_, xtol=1e-6)
+            # just inside the constraint, so that round-off cannot put the design outside it
+            e = at(l6_star - 1e-5)
+            if e is not None:
+                env.insert(k + 1, e)
     H, mu, ok = (np.concatenate([c[k] for c in cloud]) for k in range(3))
     return {"levers": np.array([e[0] for e in env]), "H": np.array([e[1] for e in env]),
             "rod_gap": np.array([e[2] for e in env]), "mu_worst": np.array([e[3] for e in env]),

@@ -8,8 +8,9 @@ every cut point.  A lever set that does not assemble gets the flat penalty
 ``PENALTY`` (mm), so both optimisers see the same landscape.
 
 Identifiability (see docs): with the lowest point prescribed on y = -s, Eq. (7) fixes the
-blade pose from the guide rod alone, so the objective depends on l6 only; l1, l3, l5,
-l10 enter only through the assembly constraint and are not determined by the objective.
+blade pose from the guide rod and the carrier: with frozen carrier constants the objective
+depends on l6 only, with re-derived ones on l5 and l6; the other levers enter only through
+the assembly constraint and are not determined by the objective.
 """
 from __future__ import annotations
 

@@ -208,9 +208,12 @@ def family(R):
         def member(i):
             return ", ".join(f"{k} {ds[f'family_member_{k}'].values[i]}" for k in
                              ("blade_offset", "R", "width", "y_joint", "eq8_reading"))
+        lev = ds["family_member_levers_buildable"].values == 1.0 if "family_member_levers_buildable" in ds \
+            else np.zeros_like(sel)
         note = (f"{int(sel.sum())} buildable of {int(cal.sum())} grid members that reach 1.4341 "
-                f"(of {int((carrier == c).sum())}; {ds.sizes['cut']} cut points); over every "
-                f"calibrated member {np.nanmin(red[cal]):.1f} .. {np.nanmax(red[cal]):.1f} %")
+                f"(of {int((carrier == c).sum())}; {ds.sizes['cut']} cut points), in "
+                f"{int((sel & lev).sum())} of them the machine with Table II's levers can be built too; "
+                f"over every calibrated member {np.nanmin(red[cal]):.1f} .. {np.nanmax(red[cal]):.1f} %")
         if not sel.any():
             out[f"table2_reduction_family_{c}_min"] = Reproduced(math.nan, note=note)
             out[f"table2_reduction_family_{c}_max"] = Reproduced(math.nan, note=note)
@@ -391,7 +394,7 @@ def design_front(ds, *, clearance: float, mu_min: float, plate_top: float, openi
     relative to the box width)."""
     header = ["design", *[f"{k}_mm" for k in OPTIMISED_LEVERS], "H_mm", "reduction_pct",
               "mu_worst_deg", "rod_gap_margin_mm", "joint_height_margin_mm",
-              "transmission_margin_deg", "opening_margin_mm", "box_margin", "buildable"]
+              "transmission_margin_deg", "blade_rise_margin_mm", "box_margin", "buildable"]
     H0 = float(ds["paper_H"].values[0])
     rise = float(ds["geometry_width"]) ** 2 / (2.0 * float(ds["geometry_R"]))
 
