@@ -36,7 +36,7 @@ def test_no_rival_changes_a_value_the_paper_gives():
         assert not set(spec.get("parameters", {})) & sourced, name
         for k, v in spec.get("options", {}).get("levers", {}).items():
             assert v in paper_levers_, (name, k, v)
-    assert "falsifier" not in raw["reported"]["paper_levers_assemble"]
+    assert "rivals" not in raw["reported"]["paper_levers_assemble"]
 
 
 def test_paper_levers_assemble_is_unsettled_where_a_buildable_member_breaks_it():
@@ -195,7 +195,7 @@ def test_the_unclamped_swarm_is_a_range_end_not_a_rival():
     raw = cfg.raw
     assert not raw["rivals"]
     spec = raw["reported"]["selpso_converges_from_each_initial_value"]
-    assert "pso_v_max" in spec["depends_on"] and "falsifier" not in spec
+    assert "pso_v_max" in spec["depends_on"] and "rivals" not in spec
     assert max(raw["parameters"]["pso_v_max"]["range"]) == 100.0
     assert "selpso_initial_values@pso_v_max-hi" in cfg.runs
     for name, r in cfg.runs.items():

@@ -59,7 +59,7 @@ def test_the_closer_to_measurement_row_is_not_counted_and_says_why():
     cfg = load_paper(CONFIG, "ci")
     assert cfg.raw["rivals"]["constant_speed"]["options"] == {"polygon": False}
     spec = cfg.reported["proposed_closer_to_measurement_than_textbook"]
-    assert spec["evidence"] == "construction" and "falsifier" not in spec
+    assert spec["evidence"] == "construction" and "rivals" not in spec
     assert "constant-speed rival" in spec["evidence_why"]
 
 
