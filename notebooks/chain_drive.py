@@ -49,13 +49,15 @@ def ms(x):
 def convergence_note(name):
     """What refinement says about a sweep's steady amplitudes (F.peak_level_spread: its
     largest peaks at @coarsest / @coarser / base): the figures never show an unconverged
-    amplitude silently (issue 26)."""
+    amplitude silently (issue 26).  Converged only where the levels contract at least at
+    the schemes' first order with a small spread (F.levels_converged)."""
     spread, order, _ = F.peak_level_spread(R, name)
     if not np.isfinite(spread):
         return ""
-    if np.isfinite(order):
-        return f"peaks converge (order {order:.2g}, {100 * spread:.2g} % between levels)"
-    return f"amplitudes NOT converged: peaks move {100 * spread:.2g} % between grid levels"
+    if F.levels_converged(spread, order):
+        return f"peaks converge (observed order {order:.2g}, {100 * spread:.2g} % between levels)"
+    got = f", observed order {order:.2g}" if np.isfinite(order) else ", levels do not contract"
+    return f"amplitudes NOT converged: peaks move {100 * spread:.2g} % between grid levels{got}"
 
 
 def steady(ds):
@@ -125,7 +127,7 @@ for sgn in (1, -1):
                   label=f"+-T_s = {ts4:g} N" if sgn > 0 else None)
 amp4 = float(np.max(np.abs(d4.load_shape)))
 ax[0].set(xlabel="t / tooth period", ylabel="D_pol [N]",
-          title=f"Fig. 4a-e: load shapes, up to +-{amp4 / 1e3:.3g} kN = {amp4 / ts4:.0f} x T_s")
+          title=f"Fig. 4a-e: load shapes\nup to +-{amp4 / 1e3:.3g} kN = {amp4 / ts4:.0f} x T_s")
 ax[0].legend(fontsize=7)
 ax[1].semilogy(d4.curve_speed, d4.peak_to_peak_short, label="k1 = AE/L_0 (short)")
 ax[1].semilogy(d4.curve_speed, d4.peak_to_peak_long, label="k2 = AE/(L_0 + p) (long)")
@@ -133,9 +135,12 @@ ax[1].axhline(ts4, color="0.4", ls="--", lw=0.8, label=f"static tension T_s = {t
 for v in (float(d4.omega_c1), float(d4.omega_c2)):
     ax[1].axvline(v, color="k", ls=":")
 ax[1].set(xlabel="omega_1 [rpm]", ylabel="peak-to-peak D_pol [N]",
-          title=f"resonances omega_c1, omega_c2: peak-to-peak up to {pk4 / 1e3:.3g} kN "
-                "(undamped: grows with the speed grid's approach)")
+          title=f"resonances omega_c1, omega_c2 (dotted): peak-to-peak up to {pk4 / 1e3:.3g} kN\n"
+                "(undamped: grows as the speed grid approaches them)")
 ax[1].legend(fontsize=8)
+for a in ax:
+    a.title.set_fontsize(10)
+fig.tight_layout()
 R.save_figure(fig, "fig04")
 
 # %% [markdown]
@@ -177,14 +182,24 @@ R.write_table("timings", F.TIMING_COLUMNS, F.timing_rows(
 i2s, d6 = F.with_base(R, "fig06_i2", "fig06_inertia", "driven_inertia")
 fig, ax = plt.subplots(figsize=(8, 3.6))
 lines6 = [ax.semilogy(d.speed, steady(d), label=f"I2 = {v:g} kg m^2")[0] for v, d in zip(i2s, d6)]
+# near a stability edge a stable orbit's linear amplitude grows without bound (multiplier
+# -> 1): the axis stops at the march's divergence cap, the title says how far they reach
+cap6 = mm(0.05)
+top6 = float(np.nanmax([np.nanmax(steady(d)) for d in d6]))
+if top6 > cap6:
+    ax.set_ylim(top=cap6)
 for v, d, ln in zip(i2s, d6, lines6):
     mark_unstable(ax, d, label=f"unstable, I2 = {v:g}: no steady amplitude" if int(d.unstable.sum())
                   else None, color=ln.get_color())
 for v in F.resonances_in_window(d6[0]):
     ax.axvline(v, color="k", ls=":", lw=0.7)
+cut6 = (f"; stable orbits next to unstable bands reach {top6:.3g} mm (axis cut at {cap6:g} mm)"
+        if top6 > cap6 else "")
 ax.set(xlabel="omega_1 [rpm]", ylabel="max |u| [mm]",
-       title=f"Fig. 6: effect of I2 (cd 20.25, length change)\n{convergence_note('fig06_inertia')}")
-ax.legend(fontsize=8)
+       title=f"Fig. 6: effect of I2 (cd 20.25, length change){cut6}\n{convergence_note('fig06_inertia')}")
+ax.title.set_fontsize(9)
+ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=3)
+fig.tight_layout()
 R.save_figure(fig, "fig06")
 
 # %% [markdown]
@@ -193,14 +208,24 @@ R.save_figure(fig, "fig06")
 # %%
 tss, d7 = F.with_base(R, "fig07_ts", "fig07_tension", "static_tension")
 fig, ax = plt.subplots(len(tss), 1, figsize=(8, 2.3 * len(tss)), sharex=True)
+# the verdict rows' check one level finer (scene fig07_tension_finer, study fig07_ts_finer)
+finer7 = {F.parameter(x, "static_tension"): x
+          for x in [R.run("fig07_tension_finer")] + R.study_runs("fig07_ts_finer")}
 for a, v, d in zip(ax, tss[::-1], d7[::-1]):          # the paper's order: high to low tension
     a.semilogy(d.speed, steady(d))
     mark_unstable(a, d)
-    a.set(ylabel="max |u| [mm]", title=f"Fig. 7: T_s = {v:g} N ({int(d.unstable.sum())} unstable speeds)")
-    a.legend(fontsize=7)
+    fine = finer7.get(v)
+    at = (f" at {F.resolution(d, 'points_per_pitch')} points per pitch; "
+          f"{int(fine.unstable.sum())} at {F.resolution(fine, 'points_per_pitch')}"
+          if fine is not None else "")
+    a.set(ylabel="max |u| [mm]", title=f"Fig. 7: T_s = {v:g} N ({int(d.unstable.sum())} unstable speeds{at})")
 a.set_xlabel("omega_1 [rpm]")
+# one legend below the panels, clear of every curve
+marks7 = {lb: h for x in ax for h, lb in zip(*x.get_legend_handles_labels())}
+if marks7:
+    fig.legend(marks7.values(), marks7.keys(), fontsize=7, loc="lower center")
 fig.suptitle(f"scene fig07_tension: {convergence_note('fig07_tension')}", fontsize=9)
-fig.tight_layout()
+fig.tight_layout(rect=(0, 0.04, 1, 1))
 R.save_figure(fig, "fig07")
 
 # %% [markdown]

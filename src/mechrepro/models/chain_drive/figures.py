@@ -16,6 +16,11 @@ def parameter(ds, name: str) -> float:
     return run_attrs(ds)["parameters"]["values_si"][name]
 
 
+def resolution(ds, name: str):
+    """A resolution knob of the run that wrote ``ds`` (its provenance)."""
+    return run_attrs(ds)["resolution"][name]
+
+
 def with_base(R, study: str, scene: str, key: str):
     """A study's runs plus its base scene (the scene itself is one point of the sweep),
     sorted by the swept value; returns (values, datasets).  The swept parameters of this
@@ -111,6 +116,17 @@ def timing_rows(named_sweeps: dict) -> list[list]:
     """Table timings: speeds, grid points, time steps and wall time of each named sweep."""
     return [[name, int(ds.speed.size), int(ds.n_points), int(ds.n_steps), float(ds.wall_time)]
             for name, ds in named_sweeps.items()]
+
+
+#: peak amplitudes that move less than this between grid levels, contracting at least at
+#: first order (the lower of the two schemes' formal orders), are called converged
+CONVERGED_SPREAD = 0.05
+
+
+def levels_converged(spread: float, order: float) -> bool:
+    """Whether a sweep's peak levels (:func:`peak_level_spread`) show convergence: observed
+    order >= 1 and a spread below :data:`CONVERGED_SPREAD` (26 % at order 0.43 is not)."""
+    return bool(np.isfinite(order) and order >= 1.0 and spread < CONVERGED_SPREAD)
 
 
 def peak_level_spread(R, name: str, n_peaks: int = 5, window: float = 3.0):

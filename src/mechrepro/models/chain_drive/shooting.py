@@ -45,18 +45,8 @@ def excitation_period(prm: dict, run: dict, omega1: float) -> tuple[float, int]:
     (Eq. 2-5), whose period 2 pi/(r omega1) is n1/r tooth periods: q is the smallest whole
     number of tooth periods holding a whole number of load periods (r must be rational with
     a small denominator)."""
-    n1 = int(prm["n1"])
-    tau = float(geometry.tooth_period(omega1, n1))
-    q = 1
-    if ("tension_external" in span.declared_keys(span.as_run(run))
-            and prm.get("external_load_ratio", 0.0) != 0.0):
-        r = float(prm["external_frequency_ratio"])
-        for q in range(1, 64 * n1 + 1):
-            if abs(q * r / n1 - round(q * r / n1)) < 1e-9:
-                break
-        else:
-            raise PeriodicityError(f"external load ratio {r}: no common period with the teeth")
-    return q * tau, q
+    q = span.excitation_tooth_periods(prm, run)
+    return q * float(geometry.tooth_period(omega1, int(prm["n1"]))), q
 
 
 @dataclass

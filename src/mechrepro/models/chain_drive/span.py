@@ -104,6 +104,28 @@ def refuse_undamped_pitch_scale(res: dict, run: dict, span_geo: dict) -> None:
             "differencing (differencing: mixed, Eq. 2-38), whose numerical damping bounds them")
 
 
+#: blocks of a march's measuring window whose maxima reveal growth (:func:`.fd.march`)
+GROWTH_BLOCKS = 4
+
+
+def excitation_tooth_periods(prm: dict, run) -> int:
+    """q, the tooth periods of one excitation period: 1, except with an external load
+    cos(r omega1 t) (an effect declaring ``tension_external``, Eq. 2-5), whose period
+    2 pi/(r omega1) is n1/r tooth periods: the smallest q holding a whole number of load
+    periods (r rational with a small denominator)."""
+    from .errors import PeriodicityError
+
+    n1 = int(prm["n1"])
+    if ("tension_external" not in declared_keys(as_run(run))
+            or prm.get("external_load_ratio", 0.0) == 0.0):
+        return 1
+    r = float(prm["external_frequency_ratio"])
+    for q in range(1, 64 * n1 + 1):
+        if abs(q * r / n1 - round(q * r / n1)) < 1e-9:
+            return q
+    raise PeriodicityError(f"external load ratio {r}: no common period with the teeth")
+
+
 class _Merged:
     """Two :class:`~mechrepro.effects.Contributions` of disjoint effects read as one."""
 
@@ -159,6 +181,12 @@ def assemble(effects, prm: dict, omega1, res: dict, registry=EFFECTS,
     tau_max = float(np.max(geometry.tooth_period(omega1, int(prm["n1"]))))
     settle = float(res.get("decay_times", 0.0)) / sigma if sigma > 0 else 0.0
     window = float(res.get("window_periods", 0.0)) * tau_max
+    q = excitation_tooth_periods(prm, run)
+    if q > 1:
+        # an external load repeats every q tooth periods: each growth block must hold a
+        # whole excitation period, or its slow modulation reads as growth and the window's
+        # maximum misses the period's (Fig. 8 at omega_ex = omega_1: 24 tooth periods)
+        window = max(window, GROWTH_BLOCKS * q * tau_max)
     # the span-length state is part of P_t only where it picks the elastic load
     tension = set(PT_KEYS) | (
         {"tension_short", "tension_long", "long"} if "tension_short" in named else set())
@@ -206,6 +234,7 @@ def sweep(effects, prm, omega1, res, mode: str = "vectorised", probes=(), record
     a = assemble(effects, prm, omega1, res, registry)
     kw = dict(m=a["m"], c_d=a["c_d"], grid=a["grid"], dt=a["dt"], n_steps=a["n_steps"],
               measure_from=a["measure_from"], u_cap=float(res.get("u_cap", 0.05)),
+              n_blocks=GROWTH_BLOCKS,
               differencing=res.get("differencing"))
     if mode == "vectorised":
         r = fd.march(c=a["c"], P=a["P"], exc=a["exc"], s_star=a["s_star"], probes=probes,

@@ -433,15 +433,32 @@ def _over_modes(values: dict, at: int, what: str) -> tuple[float, float, str]:
 STEADY = 0.1
 
 
+# Measured (the platform variants of config/reference.yaml, issue 58 reference runs): the
+# coupled Galerkin response depends on round-off at every mode count, so no verdict read
+# from it is the same on every CPU; it is not converged on all of them.
+ROUND_OFF_10 = {
+    "fig10_longitudinal": "the coupled Fig. 10a ratio depends on round-off: 2.80 natively, "
+                          "3.43 / 2.85 / 2.92 under sandybridge_blas / old_cpu / baseline_simd "
+                          "at 48 modes (default reference runs)",
+    "fig10_transverse5": "the coupled Fig. 10b response depends on round-off: |coupled / "
+                         "uncoupled - 1| = 0.050 / 0.234 / 0.592 natively, 0.166 / 0.562 / 0.628 "
+                         "under sandybridge_blas and old_cpu at 12 / 24 / 48 modes (default "
+                         "reference runs); 0.056 / 0.152 at 12 modes in ci"}
+
+
 def _converged_coupling(R, q: str, coupled: str, uncoupled: str, f) -> Reproduced:
     """f(coupled / uncoupled steady amplitude) at the drawn count, refined in modes and step.
 
     Modes: the drawn count n and n/2, n/4 (the mode studies) at the drawn RK4 step give the
     error and order by the one estimator (:func:`mechrepro.validation.level_error`, ratio
     2); step: the drawn count at half the step adds |difference| (two levels).  The value
-    does not converge (``not_converged``) where the mode levels do not contract, or where
-    a drawn record is not steady (envelope change > :data:`STEADY` per quarter: the steady
-    amplitude is still moving with the record length)."""
+    does not converge (``not_converged``) where the mode levels do not contract, where
+    their error estimate (modes and step) exceeds the value itself (levels that far from
+    the asymptotic range fix no digit of it, and round-off then moves them: 0.056 natively,
+    0.152 under another BLAS at 12 modes in ci), or where a drawn record is not steady
+    (envelope change > :data:`STEADY` per quarter: the steady amplitude is still moving with
+    the record length); and wherever its response depends on round-off
+    (:data:`ROUND_OFF_10`, measured across the platform variants)."""
     from mechrepro.validation import band, level_error
 
     r = _ratios(R, coupled, uncoupled)
@@ -460,9 +477,12 @@ def _converged_coupling(R, q: str, coupled: str, uncoupled: str, f) -> Reproduce
             f"({next(iter(step)):g}); last / third quarter of the drawn records "
             f"{float(R.run(coupled).steady_ratio):.3f} (coupled), "
             f"{float(R.run(uncoupled).steady_ratio):.3f} (uncoupled)")
-    why = []
+    why = [ROUND_OFF_10[coupled]] if coupled in ROUND_OFF_10 else []
     if not ok:
         why.append(f"the mode levels do not contract: {how}")
+    elif e_m + e_s > abs(v):
+        why.append(f"the error estimate from modes and step, {e_m + e_s:.3g}, exceeds the "
+                   f"value {v:.3g} itself: no digit of it is known")
     if unsteady:
         why.append("the drawn record is not steady (" + ", ".join(
             f"{k}: last / third quarter {x:.3f}" for k, x in unsteady.items())
