@@ -210,8 +210,14 @@ def load_point_grid(run: dict, prefix: str):
     fb, ctx = setup(run)
     s = ctx.s
     return (fb, ctx, kinematics.load_point_mid_stroke(fb), float(s[f"{prefix}_load_distance"]),
-            np.asarray(s[f"{prefix}_load_direction_deg"], float),
-            np.asarray(s[f"{prefix}_gravity"], float))
+            np.asarray(s[f"{prefix}_load_direction_deg"], float), gravity_planes(run, s[f"{prefix}_gravity"]))
+
+
+def gravity_planes(run: dict, planes) -> np.ndarray:
+    """The gravity values [m/s2] a solver that weighs the plane of motion runs over: the
+    scene's, or g = 0 alone where the scene does not name the gravity effect (no link
+    weights)."""
+    return np.asarray(planes if "gravity" in run["effects"] else [0.0], float)
 
 
 def wear_factor_of(fb_v: FourBar, s: dict, joint=None):
@@ -409,7 +415,7 @@ def load_point_fit(run: dict) -> dict:
     s, p = ctx.s, ctx.p
     E, d = kinematics.load_point_mid_stroke(fb), float(p["load_point_distance"])
     dirs = np.asarray(s["fit_load_direction_deg"], float)
-    gs = np.asarray(s["fit_gravity"], float)
+    gs = gravity_planes(run, s["fit_gravity"])
     K_paper = _K_paper(s, p)
     m = np.full((gs.size, dirs.size), np.nan)
     sols = []
@@ -588,6 +594,8 @@ def load_point_posterior(run: dict) -> dict:
     K_paper = _K_paper(s, p)
     ds_, mus = (np.asarray(s[f"posterior_{k}"], float) for k in ("distance", "friction"))
     gs, g_prior = gravity_nodes(*(float(x) for x in s["posterior_gravity_range"]), int(s["n_gravity"]))
+    if "gravity" not in run["effects"]:
+        gs, g_prior = np.zeros(1), np.ones(1)
     sigma = rounding_sigma(np.array([p[f"measured_increment_{side}"] for side in SIDES]) * 1e3)
     misfit = np.full((ds_.size, gs.size, mus.size, dirs.size), np.nan)
     pts = []
@@ -610,6 +618,7 @@ def load_point_posterior(run: dict) -> dict:
                                 "log_prior": math.log(g_prior[j]),
                                 "qs_margin": float(F.min() / F.max()), "F_N_min": float(F.min()),
                                 "arc_deg": math.degrees(f["arc"]), "G": f["G"],
+                                "arc_ends_deg": np.degrees(wear.contact_arc_bounds(qs["psi"]) or (math.nan, math.nan)),
                                 "K_b1": float(np.mean(z["K"][0])), "K_b2": float(np.mean(z["K"][1])),
                                 **contact_side(qs), "fb": z["fb"], "factor": z["factor"]})
     upper = np.array([q["upper_share"] > 0.5 for q in pts], bool)
