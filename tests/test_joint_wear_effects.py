@@ -119,7 +119,7 @@ def test_wear_update_grows_the_bushing_between_intervals():
      "'contact_damping' is not honoured by solver 'continuous_contact'"),
     ("period_explicit", ["friction", "gravity", "archard_wear"],
      "'archard_wear' is not honoured by solver 'clearance_explicit'"),
-    ("coefficient_scan", ["friction", "gravity"], "'gravity' is not honoured by solver 'coefficient_scan'"),
+    ("coefficient_scan", ["friction", "gravity", "contact_damping"], "'contact_damping' is not honoured by solver 'coefficient_scan'"),
     ("period_quasistatic", ["friction", "gravity", "wear_update"], "'wear_update' requires"),
     ("period_quasistatic", ["friction", "gravity", "unbalanced_load"], "'unbalanced_load' requires"),
 ])

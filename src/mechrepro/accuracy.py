@@ -181,9 +181,9 @@ def assess(reference: str, h, err, h_ref: float | None = None, given: float | No
     from the power law of the two before it (a reference off by d moves the finest error by
     ~d).  ``finest``: Richardson from the last refinements,
     e_ref = e_(n-1) / ((h_(n-1)/h_ref)^p - 1), p the observed order (an error against the
-    finest run is measured from it, so its own error is what the curve left out); with a
-    single level above the band, F when the band holds two levels or more (the sequence
-    reached its floor and stayed there).  Proven when the estimate is finite and below every
+    finest run is measured from it, so its own error is what the curve left out); F when
+    the band holds two levels or more, however many stand above it (the sequence reached
+    its floor and stayed there: those levels agree with the reference to F).  Proven when the estimate is finite and below every
     error above the band; levels inside the band are drawn, not compared."""
     if reference == "exact":
         return Reference(0.0, True, 0.0, "exact solution")
@@ -229,6 +229,13 @@ def assess(reference: str, h, err, h_ref: float | None = None, given: float | No
         (h0, h1, h2), (e0, e1, e2) = ha[-3:], ea[-3:]
         p = np.log(e0 / e1) / np.log(h0 / h1)
         est = abs(e2 - e1 * (h2 / h1) ** p)
+    elif reference == "finest" and band >= 2:
+        # two finer levels or more agree with the reference to the floor: a Richardson
+        # estimate from the levels above them (which assumes the prefix's order holds down
+        # to the reference) would contradict them
+        return Reference(F, _below(F, ea), F,
+                         f"reached its {where} after {len(ea)} level(s) and stayed there "
+                         f"over {band} finer levels")
     elif reference == "finest" and h_ref is not None and len(ha) >= 2:
         p = curve_order(ha, ea)
         if len(ha) >= 3:
@@ -239,9 +246,6 @@ def assess(reference: str, h, err, h_ref: float | None = None, given: float | No
         r = ha[-1] / h_ref
         if np.isfinite(p) and p > 0 and r > 1:
             est = richardson_error(ea[-1], 0.0, r, p)   # an error against the finest: its d2
-    elif reference == "finest" and len(ha) == 1 and band >= 2:
-        return Reference(F, _below(F, ea[:1]), F,
-                         f"reached its {where} from the second level on and stayed there")
     if not np.isfinite(est):
         return Reference(float("nan"), False, F,
                          f"NOT CONVERGED: {len(ea)} level(s) above the band of the {where}: "

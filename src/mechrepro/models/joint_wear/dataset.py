@@ -127,6 +127,8 @@ def prediction_part(res: dict, run: dict):
     changes = [np.max(np.abs(np.diff(g) / g[:-1])) if len(g) > 1 else 0.0 for g in w["G_pred"]]
     scal = {f"wear_at_end_{side}": (h[-1], "m", f"predicted wear of side {side} at the end of the prediction")
             for side, h in zip(w["sides"], w["h"])}
+    scal.update({f"wear_at_end_limit_{side}": (h, "m", f"the interval method's limit (interval -> 0, wear.interval_limit) of side {side} at the end of the prediction")
+                 for side, h in zip(w["sides"], w.get("limit", []))})
     scal.update({
         "n_simulations_prediction": (sum(len(g) for g in w["G_pred"]), "1", "one-period simulations of the prediction (all sides)"),
         "n_simulations_per_side": (len(w["G_pred"][0]), "1", "one-period simulations of the prediction per side"),
@@ -203,7 +205,7 @@ def posterior_part(res: dict, run: dict):
     keys = ("distance", "gravity", "friction", "direction", "misfit", "chi2", "width",
             "log_lik", "qs_margin", "F_N_min", "arc_deg", "G", "K_b1", "K_b2",
             "upper_share", "wear_direction_deg", "credible")
-    pts = f["points"] or [dict.fromkeys(keys, math.nan) | {"wear_86h": [math.nan] * 2}]
+    pts = f["points"] or [dict.fromkeys(keys, math.nan) | {"wear_86h": [math.nan] * 2, "arc_ends_deg": [math.nan] * 2}]
     w = np.asarray(f["weight"], float) if f["points"] else np.array([math.nan])
     sv = ("post_point",)
 
@@ -236,6 +238,8 @@ def posterior_part(res: dict, run: dict):
          "post_point_qs_margin": var(sv, col("qs_margin"), "1", "quasi-static contact margin min F_N / max F_N"),
          "post_point_F_N_min": var(sv, col("F_N_min"), "N", "smallest joint force over the quasi-static period"),
          "post_point_arc": var(sv, col("arc_deg"), "deg", "contact arc on the new bushing (Fig. 13's psi)"),
+         "post_point_arc_ends": var(("post_point", "arc_end"), np.array([q["arc_ends_deg"] for q in pts], float).reshape(len(pts), 2), "deg",
+                                    "ends of the contact-point arc on the new bushing (coupler frame, on the path unwrapped from its first sample)"),
          "post_point_wear_factor": var(sv, col("G"), "N/m", "wear factor of the new bushing, Eq. (29)"),
          "post_point_K_table": var(("post_point", "side"), wear.table_from_k(np.c_[col("K_b1"), col("K_b2")], H), "1/Pa", "mean calibrated coefficient (table units)"),
          "post_point_wear_86h": var(("post_point", "side"), np.array([q["wear_86h"] for q in pts], float), "m", "86-h wear (NaN outside the credible set)"),

@@ -113,6 +113,11 @@ def archard_wear(ctx: Context) -> dict:
             for key, val in (("sides", side), ("k", k), ("k_mean", k_mean), ("G_cal", G),
                              ("nodes", nodes), ("h", h), ("G_pred", Gp)):
                 out[key].append(val)
+
     out["wall_time_prediction"] = sw.seconds
+    if s.get("interval_limit") and ctx.worn_bushing is not None:     # not timed: a reference
+        out["limit"] = [wear.interval_limit(h[0], n[0], n[-1], km, fb.period, R0, factor,
+                                            ctx.worn_bushing)
+                        for h, n, km in zip(out["h"], out["nodes"], out["k_mean"])]
     out["cal_hours"] = cal_h * (1 + np.arange(len(out["k"][0])))
     return {"wear": out}

@@ -210,8 +210,14 @@ def load_point_grid(run: dict, prefix: str):
     fb, ctx = setup(run)
     s = ctx.s
     return (fb, ctx, kinematics.load_point_mid_stroke(fb), float(s[f"{prefix}_load_distance"]),
-            np.asarray(s[f"{prefix}_load_direction_deg"], float),
-            np.asarray(s[f"{prefix}_gravity"], float))
+            np.asarray(s[f"{prefix}_load_direction_deg"], float), gravity_planes(run, s[f"{prefix}_gravity"]))
+
+
+def gravity_planes(run: dict, planes) -> np.ndarray:
+    """The gravity values [m/s2] a solver that weighs the plane of motion runs over: the
+    scene's, or g = 0 alone where the scene does not name the gravity effect (no link
+    weights)."""
+    return np.asarray(planes if "gravity" in run["effects"] else [0.0], float)
 
 
 def wear_factor_of(fb_v: FourBar, s: dict, joint=None):
@@ -409,7 +415,7 @@ def load_point_fit(run: dict) -> dict:
     s, p = ctx.s, ctx.p
     E, d = kinematics.load_point_mid_stroke(fb), float(p["load_point_distance"])
     dirs = np.asarray(s["fit_load_direction_deg"], float)
-    gs = np.asarray(s["fit_gravity"], float)
+    gs = gravity_planes(run, s["fit_gravity"])
     K_paper = _K_paper(s, p)
     m = np.full((gs.size, dirs.size), np.nan)
     sols = []
@@ -535,29 +541,69 @@ def _branch_point(fb: FourBar, s: dict, p: dict, E, d: float, a0: float, g: floa
             "qs": quasi_static_period(z["fb"], s), "fb": z["fb"]}
 
 
+def _inside(r, threshold: float) -> bool:
+    """A branch point inside the likelihood region, with the wear on the upper part."""
+    return r is not None and r["chi2"] <= threshold and contact_side(r["qs"])["upper_share"] > 0.5
+
+
 def region_edge(fb: FourBar, s: dict, p: dict, E, d: float, branch: list, K_paper, sigma,
-                threshold: float, bisections: int):
+                threshold: float, bisections: int, bound: float):
     """The lowest gravity on one branch of load points (``branch``: its points at the prior
-    nodes, ascending g) inside the likelihood region (chi2 within ``threshold``, wear on the
-    upper part): between the branch's lowest credible node and the node below it (or g's
-    range end) by ``bisections`` bisections, the branch's direction interpolated between
-    its nodes.  The contact margin grows with g along a branch (the link weights carry it),
-    so the credible set's smallest margin sits at such an edge -- which the nodes alone
-    place only to within their spacing, while the likelihood changes by e^-1000 within
-    0.3 m/s2 there.  Returns the edge point (the lowest credible g reached) or the node."""
+    nodes, ascending g, each with its chi2 and margin) inside the likelihood region (chi2
+    within ``threshold``, wear on the upper part), the branch's direction interpolated
+    between its nodes.  The contact margin grows with g along a branch (the link weights
+    carry it), so the credible set's smallest margin sits at such an edge -- which the nodes
+    alone place only to within their spacing, while the likelihood changes by e^-1000 within
+    0.3 m/s2 there, and a narrow ridge of good fit can lie between two nodes outside the
+    region.  So, from the lowest node up, in every interval between nodes whose lower end's
+    margin is below ``bound`` (the smallest credible margin found so far: only there can a
+    credible point lower it) and whose better end is within 10x the threshold (chi2 is smooth in g:
+    no ridge rises out of 1e4), chi2's minimum is sought by ``bisections`` golden-section
+    steps; the first interval with a point inside (or a credible node) gives the edge,
+    bisected ``bisections`` times between the interval's lower end and that point.
+    Returns the edge point, or None."""
     gb = np.array([q["gravity"] for q in branch])
     ab = np.unwrap(np.radians([q["direction"] for q in branch]))
-    k = next(i for i, q in enumerate(branch) if q["credible"])
-    lo = float(gb[k - 1]) if k else float(s["posterior_gravity_range"][0])
-    hi, best = float(gb[k]), None
-    for _ in range(bisections):
-        mid = 0.5 * (lo + hi)
-        r = _branch_point(fb, s, p, E, d, math.degrees(float(np.interp(mid, gb, ab))), mid, K_paper, sigma)
-        if r is not None and r["chi2"] <= threshold and contact_side(r["qs"])["upper_share"] > 0.5:
-            hi, best = mid, r
+
+    def at(g):
+        return _branch_point(fb, s, p, E, d, math.degrees(float(np.interp(g, gb, ab))), g, K_paper, sigma)
+    phi = 0.5 * (math.sqrt(5.0) - 1.0)
+    for i, q in enumerate(branch):
+        lo = float(gb[i - 1]) if i else float(s["posterior_gravity_range"][0])
+        if q["credible"]:
+            hi, best = float(gb[i]), None
         else:
-            lo = mid
-    return best
+            if not (i and branch[i - 1]["qs_margin"] < bound
+                    and min(branch[i - 1]["chi2"], q["chi2"]) <= 10.0 * threshold):
+                continue
+            x1, x2 = gb[i] - phi * (gb[i] - lo), lo + phi * (gb[i] - lo)
+            r1, r2 = at(x1), at(x2)
+            a_, b_ = lo, float(gb[i])
+            for _ in range(bisections):
+                c1 = r1["chi2"] if r1 else math.inf
+                c2 = r2["chi2"] if r2 else math.inf
+                if c1 <= c2:
+                    b_, x2, r2 = x2, x1, r1
+                    x1 = b_ - phi * (b_ - a_)
+                    r1 = at(x1)
+                else:
+                    a_, x1, r1 = x1, x2, r2
+                    x2 = a_ + phi * (b_ - a_)
+                    r2 = at(x2)
+            inside = [r for r in (r1, r2) if _inside(r, threshold)]
+            if not inside:
+                continue
+            best = min(inside, key=lambda r: r["gravity"])
+            hi = best["gravity"]
+        for _ in range(bisections):
+            mid = 0.5 * (lo + hi)
+            r = at(mid)
+            if _inside(r, threshold):
+                hi, best = mid, r
+            else:
+                lo = mid
+        return best
+    return None
 
 
 def load_point_posterior(run: dict) -> dict:
@@ -588,6 +634,8 @@ def load_point_posterior(run: dict) -> dict:
     K_paper = _K_paper(s, p)
     ds_, mus = (np.asarray(s[f"posterior_{k}"], float) for k in ("distance", "friction"))
     gs, g_prior = gravity_nodes(*(float(x) for x in s["posterior_gravity_range"]), int(s["n_gravity"]))
+    if "gravity" not in run["effects"]:
+        gs, g_prior = np.zeros(1), np.ones(1)
     sigma = rounding_sigma(np.array([p[f"measured_increment_{side}"] for side in SIDES]) * 1e3)
     misfit = np.full((ds_.size, gs.size, mus.size, dirs.size), np.nan)
     pts = []
@@ -610,6 +658,7 @@ def load_point_posterior(run: dict) -> dict:
                                 "log_prior": math.log(g_prior[j]),
                                 "qs_margin": float(F.min() / F.max()), "F_N_min": float(F.min()),
                                 "arc_deg": math.degrees(f["arc"]), "G": f["G"],
+                                "arc_ends_deg": np.degrees(wear.contact_arc_bounds(qs["psi"]) or (math.nan, math.nan)),
                                 "K_b1": float(np.mean(z["K"][0])), "K_b2": float(np.mean(z["K"][1])),
                                 **contact_side(qs), "fb": z["fb"], "factor": z["factor"]})
     upper = np.array([q["upper_share"] > 0.5 for q in pts], bool)
@@ -634,19 +683,25 @@ def load_point_posterior(run: dict) -> dict:
     # (region_edge), where its margin is smallest
     threshold = (np.nanmin(chi2) if np.isfinite(chi2).any() else math.nan) \
         + stats.chi2.ppf(float(s["posterior_credible"]), 4)
+    branches = []
+    for q in pts:
+        if q["upper_share"] > 0.5 and not any(q in br for br in branches):
+            branches.append(sorted((r for r in pts if r["distance"] == q["distance"]
+                                    and r["friction"] == q["friction"] and r["upper_share"] > 0.5
+                                    and abs(math.remainder(r["direction"] - q["direction"], 360.0)) < 15.0),
+                                   key=lambda r: r["gravity"]))
+    # branches through a credible node first: their edges set the bound below which a ridge
+    # between nodes could lower the smallest credible margin
+    branches.sort(key=lambda br: not any(r["credible"] for r in br))
     edges = []
-    for q in [] if new_inside else pts:
-        branch = sorted((r for r in pts if r["distance"] == q["distance"] and r["friction"] == q["friction"]
-                         and r["upper_share"] > 0.5
-                         and abs(math.remainder(r["direction"] - q["direction"], 360.0)) < 15.0),
-                        key=lambda r: r["gravity"])
-        if not q["credible"] or q is not next(r for r in branch if r["credible"]):
-            continue            # one edge per branch: at its lowest credible node
-        e = region_edge(replace(fb, mu=q["friction"]), s, p, E, q["distance"], branch, K_paper,
-                        sigma, threshold, int(s["edge_bisections"]))
+    for br in [] if new_inside else branches:
+        bound = min([q["qs_margin"] for q in pts if q["credible"]] + [e["qs_margin"] for e in edges],
+                    default=math.inf)
+        e = region_edge(replace(fb, mu=br[0]["friction"]), s, p, E, br[0]["distance"], br, K_paper,
+                        sigma, threshold, int(s["edge_bisections"]), bound)
         if e is not None:
             F = np.asarray(e["qs"]["F_N"])
-            edges.append({"distance": q["distance"], "friction": q["friction"],
+            edges.append({"distance": br[0]["distance"], "friction": br[0]["friction"],
                           "gravity": e["gravity"], "direction": e["direction"], "chi2": e["chi2"],
                           "qs_margin": float(F.min() / F.max()), "fb": e["fb"]})
     worst = min([q for q in pts if q["credible"]] + edges, key=lambda q: q["qs_margin"], default=None)
