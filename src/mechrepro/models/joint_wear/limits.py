@@ -33,7 +33,7 @@ run of both profiles (105 ci, 125 default): CPU 0.81-9.3, median 0.94 (ci) and 0
 (default); the sums 42.7 s against 41.7 s (ci), 75.6 s against 74.6 s (default).  Above
 3 (before issue 58): the dynamic joint at the load points estimated from Tables 3-4 and
 their variants (2.5-9x the assumed point's Radau steps), and 50-52 for the former
-no-gravity falsifier there, whose contact rattled (110 000 steps where the assumed point
+no-gravity rival there, whose contact rattled (110 000 steps where the assumed point
 takes 740 per period) -- nothing in a run record announces that; load_point_posterior solves
 the dynamic joint only where the quasi-static margin keeps the contact rule.  Wall time over the estimate at that load
 (wall ~2-3x CPU): 0.9-19, those two 105-265; on the idle machine ~4x less.
