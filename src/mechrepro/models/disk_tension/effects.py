@@ -100,7 +100,7 @@ def stress_calibration(ctx) -> dict:
     case = dict(n_d=int(p["calibration_nodal_diameter"]), r_c=p["calibration_rolling_radius"],
                 r_f=p["calibration_clamp_radius"], b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu,
                 rho=ctx.rho, alpha=ctx.alpha, amplitude=p["calibration_temperature_amplitude"],
-                s=p["calibration_gaussian_width"], inplane_bc=ctx.bc)
+                s=ctx.s, inplane_bc=ctx.bc)
     if ctx.stress_model != "thermal_analogy":   # a rival is re-calibrated on its own stress
         case["stress_model"] = ctx.stress_model
     target = p["calibration_delta_omega2"]
@@ -432,7 +432,7 @@ def identifiability(ctx) -> dict:
     fine_widths = np.linspace(w0, w1, int(round((w1 - w0) / (dw / FINE_WIDTH))) + 1)
     r = idf.analyse(ctx.model, widths=widths, scales=scales, fine=fine,
                     fine_widths=fine_widths,
-                    single_width=p["calibration_gaussian_width"],
+                    single_width=ctx.s,
                     table1_paper=np.asarray(p["fit_table1_diagonal"], float),
                     f_rolled_paper=float(p["fit_rolled_frequency"]),
                     r_c=p["calibration_rolling_radius"],
@@ -479,7 +479,7 @@ def identifiability(ctx) -> dict:
                            "calibration (s = 5 mm, free_disk, c on Table 1's N_d = 4 entry)"),
         "single_scale": var((), r["single_scale"], "1", "stress scale of the single-alpha "
                             "calibration"),
-        "single_width": var((), p["calibration_gaussian_width"], "m", "Gaussian width of the "
+        "single_width": var((), ctx.s, "m", "Gaussian width of the "
                             "single-alpha calibration"),
         "single_table1_rel": var("n_d", r["single_table1_rel"], "1", "Table 1 relative error of "
                                  "the single-alpha calibration"),

@@ -276,7 +276,16 @@ def _f8c(R):
     g = _grid(R)[75]
     c2 = (_argext(g, "axisym_f_rolled", 2, np.nanargmax),
           _argext(g, "axisym_delta_f_eq9_linearised", 2, np.nanargmax))
-    return Reproduced(c2[0] != c2[1], note=f"argmax r_c eigen {c2[0]:.0f} mm, Eq. (9) {c2[1]:.0f} mm")
+    rc = g["r_c"].values * 1e3
+    eig = (g["axisym_f_rolled"] - g["axisym_f_unrolled"]).sel(n_d=2).values
+    eq9 = g["axisym_delta_f_eq9_linearised"].sel(n_d=2).values
+
+    def around(y, at):
+        k = int(np.argmin(np.abs(rc - at)))
+        sl = slice(max(k - 1, 0), k + 2)
+        return "/".join(f"{v:.2f}" for v in y[sl]) + " Hz at " + "/".join(f"{x:.0f}" for x in rc[sl])
+    return Reproduced(c2[0] != c2[1], note=f"argmax r_c eigen {c2[0]:.0f} mm, Eq. (9) {c2[1]:.0f} "
+                      f"mm; eigen Delta f {around(eig, c2[0])} mm, Eq. (9) {around(eq9, c2[1])} mm")
 
 
 @Q.register("eq9_frequency_error_over_grid")
@@ -455,7 +464,7 @@ def _cs_min(R):
     n = int(cs["n_d"].values[int(np.argmin(cs.values))])
     low, alt = float(cs.min()) * RPM, float(other["axisym_critical_speed_untensioned"].min()) * RPM
     return Reproduced(low, note=f"N_d = {n} at centrifugal_bc {cs.attrs.get('centrifugal_bc', '?')}; "
-        "per N_d 0..4: " + ", ".join(f"{v * RPM:.0f}" for v in cs.values) + " rpm (N_d = 0, 1: "
+        f"per N_d {cs['n_d'].values[0]}..{cs['n_d'].values[-1]}: " + ", ".join(f"{v * RPM:.0f}" for v in cs.values) + " rpm (N_d = 0, 1: "
         f"none); at centrifugal_bc "
         f"{other['axisym_critical_speed_untensioned'].attrs.get('centrifugal_bc', '?')} "
         f"{alt:.0f} rpm ({alt / low - 1:+.1%}); the critical speeds of the unrolled disk and of "
@@ -512,5 +521,6 @@ def _cs_southwell(R):
         notes.append(f"r_f {rf:.0f} mm: " + ", ".join(f"{x:.1e}" for x in rel)
                      + f" (N_d^2 - lambda = {n * n - float(lam[fin][j]):.2f} at N_d = {n})")
     bc = runs[0][1]["axisym_critical_speed_untensioned"].attrs.get("centrifugal_bc", "?")
-    return Reproduced(ok, note=f"eigen / Southwell - 1 for N_d 2..4 at centrifugal_bc {bc}: "
+    nd = runs[0][1]["n_d"].values
+    return Reproduced(ok, note=f"eigen / Southwell - 1 for N_d 2..{nd[-1]} at centrifugal_bc {bc}: "
                       + "; ".join(notes))
