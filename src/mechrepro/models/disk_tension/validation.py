@@ -482,16 +482,29 @@ def _cs_best(R):
     return Reproduced(best_rolling_radius(runs[0][1])[0], note="; ".join(notes))
 
 
-@Q.register("design_map_optimum_rc")
-def _design(R):
-    """r_c [mm] of the design map's optimum at r_f = 25 mm and the stated margin; the note
-    gives every r_f (a flange radius whose every r_c buckles has no optimum, never a number)."""
+def _design_rows(R) -> list[dict]:
+    """The design table's rows at the stated buckling margin, one per flange radius."""
     from . import design
 
     st = R.study("design_map_rf")
     runs = [(clamp_mm(R.run("design_map")), R.run("design_map"))]
     runs += [(clamp_mm(st.isel(run=i)), st.isel(run=i)) for i in range(st.sizes["run"])]
-    rows = [dict(zip(design.COLUMNS, r)) for r in design.table(runs) if r[2]]
+    return [dict(zip(design.COLUMNS, r)) for r in design.table(runs) if r[2]]
+
+
+@Q.register("design_map_gain_over_paper_point")
+def _design_gain(R):
+    rows = _design_rows(R)
+    return Reproduced(rows[0]["gain_vs_paper"], note="; ".join(
+        f"r_f {r['r_f_mm']:.0f} mm: {r['gain_vs_paper']:+.1%} (r_c {r['r_c_opt_mm']:.0f} mm, "
+        f"A {r['amplitude_opt_degc']:.0f} degC)" for r in rows))
+
+
+@Q.register("design_map_optimum_rc")
+def _design(R):
+    """r_c [mm] of the design map's optimum at r_f = 25 mm and the stated margin; the note
+    gives every r_f (a flange radius whose every r_c buckles has no optimum, never a number)."""
+    rows = _design_rows(R)
     notes = [f"r_f {r['r_f_mm']:.0f} mm: r_c {r['r_c_opt_mm']:.0f} +- {r['r_c_step_mm'] / 2:g} mm, "
              f"A {r['amplitude_opt_degc']:.0f} degC ({r['binds']} binds, N_d = "
              f"{r['lowest_mode_nd']}), {r['critical_speed_opt_rpm']:.0f} rpm: "
