@@ -465,7 +465,8 @@ from mechrepro.models.disk_tension import design
 dm_runs = [(figures.clamp_mm(R.run("design_map")), R.run("design_map"))]
 dm_st = R.study("design_map_rf")
 dm_runs += [(figures.clamp_mm(dm_st.isel(run=i)), dm_st.isel(run=i)) for i in range(dm_st.sizes["run"])]
-dm_rows = design.table(dm_runs)
+cut = R.run("design_map_in_cut")
+dm_rows = design.table(dm_runs + [(figures.clamp_mm(cut), cut)])
 R.write_table("design_map", design.COLUMNS, dm_rows)
 fig, axes = plt.subplots(2, 3, figsize=(15, 8.8), constrained_layout=True)
 maps = [axes[0, 0], axes[0, 1], axes[0, 2], axes[1, 0]]
@@ -498,10 +499,14 @@ for (rf, ds), c in zip(dm_runs, ("C0", "C1", "C2", "C3")):
             color=c, label=f"r_f {rf:.0f} mm, best A")
     ax.plot(rc_mm, 100 * (ds["axisym_design_paper_amplitude_speed"].values / unt - 1), ":",
             color=c, label=f"r_f {rf:.0f} mm, A = 50 °C")
+unt25 = float(np.nanmin(design.lowest_map(dm_runs[0][1])[:, 0]))
+qc = int(np.argmin(np.abs(cut["design_margin"].values - float(cut["axisym_design_stated_margin"]))))
+ax.plot(cut["r_c"].values * 1e3, 100 * (cut["axisym_design_best_speed"].values[qc] / unt25 - 1),
+        "k--", lw=1.2, label=f"r_f 25 mm in the cut, rim +{float(cut['axisym_design_rim_temperature_rise']):.0f} °C")
 ax.axhline(0, color="k", lw=0.8)
 ax.set(xlabel="rolling radius r_c [mm]", ylabel="lowest critical speed over untensioned [%]",
-       title="the design curve (stated margin; a gap: buckled)", ylim=(-90, 90))
-ax.legend(fontsize=7, ncol=2, loc="upper left")
+       title="the design curve (stated margin; a gap: buckled)", ylim=(-120, 60))
+ax.legend(fontsize=7, ncol=2, loc="lower left")    # below the curves
 ax = axes[1, 2]
 for (rf, ds), c in zip(dm_runs, ("C0", "C1", "C2", "C3")):
     q = int(np.argmin(np.abs(ds["design_margin"].values - float(ds["axisym_design_stated_margin"]))))

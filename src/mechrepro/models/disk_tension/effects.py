@@ -164,6 +164,36 @@ def roll_tension(ctx) -> dict:
     }
 
 
+@EFFECTS.register("cutting_heat")
+def cutting_heat(ctx) -> dict:
+    """Physics beyond the paper, what tensioning is for: the rim heated in the cut, a real
+    temperature rise ``rim_temperature_rise`` falling off inwards as a Gaussian of width
+    ``rim_heat_width`` centred on the rim (Eq. 4's form at r_c = b), with the handbook
+    expansion coefficient, its plane-stress field under the flange's in-plane hold of the
+    mounted blade (``centrifugal_bc``): compression at the rim."""
+    p = ctx.p
+    if ctx.solver != "axisym":
+        raise Refusal("cutting_heat is read by design_map, on the harmonics (solver axisym)")
+    kw = dict(amplitude=p["rim_temperature_rise"], r_c=ctx.b, s=p["rim_heat_width"],
+              r_f=ctx.r_f, b=ctx.b, E=ctx.E, nu=ctx.nu, alpha=p["thermal_expansion"],
+              inplane_bc=p["centrifugal_bc"])
+    r = np.linspace(ctx.r_f, ctx.b, N_RADII)
+    sr, st = thermal.thermal_stress(r, **kw)
+    return {
+        "cutting_heat_stress": ThermalLoad(
+            r_c=ctx.b, alpha=kw["alpha"], inplane_bc=kw["inplane_bc"],
+            temperature=lambda x: thermal.temperature(x, kw["amplitude"], ctx.b, kw["s"]),
+            sigma=(lambda x: thermal.thermal_stress(x, **kw)[0],
+                   lambda x: thermal.thermal_stress(x, **kw)[1])),
+        "r_heat": var("r_heat", r, "m", "radius of the cutting-heat stress"),
+        "heat_temperature": var("r_heat", thermal.temperature(r, kw["amplitude"], ctx.b, kw["s"]),
+                                "K", "temperature rise of the blade in the cut"),
+        "heat_sigma_r": var("r_heat", sr, "Pa", "radial stress of the cutting heat"),
+        "heat_sigma_theta": var("r_heat", st, "Pa", "hoop stress of the cutting heat "
+                                "(compressive at the rim)"),
+    }
+
+
 # --- stage 3: analyses of the discretised disk ---------------------------------------------
 def _loads(ctx):
     if ctx.loads is None:
@@ -564,9 +594,13 @@ def design_map(ctx) -> dict:
     best = {k: np.full((nm, nr), np.nan) for k in ("a", "v", "binds", "mode")}
     best_f = np.full((nm, nr, nn), np.nan)
     w0 = np.array([model.omega2[n] for n in n_d])
+    # in the cut (effect cutting_heat) the spinning blade carries the rim's heat stress; the
+    # buckling margin is the cold blade's at rest
+    K = model.K if ctx.k_heat is None else {n: model.K[n] + ctx.k_heat[n] for n in n_d}
+    rim = 0.0 if ctx.heat is None else float(p["rim_temperature_rise"])
     with stopwatch() as sw:
         for i, k in enumerate(ks):
-            pen = design.pencils(model.K, k, model.M, Kc, n_d)
+            pen = design.pencils(K, k, model.M, Kc, n_d)
 
             def low(x, pen=pen):
                 return design.lowest(pen, x)
@@ -619,5 +653,7 @@ def design_map(ctx) -> dict:
         "design_best_frequency_ratio": var(dims + ("n_d",), best_f, "1", "rolled over unrolled "
                                            "natural frequency at rest there (the N_d = 0, 1 "
                                            "margins)"),
+        "design_rim_temperature_rise": var((), rim, "K", "rim temperature rise of the cut the "
+                                           "critical speeds are for (0: no cutting heat)"),
         "time_design_map": var((), sw.seconds, "s", "wall time of the design map"),
     }

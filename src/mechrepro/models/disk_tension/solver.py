@@ -30,7 +30,7 @@ from .modal import frequency
 
 #: contributions each stage before the discretisation provides (what the next one reads)
 BEFORE_LOAD = {"thermal_expansion", "slots"}
-LOAD = {"thermal_load"}
+LOAD = {"thermal_load", "cutting_heat_stress"}
 
 
 class Disk:
@@ -57,6 +57,8 @@ class Disk:
                                        r_f=p["calibration_clamp_radius"], b=self.b,
                                        E=self.E, nu=self.nu, rho=self.rho)
         self.slots = self.loads = self.model = self.k_sigma = None
+        #: the rim's cutting-heat stress (effect cutting_heat) and its K^(sigma), or None
+        self.heat = self.k_heat = None
         self.vars = {
             "n_d": var("n_d", self.n_d, "1", "number of nodal diameters N_d"),
             "r_c": var("r_c", self.r_c, "m", "centre radius of rolling r_c, Eq. (4)"),
@@ -197,6 +199,8 @@ def _discretise(ctx: Disk):
             f"{ctx.solver}: wall time of assembly + unrolled eigen-analysis")
     if ctx.loads is not None:
         ctx.k_sigma = _stress_stiffness(ctx)
+    if ctx.heat is not None:
+        ctx.k_heat = model.stress_stiffness(ctx.heat.sigma)
 
 
 def _compare(ctx: Disk):
@@ -259,6 +263,7 @@ def compute(run: dict) -> Disk:
     ctx.slots = before.get("slots")
     load = stage(LOAD)
     ctx.loads = load.get("thermal_load")
+    ctx.heat = load.get("cutting_heat_stress")
     _discretise(ctx)
     analyses = stage()
     for c in (before, load):

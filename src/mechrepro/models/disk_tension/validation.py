@@ -489,7 +489,7 @@ def _design_rows(R) -> list[dict]:
     st = R.study("design_map_rf")
     runs = [(clamp_mm(R.run("design_map")), R.run("design_map"))]
     runs += [(clamp_mm(st.isel(run=i)), st.isel(run=i)) for i in range(st.sizes["run"])]
-    return [dict(zip(design.COLUMNS, r)) for r in design.table(runs) if r[2]]
+    return [dict(zip(design.COLUMNS, r)) for r in design.table(runs) if r[3]]
 
 
 @Q.register("design_map_gain_over_paper_point")
