@@ -110,8 +110,10 @@ def identifiability(root: Path) -> str:
 
 
 def design_map(root: Path) -> str:
-    """The design table (tables/design_map.csv): per flange radius and buckling margin."""
-    keep = {"r_f_mm": "r_f [mm]", "buckling_margin": "m", "r_c_opt_mm": "r_c* [mm]",
+    """The design table (tables/design_map.csv): per flange radius, cutting heat and buckling
+    margin."""
+    keep = {"r_f_mm": "r_f [mm]", "rim_temperature_rise_degc": "rim ΔT [°C]",
+            "buckling_margin": "m", "r_c_opt_mm": "r_c* [mm]",
             "amplitude_opt_degc": "A* [°C]", "binds": "binds", "lowest_mode_nd": "N_d",
             "critical_speed_opt_rpm": "Ω_c* [rpm]", "gain_vs_untensioned": "vs untensioned",
             "gain_vs_paper": "vs r_c 65, A 50", "f_ratio_nd0": "f̃/f N_d=0",
@@ -119,7 +121,8 @@ def design_map(root: Path) -> str:
     out = ["| " + " | ".join(keep.values()) + " |", "|" + "---|" * len(keep)]
     for r in _rows(root / "tables" / "design_map.csv"):
         cell = {k: r[k] for k in keep}
-        for k in ("r_f_mm", "r_c_opt_mm", "amplitude_opt_degc", "critical_speed_opt_rpm"):
+        for k in ("r_f_mm", "rim_temperature_rise_degc", "r_c_opt_mm", "amplitude_opt_degc",
+                  "critical_speed_opt_rpm"):
             cell[k] = f"{float(r[k]):.0f}"
         for k in ("gain_vs_untensioned", "gain_vs_paper"):
             cell[k] = f"{float(r[k]):+.1%}"
