@@ -160,7 +160,9 @@ R.save_figure(fig, "fig07")
 # %% [markdown]
 # ## Fig. 8 — Δf by Eq. (9) vs r_c
 # Solid: Δω²/(2ω)/2π, the linearised conversion that reproduces the paper's 70.0 Hz from
-# Table 1; dashed: exact conversion √(ω²+Δω²) − ω; dots: eigen-analysis.
+# Table 1; dashed: exact conversion √(ω²+Δω²) − ω; dots: eigen-analysis (the key says so).
+# The paper's two numbers at r_c = 65 mm, 70.0 Hz (Eq. 9) and 67.6 Hz (eigen), lie 2.4 Hz
+# apart: hollow markers, labelled beside them.
 
 # %%
 fig, axes = plt.subplots(1, 3, figsize=(13, 4.2))
@@ -172,14 +174,33 @@ for ax, (rf, ds), letter in zip(axes, sorted(grid.items()), "abc"):
         ax.plot(rc, ds["axisym_f_rolled"].sel(n_d=n) - ds["axisym_f_unrolled"].sel(n_d=n), ".",
                 color=COLORS[n])
     if rf == 25:
-        ax.plot([mm(paper_pts["r_c"])], [paper_pts["delta_f_eq9"]], "*", color="k", ms=10,
-                label="paper Eq. (9)")
-        ax.plot([mm(paper_pts["r_c"])], [paper_pts["delta_f_eigen"]], "P", color="k", ms=7,
-                label="paper eigen")
+        # 70.0 and 67.6 Hz lie 2.4 Hz apart: drawn on the curves and, apart, in a zoom below
+        x65 = mm(paper_pts["r_c"])
+        zoom = ax.inset_axes([0.06, 0.04, 0.36, 0.27])
+        for a, ms in ((ax, 1.0), (zoom, 0.8)):
+            a.plot([x65], [paper_pts["delta_f_eq9"]], "*", mfc="none", mec="k", ms=12 * ms,
+                   mew=1.1, label="paper Eq. (9)" if a is ax else None)
+            a.plot([x65], [paper_pts["delta_f_eigen"]], "P", mfc="none", mec="k", ms=7 * ms,
+                   mew=1.1, label="paper eigen" if a is ax else None)
+        for n in (3, 4):
+            zoom.plot(rc, ds["axisym_delta_f_eq9_linearised"].sel(n_d=n), "-", color=COLORS[n])
+            zoom.plot(rc, ds["axisym_f_rolled"].sel(n_d=n) - ds["axisym_f_unrolled"].sel(n_d=n),
+                      ".", color=COLORS[n])
+        zoom.set(xlim=(x65 - 4, x65 + 4), ylim=(paper_pts["delta_f_eigen"] - 4,
+                                                paper_pts["delta_f_eq9"] + 2))
+        zoom.tick_params(labelsize=6)
+        ax.text(0.44, 0.05, f"zoom at {x65:.0f} mm, paper:\n{paper_pts['delta_f_eq9']:.1f} Hz (★), "
+                f"{paper_pts['delta_f_eigen']:.1f} Hz (+)", fontsize=7, transform=ax.transAxes)
     ax.axhline(0, color="k", lw=0.6)
     ax.set(xlabel="r_c [mm]", ylabel="Δf [Hz]", title=f"Fig. 8{letter}: r_f = {rf} mm")
-fig.legend(*axes[0].get_legend_handles_labels(), loc="lower center", ncol=7, fontsize=8,
-           bbox_to_anchor=(0.5, -0.1))
+from matplotlib.lines import Line2D  # noqa: E402
+
+key = [Line2D([], [], color="0.3", ls="-", label="Eq. (9), linearised"),
+       Line2D([], [], color="0.3", ls="--", lw=0.8, label="Eq. (9), exact conversion"),
+       Line2D([], [], color="0.3", ls="", marker=".", label="eigen-analysis")]
+handles, labels = axes[0].get_legend_handles_labels()
+fig.legend(handles + key, labels + [k.get_label() for k in key], loc="lower center", ncol=5,
+           fontsize=8, bbox_to_anchor=(0.5, -0.16))
 R.save_figure(fig, "fig08")
 
 # %% [markdown]
@@ -277,14 +298,22 @@ print("Table 2 (plate2d, pairs rotated onto the unrolled cos/sin basis):\n", t12
 
 # %%
 coa = R.table("cost_of_accuracy")
-fig, axes = plt.subplots(2, 2, figsize=(12, 8.8))
+import textwrap
+
+import matplotlib.ticker as mticker
+
+fig, axes = plt.subplots(2, 2, figsize=(12, 9.2), constrained_layout=True)
 for ax, entry in zip(axes.ravel(), ("axisym_stressed", "plate2d_stressed", "axisym", "plate2d")):
     accuracy.plot(coa, entry, ax)
+    ax.set_xlabel(textwrap.fill(ax.get_xlabel(), 60))   # the long "what is timed" labels
+    ax.margins(x=0.12)                                  # room for the last point's label
+    ax.xaxis.set_minor_formatter(mticker.NullFormatter())   # minor labels collide on short spans
 ref_err = float(t12_2d["plate2d_reference_error_unrolled"])
 axes[1, 1].axhline(ref_err, color="k", ls=":", lw=0.8)
 axes[1, 1].annotate("accuracy of the rolled reference", (axes[1, 1].get_xlim()[0], ref_err),
                     fontsize=7, xytext=(4, 3), textcoords="offset points")
 axes[1, 1].axhline(figures.accuracy_goal(R, "plate2d_unrolled_vs_exact"), color="k", ls=":", lw=0.8)
+axes[1, 1].legend(fontsize=8, loc="lower right", bbox_to_anchor=(1.0, 0.12))   # clear of the curves
 R.save_figure(fig, "cost_of_accuracy")
 for row in coa:
     print(row["accuracy"], row["knob_value"], row["quantity"], f"{float(row['error']):.3e}",
@@ -436,7 +465,8 @@ from mechrepro.models.disk_tension import design
 dm_runs = [(figures.clamp_mm(R.run("design_map")), R.run("design_map"))]
 dm_st = R.study("design_map_rf")
 dm_runs += [(figures.clamp_mm(dm_st.isel(run=i)), dm_st.isel(run=i)) for i in range(dm_st.sizes["run"])]
-dm_rows = design.table(dm_runs)
+cut = R.run("design_map_in_cut")
+dm_rows = design.table(dm_runs + [(figures.clamp_mm(cut), cut)])
 R.write_table("design_map", design.COLUMNS, dm_rows)
 fig, axes = plt.subplots(2, 3, figsize=(15, 8.8), constrained_layout=True)
 maps = [axes[0, 0], axes[0, 1], axes[0, 2], axes[1, 0]]
@@ -469,10 +499,14 @@ for (rf, ds), c in zip(dm_runs, ("C0", "C1", "C2", "C3")):
             color=c, label=f"r_f {rf:.0f} mm, best A")
     ax.plot(rc_mm, 100 * (ds["axisym_design_paper_amplitude_speed"].values / unt - 1), ":",
             color=c, label=f"r_f {rf:.0f} mm, A = 50 °C")
+unt25 = float(np.nanmin(design.lowest_map(dm_runs[0][1])[:, 0]))
+qc = int(np.argmin(np.abs(cut["design_margin"].values - float(cut["axisym_design_stated_margin"]))))
+ax.plot(cut["r_c"].values * 1e3, 100 * (cut["axisym_design_best_speed"].values[qc] / unt25 - 1),
+        "k--", lw=1.2, label=f"r_f 25 mm in the cut, rim +{float(cut['axisym_design_rim_temperature_rise']):.0f} °C")
 ax.axhline(0, color="k", lw=0.8)
 ax.set(xlabel="rolling radius r_c [mm]", ylabel="lowest critical speed over untensioned [%]",
-       title="the design curve (stated margin; a gap: buckled)", ylim=(-90, 90))
-ax.legend(fontsize=7, ncol=2, loc="upper left")
+       title="the design curve (stated margin; a gap: buckled)", ylim=(-120, 60))
+ax.legend(fontsize=7, ncol=2, loc="lower left")    # below the curves
 ax = axes[1, 2]
 for (rf, ds), c in zip(dm_runs, ("C0", "C1", "C2", "C3")):
     q = int(np.argmin(np.abs(ds["design_margin"].values - float(ds["axisym_design_stated_margin"]))))

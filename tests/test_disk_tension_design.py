@@ -19,8 +19,9 @@ def cfg():
     return load_paper(CFG, "default")
 
 
-def design_run(cfg, rolling_radius=(45, 65, 85, 105), n_elements=16, **parameters):
-    run = copy.deepcopy(cfg.runs["design_map"])
+def design_run(cfg, rolling_radius=(45, 65, 85, 105), n_elements=16, scene="design_map",
+               **parameters):
+    run = copy.deepcopy(cfg.runs[scene])
     run["resolution"] = {"n_elements": n_elements}
     run["options"] = {"timing_min_s": 0.0}
     run["parameters"].update(rolling_radius=[x * 1e-3 for x in rolling_radius], design_steps=7,
@@ -119,3 +120,17 @@ def test_a_map_with_no_standing_disk_has_no_optimum(cfg):
     gone["axisym_design_best_speed"] = gone["axisym_design_best_speed"] * np.nan
     row = dict(zip(design.COLUMNS, design.table([(25.0, gone)])[1]))
     assert row["binds"] == "buckled" and np.isnan(row["critical_speed_opt_rpm"])
+
+
+def test_the_cutting_heat_compresses_the_rim_and_lowers_the_critical_speed(cfg):
+    """Effect cutting_heat (scene design_map_in_cut): a rim hotter than the eye gives hoop
+    compression at the rim, and the untensioned blade in the cut has a lower critical speed
+    than cold; at a zero rim temperature rise the in-cut map is the cold one to round-off."""
+    cold = _solve_once(design_run(cfg))
+    hot = _solve_once(design_run(cfg, scene="design_map_in_cut"))
+    assert float(hot["heat_sigma_theta"].values[-1]) < 0 < float(hot["heat_temperature"].values[-1])
+    assert design.lowest_map(hot)[0, 0] < design.lowest_map(cold)[0, 0]
+    zero = _solve_once(design_run(cfg, scene="design_map_in_cut", rim_temperature_rise=0.0))
+    np.testing.assert_allclose(design.lowest_map(zero), design.lowest_map(cold), rtol=1e-9)
+    assert float(hot["axisym_design_rim_temperature_rise"]) > 0
+    assert float(cold["axisym_design_rim_temperature_rise"]) == 0

@@ -66,6 +66,7 @@ SHOWS = {
     "identifiability": ("axisym", [], "axisym_prof_width"),
     "critical_speed": ("axisym", ["roll_tension"], "axisym_critical_speed"),
     "design_map": ("axisym", ["roll_tension"], "axisym_design_best_speed"),
+    "cutting_heat": ("axisym", ["roll_tension", "design_map"], "heat_sigma_theta"),
     "eigen": ("axisym", ["roll_tension"], "axisym_f_rolled"),
     "eq9": ("axisym", ["roll_tension"], "axisym_delta_f_eq9_exact"),
     "critical_load": ("axisym", ["roll_tension"], "axisym_critical_load_factor"),

@@ -91,8 +91,8 @@ def optimum(fn, grid, vals, *, capped, xatol=1e-4):
 
 
 RPM = 60.0 / (2 * np.pi)
-COLUMNS = ["r_f_mm", "buckling_margin", "stated", "r_c_opt_mm", "r_c_step_mm", "amplitude_opt_degc",
-           "intensity_vs_paper", "binds", "lowest_mode_nd", "critical_speed_opt_rpm",
+COLUMNS = ["r_f_mm", "rim_temperature_rise_degc", "buckling_margin", "stated", "r_c_opt_mm",
+           "r_c_step_mm", "amplitude_opt_degc", "intensity_vs_paper", "binds", "lowest_mode_nd", "critical_speed_opt_rpm",
            "untensioned_rpm", "gain_vs_untensioned", "paper_rc65_a50_rpm", "gain_vs_paper",
            "best_at_rc65_rpm", "buckling_amplitude_at_opt_degc", "buckling_mode_at_opt_nd",
            "f_ratio_nd0", "f_ratio_nd1"]
@@ -109,10 +109,11 @@ def best(ds, q):
 
 
 def table(runs, paper_rc=0.065, paper_amplitude=50.0) -> list[list]:
-    """The design table: per flange radius (``runs``: [(r_f [mm], design_map dataset)]) and
-    buckling margin, the optimum r_c and amplitude, what binds, its lowest critical speed
-    against the untensioned disk and against the paper's r_c = 65 mm (at the paper's
-    A = 50 degC, and at the best A there), and the N_d = 0, 1 frequency margins at rest."""
+    """The design table: per flange radius (``runs``: [(r_f [mm], design_map dataset)], in
+    the cut or not) and buckling margin, the optimum r_c and amplitude, what binds, its
+    lowest critical speed against the untensioned disk and against the paper's r_c = 65 mm
+    (at the paper's A = 50 degC, and at the best A there), and the N_d = 0, 1 frequency
+    margins at rest."""
     rows = []
     for rf, ds in runs:
         rc = ds["r_c"].values
@@ -120,13 +121,13 @@ def table(runs, paper_rc=0.065, paper_amplitude=50.0) -> list[list]:
         j65 = int(np.argmin(np.abs(rc - paper_rc)))
         if abs(rc[j65] - paper_rc) > 1e-9:
             raise Refusal(f"the design map's r_c grid has no {paper_rc * 1e3:g} mm")
-        unt = float(np.nanmin(ds["axisym_critical_speed_untensioned"].sel(
-            n_d=ds["n_d"].values[ds["n_d"].values >= 2]).values))
+        unt = float(lowest_map(ds)[0, 0])         # A = 0: the same at every r_c
         at65 = float(ds["axisym_design_paper_amplitude_speed"].values[j65])
         step = float(np.diff(rc).max() * 1e3) if len(rc) > 1 else float("nan")
         for q, m in enumerate(ds["design_margin"].values):
             k, v = best(ds, q)
-            head = [rf, float(m), bool(abs(m - stated) < 1e-12)]
+            head = [rf, float(ds["axisym_design_rim_temperature_rise"]), float(m),
+                    bool(abs(m - stated) < 1e-12)]
             if k < 0:       # every r_c buckled: no optimum, no number
                 rows.append(head + [float("nan"), step, float("nan"), float("nan"), "buckled", -1]
                             + [float("nan")] * 6 + [-1, float("nan"), float("nan")])

@@ -107,8 +107,10 @@ def identifiability(root: Path) -> str:
 
 
 def design_map(root: Path) -> str:
-    """The design table (tables/design_map.csv): per flange radius and buckling margin."""
-    keep = {"r_f_mm": "r_f [mm]", "buckling_margin": "m", "r_c_opt_mm": "r_c* [mm]",
+    """The design table (tables/design_map.csv): per flange radius, cutting heat and buckling
+    margin."""
+    keep = {"r_f_mm": "r_f [mm]", "rim_temperature_rise_degc": "rim ΔT [°C]",
+            "buckling_margin": "m", "r_c_opt_mm": "r_c* [mm]",
             "amplitude_opt_degc": "A* [°C]", "binds": "binds", "lowest_mode_nd": "N_d",
             "critical_speed_opt_rpm": "Ω_c* [rpm]", "gain_vs_untensioned": "vs untensioned",
             "gain_vs_paper": "vs r_c 65, A 50", "f_ratio_nd0": "f̃/f N_d=0",
@@ -116,7 +118,8 @@ def design_map(root: Path) -> str:
     out = ["| " + " | ".join(keep.values()) + " |", "|" + "---|" * len(keep)]
     for r in _rows(root / "tables" / "design_map.csv"):
         cell = {k: r[k] for k in keep}
-        for k in ("r_f_mm", "r_c_opt_mm", "amplitude_opt_degc", "critical_speed_opt_rpm"):
+        for k in ("r_f_mm", "rim_temperature_rise_degc", "r_c_opt_mm", "amplitude_opt_degc",
+                  "critical_speed_opt_rpm"):
             cell[k] = f"{float(r[k]):.0f}"
         for k in ("gain_vs_untensioned", "gain_vs_paper"):
             cell[k] = f"{float(r[k]):+.1%}"
@@ -162,7 +165,8 @@ BLOCKS = {
     "critical_speed_notes": lambda root: notes(root, ["critical_speed_untensioned_min",
                                                       "critical_speed_best_rc",
                                                       "critical_speed_vs_southwell"]),
-    "design_notes": lambda root: notes(root, ["design_map_optimum_rc"]),
+    "design_notes": lambda root: notes(root, ["design_map_optimum_rc",
+                                              "design_map_gain_over_paper_point"]),
     "beyond_notes": lambda root: notes(root, ["slotted_optimal_rc_nd3", "slotted_optimal_rc_nd4",
                                               "buckling_flag_matches_critical_load",
                                               "eq9_speedup_over_eigen"]),

@@ -100,7 +100,7 @@ def stress_calibration(ctx) -> dict:
     case = dict(n_d=int(p["calibration_nodal_diameter"]), r_c=p["calibration_rolling_radius"],
                 r_f=p["calibration_clamp_radius"], b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu,
                 rho=ctx.rho, alpha=ctx.alpha, amplitude=p["calibration_temperature_amplitude"],
-                s=p["calibration_gaussian_width"], inplane_bc=ctx.bc)
+                s=ctx.s, inplane_bc=ctx.bc)
     if ctx.stress_model != "thermal_analogy":   # a rival is re-calibrated on its own stress
         case["stress_model"] = ctx.stress_model
     target = p["calibration_delta_omega2"]
@@ -161,6 +161,36 @@ def roll_tension(ctx) -> dict:
         "amplitude_used": var((), ctx.A, "K", "temperature amplitude A of Eq. (4) used for "
                               "the stress"),
         "width_used": var((), ctx.s, "m", "Gaussian width s of Eq. (4) used for the stress"),
+    }
+
+
+@EFFECTS.register("cutting_heat")
+def cutting_heat(ctx) -> dict:
+    """Physics beyond the paper, what tensioning is for: the rim heated in the cut, a real
+    temperature rise ``rim_temperature_rise`` falling off inwards as a Gaussian of width
+    ``rim_heat_width`` centred on the rim (Eq. 4's form at r_c = b), with the handbook
+    expansion coefficient, its plane-stress field under the flange's in-plane hold of the
+    mounted blade (``centrifugal_bc``): compression at the rim."""
+    p = ctx.p
+    if ctx.solver != "axisym":
+        raise Refusal("cutting_heat is read by design_map, on the harmonics (solver axisym)")
+    kw = dict(amplitude=p["rim_temperature_rise"], r_c=ctx.b, s=p["rim_heat_width"],
+              r_f=ctx.r_f, b=ctx.b, E=ctx.E, nu=ctx.nu, alpha=p["thermal_expansion"],
+              inplane_bc=p["centrifugal_bc"])
+    r = np.linspace(ctx.r_f, ctx.b, N_RADII)
+    sr, st = thermal.thermal_stress(r, **kw)
+    return {
+        "cutting_heat_stress": ThermalLoad(
+            r_c=ctx.b, alpha=kw["alpha"], inplane_bc=kw["inplane_bc"],
+            temperature=lambda x: thermal.temperature(x, kw["amplitude"], ctx.b, kw["s"]),
+            sigma=(lambda x: thermal.thermal_stress(x, **kw)[0],
+                   lambda x: thermal.thermal_stress(x, **kw)[1])),
+        "r_heat": var("r_heat", r, "m", "radius of the cutting-heat stress"),
+        "heat_temperature": var("r_heat", thermal.temperature(r, kw["amplitude"], ctx.b, kw["s"]),
+                                "K", "temperature rise of the blade in the cut"),
+        "heat_sigma_r": var("r_heat", sr, "Pa", "radial stress of the cutting heat"),
+        "heat_sigma_theta": var("r_heat", st, "Pa", "hoop stress of the cutting heat "
+                                "(compressive at the rim)"),
     }
 
 
@@ -432,7 +462,7 @@ def identifiability(ctx) -> dict:
     fine_widths = np.linspace(w0, w1, int(round((w1 - w0) / (dw / FINE_WIDTH))) + 1)
     r = idf.analyse(ctx.model, widths=widths, scales=scales, fine=fine,
                     fine_widths=fine_widths,
-                    single_width=p["calibration_gaussian_width"],
+                    single_width=ctx.s,
                     table1_paper=np.asarray(p["fit_table1_diagonal"], float),
                     f_rolled_paper=float(p["fit_rolled_frequency"]),
                     r_c=p["calibration_rolling_radius"],
@@ -479,7 +509,7 @@ def identifiability(ctx) -> dict:
                            "calibration (s = 5 mm, free_disk, c on Table 1's N_d = 4 entry)"),
         "single_scale": var((), r["single_scale"], "1", "stress scale of the single-alpha "
                             "calibration"),
-        "single_width": var((), p["calibration_gaussian_width"], "m", "Gaussian width of the "
+        "single_width": var((), ctx.s, "m", "Gaussian width of the "
                             "single-alpha calibration"),
         "single_table1_rel": var("n_d", r["single_table1_rel"], "1", "Table 1 relative error of "
                                  "the single-alpha calibration"),
@@ -564,9 +594,13 @@ def design_map(ctx) -> dict:
     best = {k: np.full((nm, nr), np.nan) for k in ("a", "v", "binds", "mode")}
     best_f = np.full((nm, nr, nn), np.nan)
     w0 = np.array([model.omega2[n] for n in n_d])
+    # in the cut (effect cutting_heat) the spinning blade carries the rim's heat stress; the
+    # buckling margin is the cold blade's at rest
+    K = model.K if ctx.k_heat is None else {n: model.K[n] + ctx.k_heat[n] for n in n_d}
+    rim = 0.0 if ctx.heat is None else float(p["rim_temperature_rise"])
     with stopwatch() as sw:
         for i, k in enumerate(ks):
-            pen = design.pencils(model.K, k, model.M, Kc, n_d)
+            pen = design.pencils(K, k, model.M, Kc, n_d)
 
             def low(x, pen=pen):
                 return design.lowest(pen, x)
@@ -619,5 +653,7 @@ def design_map(ctx) -> dict:
         "design_best_frequency_ratio": var(dims + ("n_d",), best_f, "1", "rolled over unrolled "
                                            "natural frequency at rest there (the N_d = 0, 1 "
                                            "margins)"),
+        "design_rim_temperature_rise": var((), rim, "K", "rim temperature rise of the cut the "
+                                           "critical speeds are for (0: no cutting heat)"),
         "time_design_map": var((), sw.seconds, "s", "wall time of the design map"),
     }

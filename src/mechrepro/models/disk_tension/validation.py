@@ -276,7 +276,16 @@ def _f8c(R):
     g = _grid(R)[75]
     c2 = (_argext(g, "axisym_f_rolled", 2, np.nanargmax),
           _argext(g, "axisym_delta_f_eq9_linearised", 2, np.nanargmax))
-    return Reproduced(c2[0] != c2[1], note=f"argmax r_c eigen {c2[0]:.0f} mm, Eq. (9) {c2[1]:.0f} mm")
+    rc = g["r_c"].values * 1e3
+    eig = (g["axisym_f_rolled"] - g["axisym_f_unrolled"]).sel(n_d=2).values
+    eq9 = g["axisym_delta_f_eq9_linearised"].sel(n_d=2).values
+
+    def around(y, at):
+        k = int(np.argmin(np.abs(rc - at)))
+        sl = slice(max(k - 1, 0), k + 2)
+        return "/".join(f"{v:.2f}" for v in y[sl]) + " Hz at " + "/".join(f"{x:.0f}" for x in rc[sl])
+    return Reproduced(c2[0] != c2[1], note=f"argmax r_c eigen {c2[0]:.0f} mm, Eq. (9) {c2[1]:.0f} "
+                      f"mm; eigen Delta f {around(eig, c2[0])} mm, Eq. (9) {around(eq9, c2[1])} mm")
 
 
 @Q.register("eq9_frequency_error_over_grid")
@@ -455,7 +464,7 @@ def _cs_min(R):
     n = int(cs["n_d"].values[int(np.argmin(cs.values))])
     low, alt = float(cs.min()) * RPM, float(other["axisym_critical_speed_untensioned"].min()) * RPM
     return Reproduced(low, note=f"N_d = {n} at centrifugal_bc {cs.attrs.get('centrifugal_bc', '?')}; "
-        "per N_d 0..4: " + ", ".join(f"{v * RPM:.0f}" for v in cs.values) + " rpm (N_d = 0, 1: "
+        f"per N_d {cs['n_d'].values[0]}..{cs['n_d'].values[-1]}: " + ", ".join(f"{v * RPM:.0f}" for v in cs.values) + " rpm (N_d = 0, 1: "
         f"none); at centrifugal_bc "
         f"{other['axisym_critical_speed_untensioned'].attrs.get('centrifugal_bc', '?')} "
         f"{alt:.0f} rpm ({alt / low - 1:+.1%}); the critical speeds of the unrolled disk and of "
@@ -473,16 +482,29 @@ def _cs_best(R):
     return Reproduced(best_rolling_radius(runs[0][1])[0], note="; ".join(notes))
 
 
-@Q.register("design_map_optimum_rc")
-def _design(R):
-    """r_c [mm] of the design map's optimum at r_f = 25 mm and the stated margin; the note
-    gives every r_f (a flange radius whose every r_c buckles has no optimum, never a number)."""
+def _design_rows(R) -> list[dict]:
+    """The design table's rows at the stated buckling margin, one per flange radius."""
     from . import design
 
     st = R.study("design_map_rf")
     runs = [(clamp_mm(R.run("design_map")), R.run("design_map"))]
     runs += [(clamp_mm(st.isel(run=i)), st.isel(run=i)) for i in range(st.sizes["run"])]
-    rows = [dict(zip(design.COLUMNS, r)) for r in design.table(runs) if r[2]]
+    return [dict(zip(design.COLUMNS, r)) for r in design.table(runs) if r[3]]
+
+
+@Q.register("design_map_gain_over_paper_point")
+def _design_gain(R):
+    rows = _design_rows(R)
+    return Reproduced(rows[0]["gain_vs_paper"], note="; ".join(
+        f"r_f {r['r_f_mm']:.0f} mm: {r['gain_vs_paper']:+.1%} (r_c {r['r_c_opt_mm']:.0f} mm, "
+        f"A {r['amplitude_opt_degc']:.0f} degC)" for r in rows))
+
+
+@Q.register("design_map_optimum_rc")
+def _design(R):
+    """r_c [mm] of the design map's optimum at r_f = 25 mm and the stated margin; the note
+    gives every r_f (a flange radius whose every r_c buckles has no optimum, never a number)."""
+    rows = _design_rows(R)
     notes = [f"r_f {r['r_f_mm']:.0f} mm: r_c {r['r_c_opt_mm']:.0f} +- {r['r_c_step_mm'] / 2:g} mm, "
              f"A {r['amplitude_opt_degc']:.0f} degC ({r['binds']} binds, N_d = "
              f"{r['lowest_mode_nd']}), {r['critical_speed_opt_rpm']:.0f} rpm: "
@@ -512,5 +534,6 @@ def _cs_southwell(R):
         notes.append(f"r_f {rf:.0f} mm: " + ", ".join(f"{x:.1e}" for x in rel)
                      + f" (N_d^2 - lambda = {n * n - float(lam[fin][j]):.2f} at N_d = {n})")
     bc = runs[0][1]["axisym_critical_speed_untensioned"].attrs.get("centrifugal_bc", "?")
-    return Reproduced(ok, note=f"eigen / Southwell - 1 for N_d 2..4 at centrifugal_bc {bc}: "
+    nd = runs[0][1]["n_d"].values
+    return Reproduced(ok, note=f"eigen / Southwell - 1 for N_d 2..{nd[-1]} at centrifugal_bc {bc}: "
                       + "; ".join(notes))
