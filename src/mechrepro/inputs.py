@@ -134,7 +134,7 @@ RANGES: dict[str, dict[str, tuple[float, float, str, str]]] = {
            for k in ("clamp_radius", "rolling_radius", "calibration_clamp_radius",
                      "calibration_rolling_radius", "annulus_radii")},
         **{k: (0.05, 100, "mm", "a width of a heated or rolled band on a saw blade")
-           for k in ("gaussian_width", "calibration_gaussian_width", "annulus_width",
+           for k in ("gaussian_width", "annulus_width",
                      "scan_gaussian_width")},
         "slot_depth": (0.1, 500, "mm", "a slot in a saw blade of at most 2 m diameter"),
         "slot_width": (0.1, 500, "mm", "a slot in a saw blade of at most 2 m diameter"),
