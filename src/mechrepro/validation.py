@@ -430,7 +430,8 @@ def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]
                 ef, order_f, converged, how_f = level_error(levels["coarser"][2], row.value,
                                                             fine, ratio, width, own)
                 if not converged:
-                    how = f"refined once more, {how_f}"
+                    how = (f"refined once more, the levels do not contract: coarser "
+                           f"{levels['coarser'][2]:.6g}, base {row.value:.6g}, finer {fine:.6g}")
                 elif abs(row.value - fine) + ef > e:
                     e = abs(row.value - fine) + ef
                     how = (f"{how}; one level finer {fine:.6g}: |base - finer| + its error "
