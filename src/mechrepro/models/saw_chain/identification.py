@@ -238,7 +238,9 @@ def as_variables(results, paper, errors, speeds, stretches) -> dict:
     from mechrepro.units import var
 
     readings = list(results[0][1])
-    me, ex, rd, dm = "model_error", "explanation", "reading", "datum"
+    # the declared error first, then its range's ends: an index, not a coordinate (CF
+    # coordinates are monotonic)
+    me, ex, rd, dm = "model_error_case", "explanation", "reading", "datum"
     fits = [[f for f in r[0]] for r in results]
     joint = [[r[1][k] for k in readings] for r in results]
     g = lambda rows, a: np.array([[getattr(f, a) for f in row] for row in rows])  # noqa: E731
