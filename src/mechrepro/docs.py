@@ -31,6 +31,29 @@ BLOCK_NAME = re.compile(r"<!-- run:(\w+) -->")
 VERDICTS = ("pass", "fail", "inconclusive", "not_converged")
 
 
+def table_rows(path: Path) -> list[dict]:
+    """The rows of a result table, as dicts (what the papers' docs blocks read)."""
+    import csv
+
+    with open(path, newline="") as fh:
+        return list(csv.DictReader(fh))
+
+
+def number(x, digits: int = 4) -> str:
+    """A number as the docs print it: '' stays '', NaN is a dash, an integer has no point."""
+    if x in ("", None):
+        return ""
+    try:
+        v = float(x)
+    except ValueError:
+        return str(x)
+    if v != v:
+        return "—"
+    if v == int(v) and abs(v) < 1e6:
+        return f"{int(v)}"
+    return f"{v:.{digits}g}"
+
+
 def regenerate(text: str, blocks: dict[str, Callable[[Path], str]], root: Path) -> str:
     """``text`` with every ``<!-- run:NAME -->`` block filled by ``blocks[NAME](root)``."""
     unknown = sorted(set(BLOCK_NAME.findall(text)) - set(blocks))

@@ -9,24 +9,13 @@ checks the verdict table against the committed default reference.
 """
 from __future__ import annotations
 
-import csv
 import json
 from pathlib import Path
 
+from mechrepro.docs import number, table_rows
 
-def _rows(path: Path) -> list[dict]:
-    with open(path, newline="") as fh:
-        return list(csv.DictReader(fh))
-
-
-def _g(x, digits=4) -> str:
-    """A number as the docs print it ('' stays '')."""
-    if x in ("", None):
-        return ""
-    v = float(x)
-    if v == int(v) and abs(v) < 1e6:
-        return f"{int(v)}"
-    return f"{v:.{digits}g}"
+# one formatter for every paper page (mechrepro.docs)
+_rows, _g = table_rows, number
 
 
 def counts(root: Path) -> str:

@@ -8,29 +8,13 @@ Run it on the default profile's results after the last change.
 """
 from __future__ import annotations
 
-import csv
 import json
 from pathlib import Path
 
+from mechrepro.docs import number, table_rows
 
-def _rows(path: Path) -> list[dict]:
-    with open(path, newline="") as fh:
-        return list(csv.DictReader(fh))
-
-
-def _g(x, digits=4) -> str:
-    """A number as the docs print it ('' stays '')."""
-    if x in ("", None):
-        return ""
-    try:
-        v = float(x)
-    except ValueError:
-        return str(x)
-    if v != v:
-        return "—"
-    if v == int(v) and abs(v) < 1e6:
-        return f"{int(v)}"
-    return f"{v:.{digits}g}"
+# one formatter for every paper page (mechrepro.docs)
+_rows, _g = table_rows, number
 
 
 def _cell(text: str) -> str:
