@@ -30,6 +30,7 @@ h1{margin:.2em 0;font-size:1.5em}h2{border-bottom:2px solid #ccc;padding-top:.8e
 h3{margin:.8em 0 .3em}h3 a.anchor{color:inherit;text-decoration:none}
 table{border-collapse:collapse;margin:.5em 0;font-size:13px}
 td,th{border:1px solid #ccc;padding:3px 6px;text-align:left;vertical-align:top;overflow-wrap:anywhere}
+td.mrow{min-width:12em;overflow-wrap:normal}table.matrix th{overflow-wrap:normal;font-size:12px}table.matrix td:last-child{min-width:16em}
 th{background:#f0f0f0}
 table.papers,table.rows{width:100%;table-layout:fixed}
 table.papers th:nth-child(1){width:9em}table.papers th:nth-child(2){width:5em}table.papers th:nth-child(3){width:17em}
@@ -243,14 +244,14 @@ def matrix_view(path: Path, rivals: dict) -> dict | None:
             "quantity": r["quantity"].replace("_", " "), "artefact": artefact_title(r["artefact"]),
             "status": r["status"], "evidence": r["evidence"], "cells": {}, "tests": []})
         text, css = CELL.get(r["outcome"][:5] if r["outcome"].startswith("fails") else r["outcome"],
-                             ("not run" if r["outcome"].startswith("not run")
+                             ("·" if r["outcome"].startswith("not run")
                                             else "not decisive", ""))
         row["cells"][r["rival"]] = (text, css, r["outcome"])
         if r["credits"] == "True":
             row["tests"].append(rivals[r["rival"]]["removes"])
     return {"rivals": [{"name": n, "removes": v["removes"], "sledgehammer": n in sledge}
                        for n, v in rivals.items()],
-            "rows": [{**row, "cells": [row["cells"].get(n, ("not run", "", "not run"))
+            "rows": [{**row, "cells": [row["cells"].get(n, ("·", "", "not run"))
                                        for n in rivals]} for row in rows.values()]}
 
 
