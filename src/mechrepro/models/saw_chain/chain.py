@@ -17,8 +17,9 @@ from .loads import tight_side_mass
 
 
 @dataclass(frozen=True)
-class Chain:
-    """Geometry, masses and the time grid of one period (2K steps, Eqs. 5-6)."""
+class Design:
+    """The printed inputs (SI) the predictions depend on: pitches, teeth, sprocket speed,
+    link masses and counts."""
     p1: float
     p2: float
     z: int
@@ -27,6 +28,11 @@ class Chain:
     m_C: float
     M: int
     N: int
+
+
+@dataclass(frozen=True)
+class Chain(Design):
+    """Geometry, masses and the time grid of one period (2K steps, Eqs. 5-6)."""
     K: int
 
     @property

@@ -26,7 +26,7 @@ import numpy as np
 from mechrepro.effects import EffectRegistry
 from mechrepro.units import var
 
-from .chain import Chain, join_stages
+from .chain import Chain, Design, join_stages
 from .kinematics import stage_derivatives
 from .loads import dynamic_load, textbook_velocity_load
 
@@ -98,7 +98,7 @@ def identification(ctx: Context) -> dict:
     from . import identification as idf
 
     p, ch = ctx.parameters, ctx.chain
-    design = idf.Design(ch.p1, ch.p2, ch.z, ch.omega, ch.m_L, ch.m_C, ch.M, ch.N)
+    design = Design(ch.p1, ch.p2, ch.z, ch.omega, ch.m_L, ch.m_C, ch.M, ch.N)
     paper = np.array([*p["identification_velocities"], *p["identification_loads"]], float)
     s0, s1, ds = p["identification_scan_speed"]
     e0, e1, de = p["identification_scan_stretch"]

@@ -41,6 +41,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from .analysis import pitch_radius_readings, velocity_band
+from .chain import Design
 from .geometry import stage_angles
 from .kinematics import stage_derivatives, stage_positions
 
@@ -57,19 +58,6 @@ EXPLANATIONS = (("as printed", ("eq1",), False, False),
                 ("reading + speed + stretch", None, True, True))
 #: Delta chi^2 of a 68 % and a 95 % interval of one parameter
 DCHI2 = {"68": 1.0, "95": 3.841}
-
-
-@dataclass(frozen=True)
-class Design:
-    """The printed inputs (SI) the predictions depend on."""
-    p1: float
-    p2: float
-    z: int
-    omega: float
-    m_L: float
-    m_C: float
-    M: int
-    N: int
 
 
 def _stage_loads_exact(d: Design, R, n=2001):
