@@ -123,10 +123,10 @@ import json, math, sys, time
 sys.path.insert(0, sys.argv[1])
 import numpy as np
 from mechrepro.config import load_paper
-from mechrepro.models.rolling_shear import kernels, newton, optimise, pose, stroke
+from mechrepro.models.rolling_shear import closure, kernels, newton, optimise, pose, stroke
 from mechrepro.models.rolling_shear.geometry import cut_points, from_parameters
 from mechrepro.models.rolling_shear.selpso import SelPSOSettings, selpso
-assert kernels.available()
+assert closure.available()
 kernels.warm()
 g = from_parameters(load_paper(sys.argv[2]).runs["original"]["parameters"])
 x_k = cut_points(g, 33)[1]

@@ -81,7 +81,7 @@ def richardson_vs_plain():
     from dataclasses import replace
     from mechrepro.models.saw_chain.design import design_quantities
     from mechrepro.models.saw_chain.richardson import extrapolate_extreme
-    from mechrepro.models.saw_chain.solver import load_x
+    from mechrepro.models.saw_chain.difference import load_x
     from mechrepro.models.saw_chain.validation import design_base
 
     cfg = load_paper(ROOT / "config/papers/saw_chain.yaml")

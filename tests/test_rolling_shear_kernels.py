@@ -18,18 +18,18 @@ from mechrepro.models.rolling_shear.selpso import SelPSOSettings, selpso
 
 from test_rolling_shear_helpers import geometry
 
-pytestmark = pytest.mark.skipif(not kernels.available(), reason="numba not installed")
+pytestmark = pytest.mark.skipif(not closure.available(), reason="numba not installed")
 
 
 def both(monkeypatch, fn):
     """fn() with the kernels off, then on (the switch is read once per process: cleared)."""
     monkeypatch.setenv("MECHREPRO_RS_KERNEL", "numpy")
     compiled.available.cache_clear()
-    assert not kernels.available()
+    assert not closure.available()
     off = fn()
     monkeypatch.delenv("MECHREPRO_RS_KERNEL")
     compiled.available.cache_clear()
-    assert kernels.available()
+    assert closure.available()
     return off, fn()
 
 

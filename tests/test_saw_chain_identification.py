@@ -12,7 +12,7 @@ import yaml
 from mechrepro.models.saw_chain import identification as idf
 from mechrepro.models.saw_chain.analysis import pitch_radius_readings
 from mechrepro.models.saw_chain.chain import Chain
-from mechrepro.models.saw_chain.solver import load_x
+from mechrepro.models.saw_chain.difference import load_x
 
 ROOT = Path(__file__).resolve().parents[1]
 D = idf.Design(8.91e-3, 7.56e-3, 8, 6550 * math.pi / 30, 1.906e-3, 1.296e-3, 32, 32)

@@ -9,7 +9,8 @@ import pytest
 
 from mechrepro.models.saw_chain.analysis import equivalent_K
 from mechrepro.models.saw_chain.richardson import extrapolate_extreme, to_accuracy
-from mechrepro.models.saw_chain.solver import chain_from_run, load_x
+from mechrepro.models.saw_chain.chain import chain_from_run
+from mechrepro.models.saw_chain.difference import load_x
 from mechrepro.solve import solve
 
 from test_saw_chain import run

@@ -22,11 +22,10 @@ import tarfile
 from pathlib import Path
 
 from .config import CACHE_DIR, load_paper
-from .io import atomic_path, write_json
+from .io import ENV_INPUTS, atomic_path, job_made_by, write_json
 from .provenance import code_version, file_sha256, json_hash, package_versions
-from .staleness import ENV_INPUTS, _file_digest, job_made_by, read_table, uncertified
+from .staleness import MANIFEST, Job, _file_digest, _why, read_table, uncertified
 
-MANIFEST = "manifest.json"
 
 
 class ArchiveRefused(RuntimeError):
@@ -65,23 +64,6 @@ def manifest(results: Path, files: list[str], config_dir: Path, papers: list[str
     return {"profile": profile, "papers": papers, "code_version": code_version(),
             "package_versions": package_versions(), "config_hash": json_hash(configs),
             "files": rels}
-
-
-def archive_record(path: Path) -> dict | None:
-    """What made an archive's manifest or tarball without a record beside it (restored):
-    the record the manifest keeps of its own job, when the tarball holds that very
-    manifest; else None."""
-    try:
-        man_path = path if path.name == MANIFEST else path.with_name(MANIFEST)
-        text = man_path.read_bytes()
-        made_by = json.loads(text).get("made_by")
-        if made_by and path.name != MANIFEST:
-            with tarfile.open(path) as tar:
-                member = tar.extractfile(MANIFEST)
-                made_by = made_by if member is not None and member.read() == text else None
-        return made_by
-    except (OSError, ValueError, AttributeError, KeyError, tarfile.TarError):
-        return None
 
 
 def linked_extras(results: Path, files: dict) -> list[str]:
@@ -181,7 +163,6 @@ def verify(results: str, manifest_path: str, root: str | None = None) -> list[st
         return problems
     # what made them, then and now: the manifest's record of each job against today's
     # code, config, packages and inputs (the run records as the archive saw them)
-    from .staleness import Job, _why
 
     for d in man["jobs"]:
         job = Job.from_dict(d, results, results.parent if root is None else root)

@@ -36,6 +36,7 @@ from pathlib import Path
 import yaml
 
 from .errors import Refusal
+from .limits import solve_key
 from .units import UNITS, to_si
 
 SCHEMA_DIR_NAME = "schema"
@@ -114,6 +115,11 @@ class PaperConfig:
         return {r: (run["scene"], run["variant"][len("without-"):])
                 for r, run in self.runs.items() if run.get("variant", "").startswith("without-")}
 
+    def cached(self, cache_dir, key, files, build):
+        """``build()`` kept in ``cache_dir`` by ``key`` and the content of ``files`` and of
+        this config's schemas (:func:`_cached`)."""
+        return _cached(cache_dir, key, files, _schema_dir(Path(self.path)), build)
+
     def assumed(self) -> dict[str, dict]:
         """Parameters the paper does not give, with value, unit and justification."""
         return {k: v for k, v in self.raw["parameters"].items() if v.get("assumed")}
@@ -124,8 +130,6 @@ class PaperConfig:
         sweeps), which the solve job solves once and writes under each name with the one
         measured time (:func:`mechrepro.solve.main`).  Runs timed against each other
         (``marginal_cost:``) or solved to an accuracy target are never merged."""
-        from .limits import solve_key
-
         first: dict[str, str] = {}
         out: dict[str, str] = {}
         for name, run in self.runs.items():

@@ -132,9 +132,7 @@ def _decides(row, variant: str) -> bool:
     """Whether the check ``variant`` of a row decides its verdict (see :func:`verification`)."""
     if variant.startswith("rival-"):
         return row.rivals.get(variant[len("rival-"):], ("", 0, ""))[2].startswith("fails")
-    from .validation import verdict
-
     c = next(c for c in row.checks if c[0] == variant)
     if c[1] == "level" and row.kind in ("compare", "bound"):
         return True   # the error bar is made of the levels: without them no verdict
-    return c[3] not in ("excluded", verdict(row.spec, row.value))
+    return c[3] not in ("excluded", row.verdict)

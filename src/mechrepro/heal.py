@@ -35,9 +35,9 @@ import os
 import sys
 from pathlib import Path
 
-from .archive import archive_record
 from .io import SUM_SUFFIX, read_sum, sum_path, write_text
 from .provenance import file_sha256
+from .staleness import ARCHIVE_FILES, _manifests, archive_record, steer, write_table
 
 LOCK_DIR = Path(".snakemake") / "mechrepro"
 SKIP_DIRS = {"reference", "logs", "benchmarks"}
@@ -52,7 +52,6 @@ NOT_A_RUN = {"-n", "--dry-run", "--dryrun", "--unlock", "--lint", "-t", "--touch
 
 
 # an archive's own outputs (rules/report.smk), recorded from its manifest after a restore
-ARCHIVE_FILES = ("manifest.json", "mechrepro-results.tar.gz")
 
 
 class RunInProgress(RuntimeError):
@@ -122,20 +121,6 @@ def _results_files(results: Path):
                 yield Path(root, name)
 
 
-def _manifests(results: Path) -> dict[str, dict[str, dict | None]]:
-    """{file: {sha256: what made it, or None}} as the manifests under ``results`` give it:
-    the full run's (``archive/``) and each run of some papers' (``archive-saw_chain/``),
-    which may hold different good versions of one file."""
-    out: dict[str, dict[str, dict | None]] = {}
-    for path in sorted(results.glob("archive*/manifest.json")):
-        try:
-            man = json.loads(path.read_text())
-            made = {o: j["made_by"] for j in man.get("jobs", []) for o in j["outputs"]}
-            for rel, sha in man["files"].items():
-                out.setdefault(rel, {})[sha] = made.get(rel)
-        except (OSError, ValueError, KeyError, TypeError, AttributeError):
-            continue
-    return out
 
 
 def _readable_netcdf(path: Path) -> bool:
@@ -330,7 +315,6 @@ def steer_workflow(workflow, jobs, results: str, table: str,
     (``Workflow._prepare_dag``, Snakemake 9; tests/test_staleness.py pins it) to force the
     stale jobs first and to restrict the DAG's jobs that may run to those rules after
     (every rule stays in the DAG, so a target made by another is still found)."""
-    from .staleness import steer, write_table
 
     argv = sys.argv[1:] if argv is None else argv
     dry = workflow.output_settings.dryrun

@@ -7,6 +7,8 @@ half-written ``.nc`` (or ``.csv``, ``.json``) that a later step would trust.
 from __future__ import annotations
 
 import contextlib
+import functools
+import hashlib
 import datetime as _dt
 import json
 import os
@@ -17,8 +19,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .provenance import code_version, package_versions
-from .staleness import job_made_by
+from .provenance import code_version, file_sha256, package_versions
 
 if TYPE_CHECKING:   # xarray (with pandas, ~0.5 s) is imported where datasets are read:
     import xarray as xr   # the report, archive and reference jobs write files only
@@ -50,13 +51,45 @@ def read_sum(path: str | Path) -> dict | None:
         return None
 
 
+ENV_PARTS, ENV_INPUTS, ENV_RESULTS = "MECHREPRO_MADE_BY", "MECHREPRO_INPUTS", "MECHREPRO_RESULTS"
+
+
+def _content(path: Path) -> str:
+    """A result's sha256 as its writer recorded it (heal has checked it against the bytes
+    before any job), else of its bytes; "missing" when there is no such file."""
+    rec = read_sum(path)
+    if rec is not None:
+        return rec["sha256"]
+    return file_sha256(path) if path.is_file() else "missing"
+
+
+def digest_inputs(paths, results: str | Path) -> str:
+    """sha256 over the contents of a job's result inputs, each named relative to the
+    results directory (an experiment's copy of a result is the same input)."""
+    h = hashlib.sha256()
+    for p in sorted(os.path.relpath(p, results) for p in paths):
+        h.update(f"{p}\0{_content(Path(results, p))}\n".encode())
+    return h.hexdigest()
+
+
+@functools.cache
+def job_made_by() -> dict | None:
+    """What made the files this process writes, when it runs as a job of the workflow
+    (its parts and the digest of its inputs, read once: a job's inputs do not change
+    while it runs); None outside a job."""
+    parts = os.environ.get(ENV_PARTS)
+    if not parts:
+        return None
+    inputs = os.environ.get(ENV_INPUTS, "").split()
+    return {**json.loads(parts),
+            "inputs": digest_inputs(inputs, os.environ.get(ENV_RESULTS, "."))}
+
+
 def _write_sum(tmp: Path, path: Path) -> None:
     """Record the sha256, size and time stamp of ``tmp`` (about to become ``path``), so that
     `mechrepro.heal` decides by content whether ``path`` is still what its job wrote: a
     copy (``cp -r``) keeps the content and loses the time stamps, a paste or a bit flip
     keeps the time stamp and changes the content."""
-    from .provenance import file_sha256
-
     st = tmp.stat()
     rec = {"sha256": file_sha256(tmp), "size": st.st_size, "mtime_ns": st.st_mtime_ns}
     made_by = job_made_by()

@@ -275,11 +275,9 @@ def missing_effects(cfg, cache_dir=None) -> list[str]:
     if cache_dir is None:
         reads = _extractor_reads(cfg.paper)
     else:
-        from .config import _cached, _schema_dir
-
         source = Path(__file__).parent / "models" / cfg.paper / "validation.py"
-        reads = _cached(cache_dir, ("extractor_reads", cfg.paper), [source, Path(__file__)],
-                        _schema_dir(Path(cfg.path)), lambda: _extractor_reads(cfg.paper))
+        reads = cfg.cached(cache_dir, ("extractor_reads", cfg.paper), [source, Path(__file__)],
+                           lambda: _extractor_reads(cfg.paper))
     for q, found in reads.items():
         if q not in cfg.reported:
             continue

@@ -23,12 +23,13 @@ import functools
 import hashlib
 import json
 import os
+import tarfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .io import ENV_PARTS, digest_inputs, read_sum, write_text
 from .provenance import file_sha256, json_hash, package_versions
 
-ENV_PARTS, ENV_INPUTS, ENV_RESULTS = "MECHREPRO_MADE_BY", "MECHREPRO_INPUTS", "MECHREPRO_RESULTS"
 
 
 @functools.cache
@@ -49,26 +50,6 @@ def digest_files(paths, root: str | Path = ".") -> str:
 def packages() -> str:
     """The digest of the package set every job runs with (provenance.package_versions)."""
     return json_hash(package_versions())
-
-
-def _content(path: Path) -> str:
-    """A result's sha256 as its writer recorded it (heal has checked it against the bytes
-    before any job), else of its bytes; "missing" when there is no such file."""
-    from .io import read_sum
-
-    rec = read_sum(path)
-    if rec is not None:
-        return rec["sha256"]
-    return file_sha256(path) if path.is_file() else "missing"
-
-
-def digest_inputs(paths, results: str | Path) -> str:
-    """sha256 over the contents of a job's result inputs, each named relative to the
-    results directory (an experiment's copy of a result is the same input)."""
-    h = hashlib.sha256()
-    for p in sorted(os.path.relpath(p, results) for p in paths):
-        h.update(f"{p}\0{_content(Path(results, p))}\n".encode())
-    return h.hexdigest()
 
 
 @dataclass
@@ -119,8 +100,6 @@ def write_table(jobs: list[Job], results: str | Path, path: str | Path) -> None:
             return
     except OSError:
         pass
-    from .io import write_text
-
     write_text(path, text, record=False)
 
 
@@ -132,8 +111,6 @@ def uncertified(jobs: list[Job], results: str | Path, files) -> list[str]:
     """Each of ``files`` that is not current: no job declares it, or what its record says
     made it is not what today's code, config, packages and inputs would (recomputed from
     the files now, so an edit during the run is seen)."""
-    from .io import read_sum
-
     _file_digest.cache_clear()
     of = {os.path.normpath(o): j for j in jobs for o in j.outputs}
     now, problems = {}, []
@@ -151,19 +128,6 @@ def uncertified(jobs: list[Job], results: str | Path, files) -> list[str]:
     return problems
 
 
-@functools.cache
-def job_made_by() -> dict | None:
-    """What made the files this process writes, when it runs as a job of the workflow
-    (its parts and the digest of its inputs, read once: a job's inputs do not change
-    while it runs); None outside a job."""
-    parts = os.environ.get(ENV_PARTS)
-    if not parts:
-        return None
-    inputs = os.environ.get(ENV_INPUTS, "").split()
-    return {**json.loads(parts),
-            "inputs": digest_inputs(inputs, os.environ.get(ENV_RESULTS, "."))}
-
-
 def _why(recorded: dict | None, now: dict) -> str | None:
     if recorded is None:
         return "no record of what made it"
@@ -177,6 +141,43 @@ def _why(recorded: dict | None, now: dict) -> str | None:
     return "changed since it was made: " + ", ".join(names.get(k, k) for k in changed)
 
 
+MANIFEST = "manifest.json"
+ARCHIVE_FILES = (MANIFEST, "mechrepro-results.tar.gz")
+
+
+def archive_record(path: Path) -> dict | None:
+    """What made an archive's manifest or tarball without a record beside it (restored):
+    the record the manifest keeps of its own job, when the tarball holds that very
+    manifest; else None."""
+    try:
+        man_path = path if path.name == MANIFEST else path.with_name(MANIFEST)
+        text = man_path.read_bytes()
+        made_by = json.loads(text).get("made_by")
+        if made_by and path.name != MANIFEST:
+            with tarfile.open(path) as tar:
+                member = tar.extractfile(MANIFEST)
+                made_by = made_by if member is not None and member.read() == text else None
+        return made_by
+    except (OSError, ValueError, AttributeError, KeyError, tarfile.TarError):
+        return None
+
+
+def _manifests(results: Path) -> dict[str, dict[str, dict | None]]:
+    """{file: {sha256: what made it, or None}} as the manifests under ``results`` give it:
+    the full run's (``archive/``) and each run of some papers' (``archive-saw_chain/``),
+    which may hold different good versions of one file."""
+    out: dict[str, dict[str, dict | None]] = {}
+    for path in sorted(results.glob("archive*/manifest.json")):
+        try:
+            man = json.loads(path.read_text())
+            made = {o: j["made_by"] for j in man.get("jobs", []) for o in j["outputs"]}
+            for rel, sha in man["files"].items():
+                out.setdefault(rel, {})[sha] = made.get(rel)
+        except (OSError, ValueError, KeyError, TypeError, AttributeError):
+            continue
+    return out
+
+
 class _Recorded:
     """What made a result, as its record says; for a result without one (a restored
     archive before the heal of a run records it), as the manifest that lists its bytes
@@ -187,14 +188,9 @@ class _Recorded:
         self.results, self.manifests = Path(results), None
 
     def __call__(self, f) -> dict | None:
-        from .io import read_sum
-
         rec = read_sum(f)
         if rec is not None:
             return rec.get("made_by")
-        from .heal import ARCHIVE_FILES, _manifests
-        from .archive import archive_record
-
         f = Path(f)
         if f.parent.name.startswith("archive") and f.name in ARCHIVE_FILES:
             return archive_record(f)

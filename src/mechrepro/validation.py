@@ -232,6 +232,11 @@ class Row:
         return self.spec["kind"]
 
     @property
+    def verdict(self) -> str:
+        """The verdict of the value alone (no error bar, no re-check)."""
+        return verdict(self.spec, self.value)
+
+    @property
     def paper_value(self) -> float:
         if self.kind == "check":
             return 1.0

@@ -4,9 +4,10 @@ Every function here is plain Python over a :class:`Linkage` record (or anything 
 same attribute names, such as :class:`.geometry.Geometry`; the functions called from Python
 take the record's :func:`constants` and name them by :func:`record`).  Where numba is installed each is
 compiled by :func:`mechrepro.compiled.jit`; :data:`python` holds the same source un-jitted
-(nested calls included), which the numpy paths call: :mod:`.blade`, :mod:`.loops` and
+(nested calls included), which the numpy paths call; a kernel takes a record as the array
+:func:`.geometry.constants`: :mod:`.blade`, :mod:`.loops` and
 :mod:`.pose` on arrays (the functions below that use ``np.sin``/``np.cos`` take arrays as
-well as floats), the rest where :func:`.kernels.available` says no.  There is no second copy
+well as floats), the rest where :func:`available` says no.  There is no second copy
 of the physics.
 
 Two forms of each system are used, as the paper's method and Newton need them: the residual
@@ -29,9 +30,17 @@ from typing import NamedTuple
 
 import numpy as np
 
+from mechrepro import compiled
 from mechrepro.compiled import jit
 
-from .geometry import GEOMETRY_KEYS
+from .geometry import LINKAGE_KEYS
+
+
+def available() -> bool:
+    """Whether the compiled path runs: numba importable and not switched off
+    (``MECHREPRO_RS_KERNEL=numpy`` or ``MECHREPRO_KERNEL=numpy``)."""
+    return compiled.available("MECHREPRO_RS_KERNEL")
+
 
 #: fitness kinds of :func:`fitness` and blocks of :func:`newton2`
 LOOPS, POSE, ABCD, GHID = 0, 1, 2, 3
@@ -42,17 +51,7 @@ CONVERGED, NON_FINITE, SINGULAR, NO_CONVERGENCE, NO_BRACKET, OFF_BRANCH = 0, 1, 
 
 #: the constants of :class:`.geometry.Geometry` the equations read (mm, rad), by name; the
 #: elbows (+1/-1) as floats
-Linkage = NamedTuple("Linkage", [(k, float) for k in GEOMETRY_KEYS + ("elbow1", "elbow2")])
-
-
-def constants(g) -> np.ndarray:
-    """The fields of :class:`Linkage` read off ``g``, as the (read-only) float array a kernel
-    is called with: numba types an array argument in ~1 us, a named tuple in ~8 us, and the
-    Newton solves are called once per cut point (use :attr:`.geometry.Geometry.constants`,
-    cached)."""
-    c = np.array([getattr(g, k) for k in Linkage._fields], float)
-    c.setflags(write=False)
-    return c
+Linkage = NamedTuple("Linkage", [(k, float) for k in LINKAGE_KEYS])
 
 
 @jit

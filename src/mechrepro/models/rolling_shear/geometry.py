@@ -20,6 +20,8 @@ import math
 from dataclasses import asdict, dataclass, replace
 from functools import cached_property, lru_cache
 
+import numpy as np
+
 from mechrepro.errors import Refusal
 
 from .design import INTENTS, design
@@ -33,6 +35,9 @@ ANGLES = ("alpha", "beta1", "beta2")
 #: constants of a run's geometry stored with it (enough to redraw the linkage; dataset.py)
 GEOMETRY_KEYS = ("l1", "l2", "l3", "l4", "l5", "l6", "l8", "l9", "l10", "l11", "alpha",
                  "beta1", "beta2", "d", "h", "R", "s", "width", "x_mid")
+#: the constants the equations of :mod:`.closure` read, in the order of their array
+#: (:func:`constants`, :class:`.closure.Linkage`); the elbows (+1/-1) as floats
+LINKAGE_KEYS = GEOMETRY_KEYS + ("elbow1", "elbow2")
 LENGTHS = LEVERS + ("d", "h", "R", "s", "width", "x_mid")
 
 
@@ -79,9 +84,7 @@ class Geometry:
 
     @cached_property
     def constants(self):
-        """:func:`.closure.constants` of this geometry, computed once (a kernel's argument)."""
-        from .closure import constants
-
+        """:func:`constants` of this geometry, computed once (a kernel's argument)."""
         return constants(self)
 
     def with_levers(self, **levers) -> "Geometry":
@@ -148,9 +151,15 @@ def cut_points(g: Geometry, n: int):
 def _stations(width: float, n: int):
     """``n`` equally spaced stations over [0, width] (read-only): a family scan asks for the
     same few thousands of times."""
-    import numpy as np
-
     huch = np.linspace(0.0, width, n)
     huch.setflags(write=False)
     return huch
 
+
+def constants(g) -> np.ndarray:
+    """The fields of :data:`LINKAGE_KEYS` read off ``g``, as the (read-only) float array a kernel
+    is called with: numba types an array argument in ~1 us, a named tuple in ~8 us, and the
+    Newton solves are called once per cut point (use :attr:`Geometry.constants`, cached)."""
+    c = np.array([getattr(g, k) for k in LINKAGE_KEYS], float)
+    c.setflags(write=False)
+    return c

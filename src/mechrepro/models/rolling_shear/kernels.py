@@ -1,4 +1,5 @@
-"""Which path runs the loops of :mod:`.closure`: compiled (numba, cached on disk) or Python.
+"""Which path runs the loops of :mod:`.closure`: compiled (numba, cached on disk) or Python
+(:func:`.closure.available`).
 
 The selPSO iterations and the warm-started Newton continuations are sequential (a swarm
 iteration needs the previous one's gbest, a cut point the previous points' poses), so numpy
@@ -16,20 +17,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechrepro import compiled
-
 from . import closure
-
-
-def available() -> bool:
-    """numba importable and not switched off (``MECHREPRO_RS_KERNEL=numpy`` or
-    ``MECHREPRO_KERNEL=numpy``): :func:`mechrepro.compiled.available`."""
-    return compiled.available("MECHREPRO_RS_KERNEL")
+from .geometry import constants
 
 
 def chosen():
     """:mod:`.closure` (compiled) where :func:`available`, :data:`.closure.python` otherwise."""
-    return closure if available() else closure.python
+    return closure if closure.available() else closure.python
 
 
 def kernel(name: str):
@@ -43,11 +37,11 @@ def warm(runs=None) -> None:
     one-time cost of a process (~0.2-0.5 s) is paid before the first timed solve, not inside
     it (it would inflate e.g. the first selPSO run's time per solve).  Nothing is computed
     that a run uses."""
-    if not available():
+    if not closure.available():
         return
     from .selpso import iterate
 
-    c = closure.constants(closure.Linkage(*[1.0] * len(closure.Linkage._fields)))
+    c = constants(closure.Linkage(*[1.0] * len(closure.Linkage._fields)))
     q = (0.0,) * 6
     z2 = np.zeros((2, 2))
     gen = np.random.default_rng(0)

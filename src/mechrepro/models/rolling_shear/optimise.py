@@ -100,7 +100,7 @@ def objective(g: Geometry, x_k, tol: float) -> float:
     """
     x_k = cut_points(g, len(x_k))[1]
     poses = stroke_poses(g, x_k, tol)
-    if not (kernels.available() and kernels.kernel("assembles_clearly")(
+    if not (closure.available() and kernels.kernel("assembles_clearly")(
             g.constants, poses, ASSEMBLY_MARGIN)):
         check_assembly(g, x_k, poses)  # decides wherever the compiled check is not clear
     return synthetic_horizontal_displacement(g, poses[:, 0] - g.beta2, x_k)

@@ -110,9 +110,7 @@ def selpso(fitness, x_init, settings: SelPSOSettings, rng: np.random.Generator,
     gbest, gG = X[ib].copy(), float(G[ib])
     if (isinstance(fitness, KernelFitness) and lower is None and N >= 2
             and X.dtype == float and V.dtype == float):
-        from . import kernels
-
-        if kernels.available():
+        if closure.available():
             hist = np.empty(st.max_iter + 1)
             hist[0] = gG
             gG, k = iterate(

@@ -16,7 +16,7 @@ from mechrepro.errors import Refusal
 from .geometry import stage_angles
 from .kinematics import stage_derivatives
 from .chain import Chain
-from .solver import load_x
+from .difference import load_x
 
 
 def observed_order(K, err, truncation, roundoff, margin=100.0):

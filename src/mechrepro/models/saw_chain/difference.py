@@ -26,6 +26,9 @@ import numpy as np
 
 from mechrepro.errors import Refusal
 
+from .kinematics import stage_positions
+from .loads import dynamic_load
+
 EPS = np.finfo(float).eps
 
 
@@ -102,3 +105,34 @@ def check_roundoff(K, limit, allow=False, what="loads"):
             f"exceeds its truncation error, so the {what} get less accurate, not more. "
             f"Use K <= {limit}.")
     return K > limit
+
+
+def difference_arrays(chain):
+    """Velocity, acceleration and loads x, y of :func:`difference_method` as plain arrays
+    (no round-off check, no packaging: the hot path of K sequences, :mod:`.richardson`);
+    ``chain``: a :class:`.chain.Chain`."""
+    R, w, K = chain.R, chain.omega, chain.K
+    n = 2 * K + 1
+    vx, ax, Fx, Fy = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
+    v_trail, a_trail, v_mid, a_mid = R * w, 0.0, R * w, 0.0
+    for stage, (L, m_link, phi) in enumerate(chain.stages()):
+        pos = stage_positions(phi, R, L, chain.Tx)
+        dt = (phi[1] - phi[0]) / w
+        vt, at = backward_differences(pos["trail_x"], dt, v_trail, a_trail)
+        _, amx = backward_differences(pos["mid_x"], dt, v_mid, a_mid)
+        _, amy = backward_differences(pos["mid_y"], dt, 0.0, 0.0)
+        Fsx, Fsy = dynamic_load(m_link, amx, amy, chain.m_tight, at)
+        # stage 2's index 0 repeats t1 (already stored by stage 1)
+        dst = slice(0, K + 1) if stage == 0 else slice(K + 1, n)
+        src = slice(0, K + 1) if stage == 0 else slice(1, K + 1)
+        vx[dst], ax[dst], Fx[dst], Fy[dst] = vt[src], at[src], Fsx[src], Fsy[src]
+        v_trail = v_mid = vt[-1]
+        a_trail = a_mid = at[-1]
+    return vx, ax, Fx, Fy
+
+
+def load_x(chain) -> np.ndarray:
+    """The difference method's total tight-side load F_dx over one period [N] (K refused
+    beyond the round-off limit, as in :func:`.solver.difference_method`)."""
+    check_roundoff(chain.K, chain.roundoff_limit())
+    return difference_arrays(chain)[2]

@@ -169,7 +169,7 @@ def richardson_levels(ctx: Context) -> dict:
 
     from .design import rule_peak_load
     from .richardson import from_levels
-    from .solver import load_x
+    from .difference import load_x
 
     ch = ctx.chain
     exact = float(rule_peak_load(ch.p1, ch.p2, ch.z, ch.omega, ch.m_L, ch.m_C, ch.M, ch.N))

@@ -25,7 +25,7 @@ from mechrepro.levels import extrapolate, richardson_error
 
 from .chain import Chain
 from .difference import roundoff_load
-from .solver import load_x
+from .difference import load_x
 
 RATIO = 2
 ORDER = 1          # the backward second difference's, with a smooth expansion (see module)

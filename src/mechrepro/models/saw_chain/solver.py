@@ -14,10 +14,9 @@ import numpy as np
 from mechrepro.units import var
 
 from .chain import Chain, chain_from_run
-from .difference import backward_differences, check_roundoff, roundoff_load, truncation_load
+from .difference import check_roundoff, difference_arrays, roundoff_load, truncation_load
 from .effects import EFFECTS, Context
 from .kinematics import stage_positions
-from .loads import dynamic_load
 
 __all__ = ["EFFECTS", "Chain", "chain_from_run", "compute", "constant_speed", "difference_method", "solve",
            "stage_switch_index", "variables"]
@@ -51,29 +50,6 @@ def difference_method(chain: Chain, beyond_roundoff_limit: bool = False, loads: 
         "dynamic_load_y": var("t", Fy, "N", "dynamic load y of the seating link, difference method (Eqs. 16, 22)"),
         **error_budget(chain, limit, dominated),
     }
-
-
-def difference_arrays(chain: Chain):
-    """Velocity, acceleration and loads x, y of :func:`difference_method` as plain arrays
-    (no round-off check, no packaging: the hot path of K sequences, :mod:`.richardson`)."""
-    R, w, K = chain.R, chain.omega, chain.K
-    n = 2 * K + 1
-    vx, ax, Fx, Fy = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
-    v_trail, a_trail, v_mid, a_mid = R * w, 0.0, R * w, 0.0
-    for stage, (L, m_link, phi) in enumerate(chain.stages()):
-        pos = stage_positions(phi, R, L, chain.Tx)
-        dt = (phi[1] - phi[0]) / w
-        vt, at = backward_differences(pos["trail_x"], dt, v_trail, a_trail)
-        _, amx = backward_differences(pos["mid_x"], dt, v_mid, a_mid)
-        _, amy = backward_differences(pos["mid_y"], dt, 0.0, 0.0)
-        Fsx, Fsy = dynamic_load(m_link, amx, amy, chain.m_tight, at)
-        # stage 2's index 0 repeats t1 (already stored by stage 1)
-        dst = slice(0, K + 1) if stage == 0 else slice(K + 1, n)
-        src = slice(0, K + 1) if stage == 0 else slice(1, K + 1)
-        vx[dst], ax[dst], Fx[dst], Fy[dst] = vt[src], at[src], Fsx[src], Fsy[src]
-        v_trail = v_mid = vt[-1]
-        a_trail = a_mid = at[-1]
-    return vx, ax, Fx, Fy
 
 
 def velocity_only(chain: Chain, beyond_roundoff_limit: bool = False) -> dict:
@@ -141,13 +117,6 @@ def error_budget(chain: Chain, limit: int, dominated: bool) -> dict:
         "roundoff_dominated": var((), int(dominated), "1",
                                   "1 if K is beyond the round-off limit (allowed for the study)"),
     }
-
-
-def load_x(chain: Chain) -> np.ndarray:
-    """The difference method's total tight-side load F_dx over one period [N] (K refused
-    beyond the round-off limit, as in :func:`difference_method`)."""
-    check_roundoff(chain.K, chain.roundoff_limit())
-    return difference_arrays(chain)[2]
 
 
 def stage_switch_index(K):

@@ -18,7 +18,8 @@ from .analysis import (equivalent_K, error_model_optimum, interior_minimum, obse
                        textbook_constants_for_range, time_mean)
 from .design import design_rules
 from .richardson import to_accuracy
-from .solver import chain_from_run, load_x
+from .chain import chain_from_run
+from .difference import load_x
 
 Q = Quantities("saw_chain")
 FIG = "fig07_fig08"
