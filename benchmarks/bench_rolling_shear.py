@@ -48,7 +48,6 @@ import numpy as np  # noqa: E402
 import _floor  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT / "src"))
 
 from mechrepro.config import load_paper  # noqa: E402
 
@@ -57,10 +56,9 @@ CONFIG = ROOT / "config/papers/rolling_shear.yaml"
 # one pass of every run of a profile, in a child process; prints {run: seconds} as JSON
 CHILD = r"""
 import json, sys, time
-sys.path.insert(0, sys.argv[1])
 from mechrepro.config import load_paper
 from mechrepro.models.rolling_shear import solver
-runs = load_paper(sys.argv[2], sys.argv[3]).runs
+runs = load_paper(sys.argv[1], sys.argv[2]).runs
 out = {}
 for name, run in runs.items():
     t = time.perf_counter()
@@ -99,8 +97,9 @@ def like_for_like(n_points: int = 33) -> None:
 
 
 def _pass(src: Path, profile: str, env: dict) -> dict:
-    out = subprocess.run([sys.executable, "-c", CHILD, str(src), str(CONFIG), profile],
-                         env={**os.environ, **env}, capture_output=True, text=True, check=True)
+    out = subprocess.run([sys.executable, "-c", CHILD, str(CONFIG), profile],
+                         env={**os.environ, **env, "PYTHONPATH": str(src)}, capture_output=True,
+                         text=True, check=True)
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
@@ -120,7 +119,6 @@ def _checkout(revision: str, tmp: str) -> tuple[str, Path]:
 # the compiled paths on fixed work, each the fastest of 5 repetitions; prints {path: s} as JSON
 PATHS = r"""
 import json, math, sys, time
-sys.path.insert(0, sys.argv[1])
 import numpy as np
 from mechrepro.config import load_paper
 from mechrepro.models.rolling_shear import closure, kernels, newton, optimise, pose, stroke
@@ -128,7 +126,7 @@ from mechrepro.models.rolling_shear.geometry import cut_points, from_parameters
 from mechrepro.models.rolling_shear.selpso import SelPSOSettings, selpso
 assert closure.available()
 kernels.warm()
-g = from_parameters(load_paper(sys.argv[2]).runs["original"]["parameters"])
+g = from_parameters(load_paper(sys.argv[1]).runs["original"]["parameters"])
 x_k = cut_points(g, 33)[1]
 th = stroke.solve_exact(g, x_k).theta
 t5, t6 = th[16, 4], th[16, 5]
@@ -174,7 +172,8 @@ def paths(revision: str = "", rounds: int = 5) -> None:
         best = {}
         for _ in range(rounds):
             for name, src in variants.items():
-                out = subprocess.run([sys.executable, "-c", PATHS, str(src), str(CONFIG)],
+                out = subprocess.run([sys.executable, "-c", PATHS, str(CONFIG)],
+                                     env={**os.environ, "PYTHONPATH": str(src)},
                                      capture_output=True, text=True, check=True)
                 t = json.loads(out.stdout.strip().splitlines()[-1])
                 best[name] = {r: min(v, best.get(name, {}).get(r, np.inf)) for r, v in t.items()}

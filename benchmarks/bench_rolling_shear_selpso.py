@@ -24,9 +24,8 @@ from pathlib import Path
 import numpy as np
 
 ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT / "src"))
 
-from mechrepro.config import load_paper  # noqa: E402
+from mechrepro.config import load_paper
 
 CONFIG = ROOT / "config/papers/rolling_shear.yaml"
 

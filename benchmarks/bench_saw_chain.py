@@ -12,23 +12,21 @@ with ``--measure`` beside their measured solve (benchmarks/_floor.py).
 """
 import argparse
 import os
-import sys
 from pathlib import Path
 
 # must precede the first numpy import: OpenBLAS reads it when it loads
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT / "src"))
 
-from mechrepro.timing import time_call  # noqa: E402
-from mechrepro.config import load_paper  # noqa: E402
-from mechrepro.models.saw_chain.solver import chain_from_run, difference_method  # noqa: E402
-from mechrepro.timing import stopwatch  # noqa: E402
-from mechrepro.models.saw_chain.reference_loop import difference_method_loop  # noqa: E402
-from mechrepro.solve import run_solver  # noqa: E402
+from mechrepro.timing import time_call
+from mechrepro.config import load_paper
+from mechrepro.models.saw_chain.solver import chain_from_run, difference_method
+from mechrepro.timing import stopwatch
+from mechrepro.models.saw_chain.reference_loop import difference_method_loop
+from mechrepro.solve import run_solver
 
-import _floor  # noqa: E402
+import _floor
 
 
 def vectorised_vs_loop(K=10000):

@@ -271,21 +271,23 @@ def _measured(paper, run, root):
     """(peak MB, solve CPU s) of one run solved in a fresh process (CPU, not wall, time:
     the cost models are fitted to it, and a loaded machine stretches only the wall)."""
     import json
+    import os
     import subprocess
     import sys
     import tempfile
 
     # the peak of this process's own memory (VmHWM): ru_maxrss would also carry the RSS of
     # the (large, forked) pytest worker that started it, which Linux keeps across exec
-    code = ("import sys, json, re, time; sys.path.insert(0, sys.argv[1]);"
-            "from mechrepro.solve import run_solver; run = json.loads(sys.argv[2]);"
-            "t = time.process_time(); run_solver(run).to_netcdf(sys.argv[3]);"
+    code = ("import sys, json, re, time;"
+            "from mechrepro.solve import run_solver; run = json.loads(sys.argv[1]);"
+            "t = time.process_time(); run_solver(run).to_netcdf(sys.argv[2]);"
             "t = time.process_time() - t;"
             "print(t, int(re.search(r'VmHWM:\\s+(\\d+)', open('/proc/self/status').read())"
             ".group(1)) / 1024)")
     with tempfile.TemporaryDirectory() as d:
-        out = subprocess.run([sys.executable, "-c", code, str(root / "src"), json.dumps(run),
-                              f"{d}/x.nc"], capture_output=True, text=True, check=True)
+        out = subprocess.run([sys.executable, "-c", code, json.dumps(run), f"{d}/x.nc"],
+                             capture_output=True, text=True, check=True,
+                             env={**os.environ, "PYTHONPATH": str(root / "src")})
     t, peak = map(float, out.stdout.split()[-2:])
     return peak, t
 

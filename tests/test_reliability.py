@@ -78,10 +78,10 @@ def test_heal_is_refused_while_another_process_holds_the_run_lock(tmp_path, monk
     f = res / "p" / "runs" / "r.nc"
     write_text(f, "not netCDF, but what its writer wrote")
     holder = subprocess.Popen(
-        [sys.executable, "-c", "import sys, time; sys.path.insert(0, sys.argv[1]);"
-         "from mechrepro import heal; heal.acquire('results'); print('held', flush=True);"
-         "time.sleep(60)", str(healmod.Path(healmod.__file__).parents[1])],
-        cwd=tmp_path, stdout=subprocess.PIPE, text=True)
+        [sys.executable, "-c", "import time; from mechrepro import heal;"
+         "heal.acquire('results'); print('held', flush=True); time.sleep(60)"],
+        cwd=tmp_path, stdout=subprocess.PIPE, text=True,
+        env={**os.environ, "PYTHONPATH": str(healmod.Path(healmod.__file__).parents[1])})
     try:
         assert holder.stdout.readline().strip() == "held"
         (f.parent / ".r.x.part.nc").write_text("a job of the other run is writing this")
