@@ -128,7 +128,7 @@ ax[1].axhspan(paper_red * 1.05, paper_red * 0.95, color="k", alpha=0.12, lw=0)
 ax[1].set_xticks(range(4), ["frozen\nrotation", "frozen\nliteral", "re-derived\nrotation", "re-derived\nliteral"])
 ax[1].set(ylabel="reduction by Table II's levers [%]",
           title=f"family grid ({fam.sizes['member']} members, each calibrated): joint re-check")
-ax[1].legend(fontsize=6.5, loc="upper right")
+ax[1].legend(fontsize=6.5, loc="upper center", bbox_to_anchor=(0.5, -0.22))
 ev = [r for r in R.table("verdict_evidence")
       if r["quantity"] == "horizontal_displacement_reduction" and r["kind"] == "family"]
 vals = np.array([float(r["value"]) if r["value"] not in ("", "nan") else np.nan for r in ev])
@@ -136,7 +136,7 @@ ok = np.isfinite(vals)
 ax[2].hist(vals[ok], bins=bins, color="C0", label=f"{int(ok.sum())} of {len(vals)} members buildable and calibrated")
 ax[2].axvline(paper_red, color="k", ls=":")
 ax[2].axvspan(paper_red * 1.05, paper_red * 0.95, color="k", alpha=0.12, lw=0)
-ax[2].set(xlabel="reduction by Table II's levers [%]", ylabel="members",
+ax[2].set(xlabel="reduction by Table II's levers [%]", ylabel="members [1]",
           title="framework family 'machine': one member at a time")
 ax[2].legend(fontsize=7)
 fig.tight_layout()
@@ -165,7 +165,7 @@ ax[2].plot(orig["newton_x_k"], orig["newton_y_k"], "o-", ms=3, color="tab:blue",
 ax[2].axhline(0, color="k", lw=0.8)
 ax[2].axhline(-s, color="k", ls=":", lw=0.8)
 ax[2].set(xlabel="x_k [mm]", ylabel="y_k [mm]", title="contrast: original levers, other drive")
-ax[2].legend(fontsize=7)
+ax[2].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.18))
 fig.tight_layout()
 R.save_figure(fig, "fig09")
 
@@ -221,7 +221,7 @@ for k in range(hist.shape[0]):
     ax.semilogy(np.arange(hist.shape[1]), hist[k], ["-", "--", ":", "-."][k % 4], lw=1.4,
                 label=f"x0 = {x0}: {branch}")
 ax.axhline(1e-11, color="k", ls=":", lw=0.8, label="G = 1e-11")
-ax.set(xlabel="iteration", ylabel="fitness G [mm]",
+ax.set(xlabel="iteration [1]", ylabel="fitness G [mm]",
        title=f"Fig. 12: selPSO on Eq. (9) at x_k = {float(iv['iv_cut_point_x_k']):.0f} mm")
 ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.01, 1.0))
 fig.tight_layout()

@@ -149,7 +149,7 @@ y = np.arange(len(names))
 for i, (me, mk) in enumerate(zip(errors, "os^")):
     ax[1].semilogx(idn["fit_chi2"].values[i], y, mk, ls="none", label=f"model error {me:.1%}")
 ax[1].set_yticks(y, names, fontsize=7)
-ax[1].set(xlabel="χ² of the best fit (6 numbers)")
+ax[1].set(xlabel="χ² of the best fit (6 numbers) [1]")
 ax[1].grid(True, axis="x", which="both", alpha=0.3)
 ax[1].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=3)
 printed = names.index("as printed")
@@ -161,7 +161,7 @@ ax[2].set_xticks(x, ["band\nmin", "band\nmax", "meas.\nmean", "meas.\nfluct.", "
                      "load\nmax"], fontsize=7)
 ax[2].annotate("K fitted:\n≈ 0", (x[-1], 0), xytext=(0, 6), textcoords="offset points", ha="center",
                fontsize=7)
-ax[2].set(ylabel="(prediction − paper) / σ")
+ax[2].set(ylabel="(prediction − paper) / σ [1]")
 ax[2].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=1)
 R.save_figure(fig, "identification")
 for r in rows:
@@ -189,7 +189,7 @@ for q, c in (("dynamic_load_min", "tab:blue"), ("dynamic_load_max", "tab:blue"),
 ax.plot([], [], color="gray", ls="-.", lw=0.7, label="paper's ranges (Sec. 4)")
 ax.axvline(t1_ms, color="gray", lw=0.5)
 ax.set(xlabel="t [ms]", ylabel="dynamic load F_dx [N]", title="Fig. 8")
-ax.legend(fontsize=7)
+ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
 R.save_figure(fig, "fig08")
 
 # %% [markdown]
@@ -208,7 +208,7 @@ for a, end, paper_q in ((ax[0], "max", "dynamic_load_max"), (ax[1], "min", "dyna
     a.axhline(exact, color="k", ls=":", label="exact")
     a.axhline(value(paper_q, "paper_value"), color="tab:red", ls="-.", label="paper")
     a.axvspan(value("roundoff_limit_k"), rng["K"].max(), color="gray", alpha=0.15, lw=0)
-    a.set(xlabel="K (steps per stage)", ylabel=f"{end} F_dx [N]")
+    a.set(xlabel="K (steps per stage) [1]", ylabel=f"{end} F_dx [N]")
 ax[0].axvline(value("paper_equivalent_k"), color="tab:red", lw=0.6)
 ax[0].legend(fontsize=7)
 fig.suptitle("saw_chain: load range vs K")
@@ -239,9 +239,9 @@ ax[0].loglog(budget["K"], budget["truncation"], "--", color="gray", lw=0.8, labe
 ax[0].loglog(budget["K"], budget["roundoff"], ":", color="gray", lw=0.8, label="round-off bound")
 ax[0].axvline(value("roundoff_limit_k"), color="gray", lw=0.6)
 ax[0].axvline(value("roundoff_optimum_k"), color="tab:green", lw=0.6, ls="--", label="fitted optimum")
-ax[0].set(xlabel="K (steps per stage)", ylabel="relative error vs exact", ylim=(1e-9, 2))
+ax[0].set(xlabel="K (steps per stage) [1]", ylabel="relative error vs exact [1]", ylim=(1e-9, 2))
 ax[0].grid(True, which="both", alpha=0.3)
-ax[0].legend(fontsize=7)
+ax[0].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2)
 accuracy.plot(coa, ax=ax[1])  # the headline entry (the first of accuracy:)
 ax[2].loglog(rich["richardson_plain_samples"], rich["richardson_plain_error"], "o-",
              label="plain difference method (one solve)")
@@ -249,10 +249,10 @@ ax[2].loglog(rich["richardson_samples"], rich["richardson_error"], "s-",
              label="Richardson (K/4, K/2, K)")
 for r in (1e-3, 1e-5):
     ax[2].axhline(r, color="gray", ls=":", lw=0.8)
-ax[2].set(xlabel="work: samples computed (2K + 1 per solve, counted)",
-          ylabel="relative error of the peak load", title="cost of accuracy: work")
+ax[2].set(xlabel="work: samples computed (2K + 1 per solve, counted) [1]",
+          ylabel="relative error of the peak load [1]", title="cost of accuracy: work")
 ax[2].grid(True, which="both", alpha=0.3)
-ax[2].legend(fontsize=7)
+ax[2].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2))
 R.save_figure(fig, "cost_of_accuracy")
 
 # %% [markdown]
@@ -271,7 +271,7 @@ ax.loglog(Ks, rich["richardson_estimate"], "--", color="tab:orange", lw=0.8, lab
 for r in (1e-3, 1e-5):
     ax.axhline(r, color="gray", ls=":", lw=0.8)
 ax.grid(True, which="both", alpha=0.3)
-ax.set(ylabel="relative error of the peak load", xlabel="finest K (steps per stage)")
+ax.set(ylabel="relative error of the peak load [1]", xlabel="finest K (steps per stage) [1]")
 ax.axvline(value("roundoff_limit_k"), color="gray", lw=0.6)
 ax.legend(fontsize=7)
 ax.set_title(f"peak load to 1e-3: K = {value('plain_k_for_rtol_1e3'):.0f} plain, "
@@ -300,8 +300,8 @@ p = run_attrs(dm)["parameters"]["values_si"]
 paper_x = (p["teeth"], p["tie_strap_pitch"] / p["drive_link_pitch"], from_si(p["sprocket_speed"], "rpm"),
            p["tie_straps_tight_side"] + p["drive_links_tight_side"])
 fig, ax = plt.subplots(4, 4, figsize=(14, 11.5))
-rows = (("peak_load", "peak load F_dx [N]"), ("speed_fluctuation", "(Rω − v_min)/(Rω)"),
-        ("textbook_error", "textbook / exact peak − 1"))
+rows = (("peak_load", "peak load F_dx [N]"), ("speed_fluctuation", "(Rω − v_min)/(Rω) [1]"),
+        ("textbook_error", "textbook / exact peak − 1 [1]"))
 for i, (q, label) in enumerate(rows):
     for k, r in enumerate(dm["map_z_ratio"].values):
         line, = ax[i, 0].plot(zs, dm[f"z_{q}"].values[k], label=f"p1/p2 = {r:.3g}")
@@ -327,16 +327,16 @@ for a in ax[:3, 1]:
     a.minorticks_off()
 ax[2, 2].set_xticks([2000, 6000, 10000, 14000])
 ax[0, 1].legend(fontsize=7)
-for a, xl in zip(ax[2], ("teeth z", "p1 / p2 (p1 + p2 fixed)", "sprocket speed [r/min]",
-                         "tight-side links M + N (M = N)")):
+for a, xl in zip(ax[2], ("teeth z [1]", "p1 / p2 (p1 + p2 fixed) [1]", "sprocket speed [r/min]",
+                         "tight-side links M + N (M = N) [1]")):
     a.set_xlabel(xl)
 rule_teeth, rule_ratios = dm["rule_teeth"].values, dm["rule_ratio"].values
 err = np.abs(dm["rule_error"].values)
 for k, rule in enumerate(design.RULES):
     ax[3, 0].semilogy(rule_teeth, np.maximum(err[k].max(axis=1), 1e-17), label=rule)
     ax[3, 1].semilogy(rule_ratios, np.maximum(err[k].max(axis=0), 1e-17), label=rule)
-ax[3, 0].set(xlabel="teeth z (worst pitch ratio 1-2)", ylabel="|rule / exact − 1|")
-ax[3, 1].set(xlabel="p1 / p2 (worst teeth 6-40)")
+ax[3, 0].set(xlabel="teeth z (worst pitch ratio 1-2) [1]", ylabel="|rule / exact − 1| [1]")
+ax[3, 1].set(xlabel="p1 / p2 (worst teeth 6-40) [1]")
 ax[3, 1].set_xscale("linear")
 for a in ax[3, 2:]:       # the legends of the first column, clear of the data
     a.axis("off")

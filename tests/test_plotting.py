@@ -3,7 +3,7 @@
 import numpy as np
 from PIL import Image
 
-from mechrepro.plotting import content_crop, plt, savefig
+from mechrepro.plotting import content_crop, lint, lint_record, plt, savefig
 
 
 def _figure(**legend):
@@ -79,3 +79,45 @@ def test_an_annotation_wholly_below_the_canvas_is_kept(tmp_path):
     savefig(fig, tmp_path / "fig.png", close=False)
     assert _png(tmp_path / "fig.png").shape[0] > height + 100
     plt.close(fig)
+
+
+# --- the figure lint (mechrepro.plotting.lint), recorded in every PNG savefig writes ---
+
+def _clean():
+    fig, ax = plt.subplots(figsize=(5, 3.5))
+    ax.plot([0, 1, 2], [0, 1, 0], label="a line")
+    ax.set(xlabel="x [m]", ylabel="y [m]", title="title")
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.2))
+    return fig, ax
+
+
+def test_a_clean_figure_has_no_lint_and_records_that(tmp_path):
+    fig, _ = _clean()
+    assert lint(fig) == []
+    savefig(fig, tmp_path / "f.png")
+    assert lint_record(tmp_path / "f.png") == []
+
+
+def test_the_lint_finds_what_a_reader_must_not_see(tmp_path):
+    fig, ax = _clean()
+    ax.set_ylabel("y")                                        # a number axis without a unit
+    ax.text(0.5, 1.0, "over the title", transform=ax.transAxes, ha="center", va="bottom",
+            fontsize=14)                                      # two texts overlap
+    ax.plot([0, 2], [0.5, 0.5], alpha=0.0, label="invisible")  # a series not seen
+    ax.legend(loc="center")                                   # a legend over the data
+    savefig(fig, tmp_path / "f.png")
+    found = " | ".join(lint_record(tmp_path / "f.png"))
+    for what in ("y axis", "overlapping texts", "'invisible'", "legend over data"):
+        assert what in found, (what, found)
+
+
+def test_a_legend_proxy_and_a_grid_labelled_at_its_edge_are_no_lint():
+    fig, ax = plt.subplots(2, 1, figsize=(5, 5))
+    for a in ax:
+        a.plot([0, 1, 2], [0, 1, 0])
+        a.set_ylabel("y [m]")
+    ax[1].set_xlabel("x [m]")                                 # the column's label
+    ax[0].plot([], [], "k--", label="style key")              # a proxy: no data
+    ax[0].legend(loc="upper center", bbox_to_anchor=(0.5, 1.4))
+    fig.subplots_adjust(hspace=0.4, top=0.75)
+    assert lint(fig) == []

@@ -364,15 +364,15 @@ def plot(table: list[dict], accuracy: str | None = None, ax=None, annotate: bool
                 ax.annotate(f"{r['knob']}={r['knob_value']}", (float(r["time_s"]), float(r["error"])),
                             fontsize=7, textcoords="offset points", xytext=(4, 4))
     ax.set_xlabel(f"wall time [s] ({sel[0]['time_of']})")
-    ax.set_ylabel(f"error vs {sel[0]['reference']}")
+    ax.set_ylabel(f"error vs {sel[0]['reference']} [{sel[0].get('error_unit') or '1'}]")
     ax.set_title(f"cost of accuracy: {accuracy}")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
-    if unproven:   # under the axis label, clear of the data and the legend; wrapped to the
-        # panel (a long line would squeeze the figure's layout)
-        ax.annotate("\n".join(textwrap.fill(f"{q}: {why}", 70) for q, why in unproven.items()),
-                    xy=(0.0, 0.0), xycoords=("axes fraction", ax.xaxis.label), xytext=(0, -3),
-                    textcoords="offset points", fontsize=6, color="crimson", va="top")
+    # below the axes, clear of the data; why a line has not converged is its title, wrapped
+    # to the panel (a long line would squeeze the figure's layout)
+    leg = ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2),
+                    title="\n".join(textwrap.fill(f"{q}: {why}", 70)
+                                    for q, why in unproven.items()) or None, title_fontsize=6)
+    leg.get_title().set_color("crimson")
     return ax
 
 

@@ -1,6 +1,7 @@
-"""Figure output shared by all notebooks: Agg backend, atomic PNG writes, no timestamps."""
+"""Figure output shared by all notebooks: Agg backend, atomic PNG writes, no timestamps, a lint."""
 from __future__ import annotations
 
+import json
 import os
 
 os.environ.setdefault("MPLBACKEND", "Agg")
@@ -71,21 +72,187 @@ def content_crop(fig, pad_inches: float | None = None):
                max(cols[0] - pad, 0):cols[-1] + pad + 1].copy()
 
 
+# --- the figure lint: what a reader must never see (tests/test_figures.py reads its record) ---
+LINT_KEY = "mechrepro-lint"
+SERIES_MIN_PIXELS = 20    # a series whose removal changes fewer pixels is not visible
+
+
+def _drawn_ticklabels(axis):
+    """The tick labels matplotlib draws: those of ticks inside the view (``get_ticklabels``
+    also returns those of the ticks just outside it)."""
+    ticks = axis._update_ticks()   # what Axis.draw draws (matplotlib >= 3.1)
+    return [lab for t in ticks for lab in (t.label1, t.label2) if lab.get_visible()]
+
+
+def _texts(fig):
+    """(name, artist, axes or None, is_tick) of every visible non-empty text of ``fig``."""
+    out = []
+    for ax in fig.axes:
+        if not ax.get_visible():
+            continue
+        for name in ("title", "_left_title", "_right_title"):
+            t = getattr(ax, name, None)
+            if t is not None:
+                out.append((f"title {t.get_text()!r}", t, ax, False))
+        out += [(f"x label {ax.xaxis.label.get_text()!r}", ax.xaxis.label, ax, False),
+                (f"y label {ax.yaxis.label.get_text()!r}", ax.yaxis.label, ax, False),
+                *((f"text {t.get_text()!r}", t, ax, False) for t in ax.texts)]
+        for axis in (ax.xaxis, ax.yaxis):
+            out += [(f"tick label {t.get_text()!r}", t, axis, True) for t in _drawn_ticklabels(axis)]
+    out += [(f"figure text {t.get_text()!r}", t, None, False) for t in fig.texts]
+    seen = set()    # the suptitle is one of fig.texts too
+    return [x for x in out if x[1].get_visible() and x[1].get_text().strip()
+            and not (id(x[1]) in seen or seen.add(id(x[1])))]
+
+
+def _overlap(a, b, px: float = 1.0) -> bool:
+    return min(a.x1, b.x1) - max(a.x0, b.x0) > px and min(a.y1, b.y1) - max(a.y0, b.y0) > px
+
+
+def _data_points(ax):
+    """Display coordinates of the drawn data of ``ax``: line vertices and the points between
+    them (a segment crossing a legend is data under it) and scatter offsets."""
+    pts = []
+    for line in ax.lines:
+        if not line.get_visible() or line.get_linestyle() in ("None", "none", "", " ") and \
+                line.get_marker() in ("None", "none", "", " ", None):
+            continue
+        xy = line.get_transform().transform(np.asarray(line.get_xydata(), float))
+        xy = xy[np.all(np.isfinite(xy), axis=1)]
+        if len(xy) > 1 and line.get_linestyle() not in ("None", "none", "", " "):
+            s = np.linspace(0.0, 1.0, 9)[:, None, None]
+            xy = (xy[:-1] + s * (xy[1:] - xy[:-1])).reshape(-1, 2)
+        pts.append(xy)
+    for c in ax.collections:
+        if c.get_visible() and hasattr(c, "get_offsets") and len(c.get_offsets()) and \
+                type(c).__name__ == "PathCollection":
+            pts.append(c.get_offset_transform().transform(np.asarray(c.get_offsets(), float)))
+    if not pts:
+        return np.empty((0, 2))
+    p, bb = np.concatenate(pts), ax.bbox    # what is clipped to the axes is not drawn beyond
+    return p[(p[:, 0] >= bb.x0) & (p[:, 0] <= bb.x1) & (p[:, 1] >= bb.y0) & (p[:, 1] <= bb.y1)]
+
+
+def _empty(artist) -> bool:
+    if hasattr(artist, "get_xydata"):
+        return len(artist.get_xydata()) == 0
+    if hasattr(artist, "get_offsets") and hasattr(artist, "get_paths"):
+        return len(artist.get_offsets()) == 0 and not any(len(q.vertices) for q in artist.get_paths())
+    return False
+
+
+def _has_unit(label: str) -> bool:
+    return "[" in label and "]" in label
+
+
+def _unit_missing(fig, ax, name: str) -> bool:
+    """An axis with numeric tick labels shown and no ``[unit]`` in its label, nor in that of
+    an axes of the same column (x) or row (y): a grid labels its outer axes."""
+    axis = ax.xaxis if name == "x" else ax.yaxis
+    ticks = [t.get_text() for t in _drawn_ticklabels(axis) if t.get_text()]
+    if not any(t.replace("\\mathdefault", "").lstrip("$\u2212-{")[:1].isdigit() for t in ticks):
+        return False
+    if _has_unit(axis.label.get_text()):
+        return False
+    span = (lambda a: a.get_position().intervalx) if name == "x" else \
+        (lambda a: a.get_position().intervaly)
+    return not any(_has_unit((o.xaxis if name == "x" else o.yaxis).label.get_text())
+                   for o in fig.axes if o is not ax and np.allclose(span(o), span(ax)))
+
+
+def lint(fig) -> list[str]:
+    """What is wrong with ``fig`` as a reader sees it: two texts that overlap, a legend over
+    data, an axis with numbers and no unit, a labelled series that draws nothing visible
+    (hiding it changes fewer than :data:`SERIES_MIN_PIXELS` pixels).  Leaves ``fig`` as
+    it was (drawn)."""
+    fig.canvas.draw()
+    r = fig.canvas.get_renderer()
+    problems = []
+    texts = [(n, t.get_window_extent(r), ax, tick) for n, t, ax, tick in _texts(fig)]
+    legends = [(ax, ax.get_legend()) for ax in fig.axes if ax.get_legend() is not None]
+    legends += [(None, leg) for leg in fig.legends]
+    boxes = texts + [(f"legend of {'figure' if ax is None else repr(ax.get_title())}",
+                      leg.get_window_extent(r), ax, False) for ax, leg in legends
+                     if leg.get_visible()]
+    for i, (n1, b1, ax1, tick1) in enumerate(boxes):
+        for n2, b2, ax2, tick2 in boxes[i + 1:]:
+            if tick1 and tick2 and ax1 is not ax2:
+                continue    # tick labels of two axes (x and y too) meet only at corners
+            if _overlap(b1, b2):
+                problems.append(f"overlapping texts: {n1} and {n2}")
+    for ax, leg in legends:
+        if not leg.get_visible():
+            continue
+        bb = leg.get_window_extent(r)
+        for other in (fig.axes if ax is None else [ax]):
+            p = _data_points(other)
+            inside = ((p[:, 0] > bb.x0 + 1) & (p[:, 0] < bb.x1 - 1)
+                      & (p[:, 1] > bb.y0 + 1) & (p[:, 1] < bb.y1 - 1))
+            if inside.any():
+                problems.append(f"legend over data in axes {other.get_title()!r} "
+                                f"({int(inside.sum())} points under it)")
+    for ax in fig.axes:
+        if ax.get_visible() and ax.axison and (ax.lines or ax.collections or ax.images
+                                               or ax.patches):
+            for name in ("x", "y"):
+                if _unit_missing(fig, ax, name):
+                    label = getattr(ax, f"get_{name}label")()
+                    problems.append(f"{name} axis of {ax.get_title()!r} without a [unit] "
+                                    f"(dimensionless: [1]): label {label!r}")
+    base = np.asarray(fig.canvas.buffer_rgba()).copy()
+    for ax in fig.axes:
+        # a bar chart or histogram is one series: its container's patches
+        groups = [(c.get_label(), list(c)) for c in ax.containers if hasattr(c, "patches")]
+        grouped = {id(a) for _, g in groups for a in g}
+        groups += [(a.get_label(), [a]) for a in [*ax.lines, *ax.collections, *ax.patches,
+                                                 *ax.images] if id(a) not in grouped]
+        for label, group in groups:
+            label = label or ""
+            if (label.startswith("_") or not label or not any(a.get_visible() for a in group)
+                    or all(_empty(a) for a in group)):
+                continue    # a legend's proxy (no data) is no series
+            shown = [a for a in group if a.get_visible()]
+            for a in shown:
+                a.set_visible(False)
+            fig.canvas.draw()
+            changed = int(np.any(np.asarray(fig.canvas.buffer_rgba()) != base, axis=2).sum())
+            for a in shown:
+                a.set_visible(True)
+            if changed < SERIES_MIN_PIXELS:
+                problems.append(f"series {label!r} in axes {ax.get_title()!r} not visible "
+                                f"({changed} pixels)")
+    fig.canvas.draw()
+    return problems
+
+
+def lint_record(path) -> list[str] | None:
+    """The lint problems a PNG written by :func:`savefig` records (None: no record)."""
+    from PIL import Image
+
+    with Image.open(path) as im:
+        text = im.text.get(LINT_KEY)
+    return None if text is None else json.loads(text)
+
+
 def savefig(fig, path, close: bool = True) -> None:
-    """Write ``fig`` atomically as PNG without volatile metadata, cropped to its content.
+    """Write ``fig`` atomically as PNG without volatile metadata, cropped to its content,
+    with what :func:`lint` finds wrong in it recorded in the PNG (:func:`lint_record`).
 
     One drawing pass, cropped on its pixels (:func:`content_crop`); when content may lie
     outside the canvas, matplotlib's own tight bbox (one layout pass, then the drawing
     pass at that bbox: the crop of ``bbox_inches="tight"`` without its extra draw).
     """
+    problems = lint(fig)
+    for p in problems:
+        print(f"figure lint: {path}: {p}")
+    meta = {"Software": None, LINT_KEY: json.dumps(problems)}
     crop = content_crop(fig)
     with atomic_path(path) as tmp:
         if crop is not None:
-            matplotlib.image.imsave(tmp, crop, format="png", dpi=fig.dpi,
-                                    metadata={"Software": None})
+            matplotlib.image.imsave(tmp, crop, format="png", dpi=fig.dpi, metadata=meta)
         else:
             bbox = fig.get_tightbbox(fig.canvas.get_renderer()).padded(
                 plt.rcParams["savefig.pad_inches"])
-            fig.savefig(tmp, format="png", bbox_inches=bbox, metadata={"Software": None})
+            fig.savefig(tmp, format="png", bbox_inches=bbox, metadata=meta)
     if close:
         plt.close(fig)
