@@ -62,9 +62,11 @@ def test_unknown_effect_lists_allowed(edit_config):
     assert "fig07_fig08" in msg and "'warp_drive'" in msg and f"effects: {declared}" in msg
 
 
-def test_missing_parameter_is_named(edit_config):
-    path = edit_config("saw_chain", lambda r: r["parameters"].pop("teeth"))
-    with pytest.raises(ConfigError, match="missing key.*teeth"):
+def test_a_parameter_no_one_declared_is_named(edit_config):
+    # a scene that sets a parameter the paper does not declare (declared once: parameters:)
+    path = edit_config("saw_chain", lambda r: r["scenes"]["speed_12000"]["parameters"].update(
+        teeths=8))
+    with pytest.raises(ConfigError, match=r"speed_12000.*parameters: unknown key.*teeths.*allowed: .*teeth"):
         load_paper(path)
 
 

@@ -8,9 +8,9 @@ resolution + parameter overrides) and **studies** (sweeps over a scene).  Loadin
 1. the file is validated against ``config/schema/paper.schema.json`` (its shape);
 2. the profile overlay (``profiles: {ci: ...}``) is merged in;
 3. every scene and every study point is expanded into a **run** record and validated
-   against ``config/schema/<paper>.run.schema.json`` (the parameters the solver reads,
-   resolution ranges, options) with every parameter's ``allowed:`` merged in, so a bad value is reported with file, key, value and allowed range
-   before anything runs;
+   against the run schema generated from the config (:func:`run_schema`: each parameter's
+   ``allowed:``, each knob's, the options, what each solver and effect needs), so a bad
+   value is reported with file, key, value and allowed range before anything runs;
 4. parameters are converted to SI (:mod:`mechrepro.units`);
 5. the **variant runs** that re-check the verdicts are added (``<run>@coarser``,
    ``<run>@coarsest``, ``<run>@<param>-lo|hi``; see docs/VALIDATION.md): for every verdict
@@ -225,7 +225,7 @@ def _format_error(err: "jsonschema.ValidationError", where: str) -> str:
     return f"{where}: {loc}: {err.message}"
 
 
-_VALIDATORS: dict[int, tuple] = {}
+_VALIDATORS: dict[str, tuple] = {}
 
 
 def _validate(instance, schema, where: str) -> None:
@@ -233,7 +233,7 @@ def _validate(instance, schema, where: str) -> None:
     decides (~50x faster than jsonschema, whose check was 80 % of loading a paper), and
     only an instance it refuses is checked again by jsonschema, whose errors say where and
     what is allowed (:func:`_format_error`)."""
-    key = id(schema)  # schemas come from the load_schema cache
+    key = json.dumps(schema, sort_keys=True)   # a run schema is generated per load
     pair = _VALIDATORS.get(key)
     if pair is None:  # compiled once per schema; imported here: a job that reads the
         import jsonschema_rs  # cached config never validates
@@ -270,20 +270,49 @@ def load_schema(name: str, schema_dir: Path) -> dict:
     return json.loads((schema_dir / name).read_text())
 
 
-def with_declared(run_schema: dict, raw: dict) -> dict:
-    """The run schema completed from the config, where each thing is declared once: the
-    schema file names what the solver reads (``parameters.required``,
-    ``resolution.required``); each parameter's ``allowed:`` (beside its value) and each
-    resolution knob's ``allowed:`` and ``description:`` (beside its refinement, under
-    ``refine:``) say what values they may take."""
-    props = run_schema["properties"]
-    params = {"type": "object", "additionalProperties": False,
-              "required": props["parameters"]["required"],
-              "properties": {k: p["allowed"] for k, p in raw["parameters"].items()}}
+#: options every run may carry, whatever its paper (read by :mod:`mechrepro.solve`)
+FRAMEWORK_OPTIONS = {"timing_min_s": {
+    "type": "number", "minimum": 0,
+    "description": "repeat a fast solve for at least this long and keep its fastest call "
+                   "(default 0.02 s: mechrepro.solve)"}}
+
+
+def run_schema(raw: dict) -> dict:
+    """The JSON schema of a run record, generated from the paper config where each thing is
+    declared once: each parameter's ``allowed:``, each resolution knob's ``description:``
+    and ``allowed:`` under ``refine:``, the options under ``options:`` (and
+    :data:`FRAMEWORK_OPTIONS`), the resolution keys a solver needs
+    (``solvers.<s>.resolution``) and those an effect needs (``effects.<e>.resolution``,
+    ``.options``); shared fragments under ``defs:`` (``{"$ref": "#/$defs/<name>"}``)."""
     knobs = {k: {**v.get("allowed", {}), "description": v["description"]}
              for k, v in raw.get("refine", {}).items()}
-    resolution = {**props["resolution"], "properties": knobs}
-    return {**run_schema, "properties": {**props, "parameters": params, "resolution": resolution}}
+    needs = [({"solver": {"const": s}}, {"resolution": {"required": spec["resolution"]}})
+             for s, spec in raw["solvers"].items() if spec.get("resolution")]
+    for e, spec in raw["effects"].items():
+        then = {k: {"required": spec[k]} for k in ("resolution", "options") if spec.get(k)}
+        if then:
+            needs.append(({"effects": {"contains": {"const": e}}}, then))
+    schema = {
+        "$schema": "https://json-schema.org/draft/2020-12/schema",
+        "title": f"{raw['paper']} run (values in config units)",
+        "type": "object", "required": ["solver", "effects", "resolution", "parameters"],
+        "additionalProperties": False,
+        "$defs": raw.get("defs", {}),
+        "properties": {
+            "solver": {"enum": list(raw["solvers"])},
+            "effects": {"type": "array", "uniqueItems": True, "items": {"enum": list(raw["effects"])}},
+            "resolution": {"type": "object", "additionalProperties": False, "properties": knobs},
+            "options": {"type": "object", "additionalProperties": False,
+                        "properties": {**FRAMEWORK_OPTIONS, **raw.get("options", {})}},
+            "parameters": {"type": "object", "additionalProperties": False,
+                           "required": list(raw["parameters"]),
+                           "properties": {k: p["allowed"] for k, p in raw["parameters"].items()}},
+        },
+    }
+    if needs:
+        schema["allOf"] = [{"if": {"properties": cond}, "then": {"properties": then}}
+                           for cond, then in needs]
+    return schema
 
 
 # Where jobs keep validated configs (relative to the workflow directory they run in).
@@ -363,11 +392,11 @@ def load_paper(path: str | Path, profile: str = "default",
     if paper != path.stem:
         raise ConfigError(f"{where}: paper = {paper!r}: must be the file's name, {path.stem!r} "
                           "(a paper is discovered from config/papers/<paper>.yaml)")
-    run_schema = with_declared(load_schema(f"{paper}.run.schema.json", sdir), raw)
+    schema = run_schema(raw)
     cfg = PaperConfig(paper=paper, path=where, profile=profile,
                       source=raw.get("source", ""), raw=raw)
     for scene in raw["scenes"]:
-        cfg.runs[scene] = _make_run(raw, scene, None, 0, {}, run_schema, where)
+        cfg.runs[scene] = _make_run(raw, scene, None, 0, {}, schema, where)
     for study, spec in raw.get("studies", {}).items():
         if spec["scene"] not in raw["scenes"]:
             raise ConfigError(f"{where}: studies.{study}.scene = {spec['scene']!r}: "
@@ -375,7 +404,7 @@ def load_paper(path: str | Path, profile: str = "default",
         names = []
         for i, point in enumerate(_sweep_points(spec, where, study)):
             run = f"{study}-{i:03d}"
-            cfg.runs[run] = _make_run(raw, spec["scene"], study, i, point, run_schema, where)
+            cfg.runs[run] = _make_run(raw, spec["scene"], study, i, point, schema, where)
             names.append(run)
         cfg.studies[study] = names
     _check_reported(raw, where)
@@ -383,7 +412,7 @@ def load_paper(path: str | Path, profile: str = "default",
         for name in raw.get(key, []):
             if name not in raw["scenes"] and name not in raw.get("studies", {}):
                 raise ConfigError(f"{where}: {key}: {name!r} is neither a scene nor a study")
-    _add_variants(cfg, raw, run_schema, where)
+    _add_variants(cfg, raw, schema, where)
     _add_ablations(cfg, raw, where)
     for name, run in cfg.runs.items():
         _cross_check(raw.get("cross_checks", {}), run, f"{where} (run {name})")
@@ -834,8 +863,8 @@ def _variant_run(raw, base: dict, variant: str, run_schema, where, why,
         # a scene or sweep that sets the constant itself keeps its own value
         params.update({p: v for p, v in overrides.items()
                        if p not in scene.get("parameters", {}) and p not in base["sweep"]})
-    record = {"effects": effects, "resolution": resolution, "parameters": params,
-              "options": options}
+    record = {"solver": solver, "effects": effects, "resolution": resolution,
+              "parameters": params, "options": options}
     if kind in ("rival", "range", "family") and at:
         try:
             coarse = _refined(raw, base, at, where, why)
@@ -880,8 +909,8 @@ def _make_run(raw, scene_name, study, index, point, run_schema, where) -> dict:
         else:
             raise ConfigError(f"{where}: studies.{study}.sweep.{key}: not a resolution key of "
                               f"scene {scene_name!r} nor a parameter")
-    record = {"effects": list(scene["effects"]), "resolution": resolution,
-              "parameters": params, "options": scene.get("options", {})}
+    record = {"solver": scene["solver"], "effects": list(scene["effects"]),
+              "resolution": resolution, "parameters": params, "options": scene.get("options", {})}
     origin = f"{where} (run {scene_name if study is None else f'{study}[{index}]'})"
     _validate(record, run_schema, origin)
     si, units = {}, {}
