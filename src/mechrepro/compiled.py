@@ -54,8 +54,7 @@ def _cache_dir(package: Path) -> str:
     another file's (joint_wear's Radau calls clearance.py's right-hand side) would keep
     running the old code after that file changed.  Not keyed by where the package lies:
     numba's own locators hash the absolute path, so each copy of the project (the test
-    suite's pipelines, an experiment, a moved checkout) compiled every kernel again (cold:
-    7.3 s rolling_shear, 23.5 s joint_wear, 12.6 s chain_drive of CPU; cached: 1.5-2 s)."""
+    suite's pipelines, an experiment, a moved checkout) would compile every kernel again."""
     digest = hashlib.sha256(b"".join(p.read_bytes() for p in sorted(package.glob("*.py"))))
     return str(_cache_root() / f"{package.name}-{digest.hexdigest()[:16]}")
 

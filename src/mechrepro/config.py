@@ -229,10 +229,9 @@ _VALIDATORS: dict[str, tuple] = {}
 
 
 def _validate(instance, schema, where: str) -> None:
-    """Every run of every scene and variant is checked (~180 per paper): jsonschema-rs
-    decides (~50x faster than jsonschema, whose check was 80 % of loading a paper), and
-    only an instance it refuses is checked again by jsonschema, whose errors say where and
-    what is allowed (:func:`_format_error`)."""
+    """Every run of every scene and variant is checked: jsonschema-rs decides (compiled,
+    fast), and only an instance it refuses is checked again by jsonschema, whose errors
+    say where and what is allowed (:func:`_format_error`)."""
     key = json.dumps(schema, sort_keys=True)   # a run schema is generated per load
     pair = _VALIDATORS.get(key)
     if pair is None:  # compiled once per schema; imported here: a job that reads the
@@ -321,9 +320,8 @@ CACHE_DIR = ".snakemake/mechrepro"
 
 def _cached(cache_dir, key, files, schema_dir: Path, build):
     """``build()``, kept in ``cache_dir`` keyed by ``key`` and the content of ``files``, of
-    every schema and of the loader's own code: validating a config takes ~0.2 s per paper
-    and every job of a run loads the same ones.  Unreadable or unwritable caches only cost
-    the validation again."""
+    every schema and of the loader's own code: every job of a run loads the same configs.
+    Unreadable or unwritable caches only cost the validation again."""
     import hashlib
     import os
     import pickle

@@ -346,7 +346,6 @@ def _data_differs(a: Path, b: Path) -> bool:
     from .io import open_dataset
 
     # an experiment copies the runs it reuses: the same bytes need no reading as data
-    # (the diff of a ci result set with itself took 124 s of a loaded test suite)
     if a.exists() and b.exists() and (os.path.samefile(a, b) or filecmp.cmp(a, b, shallow=False)):
         return False
     with open_dataset(a) as x, open_dataset(b) as y:

@@ -181,9 +181,8 @@ def provenance_attrs(run: dict) -> dict:
 
 
 # every result is written as netCDF-3 by scipy's writer (:func:`write_dataset`) and read back
-# by the same library: 7-9 ms per run file against 11-15 ms through netCDF4/HDF5 (the
-# ~650 runs of a default run, read by gather, validation and notebooks), the decoded
-# datasets identical (xarray's ``identical``) on every file of a default run tried
+# by the same library, faster than through netCDF4/HDF5 for files this small, the decoded
+# datasets identical (xarray's ``identical``)
 ENGINE = "scipy"
 
 # config spellings that UDUNITS (and so the CF checker) does not know
@@ -238,10 +237,9 @@ def write_dataset(ds: xr.Dataset, path: str | Path, run: dict | None = None,
     ds.attrs.setdefault("history", f"{ds.attrs.get('created', '')} written by mechrepro "
                                    f"{code_version()}")
     # netCDF-3 (64-bit offset) through scipy's writer: every result is small and its CF-1.8
-    # types (:func:`_cf_types`) are netCDF-3's, and a file of scalars and short arrays costs
-    # HDF5 ~1 ms per variable to create.  On the 720 files of a default run: written in
-    # 10.8 s against 38.7 s as netCDF-4, read back in 19.3 s against 28.4 s, every variable,
-    # type and attribute equal on read-back.
+    # types (:func:`_cf_types`) are netCDF-3's, and HDF5 costs per variable to create what a
+    # file of scalars and short arrays does not need; every variable, type and attribute
+    # is equal on read-back.
     with atomic_path(path) as tmp:
         ds.to_netcdf(tmp, engine="scipy", format="NETCDF3_64BIT", encoding=encoding)
     return Path(path)

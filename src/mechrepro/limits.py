@@ -152,14 +152,11 @@ def priorities(cfgs: dict) -> dict[tuple[str, str], float]:
     and notebook, after every solve: the seconds-long validations and notebooks then fill
     both cores at the end, where with priority 2 (a paper drawn as soon as its runs
     existed) chain_drive's solves, then its notebook, ran last on one core with the other
-    idle.  An order only: no result depends on it.  On equal priorities the default run
-    started chain_drive's batch, its longest job, 4 min 40 s in, and waited 4 min for it at
-    the end.
+    idle.  An order only: no result depends on it.
 
     ``("all", "summary")`` and ``("all", "reference_check")``: 0.75, above the notebooks.
     They read only the validation tables, so they slip in between the notebooks and the run
-    ends on the report and the archive alone: 2 s after the last notebook, where at
-    priority 0 (both waiting for it) it ended 4 s after (default profile from clean)."""
+    ends on the report and the archive alone."""
     est = {(p, j): c["seconds"] for p, cfg in cfgs.items() for j, c in job_costs(cfg).items()}
     top = 1.0001 * max(est.values(), default=1.0)
     out = {}
@@ -175,7 +172,7 @@ def priorities(cfgs: dict) -> dict[tuple[str, str], float]:
 def check_all(cfgs: dict, allow_over_budget: bool = False, cache_dir=None) -> None:
     """Raise :class:`LimitError` with every refusal of every loaded paper config (with
     ``cache_dir``, the static reading of the extraction functions is kept there, keyed by
-    their source: ~0.3 s of every workflow start)."""
+    their source)."""
     problems = []
     for cfg in cfgs.values():
         problems += missing_effects(cfg, cache_dir) + refusals(cfg)

@@ -79,7 +79,7 @@ def run_solver(run: dict):
 
 def _min_time(run: dict) -> float:
     # a fast solve is repeated for 20 ms and its fastest call kept: enough for a stable
-    # minimum, and 160 sub-millisecond runs of a paper then cost 3 s, not 8 s, to time
+    # minimum without timing sub-millisecond runs for long
     return float(run.get("options", {}).get("timing_min_s", 0.02))
 
 
@@ -88,9 +88,8 @@ def alternated(runs: dict[str, dict], rounds: int) -> dict[str, tuple]:
     difference (a ``marginal_cost:`` scene and its ``@without-<effect>`` runs), timed in
     alternation, ``rounds`` rounds of one call each (a fast one repeated for its
     ``timing_min_s``), each keeping its fastest: a load that comes and goes during the job
-    then touches all of them alike, where one after the other it billed the difference of
-    the machine's load to an effect (joint_wear: ~3.8 ms "per effect" that one process,
-    alternating, measured at -0.34..-0.07 ms)."""
+    then touches all of them alike, where one after the other it would bill the difference
+    of the machine's load to an effect."""
     best: dict[str, tuple] = {}
     times: dict[str, list[float]] = {name: [] for name in runs}
     for _ in range(rounds):
@@ -155,7 +154,7 @@ def main(argv: list[str]) -> None:
         raise SystemExit(f"{paper} ({profile}): no such run(s) {unknown}")
     root = results / paper
     # a model's compiled loops are loaded here, once, so that no run's measured time
-    # carries the process's one-time load (numba's disk cache, ~0.3-1 s)
+    # carries the process's one-time load (numba's disk cache)
     warm = getattr(model(paper), "warm", None)
     if warm is not None:
         t0 = time.perf_counter()

@@ -88,8 +88,7 @@ def solve(run: dict, solve_once) -> tuple[object, dict]:
         return 1.0 / k if finer_is_larger else k
 
     # one untimed call first: a one-off cost of the process (a kernel compiled or loaded on
-    # first use: joint_wear's default level was billed 43 s for a 16-step period) is billed
-    # to no level
+    # first use) is billed to no level
     solve_once(_with(run, knob, level(k0)))
     for i in range(3):
         add(level(k0 * ratio ** i))

@@ -84,10 +84,7 @@ def mean_time(fn, *args, min_time: float = 0.02, windows: int = 20, **kwargs) ->
     cost is compared as a mean (rolling_shear's time per Eq. (9) solve).  The time is
     split into ``windows`` equal windows and the fastest window's mean kept, as
     :func:`time_call` keeps the fastest call: a preemption by another process inflates
-    one window, not the result.  rolling_shear's Newton per Eq. (9) solve, idle 0.81 us,
-    beside four busy loops on two cores: 1.4-107 us as one 20 ms mean (under a load
-    average of 8 it flipped the timing verdict speedup_like_for_like), 0.79-0.80 us as the
-    fastest of 20 windows of 1 ms."""
+    one window, not the result (one mean over all calls moves with the machine's load)."""
     fn(*args, **kwargs)
     best = float("inf")
     for _ in range(max(1, windows)):
