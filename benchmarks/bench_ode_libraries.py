@@ -73,12 +73,18 @@ def errors(q, ref):
 
 @contextlib.contextmanager
 def quiet_c_stdout():
-    """DOP853's Fortran-style C code prints a line per stiffness detection: drop fd 1."""
+    """DOP853's C code prints a line per stiffness detection: drop fd 1 (and C's buffer)."""
+    import ctypes
+    import sys
+
+    libc = ctypes.CDLL(None)
+    sys.stdout.flush()
     saved, null = os.dup(1), os.open(os.devnull, os.O_WRONLY)
     os.dup2(null, 1)
     try:
         yield
     finally:
+        libc.fflush(None)
         os.dup2(saved, 1)
         os.close(saved)
         os.close(null)
