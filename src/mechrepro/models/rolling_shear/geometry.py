@@ -31,14 +31,11 @@ MM_PER_M = 1000.0
 LEVERS = ("l1", "l2", "l3", "l4", "l5", "l6", "l8", "l9", "l10", "l11")
 #: the levers the paper optimises (Sec. 3.3, step 3; Table II)
 OPTIMISED_LEVERS = ("l1", "l3", "l5", "l6", "l10")
-ANGLES = ("alpha", "beta1", "beta2")
 #: constants of a run's geometry stored with it (enough to redraw the linkage; dataset.py)
-GEOMETRY_KEYS = ("l1", "l2", "l3", "l4", "l5", "l6", "l8", "l9", "l10", "l11", "alpha",
-                 "beta1", "beta2", "d", "h", "R", "s", "width", "x_mid")
+GEOMETRY_KEYS = LEVERS + ("alpha", "beta1", "beta2", "d", "h", "R", "s", "width", "x_mid")
 #: the constants the equations of :mod:`.closure` read, in the order of their array
 #: (:func:`constants`, :class:`.closure.Linkage`); the elbows (+1/-1) as floats
 LINKAGE_KEYS = GEOMETRY_KEYS + ("elbow1", "elbow2")
-LENGTHS = LEVERS + ("d", "h", "R", "s", "width", "x_mid")
 
 
 @dataclass(frozen=True)
