@@ -246,7 +246,7 @@ for k, name in ((1, "fig13"), (2, "fig14")):
         ax.plot(comp["huch"].values[~ok], th[~ok], "x", ms=5, label="original, selPSO, other assembly mode")
     ax.set(xlabel="rolled length huch [mm]", ylabel=f"theta{k} [rad]",
            title=f"Fig. {12 + k}: motion law of theta{k}")
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     R.save_figure(fig, name)
 
 # %% [markdown]

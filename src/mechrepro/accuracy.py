@@ -360,9 +360,12 @@ def plot(table: list[dict], accuracy: str | None = None, ax=None, annotate: bool
         ax.loglog([float(r["time_s"]) for r in pts], [float(r["error"]) for r in pts],
                   "o-" if proven else "o--", mfc=None if proven else "none", label=label)
         if annotate and j == 0:
-            for r in pts:
+            last = max(range(len(pts)), key=lambda i: float(pts[i]["time_s"]))
+            for i, r in enumerate(pts):   # the rightmost label leftwards: inside the panel
                 ax.annotate(f"{r['knob']}={r['knob_value']}", (float(r["time_s"]), float(r["error"])),
-                            fontsize=7, textcoords="offset points", xytext=(4, 4))
+                            fontsize=7, textcoords="offset points",
+                            xytext=(-4, 4) if i == last else (4, 4),
+                            ha="right" if i == last else "left")
     ax.set_xlabel(f"wall time [s] ({sel[0]['time_of']})")
     ax.set_ylabel(f"error vs {sel[0]['reference']} [{sel[0].get('error_unit') or '1'}]")
     ax.set_title(f"cost of accuracy: {accuracy}")
