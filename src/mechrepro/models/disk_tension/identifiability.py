@@ -301,7 +301,8 @@ def region(chi2_at, widths, floor, top, c_scan, iters=48):
     [condition, s]) lies above ``top`` [level].  chi^2 is unimodal in c at fixed s (Table 1
     is linear in c, Eq. 9: a parabola; f~ rises with c), so each limit is bisected between
     c* and the scan end; a limit still inside at the scan's end stays there (the scan
-    bounds it: compare with ``c_scan``)."""
+    bounds it: compare with ``c_scan``), and where c* itself sits at a scan end (the valley
+    floor lies beyond the scan) both limits are that end: the scan, not the data, decides."""
     c_star, p_star = floor
     top = np.asarray(top, float)[:, None, None]
     A = np.arange(c_star.shape[0])[None, :, None]
@@ -316,8 +317,11 @@ def region(chi2_at, widths, floor, top, c_scan, iters=48):
             ok = f(mid) <= L
             inside, outside = np.where(ok, mid, inside), np.where(ok, outside, mid)
         ends.append(np.where(at_edge, float(edge), inside))
+    step = 1e-6 * abs(c_scan[1] - c_scan[0])
+    out = [np.where(C <= c_scan[0] + step, float(c_scan[0]),
+                    np.where(C >= c_scan[1] - step, float(c_scan[1]), np.nan))] * 2
     empty = ~(p_star[None] <= L)
-    return tuple(np.where(empty, np.nan, e) for e in ends)
+    return tuple(np.where(empty, o, e) for o, e in zip(out, ends))
 
 
 def direction(chi2_at, a, s, c, scale=1.0, h=1e-3):
@@ -401,15 +405,17 @@ def analyse(disk, *, widths, scales, fine, fine_widths, single_width, table1_pap
 
 def _bound(end, grid, other, other_grid, name, other_name, unit) -> str:
     """What bounds an extent's end, if not the data: its own scan's end (the region reaches
-    it), or the other constant's scan end (the region's point of extreme ``name`` lies
-    there: the scan, not the data, stops it); '' where the data close the region."""
+    it), or the other constant's scan end (the other's minimiser ``other`` sits there at a
+    grid point either side of the end: the scan, not the data, stops the region); '' where
+    the data close the region."""
     step = abs(grid[1] - grid[0])
     if end <= grid.min() + 1e-9 * step or end >= grid.max() - 1e-9 * step:
         return f"{name} scan {'start' if end <= grid.min() + step else 'end'} {end:g}{unit}"
-    o = float(np.interp(end, grid, other))
+    k = int(np.clip(np.searchsorted(grid, end), 1, len(grid) - 1))
+    o = other[k - 1:k + 1]                    # the grid points either side of the end
     ostep = abs(other_grid[1] - other_grid[0])
     for edge, which in ((other_grid.min(), "start"), (other_grid.max(), "end")):
-        if abs(o - edge) <= ostep:
+        if np.any(abs(o - edge) <= ostep):
             return f"{other_name} scan {which} {edge:g}{' mm' if other_name == 's' else ''}"
     return ""
 
