@@ -411,7 +411,7 @@ def _joint_fit(R):
             f"Table 1 alone: {t['best']} {t['unit']}, joint (s, c) region {extent(t)}, pinned "
             f"by {t['pinned_by']}; with 502.1 Hz: {a['best']}, {extent(a)}. Table 1 fixes c s "
             f"({cs['best']} mm, 95 % {cs['lo_95']}-{cs['hi_95']} mm along the valley floor) "
-            f"more than either: degenerate direction c ~ s^{float(d['best']):.2f} ({d['pinned_by']}). "
+            f"more than either; degenerate direction: {d['pinned_by']}. "
             f"The single-alpha calibration (s = 5 mm, c = {float(ds['axisym_single_scale']):.3f}) "
             f"lies chi^2 +{single[-1]:.1f} above the joint fit ({bc['best']}, {bc['pinned_by']})"))
     return out
