@@ -13,13 +13,16 @@ information.
 Misfit: chi^2 = sum ((model_k - paper_k) / u_k)^2 with u_k half a unit of the last printed
 digit, scaled (Birge) so that the best fit has chi^2 per degree of freedom 1: the model
 cannot meet the paper to its printed digits, and the scaling turns the remaining misfit
-into the uncertainty.  Profiles: the minimum of chi^2 over the other constants at each value
-of one; the intervals are where the profile stays within 1 (68 %) and 4 (95 %) of its
-minimum.  An interval end is the data's only where neither scan bounds it: at its own scan's
-end it is open, and where the other constant's minimiser sits at that constant's scan end it
-is the scan's, not the data's (the table says which).  Table 1 constrains mainly the product
-c s (the rolled band's integrated stress): the valley runs along c s ~ const, and its floor
-is stored as the minimiser of the other constant along each profile.  Which number pins
+into the uncertainty.  The joint (s, c) regions: chi^2 within 2.30 (68 %) and 6.18 (95 %)
+of its minimum (two parameters; minimised over the in-plane condition), stored as their c
+limits at every s (:func:`region`); their extents are the profiles' intervals at the same
+levels (profile: the minimum of chi^2 over the other constants at each value of one).  An
+extent's end is the data's only where no scan cuts the region: where the region reaches its
+own scan's end, or its extreme point sits at the other scan's end, the scan bounds it (the
+table says which).  Table 1 constrains mainly the product c s (the rolled band's integrated
+stress): the valley runs along c s ~ const, its floor stored as the minimiser of the other
+constant along each profile, its direction at the best fit the soft axis of the chi^2
+Hessian (:func:`direction`).  Which number pins
 which constant: each number's share of the Fisher information about s and c at the best
 fit, and the fit with and without 502.1 Hz.
 
