@@ -344,7 +344,7 @@ R.write_table("identifiability_readings",
               idf.readings(idn))
 s_mm, c_grid = idn["scan_width"].values * 1e3, idn["scan_scale"].values
 levels = idn["fit_level"].values
-fig, axes = plt.subplots(1, 3, figsize=(15.5, 5.6))
+fig, axes = plt.subplots(1, 3, figsize=(15.5, 5.2))
 ss = np.geomspace(0.6, s_mm.max() * 1.4, 200)
 for j, (ax, name) in enumerate(zip(axes[:2], idf.SUBSETS)):
     lo, hi = idn["axisym_region_c_lo"].values[j], idn["axisym_region_c_hi"].values[j]
@@ -408,7 +408,7 @@ for a in axes[:2]:
     handles.update(zip(*a.get_legend_handles_labels()[::-1]))
 fig.legend(handles.values(), handles.keys(), loc="lower center", ncol=3, fontsize=8,
            bbox_to_anchor=(0.36, 0.0))
-fig.subplots_adjust(bottom=0.26, wspace=0.28)
+fig.subplots_adjust(bottom=0.25, wspace=0.28)
 R.save_figure(fig, "identifiability")
 for r in idf.table(idn):
     print(r)
