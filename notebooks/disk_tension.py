@@ -323,13 +323,13 @@ for row in coa:
 # ## What the paper's numbers pin down (identifiability)
 # The joint fit of the stress scale c = E·α·A, the band width s and the in-plane condition
 # to Table 1 (and Fig. 6a's 502.1 Hz), χ² with the printed digits as uncertainties, scaled
-# (Birge) to χ²/dof = 1 at the best fit; profiles: min over the other constants (each point
-# minimised continuously, not on a grid). Dotted: profile minimum + 1 (68 %); dashed: + 4
-# (95 %). Crosses: the single-α calibration (s = 5 mm, c on Table 1's N_d = 4 entry).
-# Right: the valley floor (the c that minimises χ² at each s) inside the 95 % region, thick
-# inside the 68 %: Table 1 fixes the product c·s (grey: c·s constant), not s and c apart; the
-# 95 % valley runs into the s scan's lower end (1 mm, a rolled band 4 mm wide), so that end
-# of the intervals is the scan's, not the data's (the table says which end is which).
+# (Birge) to χ²/dof = 1 at the best fit. Left and middle: the joint (s, c) regions,
+# Δχ² ≤ 2.30 (68 %, dark) and ≤ 6.18 (95 %, light), minimised over the in-plane condition
+# (hatched: where only `clamped` reaches the level); dot: best fit; cross: the single-α
+# calibration (s = 5 mm, c on Table 1's N_d = 4 entry); black line: the degenerate direction
+# (the χ² Hessian's soft axis at the best fit, ± its 95 % half-length); grey dashed: c·s
+# constant; red edges: where a region is cut by a scan bound (a bound of the scan, not of
+# the data). Right: the profiles over s (each point minimised over a continuous c).
 
 # %%
 import matplotlib.ticker as mticker
@@ -343,63 +343,72 @@ R.write_table("identifiability_readings",
               + [f"table1_nd{n}_rel" for n in range(5)] + ["f_rolled_hz", "delta_chi2"],
               idf.readings(idn))
 s_mm, c_grid = idn["scan_width"].values * 1e3, idn["scan_scale"].values
-fig, axes = plt.subplots(1, 3, figsize=(15.5, 4.6))
-for j, name in enumerate(idf.SUBSETS):
-    base = float(idn["axisym_chi2_min"].values[j])
-    single = float(idn["axisym_single_chi2"].values[j]) - base
+levels = idn["fit_level"].values
+fig, axes = plt.subplots(1, 3, figsize=(15.5, 5.2))
+ss = np.geomspace(0.6, s_mm.max() * 1.4, 200)
+for j, (ax, name) in enumerate(zip(axes[:2], idf.SUBSETS)):
+    lo, hi = idn["axisym_region_c_lo"].values[j], idn["axisym_region_c_hi"].values[j]
     best_s = float(idn["axisym_best_width"].values[j]) * 1e3
     best_c = float(idn["axisym_best_scale"].values[j])
-    ys = idn["axisym_prof_width"].values[j] - base
-    yc = idn["axisym_prof_scale"].values[j] - base
-    line, = axes[0].plot(s_mm, ys, label=name)
-    color = line.get_color()
-    floor = idn["axisym_prof_scale_width"].values[j] * 1e3      # s minimising at each c
-    # where that s sits at an end of the s scan, the scan bounds the c profile, not the data
-    step = s_mm[1] - s_mm[0]
-    walled = (floor <= s_mm.min() + step) | (floor >= s_mm.max() - step)
-    axes[1].plot(c_grid, np.where(walled, np.nan, yc), color=color, label=name)
-    axes[1].plot(c_grid, np.where(walled, yc, np.nan), ":", color=color,
-                 label=f"{name}: s at its scan's end" if walled.any() else None)
-    axes[0].plot([float(idn["axisym_single_width"]) * 1e3], [single], "x", color=color, ms=9)
-    axes[1].plot([float(idn["axisym_single_scale"])], [single], "x", color=color, ms=9)
-    for level, lw in ((4.0, 1.0), (1.0, 3.0)):
-        inside = np.where(yc <= level, floor, np.nan)
-        axes[2].plot(inside, c_grid, color=color, lw=lw,
-                     label=f"{name}: Δχ² ≤ {level:g}")
-    axes[2].plot([best_s], [best_c], "o", color=color, ms=5)
-    axes[2].plot([float(idn["axisym_single_width"]) * 1e3], [float(idn["axisym_single_scale"])],
-                 "x", color=color, ms=9)
-for ax, xl in zip(axes[:2], ("Gaussian width s [mm]", "stress scale c = E·α·A / handbook [1]")):
-    ax.axhline(1, color="k", ls=":", lw=0.8)
-    ax.axhline(4, color="k", ls="--", lw=0.8)
-    ax.set(xlabel=xl, ylabel="profile Δχ² (Birge-scaled) [1]", ylim=(0, 14))
-axes[0].legend(fontsize=8, loc="upper center")
-axes[1].legend(fontsize=8, loc="center", bbox_to_anchor=(0.63, 0.6))   # clear of the walls
-axes[1].set_xscale("log")
-axes[0].set_xlim(0, s_mm.max() * 1.02)
-axes[0].set_title(f"profile over s (scan {s_mm.min():g}-{s_mm.max():g} mm: the axis)")
-axes[1].set_title(f"profile over c (scan {c_grid.min():g}-{c_grid.max():g})")
+    for li, color in ((1, "#9ecae1"), (0, "#2171b5")):      # 95 % below 68 %
+        for a, hatch in ((1, None), (0, "///")):
+            ok = np.isfinite(lo[li, a])
+            kw = dict(facecolor="none", edgecolor=color, hatch=hatch, lw=0) if hatch else \
+                dict(color=color)
+            if ok.any():
+                ax.fill_between(s_mm, lo[li, a] * s_mm, hi[li, a] * s_mm, where=ok, **kw,
+                                label=f"Δχ² ≤ {levels[li]:.2f} ({list(idf.LEVELS)[li]} %)"
+                                + (", clamped only" if hatch else ""))
+        # where the region reaches a scan's end: the s scan's ends, the c scan's ends
+        inside = np.isfinite(lo[li]).any(axis=0)
+        c_lo = np.where(inside, np.nanmin(np.where(np.isfinite(lo[li]), lo[li], np.inf), 0), np.nan)
+        c_hi = np.where(inside, np.nanmax(np.where(np.isfinite(hi[li]), hi[li], -np.inf), 0), np.nan)
+        for k in (0, -1):
+            if inside[k]:
+                ax.plot([s_mm[k]] * 2, [c_lo[k] * s_mm[k], c_hi[k] * s_mm[k]],
+                        color="tab:red", lw=3, solid_capstyle="butt")
+        for edge, cut in ((c_grid[0], c_lo <= c_grid[0]), (c_grid[-1], c_hi >= c_grid[-1])):
+            if cut.any():
+                ax.plot(s_mm[cut], edge * s_mm[cut], color="tab:red", lw=3)
+    ax.plot([], [], color="tab:red", lw=3, label="region cut by a scan bound")
+    slope = float(idn["axisym_direction_slope"].values[j])
+    half = float(idn["axisym_direction_halfwidth"].values[j][0]) * np.sqrt(levels[1] / levels[0])
+    t = np.linspace(-half, half, 2) / np.hypot(1.0, slope)
+    ax.plot(best_s * np.exp(t), best_s * best_c * np.exp((1 + slope) * t), "k-", lw=1.2,
+            label="degenerate direction: the χ² Hessian's soft axis at the best fit")
+    ax.axhline(best_s * best_c, color="0.5", lw=0.8, ls="--", zorder=0,
+               label="c·s constant through the best fit")
+    ax.plot([best_s], [best_s * best_c], "o", color="k", ms=6, label="best fit")
+    single = (float(idn["axisym_single_width"]) * 1e3, float(idn["axisym_single_scale"]))
+    ax.plot([single[0]], [single[0] * single[1]], "x", color="tab:orange", ms=9, mew=2,
+            label="single-α calibration")
+    ax.axvspan(0.5, s_mm.min(), color="0.88", zorder=0)
+    ax.axvspan(s_mm.max(), s_mm.max() * 1.5, color="0.88", zorder=0)
+    ax.fill_between(ss, c_grid[-1] * ss, 100, color="0.88", zorder=0, lw=0)
+    ax.fill_between(ss, 0, c_grid[0] * ss, color="0.88", zorder=0, lw=0)
+    ax.set(xscale="log", xlim=(ss[0], ss[-1]), ylim=(5.8, 10.2),
+           xlabel="Gaussian width s [mm]", ylabel="c·s [mm] (c = E·α·A / handbook)")
+    ax.set_title(f"{name}: joint (s, c) regions; soft axis c ∝ $s^{{{slope:.2f}}}$", fontsize=10)
+    ax.set_xticks([1, 2, 5, 10, 20])
+    ax.xaxis.set_minor_formatter(mticker.NullFormatter())
+    ax.xaxis.set_major_formatter(mticker.FuncFormatter(lambda v, _: f"{v:g}"))
 ax = axes[2]
-ref = float(idn["axisym_best_width"].values[1]) * 1e3 * float(idn["axisym_best_scale"].values[1])
-ss = np.geomspace(0.7, s_mm.max() * 1.3, 50)
-for k in (0.8, 1.0, 1.25):
-    ax.plot(ss, k * ref / ss, color="0.75", lw=0.8, ls="--", zorder=0)
-ax.axvspan(0.5, s_mm.min(), color="0.92", zorder=0)
-ax.axvspan(s_mm.max(), s_mm.max() * 1.5, color="0.92", zorder=0)
-ax.text(s_mm.min() * 0.96, 0.3, "outside the s scan", rotation=90, ha="right", va="bottom",
-        fontsize=7, color="0.4")
-ax.set(xscale="log", yscale="log", xlim=(0.6, s_mm.max() * 1.4), ylim=(0.25, 12),
-       xlabel="Gaussian width s [mm]", ylabel="stress scale c [1]",
-       title=f"the valley: c·s fixed (grey: c·s = {ref:.2g} mm × 0.8, 1, 1.25)")
-ax.legend(fontsize=7, loc="upper right")
-for a in axes[1:]:     # log axes: plain numbers, no minor labels
-    a.xaxis.set_minor_formatter(mticker.NullFormatter())
-    a.yaxis.set_minor_formatter(mticker.NullFormatter())
-axes[1].set_xticks([0.25, 0.5, 1, 2, 4, 8])
-axes[2].set_xticks([1, 2, 5, 10, 20])
-axes[2].set_yticks([0.25, 0.5, 1, 2, 4, 8])
-for axis in (axes[1].xaxis, axes[2].xaxis, axes[2].yaxis):
-    axis.set_major_formatter(mticker.FuncFormatter(lambda v, _: f"{v:g}"))
+for j, name in enumerate(idf.SUBSETS):
+    base = float(idn["axisym_chi2_min"].values[j])
+    ax.plot(s_mm, idn["axisym_prof_width"].values[j] - base, label=name)
+for level, ls in zip(levels, (":", "--")):
+    ax.axhline(level, color="k", ls=ls, lw=0.8, label=f"Δχ² = {level:.2f}")
+ax.set(xlabel="Gaussian width s [mm]", ylabel="profile Δχ² (Birge-scaled) [1]", ylim=(0, 14),
+       xlim=(0, s_mm.max() * 1.02),
+       title=f"profile over s (scan {s_mm.min():g}-{s_mm.max():g} mm: the axis)")
+ax.legend(fontsize=8, loc="upper center")
+axes[0].fill_between([], [], color="0.88", label="outside the scans (s 1-20 mm, c 0.25-8)")
+handles = {}
+for a in axes[:2]:
+    handles.update(zip(*a.get_legend_handles_labels()[::-1]))
+fig.legend(handles.values(), handles.keys(), loc="lower center", ncol=3, fontsize=8,
+           bbox_to_anchor=(0.36, 0.0))
+fig.subplots_adjust(bottom=0.25, wspace=0.28)
 R.save_figure(fig, "identifiability")
 for r in idf.table(idn):
     print(r)

@@ -505,6 +505,21 @@ def identifiability(ctx) -> dict:
                              "best fit"),
         "shares": var((sub, "fit_parameter", dat), r["shares"], "1", "share of each paper "
                       "number in the Fisher information about s and c at the best fit"),
+        "fit_level": var("fit_level", list(idf.LEVELS.values()), "1",
+                         "Delta chi^2 of the joint (s, c) regions: "
+                         + ", ".join(f"{k} %" for k in idf.LEVELS)),
+        "fit_axis": var("fit_axis", [0, 1], "1", "0 the soft (degenerate) axis, 1 the stiff"),
+        "region_c_lo": var((sub, "fit_level", "scan_condition", "scan_width"), r["region_c_lo"],
+                           "1", "lower c of the joint (s, c) region at each s (NaN: none; at "
+                           "the c scan's start: the scan bounds it)"),
+        "region_c_hi": var((sub, "fit_level", "scan_condition", "scan_width"), r["region_c_hi"],
+                           "1", "upper c of the joint (s, c) region at each s (NaN: none; at "
+                           "the c scan's end: the scan bounds it)"),
+        "direction_slope": var(sub, r["direction_slope"], "1", "d ln c / d ln s along the soft "
+                               "axis of the chi^2 Hessian at the best fit (-1: c s = const)"),
+        "direction_halfwidth": var((sub, "fit_axis"), r["direction_halfwidth"], "1",
+                                   "68 % half-length of the Hessian ellipse in (ln s, ln c) "
+                                   "along the soft and the stiff axis"),
         "single_chi2": var(sub, r["single_chi2"], "1", "Birge-scaled chi^2 of the single-alpha "
                            "calibration (s = 5 mm, free_disk, c on Table 1's N_d = 4 entry)"),
         "single_scale": var((), r["single_scale"], "1", "stress scale of the single-alpha "

@@ -13,13 +13,16 @@ information.
 Misfit: chi^2 = sum ((model_k - paper_k) / u_k)^2 with u_k half a unit of the last printed
 digit, scaled (Birge) so that the best fit has chi^2 per degree of freedom 1: the model
 cannot meet the paper to its printed digits, and the scaling turns the remaining misfit
-into the uncertainty.  Profiles: the minimum of chi^2 over the other constants at each value
-of one; the intervals are where the profile stays within 1 (68 %) and 4 (95 %) of its
-minimum.  An interval end is the data's only where neither scan bounds it: at its own scan's
-end it is open, and where the other constant's minimiser sits at that constant's scan end it
-is the scan's, not the data's (the table says which).  Table 1 constrains mainly the product
-c s (the rolled band's integrated stress): the valley runs along c s ~ const, and its floor
-is stored as the minimiser of the other constant along each profile.  Which number pins
+into the uncertainty.  The joint (s, c) regions: chi^2 within 2.30 (68 %) and 6.18 (95 %)
+of its minimum (two parameters; minimised over the in-plane condition), stored as their c
+limits at every s (:func:`region`); their extents are the profiles' intervals at the same
+levels (profile: the minimum of chi^2 over the other constants at each value of one).  An
+extent's end is the data's only where no scan cuts the region: where the region reaches its
+own scan's end, or its extreme point sits at the other scan's end, the scan bounds it (the
+table says which).  Table 1 constrains mainly the product c s (the rolled band's integrated
+stress): the valley runs along c s ~ const, its floor stored as the minimiser of the other
+constant along each profile, its direction at the best fit the soft axis of the chi^2
+Hessian (:func:`direction`).  Which number pins
 which constant: each number's share of the Fisher information about s and c at the best
 fit, and the fit with and without 502.1 Hz.
 
@@ -168,7 +171,9 @@ def _chi2(terms, use):
     return np.where(np.all(np.isfinite(terms), axis=-1), terms.sum(axis=-1), np.inf)
 
 
-LEVELS = {"68": 1.0, "95": 4.0}
+#: Delta chi^2 of the joint (s, c) regions: 68 / 95 % of chi^2 with two degrees of freedom
+#: (the profile intervals at these levels are the regions' extents)
+LEVELS = {"68": 2.30, "95": 6.18}
 
 
 def interval(values, prof, level=1.0, floor=None):
@@ -267,7 +272,7 @@ def _profiles(fm, fine_widths, table1_paper, f_rolled_paper, uses, chunk=64):
                     "prof_scale": p_c.min(axis=0),
                     "prof_width_scale": c_s[ca, np.arange(nw)],
                     "prof_scale_width": s_c[wa, np.arange(nc)],
-                    "best": (a, *best)})
+                    "floor": (c_s, p_s), "chi2_at": chi2_at, "best": (a, *best)})
     return out
 
 
@@ -293,6 +298,52 @@ def _polish(chi2_at, a, widths, scales, s0, c0, f0):
     return float(s0), float(c0), float(f0)
 
 
+def region(chi2_at, widths, floor, top, c_scan, iters=48):
+    """The joint region chi^2(s, c) <= top as its c limits at each s: (c_lo, c_hi)
+    [level, condition, s], NaN where the valley floor (``floor`` = (c*, chi^2(c*))
+    [condition, s]) lies above ``top`` [level].  chi^2 is unimodal in c at fixed s (Table 1
+    is linear in c, Eq. 9: a parabola; f~ rises with c), so each limit is bisected between
+    c* and the scan end; a limit still inside at the scan's end stays there (the scan
+    bounds it: compare with ``c_scan``), and where c* itself sits at a scan end (the valley
+    floor lies beyond the scan) both limits are that end: the scan, not the data, decides."""
+    c_star, p_star = floor
+    top = np.asarray(top, float)[:, None, None]
+    A = np.arange(c_star.shape[0])[None, :, None]
+    L, A, W, C = np.broadcast_arrays(top, A, widths[None, None, :], c_star[None])
+    f = lambda c: chi2_at(W, A, c).reshape(c.shape)                        # noqa: E731
+    ends = []
+    for edge in c_scan:
+        inside, outside = C.copy(), np.full(C.shape, float(edge))
+        at_edge = f(outside) <= L
+        for _ in range(iters):
+            mid = 0.5 * (inside + outside)
+            ok = f(mid) <= L
+            inside, outside = np.where(ok, mid, inside), np.where(ok, outside, mid)
+        ends.append(np.where(at_edge, float(edge), inside))
+    step = 1e-6 * abs(c_scan[1] - c_scan[0])
+    out = [np.where(C <= c_scan[0] + step, float(c_scan[0]),
+                    np.where(C >= c_scan[1] - step, float(c_scan[1]), np.nan))] * 2
+    empty = ~(p_star[None] <= L)
+    return tuple(np.where(empty, o, e) for o, e in zip(out, ends))
+
+
+def direction(chi2_at, a, s, c, scale=1.0, h=1e-3):
+    """The degenerate direction at the best fit: the Hessian of chi^2 / ``scale`` in
+    (ln s, ln c) by central differences; (d ln c / d ln s along its soft axis, the 68 %
+    half-lengths sqrt(2.30 / lambda) in ln units along the soft and the stiff axis).  A
+    slope of -1 is c s = const."""
+    def f(x, y):
+        return float(chi2_at(np.array([s * np.exp(x)]), np.array([a]),
+                             np.array([c * np.exp(y)]))[0]) / scale
+    f0 = f(0, 0)
+    hxx = (f(h, 0) - 2 * f0 + f(-h, 0)) / h**2
+    hyy = (f(0, h) - 2 * f0 + f(0, -h)) / h**2
+    hxy = (f(h, h) - f(h, -h) - f(-h, h) + f(-h, -h)) / (4 * h**2)
+    lam, vec = np.linalg.eigh(np.array([[hxx, hxy], [hxy, hyy]]))
+    soft = vec[:, 0]
+    return float(soft[1] / soft[0]), np.sqrt(LEVELS["68"] / np.maximum(lam, 1e-300))
+
+
 def analyse(disk, *, widths, scales, fine, fine_widths, single_width, table1_paper,
             f_rolled_paper, **load):
     """The joint fit of (c, s, in-plane condition) to each data subset (:data:`SUBSETS`) and
@@ -311,7 +362,8 @@ def analyse(disk, *, widths, scales, fine, fine_widths, single_width, table1_pap
     out = {k: [] for k in ("prof_width", "prof_scale", "prof_condition", "prof_width_scale",
                            "prof_scale_width", "birge", "best_width", "best_scale",
                            "best_condition", "best_table1_rel", "best_f_rolled", "shares",
-                           "single_chi2", "chi2_min")}
+                           "single_chi2", "chi2_min", "region_c_lo", "region_c_hi",
+                           "direction_slope", "direction_halfwidth")}
     profiles = _profiles(fm, fine_widths, table1_paper, f_rolled_paper, list(SUBSETS.values()))
     for use, pr in zip(SUBSETS.values(), profiles):
         a, w, c, chi2 = pr["best"]
@@ -323,6 +375,14 @@ def analyse(disk, *, widths, scales, fine, fine_widths, single_width, table1_pap
         out["prof_scale_width"].append(pr["prof_scale_width"])
         out["birge"].append(birge)
         out["chi2_min"].append(chi2 / birge)
+        lo, hi = region(pr["chi2_at"], fine_widths, pr["floor"],
+                        [chi2 + level * birge for level in LEVELS.values()],
+                        np.asarray(fine)[[0, -1]])
+        out["region_c_lo"].append(lo)
+        out["region_c_hi"].append(hi)
+        slope, half = direction(pr["chi2_at"], a, w, c, birge)
+        out["direction_slope"].append(slope)
+        out["direction_halfwidth"].append(half)
         t1, f4 = fm.at(w, a, c)
         out["best_width"].append(w)
         out["best_scale"].append(c)
@@ -346,69 +406,88 @@ def analyse(disk, *, widths, scales, fine, fine_widths, single_width, table1_pap
     return out
 
 
-def _bound(end, grid, other, other_grid, name, other_name):
-    """What bounds an interval end: its own scan's end (open), the other constant's scan end
-    (its minimiser there sits at that end: the scan, not the data), or the data."""
+def _bound(end, grid, other, other_grid, name, other_name, unit) -> str:
+    """What bounds an extent's end, if not the data: its own scan's end (the region reaches
+    it), or the other constant's scan end (the other's minimiser ``other`` sits there at a
+    grid point either side of the end: the scan, not the data, stops the region); '' where
+    the data close the region."""
     step = abs(grid[1] - grid[0])
     if end <= grid.min() + 1e-9 * step or end >= grid.max() - 1e-9 * step:
-        return f"open: the {name} scan's end"
-    o = float(np.interp(end, grid, other))
+        return f"{name} scan {'start' if end <= grid.min() + step else 'end'} {end:g}{unit}"
+    k = int(np.clip(np.searchsorted(grid, end), 1, len(grid) - 1))
+    o = other[k - 1:k + 1]                    # the grid points either side of the end
     ostep = abs(other_grid[1] - other_grid[0])
-    if o <= other_grid.min() + ostep or o >= other_grid.max() - ostep:
-        return f"the {other_name} scan's end"
+    for edge, which in ((other_grid.min(), "start"), (other_grid.max(), "end")):
+        if np.any(abs(o - edge) <= ostep):
+            return f"{other_name} scan {which} {edge:g}{' mm' if other_name == 's' else ''}"
     return ""
 
 
 def table(ds, prefix="axisym_") -> list[list]:
     """Rows of ``identifiability.csv`` from a run of effect ``identifiability``: per data
-    subset and constant [data, constant, unit, best, lo_68, hi_68, lo_95, hi_95, pinned by]
-    (an end the data do not fix says what does: a scan's end), the product c s along the
-    valley floor (the direction Table 1 fixes), and the in-plane condition."""
+    subset and constant the best fit and the extents of the joint (s, c) region at 68 and
+    95 % (Delta chi^2 = 2.30, 6.18; the profile intervals at those levels), each end the
+    data's or flagged by the scan that bounds it (bounded_68, bounded_95), which numbers pin
+    it; the product c s along the valley floor; the degenerate direction (the Hessian's soft
+    axis at the best fit, and the floor's exponent c ~ s^k over the 95 % extent); the
+    in-plane condition."""
     g = lambda k: ds[prefix + k if prefix + k in ds else k].values  # noqa: E731
     widths, fine = g("scan_width") * 1e3, g("scan_scale")
     rows = []
     for j, name in enumerate(SUBSETS):
+        base = float(g("chi2_min")[j])
         floors = {"gaussian_width": g("prof_width_scale")[j],
                   "stress_scale": g("prof_scale_width")[j] * 1e3}
+        ext = {}
         for const, prof, grid, unit, sh, other_grid, names in (
                 ("gaussian_width", g("prof_width")[j], widths, "mm", g("shares")[j, 0], fine,
-                 ("s", "c")),
+                 ("s", "c", " mm")),
                 ("stress_scale", g("prof_scale")[j], fine, "x handbook E alpha A",
-                 g("shares")[j, 1], widths, ("c", "s"))):
-            cells = []
+                 g("shares")[j, 1], widths, ("c", "s", ""))):
+            ends, flags = [], []
             for level in LEVELS.values():
-                _, lo, hi = interval(grid, prof, level, floor=float(g("chi2_min")[j]))
-                for end in (lo, hi):
-                    why = _bound(end, grid, floors[const], other_grid, *names)
-                    cells.append(f"{end:.3g}" + (f" ({why})" if why else ""))
+                _, lo, hi = interval(grid, prof, level, floor=base)
+                ends += [f"{lo:.3g}", f"{hi:.3g}"]
+                why = [f"{side}: {b}" for side, e in (("lo", lo), ("hi", hi))
+                       if (b := _bound(e, grid, floors[const], other_grid, *names))]
+                flags.append("; ".join(why))
+                ext[const, level] = (lo, hi)
             top = np.argsort(sh)[::-1][:2]
             best = (float(g("best_width")[j]) * 1e3 if const == "gaussian_width"
                     else float(g("best_scale")[j]))
-            rows.append([name, const, unit, f"{best:.3g}", *cells,
+            rows.append([name, const, unit, f"{best:.3g}", *ends, *flags,
                          "; ".join(f"{DATA[t]} {sh[t]:.0%}" for t in top)])
-        # the degenerate direction: c s along the c profile's valley floor
-        prof, s_floor = g("prof_scale")[j], g("prof_scale_width")[j] * 1e3
-        floor = fine * s_floor
-        step = widths[1] - widths[0]
-        walled = (s_floor <= widths.min() + step) | (s_floor >= widths.max() - step)
-        base = min(float(g("chi2_min")[j]), float(np.nanmin(prof)))
-        cells = []
+        # c s along the valley floor (the c that minimises chi^2 at each s) inside each extent
+        c_floor = floors["gaussian_width"]
+        cells, flags, k95 = [], [], None
         for level in LEVELS.values():
-            inside = np.nonzero(prof <= base + level)[0]
-            for k in (inside[np.argmin(floor[inside])], inside[np.argmax(floor[inside])]):
-                cells.append(f"{floor[k]:.3g}" + (" (the s scan's end)" if walled[k] else ""))
+            lo, hi = ext["gaussian_width", level]
+            inside = (widths >= lo) & (widths <= hi)
+            cs = widths[inside] * c_floor[inside]
+            cells += [f"{cs.min():.3g}", f"{cs.max():.3g}"]
+            flags.append("lo: s scan start" if lo <= widths.min() else "")
+            k95 = np.polyfit(np.log(widths[inside]), np.log(c_floor[inside]), 1)[0]
         rows.append([name, "stress_scale_x_width", "mm (c s along the valley floor)",
-                     f"{float(g('best_width')[j]) * 1e3 * float(g('best_scale')[j]):.3g}", *cells,
-                     "the direction Table 1 fixes: the ranges of s and c above are mostly "
-                     "motion along it"])
+                     f"{float(g('best_width')[j]) * 1e3 * float(g('best_scale')[j]):.3g}",
+                     *cells, *flags, "the product Table 1 fixes: the extents of s and c above "
+                     "are mostly motion along it"])
+        slope = float(g("direction_slope")[j])
+        soft, stiff = g("direction_halfwidth")[j]
+        rows.append([name, "degenerate_direction", "d ln c / d ln s", f"{slope:.3g}",
+                     "", "", "", "", "", "",
+                     f"soft axis of the chi^2 Hessian at the best fit: c ~ s^{slope:.2f}, 68 % "
+                     f"half-lengths x/ {np.exp(soft):.3g} along it and +-{stiff:.2%} across "
+                     f"(ratio {soft / stiff:.0f}); the valley floor over the 95 % extent of s: "
+                     f"c ~ s^{k95:.2f} (c s = const: -1)"])
         pc = g("prof_condition")[j]
         a = int(np.nanargmin(pc))
-        rows.append([name, "inplane_bc", "1", CONDITIONS[a], "", "", "", "",
+        rows.append([name, "inplane_bc", "1", CONDITIONS[a], "", "", "", "", "", "",
                      f"chi^2 to {CONDITIONS[1 - a]} +{pc[1 - a] - pc[a]:.1f}"])
     return rows
 
 
-COLUMNS = ["data", "constant", "unit", "best", "lo_68", "hi_68", "lo_95", "hi_95", "pinned_by"]
+COLUMNS = ["data", "constant", "unit", "best", "lo_68", "hi_68", "lo_95", "hi_95",
+           "bounded_68", "bounded_95", "pinned_by"]
 
 
 def readings(ds, prefix="axisym_") -> list[list]:

@@ -385,30 +385,35 @@ def _buckling(R):
 
 @Q.register("joint_fit_gaussian_width", "joint_fit_stress_scale")
 def _joint_fit(R):
-    """The joint fit to Table 1 alone (row notes: its interval, which numbers pin it, and
-    the fit with 502.1 Hz added)."""
+    """The joint fit to Table 1 alone (row notes: the extents of its joint (s, c) regions
+    with what bounds them, which numbers pin it, the degenerate direction, and the fit with
+    502.1 Hz added)."""
     from . import identifiability as idf
 
     ds = R.run("identifiability")
-    rows = {(r[0], r[1]): r for r in idf.table(ds)}
-    read = {(r[0], r[1]): r for r in idf.readings(ds)}
+    rows = {(r[0], r[1]): dict(zip(idf.COLUMNS, r)) for r in idf.table(ds)}
+    single = {(r[0], r[1]): r for r in idf.readings(ds)}[("table1", "single-alpha calibration")]
+
+    def extent(r):
+        cut = "; ".join(f"{k[-2:]} % {r[k]}" for k in ("bounded_68", "bounded_95") if r[k])
+        return (f"68 % {r['lo_68']}-{r['hi_68']}, 95 % {r['lo_95']}-{r['hi_95']}"
+                + (f" (cut by the scan: {cut})" if cut else ""))
     out = {}
+    j = list(idf.SUBSETS).index("table1")
     for q, const in (("joint_fit_gaussian_width", "gaussian_width"),
                      ("joint_fit_stress_scale", "stress_scale")):
         t, a = rows[("table1", const)], rows[("table1_and_f_rolled", const)]
-        j = list(idf.SUBSETS).index("table1")
         best = float(ds["axisym_best_width"].values[j]) * 1e3 if const == "gaussian_width" \
             else float(ds["axisym_best_scale"].values[j])
-        cs = rows[("table1", "stress_scale_x_width")]
+        cs, d = rows[("table1", "stress_scale_x_width")], rows[("table1", "degenerate_direction")]
+        bc = rows[("table1", "inplane_bc")]
         out[q] = Reproduced(best, note=(
-            f"Table 1 alone: {t[3]} {t[2]}, 68 % [{t[4]}, {t[5]}], 95 % [{t[6]}, {t[7]}], "
-            f"pinned by {t[8]}; with 502.1 Hz: {a[3]}, 68 % [{a[4]}, {a[5]}], 95 % [{a[6]}, "
-            f"{a[7]}], pinned by {a[8]}. Table 1 fixes c s (along the valley floor {cs[3]} mm, "
-            f"95 % {cs[6]}-{cs[7]} mm) more than either. The single-alpha calibration "
-            f"(s = 5 mm, c = {float(ds['axisym_single_scale']):.3f}) lies chi^2 "
-            f"+{read[('table1', 'single-alpha calibration')][-1]:.1f} above the joint fit "
-            f"({rows[('table1', 'inplane_bc')][3]}, "
-            f"{rows[('table1', 'inplane_bc')][8]})"))
+            f"Table 1 alone: {t['best']} {t['unit']}, joint (s, c) region {extent(t)}, pinned "
+            f"by {t['pinned_by']}; with 502.1 Hz: {a['best']}, {extent(a)}. Table 1 fixes c s "
+            f"({cs['best']} mm, 95 % {cs['lo_95']}-{cs['hi_95']} mm along the valley floor) "
+            f"more than either; degenerate direction: {d['pinned_by']}. "
+            f"The single-alpha calibration (s = 5 mm, c = {float(ds['axisym_single_scale']):.3f}) "
+            f"lies chi^2 +{single[-1]:.1f} above the joint fit ({bc['best']}, {bc['pinned_by']})"))
     return out
 
 
