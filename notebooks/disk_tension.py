@@ -117,7 +117,7 @@ for var, color, sym in (("sigma_theta", "C3", "σ_θ"), ("sigma_r", "C0", "σ_r"
 ax.axhline(0, color="k", lw=0.6)
 ax.set(xlabel="r [mm]", ylabel="residual stress [MPa]", xlim=(0, r.max()),
        title="Fig. 5: thermal-analogy residual stress (r_c = 65 mm, α calibrated per condition)")
-ax.legend(fontsize=7, ncol=2)
+ax.legend(fontsize=7, ncol=3, loc="upper center", bbox_to_anchor=(0.5, -0.16))
 R.save_figure(fig, "fig05")
 
 # %% [markdown]
@@ -269,7 +269,7 @@ for j, n in enumerate(ND):
 ax.axhline(0, color="k", lw=0.8)
 ax.set(xlabel="temperature amplitude A [°C]", ylabel="ω̃² [rad²/s²]",
        title="buckling: ω̃² through zero at the critical amplitude (dotted)")
-ax.legend(fontsize=7)
+ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
 R.save_figure(fig, "buckling")
 
 # %% [markdown]

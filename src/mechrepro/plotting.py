@@ -136,8 +136,10 @@ def _data_points(ax):
 def _empty(artist) -> bool:
     if hasattr(artist, "get_xydata"):
         return len(artist.get_xydata()) == 0
-    if hasattr(artist, "get_offsets") and hasattr(artist, "get_paths"):
-        return len(artist.get_offsets()) == 0 and not any(len(q.vertices) for q in artist.get_paths())
+    if type(artist).__name__ == "PathCollection":    # a scatter: its points are the offsets
+        return len(artist.get_offsets()) == 0
+    if hasattr(artist, "get_paths"):
+        return not any(len(q.vertices) for q in artist.get_paths())
     return False
 
 
