@@ -162,46 +162,53 @@ def _unit_missing(fig, ax, name: str) -> bool:
                    for o in fig.axes if o is not ax and np.allclose(span(o), span(ax)))
 
 
-def lint(fig) -> list[str]:
-    """What is wrong with ``fig`` as a reader sees it: two texts that overlap, a legend over
-    data, an axis with numbers and no unit, a labelled series that draws nothing visible
-    (hiding it changes fewer than :data:`SERIES_MIN_PIXELS` pixels).  Leaves ``fig`` as
-    it was (drawn)."""
-    fig.canvas.draw()
-    r = fig.canvas.get_renderer()
-    problems = []
-    texts = [(n, t.get_window_extent(r), ax, tick) for n, t, ax, tick in _texts(fig)]
-    legends = [(ax, ax.get_legend()) for ax in fig.axes if ax.get_legend() is not None]
-    legends += [(None, leg) for leg in fig.legends]
-    boxes = texts + [(f"legend of {'figure' if ax is None else repr(ax.get_title())}",
-                      leg.get_window_extent(r), ax, False) for ax, leg in legends
-                     if leg.get_visible()]
+def _legends(fig):
+    """(axes or None for a figure legend, legend) of every visible legend."""
+    out = [(ax, ax.get_legend()) for ax in fig.axes if ax.get_legend() is not None]
+    return [(ax, leg) for ax, leg in out + [(None, leg) for leg in fig.legends]
+            if leg.get_visible()]
+
+
+def _overlapping_texts(fig, r) -> list[str]:
+    boxes = [(n, t.get_window_extent(r), ax, tick) for n, t, ax, tick in _texts(fig)]
+    boxes += [(f"legend of {'figure' if ax is None else repr(ax.get_title())}",
+               leg.get_window_extent(r), ax, False) for ax, leg in _legends(fig)]
+    out = []
     for i, (n1, b1, ax1, tick1) in enumerate(boxes):
         for n2, b2, ax2, tick2 in boxes[i + 1:]:
-            if tick1 and tick2 and ax1 is not ax2:
-                continue    # tick labels of two axes (x and y too) meet only at corners
-            if _overlap(b1, b2):
-                problems.append(f"overlapping texts: {n1} and {n2}")
-    for ax, leg in legends:
-        if not leg.get_visible():
-            continue
+            # tick labels of two axes (x and y too) meet only at corners
+            if not (tick1 and tick2 and ax1 is not ax2) and _overlap(b1, b2):
+                out.append(f"overlapping texts: {n1} and {n2}")
+    return out
+
+
+def _legends_over_data(fig, r) -> list[str]:
+    out = []
+    for ax, leg in _legends(fig):
         bb = leg.get_window_extent(r)
         for other in (fig.axes if ax is None else [ax]):
             p = _data_points(other)
             inside = ((p[:, 0] > bb.x0 + 1) & (p[:, 0] < bb.x1 - 1)
                       & (p[:, 1] > bb.y0 + 1) & (p[:, 1] < bb.y1 - 1))
             if inside.any():
-                problems.append(f"legend over data in axes {other.get_title()!r} "
-                                f"({int(inside.sum())} points under it)")
-    for ax in fig.axes:
-        if ax.get_visible() and ax.axison and (ax.lines or ax.collections or ax.images
-                                               or ax.patches):
-            for name in ("x", "y"):
-                if _unit_missing(fig, ax, name):
-                    label = getattr(ax, f"get_{name}label")()
-                    problems.append(f"{name} axis of {ax.get_title()!r} without a [unit] "
-                                    f"(dimensionless: [1]): label {label!r}")
+                out.append(f"legend over data in axes {other.get_title()!r} "
+                           f"({int(inside.sum())} points under it)")
+    return out
+
+
+def _axes_without_units(fig) -> list[str]:
+    return [f"{name} axis of {ax.get_title()!r} without a [unit] (dimensionless: [1]): "
+            f"label {getattr(ax, f'get_{name}label')()!r}"
+            for ax in fig.axes
+            if ax.get_visible() and ax.axison and (ax.lines or ax.collections or ax.images
+                                                   or ax.patches)
+            for name in ("x", "y") if _unit_missing(fig, ax, name)]
+
+
+def _invisible_series(fig) -> list[str]:
+    """Labelled series whose hiding changes fewer than :data:`SERIES_MIN_PIXELS` pixels."""
     base = np.asarray(fig.canvas.buffer_rgba()).copy()
+    out = []
     for ax in fig.axes:
         # a bar chart or histogram is one series: its container's patches
         groups = [(c.get_label(), list(c)) for c in ax.containers if hasattr(c, "patches")]
@@ -209,11 +216,9 @@ def lint(fig) -> list[str]:
         groups += [(a.get_label(), [a]) for a in [*ax.lines, *ax.collections, *ax.patches,
                                                  *ax.images] if id(a) not in grouped]
         for label, group in groups:
-            label = label or ""
-            if (label.startswith("_") or not label or not any(a.get_visible() for a in group)
-                    or all(_empty(a) for a in group)):
-                continue    # a legend's proxy (no data) is no series
             shown = [a for a in group if a.get_visible()]
+            if not label or label.startswith("_") or not shown or all(_empty(a) for a in group):
+                continue    # a legend's proxy (no data) is no series
             for a in shown:
                 a.set_visible(False)
             fig.canvas.draw()
@@ -221,8 +226,19 @@ def lint(fig) -> list[str]:
             for a in shown:
                 a.set_visible(True)
             if changed < SERIES_MIN_PIXELS:
-                problems.append(f"series {label!r} in axes {ax.get_title()!r} not visible "
-                                f"({changed} pixels)")
+                out.append(f"series {label!r} in axes {ax.get_title()!r} not visible "
+                           f"({changed} pixels)")
+    return out
+
+
+def lint(fig) -> list[str]:
+    """What is wrong with ``fig`` as a reader sees it: two texts that overlap, a legend over
+    data, an axis with numbers and no unit, a labelled series that draws nothing visible.
+    Leaves ``fig`` as it was (drawn)."""
+    fig.canvas.draw()
+    r = fig.canvas.get_renderer()
+    problems = (_overlapping_texts(fig, r) + _legends_over_data(fig, r)
+                + _axes_without_units(fig) + _invisible_series(fig))
     fig.canvas.draw()
     return problems
 
