@@ -206,41 +206,64 @@ def _axes_without_units(fig) -> list[str]:
 
 
 def _invisible_series(fig) -> list[str]:
-    """Labelled series whose hiding changes fewer than :data:`SERIES_MIN_PIXELS` pixels."""
-    base = np.asarray(fig.canvas.buffer_rgba()).copy()
-    out = []
+    """Labelled series whose hiding changes fewer than :data:`SERIES_MIN_PIXELS` pixels:
+    the figure drawn once without them, then per axes each series' absence composed on
+    that background by blitting (its axes' series drawn again, all but one)."""
+    series = []
     for ax in fig.axes:
         # a bar chart or histogram is one series: its container's patches
         groups = [(c.get_label(), list(c)) for c in ax.containers if hasattr(c, "patches")]
         grouped = {id(a) for _, g in groups for a in g}
         groups += [(a.get_label(), [a]) for a in [*ax.lines, *ax.collections, *ax.patches,
                                                  *ax.images] if id(a) not in grouped]
-        for label, group in groups:
-            shown = [a for a in group if a.get_visible()]
-            if not label or label.startswith("_") or not shown or all(_empty(a) for a in group):
-                continue    # a legend's proxy (no data) is no series
-            for a in shown:
-                a.set_visible(False)
-            fig.canvas.draw()
-            changed = int(np.any(np.asarray(fig.canvas.buffer_rgba()) != base, axis=2).sum())
-            for a in shown:
-                a.set_visible(True)
+        series += [(ax, label, shown) for label, group in groups
+                   if label and not label.startswith("_")
+                   and (shown := [a for a in group if a.get_visible()])
+                   and not all(_empty(a) for a in group)]   # a legend's proxy is no series
+    if not series:
+        return []
+    for _, _, shown in series:
+        for a in shown:
+            a.set_visible(False)
+    fig.canvas.draw()
+    height = fig.canvas.get_width_height()[1]
+    out = []
+    for ax in dict.fromkeys(ax for ax, _, _ in series):
+        bg = fig.canvas.copy_from_bbox(ax.bbox)
+        mine = [(label, shown) for a, label, shown in series if a is ax]
+        arts = sorted((a for _, shown in mine for a in shown), key=lambda a: a.get_zorder())
+        x0, x1 = int(ax.bbox.x0), int(np.ceil(ax.bbox.x1))
+        y0, y1 = height - int(np.ceil(ax.bbox.y1)), height - int(ax.bbox.y0)
+
+        def drawn(skip=()):
+            fig.canvas.restore_region(bg)
+            for a in arts:
+                if not any(a is s for s in skip):
+                    a.set_visible(True)
+                    ax.draw_artist(a)
+                    a.set_visible(False)
+            return np.asarray(fig.canvas.buffer_rgba())[y0:y1, x0:x1].copy()
+
+        full = drawn()
+        for label, shown in mine:
+            changed = int(np.any(drawn(shown) != full, axis=2).sum())
             if changed < SERIES_MIN_PIXELS:
                 out.append(f"series {label!r} in axes {ax.get_title()!r} not visible "
                            f"({changed} pixels)")
+    for _, _, shown in series:
+        for a in shown:
+            a.set_visible(True)
     return out
 
 
 def lint(fig) -> list[str]:
     """What is wrong with ``fig`` as a reader sees it: two texts that overlap, a legend over
     data, an axis with numbers and no unit, a labelled series that draws nothing visible.
-    Leaves ``fig`` as it was (drawn)."""
+    Leaves every artist of ``fig`` as it was (its canvas is drawn again to be saved)."""
     fig.canvas.draw()
     r = fig.canvas.get_renderer()
-    problems = (_overlapping_texts(fig, r) + _legends_over_data(fig, r)
-                + _axes_without_units(fig) + _invisible_series(fig))
-    fig.canvas.draw()
-    return problems
+    return (_overlapping_texts(fig, r) + _legends_over_data(fig, r)
+            + _axes_without_units(fig) + _invisible_series(fig))
 
 
 def lint_record(path) -> list[str] | None:
