@@ -185,6 +185,47 @@ for q in ("load_point_fit_solutions", "load_point_fit_upper_part", "local_vs_uni
     print(q, table[q]["reproduced_value"], table[q]["note"])
 
 # %% [markdown]
+# ## The worn groove in the contact
+# Left: side B1 after 86 h at the load point estimated from Tables 3–4, with the worn profile
+# in the contact gap (a conforming contact: the pressure over the arc where the pin meets the
+# groove) against the same local wear fed back only through a circle of the points' mean
+# depth, and the paper's uniform depth (grey); circles: the 8 measuring points of Eq. (33).
+# Right: groove / uniform − 1 at 86 h with the points placed otherwise (each placement
+# calibrated on its own points), and the mean-circle feedback at the baseline points.
+
+# %%
+lw = R.run("local_wear_estimated")
+th = lw["theta"].values
+centre = np.angle(np.sum(lw["local_profile_end"].values * np.exp(1j * th)))
+rel = np.angle(np.exp(1j * (th - centre)))
+o = np.argsort(rel)
+fig, ax = plt.subplots(1, 2, figsize=(11, 4))
+for var_, ls, lab in (("local_profile_end", "-", "groove in the contact"),
+                      ("circle_profile_end", "--", "mean-circle feedback")):
+    line, = ax[0].plot(deg(rel[o]), mm(lw[var_].values[o]), ls, label=lab)
+ax[0].axhline(mm(float(lw["uniform_depth"][-1])), color="gray", lw=0.8, label="uniform depth (Eq. 29)")
+pts = np.angle(np.exp(1j * (lw["local_point_angle"].values - centre)))
+ax[0].plot(deg(pts), mm(np.interp(pts, rel[o], lw["local_profile_end"].values[o])), "o", mfc="none",
+           color="k", ms=5, label="measuring points (Eq. 33)")
+ax[0].set(xlabel="bushing angle from the worn region's centre [deg]", ylabel="wear depth at 86 h [mm]",
+          title="side B1, estimated F")
+ax[0].legend(fontsize=7, loc="upper left")
+u = float(lw["uniform_depth"][-1])
+x = np.arange(lw.sizes["placement"])
+ax[1].plot(x, 100 * (lw["placement_mean_depth"].values / u - 1), "o", label="groove in the contact")
+ax[1].plot([0], [100 * (float(lw["circle_mean_depth"][-1]) / u - 1)], "s", mfc="none",
+           label="mean-circle feedback (baseline points)")
+ax[1].axhline(0, color="k", lw=0.6)
+ax[1].set_xticks(x, [f"shift {a:+g}\nspan ×{b:g}" for a, b in
+                     zip(lw["placement_shift"].values, lw["placement_scale"].values)], fontsize=7)
+ax[1].set(ylabel="local / uniform − 1 at 86 h [%]", title="placement of the 8 points on the contact arc")
+ax[1].legend(fontsize=7)
+R.save_figure(fig, "groove")
+for q in ("local_vs_uniform_86h_b1_estimated_f", "circle_vs_uniform_86h_b1_estimated_f",
+          "local_vs_uniform_placement_spread_estimated_f"):
+    print(q, table[q]["reproduced_value"], table[q]["note"])
+
+# %% [markdown]
 # ## The load point as a distribution, and continuous contact over it (Sec. 3.2)
 # F's direction and distance, the gravity plane and μ weighed by how well they reproduce the ten
 # K_p of Tables 3–4 at the rounding of their printed increments, with the wear on the upper part
