@@ -58,7 +58,7 @@ def foundation_circle(F_N, delta, R, R_pin, width):
     return k_f, phi0, k_f * delta
 
 
-def solve_offset(F_N, psi_F, theta, depth, fb: FourBar, tol=1e-7, max_iter=60, e0=None):
+def solve_offset(F_N, psi_F, theta, depth, fb: FourBar, tol=1e-6, max_iter=60, e0=None):
     """(G1)-(G4) per sample: the pin offset e (m x 2, bushing frame) whose foundation
     pressure balances F_N along psi_F, the modulus k_f (m), the pressure p (m x n) and the
     penetration delta of Eq. (11) at the local radius (m).
@@ -93,6 +93,7 @@ def solve_offset(F_N, psi_F, theta, depth, fb: FourBar, tol=1e-7, max_iter=60, e
         return u, q, energy, np.stack([q @ cs, q @ sn], axis=1) - F          # (G3)
 
     u, q, energy, r = state(e)
+    lam = np.zeros(F_N.size)
     for _ in range(max_iter):
         res = np.hypot(r[:, 0], r[:, 1])
         if np.all(res <= tol * F_N):
@@ -100,8 +101,8 @@ def solve_offset(F_N, psi_F, theta, depth, fb: FourBar, tol=1e-7, max_iter=60, e
         on = a * (u > 0.0)
         h11, h12, h22 = on @ (cs * cs), on @ (cs * sn), on @ (sn * sn)
         free = ~(h11 + h22 > 0.0)
-        lam = 1e-9 * (h11 + h22)         # Levenberg-Marquardt: raised where the energy
-        for _ in range(40):              # does not fall (a node or two in contact leave
+        lam = np.maximum(0.1 * lam, 1e-6 * (h11 + h22))  # Levenberg-Marquardt: raised where
+        for _ in range(40):              # the energy does not fall (a node or two in contact leave
             d11, d22 = h11 + lam, h22 + lam          # the slide along the groove free)
             det = np.where(free, 1.0, d11 * d22 - h12 * h12)
             step = -np.stack([d22 * r[:, 0] - h12 * r[:, 1], d11 * r[:, 1] - h12 * r[:, 0]],
@@ -164,10 +165,9 @@ def interval_method(period_of, theta, placements, dh_measured, t_cal_h: float,
     period of the bushing circle R0 + d0 with the depth profile - d0) is simulated once per
     interval of the paper's method (at the measured depths of the first placement, then every
     interval_h); in between, the foundation (G1-G4) is re-solved on ``samples`` samples of
-    that period at every explicit step, each wearing at most ``step`` mean penetrations at
-    the deepest point: the stability bound of the foundation's local modes (a groove worn
+    that period at every explicit step of ``step`` local relaxation times (a groove worn
     deeper per step than the contact's compliance is bridged by the pin, which then bears on
-    its rims).  placements: list of measuring-point angle arrays, the first the baseline.
+    its rims: the steps must resolve the foundation's relaxation).  placements: list of measuring-point angle arrays, the first the baseline.
     Returns {tau, peak, mean (placement x step), tau_cal (per placement), profile (the
     baseline's at t_end), refreshes, steps}."""
     from .wear import at_points
@@ -188,9 +188,9 @@ def interval_method(period_of, theta, placements, dh_measured, t_cal_h: float,
             e = None
         e, k_f, p, _ = solve_offset(F, psi, theta, prof - d0, fb_w, e0=e)
         inc = v @ p * dt
-        # explicit Euler on d' = inc(d): the foundation's local modes decay at the rate
-        # D(theta) = sum_t |v_T| k_f dt over the samples in contact there; ``step`` <= 1
-        # keeps them monotone (no overshoot that roughens the profile), <= 2 stable
+        # explicit Euler on d' = inc(d), the step in units of 1 / max D(theta), D = sum_t
+        # |v_T| k_f dt over the samples in contact at theta: the decay rate of a bump on the
+        # foundation alone; the pin's approach that balances the load slows it
         dtau = step / float(((v * k_f * dt) @ (p > 0.0)).max())
         landing = profile_end is None and tau + dtau >= land
         tau = land if landing else tau + dtau
