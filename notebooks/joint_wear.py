@@ -148,7 +148,7 @@ R.save_figure(fig, "coefficient_scan")
 # ## The load point estimated from Tables 3–4, and local vs uniform wear
 # Left: the misfit mean ln(K_p ours / K_p paper) over both tables against F's direction;
 # its zeros are the estimates (marked: wear on the upper part of the bushing, Sec. 4.2, or
-# not).  Right: the local Archard profile after 86 h (side B1) at the assumed and at an
+# not).  Right: the local Archard profile (the groove in the contact) after 86 h (side B1) at the assumed and at an
 # estimated load point, against the paper's uniform depth over the contact arc (Fig. 14); the
 # circles are the 8 measuring points of Eq. (33), the middles of 8 equal parts of the contact
 # arc, on which the local model is calibrated and read (what the paper measures).
@@ -176,9 +176,10 @@ for name, ls in (("local_wear", "-"), ("local_wear_estimated", "--")):
     pts = np.angle(np.exp(1j * (lw["local_point_angle"].values - centre)))
     ax[1].plot(deg(pts), mm(np.interp(pts, rel[o], prof[o])), "o", color=line.get_color(), mfc="none", ms=5,
                label=f"{name.replace('_', ' ')}: the 8 measuring points (Eq. 33)")
+ax[1].set_ylim(top=1.8 * ax[1].get_ylim()[1])                 # the legend above the profiles
 ax[1].set(xlabel="bushing angle θ from the worn region's centre [deg] (coupler frame)", ylabel="wear depth at 86 h [mm]",
-          title="local Archard profile vs uniform depth (grey)")
-ax[1].legend(fontsize=7)
+          title="groove profile vs uniform depth (grey)")
+ax[1].legend(fontsize=7, loc="upper left")
 R.save_figure(fig, "load_point_fit")
 for q in ("load_point_fit_solutions", "load_point_fit_upper_part", "local_vs_uniform_86h_b1",
           "local_vs_uniform_86h_b1_estimated_f"):
