@@ -148,7 +148,7 @@ R.save_figure(fig, "coefficient_scan")
 # ## The load point estimated from Tables 3–4, and local vs uniform wear
 # Left: the misfit mean ln(K_p ours / K_p paper) over both tables against F's direction;
 # its zeros are the estimates (marked: wear on the upper part of the bushing, Sec. 4.2, or
-# not).  Right: the local Archard profile after 86 h (side B1) at the assumed and at an
+# not).  Right: the local Archard profile (the groove in the contact) after 86 h (side B1) at the assumed and at an
 # estimated load point, against the paper's uniform depth over the contact arc (Fig. 14); the
 # circles are the 8 measuring points of Eq. (33), the middles of 8 equal parts of the contact
 # arc, on which the local model is calibrated and read (what the paper measures).
@@ -176,12 +176,54 @@ for name, ls in (("local_wear", "-"), ("local_wear_estimated", "--")):
     pts = np.angle(np.exp(1j * (lw["local_point_angle"].values - centre)))
     ax[1].plot(deg(pts), mm(np.interp(pts, rel[o], prof[o])), "o", color=line.get_color(), mfc="none", ms=5,
                label=f"{name.replace('_', ' ')}: the 8 measuring points (Eq. 33)")
+ax[1].set_ylim(top=1.8 * ax[1].get_ylim()[1])                 # the legend above the profiles
 ax[1].set(xlabel="bushing angle θ from the worn region's centre [deg] (coupler frame)", ylabel="wear depth at 86 h [mm]",
-          title="local Archard profile vs uniform depth (grey)")
-ax[1].legend(fontsize=7)
+          title="groove profile vs uniform depth (grey)")
+ax[1].legend(fontsize=7, loc="upper left")
 R.save_figure(fig, "load_point_fit")
 for q in ("load_point_fit_solutions", "load_point_fit_upper_part", "local_vs_uniform_86h_b1",
           "local_vs_uniform_86h_b1_estimated_f"):
+    print(q, table[q]["reproduced_value"], table[q]["note"])
+
+# %% [markdown]
+# ## The worn groove in the contact
+# Left: side B1 after 86 h at the load point estimated from Tables 3–4, with the worn profile
+# in the contact gap (a conforming contact: the pressure over the arc where the pin meets the
+# groove) against the same local wear fed back only through a circle of the points' mean
+# depth, and the paper's uniform depth (grey); circles: the 8 measuring points of Eq. (33).
+# Right: groove / uniform − 1 at 86 h with the points placed otherwise (each placement
+# calibrated on its own points), and the mean-circle feedback at the baseline points.
+
+# %%
+lw = R.run("local_wear_estimated")
+th = lw["theta"].values
+centre = np.angle(np.sum(lw["local_profile_end"].values * np.exp(1j * th)))
+rel = np.angle(np.exp(1j * (th - centre)))
+o = np.argsort(rel)
+fig, ax = plt.subplots(1, 2, figsize=(11, 4))
+for var_, ls, lab in (("local_profile_end", "-", "groove in the contact"),
+                      ("circle_profile_end", "--", "mean-circle feedback")):
+    line, = ax[0].plot(deg(rel[o]), mm(lw[var_].values[o]), ls, label=lab)
+ax[0].axhline(mm(float(lw["uniform_depth"][-1])), color="gray", lw=0.8, label="uniform depth (Eq. 29)")
+pts = np.angle(np.exp(1j * (lw["local_point_angle"].values - centre)))
+ax[0].plot(deg(pts), mm(np.interp(pts, rel[o], lw["local_profile_end"].values[o])), "o", mfc="none",
+           color="k", ms=5, label="measuring points (Eq. 33)")
+ax[0].set(xlabel="bushing angle from the worn region's centre [deg]", ylabel="wear depth at 86 h [mm]",
+          title="side B1, estimated F")
+ax[0].legend(fontsize=7, loc="upper left")
+u = float(lw["uniform_depth"][-1])
+x = np.arange(lw.sizes["placement"])
+ax[1].plot(x, 100 * (lw["placement_mean_depth"].values / u - 1), "o", label="groove in the contact")
+ax[1].plot([0], [100 * (float(lw["circle_mean_depth"][-1]) / u - 1)], "s", mfc="none",
+           label="mean-circle feedback (baseline points)")
+ax[1].axhline(0, color="k", lw=0.6)
+ax[1].set_xticks(x, [f"shift {a:+g}\nspan ×{b:g}" for a, b in
+                     zip(lw["placement_shift"].values, lw["placement_scale"].values)], fontsize=7)
+ax[1].set(ylabel="local / uniform − 1 at 86 h [%]", title="placement of the 8 points on the contact arc")
+ax[1].legend(fontsize=7)
+R.save_figure(fig, "groove")
+for q in ("local_vs_uniform_86h_b1_estimated_f", "circle_vs_uniform_86h_b1_estimated_f",
+          "local_vs_uniform_placement_spread_estimated_f"):
     print(q, table[q]["reproduced_value"], table[q]["note"])
 
 # %% [markdown]

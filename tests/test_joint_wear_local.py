@@ -56,8 +56,11 @@ def test_local_prediction_reproduces_the_uniform_one_in_the_limit():
 
     def one(fb_w):
         return sweep(arc, n=2000)
-    nodes, mean, peak, k, prof, theta = wear.local_predict(h_meas, dh, 2.0, 86.0, 2.0, FB,
-                                                           FB.period, one, n_theta=3600)
+    theta = np.linspace(-math.pi, math.pi, 3600, endpoint=False)
+    pts = wear.wear_range_points(one(FB)["psi"])
+    nodes, mean, peak, k, prof = wear.local_predict(
+        dh, 2.0, 86.0, 2.0, FB.period, wear.mean_circle_increment(FB, FB.period, one, theta, pts),
+        theta, pts)
 
     def G(R):
         fb_w = FB.with_bushing_radius(R)

@@ -280,17 +280,25 @@ def local_part(res: dict, run: dict):
     lw = res["local"]
     coords = {"local_hour": var("local_hour", lw["hours"], "h", "node times of the prediction"),
               "theta": var("theta", lw["theta"], "rad", "bushing angle, coupler frame"),
-              "local_point": var("local_point", np.arange(len(lw["points"])), "1", "measuring point of Eq. (33)")}
-    h = ("local_hour",)
-    v = {"local_mean_depth": var(h, lw["mean"], "m", "local model: mean depth over the 8 points of Eq. (33) in the wear range"),
-         "local_peak_depth": var(h, lw["peak"], "m", "local model: deepest point of the profile"),
+              "local_point": var("local_point", np.arange(len(lw["points"])), "1", "measuring point of Eq. (33)"),
+              "placement": var("placement", np.arange(len(lw["placements"])), "1", "placement of the Eq.-33 points (0: the baseline)")}
+    h, pl = ("local_hour",), ("placement",)
+    v = {"local_mean_depth": var(h, lw["mean"], "m", "groove model: mean depth over the 8 points of Eq. (33) in the wear range"),
+         "local_peak_depth": var(h, lw["peak"], "m", "groove model: deepest point of the profile"),
+         "circle_mean_depth": var(h, lw["circle_mean"], "m", "mean-circle feedback: mean depth over the 8 points"),
+         "circle_peak_depth": var(h, lw["circle_peak"], "m", "mean-circle feedback: deepest point of the profile"),
+         "circle_profile_end": var(("theta",), lw["circle_profile"], "m", "mean-circle feedback: wear profile at the end"),
+         "placement_shift": var(pl, lw["placements"][:, 0], "1", "shift of the points' centre from the contact arc's midpoint, in arcs"),
+         "placement_scale": var(pl, lw["placements"][:, 1], "1", "span of the points over the contact arc's"),
+         "placement_mean_depth": var(pl, lw["placement_mean"], "m", "groove model, 86 h: mean depth over the points so placed (calibrated on them)"),
+         "placement_peak_depth": var(pl, lw["placement_peak"], "m", "groove model, 86 h: deepest point (calibrated on the points so placed)"),
          "uniform_depth": var(h, lw["uniform"], "m", "uniform model (Eq. 29) on the same joint and schedule"),
-         "local_profile_end": var(("theta",), lw["profile"], "m", "local wear profile at the end"),
+         "local_profile_end": var(("theta",), lw["profile"], "m", "groove model: wear profile at the end"),
          "local_point_angle": var(("local_point",), np.angle(np.exp(1j * np.asarray(lw["points"]))), "rad",
                                   "bushing angle of the measuring points of Eq. (33): the middles of 8 equal parts of the contact arc (coupler frame)"),
          **_scalars({"local_k": (lw["k_local"], "m2/N", "calibrated k of the local model"),
                      "local_k_uniform": (lw["k_uniform"], "m2/N", "calibrated k of the uniform model"),
-                     "local_wall_time": (lw["wall_local"], "s", "wall time, local model (calibration + prediction)"),
+                     "local_wall_time": (lw["wall_local"], "s", "wall time, groove model (calibration + prediction), per placement"),
                      "local_uniform_wall_time": (lw["wall_uniform"], "s", "wall time, uniform model"),
                      "local_arc": (lw["arc"], "rad", "contact arc of the new bushing"),
                      "local_AB_mean": (lw["AB_mean"], "m", "mean contact chord of the new bushing")})}

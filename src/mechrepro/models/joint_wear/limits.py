@@ -65,7 +65,7 @@ _RADAU_STEP_S, _RADAU_B = 3.1e-6, 100.0
 _SCIPY = {"LSODA": (45e-6, 38_000), "BDF": (5e-4, 14_000), "RK45": (2.1e-4, 1.5e7),
           "RK23": (2.1e-4, 1.5e7), "DOP853": (2.1e-4, 1.5e7)}
 _SCIPY_SAMPLE_S, _SCIPY_B = 50e-6, 400.0
-_LOCAL_CELL_S, _LOCAL_B = 0.13e-6, 50.0
+_LOCAL_CELL_S, _LOCAL_B, _GROOVE_CELL_S = 0.13e-6, 50.0, 0.65e-6
 _LOCAL_PATCH = math.radians(15.0)   # the widest contact patch of the scenes (assumed F)
 #: steps from the concentric start (impact, rattling) over a settled period's at the same
 #: rtol: compiled Radau at 1e-7 (1.2 s: ~390 000 steps against 1329), LSODA (161 857
@@ -157,7 +157,12 @@ def _solve_seconds(run: dict) -> tuple[float, float]:
         periods = 1 + _wear_periods(run, interval, 1, True)
         n_theta = int(res.get("n_theta", 720))
         cells = n * min(n_theta, n_theta * _LOCAL_PATCH / (2 * math.pi) + 5)
-        return periods * (2 * _qs(n) + _LOCAL_CELL_S * cells), max(qs_mb, _LOCAL_B * cells / 1e6)
+        # the groove: ~8 000 explicit steps at groove_step 4 (2 100 at the assumed F, 11 400
+        # at the estimated one), each ~0.65 us per sample and angle (measured, 24 x 180)
+        steps = 8000.0 * 4.0 / float(res.get("groove_step", 4.0))
+        groove = steps * _GROOVE_CELL_S * int(res.get("groove_samples", 24)) * n_theta
+        return (periods * (4 * _qs(n) + _LOCAL_CELL_S * cells) + groove,
+                max(qs_mb, _LOCAL_B * cells / 1e6))
     if solver == "constant_sensitivity":
         rows = 1 + 2 * len(opt.get("sensitivity", {}))
         dyn = _dynamic({"method": "Radau", "rtol": res.get("rtol", 1e-6), "n_out": n},

@@ -32,13 +32,15 @@ from .geometry import FourBar
 
 
 def one_period(fb: FourBar, n_steps: int, passes: int = 2, t0: float = 0.0,
-               settled: bool = False) -> dict:
+               settled: bool = False, offset=None) -> dict:
     """Contact history over one crank period on a uniform periodic grid of n_steps from t0.
 
     passes = 0 is the ideal-kinematics approximation (the bushing centre on the pin's).
     settled=True converges the link angles to round-off (4 passes, full friction fixed
     point in each): the start of a dynamic run needs the bushing position to ~1e-10 m,
     since a tangential offset d rings the rocking mode with an amplitude d / c.
+    offset(state, phi2) -> (x, y): the pin centre's offset from the bushing centre (global
+    frame) for a worn groove (groove.py); default the circle's (c + delta) n.
     """
     if settled:
         passes = max(passes, 4)
@@ -49,10 +51,12 @@ def one_period(fb: FourBar, n_steps: int, passes: int = 2, t0: float = 0.0,
     rough = 4 if settled else 2
     out = _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2, rough if passes else 4)
     for i in range(passes):
-        ecc = fb.clearance + out["delta"]
-        bx = px - ecc * out["nx"]
-        by = py - ecc * out["ny"]
-        th3, ph2 = kinematics.positions_from_point(fb, bx, by)
+        if offset is None:
+            ecc = fb.clearance + out["delta"]
+            ox, oy = ecc * out["nx"], ecc * out["ny"]
+        else:
+            ox, oy = offset(out, ph2)
+        th3, ph2 = kinematics.positions_from_point(fb, px - ox, py - oy)
         (w3, w2), (a3, a2) = periodic_derivatives(np.vstack([th3, ph2]), fb.period)
         out = _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2, 4 if i == passes - 1 else rough)
     # the contact angle of the last pass only (the passes before steer by n alone)

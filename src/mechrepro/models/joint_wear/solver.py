@@ -35,7 +35,7 @@ from scipy import optimize, stats
 from mechrepro.errors import Refusal
 from mechrepro.timing import stopwatch
 
-from . import dataset, dynamics, kinematics, quasistatic, wear
+from . import dataset, dynamics, groove, kinematics, quasistatic, wear
 from .effects import EFFECTS, Context
 from .geometry import FourBar, from_parameters
 
@@ -107,7 +107,11 @@ def continuous_contact_period(fb: FourBar, s: dict) -> dict:
     The continuous-contact model (Sec. 3.2) cannot represent a joint force that vanishes:
     there the pin flies across the clearance (the dynamic model shows it).  Below 1 % of
     its peak the force is taken as vanishing -- a refusal, never a verdict."""
-    hist = quasi_static_period(fb, s)
+    return refuse_contact_loss(quasi_static_period(fb, s))
+
+
+def refuse_contact_loss(hist: dict) -> dict:
+    """``hist`` if its joint force keeps above 1 % of its peak, else ContactLost."""
     F = np.asarray(hist["F_N"])
     if not F.min() > CONTACT_LOSS_FRACTION * F.max():
         i = int(np.argmin(F))
@@ -755,11 +759,15 @@ def constant_sensitivity(run: dict) -> dict:
 
 
 def local_wear(run: dict) -> dict:
-    """Side B1 with local Archard wear (wear.local_predict: a depth per bushing angle, the
-    profile fed back interval by interval) against the paper's uniform depth (Eq. 29) on the
-    same joint and schedule; quasi-static joint.  Option ``local_load_point``:
-    [distance m, direction deg] of F from E's mid-stroke position (default: the assumed F);
-    gravity is the gravity effect's, as in every other solver."""
+    """Side B1 with local Archard wear (wear.local_predict: a depth per bushing angle grown
+    interval by interval) against the paper's uniform depth (Eq. 29) on the same joint and
+    schedule; quasi-static joint.  The profile enters the contact gap (groove.py: a
+    conforming contact, the pressure over the arc where the pin meets the worn surface);
+    beside it the mean-circle feedback (wear.mean_circle_increment) at the same points.
+    Options: ``local_load_point`` [distance m, direction deg] of F from E's mid-stroke
+    position (default: the assumed F); ``local_placements`` [[shift, scale], ...] of the
+    Eq.-33 points (wear.wear_range_points), the first the baseline; gravity is the gravity
+    effect's."""
     fb, ctx = setup(run)
     s, p = ctx.s, ctx.p
     lp = s.get("local_load_point")
@@ -770,24 +778,47 @@ def local_wear(run: dict) -> dict:
     t_end, step = float(p["prediction_end"]) / 3600.0, float(s["interval_h"])
     h = np.asarray(p["measured_wear_B1"], float)
     dh = np.asarray(p["measured_increment_B1"], float)
-    with stopwatch() as sw_l:
-        nodes, mean, peak, k_l, prof, theta = wear.local_predict(
-            h, dh, cal_h, t_end, step, fb, fb.period,
-            lambda fb_w: continuous_contact_period(fb_w, s), n_theta=int(s["n_theta"]))
+    theta = np.linspace(-math.pi, math.pi, int(s["n_theta"]), endpoint=False)
+    h0 = continuous_contact_period(fb, s)
+    f0 = wear.period_wear_factor(h0, fb, fb.period)
 
+    def groove_period(prof):
+        d0 = float(prof.min())           # the unworn part: the circle the groove is cut in
+        fb_w = fb.with_bushing_radius(fb.R_bush + d0)
+        hist = groove.period(fb_w, int(s["n_steps"]), theta, prof - d0)
+        return refuse_contact_loss(hist), fb_w, d0
+
+    placements = s.get("local_placements", [[0.0, 1.0]])
+    pts = [wear.wear_range_points(h0["psi"], 8, float(a), float(b)) for a, b in placements]
+    t_cal = cal_h * dh.size
+    with stopwatch() as sw_l:
+        g = groove.interval_method(groove_period, theta, pts, dh, t_cal, t_end, step,
+                                   int(s["groove_samples"]), float(s["groove_step"]))
+    nodes = wear.interval_nodes(t_cal, t_end, step)
+    at = g["tau_cal"][0] * nodes / t_cal
+    ends = np.asarray(g["tau_cal"]) * t_end / t_cal
+    circle = wear.local_predict(dh, cal_h, t_end, step, fb.period, wear.mean_circle_increment(
+        fb, fb.period, lambda fb_w: continuous_contact_period(fb_w, s), theta, pts[0]),
+        theta, pts[0])
     factor = wear_factor_of(fb, s)
     with stopwatch() as sw_u:
         _, k_u, _ = wear.calibrate(h, cal_h, fb.period, fb.R_bush, factor, dh_measured=dh)
         _, h_u, _ = wear.predict(h[-1], cal_h * h.size, t_end, step, k_u, fb.period, fb.R_bush,
                                  factor)
-    h0 = continuous_contact_period(fb, s)
-    f0 = wear.period_wear_factor(h0, fb, fb.period)
-    return {"fb": fb, "local": {"hours": nodes, "mean": mean, "peak": peak, "uniform": h_u,
-                                "points": wear.wear_range_points(h0["psi"]),
-                                "k_local": k_l, "k_uniform": k_u, "profile": prof,
-                                "theta": theta, "wall_local": sw_l.seconds,
-                                "wall_uniform": sw_u.seconds, "arc": f0["arc"],
-                                "AB_mean": f0["AB_mean"]}}
+    M = wear.periods_per_interval(t_cal, fb.period)
+    return {"fb": fb, "local": {"hours": nodes, "mean": np.interp(at, g["tau"], g["mean"][0]),
+                                "peak": np.interp(at, g["tau"], g["peak"]), "uniform": h_u,
+                                "points": pts[0], "k_local": g["tau_cal"][0] / M,
+                                "k_uniform": k_u, "profile": g["profile"], "theta": theta,
+                                "circle_mean": circle[1], "circle_peak": circle[2],
+                                "circle_profile": circle[4],
+                                "placements": np.asarray(placements, float),
+                                "placement_mean": np.array([np.interp(t, g["tau"], m)
+                                                            for t, m in zip(ends, g["mean"])]),
+                                "placement_peak": np.interp(ends, g["tau"], g["peak"]),
+                                "groove_steps": g["steps"], "groove_periods": g["refreshes"],
+                                "wall_local": sw_l.seconds, "wall_uniform": sw_u.seconds,
+                                "arc": f0["arc"], "AB_mean": f0["AB_mean"]}}
 
 
 SOLVERS = {"clearance_implicit": clearance_implicit, "clearance_explicit": clearance_explicit,

@@ -425,18 +425,28 @@ def sensitivity(R):
 # ---- local vs uniform wear ------------------------------------------------------------------
 @Q.register("local_vs_uniform_86h_b1", "local_peak_to_mean_86h_b1",
             "local_vs_uniform_86h_b1_estimated_f", "local_peak_to_mean_86h_b1_estimated_f",
-            "wall_time_local_over_uniform")
+            "circle_vs_uniform_86h_b1", "circle_vs_uniform_86h_b1_estimated_f",
+            "local_vs_uniform_placement_spread_estimated_f", "wall_time_local_over_uniform")
 def local_vs_uniform(R):
     out = {}
     for scene, tag in (("local_wear", ""), ("local_wear_estimated", "_estimated_f")):
         ds = R.run(scene)
         m, pk, u = (float(ds[k][-1]) for k in ("local_mean_depth", "local_peak_depth", "uniform_depth"))
-        info = (f"86 h: local mean {m * 1e3:.4f} mm, peak {pk * 1e3:.3f} mm, uniform {u * 1e3:.4f} mm; "
-                f"contact arc {math.degrees(float(ds['local_arc'])):.1f} deg, patch "
+        c = float(ds["circle_mean_depth"][-1])
+        info = (f"86 h: groove mean {m * 1e3:.4f} mm, peak {pk * 1e3:.3f} mm, uniform {u * 1e3:.4f} mm, "
+                f"mean-circle feedback {c * 1e3:.4f} mm (peak/mean "
+                f"{float(ds['circle_peak_depth'][-1]) / c:.2f}); contact arc "
+                f"{math.degrees(float(ds['local_arc'])):.1f} deg, patch "
                 f"{math.degrees(float(ds['local_AB_mean']) / (float(_param_si(ds, 'pin_radius')) + float(_param_si(ds, 'radial_clearance')))):.1f} deg; "
-                f"k local/uniform {float(ds['local_k']) / float(ds['local_k_uniform']):.3f}")
+                f"k groove/uniform {float(ds['local_k']) / float(ds['local_k_uniform']):.3f}")
         out[f"local_vs_uniform_86h_b1{tag}"] = Reproduced(m / u - 1.0, info)
         out[f"local_peak_to_mean_86h_b1{tag}"] = Reproduced(pk / m, info)
+        out[f"circle_vs_uniform_86h_b1{tag}"] = Reproduced(c / u - 1.0, info)
+    r = ds["placement_mean_depth"].values / u - 1.0
+    out["local_vs_uniform_placement_spread_estimated_f"] = Reproduced(
+        float(r.max() - r.min()), "86 h, groove / uniform - 1 with the points "
+        + ", ".join(f"shifted {a:+g} arc, span x{b:g}: {x:+.1%}" for a, b, x in
+                    zip(ds["placement_shift"].values, ds["placement_scale"].values, r)))
     ds = R.run("local_wear")
     out["wall_time_local_over_uniform"] = Reproduced(
         float(ds["local_wall_time"]) / float(ds["local_uniform_wall_time"]),

@@ -351,65 +351,65 @@ def local_wear_per_period(hist: dict, fb: FourBar, period: float, theta) -> np.n
     return depth
 
 
-def wear_range_points(psi, n: int = 8) -> np.ndarray:
+def wear_range_points(psi, n: int = 8, shift: float = 0.0, scale: float = 1.0) -> np.ndarray:
     """Eq. (33): n points "uniformly distributed within the main wear range", here the
     contact-point arc of the period (contact_arc_bounds), at the middle of n equal parts of
-    it: centred on the arc's midpoint, so every point lies on the arc.  (Centred on the
-    time-weighted mean contact angle instead, as before issue 60, the points sat 16.2 deg /
-    24.5 deg off the midpoint of the 73 / 82 deg arcs of the two upper-part estimates of F,
-    and 2 of 8 fell off the arc; 0.3 deg of the assumed F's 3.3 deg arc.)  A path that winds round the bushing covers the whole circle: the points then
-    divide the circle, starting from the circular mean."""
+    it: centred on the arc's midpoint, so every point lies on the arc.  A path that winds
+    round the bushing covers the whole circle: the points then divide the circle, starting
+    from the circular mean.  shift (a share of the arc, + towards its upper end) and scale
+    (of the span) place them otherwise: the placements the result's sensitivity is shown
+    over (the paper's main wear range, angle phi of Fig. 11, is drawn in a lost figure)."""
     psi = np.asarray(psi, float)
     bounds = contact_arc_bounds(psi) if psi.size >= 3 else None
     if bounds is None:
         c, a = float(np.angle(np.mean(np.exp(1j * psi)))), 2.0 * math.pi
     else:
         c, a = 0.5 * (bounds[0] + bounds[1]), bounds[1] - bounds[0]
-    return c + a * ((np.arange(n) + 0.5) / n - 0.5)
+    return c + a * (shift + scale * ((np.arange(n) + 0.5) / n - 0.5))
 
 
-def local_predict(h_measured, dh_measured, interval_h: float, t_end_h: float, step_h: float,
-                  fb: FourBar, period: float, one_period: Callable[[FourBar], dict],
-                  n_theta: int = 720, n_points: int = 8):
-    """The interval method with local wear: a depth profile h(theta) on the bushing, fed back
-    into the contact geometry interval by interval.
+def at_points(profile, theta, pts) -> float:
+    """Eq. (33) on a profile: its mean over the measuring points (periodic interpolation)."""
+    return float(np.mean(np.interp(np.angle(np.exp(1j * np.asarray(pts))), theta, profile,
+                                   period=2.0 * math.pi)))
 
-    Geometry: the joint of an interval is the bushing circle of radius R0 + h_c / 2, h_c the
-    profile's mean over the Eq.-33 points -- the depth the paper's measurement would report,
-    fed back by the uniform model's D0 + h convention (Sec. 4.4), so that the two models differ
-    only in how the wear is distributed, not in the geometry a given measured depth implies.  Calibration (Eqs. 33-34): in each measured interval
-    p, k_p makes the profile's mean over the n_points of Eq. (33) grow by the printed
-    increment dh^P; the profile after 10 h is the one those k_p wore.  Prediction: k = mean
-    k_p, profile grown by M periods of local wear per interval.
-    Returns (node hours, mean depth over the Eq.-33 points [m], max depth [m], k, the profile
-    at the end [m], theta)."""
-    R0 = fb.R_bush
-    theta = np.linspace(-math.pi, math.pi, n_theta, endpoint=False)
-    prof = np.zeros(n_theta)
-    hist0 = one_period(fb)
-    pts = wear_range_points(hist0["psi"], n_points)
 
-    def at_points(p):
-        return np.interp(np.angle(np.exp(1j * pts)), theta, p, period=2.0 * math.pi)
-
-    def per_period(prof):
-        h_c = float(np.mean(at_points(prof)))     # the depth the paper's Eq. (33) would report
-        fb_w = fb.with_bushing_radius(bushing_radius(R0, h_c))
+def mean_circle_increment(fb: FourBar, period: float, one_period: Callable[[FourBar], dict],
+                          theta, pts) -> Callable:
+    """The mean-circle feedback (before the groove): the joint of an interval is the bushing
+    circle of radius R0 + h_c / 2, h_c the profile's mean over the Eq.-33 points (the
+    paper's D0 + h convention, Sec. 4.4), and the pressure F_N / (w |AB|) is uniform over
+    Eq. (19)'s patch (local_wear_per_period): the profile's shape never reaches the
+    contact.  Returns profile -> the depth one period wears per unit k at theta."""
+    def increment(prof):
+        fb_w = fb.with_bushing_radius(bushing_radius(fb.R_bush, at_points(prof, theta, pts)))
         return local_wear_per_period(one_period(fb_w), fb_w, period, theta)
+    return increment
 
+
+def local_predict(dh_measured, interval_h: float, t_end_h: float, step_h: float,
+                  period: float, increment: Callable, theta, pts):
+    """The interval method with local wear: a depth profile h(theta) on the bushing, grown
+    interval by interval by ``increment(profile)`` -- the depth one period of the joint with
+    that profile wears per unit k (groove.wear_per_period: the profile in the contact gap;
+    mean_circle_increment: through a circle only).  Calibration (Eqs. 33-34): in each
+    measured interval p, k_p makes the profile's mean over the Eq.-33 points ``pts`` grow by
+    the printed increment dh^P; the profile after 10 h is the one those k_p wore.
+    Prediction: k = mean k_p, the profile grown by M periods of local wear per interval.
+    Returns (node hours, mean depth over the points [m], max depth [m], k, the profile at
+    the end [m])."""
+    prof = np.zeros(theta.size)
     M = periods_per_interval(interval_h, period)
     ks = []
     for dh in np.asarray(dh_measured, float):                          # calibration
-        inc = per_period(prof)
-        k = dh / (M * float(np.mean(at_points(inc))))
-        ks.append(k)
-        prof = prof + k * M * inc
+        inc = increment(prof)
+        ks.append(dh / (M * at_points(inc, theta, pts)))
+        prof = prof + ks[-1] * M * inc
     k = float(np.mean(ks))
     nodes = interval_nodes(interval_h * len(ks), t_end_h, step_h)
-    mean, peak = [float(np.mean(at_points(prof)))], [float(prof.max())]
+    mean, peak = [at_points(prof, theta, pts)], [float(prof.max())]
     for i in range(nodes.size - 1):                                     # prediction
-        inc = per_period(prof)
-        prof = prof + k * periods_per_interval(nodes[i + 1] - nodes[i], period) * inc
-        mean.append(float(np.mean(at_points(prof))))
+        prof = prof + k * periods_per_interval(nodes[i + 1] - nodes[i], period) * increment(prof)
+        mean.append(at_points(prof, theta, pts))
         peak.append(float(prof.max()))
-    return nodes, np.array(mean), np.array(peak), k, prof, theta
+    return nodes, np.array(mean), np.array(peak), k, prof
