@@ -31,7 +31,6 @@ from pathlib import Path  # noqa: E402
 import numpy as np  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT / "src"))
 
 from mechrepro.timing import stopwatch, time_call  # noqa: E402
 from mechrepro.models.disk_tension.effects import thermal_load  # noqa: E402
@@ -158,8 +157,7 @@ def test_bench_disk_tension():
 
 # --- solver jobs side by side: a git revision's src against this worktree's --------------
 _JOB_CODE = r"""
-import json, sys, time
-sys.path.insert(0, {src!r})
+import json, time
 from mechrepro.config import load_paper
 from mechrepro.solve import run_solver
 cfg = load_paper({cfg!r}, {profile!r})

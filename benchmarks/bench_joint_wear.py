@@ -48,6 +48,7 @@ def _reference_quasistatic(ref: str):
     """quasistatic.py as it is at git ``ref``, with the kernels it calls (the whole model
     package of that commit, imported as a package of its own beside the working tree's)."""
     import importlib
+    import importlib.util
     import io
     import subprocess
     import sys
@@ -58,12 +59,14 @@ def _reference_quasistatic(ref: str):
                          capture_output=True, check=True).stdout
     tmp = Path(tempfile.mkdtemp())
     tarfile.open(fileobj=io.BytesIO(tar)).extractall(tmp, filter="data")
-    models = str(tmp / "src" / "mechrepro" / "models")
-    sys.path.insert(0, models)
-    try:
-        return importlib.import_module("joint_wear.quasistatic")
-    finally:
-        sys.path.remove(models)
+    # the revision's package under its own name, beside this tree's (no sys.path edit)
+    pkg = tmp / "src" / "mechrepro" / "models" / "joint_wear"
+    name = f"joint_wear_{ref.replace('-', '_').replace('/', '_')}"
+    spec = importlib.util.spec_from_file_location(name, pkg / "__init__.py",
+                                                  submodule_search_locations=[str(pkg)])
+    sys.modules[name] = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(sys.modules[name])
+    return importlib.import_module(f"{name}.quasistatic")
 
 
 def side_by_side(cfg, repeats, against="main"):
