@@ -215,7 +215,7 @@ for (rf, ds), sym in zip(sorted(grid.items()), ["o-", "s--", "^:"]):
     for n in ND:
         ax.semilogy(mm(ds["r_c"]), ds["axisym_eq9_rel_error"].sel(n_d=n), sym, ms=3,
                     color=COLORS[n], label=f"N_d={n}" if rf == 25 else None)
-ax.set(xlabel="r_c [mm]", ylabel="|f(Eq. 9) / f(eigen) − 1|",
+ax.set(xlabel="r_c [mm]", ylabel="|f(Eq. 9) / f(eigen) − 1| [1]",
        title="Eq. (9) error (o r_f=25, s 55, ^ 75 mm)")
 ax.legend(fontsize=7)
 times = figures.eq9_and_eigen_times(grid, plain2d)

@@ -137,11 +137,11 @@ for i, g in enumerate(scan["scan_gravity"].values):
 for side, col in (("B1", "k"), ("B2", "gray")):
     ax[0].axhline(paper_value(f"k_mean_{side.lower()}"), color=col, lw=1, ls=":", label=f"paper mean {side}")
 ax[0].set(xlabel="direction of F from E [deg]", ylabel="mean K [1/Pa] (table units)", title="calibrated coefficient")
-ax[0].legend(fontsize=6, ncol=2)
+ax[0].legend(fontsize=6, ncol=3, loc="upper center", bbox_to_anchor=(0.5, -0.16))
 ax[1].axhline(float(table["implied_wear_range_b1"]["reproduced_value"]), color="k", ls=":", label="wear range the paper's K needs")
 ax[1].axhline(mm(2 * np.pi * float(per_qs["bushing_radius"])), color="r", lw=0.8, label="bushing circumference")
 ax[1].set(xlabel="direction of F from E [deg]", ylabel="contact-point arc L_arc [mm]", title="wear range of Eq. (29)")
-ax[1].legend(fontsize=6)
+ax[1].legend(fontsize=6, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.16))
 R.save_figure(fig, "coefficient_scan")
 
 # %% [markdown]
@@ -162,7 +162,7 @@ for j in range(fit.sizes["fit_solution"]):
     ax[0].plot(float(r["fit_sol_direction"]), 0.0, "^" if float(r["fit_sol_upper_share"]) > 0.5 else "v",
                color="k", ms=7)
 ax[0].axhline(0, color="k", lw=0.6)
-ax[0].set(xlabel="direction of F from E [deg]", ylabel="mean ln(K_p ours / K_p paper)",
+ax[0].set(xlabel="direction of F from E [deg]", ylabel="mean ln(K_p ours / K_p paper) [1]",
           title="load point from Tables 3-4 (▲ wear on the upper part)")
 ax[0].legend(fontsize=7)
 for name, ls in (("local_wear", "-"), ("local_wear_estimated", "--")):
@@ -258,23 +258,24 @@ for a, (x, y) in zip(ax[:2], ((pt["direction"], pt["distance"]), (pt["gravity"],
                    edgecolors="k", linewidths=0.5, label="credible (95 % region)")
 wg, wm = float(post["post_worst_gravity"]), float(post["post_worst_qs_margin"])
 ax[1].plot(wg, wm, "*", color="tab:red", ms=12, label=f"credible set's edge, smallest margin ({wm:.3g})")
-fig.colorbar(sc, ax=ax[1], label="Δχ² from the best point\n(likelihood ratio exp(−Δχ²/2))")
+fig.colorbar(sc, ax=ax[1], label="Δχ² from the best point [1]\n(likelihood ratio exp(−Δχ²/2))")
 ax[0].set(xlabel="direction of F from E's mid-stroke position [deg]", ylabel="distance of F from E [m]",
           title="load points the tables allow (all g, μ)")
 ax[0].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2)
 ax[1].axhline(0.01, color="r", lw=1, ls="--", label="1 % rule")
 ax[1].set_yscale("log")
-ax[1].set(xlabel="gravity component in the plane of motion [m/s²]", ylabel="contact margin min F_N / max F_N",
+ax[1].set(xlabel="gravity component in the plane of motion [m/s²]", ylabel="contact margin min F_N / max F_N [1]",
           title="contact margin of every load point")
 ax[1].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2)
 vals = [float(r["value"]) for r in rows]
 cols = ["tab:green" if r["status"] == "pass" else "tab:red" if r["status"] == "fail" else "gray" for r in rows]
-ax[2].bar(np.arange(len(rows)), 100 * np.asarray(vals), color=cols)
-ax[2].axhline(1.0, color="r", lw=1, ls="--", label="1 % rule")
-ax[2].set_xticks(np.arange(len(rows)), [r["variant"] for r in rows], rotation=60, ha="right", fontsize=7)
-ax[2].set(ylabel="smallest margin over the credible set [%]", ylim=(0, 1.3 * 100 * max(vals + [0.01])),
+ax[2].barh(np.arange(len(rows)), 100 * np.asarray(vals), color=cols)
+ax[2].axvline(1.0, color="r", lw=1, ls="--", label="1 % rule")
+ax[2].set_yticks(np.arange(len(rows)), [r["variant"] for r in rows], fontsize=7)
+ax[2].invert_yaxis()
+ax[2].set(xlabel="smallest margin over the credible set [%]", xlim=(0, 1.3 * 100 * max(vals + [0.01])),
           title=f"every re-check (green pass, red fail): {table['continuous_contact_margin_fitted_f']['status']}")
-ax[2].legend(fontsize=7, loc="upper right")
+ax[2].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16))
 R.save_figure(fig, "contact_margin")
 post_rows = F.posterior_table(post)
 R.write_table("load_point_posterior", list(post_rows[0]), [list(r.values()) for r in post_rows])
@@ -311,7 +312,7 @@ for side, col in (("B1", "tab:blue"), ("B2", "tab:orange")):   # band of the est
                 color=col, capsize=4, lw=2, label=f"{side} 86 h, load points estimated from Tables 3-4")
 ax.axvline(float(wp["hour"][0]), color="gray", lw=0.6)
 ax.set(xlabel="operating time [h]", ylabel="cumulative wear depth [mm]", title="Fig. 15")
-ax.legend(fontsize=6.5)
+ax.legend(fontsize=6.5, loc="upper left", bbox_to_anchor=(1.01, 1.0))
 R.save_figure(fig, "fig15")
 
 fig, ax = plt.subplots(1, 2, figsize=(10, 4))
@@ -380,9 +381,6 @@ for e in F.explicit_points(st_exp):
     ax[0].annotate(f"RK45 rtol={e['rtol']:g}: step budget {e['steps']:.0f}\nreached {e['t_reached']:.3g} s, "
                    f"extrapolated {w:.3g} s/period", (w, 0.97), xycoords=("data", "axes fraction"),
                    fontsize=6, color="r", rotation=90, ha="right", va="top")
-# room below the smallest errors (~1e-12) for the legend, clear of every point
-ax[0].set_ylim(1e-17, None)
-ax[0].legend(fontsize=7, loc="lower left")
 ax[0].set_title("one period, dynamic joint: implicit (and explicit RK45)")
 accuracy.plot(coa, "quasistatic", ax[1])
 ax[1].set_title("one period, quasi-static joint")
@@ -391,8 +389,9 @@ ax[2].set_title("wear at 86 h vs interval length")
 qe = F.quasistatic_errors(st_qs, st_dyn)
 ax[3].loglog(qe["n_steps"], qe["vs_dynamic"] + 1e-16, "o-", label=f"quasi-static vs {qe['reference']}")
 ax[3].loglog(qe["n_steps"], qe["vs_finest"] + 1e-16, "s--", label="quasi-static vs its finest")
-ax[3].set(xlabel="samples per period", ylabel="relative error of wear per period", title="quasi-static vs dynamic joint")
-ax[3].legend(fontsize=7)
+ax[3].set(xlabel="samples per period [1]", ylabel="relative error of wear per period [1]",
+          title="quasi-static vs dynamic joint")
+ax[3].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2))
 ax[3].grid(True, which="both", alpha=0.3)
 R.save_figure(fig, "cost_of_accuracy")
 

@@ -141,7 +141,7 @@ for lev, ls in (("68", ":"), ("95", "--")):
     ax[0].annotate(f"{lev} %", (1.0, idf.DCHI2[lev]), xycoords=("axes fraction", "data"),
                    xytext=(3, 0), textcoords="offset points", va="center", fontsize=7, color="gray")
 ax[0].set_yscale("symlog", linthresh=10)
-ax[0].set(xlabel="sprocket speed run [r/min]", ylabel=f"Δχ² (model error {errors[0]:.1%}; linear below 10)",
+ax[0].set(xlabel="sprocket speed run [r/min]", ylabel=f"Δχ² [1] (model error {errors[0]:.1%}; linear below 10)",
           ylim=(0, 3e3), xlim=(6380, 6830))
 ax[0].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2,
              title="pitch-radius reading (stretch profiled)", title_fontsize=7)

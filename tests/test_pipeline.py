@@ -87,7 +87,7 @@ def test_pipeline_writes_every_output_and_matches_reference(workflow):
 
 # the papers whose figures are held to the lint (mechrepro.plotting.lint); the others record
 # what it finds in their PNGs and print it in their notebooks
-LINTED = {"saw_chain", "rolling_shear", "disk_tension"}
+LINTED = {"saw_chain", "rolling_shear", "disk_tension", "joint_wear"}
 
 
 def test_every_figure_passes_the_lint(workflow):

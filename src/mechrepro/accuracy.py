@@ -335,6 +335,26 @@ def _true(v) -> bool:
     return v is True or str(v).lower() == "true"
 
 
+def _thinned(labels):
+    """An artist that thins point labels where they are drawn: a label that would cover an
+    earlier one is hidden (crowded points), decided on the final layout at every draw."""
+    from matplotlib.artist import Artist   # here: validation jobs import this module
+
+    class Thinned(Artist):
+        def draw(self, renderer):
+            kept = []
+            for a in labels:
+                a.set_visible(True)
+                bb = a.get_window_extent(renderer)
+                a.set_visible(not any(bb.overlaps(k) for k in kept))
+                if a.get_visible():
+                    kept.append(bb)
+
+    out = Thinned()
+    out.set_zorder(min((a.get_zorder() for a in labels), default=3) - 0.01)
+    return out
+
+
 def plot(table: list[dict], accuracy: str | None = None, ax=None, annotate: bool = True):
     """Error vs time, one labelled line per (quantity, method) of one entry (the first when
     not given).  A line whose reference is not proven more accurate than its points has not
@@ -361,11 +381,15 @@ def plot(table: list[dict], accuracy: str | None = None, ax=None, annotate: bool
                   "o-" if proven else "o--", mfc=None if proven else "none", label=label)
         if annotate and j == 0:
             last = max(range(len(pts)), key=lambda i: float(pts[i]["time_s"]))
-            for i, r in enumerate(pts):   # the rightmost label leftwards: inside the panel
-                ax.annotate(f"{r['knob']}={r['knob_value']}", (float(r["time_s"]), float(r["error"])),
-                            fontsize=7, textcoords="offset points",
-                            xytext=(-4, 4) if i == last else (4, 4),
-                            ha="right" if i == last else "left")
+            labels = [ax.annotate(f"{r['knob']}={r['knob_value']}",
+                                  (float(r["time_s"]), float(r["error"])), fontsize=7,
+                                  textcoords="offset points",
+                                  # the rightmost label leftwards: inside the panel
+                                  xytext=(-4, 4) if i == last else (4, 4),
+                                  ha="right" if i == last else "left")
+                      for i, r in enumerate(pts)]
+    if annotate:
+        ax.add_artist(_thinned(labels))
     ax.set_xlabel(f"wall time [s] ({sel[0]['time_of']})")
     ax.set_ylabel(f"error vs {sel[0]['reference']} [{sel[0].get('error_unit') or '1'}]")
     ax.set_title(f"cost of accuracy: {accuracy}")

@@ -148,14 +148,15 @@ def _has_unit(label: str) -> bool:
 
 
 def _unit_missing(fig, ax, name: str) -> bool:
-    """An axis with numeric tick labels shown and no ``[unit]`` in its label, nor in that of
-    an axes of the same column (x) or row (y): a grid labels its outer axes."""
+    """An axis with numeric tick labels shown and no ``[unit]`` in its label; an unlabelled
+    one takes the label of an axes of the same column (x) or row (y): a grid labels its
+    outer axes."""
     axis = ax.xaxis if name == "x" else ax.yaxis
     ticks = [t.get_text() for t in _drawn_ticklabels(axis) if t.get_text()]
     if not any(t.replace("\\mathdefault", "").lstrip("$\u2212-{")[:1].isdigit() for t in ticks):
         return False
-    if _has_unit(axis.label.get_text()):
-        return False
+    if axis.label.get_text().strip():
+        return not _has_unit(axis.label.get_text())
     span = (lambda a: a.get_position().intervalx) if name == "x" else \
         (lambda a: a.get_position().intervaly)
     return not any(_has_unit((o.xaxis if name == "x" else o.yaxis).label.get_text())
