@@ -381,6 +381,7 @@ for e in F.explicit_points(st_exp):
     ax[0].annotate(f"RK45 rtol={e['rtol']:g}: step budget {e['steps']:.0f}\nreached {e['t_reached']:.3g} s, "
                    f"extrapolated {w:.3g} s/period", (w, 0.97), xycoords=("data", "axes fraction"),
                    fontsize=6, color="r", rotation=90, ha="right", va="top")
+    ax[0].set_xlim(right=max(ax[0].get_xlim()[1], 10 ** np.ceil(np.log10(w))))   # in view
 ax[0].set_title("one period, dynamic joint: implicit (and explicit RK45)")
 accuracy.plot(coa, "quasistatic", ax[1])
 ax[1].set_title("one period, quasi-static joint")

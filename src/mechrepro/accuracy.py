@@ -394,6 +394,16 @@ def plot(table: list[dict], accuracy: str | None = None, ax=None, annotate: bool
     ax.set_ylabel(f"error vs {sel[0]['reference']} [{sel[0].get('error_unit') or '1'}]")
     ax.set_title(f"cost of accuracy: {accuracy}")
     ax.grid(True, which="both", alpha=0.3)
+    # the time axis labelled at whole decades only, at least two of them: matplotlib's minor
+    # labels of a short log axis depend on the measured times and can collide
+    times = np.array([float(r["time_s"]) for r in sel])
+    times = times[times > 0]
+    if times.size:
+        from matplotlib.ticker import NullFormatter
+
+        lo, hi = np.floor(np.log10(times.min())), np.ceil(np.log10(times.max()))
+        ax.set_xlim(10 ** lo, 10 ** max(hi, lo + 1))
+        ax.xaxis.set_minor_formatter(NullFormatter())
     # below the axes, clear of the data; why a line has not converged is its title, wrapped
     # to the panel (a long line would squeeze the figure's layout)
     leg = ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2),
