@@ -135,15 +135,19 @@ def _drive(run, prm, omega1, times, dt):
     return ends, Pt
 
 
+def tension_coefficient(run, prm) -> float:
+    """k of P = T_s + k c^2 from the scene's effects (0 without speed tensioning)."""
+    return float(EFFECTS.evaluate(as_run(run), SpanContext(prm, 1.0, np.zeros(0), None,
+                                                           span.span_geometry(prm, True)),
+                                  keys={"tension_coefficient"}).total("tension_coefficient"))
+
+
 def _axial_tension(run, prm, omega1) -> float:
-    """P = T_s + k c^2 (:func:`.geometry.axial_tension`, k from the scene's effects)."""
+    """P = T_s + k c^2 (:func:`.geometry.axial_tension`)."""
     from . import geometry
 
-    k_c = EFFECTS.evaluate(run, SpanContext(prm, omega1, np.zeros(0), None,
-                                            span.span_geometry(prm, True)),
-                           keys={"tension_coefficient"}).total("tension_coefficient")
     c = float(geometry.chain_speed(omega1, int(prm["n1"]), prm["pitch"]))
-    return float(geometry.axial_tension(prm["static_tension"], k_c, c))
+    return float(geometry.axial_tension(prm["static_tension"], tension_coefficient(run, prm), c))
 
 
 #: RK4's stability interval on the imaginary axis is |omega dt| <= 2 sqrt(2); a margin
@@ -171,50 +175,66 @@ def _end(ends, key: str, n: int) -> np.ndarray:
     return np.zeros(n) if x is None else np.asarray(x, float).reshape(n, -1)[:, 0]
 
 
-def period_map(run, prm: dict, omega1: float, steps_per_period: int, record: bool = False):
+def _refuse_unhonoured_keys(named: set) -> None:
+    """Keys the discrete span cannot honour, refused before any march (never ignored)."""
+    from .errors import UnknownChoice
+
+    for key, why in (("tension_short", "the elastic four-bar load is not wired in"),
+                     ("tension_external", "an external load's period is not one tooth period"),
+                     ("kappa", "the sag term of Eq. (2-36) is not wired in")):
+        if key in named:
+            raise UnknownChoice(f"discrete span: {why} ({key})")
+
+
+def _segments(tau, t_r, steps_per_period):
+    """The time grids of the period's segments: [0, t_r] and [t_r, tau] (one when the
+    release coincides with the seating)."""
+    cuts = [0.0, t_r, tau] if t_r > 0 else [0.0, tau]
+    return [np.linspace(a, b, max(int(math.ceil(steps_per_period * (b - a) / tau)), 2) + 1)
+            for a, b in zip(cuts[:-1], cuts[1:])]
+
+
+def period_map(run, prm: dict, omega1: float, steps_per_period: int, start=None):
     """One tooth period of the discrete span from just after the seating at t = 0, events
-    included: the affine map x -> M x + b of the free rollers' state x = (y, v), and, with
-    ``record``, the roller histories of the forced response from x = 0 (for the amplitude of
-    a given start, :func:`periodic_orbit`)."""
+    included: the affine map x -> M x + b of the free rollers' state x = (y, v).  Without
+    the ``long`` state (no length_change effect) the roller set is fixed: the release
+    coincides with the seating (t_r = 0).  With ``start`` (a state x) only that orbit is
+    marched: M is None, b its state after the period and ``amplitude`` max |y| over the
+    free rollers along it."""
     run = as_run(run)
     named = declared_keys(run)
-    if "tension_short" in named:
-        raise NotImplementedError("discrete span: the elastic four-bar load is not wired in")
+    _refuse_unhonoured_keys(named)
     m, p = prm["mass_per_length"], prm["pitch"]
     m_r, damp = m * p, prm["transverse_damping"] * p / (m * p)
     tau, t_r, n_s = events(prm, omega1)
+    if "long" not in named:
+        t_r = 0.0
     P = _axial_tension(run, prm, omega1)
     _refuse_unstable_step(P, m_r, p, n_s + 1, tau / steps_per_period, steps_per_period, tau)
-    # two segments, release at t_r (none when it coincides with the seating)
-    cuts = [0.0, t_r, tau] if t_r > 0 else [0.0, tau]
-    segs = []
-    for a, b in zip(cuts[:-1], cuts[1:]):
-        n = max(int(math.ceil(steps_per_period * (b - a) / tau)), 2)
-        segs.append(np.linspace(a, b, n + 1))
-    n_free = [n_s] if t_r == 0 else [n_s, n_s + 1]
     N0 = n_s
-    K = 2 * N0 + 1                               # unit columns + the forced column
-    y = np.zeros((N0, K))
-    v = np.zeros((N0, K))
-    y[np.arange(N0), np.arange(N0)] = 1.0
-    v[np.arange(N0), N0 + np.arange(N0)] = 1.0
+    if start is None:                            # unit columns + the forced column
+        K = 2 * N0 + 1
+        y, v = np.zeros((N0, K)), np.zeros((N0, K))
+        y[np.arange(N0), np.arange(N0)] = 1.0
+        v[np.arange(N0), N0 + np.arange(N0)] = 1.0
+    else:
+        K = 1
+        y, v = np.asarray(start[:N0], float)[:, None], np.asarray(start[N0:], float)[:, None]
     forced = np.zeros(K)
     forced[-1] = 1.0
-    hist = []
-    for seg, n_f in zip(segs, n_free):
-        if y.shape[0] < n_f:                     # release: a roller enters at the driven end
-            ends, _ = _drive(run, prm, omega1, seg[:2], seg[1] - seg[0])
-            y = np.vstack([forced * _end(ends, "u_left", 3)[0], y])
-            v = np.vstack([forced * _end(ends, "v_left", 3)[0], v])
-        dt = np.diff(seg)
-        ends, Pt = _drive(run, prm, omega1, seg, dt[0])
+    amp, p_min = 0.0, math.inf
+    for i, seg in enumerate(_segments(tau, t_r, steps_per_period)):
+        ends, Pt = _drive(run, prm, omega1, seg, seg[1] - seg[0])
         nh = 2 * len(seg) - 1
+        if i == 1:                               # release: a roller enters at the driven end
+            y = np.vstack([forced * _end(ends, "u_left", nh)[0], y])
+            v = np.vstack([forced * _end(ends, "v_left", nh)[0], v])
         left = _end(ends, "u_left", nh)[:, None] * forced[None, :]
         right = _end(ends, "u_right", nh)[:, None] * forced[None, :]
         Y, V = rk4(y, v, seg, left, right, (P + Pt) / (m_r * p), damp)
         y, v = Y[-1], V[-1]
-        if record:
-            hist.append((seg, Y[..., -1], left[:, -1], right[:, -1]))
+        amp = max(amp, float(np.max(np.abs(Y[..., -1]))))
+        p_min = min(p_min, float(np.min(P + Pt)))
     # seating at tau: the last roller goes onto the driving sprocket (state dropped) ...
     y, v = y[:-1], v[:-1]
     if t_r == 0:                                 # ... and one leaves the driven sprocket
@@ -222,9 +242,8 @@ def period_map(run, prm: dict, omega1: float, steps_per_period: int, record: boo
         y = np.vstack([forced * _end(ends, "u_left", 3)[0], y])
         v = np.vstack([forced * _end(ends, "v_left", 3)[0], v])
     x = np.vstack([y, v])
-    M, b = x[:, :-1], x[:, -1]
-    return {"M": M, "b": b, "tau": tau, "t_r": t_r, "n_short": n_s, "P": P,
-            "history": hist if record else None}
+    return {"M": x[:, :-1] if start is None else None, "b": x[:, -1], "tau": tau, "t_r": t_r,
+            "n_short": n_s, "P": P, "P_min": p_min, "amplitude": amp}
 
 
 def floquet(M: np.ndarray) -> np.ndarray:
@@ -235,39 +254,31 @@ def floquet(M: np.ndarray) -> np.ndarray:
 
 def periodic_orbit(run, prm: dict, omega1: float, steps_per_period: int) -> dict:
     """Periodic steady state x* = (I - M)^-1 b of the tooth-period map, its largest
-    Floquet multiplier and its amplitude (max |y| over the free rollers and one period:
-    the map is affine, so the orbit from x* is the forced response plus M's columns)."""
-    pm = period_map(run, prm, omega1, steps_per_period, record=True)
+    Floquet multiplier and its amplitude (max |y| over the free rollers along one period
+    marched from x*, which returns to x*: the residual)."""
+    pm = period_map(run, prm, omega1, steps_per_period)
     M, b = pm["M"], pm["b"]
     x = np.linalg.solve(np.eye(M.shape[0]) - M, b)
-    rho = float(np.max(np.abs(floquet(M))))
-    # the orbit from x*: march once more with the start as the forced column's state
-    amp = _orbit_amplitude(run, prm, omega1, steps_per_period, x)
-    return {"x": x, "rho": rho, "amplitude": amp, "tau": pm["tau"], "n_short": pm["n_short"],
-            "residual": float(np.max(np.abs(M @ x + b - x)))}
+    orbit = period_map(run, prm, omega1, steps_per_period, start=x)
+    return {"x": x, "rho": float(np.max(np.abs(floquet(M)))), "amplitude": orbit["amplitude"],
+            "tau": pm["tau"], "n_short": pm["n_short"], "slack": pm["P_min"] <= 0.0,
+            "residual": float(np.max(np.abs(orbit["b"] - x)))}
 
 
-def _orbit_amplitude(run, prm, omega1, steps_per_period, x0) -> float:
-    """max |y| over the free rollers along one period started from the state x0."""
-    run = as_run(run)
-    m, p = prm["mass_per_length"], prm["pitch"]
-    m_r, damp = m * p, prm["transverse_damping"] * p / (m * p)
-    pm = period_map(run, prm, omega1, steps_per_period)
-    tau, t_r, P = pm["tau"], pm["t_r"], pm["P"]
-    n_s = pm["n_short"]
-    y, v = x0[:n_s, None].copy(), x0[n_s:, None].copy()
-    cuts = [0.0, t_r, tau] if t_r > 0 else [0.0, tau]
-    amp = 0.0
-    for i, (a, b) in enumerate(zip(cuts[:-1], cuts[1:])):
-        n = max(int(math.ceil(steps_per_period * (b - a) / tau)), 2)
-        seg = np.linspace(a, b, n + 1)
-        ends, Pt = _drive(run, prm, omega1, seg, seg[1] - seg[0])
-        nh = 2 * len(seg) - 1
-        if i == 1:
-            y = np.vstack([[[_end(ends, "u_left", nh)[0]]], y])
-            v = np.vstack([[[_end(ends, "v_left", nh)[0]]], v])
-        Y, V = rk4(y, v, seg, _end(ends, "u_left", nh)[:, None], _end(ends, "u_right", nh)[:, None],
-                   (P + Pt) / (m_r * p), damp)
-        amp = max(amp, float(np.max(np.abs(Y))))
-        y, v = Y[-1], V[-1]
-    return amp
+def sweep(run, prm: dict, omega1, res: dict) -> dict:
+    """Figs. 5-8 on the discrete span: per driving speed [rad/s] the periodic orbit's
+    amplitude, the largest Floquet multiplier rho (unstable where rho > 1 or where a link
+    goes slack, P + P_t <= 0) and the periodicity residual, at ``steps_per_period`` RK4
+    steps per tooth period (the knob the levels refine)."""
+    from .errors import UnknownChoice
+
+    if run.get("options", {}).get("stationary_string"):
+        raise UnknownChoice("discrete span: the stationary_string option is the string's "
+                            "(the rollers move with the chain)")
+    n = int(res["steps_per_period"])
+    got = [periodic_orbit(run, prm, float(w), n) for w in omega1]
+    rho = np.array([g["rho"] for g in got])
+    slack = np.array([g["slack"] for g in got])
+    return {"amplitude": np.array([g["amplitude"] for g in got]), "rho": rho, "slack": slack,
+            "unstable": (rho > 1.0) | slack, "residual": np.array([g["residual"] for g in got]),
+            "n_rollers": got[0]["n_short"] if got else 0}

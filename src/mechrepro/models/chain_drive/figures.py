@@ -158,3 +158,41 @@ def peak_level_spread(R, name: str, n_peaks: int = 5, window: float = 3.0):
         orders.append(np.log(d1 / d2) / np.log(1.5) if d2 > 0 and d1 > 1.05 * d2 else np.nan)
     order = float(np.nanmin(orders)) if np.isfinite(orders).all() and orders else float("nan")
     return float(spread), order, [float(base.speed.values[i]) for i in idx]
+
+
+LEVEL_RUNS = ("@coarsest", "@coarser", "", "@finer")
+DISCRETE_PEAK_COLUMNS = ["run", "order", "quantity", "unit", "coarsest", "coarser", "base",
+                         "finer", "error", "observed_order_below", "observed_order_above", "how"]
+
+
+def order_peak(ds, k: int) -> tuple[float, float]:
+    """(speed [rpm], amplitude [m]) of the largest stable peak of order k (within
+    :func:`.claims.order_window` of its short- and long-span resonance speeds), at the
+    one-mode vertex through its neighbours (:func:`.claims.one_mode_peak`)."""
+    sp = ds.speed.values
+    lo, hi = C.order_window(float(ds.resonance_speed_long.sel(order=k)),
+                            float(ds.resonance_speed_short.sel(order=k)))
+    m = (sp >= lo) & (sp <= hi)
+    a = np.where(np.asarray(ds.unstable.values, bool), np.nan, ds.amplitude.values)[m]
+    return C.one_mode_peak(sp[m], a) if np.isfinite(a).any() else (np.nan, np.nan)
+
+
+def discrete_peak_rows(R, name: str, orders=(2, 3)) -> list[list]:
+    """Peak speed and amplitude of ``orders`` on run ``name`` at its four levels, with the
+    error of the baseline from both sides by the one estimator
+    (:func:`mechrepro.levels.level_error`: coarsest / coarser / base and coarser / base /
+    finer at the levels' ratio 1.5; the larger bound, plus |base - finer|)."""
+    from mechrepro.levels import level_error
+
+    ds = [R.run(f"{name}{s}") for s in LEVEL_RUNS]
+    rows = []
+    for k in orders:
+        got = np.array([order_peak(d, k) for d in ds])          # (level, speed/amplitude)
+        for j, (q, unit, scale) in enumerate((("peak_speed", "rpm", 1.0),
+                                              ("peak_amplitude", "mm", 1e3))):
+            c2, c1, b, f = got[:, j] * scale
+            e_lo, p_lo, _, how = level_error(c2, c1, b, 1.5, np.inf)
+            e_hi, p_hi, _, how_f = level_error(c1, b, f, 1.5, np.inf)
+            rows.append([name, k, q, unit, c2, c1, b, f, max(e_lo, abs(b - f) + e_hi),
+                         p_lo, p_hi, f"{how}; with finer: {how_f}"])
+    return rows
