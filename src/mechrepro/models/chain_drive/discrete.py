@@ -11,13 +11,17 @@ action, and it needs no convective operator: the rollers move with the chain (La
 so the moving string's Coriolis and centripetal terms come from the relabelling.
 
 Assumed choices (declared, not tuned): rigid axial motion (the rollers a pitch apart,
-links inextensible along the span); the impact of Eq. (2-4) as a tension pulse in every
-link, as in the string model; a seated roller's transverse state is dropped (the
+links inextensible along the span); the impact of Eq. (2-4) a tension pulse in every link
+(as in the string model) for its share ``impact_share`` and in the engaging link (to the
+driving end) alone for the rest: with rigid links the pulse reaches every link at once,
+while the axial wave of an elastic chain crosses the span in ~5 contact times, so the
+truth lies between (the parameter's range, 0 to 1); a seated roller's transverse state is dropped (the
 sprocket takes it over: a perfectly inelastic seating); a released roller starts with the
 driven end's position and velocity.
 
 Equation of roller i (i = 1..N, y_0 and y_(N+1) the end rollers):
-    m_r y_i'' = (P + P_t)/p (y_(i+1) - 2 y_i + y_(i-1)) - c_d p y_i'.
+    m_r y_i'' = (P + P_t)/p (y_(i+1) - 2 y_i + y_(i-1)) - c_d p y_i',
+the engaging link's tension (1 - impact_share) D_imp higher and the others' lower by it.
 Between events it is linear with time-periodic coefficients; one tooth period with its
 events is an affine map x -> M x + b of the free rollers' state (positions, velocities),
 so the periodic steady state is one linear solve and its stability the eigenvalues of M
@@ -61,37 +65,42 @@ def energy(y, v, y_left, y_right, tension: float, mass: float, spacing: float):
         np.diff(full, axis=0) ** 2, axis=0)
 
 
-def _accel(y, v, left, right, k_over_m, damp):
-    """Roller accelerations: (P/(m_r p)) (second difference with the end rollers) - damp v."""
+def _accel(y, v, left, right, k_over_m, damp, last=0.0):
+    """Roller accelerations: (P/(m_r p)) (second difference with the end rollers) - damp v,
+    plus ``last`` (an extra tension / (m_r p) in the link to the driving end) on the last."""
     a = -2.0 * y
     a[1:] += y[:-1]
     a[:-1] += y[1:]
     a[0] += left
     a[-1] += right
-    return k_over_m * a - damp * v
+    a *= k_over_m
+    a[-1] += last * (right - y[-1])
+    return a - damp * v
 
 
-def rk4(y, v, times, left, right, k_over_m, damp):
+def rk4(y, v, times, left, right, k_over_m, damp, last=None):
     """Classical RK4 over ``times`` (n + 1 nodes); ``left``/``right``: the end rollers'
     positions at the 2 n + 1 half-step nodes, (2n+1,) or (2n+1, K) for K state columns;
-    ``k_over_m``: (P + P_t) / (m_r p) per step (n,).  y, v: (N, K).  Returns the states at
-    every node (n + 1, N, K) for y and v."""
+    ``k_over_m``: (P + P_t) / (m_r p) per step (n,); ``last``: the extra of the link to the
+    driving end per step (n,) or None.  y, v: (N, K).  Returns the states at every node
+    (n + 1, N, K) for y and v."""
     n = len(times) - 1
+    last = np.zeros(n) if last is None else last
     Y = np.empty((n + 1,) + y.shape)
     V = np.empty_like(Y)
     Y[0], V[0] = y, v
     for j in range(n):
         h = times[j + 1] - times[j]
-        kom = k_over_m[j]
+        kom, ex = k_over_m[j], last[j]
         l0, l1, l2 = left[2 * j], left[2 * j + 1], left[2 * j + 2]
         r0, r1, r2 = right[2 * j], right[2 * j + 1], right[2 * j + 2]
-        a1 = _accel(y, v, l0, r0, kom, damp)
+        a1 = _accel(y, v, l0, r0, kom, damp, ex)
         y2, v2 = y + 0.5 * h * v, v + 0.5 * h * a1
-        a2 = _accel(y2, v2, l1, r1, kom, damp)
+        a2 = _accel(y2, v2, l1, r1, kom, damp, ex)
         y3, v3 = y + 0.5 * h * v2, v + 0.5 * h * a2
-        a3 = _accel(y3, v3, l1, r1, kom, damp)
+        a3 = _accel(y3, v3, l1, r1, kom, damp, ex)
         y4, v4 = y + h * v3, v + h * a3
-        a4 = _accel(y4, v4, l2, r2, kom, damp)
+        a4 = _accel(y4, v4, l2, r2, kom, damp, ex)
         y = y + h / 6.0 * (v + 2 * v2 + 2 * v3 + v4)
         v = v + h / 6.0 * (a1 + 2 * a2 + 2 * a3 + a4)
         Y[j + 1], V[j + 1] = y, v
@@ -121,8 +130,9 @@ def events(prm: dict, omega1: float) -> tuple[float, float, int]:
 
 
 def _drive(run, prm, omega1, times, dt):
-    """The end rollers' positions at the half-step nodes and the link tension per step,
-    from the scene's effects (the string's: :mod:`.effects`) on this time grid."""
+    """The end rollers' positions at the half-step nodes, the link tension P_t per step and
+    its impact part D_imp (``tension_pulse``, Eq. 2-4), from the scene's effects (the
+    string's: :mod:`.effects`) on this time grid."""
     half = np.empty(2 * len(times) - 1)
     half[0::2] = times
     half[1::2] = 0.5 * (times[:-1] + times[1:])
@@ -132,7 +142,8 @@ def _drive(run, prm, omega1, times, dt):
     mid = SpanContext(prm, omega1, half[1::2], dt, geo)
     tens = EFFECTS.evaluate(run, mid, keys=set(span.PT_KEYS))
     Pt = span.dynamic_tension(tens, (len(times) - 1, 1))[:, 0]
-    return ends, Pt
+    pulse = np.asarray(tens.total("tension_pulse", np.zeros((len(times) - 1, 1))))[:, 0]
+    return ends, Pt, pulse
 
 
 def tension_coefficient(run, prm) -> float:
@@ -207,6 +218,7 @@ def period_map(run, prm: dict, omega1: float, steps_per_period: int, start=None)
     m, p = prm["mass_per_length"], prm["pitch"]
     m_r, damp = m * p, prm["transverse_damping"] * p / (m * p)
     tau, t_r, n_s = events(prm, omega1)
+    share = float(prm.get("impact_share", 1.0))
     if "long" not in named:
         t_r = 0.0
     P = _axial_tension(run, prm, omega1)
@@ -224,21 +236,22 @@ def period_map(run, prm: dict, omega1: float, steps_per_period: int, start=None)
     forced[-1] = 1.0
     amp, p_min = 0.0, math.inf
     for i, seg in enumerate(_segments(tau, t_r, steps_per_period)):
-        ends, Pt = _drive(run, prm, omega1, seg, seg[1] - seg[0])
+        ends, Pt, pulse = _drive(run, prm, omega1, seg, seg[1] - seg[0])
+        local = (1.0 - share) * pulse            # the engaging link's alone
         nh = 2 * len(seg) - 1
         if i == 1:                               # release: a roller enters at the driven end
             y = np.vstack([forced * _end(ends, "u_left", nh)[0], y])
             v = np.vstack([forced * _end(ends, "v_left", nh)[0], v])
         left = _end(ends, "u_left", nh)[:, None] * forced[None, :]
         right = _end(ends, "u_right", nh)[:, None] * forced[None, :]
-        Y, V = rk4(y, v, seg, left, right, (P + Pt) / (m_r * p), damp)
+        Y, V = rk4(y, v, seg, left, right, (P + Pt - local) / (m_r * p), damp, local / (m_r * p))
         y, v = Y[-1], V[-1]
         amp = max(amp, float(np.max(np.abs(Y[..., -1]))))
-        p_min = min(p_min, float(np.min(P + Pt)))
+        p_min = min(p_min, float(np.min(P + Pt - np.maximum(local, 0.0))))
     # seating at tau: the last roller goes onto the driving sprocket (state dropped) ...
     y, v = y[:-1], v[:-1]
     if t_r == 0:                                 # ... and one leaves the driven sprocket
-        ends, _ = _drive(run, prm, omega1, np.array([tau, tau + 1e-9 * tau]), 1e-9 * tau)
+        ends = _drive(run, prm, omega1, np.array([tau, tau + 1e-9 * tau]), 1e-9 * tau)[0]
         y = np.vstack([forced * _end(ends, "u_left", 3)[0], y])
         v = np.vstack([forced * _end(ends, "v_left", 3)[0], v])
     x = np.vstack([y, v])

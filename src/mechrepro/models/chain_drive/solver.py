@@ -16,6 +16,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.integrate import quad
 
+from mechrepro.timing import stopwatch
 from mechrepro.units import var
 
 from . import discrete, exact, four_bar, galerkin, geometry, loads, shooting, span, timestep
@@ -215,11 +216,12 @@ def speed_sweep(run, prm, res) -> dict:
     if res.get("method") == "discrete":
         return discrete_sweep(run, prm, omega1, res, wc)
     shooting_ = res.get("method", "march") == "shooting"
-    if shooting_:
-        out = shooting.sweep(run, prm, omega1, res)
-        omega1 = out["omega1"]
-    else:
-        out = span.sweep(run, prm, omega1, res)
+    with stopwatch() as sw:
+        if shooting_:
+            out = shooting.sweep(run, prm, omega1, res)
+            omega1 = out["omega1"]
+        else:
+            out = span.sweep(run, prm, omega1, res)
     orders = np.arange(1, int(res.get("orders", 8)) + 1)
     geo = dict(out["span"])
     reso = resonance_table(prm, out["tension_coefficient"], geo, orders)
@@ -251,6 +253,13 @@ def speed_sweep(run, prm, res) -> dict:
                                            "omega_c of the drive's elastic four-bar (k = AE/L_ct)"),
         **_coord("speed", omega1 * RPM, "rpm", "driving sprocket speed omega_1"),
         **_coord("order", orders, "1", "resonance order k")}
+    steps = run.get("options", {}).get("discrete_reference")
+    if steps:
+        data["amplitude_discrete"] = var("speed", discrete.sweep(run, prm, omega1, {
+            "steps_per_period": steps})["amplitude"], "m", f"the discrete-link span's periodic "
+            f"amplitude at the same speeds ({steps} RK4 steps per tooth period): the reference "
+            "of the string's cost of accuracy")
+        data["string_time"] = var((), sw.seconds, "s", "wall time of the string sweep alone")
     if shooting_:
         data["growth_rate"] = var("speed", out["growth_rate"], "1/s",
                                   "Floquet growth rate log(rho)/T of the span")
