@@ -282,16 +282,39 @@ def sweep(run, prm: dict, omega1, res: dict) -> dict:
     """Figs. 5-8 on the discrete span: per driving speed [rad/s] the periodic orbit's
     amplitude, the largest Floquet multiplier rho (unstable where rho > 1 or where a link
     goes slack, P + P_t <= 0) and the periodicity residual, at ``steps_per_period`` RK4
-    steps per tooth period (the knob the levels refine)."""
+    steps per tooth period (the knob the levels refine).  With ``edge_tol``/``peak_tol``
+    (rpm) the speeds are refined as the string's shooting sweeps are
+    (:func:`.shooting.adaptive_sweep`: stability edges, growth-rate bumps, amplitude
+    peaks), so that a peak or an edge is located to those widths, not to the grid."""
+    from . import geometry
     from .errors import UnknownChoice
+    from .limits import stability_only
+    from .shooting import PeriodicSolution, adaptive_sweep
 
     if run.get("options", {}).get("stationary_string"):
         raise UnknownChoice("discrete span: the stationary_string option is the string's "
                             "(the rollers move with the chain)")
     n = int(res["steps_per_period"])
-    got = [periodic_orbit(run, prm, float(w), n) for w in omega1]
-    rho = np.array([g["rho"] for g in got])
-    slack = np.array([g["slack"] for g in got])
-    return {"amplitude": np.array([g["amplitude"] for g in got]), "rho": rho, "slack": slack,
-            "unstable": (rho > 1.0) | slack, "residual": np.array([g["residual"] for g in got]),
-            "n_rollers": got[0]["n_short"] if got else 0}
+
+    def evaluate(w):
+        g = periodic_orbit(run, prm, w, n)
+        return PeriodicSolution(amplitude=g["amplitude"], rho=g["rho"],
+                                growth_rate=math.log(g["rho"]) / g["tau"], period=g["tau"],
+                                n_steps=n, residual=g["residual"], slack=g["slack"],
+                                multipliers=np.empty(0), rho_lower=g["rho"], rho_upper=g["rho"])
+
+    if "edge_tol" in res:
+        sigma = prm["transverse_damping"] / (2 * prm["mass_per_length"])
+        only = stability_only(as_run(run))
+        omega1, sols, done = adaptive_sweep(
+            evaluate, omega1, edge_tol=float(res["edge_tol"]) / geometry.RPM,
+            peak_tol=float(res["peak_tol"]) / geometry.RPM, rate_floor=-0.5 * sigma,
+            prominence=None if only else 0.02, until_unstable=only)
+    else:
+        sols, done = [evaluate(float(w)) for w in omega1], True
+    rho = np.array([g.rho for g in sols])
+    slack = np.array([g.slack for g in sols])
+    return {"omega1": np.asarray(omega1, float), "amplitude": np.array([g.amplitude for g in sols]),
+            "rho": rho, "slack": slack, "unstable": (rho > 1.0) | slack,
+            "residual": np.array([g.residual for g in sols]), "sampling_converged": done,
+            "n_rollers": events(prm, float(omega1[0]))[2]}

@@ -157,7 +157,7 @@ def cost(run: dict) -> dict:
     if solver == "speed_sweep" and res.get("method") == "discrete":
         # per speed two tooth-period marches of 2N + 2 lanes of ~20 rollers (numpy RK4)
         seconds += f["discrete_step_s"] * _speeds(run, run["parameters"]).size \
-            * int(res["steps_per_period"])
+            * int(res["steps_per_period"]) * (SHOOTING_REFINE if "edge_tol" in res else 1)
     elif solver == "speed_sweep":
         z = size(run)
         S, n1 = z["speeds"], z["points"]

@@ -295,6 +295,7 @@ def discrete_sweep(run, prm, omega1, res, wc=None) -> dict:
     moving-string resonance speeds of the span (the string's, for comparison)."""
     run = as_run(run)
     out = discrete.sweep(run, prm, omega1, res)
+    omega1 = out["omega1"]
     orders = np.arange(1, int(res.get("orders", 8)) + 1)
     geo = span.span_geometry(prm, "long" in declared_keys(run))
     reso = resonance_table(prm, discrete.tension_coefficient(run, prm), geo, orders)
@@ -313,6 +314,8 @@ def discrete_sweep(run, prm, omega1, res, wc=None) -> dict:
                                        f"tooth frequency = k-th moving-string frequency, {k} span")
            for k, L in (("short", "L_short"), ("long", "L_long"), ("mean", "L_ct"))},
         "steps_per_period": var((), steps, "1", "RK4 steps per tooth period"),
+        "sampling_converged": var((), int(out["sampling_converged"]), "1",
+                                  "1 when the adaptive speed refinement finished"),
         "n_steps": var((), steps, "1", "RK4 steps per tooth period"),
         "n_points": var((), out["n_rollers"] + 2, "1", "rollers of the short span, ends included"),
         "L_short": var((), geo["L_short"], "m", "short span length L_0"),
