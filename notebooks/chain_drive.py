@@ -212,6 +212,9 @@ levels7 = {lv: {F.parameter(x, "static_tension"): x for x in
                 (R.run(n + lv) for n in ["fig07_tension"] + R.cfg.studies["fig07_ts"])}
            for lv in F.LEVEL_RUNS}
 string7 = R.run("fig07_string")
+# a stable orbit next to an unstable band grows without bound (multiplier -> 1): the axis
+# stops at 50 mm, as Fig. 6's
+cap7 = mm(0.05)
 fig, ax = plt.subplots(len(tss), 1, figsize=(8, 2.5 * len(tss)), sharex=True)
 for a, v, d in zip(ax, tss[::-1], d7[::-1]):          # the paper's order: high to low tension
     a.semilogy(d.speed, steady(d), label="discrete-link span (verdicts)")
@@ -224,14 +227,16 @@ for a, v, d in zip(ax, tss[::-1], d7[::-1]):          # the paper's order: high 
     counts = " / ".join(str(int(levels7[lv][v].unstable.sum())) for lv in F.LEVEL_RUNS)
     steps = " / ".join(str(F.resolution(levels7[lv][v], "steps_per_period")) for lv in F.LEVEL_RUNS)
     a.set(ylabel="max |y| [mm]")
+    if a.get_ylim()[1] > cap7:
+        a.set_ylim(top=cap7)
     a.set_title(f"Fig. 7: T_s = {v:g} N: unstable speeds {counts} at {steps} RK4 steps per "
                 "tooth period", fontsize=9)
 a.set_xlabel("omega_1 [rpm]")
 # one legend below the panels, clear of every curve
 marks7 = {lb: h for x in ax for h, lb in zip(*x.get_legend_handles_labels())}
 fig.legend(marks7.values(), marks7.keys(), fontsize=7, loc="lower center", ncol=2)
-fig.suptitle(f"discrete span (scene fig07_tension): {convergence_note('fig07_tension')}",
-             fontsize=9)
+fig.suptitle(f"discrete span (scene fig07_tension): {convergence_note('fig07_tension')}; "
+             f"axes cut at {cap7:g} mm (stable orbits at stability edges)", fontsize=9)
 fig.tight_layout(rect=(0, 0.07, 1, 1))
 R.write_table("discrete_peaks", F.DISCRETE_PEAK_COLUMNS,
               F.discrete_peak_rows(R, "fig07_tension") + F.discrete_peak_rows(R, "fig07_ts-000"))

@@ -284,9 +284,11 @@ def sweep(run, prm: dict, omega1, res: dict) -> dict:
     goes slack, P + P_t <= 0) and the periodicity residual, at ``steps_per_period`` RK4
     steps per tooth period (the knob the levels refine).  With ``edge_tol``/``peak_tol``
     (rpm) the speeds are refined as the string's shooting sweeps are
-    (:func:`.shooting.adaptive_sweep`: stability edges, growth-rate bumps, amplitude
-    peaks), so that a peak or an edge is located to those widths, not to the grid."""
-    from . import geometry
+    (:func:`.shooting.adaptive_sweep`: stability edges and growth-rate bumps), then every
+    amplitude peak of prominence >= 0.05 mm (:func:`.claims.peaks`) that is no stable
+    orbit at a stability edge (whose amplitude grows without bound as rho -> 1 and would
+    set a relative prominence), so that a peak or an edge is located to those widths."""
+    from . import claims, geometry
     from .errors import UnknownChoice
     from .limits import stability_only
     from .shooting import PeriodicSolution, adaptive_sweep
@@ -306,10 +308,22 @@ def sweep(run, prm: dict, omega1, res: dict) -> dict:
     if "edge_tol" in res:
         sigma = prm["transverse_damping"] / (2 * prm["mass_per_length"])
         only = stability_only(as_run(run))
+        peak_tol = float(res["peak_tol"]) / geometry.RPM
         omega1, sols, done = adaptive_sweep(
             evaluate, omega1, edge_tol=float(res["edge_tol"]) / geometry.RPM,
-            peak_tol=float(res["peak_tol"]) / geometry.RPM, rate_floor=-0.5 * sigma,
-            prominence=None if only else 0.02, until_unstable=only)
+            peak_tol=peak_tol, rate_floor=-0.5 * sigma, prominence=None, until_unstable=only)
+        pts = dict(zip(omega1.tolist(), sols))
+        while not only:
+            w = np.array(sorted(pts))
+            un = np.array([pts[v].rho > 1.0 or pts[v].slack for v in w])
+            idx = claims.peaks(w, [pts[v].amplitude for v in w], stable=~un)
+            new = {0.5 * (w[j] + w[j + 1]) for i in idx if not (un[i - 1] or un[i + 1])
+                   for j in (i - 1, i) if w[j + 1] - w[j] > peak_tol} - set(pts)
+            if not new:
+                break
+            pts.update({v: evaluate(v) for v in sorted(new)})
+        omega1 = np.array(sorted(pts))
+        sols = [pts[v] for v in omega1]
     else:
         sols, done = [evaluate(float(w)) for w in omega1], True
     rho = np.array([g.rho for g in sols])
