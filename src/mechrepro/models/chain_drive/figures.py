@@ -210,14 +210,17 @@ def discrete_peak_rows(R, name: str, n_orders: int = 2) -> list[list]:
     from mechrepro.levels import level_error
 
     ds = [R.run(f"{name}{s}") for s in LEVEL_RUNS]
+    tol = float(resolution(ds[2], "peak_tol"))
     rows = []
     for k in stable_orders(ds[2], n_orders):
         got = np.array([order_peak(d, k) for d in ds])          # (level, speed/amplitude)
         for j, (q, unit, scale) in enumerate((("peak_speed", "rpm", 1.0),
                                               ("peak_amplitude", "mm", 1e3))):
             c2, c1, b, f = got[:, j] * scale
-            e_lo, p_lo, _, how = level_error(c2, c1, b, 1.5, PEAK_BAND * abs(b))
-            e_hi, p_hi, _, how_f = level_error(c1, b, f, 1.5, PEAK_BAND * abs(b))
+            # a peak speed is located to half the base level's bisection width at best
+            own = 0.5 * tol if q == "peak_speed" else 0.0
+            e_lo, p_lo, _, how = level_error(c2, c1, b, 1.5, PEAK_BAND * abs(b), own)
+            e_hi, p_hi, _, how_f = level_error(c1, b, f, 1.5, PEAK_BAND * abs(b), own / 1.5)
             rows.append([name, k, q, unit, c2, c1, b, f, max(e_lo, abs(b - f) + e_hi),
                          p_lo, p_hi, f"{how}; with finer: {how_f}"])
     return rows

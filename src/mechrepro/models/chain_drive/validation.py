@@ -297,11 +297,13 @@ def _stability_verdict(d, expect_unstable: bool) -> Reproduced:
                       f"{float(d.growth.max()):.4f})")
 
 
-@Q.register("no_instability_ts800", "instability_ts100")
+@Q.register("no_instability_ts800", "instability_ts200", "instability_ts100")
 def fig07_study(R):
     ts, runs = _study_runs(R, "fig07_ts", "static_tension")
-    return {"no_instability_ts800": _stability_verdict(runs[int(np.argmin(np.abs(ts - 800.0)))], False),
-            "instability_ts100": _stability_verdict(runs[int(np.argmin(np.abs(ts - 100.0)))], True)}
+    at = {t: runs[int(np.argmin(np.abs(ts - t)))] for t in (800.0, 200.0, 100.0)}
+    return {"no_instability_ts800": _stability_verdict(at[800.0], False),
+            "instability_ts200": _stability_verdict(at[200.0], True),
+            "instability_ts100": _stability_verdict(at[100.0], True)}
 
 
 @Q.register("no_instability_ts400")
