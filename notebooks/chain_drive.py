@@ -222,20 +222,21 @@ for a, v, d in zip(ax, tss[::-1], d7[::-1]):          # the paper's order: high 
         a.semilogy(string7.speed, steady(string7), "--", lw=0.9,
                    label=f"string, {F.resolution(string7, 'points_per_pitch')} points per pitch "
                          "(mixed, the paper's)")
-        mark_unstable(a, string7, label="unstable (string)", color="tab:orange")
-    mark_unstable(a, d, label="unstable (discrete span)")
     counts = " / ".join(str(int(levels7[lv][v].unstable.sum())) for lv in F.LEVEL_RUNS)
     steps = " / ".join(str(F.resolution(levels7[lv][v], "steps_per_period")) for lv in F.LEVEL_RUNS)
     a.set(ylabel="max |y| [mm]")
     if a.get_ylim()[1] > cap7:
         a.set_ylim(top=cap7)
+    if abs(v - F.parameter(string7, "static_tension")) < 1e-9:
+        mark_unstable(a, string7, label="unstable (string)", color="tab:orange")
+    mark_unstable(a, d, label="unstable (discrete span)")
     a.set_title(f"Fig. 7: T_s = {v:g} N: unstable speeds {counts} at {steps} RK4 steps per "
                 "tooth period", fontsize=9)
 a.set_xlabel("omega_1 [rpm]")
 # one legend below the panels, clear of every curve
 marks7 = {lb: h for x in ax for h, lb in zip(*x.get_legend_handles_labels())}
 fig.legend(marks7.values(), marks7.keys(), fontsize=7, loc="lower center", ncol=2)
-fig.suptitle(f"discrete span (scene fig07_tension): {convergence_note('fig07_tension')}; "
+fig.suptitle(f"discrete span (scene fig07_tension): {convergence_note('fig07_tension')}\n"
              f"axes cut at {cap7:g} mm (stable orbits at stability edges)", fontsize=9)
 fig.tight_layout(rect=(0, 0.07, 1, 1))
 R.write_table("discrete_peaks", F.DISCRETE_PEAK_COLUMNS,
