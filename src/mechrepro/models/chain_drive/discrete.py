@@ -15,9 +15,10 @@ links inextensible along the span); the impact of Eq. (2-4) a tension pulse in e
 (as in the string model) for its share ``impact_share`` and in the engaging link (to the
 driving end) alone for the rest: with rigid links the pulse reaches every link at once,
 while the axial wave of an elastic chain crosses the span in ~5 contact times, so the
-truth lies between (the parameter's range, 0 to 1); a seated roller's transverse state is dropped (the
-sprocket takes it over: a perfectly inelastic seating); a released roller starts with the
-driven end's position and velocity.
+truth lies between (the parameter's range, 0 to 1); a seated roller's transverse state is
+dropped (the sprocket takes it over: a perfectly inelastic seating); a released roller
+starts with the driven end's position and velocity; without the ``long`` state (no
+length_change effect) the roller set is fixed, released and seated at once.
 
 Equation of roller i (i = 1..N, y_0 and y_(N+1) the end rollers):
     m_r y_i'' = (P + P_t)/p (y_(i+1) - 2 y_i + y_(i-1)) - c_d p y_i',
