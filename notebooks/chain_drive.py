@@ -207,25 +207,40 @@ R.save_figure(fig, "fig06")
 
 # %%
 tss, d7 = F.with_base(R, "fig07_ts", "fig07_tension", "static_tension")
-fig, ax = plt.subplots(len(tss), 1, figsize=(8, 2.3 * len(tss)), sharex=True)
-# the verdict rows' check one level finer (scene fig07_tension_finer, study fig07_ts_finer)
-finer7 = {F.parameter(x, "static_tension"): x
-          for x in [R.run("fig07_tension_finer")] + R.study_runs("fig07_ts_finer")}
+# every level of every panel (the verdict rows read them all)
+levels7 = {lv: {F.parameter(x, "static_tension"): x for x in
+                (R.run(n + lv) for n in ["fig07_tension"] + R.cfg.studies["fig07_ts"])}
+           for lv in F.LEVEL_RUNS}
+string7 = R.run("fig07_string")
+# a stable orbit next to an unstable band grows without bound (multiplier -> 1): the axis
+# stops at 50 mm, as Fig. 6's
+cap7 = mm(0.05)
+fig, ax = plt.subplots(len(tss), 1, figsize=(8, 2.5 * len(tss)), sharex=True)
 for a, v, d in zip(ax, tss[::-1], d7[::-1]):          # the paper's order: high to low tension
-    a.semilogy(d.speed, steady(d))
-    mark_unstable(a, d)
-    fine = finer7.get(v)
-    at = (f" at {F.resolution(d, 'points_per_pitch')} points per pitch; "
-          f"{int(fine.unstable.sum())} at {F.resolution(fine, 'points_per_pitch')}"
-          if fine is not None else "")
-    a.set(ylabel="max |u| [mm]", title=f"Fig. 7: T_s = {v:g} N ({int(d.unstable.sum())} unstable speeds{at})")
+    a.semilogy(d.speed, steady(d), label="discrete-link span (verdicts)")
+    if abs(v - F.parameter(string7, "static_tension")) < 1e-9:
+        a.semilogy(string7.speed, steady(string7), "--", lw=0.9,
+                   label=f"string, {F.resolution(string7, 'points_per_pitch')} points per pitch "
+                         "(mixed, the paper's)")
+    counts = " / ".join(str(int(levels7[lv][v].unstable.sum())) for lv in F.LEVEL_RUNS)
+    steps = " / ".join(str(F.resolution(levels7[lv][v], "steps_per_period")) for lv in F.LEVEL_RUNS)
+    a.set(ylabel="max |y| [mm]")
+    if a.get_ylim()[1] > cap7:
+        a.set_ylim(top=cap7)
+    if abs(v - F.parameter(string7, "static_tension")) < 1e-9:
+        mark_unstable(a, string7, label="unstable (string)", color="tab:orange")
+    mark_unstable(a, d, label="unstable (discrete span)")
+    a.set_title(f"Fig. 7: T_s = {v:g} N: unstable speeds {counts} at {steps} RK4 steps per "
+                "tooth period", fontsize=9)
 a.set_xlabel("omega_1 [rpm]")
 # one legend below the panels, clear of every curve
 marks7 = {lb: h for x in ax for h, lb in zip(*x.get_legend_handles_labels())}
-if marks7:
-    fig.legend(marks7.values(), marks7.keys(), fontsize=7, loc="lower center")
-fig.suptitle(f"scene fig07_tension: {convergence_note('fig07_tension')}", fontsize=9)
-fig.tight_layout(rect=(0, 0.04, 1, 1))
+fig.legend(marks7.values(), marks7.keys(), fontsize=7, loc="lower center", ncol=2)
+fig.suptitle(f"discrete span (scene fig07_tension): {convergence_note('fig07_tension')}\n"
+             f"axes cut at {cap7:g} mm (stable orbits at stability edges)", fontsize=9)
+fig.tight_layout(rect=(0, 0.07, 1, 1))
+R.write_table("discrete_peaks", F.DISCRETE_PEAK_COLUMNS,
+              F.discrete_peak_rows(R, "fig07_tension") + F.discrete_peak_rows(R, "fig07_ts-000"))
 R.save_figure(fig, "fig07")
 
 # %% [markdown]
@@ -344,7 +359,8 @@ R.save_figure(fig, "exact_checks")
 # ## Cost of accuracy
 # Written by the framework from the config's `accuracy:` block: peak amplitude and peak
 # speed around the third resonance vs points per pitch (dx and dt refine together) and vs
-# the CFL factor, against the finest run; Galerkin steady amplitude vs the number of
+# the CFL factor, against the finest run; the string's peak at 4 / 8 / 16 points per pitch
+# against the discrete-link span's (its pitch-scale error, both schemes); Galerkin steady amplitude vs the number of
 # transverse modes; the FD march of the exact moving-string mode vs grid points.
 
 # %%

@@ -111,3 +111,32 @@ def test_a_step_beyond_rk4s_stability_is_refused():
     with pytest.raises(StabilityError, match="at least"):
         D.period_map(run, prm, w, 100)
     assert D.periodic_orbit(run, prm, w, 200)["rho"] < 1.0
+
+
+def test_the_engaging_links_extra_tension_acts_on_the_last_roller_alone():
+    """impact_share < 1: the link to the driving end carries (1 - share) D_imp more than the
+    others; the accelerations are those of the stiffness with that link's tension raised."""
+    n, T, extra, m, a = 7, 400.0, 150.0, 7.7e-3, 12.7e-3
+    rng = np.random.default_rng(1)
+    y, right = rng.normal(size=(n, 1)), 0.3
+    K = D.stiffness(n, T, a)
+    K[-1, -1] += extra / a
+    want = -(K @ y) / m
+    want[-1] += (T + extra) / (m * a) * right
+    got = D._accel(y, np.zeros_like(y), 0.0, right, T / (m * a), 0.0, extra / (m * a))
+    assert np.allclose(got, want, rtol=1e-12)
+
+
+@pytest.mark.parametrize("effect, option", [("sag", None), ("external_load", None),
+                                            (None, "stationary_string")])
+def test_what_the_discrete_span_cannot_honour_is_refused_by_name(effect, option):
+    from mechrepro.models.chain_drive.errors import UnknownChoice
+
+    run, prm = _prm("fig08_external")
+    run["resolution"] = {"method": "discrete", "steps_per_period": 200}
+    run["effects"] = [e for e in run["effects"] if e in ("speed_tensioning", "polygonal_rigid",
+                                                         "end_excitation", effect)]
+    if option:
+        run.setdefault("options", {})[option] = True
+    with pytest.raises(UnknownChoice, match="discrete span"):
+        D.sweep(run, prm, np.array([300.0 / geometry.RPM]), run["resolution"])

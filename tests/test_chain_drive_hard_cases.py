@@ -145,7 +145,7 @@ IMPACT_ONLY = ["speed_tensioning", "impact", "polygonal_rigid", "end_excitation"
 @pytest.fixture(scope="module")
 def fig07():
     from mechrepro.config import load_paper
-    run = load_paper("config/papers/chain_drive.yaml").runs["fig07_tension"]
+    run = load_paper("config/papers/chain_drive.yaml").runs["fig07_string"]
     return run, dict(run["parameters"]), dict(run["resolution"])
 
 

@@ -162,12 +162,14 @@ def test_an_artefact_alone_keeps_its_rows_and_exactly_the_runs_they_read():
 
 def test_a_row_re_checks_only_the_study_points_it_reads(edit_config):
     """`members:` names the points of a study a row reads: its variants re-run those
-    points only (Fig. 7d's rival re-runs T_s = 100 N, not 800 and 200); a point the
-    sweep does not have is refused with the sweep's values."""
+    points only (Fig. 7c/d's rival re-runs T_s = 200 and 100 N, not 800, which only the
+    slack-tension rival re-runs); a point the sweep does not have is refused with the
+    sweep's values."""
     cfg = load_paper("config/papers/chain_drive.yaml")
     ts = {cfg.runs[r]["sweep"]["static_tension"]: r for r in cfg.studies["fig07_ts"]}
-    assert cfg.studies["fig07_ts@rival-overdamped"] == [f"{ts[100.0]}@rival-overdamped"]
-    assert cfg.studies["fig07_ts@coarser"] == [f"{ts[800.0]}@coarser", f"{ts[100.0]}@coarser"]
+    assert cfg.studies["fig07_ts@rival-overdamped"] == [f"{ts[200.0]}@rival-overdamped",
+                                                        f"{ts[100.0]}@rival-overdamped"]
+    assert cfg.studies["fig07_ts@rival-slack_tension"] == [f"{ts[800.0]}@rival-slack_tension"]
     assert len(cfg.studies["fig07_ts"]) == 3     # the baseline draws every point
     path = edit_config("chain_drive", lambda raw: raw["reported"]["instability_ts100"].__setitem__(
         "members", {"fig07_ts": {"static_tension": [150.0]}}))

@@ -11,13 +11,18 @@ action, and it needs no convective operator: the rollers move with the chain (La
 so the moving string's Coriolis and centripetal terms come from the relabelling.
 
 Assumed choices (declared, not tuned): rigid axial motion (the rollers a pitch apart,
-links inextensible along the span); the impact of Eq. (2-4) as a tension pulse in every
-link, as in the string model; a seated roller's transverse state is dropped (the
-sprocket takes it over: a perfectly inelastic seating); a released roller starts with the
-driven end's position and velocity.
+links inextensible along the span); the impact of Eq. (2-4) a tension pulse in every link
+(as in the string model) for its share ``impact_share`` and in the engaging link (to the
+driving end) alone for the rest: with rigid links the pulse reaches every link at once,
+while the axial wave of an elastic chain crosses the span in ~5 contact times, so the
+truth lies between (the parameter's range, 0 to 1); a seated roller's transverse state is
+dropped (the sprocket takes it over: a perfectly inelastic seating); a released roller
+starts with the driven end's position and velocity; without the ``long`` state (no
+length_change effect) the roller set is fixed, released and seated at once.
 
 Equation of roller i (i = 1..N, y_0 and y_(N+1) the end rollers):
-    m_r y_i'' = (P + P_t)/p (y_(i+1) - 2 y_i + y_(i-1)) - c_d p y_i'.
+    m_r y_i'' = (P + P_t)/p (y_(i+1) - 2 y_i + y_(i-1)) - c_d p y_i',
+the engaging link's tension (1 - impact_share) D_imp higher and the others' lower by it.
 Between events it is linear with time-periodic coefficients; one tooth period with its
 events is an affine map x -> M x + b of the free rollers' state (positions, velocities),
 so the periodic steady state is one linear solve and its stability the eigenvalues of M
@@ -61,37 +66,42 @@ def energy(y, v, y_left, y_right, tension: float, mass: float, spacing: float):
         np.diff(full, axis=0) ** 2, axis=0)
 
 
-def _accel(y, v, left, right, k_over_m, damp):
-    """Roller accelerations: (P/(m_r p)) (second difference with the end rollers) - damp v."""
+def _accel(y, v, left, right, k_over_m, damp, last=0.0):
+    """Roller accelerations: (P/(m_r p)) (second difference with the end rollers) - damp v,
+    plus ``last`` (an extra tension / (m_r p) in the link to the driving end) on the last."""
     a = -2.0 * y
     a[1:] += y[:-1]
     a[:-1] += y[1:]
     a[0] += left
     a[-1] += right
-    return k_over_m * a - damp * v
+    a *= k_over_m
+    a[-1] += last * (right - y[-1])
+    return a - damp * v
 
 
-def rk4(y, v, times, left, right, k_over_m, damp):
+def rk4(y, v, times, left, right, k_over_m, damp, last=None):
     """Classical RK4 over ``times`` (n + 1 nodes); ``left``/``right``: the end rollers'
     positions at the 2 n + 1 half-step nodes, (2n+1,) or (2n+1, K) for K state columns;
-    ``k_over_m``: (P + P_t) / (m_r p) per step (n,).  y, v: (N, K).  Returns the states at
-    every node (n + 1, N, K) for y and v."""
+    ``k_over_m``: (P + P_t) / (m_r p) per step (n,); ``last``: the extra of the link to the
+    driving end per step (n,) or None.  y, v: (N, K).  Returns the states at every node
+    (n + 1, N, K) for y and v."""
     n = len(times) - 1
+    last = np.zeros(n) if last is None else last
     Y = np.empty((n + 1,) + y.shape)
     V = np.empty_like(Y)
     Y[0], V[0] = y, v
     for j in range(n):
         h = times[j + 1] - times[j]
-        kom = k_over_m[j]
+        kom, ex = k_over_m[j], last[j]
         l0, l1, l2 = left[2 * j], left[2 * j + 1], left[2 * j + 2]
         r0, r1, r2 = right[2 * j], right[2 * j + 1], right[2 * j + 2]
-        a1 = _accel(y, v, l0, r0, kom, damp)
+        a1 = _accel(y, v, l0, r0, kom, damp, ex)
         y2, v2 = y + 0.5 * h * v, v + 0.5 * h * a1
-        a2 = _accel(y2, v2, l1, r1, kom, damp)
+        a2 = _accel(y2, v2, l1, r1, kom, damp, ex)
         y3, v3 = y + 0.5 * h * v2, v + 0.5 * h * a2
-        a3 = _accel(y3, v3, l1, r1, kom, damp)
+        a3 = _accel(y3, v3, l1, r1, kom, damp, ex)
         y4, v4 = y + h * v3, v + h * a3
-        a4 = _accel(y4, v4, l2, r2, kom, damp)
+        a4 = _accel(y4, v4, l2, r2, kom, damp, ex)
         y = y + h / 6.0 * (v + 2 * v2 + 2 * v3 + v4)
         v = v + h / 6.0 * (a1 + 2 * a2 + 2 * a3 + a4)
         Y[j + 1], V[j + 1] = y, v
@@ -121,8 +131,9 @@ def events(prm: dict, omega1: float) -> tuple[float, float, int]:
 
 
 def _drive(run, prm, omega1, times, dt):
-    """The end rollers' positions at the half-step nodes and the link tension per step,
-    from the scene's effects (the string's: :mod:`.effects`) on this time grid."""
+    """The end rollers' positions at the half-step nodes, the link tension P_t per step and
+    its impact part D_imp (``tension_pulse``, Eq. 2-4), from the scene's effects (the
+    string's: :mod:`.effects`) on this time grid."""
     half = np.empty(2 * len(times) - 1)
     half[0::2] = times
     half[1::2] = 0.5 * (times[:-1] + times[1:])
@@ -132,18 +143,23 @@ def _drive(run, prm, omega1, times, dt):
     mid = SpanContext(prm, omega1, half[1::2], dt, geo)
     tens = EFFECTS.evaluate(run, mid, keys=set(span.PT_KEYS))
     Pt = span.dynamic_tension(tens, (len(times) - 1, 1))[:, 0]
-    return ends, Pt
+    pulse = np.asarray(tens.total("tension_pulse", np.zeros((len(times) - 1, 1))))[:, 0]
+    return ends, Pt, pulse
+
+
+def tension_coefficient(run, prm) -> float:
+    """k of P = T_s + k c^2 from the scene's effects (0 without speed tensioning)."""
+    return float(EFFECTS.evaluate(as_run(run), SpanContext(prm, 1.0, np.zeros(0), None,
+                                                           span.span_geometry(prm, True)),
+                                  keys={"tension_coefficient"}).total("tension_coefficient"))
 
 
 def _axial_tension(run, prm, omega1) -> float:
-    """P = T_s + k c^2 (:func:`.geometry.axial_tension`, k from the scene's effects)."""
+    """P = T_s + k c^2 (:func:`.geometry.axial_tension`)."""
     from . import geometry
 
-    k_c = EFFECTS.evaluate(run, SpanContext(prm, omega1, np.zeros(0), None,
-                                            span.span_geometry(prm, True)),
-                           keys={"tension_coefficient"}).total("tension_coefficient")
     c = float(geometry.chain_speed(omega1, int(prm["n1"]), prm["pitch"]))
-    return float(geometry.axial_tension(prm["static_tension"], k_c, c))
+    return float(geometry.axial_tension(prm["static_tension"], tension_coefficient(run, prm), c))
 
 
 #: RK4's stability interval on the imaginary axis is |omega dt| <= 2 sqrt(2); a margin
@@ -171,60 +187,77 @@ def _end(ends, key: str, n: int) -> np.ndarray:
     return np.zeros(n) if x is None else np.asarray(x, float).reshape(n, -1)[:, 0]
 
 
-def period_map(run, prm: dict, omega1: float, steps_per_period: int, record: bool = False):
+def _refuse_unhonoured_keys(named: set) -> None:
+    """Keys the discrete span cannot honour, refused before any march (never ignored)."""
+    from .errors import UnknownChoice
+
+    for key, why in (("tension_short", "the elastic four-bar load is not wired in"),
+                     ("tension_external", "an external load's period is not one tooth period"),
+                     ("kappa", "the sag term of Eq. (2-36) is not wired in")):
+        if key in named:
+            raise UnknownChoice(f"discrete span: {why} ({key})")
+
+
+def _segments(tau, t_r, steps_per_period):
+    """The time grids of the period's segments: [0, t_r] and [t_r, tau] (one when the
+    release coincides with the seating)."""
+    cuts = [0.0, t_r, tau] if t_r > 0 else [0.0, tau]
+    return [np.linspace(a, b, max(int(math.ceil(steps_per_period * (b - a) / tau)), 2) + 1)
+            for a, b in zip(cuts[:-1], cuts[1:])]
+
+
+def period_map(run, prm: dict, omega1: float, steps_per_period: int, start=None):
     """One tooth period of the discrete span from just after the seating at t = 0, events
-    included: the affine map x -> M x + b of the free rollers' state x = (y, v), and, with
-    ``record``, the roller histories of the forced response from x = 0 (for the amplitude of
-    a given start, :func:`periodic_orbit`)."""
+    included: the affine map x -> M x + b of the free rollers' state x = (y, v).  Without
+    the ``long`` state (no length_change effect) the roller set is fixed: the release
+    coincides with the seating (t_r = 0).  With ``start`` (a state x) only that orbit is
+    marched: M is None, b its state after the period and ``amplitude`` max |y| over the
+    free rollers along it."""
     run = as_run(run)
     named = declared_keys(run)
-    if "tension_short" in named:
-        raise NotImplementedError("discrete span: the elastic four-bar load is not wired in")
+    _refuse_unhonoured_keys(named)
     m, p = prm["mass_per_length"], prm["pitch"]
     m_r, damp = m * p, prm["transverse_damping"] * p / (m * p)
     tau, t_r, n_s = events(prm, omega1)
+    share = float(prm.get("impact_share", 1.0))
+    if "long" not in named:
+        t_r = 0.0
     P = _axial_tension(run, prm, omega1)
     _refuse_unstable_step(P, m_r, p, n_s + 1, tau / steps_per_period, steps_per_period, tau)
-    # two segments, release at t_r (none when it coincides with the seating)
-    cuts = [0.0, t_r, tau] if t_r > 0 else [0.0, tau]
-    segs = []
-    for a, b in zip(cuts[:-1], cuts[1:]):
-        n = max(int(math.ceil(steps_per_period * (b - a) / tau)), 2)
-        segs.append(np.linspace(a, b, n + 1))
-    n_free = [n_s] if t_r == 0 else [n_s, n_s + 1]
     N0 = n_s
-    K = 2 * N0 + 1                               # unit columns + the forced column
-    y = np.zeros((N0, K))
-    v = np.zeros((N0, K))
-    y[np.arange(N0), np.arange(N0)] = 1.0
-    v[np.arange(N0), N0 + np.arange(N0)] = 1.0
+    if start is None:                            # unit columns + the forced column
+        K = 2 * N0 + 1
+        y, v = np.zeros((N0, K)), np.zeros((N0, K))
+        y[np.arange(N0), np.arange(N0)] = 1.0
+        v[np.arange(N0), N0 + np.arange(N0)] = 1.0
+    else:
+        K = 1
+        y, v = np.asarray(start[:N0], float)[:, None], np.asarray(start[N0:], float)[:, None]
     forced = np.zeros(K)
     forced[-1] = 1.0
-    hist = []
-    for seg, n_f in zip(segs, n_free):
-        if y.shape[0] < n_f:                     # release: a roller enters at the driven end
-            ends, _ = _drive(run, prm, omega1, seg[:2], seg[1] - seg[0])
-            y = np.vstack([forced * _end(ends, "u_left", 3)[0], y])
-            v = np.vstack([forced * _end(ends, "v_left", 3)[0], v])
-        dt = np.diff(seg)
-        ends, Pt = _drive(run, prm, omega1, seg, dt[0])
+    amp, p_min = 0.0, math.inf
+    for i, seg in enumerate(_segments(tau, t_r, steps_per_period)):
+        ends, Pt, pulse = _drive(run, prm, omega1, seg, seg[1] - seg[0])
+        local = (1.0 - share) * pulse            # the engaging link's alone
         nh = 2 * len(seg) - 1
+        if i == 1:                               # release: a roller enters at the driven end
+            y = np.vstack([forced * _end(ends, "u_left", nh)[0], y])
+            v = np.vstack([forced * _end(ends, "v_left", nh)[0], v])
         left = _end(ends, "u_left", nh)[:, None] * forced[None, :]
         right = _end(ends, "u_right", nh)[:, None] * forced[None, :]
-        Y, V = rk4(y, v, seg, left, right, (P + Pt) / (m_r * p), damp)
+        Y, V = rk4(y, v, seg, left, right, (P + Pt - local) / (m_r * p), damp, local / (m_r * p))
         y, v = Y[-1], V[-1]
-        if record:
-            hist.append((seg, Y[..., -1], left[:, -1], right[:, -1]))
+        amp = max(amp, float(np.max(np.abs(Y[..., -1]))))
+        p_min = min(p_min, float(np.min(P + Pt - np.maximum(local, 0.0))))
     # seating at tau: the last roller goes onto the driving sprocket (state dropped) ...
     y, v = y[:-1], v[:-1]
     if t_r == 0:                                 # ... and one leaves the driven sprocket
-        ends, _ = _drive(run, prm, omega1, np.array([tau, tau + 1e-9 * tau]), 1e-9 * tau)
+        ends = _drive(run, prm, omega1, np.array([tau, tau + 1e-9 * tau]), 1e-9 * tau)[0]
         y = np.vstack([forced * _end(ends, "u_left", 3)[0], y])
         v = np.vstack([forced * _end(ends, "v_left", 3)[0], v])
     x = np.vstack([y, v])
-    M, b = x[:, :-1], x[:, -1]
-    return {"M": M, "b": b, "tau": tau, "t_r": t_r, "n_short": n_s, "P": P,
-            "history": hist if record else None}
+    return {"M": x[:, :-1] if start is None else None, "b": x[:, -1], "tau": tau, "t_r": t_r,
+            "n_short": n_s, "P": P, "P_min": p_min, "amplitude": amp}
 
 
 def floquet(M: np.ndarray) -> np.ndarray:
@@ -235,39 +268,68 @@ def floquet(M: np.ndarray) -> np.ndarray:
 
 def periodic_orbit(run, prm: dict, omega1: float, steps_per_period: int) -> dict:
     """Periodic steady state x* = (I - M)^-1 b of the tooth-period map, its largest
-    Floquet multiplier and its amplitude (max |y| over the free rollers and one period:
-    the map is affine, so the orbit from x* is the forced response plus M's columns)."""
-    pm = period_map(run, prm, omega1, steps_per_period, record=True)
+    Floquet multiplier and its amplitude (max |y| over the free rollers along one period
+    marched from x*, which returns to x*: the residual)."""
+    pm = period_map(run, prm, omega1, steps_per_period)
     M, b = pm["M"], pm["b"]
     x = np.linalg.solve(np.eye(M.shape[0]) - M, b)
-    rho = float(np.max(np.abs(floquet(M))))
-    # the orbit from x*: march once more with the start as the forced column's state
-    amp = _orbit_amplitude(run, prm, omega1, steps_per_period, x)
-    return {"x": x, "rho": rho, "amplitude": amp, "tau": pm["tau"], "n_short": pm["n_short"],
-            "residual": float(np.max(np.abs(M @ x + b - x)))}
+    orbit = period_map(run, prm, omega1, steps_per_period, start=x)
+    return {"x": x, "rho": float(np.max(np.abs(floquet(M)))), "amplitude": orbit["amplitude"],
+            "tau": pm["tau"], "n_short": pm["n_short"], "slack": pm["P_min"] <= 0.0,
+            "residual": float(np.max(np.abs(orbit["b"] - x)))}
 
 
-def _orbit_amplitude(run, prm, omega1, steps_per_period, x0) -> float:
-    """max |y| over the free rollers along one period started from the state x0."""
-    run = as_run(run)
-    m, p = prm["mass_per_length"], prm["pitch"]
-    m_r, damp = m * p, prm["transverse_damping"] * p / (m * p)
-    pm = period_map(run, prm, omega1, steps_per_period)
-    tau, t_r, P = pm["tau"], pm["t_r"], pm["P"]
-    n_s = pm["n_short"]
-    y, v = x0[:n_s, None].copy(), x0[n_s:, None].copy()
-    cuts = [0.0, t_r, tau] if t_r > 0 else [0.0, tau]
-    amp = 0.0
-    for i, (a, b) in enumerate(zip(cuts[:-1], cuts[1:])):
-        n = max(int(math.ceil(steps_per_period * (b - a) / tau)), 2)
-        seg = np.linspace(a, b, n + 1)
-        ends, Pt = _drive(run, prm, omega1, seg, seg[1] - seg[0])
-        nh = 2 * len(seg) - 1
-        if i == 1:
-            y = np.vstack([[[_end(ends, "u_left", nh)[0]]], y])
-            v = np.vstack([[[_end(ends, "v_left", nh)[0]]], v])
-        Y, V = rk4(y, v, seg, _end(ends, "u_left", nh)[:, None], _end(ends, "u_right", nh)[:, None],
-                   (P + Pt) / (m_r * p), damp)
-        amp = max(amp, float(np.max(np.abs(Y))))
-        y, v = Y[-1], V[-1]
-    return amp
+def sweep(run, prm: dict, omega1, res: dict) -> dict:
+    """Figs. 5-8 on the discrete span: per driving speed [rad/s] the periodic orbit's
+    amplitude, the largest Floquet multiplier rho (unstable where rho > 1 or where a link
+    goes slack, P + P_t <= 0) and the periodicity residual, at ``steps_per_period`` RK4
+    steps per tooth period (the knob the levels refine).  With ``edge_tol``/``peak_tol``
+    (rpm) the speeds are refined as the string's shooting sweeps are
+    (:func:`.shooting.adaptive_sweep`: stability edges and growth-rate bumps), then every
+    amplitude peak of prominence >= 0.05 mm (:func:`.claims.peaks`) that is no stable
+    orbit at a stability edge (whose amplitude grows without bound as rho -> 1 and would
+    set a relative prominence), so that a peak or an edge is located to those widths."""
+    from . import claims, geometry
+    from .errors import UnknownChoice
+    from .limits import stability_only
+    from .shooting import PeriodicSolution, adaptive_sweep
+
+    if run.get("options", {}).get("stationary_string"):
+        raise UnknownChoice("discrete span: the stationary_string option is the string's "
+                            "(the rollers move with the chain)")
+    n = int(res["steps_per_period"])
+
+    def evaluate(w):
+        g = periodic_orbit(run, prm, w, n)
+        return PeriodicSolution(amplitude=g["amplitude"], rho=g["rho"],
+                                growth_rate=math.log(g["rho"]) / g["tau"], period=g["tau"],
+                                n_steps=n, residual=g["residual"], slack=g["slack"],
+                                multipliers=np.empty(0), rho_lower=g["rho"], rho_upper=g["rho"])
+
+    if "edge_tol" in res:
+        sigma = prm["transverse_damping"] / (2 * prm["mass_per_length"])
+        only = stability_only(as_run(run))
+        peak_tol = float(res["peak_tol"]) / geometry.RPM
+        omega1, sols, done = adaptive_sweep(
+            evaluate, omega1, edge_tol=float(res["edge_tol"]) / geometry.RPM,
+            peak_tol=peak_tol, rate_floor=-0.5 * sigma, prominence=None, until_unstable=only)
+        pts = dict(zip(omega1.tolist(), sols))
+        while not only:
+            w = np.array(sorted(pts))
+            un = np.array([pts[v].rho > 1.0 or pts[v].slack for v in w])
+            idx = claims.peaks(w, [pts[v].amplitude for v in w], stable=~un)
+            new = {0.5 * (w[j] + w[j + 1]) for i in idx if not (un[i - 1] or un[i + 1])
+                   for j in (i - 1, i) if w[j + 1] - w[j] > peak_tol} - set(pts)
+            if not new:
+                break
+            pts.update({v: evaluate(v) for v in sorted(new)})
+        omega1 = np.array(sorted(pts))
+        sols = [pts[v] for v in omega1]
+    else:
+        sols, done = [evaluate(float(w)) for w in omega1], True
+    rho = np.array([g.rho for g in sols])
+    slack = np.array([g.slack for g in sols])
+    return {"omega1": np.asarray(omega1, float), "amplitude": np.array([g.amplitude for g in sols]),
+            "rho": rho, "slack": slack, "unstable": (rho > 1.0) | slack,
+            "residual": np.array([g.residual for g in sols]), "sampling_converged": done,
+            "n_rollers": events(prm, float(omega1[0]))[2]}

@@ -134,15 +134,20 @@ def peak_level_spread(R, name: str, n_peaks: int = 5, window: float = 3.0):
     moves between its @coarsest, @coarser and base levels (the framework runs all three for
     every verdict's reads): (max relative spread, observed order or nan, peak speeds).  The
     amplitude at a level is its largest stable value within +-``window`` rpm of the base
-    peak.  An observed order needs a contracting sequence (|d1| > 1.05 |d2|); a spread with
+    peak; peaks within ``window`` of an unstable speed are left out (a stable orbit at a
+    stability edge grows without bound there).  An observed order needs a contracting sequence (|d1| > 1.05 |d2|); a spread with
     none is an amplitude that does not converge under refinement, and the figure says so."""
     try:
         ds = [R.run(f"{name}{s}") for s in ("@coarsest", "@coarser", "")]
     except FileNotFoundError:
         return float("nan"), float("nan"), []
     base = ds[2]
-    A = np.where(np.asarray(base.unstable.values, bool), 0.0, base.amplitude.values)
+    un = np.asarray(base.unstable.values, bool)
+    A = np.where(un, 0.0, base.amplitude.values)
     idx = C.peaks(base.speed.values, A)
+    # a stable orbit next to an unstable band has no limit (its multiplier nears 1)
+    near = [np.any(un & (np.abs(base.speed.values - base.speed.values[i]) <= window)) for i in idx]
+    idx = idx[~np.array(near, bool)] if len(idx) else idx
     idx = idx[np.argsort(A[idx])[::-1][:n_peaks]]
     spread, orders = 0.0, []
     for i in idx:
@@ -158,3 +163,64 @@ def peak_level_spread(R, name: str, n_peaks: int = 5, window: float = 3.0):
         orders.append(np.log(d1 / d2) / np.log(1.5) if d2 > 0 and d1 > 1.05 * d2 else np.nan)
     order = float(np.nanmin(orders)) if np.isfinite(orders).all() and orders else float("nan")
     return float(spread), order, [float(base.speed.values[i]) for i in idx]
+
+
+LEVEL_RUNS = ("@coarsest", "@coarser", "", "@finer")
+DISCRETE_PEAK_COLUMNS = ["run", "order", "quantity", "unit", "coarsest", "coarser", "base",
+                         "finer", "error", "observed_order_below", "observed_order_above", "how"]
+
+
+def order_peak(ds, k: int) -> tuple[float, float]:
+    """(speed [rpm], amplitude [m]) of the largest stable peak of order k (within
+    :func:`.claims.order_window` of its short- and long-span resonance speeds), at the
+    one-mode vertex through its neighbours (:func:`.claims.one_mode_peak`)."""
+    sp = ds.speed.values
+    lo, hi = C.order_window(float(ds.resonance_speed_long.sel(order=k)),
+                            float(ds.resonance_speed_short.sel(order=k)))
+    m = (sp >= lo) & (sp <= hi)
+    a = np.where(np.asarray(ds.unstable.values, bool), np.nan, ds.amplitude.values)[m]
+    return C.one_mode_peak(sp[m], a) if np.isfinite(a).any() else (np.nan, np.nan)
+
+
+def stable_orders(ds, n: int = 2) -> list[int]:
+    """The first ``n`` resonance orders whose window (:func:`.claims.order_window`) holds no
+    unstable speed: a peak next to a stability edge has no converging amplitude."""
+    sp, un = ds.speed.values, np.asarray(ds.unstable.values, bool)
+    out = []
+    for k in ds.order.values:
+        lo, hi = C.order_window(float(ds.resonance_speed_long.sel(order=k)),
+                                float(ds.resonance_speed_short.sel(order=k)))
+        if not np.any(un & (sp >= lo) & (sp <= hi)):
+            out.append(int(k))
+    return out[:n]
+
+
+#: the band the levels' differences are compared with (:func:`mechrepro.levels.level_error`
+#: calls a thousandth of it negligible): 2 % of the value, the tolerance of the paper's
+#: resonance-speed rows, the tightest it sets on a peak
+PEAK_BAND = 0.02
+
+
+def discrete_peak_rows(R, name: str, n_orders: int = 2) -> list[list]:
+    """Peak speed and amplitude of the first ``n_orders`` orders away from any instability
+    (:func:`stable_orders`, on the baseline) on run ``name`` at its four levels, with the
+    error of the baseline from both sides by the one estimator
+    (:func:`mechrepro.levels.level_error`: coarsest / coarser / base and coarser / base /
+    finer at the levels' ratio 1.5; the larger bound, plus |base - finer|)."""
+    from mechrepro.levels import level_error
+
+    ds = [R.run(f"{name}{s}") for s in LEVEL_RUNS]
+    tol = float(resolution(ds[2], "peak_tol"))
+    rows = []
+    for k in stable_orders(ds[2], n_orders):
+        got = np.array([order_peak(d, k) for d in ds])          # (level, speed/amplitude)
+        for j, (q, unit, scale) in enumerate((("peak_speed", "rpm", 1.0),
+                                              ("peak_amplitude", "mm", 1e3))):
+            c2, c1, b, f = got[:, j] * scale
+            # a peak speed is located to half the base level's bisection width at best
+            own = 0.5 * tol if q == "peak_speed" else 0.0
+            e_lo, p_lo, _, how = level_error(c2, c1, b, 1.5, PEAK_BAND * abs(b), own)
+            e_hi, p_hi, _, how_f = level_error(c1, b, f, 1.5, PEAK_BAND * abs(b), own / 1.5)
+            rows.append([name, k, q, unit, c2, c1, b, f, max(e_lo, abs(b - f) + e_hi),
+                         p_lo, p_hi, f"{how}; with finer: {how_f}"])
+    return rows

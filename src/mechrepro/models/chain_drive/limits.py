@@ -11,6 +11,7 @@ shortens it further, by a factor the fit absorbs), the speeds and
 - shooting (Figs. 6, 7, 9): per speed one march of 2n + 1 lanes over one tooth period
   (N steps) plus the monodromy's bounds / eigenvalues (~ (2n)^3), at about
   :data:`SHOOTING_REFINE` x the initial speeds (the adaptive bisection of edges and peaks);
+- the discrete span (Fig. 7): speeds x RK4 steps per tooth period;
 - Galerkin (Fig. 10): RK4 steps x (modes)^2; the exact / manufactured checks and the
   time-step study: their grids.
 
@@ -86,6 +87,7 @@ FIT = {
     "elastic_speed_s": 0.002,      # per speed of the elastic four-bar curve
     "base_mb": 300.0,             # the interpreter with numpy, scipy, xarray, numba
     "run_s": 0.05,                # any run
+    "discrete_step_s": 3e-4,      # per (speed, RK4 step) of the discrete span (2x measured)
 }
 
 
@@ -152,7 +154,11 @@ def cost(run: dict) -> dict:
     (module docstring; a job adds :data:`JOB_START_S` once)."""
     f, res, solver = FIT, run["resolution"], run["solver"]
     mem, seconds = f["base_mb"], f["run_s"]
-    if solver == "speed_sweep":
+    if solver == "speed_sweep" and res.get("method") == "discrete":
+        # per speed two tooth-period marches of 2N + 2 lanes of ~20 rollers (numpy RK4)
+        seconds += f["discrete_step_s"] * _speeds(run, run["parameters"]).size \
+            * int(res["steps_per_period"]) * (SHOOTING_REFINE if "edge_tol" in res else 1)
+    elif solver == "speed_sweep":
         z = size(run)
         S, n1 = z["speeds"], z["points"]
         if "steps" in z:

@@ -7,7 +7,7 @@ and reads the contributions by key; none reads an effect's name.
 
 ``impact_load`` (Fig. 1), ``rigid_four_bar`` (Fig. 3), ``elastic_four_bar`` (Fig. 4),
 ``speed_sweep`` (Figs. 5-9: maximum steady amplitude vs operating speed, one vectorised FD
-computation), ``galerkin`` (Fig. 10, :func:`.galerkin.solve_scene`), ``impact_timestep`` (Sec. 3.1), ``exact_free`` and
+computation, shooting, or the discrete-link span of :mod:`.discrete`), ``galerkin`` (Fig. 10, :func:`.galerkin.solve_scene`), ``impact_timestep`` (Sec. 3.1), ``exact_free`` and
 ``manufactured`` (independent checks of the FD scheme).  Speeds in the datasets are in
 rpm; everything else SI.
 """
@@ -16,9 +16,10 @@ from __future__ import annotations
 import numpy as np
 from scipy.integrate import quad
 
+from mechrepro.timing import stopwatch
 from mechrepro.units import var
 
-from . import exact, four_bar, galerkin, geometry, loads, shooting, span, timestep
+from . import discrete, exact, four_bar, galerkin, geometry, loads, shooting, span, timestep
 from .effects import EFFECTS, SpanContext, as_run, declared_keys, refuse_unhonoured
 from .galerkin import envelope_statistics  # noqa: F401  (re-exported for the tests)
 from .geometry import RPM
@@ -212,12 +213,15 @@ def speed_sweep(run, prm, res) -> dict:
     dense = run.get("options", {}).get("dense_near_elastic")
     if dense:
         omega1 = dense_near_elastic(run, prm, omega1, float(dense), int(res["n_speeds"]))
+    if res.get("method") == "discrete":
+        return discrete_sweep(run, prm, omega1, res, wc)
     shooting_ = res.get("method", "march") == "shooting"
-    if shooting_:
-        out = shooting.sweep(run, prm, omega1, res)
-        omega1 = out["omega1"]
-    else:
-        out = span.sweep(run, prm, omega1, res)
+    with stopwatch() as sw:
+        if shooting_:
+            out = shooting.sweep(run, prm, omega1, res)
+            omega1 = out["omega1"]
+        else:
+            out = span.sweep(run, prm, omega1, res)
     orders = np.arange(1, int(res.get("orders", 8)) + 1)
     geo = dict(out["span"])
     reso = resonance_table(prm, out["tension_coefficient"], geo, orders)
@@ -249,6 +253,13 @@ def speed_sweep(run, prm, res) -> dict:
                                            "omega_c of the drive's elastic four-bar (k = AE/L_ct)"),
         **_coord("speed", omega1 * RPM, "rpm", "driving sprocket speed omega_1"),
         **_coord("order", orders, "1", "resonance order k")}
+    steps = run.get("options", {}).get("discrete_reference")
+    if steps:
+        data["amplitude_discrete"] = var("speed", discrete.sweep(run, prm, omega1, {
+            "steps_per_period": steps})["amplitude"], "m", f"the discrete-link span's periodic "
+            f"amplitude at the same speeds ({steps} RK4 steps per tooth period): the reference "
+            "of the string's cost of accuracy")
+        data["string_time"] = var((), sw.seconds, "s", "wall time of the string sweep alone")
     if shooting_:
         data["growth_rate"] = var("speed", out["growth_rate"], "1/s",
                                   "Floquet growth rate log(rho)/T of the span")
@@ -276,6 +287,44 @@ def speed_sweep(run, prm, res) -> dict:
                                          "1 when the adaptive speed bisection finished (edges "
                                          "and peaks at edge_tol/peak_tol)")
     return data
+
+
+def discrete_sweep(run, prm, omega1, res, wc=None) -> dict:
+    """Figs. 5-8 on the discrete-link span (:func:`.discrete.sweep`): per speed the periodic
+    orbit's amplitude and largest Floquet multiplier of the tooth-period map, with the
+    moving-string resonance speeds of the span (the string's, for comparison)."""
+    run = as_run(run)
+    out = discrete.sweep(run, prm, omega1, res)
+    omega1 = out["omega1"]
+    orders = np.arange(1, int(res.get("orders", 8)) + 1)
+    geo = span.span_geometry(prm, "long" in declared_keys(run))
+    reso = resonance_table(prm, discrete.tension_coefficient(run, prm), geo, orders)
+    steps = int(res["steps_per_period"])
+    return {
+        "amplitude": var("speed", out["amplitude"], "m",
+                         "maximum transverse roller amplitude of the periodic orbit"),
+        "growth": var("speed", out["rho"], "1", "largest Floquet multiplier of the tooth-period "
+                      "map of the discrete span (rollers relabelled)"),
+        "unstable": var("speed", out["unstable"].astype("i1"), "1",
+                        "1 where a Floquet multiplier exceeds 1 or a link goes slack"),
+        "slack": var("speed", out["slack"].astype("i1"), "1", "1 where P + P_t <= 0 somewhere"),
+        "periodicity_residual": var("speed", out["residual"], "m",
+                                    "max |x(T) - x*| of the orbit marched once more"),
+        **{f"resonance_speed_{k}": var("order", reso[L] * RPM, "rpm",
+                                       f"tooth frequency = k-th moving-string frequency, {k} span")
+           for k, L in (("short", "L_short"), ("long", "L_long"), ("mean", "L_ct"))},
+        "steps_per_period": var((), steps, "1", "RK4 steps per tooth period"),
+        "sampling_converged": var((), int(out["sampling_converged"]), "1",
+                                  "1 when the adaptive speed refinement finished"),
+        "n_steps": var((), steps, "1", "RK4 steps per tooth period"),
+        "n_points": var((), out["n_rollers"] + 2, "1", "rollers of the short span, ends included"),
+        "L_short": var((), geo["L_short"], "m", "short span length L_0"),
+        "L_long": var((), geo["L_long"], "m", "long span length"),
+        "fractional_pitch": var((), geo["f_p"], "1", "fractional pitch f_p, Eq. (2-6)"),
+        "elastic_resonance_speed": var((), np.nan if wc is None else wc * RPM, "rpm",
+                                       "omega_c of the drive's elastic four-bar (k = AE/L_ct)"),
+        **_coord("speed", omega1 * RPM, "rpm", "driving sprocket speed omega_1"),
+        **_coord("order", orders, "1", "resonance order k")}
 
 
 # ---------------------------------------------------------------------------- Sec. 3.1, checks
