@@ -7,7 +7,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from . import samples
 from .geometry import pitch_radius
+from .samples import kinematics_formulas, phase_formulas, tooth_constants
 
 
 def driven_phase(n2: int, f_p: float) -> float:
@@ -31,79 +33,26 @@ def chain_travel(t, omega1, n1: int, r1: float):
     return k * p_c + r1 * (np.cos(th10) - np.cos(th1)), th1
 
 
-def _tooth(n1: int) -> tuple:
-    """The constants of :func:`_travel`: the tooth angle 2 pi/n1, theta_10 and its cosine
-    (formed once, not per sample: the compiled loop would evaluate the cosine each time)."""
-    th10 = np.pi / 2 - np.pi / n1
-    return 2 * np.pi / n1, th10, np.cos(th10)
-
-
-def _travel(phi, tooth, r1):
-    """theta_1 within the tooth period at phi = omega1 t (Eq. 2-7, as :func:`chain_travel`),
-    cos theta_1 and the chain travel since the last engagement d1 = r1 (cos theta_10 -
-    cos theta_1) in [0, p_c); ``tooth``: :func:`_tooth`."""
-    step, th10, c10 = tooth
-    th1 = th10 + (phi - np.floor(phi / step) * step)
-    c1 = np.cos(th1)
-    return th1, c1, r1 * (c10 - c1)
-
-
 def _driven_offset(n2, r2, f_p):
     """The driven sprocket's travel at t = 0, s_off in [0, p_c) (its phase f_p, Eq. 2-7)."""
     th20_start = np.pi / 2 - np.pi / n2
     return r2 * (np.cos(th20_start) - np.cos(th20_start + driven_phase(n2, f_p)))
 
 
-def _phases(phi, tooth, r1, s_off, p_c):
-    """theta_1, cos theta_1, the chain travel past the driven sprocket's last disengagement
-    s2 in [0, p_c), the driving tooth phase, and whether the sample is within round-off of
-    a wrap (there :func:`tooth_phases` decides s2 and the phase again, exactly).
-
-    Elementwise on arrays, and the body of the compiled per-sample loop (:mod:`.samples`):
-    the one source of these formulas.  The wrap is written as arithmetic (w a + (1 - w) b
-    with a bool w: exactly a or b, both finite), which both read alike."""
-    th1, c1, d1 = _travel(phi, tooth, r1)
-    # (chain travel + s_off) mod p_c from the travel within the tooth period: the whole
-    # pitches drop out (no large numbers, no mod) ...
-    u = d1 + s_off
-    past = u - p_c
-    wrap = u >= p_c
-    tol = 1e-9 * p_c
-    # ... except at samples within round-off of a wrap (an engagement or a driven wrap at a
-    # sample instant)
-    near = (np.abs(past) < tol) | (d1 < tol) | (p_c - d1 < tol)
-    return th1, c1, wrap * past + (1 - wrap) * u, d1 / p_c, near
-
-
-def _kinematics(omega1, c1, s2, c20, r1, r2):
-    """sin theta_1, cos/sin theta_2, omega_2 and alpha_2 (Eqs. 2-7, 2-9) from cos theta_1
-    and the driven travel s2 of :func:`_phases` (elementwise, as it); c20 = cos theta_20 of
-    the driven sprocket's start angle pi/2 - pi/n2."""
-    s1 = np.sqrt(1.0 - c1 * c1)          # theta_1 in (0, pi)
-    c2 = np.minimum(np.maximum(c20 - s2 / r2, -1.0), 1.0)
-    sn2 = np.sqrt(1.0 - c2 * c2)         # theta_2 in (0, pi)
-    r2sn2 = r2 * sn2
-    w2 = omega1 * r1 * s1 / r2sn2
-    a2 = (r1 * omega1**2 * c1 - r2 * w2**2 * c2) / r2sn2
-    return s1, c2, sn2, w2, a2
-
-
 def tooth_phases(t, omega1, *, n1: int, n2: int, p_c: float, f_p: float) -> dict:
     """theta_1 and the driving/driven tooth phases (fraction of a pitch of chain travel since
     the last engagement / disengagement) -- the part of :func:`rigid_kinematics` the
-    span-length state needs (one cosine per sample): :func:`_phases` on the samples."""
-    from . import samples     # (which imports this module)
-
+    span-length state needs (one cosine per sample): :func:`.samples.phase_formulas` on the samples."""
     r1, r2 = pitch_radius(p_c, n1), pitch_radius(p_c, n2)
     omega1 = np.asarray(omega1, float)
     t = np.asarray(t, float)
     s_off = _driven_offset(n2, r2, f_p)
-    tooth = _tooth(n1)
+    tooth = tooth_constants(n1)
     shape = samples.block(t, omega1)
     if shape:
         th1, c1, s2, phase1, near = samples.phases(t, omega1, shape, tooth, r1, s_off, p_c)
     else:
-        th1, c1, s2, phase1, near = _phases(omega1 * t, tooth, r1, s_off, p_c)
+        th1, c1, s2, phase1, near = phase_formulas(omega1 * t, tooth, r1, s_off, p_c)
     if np.any(near):
         # the side of the jump decided exactly as chain_travel + np.mod decide it
         s_full, _ = chain_travel(np.broadcast_to(t, near.shape)[near],
@@ -127,8 +76,6 @@ def rigid_kinematics(t, omega1, *, n1: int, n2: int, p_c: float, f_p: float,
     is read by no effect: arccos(cos_theta2), theta2 in (0, pi)).  ``phases``:
     :func:`tooth_phases` of the same arguments, when already computed.
     """
-    from . import samples
-
     ph = tooth_phases(t, omega1, n1=n1, n2=n2, p_c=p_c, f_p=f_p) if phases is None else phases
     r1, r2 = ph["r1"], ph["r2"]
     omega1 = np.asarray(omega1, float)
@@ -137,7 +84,7 @@ def rigid_kinematics(t, omega1, *, n1: int, n2: int, p_c: float, f_p: float,
     if samples.block(t, omega1):
         s1, c2, sn2, w2, a2 = samples.kinematics(omega1, c1, s2, c20, r1, r2)
     else:
-        s1, c2, sn2, w2, a2 = _kinematics(omega1, c1, s2, c20, r1, r2)
+        s1, c2, sn2, w2, a2 = kinematics_formulas(omega1, c1, s2, c20, r1, r2)
     return {"theta1": ph["theta1"], "omega2": w2, "alpha2": a2, "r1": r1, "r2": r2,
             "phase1": ph["phase1"], "phase2": ph["phase2"],
             "cos_theta1": c1, "sin_theta1": s1, "cos_theta2": c2, "sin_theta2": sn2}

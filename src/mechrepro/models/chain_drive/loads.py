@@ -7,6 +7,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from . import samples
+from .samples import whole_pulse_formulas
+
 
 def pressure_angle(n1: int) -> float:
     """Eq. (2-3), decided from the ANSI tooth form: eta = 35 deg + 60 deg / n1 [rad].
@@ -64,22 +67,6 @@ def impact_pulse_integral(t_local, V_rel, eta: float, k: dict):
     return np.cos(eta) * (ci * x0 + ki * X0)
 
 
-def _whole_pulses(t, tau, J, step, t_i):
-    """The impulse over the window [t - step/2, t + step/2] counted in whole pulses J
-    (impacts at t = 0, tau, 2 tau, ...), and whether an end of the window lies within a
-    contact (t_i after an impact), where :func:`impact_load` integrates the pulse exactly.
-
-    Elementwise on arrays, and the body of the compiled per-sample loop (:mod:`.samples`):
-    the one source of the formula."""
-    a, b = t - step / 2, t + step / 2
-    ka, kb = np.floor(a / tau), np.floor(b / tau)
-    # the window ends' times since their last impact, against margins of round-off
-    margin = 1e-9 * tau
-    ra, rb = a - ka * tau, b - kb * tau
-    lo, hi = t_i + margin, tau - margin
-    return (kb - ka) * J, (ra < lo) | (rb < lo) | (ra > hi) | (rb > hi)
-
-
 def impact_load(t, omega1, n1: int, p_c: float, k: dict, step: float | None = None):
     """D_imp(t) repeated every tooth period, impacts at t = 0, tau, 2 tau, ... .
 
@@ -87,8 +74,6 @@ def impact_load(t, omega1, n1: int, p_c: float, k: dict, step: float | None = No
     preserved), so a contact pulse much shorter than the time step is neither missed
     nor aliased.  Broadcasts t against omega1.
     """
-    from . import samples
-
     t = np.asarray(t, float)
     omega1 = np.asarray(omega1, float)
     tau = 2 * np.pi / (n1 * omega1)
@@ -106,7 +91,7 @@ def impact_load(t, omega1, n1: int, p_c: float, k: dict, step: float | None = No
     if shape:
         out, near = samples.whole_pulses(t, tau, J, step, t_i, shape)
     else:
-        out, near = _whole_pulses(t, tau, J, step, t_i)
+        out, near = whole_pulse_formulas(t, tau, J, step, t_i)
         out = np.array(out, float)                      # writable, also from 0-d inputs
     if np.any(near):
         shape = near.shape

@@ -364,7 +364,10 @@ def warm(runs=None) -> None:
     solvers = None if runs is None else {r.get("solver") for r in runs}
     if solvers is None or solvers - {"galerkin"}:
         fd_kernel.warm()
-        samples.warm()
+        if samples.available():   # the excitation's per-sample loops, on a tiny block
+            t, w = np.linspace(0.0, 1e-3, 3)[:, None], np.array([[50.0, 60.0]])
+            four_bar.rigid_kinematics(t, w, n1=19, n2=38, p_c=0.0127, f_p=0.3)
+            loads.impact_load(t, w, 19, 0.0127, loads.impact_constants(0.02, 2e8, 0.1), step=1e-4)
     if solvers is None or "galerkin" in solvers:
         galerkin_kernel.warm()
 
