@@ -76,7 +76,6 @@ import numpy as np  # noqa: E402
 import _floor  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT / "src"))
 
 from mechrepro.config import load_paper  # noqa: E402
 from mechrepro.models.chain_drive import fd, fd_kernel, span  # noqa: E402
