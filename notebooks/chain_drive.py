@@ -30,7 +30,7 @@ import numpy as np
 
 from mechrepro import accuracy
 from mechrepro.models.chain_drive import figures as F
-from mechrepro.plotting import plt
+from mechrepro.plotting import log_ticks, plt
 from mechrepro.io import run_attrs
 from mechrepro.results import PaperResults
 from mechrepro.units import from_si
@@ -126,7 +126,7 @@ for sgn in (1, -1):
     ax[0].axhline(sgn * ts4, color="0.4", ls="--", lw=0.8,
                   label=f"+-T_s = {ts4:g} N" if sgn > 0 else None)
 amp4 = float(np.max(np.abs(d4.load_shape)))
-ax[0].set(xlabel="t / tooth period", ylabel="D_pol [N]",
+ax[0].set(xlabel="t / tooth period [1]", ylabel="D_pol [N]",
           title=f"Fig. 4a-e: load shapes\nup to +-{amp4 / 1e3:.3g} kN = {amp4 / ts4:.0f} x T_s")
 ax[0].legend(fontsize=7)
 ax[1].semilogy(d4.curve_speed, d4.peak_to_peak_short, label="k1 = AE/L_0 (short)")
@@ -166,7 +166,7 @@ for a, cd, dp, dl in zip(ax, cds, plain, withl):
                   label="long span L_0 + p: tooth = k-th string frequency" if k == 0 else None)
     a.set(ylabel="max |u| [mm]", title=f"Fig. 5: centre distance {cd:g} pitches")
 a.set_xlabel("omega_1 [rpm]")
-ax[0].legend(fontsize=7)
+ax[0].legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
 fig.suptitle(f"scene fig05_length: {convergence_note('fig05_length')}", fontsize=9)
 fig.tight_layout()
 R.save_figure(fig, "fig05")
@@ -260,6 +260,8 @@ for a, w, d in zip(ax[1:], ws[::-1], d8[::-1]):       # 4, 2, 1
     mark_unstable(a, d)
     a.set(title=f"Fig. 8: T_ex = 0.2 T_s, omega_ex = {w:g} omega_1", ylabel="max |u| [mm]")
 a.set_xlabel("omega_1 [rpm]")
+for a in ax:
+    log_ticks(a.yaxis)
 R.save_figure(fig, "fig08")
 
 # %% [markdown]
@@ -297,7 +299,7 @@ for a, name, lab in ((ax[0], "fig09a", "(a) n1 = n2 = 24, I2 = 0.002"),
     a.set(title=f"Fig. 9{lab}: {int(grow.sum())} growing{outside_note}, {int(sl.sum())} slack of "
                 f"{sp.size} speeds\n{convergence_note(name)}", ylabel="max |u| [mm]",
           xlabel="omega_1 [rpm]")
-    a.legend(fontsize=7)
+    a.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
 fig.tight_layout()
 R.save_figure(fig, "fig09")
 
@@ -349,9 +351,9 @@ for dname, mk in (("central", "o-"), ("mixed", "s-")):
     ax[0].loglog(mms.points, mms.error_max.sel(differencing=dname), mk.replace("-", "--"),
                  label=f"manufactured, {dname}")
     ax[1].loglog(ef.points, F.frequency_error(ef, dname), mk, label=dname)
-ax[0].set(xlabel="grid intervals", ylabel="max error", title="convergence (exact mode at c = 0.5 c_w)")
+ax[0].set(xlabel="grid intervals [1]", ylabel="max error [m]", title="convergence (exact mode at c = 0.5 c_w)")
 ax[0].legend(fontsize=7)
-ax[1].set(xlabel="grid intervals", ylabel="|omega_FD / omega_WM - 1|", title="first frequency vs Wickert-Mote")
+ax[1].set(xlabel="grid intervals [1]", ylabel="|omega_FD / omega_WM - 1| [1]", title="first frequency vs Wickert-Mote")
 ax[1].legend(fontsize=7)
 R.save_figure(fig, "exact_checks")
 

@@ -72,6 +72,18 @@ def content_crop(fig, pad_inches: float | None = None):
                max(cols[0] - pad, 0):cols[-1] + pad + 1].copy()
 
 
+def log_ticks(axis) -> None:
+    """Label a log ``axis`` where labels cannot collide: at 1, 2 and 5 x 10^k over at most
+    two decades, at whole decades beyond; never at matplotlib's minor ticks, whose labels
+    on a short log axis crowd into each other.  Call after the data are drawn."""
+    from matplotlib.ticker import LogLocator, NullFormatter
+
+    lo, hi = sorted(axis.get_view_interval())
+    if lo > 0 and np.log10(hi / lo) <= 2:
+        axis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+    axis.set_minor_formatter(NullFormatter())
+
+
 # --- the figure lint: what a reader must never see (tests/test_figures.py reads its record) ---
 LINT_KEY = "mechrepro-lint"
 SERIES_MIN_PIXELS = 20    # a series whose removal changes fewer pixels is not visible
