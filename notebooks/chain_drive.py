@@ -316,7 +316,9 @@ for a, (coupled, uncoupled) in zip(ax, (("fig10_longitudinal", "fig10_uncoupled"
     a.plot(ms(dc.t), mm(dc.u_probe_rk4), lw=0.6, label="coupled, RK4")
     a.plot(ms(du.t), mm(du.u_probe_rk4), lw=0.6, alpha=0.7, label="uncoupled, RK4")
     a.set(ylabel="u(L/3) [mm]")
-    a.legend(fontsize=7)
+    a.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+
+
 def modes_note(coupled, uncoupled):
     """The drawn mode count, its RK4 cost and the coupled/uncoupled ratio over the mode study."""
     runs = {}

@@ -371,23 +371,17 @@ nrow = -(-len(panels) // ncol)
 fig, ax = plt.subplots(nrow, ncol, figsize=(15, 4.6 * nrow), squeeze=False)
 for a, (name, kind) in zip(ax.flat, panels):
     sel = [r for r in coa if r["error_kind"] == kind]
-    accuracy.plot(sel, name, a, annotate=False)
-    first = [r for r in sel if r["accuracy"] == name]
-    q0 = first[0]["quantity"]
-    for k, r in enumerate(r for r in first if r["quantity"] == q0):
-        # alternate above / below, so that labels of close points never overlap
-        a.annotate(f"{r['knob_value']}", (float(r["time_s"]), float(r["error"])), fontsize=6.5,
-                   textcoords="offset points", xytext=(3, 5 if k % 2 == 0 else -11))
+    accuracy.plot(sel, name, a)
     for axis, lim in ((a.xaxis, a.get_xlim()), (a.yaxis, a.get_ylim())):
         if lim[1] < 10 * lim[0]:   # within a decade: a few plain ticks, no crowded minor labels
             axis.set_major_locator(matplotlib.ticker.MaxNLocator(4))
             axis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%.3g"))
         axis.set_minor_formatter(matplotlib.ticker.NullFormatter())
-    a.set_title(f"{name} ({first[0]['knob']} labelled): {kind} error", fontsize=9)
-    handles, labels = a.get_legend_handles_labels()
+    a.set_title(f"{name}: {kind} error", fontsize=9)
     if name in stochastic:   # an order fitted to quantiles over seeds means nothing
-        labels = [lab.split(", order")[0] + (")" if ", order" in lab else "") for lab in labels]
-    a.legend(handles, labels, fontsize=6.5, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=1)
+        for text in a.get_legend().get_texts():
+            lab = text.get_text()
+            text.set_text(lab.split(", order")[0] + (")" if ", order" in lab else ""))
 for a in ax.flat[len(panels):]:
     a.set_visible(False)
 fig.tight_layout()
