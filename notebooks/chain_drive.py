@@ -252,7 +252,8 @@ base = R.run("fig08_none")
 fig, ax = plt.subplots(len(d8) + 1, 1, figsize=(8, 2.3 * (len(d8) + 1)), sharex=True)
 ax[0].semilogy(base.speed, steady(base))
 mark_unstable(ax[0], base)
-ax[0].set(title=f"Fig. 8a: without external load; {convergence_note('fig08_none')}",
+ax[0].set(title="; ".join(s for s in ("Fig. 8a: without external load",
+                                     convergence_note("fig08_none")) if s),
           ylabel="max |u| [mm]")
 for a, w, d in zip(ax[1:], ws[::-1], d8[::-1]):       # 4, 2, 1
     a.semilogy(base.speed, steady(base), color="0.7", lw=0.8)
