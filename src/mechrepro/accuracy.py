@@ -367,7 +367,7 @@ def plot(table: list[dict], accuracy: str | None = None, ax=None, annotate: bool
     if ax is None:
         _, ax = plt.subplots(figsize=(6, 4.2))
     curves = list(dict.fromkeys((r["quantity"], r.get("line", "")) for r in sel))
-    unproven = {}
+    unproven, labels = {}, []
     for j, (q, line) in enumerate(curves):
         pts = [r for r in sel if r["quantity"] == q and r.get("line", "") == line]
         proven = _true(pts[0].get("reference_proven", True))
