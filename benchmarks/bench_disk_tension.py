@@ -32,7 +32,7 @@ import numpy as np  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 
-from mechrepro.timing import stopwatch, time_call  # noqa: E402
+from mechrepro.timing import phase, time_call  # noqa: E402
 from mechrepro.models.disk_tension.effects import thermal_load  # noqa: E402
 from mechrepro.config import load_paper  # noqa: E402
 from mechrepro.models.disk_tension import compute, exact  # noqa: E402
@@ -98,7 +98,7 @@ def plate2d_at_0_1_percent(ctx, meshes=((3, 24), (4, 32), (6, 48), (6, 64), (8, 
 
     fe = exact_f(ctx)
     for nr, ns in meshes:
-        with stopwatch() as sw:
+        with phase("benchmark:1") as sw:
             p = PlateDisk(r_f=0.025, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho, n_d=ND,
                           n_rings=nr, n_sectors=ns)
             p.unrolled()
@@ -114,7 +114,7 @@ def plate2d_at_0_1_percent(ctx, meshes=((3, 24), (4, 32), (6, 48), (6, 64), (8, 
 def axisym_at(ctx, tol):
     fe = exact_f(ctx)
     for n in (1, 2, 3, 4, 6, 8, 12, 16):
-        with stopwatch() as sw:
+        with phase("benchmark:2") as sw:
             d = AxisymDisk(r_f=0.025, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho, n_d=ND,
                            n_elements=n)
             d.unrolled()

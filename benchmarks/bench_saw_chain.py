@@ -22,7 +22,7 @@ ROOT = Path(__file__).resolve().parent.parent
 from mechrepro.timing import time_call
 from mechrepro.config import load_paper
 from mechrepro.models.saw_chain.solver import chain_from_run, difference_method
-from mechrepro.timing import stopwatch
+from mechrepro.timing import phase
 from mechrepro.models.saw_chain.reference_loop import difference_method_loop
 from mechrepro.solve import run_solver
 
@@ -66,7 +66,7 @@ def numpy_kernel_loop(run):
 
 def whole_study(profile="default"):
     cfg = load_paper(ROOT / "config/papers/saw_chain.yaml", profile)
-    with stopwatch() as sw:
+    with phase("benchmark:1") as sw:
         for run in cfg.runs.values():
             run_solver(dict(run, options={**run["options"], "timing_min_s": 0.0}))
     return len(cfg.runs), sw.seconds

@@ -2,14 +2,14 @@
 
 The runner (:func:`mechrepro.solve.run_solver`) makes a :class:`Timer` current while a run
 is computed; :meth:`EffectRegistry.evaluate <mechrepro.effects.EffectRegistry.evaluate>`
-times each effect's contribution under ``effect:<name>``, a solver may time its own
-phases with :func:`phase`, and everything not inside an effect is the solver core.  The
+times each effect's contribution under ``effect:<name>``, a model names its own phases
+with :func:`phase` (whose handle also gives the block's seconds, for a cost-of-accuracy
+study that reports them), and everything not inside an effect is the solver core.  The
 split is stored in the run's netCDF (:func:`timing_variables`) and summed per paper into
 the report's effect-cost table (:mod:`mechrepro.costs`).
 
-Inside a solver, cost-of-accuracy studies that time a piece of work on their own use
-:func:`time_call` (fastest of repeated calls), :func:`mean_time` (mean of repeated calls)
-or :func:`stopwatch`; nothing else in the models reads the clock.
+Work too short to time in one call is timed by :func:`time_call` (fastest of repeated
+calls) or :func:`mean_time` (mean of repeated calls); nothing else reads the clock.
 """
 from __future__ import annotations
 
@@ -29,11 +29,9 @@ class Timer:
 
     @contextmanager
     def phase(self, name: str):
-        t0 = time.perf_counter()
-        try:
-            yield
-        finally:
-            self.phases[name] += time.perf_counter() - t0
+        with _measured() as block:
+            yield block
+        self.phases[name] += block.seconds
 
     def effects(self) -> dict[str, float]:
         return {k.removeprefix(EFFECT): v for k, v in self.phases.items() if k.startswith(EFFECT)}
@@ -42,30 +40,27 @@ class Timer:
 _current: ContextVar[Timer | None] = ContextVar("mechrepro_timer", default=None)
 
 
-@contextmanager
-def phase(name: str):
-    """Time a block under ``name`` in the current run's timer (no-op outside a run)."""
-    timer = _current.get()
-    if timer is None:
-        yield
-        return
-    with timer.phase(name):
-        yield
-
-
-class _Stopwatch:
+class _Block:
     seconds: float = float("nan")
 
 
 @contextmanager
-def stopwatch():
-    """``with stopwatch() as sw: ...`` then ``sw.seconds``: one measured block."""
-    sw = _Stopwatch()
+def _measured():
+    block = _Block()
     t0 = time.perf_counter()
     try:
-        yield sw
+        yield block
     finally:
-        sw.seconds = time.perf_counter() - t0
+        block.seconds = time.perf_counter() - t0
+
+
+@contextmanager
+def phase(name: str):
+    """``with phase(name) as block: ...`` then ``block.seconds``: the block timed under
+    ``name`` in the current run's timer (outside a run: only measured)."""
+    timer = _current.get()
+    with (timer.phase(name) if timer is not None else _measured()) as block:
+        yield block
 
 
 def time_call(fn, *args, min_time: float = 0.05, max_repeat: int = 50, **kwargs):

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechrepro.timing import stopwatch
+from mechrepro.timing import phase
 from mechrepro.units import var
 
 from . import fd, geometry
@@ -43,7 +43,7 @@ def free_vibration(n: int, *, L, m, T, c, k=1, cfl=0.9, periods=4.0, s_star=None
     u0 = moving_string_mode(x, 0.0, k, c, cw, L)[None]
     u1 = moving_string_mode(x, dt, k, c, cw, L)[None]
     probe = int(round(0.37 * n))
-    with stopwatch() as sw:
+    with phase("chain_drive.free_vibration") as sw:
         r = fd.march(c=c_arr, P=np.array([T]), m=m, c_d=0.0, grid=grid, dt=dt, n_steps=n_steps,
                      exc=fd.Excitation(), s_star=s_star, u0=u0, u1=u1, probes=[probe],
                      record_every=1, u_cap=1e3)
@@ -120,7 +120,7 @@ def manufactured(n: int, *, L=0.25, m=0.6, T=400.0, c=5.0, c_d=10.0, cfl=0.9, t_
                         u_right=(X[-1] * Tm(t))[:, None],
                         load=(kappa * Pt(t))[:, None] if kappa else None,
                         source=lambda j: residual(t[j])[None, 1:-1])
-    with stopwatch() as sw:
+    with phase("chain_drive.manufactured") as sw:
         r = fd.march(c=c_arr, P=np.array([T]), m=m, c_d=c_d, grid=grid, dt=dt, n_steps=n_steps,
                      exc=exc, s_star=s_star, u0=(X * Tm(0.0))[None], u1=(X * Tm(dt))[None],
                      u_cap=1.0)

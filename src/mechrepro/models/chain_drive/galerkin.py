@@ -21,7 +21,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from mechrepro.timing import stopwatch
+from mechrepro.timing import phase
 from mechrepro.units import var
 
 from . import four_bar, galerkin_kernel, geometry, loads
@@ -484,7 +484,7 @@ def _library_check(run, prm, res, g, u_all, t_all, Fe, F_lib) -> dict:
     relative, benchmarks/bench_chain_drive.py)."""
     model, xi, L = g["model"], g["xi"], g["L"]
     n_lib, edges = _library_window(res, g, t_all)
-    with stopwatch() as sw:
+    with phase("chain_drive.library_check") as sw:
         pf = PiecewiseForcing(run, prm, g["w1"], g["geo"], g["window"], edges, F=F_lib)
         y_lib, nfev = library_piecewise(model.rhs_values, pf.on, edges,
                                         np.zeros(2 * (model.n_t + model.n_l)), t_all[:n_lib + 1],
@@ -520,7 +520,7 @@ def solve_scene(run, prm, res):
     if opts.get("compare_library", False):
         times.append(piecewise_times(_library_window(res, g, t_rec)[1]))
     cut = np.cumsum([t.size for t in times])
-    with stopwatch() as sw_rk:
+    with phase("chain_drive.solve_scene") as sw_rk:
         F = forcing_arrays(run, prm, w1, g["geo"], np.concatenate(times), step=g["window"])
         Fs = {k: v[:cut[0]].reshape(stages.shape) for k, v in F.items()}
         Fe = {k: v[cut[0]:cut[1]] for k, v in F.items()}

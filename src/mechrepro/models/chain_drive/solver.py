@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.integrate import quad
 
-from mechrepro.timing import stopwatch
+from mechrepro.timing import phase
 from mechrepro.units import var
 
 from . import discrete, exact, four_bar, galerkin, geometry, loads, shooting, span, timestep
@@ -216,7 +216,7 @@ def speed_sweep(run, prm, res) -> dict:
     if res.get("method") == "discrete":
         return discrete_sweep(run, prm, omega1, res, wc)
     shooting_ = res.get("method", "march") == "shooting"
-    with stopwatch() as sw:
+    with phase("chain_drive.speed_sweep") as sw:
         if shooting_:
             out = shooting.sweep(run, prm, omega1, res)
             omega1 = out["omega1"]

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechrepro.timing import stopwatch
+from mechrepro.timing import phase
 
 from . import fd, geometry, loads
 from .effects import EFFECTS, SpanContext, as_run, refuse_unhonoured
@@ -64,7 +64,7 @@ def response(run: dict, prm: dict, t: np.ndarray, points_per_pitch: int, average
     fd.check_time_step(float(h.max()), grid.dx, c, P + tension.max(), m)
     mid = grid.n_long // 2
     uniform = len(np.unique(np.round(h / h[0], 12))) == 1
-    with stopwatch() as sw:
+    with phase("chain_drive.response") as sw:
         r = fd.march(c=c, P=np.atleast_1d(P), m=m, c_d=prm["transverse_damping"], grid=grid,
                      dt=h[0] if uniform else None, dt_series=None if uniform else h,
                      n_steps=len(h), exc=exc, probes=[mid], record_every=1)

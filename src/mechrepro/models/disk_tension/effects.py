@@ -24,7 +24,7 @@ import numpy as np
 
 from mechrepro.effects import EffectRegistry
 from mechrepro.errors import Refusal
-from mechrepro.timing import stopwatch
+from mechrepro.timing import phase
 from mechrepro.units import var
 
 from . import calibration, exact, thermal
@@ -53,7 +53,7 @@ def cold_seconds(effect, key, solve_afresh, measured=None) -> float:
     k = (effect, key)
     if k not in _COLD:
         if measured is None:
-            with stopwatch() as sw:
+            with phase("disk_tension.cold") as sw:
                 solve_afresh()
             measured = sw.seconds
         _COLD[k] = measured
@@ -105,7 +105,7 @@ def stress_calibration(ctx) -> dict:
         case["stress_model"] = ctx.stress_model
     target = p["calibration_delta_omega2"]
     m0 = _misses(calibration._alpha_effective)
-    with stopwatch() as sw:
+    with phase("disk_tension.stress_calibration") as sw:
         alpha, d_hb, df_hb = calibration.alpha_effective(target=target, **case)
     miss = _misses(calibration._alpha_effective) > m0
     cold = cold_seconds("stress_calibration", (target, tuple(sorted(case.items()))),
@@ -211,7 +211,7 @@ def exact_reference(ctx) -> dict:
     """Exact Bessel frequencies of the unrolled clamped-free annulus (plain disk)."""
     kw = dict(a=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho)
     m0 = _misses(exact._roots)
-    with stopwatch() as sw:
+    with phase("disk_tension.exact_reference") as sw:
         f = [exact.natural_frequencies(n, **kw)[0] for n in ctx.n_d]
     all_cold = _misses(exact._roots) - m0 == len(ctx.n_d)
     cold = cold_seconds("exact_reference", (tuple(kw.items()), tuple(ctx.n_d.tolist())),
@@ -259,7 +259,7 @@ def _rolled_reference(key, ctx):
     if key not in _ROLLED_REFERENCES:
         if len(_ROLLED_REFERENCES) > 64:
             _ROLLED_REFERENCES.clear()
-        with stopwatch() as sw:
+        with phase("disk_tension.rolled_reference") as sw:
             _ROLLED_REFERENCES[key] = _solve_rolled_reference(ctx)
         _COLD.setdefault(("rolled_reference", key), sw.seconds)  # this solve was the cold one
     return _ROLLED_REFERENCES[key]
@@ -290,7 +290,7 @@ def stressed_reference(ctx) -> dict:
     rolling stress itself does not have."""
     s0 = np.atleast_1d(np.asarray(ctx.p["reference_stress"], float))
     model = ctx.model
-    with stopwatch() as sw:
+    with phase("disk_tension.stressed_reference_fe") as sw:
         w2 = np.stack([model.rolled(model.stress_stiffness(model.uniform_stress(s)))[0]
                        for s in s0])
     if np.any(~(w2 > 0)):
@@ -303,7 +303,7 @@ def stressed_reference(ctx) -> dict:
         return np.array([[exact.natural_frequencies(n, sigma=s, memo=memo, **kw)[0]
                           for n in ctx.n_d] for s in s0])
     m0 = _misses(exact._roots)
-    with stopwatch() as sw_ex:
+    with phase("disk_tension.stressed_reference_exact") as sw_ex:
         f_ex = exact_all()
     all_cold = _misses(exact._roots) - m0 == f_ex.size
     cold = cold_seconds("stressed_reference",
@@ -348,7 +348,7 @@ def eigen(ctx) -> dict:
                     pairs[i, j, :] = v if len(v) == 2 else v[0]
         return w2, pairs
 
-    with stopwatch() as sw:
+    with phase("disk_tension.eigen") as sw:
         w2, pairs = solve_all()
     dt = sw.seconds
     out = {
@@ -372,7 +372,7 @@ def eq9(ctx) -> dict:
     """Eq. (9): Delta omega^2 = phi^T K^(sigma) phi of the unrolled modes, and its two
     conversions to Delta f."""
     model, ks = ctx.model, _stiffened(ctx)
-    with stopwatch() as sw:
+    with phase("disk_tension.eq9") as sw:
         d = np.stack([model.eq9(k) for k in ks])
     dt = sw.seconds
     w = ctx.omega_unrolled
@@ -557,7 +557,7 @@ def critical_speed(ctx) -> dict:
 
     model, bc = ctx.model, ctx.p["centrifugal_bc"]
     Kc = _centrifugal_stiffness(ctx, "critical_speed")
-    with stopwatch() as sw:
+    with phase("disk_tension.critical_speed") as sw:
         free = np.array([rotation.critical_speed(model.K[n], model.M[n], Kc[n], int(n))
                          for n in ctx.n_d])
         sw_pairs = [rotation.southwell(model.omega2[n], model.phi[n], model.M[n], Kc[n], int(n))
@@ -613,7 +613,7 @@ def design_map(ctx) -> dict:
     # buckling margin is the cold blade's at rest
     K = model.K if ctx.k_heat is None else {n: model.K[n] + ctx.k_heat[n] for n in n_d}
     rim = 0.0 if ctx.heat is None else float(p["rim_temperature_rise"])
-    with stopwatch() as sw:
+    with phase("disk_tension.design_map") as sw:
         for i, k in enumerate(ks):
             pen = design.pencils(K, k, model.M, Kc, n_d)
 

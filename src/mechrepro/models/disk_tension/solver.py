@@ -20,7 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from mechrepro.errors import Refusal
-from mechrepro.timing import stopwatch
+from mechrepro.timing import phase
 from mechrepro.units import var
 
 from . import calibration, thermal
@@ -95,7 +95,7 @@ class Disk:
         """(result, wall time [s]) of one call of ``fn(*args)``.  Measured once: the runner
         repeats the whole run when it is fast and keeps the phases of its fastest call
         (:func:`mechrepro.timing.timed_run`), so these times add up to the run's."""
-        with stopwatch() as sw:
+        with phase("disk_tension.solve") as sw:
             result = fn(*args)
         return result, sw.seconds
 

@@ -91,7 +91,7 @@ def _scipy(p, method, y0, t_eval, rtol, atol, max_steps) -> dict:
     step holds."""
     from scipy import integrate
 
-    from mechrepro.timing import stopwatch
+    from mechrepro.timing import phase
 
     a = clearance.flat(p)
     kw = {"jac": lambda t, y: clearance.jac(t, y, a)} if method in IMPLICIT else {}
@@ -102,7 +102,7 @@ def _scipy(p, method, y0, t_eval, rtol, atol, max_steps) -> dict:
     steps = 0
     status, message = 0, "finished"
     te = t_eval.tolist() + [math.inf]
-    with stopwatch() as sw:
+    with phase("joint_wear.scipy_integration") as sw:
         while solver.status == "running":
             msg = solver.step()
             steps += 1
@@ -126,13 +126,13 @@ def _scipy(p, method, y0, t_eval, rtol, atol, max_steps) -> dict:
 
 def _compiled(method, p, y0, t_eval, rtol, atol, max_steps) -> dict:
     """:func:`_scipy` for a method of :data:`COMPILED`, its compiled copy (one call)."""
-    from mechrepro.timing import stopwatch
+    from mechrepro.timing import phase
 
     from .bdf import bdf
     from .radau import radau
     from .rk45 import rk45
 
-    with stopwatch() as sw:
+    with phase("joint_wear.compiled_integration") as sw:
         Yout, m, nfev, steps, status, t_reached = {"Radau": radau, "BDF": bdf,
                                                    "RK45": rk45}[method](
             p, float(t_eval[0]), np.asarray(y0, float), float(t_eval[-1]), t_eval,

@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from mechrepro.effects import EffectRegistry
-from mechrepro.timing import stopwatch
+from mechrepro.timing import phase
 
 from . import wear
 from .geometry import FourBar
@@ -100,7 +100,7 @@ def archard_wear(ctx: Context) -> dict:
 
     cal_h = float(p["measurement_interval"]) / 3600.0
     out = {"sides": [], "k": [], "k_mean": [], "G_cal": [], "nodes": [], "h": [], "G_pred": []}
-    with stopwatch() as sw:
+    with phase("joint_wear.archard_wear") as sw:
         for side in ctx.sides:
             h_meas = np.asarray(p[f"measured_wear_{side}"], float)
             k, k_mean, G = wear.calibrate(h_meas, cal_h, fb.period, R0, factor,

@@ -33,7 +33,7 @@ import numpy as np
 from scipy import optimize, stats
 
 from mechrepro.errors import Refusal
-from mechrepro.timing import stopwatch
+from mechrepro.timing import phase
 
 from . import dataset, dynamics, groove, kinematics, quasistatic, wear
 from .effects import EFFECTS, Context
@@ -125,7 +125,7 @@ def refuse_contact_loss(hist: dict) -> dict:
 # --- what every period solver shares ------------------------------------------------------------
 def one_period(fb: FourBar, s: dict, joint) -> dict:
     """One period of ``joint``, its wall time and its wear factor (Eqs. 18-24, 29)."""
-    with stopwatch() as sw:
+    with phase("joint_wear.one_period") as sw:
         hist = joint(fb, s)
     out = {"fb": fb, "hist": hist, "period_wall": sw.seconds}
     if hist.get("completed", True):
@@ -191,7 +191,7 @@ def period_by_period(run: dict) -> dict:
         return wear.period_wear_factor(quasi_static_period(fb_w, ctx.s), fb_w, fb.period,
                                        ctx.s.get("wear_range", "contact_point"),
                                        statistics=False)["G"]
-    with stopwatch() as sw:
+    with phase("joint_wear.period_by_period") as sw:
         wear.period_by_period(float(ctx.p["measured_wear_B1"][-1]), n, k, fb.R_bush, g_of)
     res["pbp"] = (n, sw.seconds)
     return res
@@ -747,7 +747,7 @@ def constant_sensitivity(run: dict) -> dict:
         K = _calibrated(fb, s, p, sides=("B1",))[0]
         h86 = _predicted_86h(fb, s, p, [float(np.mean(K))])[0]
         qs = wear.period_wear_factor(continuous_contact_period(fb, s), fb, fb.period)
-        with stopwatch() as sw:
+        with phase("joint_wear.constant_sensitivity") as sw:
             dyn = finished_dynamic_period(fb, {**s, "n_out": int(s["n_steps"]), "periods": 1,
                                                "method": "Radau", "start": "equilibrium"})
         g_dyn = wear.period_wear_factor(dyn, fb, fb.period)["G"]
@@ -791,7 +791,7 @@ def local_wear(run: dict) -> dict:
     placements = s.get("local_placements", [[0.0, 1.0]])
     pts = [wear.wear_range_points(h0["psi"], 8, float(a), float(b)) for a, b in placements]
     t_cal = cal_h * dh.size
-    with stopwatch() as sw_l:
+    with phase("joint_wear.local_interval_method") as sw_l:
         g = groove.interval_method(groove_period, theta, pts, dh, t_cal, t_end, step,
                                    int(s["groove_samples"]), float(s["groove_step"]))
     nodes = wear.interval_nodes(t_cal, t_end, step)
@@ -801,7 +801,7 @@ def local_wear(run: dict) -> dict:
         fb, fb.period, lambda fb_w: continuous_contact_period(fb_w, s), theta, pts[0]),
         theta, pts[0])
     factor = wear_factor_of(fb, s)
-    with stopwatch() as sw_u:
+    with phase("joint_wear.uniform_interval_method") as sw_u:
         _, k_u, _ = wear.calibrate(h, cal_h, fb.period, fb.R_bush, factor, dh_measured=dh)
         _, h_u, _ = wear.predict(h[-1], cal_h * h.size, t_end, step, k_u, fb.period, fb.R_bush,
                                  factor)

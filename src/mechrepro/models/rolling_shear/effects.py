@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 from mechrepro.effects import EffectRegistry
-from mechrepro.timing import stopwatch
+from mechrepro.timing import phase
 from mechrepro.units import var
 
 from . import optimise
@@ -76,7 +76,7 @@ def initial_values(ctx) -> dict:
     hist = np.full((len(inits), st.max_iter + 1), np.nan)
     iters, fit, conv, design, inr, times = [], [], [], [], [], []
     for k, x0 in enumerate(inits):
-        with stopwatch() as sw:
+        with phase("rolling_shear.initial_values") as sw:
             r = selpso(loops_fitness(ctx.g, t5, t6), x0, st, rng, period=2 * math.pi)
         times.append(sw.seconds)
         hist[k, :r.history.size] = r.history

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import differential_evolution
 
-from mechrepro.timing import stopwatch
+from mechrepro.timing import phase
 
 from . import closure, kernels, newton
 from . import pose as pose_mod
@@ -128,7 +128,7 @@ class OptimisationResult:
 def optimise_selpso(g, x_k, bounds, settings: SelPSOSettings, rng, tol) -> OptimisationResult:
     f = penalised(g, x_k, tol)
     lo, hi = np.asarray(bounds, float).T
-    with stopwatch() as sw:
+    with phase("rolling_shear.optimise_selpso") as sw:
         r = selpso(lambda X: np.array([f(x) for x in X]), 0.5 * (lo + hi), settings, rng, lo, hi)
     return OptimisationResult("selpso", r.x, r.fitness, r.evaluations, r.history, sw.seconds)
 
@@ -154,7 +154,7 @@ def optimise_de(g, x_k, bounds, budget: int, population: int, seed: int,
     def callback(intermediate_result):
         hist.append(float(intermediate_result.fun))
 
-    with stopwatch() as sw:
+    with phase("rolling_shear.optimise_de") as sw:
         r = differential_evolution(fc, bounds, popsize=popsize, maxiter=maxiter, tol=0.0,
                                    atol=0.0, seed=seed, polish=False, init="latinhypercube",
                                    updating="immediate", callback=callback)

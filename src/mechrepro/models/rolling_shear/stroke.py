@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import least_squares, root
 
-from mechrepro.timing import mean_time, stopwatch, time_call
+from mechrepro.timing import mean_time, phase, time_call
 
 from . import closure, kernels
 from . import loops as loops_mod
@@ -103,7 +103,7 @@ def solve_newton(g: Geometry, x_k, settings: SolverSettings) -> StrokeSolution:
     theta = np.empty((n, 6))
     fp, fl, it = np.empty(n), np.empty(n), np.empty(n, int)
     guess = list(settings.initial_value)
-    with stopwatch() as sw:
+    with phase("rolling_shear.solve_newton") as sw:
         _continue(g, x_k, settings, guess, theta, fp, fl, it)
     theta = wrap(theta)
     ok = np.ones(n, bool)
@@ -221,10 +221,10 @@ def solve_compare(g: Geometry, x_k, method: str, settings: SolverSettings,
     guess = init.copy()
     for i, xk in enumerate(x_k):
         xk = float(xk)
-        with stopwatch() as sw:
+        with phase("rolling_shear.pose") as sw:
             t5, t6 = map(float, _pose_by(method, g, xk, guess[4:], settings, rng))
         tp += sw.seconds
-        with stopwatch() as sw:
+        with phase("rolling_shear.loops") as sw:
             t14, it[i], h = _loops_by(method, g, t5, t6, guess[:4], settings, rng)
         tl += sw.seconds
         if keep_history and h is not None:
