@@ -13,9 +13,27 @@ from conftest import ROOT, copy_workflow
 
 TOY = ROOT / "tests" / "toy_paper"
 
-pytestmark = pytest.mark.slow
 
 
+def test_a_new_paper_is_small():
+    """What a one-figure paper costs its author: at most 4 files, 10 top-level keys in its
+    YAML and 6 framework names imported by its code."""
+    import ast
+
+    import yaml
+
+    files = [p for p in TOY.rglob("*") if p.is_file() and "__pycache__" not in p.parts]
+    assert len(files) <= 4, [str(p.relative_to(TOY)) for p in files]
+    raw = yaml.safe_load((TOY / "config" / "papers" / "toy.yaml").read_text())
+    assert len(raw) <= 10, list(raw)
+    names = {(node.module, a.name) for p in files if p.suffix == ".py"
+             for node in ast.walk(ast.parse(p.read_text()))
+             if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("mechrepro")
+             for a in node.names}
+    assert len(names) <= 6, sorted(names)
+
+
+@pytest.mark.slow
 def test_a_new_paper_needs_only_its_own_files(tmp_path):
     work = copy_workflow(tmp_path)
     for src in sorted(p for p in TOY.rglob("*") if p.is_file() and "__pycache__" not in p.parts):

@@ -128,13 +128,16 @@ def test_impossible_geometry_is_refused_by_name_before_any_job(edit_config, pape
 
 def test_papers_are_discovered_from_their_files(config_copy):
     """A paper is its file: config.yaml only selects; an unknown id is refused by name with
-    the ones there are, and a file whose `paper:` is not its own name is refused."""
+    the ones there are; the id is the file's name, and a file whose optional `paper:` says
+    otherwise is refused."""
     from mechrepro.config import discover_papers, load_all
     known = discover_papers(config_copy)
     assert "saw_chain" in known and known == sorted(known)
     with pytest.raises(ConfigError, match=r"'nope'.*allowed: .*saw_chain"):
         load_all(config_copy, ["nope"], every_profile=False)
-    (config_copy / "papers" / "saw_chain.yaml").rename(config_copy / "papers" / "saw.yaml")
+    assert load_paper(config_copy / "papers" / "saw_chain.yaml").paper == "saw_chain"
+    src = config_copy / "papers" / "saw_chain.yaml"
+    (config_copy / "papers" / "saw.yaml").write_text("paper: saw_chain\n" + src.read_text())
     with pytest.raises(ConfigError, match="must be the file's name, 'saw'"):
         load_paper(config_copy / "papers" / "saw.yaml")
 

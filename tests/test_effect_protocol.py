@@ -19,7 +19,7 @@ PAPERS = discover_papers(CONFIG)
 
 
 def _raw(paper):
-    return read_yaml((CONFIG / "papers" / f"{paper}.yaml"))
+    return {"paper": paper, **read_yaml((CONFIG / "papers" / f"{paper}.yaml"))}
 
 
 def _load(tmp_path, raw):

@@ -29,7 +29,7 @@ BAD = [
      ["'value' given twice", "each key once"]),
     ("non-UTF-8 byte",
      lambda t: t.replace("Sec. 4 (p1)", "Sec. 4 (p1) \udce9"),
-     ["line 10", "not UTF-8", "b'\\xe9'"]),
+     ["line 8", "not UTF-8", "b'\\xe9'"]),
     ("a unit of another scale (8.91 m chain pitch)",
      lambda t: t.replace(PITCH, "tie_strap_pitch:        {value: 8.91,  unit: m,"),
      ["parameters.tie_strap_pitch.value = 8.91", "chain pitch between 3 mm and 200 mm"]),
@@ -86,7 +86,7 @@ def test_a_unit_slip_of_every_ranged_parameter_is_refused(paper, name):
 
     raw = yaml.safe_load((ROOT / "config" / "papers" / f"{paper}.yaml").read_text())
     assert name in raw["parameters"], f"{paper}.{name} is not a parameter"
-    assert check_parameters(raw) == []
+    assert check_parameters(raw, paper) == []
     p = raw["parameters"][name]
     lo, hi, unit, _ = RANGES[paper][name]
     scale = lambda v, f: [x * f for x in v] if isinstance(v, list) else v * f  # noqa: E731
@@ -100,7 +100,7 @@ def test_a_unit_slip_of_every_ranged_parameter_is_refused(paper, name):
                   (p["value"], "rad/s")]
     for value, u in slips:
         raw["parameters"][name] = {**p, "value": value, "unit": u}
-        msg = "; ".join(check_parameters(raw))
+        msg = "; ".join(check_parameters(raw, paper))
         assert f"parameters.{name}.value" in msg and "not plausible" in msg, (value, u, msg)
         assert f"{lo:g} to {hi:g} {unit}" in msg or "within one turn" in msg or \
             "chain pitch" in msg, msg

@@ -40,6 +40,8 @@ from .limits import solve_key
 from .units import UNITS, to_si
 
 SCHEMA_DIR_NAME = "schema"
+#: the workflow's own profiles: one a paper does not overlay runs at the paper's defaults
+WORKFLOW_PROFILES = ("ci",)
 
 #: the fields of a run record that name it; everything else is what its solve computes
 RUN_IDENTITY = ("run", "scene", "study", "sweep", "sweep_units", "variant")
@@ -375,10 +377,10 @@ def load_paper(path: str | Path, profile: str = "default",
             raise ConfigError(f"{where}: parameters.{name}.unit = {p['unit']!r}: "
                               f"allowed: {', '.join(UNITS)}")
     profiles = raw.get("profiles", {})
-    if profile != "default":
-        if profile not in profiles:
-            raise ConfigError(f"{where}: profile {profile!r} not defined (have: default, "
-                              f"{', '.join(profiles)})")
+    if profile not in ("default", *WORKFLOW_PROFILES, *profiles):
+        raise ConfigError(f"{where}: profile {profile!r} not defined (have: default, "
+                          f"{', '.join(dict.fromkeys([*WORKFLOW_PROFILES, *profiles]))})")
+    if profile in profiles:
         _check_overlay_names(raw, profiles[profile], f"{where}: profiles.{profile}")
         raw = _deep_merge(raw, profiles[profile])
         # an overlay can break what the file alone satisfied: check the merged result too
@@ -386,7 +388,7 @@ def load_paper(path: str | Path, profile: str = "default",
                   load_schema("paper.schema.json", sdir), f"{where} (profile {profile})")
     _check_effects(raw, where)
     _check_artefacts(raw, where)
-    paper = raw["paper"]
+    paper = raw.setdefault("paper", path.stem)
     if paper != path.stem:
         raise ConfigError(f"{where}: paper = {paper!r}: must be the file's name, {path.stem!r} "
                           "(a paper is discovered from config/papers/<paper>.yaml)")

@@ -212,13 +212,13 @@ def _plausibility(name: str, value, unit: str, paper: str | None = None) -> str 
     return None
 
 
-def check_parameters(raw: dict) -> list[str]:
-    """Implausible parameter values: the declared ones, and scene, study and profile
-    overrides (in the parameter's declared unit)."""
+def check_parameters(raw: dict, paper: str | None = None) -> list[str]:
+    """Implausible parameter values of ``paper`` (default: the file's ``paper:``): the
+    declared ones, and scene, study and profile overrides (in the parameter's declared unit)."""
     params = raw.get("parameters") if isinstance(raw, dict) else None
     if not isinstance(params, dict):
         return []
-    paper = raw.get("paper") if isinstance(raw.get("paper"), str) else None
+    paper = raw.get("paper") if isinstance(raw.get("paper"), str) else paper
     units = {n: p.get("unit") for n, p in params.items() if isinstance(p, dict)}
     out = []
 
@@ -270,7 +270,7 @@ def read_yaml(path: str | Path):
     if bad:
         raise InputError("; ".join(f"{w} = {v!r}: not a finite number, allowed are finite "
                                    f"numbers" for w, v in bad))
-    implausible = check_parameters(raw)
+    implausible = check_parameters(raw, path.stem)
     if implausible:
         raise InputError("; ".join(implausible))
     return raw

@@ -200,7 +200,7 @@ def paper_view(paper: str, results: Path, config_dir: Path, profile: str, out_di
                 "why": v["why"]} for k, v in cfg.assumed().items()]
     counts = [(s, n) for s in VERDICTS for n in [claim["independent"].get(s, 0)]
               if n or s in ("pass", "fail")]
-    return {"id": paper, "title": cfg.raw.get("title", ""), "source": cfg.source,
+    return {"id": paper, "title": cfg.raw.get("title", cfg.source), "source": cfg.source,
             "claim": claim["claim"], "counts": counts, "sentence": claim_sentence(claim, rows),
             "paper_note": cfg.raw.get("claim_note", ""), "artefacts": list(artefacts.values()),
             "tables": tables, "assumed": assumed,

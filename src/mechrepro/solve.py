@@ -22,6 +22,20 @@ def model(paper: str):
     return importlib.import_module(f"mechrepro.models.{paper}")
 
 
+def paper_part(paper: str, module: str, name: str, required: bool = True):
+    """``name`` (``Q``, ``ACCURACY``) from ``models/<paper>/<module>.py``, or from the
+    package itself where a small paper keeps everything in its ``__init__``."""
+    try:
+        return getattr(importlib.import_module(f"mechrepro.models.{paper}.{module}"), name)
+    except ModuleNotFoundError as exc:
+        if exc.name != f"mechrepro.models.{paper}.{module}":
+            raise
+    found = getattr(model(paper), name, None)
+    if found is None and required:
+        raise ImportError(f"mechrepro.models.{paper}: no {module}.py and no {name} in the package")
+    return found
+
+
 def pack(variables: dict, run: dict):
     """The run's Dataset from the variables its paper names: a variable named like its only
     dimension is that dimension's coordinate, a string is a global attribute; the run's

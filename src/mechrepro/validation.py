@@ -733,9 +733,9 @@ def write_evidence(rows: list[Row], path: str | Path) -> Path:
 
 
 def quantities_of(paper: str) -> Quantities:
-    import importlib
+    from .solve import paper_part
 
-    return importlib.import_module(f"mechrepro.models.{paper}.validation").Q
+    return paper_part(paper, "validation", "Q")
 
 
 def for_artefacts(cfg, artefacts):
@@ -805,19 +805,16 @@ def check_artefacts(artefacts, results_dir: str | Path, config_dir: str | Path,
 def write_costs(cfg, results_dir: str, files: ResultFiles | None = None) -> None:
     """The framework's other tables of a paper: the long-form cost of accuracy (from its
     ``accuracy:`` block), what each effect costs, and each solver job against its solves."""
-    import importlib
-
     from . import accuracy, costs
+    from .solve import paper_part
 
     if files is None:
         with ResultFiles() as files:
             return write_costs(cfg, results_dir, files)
     root = Path(results_dir) / cfg.paper
     if cfg.raw.get("accuracy"):
-        try:    # a paper whose every quantity names its stored variable has none
-            quantities = importlib.import_module(f"mechrepro.models.{cfg.paper}.accuracy").ACCURACY
-        except ModuleNotFoundError:
-            quantities = None
+        # a paper whose every quantity names its stored variable has none
+        quantities = paper_part(cfg.paper, "accuracy", "ACCURACY", required=False)
 
         def dataset(name):
             kind = "studies" if name in cfg.studies else "runs"
