@@ -1,19 +1,8 @@
-"""The effects of disk_tension: pure functions ``fn(ctx) -> {key: value}``.
-
-Declared once in ``config/papers/disk_tension.yaml`` (``effects:``: what each contributes,
-which solver honours it, what it requires or excludes).  The solver
-(:mod:`.solver`) evaluates them in three stages and reads their contributions by key:
-
-1. what the load and the mesh need: ``stress_calibration`` -> ``thermal_expansion``,
-   ``slots`` -> ``slots``;
-2. the load: ``roll_tension`` -> ``thermal_load`` (Eq. 4 and its plane-stress field);
-3. the analyses of the discretised, stress-stiffened disk (Eqs. 5, 9, 16-17, Fig. 7) and
-   the exact reference.
-
-A contribution that is a labelled variable (:func:`mechrepro.units.var`) is written to the
-run's dataset; the others (``thermal_expansion``, ``slots``, ``thermal_load``) are consumed
-by the solver.  Which of these are physics and which are outputs is said in each
-declaration's description.
+"""The effects of disk_tension: pure functions ``fn(ctx) -> {key: value}``, declared in
+``config/papers/disk_tension.yaml``.  The solver (:mod:`.solver`) evaluates them in three
+stages and reads their contributions by key: what the load and the mesh need
+(``thermal_expansion``, ``slots``), the load (``thermal_load``: Eq. 4 and its plane-stress
+field), then the analyses of the discretised, stress-stiffened disk and the references.
 """
 from __future__ import annotations
 
@@ -24,49 +13,36 @@ import numpy as np
 
 from mechrepro.effects import EffectRegistry
 from mechrepro.errors import Refusal
+from mechrepro.levels import extrapolate
 from mechrepro.timing import phase
 from mechrepro.units import var
 
 from . import calibration, exact, thermal
 from .axisym import AxisymDisk
-from .convergence import richardson
 from .modal import delta_f_exact, delta_f_linearised, frequency
 
 EFFECTS = EffectRegistry("disk_tension")
 
-#: element counts of the rolled reference: Richardson of two runs still in the h^4 range
-#: (beyond 128 elements round-off exceeds the h^4 error; convergence.reference_pair)
+#: element counts of the rolled reference: Richardson (h^4) of two runs still in the h^4 range
+#: (beyond 128 elements round-off exceeds the h^4 error)
 REFERENCE_ELEMENTS = (64, 128)
 #: radii at which the closed-form temperature and stress are stored
 N_RADII = 256
 
-#: cold cost [s] of each memoised effect per input, measured once per process
+#: seconds of a fresh solve of each memoised effect, per (effect, input), once per process
 _COLD: dict = {}
 
 
-def cold_seconds(effect, key, solve_afresh, measured=None) -> float:
-    """What ``effect`` costs with nothing memoised, once per process and input ``key``:
-    ``measured`` when the caller's own call was a complete cache miss, else ``solve_afresh()``
-    timed.  Memoised effects (the calibration, the exact and rolled references) cost ~0 in
-    every run after the first of a batch, and the framework keeps a fast run's fastest (warm)
-    repetition: the effect-cost table alone would say they are free."""
-    k = (effect, key)
-    if k not in _COLD:
-        if measured is None:
-            with phase("disk_tension.cold") as sw:
-                solve_afresh()
-            measured = sw.seconds
-        _COLD[k] = measured
-    return _COLD[k]
-
-
-def _misses(cached) -> int:
-    return cached.cache_info().misses
-
-
-def _cold_var(effect, seconds):
-    return var((), seconds, "s", f"wall time of effect {effect} with nothing memoised (first "
-               "evaluation in a fresh process; the run's effect_time is the warm cost)")
+def _cold(effect, key, solve_afresh, plus=0.0):
+    """What ``effect`` costs with nothing memoised (``solve_afresh()`` timed once per process
+    and input, ``plus`` its unmemoised part): after the first run of a batch its own effect
+    time is ~0."""
+    if (effect, key) not in _COLD:
+        with phase("disk_tension.cold") as sw:
+            solve_afresh()
+        _COLD[effect, key] = sw.seconds
+    return var((), _COLD[effect, key] + plus, "s", f"wall time of effect {effect} with nothing "
+               "memoised (a fresh solve; the run's effect_time is the warm cost)")
 
 
 @dataclass(frozen=True)
@@ -83,13 +59,12 @@ class ThermalLoad:
 def thermal_load(ctx, r_c) -> ThermalLoad:
     """Eq. (4) at ``r_c`` with the context's amplitude, width, alpha and in-plane condition."""
     rc = float(r_c)
-    kw = dict(amplitude=ctx.A, r_c=rc, s=ctx.s, r_f=ctx.r_f, b=ctx.b, E=ctx.E, nu=ctx.nu,
-              alpha=ctx.alpha, inplane_bc=ctx.bc, stress_model=ctx.stress_model,
-              profile_rc=ctx.p["calibration_rolling_radius"])
     return ThermalLoad(r_c=rc, alpha=ctx.alpha, inplane_bc=ctx.bc,
                        temperature=lambda r: thermal.temperature(r, ctx.A, rc, ctx.s),
-                       sigma=(lambda r: thermal.residual_stress(r, **kw)[0],
-                              lambda r: thermal.residual_stress(r, **kw)[1]))
+                       sigma=thermal.field(amplitude=ctx.A, r_c=rc, s=ctx.s, r_f=ctx.r_f, b=ctx.b,
+                                           E=ctx.E, nu=ctx.nu, alpha=ctx.alpha, inplane_bc=ctx.bc,
+                                           stress_model=ctx.stress_model,
+                                           profile_rc=ctx.p["calibration_rolling_radius"]))
 
 
 # --- stage 1: what the load and the mesh need ---------------------------------------------
@@ -104,15 +79,11 @@ def stress_calibration(ctx) -> dict:
     if ctx.stress_model != "thermal_analogy":   # a rival is re-calibrated on its own stress
         case["stress_model"] = ctx.stress_model
     target = p["calibration_delta_omega2"]
-    m0 = _misses(calibration._alpha_effective)
-    with phase("disk_tension.stress_calibration") as sw:
-        alpha, d_hb, df_hb = calibration.alpha_effective(target=target, **case)
-    miss = _misses(calibration._alpha_effective) > m0
-    cold = cold_seconds("stress_calibration", (target, tuple(sorted(case.items()))),
-                        lambda: calibration.alpha_effective(target=target, memo=False, **case),
-                        sw.seconds if miss else None)
+    alpha, d_hb, df_hb = calibration.alpha_effective(target=target, **case)
     return {
-        "calibration_time_cold": _cold_var("stress_calibration", cold),
+        "calibration_time_cold": _cold("stress_calibration", (target, *sorted(case.items())),
+                                       lambda: calibration.alpha_effective(target=target,
+                                                                           memo=False, **case)),
         "thermal_expansion": alpha,
         "alpha_effective": var((), alpha, "1/K", "thermal-analogy expansion coefficient "
                                "calibrated on Table 1 (N_d = 4)"),
@@ -181,10 +152,8 @@ def cutting_heat(ctx) -> dict:
     sr, st = thermal.thermal_stress(r, **kw)
     return {
         "cutting_heat_stress": ThermalLoad(
-            r_c=ctx.b, alpha=kw["alpha"], inplane_bc=kw["inplane_bc"],
-            temperature=lambda x: thermal.temperature(x, kw["amplitude"], ctx.b, kw["s"]),
-            sigma=(lambda x: thermal.thermal_stress(x, **kw)[0],
-                   lambda x: thermal.thermal_stress(x, **kw)[1])),
+            r_c=ctx.b, alpha=kw["alpha"], inplane_bc=kw["inplane_bc"], sigma=thermal.field(**kw),
+            temperature=lambda x: thermal.temperature(x, kw["amplitude"], ctx.b, kw["s"])),
         "r_heat": var("r_heat", r, "m", "radius of the cutting-heat stress"),
         "heat_temperature": var("r_heat", thermal.temperature(r, kw["amplitude"], ctx.b, kw["s"]),
                                 "K", "temperature rise of the blade in the cut"),
@@ -195,46 +164,45 @@ def cutting_heat(ctx) -> dict:
 
 
 # --- stage 3: analyses of the discretised disk ---------------------------------------------
-def _loads(ctx):
+def _stiffened(ctx):
+    """[K^(sigma)] of every r_c (the analyses that read it need the residual stress)."""
     if ctx.loads is None:
         raise Refusal("this analysis needs the residual stress: name 'roll_tension'")
-    return ctx.loads
-
-
-def _stiffened(ctx):
-    _loads(ctx)
     return ctx.k_sigma
+
+
+def _exact_frequencies(ctx, sigma=0.0, memo=True):
+    """Exact Bessel frequencies [Hz] of every N_d of the plain annulus under ``sigma`` [Pa]."""
+    return [exact.natural_frequencies(n, a=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu,
+                                      rho=ctx.rho, sigma=sigma, memo=memo)[0] for n in ctx.n_d]
 
 
 @EFFECTS.register("exact_reference")
 def exact_reference(ctx) -> dict:
     """Exact Bessel frequencies of the unrolled clamped-free annulus (plain disk)."""
-    kw = dict(a=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho)
-    m0 = _misses(exact._roots)
-    with phase("disk_tension.exact_reference") as sw:
-        f = [exact.natural_frequencies(n, **kw)[0] for n in ctx.n_d]
-    all_cold = _misses(exact._roots) - m0 == len(ctx.n_d)
-    cold = cold_seconds("exact_reference", (tuple(kw.items()), tuple(ctx.n_d.tolist())),
-                        lambda: [exact.natural_frequencies(n, memo=False, **kw) for n in ctx.n_d],
-                        sw.seconds if all_cold else None)
-    return {"f_exact": var("n_d", f, "Hz", "exact unrolled frequency (Bessel solution, "
-                           "clamped-free annular plate)"),
-            "exact_reference_time_cold": _cold_var("exact_reference", cold)}
+    key = (ctx.r_f, ctx.b, ctx.h, ctx.E, ctx.nu, ctx.rho, tuple(ctx.n_d.tolist()))
+    return {"f_exact": var("n_d", _exact_frequencies(ctx), "Hz", "exact unrolled frequency "
+                           "(Bessel solution, clamped-free annular plate)"),
+            "exact_reference_time_cold": _cold("exact_reference", key,
+                                               lambda: _exact_frequencies(ctx, memo=False))}
+
+
+#: rolled references solved in this process, by every parameter they depend on (the 2-D
+#: Table 1-2 scene and its cost study share one)
+_ROLLED_REFERENCES: dict = {}
 
 
 @EFFECTS.register("rolled_reference")
 def rolled_reference(ctx) -> dict:
     """Converged rolled frequencies of the plain disk for the 2-D model's cost of accuracy:
-    the Richardson extrapolation (h^4) of the 64- and 128-element axisymmetric models (not a
-    finer run: beyond 128 elements round-off exceeds the h^4 error), and its own error on
-    the unrolled frequencies, where the exact solution is known.  (The axisymmetric model's
-    own accuracy is measured against exact solutions only: ``exact_reference``,
-    ``stressed_reference``.)"""
+    the Richardson extrapolation (h^4) of the 64- and 128-element axisymmetric models, and
+    its own error on the unrolled frequencies, where the exact solution is known."""
     key = (float(ctx.r_f), float(ctx.b), float(ctx.h), float(ctx.E), float(ctx.nu),
            float(ctx.rho), tuple(int(n) for n in ctx.n_d), float(ctx.A), float(ctx.s),
-           ctx.bc, tuple((ld.r_c, float(ld.alpha), ld.inplane_bc) for ld in _loads(ctx)))
-    f_ref, err = _rolled_reference(key, ctx)
-    cold = cold_seconds("rolled_reference", key, lambda: _solve_rolled_reference(ctx))
+           ctx.bc, tuple((ld.r_c, float(ld.alpha), ld.inplane_bc) for ld in ctx.loads))
+    if key not in _ROLLED_REFERENCES:
+        _ROLLED_REFERENCES[key] = _solve_rolled_reference(ctx)
+    f_ref, err = _ROLLED_REFERENCES[key]
     n0, n1 = REFERENCE_ELEMENTS
     return {
         "f_rolled_reference": var(
@@ -245,39 +213,24 @@ def rolled_reference(ctx) -> dict:
             (), err, "1",
             "max |relative error| of the same extrapolation on the unrolled frequencies vs "
             "exact"),
-        "rolled_reference_time_cold": _cold_var("rolled_reference", cold),
+        "rolled_reference_time_cold": _cold("rolled_reference", key,
+                                            lambda: _solve_rolled_reference(ctx)),
     }
 
 
-#: rolled references already solved in this process, by every parameter they depend on (the
-#: 2-D Table 1-2 scene and its cost study share one; the values are those a fresh solve gives)
-_ROLLED_REFERENCES: dict = {}
-
-
-def _rolled_reference(key, ctx):
-    """(Richardson rolled frequencies [r_c, n_d], its max error on the unrolled ones)."""
-    if key not in _ROLLED_REFERENCES:
-        if len(_ROLLED_REFERENCES) > 64:
-            _ROLLED_REFERENCES.clear()
-        with phase("disk_tension.rolled_reference") as sw:
-            _ROLLED_REFERENCES[key] = _solve_rolled_reference(ctx)
-        _COLD.setdefault(("rolled_reference", key), sw.seconds)  # this solve was the cold one
-    return _ROLLED_REFERENCES[key]
-
-
 def _solve_rolled_reference(ctx):
+    """(Richardson rolled frequencies [r_c, n_d], its max error on the unrolled ones)."""
     runs = []
     for n_el in REFERENCE_ELEMENTS:
         disk = AxisymDisk(r_f=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho,
                           n_d=ctx.n_d, n_elements=n_el)
         f_u = frequency(disk.unrolled())
         f_r = frequency(np.stack([disk.rolled(disk.stress_stiffness(ld.sigma))[0]
-                                  for ld in _loads(ctx)]))
+                                  for ld in ctx.loads]))
         runs.append((f_u, f_r))
     (u0, r0), (u1, r1) = runs
-    f_exact = [exact.natural_frequencies(n, a=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E,
-                                         nu=ctx.nu, rho=ctx.rho)[0] for n in ctx.n_d]
-    return richardson(r0, r1), np.max(np.abs(richardson(u0, u1) / f_exact - 1))
+    richardson = lambda f0, f1: extrapolate(f0, f1, 2.0, 4.0)  # noqa: E731  (h^4, n and 2n)
+    return richardson(r0, r1), np.max(np.abs(richardson(u0, u1) / _exact_frequencies(ctx) - 1))
 
 
 @EFFECTS.register("stressed_reference")
@@ -297,18 +250,9 @@ def stressed_reference(ctx) -> dict:
         bad = s0[np.any(~(w2 > 0), axis=1)]
         raise Refusal(f"reference_stress {bad.tolist()} Pa buckles the disk: the exact "
                          "reference needs a stable disk (choose a smaller compression)")
-    kw = dict(a=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho)
-
-    def exact_all(memo=True):
-        return np.array([[exact.natural_frequencies(n, sigma=s, memo=memo, **kw)[0]
-                          for n in ctx.n_d] for s in s0])
-    m0 = _misses(exact._roots)
-    with phase("disk_tension.stressed_reference_exact") as sw_ex:
-        f_ex = exact_all()
-    all_cold = _misses(exact._roots) - m0 == f_ex.size
-    cold = cold_seconds("stressed_reference",
-                        (tuple(kw.items()), tuple(ctx.n_d.tolist()), tuple(s0.tolist())),
-                        lambda: exact_all(memo=False), sw_ex.seconds if all_cold else None)
+    with phase("disk_tension.stressed_reference_exact"):
+        f_ex = np.array([_exact_frequencies(ctx, s) for s in s0])
+    key = (ctx.r_f, ctx.b, ctx.h, ctx.E, ctx.nu, ctx.rho, tuple(ctx.n_d.tolist()), tuple(s0))
     f = frequency(w2)
     err = f / f_ex - 1.0
     dims = ("reference_stress", "n_d")
@@ -325,8 +269,9 @@ def stressed_reference(ctx) -> dict:
                                   "max |relative error| of the stressed frequencies vs exact"),
         "time_stressed": var((), sw.seconds, "s", "wall time of K^(sigma) and Eq. (5) under "
                              "the reference stresses (model side only)"),
-        "stressed_reference_time_cold": _cold_var("stressed_reference",
-                                                  cold + sw.seconds),
+        "stressed_reference_time_cold": _cold(
+            "stressed_reference", key,
+            lambda: [_exact_frequencies(ctx, s, memo=False) for s in s0], plus=sw.seconds),
     }
 
 
@@ -336,28 +281,21 @@ def eigen(ctx) -> dict:
     buckled); on the 2-D mesh also both members of each sin/cos pair."""
     model, ks = ctx.model, _stiffened(ctx)
     pairs_of = getattr(model, "degenerate_pairs", False)
-
-    def solve_all():
-        w2 = np.full((len(ks), len(ctx.n_d)), np.nan)
-        pairs = np.full((len(ks), len(ctx.n_d), 2), np.nan)
+    w2 = np.full((len(ks), len(ctx.n_d)), np.nan)
+    pairs = np.full((len(ks), len(ctx.n_d), 2), np.nan)
+    with phase("disk_tension.eigen") as sw:
         for i, k in enumerate(ks):
             w2[i] = model.rolled(k)[0]
-            if pairs_of:
-                for j, n in enumerate(ctx.n_d):
-                    v = model.rolled_pairs[n]
-                    pairs[i, j, :] = v if len(v) == 2 else v[0]
-        return w2, pairs
-
-    with phase("disk_tension.eigen") as sw:
-        w2, pairs = solve_all()
-    dt = sw.seconds
+            for j, n in enumerate(ctx.n_d if pairs_of else ()):
+                pairs[i, j, :] = model.rolled_pairs[n]   # one value (N_d = 0) fills both
     out = {
         "omega2_rolled": var(("r_c", "n_d"), w2, "rad2/s2", "omega~^2 after rolling, Eq. (5)"),
         "f_rolled": var(("r_c", "n_d"), frequency(w2), "Hz", "frequency after rolling by "
                         "eigen-analysis, Eq. (5) (NaN if buckled)"),
         "buckled": var(("r_c", "n_d"), (w2 < 0).astype(np.int8), "1", "1 where omega~^2 < 0 "
                        "(the residual stress buckles the disk)"),
-        "time_eigen": var((), dt, "s", "wall time of the eigen-analyses over the r_c grid"),
+        "time_eigen": var((), sw.seconds, "s", "wall time of the eigen-analyses over the r_c "
+                          "grid"),
     }
     if pairs_of:
         out["member"] = var("member", [0, 1], "1", "member of a sin/cos pair (ascending "
@@ -374,7 +312,6 @@ def eq9(ctx) -> dict:
     model, ks = ctx.model, _stiffened(ctx)
     with phase("disk_tension.eq9") as sw:
         d = np.stack([model.eq9(k) for k in ks])
-    dt = sw.seconds
     w = ctx.omega_unrolled
     return {
         "delta_omega2_eq9": var(("r_c", "n_d"), d, "rad2/s2", "Delta omega^2 by Eq. (9)"),
@@ -382,7 +319,7 @@ def eq9(ctx) -> dict:
                                       "Delta f = Delta omega^2 / (2 omega) / 2 pi (first order)"),
         "delta_f_eq9_exact": var(("r_c", "n_d"), delta_f_exact(w, d), "Hz",
                                  "Delta f = (sqrt(omega^2 + Delta omega^2) - omega) / 2 pi"),
-        "time_eq9": var((), dt, "s", "wall time of Eq. (9) over the r_c grid (K^(sigma) "
+        "time_eq9": var((), sw.seconds, "s", "wall time of Eq. (9) over the r_c grid (K^(sigma) "
                         "excluded)"),
     }
 

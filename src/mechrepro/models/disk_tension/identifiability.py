@@ -47,10 +47,9 @@ PRINTED = {"table1": np.array([0.005e5, 0.005e4, 0.005e5, 0.005e6, 0.005e6]), "f
 
 def unit_table1(disk, *, s, inplane_bc, r_c, amplitude, alpha, E, nu):
     """(Table 1 diagonals for stress scale 1 [rad^2/s^2], K^(sigma) of each harmonic)."""
-    kw = dict(amplitude=amplitude, r_c=r_c, s=s, r_f=disk.mesh.nodes[0], b=disk.mesh.nodes[-1],
-              E=E, nu=nu, alpha=alpha, inplane_bc=inplane_bc)
-    Ks = disk.stress_stiffness((lambda r: thermal.thermal_stress(r, **kw)[0],
-                                lambda r: thermal.thermal_stress(r, **kw)[1]))
+    Ks = disk.stress_stiffness(thermal.field(amplitude=amplitude, r_c=r_c, s=s,
+                                             r_f=disk.mesh.nodes[0], b=disk.mesh.nodes[-1],
+                                             E=E, nu=nu, alpha=alpha, inplane_bc=inplane_bc))
     return disk.eq9(Ks), Ks
 
 

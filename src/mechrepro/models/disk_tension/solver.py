@@ -1,19 +1,11 @@
-"""The two solvers of disk_tension: one discretisation of the clamped disk each.
+"""The two solvers of disk_tension, one discretisation of the clamped disk each:
+``axisym`` (cos(N_d theta) harmonics, radial Hermite elements, :mod:`.axisym`) and
+``plate2d`` (Argyris plate elements on a polar mesh, :mod:`.plate2d`).
 
-``axisym``   cos(N_d theta) harmonics with radial Hermite elements (:mod:`.axisym`)
-``plate2d``  Argyris plate elements on a polar mesh, scikit-fem (:mod:`.plate2d`)
-
-Both run the same three stages (the effects are in :mod:`.effects`, declared in
-``config/papers/disk_tension.yaml``) and read the contributions by key, never by effect
-name:
-
-1. the effects the load and the mesh need (``thermal_expansion``, ``slots``);
-2. the load (``thermal_load``: Eq. 4 and its plane-stress field);
-3. the core: build [K], [M] (Eq. 1), unrolled eigen-analysis (Eq. 6), and, with a load,
-   [K^(sigma)] of every r_c (Eq. 3); then every remaining effect (the analyses).
-
-Variables contributed after the discretisation carry the solver's name
-(``axisym_f_rolled``); coordinates and the stage 1-2 variables do not.
+Both run three stages of effects (:mod:`.effects`), read by key: what the load and the mesh
+need; the load (Eq. 4 and its plane-stress field); the core -- [K], [M] (Eq. 1), the
+unrolled eigen-analysis (Eq. 6) and [K^(sigma)] of every r_c (Eq. 3) -- then the analyses.
+The analyses' variables carry the solver's name (``axisym_f_rolled``).
 """
 from __future__ import annotations
 
@@ -28,7 +20,7 @@ from .axisym import AxisymDisk
 from .effects import EFFECTS
 from .modal import frequency
 
-#: contributions each stage before the discretisation provides (what the next one reads)
+#: contributions the solver consumes (never written to the dataset), by stage
 BEFORE_LOAD = {"thermal_expansion", "slots"}
 LOAD = {"thermal_load", "cutting_heat_stress"}
 
@@ -70,15 +62,10 @@ class Disk:
     def _check(self):
         if not 0 < self.r_f < self.b:
             raise Refusal(f"clamp_radius r_f = {self.r_f} m must lie in (0, b = {self.b} m)")
-        if np.any(self.n_d < 0):
-            raise Refusal(f"nodal_diameters must be >= 0, got {self.n_d.tolist()}")
         if self.bc not in thermal.INPLANE_BCS:
             raise Refusal(f"inplane_bc = {self.bc!r}: allowed {thermal.INPLANE_BCS}")
         if self.solver not in DISCRETISATIONS:
             raise Refusal(f"solver = {self.solver!r}: allowed {list(DISCRETISATIONS)}")
-        if self.stress_model not in thermal.STRESS_MODELS:
-            raise Refusal(f"options.residual_stress = {self.stress_model!r}: allowed "
-                          f"{thermal.STRESS_MODELS}")
         if self.stress_model != "thermal_analogy" and self.solver != "axisym":
             raise Refusal(f"options.residual_stress = {self.stress_model!r}: the rivals' stress "
                           "is closed-form, on the axisym harmonics only (the 2-D model solves "
@@ -90,48 +77,37 @@ class Disk:
         w2 = self.model.omega2
         return np.sqrt(np.array([np.mean(w2[n]) for n in self.n_d]))
 
-    @staticmethod
-    def timed(fn, *args):
-        """(result, wall time [s]) of one call of ``fn(*args)``.  Measured once: the runner
-        repeats the whole run when it is fast and keeps the phases of its fastest call
-        (:func:`mechrepro.timing.timed_run`), so these times add up to the run's."""
-        with phase("disk_tension.solve") as sw:
-            result = fn(*args)
-        return result, sw.seconds
-
     def put(self, name, *variable):
         self.vars[f"{self.solver}_{name}"] = var(*variable)
 
     def keep(self, contributions, prefix=""):
-        """Write every labelled contribution (a :func:`~mechrepro.units.var`) to the
-        dataset; coordinates keep their name, the others get ``prefix``."""
+        """Write every contribution but those the solver consumes to the dataset;
+        coordinates keep their name, the others get ``prefix``."""
         for key in contributions.keys():
-            value = contributions.get(key)
-            if isinstance(value, tuple) and len(value) == 3 and isinstance(value[2], dict):
+            if key not in BEFORE_LOAD | LOAD:
+                value = contributions.get(key)
                 self.vars[key if value[0] == (key,) else prefix + key] = value
 
 
 # --- the core of each solver -----------------------------------------------------------------
 def _axisym(ctx: Disk):
     n_el = int(ctx.resolution.get("n_elements", 64))
-    model, t_build = ctx.timed(lambda: AxisymDisk(r_f=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E,
-                                                  nu=ctx.nu, rho=ctx.rho, n_d=ctx.n_d,
-                                                  n_elements=n_el))
+    model = AxisymDisk(r_f=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho,
+                       n_d=ctx.n_d, n_elements=n_el)
     ctx.vars["radial_node"] = var("radial_node", np.arange(n_el + 1), "1",
                                   "node of the radial mesh")
     ctx.put("mesh_r", "radial_node", model.mesh.nodes, "m", "axisym: radius of each node of "
             "the cubic Hermite elements")
-    return model, t_build
+    return model
 
 
 def _plate2d(ctx: Disk):
     from .plate2d import PlateDisk  # scikit-fem is imported only by scenes that use it
 
-    model, t_build = ctx.timed(lambda: PlateDisk(
-        r_f=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho, n_d=ctx.n_d,
-        n_rings=int(ctx.resolution.get("n_rings", 12)),
-        n_sectors=int(ctx.resolution.get("n_sectors", 64)), slots=ctx.slots,
-        seed=int(ctx.run.get("seed", 0))))
+    model = PlateDisk(r_f=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho,
+                      n_d=ctx.n_d, n_rings=int(ctx.resolution.get("n_rings", 12)),
+                      n_sectors=int(ctx.resolution.get("n_sectors", 64)), slots=ctx.slots,
+                      seed=int(ctx.run.get("seed", 0)))
     ctx.put("n_dofs", (), model.basis.N, "1", "plate2d: number of Argyris DOFs")
     # Fig. 3: the mesh itself (annulus r_f..b; the core r < r_f is clamped)
     ctx.vars["mesh_node"] = var("mesh_node", np.arange(model.mesh.p.shape[1]), "1",
@@ -143,7 +119,7 @@ def _plate2d(ctx: Disk):
     ctx.put("mesh_y", "mesh_node", model.mesh.p[1], "m", "plate2d: node y")
     ctx.put("mesh_cells", ("mesh_cell", "vertex"), model.mesh.t.T.astype(np.int32), "1",
             "plate2d: node indices of each triangle")
-    return model, t_build
+    return model
 
 
 DISCRETISATIONS = {"axisym": _axisym, "plate2d": _plate2d}
@@ -153,16 +129,17 @@ def _stress_stiffness(ctx: Disk):
     """[K^(sigma)] of every r_c, Eq. (3): from the closed-form stress on the harmonics, from
     the 2-D plane-stress FE solution of the same temperature on the mesh."""
     model = ctx.model
+    with phase("disk_tension.stress") as sw:
+        if ctx.solver == "plate2d":
+            sig = [model.residual_stress(ld.temperature, ld.alpha, ld.inplane_bc)
+                   for ld in ctx.loads]
+            ks = [model.stress_stiffness(s) for s in sig]
+        else:
+            ks = [model.stress_stiffness(ld.sigma) for ld in ctx.loads]
     if ctx.solver == "plate2d":
-        sig, dt = ctx.timed(lambda: [model.residual_stress(ld.temperature, ld.alpha,
-                                                           ld.inplane_bc) for ld in ctx.loads])
-        ks, dt_k = ctx.timed(lambda: [model.stress_stiffness(s) for s in sig])
         _plate2d_stress_profile(ctx, sig[0])
-        dt += dt_k
-    else:
-        ks, dt = ctx.timed(lambda: [model.stress_stiffness(ld.sigma) for ld in ctx.loads])
-    ctx.put("time_stress", (), dt, "s", f"{ctx.solver}: wall time of the thermal stress and "
-            "K^(sigma) for all r_c")
+    ctx.put("time_stress", (), sw.seconds, "s", f"{ctx.solver}: wall time of the thermal stress "
+            "and K^(sigma) for all r_c")
     return ks
 
 
@@ -191,11 +168,11 @@ def _plate2d_stress_profile(ctx: Disk, sigma):
 
 def _discretise(ctx: Disk):
     """The solver core: [K], [M], the unrolled eigen-analysis (Eq. 6) and [K^(sigma)]."""
-    model, t_build = DISCRETISATIONS[ctx.solver](ctx)
-    w2, t_unrolled = ctx.timed(model.unrolled)
-    ctx.model = model
+    with phase("disk_tension.unrolled") as sw:
+        ctx.model = model = DISCRETISATIONS[ctx.solver](ctx)
+        w2 = model.unrolled()
     ctx.put("f_unrolled", "n_d", frequency(w2), "Hz", f"{ctx.solver}: unrolled frequency, Eq. (6)")
-    ctx.put("time_unrolled", (), t_unrolled + t_build, "s",
+    ctx.put("time_unrolled", (), sw.seconds, "s",
             f"{ctx.solver}: wall time of assembly + unrolled eigen-analysis")
     if ctx.loads is not None:
         ctx.k_sigma = _stress_stiffness(ctx)
@@ -206,48 +183,47 @@ def _discretise(ctx: Disk):
 def _compare(ctx: Disk):
     """What two contributions give together: errors against the exact reference, Eq. (9)
     against the eigen-analysis, and the time of one accuracy point."""
-    v, name = ctx.vars, ctx.solver
-    f_u = v[f"{name}_f_unrolled"][1]
-    if f"{name}_f_exact" in v:
-        err = f_u / v[f"{name}_f_exact"][1] - 1.0
+    name = ctx.solver
+
+    def get(key):
+        return ctx.vars[f"{name}_{key}"][1] if f"{name}_{key}" in ctx.vars else None
+
+    f_u, f_r, f_ex = get("f_unrolled"), get("f_rolled"), get("f_exact")
+    if f_ex is not None:
+        err = f_u / f_ex - 1.0
         ctx.put("error_unrolled", "n_d", err, "1",
                 f"{name}: relative error of the unrolled frequency vs exact")
         ctx.put("error_unrolled_max", (), np.max(np.abs(err)), "1",
                 f"{name}: max |relative error| of unrolled frequencies vs exact")
-        _log_sums(ctx, "unrolled", f_u, v[f"{name}_f_exact"][1], "the unrolled frequencies")
-    if f"{name}_f_stressed_exact" in v:
-        _log_sums(ctx, "stressed", v[f"{name}_f_stressed"][1], v[f"{name}_f_stressed_exact"][1],
+        _log_sums(ctx, "unrolled", f_u, f_ex, "the unrolled frequencies")
+    if get("f_stressed_exact") is not None:
+        _log_sums(ctx, "stressed", get("f_stressed"), get("f_stressed_exact"),
                   "the frequencies under every reference stress")
-    if f"{name}_f_rolled" in v and f"{name}_f_rolled_reference" in v:
-        _log_sums(ctx, "rolled", v[f"{name}_f_rolled"][1], v[f"{name}_f_rolled_reference"][1],
+    if f_r is not None and get("f_rolled_reference") is not None:
+        _log_sums(ctx, "rolled", f_r, get("f_rolled_reference"),
                   "the rolled frequencies of every r_c", reference="the rolled reference "
                   "(Richardson of 64 and 128 elements, error ~1e-8)")
-    if f"{name}_f_rolled" in v and f"{name}_delta_omega2_eq9" in v:
-        f_eig = v[f"{name}_f_rolled"][1]
-        f_eq9 = frequency(ctx.omega_unrolled[None, :] ** 2 + v[f"{name}_delta_omega2_eq9"][1])
-        err = np.abs(f_eq9 - f_eig) / f_eig
+    if f_r is not None and get("delta_omega2_eq9") is not None:
+        f_eq9 = frequency(ctx.omega_unrolled[None, :] ** 2 + get("delta_omega2_eq9"))
+        err = np.abs(f_eq9 - f_r) / f_r
         ctx.put("eq9_rel_error", ("r_c", "n_d"), err, "1",
                 f"{name}: |f by Eq. (9) - f by eigen-analysis| / f")
         ctx.put("eq9_rel_error_max", (), np.nanmax(err), "1",
                 f"{name}: max |f by Eq. (9) - f by eigen-analysis| / f over the grid")
-    if f"{name}_time_eigen" in v:
-        t = sum(float(v[f"{name}_{k}"][1]) for k in ("time_unrolled", "time_stress", "time_eigen"))
+    if get("time_eigen") is not None:
+        t = sum(float(get(k)) for k in ("time_unrolled", "time_stress", "time_eigen"))
         ctx.put("time_solve", (), t, "s", f"{name}: wall time of assembly + unrolled + K^(sigma) "
                 "+ rolled eigen-analysis over the r_c grid")
-    if f"{name}_time_stressed" in v:
-        t = float(v[f"{name}_time_unrolled"][1]) + float(v[f"{name}_time_stressed"][1])
+    if get("time_stressed") is not None:
+        t = float(get("time_unrolled")) + float(get("time_stressed"))
         ctx.put("time_stressed_solve", (), t, "s", f"{name}: wall time of assembly + unrolled + "
                 "K^(sigma) and Eq. (5) under the reference stresses")
 
 
 def _log_sums(ctx: Disk, what: str, f, f_exact, of: str, reference="exact Bessel solution"):
-    """sum ln(f / 1 Hz) over N_d (and the reference stresses) of the model and of the exact
-    solution: what an accuracy target over every mode reads.  The error of the sum is the sum
-    of the modes' relative errors, which are all of one sign (the conforming Rayleigh-Ritz
-    model converges from above, unstressed and under a uniform stress), so an absolute
-    tolerance on it bounds the worst mode's relative error, not only the best-converged one
-    (a max over N_d picks N_d = 4, the fastest to converge).  Under the rolled stress too:
-    every mode converges from above at 4-128 elements (tests/test_disk_tension_solver.py)."""
+    """sum ln(f / 1 Hz) of the model and of the reference: what an accuracy target over every
+    mode reads.  Every mode converges from above (conforming Rayleigh-Ritz), so the error of
+    the sum bounds the worst mode's relative error, not only the best-converged one's."""
     ctx.put(f"ln_f_{what}_sum", (), float(np.sum(np.log(f))), "1",
             f"{ctx.solver}: sum of ln(f / 1 Hz) over {of}")
     ctx.put(f"ln_f_{what}_exact_sum", (), float(np.sum(np.log(f_exact))), "1",
