@@ -1,38 +1,25 @@
 """What the paper's numbers pin down: a joint fit of the rolling model's free constants.
 
 The rolled stress of Eq. (4) enters every paper number through three constants the paper
-leaves free or half-stated: the stress scale c = E alpha A (only the product matters; here
-relative to the handbook E = 206 GPa, alpha = 12e-6/K, A = 50 degC), the Gaussian width s
-("s = 5", no unit) and the in-plane condition at the clamp (``clamped`` / ``free_disk``).
-The data: Table 1's five diagonals (Eq. 9 at r_c = 65, r_f = 25 mm) and Fig. 6a's
-f~(N_d = 4, r_c = 65 mm) = 502.1 Hz (Sec. 4.3; the eigen-analysis).  434.5 Hz fixes the
-thickness on its own (exactly, :func:`.calibration.thickness`) and 70.0 Hz is Table 1's
-N_d = 4 entry converted (row paper_70hz_is_linearised_conversion): neither adds
-information.
+leaves free or half-stated: the stress scale c = E alpha A (relative to the handbook
+E = 206 GPa, alpha = 12e-6/K, A = 50 degC), the Gaussian width s ("s = 5", no unit) and the
+in-plane condition (``clamped`` / ``free_disk``).  The data: Table 1's five diagonals
+(Eq. 9 at r_c = 65, r_f = 25 mm) and Fig. 6a's f~(N_d = 4, r_c = 65 mm) = 502.1 Hz
+(434.5 Hz fixes the thickness alone, 70.0 Hz is Table 1's N_d = 4 entry converted).
 
-Misfit: chi^2 = sum ((model_k - paper_k) / u_k)^2 with u_k half a unit of the last printed
-digit, scaled (Birge) so that the best fit has chi^2 per degree of freedom 1: the model
-cannot meet the paper to its printed digits, and the scaling turns the remaining misfit
-into the uncertainty.  The joint (s, c) regions: chi^2 within 2.30 (68 %) and 6.18 (95 %)
-of its minimum (two parameters; minimised over the in-plane condition), stored as their c
-limits at every s (:func:`region`); their extents are the profiles' intervals at the same
-levels (profile: the minimum of chi^2 over the other constants at each value of one).  An
-extent's end is the data's only where no scan cuts the region: where the region reaches its
-own scan's end, or its extreme point sits at the other scan's end, the scan bounds it (the
-table says which).  Table 1 constrains mainly the product c s (the rolled band's integrated
-stress): the valley runs along c s ~ const, its floor stored as the minimiser of the other
-constant along each profile, its direction at the best fit the soft axis of the chi^2
-Hessian (:func:`direction`).  Which number pins
-which constant: each number's share of the Fisher information about s and c at the best
-fit, and the fit with and without 502.1 Hz.
+chi^2 = sum ((model_k - paper_k) / u_k)^2 with u_k half a unit of the last printed digit,
+Birge-scaled to chi^2 per degree of freedom 1 at the best fit.  The joint (s, c) regions are
+chi^2 within 2.30 (68 %) and 6.18 (95 %) of the minimum, stored as c limits at every s; an
+extent's end reaching a scan's end is the scan's, not the data's.  Table 1 constrains mainly
+c s: the valley floor is stored along each profile and its direction at the best fit is the
+soft axis of the chi^2 Hessian.  Each number's share of the Fisher information about s and
+c says which pins which.
 
-Eq. (9) is linear in c, so Table 1 is computed once per (s, condition) for c = 1; the
-eigen-analysis of N_d = 4 is solved on a coarse (s, c) grid (up to the first scale that
-buckles it) and omega~^2 (smooth in c, also through buckling, unlike f) is interpolated by
-cubic splines onto a fine c grid and along s.  The profiles are minimised on the fine grid
-and then, point by point, continuously (golden section between the grid neighbours of the
-grid minimum): the valley is narrower than any affordable grid step at small s, and the
-grid minimum alone makes the c profile jagged.  The best fit is polished by Nelder-Mead.
+Eq. (9) is linear in c (Table 1 once per (s, condition) at c = 1); the N_d = 4 eigenvalue is
+solved on a coarse (s, c) grid up to the first scale that buckles it and interpolated by
+cubic splines (omega~^2 is smooth in c, also through buckling).  Profiles are minimised on
+the fine grid, then continuously between its neighbours (golden section); the best fit is
+polished by Nelder-Mead.
 """
 from __future__ import annotations
 
@@ -55,29 +42,14 @@ def unit_table1(disk, *, s, inplane_bc, r_c, amplitude, alpha, E, nu):
 
 def _lowest_stable(K, M, bandwidth=3):
     """omega^2 of the lowest mode of (K, M), or None when K is not positive definite (the
-    stressed disk has buckled in this harmonic): never the dense driver's cost for a buckled
-    point (:func:`.modal.eigen` falls back to it when inverse iteration fails)."""
-    from .modal import BANDED_MAX, BANDED_MIN, lowest_banded
+    stressed disk has buckled in this harmonic)."""
+    from .modal import BANDED_MAX, BANDED_MIN, lowest_banded, positive_definite
 
     if BANDED_MIN <= len(K) <= BANDED_MAX:
         x = lowest_banded(K, M, bandwidth)
         if x is not None:
             return float((x @ K @ x) / (x @ M @ x))
-    if not _positive_definite_banded(K, bandwidth):
-        return None
-    return float(eigen(K, M, 1, bandwidth)[0][0])
-
-
-def _positive_definite_banded(K, bandwidth) -> bool:
-    """Whether the banded symmetric K has a Cholesky factor (LAPACK dpbtrf: O(n), where the
-    dense factorisation of a 128 x 128 matrix cost ~10 ms here)."""
-    from scipy.linalg.lapack import dpbtrf
-
-    u = int(bandwidth)
-    ab = np.zeros((u + 1, len(K)))
-    for k in range(u + 1):
-        ab[u - k, k:] = K.diagonal(k)
-    return dpbtrf(ab, overwrite_ab=1)[1] == 0
+    return float(eigen(K, M, 1, bandwidth)[0][0]) if positive_definite(K) else None
 
 
 def scan(disk, *, widths, scales, fine, conditions, n_d_eigen=4, **load):

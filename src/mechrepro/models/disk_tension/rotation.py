@@ -7,29 +7,24 @@ Centrifugal stress (plane stress, Timoshenko & Goodier Sec. 32): with q = rho Om
     sigma_r     = A + B / r^2 - (3 + nu) / 8 q r^2
     sigma_theta = A - B / r^2 - (1 + 3 nu) / 8 q r^2,
 
-sigma_r(b) = 0 at the free rim, and at the flange either u_r(r_f) = 0 (``clamped``: the
-flange grips the spinning blade) or the solid disk (``free_disk``: B = 0); which one is the
-assumed ``centrifugal_bc`` (config: its range is both).
-
-A mode of N_d = n nodal diameters has the rotating-frame frequency omega_r(Omega), the
-eigenvalue of [K + K^(roll) + Omega^2 K^(c) - omega_r^2 M] (K^(c): Eq. 3 of the centrifugal
-stress at Omega = 1; Coriolis and in-plane inertia neglected, as in the thin-disk theory of
-Southwell and Mote).  In the ground frame it splits into forward and backward waves
-omega_r +- n Omega; the backward wave's frequency reaches zero at the critical speed,
+sigma_r(b) = 0, and at the flange u_r(r_f) = 0 (``clamped``) or the solid disk (``free_disk``:
+B = 0), the assumed ``centrifugal_bc``.  A mode of N_d = n has the rotating-frame frequency
+omega_r(Omega) of [K + K^(roll) + Omega^2 K^(c) - omega_r^2 M] (K^(c): Eq. 3 of the
+centrifugal stress at Omega = 1; Coriolis and in-plane inertia neglected, as in Southwell's
+and Mote's thin-disk theory); the backward wave omega_r - n Omega stops at the critical speed,
 
     omega_r(Omega_c) = n Omega_c   <=>   det[K + K^(roll) - Omega_c^2 (n^2 M - K^(c))] = 0.
 
-First order (Southwell): omega_r^2 = omega^2 + lambda Omega^2 with the Southwell coefficient
-lambda = phi^T K^(c) phi / phi^T M phi (Eq. 9's form), so Omega_c = omega / sqrt(n^2 - lambda);
-by Rayleigh's principle the exact Omega_c is at most this.  The neglected second-order term
-is divided by n^2 - lambda, so the first-order form degrades where lambda approaches n^2
-(r_f = 75 mm, N_d = 2: n^2 - lambda = 0.64, Omega_c 3.5 % below it).
+First order (Southwell): Omega_c = omega / sqrt(n^2 - lambda), lambda = phi^T K^(c) phi /
+phi^T M phi, an upper bound (Rayleigh) that degrades where lambda approaches n^2.
 """
 from __future__ import annotations
 
 import numpy as np
 
 from mechrepro.errors import Refusal
+
+from .modal import positive_definite
 
 
 def centrifugal_stress(r, *, omega, rho, nu, r_f, b, inplane_bc="clamped"):
@@ -63,15 +58,6 @@ def critical_speed(K, M, Kc, n):
     mu = sla.eigh(n * n * M - Kc, K, eigvals_only=True)   # (n^2 M - Kc) phi = mu K phi
     top = float(mu.max())
     return float(1.0 / np.sqrt(top)) if top > 0 else float("inf")
-
-
-def positive_definite(K) -> bool:
-    """Whether the (stressed) stiffness K is positive definite: the disk has not buckled."""
-    try:
-        np.linalg.cholesky(K)
-    except np.linalg.LinAlgError:
-        return False
-    return True
 
 
 def southwell(omega2, phi, M, Kc, n):
