@@ -405,8 +405,9 @@ def identifiability(ctx) -> dict:
                     r_c=p["calibration_rolling_radius"],
                     amplitude=p["calibration_temperature_amplitude"], alpha=ctx.alpha,
                     E=ctx.E, nu=ctx.nu)
-    sub, dat = ("fit_data", "fit_datum")
-    return {
+    sub, dat, lvl = "fit_data", "fit_datum", ("fit_data", "fit_level", "scan_condition",
+                                                "scan_width")
+    out = {
         "fit_data": var(sub, np.arange(len(idf.SUBSETS)), "1", "data fitted: "
                         + ", ".join(f"{i} {k}" for i, k in enumerate(idf.SUBSETS))),
         "fit_datum": var(dat, np.arange(len(idf.DATA)), "1", "paper number: "
@@ -418,56 +419,50 @@ def identifiability(ctx) -> dict:
                           "Gaussian width s of the scan (fine grid)"),
         "scan_scale": var("scan_scale", fine, "1", "stress scale c = E alpha A relative to the "
                           "handbook steel at the paper's A (the scan)"),
-        "prof_width": var((sub, "scan_width"), r["prof_width"], "1",
-                          "profile chi^2 over s (Birge-scaled, min over c and condition)"),
-        "prof_scale": var((sub, "scan_scale"), r["prof_scale"], "1",
-                          "profile chi^2 over c (Birge-scaled, min over s and condition)"),
-        "prof_condition": var((sub, "scan_condition"), r["prof_condition"], "1",
-                              "profile chi^2 over the in-plane condition"),
-        "prof_width_scale": var((sub, "scan_width"), r["prof_width_scale"], "1",
-                                "the stress scale c minimising chi^2 at each s (the valley "
-                                "floor along the s profile)"),
-        "prof_scale_width": var((sub, "scan_scale"), r["prof_scale_width"], "m",
-                                "the Gaussian width s minimising chi^2 at each c (the valley "
-                                "floor along the c profile)"),
-        "birge": var(sub, r["birge"], "1", "Birge factor: chi^2 per degree of freedom of the "
-                     "best fit with the printed digits as uncertainties"),
-        "chi2_min": var(sub, r["chi2_min"], "1", "Birge-scaled chi^2 of the best fit"),
-        "best_width": var(sub, r["best_width"], "m", "best-fit Gaussian width s"),
-        "best_scale": var(sub, r["best_scale"], "1", "best-fit stress scale c"),
-        "best_condition": var(sub, r["best_condition"], "1", "best-fit in-plane condition"),
-        "best_table1_rel": var((sub, "n_d"), r["best_table1_rel"], "1",
-                               "Table 1 relative error at the best fit"),
-        "best_f_rolled": var(sub, r["best_f_rolled"], "Hz", "f~(N_d = 4, r_c = 65 mm) at the "
-                             "best fit"),
-        "shares": var((sub, "fit_parameter", dat), r["shares"], "1", "share of each paper "
-                      "number in the Fisher information about s and c at the best fit"),
         "fit_level": var("fit_level", list(idf.LEVELS.values()), "1",
                          "Delta chi^2 of the joint (s, c) regions: "
                          + ", ".join(f"{k} %" for k in idf.LEVELS)),
         "fit_axis": var("fit_axis", [0, 1], "1", "0 the soft (degenerate) axis, 1 the stiff"),
-        "region_c_lo": var((sub, "fit_level", "scan_condition", "scan_width"), r["region_c_lo"],
-                           "1", "lower c of the joint (s, c) region at each s (NaN: none; at "
-                           "the c scan's start: the scan bounds it)"),
-        "region_c_hi": var((sub, "fit_level", "scan_condition", "scan_width"), r["region_c_hi"],
-                           "1", "upper c of the joint (s, c) region at each s (NaN: none; at "
-                           "the c scan's end: the scan bounds it)"),
-        "direction_slope": var(sub, r["direction_slope"], "1", "d ln c / d ln s along the soft "
-                               "axis of the chi^2 Hessian at the best fit (-1: c s = const)"),
-        "direction_halfwidth": var((sub, "fit_axis"), r["direction_halfwidth"], "1",
-                                   "68 % half-length of the Hessian ellipse in (ln s, ln c) "
-                                   "along the soft and the stiff axis"),
-        "single_chi2": var(sub, r["single_chi2"], "1", "Birge-scaled chi^2 of the single-alpha "
-                           "calibration (s = 5 mm, free_disk, c on Table 1's N_d = 4 entry)"),
-        "single_scale": var((), r["single_scale"], "1", "stress scale of the single-alpha "
-                            "calibration"),
-        "single_width": var((), ctx.s, "m", "Gaussian width of the "
-                            "single-alpha calibration"),
-        "single_table1_rel": var("n_d", r["single_table1_rel"], "1", "Table 1 relative error of "
-                                 "the single-alpha calibration"),
-        "single_f_rolled": var((), r["single_f_rolled"], "Hz", "f~(N_d = 4, r_c = 65 mm) of the "
-                               "single-alpha calibration"),
+        "single_width": var((), ctx.s, "m", "Gaussian width of the single-alpha calibration"),
     }
+    for key, dims, unit, name in (
+            ("prof_width", (sub, "scan_width"), "1",
+             "profile chi^2 over s (Birge-scaled, min over c and condition)"),
+            ("prof_scale", (sub, "scan_scale"), "1",
+             "profile chi^2 over c (Birge-scaled, min over s and condition)"),
+            ("prof_condition", (sub, "scan_condition"), "1",
+             "profile chi^2 over the in-plane condition"),
+            ("prof_width_scale", (sub, "scan_width"), "1", "the stress scale c minimising "
+             "chi^2 at each s (the valley floor along the s profile)"),
+            ("prof_scale_width", (sub, "scan_scale"), "m", "the Gaussian width s minimising "
+             "chi^2 at each c (the valley floor along the c profile)"),
+            ("birge", sub, "1", "Birge factor: chi^2 per degree of freedom of the best fit "
+             "with the printed digits as uncertainties"),
+            ("chi2_min", sub, "1", "Birge-scaled chi^2 of the best fit"),
+            ("best_width", sub, "m", "best-fit Gaussian width s"),
+            ("best_scale", sub, "1", "best-fit stress scale c"),
+            ("best_condition", sub, "1", "best-fit in-plane condition"),
+            ("best_table1_rel", (sub, "n_d"), "1", "Table 1 relative error at the best fit"),
+            ("best_f_rolled", sub, "Hz", "f~(N_d = 4, r_c = 65 mm) at the best fit"),
+            ("shares", (sub, "fit_parameter", dat), "1", "share of each paper number in the "
+             "Fisher information about s and c at the best fit"),
+            ("region_c_lo", lvl, "1", "lower c of the joint (s, c) region at each s (NaN: "
+             "none; at the c scan's start: the scan bounds it)"),
+            ("region_c_hi", lvl, "1", "upper c of the joint (s, c) region at each s (NaN: "
+             "none; at the c scan's end: the scan bounds it)"),
+            ("direction_slope", sub, "1", "d ln c / d ln s along the soft axis of the chi^2 "
+             "Hessian at the best fit (-1: c s = const)"),
+            ("direction_halfwidth", (sub, "fit_axis"), "1", "68 % half-length of the Hessian "
+             "ellipse in (ln s, ln c) along the soft and the stiff axis"),
+            ("single_chi2", sub, "1", "Birge-scaled chi^2 of the single-alpha calibration "
+             "(s = 5 mm, free_disk, c on Table 1's N_d = 4 entry)"),
+            ("single_scale", (), "1", "stress scale of the single-alpha calibration"),
+            ("single_table1_rel", "n_d", "1", "Table 1 relative error of the single-alpha "
+             "calibration"),
+            ("single_f_rolled", (), "Hz", "f~(N_d = 4, r_c = 65 mm) of the single-alpha "
+             "calibration")):
+        out[key] = var(dims, r[key], unit, name)
+    return out
 
 
 def _centrifugal_stiffness(ctx, effect):
