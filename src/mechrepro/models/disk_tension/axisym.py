@@ -17,14 +17,15 @@ keeps [K], [M] well conditioned); the clamp r = r_f removes W, W' of the first n
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
 
 import numpy as np
 from numpy.polynomial.legendre import leggauss
 
 from mechrepro.errors import Refusal
 
-N_GAUSS = 6  # exact for the polynomial parts; the Gaussian stress needs a few more points
+#: Gauss-Legendre points and weights on [-1, 1]: 6, exact for the polynomial parts (the
+#: Gaussian stress needs a few more points than they do)
+XG, WG = leggauss(6)
 BANDWIDTH = 3  # half-bandwidth of [K], [M]: element DOFs W, ell W' of two neighbouring nodes
 
 
@@ -64,22 +65,12 @@ def radial_mesh(r_f, b, n_elements, breakpoints=()):
     return RadialMesh(nodes)
 
 
-@lru_cache(maxsize=None)
-def _gauss(n_gauss):
-    """Gauss-Legendre points and weights on [-1, 1] (read only: shared by every mesh; Fig. 7
-    builds a mesh per annulus radius)."""
-    xg, wg = leggauss(n_gauss)
-    xg.flags.writeable = wg.flags.writeable = False
-    return xg, wg
-
-
-def quadrature(mesh: RadialMesh, n_gauss=N_GAUSS):
+def quadrature(mesh: RadialMesh):
     """Quadrature radii r[e, q], weights w[e, q] (incl. Jacobian) and Hermite basis."""
-    xg, wg = _gauss(n_gauss)
-    xi = 0.5 * (xg + 1.0)
+    xi = 0.5 * (XG + 1.0)
     L = np.diff(mesh.nodes)[:, None]
     r = mesh.nodes[:-1, None] + L * xi[None, :]
-    w = 0.5 * wg[None, :] * L
+    w = 0.5 * WG[None, :] * L
     x = xi[None, :] * np.ones_like(L)
     g = L / mesh.ell  # slope DOFs are ell W'
     N = np.stack([1 - 3 * x**2 + 2 * x**3, g * (x - 2 * x**2 + x**3),
@@ -139,9 +130,9 @@ class AxisymDisk:
 
     label = "axisym"
 
-    def __init__(self, *, r_f, b, h, E, nu, rho, n_d, n_elements, n_gauss=N_GAUSS):
+    def __init__(self, *, r_f, b, h, E, nu, rho, n_d, n_elements):
         self.mesh = radial_mesh(r_f, b, n_elements)
-        self.quad = quadrature(self.mesh, n_gauss)
+        self.quad = quadrature(self.mesh)
         self.h, self.n_d = h, np.asarray(n_d, int)
         D = E * h**3 / (12 * (1 - nu**2))
         # [M] has no N_d in it: one matrix, shared (read only) by every harmonic

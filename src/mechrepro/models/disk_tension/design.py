@@ -10,12 +10,8 @@ K^(sigma).  Per harmonic n and amplitude A, with B_n = n^2 M - K^(c) (:mod:`.rot
 
 both from one symmetric eigen-decomposition per (r_c, A, n): with M = L L^T and
 L^-1 (K + a K^(sigma)) L^-T = V D V^T, omega~^2 = D and mu are the eigenvalues of
-D^-1/2 V^T L^-1 B_n L^-T V D^-1/2.  A disk whose D has a non-positive entry has buckled at rest
-and has no critical speed (NaN); N_d = 0 never reaches one (inf).
-
-Constraint: the rolled stress at most 1 / m of the one that buckles the disk at rest
-(A <= A_cr / m, A_cr over every harmonic of the scene), m the assumed ``buckling_margin``;
-the intensity scan stops at ``design_amplitude_cap`` (a bound of the scan, not physics).
+D^-1/2 V^T L^-1 B_n L^-T V D^-1/2 (a non-positive D: buckled at rest, no critical speed).
+Constraint: A <= A_cr / m (A_cr buckles any harmonic at rest, m the ``buckling_margin``).
 """
 from __future__ import annotations
 
@@ -62,12 +58,18 @@ def lowest(pencils_, factors, n_min=2):
     n_d = np.array([p[0] for p in pencils_])
     cs, w2 = zip(*(speeds(p, factors) for p in pencils_))
     cs, w2 = np.stack(cs, -1), np.stack(w2, -1)
-    buckled = np.any(np.isnan(cs), axis=-1)
+    low = lowest_over(cs, n_d, n_min)
     sel = n_d >= n_min
-    sub = np.where(np.isnan(cs[..., sel]), np.inf, cs[..., sel])
-    k = np.argmin(sub, axis=-1)
-    low = np.where(buckled, np.nan, np.take_along_axis(sub, k[..., None], -1)[..., 0])
-    return low, np.where(buckled, -1, n_d[sel][k]), cs, w2
+    k = np.argmin(np.where(np.isnan(cs[..., sel]), np.inf, cs[..., sel]), axis=-1)
+    return low, np.where(np.isnan(low), -1, n_d[sel][k]), cs, w2
+
+
+def lowest_over(cs, n_d, n_min=0):
+    """min over N_d >= ``n_min`` of the critical speeds cs[..., N_d]; NaN where any harmonic
+    has buckled at rest (a buckled disk has no critical speed)."""
+    sel = np.asarray(n_d) >= n_min
+    low = np.min(np.where(np.isnan(cs[..., sel]), np.inf, cs[..., sel]), axis=-1)
+    return np.where(np.isnan(cs).any(axis=-1), np.nan, low)
 
 
 def optimum(fn, grid, vals, *, capped, xatol=1e-4):
@@ -148,7 +150,5 @@ def table(runs, paper_rc=0.065, paper_amplitude=50.0) -> list[list]:
 def lowest_map(ds) -> np.ndarray:
     """The map [rad/s] of one design_map run, (r_c, design_step): the lowest critical speed
     over N_d >= 2; NaN where any harmonic has buckled at rest."""
-    cs = np.asarray(ds["axisym_design_critical_speed"].values, float)
-    sel = ds["n_d"].values >= 2
-    gone = np.isnan(cs).any(axis=-1)
-    return np.where(gone, np.nan, np.min(np.where(np.isnan(cs[..., sel]), np.inf, cs[..., sel]), -1))
+    return lowest_over(np.asarray(ds["axisym_design_critical_speed"].values, float),
+                       ds["n_d"].values, 2)

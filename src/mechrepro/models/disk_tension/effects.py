@@ -81,9 +81,9 @@ def stress_calibration(ctx) -> dict:
     target = p["calibration_delta_omega2"]
     alpha, d_hb, df_hb = calibration.alpha_effective(target=target, **case)
     return {
-        "calibration_time_cold": _cold("stress_calibration", (target, *sorted(case.items())),
-                                       lambda: calibration.alpha_effective(target=target,
-                                                                           memo=False, **case)),
+        "stress_calibration_time_cold": _cold(
+            "stress_calibration", (target, *sorted(case.items())),
+            lambda: calibration.alpha_effective(target=target, memo=False, **case)),
         "thermal_expansion": alpha,
         "alpha_effective": var((), alpha, "1/K", "thermal-analogy expansion coefficient "
                                "calibrated on Table 1 (N_d = 4)"),
@@ -137,14 +137,10 @@ def roll_tension(ctx) -> dict:
 
 @EFFECTS.register("cutting_heat")
 def cutting_heat(ctx) -> dict:
-    """Physics beyond the paper, what tensioning is for: the rim heated in the cut, a real
-    temperature rise ``rim_temperature_rise`` falling off inwards as a Gaussian of width
-    ``rim_heat_width`` centred on the rim (Eq. 4's form at r_c = b), with the handbook
-    expansion coefficient, its plane-stress field under the flange's in-plane hold of the
-    mounted blade (``centrifugal_bc``): compression at the rim."""
+    """The rim heated in the cut: Eq. (4)'s form at r_c = b with the real temperature rise
+    and the handbook alpha, its plane-stress field under the flange's in-plane hold
+    (``centrifugal_bc``): compression at the rim."""
     p = ctx.p
-    if ctx.solver != "axisym":
-        raise Refusal("cutting_heat is read by design_map, on the harmonics (solver axisym)")
     kw = dict(amplitude=p["rim_temperature_rise"], r_c=ctx.b, s=p["rim_heat_width"],
               r_f=ctx.r_f, b=ctx.b, E=ctx.E, nu=ctx.nu, alpha=p["thermal_expansion"],
               inplane_bc=p["centrifugal_bc"])
@@ -235,12 +231,8 @@ def _solve_rolled_reference(ctx):
 
 @EFFECTS.register("stressed_reference")
 def stressed_reference(ctx) -> dict:
-    """The exact stressed reference: the model's frequencies under a uniform isotropic
-    in-plane stress sigma_0 (sigma_r = sigma_theta = sigma_0 in Eq. 3, then Eq. 5) and the
-    exact Bessel solution of the same stressed annulus (:mod:`.exact`), for every
-    ``reference_stress`` (tension and compression).  The stress-stiffening path of the
-    rolled disk (K^(sigma), its eigen-analysis) against an exact answer, which the Gaussian
-    rolling stress itself does not have."""
+    """The stress-stiffening path (Eqs. 3, 5) against an exact answer: the model under each
+    uniform isotropic ``reference_stress`` and the Bessel solution of the same annulus."""
     s0 = np.atleast_1d(np.asarray(ctx.p["reference_stress"], float))
     model = ctx.model
     with phase("disk_tension.stressed_reference_fe") as sw:
@@ -377,17 +369,13 @@ def stiffness_sensitivity(ctx) -> dict:
                                        "stiffer 10 mm annulus at r_a (Fig. 7)")}
 
 
-#: the identifiability profiles' fine grids: this many steps per coarse step of the scan
-#: (c: per eigen-analysis step; s: per Table 1 step); each profile point is then minimised
-#: continuously (:func:`.identifiability._profiles`)
+#: the identifiability profiles' fine grids: steps per coarse step of the scan (c, s)
 FINE_SCALE, FINE_WIDTH = 40, 5
 
 
 @EFFECTS.register("identifiability")
 def identifiability(ctx) -> dict:
-    """What the paper's numbers pin down (:mod:`.identifiability`): the joint fit of the
-    stress scale c = E alpha A, the Gaussian width s and the in-plane condition to Table 1
-    (and Fig. 6a's 502.1 Hz), with profiles per constant, against the single-alpha reading."""
+    """What the paper's numbers pin down: the joint fit of :mod:`.identifiability`."""
     from . import identifiability as idf
 
     p = ctx.p
@@ -465,13 +453,11 @@ def identifiability(ctx) -> dict:
     return out
 
 
-def _centrifugal_stiffness(ctx, effect):
-    """K^(c) of every harmonic: Eq. (3) of the centrifugal stress at Omega = 1 rad/s, the
-    flange's in-plane hold the assumed ``centrifugal_bc`` (:mod:`.rotation`)."""
+def _centrifugal_stiffness(ctx):
+    """K^(c) of every harmonic: Eq. (3) of the centrifugal stress at Omega = 1 rad/s (the
+    effects that read it are honoured by the axisym harmonics only)."""
     from . import rotation
 
-    if not hasattr(ctx.model, "phi") or not isinstance(ctx.model.K, dict):
-        raise Refusal(f"{effect} needs the harmonics (solver axisym)")
     kw = dict(omega=1.0, rho=ctx.rho, nu=ctx.nu, r_f=ctx.r_f, b=ctx.b,
               inplane_bc=ctx.p["centrifugal_bc"])
     return ctx.model.stress_stiffness((lambda r: rotation.centrifugal_stress(r, **kw)[0],
@@ -480,15 +466,12 @@ def _centrifugal_stiffness(ctx, effect):
 
 @EFFECTS.register("critical_speed")
 def critical_speed(ctx) -> dict:
-    """The travelling-wave critical speed per N_d (:mod:`.rotation`): the spinning disk's
-    centrifugal stress (the flange's in-plane hold is the assumed ``centrifugal_bc``)
-    stiffens it as Omega^2; the backward wave stops at Omega_c.  Untensioned (with
-    Southwell's first-order closed form beside it) and with the rolled residual stress of
-    every r_c; a rolled disk that has buckled has none (NaN, never a number)."""
+    """The travelling-wave critical speed per N_d (:mod:`.rotation`), untensioned (with
+    Southwell's first-order form) and with the rolled stress of every r_c (NaN: buckled)."""
     from . import rotation
 
     model, bc = ctx.model, ctx.p["centrifugal_bc"]
-    Kc = _centrifugal_stiffness(ctx, "critical_speed")
+    Kc = _centrifugal_stiffness(ctx)
     with phase("disk_tension.critical_speed") as sw:
         free = np.array([rotation.critical_speed(model.K[n], model.M[n], Kc[n], int(n))
                          for n in ctx.n_d])
@@ -520,13 +503,12 @@ def critical_speed(ctx) -> dict:
 @EFFECTS.register("design_map")
 def design_map(ctx) -> dict:
     """The tensioning design map (:mod:`.design`): the lowest critical speed over N_d >= 2 of
-    every r_c against the rolling amplitude A, from 0 to the smallest buckling margin's limit
-    A_cr / m (A_cr: the amplitude that buckles any harmonic of the scene at rest), and the
-    best A per r_c at every margin of ``buckling_margin`` (the stated one is the middle)."""
+    every r_c against the rolling amplitude A up to A_cr / m, and the best A per r_c at every
+    ``buckling_margin`` m (the stated one is the middle)."""
     from . import design
 
     p, model = ctx.p, ctx.model
-    Kc = _centrifugal_stiffness(ctx, "design_map")
+    Kc = _centrifugal_stiffness(ctx)
     if not ctx.A > 0:
         raise Refusal("design_map scales the rolled stress of the scene's amplitude: "
                       f"temperature_amplitude must be > 0, got {ctx.A}")

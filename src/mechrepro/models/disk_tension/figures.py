@@ -8,18 +8,16 @@ from __future__ import annotations
 
 import numpy as np
 
-#: r_f [mm] of Figs. 6/8 a-c: the scene rc_grid (25 mm) and the study fig06
-CLAMP_RADII_MM = (25, 55, 75)
+def by_clamp(R, scene, study) -> list:
+    """[(r_f [mm], dataset)] of ``scene`` and of the runs of its r_f ``study``."""
+    st = R.study(study)
+    return [(clamp_mm(ds), ds) for ds in [R.run(scene)] + [st.isel(run=i)
+                                                            for i in range(st.sizes["run"])]]
 
 
 def rc_grid(R) -> dict:
-    """{r_f [mm]: dataset} of Figs. 6 and 8: scene ``rc_grid`` (r_f = 25 mm) and the points
-    of study ``fig06`` (r_f = 55, 75 mm)."""
-    out = {25: R.run("rc_grid")}
-    st = R.study("fig06")
-    for i, rf in enumerate(st["clamp_radius"].values):
-        out[int(round(float(rf)))] = st.isel(run=i)
-    return out
+    """{r_f [mm]: dataset} of Figs. 6 and 8: scene ``rc_grid`` and study ``fig06``."""
+    return {int(round(rf)): ds for rf, ds in by_clamp(R, "rc_grid", "fig06")}
 
 
 def rolling_band(ds):
@@ -77,28 +75,20 @@ def matrix_rows(da) -> list[list]:
     return [[int(n)] + [float(v) for v in da.sel(row=n).values] for n in da["row"].values]
 
 
-#: memoised effects and the variable holding their cold cost (stage-3 ones carry the solver)
-COLD_TIME = {"stress_calibration": "calibration_time_cold",
-             "exact_reference": "{solver}_exact_reference_time_cold",
-             "rolled_reference": "{solver}_rolled_reference_time_cold",
-             "stressed_reference": "{solver}_stressed_reference_time_cold"}
-
-
 def effect_cold_warm(R, scenes=("table12", "table12_plate2d", "stressed_axisym",
                                 "stressed_plate2d")) -> list[list]:
     """Rows [scene, effect, warm s, cold s] of the memoised effects: warm is the run's own
-    effect time (the fastest repetition, after the first run of the batch memoised it),
-    cold what the effect costs with nothing memoised (a fresh process)."""
+    effect time (the fastest repetition), cold ``<effect>_time_cold``, what it costs with
+    nothing memoised."""
     rows = []
     for scene in scenes:
         ds = R.run(scene)
-        solver = "plate2d" if "plate2d_n_dofs" in ds else "axisym"
         timed = [str(e) for e in ds["timed_effect"].values]
-        for effect, key in COLD_TIME.items():
-            key = key.format(solver=solver)
-            if effect in timed and key in ds:
-                warm = float(ds["effect_time"].values[timed.index(effect)])
-                rows.append([scene, effect, warm, float(ds[key])])
+        for effect in timed:
+            key = next((k for k in ds.data_vars if k.endswith(f"{effect}_time_cold")), None)
+            if key is not None:
+                rows.append([scene, effect, float(ds["effect_time"].values[timed.index(effect)]),
+                             float(ds[key])])
     return rows
 
 

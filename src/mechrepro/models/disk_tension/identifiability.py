@@ -53,10 +53,9 @@ def _lowest_stable(K, M, bandwidth=3):
 
 
 def scan(disk, *, widths, scales, fine, conditions, n_d_eigen=4, **load):
-    """The model on the coarse s grid: Table 1 for c = 1 [condition, s, N_d] (Eq. 9 is
-    linear in c) and omega~^2(N_d = 4) [condition, s, c] on the ``fine`` c grid: the
-    eigen-analysis solved on the coarse ``scales`` up to the first that buckles N_d = 4 and
-    interpolated by a cubic spline (NaN beyond the last stable scale)."""
+    """Table 1 for c = 1 [condition, s, N_d] and omega~^2(N_d = 4) [condition, s, c] on the
+    ``fine`` c grid, splined from the coarse ``scales`` below the first that buckles (NaN
+    beyond)."""
     from scipy.interpolate import CubicSpline
 
     unit = np.empty((len(conditions), len(widths), len(disk.n_d)))
@@ -80,8 +79,7 @@ def scan(disk, *, widths, scales, fine, conditions, n_d_eigen=4, **load):
 
 class FineModel:
     """The model between the coarse s points: cubic splines along s of Table 1 (c = 1) and
-    of omega~^2 on each fine c (both smooth in s); ``__call__`` on a grid of s, :meth:`at`
-    at single points (s, condition, any c)."""
+    of omega~^2 on each fine c; ``__call__`` on a grid of s, :meth:`at` at single points."""
 
     def __init__(self, widths, unit, w2, fine):
         from scipy.interpolate import CubicSpline
@@ -149,9 +147,7 @@ LEVELS = {"68": 2.30, "95": 6.18}
 
 def interval(values, prof, level=1.0, floor=None):
     """(best, lo, hi) of a profile: argmin and the range where prof <= min + level (min:
-    ``floor`` if given, the polished best fit's chi^2), each end interpolated linearly
-    between the grid points that straddle the level (an end at the grid's end means the
-    scan, not the data, bounds it there)."""
+    ``floor`` if given), each end interpolated linearly between the straddling grid points."""
     k = int(np.nanargmin(prof))
     top = (prof[k] if floor is None else min(floor, prof[k])) + level
     ok = np.nonzero(prof <= top)[0]
@@ -194,10 +190,9 @@ def _golden(f, lo, hi, iters=40):
 
 
 def _profiles(fm, fine_widths, table1_paper, f_rolled_paper, uses, chunk=64):
-    """Raw chi^2 profiles over s and c per condition, with the other constant's minimiser
-    along each (the valley floor), one dict per data subset of ``uses``: the fine grid
-    first (the model and its residuals once per chunk of s for all subsets), then each
-    profile point minimised continuously between its grid neighbours."""
+    """Raw chi^2 profiles over s and c per condition and the other constant's minimiser
+    along each (the valley floor), one dict per data subset of ``uses``: on the fine grid,
+    then each point minimised continuously between its grid neighbours."""
     nw, nc, na = len(fine_widths), len(fm.fine), len(CONDITIONS)
     grid = [{"ps": np.full((na, nw), np.inf), "ks": np.zeros((na, nw), int),
              "pc": np.full((na, nc), np.inf), "is": np.zeros((na, nc), int)} for _ in uses]
@@ -271,12 +266,9 @@ def _polish(chi2_at, a, widths, scales, s0, c0, f0):
 
 def region(chi2_at, widths, floor, top, c_scan, iters=48):
     """The joint region chi^2(s, c) <= top as its c limits at each s: (c_lo, c_hi)
-    [level, condition, s], NaN where the valley floor (``floor`` = (c*, chi^2(c*))
-    [condition, s]) lies above ``top`` [level].  chi^2 is unimodal in c at fixed s (Table 1
-    is linear in c, Eq. 9: a parabola; f~ rises with c), so each limit is bisected between
-    c* and the scan end; a limit still inside at the scan's end stays there (the scan
-    bounds it: compare with ``c_scan``), and where c* itself sits at a scan end (the valley
-    floor lies beyond the scan) both limits are that end: the scan, not the data, decides."""
+    [level, condition, s], NaN where the valley floor (``floor`` = (c*, chi^2(c*))) lies
+    above ``top``.  chi^2 is unimodal in c at fixed s (Eq. 9 is linear in c), so each limit is
+    bisected between c* and the scan end ``c_scan``, where it stays if still inside."""
     c_star, p_star = floor
     top = np.asarray(top, float)[:, None, None]
     A = np.arange(c_star.shape[0])[None, :, None]
@@ -299,10 +291,9 @@ def region(chi2_at, widths, floor, top, c_scan, iters=48):
 
 
 def direction(chi2_at, a, s, c, scale=1.0, h=1e-3):
-    """The degenerate direction at the best fit: the Hessian of chi^2 / ``scale`` in
-    (ln s, ln c) by central differences; (d ln c / d ln s along its soft axis, the 68 %
-    half-lengths sqrt(2.30 / lambda) in ln units along the soft and the stiff axis).  A
-    slope of -1 is c s = const."""
+    """The degenerate direction at the best fit from the Hessian of chi^2 / ``scale`` in
+    (ln s, ln c): (d ln c / d ln s along its soft axis, the 68 % half-lengths along the soft
+    and the stiff axis); a slope of -1 is c s = const."""
     def f(x, y):
         return float(chi2_at(np.array([s * np.exp(x)]), np.array([a]),
                              np.array([c * np.exp(y)]))[0]) / scale
@@ -317,11 +308,9 @@ def direction(chi2_at, a, s, c, scale=1.0, h=1e-3):
 
 def analyse(disk, *, widths, scales, fine, fine_widths, single_width, table1_paper,
             f_rolled_paper, **load):
-    """The joint fit of (c, s, in-plane condition) to each data subset (:data:`SUBSETS`) and
-    the single-alpha reading (s = ``single_width``, free_disk, c on Table 1's N_d = 4 entry
-    alone), as arrays: Birge-scaled profiles over s, c and the condition with the valley
-    floor along each, the best point, its Table 1 relative errors and f~, Fisher shares,
-    Birge factors.  ``fine`` must be a uniform grid."""
+    """The joint fit of (c, s, in-plane condition) to each data subset (:data:`SUBSETS`)
+    and the single-alpha reading (s = ``single_width``, free_disk, c on Table 1's N_d = 4
+    entry), as the arrays of effect ``identifiability``; ``fine`` must be uniform."""
     unit, w2 = scan(disk, widths=widths, scales=scales, fine=fine, conditions=CONDITIONS, **load)
     fm = FineModel(widths, unit, w2, fine)
     u = np.r_[PRINTED["table1"], PRINTED["f_rolled"]]
@@ -378,10 +367,8 @@ def analyse(disk, *, widths, scales, fine, fine_widths, single_width, table1_pap
 
 
 def _bound(end, grid, other, other_grid, name, other_name, unit) -> str:
-    """What bounds an extent's end, if not the data: its own scan's end (the region reaches
-    it), or the other constant's scan end (the other's minimiser ``other`` sits there at a
-    grid point either side of the end: the scan, not the data, stops the region); '' where
-    the data close the region."""
+    """What bounds an extent's end, if not the data: its own scan's end, or the other
+    constant's (its minimiser ``other`` sits there beside the end); '' where the data do."""
     step = abs(grid[1] - grid[0])
     if end <= grid.min() + 1e-9 * step or end >= grid.max() - 1e-9 * step:
         return f"{name} scan {'start' if end <= grid.min() + step else 'end'} {end:g}{unit}"
@@ -394,15 +381,16 @@ def _bound(end, grid, other, other_grid, name, other_name, unit) -> str:
     return ""
 
 
+def _reader(ds, prefix):
+    """The values of variable ``k`` of a run (``prefix`` + k, or k itself)."""
+    return lambda k: ds[prefix + k if prefix + k in ds else k].values
+
+
 def table(ds, prefix="axisym_") -> list[list]:
-    """Rows of ``identifiability.csv`` from a run of effect ``identifiability``: per data
-    subset and constant the best fit and the extents of the joint (s, c) region at 68 and
-    95 % (Delta chi^2 = 2.30, 6.18; the profile intervals at those levels), each end the
-    data's or flagged by the scan that bounds it (bounded_68, bounded_95), which numbers pin
-    it; the product c s along the valley floor; the degenerate direction (the Hessian's soft
-    axis at the best fit, and the floor's exponent c ~ s^k over the 95 % extent); the
-    in-plane condition."""
-    g = lambda k: ds[prefix + k if prefix + k in ds else k].values  # noqa: E731
+    """Rows of ``identifiability.csv``: per data subset and constant the best fit, the
+    extents of the joint (s, c) region at 68 and 95 % with what bounds them and which numbers
+    pin it; c s along the valley floor; the degenerate direction; the in-plane condition."""
+    g = _reader(ds, prefix)
     widths, fine = g("scan_width") * 1e3, g("scan_scale")
     rows = []
     for j, name in enumerate(SUBSETS):
@@ -464,7 +452,7 @@ COLUMNS = ["data", "constant", "unit", "best", "lo_68", "hi_68", "lo_95", "hi_95
 def readings(ds, prefix="axisym_") -> list[list]:
     """[data, reading, condition, s mm, c, Table 1 N_d=0..4 relative errors, f~ Hz, chi^2 -
     chi^2_min] of the joint fit and of the single-alpha calibration, per data subset."""
-    g = lambda k: ds[prefix + k if prefix + k in ds else k].values  # noqa: E731
+    g = _reader(ds, prefix)
     out = []
     for j, name in enumerate(SUBSETS):
         out.append([name, "joint fit", CONDITIONS[int(g("best_condition")[j])],

@@ -1,15 +1,13 @@
-"""Reproduced values of disk_tension's reported quantities (config ``reported:`` block).
-
-Only extraction: the paper's numbers, tolerances, evidence classes and the reasons for them
-are data in config/papers/disk_tension.yaml; the framework builds the rows and verdicts.
-"""
+"""Reproduced values of disk_tension's reported quantities (config ``reported:`` block):
+extraction only; the paper's numbers, tolerances and evidence are data in the config."""
 from __future__ import annotations
 
 import numpy as np
 
 from mechrepro.validation import Quantities, Reproduced
 
-from .figures import clamp_mm, rc_grid
+from . import design
+from .figures import by_clamp, clamp_mm, rc_grid
 from .modal import degenerate_harmonics, harmonic_coupling_symmetry
 
 Q = Quantities("disk_tension")
@@ -425,20 +423,14 @@ SOUTHWELL_CLOSE, SOUTHWELL_CLOSE_RF_MM = 5e-3, 55.0
 
 
 def _cs_runs(R) -> list:
-    """[(r_f [mm], dataset)] of the critical speeds: scene critical_speed (r_f = 25 mm) and the
-    runs of study critical_speed_rf."""
-    runs = [R.run("critical_speed")]
-    st = R.study("critical_speed_rf")
-    runs += [st.isel(run=i) for i in range(st.sizes["run"])]
-    return [(clamp_mm(ds), ds) for ds in runs]
+    """[(r_f [mm], dataset)] of the critical speeds."""
+    return by_clamp(R, "critical_speed", "critical_speed_rf")
 
 
 def lowest_critical_speed(ds) -> np.ndarray:
     """The lowest critical speed over N_d of each r_c [rad/s]; NaN where any harmonic has
     buckled (a disk buckled at rest has no critical speed: it does not exist)."""
-    cs = np.asarray(ds["axisym_critical_speed"].values, float)
-    gone = np.isnan(cs).any(axis=1)
-    return np.where(gone, np.nan, np.min(np.where(np.isnan(cs), np.inf, cs), axis=1))
+    return design.lowest_over(np.asarray(ds["axisym_critical_speed"].values, float), ds["n_d"].values)
 
 
 def best_rolling_radius(ds) -> tuple[float, float, str]:
@@ -489,12 +481,8 @@ def _cs_best(R):
 
 def _design_rows(R) -> list[dict]:
     """The design table's rows at the stated buckling margin, one per flange radius."""
-    from . import design
-
-    st = R.study("design_map_rf")
-    runs = [(clamp_mm(R.run("design_map")), R.run("design_map"))]
-    runs += [(clamp_mm(st.isel(run=i)), st.isel(run=i)) for i in range(st.sizes["run"])]
-    return [dict(zip(design.COLUMNS, r)) for r in design.table(runs) if r[3]]
+    return [dict(zip(design.COLUMNS, r))
+            for r in design.table(by_clamp(R, "design_map", "design_map_rf")) if r[3]]
 
 
 @Q.register("design_map_gain_over_paper_point")
