@@ -48,9 +48,8 @@ class Disk:
                                        n_d=int(p["calibration_nodal_diameter"]),
                                        r_f=p["calibration_clamp_radius"], b=self.b,
                                        E=self.E, nu=self.nu, rho=self.rho)
-        self.slots = self.loads = self.model = self.k_sigma = None
-        #: the rim's cutting-heat stress (effect cutting_heat) and its K^(sigma), or None
-        self.heat = self.k_heat = None
+        #: what the stages make; ``heat``: the rim's cutting-heat stress (effect cutting_heat)
+        self.slots = self.loads = self.model = self.k_sigma = self.heat = self.k_heat = None
         self.vars = {
             "n_d": var("n_d", self.n_d, "1", "number of nodal diameters N_d"),
             "r_c": var("r_c", self.r_c, "m", "centre radius of rolling r_c, Eq. (4)"),
@@ -235,16 +234,12 @@ def compute(run: dict) -> Disk:
     ctx = Disk(run)
     stage = EFFECTS.stages(run, ctx)
     before = stage(BEFORE_LOAD)
-    ctx.alpha = before.get("thermal_expansion", ctx.alpha)
-    ctx.slots = before.get("slots")
+    ctx.alpha, ctx.slots = before.get("thermal_expansion", ctx.alpha), before.get("slots")
     load = stage(LOAD)
-    ctx.loads = load.get("thermal_load")
-    ctx.heat = load.get("cutting_heat_stress")
+    ctx.loads, ctx.heat = load.get("thermal_load"), load.get("cutting_heat_stress")
     _discretise(ctx)
-    analyses = stage()
-    for c in (before, load):
-        ctx.keep(c)
-    ctx.keep(analyses, prefix=f"{ctx.solver}_")
+    for contributions, prefix in ((before, ""), (load, ""), (stage(), f"{ctx.solver}_")):
+        ctx.keep(contributions, prefix)
     _compare(ctx)
     return ctx
 
