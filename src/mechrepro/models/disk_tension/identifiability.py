@@ -319,49 +319,33 @@ def analyse(disk, *, widths, scales, fine, fine_widths, single_width, table1_pap
     c1 = table1_paper[4] / u1[4]
     f1 = frequency(eigen(disk.K[4] + c1 * Ks[4], disk.M[4], 1, 3)[0][0])
     single_terms = chi2_terms(c1 * u1, np.asarray(f1), table1_paper, f_rolled_paper)
-    out = {k: [] for k in ("prof_width", "prof_scale", "prof_condition", "prof_width_scale",
-                           "prof_scale_width", "birge", "best_width", "best_scale",
-                           "best_condition", "best_table1_rel", "best_f_rolled", "shares",
-                           "single_chi2", "chi2_min", "region_c_lo", "region_c_hi",
-                           "direction_slope", "direction_halfwidth")}
+    rows = []
     profiles = _profiles(fm, fine_widths, table1_paper, f_rolled_paper, list(SUBSETS.values()))
     for use, pr in zip(SUBSETS.values(), profiles):
         a, w, c, chi2 = pr["best"]
-        dof = max(len(use) - 3, 1)
-        birge = max(chi2 / dof, 1.0)
-        for key in ("prof_width", "prof_scale", "prof_condition"):
-            out[key].append(pr[key] / birge)
-        out["prof_width_scale"].append(pr["prof_width_scale"])
-        out["prof_scale_width"].append(pr["prof_scale_width"])
-        out["birge"].append(birge)
-        out["chi2_min"].append(chi2 / birge)
+        birge = max(chi2 / max(len(use) - 3, 1), 1.0)
         lo, hi = region(pr["chi2_at"], fine_widths, pr["floor"],
                         [chi2 + level * birge for level in LEVELS.values()],
                         np.asarray(fine)[[0, -1]])
-        out["region_c_lo"].append(lo)
-        out["region_c_hi"].append(hi)
         slope, half = direction(pr["chi2_at"], a, w, c, birge)
-        out["direction_slope"].append(slope)
-        out["direction_halfwidth"].append(half)
         t1, f4 = fm.at(w, a, c)
-        out["best_width"].append(w)
-        out["best_scale"].append(c)
-        out["best_condition"].append(a)
-        out["best_table1_rel"].append(t1[0] / table1_paper - 1)
-        out["best_f_rolled"].append(f4[0])
         # Fisher shares at the best point: central differences along s and c
         hs, hc = 1e-3 * (fine_widths[1] - fine_widths[0]), 1e-3 * (fine[1] - fine[0])
-        (tl, fl), (th, fh) = fm.at(w - hs, a, c), fm.at(w + hs, a, c)
-        d_s = (np.r_[th[0], fh] - np.r_[tl[0], fl]) / (2 * hs)
-        (tl, fl), (th, fh) = fm.at(w, a, c - hc), fm.at(w, a, c + hc)
-        d_c = (np.r_[th[0], fh] - np.r_[tl[0], fl]) / (2 * hc)
         sh = np.zeros((2, len(u)))
-        for row, d in enumerate((d_s, d_c)):
+        for row, (ds, dc) in enumerate(((hs, 0.0), (0.0, hc))):
+            (tl, fl), (th, fh) = fm.at(w - ds, a, c - dc), fm.at(w + ds, a, c + dc)
+            d = (np.r_[th[0], fh] - np.r_[tl[0], fl]) / (2 * (ds + dc))
             info = (d[use] / u[use]) ** 2
             sh[row, use] = info / info.sum()
-        out["shares"].append(sh)
-        out["single_chi2"].append(float(np.sum(single_terms[use]) / birge))
-    out = {k: np.array(v) for k, v in out.items()}
+        rows.append({**{k: pr[k] / birge for k in ("prof_width", "prof_scale", "prof_condition")},
+                     "prof_width_scale": pr["prof_width_scale"],
+                     "prof_scale_width": pr["prof_scale_width"], "birge": birge,
+                     "chi2_min": chi2 / birge, "region_c_lo": lo, "region_c_hi": hi,
+                     "direction_slope": slope, "direction_halfwidth": half, "best_width": w,
+                     "best_scale": c, "best_condition": a,
+                     "best_table1_rel": t1[0] / table1_paper - 1, "best_f_rolled": f4[0],
+                     "shares": sh, "single_chi2": float(np.sum(single_terms[use]) / birge)})
+    out = {k: np.array([r[k] for r in rows]) for k in rows[0]}
     out.update(single_scale=c1, single_table1_rel=c1 * u1 / table1_paper - 1, single_f_rolled=f1)
     return out
 
