@@ -41,8 +41,7 @@ def _cold(effect, key, solve_afresh, plus=0.0):
         with phase("disk_tension.cold") as sw:
             solve_afresh()
         _COLD[effect, key] = sw.seconds
-    return var((), _COLD[effect, key] + plus, "s", f"wall time of effect {effect} with nothing "
-               "memoised (a fresh solve; the run's effect_time is the warm cost)")
+    return var((), _COLD[effect, key] + plus, "s", f"wall time of {effect}, nothing memoised")
 
 
 @dataclass(frozen=True)
@@ -85,14 +84,11 @@ def stress_calibration(ctx) -> dict:
             "stress_calibration", (target, *sorted(case.items())),
             lambda: calibration.alpha_effective(target=target, memo=False, **case)),
         "thermal_expansion": alpha,
-        "alpha_effective": var((), alpha, "1/K", "thermal-analogy expansion coefficient "
-                               "calibrated on Table 1 (N_d = 4)"),
-        "stress_scale": var((), alpha / ctx.alpha, "1", "calibrated / handbook expansion "
-                            "coefficient"),
-        "handbook_delta_omega2_eq9": var((), d_hb, "rad2/s2", "Eq. (9) Delta omega^2 of the "
-                                         "calibration case with the handbook alpha"),
-        "handbook_delta_f_eigen": var((), df_hb, "Hz", "eigen-analysis Delta f of the "
-                                      "calibration case with the handbook alpha"),
+        "alpha_effective": var((), alpha, "1/K", "thermal-analogy alpha calibrated on Table 1"),
+        "stress_scale": var((), alpha / ctx.alpha, "1", "calibrated / handbook alpha"),
+        "handbook_delta_omega2_eq9": var((), d_hb, "rad2/s2", "Eq. (9) of Table 1's N_d = 4 entry, "
+                                         "handbook alpha"),
+        "handbook_delta_f_eigen": var((), df_hb, "Hz", "eigen Delta f there, handbook alpha"),
     }
 
 
@@ -122,15 +118,11 @@ def roll_tension(ctx) -> dict:
     return {
         "thermal_load": loads,
         "r": var("r", r, "m", "radius"),
-        "temperature": var(("r_c", "r"), np.stack([ld.temperature(r) for ld in loads]), "K",
-                           "thermal-analogy temperature T(r), Eq. (4)"),
-        "sigma_r": var(("r_c", "r"), sr, "Pa", "radial residual stress (thermal analogy, "
-                       f"plane stress, {ctx.bc})", **bc),
-        "sigma_theta": var(("r_c", "r"), st, "Pa", "circumferential residual stress (thermal "
-                           f"analogy, plane stress, {ctx.bc})", **bc),
+        "temperature": var(("r_c", "r"), [ld.temperature(r) for ld in loads], "K", "T(r), Eq. (4)"),
+        "sigma_r": var(("r_c", "r"), sr, "Pa", f"radial residual stress ({ctx.bc})", **bc),
+        "sigma_theta": var(("r_c", "r"), st, "Pa", f"hoop residual stress ({ctx.bc})", **bc),
         "alpha_used": var((), ctx.alpha, "1/K", "expansion coefficient used for the stress"),
-        "amplitude_used": var((), ctx.A, "K", "temperature amplitude A of Eq. (4) used for "
-                              "the stress"),
+        "amplitude_used": var((), ctx.A, "K", "amplitude A of Eq. (4) used for the stress"),
         "width_used": var((), ctx.s, "m", "Gaussian width s of Eq. (4) used for the stress"),
     }
 
@@ -154,8 +146,7 @@ def cutting_heat(ctx) -> dict:
         "heat_temperature": var("r_heat", thermal.temperature(r, kw["amplitude"], ctx.b, kw["s"]),
                                 "K", "temperature rise of the blade in the cut"),
         "heat_sigma_r": var("r_heat", sr, "Pa", "radial stress of the cutting heat"),
-        "heat_sigma_theta": var("r_heat", st, "Pa", "hoop stress of the cutting heat "
-                                "(compressive at the rim)"),
+        "heat_sigma_theta": var("r_heat", st, "Pa", "hoop stress of the cutting heat"),
     }
 
 
@@ -177,8 +168,7 @@ def _exact_frequencies(ctx, sigma=0.0, memo=True):
 def exact_reference(ctx) -> dict:
     """Exact Bessel frequencies of the unrolled clamped-free annulus (plain disk)."""
     key = (ctx.r_f, ctx.b, ctx.h, ctx.E, ctx.nu, ctx.rho, tuple(ctx.n_d.tolist()))
-    return {"f_exact": var("n_d", _exact_frequencies(ctx), "Hz", "exact unrolled frequency "
-                           "(Bessel solution, clamped-free annular plate)"),
+    return {"f_exact": var("n_d", _exact_frequencies(ctx), "Hz", "exact unrolled frequency"),
             "exact_reference_time_cold": _cold("exact_reference", key,
                                                lambda: _exact_frequencies(ctx, memo=False))}
 
@@ -201,14 +191,10 @@ def rolled_reference(ctx) -> dict:
     f_ref, err = _ROLLED_REFERENCES[key]
     n0, n1 = REFERENCE_ELEMENTS
     return {
-        "f_rolled_reference": var(
-            ("r_c", "n_d"), f_ref.copy(), "Hz",
-            f"rolled frequency: Richardson extrapolation (h^4) of the {n0}- and {n1}-element "
-            "axisymmetric models (plain disk)"),
-        "reference_error_unrolled": var(
-            (), err, "1",
-            "max |relative error| of the same extrapolation on the unrolled frequencies vs "
-            "exact"),
+        "f_rolled_reference": var(("r_c", "n_d"), f_ref.copy(), "Hz", "rolled frequency: "
+                                  f"Richardson (h^4) of {n0} and {n1} axisym elements"),
+        "reference_error_unrolled": var((), err, "1", "its max |relative error| on the unrolled "
+                                        "frequencies"),
         "rolled_reference_time_cold": _cold("rolled_reference", key,
                                             lambda: _solve_rolled_reference(ctx)),
     }
@@ -249,18 +235,11 @@ def stressed_reference(ctx) -> dict:
     err = f / f_ex - 1.0
     dims = ("reference_stress", "n_d")
     return {
-        "reference_stress": var("reference_stress", s0, "Pa", "uniform isotropic in-plane "
-                                "stress of the exact stressed reference (tension > 0)"),
-        "f_stressed": var(dims, f, "Hz", "frequency under the uniform in-plane stress "
-                          "(Eqs. 3, 5 of the model)"),
-        "f_stressed_exact": var(dims, f_ex, "Hz", "exact frequency under the uniform in-plane "
-                                "stress (Bessel solution, clamped-free annulus)"),
-        "error_stressed": var(dims, err, "1", "relative error of the stressed frequency vs "
-                              "exact"),
-        "error_stressed_max": var((), float(np.max(np.abs(err))), "1",
-                                  "max |relative error| of the stressed frequencies vs exact"),
-        "time_stressed": var((), sw.seconds, "s", "wall time of K^(sigma) and Eq. (5) under "
-                             "the reference stresses (model side only)"),
+        "reference_stress": var("reference_stress", s0, "Pa", "uniform in-plane stress"),
+        "f_stressed": var(dims, f, "Hz", "frequency under the uniform stress, Eqs. 3, 5"),
+        "f_stressed_exact": var(dims, f_ex, "Hz", "exact frequency under the uniform stress"),
+        "error_stressed": var(dims, err, "1", "relative error of the stressed frequency"),
+        "time_stressed": var((), sw.seconds, "s", "wall time of K^(sigma) and Eq. (5) there"),
         "stressed_reference_time_cold": _cold(
             "stressed_reference", key,
             lambda: [_exact_frequencies(ctx, s, memo=False) for s in s0], plus=sw.seconds),
@@ -282,16 +261,13 @@ def eigen(ctx) -> dict:
                 pairs[i, j, :] = model.rolled_pairs[n]   # one value (N_d = 0) fills both
     out = {
         "omega2_rolled": var(("r_c", "n_d"), w2, "rad2/s2", "omega~^2 after rolling, Eq. (5)"),
-        "f_rolled": var(("r_c", "n_d"), frequency(w2), "Hz", "frequency after rolling by "
-                        "eigen-analysis, Eq. (5) (NaN if buckled)"),
-        "buckled": var(("r_c", "n_d"), (w2 < 0).astype(np.int8), "1", "1 where omega~^2 < 0 "
-                       "(the residual stress buckles the disk)"),
-        "time_eigen": var((), sw.seconds, "s", "wall time of the eigen-analyses over the r_c "
-                          "grid"),
+        "f_rolled": var(("r_c", "n_d"), frequency(w2), "Hz", "rolled frequency, Eq. (5) (NaN: "
+                        "buckled)"),
+        "buckled": var(("r_c", "n_d"), (w2 < 0).astype(np.int8), "1", "1 where omega~^2 < 0"),
+        "time_eigen": var((), sw.seconds, "s", "wall time of Eq. (5) over the r_c grid"),
     }
     if pairs_of:
-        out["member"] = var("member", [0, 1], "1", "member of a sin/cos pair (ascending "
-                            "frequency)")
+        out["member"] = var("member", [0, 1], "1", "member of a sin/cos pair (ascending)")
         out["f_rolled_pair"] = var(("r_c", "n_d", "member"), frequency(pairs), "Hz",
                                    "rolled frequency of each pair member (split by slots)")
     return out
@@ -311,8 +287,7 @@ def eq9(ctx) -> dict:
                                       "Delta f = Delta omega^2 / (2 omega) / 2 pi (first order)"),
         "delta_f_eq9_exact": var(("r_c", "n_d"), delta_f_exact(w, d), "Hz",
                                  "Delta f = (sqrt(omega^2 + Delta omega^2) - omega) / 2 pi"),
-        "time_eq9": var((), sw.seconds, "s", "wall time of Eq. (9) over the r_c grid (K^(sigma) "
-                        "excluded)"),
+        "time_eq9": var((), sw.seconds, "s", "wall time of Eq. (9) over the r_c grid"),
     }
 
 
@@ -322,8 +297,7 @@ def critical_load(ctx) -> dict:
     harmonics, the smallest of all modes on the 2-D mesh (inf: never)."""
     lam = np.array([ctx.model.critical_load(k) for k in _stiffened(ctx)])
     dims = ("r_c", "n_d") if lam.ndim == 2 else ("r_c",)
-    return {"critical_load_factor": var(dims, lam, "1", "load factor on the residual stress "
-                                        "at which the disk buckles (inf: never)")}
+    return {"critical_load_factor": var(dims, lam, "1", "load factor that buckles (inf: never)")}
 
 
 @EFFECTS.register("modal_matrices")
@@ -335,15 +309,12 @@ def modal_matrices(ctx) -> dict:
     out = {
         "row": var("row", ctx.n_d, "1", "N_d of the row mode"),
         "col": var("col", ctx.n_d, "1", "N_d of the column mode"),
-        "k_sigma_hat": var(("row", "col"), k_hat, "rad2/s2", "Eq. (16) Phi^T K^(sigma) Phi "
-                           "(mass-normalised modes), first r_c"),
-        "m_hat": var(("row", "col"), m_hat, "1", "Eq. (17) Phi~^T M Phi, first r_c (rolled "
-                     "pairs rotated onto the unrolled cos/sin basis)"),
+        "k_sigma_hat": var(("row", "col"), k_hat, "rad2/s2", "Eq. (16), first r_c"),
+        "m_hat": var(("row", "col"), m_hat, "1", "Eq. (17), first r_c (pairs canonical)"),
     }
     if hasattr(model, "m_hat_diag"):
         lam = float(np.min(model.critical_load(ks)))
-        out["buckling_load_factor"] = var((), lam, "1", "smallest load factor on the residual "
-                                          "stress that buckles any N_d (first r_c)")
+        out["buckling_load_factor"] = var((), lam, "1", "load factor that buckles any N_d")
         # a stress that buckles no harmonic (lam = inf: an all-tensile stress) has no "just
         # below buckling": NaN, not a solve at an infinite load
         out["m_hat_diag_at_buckling"] = var(
@@ -365,8 +336,7 @@ def stiffness_sensitivity(ctx) -> dict:
     d = ctx.model.sensitivity(r_a=r_a, width=w, increase=p["stiffness_increase"],
                               E=ctx.E, nu=ctx.nu, rho=ctx.rho)
     return {"r_a": var("r_a", r_a, "m", "centre radius of the stiffened annulus"),
-            "sensitivity_delta_f": var(("r_a", "n_d"), d, "Hz", "frequency change for a 1 % "
-                                       "stiffer 10 mm annulus at r_a (Fig. 7)")}
+            "sensitivity_delta_f": var(("r_a", "n_d"), d, "Hz", "Delta f of Fig. 7")}
 
 
 #: the identifiability profiles' fine grids: steps per coarse step of the scan (c, s)
@@ -403,10 +373,8 @@ def identifiability(ctx) -> dict:
         "fit_parameter": var("fit_parameter", [0, 1], "1", "0 gaussian width, 1 stress scale"),
         "scan_condition": var("scan_condition", [0, 1], "1", "in-plane condition: "
                               + ", ".join(f"{i} {k}" for i, k in enumerate(idf.CONDITIONS))),
-        "scan_width": var("scan_width", fine_widths, "m",
-                          "Gaussian width s of the scan (fine grid)"),
-        "scan_scale": var("scan_scale", fine, "1", "stress scale c = E alpha A relative to the "
-                          "handbook steel at the paper's A (the scan)"),
+        "scan_width": var("scan_width", fine_widths, "m", "Gaussian width s (fine grid)"),
+        "scan_scale": var("scan_scale", fine, "1", "stress scale c = E alpha A / handbook"),
         "fit_level": var("fit_level", list(idf.LEVELS.values()), "1",
                          "Delta chi^2 of the joint (s, c) regions: "
                          + ", ".join(f"{k} %" for k in idf.LEVELS)),
@@ -481,22 +449,17 @@ def critical_speed(ctx) -> dict:
         rolled = np.array([[rotation.critical_speed(model.K[n] + k[n], model.M[n], Kc[n], int(n))
                             for n in ctx.n_d] for k in ks]).reshape(len(ks), len(ctx.n_d))
     out = {
-        "critical_speed_untensioned": var("n_d", free, "rad/s", "travelling-wave critical "
-                                          "speed of the unrolled disk (inf: none)",
-                                          centrifugal_bc=bc),
-        "critical_speed_southwell": var("n_d", [p[1] for p in sw_pairs], "rad/s",
-                                        "Southwell's first-order critical speed of the unrolled "
-                                        "disk, omega / sqrt(N_d^2 - lambda)", centrifugal_bc=bc),
-        "southwell_coefficient": var("n_d", [p[0] for p in sw_pairs], "1", "Southwell "
-                                     "coefficient lambda = phi^T K^(c) phi / phi^T M phi",
+        "critical_speed_untensioned": var("n_d", free, "rad/s", "critical speed, unrolled "
+                                          "(inf: none)", centrifugal_bc=bc),
+        "critical_speed_southwell": var("n_d", [p[1] for p in sw_pairs], "rad/s", "Southwell's "
+                                        "omega / sqrt(N_d^2 - lambda)", centrifugal_bc=bc),
+        "southwell_coefficient": var("n_d", [p[0] for p in sw_pairs], "1", "Southwell's lambda",
                                      centrifugal_bc=bc),
-        "time_critical_speed": var((), sw.seconds, "s", "wall time of the critical speeds "
-                                   "(untensioned and every r_c)"),
+        "time_critical_speed": var((), sw.seconds, "s", "wall time of the critical speeds"),
     }
     if len(ks):
-        out["critical_speed"] = var(("r_c", "n_d"), rolled, "rad/s", "travelling-wave "
-                                    "critical speed of the rolled disk (NaN: buckled, it does "
-                                    "not exist; inf: none)", centrifugal_bc=bc)
+        out["critical_speed"] = var(("r_c", "n_d"), rolled, "rad/s", "critical speed, rolled "
+                                    "(NaN: buckled; inf: none)", centrifugal_bc=bc)
     return out
 
 
@@ -557,25 +520,22 @@ def design_map(ctx) -> dict:
         "design_step": var("design_step", np.arange(steps), "1", "step of the amplitude scan "
                            "from 0 to min(A_cr / m, design_amplitude_cap), m the smallest margin"),
         "design_stated_margin": var((), stated, "1", "the stated buckling margin (the map's)"),
-        "design_amplitude": var(("r_c", "design_step"), amp, "K", "rolling amplitude A of "
-                                "Eq. (4) (calibrated alpha), scanned to the smallest margin"),
-        "design_critical_speed": var(("r_c", "design_step", "n_d"), cs, "rad/s",
-                                     "travelling-wave critical speed (NaN: buckled; inf: none)",
-                                     **bc),
+        "design_amplitude": var(("r_c", "design_step"), amp, "K", "rolling amplitude A, Eq. (4)"),
+        "design_critical_speed": var(("r_c", "design_step", "n_d"), cs, "rad/s", "critical "
+                                     "speed (NaN: buckled; inf: none)", **bc),
         "design_frequency_at_rest": var(("r_c", "design_step", "n_d"), f_rest, "Hz",
                                         "rolled natural frequency of the disk at rest, Eq. (5)"),
         "design_buckling_amplitude": var("r_c", lam_cr * ctx.A, "K", "amplitude A_cr that "
                                          "buckles the disk at rest (any N_d of the scene)"),
         "design_buckling_mode": var("r_c", mode_cr, "1", "N_d that buckles first"),
-        "design_amplitude_cap": var((), cap * ctx.A, "K", "the amplitude scan's end (a bound "
-                                    "of the scan, not of the physics)"),
+        "design_amplitude_cap": var((), cap * ctx.A, "K", "the amplitude scan's end"),
         "design_paper_amplitude_speed": var("r_c", paper, "rad/s", "lowest critical speed over "
                                             "N_d >= 2 at the scene's amplitude (the paper's "
                                             "A = 50 degC)", **bc),
         "design_best_amplitude": var(dims, best["a"], "K", "amplitude maximising the lowest "
                                      "critical speed at each r_c and margin"),
-        "design_best_speed": var(dims, best["v"], "rad/s", "the lowest critical speed over "
-                                 "N_d >= 2 there", **bc),
+        "design_best_speed": var(dims, best["v"], "rad/s", "the lowest critical speed there",
+                                 **bc),
         "design_best_binds": var(dims, best["binds"], "1", "what binds there: "
                                  + ", ".join(f"{i} {b}" for i, b in enumerate(design.BINDS))),
         "design_best_mode": var(dims, best["mode"], "1", "N_d of the lowest critical speed there"),
