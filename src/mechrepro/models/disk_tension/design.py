@@ -1,17 +1,11 @@
-"""The tensioning design map: where to roll (r_c) and how hard (the amplitude A of Eq. 4) for
-the highest critical speed a blade can keep, under a buckling margin.
+"""The tensioning design map: where to roll (r_c) and how hard (the amplitude A of Eq. 4)
+for the highest critical speed a blade can keep, under a buckling margin.
 
-The rolled residual stress is linear in A (Eq. 4 is, and so is plane-stress elasticity), so
-one [K^(sigma)] per r_c at the scene's amplitude A_0 gives every intensity: K + (A / A_0)
-K^(sigma).  Per harmonic n and amplitude A, with B_n = n^2 M - K^(c) (:mod:`.rotation`):
-
-    omega~^2 (at rest)   the eigenvalues of (K + a K^(sigma), M)               Eq. (5)
-    Omega_c              1 / sqrt(mu_max),  B_n phi = mu (K + a K^(sigma)) phi  (rotation)
-
-both from one symmetric eigen-decomposition per (r_c, A, n): with M = L L^T and
-L^-1 (K + a K^(sigma)) L^-T = V D V^T, omega~^2 = D and mu are the eigenvalues of
-D^-1/2 V^T L^-1 B_n L^-T V D^-1/2 (a non-positive D: buckled at rest, no critical speed).
-Constraint: A <= A_cr / m (A_cr buckles any harmonic at rest, m the ``buckling_margin``).
+The rolled stress is linear in A, so one [K^(sigma)] per r_c at the scene's A_0 gives every
+intensity a = A / A_0.  Per harmonic n, with B_n = n^2 M - K^(c) (:mod:`.rotation`),
+omega~^2 (Eq. 5) and Omega_c = 1 / sqrt(mu_max) (B_n phi = mu (K + a K^(sigma)) phi) come
+from one symmetric eigen-decomposition per (r_c, a, n) in the basis M = L L^T.  Constraint:
+A <= A_cr / m (A_cr buckles any harmonic at rest, m the ``buckling_margin``).
 """
 from __future__ import annotations
 
@@ -35,10 +29,8 @@ def pencils(K, Kr, M, Kc, n_d):
 
 
 def speeds(pencil, factors):
-    """(Omega_c [rad/s], lowest omega~^2 at rest [rad^2/s^2]) of one harmonic's ``pencil``
-    (:func:`pencils`) for the stiffness K + a K^(sigma) at every load factor a of
-    ``factors``: NaN Omega_c where the disk has buckled at rest (omega~^2 <= 0), inf where
-    the backward wave never stops."""
+    """(Omega_c [rad/s], lowest omega~^2 at rest) of one harmonic's ``pencil`` at every load
+    factor a of ``factors`` (NaN: buckled at rest; inf: the backward wave never stops)."""
     n, Kw, Krw, Bw = pencil
     a = np.atleast_1d(np.asarray(factors, float))
     d, V = np.linalg.eigh(Kw[None] + a[:, None, None] * Krw[None])
@@ -73,10 +65,8 @@ def lowest_over(cs, n_d, n_min=0):
 
 
 def optimum(fn, grid, vals, *, capped, xatol=1e-4):
-    """(a*, value, binds) maximising ``fn`` (load factor -> lowest Omega_c) over [0, grid[-1]]
-    given its ``vals`` on ``grid`` (ascending, from 0): the best grid point, refined
-    continuously between its neighbours when inside; ``binds`` indexes :data:`BINDS` (the
-    top is the buckling margin's, or the scan cap's when ``capped``)."""
+    """(a*, value, binds) maximising ``fn`` (load factor -> lowest Omega_c) over the ``grid``
+    where it is ``vals``, refined between the best point's neighbours (binds: :data:`BINDS`)."""
     from scipy.optimize import minimize_scalar
 
     vals = np.where(np.isnan(vals), -np.inf, vals)
@@ -111,11 +101,8 @@ def best(ds, q):
 
 
 def table(runs, paper_rc=0.065, paper_amplitude=50.0) -> list[list]:
-    """The design table: per flange radius (``runs``: [(r_f [mm], design_map dataset)], in
-    the cut or not) and buckling margin, the optimum r_c and amplitude, what binds, its
-    lowest critical speed against the untensioned disk and against the paper's r_c = 65 mm
-    (at the paper's A = 50 degC, and at the best A there), and the N_d = 0, 1 frequency
-    margins at rest."""
+    """The design table of ``runs`` [(r_f [mm], design_map dataset)]: per flange radius and
+    margin the optimum, what binds, its gains on the untensioned disk and on the paper's point."""
     rows = []
     for rf, ds in runs:
         rc = ds["r_c"].values

@@ -75,10 +75,8 @@ def frequency_determinant(lam, n, ratio, nu, tension=0.0):
 
 def frequency_parameters(n, ratio, nu, count=1, lam_max=60.0, step=0.02, chunk=8.0,
                          tension=0.0):
-    """The first ``count`` roots lambda of the determinant for harmonic ``n`` under the
-    stress parameter ``tension`` = N b^2 / D, memoised (the runs of a batch share a few).
-    The determinant is entire in lambda, so every sign change on the scan grid brackets a
-    root; the scan stops at the first chunk that completes ``count``."""
+    """The first ``count`` roots lambda for harmonic ``n`` under ``tension`` = N b^2 / D,
+    memoised: the determinant is entire, so every sign change on the scan grid brackets one."""
     if not (0.0 < ratio < 1.0):
         raise Refusal(f"a/b = {ratio} must be in (0, 1) for the annular plate")
     return np.array(_roots(int(n), float(ratio), float(nu), int(count), float(lam_max),

@@ -57,10 +57,8 @@ def eq9_and_eigen_times(grid: dict, plate2d) -> dict:
 
 
 def buckling_series(R):
-    """The hard case through the critical load (r_c = 105 mm): temperature amplitudes A [K]
-    (scene ``buckling`` and study ``buckling_sweep``, ascending), omega~^2 [rad^2/s^2] of each
-    (A, N_d), and the critical amplitude of each N_d, A * lambda_cr (omega~^2 is linear in A,
-    Eq. 3, so it vanishes at the load factor lambda_cr of the base run)."""
+    """The hard case (r_c = 105 mm): amplitudes A [K] ascending, omega~^2 of each (A, N_d),
+    and each N_d's critical amplitude A lambda_cr (omega~^2 is linear in A, Eq. 3)."""
     base, st = R.run("buckling"), R.study("buckling_sweep")
     amps = np.r_[float(base["amplitude_used"]), st["amplitude_used"].values.astype(float)]
     w2 = np.vstack([base["axisym_omega2_rolled"].isel(r_c=0).values,

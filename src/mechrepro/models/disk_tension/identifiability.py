@@ -1,25 +1,15 @@
 """What the paper's numbers pin down: a joint fit of the rolling model's free constants.
 
-The rolled stress of Eq. (4) enters every paper number through three constants the paper
-leaves free or half-stated: the stress scale c = E alpha A (relative to the handbook
-E = 206 GPa, alpha = 12e-6/K, A = 50 degC), the Gaussian width s ("s = 5", no unit) and the
-in-plane condition (``clamped`` / ``free_disk``).  The data: Table 1's five diagonals
-(Eq. 9 at r_c = 65, r_f = 25 mm) and Fig. 6a's f~(N_d = 4, r_c = 65 mm) = 502.1 Hz
-(434.5 Hz fixes the thickness alone, 70.0 Hz is Table 1's N_d = 4 entry converted).
-
-chi^2 = sum ((model_k - paper_k) / u_k)^2 with u_k half a unit of the last printed digit,
-Birge-scaled to chi^2 per degree of freedom 1 at the best fit.  The joint (s, c) regions are
-chi^2 within 2.30 (68 %) and 6.18 (95 %) of the minimum, stored as c limits at every s; an
-extent's end reaching a scan's end is the scan's, not the data's.  Table 1 constrains mainly
-c s: the valley floor is stored along each profile and its direction at the best fit is the
-soft axis of the chi^2 Hessian.  Each number's share of the Fisher information about s and
-c says which pins which.
-
-Eq. (9) is linear in c (Table 1 once per (s, condition) at c = 1); the N_d = 4 eigenvalue is
-solved on a coarse (s, c) grid up to the first scale that buckles it and interpolated by
-cubic splines (omega~^2 is smooth in c, also through buckling).  Profiles are minimised on
-the fine grid, then continuously between its neighbours (golden section); the best fit is
-polished by Nelder-Mead.
+Three constants enter every paper number through Eq. (4)'s stress: the stress scale
+c = E alpha A (relative to the handbook steel at A = 50 degC), the Gaussian width s ("s = 5",
+no unit) and the in-plane condition.  The data: Table 1's five diagonals (Eq. 9 at r_c = 65,
+r_f = 25 mm) and Fig. 6a's f~(N_d = 4) = 502.1 Hz.  chi^2 takes half a unit of the last
+printed digit as each number's uncertainty, Birge-scaled to chi^2 per degree of freedom 1;
+the joint (s, c) regions are chi^2 within 2.30 (68 %) and 6.18 (95 %) of the minimum.  Table 1
+pins mainly c s: the valley floor is stored along each profile, its direction at the best fit
+is the soft axis of the chi^2 Hessian, and each number's share of the Fisher information says
+which pins which.  Eq. (9) is linear in c; the N_d = 4 eigenvalue is splined from a coarse
+(s, c) grid; profiles are minimised on a fine grid, then continuously (golden section).
 """
 from __future__ import annotations
 
@@ -265,10 +255,8 @@ def _polish(chi2_at, a, widths, scales, s0, c0, f0):
 
 
 def region(chi2_at, widths, floor, top, c_scan, iters=48):
-    """The joint region chi^2(s, c) <= top as its c limits at each s: (c_lo, c_hi)
-    [level, condition, s], NaN where the valley floor (``floor`` = (c*, chi^2(c*))) lies
-    above ``top``.  chi^2 is unimodal in c at fixed s (Eq. 9 is linear in c), so each limit is
-    bisected between c* and the scan end ``c_scan``, where it stays if still inside."""
+    """The region chi^2(s, c) <= top as c limits (c_lo, c_hi) [level, condition, s] (NaN where
+    the ``floor`` (c*, chi^2(c*)) lies above), each bisected between c* and the scan end."""
     c_star, p_star = floor
     top = np.asarray(top, float)[:, None, None]
     A = np.arange(c_star.shape[0])[None, :, None]

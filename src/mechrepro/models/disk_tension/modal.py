@@ -18,13 +18,9 @@ class BucklingError(Refusal, ArithmeticError):
 #: sizes (unknowns) of the banded problems solved by inverse iteration (see ``eigen``)
 BANDED_MIN, BANDED_MAX = 64, 128
 def eigen(K, M, count=1, bandwidth=None):
-    """Lowest ``count`` eigenpairs of (K - omega^2 M) phi = 0, Eq. (5)/(6): (omega^2, Phi)
-    with mass-normalised columns; omega^2 < 0 when a compressive K^(sigma) buckles the plate.
-
-    The fundamental of a banded pencil (half-bandwidth ``bandwidth``) of ``BANDED_MIN`` to
-    ``BANDED_MAX`` unknowns is found by inverse iteration (:func:`lowest_banded`, O(n) per
-    step); a buckled K, no convergence or any other problem falls back to the dense driver.
-    """
+    """Lowest ``count`` eigenpairs of (K - omega^2 M) phi = 0, Eq. (5)/(6): (omega^2, Phi),
+    Phi mass-normalised (omega^2 < 0: buckled).  A banded fundamental of ``BANDED_MIN`` to
+    ``BANDED_MAX`` unknowns by inverse iteration (O(n) a step), all else by the dense driver."""
     count = min(int(count), len(K))
     phi = None
     if bandwidth is not None and count == 1 and BANDED_MIN <= len(K) <= BANDED_MAX:
@@ -121,23 +117,17 @@ def align_signs(Phi_rolled, M, Phi):
 
 
 def align_pair(Q, M, P):
-    """Canonical basis of a rolled mode pair for Eq. (17): the rotation of ``Q`` closest to
-    the unrolled pair ``P`` (both (n_dof, k), mass-normalised, k = 1 or 2).
-
-    An eigensolver returns a degenerate sin/cos pair in an arbitrary rotation, so one
-    member's entry of Eq. (17) is not well defined; the orthogonal Procrustes rotation
-    R = U V^T (U S V^T = Q^T M P) makes (Q R)^T M P = V S V^T independent of it.
-    """
+    """Canonical basis of a rolled mode pair ``Q`` for Eq. (17), whose rotation an
+    eigensolver leaves arbitrary: the Procrustes rotation R = U V^T (U S V^T = Q^T M P) onto
+    the unrolled pair ``P`` makes (Q R)^T M P = V S V^T independent of it."""
     C = Q.T @ (M @ P)
     U, _, Vt = np.linalg.svd(C)
     return Q @ (U @ Vt)
 
 
 def harmonic_coupling_symmetry(nonzero_pairs, n_max, orders=range(2, 65)):
-    """Smallest rotational symmetry order N of a mesh whose harmonic coupling pattern is
-    ``nonzero_pairs`` (pairs (i, j), i < j <= n_max, of nonzero off-diagonals of Eq. (16)):
-    on a C_N mesh cos(i theta) and cos(j theta) couple iff i = +-j (mod N); None if none fits.
-    """
+    """Smallest symmetry order N of a mesh whose Eq. (16) couples ``nonzero_pairs`` (i < j <=
+    n_max): on a C_N mesh cos(i theta), cos(j theta) couple iff i = +-j (mod N); None: none."""
     want = {tuple(sorted(p)) for p in nonzero_pairs}
     for N in orders:
         got = {(i, j) for i in range(n_max + 1) for j in range(i + 1, n_max + 1)

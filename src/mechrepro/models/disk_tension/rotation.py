@@ -1,22 +1,17 @@
-"""Rotation: the centrifugal membrane stress of the spinning disk and the travelling-wave
-critical speed that roll-tensioning exists to raise (Sec. 2: "the critical speed instability
-in rotating disks occurs when the backward-traveling wave frequency is equal to zero").
+"""Rotation: the centrifugal stress of the spinning disk and the travelling-wave critical
+speed that roll-tensioning exists to raise (Sec. 2: "the critical speed instability in
+rotating disks occurs when the backward-traveling wave frequency is equal to zero").
 
-Centrifugal stress (plane stress, Timoshenko & Goodier Sec. 32): with q = rho Omega^2,
+Centrifugal stress (Timoshenko & Goodier Sec. 32), q = rho Omega^2: sigma_r = A + B / r^2 -
+(3 + nu) / 8 q r^2, sigma_theta = A - B / r^2 - (1 + 3 nu) / 8 q r^2, with sigma_r(b) = 0 and
+u_r(r_f) = 0 (``clamped``) or B = 0 (``free_disk``).  The backward wave of N_d = n stops at
 
-    sigma_r     = A + B / r^2 - (3 + nu) / 8 q r^2
-    sigma_theta = A - B / r^2 - (1 + 3 nu) / 8 q r^2,
+    omega_r(Omega_c) = n Omega_c   <=>   det[K + K^(roll) - Omega_c^2 (n^2 M - K^(c))] = 0
 
-sigma_r(b) = 0, and at the flange u_r(r_f) = 0 (``clamped``) or the solid disk (``free_disk``:
-B = 0), the assumed ``centrifugal_bc``.  A mode of N_d = n has the rotating-frame frequency
-omega_r(Omega) of [K + K^(roll) + Omega^2 K^(c) - omega_r^2 M] (K^(c): Eq. 3 of the
-centrifugal stress at Omega = 1; Coriolis and in-plane inertia neglected, as in Southwell's
-and Mote's thin-disk theory); the backward wave omega_r - n Omega stops at the critical speed,
-
-    omega_r(Omega_c) = n Omega_c   <=>   det[K + K^(roll) - Omega_c^2 (n^2 M - K^(c))] = 0.
-
-First order (Southwell): Omega_c = omega / sqrt(n^2 - lambda), lambda = phi^T K^(c) phi /
-phi^T M phi, an upper bound (Rayleigh) that degrades where lambda approaches n^2.
+(K^(c): Eq. 3 of the centrifugal stress at Omega = 1; Coriolis and in-plane inertia
+neglected, as in Southwell's and Mote's thin-disk theory).  Southwell's first order,
+Omega_c = omega / sqrt(n^2 - lambda) with lambda = phi^T K^(c) phi / phi^T M phi, bounds it
+from above (Rayleigh).
 """
 from __future__ import annotations
 
@@ -45,10 +40,8 @@ def centrifugal_stress(r, *, omega, rho, nu, r_f, b, inplane_bc="clamped"):
 
 
 def critical_speed(K, M, Kc, n):
-    """Omega_c [rad/s] of harmonic ``n``: the smallest Omega with
-    det[K - Omega^2 (n^2 M - Kc)] = 0; inf when the backward wave never reaches zero (n = 0),
-    NaN when the disk at rest has buckled (K, with its residual stress, not positive
-    definite): a buckled disk has no critical speed at all, for any n."""
+    """Omega_c [rad/s] of harmonic ``n``, the smallest Omega with det[K - Omega^2 (n^2 M - Kc)]
+    = 0; inf: never (n = 0); NaN: K not positive definite, buckled at rest, no critical speed."""
     import scipy.linalg as sla
 
     if not positive_definite(K):

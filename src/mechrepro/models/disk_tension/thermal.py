@@ -69,14 +69,9 @@ STRESS_MODELS = ("thermal_analogy", "hoop_only", "fixed_profile")
 
 
 def residual_stress(r, *, stress_model="thermal_analogy", profile_rc=None, **kw):
-    """(sigma_r, sigma_theta) [Pa] of the run's stress model at radii ``r`` (``kw``: those of
-    :func:`thermal_stress`).
-
-    ``thermal_analogy``: the paper's field.  ``hoop_only``: the same hoop stress with
-    sigma_r = 0 (violates radial equilibrium d(r sigma_r)/dr = sigma_theta, which Fig. 5's
-    field keeps).  ``fixed_profile``: the profile of the rolling radius ``profile_rc``
-    wherever one rolls, scaled to the rim hoop stress sigma_theta(b) of the run's r_c.
-    """
+    """(sigma_r, sigma_theta) [Pa] at ``r`` of the paper's field (``thermal_analogy``), or of
+    a rival: ``hoop_only`` (sigma_r = 0), ``fixed_profile`` (the profile of ``profile_rc``
+    wherever one rolls, scaled to the rim hoop stress of the run's r_c)."""
     if stress_model not in STRESS_MODELS:
         raise Refusal(f"options.residual_stress = {stress_model!r}: allowed {STRESS_MODELS}")
     if stress_model == "fixed_profile":

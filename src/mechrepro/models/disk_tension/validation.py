@@ -62,7 +62,7 @@ def _bc_evidence(R):
     """max |ratio error| of Table 1's N_d = 0..3 entries relative to its N_d = 4 entry (alpha
     cancels in the ratio) for either in-plane condition."""
     paper = np.array([R.paper_value(f"table1_diag_nd{n}") for n in range(4)])
-    p4 = _paper_d4(R)
+    p4 = _paper_d4(R)[0]
     out = {}
     for q, name in (("inplane_bc_evidence_free_disk", "table12"),
                     ("inplane_bc_evidence_clamped", "table12_clamped")):
@@ -99,19 +99,14 @@ def _delta_f_eq9(R):
 
 
 # --- the paper's own arithmetic ----------------------------------------------------------
-def _paper_omega(R):
-    """The paper's unrolled N_d = 4 frequency (434.5 Hz, a solver input) [rad/s]."""
-    return TWO_PI * R.parameter("calibration_frequency")
-
-
 def _paper_d4(R):
-    """Table 1's N_d = 4 entry (2.40e6 rad^2/s^2, a solver input)."""
-    return R.parameter("calibration_delta_omega2")
+    """(Table 1's N_d = 4 entry 2.40e6 rad^2/s^2, the unrolled 434.5 Hz [rad/s]): inputs."""
+    return R.parameter("calibration_delta_omega2"), TWO_PI * R.parameter("calibration_frequency")
 
 
 @Q.register("paper_70hz_is_linearised_conversion")
 def _seventy(R):
-    d, w = _paper_d4(R), _paper_omega(R)
+    d, w = _paper_d4(R)
     lin = d / (2 * w) / TWO_PI
     exact = np.sqrt(w**2 + d) / TWO_PI - w / TWO_PI
     target = R.paper_value("delta_f_eq9_nd4_rc65_rf25")
@@ -122,7 +117,7 @@ def _seventy(R):
 
 @Q.register("rayleigh_cap_on_delta_f_eigen")
 def _rayleigh(R):
-    d, w = _paper_d4(R), _paper_omega(R)
+    d, w = _paper_d4(R)
     cap = np.sqrt(w**2 + d) / TWO_PI - w / TWO_PI
     need = (w + TWO_PI * R.paper_value("delta_f_eigen_nd4_rc65_rf25")) ** 2 - w**2
     return Reproduced(float(cap), note=f"the paper's 67.6 Hz would need Delta omega^2 >= "
@@ -130,18 +125,13 @@ def _rayleigh(R):
 
 
 # --- Table 1 (independent: alpha is fitted to the N_d = 4 entry only) ---------------------
-def _table1_entry(n):
-    def fn(R):
-        t = R.run("table12")
-        k = _diag(t)
-        return Reproduced(float(k[n]), note=f"ratio to the calibrated N_d=4 entry "
-                                            f"{k[n] / k[4]:.5f}")
-    fn.__name__ = f"table1_diag_nd{n}"
-    return fn
+def _table1_entry(R, n):
+    k = _diag(R.run("table12"))
+    return Reproduced(float(k[n]), note=f"ratio to the calibrated N_d=4 entry {k[n] / k[4]:.5f}")
 
 
 for _n in range(4):
-    Q.register(f"table1_diag_nd{_n}")(_table1_entry(_n))
+    Q.register(f"table1_diag_nd{_n}")(lambda R, n=_n: _table1_entry(R, n))
 
 
 @Q.register("table1_offdiag_nd0_nd4", "table1_offdiag_nd1_nd3")
@@ -178,15 +168,9 @@ def _symmetry(R):
 
 
 # --- Table 2 -------------------------------------------------------------------------------
-def _table2_entry(n):
-    def fn(R):
-        return float(R.run("table12")["axisym_m_hat"].values[n, n])
-    fn.__name__ = f"table2_diag_nd{n}"
-    return fn
-
-
 for _n in range(5):
-    Q.register(f"table2_diag_nd{_n}")(_table2_entry(_n))
+    Q.register(f"table2_diag_nd{_n}")(
+        lambda R, n=_n: float(R.run("table12")["axisym_m_hat"].values[n, n]))
 
 
 @Q.register("table2_offdiag_zero")
@@ -288,12 +272,7 @@ def _f8c(R):
 
 @Q.register("eq9_frequency_error_over_grid")
 def _eq9_err(R):
-    errs = []
-    for ds in _grid(R).values():
-        w2 = (TWO_PI * ds["axisym_f_unrolled"]) ** 2 + ds["axisym_delta_omega2_eq9"]
-        f9 = np.sqrt(w2.where(w2 > 0)) / TWO_PI
-        errs.append(float(np.nanmax(np.abs(f9 / ds["axisym_f_rolled"] - 1))))
-    return max(errs)
+    return max(float(np.nanmax(ds["axisym_eq9_rel_error"])) for ds in _grid(R).values())
 
 
 @Q.register("eq9_speedup_over_eigen")
