@@ -244,8 +244,8 @@ for n in (2, 3, 4):
     p = slotted["plate2d_f_rolled_pair"].sel(n_d=n)
     ax.fill_between(mm(slotted["r_c"]), p.isel(member=0), p.isel(member=1), color=COLORS[n], alpha=0.3)
     ax.plot(mm(slotted["r_c"]), p.mean("member"), "s--", ms=3, color=COLORS[n], label=f"slotted, N_d={n}")
-    ax.plot([0], [float(plain2d["plate2d_f_unrolled"].sel(n_d=n))], "o", mfc="none", color=COLORS[n])
-    ax.plot([0], [float(slotted["plate2d_f_unrolled"].sel(n_d=n))], "s", mfc="none", color=COLORS[n])
+    for ds, mk in ((plain2d, "o"), (slotted, "s")):
+        ax.plot([0], [float(ds["plate2d_f_unrolled"].sel(n_d=n))], mk, mfc="none", color=COLORS[n])
 ax.set(xlabel="r_c [mm]", ylabel="natural frequency [Hz]",
        title=f"slotted sawblade ({int(slotted['slot_count'])} slots) vs plain disk, r_f = 25 mm")
 ax.legend(fontsize=7, ncol=2)
@@ -323,8 +323,6 @@ R.save_figure(fig, "cost_of_accuracy")
 # the data). Right: the profiles over s (each point minimised over a continuous c).
 
 # %%
-import matplotlib.ticker as mticker
-
 from mechrepro.models.disk_tension import identifiability as idf
 
 idn = R.run("identifiability")
@@ -483,7 +481,7 @@ for ax, (rf, ds) in zip(maps, dm_runs):
            title=f"r_f = {rf:.0f} mm: ★ {v * RPM:.0f}, ○ "
                  f"{float(ds['axisym_design_paper_amplitude_speed'][j65]) * RPM:.0f}, "
                  f"untensioned {float(np.nanmin(low[:, 0])):.0f} rpm")
-ax = axes[1, 1]
+ax, ax_f = axes[1, 1], axes[1, 2]
 for (rf, ds), c in zip(dm_runs, ("C0", "C1", "C2", "C3")):
     q = int(np.argmin(np.abs(ds["design_margin"].values - float(ds["axisym_design_stated_margin"]))))
     unt = float(np.nanmin(design.lowest_map(ds)[:, 0]))
@@ -492,6 +490,9 @@ for (rf, ds), c in zip(dm_runs, ("C0", "C1", "C2", "C3")):
             color=c, label=f"r_f {rf:.0f} mm, best A")
     ax.plot(rc_mm, 100 * (ds["axisym_design_paper_amplitude_speed"].values / unt - 1), ":",
             color=c, label=f"r_f {rf:.0f} mm, A = 50 °C")
+    fr = ds["axisym_design_best_frequency_ratio"].values[q]
+    ax_f.plot(rc_mm, fr[:, 0], "-", color=c, label=f"r_f {rf:.0f} mm, N_d = 0")
+    ax_f.plot(rc_mm, fr[:, 1], ":", color=c, label=f"r_f {rf:.0f} mm, N_d = 1")
 unt25 = float(np.nanmin(design.lowest_map(dm_runs[0][1])[:, 0]))
 qc = int(np.argmin(np.abs(cut["design_margin"].values - float(cut["axisym_design_stated_margin"]))))
 ax.plot(cut["r_c"].values * 1e3, 100 * (cut["axisym_design_best_speed"].values[qc] / unt25 - 1),
@@ -500,15 +501,9 @@ ax.axhline(0, color="k", lw=0.8)
 ax.set(xlabel="rolling radius r_c [mm]", ylabel="lowest critical speed over untensioned [%]",
        title="the design curve (stated margin; a gap: buckled)", ylim=(-120, 60))
 ax.legend(fontsize=7, ncol=2, loc="lower left")    # below the curves
-ax = axes[1, 2]
-for (rf, ds), c in zip(dm_runs, ("C0", "C1", "C2", "C3")):
-    q = int(np.argmin(np.abs(ds["design_margin"].values - float(ds["axisym_design_stated_margin"]))))
-    fr = ds["axisym_design_best_frequency_ratio"].values[q]
-    ax.plot(ds["r_c"].values * 1e3, fr[:, 0], "-", color=c, label=f"r_f {rf:.0f} mm, N_d = 0")
-    ax.plot(ds["r_c"].values * 1e3, fr[:, 1], ":", color=c, label=f"r_f {rf:.0f} mm, N_d = 1")
-ax.set(xlabel="rolling radius r_c [mm]", ylabel="f̃ / f at rest, best A [1]", ylim=(0, 1.7),
-       title="N_d = 0, 1 frequency margins (stated margin)")
-ax.legend(fontsize=7, ncol=2, loc="upper left")
+ax_f.set(xlabel="rolling radius r_c [mm]", ylabel="f̃ / f at rest, best A [1]", ylim=(0, 1.7),
+         title="N_d = 0, 1 frequency margins (stated margin)")
+ax_f.legend(fontsize=7, ncol=2, loc="upper left")
 R.save_figure(fig, "design_map")
 
 # %% [markdown]

@@ -124,21 +124,15 @@ BLOCKS = {
     "identifiability": identifiability,
     "targets": targets,
     "design_map": design_map,
-    "calibration_notes": lambda root: notes(root, ["f_unrolled_nd4_rf25", "table1_diag_nd4",
-                                                   "inplane_bc_evidence_free_disk",
-                                                   "inplane_bc_evidence_clamped",
-                                                   "delta_f_eigen_nd4_handbook_alpha"]),
-    "explanation_notes": lambda root: notes(root, ["table2_nd3_mode_change_at_buckling",
-                                                   "table2_nd3_pair_rotation_deg",
-                                                   "paper_mesh_symmetry_order",
-                                                   "rayleigh_cap_on_delta_f_eigen"]),
-    "critical_speed_notes": lambda root: notes(root, ["critical_speed_untensioned_min",
-                                                      "critical_speed_best_rc",
-                                                      "critical_speed_vs_southwell"]),
-    "design_notes": lambda root: notes(root, ["design_map_optimum_rc",
-                                              "design_map_gain_over_paper_point"]),
-    "beyond_notes": lambda root: notes(root, ["slotted_optimal_rc_nd3", "slotted_optimal_rc_nd4",
-                                              "buckling_flag_matches_critical_load",
-                                              "eq9_speedup_over_eigen"]),
+    **{f"{block}_notes": (lambda root, q=q.split(): notes(root, q)) for block, q in {
+        "calibration": "f_unrolled_nd4_rf25 table1_diag_nd4 inplane_bc_evidence_free_disk "
+                       "inplane_bc_evidence_clamped delta_f_eigen_nd4_handbook_alpha",
+        "explanation": "table2_nd3_mode_change_at_buckling table2_nd3_pair_rotation_deg "
+                       "paper_mesh_symmetry_order rayleigh_cap_on_delta_f_eigen",
+        "critical_speed": "critical_speed_untensioned_min critical_speed_best_rc "
+                          "critical_speed_vs_southwell",
+        "design": "design_map_optimum_rc design_map_gain_over_paper_point",
+        "beyond": "slotted_optimal_rc_nd3 slotted_optimal_rc_nd4 "
+                  "buckling_flag_matches_critical_load eq9_speedup_over_eigen"}.items()},
 }
 

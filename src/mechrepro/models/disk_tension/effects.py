@@ -7,6 +7,7 @@ field), then the analyses of the discretised, stress-stiffened disk and the refe
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import partial
 from typing import Callable
 
 import numpy as np
@@ -121,7 +122,6 @@ def roll_tension(ctx) -> dict:
         "temperature": var(("r_c", "r"), [ld.temperature(r) for ld in loads], "K", "T(r), Eq. (4)"),
         "sigma_r": var(("r_c", "r"), sr, "Pa", f"radial residual stress ({ctx.bc})", **bc),
         "sigma_theta": var(("r_c", "r"), st, "Pa", f"hoop residual stress ({ctx.bc})", **bc),
-        "alpha_used": var((), ctx.alpha, "1/K", "expansion coefficient used for the stress"),
         "amplitude_used": var((), ctx.A, "K", "amplitude A of Eq. (4) used for the stress"),
         "width_used": var((), ctx.s, "m", "Gaussian width s of Eq. (4) used for the stress"),
     }
@@ -158,6 +158,12 @@ def _stiffened(ctx):
     return ctx.k_sigma
 
 
+def _disk_key(ctx, *more) -> tuple:
+    """What a reference of the plain disk depends on (the key of its cold cost and memo)."""
+    return (float(ctx.r_f), float(ctx.b), float(ctx.h), float(ctx.E), float(ctx.nu),
+            float(ctx.rho), tuple(int(n) for n in ctx.n_d), *more)
+
+
 def _exact_frequencies(ctx, sigma=0.0, memo=True):
     """Exact Bessel frequencies [Hz] of every N_d of the plain annulus under ``sigma`` [Pa]."""
     return [exact.natural_frequencies(n, a=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu,
@@ -167,7 +173,7 @@ def _exact_frequencies(ctx, sigma=0.0, memo=True):
 @EFFECTS.register("exact_reference")
 def exact_reference(ctx) -> dict:
     """Exact Bessel frequencies of the unrolled clamped-free annulus (plain disk)."""
-    key = (ctx.r_f, ctx.b, ctx.h, ctx.E, ctx.nu, ctx.rho, tuple(ctx.n_d.tolist()))
+    key = _disk_key(ctx)
     return {"f_exact": var("n_d", _exact_frequencies(ctx), "Hz", "exact unrolled frequency"),
             "exact_reference_time_cold": _cold("exact_reference", key,
                                                lambda: _exact_frequencies(ctx, memo=False))}
@@ -183,9 +189,8 @@ def rolled_reference(ctx) -> dict:
     """Converged rolled frequencies of the plain disk for the 2-D model's cost of accuracy:
     the Richardson extrapolation (h^4) of the 64- and 128-element axisymmetric models, and
     its own error on the unrolled frequencies, where the exact solution is known."""
-    key = (float(ctx.r_f), float(ctx.b), float(ctx.h), float(ctx.E), float(ctx.nu),
-           float(ctx.rho), tuple(int(n) for n in ctx.n_d), float(ctx.A), float(ctx.s),
-           ctx.bc, tuple((ld.r_c, float(ld.alpha), ld.inplane_bc) for ld in ctx.loads))
+    key = _disk_key(ctx, float(ctx.A), float(ctx.s), ctx.bc,
+                    tuple((ld.r_c, float(ld.alpha), ld.inplane_bc) for ld in ctx.loads))
     if key not in _ROLLED_REFERENCES:
         _ROLLED_REFERENCES[key] = _solve_rolled_reference(ctx)
     f_ref, err = _ROLLED_REFERENCES[key]
@@ -230,7 +235,7 @@ def stressed_reference(ctx) -> dict:
                          "reference needs a stable disk (choose a smaller compression)")
     with phase("disk_tension.stressed_reference_exact"):
         f_ex = np.array([_exact_frequencies(ctx, s) for s in s0])
-    key = (ctx.r_f, ctx.b, ctx.h, ctx.E, ctx.nu, ctx.rho, tuple(ctx.n_d.tolist()), tuple(s0))
+    key = _disk_key(ctx, tuple(s0))
     f = frequency(w2)
     err = f / f_ex - 1.0
     dims = ("reference_stress", "n_d")
@@ -480,8 +485,7 @@ def design_map(ctx) -> dict:
     cap = float(p["design_amplitude_cap"]) / ctx.A       # as a load factor on the scene's A
     steps, n_d, ks = int(p["design_steps"]), ctx.n_d, _stiffened(ctx)
     nr, nm, nn = len(ks), len(margins), len(n_d)
-    cs, f_rest, amp = np.full((nr, steps, nn), np.nan), np.full((nr, steps, nn), np.nan), \
-        np.zeros((nr, steps))
+    cs, amp = np.full((nr, steps, nn), np.nan), np.zeros((nr, steps))
     lam_cr, mode_cr, paper = np.full(nr, np.inf), np.full(nr, -1), np.full(nr, np.nan)
     best = {k: np.full((nm, nr), np.nan) for k in ("a", "v", "binds", "mode")}
     best_f = np.full((nm, nr, nn), np.nan)
@@ -492,18 +496,13 @@ def design_map(ctx) -> dict:
     rim = 0.0 if ctx.heat is None else float(p["rim_temperature_rise"])
     with phase("disk_tension.design_map") as sw:
         for i, k in enumerate(ks):
-            pen = design.pencils(K, k, model.M, Kc, n_d)
-
-            def low(x, pen=pen):
-                return design.lowest(pen, x)
-
+            low = partial(design.lowest, design.pencils(K, k, model.M, Kc, n_d))
             lam = model.critical_load(k)
             lam_cr[i], mode_cr[i] = float(np.min(lam)), int(n_d[np.argmin(lam)])
             tops = np.minimum(lam_cr[i] / margins, cap)
             grid = np.linspace(0.0, tops.max(), steps)
-            v, _, c, w2 = low(np.r_[grid, tops, 1.0])
+            v, _, c, _ = low(np.r_[grid, tops, 1.0])
             cs[i], amp[i], paper[i] = c[:steps], grid * ctx.A, v[-1]
-            f_rest[i] = np.sqrt(np.clip(w2[:steps], 0, None)) / (2 * np.pi)
             for q, top in enumerate(tops):
                 sel = grid < top
                 x, val, bnd = design.optimum(lambda a: float(low([a])[0][0]),
@@ -523,8 +522,6 @@ def design_map(ctx) -> dict:
         "design_amplitude": var(("r_c", "design_step"), amp, "K", "rolling amplitude A, Eq. (4)"),
         "design_critical_speed": var(("r_c", "design_step", "n_d"), cs, "rad/s", "critical "
                                      "speed (NaN: buckled; inf: none)", **bc),
-        "design_frequency_at_rest": var(("r_c", "design_step", "n_d"), f_rest, "Hz",
-                                        "rolled natural frequency of the disk at rest, Eq. (5)"),
         "design_buckling_amplitude": var("r_c", lam_cr * ctx.A, "K", "amplitude A_cr that "
                                          "buckles the disk at rest (any N_d of the scene)"),
         "design_buckling_mode": var("r_c", mode_cr, "1", "N_d that buckles first"),

@@ -208,10 +208,10 @@ class PlateDisk:
         self.M = asm(_mass, self.basis, rho_h=rho * h)
         rad = np.hypot(*self.mesh.p)
         r_in = rad.min()
-        inner = self.mesh.facets_satisfying(lambda x: np.hypot(*x) < r_in * (1 + 1e-9))
-        if inner.size == 0:
+        self._inner = self.mesh.facets_satisfying(lambda x: np.hypot(*x) < r_in * (1 + 1e-9))
+        if self._inner.size == 0:
             raise Refusal("no clamped facets found at r = r_f")
-        fixed = self.basis.get_dofs(inner).all(["u", "u_x", "u_y", "u_n"])
+        fixed = self.basis.get_dofs(self._inner).all(["u", "u_x", "u_y", "u_n"])
         self.free = np.setdiff1d(np.arange(self.basis.N), fixed)
         self.n_modes = int(2 * self.n_d.max() + 1 + extra_modes)
         outer = np.nonzero(rad > rad.max() * (1 - 1e-9))[0]
@@ -292,9 +292,7 @@ class PlateDisk:
         against rigid motion (a blade rolled before it is clamped)."""
         if inplane_bc == "clamped":
             ub = self.basis.with_element(ElementVector(ElementTriP2()))
-            r_in = np.hypot(*self.mesh.p).min()
-            inner = self.mesh.facets_satisfying(lambda x: np.hypot(*x) < r_in * (1 + 1e-9))
-            fixed = ub.get_dofs(inner).all()
+            fixed = ub.get_dofs(self._inner).all()
         elif inplane_bc == "free_disk":
             full = with_inner_disk(self.mesh)
             ub = Basis(full, ElementVector(ElementTriP2()), intorder=INTORDER)

@@ -394,7 +394,7 @@ def _joint_fit(R):
     return out
 
 
-RPM = 60.0 / TWO_PI
+RPM = design.RPM
 #: row critical_speed_vs_southwell: the eigen-based critical speed is within this of
 #: Southwell's first-order form for r_f up to SOUTHWELL_CLOSE_RF_MM (at 75 mm the first-order
 #: form's denominator N_d^2 - lambda amplifies the neglected second-order term)
