@@ -1,12 +1,8 @@
-"""The two constants the paper does not give, calibrated on one number each.
-
-* thickness h: the exact (Bessel) unrolled N_d = 4 frequency at r_f = 25 mm is the paper's
-  434.5 Hz (Sec. 4.3); Kirchhoff frequencies are proportional to h.
-* the thermal analogy's expansion coefficient (``stress_calibration``): the temperature of
-  Eq. (4) is fictitious, only alpha T matters, and Eq. (9) is linear in alpha, which is
-  scaled to meet Table 1's N_d = 4 diagonal (2.40e6 rad^2/s^2 at r_c = 65, r_f = 25 mm): the
-  largest entry, confirmed by the text (its linearised conversion is Sec. 4.3's 70.0 Hz) and
-  the least sensitive to the in-plane condition.
+"""The two constants the paper does not give, calibrated on one number each: the thickness h
+on the exact unrolled N_d = 4 frequency 434.5 Hz (Sec. 4.3; frequencies are proportional to
+h), and the thermal analogy's alpha on Table 1's N_d = 4 diagonal (Eq. 9 is linear in it):
+the largest entry, confirmed by the text (Sec. 4.3's 70.0 Hz) and the least sensitive to the
+in-plane condition.
 """
 from __future__ import annotations
 

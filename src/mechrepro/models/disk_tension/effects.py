@@ -1,9 +1,5 @@
-"""The effects of disk_tension: pure functions ``fn(ctx) -> {key: value}``, declared in
-``config/papers/disk_tension.yaml``.  The solver (:mod:`.solver`) evaluates them in three
-stages and reads their contributions by key: what the load and the mesh need
-(``thermal_expansion``, ``slots``), the load (``thermal_load``: Eq. 4 and its plane-stress
-field), then the analyses of the discretised, stress-stiffened disk and the references.
-"""
+"""The effects of disk_tension: pure functions ``fn(ctx) -> {key: value}`` declared in
+``config/papers/disk_tension.yaml``, evaluated in three stages by :mod:`.solver`."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -386,42 +382,29 @@ def identifiability(ctx) -> dict:
         "fit_axis": var("fit_axis", [0, 1], "1", "0 the soft (degenerate) axis, 1 the stiff"),
         "single_width": var((), ctx.s, "m", "Gaussian width of the single-alpha calibration"),
     }
+    sw, sc, sa = (sub, "scan_width"), (sub, "scan_scale"), (sub, "fit_axis")
     for key, dims, unit, name in (
-            ("prof_width", (sub, "scan_width"), "1",
-             "profile chi^2 over s (Birge-scaled, min over c and condition)"),
-            ("prof_scale", (sub, "scan_scale"), "1",
-             "profile chi^2 over c (Birge-scaled, min over s and condition)"),
-            ("prof_condition", (sub, "scan_condition"), "1",
-             "profile chi^2 over the in-plane condition"),
-            ("prof_width_scale", (sub, "scan_width"), "1", "the stress scale c minimising "
-             "chi^2 at each s (the valley floor along the s profile)"),
-            ("prof_scale_width", (sub, "scan_scale"), "m", "the Gaussian width s minimising "
-             "chi^2 at each c (the valley floor along the c profile)"),
-            ("birge", sub, "1", "Birge factor: chi^2 per degree of freedom of the best fit "
-             "with the printed digits as uncertainties"),
+            ("prof_width", sw, "1", "profile chi^2 over s (Birge-scaled)"),
+            ("prof_scale", sc, "1", "profile chi^2 over c (Birge-scaled)"),
+            ("prof_condition", (sub, "scan_condition"), "1", "profile chi^2 over the condition"),
+            ("prof_width_scale", sw, "1", "the valley floor along s: c minimising chi^2"),
+            ("prof_scale_width", sc, "m", "the valley floor along c: s minimising chi^2"),
+            ("birge", sub, "1", "Birge factor: chi^2 per degree of freedom of the best fit"),
             ("chi2_min", sub, "1", "Birge-scaled chi^2 of the best fit"),
             ("best_width", sub, "m", "best-fit Gaussian width s"),
             ("best_scale", sub, "1", "best-fit stress scale c"),
             ("best_condition", sub, "1", "best-fit in-plane condition"),
             ("best_table1_rel", (sub, "n_d"), "1", "Table 1 relative error at the best fit"),
             ("best_f_rolled", sub, "Hz", "f~(N_d = 4, r_c = 65 mm) at the best fit"),
-            ("shares", (sub, "fit_parameter", dat), "1", "share of each paper number in the "
-             "Fisher information about s and c at the best fit"),
-            ("region_c_lo", lvl, "1", "lower c of the joint (s, c) region at each s (NaN: "
-             "none; at the c scan's start: the scan bounds it)"),
-            ("region_c_hi", lvl, "1", "upper c of the joint (s, c) region at each s (NaN: "
-             "none; at the c scan's end: the scan bounds it)"),
-            ("direction_slope", sub, "1", "d ln c / d ln s along the soft axis of the chi^2 "
-             "Hessian at the best fit (-1: c s = const)"),
-            ("direction_halfwidth", (sub, "fit_axis"), "1", "68 % half-length of the Hessian "
-             "ellipse in (ln s, ln c) along the soft and the stiff axis"),
-            ("single_chi2", sub, "1", "Birge-scaled chi^2 of the single-alpha calibration "
-             "(s = 5 mm, free_disk, c on Table 1's N_d = 4 entry)"),
+            ("shares", (sub, "fit_parameter", dat), "1", "Fisher share of each paper number"),
+            ("region_c_lo", lvl, "1", "lower c of the joint (s, c) region (NaN: none)"),
+            ("region_c_hi", lvl, "1", "upper c of the joint (s, c) region (NaN: none)"),
+            ("direction_slope", sub, "1", "d ln c / d ln s along the Hessian's soft axis"),
+            ("direction_halfwidth", sa, "1", "68 % half-lengths along the soft, stiff axes"),
+            ("single_chi2", sub, "1", "Birge-scaled chi^2 of the single-alpha calibration"),
             ("single_scale", (), "1", "stress scale of the single-alpha calibration"),
-            ("single_table1_rel", "n_d", "1", "Table 1 relative error of the single-alpha "
-             "calibration"),
-            ("single_f_rolled", (), "Hz", "f~(N_d = 4, r_c = 65 mm) of the single-alpha "
-             "calibration")):
+            ("single_table1_rel", "n_d", "1", "its Table 1 relative error"),
+            ("single_f_rolled", (), "Hz", "its f~(N_d = 4, r_c = 65 mm)")):
         out[key] = var(dims, r[key], unit, name)
     return out
 
@@ -514,32 +497,24 @@ def design_map(ctx) -> dict:
                 best_f[q, i] = np.sqrt(np.clip(w2x[0], 0, None) / w0)
     dims, bc = ("design_margin", "r_c"), {"centrifugal_bc": p["centrifugal_bc"]}
     return {
-        "design_margin": var("design_margin", margins, "1", "buckling margin m: the rolled "
-                             "stress at most 1/m of the one that buckles the disk at rest"),
-        "design_step": var("design_step", np.arange(steps), "1", "step of the amplitude scan "
-                           "from 0 to min(A_cr / m, design_amplitude_cap), m the smallest margin"),
+        "design_margin": var("design_margin", margins, "1", "buckling margin m (A <= A_cr / m)"),
+        "design_step": var("design_step", np.arange(steps), "1", "step of the amplitude scan"),
         "design_stated_margin": var((), stated, "1", "the stated buckling margin (the map's)"),
         "design_amplitude": var(("r_c", "design_step"), amp, "K", "rolling amplitude A, Eq. (4)"),
         "design_critical_speed": var(("r_c", "design_step", "n_d"), cs, "rad/s", "critical "
                                      "speed (NaN: buckled; inf: none)", **bc),
-        "design_buckling_amplitude": var("r_c", lam_cr * ctx.A, "K", "amplitude A_cr that "
-                                         "buckles the disk at rest (any N_d of the scene)"),
+        "design_buckling_amplitude": var("r_c", lam_cr * ctx.A, "K", "A_cr: buckles at rest"),
         "design_buckling_mode": var("r_c", mode_cr, "1", "N_d that buckles first"),
         "design_amplitude_cap": var((), cap * ctx.A, "K", "the amplitude scan's end"),
-        "design_paper_amplitude_speed": var("r_c", paper, "rad/s", "lowest critical speed over "
-                                            "N_d >= 2 at the scene's amplitude (the paper's "
-                                            "A = 50 degC)", **bc),
-        "design_best_amplitude": var(dims, best["a"], "K", "amplitude maximising the lowest "
-                                     "critical speed at each r_c and margin"),
-        "design_best_speed": var(dims, best["v"], "rad/s", "the lowest critical speed there",
-                                 **bc),
+        "design_paper_amplitude_speed": var("r_c", paper, "rad/s", "lowest critical speed at "
+                                            "the scene's A", **bc),
+        "design_best_amplitude": var(dims, best["a"], "K", "the A maximising it"),
+        "design_best_speed": var(dims, best["v"], "rad/s", "the lowest critical speed there", **bc),
         "design_best_binds": var(dims, best["binds"], "1", "what binds there: "
                                  + ", ".join(f"{i} {b}" for i, b in enumerate(design.BINDS))),
         "design_best_mode": var(dims, best["mode"], "1", "N_d of the lowest critical speed there"),
-        "design_best_frequency_ratio": var(dims + ("n_d",), best_f, "1", "rolled over unrolled "
-                                           "natural frequency at rest there (the N_d = 0, 1 "
-                                           "margins)"),
-        "design_rim_temperature_rise": var((), rim, "K", "rim temperature rise of the cut the "
-                                           "critical speeds are for (0: no cutting heat)"),
+        "design_best_frequency_ratio": var(dims + ("n_d",), best_f, "1", "rolled / unrolled "
+                                           "frequency at rest there"),
+        "design_rim_temperature_rise": var((), rim, "K", "rim temperature rise of the cut"),
         "time_design_map": var((), sw.seconds, "s", "wall time of the design map"),
     }

@@ -1,19 +1,12 @@
 """Exact natural frequencies of the annular Kirchhoff plate (Bessel solution), unstressed
 or under a uniform isotropic in-plane stress sigma_0 (membrane force N = sigma_0 h).
 
-Clamped at r = a (W = W' = 0), free at r = b (M_r = 0 and, with the membrane force, the
-effective shear V_r - N W' = 0: the natural condition of the energy with N |grad w|^2,
-i.e. of the stress-stiffness term of Eq. 3).  The plate equation
-D lap^2 w - N lap w - rho h omega^2 w = 0 factors as (lap - k1^2)(lap + k2^2) w = 0 with
-
-    k1^2, -k2^2 = (N/D +- sqrt((N/D)^2 + 4 rho h omega^2 / D)) / 2,
-
-so W = C1 J_n(k2 r) + C2 Y_n(k2 r) + C3 I_n(k1 r) + C4 K_n(k1 r).  Unstressed,
-k1 = k2 = k with k^4 = rho h omega^2 / D.  In units of b = 1 the four boundary conditions
-give a 4x4 determinant in lambda = (rho h omega^2 b^4 / D)^(1/4) (= k b unstressed) and the
-stress parameter T = N b^2 / D; its roots are the frequency parameters (the I_n, K_n
-columns scaled by exp(-k1 b), exp(k1 a) keep it O(1) without moving a root).  Under
-compression a buckled fundamental has no real root: the first root is then the next mode.
+Clamped at r = a (W = W' = 0), free at r = b (M_r = 0, V_r - N W' = 0: the natural condition
+of Eq. 3's stress-stiffness energy).  D lap^2 w - N lap w - rho h omega^2 w = 0 factors as
+(lap - k1^2)(lap + k2^2) w = 0, k1^2, -k2^2 = (N/D +- sqrt((N/D)^2 + 4 rho h omega^2 / D)) / 2,
+so W = C1 J_n(k2 r) + C2 Y_n(k2 r) + C3 I_n(k1 r) + C4 K_n(k1 r); in units of b = 1 the four
+boundary conditions give a 4x4 determinant in lambda = (rho h omega^2 b^4 / D)^(1/4) and
+T = N b^2 / D whose roots are the frequency parameters (a buckled fundamental has none).
 """
 from __future__ import annotations
 

@@ -1,9 +1,5 @@
-"""What the figures of disk_tension draw, taken from the runs (the notebook only draws).
-
-Every function reads datasets through a :class:`mechrepro.results.PaperResults` (or the
-datasets themselves) and returns arrays in SI; the notebook converts them to the paper's
-units with :func:`mechrepro.units.from_si`.
-"""
+"""What the figures of disk_tension draw, taken from the runs in SI (the notebook only draws
+and converts units)."""
 from __future__ import annotations
 
 import numpy as np

@@ -1,11 +1,7 @@
-"""The two solvers of disk_tension, one discretisation of the clamped disk each:
-``axisym`` (cos(N_d theta) harmonics, radial Hermite elements, :mod:`.axisym`) and
-``plate2d`` (Argyris plate elements on a polar mesh, :mod:`.plate2d`).
-
-Both run three stages of effects (:mod:`.effects`), read by key: what the load and the mesh
-need; the load (Eq. 4 and its plane-stress field); the core -- [K], [M] (Eq. 1), the
-unrolled eigen-analysis (Eq. 6) and [K^(sigma)] of every r_c (Eq. 3) -- then the analyses.
-The analyses' variables carry the solver's name (``axisym_f_rolled``).
+"""The two solvers of disk_tension, one discretisation of the clamped disk each: ``axisym``
+(:mod:`.axisym`) and ``plate2d`` (:mod:`.plate2d`).  Both run the effects (:mod:`.effects`) in
+three stages read by key -- what the load and mesh need, the load (Eq. 4), then after the
+core ([K], [M] of Eq. 1, Eq. 6, [K^(sigma)] of Eq. 3) the analyses, named ``<solver>_*``.
 """
 from __future__ import annotations
 

@@ -1,11 +1,7 @@
-"""Thermal analogy of roll-tensioning: Eq. (4) temperature and its plane-stress field.
-
-The paper replaces the plastic deformation of rolling by a Gaussian temperature load,
-Eq. (4), and takes the thermal stress as the residual stress after rolling; for an
-axisymmetric temperature the plane-stress field has a closed form (Timoshenko & Goodier,
-Sec. 143).  In-plane condition at the clamp (``inplane_bc``): ``clamped``, the annulus
-r_f <= r <= b with u_r(r_f) = 0 (the paper's FE model taken literally); ``free_disk``, the
-solid disk (a blade rolled before it is mounted).  Both have sigma_r(b) = 0.
+"""Thermal analogy of roll-tensioning: the Gaussian temperature of Eq. (4) and its closed-form
+plane-stress field (Timoshenko & Goodier, Sec. 143), the residual stress after rolling.  At
+the clamp (``inplane_bc``): ``clamped``, u_r(r_f) = 0 (the paper's FE model taken literally),
+or ``free_disk``, the solid disk (a blade rolled before it is mounted); sigma_r(b) = 0.
 """
 from __future__ import annotations
 
