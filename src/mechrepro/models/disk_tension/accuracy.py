@@ -37,8 +37,7 @@ def unrolled_nd4_vs_exact(ds, entry):
 
 @ACCURACY.register("stressed_max_vs_exact")
 def stressed_max_vs_exact(ds, entry):
-    """max over (reference stress, N_d) of |f / f_exact - 1| under a uniform in-plane stress
-    (Eqs. 3, 5 against the stressed Bessel solution)."""
+    """max over (reference stress, N_d) of |f / f_exact - 1| (Eqs. 3, 5)."""
     return _max_over(ds[f"{_solver(entry)}_error_stressed"], ds)
 
 

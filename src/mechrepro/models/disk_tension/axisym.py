@@ -8,11 +8,9 @@ factor int cos^2 cancels in every eigenvalue and Rayleigh quotient):
   mass         rho h W^2 r                                                -> [M]
   stress       h [sigma_r W'^2 + sigma_theta N_d^2 W^2 / r^2] r           -> [K^(sigma)], Eq. (3)
 
-Only the w rows of Eq. (3)'s shell stress block enter: a flat plate's in-plane stress
-couples the transverse motion only through grad(w)^T sigma grad(w), and the in-plane modes
-the u, v rows stiffen lie far above the N_d = 0..4 bending frequencies.  Cubic Hermite
-elements carry nodal W and ell W' (ell the mean element length: one unit for both DOF kinds
-keeps [K], [M] well conditioned); the clamp r = r_f removes W, W' of the first node.
+Only the w rows of Eq. (3)'s shell stress block enter (a flat plate's in-plane stress couples
+bending only through grad(w)^T sigma grad(w)).  Cubic Hermite elements carry W and ell W'
+(ell the mean element length: one unit keeps [K], [M] well conditioned); clamped at r_f.
 """
 from __future__ import annotations
 
@@ -99,8 +97,7 @@ def mass_matrix(mesh, *, rho_h, quad=None):
 
 
 def bending_matrix(mesh, n_d, *, D, nu, quad=None, d_scale=None):
-    """[K] of harmonic ``n_d`` (Eq. 1 bending operator, clamped at r_f); ``d_scale(r)``
-    multiplies the flexural rigidity D."""
+    """[K] of harmonic ``n_d`` (Eq. 1); ``d_scale(r)`` multiplies D."""
     r, w, N, dN, d2N = quad if quad is not None else quadrature(mesh)
     n2 = float(n_d) ** 2
     rr = r[..., None]
@@ -170,8 +167,7 @@ class AxisymDisk:
                 for n in self.n_d}
 
     def _once(self, what, Ks, fn):
-        """``fn(Ks)`` computed once per (analysis, K^(sigma) object); the object is kept with
-        its result so that its id cannot be reused while the model lives."""
+        """``fn(Ks)`` once per (analysis, K^(sigma) object), kept with the object."""
         key = (what, id(Ks))
         hit = self._memo.get(key)
         if hit is None or hit[0] is not Ks:
@@ -219,8 +215,7 @@ class AxisymDisk:
                          @ self.M[n] @ self.phi[n] for n in self.n_d])
 
     def sensitivity(self, *, r_a, width, increase, E, nu, rho):
-        """Fig. 7: Delta f [Hz] of each N_d when D rises by ``increase`` in the annulus
-        |r - r_a| <= width/2 (eigen re-solve on a mesh with the annulus edges as nodes)."""
+        """Fig. 7: Delta f [Hz] of each N_d for D raised by ``increase`` in |r - r_a| <= width/2."""
         from .modal import eigen
 
         D = E * self.h**3 / (12 * (1 - nu**2))

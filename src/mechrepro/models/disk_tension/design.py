@@ -1,11 +1,8 @@
-"""The tensioning design map: where to roll (r_c) and how hard (the amplitude A of Eq. 4)
-for the highest critical speed a blade can keep, under a buckling margin.
-
-The rolled stress is linear in A, so one [K^(sigma)] per r_c at the scene's A_0 gives every
-intensity a = A / A_0.  Per harmonic n, with B_n = n^2 M - K^(c) (:mod:`.rotation`),
-omega~^2 (Eq. 5) and Omega_c = 1 / sqrt(mu_max) (B_n phi = mu (K + a K^(sigma)) phi) come
-from one symmetric eigen-decomposition per (r_c, a, n) in the basis M = L L^T.  Constraint:
-A <= A_cr / m (A_cr buckles any harmonic at rest, m the ``buckling_margin``).
+"""The tensioning design map: where to roll (r_c) and how hard (A of Eq. 4) for the highest
+critical speed under a buckling margin, A <= A_cr / m.  The rolled stress is linear in A, so
+one [K^(sigma)] per r_c gives every a = A / A_0; per harmonic n, omega~^2 (Eq. 5) and
+Omega_c = 1 / sqrt(mu_max) of (n^2 M - K^(c)) phi = mu (K + a K^(sigma)) phi come from one
+symmetric eigen-decomposition per (r_c, a, n) in the basis M = L L^T.
 """
 from __future__ import annotations
 
@@ -18,8 +15,7 @@ BINDS = ("untensioned", "buckling margin", "interior", "scan cap")
 
 
 def pencils(K, Kr, M, Kc, n_d):
-    """Per harmonic n: (n, K', K^(sigma)', B') = L^-1 (K, K^(sigma), n^2 M - K^(c)) L^-T with
-    M = L L^T, what :func:`lowest` reads at every load factor."""
+    """Per harmonic n: (n, K, K^(sigma), n^2 M - K^(c)) in the basis M = L L^T."""
     out = []
     for n in n_d:
         Li = np.linalg.inv(np.linalg.cholesky(M[n]))
@@ -29,8 +25,7 @@ def pencils(K, Kr, M, Kc, n_d):
 
 
 def speeds(pencil, factors):
-    """(Omega_c [rad/s], lowest omega~^2 at rest) of one harmonic's ``pencil`` at every load
-    factor a of ``factors`` (NaN: buckled at rest; inf: the backward wave never stops)."""
+    """(Omega_c, lowest omega~^2 at rest) of one ``pencil`` per load factor (NaN: buckled)."""
     n, Kw, Krw, Bw = pencil
     a = np.atleast_1d(np.asarray(factors, float))
     d, V = np.linalg.eigh(Kw[None] + a[:, None, None] * Krw[None])
@@ -45,8 +40,7 @@ def speeds(pencil, factors):
 
 
 def lowest(pencils_, factors, n_min=2):
-    """(min over N_d >= ``n_min`` of Omega_c, its N_d, Omega_c per N_d, omega~^2 per N_d)
-    at every load factor; NaN (and N_d -1) where any harmonic has buckled at rest."""
+    """(lowest Omega_c over N_d >= ``n_min``, its N_d, Omega_c and omega~^2 per N_d)."""
     n_d = np.array([p[0] for p in pencils_])
     cs, w2 = zip(*(speeds(p, factors) for p in pencils_))
     cs, w2 = np.stack(cs, -1), np.stack(w2, -1)
@@ -57,8 +51,7 @@ def lowest(pencils_, factors, n_min=2):
 
 
 def lowest_over(cs, n_d, n_min=0):
-    """min over N_d >= ``n_min`` of the critical speeds cs[..., N_d]; NaN where any harmonic
-    has buckled at rest (a buckled disk has no critical speed)."""
+    """min over N_d >= ``n_min`` of cs[..., N_d]; NaN where any harmonic has buckled."""
     sel = np.asarray(n_d) >= n_min
     low = np.min(np.where(np.isnan(cs[..., sel]), np.inf, cs[..., sel]), axis=-1)
     return np.where(np.isnan(cs).any(axis=-1), np.nan, low)
@@ -91,8 +84,7 @@ COLUMNS = ["r_f_mm", "rim_temperature_rise_degc", "buckling_margin", "stated", "
 
 
 def best(ds, q):
-    """(index of the r_c maximising the lowest critical speed at margin index ``q``, that
-    speed [rad/s]) of one design_map run; (-1, NaN) when every r_c has buckled."""
+    """(index of the r_c of the best lowest critical speed at margin ``q``, that speed)."""
     v = np.asarray(ds["axisym_design_best_speed"].values[q], float)
     if np.isnan(v).all():
         return -1, float("nan")
@@ -135,7 +127,6 @@ def table(runs, paper_rc=0.065, paper_amplitude=50.0) -> list[list]:
 
 
 def lowest_map(ds) -> np.ndarray:
-    """The map [rad/s] of one design_map run, (r_c, design_step): the lowest critical speed
-    over N_d >= 2; NaN where any harmonic has buckled at rest."""
+    """The lowest critical speed over N_d >= 2 [rad/s], (r_c, design_step); NaN: buckled."""
     return lowest_over(np.asarray(ds["axisym_design_critical_speed"].values, float),
                        ds["n_d"].values, 2)

@@ -26,8 +26,7 @@ def counts(root: Path) -> str:
 
 
 def verdicts(root: Path, evidence=("independent", "determined")) -> str:
-    """Every pass/fail/inconclusive row of the given evidence classes, with its error bar
-    and its rivals' outcomes."""
+    """Every pass/fail/inconclusive row of ``evidence``, with its error bar and rivals."""
     return _md(["row", "evidence", "paper", "ours", "± error", "verdict", "rivals"], [
         [f"`{r['quantity']}`", r["evidence"], _g(r["paper_value"]), _g(r["reproduced_value"], 6),
          _g(r["error_estimate"], 2), r["status"], r["rivals"] or "—"]
@@ -104,8 +103,7 @@ def design_map(root: Path) -> str:
 
 
 def targets(root: Path) -> str:
-    """The accuracy targets (framework table accuracy_targets.csv): what was asked, chosen,
-    estimated and verified."""
+    """The accuracy targets: what was asked, chosen, estimated and verified."""
     return _md(["scene", "quantity", "asked (abs.)", "elements chosen", "estimated error",
                 "verified error (vs exact)", "fixed default: elements, error"], [
         [f"`{r['run']}`", f"`{r['quantity']}`", f"{float(r['requested']):.1e}",

@@ -102,8 +102,7 @@ def slots(ctx) -> dict:
 # --- stage 2: the load --------------------------------------------------------------------
 @EFFECTS.register("roll_tension")
 def roll_tension(ctx) -> dict:
-    """Eq. (4) temperature of every r_c and its plane-stress field, for the run's
-    ``inplane_bc`` only (the other condition is another scene, or a range variant)."""
+    """Eq. (4) temperature of every r_c and its plane-stress field (the run's inplane_bc)."""
     loads = [thermal_load(ctx, rc) for rc in ctx.r_c]
     r = np.linspace(0.0, ctx.b, N_RADII)
     sr = np.full((len(loads), len(r)), np.nan)
@@ -218,8 +217,7 @@ def _solve_rolled_reference(ctx):
 
 @EFFECTS.register("stressed_reference")
 def stressed_reference(ctx) -> dict:
-    """The stress-stiffening path (Eqs. 3, 5) against an exact answer: the model under each
-    uniform isotropic ``reference_stress`` and the Bessel solution of the same annulus."""
+    """Eqs. 3, 5 under each uniform ``reference_stress`` against the exact Bessel solution."""
     s0 = np.atleast_1d(np.asarray(ctx.p["reference_stress"], float))
     model = ctx.model
     with phase("disk_tension.stressed_reference_fe") as sw:
@@ -249,8 +247,7 @@ def stressed_reference(ctx) -> dict:
 
 @EFFECTS.register("eigen")
 def eigen(ctx) -> dict:
-    """Eq. (5): omega~^2 of [K + K^(sigma)] for every r_c (NaN frequency and a flag if
-    buckled); on the 2-D mesh also both members of each sin/cos pair."""
+    """Eq. (5) for every r_c (NaN and a flag if buckled); on the 2-D mesh both pair members."""
     model, ks = ctx.model, _stiffened(ctx)
     pairs_of = getattr(model, "degenerate_pairs", False)
     w2 = np.full((len(ks), len(ctx.n_d)), np.nan)
@@ -276,8 +273,7 @@ def eigen(ctx) -> dict:
 
 @EFFECTS.register("eq9")
 def eq9(ctx) -> dict:
-    """Eq. (9): Delta omega^2 = phi^T K^(sigma) phi of the unrolled modes, and its two
-    conversions to Delta f."""
+    """Eq. (9): Delta omega^2 = phi^T K^(sigma) phi and its two conversions to Delta f."""
     model, ks = ctx.model, _stiffened(ctx)
     with phase("disk_tension.eq9") as sw:
         d = np.stack([model.eq9(k) for k in ks])
@@ -294,8 +290,7 @@ def eq9(ctx) -> dict:
 
 @EFFECTS.register("critical_load")
 def critical_load(ctx) -> dict:
-    """Load factor on the residual stress at which the disk buckles: per N_d on the
-    harmonics, the smallest of all modes on the 2-D mesh (inf: never)."""
+    """Load factor on the residual stress that buckles the disk (inf: never)."""
     lam = np.array([ctx.model.critical_load(k) for k in _stiffened(ctx)])
     dims = ("r_c", "n_d") if lam.ndim == 2 else ("r_c",)
     return {"critical_load_factor": var(dims, lam, "1", "load factor that buckles (inf: never)")}
@@ -410,8 +405,7 @@ def identifiability(ctx) -> dict:
 
 
 def _centrifugal_stiffness(ctx):
-    """K^(c) of every harmonic: Eq. (3) of the centrifugal stress at Omega = 1 rad/s (the
-    effects that read it are honoured by the axisym harmonics only)."""
+    """K^(c) of every harmonic: Eq. (3) of the centrifugal stress at Omega = 1 rad/s."""
     from . import rotation
 
     kw = dict(omega=1.0, rho=ctx.rho, nu=ctx.nu, r_f=ctx.r_f, b=ctx.b,

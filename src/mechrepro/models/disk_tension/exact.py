@@ -20,8 +20,7 @@ from mechrepro.errors import Refusal
 
 
 def wavenumbers(lam, tension=0.0):
-    """(k1 b, k2 b) of the I/K and J/Y columns for frequency parameter(s) ``lam`` and stress
-    parameter T = N b^2 / D (both lam unstressed)."""
+    """(k1 b, k2 b) of the I/K and J/Y columns at ``lam`` under T = N b^2 / D."""
     lam = np.asarray(lam, float)
     if tension == 0.0:
         return lam, lam
@@ -92,9 +91,7 @@ def _roots(n, ratio, nu, count, lam_max, step, chunk, tension=0.0):
 
 
 def natural_frequencies(n_d, *, a, b, h, E, nu, rho, count=1, sigma=0.0, memo=True):
-    """Exact natural frequencies [Hz] of harmonic n_d (0 nodal circles first), under a
-    uniform isotropic in-plane stress ``sigma`` [Pa] (tension > 0); ``memo=False`` solves
-    afresh."""
+    """Exact frequencies [Hz] of harmonic n_d under a uniform stress ``sigma`` [Pa]."""
     D = E * h**3 / (12 * (1 - nu**2))
     t = float(sigma) * h * b * b / D
     if memo:

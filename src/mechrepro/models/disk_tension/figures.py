@@ -17,16 +17,13 @@ def rc_grid(R) -> dict:
 
 
 def rolling_band(ds):
-    """(r_c - 2 s, r_c + 2 s) [m] of the first r_c: the rolled width 4 s of Sec. 3.2 that
-    Eq. (4)'s Gaussian of width s stands for."""
+    """(r_c - 2 s, r_c + 2 s) [m] of the first r_c: the rolled width 4 s of Sec. 3.2."""
     rc, s = float(ds["r_c"].values[0]), float(ds["width_used"])
     return rc - 2 * s, rc + 2 * s
 
 
 def paper_points(R) -> dict:
-    """The paper's own numbers drawn on Figs. 6 and 8 (from the validation table): the
-    unrolled / rolled N_d = 4 frequency at r_c = 0 / 65 mm (Sec. 4.3) and its Delta f by
-    Eq. (9) and by the eigen-analysis [Hz], and r_c = 65 mm [m]."""
+    """The paper's own numbers drawn on Figs. 6 and 8 (Sec. 4.3), from the validation table."""
     rows = {r["quantity"]: r for r in R.validation()}
 
     def paper(q):
@@ -45,8 +42,7 @@ def accuracy_goal(R, quantity: str) -> float:
 
 
 def eq9_and_eigen_times(grid: dict, plate2d) -> dict:
-    """Wall time [s] of the eigen-analysis (Eq. 5) and of Eq. (9) on the same K^(sigma):
-    summed over the axisym grid of Figs. 6/8, and over the plain 2-D r_c sweep."""
+    """Wall time [s] of Eq. (5) and of Eq. (9): axisym grid and plain 2-D sweep."""
     return {"axisym": (sum(float(g["axisym_time_eigen"]) for g in grid.values()),
                        sum(float(g["axisym_time_eq9"]) for g in grid.values())),
             "plate2d": (float(plate2d["plate2d_time_eigen"]), float(plate2d["plate2d_time_eq9"]))}
@@ -87,7 +83,6 @@ def effect_cold_warm(R, scenes=("table12", "table12_plate2d", "stressed_axisym",
 
 
 def clamp_mm(ds) -> float:
-    """r_f [mm] of a run or of one run of a study (a study's swept coordinate keeps the
-    config's unit, the run's own variable is SI)."""
+    """r_f [mm] of a run or of one run of a study (whose coordinate keeps the config's unit)."""
     v = ds["clamp_radius"]
     return float(v) * (1e3 if v.attrs.get("units", "m") == "m" else 1.0)

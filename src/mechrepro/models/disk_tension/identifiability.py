@@ -31,8 +31,7 @@ def unit_table1(disk, *, s, inplane_bc, r_c, amplitude, alpha, E, nu):
 
 
 def _lowest_stable(K, M, bandwidth=3):
-    """omega^2 of the lowest mode of (K, M), or None when K is not positive definite (the
-    stressed disk has buckled in this harmonic)."""
+    """omega^2 of the lowest mode of (K, M), None when K has buckled."""
     from .modal import BANDED_MAX, BANDED_MIN, lowest_banded, positive_definite
 
     if BANDED_MIN <= len(K) <= BANDED_MAX:
@@ -68,8 +67,7 @@ def scan(disk, *, widths, scales, fine, conditions, n_d_eigen=4, **load):
 
 
 class FineModel:
-    """The model between the coarse s points: cubic splines along s of Table 1 (c = 1) and
-    of omega~^2 on each fine c; ``__call__`` on a grid of s, :meth:`at` at single points."""
+    """The model between the coarse s points: splines along s of Table 1 and omega~^2."""
 
     def __init__(self, widths, unit, w2, fine):
         from scipy.interpolate import CubicSpline
@@ -136,8 +134,7 @@ LEVELS = {"68": 2.30, "95": 6.18}
 
 
 def interval(values, prof, level=1.0, floor=None):
-    """(best, lo, hi) of a profile: argmin and the range where prof <= min + level (min:
-    ``floor`` if given), each end interpolated linearly between the straddling grid points."""
+    """(best, lo, hi) of a profile: where prof <= min + level, ends interpolated."""
     k = int(np.nanargmin(prof))
     top = (prof[k] if floor is None else min(floor, prof[k])) + level
     ok = np.nonzero(prof <= top)[0]
@@ -233,8 +230,7 @@ def _profiles(fm, fine_widths, table1_paper, f_rolled_paper, uses, chunk=64):
 
 
 def _polish(chi2_at, a, widths, scales, s0, c0, f0):
-    """(s, c, chi^2) of the minimum near (s0, c0) in condition ``a`` inside the scan box
-    (Nelder-Mead in units of the fine grid steps; never worse than the start)."""
+    """(s, c, chi^2) polished by Nelder-Mead from (s0, c0) in the scan box."""
     from scipy.optimize import minimize
 
     ds, dc = widths[1] - widths[0], scales[1] - scales[0]
@@ -339,8 +335,7 @@ def analyse(disk, *, widths, scales, fine, fine_widths, single_width, table1_pap
 
 
 def _bound(end, grid, other, other_grid, name, other_name, unit) -> str:
-    """What bounds an extent's end, if not the data: its own scan's end, or the other
-    constant's (its minimiser ``other`` sits there beside the end); '' where the data do."""
+    """What bounds an extent's end if not the data (a scan's end); '' where the data do."""
     step = abs(grid[1] - grid[0])
     if end <= grid.min() + 1e-9 * step or end >= grid.max() - 1e-9 * step:
         return f"{name} scan {'start' if end <= grid.min() + step else 'end'} {end:g}{unit}"
@@ -422,8 +417,7 @@ COLUMNS = ["data", "constant", "unit", "best", "lo_68", "hi_68", "lo_95", "hi_95
 
 
 def readings(ds, prefix="axisym_") -> list[list]:
-    """[data, reading, condition, s mm, c, Table 1 N_d=0..4 relative errors, f~ Hz, chi^2 -
-    chi^2_min] of the joint fit and of the single-alpha calibration, per data subset."""
+    """Rows of the joint fit and of the single-alpha calibration, per data subset."""
     g = _reader(ds, prefix)
     out = []
     for j, name in enumerate(SUBSETS):

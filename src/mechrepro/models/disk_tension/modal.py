@@ -138,6 +138,5 @@ def harmonic_coupling_symmetry(nonzero_pairs, n_max, orders=range(2, 65)):
 
 
 def degenerate_harmonics(N, n_d):
-    """Harmonics that stay degenerate sin/cos pairs on a C_N-symmetric mesh: N_d with
-    N_d mod N not in {0, N/2} (the others split into two singlets)."""
+    """N_d that stay degenerate pairs on a C_N mesh (N_d mod N not 0 or N/2)."""
     return [int(n) for n in n_d if (n % N) != 0 and (2 * n) % N != 0]

@@ -1,12 +1,7 @@
-"""2-D plate model: Kirchhoff plate on a triangular mesh of the disk (scikit-fem).
-
-Bending uses the C1-conforming quintic Argyris triangle; the thermal-analogy residual stress
-comes from a plane-stress P2 solution on the same mesh, so a blade with radial expansion
-slots is handled like the plain disk (the paper: "sawblades with slots and tips can be
-easily modeled within the FEM").  Every mode of the plain disk with N_d >= 1 is a degenerate
-sin/cos pair: modes are labelled by MAC against the unrolled pair subspaces, and Eq. (9) of a
-pair is the mean eigenvalue of its 2x2 block of Phi^T K^(sigma) Phi (degenerate first-order
-perturbation; Eq. 9 itself when the block is diagonal).
+"""2-D plate model (scikit-fem): quintic Argyris bending triangles and a plane-stress P2
+residual stress on the same mesh, so slotted blades are handled like the plain disk.  Modes
+are labelled by MAC against the unrolled sin/cos pair subspaces; Eq. (9) of a pair is the
+mean eigenvalue of its 2x2 block of Phi^T K^(sigma) Phi (degenerate first-order perturbation).
 """
 from __future__ import annotations
 
@@ -60,8 +55,7 @@ class Argyris(ElementTriArgyris):
 
 
 def symmetric_lu(A):
-    """Sparse LU of a symmetric matrix in SuperLU's symmetric mode (less fill than its default
-    ordering); a pivot below its threshold raises, never a silent wrong solve."""
+    """Sparse LU in SuperLU's symmetric mode (less fill); a small pivot raises."""
     return spla.splu(sp.csc_matrix(A), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
                      options=dict(SymmetricMode=True))
 
@@ -236,8 +230,7 @@ class PlateDisk:
         return lam[order], full
 
     def harmonic_content(self, Phi):
-        """Least-squares cos/sin content of each mode on the outer edge; returns the
-        dominant N_d and the (cos, sin) coefficients of every harmonic up to max N_d + 2."""
+        """(dominant N_d, cos/sin coefficients) of each mode on the outer edge."""
         nmax = int(self.n_d.max()) + 2
         th = self.ring_theta
         cols = [np.ones_like(th)]
@@ -309,8 +302,7 @@ class PlateDisk:
         return ub, free, symmetric_lu(Kin[free][:, free])
 
     def residual_stress(self, temperature, alpha, inplane_bc="clamped"):
-        """Plane-stress thermal field of the Eq. (4) temperature under ``inplane_bc``:
-        (sxx, sxy, syy) [Pa] at the bending quadrature points."""
+        """Plane-stress field of the Eq. (4) temperature: (sxx, sxy, syy) [Pa]."""
         if self._inplane is None or self._inplane[0] != inplane_bc:
             self._inplane = (inplane_bc,) + self._inplane_problem(inplane_bc)
         _, ub, free, lu = self._inplane
@@ -341,8 +333,7 @@ class PlateDisk:
         return np.hypot(x[0], x[1]).ravel(), sr.ravel(), st.ravel()
 
     def uniform_stress(self, sigma0):
-        """(sxx, sxy, syy) of a uniform isotropic stress ``sigma0`` [Pa] at the bending
-        quadrature points (the exact stressed reference)."""
+        """(sxx, sxy, syy) of a uniform isotropic stress ``sigma0`` [Pa]."""
         shape = np.asarray(self.basis.global_coordinates()).shape[1:]
         s = np.full(shape, float(sigma0))
         return s, np.zeros(shape), s.copy()

@@ -22,8 +22,7 @@ LOAD = {"thermal_load", "cutting_heat_stress"}
 
 
 class Disk:
-    """The context of one run: SI parameters, the calibrated thickness, and what the
-    stages have made so far (``alpha``, ``slots``, ``loads``, ``model``, ``k_sigma``)."""
+    """The context of one run: SI parameters, thickness, what the stages have made."""
 
     def __init__(self, run: dict):
         p, self.run, self.p = run["parameters"], run, run["parameters"]
@@ -76,8 +75,7 @@ class Disk:
         self.vars[f"{self.solver}_{name}"] = var(*variable)
 
     def keep(self, contributions, prefix=""):
-        """Write every contribution but those the solver consumes to the dataset;
-        coordinates keep their name, the others get ``prefix``."""
+        """Write the contributions to the dataset (coordinates unprefixed)."""
         for key in contributions.keys():
             if key not in BEFORE_LOAD | LOAD:
                 value = contributions.get(key)
@@ -165,8 +163,7 @@ def _discretise(ctx: Disk):
 
 
 def _compare(ctx: Disk):
-    """What two contributions give together: errors against the exact reference, Eq. (9)
-    against the eigen-analysis, and the time of one accuracy point."""
+    """Errors against the references, Eq. (9) against Eq. (5), the accuracy points' times."""
     name = ctx.solver
 
     def get(key):

@@ -85,6 +85,5 @@ def residual_stress(r, *, stress_model="thermal_analogy", profile_rc=None, **kw)
 
 
 def field(**kw):
-    """(sigma_r(r), sigma_theta(r)) of :func:`residual_stress` as callables of r [m]: what
-    [K^(sigma)] of Eq. (3) reads."""
+    """(sigma_r(r), sigma_theta(r)) of :func:`residual_stress` as callables of r [m]."""
     return (lambda r: residual_stress(r, **kw)[0], lambda r: residual_stress(r, **kw)[1])

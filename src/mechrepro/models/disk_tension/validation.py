@@ -29,8 +29,7 @@ def _argext(ds, var, n_d, fn):
 
 
 def _grid(R) -> dict:
-    """{r_f [mm]: dataset} of Figs. 6/8 (:func:`.figures.rc_grid`), split once per job:
-    ten quantities and their variants read it, and each split of the study costs ms."""
+    """{r_f [mm]: dataset} of Figs. 6/8, split once per job."""
     a, st = R.run("rc_grid"), R.study("fig06")   # the declared reads, checked every time
     return R.derived(("rc_grid", id(a), id(st)), lambda: rc_grid(R))
 
@@ -59,8 +58,7 @@ def _table1_nd4(R):
 
 @Q.register("inplane_bc_evidence_free_disk", "inplane_bc_evidence_clamped")
 def _bc_evidence(R):
-    """max |ratio error| of Table 1's N_d = 0..3 entries relative to its N_d = 4 entry (alpha
-    cancels in the ratio) for either in-plane condition."""
+    """max |ratio error| of Table 1's N_d = 0..3 entries to N_d = 4 (alpha cancels)."""
     paper = np.array([R.paper_value(f"table1_diag_nd{n}") for n in range(4)])
     p4 = _paper_d4(R)[0]
     out = {}
@@ -152,8 +150,7 @@ def _table1_other_zero(R):
 
 @Q.register("paper_mesh_symmetry_order")
 def _symmetry(R):
-    """Rotational symmetry order of the paper's mesh from Table 1's coupling pattern (an
-    inference from the pattern, computed by the C_N selection rule)."""
+    """Symmetry order of the paper's mesh inferred from Table 1's coupling pattern."""
     pairs = [(0, 4), (1, 3)]
     nz = [p for p in pairs if R.paper_value(f"table1_offdiag_nd{p[0]}_nd{p[1]}") != 0]
     N = harmonic_coupling_symmetry(nz, 4)
@@ -407,14 +404,12 @@ def _cs_runs(R) -> list:
 
 
 def lowest_critical_speed(ds) -> np.ndarray:
-    """The lowest critical speed over N_d of each r_c [rad/s]; NaN where any harmonic has
-    buckled (a disk buckled at rest has no critical speed: it does not exist)."""
+    """The lowest critical speed over N_d of each r_c [rad/s]; NaN: buckled."""
     return design.lowest_over(np.asarray(ds["axisym_critical_speed"].values, float), ds["n_d"].values)
 
 
 def best_rolling_radius(ds) -> tuple[float, float, str]:
-    """(r_c [mm] maximising the lowest critical speed, that speed [rad/s], what the buckled
-    r_c are): NaN, NaN when every r_c buckles."""
+    """(r_c [mm] of the best lowest critical speed, that speed, the buckled r_c)."""
     low, rc = lowest_critical_speed(ds), ds["r_c"].values * 1e3
     gone = rc[np.isnan(low)]
     said = (f" (buckled, no critical speed: r_c = {', '.join(f'{x:.0f}' for x in gone)} mm)"
@@ -449,8 +444,7 @@ def _cs_min(R):
 
 @Q.register("critical_speed_best_rc")
 def _cs_best(R):
-    """r_c [mm] maximising the lowest critical speed over N_d, and the gain at each r_f (a
-    buckled r_c is named, never given a number)."""
+    """r_c [mm] of the best lowest critical speed; the gain at each r_f."""
     runs = _cs_runs(R)
     other = R.run("critical_speed_centrifugal_free")
     notes = [_best_note(rf, ds) for rf, ds in runs]
@@ -474,8 +468,7 @@ def _design_gain(R):
 
 @Q.register("design_map_optimum_rc")
 def _design(R):
-    """r_c [mm] of the design map's optimum at r_f = 25 mm and the stated margin; the note
-    gives every r_f (a flange radius whose every r_c buckles has no optimum, never a number)."""
+    """r_c [mm] of the design map's optimum at r_f = 25 mm; the note gives every r_f."""
     rows = _design_rows(R)
     notes = [f"r_f {r['r_f_mm']:.0f} mm: r_c {r['r_c_opt_mm']:.0f} +- {r['r_c_step_mm'] / 2:g} mm, "
              f"A {r['amplitude_opt_degc']:.0f} degC ({r['binds']} binds, N_d = "
@@ -488,8 +481,7 @@ def _design(R):
 
 @Q.register("critical_speed_vs_southwell")
 def _cs_southwell(R):
-    """At every r_f: eigen <= Southwell (Rayleigh); within SOUTHWELL_CLOSE of it up to
-    SOUTHWELL_CLOSE_RF_MM."""
+    """eigen <= Southwell everywhere, within SOUTHWELL_CLOSE up to SOUTHWELL_CLOSE_RF_MM."""
     ok, notes, runs = True, [], _cs_runs(R)
     for rf, ds in runs:
         ex = ds["axisym_critical_speed_untensioned"].values
