@@ -26,9 +26,7 @@ def thickness(*, f_target, n_d, r_f, b, E, nu, rho):
 
 
 def alpha_effective(*, target, memo=True, **case):
-    """alpha [1/K] that makes Eq. (9)'s Delta omega^2 of ``n_d`` equal ``target``, and the
-    handbook-alpha prediction it replaces: (alpha_eff, Delta omega^2, eigen Delta f [Hz]).
-    Memoised per process (the runs of a batch share a few cases); ``memo=False`` solves afresh."""
+    """(alpha meeting ``target`` by Eq. 9, handbook Eq. 9, handbook eigen Delta f), memoised."""
     key = tuple(sorted(case.items()))
     return _alpha_effective(target, key) if memo else _alpha_effective.__wrapped__(target, key)
 

@@ -31,9 +31,7 @@ _COLD: dict = {}
 
 
 def _cold(effect, key, solve_afresh, plus=0.0):
-    """What ``effect`` costs with nothing memoised (``solve_afresh()`` timed once per process
-    and input, ``plus`` its unmemoised part): after the first run of a batch its own effect
-    time is ~0."""
+    """What ``effect`` costs with nothing memoised: a fresh solve, once per input."""
     if (effect, key) not in _COLD:
         with phase("disk_tension.cold") as sw:
             solve_afresh()
@@ -124,9 +122,7 @@ def roll_tension(ctx) -> dict:
 
 @EFFECTS.register("cutting_heat")
 def cutting_heat(ctx) -> dict:
-    """The rim heated in the cut: Eq. (4)'s form at r_c = b with the real temperature rise
-    and the handbook alpha, its plane-stress field under the flange's in-plane hold
-    (``centrifugal_bc``): compression at the rim."""
+    """The rim heated in the cut: Eq. (4)'s form at r_c = b, compressing the rim."""
     p = ctx.p
     kw = dict(amplitude=p["rim_temperature_rise"], r_c=ctx.b, s=p["rim_heat_width"],
               r_f=ctx.r_f, b=ctx.b, E=ctx.E, nu=ctx.nu, alpha=p["thermal_expansion"],
@@ -181,9 +177,7 @@ _ROLLED_REFERENCES: dict = {}
 
 @EFFECTS.register("rolled_reference")
 def rolled_reference(ctx) -> dict:
-    """Converged rolled frequencies of the plain disk for the 2-D model's cost of accuracy:
-    the Richardson extrapolation (h^4) of the 64- and 128-element axisymmetric models, and
-    its own error on the unrolled frequencies, where the exact solution is known."""
+    """Rolled frequencies by Richardson (h^4) of 64 and 128 axisym elements, and its error."""
     key = _disk_key(ctx, float(ctx.A), float(ctx.s), ctx.bc,
                     tuple((ld.r_c, float(ld.alpha), ld.inplane_bc) for ld in ctx.loads))
     if key not in _ROLLED_REFERENCES:
@@ -447,9 +441,7 @@ def critical_speed(ctx) -> dict:
 
 @EFFECTS.register("design_map")
 def design_map(ctx) -> dict:
-    """The tensioning design map (:mod:`.design`): the lowest critical speed over N_d >= 2 of
-    every r_c against the rolling amplitude A up to A_cr / m, and the best A per r_c at every
-    ``buckling_margin`` m (the stated one is the middle)."""
+    """The tensioning design map (:mod:`.design`) at every ``buckling_margin``."""
     from . import design
 
     p, model = ctx.p, ctx.model

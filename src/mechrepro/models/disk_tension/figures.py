@@ -67,9 +67,7 @@ def matrix_rows(da) -> list[list]:
 
 def effect_cold_warm(R, scenes=("table12", "table12_plate2d", "stressed_axisym",
                                 "stressed_plate2d")) -> list[list]:
-    """Rows [scene, effect, warm s, cold s] of the memoised effects: warm is the run's own
-    effect time (the fastest repetition), cold ``<effect>_time_cold``, what it costs with
-    nothing memoised."""
+    """Rows [scene, effect, warm s, cold s] of the memoised effects."""
     rows = []
     for scene in scenes:
         ds = R.run(scene)

@@ -42,9 +42,7 @@ def _lowest_stable(K, M, bandwidth=3):
 
 
 def scan(disk, *, widths, scales, fine, conditions, n_d_eigen=4, **load):
-    """Table 1 for c = 1 [condition, s, N_d] and omega~^2(N_d = 4) [condition, s, c] on the
-    ``fine`` c grid, splined from the coarse ``scales`` below the first that buckles (NaN
-    beyond)."""
+    """Table 1 for c = 1 and omega~^2(N_d = 4) on the fine c grid (NaN: buckled)."""
     from scipy.interpolate import CubicSpline
 
     unit = np.empty((len(conditions), len(widths), len(disk.n_d)))

@@ -39,9 +39,7 @@ def eigen(K, M, count=1, bandwidth=None):
 
 
 def lowest_banded(K, M, bandwidth, tol=1e-13, maxiter=200):
-    """Eigenvector of the lowest eigenvalue of (K, M) by inverse iteration with K's banded
-    Cholesky factor (start vector all ones); None if K is not positive definite or the
-    change has not fallen below ``tol`` of the largest entry within ``maxiter`` steps."""
+    """Lowest eigenvector of (K, M) by banded inverse iteration; None: buckled or no convergence."""
     from scipy.linalg.lapack import dpbtrf, dpbtrs
 
     u = int(bandwidth)

@@ -280,9 +280,7 @@ class PlateDisk:
 
     # -- thermal analogy: plane stress ---------------------------------------------
     def _inplane_problem(self, inplane_bc):
-        """P2 plane-stress basis, free DOFs and factorised stiffness for ``inplane_bc``:
-        ``clamped``, the annulus with u = 0 at r = r_f; ``free_disk``, the whole disk held only
-        against rigid motion (a blade rolled before it is clamped)."""
+        """P2 plane-stress basis, free DOFs and factorised stiffness for ``inplane_bc``."""
         if inplane_bc == "clamped":
             ub = self.basis.with_element(ElementVector(ElementTriP2()))
             fixed = ub.get_dofs(self._inner).all()
@@ -389,9 +387,7 @@ class PlateDisk:
         return float(-1.0 / neg.min()) if neg.size else float("inf")
 
     def modal_matrices(self, Ks):
-        """Eq. (16) with Phi = cos members; Eq. (17) with every rolled pair rotated onto the
-        cos/sin basis of its unrolled pair first (:func:`modal.align_pair`), so Table 2 does
-        not depend on the rotation the eigensolver happens to return."""
+        """Eqs. (16)-(17), each rolled pair rotated onto its unrolled cos/sin basis first."""
         from .modal import align_pair
 
         Phi = self.Phi

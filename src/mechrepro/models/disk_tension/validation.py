@@ -359,9 +359,7 @@ def _buckling(R):
 
 @Q.register("joint_fit_gaussian_width", "joint_fit_stress_scale")
 def _joint_fit(R):
-    """The joint fit to Table 1 alone (row notes: the extents of its joint (s, c) regions
-    with what bounds them, which numbers pin it, the degenerate direction, and the fit with
-    502.1 Hz added)."""
+    """The joint fit to Table 1 alone; the notes: its regions, pins, direction, 502.1 Hz."""
     from . import identifiability as idf
 
     ds = R.run("identifiability")
