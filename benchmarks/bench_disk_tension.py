@@ -37,7 +37,7 @@ from mechrepro.models.disk_tension.effects import thermal_load  # noqa: E402
 from mechrepro.config import load_paper  # noqa: E402
 from mechrepro.models.disk_tension import compute, exact  # noqa: E402
 from mechrepro.models.disk_tension.axisym import AxisymDisk  # noqa: E402
-from mechrepro.models.disk_tension.convergence import richardson  # noqa: E402
+from mechrepro.levels import extrapolate  # noqa: E402
 
 import _floor  # noqa: E402
 
@@ -128,7 +128,7 @@ def test_bench_disk_tension():
     ctx = setup()
     # converged reference: Richardson (h^4) of 64 and 128 elements, ~5e-9 on the exact
     # unrolled frequencies (256 elements alone: round-off ~5e-8)
-    ref = richardson(grid(ctx, 64, 0.0)[0], grid(ctx, 128, 0.0)[0])
+    ref = extrapolate(grid(ctx, 64, 0.0)[0], grid(ctx, 128, 0.0)[0], 2.0, 4.0)  # h^4, n and 2n
     print(f"\ndisk_tension: full Fig. 6 + Fig. 8 grid (9 r_c x 3 r_f x N_d 0..4), axisym, "
           f"OPENBLAS_NUM_THREADS={os.environ.get('OPENBLAS_NUM_THREADS')}, fastest of repeats")
     chosen = None

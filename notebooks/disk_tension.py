@@ -230,8 +230,6 @@ ax.set_xticks(x, labels)
 ax.set(ylabel="wall time [s]", title="cost: Eq. (9) vs eigen-analysis")
 ax.legend(fontsize=7)
 R.save_figure(fig, "eq9_vs_eigen")
-for m, (t_eig, t_eq9) in times.items():
-    print(f"{m}: eigen {t_eig:.4g} s, Eq. (9) {t_eq9:.4g} s, ratio {t_eig / t_eq9:.0f}x")
 
 # %% [markdown]
 # ## Beyond the paper: a sawblade with radial expansion slots (2-D model)
@@ -246,8 +244,8 @@ for n in (2, 3, 4):
     p = slotted["plate2d_f_rolled_pair"].sel(n_d=n)
     ax.fill_between(mm(slotted["r_c"]), p.isel(member=0), p.isel(member=1), color=COLORS[n], alpha=0.3)
     ax.plot(mm(slotted["r_c"]), p.mean("member"), "s--", ms=3, color=COLORS[n], label=f"slotted, N_d={n}")
-    ax.plot([0], [float(plain2d["plate2d_f_unrolled"].sel(n_d=n))], "o", mfc="none", color=COLORS[n])
-    ax.plot([0], [float(slotted["plate2d_f_unrolled"].sel(n_d=n))], "s", mfc="none", color=COLORS[n])
+    for ds, mk in ((plain2d, "o"), (slotted, "s")):
+        ax.plot([0], [float(ds["plate2d_f_unrolled"].sel(n_d=n))], mk, mfc="none", color=COLORS[n])
 ax.set(xlabel="r_c [mm]", ylabel="natural frequency [Hz]",
        title=f"slotted sawblade ({int(slotted['slot_count'])} slots) vs plain disk, r_f = 25 mm")
 ax.legend(fontsize=7, ncol=2)
@@ -281,10 +279,6 @@ R.write_table("table1", hdr, figures.matrix_rows(t12["axisym_k_sigma_hat"]))
 R.write_table("table2", hdr, figures.matrix_rows(t12["axisym_m_hat"]))
 R.write_table("table1_plate2d", hdr, figures.matrix_rows(t12_2d["plate2d_k_sigma_hat"]))
 R.write_table("table2_plate2d", hdr, figures.matrix_rows(t12_2d["plate2d_m_hat"]))
-np.set_printoptions(precision=4, linewidth=140)
-print("Table 1 (axisym):\n", t12["axisym_k_sigma_hat"].values)
-print("Table 1 (plate2d):\n", t12_2d["plate2d_k_sigma_hat"].values)
-print("Table 2 (plate2d, pairs rotated onto the unrolled cos/sin basis):\n", t12_2d["plate2d_m_hat"].values)
 
 # %% [markdown]
 # ## Cost of accuracy
@@ -315,9 +309,6 @@ axes[1, 1].annotate("accuracy of the rolled reference", (axes[1, 1].get_xlim()[0
 axes[1, 1].axhline(figures.accuracy_goal(R, "plate2d_unrolled_vs_exact"), color="k", ls=":", lw=0.8)
 axes[1, 1].legend(fontsize=8, loc="lower right", bbox_to_anchor=(1.0, 0.12))   # clear of the curves
 R.save_figure(fig, "cost_of_accuracy")
-for row in coa:
-    print(row["accuracy"], row["knob_value"], row["quantity"], f"{float(row['error']):.3e}",
-          f"{float(row['time_s']):.3g} s")
 
 # %% [markdown]
 # ## What the paper's numbers pin down (identifiability)
@@ -332,8 +323,6 @@ for row in coa:
 # the data). Right: the profiles over s (each point minimised over a continuous c).
 
 # %%
-import matplotlib.ticker as mticker
-
 from mechrepro.models.disk_tension import identifiability as idf
 
 idn = R.run("identifiability")
@@ -410,8 +399,6 @@ fig.legend(handles.values(), handles.keys(), loc="lower center", ncol=3, fontsiz
            bbox_to_anchor=(0.36, 0.0))
 fig.subplots_adjust(bottom=0.25, wspace=0.28)
 R.save_figure(fig, "identifiability")
-for r in idf.table(idn):
-    print(r)
 
 # %% [markdown]
 # ## The critical speed (beyond the paper: what tensioning is for)
@@ -424,7 +411,7 @@ for r in idf.table(idn):
 # number). Right: the lowest over N_d, for larger clamping ratios.
 
 # %%
-cs, cs_rf = R.run("critical_speed"), R.study("critical_speed_rf")
+cs = R.run("critical_speed")
 cs_free = R.run("critical_speed_centrifugal_free")
 from mechrepro.models.disk_tension.validation import lowest_critical_speed
 RPM = 60 / (2 * np.pi)
@@ -440,14 +427,12 @@ for n in (2, 3, 4):
 axes[0].set(xlabel="rolling radius r_c [mm]", ylabel="critical speed [rpm]",
             title="r_f = 25 mm: rolled (solid; dotted: free_disk) vs unrolled (dashed)")
 axes[0].legend(fontsize=8)
-sets = [(figures.clamp_mm(cs), cs)] + [(figures.clamp_mm(cs_rf.isel(run=i)), cs_rf.isel(run=i))
-                                      for i in range(cs_rf.sizes["run"])]
-for rf, ds in sets:
+for i, (rf, ds) in enumerate(figures.by_clamp(R, "critical_speed", "critical_speed_rf")):
     low = lowest_critical_speed(ds) * RPM
     line, = axes[1].plot(rc_mm, low, "o-", label=f"r_f = {rf:.0f} mm")
     axes[1].axhline(float(ds["axisym_critical_speed_untensioned"].min()) * RPM,
                     color=line.get_color(), ls="--", lw=0.8)
-    if ds is cs:
+    if i == 0:
         axes[1].plot(rc_mm, lowest_critical_speed(cs_free) * RPM, "o:", ms=3,
                      color=line.get_color(), label=f"r_f = {rf:.0f} mm, free_disk")
 axes[1].set(xlabel="rolling radius r_c [mm]", ylabel="lowest critical speed [rpm]",
@@ -455,7 +440,6 @@ axes[1].set(xlabel="rolling radius r_c [mm]", ylabel="lowest critical speed [rpm
 # below every untensioned (dashed) line and left of the curves' drop at the rim
 axes[1].legend(fontsize=8, loc="lower center", bbox_to_anchor=(0.42, 0.0))
 R.save_figure(fig, "critical_speed")
-print("time of the critical speeds (r_f = 25 mm, 9 r_c):", float(cs["axisym_time_critical_speed"]), "s")
 
 # %% [markdown]
 # ## The tensioning design map (beyond the paper: where to roll, and how hard)
@@ -471,9 +455,7 @@ print("time of the critical speeds (r_f = 25 mm, 9 r_c):", float(cs["axisym_time
 # %%
 from mechrepro.models.disk_tension import design
 
-dm_runs = [(figures.clamp_mm(R.run("design_map")), R.run("design_map"))]
-dm_st = R.study("design_map_rf")
-dm_runs += [(figures.clamp_mm(dm_st.isel(run=i)), dm_st.isel(run=i)) for i in range(dm_st.sizes["run"])]
+dm_runs = figures.by_clamp(R, "design_map", "design_map_rf")
 cut = R.run("design_map_in_cut")
 dm_rows = design.table(dm_runs + [(figures.clamp_mm(cut), cut)])
 R.write_table("design_map", design.COLUMNS, dm_rows)
@@ -499,7 +481,7 @@ for ax, (rf, ds) in zip(maps, dm_runs):
            title=f"r_f = {rf:.0f} mm: ★ {v * RPM:.0f}, ○ "
                  f"{float(ds['axisym_design_paper_amplitude_speed'][j65]) * RPM:.0f}, "
                  f"untensioned {float(np.nanmin(low[:, 0])):.0f} rpm")
-ax = axes[1, 1]
+ax, ax_f = axes[1, 1], axes[1, 2]
 for (rf, ds), c in zip(dm_runs, ("C0", "C1", "C2", "C3")):
     q = int(np.argmin(np.abs(ds["design_margin"].values - float(ds["axisym_design_stated_margin"]))))
     unt = float(np.nanmin(design.lowest_map(ds)[:, 0]))
@@ -508,6 +490,9 @@ for (rf, ds), c in zip(dm_runs, ("C0", "C1", "C2", "C3")):
             color=c, label=f"r_f {rf:.0f} mm, best A")
     ax.plot(rc_mm, 100 * (ds["axisym_design_paper_amplitude_speed"].values / unt - 1), ":",
             color=c, label=f"r_f {rf:.0f} mm, A = 50 °C")
+    fr = ds["axisym_design_best_frequency_ratio"].values[q]
+    ax_f.plot(rc_mm, fr[:, 0], "-", color=c, label=f"r_f {rf:.0f} mm, N_d = 0")
+    ax_f.plot(rc_mm, fr[:, 1], ":", color=c, label=f"r_f {rf:.0f} mm, N_d = 1")
 unt25 = float(np.nanmin(design.lowest_map(dm_runs[0][1])[:, 0]))
 qc = int(np.argmin(np.abs(cut["design_margin"].values - float(cut["axisym_design_stated_margin"]))))
 ax.plot(cut["r_c"].values * 1e3, 100 * (cut["axisym_design_best_speed"].values[qc] / unt25 - 1),
@@ -516,18 +501,10 @@ ax.axhline(0, color="k", lw=0.8)
 ax.set(xlabel="rolling radius r_c [mm]", ylabel="lowest critical speed over untensioned [%]",
        title="the design curve (stated margin; a gap: buckled)", ylim=(-120, 60))
 ax.legend(fontsize=7, ncol=2, loc="lower left")    # below the curves
-ax = axes[1, 2]
-for (rf, ds), c in zip(dm_runs, ("C0", "C1", "C2", "C3")):
-    q = int(np.argmin(np.abs(ds["design_margin"].values - float(ds["axisym_design_stated_margin"]))))
-    fr = ds["axisym_design_best_frequency_ratio"].values[q]
-    ax.plot(ds["r_c"].values * 1e3, fr[:, 0], "-", color=c, label=f"r_f {rf:.0f} mm, N_d = 0")
-    ax.plot(ds["r_c"].values * 1e3, fr[:, 1], ":", color=c, label=f"r_f {rf:.0f} mm, N_d = 1")
-ax.set(xlabel="rolling radius r_c [mm]", ylabel="f̃ / f at rest, best A [1]", ylim=(0, 1.7),
-       title="N_d = 0, 1 frequency margins (stated margin)")
-ax.legend(fontsize=7, ncol=2, loc="upper left")
+ax_f.set(xlabel="rolling radius r_c [mm]", ylabel="f̃ / f at rest, best A [1]", ylim=(0, 1.7),
+         title="N_d = 0, 1 frequency margins (stated margin)")
+ax_f.legend(fontsize=7, ncol=2, loc="upper left")
 R.save_figure(fig, "design_map")
-for r in dm_rows:
-    print(r)
 
 # %% [markdown]
 # ## What the memoised effects cost, cold and warm
@@ -537,10 +514,8 @@ for r in dm_rows:
 # nothing memoised (a fresh process, or the first run).
 
 # %%
-rows = figures.effect_cold_warm(R)
-R.write_table("effect_cold_warm", ["scene", "effect", "warm_s", "cold_s"], rows)
-for r in rows:
-    print(f"{r[0]:18s} {r[1]:20s} warm {r[2]:.2e} s  cold {r[3]:.2e} s")
+R.write_table("effect_cold_warm", ["scene", "effect", "warm_s", "cold_s"],
+              figures.effect_cold_warm(R))
 
 # %% [markdown]
 # ## Validation table

@@ -8,7 +8,8 @@ import pytest
 
 from mechrepro.config import load_paper
 from mechrepro.solve import solve
-from mechrepro.models.disk_tension.convergence import reference_pair, richardson
+from mechrepro.errors import Refusal
+from mechrepro.levels import extrapolate
 from mechrepro.models.disk_tension.modal import degenerate_harmonics, harmonic_coupling_symmetry
 from mechrepro.inputs import read_yaml
 
@@ -75,6 +76,21 @@ def test_table1_pattern_is_the_selection_rule_of_a_c4_mesh():
     # a finer mesh symmetry would not couple 0 and 4; a coarser one would couple more
     assert harmonic_coupling_symmetry([(0, 4), (1, 3), (0, 2), (2, 4), (1, 3)], 4) == 2
     assert harmonic_coupling_symmetry([(1, 3)], 4) is None
+
+
+def richardson(f_coarse, f_fine):
+    """The h^4 Hermite elements' Richardson extrapolation of runs with n and 2n elements."""
+    return extrapolate(np.asarray(f_coarse, float), np.asarray(f_fine, float), 2.0, 4.0)
+
+
+def reference_pair(n_elements):
+    """The largest pair (n, 2n) present with 2n <= 128 (beyond 128 elements round-off
+    exceeds the h^4 error): the element counts of effect rolled_reference."""
+    have = sorted(set(int(n) for n in n_elements))
+    pairs = [(n, 2 * n) for n in have if 2 * n in have and 2 * n <= 128]
+    if not pairs:
+        raise Refusal(f"no (n, 2n) pair with 2n <= 128 among element counts {have}")
+    return pairs[-1]
 
 
 def test_richardson_reference_beats_the_finest_run_on_the_exact_solution(cfg):

@@ -181,14 +181,14 @@ def test_fe_residual_stress_matches_closed_form_for_both_inplane_conditions(bc):
 
 
 def test_batched_argyris_basis_and_matrices_equal_scikit_fem():
-    """plate2d.Argyris (one batched product per derivative) and ArgyrisForms (element
-    matrices as batched products) give scikit-fem's basis and matrices to round-off.  (Plain
-    mesh: both evaluate the Argyris functions in a global monomial basis, which loses digits
-    in either summation order on the narrow cells beside slots.)"""
+    """plate2d.Argyris (one batched product per derivative) gives scikit-fem's basis, and the
+    plate's matrices assembled on it scikit-fem's, to round-off.  (Plain mesh: both evaluate
+    the Argyris functions in a global monomial basis, which loses digits in either summation
+    order on the narrow cells beside slots.)"""
     from skfem import Basis, ElementTriArgyris, asm
 
-    from mechrepro.models.disk_tension.plate2d import (INTORDER, Argyris, ArgyrisForms,
-                                                       _bending, _geometric, _mass)
+    from mechrepro.models.disk_tension.plate2d import (INTORDER, Argyris, _bending, _geometric,
+                                                       _mass)
 
     mesh = polar_mesh(RF, B, 3, 24)
     ref = Basis(mesh, ElementTriArgyris(), intorder=INTORDER)
@@ -197,12 +197,10 @@ def test_batched_argyris_basis_and_matrices_equal_scikit_fem():
         for x, y in ((np.asarray(a[0]), np.asarray(b[0])), (a[0].grad, b[0].grad),
                      (a[0].hess, b[0].hess)):
             assert np.abs(x - y).max() <= 1e-9 * np.abs(x).max()
-    forms = ArgyrisForms(new)
     rng = np.random.default_rng(0)
     s = [rng.standard_normal(new.dx.shape) * 1e8 for _ in range(3)]
     D = E * H**3 / (12 * (1 - NU**2))
-    for mine, theirs in ((forms.bending(D, NU), asm(_bending, ref, D=D, nu=NU)),
-                         (forms.mass(RHO * H), asm(_mass, ref, rho_h=RHO * H)),
-                         (forms.geometric(H, *s), asm(_geometric, ref, h=H, sxx=s[0], sxy=s[1],
-                                                      syy=s[2]))):
+    for form, kw in ((_bending, dict(D=D, nu=NU)), (_mass, dict(rho_h=RHO * H)),
+                     (_geometric, dict(h=H, sxx=s[0], sxy=s[1], syy=s[2]))):
+        mine, theirs = asm(form, new, **kw), asm(form, ref, **kw)
         assert abs(mine - theirs).max() <= 1e-12 * abs(theirs).max()

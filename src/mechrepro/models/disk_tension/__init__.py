@@ -1,14 +1,9 @@
 """disk_tension: vibration of a circular saw disk tensioned by rolling (FEM).
 
-Kuratani & Yano, "Vibration analysis of a circular disk tensioned by rolling using finite
-element method".  Thermal-analogy residual stress (Eq. 4), stress stiffening (Eq. 3),
+Kuratani & Yano: thermal-analogy residual stress (Eq. 4), stress stiffening (Eq. 3),
 eigen-analysis (Eq. 5), the first-order estimate (Eq. 9) and the modal matrices
-(Eqs. 16-17), on two discretisations (axisymmetric harmonics, 2-D Argyris plate) checked
-against the exact Bessel solution.
-
-The names below are imported on first use (:func:`mechrepro.lazy.lazy_exports`), so that a reader of
-results (the notebook imports ``figures``; validate_disk_tension ``figures`` and ``modal``) does
-not import the solvers and scipy.
+(Eqs. 16-17), on two discretisations checked against the exact Bessel solution.  The names
+below are imported on first use, so that a reader of results does not import the solvers.
 """
 from __future__ import annotations
 

@@ -1,14 +1,8 @@
-"""Cost-of-accuracy quantities of disk_tension (config ``accuracy:``).
-
-Each function returns the errors along the study's runs.  An entry's ``name`` starts with
-the solver whose variables are read (``axisym_*`` or ``plate2d_*``).  References: exact
-solutions wherever one exists -- the Bessel frequencies of the unrolled annulus
-(``exact_reference``) and of the annulus under a uniform in-plane stress
-(``stressed_reference``: the stress-stiffening path, Eqs. 3 and 5, against an exact
-answer).  The rolled (Gaussian) stress has none: the 2-D model's rolled errors are taken
-against the axisym Richardson reference of effect ``rolled_reference``
-(``f_rolled_reference``; its own error on the unrolled frequencies, ~5e-9, is far below
-every 2-D error).
+"""Cost-of-accuracy quantities of disk_tension (config ``accuracy:``): the errors along a
+study's runs, read from the solver named by the entry's ``name`` (``axisym_*``,
+``plate2d_*``), against exact (Bessel) solutions wherever one exists; the rolled Gaussian
+stress has none, so the 2-D model's rolled errors are taken against the axisym Richardson
+reference of effect ``rolled_reference``.
 """
 from __future__ import annotations
 
@@ -43,8 +37,7 @@ def unrolled_nd4_vs_exact(ds, entry):
 
 @ACCURACY.register("stressed_max_vs_exact")
 def stressed_max_vs_exact(ds, entry):
-    """max over (reference stress, N_d) of |f / f_exact - 1| under a uniform in-plane stress
-    (Eqs. 3, 5 against the stressed Bessel solution)."""
+    """max over (reference stress, N_d) of |f / f_exact - 1| (Eqs. 3, 5)."""
     return _max_over(ds[f"{_solver(entry)}_error_stressed"], ds)
 
 

@@ -1,36 +1,29 @@
 """Axisymmetric harmonic model: w(r, theta) = W(r) cos(N_d theta), radial Hermite elements.
 
 For one harmonic N_d the Kirchhoff plate energies reduce to radial integrals (the common
-factor int cos^2 = pi or 2 pi cancels in every eigenvalue and Rayleigh quotient):
+factor int cos^2 cancels in every eigenvalue and Rayleigh quotient):
 
   stiffness    D [W''^2 + k_t^2 + 2 nu W'' k_t + 2 (1-nu) N_d^2 (W'/r - W/r^2)^2] r,
                k_t = W'/r - N_d^2 W/r^2                                   -> [K]
   mass         rho h W^2 r                                                -> [M]
   stress       h [sigma_r W'^2 + sigma_theta N_d^2 W^2 / r^2] r           -> [K^(sigma)], Eq. (3)
 
-Eq. (3)'s [K^(sigma)] is written for shell elements: its 6 x 6 stress block acts on the
-derivatives of all three displacements (u, v, w).  Only the w rows enter here: for a flat
-plate the in-plane stress couples the transverse motion only through grad(w)^T sigma grad(w)
-(the u, v rows stiffen in-plane modes, which stay uncoupled from bending and lie far above
-the N_d = 0..4 bending frequencies), so dropping them changes no frequency of the paper.
-
-discretised by cubic Hermite elements (nodal W and ell W', with ell the mean element
-length: both DOF kinds then carry the same unit, which keeps [K] and [M] well conditioned
-enough for relative frequency errors near 1e-9 instead of a 1e-6 round-off floor).  All elements are integrated at once
-with Gauss quadrature (the Gaussian stress is sampled exactly at the quadrature points),
-and the clamp r = r_f removes W, W' of the first node.
+Only the w rows of Eq. (3)'s shell stress block enter (a flat plate's in-plane stress couples
+bending only through grad(w)^T sigma grad(w)).  Cubic Hermite elements carry W and ell W'
+(ell the mean element length: one unit keeps [K], [M] well conditioned); clamped at r_f.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
 
 import numpy as np
 from numpy.polynomial.legendre import leggauss
 
 from mechrepro.errors import Refusal
 
-N_GAUSS = 6  # exact for the polynomial parts; the Gaussian stress needs a few more points
+#: Gauss-Legendre points and weights on [-1, 1]: 6, exact for the polynomial parts (the
+#: Gaussian stress needs a few more points than they do)
+XG, WG = leggauss(6)
 BANDWIDTH = 3  # half-bandwidth of [K], [M]: element DOFs W, ell W' of two neighbouring nodes
 
 
@@ -47,9 +40,6 @@ class RadialMesh:
     def n_elements(self) -> int:
         return len(self.nodes) - 1
 
-    @property
-    def n_dofs(self) -> int:
-        return 2 * len(self.nodes) - 2  # clamp removes W, W' at r_f
 
 
 def radial_mesh(r_f, b, n_elements, breakpoints=()):
@@ -73,22 +63,12 @@ def radial_mesh(r_f, b, n_elements, breakpoints=()):
     return RadialMesh(nodes)
 
 
-@lru_cache(maxsize=None)
-def _gauss(n_gauss):
-    """Gauss-Legendre points and weights on [-1, 1] (read only: shared by every mesh; Fig. 7
-    builds a mesh per annulus radius)."""
-    xg, wg = leggauss(n_gauss)
-    xg.flags.writeable = wg.flags.writeable = False
-    return xg, wg
-
-
-def quadrature(mesh: RadialMesh, n_gauss=N_GAUSS):
+def quadrature(mesh: RadialMesh):
     """Quadrature radii r[e, q], weights w[e, q] (incl. Jacobian) and Hermite basis."""
-    xg, wg = _gauss(n_gauss)
-    xi = 0.5 * (xg + 1.0)
+    xi = 0.5 * (XG + 1.0)
     L = np.diff(mesh.nodes)[:, None]
     r = mesh.nodes[:-1, None] + L * xi[None, :]
-    w = 0.5 * wg[None, :] * L
+    w = 0.5 * WG[None, :] * L
     x = xi[None, :] * np.ones_like(L)
     g = L / mesh.ell  # slope DOFs are ell W'
     N = np.stack([1 - 3 * x**2 + 2 * x**3, g * (x - 2 * x**2 + x**3),
@@ -117,8 +97,7 @@ def mass_matrix(mesh, *, rho_h, quad=None):
 
 
 def bending_matrix(mesh, n_d, *, D, nu, quad=None, d_scale=None):
-    """[K] of harmonic ``n_d`` (Eq. 1 bending operator, clamped at r_f); ``d_scale(r)``
-    multiplies the flexural rigidity D."""
+    """[K] of harmonic ``n_d`` (Eq. 1); ``d_scale(r)`` multiplies D."""
     r, w, N, dN, d2N = quad if quad is not None else quadrature(mesh)
     n2 = float(n_d) ** 2
     rr = r[..., None]
@@ -143,31 +122,14 @@ def stress_stiffness(mesh, n_d, sr, st, h, quad=None):
     return _assemble(mesh, ke)
 
 
-def mode_values(mesh, phi, r):
-    """Interpolate a clamped DOF vector ``phi`` (W, ell W' per node) to radii ``r``."""
-    full = np.concatenate([[0.0, 0.0], phi])
-    r = np.asarray(r, float)
-    e = np.clip(np.searchsorted(mesh.nodes, r, side="right") - 1, 0, mesh.n_elements - 1)
-    L = mesh.nodes[e + 1] - mesh.nodes[e]
-    x = (r - mesh.nodes[e]) / L
-    g = L / mesh.ell
-    Nb = np.stack([1 - 3 * x**2 + 2 * x**3, g * (x - 2 * x**2 + x**3),
-                   3 * x**2 - 2 * x**3, g * (-x**2 + x**3)], axis=-1)
-    dofs = 2 * e[:, None] + np.arange(4)[None, :]
-    return np.sum(Nb * full[dofs], axis=-1)
-
-
 class AxisymDisk:
-    """The clamped disk discretised per harmonic (one dense block per N_d).
-
-    ``stress(r_c)`` must return callables (sigma_r(r), sigma_theta(r)) in Pa.
-    """
+    """The clamped disk discretised per harmonic (one dense block per N_d)."""
 
     label = "axisym"
 
-    def __init__(self, *, r_f, b, h, E, nu, rho, n_d, n_elements, n_gauss=N_GAUSS):
+    def __init__(self, *, r_f, b, h, E, nu, rho, n_d, n_elements):
         self.mesh = radial_mesh(r_f, b, n_elements)
-        self.quad = quadrature(self.mesh, n_gauss)
+        self.quad = quadrature(self.mesh)
         self.h, self.n_d = h, np.asarray(n_d, int)
         D = E * h**3 / (12 * (1 - nu**2))
         # [M] has no N_d in it: one matrix, shared (read only) by every harmonic
@@ -205,8 +167,7 @@ class AxisymDisk:
                 for n in self.n_d}
 
     def _once(self, what, Ks, fn):
-        """``fn(Ks)`` computed once per (analysis, K^(sigma) object); the object is kept with
-        its result so that its id cannot be reused while the model lives."""
+        """``fn(Ks)`` once per (analysis, K^(sigma) object), kept with the object."""
         key = (what, id(Ks))
         hit = self._memo.get(key)
         if hit is None or hit[0] is not Ks:
@@ -241,28 +202,20 @@ class AxisymDisk:
     def modal_matrices(self, Ks):
         """Eqs. (16)-(17) over N_d: harmonics are orthogonal, so off-diagonals are exactly 0
         (the paper's small off-diagonal entries come from its non-axisymmetric mesh)."""
-        from .modal import align_signs
-
-        nd = len(self.n_d)
-        k_hat, m_hat = np.zeros((nd, nd)), np.zeros((nd, nd))
-        _, modes = self.rolled(Ks)
-        for i, n in enumerate(self.n_d):
-            phi = self.phi[n][:, None]
-            k_hat[i, i] = (phi.T @ Ks[n] @ phi)[0, 0]
-            m_hat[i, i] = align_signs(modes[n][:, None], self.M[n], phi)[:, 0] @ self.M[n] @ phi[:, 0]
-        return k_hat, m_hat
+        col = {n: self.phi[n][:, None] for n in self.n_d}
+        k_hat = np.diag([(col[n].T @ Ks[n] @ col[n])[0, 0] for n in self.n_d])
+        return k_hat, np.diag(self.m_hat_diag(Ks))
 
     def m_hat_diag(self, Ks, scale=1.0):
         """Diagonal of Eq. (17) with K^(sigma) scaled by ``scale`` (mode change vs stress)."""
         from .modal import align_signs
 
-        _, modes = self.rolled({n: scale * Ks[n] for n in self.n_d})
+        _, modes = self.rolled(Ks if scale == 1.0 else {n: scale * Ks[n] for n in self.n_d})
         return np.array([align_signs(modes[n][:, None], self.M[n], self.phi[n][:, None])[:, 0]
                          @ self.M[n] @ self.phi[n] for n in self.n_d])
 
     def sensitivity(self, *, r_a, width, increase, E, nu, rho):
-        """Fig. 7: Delta f [Hz] of each N_d when D rises by ``increase`` in the annulus
-        |r - r_a| <= width/2 (eigen re-solve on a mesh with the annulus edges as nodes)."""
+        """Fig. 7: Delta f [Hz] of each N_d for D raised by ``increase`` in |r - r_a| <= width/2."""
         from .modal import eigen
 
         D = E * self.h**3 / (12 * (1 - nu**2))

@@ -1,21 +1,8 @@
-"""The tensioning design map: where to roll (r_c) and how hard (the amplitude A of Eq. 4) for
-the highest critical speed a blade can keep, under a buckling margin.
-
-The rolled residual stress is linear in A (Eq. 4 is, and so is plane-stress elasticity), so
-one [K^(sigma)] per r_c at the scene's amplitude A_0 gives every intensity: K + (A / A_0)
-K^(sigma).  Per harmonic n and amplitude A, with B_n = n^2 M - K^(c) (:mod:`.rotation`):
-
-    omega~^2 (at rest)   the eigenvalues of (K + a K^(sigma), M)               Eq. (5)
-    Omega_c              1 / sqrt(mu_max),  B_n phi = mu (K + a K^(sigma)) phi  (rotation)
-
-both from one symmetric eigen-decomposition per (r_c, A, n): with M = L L^T and
-L^-1 (K + a K^(sigma)) L^-T = V D V^T, omega~^2 = D and mu are the eigenvalues of
-D^-1/2 V^T L^-1 B_n L^-T V D^-1/2.  A disk whose D has a non-positive entry has buckled at rest
-and has no critical speed (NaN); N_d = 0 never reaches one (inf).
-
-Constraint: the rolled stress at most 1 / m of the one that buckles the disk at rest
-(A <= A_cr / m, A_cr over every harmonic of the scene), m the assumed ``buckling_margin``;
-the intensity scan stops at ``design_amplitude_cap`` (a bound of the scan, not physics).
+"""The tensioning design map: where to roll (r_c) and how hard (A of Eq. 4) for the highest
+critical speed under a buckling margin, A <= A_cr / m.  The rolled stress is linear in A, so
+one [K^(sigma)] per r_c gives every a = A / A_0; per harmonic n, omega~^2 (Eq. 5) and
+Omega_c = 1 / sqrt(mu_max) of (n^2 M - K^(c)) phi = mu (K + a K^(sigma)) phi come from one
+symmetric eigen-decomposition per (r_c, a, n) in the basis M = L L^T.
 """
 from __future__ import annotations
 
@@ -28,8 +15,7 @@ BINDS = ("untensioned", "buckling margin", "interior", "scan cap")
 
 
 def pencils(K, Kr, M, Kc, n_d):
-    """Per harmonic n: (n, K', K^(sigma)', B') = L^-1 (K, K^(sigma), n^2 M - K^(c)) L^-T with
-    M = L L^T, what :func:`lowest` reads at every load factor."""
+    """Per harmonic n: (n, K, K^(sigma), n^2 M - K^(c)) in the basis M = L L^T."""
     out = []
     for n in n_d:
         Li = np.linalg.inv(np.linalg.cholesky(M[n]))
@@ -39,10 +25,7 @@ def pencils(K, Kr, M, Kc, n_d):
 
 
 def speeds(pencil, factors):
-    """(Omega_c [rad/s], lowest omega~^2 at rest [rad^2/s^2]) of one harmonic's ``pencil``
-    (:func:`pencils`) for the stiffness K + a K^(sigma) at every load factor a of
-    ``factors``: NaN Omega_c where the disk has buckled at rest (omega~^2 <= 0), inf where
-    the backward wave never stops."""
+    """(Omega_c, lowest omega~^2 at rest) of one ``pencil`` per load factor (NaN: buckled)."""
     n, Kw, Krw, Bw = pencil
     a = np.atleast_1d(np.asarray(factors, float))
     d, V = np.linalg.eigh(Kw[None] + a[:, None, None] * Krw[None])
@@ -57,24 +40,26 @@ def speeds(pencil, factors):
 
 
 def lowest(pencils_, factors, n_min=2):
-    """(min over N_d >= ``n_min`` of Omega_c, its N_d, Omega_c per N_d, omega~^2 per N_d)
-    at every load factor; NaN (and N_d -1) where any harmonic has buckled at rest."""
+    """(lowest Omega_c over N_d >= ``n_min``, its N_d, Omega_c and omega~^2 per N_d)."""
     n_d = np.array([p[0] for p in pencils_])
     cs, w2 = zip(*(speeds(p, factors) for p in pencils_))
     cs, w2 = np.stack(cs, -1), np.stack(w2, -1)
-    buckled = np.any(np.isnan(cs), axis=-1)
+    low = lowest_over(cs, n_d, n_min)
     sel = n_d >= n_min
-    sub = np.where(np.isnan(cs[..., sel]), np.inf, cs[..., sel])
-    k = np.argmin(sub, axis=-1)
-    low = np.where(buckled, np.nan, np.take_along_axis(sub, k[..., None], -1)[..., 0])
-    return low, np.where(buckled, -1, n_d[sel][k]), cs, w2
+    k = np.argmin(np.where(np.isnan(cs[..., sel]), np.inf, cs[..., sel]), axis=-1)
+    return low, np.where(np.isnan(low), -1, n_d[sel][k]), cs, w2
+
+
+def lowest_over(cs, n_d, n_min=0):
+    """min over N_d >= ``n_min`` of cs[..., N_d]; NaN where any harmonic has buckled."""
+    sel = np.asarray(n_d) >= n_min
+    low = np.min(np.where(np.isnan(cs[..., sel]), np.inf, cs[..., sel]), axis=-1)
+    return np.where(np.isnan(cs).any(axis=-1), np.nan, low)
 
 
 def optimum(fn, grid, vals, *, capped, xatol=1e-4):
-    """(a*, value, binds) maximising ``fn`` (load factor -> lowest Omega_c) over [0, grid[-1]]
-    given its ``vals`` on ``grid`` (ascending, from 0): the best grid point, refined
-    continuously between its neighbours when inside; ``binds`` indexes :data:`BINDS` (the
-    top is the buckling margin's, or the scan cap's when ``capped``)."""
+    """(a*, value, binds) maximising ``fn`` (load factor -> lowest Omega_c) over the ``grid``
+    where it is ``vals``, refined between the best point's neighbours (binds: :data:`BINDS`)."""
     from scipy.optimize import minimize_scalar
 
     vals = np.where(np.isnan(vals), -np.inf, vals)
@@ -99,8 +84,7 @@ COLUMNS = ["r_f_mm", "rim_temperature_rise_degc", "buckling_margin", "stated", "
 
 
 def best(ds, q):
-    """(index of the r_c maximising the lowest critical speed at margin index ``q``, that
-    speed [rad/s]) of one design_map run; (-1, NaN) when every r_c has buckled."""
+    """(index of the r_c of the best lowest critical speed at margin ``q``, that speed)."""
     v = np.asarray(ds["axisym_design_best_speed"].values[q], float)
     if np.isnan(v).all():
         return -1, float("nan")
@@ -109,11 +93,8 @@ def best(ds, q):
 
 
 def table(runs, paper_rc=0.065, paper_amplitude=50.0) -> list[list]:
-    """The design table: per flange radius (``runs``: [(r_f [mm], design_map dataset)], in
-    the cut or not) and buckling margin, the optimum r_c and amplitude, what binds, its
-    lowest critical speed against the untensioned disk and against the paper's r_c = 65 mm
-    (at the paper's A = 50 degC, and at the best A there), and the N_d = 0, 1 frequency
-    margins at rest."""
+    """The design table of ``runs`` [(r_f [mm], design_map dataset)]: per flange radius and
+    margin the optimum, what binds, its gains on the untensioned disk and on the paper's point."""
     rows = []
     for rf, ds in runs:
         rc = ds["r_c"].values
@@ -146,9 +127,6 @@ def table(runs, paper_rc=0.065, paper_amplitude=50.0) -> list[list]:
 
 
 def lowest_map(ds) -> np.ndarray:
-    """The map [rad/s] of one design_map run, (r_c, design_step): the lowest critical speed
-    over N_d >= 2; NaN where any harmonic has buckled at rest."""
-    cs = np.asarray(ds["axisym_design_critical_speed"].values, float)
-    sel = ds["n_d"].values >= 2
-    gone = np.isnan(cs).any(axis=-1)
-    return np.where(gone, np.nan, np.min(np.where(np.isnan(cs[..., sel]), np.inf, cs[..., sel]), -1))
+    """The lowest critical speed over N_d >= 2 [rad/s], (r_c, design_step); NaN: buckled."""
+    return lowest_over(np.asarray(ds["axisym_design_critical_speed"].values, float),
+                       ds["n_d"].values, 2)

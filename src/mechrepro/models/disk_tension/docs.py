@@ -1,21 +1,18 @@
-"""The blocks of docs/disk_tension.md (issue 29: numbers from a run, not typed), made from
-``results/disk_tension`` (validation.csv, claim.json, cost_of_accuracy.csv,
-effect_cold_warm.csv, identifiability.csv) and filled by :mod:`mechrepro.docs`::
-
-    .venv/bin/python -m mechrepro.docs docs/disk_tension.md results
-
-Run it on the default profile's results after the last change; tests/test_disk_tension_docs.py
-checks the verdict table against the committed default reference.
-"""
+"""The blocks of docs/disk_tension.md, numbers from a run, not typed (issue 29), filled by
+``.venv/bin/python -m mechrepro.docs docs/disk_tension.md results`` from the default
+profile's ``results/disk_tension``."""
 from __future__ import annotations
 
 import json
 from pathlib import Path
 
-from mechrepro.docs import number, table_rows
+from mechrepro.docs import number as _g, table_rows as _rows
 
-# one formatter for every paper page (mechrepro.docs)
-_rows, _g = table_rows, number
+
+def _md(header, rows) -> str:
+    """A markdown table."""
+    return "\n".join(["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+                     + ["| " + " | ".join(map(str, r)) + " |" for r in rows])
 
 
 def counts(root: Path) -> str:
@@ -29,16 +26,12 @@ def counts(root: Path) -> str:
 
 
 def verdicts(root: Path, evidence=("independent", "determined")) -> str:
-    """Every pass/fail/inconclusive row of the given evidence classes, with its error bar
-    and its rivals' outcomes."""
-    out = ["| row | evidence | paper | ours | ± error | verdict | rivals |",
-           "|---|---|---|---|---|---|---|"]
-    for r in _rows(root / "tables" / "validation.csv"):
-        if r["evidence"] in evidence and r["status"] not in ("info",):
-            out.append(f"| `{r['quantity']}` | {r['evidence']} | {_g(r['paper_value'])} | "
-                       f"{_g(r['reproduced_value'], 6)} | {_g(r['error_estimate'], 2)} | "
-                       f"{r['status']} | {r['rivals'] or '—'} |")
-    return "\n".join(out)
+    """Every pass/fail/inconclusive row of ``evidence``, with its error bar and rivals."""
+    return _md(["row", "evidence", "paper", "ours", "± error", "verdict", "rivals"], [
+        [f"`{r['quantity']}`", r["evidence"], _g(r["paper_value"]), _g(r["reproduced_value"], 6),
+         _g(r["error_estimate"], 2), r["status"], r["rivals"] or "—"]
+        for r in _rows(root / "tables" / "validation.csv")
+        if r["evidence"] in evidence and r["status"] != "info"])
 
 
 def construction(root: Path) -> str:
@@ -51,25 +44,21 @@ def construction(root: Path) -> str:
 
 def cost(root: Path) -> str:
     rows = _rows(root / "tables" / "cost_of_accuracy.csv")
-    out = ["| entry | quantity | reference | knob values | errors | times [s] | order |",
-           "|---|---|---|---|---|---|---|"]
-    keys = list(dict.fromkeys((r["accuracy"], r["quantity"]) for r in rows))
-    for acc, q in keys:
+    out = []
+    for acc, q in dict.fromkeys((r["accuracy"], r["quantity"]) for r in rows):
         pts = [r for r in rows if r["accuracy"] == acc and r["quantity"] == q]
-        out.append(f"| {acc} | {q} | {pts[0]['reference']} | "
-                   + " / ".join(r["knob_value"] for r in pts) + " | "
-                   + " / ".join(f"{float(r['error']):.1e}" for r in pts) + " | "
-                   + " / ".join(f"{float(r['time_s']):.2g}" for r in pts) + " | "
-                   + f"{float(pts[0]['observed_order']):.2f} |")
-    return "\n".join(out)
+        out.append([acc, q, pts[0]["reference"], " / ".join(r["knob_value"] for r in pts),
+                    " / ".join(f"{float(r['error']):.1e}" for r in pts),
+                    " / ".join(f"{float(r['time_s']):.2g}" for r in pts),
+                    f"{float(pts[0]['observed_order']):.2f}"])
+    return _md(["entry", "quantity", "reference", "knob values", "errors", "times [s]", "order"],
+               out)
 
 
 def cold_warm(root: Path) -> str:
-    out = ["| scene | effect | warm [s] | cold [s] |", "|---|---|---|---|"]
-    for r in _rows(root / "tables" / "effect_cold_warm.csv"):
-        out.append(f"| {r['scene']} | {r['effect']} | {float(r['warm_s']):.1e} | "
-                   f"{float(r['cold_s']):.1e} |")
-    return "\n".join(out)
+    return _md(["scene", "effect", "warm [s]", "cold [s]"], [
+        [r["scene"], r["effect"], f"{float(r['warm_s']):.1e}", f"{float(r['cold_s']):.1e}"]
+        for r in _rows(root / "tables" / "effect_cold_warm.csv")])
 
 
 def notes(root: Path, quantities) -> str:
@@ -78,11 +67,9 @@ def notes(root: Path, quantities) -> str:
                      f"{by[q]['note']}" for q in quantities if q in by)
 
 
-def _table(path: Path, fmt=lambda c, v: v) -> list[str]:
+def _table(path: Path, fmt=lambda c, v: v) -> str:
     rows = _rows(path)
-    cols = list(rows[0])
-    out = ["| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
-    return out + ["| " + " | ".join(fmt(c, r[c]) for c in cols) + " |" for r in rows]
+    return _md(list(rows[0]), [[fmt(c, r[c]) for c in rows[0]] for r in rows])
 
 
 def identifiability(root: Path) -> str:
@@ -91,47 +78,39 @@ def identifiability(root: Path) -> str:
             return f"{float(v):.3g}" if c not in ("data", "reading", "inplane_bc") else v
         except ValueError:
             return v
-    return "\n".join(_table(root / "tables" / "identifiability.csv") + [""]
-                     + _table(root / "tables" / "identifiability_readings.csv", num))
+    return "\n\n".join([_table(root / "tables" / "identifiability.csv"),
+                        _table(root / "tables" / "identifiability_readings.csv", num)])
+
+
+#: the design table's columns: heading and format (tables/design_map.csv)
+DESIGN = {"r_f_mm": ("r_f [mm]", ".0f"), "rim_temperature_rise_degc": ("rim ΔT [°C]", ".0f"),
+          "buckling_margin": ("m", "g"), "r_c_opt_mm": ("r_c* [mm]", ".0f"),
+          "amplitude_opt_degc": ("A* [°C]", ".0f"), "binds": ("binds", ""),
+          "lowest_mode_nd": ("N_d", ""), "critical_speed_opt_rpm": ("Ω_c* [rpm]", ".0f"),
+          "gain_vs_untensioned": ("vs untensioned", "+.1%"),
+          "gain_vs_paper": ("vs r_c 65, A 50", "+.1%"), "f_ratio_nd0": ("f̃/f N_d=0", ".2f"),
+          "f_ratio_nd1": ("f̃/f N_d=1", ".2f")}
 
 
 def design_map(root: Path) -> str:
-    """The design table (tables/design_map.csv): per flange radius, cutting heat and buckling
-    margin."""
-    keep = {"r_f_mm": "r_f [mm]", "rim_temperature_rise_degc": "rim ΔT [°C]",
-            "buckling_margin": "m", "r_c_opt_mm": "r_c* [mm]",
-            "amplitude_opt_degc": "A* [°C]", "binds": "binds", "lowest_mode_nd": "N_d",
-            "critical_speed_opt_rpm": "Ω_c* [rpm]", "gain_vs_untensioned": "vs untensioned",
-            "gain_vs_paper": "vs r_c 65, A 50", "f_ratio_nd0": "f̃/f N_d=0",
-            "f_ratio_nd1": "f̃/f N_d=1"}
-    out = ["| " + " | ".join(keep.values()) + " |", "|" + "---|" * len(keep)]
-    for r in _rows(root / "tables" / "design_map.csv"):
-        cell = {k: r[k] for k in keep}
-        for k in ("r_f_mm", "rim_temperature_rise_degc", "r_c_opt_mm", "amplitude_opt_degc",
-                  "critical_speed_opt_rpm"):
-            cell[k] = f"{float(r[k]):.0f}"
-        for k in ("gain_vs_untensioned", "gain_vs_paper"):
-            cell[k] = f"{float(r[k]):+.1%}"
-        for k in ("f_ratio_nd0", "f_ratio_nd1"):
-            cell[k] = f"{float(r[k]):.2f}"
-        cell["buckling_margin"] = f"{float(r['buckling_margin']):g}" + (
-            " (stated)" if r["stated"] == "True" else "")
-        out.append("| " + " | ".join(cell.values()) + " |")
-    return "\n".join(out)
+    """The design table: per flange radius, cutting heat and buckling margin."""
+    def cell(r, k, fmt):
+        text = format(float(r[k]), fmt) if fmt else r[k]
+        return text + (" (stated)" if k == "buckling_margin" and r["stated"] == "True" else "")
+    return _md([h for h, _ in DESIGN.values()],
+               [[cell(r, k, f) for k, (_, f) in DESIGN.items()]
+                for r in _rows(root / "tables" / "design_map.csv")])
 
 
 def targets(root: Path) -> str:
-    """The accuracy targets (framework table accuracy_targets.csv): what was asked, chosen,
-    estimated and verified."""
-    rows = _rows(root / "tables" / "accuracy_targets.csv")
-    out = ["| scene | quantity | asked (abs.) | elements chosen | estimated error | verified error "
-           "(vs exact) | fixed default: elements, error |", "|---|---|---|---|---|---|---|"]
-    for r in rows:
-        out.append(f"| `{r['run']}` | `{r['quantity']}` | {float(r['requested']):.1e} | "
-                   f"{float(r['knob_value']):.0f} | {float(r['estimated_error']):.2e} | "
-                   f"{float(r['verified_error']):.2e} | {float(r['default_knob_value']):.0f}, "
-                   f"{float(r['default_error']):.1e} |")
-    return "\n".join(out)
+    """The accuracy targets: what was asked, chosen, estimated and verified."""
+    return _md(["scene", "quantity", "asked (abs.)", "elements chosen", "estimated error",
+                "verified error (vs exact)", "fixed default: elements, error"], [
+        [f"`{r['run']}`", f"`{r['quantity']}`", f"{float(r['requested']):.1e}",
+         f"{float(r['knob_value']):.0f}", f"{float(r['estimated_error']):.2e}",
+         f"{float(r['verified_error']):.2e}",
+         f"{float(r['default_knob_value']):.0f}, {float(r['default_error']):.1e}"]
+        for r in _rows(root / "tables" / "accuracy_targets.csv")])
 
 
 BLOCKS = {
@@ -143,21 +122,15 @@ BLOCKS = {
     "identifiability": identifiability,
     "targets": targets,
     "design_map": design_map,
-    "calibration_notes": lambda root: notes(root, ["f_unrolled_nd4_rf25", "table1_diag_nd4",
-                                                   "inplane_bc_evidence_free_disk",
-                                                   "inplane_bc_evidence_clamped",
-                                                   "delta_f_eigen_nd4_handbook_alpha"]),
-    "explanation_notes": lambda root: notes(root, ["table2_nd3_mode_change_at_buckling",
-                                                   "table2_nd3_pair_rotation_deg",
-                                                   "paper_mesh_symmetry_order",
-                                                   "rayleigh_cap_on_delta_f_eigen"]),
-    "critical_speed_notes": lambda root: notes(root, ["critical_speed_untensioned_min",
-                                                      "critical_speed_best_rc",
-                                                      "critical_speed_vs_southwell"]),
-    "design_notes": lambda root: notes(root, ["design_map_optimum_rc",
-                                              "design_map_gain_over_paper_point"]),
-    "beyond_notes": lambda root: notes(root, ["slotted_optimal_rc_nd3", "slotted_optimal_rc_nd4",
-                                              "buckling_flag_matches_critical_load",
-                                              "eq9_speedup_over_eigen"]),
+    **{f"{block}_notes": (lambda root, q=q.split(): notes(root, q)) for block, q in {
+        "calibration": "f_unrolled_nd4_rf25 table1_diag_nd4 inplane_bc_evidence_free_disk "
+                       "inplane_bc_evidence_clamped delta_f_eigen_nd4_handbook_alpha",
+        "explanation": "table2_nd3_mode_change_at_buckling table2_nd3_pair_rotation_deg "
+                       "paper_mesh_symmetry_order rayleigh_cap_on_delta_f_eigen",
+        "critical_speed": "critical_speed_untensioned_min critical_speed_best_rc "
+                          "critical_speed_vs_southwell",
+        "design": "design_map_optimum_rc design_map_gain_over_paper_point",
+        "beyond": "slotted_optimal_rc_nd3 slotted_optimal_rc_nd4 "
+                  "buckling_flag_matches_critical_load eq9_speedup_over_eigen"}.items()},
 }
 

@@ -1,72 +1,42 @@
-"""The effects of disk_tension: pure functions ``fn(ctx) -> {key: value}``.
-
-Declared once in ``config/papers/disk_tension.yaml`` (``effects:``: what each contributes,
-which solver honours it, what it requires or excludes).  The solver
-(:mod:`.solver`) evaluates them in three stages and reads their contributions by key:
-
-1. what the load and the mesh need: ``stress_calibration`` -> ``thermal_expansion``,
-   ``slots`` -> ``slots``;
-2. the load: ``roll_tension`` -> ``thermal_load`` (Eq. 4 and its plane-stress field);
-3. the analyses of the discretised, stress-stiffened disk (Eqs. 5, 9, 16-17, Fig. 7) and
-   the exact reference.
-
-A contribution that is a labelled variable (:func:`mechrepro.units.var`) is written to the
-run's dataset; the others (``thermal_expansion``, ``slots``, ``thermal_load``) are consumed
-by the solver.  Which of these are physics and which are outputs is said in each
-declaration's description.
-"""
+"""The effects of disk_tension: pure functions ``fn(ctx) -> {key: value}`` declared in
+``config/papers/disk_tension.yaml``, evaluated in three stages by :mod:`.solver`."""
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import partial
 from typing import Callable
 
 import numpy as np
 
 from mechrepro.effects import EffectRegistry
 from mechrepro.errors import Refusal
+from mechrepro.levels import extrapolate
 from mechrepro.timing import phase
 from mechrepro.units import var
 
 from . import calibration, exact, thermal
 from .axisym import AxisymDisk
-from .convergence import richardson
 from .modal import delta_f_exact, delta_f_linearised, frequency
 
 EFFECTS = EffectRegistry("disk_tension")
 
-#: element counts of the rolled reference: Richardson of two runs still in the h^4 range
-#: (beyond 128 elements round-off exceeds the h^4 error; convergence.reference_pair)
+#: element counts of the rolled reference: Richardson (h^4) of two runs still in the h^4 range
+#: (beyond 128 elements round-off exceeds the h^4 error)
 REFERENCE_ELEMENTS = (64, 128)
 #: radii at which the closed-form temperature and stress are stored
 N_RADII = 256
 
-#: cold cost [s] of each memoised effect per input, measured once per process
+#: seconds of a fresh solve of each memoised effect, per (effect, input), once per process
 _COLD: dict = {}
 
 
-def cold_seconds(effect, key, solve_afresh, measured=None) -> float:
-    """What ``effect`` costs with nothing memoised, once per process and input ``key``:
-    ``measured`` when the caller's own call was a complete cache miss, else ``solve_afresh()``
-    timed.  Memoised effects (the calibration, the exact and rolled references) cost ~0 in
-    every run after the first of a batch, and the framework keeps a fast run's fastest (warm)
-    repetition: the effect-cost table alone would say they are free."""
-    k = (effect, key)
-    if k not in _COLD:
-        if measured is None:
-            with phase("disk_tension.cold") as sw:
-                solve_afresh()
-            measured = sw.seconds
-        _COLD[k] = measured
-    return _COLD[k]
-
-
-def _misses(cached) -> int:
-    return cached.cache_info().misses
-
-
-def _cold_var(effect, seconds):
-    return var((), seconds, "s", f"wall time of effect {effect} with nothing memoised (first "
-               "evaluation in a fresh process; the run's effect_time is the warm cost)")
+def _cold(effect, key, solve_afresh, plus=0.0):
+    """What ``effect`` costs with nothing memoised: a fresh solve, once per input."""
+    if (effect, key) not in _COLD:
+        with phase("disk_tension.cold") as sw:
+            solve_afresh()
+        _COLD[effect, key] = sw.seconds
+    return var((), _COLD[effect, key] + plus, "s", f"wall time of {effect}, nothing memoised")
 
 
 @dataclass(frozen=True)
@@ -83,13 +53,12 @@ class ThermalLoad:
 def thermal_load(ctx, r_c) -> ThermalLoad:
     """Eq. (4) at ``r_c`` with the context's amplitude, width, alpha and in-plane condition."""
     rc = float(r_c)
-    kw = dict(amplitude=ctx.A, r_c=rc, s=ctx.s, r_f=ctx.r_f, b=ctx.b, E=ctx.E, nu=ctx.nu,
-              alpha=ctx.alpha, inplane_bc=ctx.bc, stress_model=ctx.stress_model,
-              profile_rc=ctx.p["calibration_rolling_radius"])
     return ThermalLoad(r_c=rc, alpha=ctx.alpha, inplane_bc=ctx.bc,
                        temperature=lambda r: thermal.temperature(r, ctx.A, rc, ctx.s),
-                       sigma=(lambda r: thermal.residual_stress(r, **kw)[0],
-                              lambda r: thermal.residual_stress(r, **kw)[1]))
+                       sigma=thermal.field(amplitude=ctx.A, r_c=rc, s=ctx.s, r_f=ctx.r_f, b=ctx.b,
+                                           E=ctx.E, nu=ctx.nu, alpha=ctx.alpha, inplane_bc=ctx.bc,
+                                           stress_model=ctx.stress_model,
+                                           profile_rc=ctx.p["calibration_rolling_radius"]))
 
 
 # --- stage 1: what the load and the mesh need ---------------------------------------------
@@ -104,24 +73,17 @@ def stress_calibration(ctx) -> dict:
     if ctx.stress_model != "thermal_analogy":   # a rival is re-calibrated on its own stress
         case["stress_model"] = ctx.stress_model
     target = p["calibration_delta_omega2"]
-    m0 = _misses(calibration._alpha_effective)
-    with phase("disk_tension.stress_calibration") as sw:
-        alpha, d_hb, df_hb = calibration.alpha_effective(target=target, **case)
-    miss = _misses(calibration._alpha_effective) > m0
-    cold = cold_seconds("stress_calibration", (target, tuple(sorted(case.items()))),
-                        lambda: calibration.alpha_effective(target=target, memo=False, **case),
-                        sw.seconds if miss else None)
+    alpha, d_hb, df_hb = calibration.alpha_effective(target=target, **case)
     return {
-        "calibration_time_cold": _cold_var("stress_calibration", cold),
+        "stress_calibration_time_cold": _cold(
+            "stress_calibration", (target, *sorted(case.items())),
+            lambda: calibration.alpha_effective(target=target, memo=False, **case)),
         "thermal_expansion": alpha,
-        "alpha_effective": var((), alpha, "1/K", "thermal-analogy expansion coefficient "
-                               "calibrated on Table 1 (N_d = 4)"),
-        "stress_scale": var((), alpha / ctx.alpha, "1", "calibrated / handbook expansion "
-                            "coefficient"),
-        "handbook_delta_omega2_eq9": var((), d_hb, "rad2/s2", "Eq. (9) Delta omega^2 of the "
-                                         "calibration case with the handbook alpha"),
-        "handbook_delta_f_eigen": var((), df_hb, "Hz", "eigen-analysis Delta f of the "
-                                      "calibration case with the handbook alpha"),
+        "alpha_effective": var((), alpha, "1/K", "thermal-analogy alpha calibrated on Table 1"),
+        "stress_scale": var((), alpha / ctx.alpha, "1", "calibrated / handbook alpha"),
+        "handbook_delta_omega2_eq9": var((), d_hb, "rad2/s2", "Eq. (9) of Table 1's N_d = 4 entry, "
+                                         "handbook alpha"),
+        "handbook_delta_f_eigen": var((), df_hb, "Hz", "eigen Delta f there, handbook alpha"),
     }
 
 
@@ -138,8 +100,7 @@ def slots(ctx) -> dict:
 # --- stage 2: the load --------------------------------------------------------------------
 @EFFECTS.register("roll_tension")
 def roll_tension(ctx) -> dict:
-    """Eq. (4) temperature of every r_c and its plane-stress field, for the run's
-    ``inplane_bc`` only (the other condition is another scene, or a range variant)."""
+    """Eq. (4) temperature of every r_c and its plane-stress field (the run's inplane_bc)."""
     loads = [thermal_load(ctx, rc) for rc in ctx.r_c]
     r = np.linspace(0.0, ctx.b, N_RADII)
     sr = np.full((len(loads), len(r)), np.nan)
@@ -151,29 +112,18 @@ def roll_tension(ctx) -> dict:
     return {
         "thermal_load": loads,
         "r": var("r", r, "m", "radius"),
-        "temperature": var(("r_c", "r"), np.stack([ld.temperature(r) for ld in loads]), "K",
-                           "thermal-analogy temperature T(r), Eq. (4)"),
-        "sigma_r": var(("r_c", "r"), sr, "Pa", "radial residual stress (thermal analogy, "
-                       f"plane stress, {ctx.bc})", **bc),
-        "sigma_theta": var(("r_c", "r"), st, "Pa", "circumferential residual stress (thermal "
-                           f"analogy, plane stress, {ctx.bc})", **bc),
-        "alpha_used": var((), ctx.alpha, "1/K", "expansion coefficient used for the stress"),
-        "amplitude_used": var((), ctx.A, "K", "temperature amplitude A of Eq. (4) used for "
-                              "the stress"),
+        "temperature": var(("r_c", "r"), [ld.temperature(r) for ld in loads], "K", "T(r), Eq. (4)"),
+        "sigma_r": var(("r_c", "r"), sr, "Pa", f"radial residual stress ({ctx.bc})", **bc),
+        "sigma_theta": var(("r_c", "r"), st, "Pa", f"hoop residual stress ({ctx.bc})", **bc),
+        "amplitude_used": var((), ctx.A, "K", "amplitude A of Eq. (4) used for the stress"),
         "width_used": var((), ctx.s, "m", "Gaussian width s of Eq. (4) used for the stress"),
     }
 
 
 @EFFECTS.register("cutting_heat")
 def cutting_heat(ctx) -> dict:
-    """Physics beyond the paper, what tensioning is for: the rim heated in the cut, a real
-    temperature rise ``rim_temperature_rise`` falling off inwards as a Gaussian of width
-    ``rim_heat_width`` centred on the rim (Eq. 4's form at r_c = b), with the handbook
-    expansion coefficient, its plane-stress field under the flange's in-plane hold of the
-    mounted blade (``centrifugal_bc``): compression at the rim."""
+    """The rim heated in the cut: Eq. (4)'s form at r_c = b, compressing the rim."""
     p = ctx.p
-    if ctx.solver != "axisym":
-        raise Refusal("cutting_heat is read by design_map, on the harmonics (solver axisym)")
     kw = dict(amplitude=p["rim_temperature_rise"], r_c=ctx.b, s=p["rim_heat_width"],
               r_f=ctx.r_f, b=ctx.b, E=ctx.E, nu=ctx.nu, alpha=p["thermal_expansion"],
               inplane_bc=p["centrifugal_bc"])
@@ -181,113 +131,87 @@ def cutting_heat(ctx) -> dict:
     sr, st = thermal.thermal_stress(r, **kw)
     return {
         "cutting_heat_stress": ThermalLoad(
-            r_c=ctx.b, alpha=kw["alpha"], inplane_bc=kw["inplane_bc"],
-            temperature=lambda x: thermal.temperature(x, kw["amplitude"], ctx.b, kw["s"]),
-            sigma=(lambda x: thermal.thermal_stress(x, **kw)[0],
-                   lambda x: thermal.thermal_stress(x, **kw)[1])),
+            r_c=ctx.b, alpha=kw["alpha"], inplane_bc=kw["inplane_bc"], sigma=thermal.field(**kw),
+            temperature=lambda x: thermal.temperature(x, kw["amplitude"], ctx.b, kw["s"])),
         "r_heat": var("r_heat", r, "m", "radius of the cutting-heat stress"),
         "heat_temperature": var("r_heat", thermal.temperature(r, kw["amplitude"], ctx.b, kw["s"]),
                                 "K", "temperature rise of the blade in the cut"),
         "heat_sigma_r": var("r_heat", sr, "Pa", "radial stress of the cutting heat"),
-        "heat_sigma_theta": var("r_heat", st, "Pa", "hoop stress of the cutting heat "
-                                "(compressive at the rim)"),
+        "heat_sigma_theta": var("r_heat", st, "Pa", "hoop stress of the cutting heat"),
     }
 
 
 # --- stage 3: analyses of the discretised disk ---------------------------------------------
-def _loads(ctx):
+def _stiffened(ctx):
+    """[K^(sigma)] of every r_c (the analyses that read it need the residual stress)."""
     if ctx.loads is None:
         raise Refusal("this analysis needs the residual stress: name 'roll_tension'")
-    return ctx.loads
-
-
-def _stiffened(ctx):
-    _loads(ctx)
     return ctx.k_sigma
+
+
+def _disk_key(ctx, *more) -> tuple:
+    """What a reference of the plain disk depends on (the key of its cold cost and memo)."""
+    return (float(ctx.r_f), float(ctx.b), float(ctx.h), float(ctx.E), float(ctx.nu),
+            float(ctx.rho), tuple(int(n) for n in ctx.n_d), *more)
+
+
+def _exact_frequencies(ctx, sigma=0.0, memo=True):
+    """Exact Bessel frequencies [Hz] of every N_d of the plain annulus under ``sigma`` [Pa]."""
+    return [exact.natural_frequencies(n, a=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu,
+                                      rho=ctx.rho, sigma=sigma, memo=memo)[0] for n in ctx.n_d]
 
 
 @EFFECTS.register("exact_reference")
 def exact_reference(ctx) -> dict:
     """Exact Bessel frequencies of the unrolled clamped-free annulus (plain disk)."""
-    kw = dict(a=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho)
-    m0 = _misses(exact._roots)
-    with phase("disk_tension.exact_reference") as sw:
-        f = [exact.natural_frequencies(n, **kw)[0] for n in ctx.n_d]
-    all_cold = _misses(exact._roots) - m0 == len(ctx.n_d)
-    cold = cold_seconds("exact_reference", (tuple(kw.items()), tuple(ctx.n_d.tolist())),
-                        lambda: [exact.natural_frequencies(n, memo=False, **kw) for n in ctx.n_d],
-                        sw.seconds if all_cold else None)
-    return {"f_exact": var("n_d", f, "Hz", "exact unrolled frequency (Bessel solution, "
-                           "clamped-free annular plate)"),
-            "exact_reference_time_cold": _cold_var("exact_reference", cold)}
+    key = _disk_key(ctx)
+    return {"f_exact": var("n_d", _exact_frequencies(ctx), "Hz", "exact unrolled frequency"),
+            "exact_reference_time_cold": _cold("exact_reference", key,
+                                               lambda: _exact_frequencies(ctx, memo=False))}
+
+
+#: rolled references solved in this process, by every parameter they depend on (the 2-D
+#: Table 1-2 scene and its cost study share one)
+_ROLLED_REFERENCES: dict = {}
 
 
 @EFFECTS.register("rolled_reference")
 def rolled_reference(ctx) -> dict:
-    """Converged rolled frequencies of the plain disk for the 2-D model's cost of accuracy:
-    the Richardson extrapolation (h^4) of the 64- and 128-element axisymmetric models (not a
-    finer run: beyond 128 elements round-off exceeds the h^4 error), and its own error on
-    the unrolled frequencies, where the exact solution is known.  (The axisymmetric model's
-    own accuracy is measured against exact solutions only: ``exact_reference``,
-    ``stressed_reference``.)"""
-    key = (float(ctx.r_f), float(ctx.b), float(ctx.h), float(ctx.E), float(ctx.nu),
-           float(ctx.rho), tuple(int(n) for n in ctx.n_d), float(ctx.A), float(ctx.s),
-           ctx.bc, tuple((ld.r_c, float(ld.alpha), ld.inplane_bc) for ld in _loads(ctx)))
-    f_ref, err = _rolled_reference(key, ctx)
-    cold = cold_seconds("rolled_reference", key, lambda: _solve_rolled_reference(ctx))
+    """Rolled frequencies by Richardson (h^4) of 64 and 128 axisym elements, and its error."""
+    key = _disk_key(ctx, float(ctx.A), float(ctx.s), ctx.bc,
+                    tuple((ld.r_c, float(ld.alpha), ld.inplane_bc) for ld in ctx.loads))
+    if key not in _ROLLED_REFERENCES:
+        _ROLLED_REFERENCES[key] = _solve_rolled_reference(ctx)
+    f_ref, err = _ROLLED_REFERENCES[key]
     n0, n1 = REFERENCE_ELEMENTS
     return {
-        "f_rolled_reference": var(
-            ("r_c", "n_d"), f_ref.copy(), "Hz",
-            f"rolled frequency: Richardson extrapolation (h^4) of the {n0}- and {n1}-element "
-            "axisymmetric models (plain disk)"),
-        "reference_error_unrolled": var(
-            (), err, "1",
-            "max |relative error| of the same extrapolation on the unrolled frequencies vs "
-            "exact"),
-        "rolled_reference_time_cold": _cold_var("rolled_reference", cold),
+        "f_rolled_reference": var(("r_c", "n_d"), f_ref.copy(), "Hz", "rolled frequency: "
+                                  f"Richardson (h^4) of {n0} and {n1} axisym elements"),
+        "reference_error_unrolled": var((), err, "1", "its max |relative error| on the unrolled "
+                                        "frequencies"),
+        "rolled_reference_time_cold": _cold("rolled_reference", key,
+                                            lambda: _solve_rolled_reference(ctx)),
     }
 
 
-#: rolled references already solved in this process, by every parameter they depend on (the
-#: 2-D Table 1-2 scene and its cost study share one; the values are those a fresh solve gives)
-_ROLLED_REFERENCES: dict = {}
-
-
-def _rolled_reference(key, ctx):
-    """(Richardson rolled frequencies [r_c, n_d], its max error on the unrolled ones)."""
-    if key not in _ROLLED_REFERENCES:
-        if len(_ROLLED_REFERENCES) > 64:
-            _ROLLED_REFERENCES.clear()
-        with phase("disk_tension.rolled_reference") as sw:
-            _ROLLED_REFERENCES[key] = _solve_rolled_reference(ctx)
-        _COLD.setdefault(("rolled_reference", key), sw.seconds)  # this solve was the cold one
-    return _ROLLED_REFERENCES[key]
-
-
 def _solve_rolled_reference(ctx):
+    """(Richardson rolled frequencies [r_c, n_d], its max error on the unrolled ones)."""
     runs = []
     for n_el in REFERENCE_ELEMENTS:
         disk = AxisymDisk(r_f=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho,
                           n_d=ctx.n_d, n_elements=n_el)
         f_u = frequency(disk.unrolled())
         f_r = frequency(np.stack([disk.rolled(disk.stress_stiffness(ld.sigma))[0]
-                                  for ld in _loads(ctx)]))
+                                  for ld in ctx.loads]))
         runs.append((f_u, f_r))
     (u0, r0), (u1, r1) = runs
-    f_exact = [exact.natural_frequencies(n, a=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E,
-                                         nu=ctx.nu, rho=ctx.rho)[0] for n in ctx.n_d]
-    return richardson(r0, r1), np.max(np.abs(richardson(u0, u1) / f_exact - 1))
+    richardson = lambda f0, f1: extrapolate(f0, f1, 2.0, 4.0)  # noqa: E731  (h^4, n and 2n)
+    return richardson(r0, r1), np.max(np.abs(richardson(u0, u1) / _exact_frequencies(ctx) - 1))
 
 
 @EFFECTS.register("stressed_reference")
 def stressed_reference(ctx) -> dict:
-    """The exact stressed reference: the model's frequencies under a uniform isotropic
-    in-plane stress sigma_0 (sigma_r = sigma_theta = sigma_0 in Eq. 3, then Eq. 5) and the
-    exact Bessel solution of the same stressed annulus (:mod:`.exact`), for every
-    ``reference_stress`` (tension and compression).  The stress-stiffening path of the
-    rolled disk (K^(sigma), its eigen-analysis) against an exact answer, which the Gaussian
-    rolling stress itself does not have."""
+    """Eqs. 3, 5 under each uniform ``reference_stress`` against the exact Bessel solution."""
     s0 = np.atleast_1d(np.asarray(ctx.p["reference_stress"], float))
     model = ctx.model
     with phase("disk_tension.stressed_reference_fe") as sw:
@@ -297,71 +221,45 @@ def stressed_reference(ctx) -> dict:
         bad = s0[np.any(~(w2 > 0), axis=1)]
         raise Refusal(f"reference_stress {bad.tolist()} Pa buckles the disk: the exact "
                          "reference needs a stable disk (choose a smaller compression)")
-    kw = dict(a=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho)
-
-    def exact_all(memo=True):
-        return np.array([[exact.natural_frequencies(n, sigma=s, memo=memo, **kw)[0]
-                          for n in ctx.n_d] for s in s0])
-    m0 = _misses(exact._roots)
-    with phase("disk_tension.stressed_reference_exact") as sw_ex:
-        f_ex = exact_all()
-    all_cold = _misses(exact._roots) - m0 == f_ex.size
-    cold = cold_seconds("stressed_reference",
-                        (tuple(kw.items()), tuple(ctx.n_d.tolist()), tuple(s0.tolist())),
-                        lambda: exact_all(memo=False), sw_ex.seconds if all_cold else None)
+    with phase("disk_tension.stressed_reference_exact"):
+        f_ex = np.array([_exact_frequencies(ctx, s) for s in s0])
+    key = _disk_key(ctx, tuple(s0))
     f = frequency(w2)
     err = f / f_ex - 1.0
     dims = ("reference_stress", "n_d")
     return {
-        "reference_stress": var("reference_stress", s0, "Pa", "uniform isotropic in-plane "
-                                "stress of the exact stressed reference (tension > 0)"),
-        "f_stressed": var(dims, f, "Hz", "frequency under the uniform in-plane stress "
-                          "(Eqs. 3, 5 of the model)"),
-        "f_stressed_exact": var(dims, f_ex, "Hz", "exact frequency under the uniform in-plane "
-                                "stress (Bessel solution, clamped-free annulus)"),
-        "error_stressed": var(dims, err, "1", "relative error of the stressed frequency vs "
-                              "exact"),
-        "error_stressed_max": var((), float(np.max(np.abs(err))), "1",
-                                  "max |relative error| of the stressed frequencies vs exact"),
-        "time_stressed": var((), sw.seconds, "s", "wall time of K^(sigma) and Eq. (5) under "
-                             "the reference stresses (model side only)"),
-        "stressed_reference_time_cold": _cold_var("stressed_reference",
-                                                  cold + sw.seconds),
+        "reference_stress": var("reference_stress", s0, "Pa", "uniform in-plane stress"),
+        "f_stressed": var(dims, f, "Hz", "frequency under the uniform stress, Eqs. 3, 5"),
+        "f_stressed_exact": var(dims, f_ex, "Hz", "exact frequency under the uniform stress"),
+        "error_stressed": var(dims, err, "1", "relative error of the stressed frequency"),
+        "time_stressed": var((), sw.seconds, "s", "wall time of K^(sigma) and Eq. (5) there"),
+        "stressed_reference_time_cold": _cold(
+            "stressed_reference", key,
+            lambda: [_exact_frequencies(ctx, s, memo=False) for s in s0], plus=sw.seconds),
     }
 
 
 @EFFECTS.register("eigen")
 def eigen(ctx) -> dict:
-    """Eq. (5): omega~^2 of [K + K^(sigma)] for every r_c (NaN frequency and a flag if
-    buckled); on the 2-D mesh also both members of each sin/cos pair."""
+    """Eq. (5) for every r_c (NaN and a flag if buckled); on the 2-D mesh both pair members."""
     model, ks = ctx.model, _stiffened(ctx)
     pairs_of = getattr(model, "degenerate_pairs", False)
-
-    def solve_all():
-        w2 = np.full((len(ks), len(ctx.n_d)), np.nan)
-        pairs = np.full((len(ks), len(ctx.n_d), 2), np.nan)
+    w2 = np.full((len(ks), len(ctx.n_d)), np.nan)
+    pairs = np.full((len(ks), len(ctx.n_d), 2), np.nan)
+    with phase("disk_tension.eigen") as sw:
         for i, k in enumerate(ks):
             w2[i] = model.rolled(k)[0]
-            if pairs_of:
-                for j, n in enumerate(ctx.n_d):
-                    v = model.rolled_pairs[n]
-                    pairs[i, j, :] = v if len(v) == 2 else v[0]
-        return w2, pairs
-
-    with phase("disk_tension.eigen") as sw:
-        w2, pairs = solve_all()
-    dt = sw.seconds
+            for j, n in enumerate(ctx.n_d if pairs_of else ()):
+                pairs[i, j, :] = model.rolled_pairs[n]   # one value (N_d = 0) fills both
     out = {
         "omega2_rolled": var(("r_c", "n_d"), w2, "rad2/s2", "omega~^2 after rolling, Eq. (5)"),
-        "f_rolled": var(("r_c", "n_d"), frequency(w2), "Hz", "frequency after rolling by "
-                        "eigen-analysis, Eq. (5) (NaN if buckled)"),
-        "buckled": var(("r_c", "n_d"), (w2 < 0).astype(np.int8), "1", "1 where omega~^2 < 0 "
-                       "(the residual stress buckles the disk)"),
-        "time_eigen": var((), dt, "s", "wall time of the eigen-analyses over the r_c grid"),
+        "f_rolled": var(("r_c", "n_d"), frequency(w2), "Hz", "rolled frequency, Eq. (5) (NaN: "
+                        "buckled)"),
+        "buckled": var(("r_c", "n_d"), (w2 < 0).astype(np.int8), "1", "1 where omega~^2 < 0"),
+        "time_eigen": var((), sw.seconds, "s", "wall time of Eq. (5) over the r_c grid"),
     }
     if pairs_of:
-        out["member"] = var("member", [0, 1], "1", "member of a sin/cos pair (ascending "
-                            "frequency)")
+        out["member"] = var("member", [0, 1], "1", "member of a sin/cos pair (ascending)")
         out["f_rolled_pair"] = var(("r_c", "n_d", "member"), frequency(pairs), "Hz",
                                    "rolled frequency of each pair member (split by slots)")
     return out
@@ -369,12 +267,10 @@ def eigen(ctx) -> dict:
 
 @EFFECTS.register("eq9")
 def eq9(ctx) -> dict:
-    """Eq. (9): Delta omega^2 = phi^T K^(sigma) phi of the unrolled modes, and its two
-    conversions to Delta f."""
+    """Eq. (9): Delta omega^2 = phi^T K^(sigma) phi and its two conversions to Delta f."""
     model, ks = ctx.model, _stiffened(ctx)
     with phase("disk_tension.eq9") as sw:
         d = np.stack([model.eq9(k) for k in ks])
-    dt = sw.seconds
     w = ctx.omega_unrolled
     return {
         "delta_omega2_eq9": var(("r_c", "n_d"), d, "rad2/s2", "Delta omega^2 by Eq. (9)"),
@@ -382,19 +278,16 @@ def eq9(ctx) -> dict:
                                       "Delta f = Delta omega^2 / (2 omega) / 2 pi (first order)"),
         "delta_f_eq9_exact": var(("r_c", "n_d"), delta_f_exact(w, d), "Hz",
                                  "Delta f = (sqrt(omega^2 + Delta omega^2) - omega) / 2 pi"),
-        "time_eq9": var((), dt, "s", "wall time of Eq. (9) over the r_c grid (K^(sigma) "
-                        "excluded)"),
+        "time_eq9": var((), sw.seconds, "s", "wall time of Eq. (9) over the r_c grid"),
     }
 
 
 @EFFECTS.register("critical_load")
 def critical_load(ctx) -> dict:
-    """Load factor on the residual stress at which the disk buckles: per N_d on the
-    harmonics, the smallest of all modes on the 2-D mesh (inf: never)."""
+    """Load factor on the residual stress that buckles the disk (inf: never)."""
     lam = np.array([ctx.model.critical_load(k) for k in _stiffened(ctx)])
     dims = ("r_c", "n_d") if lam.ndim == 2 else ("r_c",)
-    return {"critical_load_factor": var(dims, lam, "1", "load factor on the residual stress "
-                                        "at which the disk buckles (inf: never)")}
+    return {"critical_load_factor": var(dims, lam, "1", "load factor that buckles (inf: never)")}
 
 
 @EFFECTS.register("modal_matrices")
@@ -406,15 +299,12 @@ def modal_matrices(ctx) -> dict:
     out = {
         "row": var("row", ctx.n_d, "1", "N_d of the row mode"),
         "col": var("col", ctx.n_d, "1", "N_d of the column mode"),
-        "k_sigma_hat": var(("row", "col"), k_hat, "rad2/s2", "Eq. (16) Phi^T K^(sigma) Phi "
-                           "(mass-normalised modes), first r_c"),
-        "m_hat": var(("row", "col"), m_hat, "1", "Eq. (17) Phi~^T M Phi, first r_c (rolled "
-                     "pairs rotated onto the unrolled cos/sin basis)"),
+        "k_sigma_hat": var(("row", "col"), k_hat, "rad2/s2", "Eq. (16), first r_c"),
+        "m_hat": var(("row", "col"), m_hat, "1", "Eq. (17), first r_c (pairs canonical)"),
     }
     if hasattr(model, "m_hat_diag"):
         lam = float(np.min(model.critical_load(ks)))
-        out["buckling_load_factor"] = var((), lam, "1", "smallest load factor on the residual "
-                                          "stress that buckles any N_d (first r_c)")
+        out["buckling_load_factor"] = var((), lam, "1", "load factor that buckles any N_d")
         # a stress that buckles no harmonic (lam = inf: an all-tensile stress) has no "just
         # below buckling": NaN, not a solve at an infinite load
         out["m_hat_diag_at_buckling"] = var(
@@ -436,21 +326,16 @@ def stiffness_sensitivity(ctx) -> dict:
     d = ctx.model.sensitivity(r_a=r_a, width=w, increase=p["stiffness_increase"],
                               E=ctx.E, nu=ctx.nu, rho=ctx.rho)
     return {"r_a": var("r_a", r_a, "m", "centre radius of the stiffened annulus"),
-            "sensitivity_delta_f": var(("r_a", "n_d"), d, "Hz", "frequency change for a 1 % "
-                                       "stiffer 10 mm annulus at r_a (Fig. 7)")}
+            "sensitivity_delta_f": var(("r_a", "n_d"), d, "Hz", "Delta f of Fig. 7")}
 
 
-#: the identifiability profiles' fine grids: this many steps per coarse step of the scan
-#: (c: per eigen-analysis step; s: per Table 1 step); each profile point is then minimised
-#: continuously (:func:`.identifiability._profiles`)
+#: the identifiability profiles' fine grids: steps per coarse step of the scan (c, s)
 FINE_SCALE, FINE_WIDTH = 40, 5
 
 
 @EFFECTS.register("identifiability")
 def identifiability(ctx) -> dict:
-    """What the paper's numbers pin down (:mod:`.identifiability`): the joint fit of the
-    stress scale c = E alpha A, the Gaussian width s and the in-plane condition to Table 1
-    (and Fig. 6a's 502.1 Hz), with profiles per constant, against the single-alpha reading."""
+    """What the paper's numbers pin down: the joint fit of :mod:`.identifiability`."""
     from . import identifiability as idf
 
     p = ctx.p
@@ -468,8 +353,9 @@ def identifiability(ctx) -> dict:
                     r_c=p["calibration_rolling_radius"],
                     amplitude=p["calibration_temperature_amplitude"], alpha=ctx.alpha,
                     E=ctx.E, nu=ctx.nu)
-    sub, dat = ("fit_data", "fit_datum")
-    return {
+    sub, dat, lvl = "fit_data", "fit_datum", ("fit_data", "fit_level", "scan_condition",
+                                                "scan_width")
+    out = {
         "fit_data": var(sub, np.arange(len(idf.SUBSETS)), "1", "data fitted: "
                         + ", ".join(f"{i} {k}" for i, k in enumerate(idf.SUBSETS))),
         "fit_datum": var(dat, np.arange(len(idf.DATA)), "1", "paper number: "
@@ -477,69 +363,45 @@ def identifiability(ctx) -> dict:
         "fit_parameter": var("fit_parameter", [0, 1], "1", "0 gaussian width, 1 stress scale"),
         "scan_condition": var("scan_condition", [0, 1], "1", "in-plane condition: "
                               + ", ".join(f"{i} {k}" for i, k in enumerate(idf.CONDITIONS))),
-        "scan_width": var("scan_width", fine_widths, "m",
-                          "Gaussian width s of the scan (fine grid)"),
-        "scan_scale": var("scan_scale", fine, "1", "stress scale c = E alpha A relative to the "
-                          "handbook steel at the paper's A (the scan)"),
-        "prof_width": var((sub, "scan_width"), r["prof_width"], "1",
-                          "profile chi^2 over s (Birge-scaled, min over c and condition)"),
-        "prof_scale": var((sub, "scan_scale"), r["prof_scale"], "1",
-                          "profile chi^2 over c (Birge-scaled, min over s and condition)"),
-        "prof_condition": var((sub, "scan_condition"), r["prof_condition"], "1",
-                              "profile chi^2 over the in-plane condition"),
-        "prof_width_scale": var((sub, "scan_width"), r["prof_width_scale"], "1",
-                                "the stress scale c minimising chi^2 at each s (the valley "
-                                "floor along the s profile)"),
-        "prof_scale_width": var((sub, "scan_scale"), r["prof_scale_width"], "m",
-                                "the Gaussian width s minimising chi^2 at each c (the valley "
-                                "floor along the c profile)"),
-        "birge": var(sub, r["birge"], "1", "Birge factor: chi^2 per degree of freedom of the "
-                     "best fit with the printed digits as uncertainties"),
-        "chi2_min": var(sub, r["chi2_min"], "1", "Birge-scaled chi^2 of the best fit"),
-        "best_width": var(sub, r["best_width"], "m", "best-fit Gaussian width s"),
-        "best_scale": var(sub, r["best_scale"], "1", "best-fit stress scale c"),
-        "best_condition": var(sub, r["best_condition"], "1", "best-fit in-plane condition"),
-        "best_table1_rel": var((sub, "n_d"), r["best_table1_rel"], "1",
-                               "Table 1 relative error at the best fit"),
-        "best_f_rolled": var(sub, r["best_f_rolled"], "Hz", "f~(N_d = 4, r_c = 65 mm) at the "
-                             "best fit"),
-        "shares": var((sub, "fit_parameter", dat), r["shares"], "1", "share of each paper "
-                      "number in the Fisher information about s and c at the best fit"),
+        "scan_width": var("scan_width", fine_widths, "m", "Gaussian width s (fine grid)"),
+        "scan_scale": var("scan_scale", fine, "1", "stress scale c = E alpha A / handbook"),
         "fit_level": var("fit_level", list(idf.LEVELS.values()), "1",
                          "Delta chi^2 of the joint (s, c) regions: "
                          + ", ".join(f"{k} %" for k in idf.LEVELS)),
         "fit_axis": var("fit_axis", [0, 1], "1", "0 the soft (degenerate) axis, 1 the stiff"),
-        "region_c_lo": var((sub, "fit_level", "scan_condition", "scan_width"), r["region_c_lo"],
-                           "1", "lower c of the joint (s, c) region at each s (NaN: none; at "
-                           "the c scan's start: the scan bounds it)"),
-        "region_c_hi": var((sub, "fit_level", "scan_condition", "scan_width"), r["region_c_hi"],
-                           "1", "upper c of the joint (s, c) region at each s (NaN: none; at "
-                           "the c scan's end: the scan bounds it)"),
-        "direction_slope": var(sub, r["direction_slope"], "1", "d ln c / d ln s along the soft "
-                               "axis of the chi^2 Hessian at the best fit (-1: c s = const)"),
-        "direction_halfwidth": var((sub, "fit_axis"), r["direction_halfwidth"], "1",
-                                   "68 % half-length of the Hessian ellipse in (ln s, ln c) "
-                                   "along the soft and the stiff axis"),
-        "single_chi2": var(sub, r["single_chi2"], "1", "Birge-scaled chi^2 of the single-alpha "
-                           "calibration (s = 5 mm, free_disk, c on Table 1's N_d = 4 entry)"),
-        "single_scale": var((), r["single_scale"], "1", "stress scale of the single-alpha "
-                            "calibration"),
-        "single_width": var((), ctx.s, "m", "Gaussian width of the "
-                            "single-alpha calibration"),
-        "single_table1_rel": var("n_d", r["single_table1_rel"], "1", "Table 1 relative error of "
-                                 "the single-alpha calibration"),
-        "single_f_rolled": var((), r["single_f_rolled"], "Hz", "f~(N_d = 4, r_c = 65 mm) of the "
-                               "single-alpha calibration"),
+        "single_width": var((), ctx.s, "m", "Gaussian width of the single-alpha calibration"),
     }
+    sw, sc, sa = (sub, "scan_width"), (sub, "scan_scale"), (sub, "fit_axis")
+    for key, dims, unit, name in (
+            ("prof_width", sw, "1", "profile chi^2 over s (Birge-scaled)"),
+            ("prof_scale", sc, "1", "profile chi^2 over c (Birge-scaled)"),
+            ("prof_condition", (sub, "scan_condition"), "1", "profile chi^2 over the condition"),
+            ("prof_width_scale", sw, "1", "the valley floor along s: c minimising chi^2"),
+            ("prof_scale_width", sc, "m", "the valley floor along c: s minimising chi^2"),
+            ("birge", sub, "1", "Birge factor: chi^2 per degree of freedom of the best fit"),
+            ("chi2_min", sub, "1", "Birge-scaled chi^2 of the best fit"),
+            ("best_width", sub, "m", "best-fit Gaussian width s"),
+            ("best_scale", sub, "1", "best-fit stress scale c"),
+            ("best_condition", sub, "1", "best-fit in-plane condition"),
+            ("best_table1_rel", (sub, "n_d"), "1", "Table 1 relative error at the best fit"),
+            ("best_f_rolled", sub, "Hz", "f~(N_d = 4, r_c = 65 mm) at the best fit"),
+            ("shares", (sub, "fit_parameter", dat), "1", "Fisher share of each paper number"),
+            ("region_c_lo", lvl, "1", "lower c of the joint (s, c) region (NaN: none)"),
+            ("region_c_hi", lvl, "1", "upper c of the joint (s, c) region (NaN: none)"),
+            ("direction_slope", sub, "1", "d ln c / d ln s along the Hessian's soft axis"),
+            ("direction_halfwidth", sa, "1", "68 % half-lengths along the soft, stiff axes"),
+            ("single_chi2", sub, "1", "Birge-scaled chi^2 of the single-alpha calibration"),
+            ("single_scale", (), "1", "stress scale of the single-alpha calibration"),
+            ("single_table1_rel", "n_d", "1", "its Table 1 relative error"),
+            ("single_f_rolled", (), "Hz", "its f~(N_d = 4, r_c = 65 mm)")):
+        out[key] = var(dims, r[key], unit, name)
+    return out
 
 
-def _centrifugal_stiffness(ctx, effect):
-    """K^(c) of every harmonic: Eq. (3) of the centrifugal stress at Omega = 1 rad/s, the
-    flange's in-plane hold the assumed ``centrifugal_bc`` (:mod:`.rotation`)."""
+def _centrifugal_stiffness(ctx):
+    """K^(c) of every harmonic: Eq. (3) of the centrifugal stress at Omega = 1 rad/s."""
     from . import rotation
 
-    if not hasattr(ctx.model, "phi") or not isinstance(ctx.model.K, dict):
-        raise Refusal(f"{effect} needs the harmonics (solver axisym)")
     kw = dict(omega=1.0, rho=ctx.rho, nu=ctx.nu, r_f=ctx.r_f, b=ctx.b,
               inplane_bc=ctx.p["centrifugal_bc"])
     return ctx.model.stress_stiffness((lambda r: rotation.centrifugal_stress(r, **kw)[0],
@@ -548,15 +410,12 @@ def _centrifugal_stiffness(ctx, effect):
 
 @EFFECTS.register("critical_speed")
 def critical_speed(ctx) -> dict:
-    """The travelling-wave critical speed per N_d (:mod:`.rotation`): the spinning disk's
-    centrifugal stress (the flange's in-plane hold is the assumed ``centrifugal_bc``)
-    stiffens it as Omega^2; the backward wave stops at Omega_c.  Untensioned (with
-    Southwell's first-order closed form beside it) and with the rolled residual stress of
-    every r_c; a rolled disk that has buckled has none (NaN, never a number)."""
+    """The travelling-wave critical speed per N_d (:mod:`.rotation`), untensioned (with
+    Southwell's first-order form) and with the rolled stress of every r_c (NaN: buckled)."""
     from . import rotation
 
     model, bc = ctx.model, ctx.p["centrifugal_bc"]
-    Kc = _centrifugal_stiffness(ctx, "critical_speed")
+    Kc = _centrifugal_stiffness(ctx)
     with phase("disk_tension.critical_speed") as sw:
         free = np.array([rotation.critical_speed(model.K[n], model.M[n], Kc[n], int(n))
                          for n in ctx.n_d])
@@ -566,35 +425,27 @@ def critical_speed(ctx) -> dict:
         rolled = np.array([[rotation.critical_speed(model.K[n] + k[n], model.M[n], Kc[n], int(n))
                             for n in ctx.n_d] for k in ks]).reshape(len(ks), len(ctx.n_d))
     out = {
-        "critical_speed_untensioned": var("n_d", free, "rad/s", "travelling-wave critical "
-                                          "speed of the unrolled disk (inf: none)",
-                                          centrifugal_bc=bc),
-        "critical_speed_southwell": var("n_d", [p[1] for p in sw_pairs], "rad/s",
-                                        "Southwell's first-order critical speed of the unrolled "
-                                        "disk, omega / sqrt(N_d^2 - lambda)", centrifugal_bc=bc),
-        "southwell_coefficient": var("n_d", [p[0] for p in sw_pairs], "1", "Southwell "
-                                     "coefficient lambda = phi^T K^(c) phi / phi^T M phi",
+        "critical_speed_untensioned": var("n_d", free, "rad/s", "critical speed, unrolled "
+                                          "(inf: none)", centrifugal_bc=bc),
+        "critical_speed_southwell": var("n_d", [p[1] for p in sw_pairs], "rad/s", "Southwell's "
+                                        "omega / sqrt(N_d^2 - lambda)", centrifugal_bc=bc),
+        "southwell_coefficient": var("n_d", [p[0] for p in sw_pairs], "1", "Southwell's lambda",
                                      centrifugal_bc=bc),
-        "time_critical_speed": var((), sw.seconds, "s", "wall time of the critical speeds "
-                                   "(untensioned and every r_c)"),
+        "time_critical_speed": var((), sw.seconds, "s", "wall time of the critical speeds"),
     }
     if len(ks):
-        out["critical_speed"] = var(("r_c", "n_d"), rolled, "rad/s", "travelling-wave "
-                                    "critical speed of the rolled disk (NaN: buckled, it does "
-                                    "not exist; inf: none)", centrifugal_bc=bc)
+        out["critical_speed"] = var(("r_c", "n_d"), rolled, "rad/s", "critical speed, rolled "
+                                    "(NaN: buckled; inf: none)", centrifugal_bc=bc)
     return out
 
 
 @EFFECTS.register("design_map")
 def design_map(ctx) -> dict:
-    """The tensioning design map (:mod:`.design`): the lowest critical speed over N_d >= 2 of
-    every r_c against the rolling amplitude A, from 0 to the smallest buckling margin's limit
-    A_cr / m (A_cr: the amplitude that buckles any harmonic of the scene at rest), and the
-    best A per r_c at every margin of ``buckling_margin`` (the stated one is the middle)."""
+    """The tensioning design map (:mod:`.design`) at every ``buckling_margin``."""
     from . import design
 
     p, model = ctx.p, ctx.model
-    Kc = _centrifugal_stiffness(ctx, "design_map")
+    Kc = _centrifugal_stiffness(ctx)
     if not ctx.A > 0:
         raise Refusal("design_map scales the rolled stress of the scene's amplitude: "
                       f"temperature_amplitude must be > 0, got {ctx.A}")
@@ -603,8 +454,7 @@ def design_map(ctx) -> dict:
     cap = float(p["design_amplitude_cap"]) / ctx.A       # as a load factor on the scene's A
     steps, n_d, ks = int(p["design_steps"]), ctx.n_d, _stiffened(ctx)
     nr, nm, nn = len(ks), len(margins), len(n_d)
-    cs, f_rest, amp = np.full((nr, steps, nn), np.nan), np.full((nr, steps, nn), np.nan), \
-        np.zeros((nr, steps))
+    cs, amp = np.full((nr, steps, nn), np.nan), np.zeros((nr, steps))
     lam_cr, mode_cr, paper = np.full(nr, np.inf), np.full(nr, -1), np.full(nr, np.nan)
     best = {k: np.full((nm, nr), np.nan) for k in ("a", "v", "binds", "mode")}
     best_f = np.full((nm, nr, nn), np.nan)
@@ -615,18 +465,13 @@ def design_map(ctx) -> dict:
     rim = 0.0 if ctx.heat is None else float(p["rim_temperature_rise"])
     with phase("disk_tension.design_map") as sw:
         for i, k in enumerate(ks):
-            pen = design.pencils(K, k, model.M, Kc, n_d)
-
-            def low(x, pen=pen):
-                return design.lowest(pen, x)
-
+            low = partial(design.lowest, design.pencils(K, k, model.M, Kc, n_d))
             lam = model.critical_load(k)
             lam_cr[i], mode_cr[i] = float(np.min(lam)), int(n_d[np.argmin(lam)])
             tops = np.minimum(lam_cr[i] / margins, cap)
             grid = np.linspace(0.0, tops.max(), steps)
-            v, _, c, w2 = low(np.r_[grid, tops, 1.0])
+            v, _, c, _ = low(np.r_[grid, tops, 1.0])
             cs[i], amp[i], paper[i] = c[:steps], grid * ctx.A, v[-1]
-            f_rest[i] = np.sqrt(np.clip(w2[:steps], 0, None)) / (2 * np.pi)
             for q, top in enumerate(tops):
                 sel = grid < top
                 x, val, bnd = design.optimum(lambda a: float(low([a])[0][0]),
@@ -638,37 +483,24 @@ def design_map(ctx) -> dict:
                 best_f[q, i] = np.sqrt(np.clip(w2x[0], 0, None) / w0)
     dims, bc = ("design_margin", "r_c"), {"centrifugal_bc": p["centrifugal_bc"]}
     return {
-        "design_margin": var("design_margin", margins, "1", "buckling margin m: the rolled "
-                             "stress at most 1/m of the one that buckles the disk at rest"),
-        "design_step": var("design_step", np.arange(steps), "1", "step of the amplitude scan "
-                           "from 0 to min(A_cr / m, design_amplitude_cap), m the smallest margin"),
+        "design_margin": var("design_margin", margins, "1", "buckling margin m (A <= A_cr / m)"),
+        "design_step": var("design_step", np.arange(steps), "1", "step of the amplitude scan"),
         "design_stated_margin": var((), stated, "1", "the stated buckling margin (the map's)"),
-        "design_amplitude": var(("r_c", "design_step"), amp, "K", "rolling amplitude A of "
-                                "Eq. (4) (calibrated alpha), scanned to the smallest margin"),
-        "design_critical_speed": var(("r_c", "design_step", "n_d"), cs, "rad/s",
-                                     "travelling-wave critical speed (NaN: buckled; inf: none)",
-                                     **bc),
-        "design_frequency_at_rest": var(("r_c", "design_step", "n_d"), f_rest, "Hz",
-                                        "rolled natural frequency of the disk at rest, Eq. (5)"),
-        "design_buckling_amplitude": var("r_c", lam_cr * ctx.A, "K", "amplitude A_cr that "
-                                         "buckles the disk at rest (any N_d of the scene)"),
+        "design_amplitude": var(("r_c", "design_step"), amp, "K", "rolling amplitude A, Eq. (4)"),
+        "design_critical_speed": var(("r_c", "design_step", "n_d"), cs, "rad/s", "critical "
+                                     "speed (NaN: buckled; inf: none)", **bc),
+        "design_buckling_amplitude": var("r_c", lam_cr * ctx.A, "K", "A_cr: buckles at rest"),
         "design_buckling_mode": var("r_c", mode_cr, "1", "N_d that buckles first"),
-        "design_amplitude_cap": var((), cap * ctx.A, "K", "the amplitude scan's end (a bound "
-                                    "of the scan, not of the physics)"),
-        "design_paper_amplitude_speed": var("r_c", paper, "rad/s", "lowest critical speed over "
-                                            "N_d >= 2 at the scene's amplitude (the paper's "
-                                            "A = 50 degC)", **bc),
-        "design_best_amplitude": var(dims, best["a"], "K", "amplitude maximising the lowest "
-                                     "critical speed at each r_c and margin"),
-        "design_best_speed": var(dims, best["v"], "rad/s", "the lowest critical speed over "
-                                 "N_d >= 2 there", **bc),
+        "design_amplitude_cap": var((), cap * ctx.A, "K", "the amplitude scan's end"),
+        "design_paper_amplitude_speed": var("r_c", paper, "rad/s", "lowest critical speed at "
+                                            "the scene's A", **bc),
+        "design_best_amplitude": var(dims, best["a"], "K", "the A maximising it"),
+        "design_best_speed": var(dims, best["v"], "rad/s", "the lowest critical speed there", **bc),
         "design_best_binds": var(dims, best["binds"], "1", "what binds there: "
                                  + ", ".join(f"{i} {b}" for i, b in enumerate(design.BINDS))),
         "design_best_mode": var(dims, best["mode"], "1", "N_d of the lowest critical speed there"),
-        "design_best_frequency_ratio": var(dims + ("n_d",), best_f, "1", "rolled over unrolled "
-                                           "natural frequency at rest there (the N_d = 0, 1 "
-                                           "margins)"),
-        "design_rim_temperature_rise": var((), rim, "K", "rim temperature rise of the cut the "
-                                           "critical speeds are for (0: no cutting heat)"),
+        "design_best_frequency_ratio": var(dims + ("n_d",), best_f, "1", "rolled / unrolled "
+                                           "frequency at rest there"),
+        "design_rim_temperature_rise": var((), rim, "K", "rim temperature rise of the cut"),
         "time_design_map": var((), sw.seconds, "s", "wall time of the design map"),
     }

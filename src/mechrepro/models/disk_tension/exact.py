@@ -1,23 +1,12 @@
 """Exact natural frequencies of the annular Kirchhoff plate (Bessel solution), unstressed
 or under a uniform isotropic in-plane stress sigma_0 (membrane force N = sigma_0 h).
 
-Clamped at r = a (W = W' = 0), free at r = b (M_r = 0 and, with the membrane force, the
-effective shear V_r - N W' = 0: the natural condition of the energy with N |grad w|^2,
-i.e. of the stress-stiffness term of Eq. 3).  The plate equation
-D lap^2 w - N lap w - rho h omega^2 w = 0 factors as (lap - k1^2)(lap + k2^2) w = 0 with
-
-    k1^2, -k2^2 = (N/D +- sqrt((N/D)^2 + 4 rho h omega^2 / D)) / 2,
-
-so W = C1 J_n(k2 r) + C2 Y_n(k2 r) + C3 I_n(k1 r) + C4 K_n(k1 r).  Unstressed,
-k1 = k2 = k with k^4 = rho h omega^2 / D.  In units of b = 1 the four boundary conditions
-give a 4x4 determinant in lambda = (rho h omega^2 b^4 / D)^(1/4) (= k b unstressed) and the
-stress parameter T = N b^2 / D; its roots are the frequency parameters.  Columns of I_n and
-K_n are scaled by positive factors (exp(-k1 b), exp(k1 a)) so that the determinant stays
-O(1) without moving a root.
-
-Under compression (T < 0) a harmonic whose fundamental has buckled has no real root left
-for it: the first root is then its next mode.  Callers compare with a model that flags
-buckling (effect ``stressed_reference`` refuses a buckled reference stress).
+Clamped at r = a (W = W' = 0), free at r = b (M_r = 0, V_r - N W' = 0: the natural condition
+of Eq. 3's stress-stiffness energy).  D lap^2 w - N lap w - rho h omega^2 w = 0 factors as
+(lap - k1^2)(lap + k2^2) w = 0, k1^2, -k2^2 = (N/D +- sqrt((N/D)^2 + 4 rho h omega^2 / D)) / 2,
+so W = C1 J_n(k2 r) + C2 Y_n(k2 r) + C3 I_n(k1 r) + C4 K_n(k1 r); in units of b = 1 the four
+boundary conditions give a 4x4 determinant in lambda = (rho h omega^2 b^4 / D)^(1/4) and
+T = N b^2 / D whose roots are the frequency parameters (a buckled fundamental has none).
 """
 from __future__ import annotations
 
@@ -31,8 +20,7 @@ from mechrepro.errors import Refusal
 
 
 def wavenumbers(lam, tension=0.0):
-    """(k1 b, k2 b) of the I/K and J/Y columns for frequency parameter(s) ``lam`` and stress
-    parameter T = N b^2 / D (both lam unstressed)."""
+    """(k1 b, k2 b) of the I/K and J/Y columns at ``lam`` under T = N b^2 / D."""
     lam = np.asarray(lam, float)
     if tension == 0.0:
         return lam, lam
@@ -79,15 +67,8 @@ def frequency_determinant(lam, n, ratio, nu, tension=0.0):
 
 def frequency_parameters(n, ratio, nu, count=1, lam_max=60.0, step=0.02, chunk=8.0,
                          tension=0.0):
-    """The first ``count`` roots lambda of the determinant for harmonic ``n`` (under the
-    stress parameter ``tension`` = N b^2 / D).
-
-    The determinant is an entire function of lambda (no poles), so every sign change on the
-    scan grid brackets a root; the scan stops at the first chunk that completes ``count``.
-    A pure function of its arguments, so memoised: every run of a batch needs the same few
-    (n, a/b, nu) -- the thickness calibration, the exact and the rolled references -- and
-    the cached roots are the very numbers a fresh solve gives.
-    """
+    """The first ``count`` roots lambda for harmonic ``n`` under ``tension`` = N b^2 / D,
+    memoised: the determinant is entire, so every sign change on the scan grid brackets one."""
     if not (0.0 < ratio < 1.0):
         raise Refusal(f"a/b = {ratio} must be in (0, 1) for the annular plate")
     return np.array(_roots(int(n), float(ratio), float(nu), int(count), float(lam_max),
@@ -110,9 +91,7 @@ def _roots(n, ratio, nu, count, lam_max, step, chunk, tension=0.0):
 
 
 def natural_frequencies(n_d, *, a, b, h, E, nu, rho, count=1, sigma=0.0, memo=True):
-    """Exact natural frequencies [Hz] of harmonic n_d (0 nodal circles first), under a
-    uniform isotropic in-plane stress ``sigma`` [Pa] (tension > 0).  ``memo=False`` solves
-    afresh (what an effect costs cold)."""
+    """Exact frequencies [Hz] of harmonic n_d under a uniform stress ``sigma`` [Pa]."""
     D = E * h**3 / (12 * (1 - nu**2))
     t = float(sigma) * h * b * b / D
     if memo:

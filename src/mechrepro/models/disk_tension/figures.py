@@ -1,38 +1,29 @@
-"""What the figures of disk_tension draw, taken from the runs (the notebook only draws).
-
-Every function reads datasets through a :class:`mechrepro.results.PaperResults` (or the
-datasets themselves) and returns arrays in SI; the notebook converts them to the paper's
-units with :func:`mechrepro.units.from_si`.
-"""
+"""What the figures of disk_tension draw, taken from the runs in SI (the notebook only draws
+and converts units)."""
 from __future__ import annotations
 
 import numpy as np
 
-#: r_f [mm] of Figs. 6/8 a-c: the scene rc_grid (25 mm) and the study fig06
-CLAMP_RADII_MM = (25, 55, 75)
+def by_clamp(R, scene, study) -> list:
+    """[(r_f [mm], dataset)] of ``scene`` and of the runs of its r_f ``study``."""
+    st = R.study(study)
+    return [(clamp_mm(ds), ds) for ds in [R.run(scene)] + [st.isel(run=i)
+                                                            for i in range(st.sizes["run"])]]
 
 
 def rc_grid(R) -> dict:
-    """{r_f [mm]: dataset} of Figs. 6 and 8: scene ``rc_grid`` (r_f = 25 mm) and the points
-    of study ``fig06`` (r_f = 55, 75 mm)."""
-    out = {25: R.run("rc_grid")}
-    st = R.study("fig06")
-    for i, rf in enumerate(st["clamp_radius"].values):
-        out[int(round(float(rf)))] = st.isel(run=i)
-    return out
+    """{r_f [mm]: dataset} of Figs. 6 and 8: scene ``rc_grid`` and study ``fig06``."""
+    return {int(round(rf)): ds for rf, ds in by_clamp(R, "rc_grid", "fig06")}
 
 
 def rolling_band(ds):
-    """(r_c - 2 s, r_c + 2 s) [m] of the first r_c: the rolled width 4 s of Sec. 3.2 that
-    Eq. (4)'s Gaussian of width s stands for."""
+    """(r_c - 2 s, r_c + 2 s) [m] of the first r_c: the rolled width 4 s of Sec. 3.2."""
     rc, s = float(ds["r_c"].values[0]), float(ds["width_used"])
     return rc - 2 * s, rc + 2 * s
 
 
 def paper_points(R) -> dict:
-    """The paper's own numbers drawn on Figs. 6 and 8 (from the validation table): the
-    unrolled / rolled N_d = 4 frequency at r_c = 0 / 65 mm (Sec. 4.3) and its Delta f by
-    Eq. (9) and by the eigen-analysis [Hz], and r_c = 65 mm [m]."""
+    """The paper's own numbers drawn on Figs. 6 and 8 (Sec. 4.3), from the validation table."""
     rows = {r["quantity"]: r for r in R.validation()}
 
     def paper(q):
@@ -51,18 +42,15 @@ def accuracy_goal(R, quantity: str) -> float:
 
 
 def eq9_and_eigen_times(grid: dict, plate2d) -> dict:
-    """Wall time [s] of the eigen-analysis (Eq. 5) and of Eq. (9) on the same K^(sigma):
-    summed over the axisym grid of Figs. 6/8, and over the plain 2-D r_c sweep."""
+    """Wall time [s] of Eq. (5) and of Eq. (9): axisym grid and plain 2-D sweep."""
     return {"axisym": (sum(float(g["axisym_time_eigen"]) for g in grid.values()),
                        sum(float(g["axisym_time_eq9"]) for g in grid.values())),
             "plate2d": (float(plate2d["plate2d_time_eigen"]), float(plate2d["plate2d_time_eq9"]))}
 
 
 def buckling_series(R):
-    """The hard case through the critical load (r_c = 105 mm): temperature amplitudes A [K]
-    (scene ``buckling`` and study ``buckling_sweep``, ascending), omega~^2 [rad^2/s^2] of each
-    (A, N_d), and the critical amplitude of each N_d, A * lambda_cr (omega~^2 is linear in A,
-    Eq. 3, so it vanishes at the load factor lambda_cr of the base run)."""
+    """The hard case (r_c = 105 mm): amplitudes A [K] ascending, omega~^2 of each (A, N_d),
+    and each N_d's critical amplitude A lambda_cr (omega~^2 is linear in A, Eq. 3)."""
     base, st = R.run("buckling"), R.study("buckling_sweep")
     amps = np.r_[float(base["amplitude_used"]), st["amplitude_used"].values.astype(float)]
     w2 = np.vstack([base["axisym_omega2_rolled"].isel(r_c=0).values,
@@ -77,33 +65,22 @@ def matrix_rows(da) -> list[list]:
     return [[int(n)] + [float(v) for v in da.sel(row=n).values] for n in da["row"].values]
 
 
-#: memoised effects and the variable holding their cold cost (stage-3 ones carry the solver)
-COLD_TIME = {"stress_calibration": "calibration_time_cold",
-             "exact_reference": "{solver}_exact_reference_time_cold",
-             "rolled_reference": "{solver}_rolled_reference_time_cold",
-             "stressed_reference": "{solver}_stressed_reference_time_cold"}
-
-
 def effect_cold_warm(R, scenes=("table12", "table12_plate2d", "stressed_axisym",
                                 "stressed_plate2d")) -> list[list]:
-    """Rows [scene, effect, warm s, cold s] of the memoised effects: warm is the run's own
-    effect time (the fastest repetition, after the first run of the batch memoised it),
-    cold what the effect costs with nothing memoised (a fresh process)."""
+    """Rows [scene, effect, warm s, cold s] of the memoised effects."""
     rows = []
     for scene in scenes:
         ds = R.run(scene)
-        solver = "plate2d" if "plate2d_n_dofs" in ds else "axisym"
         timed = [str(e) for e in ds["timed_effect"].values]
-        for effect, key in COLD_TIME.items():
-            key = key.format(solver=solver)
-            if effect in timed and key in ds:
-                warm = float(ds["effect_time"].values[timed.index(effect)])
-                rows.append([scene, effect, warm, float(ds[key])])
+        for effect in timed:
+            key = next((k for k in ds.data_vars if k.endswith(f"{effect}_time_cold")), None)
+            if key is not None:
+                rows.append([scene, effect, float(ds["effect_time"].values[timed.index(effect)]),
+                             float(ds[key])])
     return rows
 
 
 def clamp_mm(ds) -> float:
-    """r_f [mm] of a run or of one run of a study (a study's swept coordinate keeps the
-    config's unit, the run's own variable is SI)."""
+    """r_f [mm] of a run or of one run of a study (whose coordinate keeps the config's unit)."""
     v = ds["clamp_radius"]
     return float(v) * (1e3 if v.attrs.get("units", "m") == "m" else 1.0)

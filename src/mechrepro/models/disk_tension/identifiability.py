@@ -1,38 +1,15 @@
 """What the paper's numbers pin down: a joint fit of the rolling model's free constants.
 
-The rolled stress of Eq. (4) enters every paper number through three constants the paper
-leaves free or half-stated: the stress scale c = E alpha A (only the product matters; here
-relative to the handbook E = 206 GPa, alpha = 12e-6/K, A = 50 degC), the Gaussian width s
-("s = 5", no unit) and the in-plane condition at the clamp (``clamped`` / ``free_disk``).
-The data: Table 1's five diagonals (Eq. 9 at r_c = 65, r_f = 25 mm) and Fig. 6a's
-f~(N_d = 4, r_c = 65 mm) = 502.1 Hz (Sec. 4.3; the eigen-analysis).  434.5 Hz fixes the
-thickness on its own (exactly, :func:`.calibration.thickness`) and 70.0 Hz is Table 1's
-N_d = 4 entry converted (row paper_70hz_is_linearised_conversion): neither adds
-information.
-
-Misfit: chi^2 = sum ((model_k - paper_k) / u_k)^2 with u_k half a unit of the last printed
-digit, scaled (Birge) so that the best fit has chi^2 per degree of freedom 1: the model
-cannot meet the paper to its printed digits, and the scaling turns the remaining misfit
-into the uncertainty.  The joint (s, c) regions: chi^2 within 2.30 (68 %) and 6.18 (95 %)
-of its minimum (two parameters; minimised over the in-plane condition), stored as their c
-limits at every s (:func:`region`); their extents are the profiles' intervals at the same
-levels (profile: the minimum of chi^2 over the other constants at each value of one).  An
-extent's end is the data's only where no scan cuts the region: where the region reaches its
-own scan's end, or its extreme point sits at the other scan's end, the scan bounds it (the
-table says which).  Table 1 constrains mainly the product c s (the rolled band's integrated
-stress): the valley runs along c s ~ const, its floor stored as the minimiser of the other
-constant along each profile, its direction at the best fit the soft axis of the chi^2
-Hessian (:func:`direction`).  Which number pins
-which constant: each number's share of the Fisher information about s and c at the best
-fit, and the fit with and without 502.1 Hz.
-
-Eq. (9) is linear in c, so Table 1 is computed once per (s, condition) for c = 1; the
-eigen-analysis of N_d = 4 is solved on a coarse (s, c) grid (up to the first scale that
-buckles it) and omega~^2 (smooth in c, also through buckling, unlike f) is interpolated by
-cubic splines onto a fine c grid and along s.  The profiles are minimised on the fine grid
-and then, point by point, continuously (golden section between the grid neighbours of the
-grid minimum): the valley is narrower than any affordable grid step at small s, and the
-grid minimum alone makes the c profile jagged.  The best fit is polished by Nelder-Mead.
+Three constants enter every paper number through Eq. (4)'s stress: the stress scale
+c = E alpha A (relative to the handbook steel at A = 50 degC), the Gaussian width s ("s = 5",
+no unit) and the in-plane condition.  The data: Table 1's five diagonals (Eq. 9 at r_c = 65,
+r_f = 25 mm) and Fig. 6a's f~(N_d = 4) = 502.1 Hz.  chi^2 takes half a unit of the last
+printed digit as each number's uncertainty, Birge-scaled to chi^2 per degree of freedom 1;
+the joint (s, c) regions are chi^2 within 2.30 (68 %) and 6.18 (95 %) of the minimum.  Table 1
+pins mainly c s: the valley floor is stored along each profile, its direction at the best fit
+is the soft axis of the chi^2 Hessian, and each number's share of the Fisher information says
+which pins which.  Eq. (9) is linear in c; the N_d = 4 eigenvalue is splined from a coarse
+(s, c) grid; profiles are minimised on a fine grid, then continuously (golden section).
 """
 from __future__ import annotations
 
@@ -47,45 +24,25 @@ PRINTED = {"table1": np.array([0.005e5, 0.005e4, 0.005e5, 0.005e6, 0.005e6]), "f
 
 def unit_table1(disk, *, s, inplane_bc, r_c, amplitude, alpha, E, nu):
     """(Table 1 diagonals for stress scale 1 [rad^2/s^2], K^(sigma) of each harmonic)."""
-    kw = dict(amplitude=amplitude, r_c=r_c, s=s, r_f=disk.mesh.nodes[0], b=disk.mesh.nodes[-1],
-              E=E, nu=nu, alpha=alpha, inplane_bc=inplane_bc)
-    Ks = disk.stress_stiffness((lambda r: thermal.thermal_stress(r, **kw)[0],
-                                lambda r: thermal.thermal_stress(r, **kw)[1]))
+    Ks = disk.stress_stiffness(thermal.field(amplitude=amplitude, r_c=r_c, s=s,
+                                             r_f=disk.mesh.nodes[0], b=disk.mesh.nodes[-1],
+                                             E=E, nu=nu, alpha=alpha, inplane_bc=inplane_bc))
     return disk.eq9(Ks), Ks
 
 
 def _lowest_stable(K, M, bandwidth=3):
-    """omega^2 of the lowest mode of (K, M), or None when K is not positive definite (the
-    stressed disk has buckled in this harmonic): never the dense driver's cost for a buckled
-    point (:func:`.modal.eigen` falls back to it when inverse iteration fails)."""
-    from .modal import BANDED_MAX, BANDED_MIN, lowest_banded
+    """omega^2 of the lowest mode of (K, M), None when K has buckled."""
+    from .modal import BANDED_MAX, BANDED_MIN, lowest_banded, positive_definite
 
     if BANDED_MIN <= len(K) <= BANDED_MAX:
         x = lowest_banded(K, M, bandwidth)
         if x is not None:
             return float((x @ K @ x) / (x @ M @ x))
-    if not _positive_definite_banded(K, bandwidth):
-        return None
-    return float(eigen(K, M, 1, bandwidth)[0][0])
-
-
-def _positive_definite_banded(K, bandwidth) -> bool:
-    """Whether the banded symmetric K has a Cholesky factor (LAPACK dpbtrf: O(n), where the
-    dense factorisation of a 128 x 128 matrix cost ~10 ms here)."""
-    from scipy.linalg.lapack import dpbtrf
-
-    u = int(bandwidth)
-    ab = np.zeros((u + 1, len(K)))
-    for k in range(u + 1):
-        ab[u - k, k:] = K.diagonal(k)
-    return dpbtrf(ab, overwrite_ab=1)[1] == 0
+    return float(eigen(K, M, 1, bandwidth)[0][0]) if positive_definite(K) else None
 
 
 def scan(disk, *, widths, scales, fine, conditions, n_d_eigen=4, **load):
-    """The model on the coarse s grid: Table 1 for c = 1 [condition, s, N_d] (Eq. 9 is
-    linear in c) and omega~^2(N_d = 4) [condition, s, c] on the ``fine`` c grid: the
-    eigen-analysis solved on the coarse ``scales`` up to the first that buckles N_d = 4 and
-    interpolated by a cubic spline (NaN beyond the last stable scale)."""
+    """Table 1 for c = 1 and omega~^2(N_d = 4) on the fine c grid (NaN: buckled)."""
     from scipy.interpolate import CubicSpline
 
     unit = np.empty((len(conditions), len(widths), len(disk.n_d)))
@@ -108,9 +65,7 @@ def scan(disk, *, widths, scales, fine, conditions, n_d_eigen=4, **load):
 
 
 class FineModel:
-    """The model between the coarse s points: cubic splines along s of Table 1 (c = 1) and
-    of omega~^2 on each fine c (both smooth in s); ``__call__`` on a grid of s, :meth:`at`
-    at single points (s, condition, any c)."""
+    """The model between the coarse s points: splines along s of Table 1 and omega~^2."""
 
     def __init__(self, widths, unit, w2, fine):
         from scipy.interpolate import CubicSpline
@@ -177,10 +132,7 @@ LEVELS = {"68": 2.30, "95": 6.18}
 
 
 def interval(values, prof, level=1.0, floor=None):
-    """(best, lo, hi) of a profile: argmin and the range where prof <= min + level (min:
-    ``floor`` if given, the polished best fit's chi^2), each end interpolated linearly
-    between the grid points that straddle the level (an end at the grid's end means the
-    scan, not the data, bounds it there)."""
+    """(best, lo, hi) of a profile: where prof <= min + level, ends interpolated."""
     k = int(np.nanargmin(prof))
     top = (prof[k] if floor is None else min(floor, prof[k])) + level
     ok = np.nonzero(prof <= top)[0]
@@ -223,10 +175,9 @@ def _golden(f, lo, hi, iters=40):
 
 
 def _profiles(fm, fine_widths, table1_paper, f_rolled_paper, uses, chunk=64):
-    """Raw chi^2 profiles over s and c per condition, with the other constant's minimiser
-    along each (the valley floor), one dict per data subset of ``uses``: the fine grid
-    first (the model and its residuals once per chunk of s for all subsets), then each
-    profile point minimised continuously between its grid neighbours."""
+    """Raw chi^2 profiles over s and c per condition and the other constant's minimiser
+    along each (the valley floor), one dict per data subset of ``uses``: on the fine grid,
+    then each point minimised continuously between its grid neighbours."""
     nw, nc, na = len(fine_widths), len(fm.fine), len(CONDITIONS)
     grid = [{"ps": np.full((na, nw), np.inf), "ks": np.zeros((na, nw), int),
              "pc": np.full((na, nc), np.inf), "is": np.zeros((na, nc), int)} for _ in uses]
@@ -277,8 +228,7 @@ def _profiles(fm, fine_widths, table1_paper, f_rolled_paper, uses, chunk=64):
 
 
 def _polish(chi2_at, a, widths, scales, s0, c0, f0):
-    """(s, c, chi^2) of the minimum near (s0, c0) in condition ``a`` inside the scan box
-    (Nelder-Mead in units of the fine grid steps; never worse than the start)."""
+    """(s, c, chi^2) polished by Nelder-Mead from (s0, c0) in the scan box."""
     from scipy.optimize import minimize
 
     ds, dc = widths[1] - widths[0], scales[1] - scales[0]
@@ -299,13 +249,8 @@ def _polish(chi2_at, a, widths, scales, s0, c0, f0):
 
 
 def region(chi2_at, widths, floor, top, c_scan, iters=48):
-    """The joint region chi^2(s, c) <= top as its c limits at each s: (c_lo, c_hi)
-    [level, condition, s], NaN where the valley floor (``floor`` = (c*, chi^2(c*))
-    [condition, s]) lies above ``top`` [level].  chi^2 is unimodal in c at fixed s (Table 1
-    is linear in c, Eq. 9: a parabola; f~ rises with c), so each limit is bisected between
-    c* and the scan end; a limit still inside at the scan's end stays there (the scan
-    bounds it: compare with ``c_scan``), and where c* itself sits at a scan end (the valley
-    floor lies beyond the scan) both limits are that end: the scan, not the data, decides."""
+    """The region chi^2(s, c) <= top as c limits (c_lo, c_hi) [level, condition, s] (NaN where
+    the ``floor`` (c*, chi^2(c*)) lies above), each bisected between c* and the scan end."""
     c_star, p_star = floor
     top = np.asarray(top, float)[:, None, None]
     A = np.arange(c_star.shape[0])[None, :, None]
@@ -328,10 +273,9 @@ def region(chi2_at, widths, floor, top, c_scan, iters=48):
 
 
 def direction(chi2_at, a, s, c, scale=1.0, h=1e-3):
-    """The degenerate direction at the best fit: the Hessian of chi^2 / ``scale`` in
-    (ln s, ln c) by central differences; (d ln c / d ln s along its soft axis, the 68 %
-    half-lengths sqrt(2.30 / lambda) in ln units along the soft and the stiff axis).  A
-    slope of -1 is c s = const."""
+    """The degenerate direction at the best fit from the Hessian of chi^2 / ``scale`` in
+    (ln s, ln c): (d ln c / d ln s along its soft axis, the 68 % half-lengths along the soft
+    and the stiff axis); a slope of -1 is c s = const."""
     def f(x, y):
         return float(chi2_at(np.array([s * np.exp(x)]), np.array([a]),
                              np.array([c * np.exp(y)]))[0]) / scale
@@ -346,11 +290,9 @@ def direction(chi2_at, a, s, c, scale=1.0, h=1e-3):
 
 def analyse(disk, *, widths, scales, fine, fine_widths, single_width, table1_paper,
             f_rolled_paper, **load):
-    """The joint fit of (c, s, in-plane condition) to each data subset (:data:`SUBSETS`) and
-    the single-alpha reading (s = ``single_width``, free_disk, c on Table 1's N_d = 4 entry
-    alone), as arrays: Birge-scaled profiles over s, c and the condition with the valley
-    floor along each, the best point, its Table 1 relative errors and f~, Fisher shares,
-    Birge factors.  ``fine`` must be a uniform grid."""
+    """The joint fit of (c, s, in-plane condition) to each data subset (:data:`SUBSETS`)
+    and the single-alpha reading (s = ``single_width``, free_disk, c on Table 1's N_d = 4
+    entry), as the arrays of effect ``identifiability``; ``fine`` must be uniform."""
     unit, w2 = scan(disk, widths=widths, scales=scales, fine=fine, conditions=CONDITIONS, **load)
     fm = FineModel(widths, unit, w2, fine)
     u = np.r_[PRINTED["table1"], PRINTED["f_rolled"]]
@@ -359,58 +301,39 @@ def analyse(disk, *, widths, scales, fine, fine_widths, single_width, table1_pap
     c1 = table1_paper[4] / u1[4]
     f1 = frequency(eigen(disk.K[4] + c1 * Ks[4], disk.M[4], 1, 3)[0][0])
     single_terms = chi2_terms(c1 * u1, np.asarray(f1), table1_paper, f_rolled_paper)
-    out = {k: [] for k in ("prof_width", "prof_scale", "prof_condition", "prof_width_scale",
-                           "prof_scale_width", "birge", "best_width", "best_scale",
-                           "best_condition", "best_table1_rel", "best_f_rolled", "shares",
-                           "single_chi2", "chi2_min", "region_c_lo", "region_c_hi",
-                           "direction_slope", "direction_halfwidth")}
+    rows = []
     profiles = _profiles(fm, fine_widths, table1_paper, f_rolled_paper, list(SUBSETS.values()))
     for use, pr in zip(SUBSETS.values(), profiles):
         a, w, c, chi2 = pr["best"]
-        dof = max(len(use) - 3, 1)
-        birge = max(chi2 / dof, 1.0)
-        for key in ("prof_width", "prof_scale", "prof_condition"):
-            out[key].append(pr[key] / birge)
-        out["prof_width_scale"].append(pr["prof_width_scale"])
-        out["prof_scale_width"].append(pr["prof_scale_width"])
-        out["birge"].append(birge)
-        out["chi2_min"].append(chi2 / birge)
+        birge = max(chi2 / max(len(use) - 3, 1), 1.0)
         lo, hi = region(pr["chi2_at"], fine_widths, pr["floor"],
                         [chi2 + level * birge for level in LEVELS.values()],
                         np.asarray(fine)[[0, -1]])
-        out["region_c_lo"].append(lo)
-        out["region_c_hi"].append(hi)
         slope, half = direction(pr["chi2_at"], a, w, c, birge)
-        out["direction_slope"].append(slope)
-        out["direction_halfwidth"].append(half)
         t1, f4 = fm.at(w, a, c)
-        out["best_width"].append(w)
-        out["best_scale"].append(c)
-        out["best_condition"].append(a)
-        out["best_table1_rel"].append(t1[0] / table1_paper - 1)
-        out["best_f_rolled"].append(f4[0])
         # Fisher shares at the best point: central differences along s and c
         hs, hc = 1e-3 * (fine_widths[1] - fine_widths[0]), 1e-3 * (fine[1] - fine[0])
-        (tl, fl), (th, fh) = fm.at(w - hs, a, c), fm.at(w + hs, a, c)
-        d_s = (np.r_[th[0], fh] - np.r_[tl[0], fl]) / (2 * hs)
-        (tl, fl), (th, fh) = fm.at(w, a, c - hc), fm.at(w, a, c + hc)
-        d_c = (np.r_[th[0], fh] - np.r_[tl[0], fl]) / (2 * hc)
         sh = np.zeros((2, len(u)))
-        for row, d in enumerate((d_s, d_c)):
+        for row, (ds, dc) in enumerate(((hs, 0.0), (0.0, hc))):
+            (tl, fl), (th, fh) = fm.at(w - ds, a, c - dc), fm.at(w + ds, a, c + dc)
+            d = (np.r_[th[0], fh] - np.r_[tl[0], fl]) / (2 * (ds + dc))
             info = (d[use] / u[use]) ** 2
             sh[row, use] = info / info.sum()
-        out["shares"].append(sh)
-        out["single_chi2"].append(float(np.sum(single_terms[use]) / birge))
-    out = {k: np.array(v) for k, v in out.items()}
+        rows.append({**{k: pr[k] / birge for k in ("prof_width", "prof_scale", "prof_condition")},
+                     "prof_width_scale": pr["prof_width_scale"],
+                     "prof_scale_width": pr["prof_scale_width"], "birge": birge,
+                     "chi2_min": chi2 / birge, "region_c_lo": lo, "region_c_hi": hi,
+                     "direction_slope": slope, "direction_halfwidth": half, "best_width": w,
+                     "best_scale": c, "best_condition": a,
+                     "best_table1_rel": t1[0] / table1_paper - 1, "best_f_rolled": f4[0],
+                     "shares": sh, "single_chi2": float(np.sum(single_terms[use]) / birge)})
+    out = {k: np.array([r[k] for r in rows]) for k in rows[0]}
     out.update(single_scale=c1, single_table1_rel=c1 * u1 / table1_paper - 1, single_f_rolled=f1)
     return out
 
 
 def _bound(end, grid, other, other_grid, name, other_name, unit) -> str:
-    """What bounds an extent's end, if not the data: its own scan's end (the region reaches
-    it), or the other constant's scan end (the other's minimiser ``other`` sits there at a
-    grid point either side of the end: the scan, not the data, stops the region); '' where
-    the data close the region."""
+    """What bounds an extent's end if not the data (a scan's end); '' where the data do."""
     step = abs(grid[1] - grid[0])
     if end <= grid.min() + 1e-9 * step or end >= grid.max() - 1e-9 * step:
         return f"{name} scan {'start' if end <= grid.min() + step else 'end'} {end:g}{unit}"
@@ -423,15 +346,16 @@ def _bound(end, grid, other, other_grid, name, other_name, unit) -> str:
     return ""
 
 
+def _reader(ds, prefix):
+    """The values of variable ``k`` of a run (``prefix`` + k, or k itself)."""
+    return lambda k: ds[prefix + k if prefix + k in ds else k].values
+
+
 def table(ds, prefix="axisym_") -> list[list]:
-    """Rows of ``identifiability.csv`` from a run of effect ``identifiability``: per data
-    subset and constant the best fit and the extents of the joint (s, c) region at 68 and
-    95 % (Delta chi^2 = 2.30, 6.18; the profile intervals at those levels), each end the
-    data's or flagged by the scan that bounds it (bounded_68, bounded_95), which numbers pin
-    it; the product c s along the valley floor; the degenerate direction (the Hessian's soft
-    axis at the best fit, and the floor's exponent c ~ s^k over the 95 % extent); the
-    in-plane condition."""
-    g = lambda k: ds[prefix + k if prefix + k in ds else k].values  # noqa: E731
+    """Rows of ``identifiability.csv``: per data subset and constant the best fit, the
+    extents of the joint (s, c) region at 68 and 95 % with what bounds them and which numbers
+    pin it; c s along the valley floor; the degenerate direction; the in-plane condition."""
+    g = _reader(ds, prefix)
     widths, fine = g("scan_width") * 1e3, g("scan_scale")
     rows = []
     for j, name in enumerate(SUBSETS):
@@ -491,9 +415,8 @@ COLUMNS = ["data", "constant", "unit", "best", "lo_68", "hi_68", "lo_95", "hi_95
 
 
 def readings(ds, prefix="axisym_") -> list[list]:
-    """[data, reading, condition, s mm, c, Table 1 N_d=0..4 relative errors, f~ Hz, chi^2 -
-    chi^2_min] of the joint fit and of the single-alpha calibration, per data subset."""
-    g = lambda k: ds[prefix + k if prefix + k in ds else k].values  # noqa: E731
+    """Rows of the joint fit and of the single-alpha calibration, per data subset."""
+    g = _reader(ds, prefix)
     out = []
     for j, name in enumerate(SUBSETS):
         out.append([name, "joint fit", CONDITIONS[int(g("best_condition")[j])],

@@ -1,10 +1,6 @@
-"""disk_tension's load-time limits (read by :mod:`mechrepro.limits` before any job).
-
-The condition is the solver's own, evaluated on the run record: the stiffened annuli of
-Fig. 7 inside the flexible region (:func:`.effects.stiffness_sensitivity`), which
-otherwise refuses inside the job.  The clamp inside the disk, the Gaussian width and N_d
-are the config's cross-checks and schema already.
-"""
+"""disk_tension's load-time limits (read by :mod:`mechrepro.limits` before any job): the
+stiffened annuli of Fig. 7 inside the flexible region, which the effect
+:func:`.effects.stiffness_sensitivity` would otherwise refuse inside the job."""
 from __future__ import annotations
 
 import numpy as np
@@ -31,12 +27,8 @@ def check(run: dict) -> list[str]:
 
 
 def cost(run: dict) -> dict:
-    """Peak memory and time of one run (measured on scenes stressed_axisym and
-    stressed_plate2d, exact and stressed references included, 2 shared cores):
-    axisym n_elements = 128, 1024 -> 156, 860 MB and 2.2, 112 s (time ~ n^1.9; memory
-    fitted as quadratic through both points, an upper reading: no third point);
-    plate2d n_rings x n_sectors = 6x64, 12x64, 24x64 -> 212, 285, 426 MB and 2.3, 2.0,
-    7.3 s (memory linear in the cells, 0.18 MB each).  Fits ~10 % above the points."""
+    """Peak memory [MB] and time [s] of one run: quadratic in the radial elements, linear in
+    the cells of the 2-D mesh (fits above the benchmark's measurements)."""
     res = run["resolution"]
     if "n_elements" in res:
         n = int(res["n_elements"])

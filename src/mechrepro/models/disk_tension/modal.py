@@ -17,21 +17,10 @@ class BucklingError(Refusal, ArithmeticError):
 
 #: sizes (unknowns) of the banded problems solved by inverse iteration (see ``eigen``)
 BANDED_MIN, BANDED_MAX = 64, 128
-
-
 def eigen(K, M, count=1, bandwidth=None):
-    """Lowest ``count`` eigenpairs of (K - omega^2 M) phi = 0, Eq. (5)/(6).
-
-    Returns (omega^2, Phi) with mass-normalised columns (Phi^T M Phi = I).  omega^2 may be
-    negative when K includes compressive K^(sigma): the caller decides (see ``frequency``).
-
-    ``bandwidth``: half-bandwidth of K and M when they are banded (the radial Hermite
-    elements: 3).  The fundamental (``count = 1``) of a banded pencil with K positive
-    definite and at most ``BANDED_MAX`` unknowns is found by inverse iteration with K's
-    banded Cholesky factor (:func:`lowest_banded`, O(n) per step instead of the dense
-    driver's O(n^3)); a buckled K (not positive definite) or an iteration that does not
-    converge falls back to the dense driver, as does every larger problem.
-    """
+    """Lowest ``count`` eigenpairs of (K - omega^2 M) phi = 0, Eq. (5)/(6): (omega^2, Phi),
+    Phi mass-normalised (omega^2 < 0: buckled).  A banded fundamental of ``BANDED_MIN`` to
+    ``BANDED_MAX`` unknowns by inverse iteration (O(n) a step), all else by the dense driver."""
     count = min(int(count), len(K))
     phi = None
     if bandwidth is not None and count == 1 and BANDED_MIN <= len(K) <= BANDED_MAX:
@@ -41,9 +30,8 @@ def eigen(K, M, count=1, bandwidth=None):
         import scipy.linalg as sla  # here: validate_disk_tension imports this module, never solves
 
         lam, phi = sla.eigh(K, M, subset_by_index=[0, count - 1])
-    # LAPACK's subset driver (gvx) loses digits on the small eigenvalues of fine meshes
-    # (1e-5 at 256 Hermite elements); its vectors are good, and the Rayleigh quotient of a
-    # good vector is accurate to the square of the vector error
+    # LAPACK's subset driver loses digits on the small eigenvalues of fine meshes; the
+    # Rayleigh quotient of its (good) vectors is accurate to the square of the vector error
     KP, MP = K @ phi, M @ phi
     m = np.einsum("ij,ij->j", phi, MP)
     lam = np.einsum("ij,ij->j", phi, KP) / m
@@ -51,58 +39,43 @@ def eigen(K, M, count=1, bandwidth=None):
 
 
 def lowest_banded(K, M, bandwidth, tol=1e-13, maxiter=200):
-    """Eigenvector of the lowest eigenvalue of (K, M) by inverse iteration, K symmetric
-    positive definite with half-bandwidth ``bandwidth``; None if K is not positive definite
-    or the iteration has not converged (|change| < ``tol`` of the largest entry) within
-    ``maxiter`` steps.  Start vector: all ones (deterministic).  Each step costs one banded
-    triangular solve pair and one product with M; the error falls by omega_1^2 / omega_2^2
-    per step (1/10 or less for the clamped disk)."""
+    """Lowest eigenvector of (K, M) by banded inverse iteration; None: buckled or no convergence."""
     from scipy.linalg.lapack import dpbtrf, dpbtrs
 
-    n, u = len(K), int(bandwidth)
-    ab = np.zeros((u + 1, n))
+    u = int(bandwidth)
+    ab = np.zeros((u + 1, len(K)))
     for k in range(u + 1):
         ab[u - k, k:] = K.diagonal(k)
     c, info = dpbtrf(ab, overwrite_ab=1)
     if info != 0:
         return None
-    # the step's angle says for free when the change test cannot pass yet: |change| <
-    # tol max|y| (unit x, y) needs sin^2(x, y) <= |y - x|^2 < n tol^2, far below SCREEN,
-    # and SCREEN is far above the round-off of q - s^2 (~1e-16 q); the test itself (an
-    # exact comparison, same steps, same vector) runs only in the last few steps
-    screen = n * tol * tol < 1e-3 * SCREEN
-    amax, amin = np.maximum.reduce, np.minimum.reduce
-    x = np.ones(n) / np.sqrt(n)
+    x = np.ones(len(K)) / np.sqrt(len(K))
     for _ in range(maxiter):
-        y, info = dpbtrs(c, M @ x, overwrite_b=1)
-        s, q = y @ x, y.dot(y)
-        # np.linalg.norm's own arithmetic (sqrt of y.dot(y)) without its ~10 us of checks:
-        # the loop runs ~17 times per call, 7000 calls in the identifiability scan
-        y /= math.copysign(math.sqrt(q), s)
-        if not (screen and q - s * s > SCREEN * q):
-            d = y - x
-            if amax(np.abs(d, out=d)) < tol * max(amax(y), -amin(y)):
-                return y
+        y = dpbtrs(c, M @ x, overwrite_b=1)[0]
+        y /= math.copysign(math.sqrt(y.dot(y)), y @ x)
+        if np.abs(y - x).max() < tol * np.abs(y).max():
+            return y
         x = y
     return None
 
 
-#: sin^2 of a step's angle above which inverse iteration's change test is not evaluated
-SCREEN = 1e-12
+def positive_definite(K) -> bool:
+    """Whether the (stressed) stiffness K is positive definite: the disk has not buckled."""
+    try:
+        np.linalg.cholesky(K)
+    except np.linalg.LinAlgError:
+        return False
+    return True
 
 
 def frequency(omega2, buckled="nan"):
-    """f = sqrt(omega^2) / 2 pi [Hz]; a negative omega^2 (buckled) gives NaN or raises.
-
-    Never a silent square root of a negative number: ``buckled="raise"`` raises
-    :class:`BucklingError`, ``"nan"`` returns NaN (the caller stores a buckled flag).
-    """
+    """f = sqrt(omega^2) / 2 pi [Hz]; a negative omega^2 (buckled) gives NaN (``"nan"``, the
+    caller stores a buckled flag) or raises :class:`BucklingError` (``"raise"``)."""
     omega2 = np.asarray(omega2, float)
     neg = omega2 < 0
     if np.any(neg) and buckled == "raise":
         raise BucklingError(f"omega^2 = {omega2[neg]} < 0: the stressed plate has buckled")
-    out = np.sqrt(np.where(neg, np.nan, omega2)) / TWO_PI
-    return out
+    return np.sqrt(np.where(neg, np.nan, omega2)) / TWO_PI
 
 
 def eq9_delta_omega2(phi, K_sigma, M):
@@ -125,34 +98,13 @@ def delta_f_exact(omega, delta_omega2):
 
 
 def critical_load_factor(K, K_sigma):
-    """Smallest lambda > 0 with det(K + lambda K^(sigma)) = 0 (inf if none).
-
-    Solves K_sigma phi = mu K phi (K positive definite after clamping); a compressive mode
-    has mu < 0 and buckles at lambda = -1/mu.
-    """
+    """Smallest lambda > 0 with det(K + lambda K^(sigma)) = 0 (inf if none): a compressive
+    mode of K_sigma phi = mu K phi has mu < 0 and buckles at lambda = -1/mu."""
     import scipy.linalg as sla  # here: validate_disk_tension imports this module, never solves
 
     mu = sla.eigh(K_sigma, K, eigvals_only=True)
     neg = mu[mu < 0]
     return float(-1.0 / neg.min()) if neg.size else float("inf")
-
-
-def modal_stress_matrix(Phi, K_sigma):
-    """Eq. (16): [K^hat(sigma)] = Phi^T K^(sigma) Phi."""
-    return Phi.T @ K_sigma @ Phi
-
-
-def modal_mass_cross(Phi_rolled, M, Phi):
-    """Eq. (17): [m^hat] = Phi~^T M Phi (unit matrix when modes do not change)."""
-    return Phi_rolled.T @ M @ Phi
-
-
-def mac(Phi_a, Phi_b, M=None):
-    """Modal assurance criterion |a^T M b|^2 / (a^T M a)(b^T M b) for all column pairs."""
-    W = Phi_b if M is None else M @ Phi_b
-    Wa = Phi_a if M is None else M @ Phi_a
-    num = (Phi_a.T @ W) ** 2
-    return num / np.outer(np.einsum("ij,ij->j", Phi_a, Wa), np.einsum("ij,ij->j", Phi_b, W))
 
 
 def align_signs(Phi_rolled, M, Phi):
@@ -163,29 +115,17 @@ def align_signs(Phi_rolled, M, Phi):
 
 
 def align_pair(Q, M, P):
-    """Canonical basis of a rolled mode pair for Eq. (17): the rotation of ``Q`` closest to
-    the unrolled pair ``P``.
-
-    A degenerate sin/cos pair is returned by an eigensolver in an arbitrary rotation (it
-    depends on the start vector, the BLAS kernels and the thread count), so a single member's
-    entry of Eq. (17) is not well defined.  The orthogonal Procrustes rotation
-    R = argmax trace((Q R)^T M P) = U V^T, with U S V^T = Q^T M P, aligns the pair with the
-    cos/sin basis of the unstressed mode; the block (Q R)^T M P = V S V^T is then symmetric
-    and independent of how ``Q`` was rotated or signed.  ``Q``, ``P``: (n_dof, k) with
-    mass-normalised columns, k = 1 (N_d = 0) or 2.
-    """
+    """Canonical basis of a rolled mode pair ``Q`` for Eq. (17), whose rotation an
+    eigensolver leaves arbitrary: the Procrustes rotation R = U V^T (U S V^T = Q^T M P) onto
+    the unrolled pair ``P`` makes (Q R)^T M P = V S V^T independent of it."""
     C = Q.T @ (M @ P)
     U, _, Vt = np.linalg.svd(C)
     return Q @ (U @ Vt)
 
 
 def harmonic_coupling_symmetry(nonzero_pairs, n_max, orders=range(2, 65)):
-    """Smallest rotational symmetry order N of a mesh whose harmonic coupling pattern is
-    ``nonzero_pairs`` (pairs (i, j), i < j <= n_max, of nonzero off-diagonals of Eq. (16)).
-
-    On a mesh with C_N symmetry, cos(i theta) and cos(j theta) couple iff i = +-j (mod N)
-    (selection rule of the cyclic group); returns None when no N <= max(orders) fits.
-    """
+    """Smallest symmetry order N of a mesh whose Eq. (16) couples ``nonzero_pairs`` (i < j <=
+    n_max): on a C_N mesh cos(i theta), cos(j theta) couple iff i = +-j (mod N); None: none."""
     want = {tuple(sorted(p)) for p in nonzero_pairs}
     for N in orders:
         got = {(i, j) for i in range(n_max + 1) for j in range(i + 1, n_max + 1)
@@ -196,6 +136,5 @@ def harmonic_coupling_symmetry(nonzero_pairs, n_max, orders=range(2, 65)):
 
 
 def degenerate_harmonics(N, n_d):
-    """Harmonics that stay degenerate sin/cos pairs on a C_N-symmetric mesh: N_d with
-    N_d mod N not in {0, N/2} (the others split into two singlets)."""
+    """N_d that stay degenerate pairs on a C_N mesh (N_d mod N not 0 or N/2)."""
     return [int(n) for n in n_d if (n % N) != 0 and (2 * n) % N != 0]

@@ -1,15 +1,7 @@
-"""2-D plate model: Kirchhoff plate on a triangular mesh of the disk (scikit-fem).
-
-Bending uses the C1-conforming quintic Argyris triangle (no locking, exact Kirchhoff
-energy); the thermal-analogy residual stress comes from a plane-stress P2 solution on the
-same mesh, so a blade with radial expansion slots is handled like the plain disk (the
-paper's motivation: "sawblades with slots and tips can be easily modeled within the FEM").
-
-Every mode of the plain disk with N_d >= 1 is a degenerate sin/cos pair; the solver labels
-modes by MAC against the unrolled set (pair subspaces, not single vectors), rotates each
-unrolled pair so that its first member is the cos(N_d theta) mode, and evaluates Eq. (9)
-for a pair by the 2x2 block of Phi^T K^(sigma) Phi (degenerate first-order perturbation),
-which reduces to Eq. (9) when the block is diagonal (axisymmetric stress).
+"""2-D plate model (scikit-fem): quintic Argyris bending triangles and a plane-stress P2
+residual stress on the same mesh, so slotted blades are handled like the plain disk.  Modes
+are labelled by MAC against the unrolled sin/cos pair subspaces; Eq. (9) of a pair is the
+mean eigenvalue of its 2x2 block of Phi^T K^(sigma) Phi (degenerate first-order perturbation).
 """
 from __future__ import annotations
 
@@ -21,7 +13,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from skfem import Basis, BilinearForm, ElementTriArgyris, ElementTriP2, ElementVector, LinearForm, MeshTri, asm
 from skfem.element.discrete_field import DiscreteField
-from skfem.helpers import dd, ddot, div, dot, grad, sym_grad, trace
+from skfem.helpers import dd, ddot, div, grad, sym_grad, trace
 
 from mechrepro.errors import Refusal
 
@@ -29,17 +21,9 @@ INTORDER = 8  # mass of quintics needs 10 for exactness; 8 changes f by < 1e-6 a
 
 
 class Argyris(ElementTriArgyris):
-    """scikit-fem's Argyris triangle with all 21 global basis functions built in one pass.
-
-    :meth:`ElementGlobal.gbasis` builds one basis function per call, re-evaluating the 21
-    monomials and their first and second derivatives (147 arrays over all quadrature
-    points) for each of the 21 functions and summing the 21 monomial terms one array
-    operation at a time; :class:`~skfem.CellBasis` calls it once per function.  Here the
-    monomials are evaluated once and every function, value and derivative is one batched
-    product with the element's inverse Vandermonde matrix (equal to scikit-fem's basis to
-    round-off, summation order only).  The first call of a (mapping, points, elements)
-    triple fills a one-entry cache, the other 20 read it.
-    """
+    """scikit-fem's Argyris triangle with its 21 global basis functions built in one batched
+    product with the inverse Vandermonde matrix (scikit-fem re-evaluates the monomials per
+    function, 6x slower), cached for the other 20 calls; equal to round-off."""
 
     _gcache = None
 
@@ -70,74 +54,8 @@ class Argyris(ElementTriArgyris):
         return [(DiscreteField(value=U[0][i], grad=U[1][i], hess=U[2][i]),) for i in range(N)]
 
 
-class ArgyrisForms:
-    """The three bending-side matrices of one Argyris basis, assembled as batched products.
-
-    scikit-fem evaluates a form once per (trial, test) pair of the 21 x 21 local functions,
-    441 array expressions per matrix.  The same integrals as element-wise matrix products
-    (quadrature points and field components contracted by BLAS):
-
-    * bending  K_e = B^T B,  B = [sqrt((1 - nu) D dx) hess(N), sqrt(nu D dx) lap(N)]
-      (D [(1 - nu) dd(u):dd(v) + nu lap(u) lap(v)], ``_bending``);
-    * mass     M_e = B^T B,  B = sqrt(rho h dx) N  (``_mass``);
-    * stress   K_e = G^T (h dx sigma G),  G = grad(N), symmetrised  (``_geometric``, Eq. 3).
-
-    The entries equal scikit-fem's to round-off (summation order only).
-    """
-
-    def __init__(self, basis):
-        fields = [b[0] for b in basis.basis]
-        self.shape = (basis.N, basis.N)
-        self.dx = basis.dx                                            # (element, point)
-        self.value = np.stack([np.asarray(f) for f in fields], axis=-1)  # (e, q, function)
-        self.grad = np.stack([f.grad for f in fields], axis=-1).transpose(1, 2, 0, 3)
-        hess = np.stack([f.hess for f in fields], axis=-1)            # (2, 2, e, q, function)
-        self.hess = hess.reshape(4, *hess.shape[2:]).transpose(1, 2, 0, 3)
-        self.lap = hess[0, 0] + hess[1, 1]
-        dofs = basis.element_dofs.T                                   # (element, function)
-        nb = dofs.shape[1]
-        self.rows = np.broadcast_to(dofs[:, :, None], (len(dofs), nb, nb)).ravel()
-        self.cols = np.broadcast_to(dofs[:, None, :], (len(dofs), nb, nb)).ravel()
-
-    def _csr(self, ke):
-        return sp.coo_matrix((ke.ravel(), (self.rows, self.cols)), shape=self.shape).tocsr()
-
-    @staticmethod
-    def _gram(B):
-        """B^T B per element, B (element, point, component, function)."""
-        B = B.reshape(B.shape[0], -1, B.shape[-1])
-        return np.matmul(B.transpose(0, 2, 1), B)
-
-    def bending(self, D, nu):
-        a = np.sqrt((1 - nu) * D * self.dx)[:, :, None, None]
-        b = np.sqrt(nu * D * self.dx)[:, :, None, None]
-        return self._csr(self._gram(np.concatenate([a * self.hess, b * self.lap[:, :, None]],
-                                                   axis=2)))
-
-    def mass(self, rho_h):
-        return self._csr(self._gram((np.sqrt(rho_h * self.dx)[:, :, None] * self.value)[:, :, None]))
-
-    def geometric(self, h, sxx, sxy, syy):
-        gx, gy = self.grad[:, :, 0], self.grad[:, :, 1]
-        w = (h * self.dx)[:, :, None]
-        sg = np.stack([w * (sxx[:, :, None] * gx + sxy[:, :, None] * gy),
-                       w * (sxy[:, :, None] * gx + syy[:, :, None] * gy)], axis=2)
-        G = self.grad.reshape(self.grad.shape[0], -1, self.grad.shape[-1])
-        ke = np.matmul(G.transpose(0, 2, 1), sg.reshape(G.shape))
-        return self._csr(0.5 * (ke + ke.transpose(0, 2, 1)))
-
-
 def symmetric_lu(A):
-    """Sparse LU of a symmetric matrix with a symmetric fill-reducing ordering.
-
-    SuperLU's default (COLAMD column ordering, partial pivoting) ignores the symmetry of the
-    Argyris and membrane matrices; minimum degree on A^T + A with diagonal pivots (SuperLU's
-    symmetric mode) fills 35-40 % fewer entries and factorises 2-2.5x faster.  The shifted
-    matrices factorised here are positive definite (unstressed or shifted below the lowest
-    eigenvalue, or the membrane stiffness with rigid motion removed) or, when a stress
-    buckles the plate, indefinite but with a nonsingular diagonal after the shift, so the
-    diagonal pivots are stable in practice; a pivot below SuperLU's threshold raises, never
-    a silent wrong solve."""
+    """Sparse LU in SuperLU's symmetric mode (less fill); a small pivot raises."""
     return spla.splu(sp.csc_matrix(A), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
                      options=dict(SymmetricMode=True))
 
@@ -208,13 +126,9 @@ def polar_mesh(r_f, b, n_rings, n_sectors, slots: Slots | None = None,
 
 
 def with_inner_disk(mesh: MeshTri) -> MeshTri:
-    """The annulus mesh plus a mesh of the clamped core r < r_f (rings + centre fan).
-
-    The annulus nodes and triangles come first with unchanged indices, so the first
-    ``mesh.nelements`` triangles of the result are the annulus triangles with the same local
-    node order: a field solved on the whole disk is then evaluated at exactly the bending
-    quadrature points (the free-disk residual stress, ``inplane_bc = free_disk``).
-    """
+    """The annulus mesh plus a mesh of the clamped core r < r_f (rings + centre fan), the
+    annulus first with unchanged indices: a field solved on the whole disk (``free_disk``) is
+    then evaluated at exactly the bending quadrature points."""
     rad = np.hypot(*mesh.p)
     r0 = rad.min()
     ring = np.nonzero(rad < r0 * (1 + 1e-9))[0]
@@ -284,15 +198,14 @@ class PlateDisk:
         self.mesh = polar_mesh(r_f, b, n_rings, n_sectors, slots)
         self.basis = Basis(self.mesh, Argyris(), intorder=INTORDER)
         D = E * h**3 / (12 * (1 - nu**2))
-        self.forms = ArgyrisForms(self.basis)
-        self.K = self.forms.bending(D, nu)
-        self.M = self.forms.mass(rho * h)
+        self.K = asm(_bending, self.basis, D=D, nu=nu)
+        self.M = asm(_mass, self.basis, rho_h=rho * h)
         rad = np.hypot(*self.mesh.p)
         r_in = rad.min()
-        inner = self.mesh.facets_satisfying(lambda x: np.hypot(*x) < r_in * (1 + 1e-9))
-        if inner.size == 0:
+        self._inner = self.mesh.facets_satisfying(lambda x: np.hypot(*x) < r_in * (1 + 1e-9))
+        if self._inner.size == 0:
             raise Refusal("no clamped facets found at r = r_f")
-        fixed = self.basis.get_dofs(inner).all(["u", "u_x", "u_y", "u_n"])
+        fixed = self.basis.get_dofs(self._inner).all(["u", "u_x", "u_y", "u_n"])
         self.free = np.setdiff1d(np.arange(self.basis.N), fixed)
         self.n_modes = int(2 * self.n_d.max() + 1 + extra_modes)
         outer = np.nonzero(rad > rad.max() * (1 - 1e-9))[0]
@@ -317,8 +230,7 @@ class PlateDisk:
         return lam[order], full
 
     def harmonic_content(self, Phi):
-        """Least-squares cos/sin content of each mode on the outer edge; returns the
-        dominant N_d and the (cos, sin) coefficients of every harmonic up to max N_d + 2."""
+        """(dominant N_d, cos/sin coefficients) of each mode on the outer edge."""
         nmax = int(self.n_d.max()) + 2
         th = self.ring_theta
         cols = [np.ones_like(th)]
@@ -338,7 +250,6 @@ class PlateDisk:
         lam, Phi = self._eigs(self.K, self.n_modes, 0.0)
         self._shift_scale = lam.max()
         nd, coef = self.harmonic_content(Phi)
-        self.all_omega2, self.all_phi, self.all_label = lam, Phi, nd
         self.omega2, self.pair = {}, {}
         for n in self.n_d:
             idx = np.nonzero(nd == n)[0]
@@ -369,18 +280,10 @@ class PlateDisk:
 
     # -- thermal analogy: plane stress ---------------------------------------------
     def _inplane_problem(self, inplane_bc):
-        """P2 plane-stress basis, free DOFs and factorised stiffness for ``inplane_bc``.
-
-        ``clamped``: the annulus with u = 0 at r = r_f.  ``free_disk``: the whole disk (the
-        annulus plus the core r < r_f, which carries the temperature too), held only against
-        rigid motion (centre node fixed, tangential displacement of one rim-of-core node):
-        the residual stress of a blade rolled before it is clamped.
-        """
+        """P2 plane-stress basis, free DOFs and factorised stiffness for ``inplane_bc``."""
         if inplane_bc == "clamped":
             ub = self.basis.with_element(ElementVector(ElementTriP2()))
-            r_in = np.hypot(*self.mesh.p).min()
-            inner = self.mesh.facets_satisfying(lambda x: np.hypot(*x) < r_in * (1 + 1e-9))
-            fixed = ub.get_dofs(inner).all()
+            fixed = ub.get_dofs(self._inner).all()
         elif inplane_bc == "free_disk":
             full = with_inner_disk(self.mesh)
             ub = Basis(full, ElementVector(ElementTriP2()), intorder=INTORDER)
@@ -397,9 +300,7 @@ class PlateDisk:
         return ub, free, symmetric_lu(Kin[free][:, free])
 
     def residual_stress(self, temperature, alpha, inplane_bc="clamped"):
-        """Plane-stress thermal field (thermal analogy, Eq. 4 load) for the in-plane boundary
-        condition ``inplane_bc``, returned as (sxx, sxy, syy) at the bending quadrature
-        points [Pa]."""
+        """Plane-stress field of the Eq. (4) temperature: (sxx, sxy, syy) [Pa]."""
         if self._inplane is None or self._inplane[0] != inplane_bc:
             self._inplane = (inplane_bc,) + self._inplane_problem(inplane_bc)
         _, ub, free, lu = self._inplane
@@ -430,30 +331,26 @@ class PlateDisk:
         return np.hypot(x[0], x[1]).ravel(), sr.ravel(), st.ravel()
 
     def uniform_stress(self, sigma0):
-        """(sxx, sxy, syy) of a uniform isotropic stress ``sigma0`` [Pa] at the bending
-        quadrature points (the exact stressed reference)."""
+        """(sxx, sxy, syy) of a uniform isotropic stress ``sigma0`` [Pa]."""
         shape = np.asarray(self.basis.global_coordinates()).shape[1:]
         s = np.full(shape, float(sigma0))
         return s, np.zeros(shape), s.copy()
 
     def stress_stiffness(self, sigma):
+        """[K^(sigma)], Eq. (3), of the stress (sxx, sxy, syy) at the quadrature points."""
         sxx, sxy, syy = sigma
-        return self.forms.geometric(self.h, np.asarray(sxx), np.asarray(sxy), np.asarray(syy))
+        return asm(_geometric, self.basis, h=self.h, sxx=sxx, sxy=sxy, syy=syy)
 
     # -- Eq. (5), Eq. (9), Eqs. (16)-(17) ------------------------------------------
     def rolled(self, Ks):
-        """omega~^2 per N_d (pair mean for the plain disk; both members in ``pairs``),
-        labelled by subspace MAC against the unrolled modes.  Solved once per K^(sigma)
-        object: Eqs. (16)-(17) re-read the eigen effect's solve of the first r_c (the object
-        is kept with its result so that its id cannot be reused while the model lives)."""
+        """omega~^2 per N_d (the pair mean; both members in ``rolled_pairs``), labelled by
+        subspace MAC against the unrolled modes; solved once per K^(sigma) object (kept with
+        its result, so that its id cannot be reused while the model lives)."""
         memo = self.__dict__.setdefault("_rolled_memo", {})
-        hit = memo.get(id(Ks))
-        if hit is None or hit[0] is not Ks:
-            out, modes = self._rolled(Ks)
-            hit = memo[id(Ks)] = (Ks, out, modes, self.rolled_pairs)
-        _, out, modes, self.rolled_pairs = hit
-        self.rolled_modes = modes
-        return out, modes
+        if id(Ks) not in memo or memo[id(Ks)][0] is not Ks:
+            memo[id(Ks)] = (Ks, *self._rolled(Ks))
+        _, out, self.rolled_modes, self.rolled_pairs = memo[id(Ks)]
+        return out, self.rolled_modes
 
     def _rolled(self, Ks):
         # a compressive K^(sigma) may make K + K^(sigma) indefinite: shift below zero by a
@@ -463,18 +360,13 @@ class PlateDisk:
         out, modes, both = [], {}, {}
         taken = np.zeros(len(lam), bool)
         for n in self.n_d:
-            P = self.pair[n]
-            proj = P.T @ MPhi  # coefficients of each rolled mode in the unrolled subspace
-            mac = np.sum(proj**2, axis=0)
+            mac = np.sum((self.pair[n].T @ MPhi) ** 2, axis=0)  # share in the unrolled subspace
             mac[taken] = -1
-            k = 1 if n == 0 else 2
-            idx = np.sort(np.argsort(mac)[::-1][:k])
+            idx = np.sort(np.argsort(mac)[::-1][:1 if n == 0 else 2])
             taken[idx] = True
-            both[n] = lam[idx]
-            modes[n] = Phi[:, idx]
+            both[n], modes[n] = lam[idx], Phi[:, idx]
             out.append(lam[idx].mean())
-        self.rolled_pairs, self.rolled_modes = both, modes
-        return np.array(out), modes
+        return np.array(out), modes, both
 
     def eq9(self, Ks):
         """Eq. (9) per N_d; for a pair, the mean of the eigenvalues of its 2x2 block."""
@@ -495,9 +387,7 @@ class PlateDisk:
         return float(-1.0 / neg.min()) if neg.size else float("inf")
 
     def modal_matrices(self, Ks):
-        """Eq. (16) with Phi = cos members; Eq. (17) with every rolled pair rotated onto the
-        cos/sin basis of its unrolled pair first (:func:`modal.align_pair`), so Table 2 does
-        not depend on the rotation the eigensolver happens to return."""
+        """Eqs. (16)-(17), each rolled pair rotated onto its unrolled cos/sin basis first."""
         from .modal import align_pair
 
         Phi = self.Phi

@@ -1,35 +1,25 @@
-"""Rotation: the centrifugal membrane stress of the spinning disk and the travelling-wave
-critical speed that roll-tensioning exists to raise (Sec. 2: "the critical speed instability
-in rotating disks occurs when the backward-traveling wave frequency is equal to zero").
+"""Rotation: the centrifugal stress of the spinning disk and the travelling-wave critical
+speed that roll-tensioning exists to raise (Sec. 2: "the critical speed instability in
+rotating disks occurs when the backward-traveling wave frequency is equal to zero").
 
-Centrifugal stress (plane stress, Timoshenko & Goodier Sec. 32): with q = rho Omega^2,
+Centrifugal stress (Timoshenko & Goodier Sec. 32), q = rho Omega^2: sigma_r = A + B / r^2 -
+(3 + nu) / 8 q r^2, sigma_theta = A - B / r^2 - (1 + 3 nu) / 8 q r^2, with sigma_r(b) = 0 and
+u_r(r_f) = 0 (``clamped``) or B = 0 (``free_disk``).  The backward wave of N_d = n stops at
 
-    sigma_r     = A + B / r^2 - (3 + nu) / 8 q r^2
-    sigma_theta = A - B / r^2 - (1 + 3 nu) / 8 q r^2,
+    omega_r(Omega_c) = n Omega_c   <=>   det[K + K^(roll) - Omega_c^2 (n^2 M - K^(c))] = 0
 
-sigma_r(b) = 0 at the free rim, and at the flange either u_r(r_f) = 0 (``clamped``: the
-flange grips the spinning blade) or the solid disk (``free_disk``: B = 0); which one is the
-assumed ``centrifugal_bc`` (config: its range is both).
-
-A mode of N_d = n nodal diameters has the rotating-frame frequency omega_r(Omega), the
-eigenvalue of [K + K^(roll) + Omega^2 K^(c) - omega_r^2 M] (K^(c): Eq. 3 of the centrifugal
-stress at Omega = 1; Coriolis and in-plane inertia neglected, as in the thin-disk theory of
-Southwell and Mote).  In the ground frame it splits into forward and backward waves
-omega_r +- n Omega; the backward wave's frequency reaches zero at the critical speed,
-
-    omega_r(Omega_c) = n Omega_c   <=>   det[K + K^(roll) - Omega_c^2 (n^2 M - K^(c))] = 0.
-
-First order (Southwell): omega_r^2 = omega^2 + lambda Omega^2 with the Southwell coefficient
-lambda = phi^T K^(c) phi / phi^T M phi (Eq. 9's form), so Omega_c = omega / sqrt(n^2 - lambda);
-by Rayleigh's principle the exact Omega_c is at most this.  The neglected second-order term
-is divided by n^2 - lambda, so the first-order form degrades where lambda approaches n^2
-(r_f = 75 mm, N_d = 2: n^2 - lambda = 0.64, Omega_c 3.5 % below it).
+(K^(c): Eq. 3 of the centrifugal stress at Omega = 1; Coriolis and in-plane inertia
+neglected, as in Southwell's and Mote's thin-disk theory).  Southwell's first order,
+Omega_c = omega / sqrt(n^2 - lambda) with lambda = phi^T K^(c) phi / phi^T M phi, bounds it
+from above (Rayleigh).
 """
 from __future__ import annotations
 
 import numpy as np
 
 from mechrepro.errors import Refusal
+
+from .modal import positive_definite
 
 
 def centrifugal_stress(r, *, omega, rho, nu, r_f, b, inplane_bc="clamped"):
@@ -50,10 +40,8 @@ def centrifugal_stress(r, *, omega, rho, nu, r_f, b, inplane_bc="clamped"):
 
 
 def critical_speed(K, M, Kc, n):
-    """Omega_c [rad/s] of harmonic ``n``: the smallest Omega with
-    det[K - Omega^2 (n^2 M - Kc)] = 0; inf when the backward wave never reaches zero (n = 0),
-    NaN when the disk at rest has buckled (K, with its residual stress, not positive
-    definite): a buckled disk has no critical speed at all, for any n."""
+    """Omega_c [rad/s] of harmonic ``n``, the smallest Omega with det[K - Omega^2 (n^2 M - Kc)]
+    = 0; inf: never (n = 0); NaN: K not positive definite, buckled at rest, no critical speed."""
     import scipy.linalg as sla
 
     if not positive_definite(K):
@@ -63,15 +51,6 @@ def critical_speed(K, M, Kc, n):
     mu = sla.eigh(n * n * M - Kc, K, eigvals_only=True)   # (n^2 M - Kc) phi = mu K phi
     top = float(mu.max())
     return float(1.0 / np.sqrt(top)) if top > 0 else float("inf")
-
-
-def positive_definite(K) -> bool:
-    """Whether the (stressed) stiffness K is positive definite: the disk has not buckled."""
-    try:
-        np.linalg.cholesky(K)
-    except np.linalg.LinAlgError:
-        return False
-    return True
 
 
 def southwell(omega2, phi, M, Kc, n):

@@ -1,19 +1,7 @@
-"""The two solvers of disk_tension: one discretisation of the clamped disk each.
-
-``axisym``   cos(N_d theta) harmonics with radial Hermite elements (:mod:`.axisym`)
-``plate2d``  Argyris plate elements on a polar mesh, scikit-fem (:mod:`.plate2d`)
-
-Both run the same three stages (the effects are in :mod:`.effects`, declared in
-``config/papers/disk_tension.yaml``) and read the contributions by key, never by effect
-name:
-
-1. the effects the load and the mesh need (``thermal_expansion``, ``slots``);
-2. the load (``thermal_load``: Eq. 4 and its plane-stress field);
-3. the core: build [K], [M] (Eq. 1), unrolled eigen-analysis (Eq. 6), and, with a load,
-   [K^(sigma)] of every r_c (Eq. 3); then every remaining effect (the analyses).
-
-Variables contributed after the discretisation carry the solver's name
-(``axisym_f_rolled``); coordinates and the stage 1-2 variables do not.
+"""The two solvers of disk_tension, one discretisation of the clamped disk each: ``axisym``
+(:mod:`.axisym`) and ``plate2d`` (:mod:`.plate2d`).  Both run the effects (:mod:`.effects`) in
+three stages read by key -- what the load and mesh need, the load (Eq. 4), then after the
+core ([K], [M] of Eq. 1, Eq. 6, [K^(sigma)] of Eq. 3) the analyses, named ``<solver>_*``.
 """
 from __future__ import annotations
 
@@ -28,14 +16,13 @@ from .axisym import AxisymDisk
 from .effects import EFFECTS
 from .modal import frequency
 
-#: contributions each stage before the discretisation provides (what the next one reads)
+#: contributions the solver consumes (never written to the dataset), by stage
 BEFORE_LOAD = {"thermal_expansion", "slots"}
 LOAD = {"thermal_load", "cutting_heat_stress"}
 
 
 class Disk:
-    """The context of one run: SI parameters, the calibrated thickness, and what the
-    stages have made so far (``alpha``, ``slots``, ``loads``, ``model``, ``k_sigma``)."""
+    """The context of one run: SI parameters, thickness, what the stages have made."""
 
     def __init__(self, run: dict):
         p, self.run, self.p = run["parameters"], run, run["parameters"]
@@ -56,9 +43,8 @@ class Disk:
                                        n_d=int(p["calibration_nodal_diameter"]),
                                        r_f=p["calibration_clamp_radius"], b=self.b,
                                        E=self.E, nu=self.nu, rho=self.rho)
-        self.slots = self.loads = self.model = self.k_sigma = None
-        #: the rim's cutting-heat stress (effect cutting_heat) and its K^(sigma), or None
-        self.heat = self.k_heat = None
+        #: what the stages make; ``heat``: the rim's cutting-heat stress (effect cutting_heat)
+        self.slots = self.loads = self.model = self.k_sigma = self.heat = self.k_heat = None
         self.vars = {
             "n_d": var("n_d", self.n_d, "1", "number of nodal diameters N_d"),
             "r_c": var("r_c", self.r_c, "m", "centre radius of rolling r_c, Eq. (4)"),
@@ -70,15 +56,10 @@ class Disk:
     def _check(self):
         if not 0 < self.r_f < self.b:
             raise Refusal(f"clamp_radius r_f = {self.r_f} m must lie in (0, b = {self.b} m)")
-        if np.any(self.n_d < 0):
-            raise Refusal(f"nodal_diameters must be >= 0, got {self.n_d.tolist()}")
         if self.bc not in thermal.INPLANE_BCS:
             raise Refusal(f"inplane_bc = {self.bc!r}: allowed {thermal.INPLANE_BCS}")
         if self.solver not in DISCRETISATIONS:
             raise Refusal(f"solver = {self.solver!r}: allowed {list(DISCRETISATIONS)}")
-        if self.stress_model not in thermal.STRESS_MODELS:
-            raise Refusal(f"options.residual_stress = {self.stress_model!r}: allowed "
-                          f"{thermal.STRESS_MODELS}")
         if self.stress_model != "thermal_analogy" and self.solver != "axisym":
             raise Refusal(f"options.residual_stress = {self.stress_model!r}: the rivals' stress "
                           "is closed-form, on the axisym harmonics only (the 2-D model solves "
@@ -90,48 +71,36 @@ class Disk:
         w2 = self.model.omega2
         return np.sqrt(np.array([np.mean(w2[n]) for n in self.n_d]))
 
-    @staticmethod
-    def timed(fn, *args):
-        """(result, wall time [s]) of one call of ``fn(*args)``.  Measured once: the runner
-        repeats the whole run when it is fast and keeps the phases of its fastest call
-        (:func:`mechrepro.timing.timed_run`), so these times add up to the run's."""
-        with phase("disk_tension.solve") as sw:
-            result = fn(*args)
-        return result, sw.seconds
-
     def put(self, name, *variable):
         self.vars[f"{self.solver}_{name}"] = var(*variable)
 
     def keep(self, contributions, prefix=""):
-        """Write every labelled contribution (a :func:`~mechrepro.units.var`) to the
-        dataset; coordinates keep their name, the others get ``prefix``."""
+        """Write the contributions to the dataset (coordinates unprefixed)."""
         for key in contributions.keys():
-            value = contributions.get(key)
-            if isinstance(value, tuple) and len(value) == 3 and isinstance(value[2], dict):
+            if key not in BEFORE_LOAD | LOAD:
+                value = contributions.get(key)
                 self.vars[key if value[0] == (key,) else prefix + key] = value
 
 
 # --- the core of each solver -----------------------------------------------------------------
 def _axisym(ctx: Disk):
     n_el = int(ctx.resolution.get("n_elements", 64))
-    model, t_build = ctx.timed(lambda: AxisymDisk(r_f=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E,
-                                                  nu=ctx.nu, rho=ctx.rho, n_d=ctx.n_d,
-                                                  n_elements=n_el))
+    model = AxisymDisk(r_f=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho,
+                       n_d=ctx.n_d, n_elements=n_el)
     ctx.vars["radial_node"] = var("radial_node", np.arange(n_el + 1), "1",
                                   "node of the radial mesh")
     ctx.put("mesh_r", "radial_node", model.mesh.nodes, "m", "axisym: radius of each node of "
             "the cubic Hermite elements")
-    return model, t_build
+    return model
 
 
 def _plate2d(ctx: Disk):
     from .plate2d import PlateDisk  # scikit-fem is imported only by scenes that use it
 
-    model, t_build = ctx.timed(lambda: PlateDisk(
-        r_f=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho, n_d=ctx.n_d,
-        n_rings=int(ctx.resolution.get("n_rings", 12)),
-        n_sectors=int(ctx.resolution.get("n_sectors", 64)), slots=ctx.slots,
-        seed=int(ctx.run.get("seed", 0))))
+    model = PlateDisk(r_f=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho,
+                      n_d=ctx.n_d, n_rings=int(ctx.resolution.get("n_rings", 12)),
+                      n_sectors=int(ctx.resolution.get("n_sectors", 64)), slots=ctx.slots,
+                      seed=int(ctx.run.get("seed", 0)))
     ctx.put("n_dofs", (), model.basis.N, "1", "plate2d: number of Argyris DOFs")
     # Fig. 3: the mesh itself (annulus r_f..b; the core r < r_f is clamped)
     ctx.vars["mesh_node"] = var("mesh_node", np.arange(model.mesh.p.shape[1]), "1",
@@ -143,7 +112,7 @@ def _plate2d(ctx: Disk):
     ctx.put("mesh_y", "mesh_node", model.mesh.p[1], "m", "plate2d: node y")
     ctx.put("mesh_cells", ("mesh_cell", "vertex"), model.mesh.t.T.astype(np.int32), "1",
             "plate2d: node indices of each triangle")
-    return model, t_build
+    return model
 
 
 DISCRETISATIONS = {"axisym": _axisym, "plate2d": _plate2d}
@@ -153,49 +122,39 @@ def _stress_stiffness(ctx: Disk):
     """[K^(sigma)] of every r_c, Eq. (3): from the closed-form stress on the harmonics, from
     the 2-D plane-stress FE solution of the same temperature on the mesh."""
     model = ctx.model
+    with phase("disk_tension.stress") as sw:
+        if ctx.solver == "plate2d":
+            sig = [model.residual_stress(ld.temperature, ld.alpha, ld.inplane_bc)
+                   for ld in ctx.loads]
+            ks = [model.stress_stiffness(s) for s in sig]
+        else:
+            ks = [model.stress_stiffness(ld.sigma) for ld in ctx.loads]
     if ctx.solver == "plate2d":
-        sig, dt = ctx.timed(lambda: [model.residual_stress(ld.temperature, ld.alpha,
-                                                           ld.inplane_bc) for ld in ctx.loads])
-        ks, dt_k = ctx.timed(lambda: [model.stress_stiffness(s) for s in sig])
         _plate2d_stress_profile(ctx, sig[0])
-        dt += dt_k
-    else:
-        ks, dt = ctx.timed(lambda: [model.stress_stiffness(ld.sigma) for ld in ctx.loads])
-    ctx.put("time_stress", (), dt, "s", f"{ctx.solver}: wall time of the thermal stress and "
-            "K^(sigma) for all r_c")
+    ctx.put("time_stress", (), sw.seconds, "s", f"{ctx.solver}: wall time of the thermal stress "
+            "and K^(sigma) for all r_c")
     return ks
 
 
 def _plate2d_stress_profile(ctx: Disk, sigma):
-    """FE stress of the first r_c on radial bins, and (plain disk) its error vs Eq. (4)'s
-    closed-form plane-stress field."""
+    """FE stress of the first r_c averaged on radial bins (Fig. 5)."""
+    from scipy.stats import binned_statistic
+
     r, sr, st = ctx.model.polar_stress(sigma)
-    edges = np.linspace(r.min(), r.max(), 81)
-    k = np.clip(np.digitize(r, edges) - 1, 0, len(edges) - 2)
-    cnt = np.bincount(k, minlength=len(edges) - 1)
-    ctx.vars["r_bin"] = var("r_bin", 0.5 * (edges[1:] + edges[:-1]), "m",
-                            "radius (bin centre)")
-    for nm, v in (("sigma_r", sr), ("sigma_theta", st)):
-        mean = np.bincount(k, weights=v, minlength=len(cnt)) / np.maximum(cnt, 1)
-        ctx.put(f"{nm}_binned", "r_bin", np.where(cnt > 0, mean, np.nan), "Pa",
+    means, edges, _ = binned_statistic(r, [sr, st], "mean", bins=80)   # NaN: an empty bin
+    ctx.vars["r_bin"] = var("r_bin", 0.5 * (edges[1:] + edges[:-1]), "m", "radius (bin centre)")
+    for nm, mean in zip(("sigma_r", "sigma_theta"), means):
+        ctx.put(f"{nm}_binned", "r_bin", mean, "Pa",
                 f"plate2d: FE {nm} averaged over radial bins (first r_c)")
-    if ctx.slots is None:
-        a_r, a_t = ctx.loads[0].sigma
-        rr = np.clip(r, ctx.r_f, ctx.b)
-        dev = np.concatenate([sr - a_r(rr), st - a_t(rr)]) / np.max(np.abs(a_t(rr)))
-        ctx.put("stress_rel_error_max", (), np.max(np.abs(dev)), "1",
-                "plate2d: max |FE - closed-form stress| / max |sigma_theta| (first r_c)")
-        ctx.put("stress_rel_error_rms", (), np.sqrt(np.mean(dev**2)), "1",
-                "plate2d: rms (FE - closed-form stress) / max |sigma_theta| (first r_c)")
 
 
 def _discretise(ctx: Disk):
     """The solver core: [K], [M], the unrolled eigen-analysis (Eq. 6) and [K^(sigma)]."""
-    model, t_build = DISCRETISATIONS[ctx.solver](ctx)
-    w2, t_unrolled = ctx.timed(model.unrolled)
-    ctx.model = model
+    with phase("disk_tension.unrolled") as sw:
+        ctx.model = model = DISCRETISATIONS[ctx.solver](ctx)
+        w2 = model.unrolled()
     ctx.put("f_unrolled", "n_d", frequency(w2), "Hz", f"{ctx.solver}: unrolled frequency, Eq. (6)")
-    ctx.put("time_unrolled", (), t_unrolled + t_build, "s",
+    ctx.put("time_unrolled", (), sw.seconds, "s",
             f"{ctx.solver}: wall time of assembly + unrolled eigen-analysis")
     if ctx.loads is not None:
         ctx.k_sigma = _stress_stiffness(ctx)
@@ -204,50 +163,44 @@ def _discretise(ctx: Disk):
 
 
 def _compare(ctx: Disk):
-    """What two contributions give together: errors against the exact reference, Eq. (9)
-    against the eigen-analysis, and the time of one accuracy point."""
-    v, name = ctx.vars, ctx.solver
-    f_u = v[f"{name}_f_unrolled"][1]
-    if f"{name}_f_exact" in v:
-        err = f_u / v[f"{name}_f_exact"][1] - 1.0
+    """Errors against the references, Eq. (9) against Eq. (5), the accuracy points' times."""
+    name = ctx.solver
+
+    def get(key):
+        return ctx.vars[f"{name}_{key}"][1] if f"{name}_{key}" in ctx.vars else None
+
+    f_u, f_r, f_ex = get("f_unrolled"), get("f_rolled"), get("f_exact")
+    if f_ex is not None:
+        err = f_u / f_ex - 1.0
         ctx.put("error_unrolled", "n_d", err, "1",
                 f"{name}: relative error of the unrolled frequency vs exact")
         ctx.put("error_unrolled_max", (), np.max(np.abs(err)), "1",
                 f"{name}: max |relative error| of unrolled frequencies vs exact")
-        _log_sums(ctx, "unrolled", f_u, v[f"{name}_f_exact"][1], "the unrolled frequencies")
-    if f"{name}_f_stressed_exact" in v:
-        _log_sums(ctx, "stressed", v[f"{name}_f_stressed"][1], v[f"{name}_f_stressed_exact"][1],
+        _log_sums(ctx, "unrolled", f_u, f_ex, "the unrolled frequencies")
+    if get("f_stressed_exact") is not None:
+        _log_sums(ctx, "stressed", get("f_stressed"), get("f_stressed_exact"),
                   "the frequencies under every reference stress")
-    if f"{name}_f_rolled" in v and f"{name}_f_rolled_reference" in v:
-        _log_sums(ctx, "rolled", v[f"{name}_f_rolled"][1], v[f"{name}_f_rolled_reference"][1],
+    if f_r is not None and get("f_rolled_reference") is not None:
+        _log_sums(ctx, "rolled", f_r, get("f_rolled_reference"),
                   "the rolled frequencies of every r_c", reference="the rolled reference "
                   "(Richardson of 64 and 128 elements, error ~1e-8)")
-    if f"{name}_f_rolled" in v and f"{name}_delta_omega2_eq9" in v:
-        f_eig = v[f"{name}_f_rolled"][1]
-        f_eq9 = frequency(ctx.omega_unrolled[None, :] ** 2 + v[f"{name}_delta_omega2_eq9"][1])
-        err = np.abs(f_eq9 - f_eig) / f_eig
+    if f_r is not None and get("delta_omega2_eq9") is not None:
+        f_eq9 = frequency(ctx.omega_unrolled[None, :] ** 2 + get("delta_omega2_eq9"))
+        err = np.abs(f_eq9 - f_r) / f_r
         ctx.put("eq9_rel_error", ("r_c", "n_d"), err, "1",
                 f"{name}: |f by Eq. (9) - f by eigen-analysis| / f")
-        ctx.put("eq9_rel_error_max", (), np.nanmax(err), "1",
-                f"{name}: max |f by Eq. (9) - f by eigen-analysis| / f over the grid")
-    if f"{name}_time_eigen" in v:
-        t = sum(float(v[f"{name}_{k}"][1]) for k in ("time_unrolled", "time_stress", "time_eigen"))
+    if get("time_eigen") is not None:
+        t = sum(float(get(k)) for k in ("time_unrolled", "time_stress", "time_eigen"))
         ctx.put("time_solve", (), t, "s", f"{name}: wall time of assembly + unrolled + K^(sigma) "
                 "+ rolled eigen-analysis over the r_c grid")
-    if f"{name}_time_stressed" in v:
-        t = float(v[f"{name}_time_unrolled"][1]) + float(v[f"{name}_time_stressed"][1])
+    if get("time_stressed") is not None:
+        t = float(get("time_unrolled")) + float(get("time_stressed"))
         ctx.put("time_stressed_solve", (), t, "s", f"{name}: wall time of assembly + unrolled + "
                 "K^(sigma) and Eq. (5) under the reference stresses")
 
 
 def _log_sums(ctx: Disk, what: str, f, f_exact, of: str, reference="exact Bessel solution"):
-    """sum ln(f / 1 Hz) over N_d (and the reference stresses) of the model and of the exact
-    solution: what an accuracy target over every mode reads.  The error of the sum is the sum
-    of the modes' relative errors, which are all of one sign (the conforming Rayleigh-Ritz
-    model converges from above, unstressed and under a uniform stress), so an absolute
-    tolerance on it bounds the worst mode's relative error, not only the best-converged one
-    (a max over N_d picks N_d = 4, the fastest to converge).  Under the rolled stress too:
-    every mode converges from above at 4-128 elements (tests/test_disk_tension_solver.py)."""
+    """sum ln(f / 1 Hz) of model and reference: every mode converges from above."""
     ctx.put(f"ln_f_{what}_sum", (), float(np.sum(np.log(f))), "1",
             f"{ctx.solver}: sum of ln(f / 1 Hz) over {of}")
     ctx.put(f"ln_f_{what}_exact_sum", (), float(np.sum(np.log(f_exact))), "1",
@@ -259,16 +212,12 @@ def compute(run: dict) -> Disk:
     ctx = Disk(run)
     stage = EFFECTS.stages(run, ctx)
     before = stage(BEFORE_LOAD)
-    ctx.alpha = before.get("thermal_expansion", ctx.alpha)
-    ctx.slots = before.get("slots")
+    ctx.alpha, ctx.slots = before.get("thermal_expansion", ctx.alpha), before.get("slots")
     load = stage(LOAD)
-    ctx.loads = load.get("thermal_load")
-    ctx.heat = load.get("cutting_heat_stress")
+    ctx.loads, ctx.heat = load.get("thermal_load"), load.get("cutting_heat_stress")
     _discretise(ctx)
-    analyses = stage()
-    for c in (before, load):
-        ctx.keep(c)
-    ctx.keep(analyses, prefix=f"{ctx.solver}_")
+    for contributions, prefix in ((before, ""), (load, ""), (stage(), f"{ctx.solver}_")):
+        ctx.keep(contributions, prefix)
     _compare(ctx)
     return ctx
 

@@ -1,20 +1,7 @@
-"""Thermal analogy of roll-tensioning: Eq. (4) temperature and its plane-stress field.
-
-The paper replaces the plastic deformation of rolling by a Gaussian temperature load,
-Eq. (4), and takes the thermal stress of the disk as the residual stress after rolling.
-For an axisymmetric temperature the plane-stress field has a closed form (Timoshenko &
-Goodier, Sec. 143), evaluated here exactly; the 2-D model solves the same problem by FE.
-
-In-plane boundary condition at the clamp (``inplane_bc``):
-
-``clamped``
-    annulus ``r_f <= r <= b`` with ``u_r(r_f) = 0`` and ``sigma_r(b) = 0``.  This is the
-    paper's FE model taken literally: the disk "is perfectly fixed in the region r <= r_f"
-    and the same model carries the temperature load, so the clamped region neither
-    strains nor transmits the temperature inside it.
-``free_disk``
-    solid disk ``0 <= r <= b`` with ``sigma_r(b) = 0``: the residual stress of a blade
-    rolled before it is mounted; clamping then does not change it.
+"""Thermal analogy of roll-tensioning: the Gaussian temperature of Eq. (4) and its closed-form
+plane-stress field (Timoshenko & Goodier, Sec. 143), the residual stress after rolling.  At
+the clamp (``inplane_bc``): ``clamped``, u_r(r_f) = 0 (the paper's FE model taken literally),
+or ``free_disk``, the solid disk (a blade rolled before it is mounted); sigma_r(b) = 0.
 """
 from __future__ import annotations
 
@@ -73,30 +60,14 @@ def thermal_stress(r, *, amplitude, r_c, s, r_f, b, E, nu, alpha, inplane_bc="cl
 
 
 
-#: the residual-stress model of the thermal analogy (``options.residual_stress``): the paper's
-#: plane-stress field, or one of the rivals a skeptical reviewer would propose in its place
-#: (config ``rivals:``; never a scene of the paper)
+#: the residual-stress model (``options.residual_stress``): the paper's, or a rival's
 STRESS_MODELS = ("thermal_analogy", "hoop_only", "fixed_profile")
 
 
 def residual_stress(r, *, stress_model="thermal_analogy", profile_rc=None, **kw):
-    """(sigma_r, sigma_theta) [Pa] of the run's stress model at radii ``r`` (``kw``: those of
-    :func:`thermal_stress`).
-
-    ``thermal_analogy``
-        the paper's field, :func:`thermal_stress` (both components, in equilibrium).
-    ``hoop_only``
-        the same hoop stress with sigma_r = 0, as in simple tensioning theories that judge a
-        rolled blade by its hoop stress alone.  It violates radial equilibrium
-        d(r sigma_r)/dr = sigma_theta, which the paper's plane-stress field keeps (Fig. 5
-        draws both components; both enter Eq. 3).
-    ``fixed_profile``
-        rolling without location: the stress profile of the rolling radius ``profile_rc``
-        (the paper's operating point of Table 1, r_c = 65 mm) wherever one rolls, its level
-        set by the rim hoop stress sigma_theta(b) the paper's field has at the run's r_c (the
-        one number by which tension is judged in practice).  At r_c = ``profile_rc`` it is the
-        paper's field; elsewhere the band does not move with r_c, which Eq. (4) centres on it.
-    """
+    """(sigma_r, sigma_theta) [Pa] at ``r`` of the paper's field (``thermal_analogy``), or of
+    a rival: ``hoop_only`` (sigma_r = 0), ``fixed_profile`` (the profile of ``profile_rc``
+    wherever one rolls, scaled to the rim hoop stress of the run's r_c)."""
     if stress_model not in STRESS_MODELS:
         raise Refusal(f"options.residual_stress = {stress_model!r}: allowed {STRESS_MODELS}")
     if stress_model == "fixed_profile":
@@ -111,3 +82,8 @@ def residual_stress(r, *, stress_model="thermal_analogy", profile_rc=None, **kw)
     if stress_model == "hoop_only":
         return np.zeros_like(sig_r), sig_t
     return sig_r, sig_t
+
+
+def field(**kw):
+    """(sigma_r(r), sigma_theta(r)) of :func:`residual_stress` as callables of r [m]."""
+    return (lambda r: residual_stress(r, **kw)[0], lambda r: residual_stress(r, **kw)[1])

@@ -1,15 +1,13 @@
-"""Reproduced values of disk_tension's reported quantities (config ``reported:`` block).
-
-Only extraction: the paper's numbers, tolerances, evidence classes and the reasons for them
-are data in config/papers/disk_tension.yaml; the framework builds the rows and verdicts.
-"""
+"""Reproduced values of disk_tension's reported quantities (config ``reported:`` block):
+extraction only; the paper's numbers, tolerances and evidence are data in the config."""
 from __future__ import annotations
 
 import numpy as np
 
 from mechrepro.validation import Quantities, Reproduced
 
-from .figures import clamp_mm, rc_grid
+from . import design
+from .figures import by_clamp, clamp_mm, rc_grid
 from .modal import degenerate_harmonics, harmonic_coupling_symmetry
 
 Q = Quantities("disk_tension")
@@ -31,8 +29,7 @@ def _argext(ds, var, n_d, fn):
 
 
 def _grid(R) -> dict:
-    """{r_f [mm]: dataset} of Figs. 6/8 (:func:`.figures.rc_grid`), split once per job:
-    ten quantities and their variants read it, and each split of the study costs ms."""
+    """{r_f [mm]: dataset} of Figs. 6/8, split once per job."""
     a, st = R.run("rc_grid"), R.study("fig06")   # the declared reads, checked every time
     return R.derived(("rc_grid", id(a), id(st)), lambda: rc_grid(R))
 
@@ -61,10 +58,9 @@ def _table1_nd4(R):
 
 @Q.register("inplane_bc_evidence_free_disk", "inplane_bc_evidence_clamped")
 def _bc_evidence(R):
-    """max |ratio error| of Table 1's N_d = 0..3 entries relative to its N_d = 4 entry (alpha
-    cancels in the ratio) for either in-plane condition."""
+    """max |ratio error| of Table 1's N_d = 0..3 entries to N_d = 4 (alpha cancels)."""
     paper = np.array([R.paper_value(f"table1_diag_nd{n}") for n in range(4)])
-    p4 = _paper_d4(R)
+    p4 = _paper_d4(R)[0]
     out = {}
     for q, name in (("inplane_bc_evidence_free_disk", "table12"),
                     ("inplane_bc_evidence_clamped", "table12_clamped")):
@@ -101,19 +97,14 @@ def _delta_f_eq9(R):
 
 
 # --- the paper's own arithmetic ----------------------------------------------------------
-def _paper_omega(R):
-    """The paper's unrolled N_d = 4 frequency (434.5 Hz, a solver input) [rad/s]."""
-    return TWO_PI * R.parameter("calibration_frequency")
-
-
 def _paper_d4(R):
-    """Table 1's N_d = 4 entry (2.40e6 rad^2/s^2, a solver input)."""
-    return R.parameter("calibration_delta_omega2")
+    """(Table 1's N_d = 4 entry 2.40e6 rad^2/s^2, the unrolled 434.5 Hz [rad/s]): inputs."""
+    return R.parameter("calibration_delta_omega2"), TWO_PI * R.parameter("calibration_frequency")
 
 
 @Q.register("paper_70hz_is_linearised_conversion")
 def _seventy(R):
-    d, w = _paper_d4(R), _paper_omega(R)
+    d, w = _paper_d4(R)
     lin = d / (2 * w) / TWO_PI
     exact = np.sqrt(w**2 + d) / TWO_PI - w / TWO_PI
     target = R.paper_value("delta_f_eq9_nd4_rc65_rf25")
@@ -124,7 +115,7 @@ def _seventy(R):
 
 @Q.register("rayleigh_cap_on_delta_f_eigen")
 def _rayleigh(R):
-    d, w = _paper_d4(R), _paper_omega(R)
+    d, w = _paper_d4(R)
     cap = np.sqrt(w**2 + d) / TWO_PI - w / TWO_PI
     need = (w + TWO_PI * R.paper_value("delta_f_eigen_nd4_rc65_rf25")) ** 2 - w**2
     return Reproduced(float(cap), note=f"the paper's 67.6 Hz would need Delta omega^2 >= "
@@ -132,18 +123,13 @@ def _rayleigh(R):
 
 
 # --- Table 1 (independent: alpha is fitted to the N_d = 4 entry only) ---------------------
-def _table1_entry(n):
-    def fn(R):
-        t = R.run("table12")
-        k = _diag(t)
-        return Reproduced(float(k[n]), note=f"ratio to the calibrated N_d=4 entry "
-                                            f"{k[n] / k[4]:.5f}")
-    fn.__name__ = f"table1_diag_nd{n}"
-    return fn
+def _table1_entry(R, n):
+    k = _diag(R.run("table12"))
+    return Reproduced(float(k[n]), note=f"ratio to the calibrated N_d=4 entry {k[n] / k[4]:.5f}")
 
 
 for _n in range(4):
-    Q.register(f"table1_diag_nd{_n}")(_table1_entry(_n))
+    Q.register(f"table1_diag_nd{_n}")(lambda R, n=_n: _table1_entry(R, n))
 
 
 @Q.register("table1_offdiag_nd0_nd4", "table1_offdiag_nd1_nd3")
@@ -164,8 +150,7 @@ def _table1_other_zero(R):
 
 @Q.register("paper_mesh_symmetry_order")
 def _symmetry(R):
-    """Rotational symmetry order of the paper's mesh from Table 1's coupling pattern (an
-    inference from the pattern, computed by the C_N selection rule)."""
+    """Symmetry order of the paper's mesh inferred from Table 1's coupling pattern."""
     pairs = [(0, 4), (1, 3)]
     nz = [p for p in pairs if R.paper_value(f"table1_offdiag_nd{p[0]}_nd{p[1]}") != 0]
     N = harmonic_coupling_symmetry(nz, 4)
@@ -180,15 +165,9 @@ def _symmetry(R):
 
 
 # --- Table 2 -------------------------------------------------------------------------------
-def _table2_entry(n):
-    def fn(R):
-        return float(R.run("table12")["axisym_m_hat"].values[n, n])
-    fn.__name__ = f"table2_diag_nd{n}"
-    return fn
-
-
 for _n in range(5):
-    Q.register(f"table2_diag_nd{_n}")(_table2_entry(_n))
+    Q.register(f"table2_diag_nd{_n}")(
+        lambda R, n=_n: float(R.run("table12")["axisym_m_hat"].values[n, n]))
 
 
 @Q.register("table2_offdiag_zero")
@@ -290,12 +269,7 @@ def _f8c(R):
 
 @Q.register("eq9_frequency_error_over_grid")
 def _eq9_err(R):
-    errs = []
-    for ds in _grid(R).values():
-        w2 = (TWO_PI * ds["axisym_f_unrolled"]) ** 2 + ds["axisym_delta_omega2_eq9"]
-        f9 = np.sqrt(w2.where(w2 > 0)) / TWO_PI
-        errs.append(float(np.nanmax(np.abs(f9 / ds["axisym_f_rolled"] - 1))))
-    return max(errs)
+    return max(float(np.nanmax(ds["axisym_eq9_rel_error"])) for ds in _grid(R).values())
 
 
 @Q.register("eq9_speedup_over_eigen")
@@ -385,9 +359,7 @@ def _buckling(R):
 
 @Q.register("joint_fit_gaussian_width", "joint_fit_stress_scale")
 def _joint_fit(R):
-    """The joint fit to Table 1 alone (row notes: the extents of its joint (s, c) regions
-    with what bounds them, which numbers pin it, the degenerate direction, and the fit with
-    502.1 Hz added)."""
+    """The joint fit to Table 1 alone; the notes: its regions, pins, direction, 502.1 Hz."""
     from . import identifiability as idf
 
     ds = R.run("identifiability")
@@ -417,7 +389,7 @@ def _joint_fit(R):
     return out
 
 
-RPM = 60.0 / TWO_PI
+RPM = design.RPM
 #: row critical_speed_vs_southwell: the eigen-based critical speed is within this of
 #: Southwell's first-order form for r_f up to SOUTHWELL_CLOSE_RF_MM (at 75 mm the first-order
 #: form's denominator N_d^2 - lambda amplifies the neglected second-order term)
@@ -425,25 +397,17 @@ SOUTHWELL_CLOSE, SOUTHWELL_CLOSE_RF_MM = 5e-3, 55.0
 
 
 def _cs_runs(R) -> list:
-    """[(r_f [mm], dataset)] of the critical speeds: scene critical_speed (r_f = 25 mm) and the
-    runs of study critical_speed_rf."""
-    runs = [R.run("critical_speed")]
-    st = R.study("critical_speed_rf")
-    runs += [st.isel(run=i) for i in range(st.sizes["run"])]
-    return [(clamp_mm(ds), ds) for ds in runs]
+    """[(r_f [mm], dataset)] of the critical speeds."""
+    return by_clamp(R, "critical_speed", "critical_speed_rf")
 
 
 def lowest_critical_speed(ds) -> np.ndarray:
-    """The lowest critical speed over N_d of each r_c [rad/s]; NaN where any harmonic has
-    buckled (a disk buckled at rest has no critical speed: it does not exist)."""
-    cs = np.asarray(ds["axisym_critical_speed"].values, float)
-    gone = np.isnan(cs).any(axis=1)
-    return np.where(gone, np.nan, np.min(np.where(np.isnan(cs), np.inf, cs), axis=1))
+    """The lowest critical speed over N_d of each r_c [rad/s]; NaN: buckled."""
+    return design.lowest_over(np.asarray(ds["axisym_critical_speed"].values, float), ds["n_d"].values)
 
 
 def best_rolling_radius(ds) -> tuple[float, float, str]:
-    """(r_c [mm] maximising the lowest critical speed, that speed [rad/s], what the buckled
-    r_c are): NaN, NaN when every r_c buckles."""
+    """(r_c [mm] of the best lowest critical speed, that speed, the buckled r_c)."""
     low, rc = lowest_critical_speed(ds), ds["r_c"].values * 1e3
     gone = rc[np.isnan(low)]
     said = (f" (buckled, no critical speed: r_c = {', '.join(f'{x:.0f}' for x in gone)} mm)"
@@ -478,8 +442,7 @@ def _cs_min(R):
 
 @Q.register("critical_speed_best_rc")
 def _cs_best(R):
-    """r_c [mm] maximising the lowest critical speed over N_d, and the gain at each r_f (a
-    buckled r_c is named, never given a number)."""
+    """r_c [mm] of the best lowest critical speed; the gain at each r_f."""
     runs = _cs_runs(R)
     other = R.run("critical_speed_centrifugal_free")
     notes = [_best_note(rf, ds) for rf, ds in runs]
@@ -489,12 +452,8 @@ def _cs_best(R):
 
 def _design_rows(R) -> list[dict]:
     """The design table's rows at the stated buckling margin, one per flange radius."""
-    from . import design
-
-    st = R.study("design_map_rf")
-    runs = [(clamp_mm(R.run("design_map")), R.run("design_map"))]
-    runs += [(clamp_mm(st.isel(run=i)), st.isel(run=i)) for i in range(st.sizes["run"])]
-    return [dict(zip(design.COLUMNS, r)) for r in design.table(runs) if r[3]]
+    return [dict(zip(design.COLUMNS, r))
+            for r in design.table(by_clamp(R, "design_map", "design_map_rf")) if r[3]]
 
 
 @Q.register("design_map_gain_over_paper_point")
@@ -507,8 +466,7 @@ def _design_gain(R):
 
 @Q.register("design_map_optimum_rc")
 def _design(R):
-    """r_c [mm] of the design map's optimum at r_f = 25 mm and the stated margin; the note
-    gives every r_f (a flange radius whose every r_c buckles has no optimum, never a number)."""
+    """r_c [mm] of the design map's optimum at r_f = 25 mm; the note gives every r_f."""
     rows = _design_rows(R)
     notes = [f"r_f {r['r_f_mm']:.0f} mm: r_c {r['r_c_opt_mm']:.0f} +- {r['r_c_step_mm'] / 2:g} mm, "
              f"A {r['amplitude_opt_degc']:.0f} degC ({r['binds']} binds, N_d = "
@@ -521,8 +479,7 @@ def _design(R):
 
 @Q.register("critical_speed_vs_southwell")
 def _cs_southwell(R):
-    """At every r_f: eigen <= Southwell (Rayleigh); within SOUTHWELL_CLOSE of it up to
-    SOUTHWELL_CLOSE_RF_MM."""
+    """eigen <= Southwell everywhere, within SOUTHWELL_CLOSE up to SOUTHWELL_CLOSE_RF_MM."""
     ok, notes, runs = True, [], _cs_runs(R)
     for rf, ds in runs:
         ex = ds["axisym_critical_speed_untensioned"].values
