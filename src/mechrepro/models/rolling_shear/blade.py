@@ -1,28 +1,14 @@
 """Blade pose: transforms M12, M20 (Eq. 4), midpoint (Eq. 5), dynamic lowest point (Eqs. 6-7).
 
-Conventions chosen where the printed equations contradict each other (mm, rad, y up):
-
-* **M20** is printed as a rotation by -theta5; the loop equations (9) measure theta5
-  counter-clockwise (l5 e^{+i theta5}) and the text states beta = theta5 - beta2.  Both
-  hold only if M20 rotates by **+theta5**.  M12 is kept as printed (rotation by -beta2,
-  translation d(cos beta1, sin beta1) in frame x2Dy2), so the blade turns by
-  beta = theta5 - beta2 in the fixed frame, as the text says.
-* **Eq. (6)** prints y_k = y_h + R(1 - cos beta).  With y upwards (the overlap line is
-  y = -s below the lower blade) the lowest point of an arc of radius R whose centre lies
-  R above the midpoint is y_k = y_h **-** R(1 - cos beta); only then is y_k constant under
-  the pure rolling of Eq. (8).  x_k = x_h - R sin beta is kept as printed.
-"""
+Where the printed equations contradict each other (mm, rad, y up): M20 rotates by
+**+theta5** (Eq. 9 measures theta5 counter-clockwise and beta = theta5 - beta2 holds only
+then); Eq. (6) is y_k = y_h **-** R(1 - cos beta), the only sign under which y_k stays
+constant under the rolling of Eq. (8)."""
 from __future__ import annotations
 
 import numpy as np
 
 from .geometry import Geometry
-
-
-def rot(phi):
-    """Counter-clockwise rotation by phi (homogeneous 3x3)."""
-    c, s = np.cos(phi), np.sin(phi)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
 def M12(g: Geometry) -> np.ndarray:
@@ -49,14 +35,8 @@ def M20_printed(g: Geometry, theta5: float, theta6: float) -> np.ndarray:
                      [0.0, 0.0, 1.0]])
 
 
-def blade_angle(g: Geometry, theta5):
-    """Turning angle of the upper blade, beta = theta5 - beta2 (Sec. 3.2)."""
-    return np.asarray(theta5) - g.beta2
-
-
 def to_fixed(g: Geometry, theta5, theta6, x1, y1):
-    """Eq. (4) for arrays of poses (:func:`.closure.to_fixed`; the same numbers as
-    M20 @ M12 @ p)."""
+    """Eq. (4) for arrays of poses (:func:`.closure.to_fixed`, = M20 @ M12 @ p)."""
     from .closure import python
 
     return python.to_fixed(g, np.asarray(theta5, float), np.asarray(theta6, float), x1, y1)
@@ -68,8 +48,7 @@ def midpoint(g: Geometry, theta5, theta6):
 
 
 def lowest_point(g: Geometry, theta5, theta6):
-    """Eq. (7) with the corrected sign of Eq. (6): the dynamic lowest point (x_k, y_k)
-    (:func:`.closure.lowest_point`)."""
+    """Eq. (7) with the corrected sign of Eq. (6) (:func:`.closure.lowest_point`)."""
     from .closure import python
 
     return python.lowest_point(g, np.asarray(theta5, float), np.asarray(theta6, float))

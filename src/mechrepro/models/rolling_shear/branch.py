@@ -1,13 +1,6 @@
-"""Which assembly branch a solution is on.
-
-The paper's ranges (Sec. 3.1): theta1, theta2, theta6 in [pi, 2 pi]; theta3, theta4,
-theta5 in [0, pi].  They do not separate every assembly mode of this linkage: the guide
-rod has two modes below E, and the dyad AB-BC with l1 = l3 (Table II) has two modes that
-are mirror images about AC with the same heights, so both or neither satisfy the ranges.
-The *design branch* adds the assembly modes of :class:`Geometry` (guide_mode, elbow1,
-elbow2), i.e. the branch the machine is built in and can never leave without passing a
-toggle.
-"""
+"""Which assembly branch a solution is on: the paper's ranges (Sec. 3.1) do not separate the
+guide rod's two modes nor the mirror modes of the dyad l1 = l3, so the *design branch* adds
+the assembly modes of :class:`Geometry`, which the machine cannot leave without a toggle."""
 from __future__ import annotations
 
 import math

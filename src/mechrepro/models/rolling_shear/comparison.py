@@ -1,12 +1,6 @@
-"""Solver ``method_comparison``: every cut point by each method the scene lists in
-``options.methods`` (selPSO, the standard constricted PSO, scipy root and least_squares from
-cold random starts or warm-started), next to the Newton continuation and against the closed
-form (Sec. 4, Fig. 12 and the text after it).
-
-The methods are numerical methods for the same Eqs. (7) and (9), not physics: they are
-the scene's options (checked by the run schema at load), and each gets its own random
-stream, so that listing one more method never changes another's numbers.
-"""
+"""Solver ``method_comparison`` (Sec. 4, Fig. 12): every cut point by each method of
+``options.methods``, beside the Newton continuation and against the closed form; each
+method has its own random stream, so adding one changes no other's numbers."""
 from __future__ import annotations
 
 import numpy as np
@@ -25,8 +19,7 @@ METHOD_STREAMS = {"selpso": 1, "cold_root": 2, "least_squares": 3, "warm_root": 
 
 
 def compare(ctx: Context, method: str) -> dict:
-    """One method at every cut point, recorded (never raising): convergence, ranges, branch,
-    fitness, wall time per solve and the error against the closed form."""
+    """One method at every cut point, recorded (never raising)."""
     sol = stroke.solve_compare(ctx.g, ctx.x_k, method, ctx.settings,
                                ctx.rng(METHOD_STREAMS[method]))
     err = pose_error(sol.theta, ctx.reference.theta)
@@ -61,9 +54,7 @@ def compare(ctx: Context, method: str) -> dict:
 
 
 def _selpso_accuracy(ctx: Context, sol: stroke.StrokeSolution, err: np.ndarray) -> dict:
-    """selPSO's cost of accuracy: the objective H from its poses, the largest pose error
-    (up to the assembly mode: a wrong mode is an error of order 1 rad) and the wall time
-    of the whole stroke, at its swarm x iterations budget."""
+    """selPSO's cost of accuracy: H from its poses, its largest pose error and the stroke's time."""
     st = ctx.settings.pso_loops
     H = np.mean(np.abs(horizontal_displacement(ctx.g, sol.theta[:, 4] - ctx.g.beta2, ctx.x_k)))
     H_ref = np.mean(np.abs(horizontal_displacement(
@@ -86,12 +77,9 @@ def _selpso_accuracy(ctx: Context, sol: stroke.StrokeSolution, err: np.ndarray) 
 
 
 def _over_seeds(ctx: Context, method: str, sol: stroke.StrokeSolution, err: np.ndarray) -> dict:
-    """A stochastic method judged over ``options.seeds`` strokes, not one draw (issue 27):
-    the largest pose error of each stroke against the closed form (a wrong assembly mode is
-    an error of order 1 rad), its quantiles, the probability that a whole stroke lands on
-    the design branch (every cut point converged on it), the fraction of each stroke's cut
-    points that converge on it and the mean stroke time.  Seed 0 is
-    the run's own stream (the stroke above); seed k > 0 the stream (run seed, salt, k)."""
+    """A stochastic method over ``options.seeds`` strokes: pose-error quantiles, the probability
+    of a whole stroke on the design branch, the branch rate per seed and the mean stroke time
+    (seed 0: the run's stream; seed k: the stream (run seed, salt, k))."""
     k_seeds = int(ctx.options["seeds"])
     salt = METHOD_STREAMS[method]
     errs, ok, times = [float(np.max(err))], [bool(sol.right.all())], \

@@ -1,10 +1,5 @@
-"""Solver ``continuation``: the cutting stroke by warm-started Newton, checked against the
-closed form (Sec. 3.3 steps 1-2, Figs. 9-11, 13, 14).
-
-Every cut point is solved for the blade pose theta5, theta6 (Eq. 7, the lowest point on
-y = -s) and then for the levers theta1..theta4 (Eq. 9); the closed form (Brent on
-|ED| = l6, circle intersections) is the reference at the same cut points.
-"""
+"""Solver ``continuation`` (Sec. 3.3 steps 1-2, Figs. 9-11, 13, 14): the stroke by
+warm-started Newton (Eq. 7 then Eq. 9 at every cut point), against the closed form."""
 from __future__ import annotations
 
 from mechrepro.timing import time_call
@@ -18,10 +13,8 @@ from .motion_laws import driving_laws_on_grid, stroke_outputs
 
 
 def newton_stroke(ctx: Context) -> tuple[stroke.StrokeSolution, dict]:
-    """The warm-started Newton stroke and its outputs; raises NonAssembly.
-
-    The stroke is timed as the fastest of repeated strokes (one takes ~1 ms, so one
-    preemption by another process would dominate a single timing)."""
+    """The warm-started Newton stroke and its outputs; raises NonAssembly.  Timed as the fastest
+    of repeated strokes (one is too short to time alone)."""
     sol = stroke.solve_newton(ctx.g, ctx.x_k, ctx.settings)  # also warms the caches
     _, wall = time_call(stroke.solve_newton, ctx.g, ctx.x_k, ctx.settings,
                         min_time=float(ctx.options.get("newton_timing_s", 0.02)))
@@ -58,9 +51,8 @@ def exact_stroke(ctx: Context) -> tuple[stroke.StrokeSolution, dict]:
 
 
 def solve_continuation(run: dict, ctx: Context) -> dict:
-    """Newton and closed-form strokes, then the effects the scene names (which consume the
-    Newton stroke through ``ctx.stroke``); their contributions are outputs of the run.
-    A scene's lever set (``options.levers``) that does not assemble is refused by name."""
+    """Newton and closed-form strokes, then the named effects (they read ``ctx.stroke``); a scene
+    lever set that does not assemble is refused by name."""
     try:
         ctx.stroke, data = newton_stroke(ctx)
     except NonAssembly as exc:
@@ -75,7 +67,7 @@ def solve_continuation(run: dict, ctx: Context) -> dict:
 
 
 def contributions(run: dict, ctx: Context) -> dict:
-    """Every contribution of the named effects, by key (each key is an output variable)."""
+    """Every contribution of the named effects, by key."""
     c = EFFECTS.evaluate(run, ctx)
     return {key: c.get(key) for key in c.keys()}
 

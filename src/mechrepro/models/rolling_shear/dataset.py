@@ -1,5 +1,4 @@
-"""The run's dataset: the solver's outputs, the derived constants of its geometry and the
-calibration, with coordinates (mm, rad)."""
+"""The run's dataset: the solver's outputs, its geometry's constants and calibration (mm, rad)."""
 from __future__ import annotations
 
 import math
@@ -37,8 +36,7 @@ def geometry_outputs(ctx: Context) -> dict:
 
 
 def variables(result: dict, run: dict) -> dict:
-    """The run's variables: the solver's outputs over the cut points (and the angles, levers
-    and loops they name), with an index coordinate for any other dimension."""
+    """The run's variables: the solver's outputs and their coordinates."""
     ctx: Context = result["ctx"]
     data = result["data"]
     coords = {

@@ -1,11 +1,5 @@
-"""The blocks of docs/rolling_shear.md (issue 62: numbers from a run, not typed), made from
-``results/rolling_shear`` (claim.json, validation.csv, design_front.csv,
-solver_comparison.csv, the study branch_spread) and filled by :mod:`mechrepro.docs`::
-
-    .venv/bin/python -m mechrepro.docs docs/rolling_shear.md results
-
-Run it on the default profile's results after the last change.
-"""
+"""The generated blocks of docs/rolling_shear.md, from ``results/rolling_shear``
+(``python -m mechrepro.docs docs/rolling_shear.md results`` on the default results)."""
 from __future__ import annotations
 
 import json

@@ -1,5 +1,4 @@
-"""The assembled linkage of a solved run, for drawing (Figs. 2-5 of the paper): the
-positions of every joint from the run's geometry and its motion laws (mm)."""
+"""The assembled linkage of a solved run, for drawing (Figs. 2-5): every joint (mm)."""
 from __future__ import annotations
 
 import numpy as np
@@ -15,13 +14,8 @@ def geometry_of(ds) -> Geometry:
 
 
 def linkage_at(ds, i: int, prefix: str = "exact", blade_half_width: float = 1900.0) -> dict:
-    """The linkage at cut point ``i`` of a run (motion laws ``<prefix>_theta1..6``).
-
-    Returns ``links``: (start, end) joint pairs as complex numbers x + iy in the fixed frame
-    (E at the origin): guide rod ED, lever AB and rod BC (loop ABCD of Eq. 9), lever GH and
-    rod HI (loop GHID), the carrier D-I, D-C, D-O; and ``blade``: (x, y) of the cutting-edge
-    arc over +- ``blade_half_width`` mm of arc length.
-    """
+    """The linkage at cut point ``i`` (motion laws ``<prefix>_theta1..6``): ``links``, (start, end)
+    joint pairs as complex x + iy, and ``blade``, the cutting-edge arc over +- ``blade_half_width``."""
     g = geometry_of(ds)
     t = [float(ds[f"{prefix}_theta{k}"][i]) for k in range(1, 7)]
     P = carrier_points(g, t[4], t[5])

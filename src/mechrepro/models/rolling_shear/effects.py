@@ -1,12 +1,5 @@
-"""The effects of rolling_shear (declared in config/papers/rolling_shear.yaml, ``effects:``).
-
-The linkage has little physics to switch: Eqs. (7)-(9) are the machine, and which method
-solves them is the scene's solver (and its options).  What a scene may add are the drive
-law of the Fig. 9 contrast and outputs that cost extra solves (the tilt scan of the family,
-the selPSO initial-value histories of Fig. 12, the one-lever scans of Table II).  Each is a
-pure function of the solver's :class:`~.context.Context` returning its declared keys, each
-one a dataset variable (``mechrepro.units.var``).
-"""
+"""The effects of rolling_shear (config ``effects:``): the drive law of the Fig. 9 contrast and
+outputs that cost extra solves; each a pure function of the :class:`~.context.Context`."""
 from __future__ import annotations
 
 import math
@@ -24,8 +17,8 @@ EFFECTS = EffectRegistry("rolling_shear")
 
 @EFFECTS.register("constant_rate_drive")
 def constant_rate_drive(ctx) -> dict:
-    """Fig. 9 contrast, the drive law: both levers turned at a constant rate between the
-    end positions of the solved stroke (``ctx.stroke``); Eq. (9) forward, then Eq. (7)."""
+    """Fig. 9 contrast: both levers at a constant rate between the stroke's end positions;
+    Eq. (9) forward, then Eq. (7)."""
     from .forward import constant_rate_drive as drive
 
     r = drive(ctx.g, ctx.stroke.theta)
@@ -43,9 +36,8 @@ def constant_rate_drive(ctx) -> dict:
 
 @EFFECTS.register("tilt_scan")
 def tilt_scan(ctx) -> dict:
-    """H of the original levers over the guide-rod tilt at the run's other intents (the
-    family of docs/rolling_shear.md).  A calibrating run's scan stopped at its bracket: the
-    tilts it scanned are reused, the rest scanned here (so the cost is this effect's)."""
+    """H of the original levers over the guide-rod tilt; a calibrating run's scanned tilts are
+    reused, the rest scanned here."""
     from .calibrate import TILTS, H_of_tilt
 
     cal = ctx.calibration
@@ -61,8 +53,8 @@ def tilt_scan(ctx) -> dict:
 
 @EFFECTS.register("initial_values")
 def initial_values(ctx) -> dict:
-    """Fig. 12: selPSO fitness G of Eq. (9) against the iterations at mid-cut, from each
-    initial value of ``options.initial_values`` (the pose from the closed form)."""
+    """Fig. 12: selPSO fitness G of Eq. (9) against the iterations at mid-cut from each of
+    ``options.initial_values``."""
     from . import pose as pose_mod
     from .branch import in_ranges, on_design_branch
     from .selpso import selpso
@@ -105,8 +97,7 @@ def initial_values(ctx) -> dict:
 
 @EFFECTS.register("lever_scan")
 def lever_scan(ctx) -> dict:
-    """One-at-a-time scans of H over each lever's bounds: which levers the objective
-    determines (Table II; with frozen carrier constants only l6)."""
+    """One-at-a-time scans of H over each lever's bounds (Table II): which levers H determines."""
     k = int(ctx.res.get("scan_points", 21))
     f = optimise.penalised(ctx.g, ctx.x_k, ctx.settings.tol_pose)
     base = np.array(ctx.g.levers())

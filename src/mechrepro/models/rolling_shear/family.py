@@ -1,12 +1,6 @@
-"""Solver ``family_scan``: the admissible family of linkages on a grid (docs/rolling_shear.md).
-
-Every grid member (the range ends of the design intents jointly, both readings of Eq. (8)
-and of the carrier constants) is calibrated on the run's target H (Sec. 4, 1.4341 mm) at the
-run's own number of cut points and given the scene's lever set (Table II): its tilt, its H
-and the reduction.  The framework re-checks verdicts one assumed constant at a time; this
-grid varies them jointly, so a verdict that only a combination of range ends flips shows
-up here.
-"""
+"""Solver ``family_scan``: every member of a grid of the design intents and readings
+(docs/rolling_shear.md) calibrated on 1.4341 and given the scene's lever set (Table II), so
+that a verdict flipped only by a combination of range ends shows."""
 from __future__ import annotations
 
 import itertools
@@ -34,11 +28,9 @@ def member_geometry(base, member: dict):
 
 
 def calibrated_member(ctx: Context, member: dict, levers: dict) -> tuple[float, ...]:
-    """(calibrated tilt, H of the lever set, buildable 1/0 at the run's constraint settings,
-    then the member's margins to the constraints: rod gap mm, rod-joint height mm, smallest
-    and largest crank-rod angle deg, blade-end rise mm, worst transmission angle at the open
-    position deg, and whether the machine with the lever set is buildable too) of one member; NaN where it cannot
-    reach the target (H NaN: the lever set does not assemble)."""
+    """(tilt, H of the lever set, buildable, rod gap mm, joint height mm, min and max crank-rod
+    angle deg, blade rise mm, open transmission angle deg, buildable with the lever set) of one
+    member; NaN where it cannot reach the target (H NaN: the levers do not assemble)."""
     from . import stroke
     from .constraints import broken, margins, settings
 

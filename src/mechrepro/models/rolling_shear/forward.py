@@ -1,10 +1,5 @@
-"""Forward kinematics: the blade under prescribed driving angles theta1, theta2 (Eq. 9).
-
-With theta1 and theta2 given, Eq. (9) holds four unknowns theta3, theta4, theta5, theta6;
-the lowest point then follows from Eq. (7).  Used to show what the overlap does when the
-cylinders are *not* driven by the reverse-solved motion laws -- e.g. both levers turned at
-a constant rate between the same start and end positions.
-"""
+"""Forward kinematics (Eq. 9): the blade under prescribed driving angles theta1, theta2, e.g.
+both levers at a constant rate instead of the reverse-solved motion laws."""
 from __future__ import annotations
 
 import math
@@ -28,10 +23,8 @@ def _jacobian(g: Geometry, t3, t4, t5, t6) -> np.ndarray:
 
 
 def drive(g: Geometry, theta1, theta2, start, tol: float = 1e-11, max_iter: int = 30):
-    """theta1..theta6 along prescribed driving angles, warm-started from ``start`` (6,).
-
-    Raises NonAssembly naming the step where Newton fails or leaves the design branch.
-    """
+    """theta1..theta6 along prescribed driving angles, warm-started from ``start`` (6,); raises
+    NonAssembly at the step that fails or leaves the design branch."""
     x = np.asarray(start, float)[2:].copy()          # theta3..theta6
     out = np.empty((len(theta1), 6))
     prev = None

@@ -1,18 +1,9 @@
-"""Which path runs the loops of :mod:`.closure`: compiled (numba, cached on disk) or Python
-(:func:`.closure.available`).
+"""Which path runs the loops of :mod:`.closure`: compiled (numba, cached on disk) or Python.
 
-The selPSO iterations and the warm-started Newton continuations are sequential (a swarm
-iteration needs the previous one's gbest, a cut point the previous points' poses), so numpy
-can only vectorise inside one iteration, over 10-60 particles or 2 unknowns: the
-interpreter's overhead per iteration is what the Python loops spend their time on.  Compiled,
-the same source runs (:mod:`.closure`, :func:`.selpso.iterate`), with the same bits.  The
-swarm draws its random numbers from the run's own :class:`numpy.random.Generator` (numba
-shares its bit generator's state), one ``random()`` after the other in the order of
-``rng.random((2, N, n))``, so the stream and every later draw from it are unchanged.
-
-Which path runs depends on nothing but whether numba is installed (and
-``MECHREPRO_RS_KERNEL=numpy``, for tests and benchmarks): never on what ran before.
-"""
+selPSO iterations and Newton continuations are sequential, so numpy can only vectorise over
+a few particles or unknowns; compiled, the same source runs with the same bits and the same
+random stream (numba shares the Generator's bit generator).  The path depends only on
+whether numba is installed (and ``MECHREPRO_RS_KERNEL=numpy``)."""
 from __future__ import annotations
 
 import numpy as np
@@ -32,11 +23,8 @@ def kernel(name: str):
 
 
 def warm(runs=None) -> None:
-    """Load every kernel, whatever ``runs`` use (they are small), from numba's disk cache or
-    by a compile, calling each once on tiny inputs of the production types, so that this
-    one-time cost of a process (~0.2-0.5 s) is paid before the first timed solve, not inside
-    it (it would inflate e.g. the first selPSO run's time per solve).  Nothing is computed
-    that a run uses."""
+    """Load every kernel (numba's disk cache or a compile) on tiny inputs of the production types,
+    so that this one-time cost is paid before the first timed solve."""
     if not closure.available():
         return
     from .selpso import iterate

@@ -1,9 +1,5 @@
-"""Solver ``lever_optimisation`` (Sec. 3.3 step 3, Table II, Fig. 11): the five levers l1,
-l3, l5, l6, l10 against the synthetic horizontal displacement H, within +-
-``lever_bound_fraction`` of the original levers, by each optimiser the scene lists in
-``options.optimisers`` (selPSO, the paper's; differential evolution with the same bounds
-and budget, the comparison).  The optimisers are numerical methods for one problem, so they
-are the scene's options; the effects it honours (the one-lever scan) add outputs."""
+"""Solver ``lever_optimisation`` (Sec. 3.3 step 3, Table II, Fig. 11): l1, l3, l5, l6, l10
+against H within +- ``lever_bound_fraction``, by each of ``options.optimisers``."""
 from __future__ import annotations
 
 from dataclasses import replace
@@ -42,11 +38,8 @@ OPTIMISERS = {"selpso": (by_selpso, "opt_selpso"), "de": (by_differential_evolut
 
 
 def anchored_settings(ctx: Context, g: Geometry, x_k) -> stroke.SolverSettings:
-    """Settings whose initial value is the closed-form pose at the first cut point.
-
-    Lever sets far from the original move the cranks by more than the rough initial value
-    can absorb; the continuation is anchored on the exact first point instead.
-    """
+    """Settings whose initial value is the closed-form pose at the first cut point (far lever sets
+    move the cranks by more than the rough initial value absorbs)."""
     first = stroke.exact_theta(g, x_k[:1])[0]
     return replace(ctx.settings, initial_value=tuple(first))
 

@@ -1,6 +1,4 @@
-"""What one solved stroke gives (Figs. 9-11, 13, 14): the motion laws theta1..theta6, the
-dynamic lowest points (Eq. 7), the blade midpoints (Eq. 5) against trajectory 1 (Eq. 8) and
-the synthetic horizontal displacement H, as dataset variables (mm, rad)."""
+"""What one solved stroke gives (Figs. 9-11, 13, 14) as dataset variables (mm, rad)."""
 from __future__ import annotations
 
 import numpy as np
@@ -24,11 +22,8 @@ def angle_vars(prefix: str, theta: np.ndarray, what: str) -> dict:
 
 
 def stroke_outputs(g: Geometry, theta: np.ndarray, prefix: str, what: str) -> dict:
-    """Motion laws, lowest points, midpoints, trajectory 1 and the objective of one stroke.
-
-    H = mean |x_h - x_traj1| over the cut (Sec. 3.3 step 2), the lowest point of Eq. (7)
-    with the overlap line y = -s, the dyad margins of Eq. (9) to toggle and fold.
-    """
+    """Motion laws, lowest points (Eq. 7), midpoints (Eq. 5), trajectory 1 (Eq. 8), H and the
+    dyad margins of one stroke."""
     t5, t6 = theta[:, 4], theta[:, 5]
     xk, yk = lowest_point(g, t5, t6)
     xh, yh = midpoint(g, t5, t6)
@@ -64,12 +59,8 @@ def stroke_outputs(g: Geometry, theta: np.ndarray, prefix: str, what: str) -> di
 
 def driving_laws_on_grid(huch: np.ndarray, theta: np.ndarray, width: float,
                          prefix: str, what: str) -> dict:
-    """theta1, theta2 (the driving levers, Figs. 13-14) interpolated by cubic spline on the
-    nested grid of :data:`LAW_GRID` cut points over the rolled length.
-
-    Runs with different numbers of cut points then share one axis, so a study stacks
-    them and the motion laws of a coarse run can be compared with the finest run's at the
-    finest run's own nodes (:mod:`.accuracy`)."""
+    """theta1, theta2 (Figs. 13-14) by cubic spline on the nested LAW_GRID, so that runs with
+    different cut points share one axis (:mod:`.accuracy`)."""
     from scipy.interpolate import CubicSpline
 
     grid = np.linspace(0.0, width, LAW_GRID)
@@ -80,9 +71,6 @@ def driving_laws_on_grid(huch: np.ndarray, theta: np.ndarray, width: float,
 
 
 def pose_error(theta, ref) -> np.ndarray:
-    """|theta - closed form| per cut point and angle (rad, wrapped to [0, pi]).
-
-    Against the closed form on the design branch, all six angles: a solution on the other
-    assembly mode is an error of order 1 rad, not a small one.
-    """
+    """|theta - closed form| per cut point and angle (rad, wrapped to [0, pi]); a wrong assembly
+    mode is an error of order 1 rad."""
     return np.abs(np.angle(np.exp(1j * (np.asarray(theta) - np.asarray(ref)))))

@@ -1,11 +1,5 @@
-"""Newton's method on the two small systems (:func:`.closure.newton2`), in plain floats.
-
-Both systems split into 2x2 blocks: Eq. (7) in (theta5, theta6) and Eq. (9) in
-(theta1, theta3) + (theta2, theta4).  Each Newton step is solved by Cramer's rule; a
-step is refused when the block's determinant is tiny relative to its scale (a toggle:
-crank and rod collinear, sin(theta1 - theta3) = 0), which is reported, never hidden.
-Convergence is on the paper's fitness G = sum |f_i| (mm).
-"""
+"""Newton on the 2x2 blocks of Eq. (7) and Eq. (9) (:func:`.closure.newton2`), in plain floats;
+a near-singular step (a toggle) is reported, never hidden.  Convergence on the paper's G."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -26,8 +20,7 @@ class NewtonResult:
 
 
 def reason(status: int, det: float, max_iter: int) -> str:
-    """Why a Newton solve failed, by status (1 non-finite, 2 singular, 3 no convergence;
-    the codes of :mod:`.closure`)."""
+    """Why a Newton solve failed, by the status codes of :mod:`.closure`."""
     return {1: "non-finite residual",
             2: f"singular Jacobian (det = {det:.3g}, toggle configuration)",
             3: f"no convergence in {max_iter} iterations"}[status]
@@ -38,8 +31,7 @@ def _result(a, b, G, k, status, det, max_iter) -> NewtonResult:
 
 
 def pose(g: Geometry, x0, x_target: float, tol: float, max_iter: int = 30) -> NewtonResult:
-    """Eq. (7): theta5, theta6 with the lowest point at (x_target, -s)
-    (:func:`.closure.pose_newton`, compiled where numba is installed)."""
+    """Eq. (7): theta5, theta6 with the lowest point at (x_target, -s)."""
     return _result(*kernels.kernel("pose_newton")(
         g.constants, float(x0[0]), float(x0[1]), float(x_target), float(tol), int(max_iter),
         SINGULAR_RTOL), max_iter)
@@ -47,7 +39,7 @@ def pose(g: Geometry, x0, x_target: float, tol: float, max_iter: int = 30) -> Ne
 
 def loops(g: Geometry, x0, theta5: float, theta6: float, tol: float,
           max_iter: int = 30) -> NewtonResult:
-    """Eq. (9): theta1..theta4, two independent 2x2 blocks (:func:`.closure.loops_newton`)."""
+    """Eq. (9): theta1..theta4 as two independent 2x2 blocks."""
     t1, t2, t3, t4 = x0
     d1, d2 = kernels.kernel("loops_newton")(
         g.constants, float(t1), float(t2), float(t3), float(t4), float(theta5), float(theta6),

@@ -1,11 +1,6 @@
 """Blade pose at a cut point: theta5, theta6 from Eq. (7) with the lowest point on y = -s.
-
-Two unknowns, two equations (Sec. 3.2):  x_k(theta5, theta6) = x_k*,  y_k(theta5, theta6) = -s.
-:func:`exact_pose` is the trusted reference: for a blade angle beta the pose with the
-lowest point at (x_k*, -s) is fixed, and the guide rod closes only if |ED| = l6 -- one
-scalar equation in beta, bracketed on a grid and solved by Brent's method
-(:func:`.closure.guide_brent`).
-"""
+:func:`exact_pose` is the reference: for a blade angle beta the pose is fixed and the guide
+rod closes where |ED| = l6, one scalar equation bracketed on a grid and solved by Brent."""
 from __future__ import annotations
 
 import functools
@@ -16,8 +11,6 @@ from . import closure, kernels
 from .geometry import Geometry
 from .loops import NonAssembly, columns, stacked
 
-UNKNOWNS = ("theta5", "theta6")
-
 
 def residuals(g: Geometry, th, x_target: float):
     """Eq. (7) residuals for one or many (theta5, theta6) candidates (..., 2)
@@ -27,11 +20,9 @@ def residuals(g: Geometry, th, x_target: float):
 
 
 def _guide_distance_scan(g: Geometry, betas: np.ndarray, x_target: float) -> tuple:
-    """(|ED(beta)| - l6, x of D) on the whole scan grid in numpy (:func:`.closure.guide_point`);
-    the few values of |ED| - l6 within 1e-6 mm of zero (where a round-off difference could
-    flip a sign) are recomputed by the scalar :func:`.closure.guide_distance`, so the brackets
-    are exactly those of a scalar scan (the compiled :func:`.closure.guide_pose` scans
-    itself, by the scalar)."""
+    """(|ED(beta)| - l6, x of D) on the scan grid in numpy; values within 1e-6 mm of zero are
+    recomputed by the scalar :func:`.closure.guide_distance`, so the brackets are the compiled
+    scan's."""
     dx, dy = closure.python.guide_point(g, betas, x_target)
     f = np.hypot(dx, dy) - g.l6
     for i in np.nonzero(np.abs(f) < 1e-6)[0]:
@@ -52,13 +43,9 @@ def _scan_grid(beta_window: float, n_scan: int) -> tuple[np.ndarray, float]:
 
 
 def exact_pose(g: Geometry, x_target: float, beta_window: float = 0.3, n_scan: int = 601):
-    """Reference (theta5, theta6) with theta6 in [pi, 2 pi] and theta5 in [0, pi].
-
-    The guide rod has two assembly modes inside the paper's range; the design mode
-    (``g.guide_mode``, the sign of cos theta6) is kept.  Scans |ED(beta)| - l6 over |beta| <= beta_window, keeps the roots whose pose is inside
-    the paper's ranges, and returns the one with the smallest |beta| (the cutting stroke
-    turns the blade by a few degrees).  Raises NonAssembly when no root qualifies.
-    """
+    """Reference (theta5, theta6) on the design mode of the guide rod: the root of |ED(beta)| - l6
+    over |beta| <= beta_window in the paper's ranges with the smallest |beta|; raises
+    NonAssembly when none qualifies."""
     betas, step2 = _scan_grid(float(beta_window), int(n_scan))
     k = kernels.chosen()
     if k is closure:

@@ -1,13 +1,5 @@
-"""rolling_shear's entry point: the scene's solver, its effects, the run's variables (mm, rad).
-
-    solver               what it computes                                    effects it honours
-    continuation         Newton stroke + closed form (continuation.py)       constant_rate_drive, tilt_scan
-    method_comparison    the same + options.methods at every cut point        constant_rate_drive, tilt_scan,
-                         (comparison.py)                                      initial_values
-    lever_optimisation   levers by options.optimisers (lever_optimisation.py) lever_scan
-    family_scan          the admissible family on a grid (family.py)          (none)
-    design_front         H against transmission, buildable levers (front.py)  (none)
-"""
+"""rolling_shear's entry point: the scene's solver (continuation, method_comparison,
+lever_optimisation, family_scan, design_front), its effects and the run's variables."""
 from __future__ import annotations
 
 import numpy as np
@@ -30,8 +22,7 @@ SOLVERS = {"continuation": solve_continuation, "method_comparison": solve_method
 
 
 def compute(run: dict) -> dict:
-    """The physics of one run: its solver, which evaluates only the effects it names.
-    A lever set the run refuses by name (:class:`Refused`) gives ``{"refused": ...}``."""
+    """The run's solver; a lever set refused by name gives ``{"refused": ...}``."""
     try:
         ctx = Context(run)
         data = SOLVERS[run["solver"]](run, ctx)

@@ -1,28 +1,14 @@
 """The cutting stroke: every cut point solved for theta5, theta6 (Eq. 7) then theta1..4 (Eq. 9).
 
-Methods (solver ``continuation``: newton and exact; solver ``method_comparison``: the
-others, named by the scene's ``options.methods``):
-
-* ``newton``  -- warm-started continuation: each cut point starts from the linear
-  extrapolation of the two previous solutions; the first from the configured initial
-  value.  The default solver.  A point that does not converge, or converges off the
-  design branch (near a toggle the two branches meet), raises :class:`NonAssembly`
-  naming the cut point -- a wrong branch is never returned.
-* ``selpso``  -- the paper's method: every system from the initial value + N(0, 1).
-* ``cold_root``, ``least_squares`` -- scipy from uniformly random starts in [0, 2 pi)^n.
-* ``warm_root``, ``warm_least_squares`` -- the same scipy solvers warm-started along the
-  stroke (the configured initial value, then the same predictor as ``newton``), without
-  the branch check, to show what the continuation alone buys.
-* ``exact``   -- closed form (Brent on |ED| = l6, circle intersections), the reference.
-
-:func:`run_method` never raises for the comparison methods: it records per cut point
-whether the solve converged, whether it is inside the paper's ranges and on the design
-branch, its fitness and wall time.
-"""
+Methods: ``newton`` (warm-started continuation; a point that does not converge or lands off
+the design branch raises :class:`NonAssembly`), ``selpso`` and ``pso_standard`` (from the
+initial value), ``cold_root``/``least_squares`` (scipy from random starts), ``warm_root``/
+``warm_least_squares`` (scipy warm-started, no branch check), ``exact`` (closed form, the
+reference).  :func:`solve_compare` records the comparison methods and never raises."""
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import least_squares, root
@@ -55,7 +41,6 @@ class StrokeSolution:
     time_pose: float                       # mean wall time per solve of Eq. (7), s
     time_loops: float                      # mean wall time per solve of Eq. (9), s
     iterations_loops: np.ndarray
-    histories: list = field(default_factory=list, repr=False)
 
     @property
     def right(self) -> np.ndarray:
@@ -145,9 +130,7 @@ def _exact(g: Geometry, x_k) -> np.ndarray:
 
 
 def exact_theta(g: Geometry, x_k) -> np.ndarray:
-    """theta1..theta6 (n x 6, mod 2 pi) of the closed form at every cut point
-    (:func:`.pose.exact_pose`, :func:`.loops.exact_angles`): :func:`solve_exact`'s theta
-    without its residuals."""
+    """theta1..theta6 (n x 6, mod 2 pi) of the closed form at every cut point, without residuals."""
     return wrap(_exact(g, x_k))
 
 
@@ -194,28 +177,25 @@ def _pose_by(method, g, xk, start, settings, rng):
 
 
 def _loops_by(method, g, t5, t6, start, settings, rng):
-    """(theta1..theta4, iterations, history or None) at one cut point (Eq. 9)."""
+    """(theta1..theta4, iterations) at one cut point (Eq. 9)."""
     if method in ("selpso", "pso_standard"):
         st = settings.pso_loops if method == "selpso" else settings.pso_std_loops
         r = selpso(loops_fitness(g, t5, t6), start, st, rng, period=2 * math.pi)
-        return r.x, r.iterations, r.history
+        return r.x, r.iterations
     start = start if method.startswith("warm_") else rng.uniform(0, 2 * math.pi, 4)
     x, nfev = _scipy_solve(method, lambda x: loops_mod.residuals(g, x, t5, t6),
                            lambda x: loops_mod.jacobian(g, x), start, settings.tol_loops)
-    return x, nfev, None
+    return x, nfev
 
 
 def solve_compare(g: Geometry, x_k, method: str, settings: SolverSettings,
-                  rng: np.random.Generator, keep_history: bool = False) -> StrokeSolution:
-    """selPSO / scipy solves at every cut point, recorded, never raising.
-
-    selPSO starts every system from the initial value; cold scipy from uniformly random
-    starts; warm scipy from the linear extrapolation of the two previous solutions."""
+                  rng: np.random.Generator) -> StrokeSolution:
+    """selPSO / scipy solves at every cut point, recorded, never raising (starts: see module)."""
     n = len(x_k)
     theta = np.empty((n, 6))
     fp, fl, it = np.empty(n), np.empty(n), np.zeros(n, int)
     conv, inr, des = np.zeros(n, bool), np.zeros(n, bool), np.zeros(n, bool)
-    hist, tp, tl = [], 0.0, 0.0
+    tp, tl = 0.0, 0.0
     init = np.asarray(settings.initial_value, float)
     warm = method.startswith("warm_")
     guess = init.copy()
@@ -225,10 +205,8 @@ def solve_compare(g: Geometry, x_k, method: str, settings: SolverSettings,
             t5, t6 = map(float, _pose_by(method, g, xk, guess[4:], settings, rng))
         tp += sw.seconds
         with phase("rolling_shear.loops") as sw:
-            t14, it[i], h = _loops_by(method, g, t5, t6, guess[:4], settings, rng)
+            t14, it[i] = _loops_by(method, g, t5, t6, guess[:4], settings, rng)
         tl += sw.seconds
-        if keep_history and h is not None:
-            hist.append(h)
         th = np.array([*t14, t5, t6])
         if warm:
             guess = 2 * th - prev if i > 0 else th
@@ -240,19 +218,13 @@ def solve_compare(g: Geometry, x_k, method: str, settings: SolverSettings,
         inr[i] = in_ranges(th)
         des[i] = on_design_branch(g, th)
     return StrokeSolution(method, np.asarray(x_k), theta, fp, fl, conv, inr, des,
-                          tp / n, tl / n, it, hist)
+                          tp / n, tl / n, it)
 
 
 def time_newton_loops(g: Geometry, theta: np.ndarray, settings: SolverSettings,
                       min_time: float = 0.02) -> float:
-    """Mean wall time per Eq. (9) solve of the warm-started continuation, poses given (s).
-
-    Only Eq. (9), and timed as selPSO's time per solve is (issue 27: like for like): the
-    mean over every solve of whole strokes, repeated until ``min_time`` has elapsed (a
-    stroke takes ~10 us, so one stroke alone would be at the timer's resolution), not the
-    fastest stroke.  Each cut point starts from the linear extrapolation of the two previous
-    solutions; the first stroke warms the caches and is not counted.
-    """
+    """Mean wall time per Eq. (9) solve of the warm-started continuation, poses given (s): the
+    mean over whole strokes repeated for ``min_time``, timed as selPSO's is (like for like)."""
     return mean_time(_newton_loops_stroke, g, theta, settings, min_time=min_time) / len(theta)
 
 

@@ -1,23 +1,10 @@
 """Trajectory 1 (Eq. 8) and the synthetic horizontal displacement (Sec. 3.3, Sec. 4).
 
-Eq. (8): theta = huch / r,  x = -huch + r sin(theta) + x0,  y = r (1 - cos(theta)) + y0
-is the midpoint of an arc of radius r = R rolling without slip to the left on y = y0.
-
-Corresponding points: the paper compares "the difference between (5) and (8)" at the
-calculated points without saying how points correspond.  Two readings (``Geometry.eq8``):
-
-* ``"rotation"``: at equal blade rotation, trajectory 1 the pure rolling that starts from
-  the actual pose at the first cut point, huch = R (beta - beta_0), x0 = x_k,0 + R beta_0,
-  y0 = -s.  The horizontal difference is the slip accumulated since the start of the cut:
-  dx_i = (x_k,i - x_k,0) + R (beta_i - beta_0).
-* ``"literal"``: at equal rolled length as printed, theta = huch / R with huch counted from
-  the middle cut point m, trajectory 1 through the actual pose there:
-  theta_i = beta_m + (x_k,m - x_k,i) / R, x_1,i = x_k,i + R sin(theta_i), so
-  dx_i = R (sin beta_i - sin theta_i).
-
-The synthetic horizontal displacement is the mean |dx_i| over the cut points ("mean value
-of all horizontal displacement relating to calculated points", Abstract).
-"""
+Eq. (8): theta = huch / r, x = -huch + r sin(theta) + x0, y = r (1 - cos(theta)) + y0.
+The paper does not say which points of Eqs. (5) and (8) correspond (``Geometry.eq8``):
+``rotation`` compares at equal blade rotation from the first cut point,
+dx_i = (x_k,i - x_k,0) + R (beta_i - beta_0); ``literal`` at theta = huch / R from the middle
+cut point m, dx_i = R (sin beta_i - sin theta_i).  H is the mean |dx_i| (Abstract)."""
 from __future__ import annotations
 
 import numpy as np

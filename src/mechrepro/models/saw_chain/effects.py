@@ -1,22 +1,5 @@
-"""The saw_chain effects: outputs computed beside the difference method, on its time grid.
-
-Neither is physics the difference method could add or leave out; each is a second model
-of the same period that a scene asks for by name (declared in ``config/papers/saw_chain.yaml``,
-which says why they are effects and not solvers).  Each is a pure function of the
-solver's :class:`Context` returning dataset variables (``mechrepro.units.var``) keyed by
-the names its declaration ``contributes``; it is evaluated, and timed, only when named.
-
-- ``exact_reference``: analytic time derivatives of the closed-form positions of
-  Eqs. (7)-(10), loaded as Eqs. (14)-(16), (20)-(22): the converged reference the
-  difference method is measured against.
-- ``textbook``: the textbook model of the polygon effect, Eq. (23).
-- ``design_maps``: the exact closed form over many designs and the design rules' errors
-  (:mod:`.design`), beside the paper's chain.
-- ``richardson_levels``: the peak load of the difference method at K = 4 ... 32768 and its
-  Richardson extrapolation across them (:mod:`.richardson`), against the exact peak.
-- ``identification``: not a model of the period but an analysis of the paper's six numbers
-  (:mod:`.identification`): which unstated choices of the authors' program they select.
-"""
+"""The saw_chain effects (config ``effects:`` says why they are effects): outputs computed
+beside the difference method on its time grid, each evaluated and timed only when named."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -35,9 +18,8 @@ EFFECTS = EffectRegistry("saw_chain")
 
 @dataclass(frozen=True)
 class Context:
-    """What an effect sees: the chain of the run, its time grid, the constants of Eq. (23)
-    and whether the polygon effect is on (off: the constant-speed rival,
-    :func:`.solver.constant_speed`)."""
+    """What an effect sees: the run's chain, its time grid, the constants of Eq. (23) and whether
+    the polygon effect is on (off: the constant-speed rival)."""
     chain: Chain
     t: np.ndarray
     textbook_phase: float
@@ -93,8 +75,8 @@ def textbook(ctx: Context) -> dict:
 
 @EFFECTS.register("identification")
 def identification(ctx: Context) -> dict:
-    """The paper's six numbers fitted by every explanation of :mod:`.identification`, at the
-    declared model error and at both ends of its range."""
+    """The paper's six numbers fitted by every explanation of :mod:`.identification`, at each
+    declared model error."""
     from . import identification as idf
 
     p, ch = ctx.parameters, ctx.chain
@@ -161,10 +143,8 @@ RICHARDSON_K = 2 ** np.arange(2, 16)
 
 @EFFECTS.register("richardson_levels")
 def richardson_levels(ctx: Context) -> dict:
-    """The peak load of the difference method at each K of :data:`RICHARDSON_K`, and its
-    Richardson extrapolation from K/4, K/2, K (:func:`.richardson.from_levels`), relative
-    errors against the exact peak (:func:`.design.rule_peak_load`, exact); the work of each
-    as samples computed (2K + 1 per solve), counted."""
+    """The plain peak load at each K of :data:`RICHARDSON_K`, its Richardson extrapolation from
+    K/4, K/2, K, their errors against the exact peak and the samples each computes."""
     from dataclasses import replace
 
     from .design import rule_peak_load
