@@ -35,13 +35,12 @@ config_file = "config/papers/rolling_shear.yaml"
 profile = "default"
 
 # %%
-import matplotlib.ticker
 import numpy as np
 
 from mechrepro import accuracy
 from mechrepro.models.rolling_shear import validation as V
 from mechrepro.models.rolling_shear.drawing import linkage_at
-from mechrepro.plotting import plt
+from mechrepro.plotting import log_ticks, plt
 from mechrepro.results import PaperResults
 
 R = PaperResults(paper, results_dir, config_file, profile)
@@ -372,11 +371,8 @@ fig, ax = plt.subplots(nrow, ncol, figsize=(15, 4.6 * nrow), squeeze=False)
 for a, (name, kind) in zip(ax.flat, panels):
     sel = [r for r in coa if r["error_kind"] == kind]
     accuracy.plot(sel, name, a)
-    for axis, lim in ((a.xaxis, a.get_xlim()), (a.yaxis, a.get_ylim())):
-        if lim[1] < 10 * lim[0]:   # within a decade: a few plain ticks, no crowded minor labels
-            axis.set_major_locator(matplotlib.ticker.MaxNLocator(4))
-            axis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%.3g"))
-        axis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+    log_ticks(a.xaxis)
+    log_ticks(a.yaxis)
     a.set_title(f"{name}: {kind} error", fontsize=9)
     if name in stochastic:   # an order fitted to quantiles over seeds means nothing
         for text in a.get_legend().get_texts():

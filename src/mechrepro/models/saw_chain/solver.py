@@ -28,8 +28,7 @@ def difference_method(chain: Chain, beyond_roundoff_limit: bool = False, loads: 
     its own (higher) limit."""
     if not loads:
         return velocity_only(chain, beyond_roundoff_limit)
-    limit = chain.roundoff_limit()
-    dominated = check_roundoff(chain.K, limit, beyond_roundoff_limit)
+    budget = error_budget(chain, beyond_roundoff_limit)
     vx, ax, Fx, Fy = difference_arrays(chain)
     return {
         "tight_side_velocity": var("t", vx, "m/s", "tight-side velocity, difference method (Eqs. 12, 18)"),
@@ -37,21 +36,28 @@ def difference_method(chain: Chain, beyond_roundoff_limit: bool = False, loads: 
                                        "tight-side acceleration, difference method (Eqs. 13, 19)"),
         "dynamic_load_x": var("t", Fx, "N", "total tight-side dynamic load x, difference method (Eqs. 16, 22)"),
         "dynamic_load_y": var("t", Fy, "N", "dynamic load y of the seating link, difference method (Eqs. 16, 22)"),
-        **error_budget(chain, limit, dominated),
+        **budget,
     }
 
 
 def velocity_only(chain: Chain, beyond_roundoff_limit: bool = False) -> dict:
     """The tight-side velocity alone, Eqs. (12), (18), refused only beyond its own limit."""
-    limit = chain.velocity_roundoff_limit()
-    dominated = check_roundoff(chain.K, limit, beyond_roundoff_limit, what="velocities")
+    budget = velocity_budget(chain, beyond_roundoff_limit)
     parts = []
     for L, _, phi in chain.stages():
         x = stage_positions(phi, chain.R, L, chain.Tx)["trail_x"]
         parts.append(np.diff(x) * (1.0 / ((phi[1] - phi[0]) / chain.omega)))  # as Eq. (12) in the full method
     vx = np.concatenate([[chain.R * chain.omega], *parts])
     return {"tight_side_velocity": var("t", vx, "m/s", "tight-side velocity, difference method (Eqs. 12, 18)"),
-            "velocity_roundoff_limit_K": var((), limit, "1",
+            **budget}
+
+
+def velocity_budget(chain: Chain, beyond_roundoff_limit: bool) -> dict:
+    """The velocity's round-off limit of K and whether this K is beyond it (refused unless
+    allowed)."""
+    limit = chain.velocity_roundoff_limit()
+    dominated = check_roundoff(chain.K, limit, beyond_roundoff_limit, what="velocities")
+    return {"velocity_roundoff_limit_K": var((), limit, "1",
                                              "K beyond which round-off exceeds truncation in the velocity"),
             "roundoff_dominated": var((), int(dominated), "1",
                                       "1 if K is beyond the velocity's round-off limit")}
@@ -62,30 +68,25 @@ def constant_speed(chain: Chain, loads: bool = True, beyond_roundoff_limit: bool
     :attr:`.Chain.chain_speed` everywhere, zero acceleration and load (round-off left out, so
     the rival does not depend on the CPU); K is refused as in the method."""
     n = 2 * chain.K + 1
-    v = np.full(n, chain.chain_speed)
+    v = var("t", np.full(n, chain.chain_speed), "m/s", "tight-side velocity, constant speed (rival)")
     if not loads:
-        limit = chain.velocity_roundoff_limit()
-        dominated = check_roundoff(chain.K, limit, beyond_roundoff_limit, what="velocities")
-        return {"tight_side_velocity": var("t", v, "m/s", "tight-side velocity, constant speed (rival)"),
-                "velocity_roundoff_limit_K": var((), limit, "1",
-                                                 "K beyond which round-off exceeds truncation in the velocity"),
-                "roundoff_dominated": var((), int(dominated), "1",
-                                          "1 if K is beyond the velocity's round-off limit")}
-    limit = chain.roundoff_limit()
-    dominated = check_roundoff(chain.K, limit, beyond_roundoff_limit)
+        return {"tight_side_velocity": v, **velocity_budget(chain, beyond_roundoff_limit)}
+    budget = error_budget(chain, beyond_roundoff_limit)
     zero = np.zeros(n)
     return {
-        "tight_side_velocity": var("t", v, "m/s", "tight-side velocity, constant speed (rival)"),
+        "tight_side_velocity": v,
         "tight_side_acceleration": var("t", zero, "m/s2", "tight-side acceleration, constant speed (rival)"),
         "dynamic_load_x": var("t", zero, "N", "total tight-side dynamic load x, constant speed (rival)"),
         "dynamic_load_y": var("t", zero.copy(), "N", "dynamic load y, constant speed (rival)"),
-        **error_budget(chain, limit, dominated),
+        **budget,
     }
 
 
-def error_budget(chain: Chain, limit: int, dominated: bool) -> dict:
+def error_budget(chain: Chain, beyond_roundoff_limit: bool) -> dict:
     """Round-off bound and truncation estimate of one load sample, the round-off limit of K and
-    whether this K is beyond it (:mod:`.difference`)."""
+    whether this K is beyond it (:mod:`.difference`); refused unless allowed."""
+    limit = chain.roundoff_limit()
+    dominated = check_roundoff(chain.K, limit, beyond_roundoff_limit)
     K = chain.K
     truncation = max(truncation_load(T / K, J)
                      for T, J in zip(chain.stage_times(), chain.load_jerk_max()))
