@@ -100,13 +100,9 @@ ax[0].legend(fontsize=7)
 red = fam["family_member_reduction"].values
 built = fam["family_member_buildable"].values == 1.0
 P = R.cfg.raw["parameters"]
-with np.errstate(invalid="ignore"):   # buildable with the guide rod out of the cut's plane
-    oop = (np.isfinite(fam["family_member_tilt"].values)
-           & (fam["family_member_joint_height"].values >= P["plate_thickness_max"]["value"])
-           & (fam["family_member_mu_min"].values >= P["transmission_min"]["value"])
-           & (fam["family_member_mu_max"].values <= 180 - P["transmission_min"]["value"])
-           & (fam["family_member_rise"].values <= P["opening"]["value"])
-           & (fam["family_member_open_mu"].values >= P["transmission_min"]["value"]) & ~built)
+oop = V.buildable_members(fam, clearance=P["clearance"]["value"], mu_min=P["transmission_min"]["value"],
+                          plate_top=P["plate_thickness_max"]["value"],
+                          opening=P["opening"]["value"])["out_of_plane"] & ~built   # only out of plane
 car = fam["family_member_carrier_constants"].values.astype(str)
 eq8 = fam["family_member_eq8_reading"].values.astype(str)
 bins = np.arange(-60, 50, 2.5)

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from mechrepro.models.rolling_shear import blade, loops, optimise, pose, stroke
-from mechrepro.models.rolling_shear.branch import in_ranges, on_design_branch
+from mechrepro.models.rolling_shear.loops import in_ranges, on_design_branch
 from mechrepro.models.rolling_shear.design import design
 from mechrepro.models.rolling_shear.geometry import cut_points, with_intent
 

@@ -8,7 +8,7 @@ import pytest
 from mechrepro.models.rolling_shear import loops, optimise, pose, stroke
 
 from mechrepro.solve import solve
-from mechrepro.models.rolling_shear.branch import in_ranges, on_design_branch
+from mechrepro.models.rolling_shear.loops import in_ranges, on_design_branch
 from mechrepro.models.rolling_shear.geometry import cut_points
 from mechrepro.models.rolling_shear.loops import NonAssembly
 from mechrepro.models.rolling_shear.selpso import SelPSOSettings, selpso

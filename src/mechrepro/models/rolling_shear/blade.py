@@ -27,14 +27,6 @@ def M20(g: Geometry, theta5: float, theta6: float) -> np.ndarray:
                      [0.0, 0.0, 1.0]])
 
 
-def M20_printed(g: Geometry, theta5: float, theta6: float) -> np.ndarray:
-    """Eq. (4) exactly as printed (rotation -theta5); kept only to test the convention."""
-    c, s = np.cos(theta5), np.sin(theta5)
-    return np.array([[c, s, g.l6 * np.cos(theta6)],
-                     [-s, c, g.l6 * np.sin(theta6)],
-                     [0.0, 0.0, 1.0]])
-
-
 def to_fixed(g: Geometry, theta5, theta6, x1, y1):
     """Eq. (4) for arrays of poses (:func:`.closure.to_fixed`, = M20 @ M12 @ p)."""
     from .closure import python

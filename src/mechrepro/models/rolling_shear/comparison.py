@@ -10,8 +10,7 @@ from mechrepro.units import var
 from . import stroke
 from .context import Context
 from .continuation import solve_continuation
-from .trajectory import horizontal_displacement
-from .motion_laws import pose_error
+from .motion_laws import horizontal_displacement, pose_error
 
 #: the comparison methods and the salt of their random stream
 METHOD_STREAMS = {"selpso": 1, "cold_root": 2, "least_squares": 3, "warm_root": 7,

@@ -52,15 +52,19 @@ def open_pose(g: Geometry, opening: float) -> np.ndarray | None:
     return q
 
 
-def dyad_transmission(g: Geometry, theta5, theta6) -> np.ndarray:
-    """Worst min(mu, 180 - mu) (deg) of both dyads of Eq. (9) at each pose, mu the angle
-    between crank and rod at the crank tip; NaN where a dyad does not close."""
+def dyad_transmission(g: Geometry, theta5, theta6, levers=None) -> np.ndarray:
+    """Worst min(mu, 180 - mu) (deg) of both dyads of Eq. (9), mu the crank-rod angle at the
+    crank tip, at each pose, or at one pose for each lever set ``levers`` (m, 4: l1, l3, l5,
+    l10); NaN where a dyad does not close."""
     from .closure import python
 
-    A, G = pivots(g)
-    P = carrier_points(g, np.atleast_1d(theta5), np.atleast_1d(theta6))
-    worst = np.full(np.shape(P["D"]), np.inf)
-    for piv, joint, rp, rq, e in ((A, P["C"], g.l1, g.l3, g.elbow1), (G, P["I"], g.l2, g.l4, g.elbow2)):
+    l1, l3, l5, l10 = (g.l1, g.l3, g.l5, g.l10) if levers is None else levers.T
+    t5, t6 = np.atleast_1d(theta5), np.atleast_1d(theta6)
+    D = g.l6 * np.exp(1j * t6)
+    C, I = D + g.l8 * np.exp(1j * (t5 + g.alpha)), D + l5 * np.exp(1j * t5)
+    A, G = -l10 - g.l9 + 1j * g.l11, -l10 + 1j * g.l11
+    worst = np.inf
+    for piv, joint, rp, rq, e in ((A, C, l1, l3, g.elbow1), (G, I, g.l2, g.l4, g.elbow2)):
         with np.errstate(invalid="ignore"):
             x, y, _ = python.dyad_joint(piv.real, piv.imag, joint.real, joint.imag, rp, rq, e)
             tip = x + 1j * y

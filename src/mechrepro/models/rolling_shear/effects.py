@@ -56,7 +56,7 @@ def initial_values(ctx) -> dict:
     """Fig. 12: selPSO fitness G of Eq. (9) against the iterations at mid-cut from each of
     ``options.initial_values``."""
     from . import pose as pose_mod
-    from .branch import in_ranges, on_design_branch
+    from .loops import in_ranges, on_design_branch
     from .selpso import selpso
     from .stroke import loops_fitness
 

@@ -7,9 +7,8 @@ import math
 import numpy as np
 
 from .blade import lowest_point
-from .branch import on_design_branch
 from .geometry import Geometry
-from .loops import NonAssembly, residuals
+from .loops import NonAssembly, on_design_branch, residuals
 
 
 def _jacobian(g: Geometry, t3, t4, t5, t6) -> np.ndarray:

@@ -17,14 +17,13 @@ from mechrepro.errors import Refusal
 from mechrepro.units import var
 
 from . import closure, optimise
-from .branch import RANGES
-from .constraints import open_pose
+from .constraints import dyad_transmission, open_pose
 from .constraints import settings as constraint_settings
 from .context import Context
 from .design import Unreachable
 from .geometry import OPTIMISED_LEVERS, cut_points
-from .loops import NonAssembly
-from .trajectory import synthetic_horizontal_displacement
+from .loops import RANGES, NonAssembly
+from .motion_laws import synthetic_horizontal_displacement
 
 #: the four levers sampled at each l6 (OPTIMISED_LEVERS without l6)
 OTHERS = ("l1", "l3", "l5", "l10")
@@ -62,27 +61,8 @@ def dyad_metrics(g, poses: np.ndarray, levers: np.ndarray, open_q=None) -> dict:
     out = {"assembles": ok & np.isfinite(worst), "mu_worst": np.where(ok, worst, np.nan),
            "mu_min": mu_lo, "mu_max": mu_hi, "joint_height": height}
     out["open_mu"] = (np.full(levers.shape[0], np.nan) if open_q is None
-                      else _open_transmission(g, open_q, levers))
+                      else dyad_transmission(g, open_q[0], open_q[1], levers))
     return out
-
-
-def _open_transmission(g, q, levers: np.ndarray) -> np.ndarray:
-    """Worst min(mu, 180 - mu) (deg) of both dyads at the open pose ``q`` per lever set (NaN where
-    a dyad does not close)."""
-    l1, l3, l5, l10 = (levers[:, k] for k in range(4))
-    D = g.l6 * np.exp(1j * q[1])
-    C = D + g.l8 * np.exp(1j * (q[0] + g.alpha))
-    I = D + l5 * np.exp(1j * q[0])
-    A, G = -l10 - g.l9 + 1j * g.l11, -l10 + 1j * g.l11
-    worst = np.full(levers.shape[0], np.inf)
-    for P, Q, rp, rq, e in ((A, np.full_like(A, C), l1, l3, g.elbow1), (G, I, g.l2, g.l4, g.elbow2)):
-        with np.errstate(invalid="ignore"):
-            x, y, _ = closure.python.dyad_joint(P.real, P.imag, Q.real, Q.imag, rp, rq, e)
-            B = x + 1j * y
-            mu = np.degrees(np.abs(np.angle((P - B) / (Q - B))))
-            worst = np.fmin(worst, np.minimum(mu, 180.0 - mu))
-        worst[~np.isfinite(x)] = np.nan
-    return worst
 
 
 def stroke_of(g, n: int, tol: float, opening: float | None):

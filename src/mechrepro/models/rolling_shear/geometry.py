@@ -7,7 +7,6 @@ D = E + l6 e^{i theta6}, I = D + l5 e^{i theta5}, C = D + l8 e^{i(theta5 + alpha
 origin O = D + d e^{i(theta5 + beta1)}, blade angle beta = theta5 - beta2."""
 from __future__ import annotations
 
-import math
 from dataclasses import asdict, dataclass, replace
 from functools import cached_property, lru_cache
 

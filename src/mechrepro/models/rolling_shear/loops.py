@@ -5,7 +5,8 @@
     b3 = l2 cos t2 - l4 cos t4 - l5 cos t5 - l6 cos t6 - l10
     b4 = l2 sin t2 - l4 sin t4 - l5 sin t5 - l6 sin t6 + l11
 
-Each loop is a dyad with a closed-form solution (:func:`dyad`), the reference."""
+Each loop is a dyad with a closed-form solution (:func:`dyad`), the reference; the paper's
+angle ranges and the design assembly branch."""
 from __future__ import annotations
 
 import math
@@ -117,3 +118,32 @@ def dyad_margins(g: Geometry, theta5, theta6) -> np.ndarray:
     m1 = np.minimum(g.l1 + g.l3 - L1, L1 - abs(g.l1 - g.l3))
     m2 = np.minimum(g.l2 + g.l4 - L2, L2 - abs(g.l2 - g.l4))
     return np.stack([m1, m2], axis=-1)
+
+
+TWO_PI = 2.0 * math.pi
+#: the paper's ranges, order theta1..theta6 (lower, upper)
+RANGES = ((math.pi, TWO_PI), (math.pi, TWO_PI), (0.0, math.pi), (0.0, math.pi),
+          (0.0, math.pi), (math.pi, TWO_PI))
+
+
+def wrap(theta):
+    return np.mod(np.asarray(theta, float), TWO_PI)
+
+
+def in_ranges(theta6, which=range(6)) -> bool:
+    """theta (6,) (theta1..theta6) inside the paper's ranges, angles taken mod 2 pi."""
+    t = wrap(theta6)
+    return all(RANGES[i][0] <= t[i] <= RANGES[i][1] for i in which)
+
+
+def on_design_branch(g: Geometry, theta6) -> bool:
+    """The paper's ranges (Sec. 3.1) and the design assembly modes of the guide rod and both
+    dyads: the ranges alone do not separate the guide rod's two modes nor the mirror modes of
+    the dyad l1 = l3, and the machine cannot change mode without passing a toggle."""
+    t = wrap(theta6)
+    if not in_ranges(t):
+        return False
+    if g.guide_mode * math.cos(t[5]) <= 0:
+        return False
+    e1, e2 = elbow_signs(g, t[:4], t[4], t[5])
+    return e1 == g.elbow1 and e2 == g.elbow2

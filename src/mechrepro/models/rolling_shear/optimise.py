@@ -17,12 +17,11 @@ from mechrepro.timing import phase
 
 from . import closure, kernels, newton
 from . import pose as pose_mod
-from .branch import RANGES
 from .geometry import OPTIMISED_LEVERS, Geometry, cut_points
 from .design import Unreachable
-from .loops import NonAssembly, pivots
+from .loops import RANGES, NonAssembly, pivots
 from .selpso import SelPSOSettings, selpso
-from .trajectory import synthetic_horizontal_displacement
+from .motion_laws import synthetic_horizontal_displacement
 
 PENALTY = 1.0e4  # mm, far above any feasible objective
 #: how clearly (rad; relative, on the squared dyad height) the compiled assembly check must

@@ -2,6 +2,8 @@
 lever_optimisation, family_scan, design_front), its effects and the run's variables."""
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from mechrepro.units import var
@@ -9,16 +11,60 @@ from mechrepro.units import var
 from .comparison import solve_method_comparison
 from .context import Context, Refused
 from .continuation import solve_continuation
-from .dataset import geometry_outputs
-from .dataset import variables as _variables
 from .effects import EFFECTS
 from .family import solve_family_scan
+from .geometry import GEOMETRY_KEYS, OPTIMISED_LEVERS
+from .motion_laws import ANGLE_NAMES
 from .front import solve_design_front
 from .lever_optimisation import solve_lever_optimisation
 
 SOLVERS = {"continuation": solve_continuation, "method_comparison": solve_method_comparison,
            "lever_optimisation": solve_lever_optimisation, "family_scan": solve_family_scan,
            "design_front": solve_design_front}
+
+
+def geometry_outputs(ctx: Context) -> dict:
+    """The constants of the run's geometry (after calibration and the scene's lever set)
+    and its calibration (mm, rad)."""
+    g = ctx.g
+    out = {f"geometry_{k}": var((), getattr(g, k), "rad" if k in ("alpha", "beta1", "beta2") else "mm",
+                                f"constant {k} of the run's geometry")
+           for k in GEOMETRY_KEYS}
+    out["geometry_tilt"] = var((), dict(ctx.g_original.intents)["theta6_mid"] - math.pi, "rad",
+                               "guide-rod tilt at mid-cut, theta6_mid - pi (calibrated if the run calibrates)")
+    if ctx.calibration is not None:
+        n = ctx.calibration["n"]
+        out["calibrated_H_original"] = var(
+            (), ctx.calibration["H_original"], "mm",
+            f"synthetic horizontal displacement of the original levers after calibration, {n} cut points")
+        if "H_levers" in ctx.calibration:
+            out["calibrated_H_levers"] = var(
+                (), ctx.calibration["H_levers"], "mm",
+                f"synthetic horizontal displacement of the scene's levers, {n} cut points")
+    return out
+
+
+def _variables(result: dict, run: dict) -> dict:
+    """The run's variables: the solver's outputs and their coordinates."""
+    ctx: Context = result["ctx"]
+    data = result["data"]
+    coords = {
+        "cut": var("cut", np.arange(ctx.n), "1", "cut point index"),
+        "huch": var("cut", ctx.huch, "mm", "rolled length from the start of the cut"),
+        "x_k_target": var("cut", ctx.x_k, "mm", "prescribed x of the lowest point on y = -s"),
+        "angle": var("angle", list(ANGLE_NAMES), "1", "unknown angle"),
+        "lever": var("lever", list(OPTIMISED_LEVERS), "1", "optimised lever"),
+        "loop": var("loop", ["ABCD", "GHID"], "1", "dyad of Eq. (9)"),
+    }
+    used = {d for dims, *_ in data.values() for d in dims}
+    out = {k: v for k, v in coords.items() if v[0][0] in used or k in ("cut", "huch", "x_k_target")}
+    out |= {d: var(d, np.arange(np.shape(v[1])[v[0].index(d)]), "1", f"{d} index")
+            for v in data.values() for d in v[0] if d not in out}
+    return out | data | {
+        "length_unit": "mm",
+        "pose_tol_used": var((), ctx.settings.tol_pose, "mm", "tolerance on G of Eq. (7)"),
+        "loops_tol_used": var((), ctx.settings.tol_loops, "mm", "tolerance on G of Eq. (9)"),
+        "blade_radius": var((), ctx.g.R, "mm", "blade arc radius R")}
 
 
 def compute(run: dict) -> dict:

@@ -13,19 +13,15 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import least_squares, root
 
-from mechrepro.timing import mean_time, phase, time_call
+from mechrepro.timing import mean_time, phase
 
 from . import closure, kernels
 from . import loops as loops_mod
 from . import newton
 from . import pose as pose_mod
-from .branch import in_ranges, on_design_branch, wrap
 from .geometry import Geometry
-from .loops import NonAssembly
+from .loops import NonAssembly, in_ranges, on_design_branch, wrap
 from .selpso import KernelFitness, SelPSOSettings, selpso
-
-METHODS = ("newton", "selpso", "pso_standard", "cold_root", "least_squares", "warm_root", "warm_least_squares",
-           "exact")
 
 
 @dataclass

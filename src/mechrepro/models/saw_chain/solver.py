@@ -12,7 +12,7 @@ from .difference import check_roundoff, difference_arrays, roundoff_load, trunca
 from .effects import EFFECTS, Context
 from .kinematics import stage_positions
 
-__all__ = ["EFFECTS", "Chain", "chain_from_run", "compute", "constant_speed", "difference_method", "solve",
+__all__ = ["EFFECTS", "Chain", "chain_from_run", "compute", "constant_speed", "difference_method",
            "stage_switch_index", "variables"]
 
 #: the difference method's outputs and the reference's contribution each is compared with
