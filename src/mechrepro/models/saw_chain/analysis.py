@@ -75,25 +75,21 @@ def load_extreme_at(chain: Chain, K: int, fn=np.max) -> float:
     return float(fn(load_x(replace(chain, K=int(K)))))
 
 
-def load_max_at(chain: Chain, K: int) -> float:
-    return load_extreme_at(chain, K, np.max)
-
-
 def equivalent_K(chain: Chain, target: float):
     """Smallest K whose load maximum reaches ``target``, by bisection on the solver (the maximum
     rises monotonically with K).  Returns (K, max at K - 1, max at K); K None if not reached
     below the round-off limit."""
     lo, hi = 2, chain.roundoff_limit()
-    f_lo, f_hi = load_max_at(chain, lo), load_max_at(chain, hi)
+    f_lo, f_hi = load_extreme_at(chain, lo), load_extreme_at(chain, hi)
     if not (f_lo < target <= f_hi):
         return None, f_lo, f_hi
     while hi - lo > 1:
         mid = (lo + hi) // 2
-        if load_max_at(chain, mid) >= target:
+        if load_extreme_at(chain, mid) >= target:
             hi = mid
         else:
             lo = mid
-    return hi, load_max_at(chain, hi - 1), load_max_at(chain, hi)
+    return hi, load_extreme_at(chain, hi - 1), load_extreme_at(chain, hi)
 
 
 def pitch_radius_readings(p1, p2, z):

@@ -1,7 +1,7 @@
 """The chain of one run: geometry, masses and the time grid of one period (Eqs. 1-6)."""
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, fields, replace
 from functools import lru_cache
 
 import numpy as np
@@ -23,6 +23,10 @@ class Design:
     m_C: float
     M: int
     N: int
+
+    def inputs(self) -> dict:
+        """The printed inputs by name, as :func:`.design.design_quantities` takes them."""
+        return {f.name: getattr(self, f.name) for f in fields(Design)}
 
 
 @dataclass(frozen=True)

@@ -28,35 +28,31 @@ class Context:
     parameters: dict | None = None
 
 
+def period_vars(suffix: str, how: str, v, a=None, Fx=None, Fy=None) -> dict:
+    """The period's tight-side velocity, acceleration and loads (those given) as variables
+    ``<quantity><suffix>`` on the time grid, described by ``how``."""
+    spec = (("tight_side_velocity", v, "m/s", "tight-side velocity"),
+            ("tight_side_acceleration", a, "m/s2", "tight-side acceleration"),
+            ("dynamic_load_x", Fx, "N", "total tight-side dynamic load x"),
+            ("dynamic_load_y", Fy, "N", "dynamic load y of the seating link"))
+    return {q + suffix: var("t", x, u, f"{d}, {how}") for q, x, u, d in spec if x is not None}
+
+
 @EFFECTS.register("exact_reference")
 def exact_reference(ctx: Context) -> dict:
     """Velocity, acceleration and loads from the exact derivatives of Eqs. (7)-(10) (of the
     rival's positions, linear in time, when the polygon effect is off)."""
     chain = ctx.chain
     if not ctx.polygon:
-        v, zero = np.full(ctx.t.size, chain.chain_speed), np.zeros(ctx.t.size)
-        return {"tight_side_velocity_exact": var("t", v, "m/s", "tight-side velocity, exact (constant speed)"),
-                "tight_side_acceleration_exact": var("t", zero, "m/s2",
-                                                     "tight-side acceleration, exact (constant speed)"),
-                "dynamic_load_x_exact": var("t", zero.copy(), "N",
-                                            "total tight-side dynamic load x, exact (constant speed)"),
-                "dynamic_load_y_exact": var("t", zero.copy(), "N",
-                                            "dynamic load y of the seating link, exact (constant speed)")}
+        zero = np.zeros(ctx.t.size)
+        return period_vars("_exact", "exact (constant speed)", np.full(ctx.t.size, chain.chain_speed),
+                           zero, zero.copy(), zero.copy())
     vx, ax, Fx, Fy = [], [], [], []
     for L, m_link, phi in chain.stages():
         d = stage_derivatives(phi, chain.R, L, chain.omega)
         fx, fy = dynamic_load(m_link, d["mid_ax"], d["mid_ay"], chain.m_tight, d["trail_ax"])
         vx.append(d["trail_vx"]), ax.append(d["trail_ax"]), Fx.append(fx), Fy.append(fy)
-    return {
-        "tight_side_velocity_exact": var("t", join_stages(*vx), "m/s",
-                                         "tight-side velocity, exact derivative"),
-        "tight_side_acceleration_exact": var("t", join_stages(*ax), "m/s2",
-                                             "tight-side acceleration, exact derivative"),
-        "dynamic_load_x_exact": var("t", join_stages(*Fx), "N",
-                                    "total tight-side dynamic load x, exact derivative"),
-        "dynamic_load_y_exact": var("t", join_stages(*Fy), "N",
-                                    "dynamic load y of the seating link, exact derivative"),
-    }
+    return period_vars("_exact", "exact derivative", *(join_stages(*x) for x in (vx, ax, Fx, Fy)))
 
 
 @EFFECTS.register("textbook")
@@ -65,12 +61,7 @@ def textbook(ctx: Context) -> dict:
     chain = ctx.chain
     v, a, F = textbook_velocity_load(ctx.t, chain.R, chain.omega, ctx.textbook_phase,
                                      ctx.textbook_mass)
-    return {
-        "tight_side_velocity_textbook": var("t", v, "m/s", "tight-side velocity, textbook Eq. (23)"),
-        "tight_side_acceleration_textbook": var("t", a, "m/s2",
-                                                "tight-side acceleration, textbook Eq. (23)"),
-        "dynamic_load_x_textbook": var("t", F, "N", "dynamic load, textbook Eq. (23)"),
-    }
+    return period_vars("_textbook", "textbook Eq. (23)", v, a, F)
 
 
 @EFFECTS.register("identification")
@@ -80,7 +71,7 @@ def identification(ctx: Context) -> dict:
     from . import identification as idf
 
     p, ch = ctx.parameters, ctx.chain
-    design = Design(ch.p1, ch.p2, ch.z, ch.omega, ch.m_L, ch.m_C, ch.M, ch.N)
+    design = Design(**ch.inputs())
     paper = np.array([*p["identification_velocities"], *p["identification_loads"]], float)
     s0, s1, ds = p["identification_scan_speed"]
     e0, e1, de = p["identification_scan_stretch"]
@@ -107,7 +98,7 @@ def design_maps(ctx: Context) -> dict:
     from . import design
 
     ch = ctx.chain
-    base = dict(p1=ch.p1, p2=ch.p2, z=ch.z, omega=ch.omega, m_L=ch.m_L, m_C=ch.m_C, M=ch.M, N=ch.N)
+    base = ch.inputs()
     speeds = MAP_SPEEDS_RPM * np.pi / 30
     d = design.design_maps(base, MAP_TEETH, MAP_RATIOS, speeds, MAP_LINKS, RULE_TEETH, RULE_RATIOS)
     units = {"peak_load": "N", "speed_fluctuation": "1", "textbook_error": "1"}
@@ -152,7 +143,7 @@ def richardson_levels(ctx: Context) -> dict:
     from .difference import load_x
 
     ch = ctx.chain
-    exact = float(rule_peak_load(ch.p1, ch.p2, ch.z, ch.omega, ch.m_L, ch.m_C, ch.M, ch.N))
+    exact = float(rule_peak_load(**ch.inputs()))
     Ks = RICHARDSON_K[RICHARDSON_K <= ch.roundoff_limit()]
     plain = np.array([float(load_x(replace(ch, K=int(k))).max()) for k in Ks])
     nan = np.full(Ks.size, np.nan)

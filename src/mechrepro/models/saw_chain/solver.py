@@ -9,7 +9,7 @@ from mechrepro.units import var
 
 from .chain import Chain, chain_from_run
 from .difference import check_roundoff, difference_arrays, roundoff_load, truncation_load
-from .effects import EFFECTS, Context
+from .effects import EFFECTS, Context, period_vars
 from .kinematics import stage_positions
 
 __all__ = ["EFFECTS", "Chain", "chain_from_run", "compute", "constant_speed", "difference_method",
@@ -67,19 +67,13 @@ def constant_speed(chain: Chain, loads: bool = True, beyond_roundoff_limit: bool
     """The rival without the polygon effect (``options.polygon: false``): the pitch-line speed
     :attr:`.Chain.chain_speed` everywhere, zero acceleration and load (round-off left out, so
     the rival does not depend on the CPU); K is refused as in the method."""
-    n = 2 * chain.K + 1
-    v = var("t", np.full(n, chain.chain_speed), "m/s", "tight-side velocity, constant speed (rival)")
+    n, how = 2 * chain.K + 1, "constant speed (rival)"
+    v = np.full(n, chain.chain_speed)
     if not loads:
-        return {"tight_side_velocity": v, **velocity_budget(chain, beyond_roundoff_limit)}
-    budget = error_budget(chain, beyond_roundoff_limit)
+        return {**period_vars("", how, v), **velocity_budget(chain, beyond_roundoff_limit)}
     zero = np.zeros(n)
-    return {
-        "tight_side_velocity": v,
-        "tight_side_acceleration": var("t", zero, "m/s2", "tight-side acceleration, constant speed (rival)"),
-        "dynamic_load_x": var("t", zero, "N", "total tight-side dynamic load x, constant speed (rival)"),
-        "dynamic_load_y": var("t", zero.copy(), "N", "dynamic load y, constant speed (rival)"),
-        **budget,
-    }
+    return {**period_vars("", how, v, zero, zero.copy(), zero.copy()),
+            **error_budget(chain, beyond_roundoff_limit)}
 
 
 def error_budget(chain: Chain, beyond_roundoff_limit: bool) -> dict:
