@@ -248,10 +248,7 @@ for k, name in ((1, "fig13"), (2, "fig14")):
 # ## Table II and the lever scans: which levers the objective determines
 
 # %%
-header, rows2 = V.table2(orig, popt, opt)
-R.write_table("table2", header, rows2)
-for r in rows2:
-    print(r)
+R.write_table("table2", *V.table2(orig, popt, opt))
 R.write_table("lever_scan", *V.lever_scan(opt))
 
 # %% [markdown]
@@ -304,17 +301,12 @@ ax[1].legend(h1 + h2, l1_ + l2_, fontsize=7, loc="upper right")
 fig.tight_layout(rect=(0, 0.1, 1, 1))
 R.save_figure(fig, "design_front")
 R.write_table("design_front", *V.design_front(des, strict=strict, **cons))
-for r in V.design_front(des, strict=strict, **cons)[1]:
-    print(r)
 
 # %% [markdown]
 # ## Solver comparison
 
 # %%
-header, rows3 = V.solver_comparison(comp)
-R.write_table("solver_comparison", header, rows3)
-for r in rows3:
-    print(r)
+R.write_table("solver_comparison", *V.solver_comparison(comp))
 
 # %% [markdown]
 # ## selPSO's branch benchmark: success against the initial spread

@@ -144,12 +144,12 @@ def _bracket_floor(betas, j):
 
 
 @jit
-def guide_pose(c, betas, f, dx, known, x_target, guide_mode, margin, xtol, rtol, max_iter):
+def guide_pose(c, betas, f, dx, x_target, guide_mode, margin, xtol, rtol, max_iter):
     """The pose of :func:`.pose.exact_pose`: :func:`guide_brent` in every bracket of |ED| - l6
     (``f``) over ``betas`` not clearly (``margin``) in the guide rod's other mode, and of the roots
     in the paper's ranges the one with the smallest (|beta|, theta5, theta6).  Brackets are
-    visited outwards from beta = 0 and only while they can hold a smaller |beta|; unless
-    ``known``, f and dx are filled in as reached.  Returns (found, theta5, theta6, status)."""
+    visited outwards from beta = 0 and only while they can hold a smaller |beta|; f and the x of
+    D (``dx``) are filled in as reached.  Returns (found, theta5, theta6, status)."""
     p = record(c)
     two_pi = 2 * math.pi
     nb = betas.size - 1
@@ -158,10 +158,9 @@ def guide_pose(c, betas, f, dx, known, x_target, guide_mode, margin, xtol, rtol,
         if _bracket_floor(betas, j) < _bracket_floor(betas, lo):
             lo = j
     hi = lo
-    if not known:                                # points scanned: lo .. hi + 1
-        for i in (lo, lo + 1):
-            dx[i], dy = guide_point(p, betas[i], x_target)
-            f[i] = abs(complex(dx[i], dy)) - p.l6
+    for i in (lo, lo + 1):                       # points scanned: lo .. hi + 1
+        dx[i], dy = guide_point(p, betas[i], x_target)
+        f[i] = abs(complex(dx[i], dy)) - p.l6
     found, best, t5b, t6b = False, 0.0, 0.0, 0.0
     j = lo
     while True:
@@ -191,9 +190,8 @@ def guide_pose(c, betas, f, dx, known, x_target, guide_mode, margin, xtol, rtol,
         else:
             hi += 1
             j, i = hi, hi + 1
-        if not known:
-            dx[i], dy = guide_point(p, betas[i], x_target)
-            f[i] = abs(complex(dx[i], dy)) - p.l6
+        dx[i], dy = guide_point(p, betas[i], x_target)
+        f[i] = abs(complex(dx[i], dy)) - p.l6
 
 
 @jit

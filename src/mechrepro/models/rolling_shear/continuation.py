@@ -16,8 +16,7 @@ def newton_stroke(ctx: Context) -> tuple[stroke.StrokeSolution, dict]:
     """The warm-started Newton stroke and its outputs; raises NonAssembly.  Timed as the fastest
     of repeated strokes (one is too short to time alone)."""
     sol = stroke.solve_newton(ctx.g, ctx.x_k, ctx.settings)  # also warms the caches
-    _, wall = time_call(stroke.solve_newton, ctx.g, ctx.x_k, ctx.settings,
-                        min_time=float(ctx.options.get("newton_timing_s", 0.02)))
+    _, wall = time_call(stroke.solve_newton, ctx.g, ctx.x_k, ctx.settings, min_time=0.02)
     out = stroke_outputs(ctx.g, sol.theta, "newton", "warm-started Newton")
     out.update(driving_laws_on_grid(ctx.huch, sol.theta, ctx.g.width, "newton",
                                     "warm-started Newton"))

@@ -7,7 +7,7 @@ D = E + l6 e^{i theta6}, I = D + l5 e^{i theta5}, C = D + l8 e^{i(theta5 + alpha
 origin O = D + d e^{i(theta5 + beta1)}, blade angle beta = theta5 - beta2."""
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, replace
+from dataclasses import dataclass, replace
 from functools import cached_property, lru_cache
 
 import numpy as np
@@ -75,9 +75,6 @@ class Geometry:
 
     def levers(self, names=OPTIMISED_LEVERS) -> tuple[float, ...]:
         return tuple(getattr(self, n) for n in names)
-
-    def as_dict(self) -> dict:
-        return asdict(self)
 
 
 INTENT_LENGTHS = ("l1", "l3", "l5", "l6", "l9", "l10", "s", "h", "R", "y_joint", "blade_offset",

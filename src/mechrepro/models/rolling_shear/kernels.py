@@ -42,5 +42,4 @@ def warm(runs=None) -> None:
     closure.assembles_clearly(c, z2, 1e-9)
     betas = np.zeros(2)
     betas.setflags(write=False)   # the scan grid of pose.exact_pose is read-only
-    closure.guide_pose(c, betas, np.zeros(2), np.zeros(2), False, 0.0, -1.0, 0.0, 1e-15,
-                       1e-15, 1)
+    closure.guide_pose(c, betas, np.zeros(2), np.zeros(2), 0.0, -1.0, 0.0, 1e-15, 1e-15, 1)

@@ -61,11 +61,6 @@ ANGLE_NAMES = ("theta1", "theta2", "theta3", "theta4", "theta5", "theta6")
 LAW_GRID = 4097
 
 
-def angle_vars(prefix: str, theta: np.ndarray, what: str) -> dict:
-    return {f"{prefix}_{n}": var("cut", theta[:, j], "rad", f"{n}, {what}")
-            for j, n in enumerate(ANGLE_NAMES)}
-
-
 def stroke_outputs(g: Geometry, theta: np.ndarray, prefix: str, what: str) -> dict:
     """Motion laws, lowest points (Eq. 7), midpoints (Eq. 5), trajectory 1 (Eq. 8), H and the
     dyad margins of one stroke."""
@@ -75,7 +70,8 @@ def stroke_outputs(g: Geometry, theta: np.ndarray, prefix: str, what: str) -> di
     beta = t5 - g.beta2
     x1, y1 = trajectory1_for(g, beta, xk)
     dx = horizontal_displacement(g, beta, xk)
-    out = angle_vars(prefix, theta, what)
+    out = {f"{prefix}_{n}": var("cut", theta[:, j], "rad", f"{n}, {what}")
+           for j, n in enumerate(ANGLE_NAMES)}
     out.update({
         f"{prefix}_x_k": var("cut", xk, "mm", f"dynamic lowest point x_k, Eq. (7), {what}"),
         f"{prefix}_y_k": var("cut", yk, "mm", f"dynamic lowest point y_k, Eq. (7), {what}"),

@@ -19,17 +19,6 @@ def residuals(g: Geometry, th, x_target: float):
     return stacked([xk - x_target, yk + g.s])
 
 
-def _guide_distance_scan(g: Geometry, betas: np.ndarray, x_target: float) -> tuple:
-    """(|ED(beta)| - l6, x of D) on the scan grid in numpy; values within 1e-6 mm of zero are
-    recomputed by the scalar :func:`.closure.guide_distance`, so the brackets are the compiled
-    scan's."""
-    dx, dy = closure.python.guide_point(g, betas, x_target)
-    f = np.hypot(dx, dy) - g.l6
-    for i in np.nonzero(np.abs(f) < 1e-6)[0]:
-        f[i] = closure.python.guide_distance(g, float(betas[i]), float(x_target))
-    return f, dx
-
-
 #: Brent's relative tolerance (scipy's least)
 RTOL = 4 * np.finfo(float).eps
 
@@ -47,17 +36,13 @@ def exact_pose(g: Geometry, x_target: float, beta_window: float = 0.3, n_scan: i
     over |beta| <= beta_window in the paper's ranges with the smallest |beta|; raises
     NonAssembly when none qualifies."""
     betas, step2 = _scan_grid(float(beta_window), int(n_scan))
-    k = kernels.chosen()
-    if k is closure:
-        f, dx, known = np.empty_like(betas), np.empty_like(betas), False
-    else:
-        (f, dx), known = _guide_distance_scan(g, betas, x_target), True
     # a root between two grid points where D lies clearly on the other side of E (the
     # other assembly mode of the guide rod) cannot qualify: x of D is within
     # (|R - h| + d) (d beta)^2 / 8 of the chord between the grid points, so it keeps its sign
     margin = (abs(g.R - g.h) + g.d) * step2
-    found, t5, t6, status = k.guide_pose(g.constants, betas, f, dx, known, float(x_target),
-                                         float(g.guide_mode), float(margin), 1e-15, RTOL, 200)
+    found, t5, t6, status = kernels.kernel("guide_pose")(
+        g.constants, betas, np.empty_like(betas), np.empty_like(betas), float(x_target),
+        float(g.guide_mode), float(margin), 1e-15, RTOL, 200)
     if status == closure.NO_CONVERGENCE:
         raise RuntimeError(f"Brent's method did not converge in 200 iterations (x_k = {x_target})")
     if status != closure.CONVERGED:
