@@ -201,9 +201,7 @@ def lever_box(ctx: Context) -> np.ndarray:
 
 def solve_design_front(run: dict, ctx: Context) -> dict:
     cs = constraint_settings(ctx.p)
-    cons = dict(clearance=cs["clearance"], plate_top=cs["plate_top"],
-                mu_min=math.degrees(cs["mu_min"]), opening=cs["opening"],
-                guide_rod_plane=cs["guide_rod_plane"])
+    cons = dict(cs, mu_min=math.degrees(cs["mu_min"]))
     box = lever_box(ctx)
     res = search(ctx.g_original, ctx.n, ctx.tol_floor, box, cons,
                  l6_points=int(ctx.res["front_l6_points"]), samples=int(ctx.res["front_samples"]),

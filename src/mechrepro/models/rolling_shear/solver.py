@@ -8,9 +8,8 @@ import numpy as np
 
 from mechrepro.units import var
 
-from .comparison import solve_method_comparison
 from .context import Context, Refused
-from .continuation import solve_continuation
+from .continuation import solve_continuation, solve_method_comparison
 from .effects import EFFECTS
 from .family import solve_family_scan
 from .geometry import GEOMETRY_KEYS, OPTIMISED_LEVERS
