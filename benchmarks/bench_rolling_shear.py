@@ -121,7 +121,7 @@ PATHS = r"""
 import json, math, sys, time
 import numpy as np
 from mechrepro.config import load_paper
-from mechrepro.models.rolling_shear import closure, kernels, newton, optimise, pose, stroke
+from mechrepro.models.rolling_shear import closure, kernels, optimise, pose, stroke
 from mechrepro.models.rolling_shear.geometry import cut_points, from_parameters
 from mechrepro.models.rolling_shear.selpso import SelPSOSettings, selpso
 assert closure.available()
@@ -132,9 +132,9 @@ th = stroke.solve_exact(g, x_k).theta
 t5, t6 = th[16, 4], th[16, 5]
 st = SelPSOSettings(swarm=40, max_iter=300, v_max=1.0)
 paths = {
-    "newton.pose x33": lambda: [newton.pose(g, (th[i, 4] + 1e-3, th[i, 5] - 1e-3),
+    "newton.pose x33": lambda: [kernels.newton_pose(g, (th[i, 4] + 1e-3, th[i, 5] - 1e-3),
                                             float(x_k[i]), 1e-9) for i in range(33)],
-    "newton.loops x33": lambda: [newton.loops(g, th[i, :4] + 1e-3, th[i, 4], th[i, 5], 1e-11)
+    "newton.loops x33": lambda: [kernels.newton_loops(g, th[i, :4] + 1e-3, th[i, 4], th[i, 5], 1e-11)
                                  for i in range(33)],
     "stroke_poses": lambda: optimise.stroke_poses(g, x_k, 1e-9),
     "loops stroke x20": lambda: [stroke._newton_loops_stroke(g, th, stroke.SolverSettings())
@@ -244,7 +244,7 @@ OBJECTIVE_POINT = 6 * _T + 2 * (4 * _S + 2 * _T + 33) + 2 * _T + 10
 CAL_SCAN, CAL_BRENT, MEMBER_OBJECTIVES, MEMBER_EXACT = 4, 10, 22, 0.6
 #: the tilt scan effect: the 41 tilts less those the calibration scanned, at 33 cut points
 TILT_SCAN = 41 - CAL_SCAN
-#: the constant-rate drive (:func:`.forward.drive`) per cut point: ~3 Newton iterations on
+#: the constant-rate drive (:func:`.blade.drive`) per cut point: ~3 Newton iterations on
 #: Eq. (9) in 4 unknowns (residual 8 sin/cos, Jacobian 8, a 4 x 4 LU and solve ~60) and the
 #: lowest point (8 sin/cos)
 DRIVE_POINT = 3 * (16 * _T + 60 + 20) + 8 * _T + 10

@@ -119,7 +119,7 @@ def test_schema_rejects_bad_runs(edit_config, edit, expect):
 
 
 def test_forward_drive_with_reverse_solved_laws_reproduces_the_stroke(g):
-    from mechrepro.models.rolling_shear.forward import constant_rate_drive, drive
+    from mechrepro.models.rolling_shear.blade import constant_rate_drive, drive
 
     sol = stroke_exact(g, 17)
     th = drive(g, sol.theta[:, 0], sol.theta[:, 1], sol.theta[0])

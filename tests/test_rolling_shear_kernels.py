@@ -144,7 +144,7 @@ def test_newton_continuation_compiled_equals_numpy(monkeypatch):
     """The warm Newton stroke (Eqs. 7 and 9 per cut point) and a refused start."""
     from dataclasses import replace
 
-    from mechrepro.models.rolling_shear import newton
+    from mechrepro.models.rolling_shear import kernels
 
     g = geometry()
     x_k = cut_points(g, 33)[1]
@@ -153,8 +153,8 @@ def test_newton_continuation_compiled_equals_numpy(monkeypatch):
 
     def run():
         sol = stroke.solve_newton(g, x_k, settings)
-        bad = newton.loops(g, (0.0, 0.0, 0.0, 0.0), 4.0, 3.3, 1e-11, 3)   # no convergence
-        sing = newton.loops(replace(g, l3=g.l1), (1.0, 1.0, 1.0, 1.0), 2.0, 3.0, 1e-11)
+        bad = kernels.newton_loops(g, (0.0, 0.0, 0.0, 0.0), 4.0, 3.3, 1e-11, 3)   # no convergence
+        sing = kernels.newton_loops(replace(g, l3=g.l1), (1.0, 1.0, 1.0, 1.0), 2.0, 3.0, 1e-11)
         return (sol.theta, sol.fitness_pose, sol.fitness_loops, sol.iterations_loops,
                 bad.x, bad.fitness, bad.iterations, bad.reason, sing.reason)
 

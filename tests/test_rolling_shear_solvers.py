@@ -169,10 +169,10 @@ def test_hard_case_guide_rod_too_short_names_the_cut_point(g):
 
 
 def test_newton_singular_jacobian_is_reported_not_divided_by():
-    from mechrepro.models.rolling_shear import newton
+    from mechrepro.models.rolling_shear import kernels
     # at a toggle the 2x2 block is singular (crank and rod collinear): theta1 = theta3, the
     # block's det = l1 l3 sin(theta1 - theta3) is exactly 0
-    r = newton.loops(geometry(), (4.0, 4.3, 4.0, 2.5), 2.6, 3.3, 1e-11)
+    r = kernels.newton_loops(geometry(), (4.0, 4.3, 4.0, 2.5), 2.6, 3.3, 1e-11)
     assert not r.converged and "loop ABCD: singular" in r.reason and "GHID" not in r.reason
 
 

@@ -19,7 +19,7 @@ EFFECTS = EffectRegistry("rolling_shear")
 def constant_rate_drive(ctx) -> dict:
     """Fig. 9 contrast: both levers at a constant rate between the stroke's end positions;
     Eq. (9) forward, then Eq. (7)."""
-    from .forward import constant_rate_drive as drive
+    from .blade import constant_rate_drive as drive
 
     r = drive(ctx.g, ctx.stroke.theta)
     w = "both levers at a constant rate between the stroke's end positions"

@@ -15,7 +15,7 @@ from scipy.optimize import differential_evolution
 
 from mechrepro.timing import phase
 
-from . import closure, kernels, newton
+from . import closure, kernels
 from . import pose as pose_mod
 from .geometry import OPTIMISED_LEVERS, Geometry, cut_points
 from .design import Unreachable
@@ -37,14 +37,14 @@ def stroke_poses(g: Geometry, x_k, tol: float, max_iter: int = 30) -> np.ndarray
     x = np.ascontiguousarray(x_k, float)
     i, status, G, det = kernels.kernel("pose_stroke")(
         g.constants, x, float(guess[0]), float(guess[1]), float(tol), int(max_iter),
-        newton.SINGULAR_RTOL, float(g.guide_mode), out)
+        kernels.SINGULAR_RTOL, float(g.guide_mode), out)
     if status == closure.OFF_BRANCH:
         raise NonAssembly(f"cut point {i} (x_k = {float(x_k[i]):.6g} mm): blade pose leaves "
                           f"the guide rod's design branch (theta5 = {out[i, 0]:.4g}, "
                           f"theta6 = {out[i, 1]:.4g} rad)", int(i), float(x_k[i]))
     if i >= 0:
         raise NonAssembly(f"cut point {i} (x_k = {float(x[i]):.6g} mm): blade pose (Eq. 7) "
-                          f"did not converge: {newton.reason(status, det, max_iter)}",
+                          f"did not converge: {kernels.reason(status, det, max_iter)}",
                           int(i), float(x[i]))
     return out
 

@@ -17,7 +17,6 @@ from mechrepro.timing import mean_time, phase
 
 from . import closure, kernels
 from . import loops as loops_mod
-from . import newton
 from . import pose as pose_mod
 from .geometry import Geometry
 from .loops import NonAssembly, in_ranges, on_design_branch, wrap
@@ -100,9 +99,9 @@ def _continue(g, x_k, settings, guess, theta, fp, fl, it) -> None:
         # assembly mode) the previous solution; a point neither accepts raises
         guesses = [guess] if i == 0 else [guess, list(theta[i - 1])]
         for trial in guesses:
-            rp = newton.pose(g, (trial[4], trial[5]), xk, settings.tol_pose, settings.max_iter)
+            rp = kernels.newton_pose(g, (trial[4], trial[5]), xk, settings.tol_pose, settings.max_iter)
             t5, t6 = rp.x
-            rl = newton.loops(g, trial[:4], t5, t6, settings.tol_loops, settings.max_iter)
+            rl = kernels.newton_loops(g, trial[:4], t5, t6, settings.tol_loops, settings.max_iter)
             th = np.array([*rl.x, t5, t6])
             error = _point_error(g, i, xk, th, rp, rl)
             if error is None:
@@ -227,4 +226,4 @@ def time_newton_loops(g: Geometry, theta: np.ndarray, settings: SolverSettings,
 def _newton_loops_stroke(g: Geometry, theta: np.ndarray, settings: SolverSettings) -> None:
     kernels.kernel("loops_stroke")(g.constants, np.ascontiguousarray(theta, float),
                                    float(settings.tol_loops), int(settings.max_iter),
-                                   newton.SINGULAR_RTOL)
+                                   kernels.SINGULAR_RTOL)
