@@ -39,7 +39,7 @@ import numpy as np
 
 from mechrepro import accuracy
 from mechrepro.models.rolling_shear import validation as V
-from mechrepro.models.rolling_shear.drawing import linkage_at
+from mechrepro.models.rolling_shear.blade import linkage_at
 from mechrepro.plotting import log_ticks, plt
 from mechrepro.results import PaperResults
 

@@ -4,15 +4,16 @@ Where the printed equations contradict each other (mm, rad, y up): M20 rotates b
 **+theta5** (Eq. 9 measures theta5 counter-clockwise and beta = theta5 - beta2 holds only
 then); Eq. (6) is y_k = y_h **-** R(1 - cos beta), the only sign under which y_k stays
 constant under the rolling of Eq. (8).  Forward kinematics (Eq. 9): the blade under
-prescribed driving angles theta1, theta2, e.g. both levers at a constant rate."""
+prescribed driving angles theta1, theta2, e.g. both levers at a constant rate.  The assembled
+linkage of a solved run, for drawing (Figs. 2-5)."""
 from __future__ import annotations
 
 import math
 
 import numpy as np
 
-from .geometry import Geometry
-from .loops import NonAssembly, on_design_branch, residuals
+from .geometry import GEOMETRY_KEYS, Geometry
+from .loops import NonAssembly, on_design_branch, pivots, residuals
 
 
 def M12(g: Geometry) -> np.ndarray:
@@ -119,3 +120,22 @@ def constant_rate_drive(g: Geometry, theta_stroke: np.ndarray) -> dict:
     th = drive(g, t1, t2, theta_stroke[0])
     xk, yk = lowest_point(g, th[:, 4], th[:, 5])
     return {"theta": th, "x_k": xk, "y_k": yk}
+
+
+def geometry_of(ds) -> Geometry:
+    """The run's own geometry (calibrated, with the scene's levers) from its dataset."""
+    return Geometry(**{k: float(ds[f"geometry_{k}"]) for k in GEOMETRY_KEYS})
+
+
+def linkage_at(ds, i: int, prefix: str = "exact", blade_half_width: float = 1900.0) -> dict:
+    """The linkage at cut point ``i`` (motion laws ``<prefix>_theta1..6``): ``links``, (start, end)
+    joint pairs as complex x + iy, and ``blade``, the cutting-edge arc over +- ``blade_half_width``."""
+    g = geometry_of(ds)
+    t = [float(ds[f"{prefix}_theta{k}"][i]) for k in range(1, 7)]
+    P = carrier_points(g, t[4], t[5])
+    A, G = pivots(g)
+    B = A + g.l1 * np.exp(1j * t[0])
+    H = G + g.l2 * np.exp(1j * t[1])
+    links = [(0j, P["D"]), (A, B), (B, P["C"]), (G, H), (H, P["I"]), (P["D"], P["I"]),
+             (P["D"], P["C"]), (P["D"], P["O"])]
+    return {"links": links, "blade": arc_points(g, t[4], t[5], blade_half_width / g.R, 200)}

@@ -15,10 +15,6 @@ JOB_START_S = 6.0
 _SWARMS = {"selpso", "pso_standard"}
 
 
-def _members(grid: dict) -> int:
-    return math.prod(len(v) if isinstance(v, list) else 1 for v in grid.values()) if grid else 1
-
-
 def cost(run: dict) -> dict:
     """Expected peak memory (MB) and solve time (s) of one run in a warm solve process (a job
     adds :data:`JOB_START_S` once)."""
@@ -41,7 +37,8 @@ def cost(run: dict) -> dict:
                  * int(res.get("opt_iter", 30)) + 5 * int(res.get("scan_points", 11)))
         seconds = 0.2 + 1e-5 * evals * n
     elif solver == "family_scan":
-        seconds = 0.2 + _members(opt.get("grid", {})) * (0.01 + 1.5e-4 * n)
+        members = math.prod(len(v) if isinstance(v, list) else 1 for v in opt.get("grid", {}).values())
+        seconds = 0.2 + members * (0.01 + 1.5e-4 * n)
     elif solver == "design_front":
         # a stroke per l6, then every round's samples at once: ~2 us per sample and cut point
         points = int(res.get("front_l6_points", 41))

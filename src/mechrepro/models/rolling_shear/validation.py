@@ -10,6 +10,7 @@ import xarray as xr
 from mechrepro.validation import Quantities, Reproduced, verdict
 
 from .geometry import OPTIMISED_LEVERS
+from .motion_laws import pose_error
 
 Q = Quantities("rolling_shear")
 
@@ -31,9 +32,8 @@ def original(R):
     H = ds["family_h"].values
     tilt = ds["family_tilt"].values
     ok = np.isfinite(H)
-    err = max(float(np.max(np.abs(np.angle(np.exp(
-        1j * (ds[f"newton_theta{k}"].values - ds[f"exact_theta{k}"].values))))))
-        for k in range(1, 7))
+    err = max(float(np.max(pose_error(ds[f"newton_theta{k}"].values, ds[f"exact_theta{k}"].values)))
+              for k in range(1, 7))
     return {
         "synthetic_horizontal_displacement_original": Reproduced(
             float(ds["calibrated_H_original"]),
