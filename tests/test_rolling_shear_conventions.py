@@ -5,7 +5,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from mechrepro.models.rolling_shear import blade, loops, pose
+from mechrepro.models.rolling_shear import blade, loops
 from mechrepro.models.rolling_shear.motion_laws import (horizontal_displacement, trajectory1,
                                                        trajectory1_for)
 
@@ -130,5 +130,5 @@ def test_loop_jacobian_matches_finite_differences(g):
 
 def test_exact_pose_satisfies_eq7(g):
     for xk in (g.x_mid + 0.5 * g.width, g.x_mid, g.x_mid - 0.5 * g.width):   # the cut's ends
-        t = pose.exact_pose(g, xk)
-        assert np.abs(pose.residuals(g, t, xk)).sum() < 1e-9
+        t = blade.exact_pose(g, xk)
+        assert np.abs(blade.pose_residuals(g, t, xk)).sum() < 1e-9

@@ -4,7 +4,7 @@ import math
 import numpy as np
 import pytest
 
-from mechrepro.models.rolling_shear import blade, loops, optimise, pose, stroke
+from mechrepro.models.rolling_shear import blade, loops, optimise, stroke
 from mechrepro.models.rolling_shear.loops import in_ranges, on_design_branch
 from mechrepro.models.rolling_shear.design import design
 from mechrepro.models.rolling_shear.geometry import cut_points, with_intent
@@ -59,7 +59,7 @@ def test_calibration_hits_the_paper_number_and_is_monotone(g):
 
 
 def test_mid_cut_pose_is_the_design_pose(g):
-    t5, t6 = pose.exact_pose(g, g.x_mid)
+    t5, t6 = blade.exact_pose(g, g.x_mid)
     assert abs(t5 - g.beta2) < 1e-6                              # beta = 0 at mid-cut
     assert abs(t6 - config().raw["parameters"]["theta6_mid"]["value"]) < 1e-6
 

@@ -5,7 +5,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from mechrepro.models.rolling_shear import loops, optimise, pose, stroke
+from mechrepro.models.rolling_shear import blade, loops, optimise, stroke
 
 from mechrepro.solve import solve
 from mechrepro.models.rolling_shear.loops import in_ranges, on_design_branch
@@ -28,7 +28,7 @@ def settings(**kw):
 
 
 def test_selpso_is_deterministic_and_vectorised(g):
-    t5, t6 = pose.exact_pose(g, g.x_mid)
+    t5, t6 = blade.exact_pose(g, g.x_mid)
     shapes = []
 
     def f(X):
@@ -45,7 +45,7 @@ def test_selpso_is_deterministic_and_vectorised(g):
 
 @pytest.mark.parametrize("x0", [[50.0, -50.0, 80.0, -80.0], [-20.0, 20.0, 30.0, -30.0]])
 def test_hard_case_selpso_from_initial_values_far_outside_the_ranges(g, x0):
-    t5, t6 = pose.exact_pose(g, g.x_mid + 800)
+    t5, t6 = blade.exact_pose(g, g.x_mid + 800)
     r = selpso(lambda X: np.abs(loops.residuals(g, X, t5, t6)).sum(-1), np.array(x0), PSO,
                np.random.default_rng(1), period=2 * math.pi)
     assert r.converged

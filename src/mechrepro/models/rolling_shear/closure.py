@@ -145,7 +145,7 @@ def _bracket_floor(betas, j):
 
 @jit
 def guide_pose(c, betas, f, dx, x_target, guide_mode, margin, xtol, rtol, max_iter):
-    """The pose of :func:`.pose.exact_pose`: :func:`guide_brent` in every bracket of |ED| - l6
+    """The pose of :func:`.blade.exact_pose`: :func:`guide_brent` in every bracket of |ED| - l6
     (``f``) over ``betas`` not clearly (``margin``) in the guide rod's other mode, and of the roots
     in the paper's ranges the one with the smallest (|beta|, theta5, theta6).  Brackets are
     visited outwards from beta = 0 and only while they can hold a smaller |beta|; f and the x of

@@ -21,7 +21,7 @@ from dataclasses import replace
 
 from scipy.optimize import root
 
-from .blade import carrier_points
+from .blade import carrier_points, exact_pose, pose_residuals
 from .geometry import Geometry
 from .loops import pivots
 
@@ -36,17 +36,15 @@ OPEN_STEPS = 4
 def open_pose(g: Geometry, opening: float) -> np.ndarray | None:
     """(theta5, theta6) of the open position (constraint 4), followed from the mid-cut pose in
     :data:`OPEN_STEPS` lifts by scipy's hybrid Powell method; None where a lift fails."""
-    from . import pose
-
     try:
-        q = pose.exact_pose(g, float(g.x_mid))
+        q = exact_pose(g, float(g.x_mid))
     except Exception:   # noqa: BLE001 -- no mid-cut pose: no open position either
         return None
     for y in np.linspace(-g.s, opening, OPEN_STEPS + 1)[1:]:
         gy = replace(g, s=-float(y))
-        sol = root(lambda t: pose.residuals(gy, t, float(g.x_mid)), q, method="hybr",
+        sol = root(lambda t: pose_residuals(gy, t, float(g.x_mid)), q, method="hybr",
                    options={"xtol": 1e-13})
-        if not sol.success or np.abs(pose.residuals(gy, sol.x, float(g.x_mid))).max() > 1e-6:
+        if not sol.success or np.abs(pose_residuals(gy, sol.x, float(g.x_mid))).max() > 1e-6:
             return None
         q = sol.x
     return q

@@ -55,14 +55,14 @@ def tilt_scan(ctx) -> dict:
 def initial_values(ctx) -> dict:
     """Fig. 12: selPSO fitness G of Eq. (9) against the iterations at mid-cut from each of
     ``options.initial_values``."""
-    from . import pose as pose_mod
+    from .blade import exact_pose
     from .loops import in_ranges, on_design_branch
     from .selpso import selpso
     from .stroke import loops_fitness
 
     inits = np.asarray(ctx.options["initial_values"], float)
     i_mid = ctx.n // 2
-    t5, t6 = pose_mod.exact_pose(ctx.g, float(ctx.x_k[i_mid]))
+    t5, t6 = exact_pose(ctx.g, float(ctx.x_k[i_mid]))
     rng = ctx.rng(4)
     st = ctx.settings.pso_loops
     hist = np.full((len(inits), st.max_iter + 1), np.nan)

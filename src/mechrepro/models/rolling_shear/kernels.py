@@ -94,5 +94,5 @@ def warm(runs=None) -> None:
     closure.loops_stroke(c, np.zeros((2, 6)), 1.0, 1, 1e-12)
     closure.assembles_clearly(c, z2, 1e-9)
     betas = np.zeros(2)
-    betas.setflags(write=False)   # the scan grid of pose.exact_pose is read-only
+    betas.setflags(write=False)   # the scan grid of blade.exact_pose is read-only
     closure.guide_pose(c, betas, np.zeros(2), np.zeros(2), 0.0, -1.0, 0.0, 1e-15, 1e-15, 1)

@@ -16,7 +16,7 @@ from scipy.optimize import differential_evolution
 from mechrepro.timing import phase
 
 from . import closure, kernels
-from . import pose as pose_mod
+from .blade import exact_pose
 from .geometry import OPTIMISED_LEVERS, Geometry, cut_points
 from .design import Unreachable
 from .loops import RANGES, NonAssembly, pivots
@@ -33,7 +33,7 @@ def stroke_poses(g: Geometry, x_k, tol: float, max_iter: int = 30) -> np.ndarray
     """theta5, theta6 at every cut point: exact first point, warm Newton afterwards
     (:func:`.closure.pose_stroke`); raises NonAssembly off the guide rod's design branch."""
     out = np.empty((len(x_k), 2))
-    guess = pose_mod.exact_pose(g, float(x_k[0]))
+    guess = exact_pose(g, float(x_k[0]))
     x = np.ascontiguousarray(x_k, float)
     i, status, G, det = kernels.kernel("pose_stroke")(
         g.constants, x, float(guess[0]), float(guess[1]), float(tol), int(max_iter),

@@ -17,7 +17,7 @@ from mechrepro.timing import mean_time, phase
 
 from . import closure, kernels
 from . import loops as loops_mod
-from . import pose as pose_mod
+from . import blade
 from .geometry import Geometry
 from .loops import NonAssembly, in_ranges, on_design_branch, wrap
 from .selpso import KernelFitness, SelPSOSettings, selpso
@@ -117,7 +117,7 @@ def _exact(g: Geometry, x_k) -> np.ndarray:
     theta = np.empty((len(x_k), 6))
     for i, xk in enumerate(x_k):
         try:
-            p = pose_mod.exact_pose(g, float(xk))
+            p = blade.exact_pose(g, float(xk))
             theta[i] = [*loops_mod.exact_angles(g, *p), *p]
         except NonAssembly as exc:
             raise NonAssembly(f"cut point {i} (x_k = {float(xk):.6g} mm): {exc}", i, float(xk)) from None
@@ -132,7 +132,7 @@ def exact_theta(g: Geometry, x_k) -> np.ndarray:
 def solve_exact(g: Geometry, x_k) -> StrokeSolution:
     n = len(x_k)
     theta = _exact(g, x_k)
-    fp = np.array([np.abs(pose_mod.residuals(g, t[4:], xk)).sum() for t, xk in zip(theta, x_k)])
+    fp = np.array([np.abs(blade.pose_residuals(g, t[4:], xk)).sum() for t, xk in zip(theta, x_k)])
     fl = np.array([np.abs(loops_mod.residuals(g, t[:4], t[4], t[5])).sum() for t in theta])
     ok = np.ones(n, bool)
     return StrokeSolution("exact", np.asarray(x_k), wrap(theta), fp, fl, ok, ok.copy(),
@@ -149,7 +149,7 @@ def _scipy_solve(kind, fun, jac, x0, tol):
 
 def pose_fitness(g: Geometry, xk: float) -> KernelFitness:
     """selPSO's fitness of Eq. (7): G = sum |residuals| (mm), numpy or compiled."""
-    return KernelFitness(lambda X: np.abs(pose_mod.residuals(g, X, xk)).sum(-1),
+    return KernelFitness(lambda X: np.abs(blade.pose_residuals(g, X, xk)).sum(-1),
                          closure.POSE, g.constants, (xk, 0.0, 0.0, 0.0, 0.0, 0.0))
 
 
@@ -161,14 +161,12 @@ def loops_fitness(g: Geometry, t5: float, t6: float) -> KernelFitness:
 
 def _pose_by(method, g, xk, start, settings, rng):
     """theta5, theta6 at one cut point (Eq. 7) by a comparison method."""
-    from .blade import lowest_point_jacobian
-
     if method in ("selpso", "pso_standard"):
         st = settings.pso_pose if method == "selpso" else settings.pso_std_pose
         return selpso(pose_fitness(g, xk), start, st, rng, period=2 * math.pi).x
     start = start if method.startswith("warm_") else rng.uniform(0, 2 * math.pi, 2)
-    return _scipy_solve(method, lambda x: pose_mod.residuals(g, x, xk),
-                        lambda x: lowest_point_jacobian(g, *x), start, settings.tol_pose)[0]
+    return _scipy_solve(method, lambda x: blade.pose_residuals(g, x, xk),
+                        lambda x: blade.lowest_point_jacobian(g, *x), start, settings.tol_pose)[0]
 
 
 def _loops_by(method, g, t5, t6, start, settings, rng):
@@ -207,7 +205,7 @@ def solve_compare(g: Geometry, x_k, method: str, settings: SolverSettings,
             guess = 2 * th - prev if i > 0 else th
             prev = th
         theta[i] = wrap(th)
-        fp[i] = float(np.abs(pose_mod.residuals(g, th[4:], xk)).sum())
+        fp[i] = float(np.abs(blade.pose_residuals(g, th[4:], xk)).sum())
         fl[i] = float(np.abs(loops_mod.residuals(g, th[:4], t5, t6)).sum())
         conv[i] = fp[i] < settings.tol_pose and fl[i] < settings.tol_loops
         inr[i] = in_ranges(th)
