@@ -144,8 +144,6 @@ def test_newton_continuation_compiled_equals_numpy(monkeypatch):
     """The warm Newton stroke (Eqs. 7 and 9 per cut point) and a refused start."""
     from dataclasses import replace
 
-    from mechrepro.models.rolling_shear import kernels
-
     g = geometry()
     x_k = cut_points(g, 33)[1]
     first = stroke.solve_exact(g, x_k[:1]).theta[0]
