@@ -279,7 +279,7 @@ for k, (name, mk) in enumerate((("paper, original levers", "s"), ("paper, Table 
                mew=1.5, color=f"C{k + 1}", label=name)
 rec = V.recommended(des, **strict)
 if rec is not None:
-    ax[0].plot(des["envelope_H"].values[rec[0]], V.recommended_design(des, rec)["mu_worst"], "*", ms=14,
+    ax[0].plot(des["envelope_H"].values[rec["index"]], rec["mu_worst"], "*", ms=14,
                color="tab:red", label="recommended (buildable at the strict range ends)")
 ax[0].axhline(cons["mu_min"], color="k", ls=":", lw=0.8, label=f"transmission floor {cons['mu_min']:.0f} deg")
 ax[0].set(xlabel="synthetic horizontal displacement H [mm]",

@@ -5,10 +5,8 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from mechrepro.docs import number, table_rows
-
-# one formatter for every paper page (mechrepro.docs)
-_rows, _g = table_rows, number
+# one formatter for every paper page
+from mechrepro.docs import number as _g, table_rows as _rows
 
 
 def _cell(text: str) -> str:

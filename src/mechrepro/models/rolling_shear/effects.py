@@ -66,17 +66,14 @@ def initial_values(ctx) -> dict:
     rng = ctx.rng(4)
     st = ctx.settings.pso_loops
     hist = np.full((len(inits), st.max_iter + 1), np.nan)
-    iters, fit, conv, design, inr, times = [], [], [], [], [], []
+    rows = []   # per initial value: iterations, fitness, converged, design branch, in ranges, time
     for k, x0 in enumerate(inits):
         with phase("rolling_shear.initial_values") as sw:
             r = selpso(loops_fitness(ctx.g, t5, t6), x0, st, rng, period=2 * math.pi)
-        times.append(sw.seconds)
         hist[k, :r.history.size] = r.history
-        iters.append(r.iterations)
-        fit.append(r.fitness)
-        conv.append(r.converged)
-        design.append(on_design_branch(ctx.g, np.array([*r.x, t5, t6])))
-        inr.append(in_ranges(np.array([*r.x, t5, t6])))
+        th = np.array([*r.x, t5, t6])
+        rows.append((r.iterations, r.fitness, r.converged, on_design_branch(ctx.g, th), in_ranges(th), sw.seconds))
+    iters, fit, conv, design, inr, times = zip(*rows)
     return {
         "iv_initial_value": var(("initial_value", "unknown"), inits, "rad",
                                 "initial values theta1..theta4 of selPSO"),

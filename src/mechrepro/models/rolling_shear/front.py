@@ -168,14 +168,11 @@ def search(g, n: int, tol: float, box: np.ndarray, constraints: dict, *, l6_poin
             e = at(l6_star - 1e-5)
             if e is not None:
                 env.insert(k + 1, e)
-    H, mu, ok = (np.concatenate([c[k] for c in cloud]) for k in range(3))
-    return {"levers": np.array([e[0] for e in env]), "H": np.array([e[1] for e in env]),
-            "rod_gap": np.array([e[2] for e in env]), "mu_worst": np.array([e[3] for e in env]),
-            "joint_height": np.array([e[4] for e in env]),
-            "kept_mu_worst": np.array([e[5] for e in env]),
-            "kept_joint_height": np.array([e[6] for e in env]),
-            "kept_buildable": np.array([e[7] for e in env]),
-            "sample_H": H, "sample_mu_worst": mu, "sample_buildable": ok}
+    out = {k: np.array([e[i] for e in env]) for i, k in enumerate(
+        ("levers", "H", "rod_gap", "mu_worst", "joint_height", "kept_mu_worst", "kept_joint_height",
+         "kept_buildable"))}
+    return out | {k: np.concatenate([c[i] for c in cloud])
+                  for i, k in enumerate(("sample_H", "sample_mu_worst", "sample_buildable"))}
 
 
 def evaluate(g, levers: dict, n: int, tol: float, constraints: dict) -> dict:

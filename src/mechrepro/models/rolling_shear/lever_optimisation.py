@@ -9,7 +9,7 @@ from mechrepro.units import var
 from . import optimise, stroke
 from .context import Context
 from .continuation import contributions
-from .geometry import OPTIMISED_LEVERS, Geometry, cut_points
+from .geometry import OPTIMISED_LEVERS, cut_points
 from .motion_laws import stroke_outputs
 from .selpso import SelPSOSettings
 
@@ -37,13 +37,6 @@ def by_differential_evolution(ctx: Context) -> optimise.OptimisationResult:
 OPTIMISERS = {"selpso": (by_selpso, "opt_selpso"), "de": (by_differential_evolution, "opt_de")}
 
 
-def anchored_settings(ctx: Context, g: Geometry, x_k) -> stroke.SolverSettings:
-    """Settings whose initial value is the closed-form pose at the first cut point (far lever sets
-    move the cranks by more than the rough initial value absorbs)."""
-    first = stroke.exact_theta(g, x_k[:1])[0]
-    return replace(ctx.settings, initial_value=tuple(first))
-
-
 def optimised_outputs(ctx: Context, res: optimise.OptimisationResult, prefix: str) -> dict:
     """The optimum, its history and, if it assembles, the stroke of its levers."""
     out = {
@@ -58,7 +51,10 @@ def optimised_outputs(ctx: Context, res: optimise.OptimisationResult, prefix: st
     if res.objective < optimise.PENALTY:
         g = ctx.g.with_levers(**dict(zip(OPTIMISED_LEVERS, map(float, res.levers))))
         x_k = cut_points(g, ctx.n)[1]  # the cut moves with re-derived carrier constants
-        sol = stroke.solve_newton(g, x_k, anchored_settings(ctx, g, x_k))
+        # far lever sets move the cranks by more than the rough initial value absorbs: the
+        # continuation starts from the closed-form pose at the first cut point
+        first = tuple(stroke.exact_theta(g, x_k[:1])[0])
+        sol = stroke.solve_newton(g, x_k, replace(ctx.settings, initial_value=first))
         out.update(stroke_outputs(g, sol.theta, prefix, f"levers optimised by {prefix}"))
     return out
 

@@ -84,15 +84,14 @@ def selpso(fitness, x_init, settings: SelPSOSettings, rng: np.random.Generator,
     ib = int(np.argmin(G))
     gbest, gG = X[ib].copy(), float(G[ib])
     if (isinstance(fitness, KernelFitness) and lower is None and N >= 2
-            and X.dtype == float and V.dtype == float):
-        if closure.available():
-            hist = np.empty(st.max_iter + 1)
-            hist[0] = gG
-            gG, k = iterate(
-                fitness.kind, fitness.c, fitness.q, X, V, pbest, pG, gbest, gG, rng, st.max_iter,
-                float(st.w_start), float(st.w_end), float(st.c1), float(st.c2), float(st.tol),
-                float(st.v_max), bool(np.isfinite(st.v_max)), bool(st.selection), hist)
-            return SelPSOResult(gbest, gG, k, N * (k + 1), gG < st.tol, hist[:k + 1].copy())
+            and X.dtype == float and V.dtype == float and closure.available()):
+        hist = np.empty(st.max_iter + 1)
+        hist[0] = gG
+        gG, k = iterate(
+            fitness.kind, fitness.c, fitness.q, X, V, pbest, pG, gbest, gG, rng, st.max_iter,
+            float(st.w_start), float(st.w_end), float(st.c1), float(st.c2), float(st.tol),
+            float(st.v_max), bool(np.isfinite(st.v_max)), bool(st.selection), hist)
+        return SelPSOResult(gbest, gG, k, N * (k + 1), gG < st.tol, hist[:k + 1].copy())
     history = [gG]
     half = N // 2
     k = 0

@@ -43,8 +43,11 @@ def geometry_outputs(ctx: Context) -> dict:
     return out
 
 
-def _variables(result: dict, run: dict) -> dict:
-    """The run's variables: the solver's outputs and their coordinates."""
+def variables(result: dict, run: dict) -> dict:
+    """The run's variables: the solver's outputs and their coordinates (a refused lever set's:
+    :func:`refusal_variables`)."""
+    if "refused" in result:
+        return refusal_variables(result["refused"])
     ctx: Context = result["ctx"]
     data = result["data"]
     coords = {
@@ -88,12 +91,6 @@ def refusal_variables(exc: Refused) -> dict:
         "buildable": var((), 0.0 if exc.kind == "unbuildable" else np.nan, "1",
                          "0: the calibrated member breaks a constraint of constraints.py"),
         "length_unit": "mm", "refusal_kind": exc.kind, "refusal": exc.message}
-
-
-def variables(result: dict, run: dict) -> dict:
-    if "refused" in result:
-        return refusal_variables(result["refused"])
-    return _variables(result, run)
 
 
 __all__ = ["EFFECTS", "SOLVERS", "compute", "variables"]

@@ -340,10 +340,11 @@ def solver_comparison(comp: xr.Dataset) -> tuple[list, list]:
     return header, out
 
 
-def recommended(ds, *, clearance: float, mu_min: float) -> tuple[int, str] | None:
+def recommended(ds, *, clearance: float, mu_min: float) -> dict | None:
     """The recommended design of scene ``design``: the lowest H buildable at ``clearance`` and
     ``mu_min`` (deg; the strict range ends), preferring the design that changes only l6
-    (``kept``) where it qualifies.  Returns (index over ``l6_grid``, "kept" or "envelope") or None."""
+    (``kept``) where it qualifies: its index over ``l6_grid``, "kept" or "envelope", levers,
+    worst transmission angle and joint height; None if none qualifies."""
     gap, H = ds["envelope_rod_gap"].values, ds["envelope_H"].values
     with np.errstate(invalid="ignore"):
         kept = (gap >= clearance) & (ds["kept_mu_worst"].values >= mu_min) & (ds["kept_buildable"].values == 1.0)
@@ -354,19 +355,16 @@ def recommended(ds, *, clearance: float, mu_min: float) -> tuple[int, str] | Non
             i = int(np.flatnonzero(ok)[np.argmin(H[ok])])
             if best is None or H[i] < H[best[0]]:
                 best = (i, which)
-    return best
-
-
-def recommended_design(ds, rec) -> dict:
-    """Levers, worst transmission angle and joint height of :func:`recommended`'s design."""
-    i, which = rec
+    if best is None:
+        return None
+    i, which = best
     if which == "kept":
         lv = ds["paper_levers"].values[0].copy()
         lv[OPTIMISED_LEVERS.index("l6")] = ds["envelope_levers"].sel(lever="l6").values[i]
-        return {"levers": lv, "mu_worst": float(ds["kept_mu_worst"][i]),
+        return {"index": i, "which": which, "levers": lv, "mu_worst": float(ds["kept_mu_worst"][i]),
                 "joint_height": float(ds["kept_joint_height"][i])}
-    return {"levers": ds["envelope_levers"].values[i], "mu_worst": float(ds["envelope_mu_worst"][i]),
-            "joint_height": float(ds["envelope_joint_height"][i])}
+    return {"index": i, "which": which, "levers": ds["envelope_levers"].values[i],
+            "mu_worst": float(ds["envelope_mu_worst"][i]), "joint_height": float(ds["envelope_joint_height"][i])}
 
 
 def strict_ends(R) -> dict:
@@ -400,12 +398,12 @@ def design_front(ds, *, clearance: float, mu_min: float, plate_top: float, openi
         out.append(row("front", ds["envelope_levers"].values[i], ds["envelope_H"].values[i],
                        ds["envelope_mu_worst"].values[i], ds["envelope_rod_gap"].values[i],
                        ds["envelope_joint_height"].values[i], box[i], 1))
-    rec = recommended(ds, **strict)
-    if rec is not None:
-        d, i = recommended_design(ds, rec), rec[0]
+    d = recommended(ds, **strict)
+    if d is not None:
+        i = d["index"]
         lo, hi = ds["front_box"].values.T
         margin = float(np.min(np.minimum(d["levers"] - lo, hi - d["levers"]) / (hi - lo)))
-        out.append(row(f"recommended ({'only l6 changed' if rec[1] == 'kept' else 'front envelope'})",
+        out.append(row(f"recommended ({'only l6 changed' if d['which'] == 'kept' else 'front envelope'})",
                        d["levers"], ds["envelope_H"].values[i], d["mu_worst"],
                        ds["envelope_rod_gap"].values[i], d["joint_height"], margin, 1))
     return header, out
@@ -419,7 +417,7 @@ def design(R):
     H0 = float(ds["paper_H"].values[0])
     H = ds["envelope_H"].values
     built = np.isfinite(ds["envelope_mu_worst"].values)
-    rec = recommended(ds, **strict)
+    d = recommended(ds, **strict)
     j = int(np.flatnonzero(built)[np.argmin(H[built])]) if built.any() else None
     clearance = float(R.parameter("clearance")) * 1e3
 
@@ -430,13 +428,12 @@ def design(R):
                 f"{height:.0f} mm above the lower blade")
     grid = (f"{int(ds['front_evaluated'])} designs evaluated ({int(ds['front_buildable_count'])} buildable) "
             f"over {ds.sizes['l6_grid']} guide-rod lengths at {ds.sizes['cut']} cut points")
-    if rec is not None:
-        d = recommended_design(ds, rec)
+    if d is not None:
         rec_note = (f"the lowest H buildable at clearance {strict['clearance']:.0f} mm and a "
                     f"{strict['mu_min']:.0f} deg transmission floor (the strict range ends)"
-                    + (", only l6 changed: " if rec[1] == "kept" else ": ")
-                    + describe(d["levers"], d["mu_worst"], rec[0], d["joint_height"]) + f"; {grid}")
-        Hr = float(H[rec[0]])
+                    + (", only l6 changed: " if d["which"] == "kept" else ": ")
+                    + describe(d["levers"], d["mu_worst"], d["index"], d["joint_height"]) + f"; {grid}")
+        Hr = float(H[d["index"]])
     else:
         rec_note, Hr = f"no design qualifies; {grid}", math.nan
     box = np.nanmin(ds["envelope_box_margin"].values, axis=1)
