@@ -262,7 +262,7 @@ R.write_table("lever_scan", *V.lever_scan(opt))
 
 # %%
 des = R.run("design")
-strict = V.strict_ends(R)
+strict = V.constraint_ends(R, max)
 P = R.cfg.raw["parameters"]
 cons = dict(clearance=float(P["clearance"]["value"]), mu_min=float(P["transmission_min"]["value"]),
             plate_top=float(P["plate_thickness_max"]["value"]), opening=float(P["opening"]["value"]))

@@ -139,11 +139,10 @@ def solve_exact(g: Geometry, x_k) -> StrokeSolution:
                           ok.copy(), math.nan, math.nan, np.zeros(n, int))
 
 
-def _scipy_solve(kind, fun, jac, x0, tol):
-    if kind.endswith("root"):
-        r = root(fun, x0, jac=jac, method="hybr", options={"xtol": 1e-14})
-        return r.x, int(r.nfev)
-    r = least_squares(fun, x0, jac=jac, method="trf", xtol=1e-15, ftol=1e-15, gtol=1e-15)
+def _scipy_solve(kind, fun, jac, x0):
+    """scipy's root (hybrid Powell) or least_squares (trf) from x0: (x, evaluations)."""
+    r = (root(fun, x0, jac=jac, method="hybr", options={"xtol": 1e-14}) if kind.endswith("root")
+         else least_squares(fun, x0, jac=jac, method="trf", xtol=1e-15, ftol=1e-15, gtol=1e-15))
     return r.x, int(r.nfev)
 
 
@@ -166,7 +165,7 @@ def _pose_by(method, g, xk, start, settings, rng):
         return selpso(pose_fitness(g, xk), start, st, rng, period=2 * math.pi).x
     start = start if method.startswith("warm_") else rng.uniform(0, 2 * math.pi, 2)
     return _scipy_solve(method, lambda x: blade.pose_residuals(g, x, xk),
-                        lambda x: blade.lowest_point_jacobian(g, *x), start, settings.tol_pose)[0]
+                        lambda x: blade.lowest_point_jacobian(g, *x), start)[0]
 
 
 def _loops_by(method, g, t5, t6, start, settings, rng):
@@ -176,9 +175,8 @@ def _loops_by(method, g, t5, t6, start, settings, rng):
         r = selpso(loops_fitness(g, t5, t6), start, st, rng, period=2 * math.pi)
         return r.x, r.iterations
     start = start if method.startswith("warm_") else rng.uniform(0, 2 * math.pi, 4)
-    x, nfev = _scipy_solve(method, lambda x: loops_mod.residuals(g, x, t5, t6),
-                           lambda x: loops_mod.jacobian(g, x), start, settings.tol_loops)
-    return x, nfev
+    return _scipy_solve(method, lambda x: loops_mod.residuals(g, x, t5, t6),
+                        lambda x: loops_mod.jacobian(g, x), start)
 
 
 def solve_compare(g: Geometry, x_k, method: str, settings: SolverSettings,

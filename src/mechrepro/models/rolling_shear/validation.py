@@ -29,8 +29,7 @@ def _geometry_note(ds) -> str:
             "overlap_max_deviation_constant_rate_drive", "newton_vs_closed_form_max_angle_error")
 def original(R):
     ds = R.run("original")
-    H = ds["family_h"].values
-    tilt = ds["family_tilt"].values
+    H, tilt = ds["family_h"].values, ds["family_tilt"].values
     ok = np.isfinite(H)
     err = max(float(np.max(pose_error(ds[f"newton_theta{k}"].values, ds[f"exact_theta{k}"].values)))
               for k in range(1, 7))
@@ -64,11 +63,17 @@ def admissible_members(R, fam) -> dict[str, np.ndarray]:
     at the most permissive ends of the constraints' ranges (a member some plausible machine
     builds is plausible); planar members also keep the blade offset in its range."""
     P = R.cfg.raw["parameters"]
-    return buildable_members(fam, clearance=float(P["clearance"]["range"][0]),
-                             mu_min=float(min(P["transmission_min"]["range"])),
+    return buildable_members(fam, **constraint_ends(R),
                              plate_top=float(R.parameter("plate_thickness_max")) * 1e3,
                              opening=float(R.parameter("opening")) * 1e3,
                              blade_range=P["blade_offset"]["range"])
+
+
+def constraint_ends(R, end=min) -> dict:
+    """The constraints' range ends, clearance (mm) and transmission floor (deg): ``min`` the most
+    permissive, ``max`` the strict."""
+    P = R.cfg.raw["parameters"]
+    return {"clearance": float(end(P["clearance"]["range"])), "mu_min": float(end(P["transmission_min"]["range"]))}
 
 
 def buildable_members(fam, *, clearance, mu_min, plate_top, opening, blade_range=(-np.inf, np.inf)):
@@ -112,9 +117,8 @@ def grid_flips(R, quantity: str, base_status: str, values: np.ndarray, fam, what
                          f"{values[i]:.4g} at {fam.sizes['cut']} cut points)")
         if len(flipped) > 2:
             flips.append(f"and {len(flipped) - 2} more grid members under the {reading} reading")
-    note = (f"Re-checked over the family grid's members that calibrate and can be built at "
-            f"clearance {R.cfg.raw['parameters']['clearance']['range'][0]} mm and a "
-            f"{min(R.cfg.raw['parameters']['transmission_min']['range'])} deg transmission floor: "
+    note = ("Re-checked over the family grid's members that calibrate and can be built at "
+            "clearance {clearance:g} mm and a {mu_min:g} deg transmission floor: ".format(**constraint_ends(R))
             + "; ".join(counts) + ".")
     return flips, note
 
@@ -138,8 +142,7 @@ def paper_levers(R):
         notes["paper_levers_assemble"] = why
         thetas = (math.nan, math.nan)
     else:
-        H0 = float(ds["calibrated_H_original"])
-        Hp = float(ds["calibrated_H_levers"])
+        H0, Hp = float(ds["calibrated_H_original"]), float(ds["calibrated_H_levers"])
         how = f"{how}, {_geometry_note(ds)}"
         ok = bool(float(ds["levers_assemble"]) == 1.0 and float(ds["newton_right_branch_rate"]) == 1.0)
         notes = {"synthetic_horizontal_displacement_optimised": how,
@@ -206,8 +209,7 @@ def family(R):
         sel = cal & built
         lo, hi = int(np.argmin(np.where(sel, red, np.inf))), int(np.argmax(np.where(sel, red, -np.inf)))
         member = lambda i: _member(ds, i, GRID_MEMBER[:5])  # noqa: E731
-        lev = ds["family_member_levers_buildable"].values == 1.0 if "family_member_levers_buildable" in ds \
-            else np.zeros_like(sel)
+        lev = ds["family_member_levers_buildable"].values == 1.0
         note = (f"{int(sel.sum())} buildable of {int(cal.sum())} grid members that reach 1.4341 "
                 f"(of {int((carrier == c).sum())}; {ds.sizes['cut']} cut points), in "
                 f"{int((sel & lev).sum())} of them the machine with Table II's levers can be built too; "
@@ -367,13 +369,6 @@ def recommended(ds, *, clearance: float, mu_min: float) -> dict | None:
             "mu_worst": float(ds["envelope_mu_worst"][i]), "joint_height": float(ds["envelope_joint_height"][i])}
 
 
-def strict_ends(R) -> dict:
-    """The constraints' strict range ends (clearance mm, transmission floor deg)."""
-    P = R.cfg.raw["parameters"]
-    return {"clearance": float(max(P["clearance"]["range"])),
-            "mu_min": float(max(P["transmission_min"]["range"]))}
-
-
 def design_front(ds, *, clearance: float, mu_min: float, plate_top: float, opening: float,
                  strict: dict) -> tuple[list, list]:
     """The design-front table: the paper's designs, the front and the recommended design, with
@@ -413,7 +408,7 @@ def design_front(ds, *, clearance: float, mu_min: float, plate_top: float, openi
             "design_table2_buildable", "design_original_mu_worst", "design_table2_mu_worst")
 def design(R):
     ds = R.run("design")
-    strict = strict_ends(R)
+    strict = constraint_ends(R, max)
     H0 = float(ds["paper_H"].values[0])
     H = ds["envelope_H"].values
     built = np.isfinite(ds["envelope_mu_worst"].values)
