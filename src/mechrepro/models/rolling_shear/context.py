@@ -65,8 +65,6 @@ class Context:
         from .calibrate import calibrate_tilt
 
         n_cal = int(self.res["calibration_points"])
-        # the scan stops at the bracket it uses; the effect tilt_scan, when the scene names
-        # it, scans the rest (so its cost is booked to it, issue 27)
         self.g, cal = calibrate_tilt(self.g, self.calibration_target, n_cal, self.tol_floor,
                                      whole_scan=False)
         cal["n"] = n_cal

@@ -27,8 +27,7 @@ def check(run: dict) -> list[str]:
 
 
 #: what a solve process spends before its first run: the model's imports (scipy, xarray),
-#: which the first run's compute pays (fig07_fig08: 0.62 s of CPU, 2.5-3.8 s of wall time
-#: at load 8-14 on 2 cores, where the same run takes 0.002 s once imported)
+#: which the first run's compute pays
 JOB_START_S = 0.7
 
 
