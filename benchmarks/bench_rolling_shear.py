@@ -121,7 +121,7 @@ PATHS = r"""
 import json, math, sys, time
 import numpy as np
 from mechrepro.config import load_paper
-from mechrepro.models.rolling_shear import closure, kernels, newton, optimise, pose, stroke
+from mechrepro.models.rolling_shear import blade, closure, kernels, optimise, stroke
 from mechrepro.models.rolling_shear.geometry import cut_points, from_parameters
 from mechrepro.models.rolling_shear.selpso import SelPSOSettings, selpso
 assert closure.available()
@@ -132,9 +132,9 @@ th = stroke.solve_exact(g, x_k).theta
 t5, t6 = th[16, 4], th[16, 5]
 st = SelPSOSettings(swarm=40, max_iter=300, v_max=1.0)
 paths = {
-    "newton.pose x33": lambda: [newton.pose(g, (th[i, 4] + 1e-3, th[i, 5] - 1e-3),
+    "newton.pose x33": lambda: [kernels.newton_pose(g, (th[i, 4] + 1e-3, th[i, 5] - 1e-3),
                                             float(x_k[i]), 1e-9) for i in range(33)],
-    "newton.loops x33": lambda: [newton.loops(g, th[i, :4] + 1e-3, th[i, 4], th[i, 5], 1e-11)
+    "newton.loops x33": lambda: [kernels.newton_loops(g, th[i, :4] + 1e-3, th[i, 4], th[i, 5], 1e-11)
                                  for i in range(33)],
     "stroke_poses": lambda: optimise.stroke_poses(g, x_k, 1e-9),
     "loops stroke x20": lambda: [stroke._newton_loops_stroke(g, th, stroke.SolverSettings())
@@ -148,7 +148,7 @@ paths = {
                                        np.random.default_rng(s), period=2 * math.pi)
                                 for s in range(3)],
     "objective x3": lambda: [optimise.objective(g, x_k, 1e-9) for _ in range(3)],
-    "exact_pose x9": lambda: [pose.exact_pose(g, float(x_k[i])) for i in range(0, 33, 4)],
+    "exact_pose x9": lambda: [blade.exact_pose(g, float(x_k[i])) for i in range(0, 33, 4)],
     "solve_newton": lambda: stroke.solve_newton(g, x_k, stroke.SolverSettings(
         initial_value=tuple(np.round(th[0], 1)))),
 }
@@ -222,7 +222,7 @@ NEWTON_DYAD_EVAL, LOOP_KNOWNS = 4 * _T + 20 + 2 * _S, 6 * _T + 6
 #: evaluation that finds G < tol): 2.2 iterations on Eq. (7) and on each loop of Eq. (9) at
 #: newton_tol 1e-11, 1.1 at 0.1 (counted on the ci profile's continuation runs)
 NEWTON_EVALS, NEWTON_EVALS_LOOSE = 3.2, 2.1
-#: :func:`.pose.exact_pose`: the 601-point scan of |ED(beta)| - l6 (:func:`.closure.guide_scan`:
+#: :func:`.blade.exact_pose`: the 601-point scan of |ED(beta)| - l6 (:func:`.closure.guide_scan`:
 #: 4 sin/cos, ~18 mul/add and a hypot per point) and one Brent root of ~10 steps of the same
 #: function (+ ~15 of Brent's own) and an atan2
 EXACT_POSE = 601 * (4 * _T + 18 + _S) + 10 * (4 * _T + 33 + _S) + _T
@@ -244,7 +244,7 @@ OBJECTIVE_POINT = 6 * _T + 2 * (4 * _S + 2 * _T + 33) + 2 * _T + 10
 CAL_SCAN, CAL_BRENT, MEMBER_OBJECTIVES, MEMBER_EXACT = 4, 10, 22, 0.6
 #: the tilt scan effect: the 41 tilts less those the calibration scanned, at 33 cut points
 TILT_SCAN = 41 - CAL_SCAN
-#: the constant-rate drive (:func:`.forward.drive`) per cut point: ~3 Newton iterations on
+#: the constant-rate drive (:func:`.blade.drive`) per cut point: ~3 Newton iterations on
 #: Eq. (9) in 4 unknowns (residual 8 sin/cos, Jacobian 8, a 4 x 4 LU and solve ~60) and the
 #: lowest point (8 sin/cos)
 DRIVE_POINT = 3 * (16 * _T + 60 + 20) + 8 * _T + 10
@@ -330,7 +330,7 @@ def floor(profile: str = "default", measure: bool = False) -> None:
     - a Newton evaluation of Eq. (7) 6T + 2S + 34 = 162, of a loop of Eq. (9)
       4T + 2S + 20 = 108, 3.2 evaluations per point and system (2.1 at a loose tolerance):
       a Newton stroke ~1.4k flops per cut point;
-    - a closed-form pose (:func:`.pose.exact_pose`) ~63k: its 601-point scan of |ED| - l6
+    - a closed-form pose (:func:`.blade.exact_pose`) ~63k: its 601-point scan of |ED| - l6
       (4T + S + 18 each) is 97 % of it; a closed-form cut point ~64k;
     - the lever objective (:func:`.optimise.objective`) 63k + ~840 n: the exact first pose
       and per point Newton on Eq. (7), the assembly check and H;

@@ -80,18 +80,17 @@ def richardson_vs_plain():
     from mechrepro.models.saw_chain.design import design_quantities
     from mechrepro.models.saw_chain.richardson import extrapolate_extreme
     from mechrepro.models.saw_chain.difference import load_x
-    from mechrepro.models.saw_chain.validation import design_base
 
     cfg = load_paper(ROOT / "config/papers/saw_chain.yaml")
     chain = chain_from_run(dict(cfg.runs["accuracy"], resolution={"K": 1}))
-    exact = float(design_quantities(**design_base(chain))["peak_load"])
+    exact = float(design_quantities(**chain.inputs())["peak_load"])
     rows = []
     for K in (128, 1024, 4096, 32768):
         plain, tp = time_call(lambda: float(load_x(replace(chain, K=K)).max()), min_time=0.2)
         ext, tr = time_call(extrapolate_extreme, chain, K, min_time=0.2)
         rows.append((K, abs(plain - exact) / exact, tp, abs(ext.value - exact) / exact, tr))
     zs = np.resize(np.arange(3, 61), 1000)
-    _, td = time_call(design_quantities, **{**design_base(chain), "z": zs}, min_time=0.2)
+    _, td = time_call(design_quantities, **{**chain.inputs(), "z": zs}, min_time=0.2)
     return rows, td / zs.size
 
 

@@ -35,13 +35,12 @@ config_file = "config/papers/rolling_shear.yaml"
 profile = "default"
 
 # %%
-import matplotlib.ticker
 import numpy as np
 
 from mechrepro import accuracy
 from mechrepro.models.rolling_shear import validation as V
-from mechrepro.models.rolling_shear.drawing import linkage_at
-from mechrepro.plotting import plt
+from mechrepro.models.rolling_shear.blade import linkage_at
+from mechrepro.plotting import log_ticks, plt
 from mechrepro.results import PaperResults
 
 R = PaperResults(paper, results_dir, config_file, profile)
@@ -101,13 +100,9 @@ ax[0].legend(fontsize=7)
 red = fam["family_member_reduction"].values
 built = fam["family_member_buildable"].values == 1.0
 P = R.cfg.raw["parameters"]
-with np.errstate(invalid="ignore"):   # buildable with the guide rod out of the cut's plane
-    oop = (np.isfinite(fam["family_member_tilt"].values)
-           & (fam["family_member_joint_height"].values >= P["plate_thickness_max"]["value"])
-           & (fam["family_member_mu_min"].values >= P["transmission_min"]["value"])
-           & (fam["family_member_mu_max"].values <= 180 - P["transmission_min"]["value"])
-           & (fam["family_member_rise"].values <= P["opening"]["value"])
-           & (fam["family_member_open_mu"].values >= P["transmission_min"]["value"]) & ~built)
+oop = V.buildable_members(fam, clearance=P["clearance"]["value"], mu_min=P["transmission_min"]["value"],
+                          plate_top=P["plate_thickness_max"]["value"],
+                          opening=P["opening"]["value"])["out_of_plane"] & ~built   # only out of plane
 car = fam["family_member_carrier_constants"].values.astype(str)
 eq8 = fam["family_member_eq8_reading"].values.astype(str)
 bins = np.arange(-60, 50, 2.5)
@@ -253,10 +248,7 @@ for k, name in ((1, "fig13"), (2, "fig14")):
 # ## Table II and the lever scans: which levers the objective determines
 
 # %%
-header, rows2 = V.table2(orig, popt, opt)
-R.write_table("table2", header, rows2)
-for r in rows2:
-    print(r)
+R.write_table("table2", *V.table2(orig, popt, opt))
 R.write_table("lever_scan", *V.lever_scan(opt))
 
 # %% [markdown]
@@ -270,7 +262,7 @@ R.write_table("lever_scan", *V.lever_scan(opt))
 
 # %%
 des = R.run("design")
-strict = V.strict_ends(R)
+strict = V.constraint_ends(R, max)
 P = R.cfg.raw["parameters"]
 cons = dict(clearance=float(P["clearance"]["value"]), mu_min=float(P["transmission_min"]["value"]),
             plate_top=float(P["plate_thickness_max"]["value"]), opening=float(P["opening"]["value"]))
@@ -287,7 +279,7 @@ for k, (name, mk) in enumerate((("paper, original levers", "s"), ("paper, Table 
                mew=1.5, color=f"C{k + 1}", label=name)
 rec = V.recommended(des, **strict)
 if rec is not None:
-    ax[0].plot(des["envelope_H"].values[rec[0]], V.recommended_design(des, rec)["mu_worst"], "*", ms=14,
+    ax[0].plot(des["envelope_H"].values[rec["index"]], rec["mu_worst"], "*", ms=14,
                color="tab:red", label="recommended (buildable at the strict range ends)")
 ax[0].axhline(cons["mu_min"], color="k", ls=":", lw=0.8, label=f"transmission floor {cons['mu_min']:.0f} deg")
 ax[0].set(xlabel="synthetic horizontal displacement H [mm]",
@@ -309,17 +301,12 @@ ax[1].legend(h1 + h2, l1_ + l2_, fontsize=7, loc="upper right")
 fig.tight_layout(rect=(0, 0.1, 1, 1))
 R.save_figure(fig, "design_front")
 R.write_table("design_front", *V.design_front(des, strict=strict, **cons))
-for r in V.design_front(des, strict=strict, **cons)[1]:
-    print(r)
 
 # %% [markdown]
 # ## Solver comparison
 
 # %%
-header, rows3 = V.solver_comparison(comp)
-R.write_table("solver_comparison", header, rows3)
-for r in rows3:
-    print(r)
+R.write_table("solver_comparison", *V.solver_comparison(comp))
 
 # %% [markdown]
 # ## selPSO's branch benchmark: success against the initial spread
@@ -372,11 +359,8 @@ fig, ax = plt.subplots(nrow, ncol, figsize=(15, 4.6 * nrow), squeeze=False)
 for a, (name, kind) in zip(ax.flat, panels):
     sel = [r for r in coa if r["error_kind"] == kind]
     accuracy.plot(sel, name, a)
-    for axis, lim in ((a.xaxis, a.get_xlim()), (a.yaxis, a.get_ylim())):
-        if lim[1] < 10 * lim[0]:   # within a decade: a few plain ticks, no crowded minor labels
-            axis.set_major_locator(matplotlib.ticker.MaxNLocator(4))
-            axis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%.3g"))
-        axis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+    log_ticks(a.xaxis)
+    log_ticks(a.yaxis)
     a.set_title(f"{name}: {kind} error", fontsize=9)
     if name in stochastic:   # an order fitted to quantiles over seeds means nothing
         for text in a.get_legend().get_texts():

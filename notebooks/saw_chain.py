@@ -99,9 +99,8 @@ for i, (label, (b_lo, b_hi, c)) in enumerate(bands.items()):
         bx.annotate(f"{y:.3f}", (i, y), xytext=(0, -3 if va == "top" else 3),
                     textcoords="offset points", ha="center", va=va, fontsize=7, color=c)
 bx.set_xticks(range(len(bands)), list(bands), fontsize=7)
-bx.set_xlim(-0.6, len(bands) - 0.4)
-bx.set_ylim(min(b[0] for b in bands.values()) - 0.06, max(b[1] for b in bands.values()) + 0.06)
-bx.set(ylabel="band [m/s]", title=f"the bands, min to max (model at K={K})")
+bx.set(xlim=(-0.6, len(bands) - 0.4), ylabel="band [m/s]", title=f"the bands, min to max (model at K={K})",
+       ylim=(min(b[0] for b in bands.values()) - 0.06, max(b[1] for b in bands.values()) + 0.06))
 bx.grid(True, axis="y", alpha=0.3)
 R.save_figure(fig, "fig07")
 print(f"preferred explanation '{best_name}': band {pred[0]:.4f} to {pred[1]:.4f} m/s against the "
@@ -344,7 +343,7 @@ ax[3, 2].legend(*ax[0, 0].get_legend_handles_labels(), fontsize=8, loc="center",
                 title="maps over teeth z (first column)", title_fontsize=8)
 ax[3, 3].legend(*ax[3, 0].get_legend_handles_labels(), fontsize=8, loc="center",
                 title="closed-form rules (bottom row)", title_fontsize=8)
-fig.suptitle(f"saw_chain design maps from the exact solution; ★ the paper's chain")
+fig.suptitle("saw_chain design maps from the exact solution; ★ the paper's chain")
 fig.subplots_adjust(hspace=0.35, wspace=0.3)
 R.save_figure(fig, "design_maps")
 for row in design.rule_table(dm):

@@ -5,11 +5,19 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from mechrepro.models.rolling_shear import blade, loops, pose
-from mechrepro.models.rolling_shear.trajectory import (horizontal_displacement, trajectory1,
+from mechrepro.models.rolling_shear import blade, loops
+from mechrepro.models.rolling_shear.motion_laws import (horizontal_displacement, trajectory1,
                                                        trajectory1_for)
 
 from test_rolling_shear_helpers import geometry, stroke_exact
+
+
+def M20_printed(g, theta5, theta6):
+    """Eq. (4) exactly as printed (rotation -theta5), against which the convention is tested."""
+    c, s = np.cos(theta5), np.sin(theta5)
+    return np.array([[c, s, g.l6 * np.cos(theta6)],
+                     [-s, c, g.l6 * np.sin(theta6)],
+                     [0.0, 0.0, 1.0]])
 
 
 @pytest.fixture(scope="module")
@@ -35,7 +43,7 @@ def test_M20_rotation_sense_agrees_with_loop_equations(g, t5, t6):
     I = D + g.l5 * np.exp(1j * t5)
     x, y, _ = blade.M20(g, t5, t6) @ np.array([g.l5, 0.0, 1.0])
     assert abs(complex(x, y) - I) < 1e-9
-    xp, yp, _ = blade.M20_printed(g, t5, t6) @ np.array([g.l5, 0.0, 1.0])
+    xp, yp, _ = M20_printed(g, t5, t6) @ np.array([g.l5, 0.0, 1.0])
     assert abs(complex(xp, yp) - I) > 1.0  # the printed sign contradicts Eq. (9)
 
 
@@ -44,7 +52,7 @@ def test_blade_turns_by_theta5_minus_beta2(g, t5, t6):
     M = blade.M20(g, t5, t6) @ blade.M12(g)
     assert math.isclose(math.atan2(M[1, 0], M[0, 0]), math.remainder(t5 - g.beta2, 2 * math.pi),
                         abs_tol=1e-12)
-    Mp = blade.M20_printed(g, t5, t6) @ blade.M12(g)
+    Mp = M20_printed(g, t5, t6) @ blade.M12(g)
     assert not math.isclose(math.atan2(Mp[1, 0], Mp[0, 0]),
                             math.remainder(t5 - g.beta2, 2 * math.pi), abs_tol=1e-3)
 
@@ -122,5 +130,5 @@ def test_loop_jacobian_matches_finite_differences(g):
 
 def test_exact_pose_satisfies_eq7(g):
     for xk in (g.x_mid + 0.5 * g.width, g.x_mid, g.x_mid - 0.5 * g.width):   # the cut's ends
-        t = pose.exact_pose(g, xk)
-        assert np.abs(pose.residuals(g, t, xk)).sum() < 1e-9
+        t = blade.exact_pose(g, xk)
+        assert np.abs(blade.pose_residuals(g, t, xk)).sum() < 1e-9

@@ -4,8 +4,8 @@ import math
 import numpy as np
 import pytest
 
-from mechrepro.models.rolling_shear import blade, loops, optimise, pose, stroke
-from mechrepro.models.rolling_shear.branch import in_ranges, on_design_branch
+from mechrepro.models.rolling_shear import blade, loops, optimise, stroke
+from mechrepro.models.rolling_shear.loops import in_ranges, on_design_branch
 from mechrepro.models.rolling_shear.design import design
 from mechrepro.models.rolling_shear.geometry import cut_points, with_intent
 
@@ -59,7 +59,7 @@ def test_calibration_hits_the_paper_number_and_is_monotone(g):
 
 
 def test_mid_cut_pose_is_the_design_pose(g):
-    t5, t6 = pose.exact_pose(g, g.x_mid)
+    t5, t6 = blade.exact_pose(g, g.x_mid)
     assert abs(t5 - g.beta2) < 1e-6                              # beta = 0 at mid-cut
     assert abs(t6 - config().raw["parameters"]["theta6_mid"]["value"]) < 1e-6
 
@@ -119,7 +119,7 @@ def test_schema_rejects_bad_runs(edit_config, edit, expect):
 
 
 def test_forward_drive_with_reverse_solved_laws_reproduces_the_stroke(g):
-    from mechrepro.models.rolling_shear.forward import constant_rate_drive, drive
+    from mechrepro.models.rolling_shear.blade import constant_rate_drive, drive
 
     sol = stroke_exact(g, 17)
     th = drive(g, sol.theta[:, 0], sol.theta[:, 1], sol.theta[0])

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from mechrepro import compiled
-from mechrepro.models.rolling_shear import closure, kernels, optimise, pose, stroke
+from mechrepro.models.rolling_shear import blade, closure, kernels, optimise, stroke
 from mechrepro.models.rolling_shear.calibrate import calibrate_tilt
 from mechrepro.models.rolling_shear.geometry import OPTIMISED_LEVERS, cut_points
 from mechrepro.models.rolling_shear.loops import NonAssembly
@@ -41,7 +41,7 @@ def both(monkeypatch, fn):
 ])
 def test_selpso_compiled_equals_numpy_on_both_systems(monkeypatch, settings):
     g = geometry()
-    t5, t6 = pose.exact_pose(g, g.x_mid)
+    t5, t6 = blade.exact_pose(g, g.x_mid)
     cases = [(stroke.loops_fitness(g, t5, t6), np.array([4.2, 4.3, 2.6, 2.5])),
              (stroke.loops_fitness(g, t5, t6), np.array([10.0, -10.0, 10.0, -10.0])),
              (stroke.pose_fitness(g, g.x_mid + 300.0), np.array([t5 + 0.1, t6 - 0.1]))]
@@ -67,7 +67,7 @@ def test_pose_stroke_exact_pose_and_objective_compiled_equal_numpy(monkeypatch):
 
     def run():
         poses = optimise.stroke_poses(g, x_k, 1e-9)
-        return (poses, pose.exact_pose(g, float(x_k[5])), optimise.objective(g, x_k, 1e-9))
+        return (poses, blade.exact_pose(g, float(x_k[5])), optimise.objective(g, x_k, 1e-9))
 
     off, on = both(monkeypatch, run)
     for x, y in zip(off, on):
@@ -144,8 +144,6 @@ def test_newton_continuation_compiled_equals_numpy(monkeypatch):
     """The warm Newton stroke (Eqs. 7 and 9 per cut point) and a refused start."""
     from dataclasses import replace
 
-    from mechrepro.models.rolling_shear import newton
-
     g = geometry()
     x_k = cut_points(g, 33)[1]
     first = stroke.solve_exact(g, x_k[:1]).theta[0]
@@ -153,8 +151,8 @@ def test_newton_continuation_compiled_equals_numpy(monkeypatch):
 
     def run():
         sol = stroke.solve_newton(g, x_k, settings)
-        bad = newton.loops(g, (0.0, 0.0, 0.0, 0.0), 4.0, 3.3, 1e-11, 3)   # no convergence
-        sing = newton.loops(replace(g, l3=g.l1), (1.0, 1.0, 1.0, 1.0), 2.0, 3.0, 1e-11)
+        bad = kernels.newton_loops(g, (0.0, 0.0, 0.0, 0.0), 4.0, 3.3, 1e-11, 3)   # no convergence
+        sing = kernels.newton_loops(replace(g, l3=g.l1), (1.0, 1.0, 1.0, 1.0), 2.0, 3.0, 1e-11)
         return (sol.theta, sol.fitness_pose, sol.fitness_loops, sol.iterations_loops,
                 bad.x, bad.fitness, bad.iterations, bad.reason, sing.reason)
 

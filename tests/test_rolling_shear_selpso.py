@@ -1,7 +1,7 @@
 """rolling_shear: what natural selection (Sec. 2.1) does, measured, so removing it fails."""
 import numpy as np
 
-from mechrepro.models.rolling_shear import loops, pose
+from mechrepro.models.rolling_shear import blade, loops
 from mechrepro.models.rolling_shear.selpso import SelPSOSettings, natural_selection, selpso
 
 from test_rolling_shear_helpers import geometry
@@ -25,7 +25,7 @@ def test_natural_selection_halves_the_iterations_on_eq9():
     is well below the count without it (measured ~370 vs ~730).  Fails if the selection step
     is removed from selpso() (both counts would then be equal)."""
     g = geometry()
-    t5, t6 = pose.exact_pose(g, g.x_mid)
+    t5, t6 = blade.exact_pose(g, g.x_mid)
 
     def f(X):
         return np.abs(loops.residuals(g, X, t5, t6)).sum(-1)
@@ -52,7 +52,7 @@ def test_cost_of_accuracy_error_sees_the_other_assembly_mode():
     from mechrepro.models.rolling_shear.motion_laws import pose_error
 
     g = geometry()
-    t5, t6 = pose.exact_pose(g, g.x_mid)
+    t5, t6 = blade.exact_pose(g, g.x_mid)
     right = np.array([*loops.exact_angles(g, t5, t6), t5, t6])
     mirror = np.array([*loops.exact_angles(replace(g, elbow1=-g.elbow1), t5, t6), t5, t6])
     assert np.abs(loops.residuals(g, mirror[:4], t5, t6)).sum() < 1e-9     # a true root

@@ -5,10 +5,10 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from mechrepro.models.rolling_shear import loops, optimise, pose, stroke
+from mechrepro.models.rolling_shear import blade, loops, optimise, stroke
 
 from mechrepro.solve import solve
-from mechrepro.models.rolling_shear.branch import in_ranges, on_design_branch
+from mechrepro.models.rolling_shear.loops import in_ranges, on_design_branch
 from mechrepro.models.rolling_shear.geometry import cut_points
 from mechrepro.models.rolling_shear.loops import NonAssembly
 from mechrepro.models.rolling_shear.selpso import SelPSOSettings, selpso
@@ -28,7 +28,7 @@ def settings(**kw):
 
 
 def test_selpso_is_deterministic_and_vectorised(g):
-    t5, t6 = pose.exact_pose(g, g.x_mid)
+    t5, t6 = blade.exact_pose(g, g.x_mid)
     shapes = []
 
     def f(X):
@@ -45,7 +45,7 @@ def test_selpso_is_deterministic_and_vectorised(g):
 
 @pytest.mark.parametrize("x0", [[50.0, -50.0, 80.0, -80.0], [-20.0, 20.0, 30.0, -30.0]])
 def test_hard_case_selpso_from_initial_values_far_outside_the_ranges(g, x0):
-    t5, t6 = pose.exact_pose(g, g.x_mid + 800)
+    t5, t6 = blade.exact_pose(g, g.x_mid + 800)
     r = selpso(lambda X: np.abs(loops.residuals(g, X, t5, t6)).sum(-1), np.array(x0), PSO,
                np.random.default_rng(1), period=2 * math.pi)
     assert r.converged
@@ -169,10 +169,10 @@ def test_hard_case_guide_rod_too_short_names_the_cut_point(g):
 
 
 def test_newton_singular_jacobian_is_reported_not_divided_by():
-    from mechrepro.models.rolling_shear import newton
+    from mechrepro.models.rolling_shear import kernels
     # at a toggle the 2x2 block is singular (crank and rod collinear): theta1 = theta3, the
     # block's det = l1 l3 sin(theta1 - theta3) is exactly 0
-    r = newton.loops(geometry(), (4.0, 4.3, 4.0, 2.5), 2.6, 3.3, 1e-11)
+    r = kernels.newton_loops(geometry(), (4.0, 4.3, 4.0, 2.5), 2.6, 3.3, 1e-11)
     assert not r.converged and "loop ABCD: singular" in r.reason and "GHID" not in r.reason
 
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from mechrepro.solve import solve
-from mechrepro.models.saw_chain.analysis import (equivalent_K, error_model_optimum, load_max_at,
+from mechrepro.models.saw_chain.analysis import (equivalent_K, error_model_optimum, load_extreme_at,
                                                  observed_order, pitch_radius_readings,
                                                  textbook_constants_for_range, velocity_band)
 from mechrepro.models.saw_chain.difference import RoundoffError
@@ -143,9 +143,9 @@ def test_equivalent_K_is_a_root_of_the_solver():
     chain = chain_from_run(run(K=1))
     K, below, at = equivalent_K(chain, 209.4)
     assert below < 209.4 <= at
-    assert load_max_at(chain, K - 1) == below and load_max_at(chain, K) == at
+    assert load_extreme_at(chain, K - 1) == below and load_extreme_at(chain, K) == at
     # monotonic around the root, so the smallest such K is unique
-    m = [load_max_at(chain, k) for k in range(K - 20, K + 20)]
+    m = [load_extreme_at(chain, k) for k in range(K - 20, K + 20)]
     assert np.all(np.diff(m) > 0)
     assert equivalent_K(chain, 1e6)[0] is None
 

@@ -1,12 +1,6 @@
-"""rolling_shear: 2-DOF hydraulic rolling-shear linkage, selPSO, lever optimisation.
-
-Li & Wei, "Research of Rolling Shear Motion Laws Based On Improved PSO".
-A scene names its solver (``continuation``, ``method_comparison``, ``lever_optimisation``,
-``family_scan``; see solver.py) and its effects (effects.py); only those are evaluated.
-
-The names below are imported on first use (:func:`mechrepro.lazy.lazy_exports`), so that a reader of
-results (the notebook: ``validation``, ``drawing``) does not import the solvers and scipy.
-"""
+"""rolling_shear: 2-DOF hydraulic rolling-shear linkage, selPSO, lever optimisation
+(Li & Wei).  Names are imported on first use, so a reader of results does not import the
+solvers."""
 from __future__ import annotations
 
 from mechrepro.lazy import lazy_exports

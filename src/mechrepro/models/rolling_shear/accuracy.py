@@ -1,7 +1,4 @@
-"""The error functions of rolling_shear's cost-of-accuracy quantities (config ``accuracy:``).
-
-Each returns one error per run of the study, along its ``run`` dimension (mm, rad inside).
-"""
+"""The error functions of rolling_shear's cost-of-accuracy quantities, one error per run."""
 from __future__ import annotations
 
 import numpy as np
@@ -45,12 +42,8 @@ def newton_objective_h(ds, entry):
 
 @ACCURACY.register("interpolated_motion_laws")
 def interpolated_motion_laws(ds, entry):
-    """max |theta1, theta2 of a run interpolated by cubic spline - the finest run's| at the
-    finest run's own cut points (rad).
-
-    Every run stores its spline on the nested grid of LAW_GRID points
-    (:func:`.motion_laws.driving_laws_on_grid`); the finest run's cut points are every
-    (LAW_GRID - 1) / (n_finest - 1)-th point of it, where its spline is its solution."""
+    """max |theta1, theta2 of a run's spline - the finest run's| at the finest run's cut points
+    (rad): every run stores its spline on the nested LAW_GRID."""
     n = np.asarray(ds[entry["knob"]].values, int)
     f = finest_index(n, entry["finer"])
     step = (LAW_GRID - 1) // (n[f] - 1) if (LAW_GRID - 1) % (n[f] - 1) == 0 else 1

@@ -1,13 +1,7 @@
-"""Calibration of the guide-rod tilt on the paper's synthetic horizontal displacement.
+"""Calibration of the guide-rod tilt theta6_mid - pi on the paper's 1.4341 (Sec. 4).
 
-Of the design intents (design.py) the tilt of the guide rod at mid-cut, theta6_mid - pi, is
-the one the paper's 1.4341 selects: the slip of the blade on the plate is the integral of
-how far the line ED passes below the contact point (the instant centre of the carrier lies
-on ED vertically above or below the contact point, because the lowest point is held on
-y = -s), so H grows monotonically with the tilt; a smaller tilt lets theta6 leave the
-paper's range [pi, 2 pi] during the stroke.  The other intents keep their configured values
-(or their range ends, in the variant runs, which re-calibrate).
-"""
+The blade slips by how far the line ED passes below the contact point, so H rises
+monotonically with the tilt; a smaller tilt lets theta6 leave [pi, 2 pi] during the stroke."""
 from __future__ import annotations
 
 import math
@@ -31,8 +25,7 @@ class CalibrationError(Refusal):
 
 
 def H_of_tilt(g: Geometry, tilt: float, n: int, tol: float) -> float:
-    """Synthetic horizontal displacement of the family member with this tilt; NaN if it
-    does not assemble inside the paper's ranges over the whole stroke."""
+    """H of the family member with this tilt; NaN where it does not assemble over the stroke."""
     try:
         gt = with_intent(g, theta6_mid=math.pi + tilt)
         return optimise.objective(gt, cut_points(gt, n)[1], tol)
@@ -41,9 +34,8 @@ def H_of_tilt(g: Geometry, tilt: float, n: int, tol: float) -> float:
 
 
 def _scan(g: Geometry, target: float, n_scan: int, tol: float, whole: bool) -> np.ndarray:
-    """H over ``TILTS`` at ``n_scan`` cut points; unless ``whole``, it stops at the first
-    sign change of H - target between two assembling tilts (the bracket the calibration
-    takes, so the same tilt), leaving the rest NaN."""
+    """H over ``TILTS`` at ``n_scan`` cut points; unless ``whole``, stopped at the first bracket of
+    H - target between assembling tilts (the rest NaN)."""
     H = np.full(len(TILTS), np.nan)
     for j, t in enumerate(TILTS):
         H[j] = H_of_tilt(g, t, n_scan, tol)
@@ -55,16 +47,9 @@ def _scan(g: Geometry, target: float, n_scan: int, tol: float, whole: bool) -> n
 
 def calibrate_tilt(g: Geometry, target: float, n: int, tol: float,
                    n_scan: int = 33, whole_scan: bool = True) -> tuple[Geometry, dict]:
-    """The geometry whose tilt gives H = target (mm) with ``n`` cut points.
-
-    Scans ``TILTS`` at ``n_scan`` cut points (cheap), takes the first sign change of
-    H - target among assembling members (H rises with the tilt), moves that bracket until it
-    brackets the root at ``n`` points, and refines it by Brent's method (``H``: at the root,
-    ``n`` points; brentq returns a tilt it has evaluated).  Raises
-    CalibrationError when no member of the family reaches the target.  With
-    ``whole_scan=False`` the scan stops at that first sign change (the same tilt; ``H_scan``,
-    ``tilt_min`` and ``H_at_min_tilt`` then cover only the tilts scanned).
-    """
+    """The geometry whose tilt gives H = target (mm) at ``n`` cut points: the first bracket of the
+    cheap scan, moved until it brackets the root at ``n`` points, refined by Brent; raises
+    CalibrationError when no member reaches the target."""
     n_scan = min(n_scan, n)
     H = _scan(g, target, n_scan, tol, whole_scan)
     ok = np.isfinite(H)

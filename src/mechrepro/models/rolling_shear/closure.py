@@ -1,27 +1,13 @@
 """Eqs. (4)-(9) of the linkage, their Newton solves and the loops over a stroke, written once.
 
-Every function here is plain Python over a :class:`Linkage` record (or anything with the
-same attribute names, such as :class:`.geometry.Geometry`; the functions called from Python
-take the record's :func:`constants` and name them by :func:`record`).  Where numba is installed each is
-compiled by :func:`mechrepro.compiled.jit`; :data:`python` holds the same source un-jitted
-(nested calls included), which the numpy paths call; a kernel takes a record as the array
-:func:`.geometry.constants`: :mod:`.blade`, :mod:`.loops` and
-:mod:`.pose` on arrays (the functions below that use ``np.sin``/``np.cos`` take arrays as
-well as floats), the rest where :func:`available` says no.  There is no second copy
-of the physics.
-
-Two forms of each system are used, as the paper's method and Newton need them: the residual
-form (Eq. 7 through the blade frame, Eq. 9 as printed: selPSO's fitness G) and the Newton
-form (the lowest point and the carrier joints collected, with the Jacobian).  They are the
-same equations, evaluated in a different order; each is written once.
-
-No fast-math, no contraction into FMA; numba's and numpy's sin/cos are the C library's, so
-the compiled and the Python path give the same bits (``tests/test_rolling_shear_kernels.py``).
+Each function is compiled by :func:`mechrepro.compiled.jit` where numba is installed;
+:data:`python` holds the same source un-jitted (the numpy paths).  A kernel takes the
+linkage as the array :func:`.geometry.constants` and names it by :func:`record`.  No
+fast-math and the C library's sin/cos, so both paths give the same bits.
 
 :func:`guide_brent` is adapted from SciPy's ``brentq`` (scipy/optimize/Zeros/brentq.c),
 Copyright (c) 2001-2002 Enthought, Inc. 2003, SciPy Developers, under the BSD 3-clause
-licence whose full text :mod:`mechrepro.models.joint_wear.radau` carries.
-"""
+licence whose full text :mod:`mechrepro.models.joint_wear.radau` carries."""
 from __future__ import annotations
 
 import math
@@ -37,8 +23,7 @@ from .geometry import LINKAGE_KEYS
 
 
 def available() -> bool:
-    """Whether the compiled path runs: numba importable and not switched off
-    (``MECHREPRO_RS_KERNEL=numpy`` or ``MECHREPRO_KERNEL=numpy``)."""
+    """Whether the compiled path runs (numba importable, ``MECHREPRO_RS_KERNEL`` not ``numpy``)."""
     return compiled.available("MECHREPRO_RS_KERNEL")
 
 
@@ -94,19 +79,17 @@ def guide_point(p, beta, x_target):
 
 @jit
 def guide_distance(p, beta, x_target):
-    """|ED| - l6 at blade angle beta (:func:`guide_point`): zero where the guide rod closes.
-    |ED| as ``abs(complex)``, the C library's hypot both compiled and in Python (Python's
-    ``math.hypot`` is its own, and differs from it in the last bit)."""
+    """|ED| - l6 at blade angle beta: zero where the guide rod closes (``abs(complex)``: the C
+    library's hypot on both paths, unlike ``math.hypot``)."""
     dx, dy = guide_point(p, beta, x_target)
     return abs(complex(dx, dy)) - p.l6
 
 
 @jit
 def guide_brent(p, x_target, xpre, xcur, xtol, rtol, max_iter):
-    """The root of :func:`guide_distance` in [xpre, xcur] by Brent's method: the C code of
-    ``scipy.optimize.brentq`` (scipy/optimize/Zeros/brentq.c) step for step, so the same
-    root to the bit, without a call into Python per step.  Returns (root, status): status
-    ``NON_FINITE`` for a NaN value, ``NO_BRACKET`` when f has one sign at both ends."""
+    """Root of :func:`guide_distance` in [xpre, xcur]: ``scipy.optimize.brentq``'s C code step for
+    step (the same root to the bit) without a call into Python per step.  Returns (root,
+    status): ``NON_FINITE`` for a NaN, ``NO_BRACKET`` when f keeps its sign."""
     fpre = guide_distance(p, xpre, x_target)
     fcur = guide_distance(p, xcur, x_target)
     if math.isnan(fpre) or math.isnan(fcur):
@@ -161,20 +144,12 @@ def _bracket_floor(betas, j):
 
 
 @jit
-def guide_pose(c, betas, f, dx, known, x_target, guide_mode, margin, xtol, rtol, max_iter):
-    """The pose of :func:`.pose.exact_pose` from the scan of |ED| - l6 (f) and of the x of D
-    (dx) over the grid betas: :func:`guide_brent` in every bracket (a sign change, or a
-    zero) that does not lie clearly (``margin``) in the other assembly mode of the guide
-    rod, and of the roots whose pose is in the paper's ranges (design mode ``guide_mode``)
-    the one with the smallest (|beta|, theta5, theta6).
-
-    The brackets are taken outwards from beta = 0, in the order of the least |beta| they can
-    hold, and no further than the best root so far: the brackets left out cannot hold a
-    smaller |beta|, so the pose is that of the whole grid.  Unless ``known``, f and dx are
-    filled in as the brackets reach them (:func:`guide_point`, |ED| as in
-    :func:`guide_distance`, whose values Brent's steps take).  Returns (found, theta5,
-    theta6, status): status is :func:`guide_brent`'s of the first bracket it could not
-    solve."""
+def guide_pose(c, betas, f, dx, x_target, guide_mode, margin, xtol, rtol, max_iter):
+    """The pose of :func:`.blade.exact_pose`: :func:`guide_brent` in every bracket of |ED| - l6
+    (``f``) over ``betas`` not clearly (``margin``) in the guide rod's other mode, and of the roots
+    in the paper's ranges the one with the smallest (|beta|, theta5, theta6).  Brackets are
+    visited outwards from beta = 0 and only while they can hold a smaller |beta|; f and the x of
+    D (``dx``) are filled in as reached.  Returns (found, theta5, theta6, status)."""
     p = record(c)
     two_pi = 2 * math.pi
     nb = betas.size - 1
@@ -183,10 +158,9 @@ def guide_pose(c, betas, f, dx, known, x_target, guide_mode, margin, xtol, rtol,
         if _bracket_floor(betas, j) < _bracket_floor(betas, lo):
             lo = j
     hi = lo
-    if not known:                                # points scanned: lo .. hi + 1
-        for i in (lo, lo + 1):
-            dx[i], dy = guide_point(p, betas[i], x_target)
-            f[i] = abs(complex(dx[i], dy)) - p.l6
+    for i in (lo, lo + 1):                       # points scanned: lo .. hi + 1
+        dx[i], dy = guide_point(p, betas[i], x_target)
+        f[i] = abs(complex(dx[i], dy)) - p.l6
     found, best, t5b, t6b = False, 0.0, 0.0, 0.0
     j = lo
     while True:
@@ -216,9 +190,8 @@ def guide_pose(c, betas, f, dx, known, x_target, guide_mode, margin, xtol, rtol,
         else:
             hi += 1
             j, i = hi, hi + 1
-        if not known:
-            dx[i], dy = guide_point(p, betas[i], x_target)
-            f[i] = abs(complex(dx[i], dy)) - p.l6
+        dx[i], dy = guide_point(p, betas[i], x_target)
+        f[i] = abs(complex(dx[i], dy)) - p.l6
 
 
 @jit
@@ -284,8 +257,8 @@ def fitness(kind, p, q, X, G):
 @jit
 def newton2(kind, p, q0, q1, a, b, tol, max_iter, scale, singular_rtol):
     """Newton on one 2x2 block (``POSE``: Eq. 7 at x_target = q0; ``ABCD``/``GHID``: the loop
-    closing on (q0, q1)), Cramer's rule per step, refused when |det| <= singular_rtol
-    scale (a toggle).  Returns (a, b, G, iterations, status, det)."""
+    closing on (q0, q1)) by Cramer's rule, refused when |det| <= singular_rtol scale (a toggle).
+    Returns (a, b, G, iterations, status, det)."""
     G = math.inf
     for k in range(max_iter + 1):
         if kind == POSE:
@@ -319,8 +292,8 @@ def pose_newton(c, t5, t6, x_target, tol, max_iter, singular_rtol):
 
 @jit
 def loops_newton(c, t1, t2, t3, t4, theta5, theta6, tol, max_iter, singular_rtol):
-    """Eq. (9): the two loops by :func:`newton2`, each to tol / 2, each closing on its
-    carrier joint relative to its crank pivot (A, G); the two results."""
+    """Eq. (9): the two loops by :func:`newton2`, each to tol / 2, closing on its carrier joint
+    relative to its crank pivot (A, G)."""
     p = record(c)
     cx, cy, c6, s6, ix, iy = loop_knowns(p, theta5, theta6)
     r1 = newton2(ABCD, p, cx + c6 + p.l10 + p.l9, cy + s6 - p.l11, t1, t3, 0.5 * tol,
@@ -332,11 +305,9 @@ def loops_newton(c, t1, t2, t3, t4, theta5, theta6, tol, max_iter, singular_rtol
 
 @jit
 def pose_stroke(c, x_k, t5, t6, tol, max_iter, singular_rtol, guide_mode, out):
-    """:func:`pose_newton` at every cut point, out[i] = (theta5, theta6), each point from the
-    linear extrapolation of the two previous; then theta6 taken mod 2 pi and every pose
-    checked on the guide rod's design branch (theta5 in [0, pi], theta6 in [pi, 2 pi],
-    ``guide_mode`` cos theta6 > 0).  Returns (index of the first point that fails or -1,
-    its status (``OFF_BRANCH``: off the design branch), G, det)."""
+    """:func:`pose_newton` at every cut point, each from the linear extrapolation of the two
+    previous, theta6 mod 2 pi, every pose checked on the guide rod's design branch.  Returns
+    (first failing index or -1, status (``OFF_BRANCH``), G, det)."""
     for i in range(x_k.size):
         a, b, G, k, status, det = pose_newton(c, t5, t6, x_k[i], tol, max_iter, singular_rtol)
         if status != CONVERGED:
@@ -359,8 +330,8 @@ def pose_stroke(c, x_k, t5, t6, tol, max_iter, singular_rtol, guide_mode, out):
 
 @jit
 def loops_stroke(c, theta, tol, max_iter, singular_rtol):
-    """:func:`loops_newton` at every pose theta[i, 4:6] (each point from the linear
-    extrapolation of the two previous); the summed fitness, so that no work is skipped."""
+    """:func:`loops_newton` at every pose theta[i, 4:6], warm-started like :func:`pose_stroke`;
+    the summed fitness (so that no work is skipped)."""
     g1, g2, g3, g4 = theta[0, 0], theta[0, 1], theta[0, 2], theta[0, 3]
     p1 = p2 = p3 = p4 = 0.0
     total = 0.0
@@ -379,9 +350,8 @@ def loops_stroke(c, theta, tol, max_iter, singular_rtol):
 
 @jit
 def dyad_joint(px, py, qx, qy, rp, rq, e):
-    """The joint X of a loop of Eq. (9) as a dyad: |X - P| = rp, |X - Q| = rq, on the side
-    ``e`` (the elbow, +1/-1: the sign of (X - P) x (Q - X)); returns (x, y, h2), h2 the
-    squared height of X over PQ (negative, x and y NaN: the loop cannot close)."""
+    """Joint X of a loop of Eq. (9): |X - P| = rp, |X - Q| = rq on side ``e`` (the sign of
+    (X - P) x (Q - X)); returns (x, y, h2), h2 < 0 (x, y NaN) where the loop cannot close."""
     L = np.hypot(qx - px, qy - py)
     ux, uy = (qx - px) / L, (qy - py) / L
     a = (rp * rp - rq * rq + L * L) / (2.0 * L)
@@ -392,11 +362,9 @@ def dyad_joint(px, py, qx, qy, rp, rq, e):
 
 @jit
 def assembles_clearly(c, poses, margin):
-    """True when both loops of Eq. (9) close at every pose (theta5, theta6) with theta1..4
-    inside the paper's ranges by more than ``margin`` (rad, and a relative margin on the
-    squared dyad height): the decision of :func:`.optimise.check_assembly` cannot depend on
-    round-off then.  False means "not clearly": the caller runs that check, which decides
-    (and names the cut point that fails)."""
+    """True when both loops of Eq. (9) close at every pose with theta1..4 inside the paper's ranges
+    by more than ``margin``, so round-off cannot decide; False means "not clearly" and the
+    caller runs :func:`.optimise.check_assembly`."""
     p = record(c)
     two_pi = 2.0 * math.pi
     for i in range(poses.shape[0]):
@@ -427,8 +395,7 @@ def assembles_clearly(c, poses, margin):
 
 
 def _uncompiled(namespace: dict) -> types.SimpleNamespace:
-    """This module's functions un-jitted, calling each other un-jitted: the same code objects
-    over a copy of the module's globals in which every kernel is replaced by its source."""
+    """This module's functions un-jitted, calling each other un-jitted."""
     plain = dict(namespace)
     for name, f in namespace.items():
         src = getattr(f, "py_func", f)

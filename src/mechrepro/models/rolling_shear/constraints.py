@@ -1,40 +1,16 @@
-"""Can the machine be built?  Constraints on a calibrated member of the family (issue 27).
+"""Can the machine be built?  Constraints on a calibrated member of the family.
 
-The frame's origin E is the fixed pivot of the guide rod, at the height of the lower
-blade's edge (the overlap line is y = -s, Eqs. 6-7); the plate (Table I: 6-50 mm thick)
-lies on the lower blade over the rolled length x in [x_mid - width/2, x_mid + width/2].
-A member whose equations close can still be a machine nobody can build:
+1. Under the ``planar`` reading of ``guide_rod_plane``, the guide rod ED (pivot E, joint D
+   and the rod between) hangs below the pass line and must stay ``clearance`` beside the
+   plate over the stroke; ``out_of_plane`` (the rod beside the plane of the cut) drops it.
+2. The carrier's rod joints C, I pass over the thickest plate (``plate_top``).
+3. Each dyad keeps its crank-rod angle in [mu_min, 180 deg - mu_min]: near a toggle the
+   cylinder's force has no lever arm.
+4. The machine opens (Table I, 150 mm): at the open position (Eq. 7 with y_k = +opening at
+   x_mid) both dyads close with the floor of 3, and the blade end's rise width^2 / (2 R)
+   stays inside the open degree.
 
-1. **Nothing fixed or moving below the pass line inside the plate** (``guide_rod_plane``
-   ``planar``, the reading of the paper's planar kinematic diagrams).  The guide rod ED
-   hangs below the horizontal through E (theta6 in [pi, 2 pi]), so both of its ends -- the
-   fixed pivot E *and the moving joint D* -- and the rod between them must lie beside the
-   plate, ``clearance`` (bearings, housing, guards) clear of its edges, over the whole
-   stroke; otherwise the rod sweeps through the plate or the lower blade.  The other
-   reading, ``out_of_plane`` (the rod and its pivot beside the plane of the cut, along the
-   rolling direction), drops this constraint: the paper's figures are lost and its text
-   does not say (config ``guide_rod_plane``, an assumed choice with both readings).
-2. **The carrier's rod joints pass over the plate.**  C and I ride on the blade holder:
-   they must stay above the thickest plate (``plate_top`` = 50 mm) over the stroke.
-3. **Transmission.**  Each dyad (crank AB - rod BC, crank GH - rod HI) keeps its angle
-   between crank and rod inside [mu_min, 180 deg - mu_min] over the stroke: near 0 or 180 deg
-   (the toggle) the cylinder's force has no lever arm on the carrier.
-4. **Opening (Table I, open degree 150 mm).**  The machine must open: at the open position
-   -- the blade lifted straight up at mid-cut until its lowest point is the open degree
-   above the lower blade's edge (Eq. 7 with y_k = +opening at x_k = x_mid, reached from
-   the mid-cut pose by continuation; the guide rod may turn above E there, the open
-   position is not part of the cut and the paper's ranges are the cut's) -- both dyads of
-   Eq. (9) must close on their assembly modes with the transmission floor of constraint 3:
-   ``open_mu``, which binds for dyads that the lift takes towards a toggle.  And the
-   blade's far end over the plate rises width^2 / (2 R) above its lowest point, which must
-   stay inside the open degree (R's lower end, 35 m, is where the widest plate rises
-   146 mm: R's range is this part).
-
-:func:`margins` measures how far a member is from each constraint (what the family scan
-stores, so that a verdict can ask for buildability at any clearance or transmission floor
-of their ranges and under either reading), :func:`violations` what it breaks at the given
-settings (empty: buildable), with the margins.
-"""
+:func:`margins` measures how far a member is from each, :func:`violations` what it breaks."""
 from __future__ import annotations
 
 import math
@@ -45,7 +21,7 @@ from dataclasses import replace
 
 from scipy.optimize import root
 
-from .blade import carrier_points
+from .blade import carrier_points, exact_pose, pose_residuals
 from .geometry import Geometry
 from .loops import pivots
 
@@ -58,35 +34,35 @@ OPEN_STEPS = 4
 
 
 def open_pose(g: Geometry, opening: float) -> np.ndarray | None:
-    """(theta5, theta6) of the open position (constraint 4): Eq. (7) with the lowest point
-    at (x_mid, +opening), followed from the mid-cut pose in :data:`OPEN_STEPS` lifts by
-    scipy's hybrid Powell method; None where a lift does not converge (the guide rod cannot
-    carry the blade that high)."""
-    from . import pose
-
+    """(theta5, theta6) of the open position (constraint 4), followed from the mid-cut pose in
+    :data:`OPEN_STEPS` lifts by scipy's hybrid Powell method; None where a lift fails."""
     try:
-        q = pose.exact_pose(g, float(g.x_mid))
+        q = exact_pose(g, float(g.x_mid))
     except Exception:   # noqa: BLE001 -- no mid-cut pose: no open position either
         return None
     for y in np.linspace(-g.s, opening, OPEN_STEPS + 1)[1:]:
         gy = replace(g, s=-float(y))
-        sol = root(lambda t: pose.residuals(gy, t, float(g.x_mid)), q, method="hybr",
+        sol = root(lambda t: pose_residuals(gy, t, float(g.x_mid)), q, method="hybr",
                    options={"xtol": 1e-13})
-        if not sol.success or np.abs(pose.residuals(gy, sol.x, float(g.x_mid))).max() > 1e-6:
+        if not sol.success or np.abs(pose_residuals(gy, sol.x, float(g.x_mid))).max() > 1e-6:
             return None
         q = sol.x
     return q
 
 
-def dyad_transmission(g: Geometry, theta5, theta6) -> np.ndarray:
-    """Worst min(mu, 180 - mu) (deg) of both dyads of Eq. (9) at each pose, mu the angle
-    between crank and rod at the crank tip; NaN where a dyad does not close."""
+def dyad_transmission(g: Geometry, theta5, theta6, levers=None) -> np.ndarray:
+    """Worst min(mu, 180 - mu) (deg) of both dyads of Eq. (9), mu the crank-rod angle at the
+    crank tip, at each pose, or at one pose for each lever set ``levers`` (m, 4: l1, l3, l5,
+    l10); NaN where a dyad does not close."""
     from .closure import python
 
-    A, G = pivots(g)
-    P = carrier_points(g, np.atleast_1d(theta5), np.atleast_1d(theta6))
-    worst = np.full(np.shape(P["D"]), np.inf)
-    for piv, joint, rp, rq, e in ((A, P["C"], g.l1, g.l3, g.elbow1), (G, P["I"], g.l2, g.l4, g.elbow2)):
+    l1, l3, l5, l10 = (g.l1, g.l3, g.l5, g.l10) if levers is None else levers.T
+    t5, t6 = np.atleast_1d(theta5), np.atleast_1d(theta6)
+    D = g.l6 * np.exp(1j * t6)
+    C, I = D + g.l8 * np.exp(1j * (t5 + g.alpha)), D + l5 * np.exp(1j * t5)
+    A, G = -l10 - g.l9 + 1j * g.l11, -l10 + 1j * g.l11
+    worst = np.inf
+    for piv, joint, rp, rq, e in ((A, C, l1, l3, g.elbow1), (G, I, g.l2, g.l4, g.elbow2)):
         with np.errstate(invalid="ignore"):
             x, y, _ = python.dyad_joint(piv.real, piv.imag, joint.real, joint.imag, rp, rq, e)
             tip = x + 1j * y
@@ -97,16 +73,9 @@ def dyad_transmission(g: Geometry, theta5, theta6) -> np.ndarray:
 
 
 def margins(g: Geometry, theta: np.ndarray, opening: float | None = None) -> dict:
-    """What constraints 1-4 measure on machine ``g`` over its stroke ``theta`` (n x 6:
-    theta1..theta6, rad), mm and deg (``open_mu`` only with ``opening``, mm):
-
-    ``rod_gap``: how far the guide rod ED (its pivot E, its joint D at every cut point and
-    the rod between them) stays beside the plate, to the nearer edge (negative: the rod
-    reaches over the plate's span); ``rod_x``: the x-interval the rod sweeps;
-    ``joint_height``: the lowest y of the rod joints C, I; ``mu``: {dyad: (smallest,
-    largest) crank-rod angle}; ``rise``: the blade end's rise over the plate; ``open_mu``:
-    the worst transmission angle at the open position (NaN: no open position, or a dyad
-    does not close there)."""
+    """What constraints 1-4 measure on machine ``g`` over its stroke ``theta`` (n x 6, rad), mm and
+    deg: ``rod_gap`` (negative: the rod reaches over the plate), ``rod_x``, ``joint_height``,
+    ``mu`` {dyad: (min, max)}, ``rise`` and, with ``opening``, ``open_mu`` (NaN: not reached)."""
     t1, t2 = theta[:, 0], theta[:, 1]
     t5, t6 = theta[:, 4], theta[:, 5]
     P = carrier_points(g, t5, t6)
@@ -132,8 +101,7 @@ def margins(g: Geometry, theta: np.ndarray, opening: float | None = None) -> dic
 
 def broken(m: dict, *, clearance: float, plate_top: float, mu_min: float, opening: float,
            guide_rod_plane: str = "planar") -> list[str]:
-    """The constraints of the module docstring that margins ``m`` (:func:`margins`) break
-    at these settings (mm; ``mu_min`` in deg)."""
+    """The constraints margins ``m`` break at these settings (mm; ``mu_min`` in deg)."""
     if guide_rod_plane not in PLANES:
         raise ValueError(f"guide_rod_plane = {guide_rod_plane!r}: one of {PLANES}")
     out = []
@@ -163,8 +131,7 @@ def broken(m: dict, *, clearance: float, plate_top: float, mu_min: float, openin
 
 def violations(g: Geometry, theta: np.ndarray, *, clearance: float, plate_top: float,
                mu_min: float, opening: float, guide_rod_plane: str = "planar") -> list[str]:
-    """Constraints 1-4 of the module docstring broken by machine ``g`` over its stroke
-    ``theta`` (n x 6: theta1..theta6, rad); lengths in mm, ``mu_min`` in rad."""
+    """Constraints 1-4 broken by machine ``g`` over its stroke ``theta``; ``mu_min`` in rad."""
     return broken(margins(g, theta, opening=opening), clearance=clearance, plate_top=plate_top,
                   mu_min=math.degrees(mu_min), opening=opening, guide_rod_plane=guide_rod_plane)
 

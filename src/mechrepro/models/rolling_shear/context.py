@@ -1,11 +1,6 @@
-"""The run's linkage as every solver and effect sees it (mm, rad).
-
-:class:`Context` holds the geometry of the run (its guide-rod tilt calibrated on the
-original levers, Sec. 4, then the scene's lever set applied), the cut points of Sec. 3.3
-step 1, the settings of every pose solver and one random stream per consumer.  A solver
-that has solved the stroke stores it in :attr:`Context.stroke` before it evaluates the
-effects that consume it (e.g. the constant-rate drive of Fig. 9).
-"""
+"""The run's linkage as every solver and effect sees it (mm, rad): the geometry (tilt
+calibrated on the original levers, Sec. 4, then the scene's levers), the cut points, the
+pose solvers' settings and one random stream per consumer."""
 from __future__ import annotations
 
 import numpy as np
@@ -21,10 +16,8 @@ from .selpso import SelPSOSettings
 
 
 class Refused(Refusal):
-    """A lever set (``options.levers``) the run refuses by name: the family member cannot
-    be calibrated on the paper's 1.4341 (``calibration``), or the lever set does not
-    assemble over the stroke (``assembly``).  Such a run is a result, not a crash: its
-    dataset carries ``levers_assemble`` and the refusal (``solver.refusal_variables``)."""
+    """A lever set the run refuses by name (``calibration``, ``assembly``, ``unbuildable``): a
+    result with its reason, not a crash (``solver.refusal_variables``)."""
 
     def __init__(self, kind: str, message: str):
         super().__init__(f"{kind}: {message}")
@@ -67,13 +60,11 @@ class Context:
         self.stroke: stroke.StrokeSolution | None = None
 
     def _calibrate(self) -> dict:
-        """Fit the guide-rod tilt on the original levers (every run, so that range-end
-        variants of the other intents re-calibrate); the scene's levers come afterwards."""
+        """Fit the tilt on the original levers in every run (range-end variants re-calibrate); the
+        scan stops at its bracket, the effect tilt_scan scans the rest at its own cost."""
         from .calibrate import calibrate_tilt
 
         n_cal = int(self.res["calibration_points"])
-        # the scan stops at the bracket it uses; the effect tilt_scan, when the scene names
-        # it, scans the rest (so its cost is booked to it, issue 27)
         self.g, cal = calibrate_tilt(self.g, self.calibration_target, n_cal, self.tol_floor,
                                      whole_scan=False)
         cal["n"] = n_cal
@@ -81,9 +72,7 @@ class Context:
         return cal
 
     def _check_buildable(self) -> None:
-        """Refuse a calibrated member nobody could build (constraints.py, issue 27, under the
-        run's ``guide_rod_plane`` reading): its original levers over the stroke at the
-        calibration's cut points."""
+        """Refuse a calibrated member nobody could build (constraints.py, under ``guide_rod_plane``)."""
         from .constraints import settings, violations
 
         n = self.calibration["n"]
@@ -118,6 +107,5 @@ class Context:
             pso_std_pose=SelPSOSettings(tol=max(pso_tol, self.tol_floor), **std))
 
     def rng(self, salt: int) -> np.random.Generator:
-        """One independent stream per consumer, so that adding one never shifts another's
-        numbers."""
+        """One stream per consumer, so that adding one never shifts another's numbers."""
         return np.random.default_rng([self.seed, salt])

@@ -1,11 +1,11 @@
-"""Solver ``continuation``: the cutting stroke by warm-started Newton, checked against the
-closed form (Sec. 3.3 steps 1-2, Figs. 9-11, 13, 14).
-
-Every cut point is solved for the blade pose theta5, theta6 (Eq. 7, the lowest point on
-y = -s) and then for the levers theta1..theta4 (Eq. 9); the closed form (Brent on
-|ED| = l6, circle intersections) is the reference at the same cut points.
-"""
+"""Solver ``continuation`` (Sec. 3.3 steps 1-2, Figs. 9-11, 13, 14): the stroke by
+warm-started Newton (Eq. 7 then Eq. 9 at every cut point), against the closed form.  Solver
+``method_comparison`` (Sec. 4, Fig. 12): the same, then every cut point by each method of
+``options.methods``; each method has its own random stream, so adding one changes no other's
+numbers."""
 from __future__ import annotations
+
+import numpy as np
 
 from mechrepro.timing import time_call
 from mechrepro.units import var
@@ -14,17 +14,14 @@ from . import stroke
 from .context import Context, Refused
 from .loops import NonAssembly
 from .effects import EFFECTS
-from .motion_laws import driving_laws_on_grid, stroke_outputs
+from .motion_laws import driving_laws_on_grid, horizontal_displacement, pose_error, stroke_outputs
 
 
 def newton_stroke(ctx: Context) -> tuple[stroke.StrokeSolution, dict]:
-    """The warm-started Newton stroke and its outputs; raises NonAssembly.
-
-    The stroke is timed as the fastest of repeated strokes (one takes ~1 ms, so one
-    preemption by another process would dominate a single timing)."""
+    """The warm-started Newton stroke and its outputs; raises NonAssembly.  Timed as the fastest
+    of repeated strokes (one is too short to time alone)."""
     sol = stroke.solve_newton(ctx.g, ctx.x_k, ctx.settings)  # also warms the caches
-    _, wall = time_call(stroke.solve_newton, ctx.g, ctx.x_k, ctx.settings,
-                        min_time=float(ctx.options.get("newton_timing_s", 0.02)))
+    _, wall = time_call(stroke.solve_newton, ctx.g, ctx.x_k, ctx.settings, min_time=0.02)
     out = stroke_outputs(ctx.g, sol.theta, "newton", "warm-started Newton")
     out.update(driving_laws_on_grid(ctx.huch, sol.theta, ctx.g.width, "newton",
                                     "warm-started Newton"))
@@ -58,9 +55,8 @@ def exact_stroke(ctx: Context) -> tuple[stroke.StrokeSolution, dict]:
 
 
 def solve_continuation(run: dict, ctx: Context) -> dict:
-    """Newton and closed-form strokes, then the effects the scene names (which consume the
-    Newton stroke through ``ctx.stroke``); their contributions are outputs of the run.
-    A scene's lever set (``options.levers``) that does not assemble is refused by name."""
+    """Newton and closed-form strokes, then the named effects (they read ``ctx.stroke``); a scene
+    lever set that does not assemble is refused by name."""
     try:
         ctx.stroke, data = newton_stroke(ctx)
     except NonAssembly as exc:
@@ -75,7 +71,112 @@ def solve_continuation(run: dict, ctx: Context) -> dict:
 
 
 def contributions(run: dict, ctx: Context) -> dict:
-    """Every contribution of the named effects, by key (each key is an output variable)."""
+    """Every contribution of the named effects, by key."""
     c = EFFECTS.evaluate(run, ctx)
     return {key: c.get(key) for key in c.keys()}
 
+
+#: the comparison methods and the salt of their random stream
+METHOD_STREAMS = {"selpso": 1, "cold_root": 2, "least_squares": 3, "warm_root": 7,
+                  "warm_least_squares": 8, "pso_standard": 9}
+
+
+def compare(ctx: Context, method: str) -> dict:
+    """One method at every cut point, recorded (never raising)."""
+    sol = stroke.solve_compare(ctx.g, ctx.x_k, method, ctx.settings,
+                               ctx.rng(METHOD_STREAMS[method]))
+    err = pose_error(sol.theta, ctx.reference.theta)
+    w = method
+    out = {
+        f"{w}_theta": var(("cut", "angle"), sol.theta, "rad", f"theta1..theta6, {w}"),
+        f"{w}_fitness_loops": var("cut", sol.fitness_loops, "mm", f"G of Eq. (9), {w}"),
+        f"{w}_fitness_pose": var("cut", sol.fitness_pose, "mm", f"G of Eq. (7), {w}"),
+        f"{w}_converged": var("cut", sol.converged.astype(np.int8), "1",
+                              f"both systems below tolerance, {w}"),
+        f"{w}_in_ranges": var("cut", sol.in_ranges.astype(np.int8), "1",
+                              f"angles inside the paper's ranges, {w}"),
+        f"{w}_design_branch": var("cut", sol.design_branch.astype(np.int8), "1",
+                                  f"on the design assembly branch, {w}"),
+        f"{w}_error": var(("cut", "angle"), err, "rad", f"|theta - exact|, {w}"),
+        f"{w}_success_rate": var((), sol.converged.mean(), "1", f"converged fraction, {w}"),
+        f"{w}_in_ranges_rate": var((), sol.in_ranges.mean(), "1",
+                                   f"fraction inside the paper's ranges, {w}"),
+        f"{w}_right_branch_rate": var((), sol.right.mean(), "1",
+                                      f"converged and on the design branch, {w}"),
+        f"{w}_time_per_solve": var((), sol.time_loops, "s", f"wall time per Eq. (9) solve, {w}"),
+        f"{w}_time_per_pose_solve": var((), sol.time_pose, "s",
+                                        f"wall time per Eq. (7) solve, {w}"),
+        f"{w}_fitness_loops_median": var((), np.median(sol.fitness_loops), "mm",
+                                         f"median G of Eq. (9), {w}"),
+    }
+    if method == "selpso":
+        out.update(_selpso_accuracy(ctx, sol, err))
+    if method in ("selpso", "pso_standard") and int(ctx.options.get("seeds", 0)) > 0:
+        out.update(_over_seeds(ctx, method, sol, err))
+    return out
+
+
+def _selpso_accuracy(ctx: Context, sol: stroke.StrokeSolution, err: np.ndarray) -> dict:
+    """selPSO's cost of accuracy: H from its poses, its largest pose error and the stroke's time."""
+    st = ctx.settings.pso_loops
+    H = np.mean(np.abs(horizontal_displacement(ctx.g, sol.theta[:, 4] - ctx.g.beta2, ctx.x_k)))
+    H_ref = np.mean(np.abs(horizontal_displacement(
+        ctx.g, ctx.reference.theta[:, 4] - ctx.g.beta2, ctx.x_k)))
+    return {
+        "selpso_iterations": var("cut", sol.iterations_loops.astype(float), "1",
+                                 "selPSO iterations on Eq. (9)"),
+        "selpso_synthetic_horizontal_displacement": var(
+            (), H, "mm", "synthetic horizontal displacement from selPSO poses"),
+        "exact_synthetic_horizontal_displacement_ref": var(
+            (), H_ref, "mm", "synthetic horizontal displacement, closed form"),
+        "selpso_pose_error": var(
+            (), np.max(err), "rad",
+            "max |theta1..theta6 - closed form| over the cut (a wrong assembly mode is a large error)"),
+        "selpso_stroke_time": var((), ctx.n * (sol.time_pose + sol.time_loops), "s",
+                                  "selPSO wall time of the whole stroke (Eqs. 7 and 9)"),
+        "swarm_x_iter": var((), st.swarm * st.max_iter, "1",
+                            "selPSO budget: particles x iterations on each system"),
+    }
+
+
+def _over_seeds(ctx: Context, method: str, sol: stroke.StrokeSolution, err: np.ndarray) -> dict:
+    """A stochastic method over ``options.seeds`` strokes: pose-error quantiles, the probability
+    of a whole stroke on the design branch, the branch rate per seed and the mean stroke time
+    (seed 0: the run's stream; seed k: the stream (run seed, salt, k))."""
+    k_seeds = int(ctx.options["seeds"])
+    salt = METHOD_STREAMS[method]
+    errs, ok, times = [float(np.max(err))], [bool(sol.right.all())], \
+        [ctx.n * (sol.time_pose + sol.time_loops)]
+    rates = [float(sol.right.mean())]
+    for k in range(1, k_seeds):
+        s = stroke.solve_compare(ctx.g, ctx.x_k, method, ctx.settings,
+                                 np.random.default_rng([ctx.seed, salt, k]))
+        errs.append(float(np.max(pose_error(s.theta, ctx.reference.theta))))
+        ok.append(bool(s.right.all()))
+        rates.append(float(s.right.mean()))
+        times.append(ctx.n * (s.time_pose + s.time_loops))
+    errs = np.asarray(errs)
+    w = method
+    return {
+        f"{w}_pose_error_seeds": var("seed", errs, "rad",
+                                     f"max |theta - closed form| over the cut, per seed, {w}"),
+        f"{w}_pose_error_q50": var((), np.quantile(errs, 0.5), "rad",
+                                   f"median over seeds of the stroke's max pose error, {w}"),
+        f"{w}_pose_error_q90": var((), np.quantile(errs, 0.9), "rad",
+                                   f"90 % quantile over seeds of the stroke's max pose error, {w}"),
+        f"{w}_stroke_failure_probability": var(
+            (), 1.0 - float(np.mean(ok)), "1",
+            f"fraction of seeds whose stroke leaves the design branch or does not converge, {w}"),
+        f"{w}_branch_rate_seeds": var("seed", np.asarray(rates), "1",
+                                      f"fraction of the cut points converged on the design branch, per seed, {w}"),
+        f"{w}_stroke_time_seeds": var((), float(np.mean(times)), "s",
+                                      f"mean wall time of the whole stroke over seeds, {w}"),
+    }
+
+
+def solve_method_comparison(run: dict, ctx: Context) -> dict:
+    """The continuation (with its reference and effects), then every listed method."""
+    data = solve_continuation(run, ctx)
+    for method in ctx.options.get("methods", []):
+        data.update(compare(ctx, method))
+    return data

@@ -1,26 +1,11 @@
-"""The invented geometry: every constant the paper omits, derived from stated design intents.
+"""The invented geometry: the constants the paper omits (l2, l4, l8, l11, alpha, beta1, beta2,
+d, x_mid), derived from design intents argued in docs/rolling_shear.md; nothing here looks
+at the paper's 1.4341 or -34.96 %.
 
-The paper gives l1, l3, l5, l6, l10 (and l7, read as l9) in Table II and the process data
-of Table I; l2, l4, l8, l11, alpha, beta1, beta2, d, h, R, the rolled length and the
-position of the cut are missing.  :func:`design` derives them from a handful of design
-intents, each argued in docs/rolling_shear.md and marked ``assumed`` in the config; the
-config holds the rounded outputs and a test checks that they match this derivation.
-Nothing here looks at the paper's 1.4341 or -34.96 %.
-
-Design intents, all at mid-cut (blade turned by beta = 0, lowest point at (x_mid, -s)):
-1. the two drive sides are identical: l2 = l1, l4 = l3, and the rod joints C, I on the
-   carrier are spaced by l9 at the same height y_joint, so A - C = G - I;
-2. the guide rod l6 hangs at theta6_mid (slightly below the horizontal through E, so that
-   theta6 stays in the paper's range [pi, 2 pi] over the whole stroke);
-3. I lies on the carrier side of D towards the blade (left of D);
-4. both dyads are bent at the elbow angle ``elbow_angle`` (far from toggle and fold);
-5. the blade centre lies ``blade_offset`` to the side of I along the cut (negative: towards
-   C; -l9/2 is midway between C and I).
-
-The intents form the *admissible family* (docs/rolling_shear.md): every member satisfies
-Table I, Table II and the paper's angle ranges over the whole stroke.  One intent, the
-guide-rod tilt theta6_mid, is calibrated on the paper's 1.4341 (``calibrate.py``).
-"""
+Intents at mid-cut (beta = 0, lowest point at (x_mid, -s)): identical drive sides (l2 = l1,
+l4 = l3, C and I l9 apart at height y_joint); the guide rod at theta6_mid (calibrated on
+1.4341, calibrate.py); I left of D; both dyads bent at ``elbow_angle``; the blade centre
+``blade_offset`` from I along the cut."""
 from __future__ import annotations
 
 import math

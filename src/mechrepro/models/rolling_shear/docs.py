@@ -1,20 +1,12 @@
-"""The blocks of docs/rolling_shear.md (issue 62: numbers from a run, not typed), made from
-``results/rolling_shear`` (claim.json, validation.csv, design_front.csv,
-solver_comparison.csv, the study branch_spread) and filled by :mod:`mechrepro.docs`::
-
-    .venv/bin/python -m mechrepro.docs docs/rolling_shear.md results
-
-Run it on the default profile's results after the last change.
-"""
+"""The generated blocks of docs/rolling_shear.md, from ``results/rolling_shear``
+(``python -m mechrepro.docs docs/rolling_shear.md results`` on the default results)."""
 from __future__ import annotations
 
 import json
 from pathlib import Path
 
-from mechrepro.docs import number, table_rows
-
-# one formatter for every paper page (mechrepro.docs)
-_rows, _g = table_rows, number
+# one formatter for every paper page
+from mechrepro.docs import number as _g, table_rows as _rows
 
 
 def _cell(text: str) -> str:

@@ -1,12 +1,5 @@
-"""The effects of rolling_shear (declared in config/papers/rolling_shear.yaml, ``effects:``).
-
-The linkage has little physics to switch: Eqs. (7)-(9) are the machine, and which method
-solves them is the scene's solver (and its options).  What a scene may add are the drive
-law of the Fig. 9 contrast and outputs that cost extra solves (the tilt scan of the family,
-the selPSO initial-value histories of Fig. 12, the one-lever scans of Table II).  Each is a
-pure function of the solver's :class:`~.context.Context` returning its declared keys, each
-one a dataset variable (``mechrepro.units.var``).
-"""
+"""The effects of rolling_shear (config ``effects:``): the drive law of the Fig. 9 contrast and
+outputs that cost extra solves; each a pure function of the :class:`~.context.Context`."""
 from __future__ import annotations
 
 import math
@@ -24,9 +17,9 @@ EFFECTS = EffectRegistry("rolling_shear")
 
 @EFFECTS.register("constant_rate_drive")
 def constant_rate_drive(ctx) -> dict:
-    """Fig. 9 contrast, the drive law: both levers turned at a constant rate between the
-    end positions of the solved stroke (``ctx.stroke``); Eq. (9) forward, then Eq. (7)."""
-    from .forward import constant_rate_drive as drive
+    """Fig. 9 contrast: both levers at a constant rate between the stroke's end positions;
+    Eq. (9) forward, then Eq. (7)."""
+    from .blade import constant_rate_drive as drive
 
     r = drive(ctx.g, ctx.stroke.theta)
     w = "both levers at a constant rate between the stroke's end positions"
@@ -43,9 +36,8 @@ def constant_rate_drive(ctx) -> dict:
 
 @EFFECTS.register("tilt_scan")
 def tilt_scan(ctx) -> dict:
-    """H of the original levers over the guide-rod tilt at the run's other intents (the
-    family of docs/rolling_shear.md).  A calibrating run's scan stopped at its bracket: the
-    tilts it scanned are reused, the rest scanned here (so the cost is this effect's)."""
+    """H of the original levers over the guide-rod tilt; a calibrating run's scanned tilts are
+    reused, the rest scanned here."""
     from .calibrate import TILTS, H_of_tilt
 
     cal = ctx.calibration
@@ -61,30 +53,27 @@ def tilt_scan(ctx) -> dict:
 
 @EFFECTS.register("initial_values")
 def initial_values(ctx) -> dict:
-    """Fig. 12: selPSO fitness G of Eq. (9) against the iterations at mid-cut, from each
-    initial value of ``options.initial_values`` (the pose from the closed form)."""
-    from . import pose as pose_mod
-    from .branch import in_ranges, on_design_branch
+    """Fig. 12: selPSO fitness G of Eq. (9) against the iterations at mid-cut from each of
+    ``options.initial_values``."""
+    from .blade import exact_pose
+    from .loops import in_ranges, on_design_branch
     from .selpso import selpso
     from .stroke import loops_fitness
 
     inits = np.asarray(ctx.options["initial_values"], float)
     i_mid = ctx.n // 2
-    t5, t6 = pose_mod.exact_pose(ctx.g, float(ctx.x_k[i_mid]))
+    t5, t6 = exact_pose(ctx.g, float(ctx.x_k[i_mid]))
     rng = ctx.rng(4)
     st = ctx.settings.pso_loops
     hist = np.full((len(inits), st.max_iter + 1), np.nan)
-    iters, fit, conv, design, inr, times = [], [], [], [], [], []
+    rows = []   # per initial value: iterations, fitness, converged, design branch, in ranges, time
     for k, x0 in enumerate(inits):
         with phase("rolling_shear.initial_values") as sw:
             r = selpso(loops_fitness(ctx.g, t5, t6), x0, st, rng, period=2 * math.pi)
-        times.append(sw.seconds)
         hist[k, :r.history.size] = r.history
-        iters.append(r.iterations)
-        fit.append(r.fitness)
-        conv.append(r.converged)
-        design.append(on_design_branch(ctx.g, np.array([*r.x, t5, t6])))
-        inr.append(in_ranges(np.array([*r.x, t5, t6])))
+        th = np.array([*r.x, t5, t6])
+        rows.append((r.iterations, r.fitness, r.converged, on_design_branch(ctx.g, th), in_ranges(th), sw.seconds))
+    iters, fit, conv, design, inr, times = zip(*rows)
     return {
         "iv_initial_value": var(("initial_value", "unknown"), inits, "rad",
                                 "initial values theta1..theta4 of selPSO"),
@@ -105,8 +94,7 @@ def initial_values(ctx) -> dict:
 
 @EFFECTS.register("lever_scan")
 def lever_scan(ctx) -> dict:
-    """One-at-a-time scans of H over each lever's bounds: which levers the objective
-    determines (Table II; with frozen carrier constants only l6)."""
+    """One-at-a-time scans of H over each lever's bounds (Table II): which levers H determines."""
     k = int(ctx.res.get("scan_points", 21))
     f = optimise.penalised(ctx.g, ctx.x_k, ctx.settings.tol_pose)
     base = np.array(ctx.g.levers())

@@ -1,12 +1,6 @@
-"""Solver ``family_scan``: the admissible family of linkages on a grid (docs/rolling_shear.md).
-
-Every grid member (the range ends of the design intents jointly, both readings of Eq. (8)
-and of the carrier constants) is calibrated on the run's target H (Sec. 4, 1.4341 mm) at the
-run's own number of cut points and given the scene's lever set (Table II): its tilt, its H
-and the reduction.  The framework re-checks verdicts one assumed constant at a time; this
-grid varies them jointly, so a verdict that only a combination of range ends flips shows
-up here.
-"""
+"""Solver ``family_scan``: every member of a grid of the design intents and readings
+(docs/rolling_shear.md) calibrated on 1.4341 and given the scene's lever set (Table II), so
+that a verdict flipped only by a combination of range ends shows."""
 from __future__ import annotations
 
 import itertools
@@ -25,26 +19,33 @@ from .design import Unreachable
 from .loops import NonAssembly
 
 GRID_KEYS = ("blade_offset", "R", "width", "y_joint", "eq8_reading", "carrier_constants")
-
-
-def member_geometry(base, member: dict):
-    """The uncalibrated linkage of one grid member."""
-    return replace(with_intent(base, **{k: float(member[k]) for k in GRID_KEYS[:4]}),
-                   eq8=member["eq8_reading"], carrier=member["carrier_constants"])
+#: what :func:`calibrated_member` returns, in order: variable family_member_<name>, unit, long name
+COLUMNS = (
+    ("tilt", "rad", "calibrated guide-rod tilt (NaN: the member cannot reach the target)"),
+    ("H_levers", "mm", "synthetic horizontal displacement of the scene's levers"),
+    ("buildable", "1", "1: the calibrated member meets the constraints of constraints.py at the run's "
+                       "settings and guide_rod_plane reading (NaN: not calibrated)"),
+    ("rod_gap", "mm", "how far the guide rod ED (E, D over the stroke) stays beside the plate "
+                      "(negative: over its span), constraints.margins"),
+    ("joint_height", "mm", "lowest y of the rod joints C, I over the stroke"),
+    ("mu_min", "deg", "smallest crank-rod angle of both dyads over the stroke"),
+    ("mu_max", "deg", "largest crank-rod angle of both dyads over the stroke"),
+    ("rise", "mm", "blade end's rise over the plate"),
+    ("open_mu", "deg", "worst transmission angle at the open position (NaN: not reached)"),
+    ("levers_buildable", "1", "1: the machine with the scene's levers meets the constraints too "
+                              "(NaN: not calibrated, or the levers do not assemble)"))
 
 
 def calibrated_member(ctx: Context, member: dict, levers: dict) -> tuple[float, ...]:
-    """(calibrated tilt, H of the lever set, buildable 1/0 at the run's constraint settings,
-    then the member's margins to the constraints: rod gap mm, rod-joint height mm, smallest
-    and largest crank-rod angle deg, blade-end rise mm, worst transmission angle at the open
-    position deg, and whether the machine with the lever set is buildable too) of one member; NaN where it cannot
-    reach the target (H NaN: the lever set does not assemble)."""
+    """The values of :data:`COLUMNS` for one member; NaN where it cannot reach the target (H NaN:
+    the levers do not assemble)."""
     from . import stroke
     from .constraints import broken, margins, settings
 
     try:
-        gc, info = calibrate_tilt(member_geometry(ctx.g_uncalibrated, member),
-                                  ctx.calibration_target, ctx.n, ctx.tol_floor,
+        g = replace(with_intent(ctx.g_uncalibrated, **{k: float(member[k]) for k in GRID_KEYS[:4]}),
+                    eq8=member["eq8_reading"], carrier=member["carrier_constants"])
+        gc, info = calibrate_tilt(g, ctx.calibration_target, ctx.n, ctx.tol_floor,
                                   whole_scan=False)  # only the tilt is kept
     except (CalibrationError, NonAssembly, Unreachable):
         return (math.nan,) * 10
@@ -72,34 +73,12 @@ def solve_family_scan(run: dict, ctx: Context) -> dict:
     rows = np.asarray([calibrated_member(ctx, m, levers) for m in members])
     target = ctx.calibration_target
     cal = np.isfinite(rows[:, 0])
-    out = {"family_member_tilt": var("member", rows[:, 0], "rad",
-                                     "calibrated guide-rod tilt (NaN: the member cannot reach the target)"),
-           "family_member_H_levers": var("member", rows[:, 1], "mm",
-                                         "synthetic horizontal displacement of the scene's levers"),
-           "family_member_reduction": var("member", 100.0 * (rows[:, 1] / target - 1.0), "%",
-                                          "reduction of the scene's levers against the calibrated original"),
-           "family_member_assembles": var("member", np.where(cal, np.isfinite(rows[:, 1]), np.nan), "1",
-                                          "1: the scene's levers assemble on the design branch inside the "
-                                          "paper's ranges over the stroke (NaN: not calibrated)"),
-           "family_member_buildable": var("member", rows[:, 2], "1",
-                                          "1: the calibrated member meets the constraints of constraints.py "
-                                          "at the run's settings and guide_rod_plane reading (NaN: not "
-                                          "calibrated)"),
-           "family_member_rod_gap": var("member", rows[:, 3], "mm",
-                                        "how far the guide rod ED (E, D over the stroke) stays beside the "
-                                        "plate (negative: over its span), constraints.margins"),
-           "family_member_joint_height": var("member", rows[:, 4], "mm",
-                                             "lowest y of the rod joints C, I over the stroke"),
-           "family_member_mu_min": var("member", rows[:, 5], "deg",
-                                       "smallest crank-rod angle of both dyads over the stroke"),
-           "family_member_mu_max": var("member", rows[:, 6], "deg",
-                                       "largest crank-rod angle of both dyads over the stroke"),
-           "family_member_rise": var("member", rows[:, 7], "mm", "blade end's rise over the plate"),
-           "family_member_open_mu": var("member", rows[:, 8], "deg",
-                                        "worst transmission angle at the open position (NaN: not reached)"),
-           "family_member_levers_buildable": var("member", rows[:, 9], "1",
-                                                 "1: the machine with the scene's levers meets the constraints "
-                                                 "too (NaN: not calibrated, or the levers do not assemble)")}
+    out = {f"family_member_{k}": var("member", rows[:, i], u, d) for i, (k, u, d) in enumerate(COLUMNS)}
+    out["family_member_reduction"] = var("member", 100.0 * (rows[:, 1] / target - 1.0), "%",
+                                         "reduction of the scene's levers against the calibrated original")
+    out["family_member_assembles"] = var("member", np.where(cal, np.isfinite(rows[:, 1]), np.nan), "1",
+                                         "1: the scene's levers assemble on the design branch inside the "
+                                         "paper's ranges over the stroke (NaN: not calibrated)")
     for k in GRID_KEYS:
         vals = [m[k] for m in members]
         if isinstance(vals[0], str):

@@ -1,33 +1,11 @@
-"""Solver ``design_front`` (issue 62): the levers l1, l3, l5, l6, l10 chosen for the lowest
-point and the force transmission together, on machines that can be built.
+"""Solver ``design_front``: levers l1, l3, l5, l6, l10 chosen for H (Eqs. 5, 8; Sec. 3.3 step
+3, smaller is better) and the worst transmission angle min(mu, 180 deg - mu) of Eq. (9)'s
+dyads over the stroke (larger is better), among buildable lever sets (:mod:`.constraints`).
 
-Two objectives over a lever set in the run's calibrated member:
-
-* the synthetic horizontal displacement H of the midpoint against trajectory 1 (Eqs. 5, 8;
-  the paper's objective, Sec. 3.3 step 3), smaller is better;
-* the worst transmission angle over the stroke, min over both dyads and every cut point of
-  min(mu, 180 deg - mu), mu the angle between crank and rod at the crank tip (Eq. 9's
-  dyads): how far the cylinders stay from a toggle, larger is better.
-
-A lever set is *buildable* when both loops of Eq. (9) close inside the paper's ranges at every
-cut point and the machine meets constraints 1-4 of :mod:`.constraints` (guide rod beside the
-plate, rod joints above it, transmission floor, opening).  The lever bounds are a box wide
-enough that these constraints, not the box, bound the buildable set: the run stores how far
-every front design stays from the box (``front_box_margin``).
-
-The model has no hydraulic cylinders (the paper drives the levers' angles, Eq. 9), so the
-cylinder stroke and force are not objectives here; the transmission angle is the force
-measure the linkage gives.
-
-Search: with the carrier constants frozen (the configured reading) Eq. (7) fixes the blade
-pose from the guide rod alone, so H and the guide rod's sweep depend on l6 only and the
-other four levers only move the dyads.  The strokes are solved once per l6 of a grid
-(``front_l6_points`` over the box); at each, ``front_samples`` lever sets of the other four
-are drawn uniformly in the box (seeded), then ``front_rounds`` rounds draw as many about the
-best buildable set so far, with a spread halved each round (a (1, lambda) evolution
-strategy, all samples of a round evaluated at once).  The front is the non-dominated set of
-the buildable designs evaluated.
-"""
+With frozen carrier constants Eq. (7) fixes the blade pose from the guide rod alone, so the
+strokes are solved once per l6 of a grid; at each, lever sets of the other four are sampled
+in the box and refined about the best buildable one with a halving spread (a (1, lambda)
+evolution strategy).  The front is the non-dominated set of the buildable designs."""
 from __future__ import annotations
 
 import math
@@ -39,28 +17,22 @@ from mechrepro.errors import Refusal
 from mechrepro.units import var
 
 from . import closure, optimise
-from .branch import RANGES
-from .constraints import open_pose
+from .constraints import dyad_transmission, open_pose
 from .constraints import settings as constraint_settings
 from .context import Context
 from .design import Unreachable
 from .geometry import OPTIMISED_LEVERS, cut_points
-from .loops import NonAssembly
-from .trajectory import synthetic_horizontal_displacement
+from .loops import RANGES, NonAssembly
+from .motion_laws import synthetic_horizontal_displacement
 
 #: the four levers sampled at each l6 (OPTIMISED_LEVERS without l6)
 OTHERS = ("l1", "l3", "l5", "l10")
 
 
 def dyad_metrics(g, poses: np.ndarray, levers: np.ndarray, open_q=None) -> dict:
-    """Eq. (9)'s two dyads for many lever sets at one stroke, vectorised.
-
-    ``poses`` (n, 2): theta5, theta6 of the stroke (depend on l6 only); ``levers`` (m, 4):
-    l1, l3, l5, l10 (mm).  Returns (m,) arrays: ``assembles`` (both loops close with
-    theta1..theta4 in the paper's ranges at every cut point), ``mu_worst`` (deg, the
-    smallest min(mu, 180 - mu) over both dyads and the stroke; NaN where a loop does not
-    close), ``mu_min`` / ``mu_max`` (deg) and ``joint_height`` (mm, lowest y of the rod
-    joints C, I)."""
+    """Eq. (9)'s two dyads for many lever sets ``levers`` (m, 4: l1, l3, l5, l10) at one stroke
+    ``poses`` (n, 2), vectorised: (m,) arrays ``assembles``, ``mu_worst``, ``mu_min``, ``mu_max``
+    (deg), ``joint_height`` (mm) and ``open_mu`` (deg, at the open pose ``open_q``)."""
     l1, l3, l5, l10 = (levers[:, k, None] for k in range(4))
     t5, t6 = poses[None, :, 0], poses[None, :, 1]
     D = g.l6 * np.exp(1j * t6)
@@ -89,33 +61,13 @@ def dyad_metrics(g, poses: np.ndarray, levers: np.ndarray, open_q=None) -> dict:
     out = {"assembles": ok & np.isfinite(worst), "mu_worst": np.where(ok, worst, np.nan),
            "mu_min": mu_lo, "mu_max": mu_hi, "joint_height": height}
     out["open_mu"] = (np.full(levers.shape[0], np.nan) if open_q is None
-                      else _open_transmission(g, open_q, levers))
+                      else dyad_transmission(g, open_q[0], open_q[1], levers))
     return out
 
 
-def _open_transmission(g, q, levers: np.ndarray) -> np.ndarray:
-    """Worst min(mu, 180 - mu) (deg) of both dyads at the open pose ``q`` for many lever
-    sets (NaN where a dyad does not close; the paper's ranges are the cut's, not asked)."""
-    l1, l3, l5, l10 = (levers[:, k] for k in range(4))
-    D = g.l6 * np.exp(1j * q[1])
-    C = D + g.l8 * np.exp(1j * (q[0] + g.alpha))
-    I = D + l5 * np.exp(1j * q[0])
-    A, G = -l10 - g.l9 + 1j * g.l11, -l10 + 1j * g.l11
-    worst = np.full(levers.shape[0], np.inf)
-    for P, Q, rp, rq, e in ((A, np.full_like(A, C), l1, l3, g.elbow1), (G, I, g.l2, g.l4, g.elbow2)):
-        with np.errstate(invalid="ignore"):
-            x, y, _ = closure.python.dyad_joint(P.real, P.imag, Q.real, Q.imag, rp, rq, e)
-            B = x + 1j * y
-            mu = np.degrees(np.abs(np.angle((P - B) / (Q - B))))
-            worst = np.fmin(worst, np.minimum(mu, 180.0 - mu))
-        worst[~np.isfinite(x)] = np.nan
-    return worst
-
-
 def stroke_of(g, n: int, tol: float, opening: float | None):
-    """(poses, H, rod gap, open pose) of the run's member with guide rod ``g.l6``, or None
-    where the blade pose leaves the guide rod's design branch (open pose None: the open
-    position is not reached, :func:`.constraints.open_pose`, or not asked: ``opening`` None)."""
+    """(poses, H, rod gap, open pose) of the member with guide rod ``g.l6``, or None off the
+    guide rod's design branch (open pose None: not reached, or ``opening`` None)."""
     x_k = cut_points(g, n)[1]
     try:
         poses = optimise.stroke_poses(g, x_k, tol)
@@ -152,13 +104,10 @@ def pareto_mask(H: np.ndarray, mu: np.ndarray) -> np.ndarray:
 
 def search(g, n: int, tol: float, box: np.ndarray, constraints: dict, *, l6_points: int,
            samples: int, rounds: int, rng: np.random.Generator) -> dict:
-    """The search of the module docstring.  Returns the *envelope*, per l6 of the grid whose
-    stroke exists: H, the rod gap, and the buildable design of the largest worst
-    transmission angle found (levers in OPTIMISED_LEVERS order, NaN where none is
-    buildable) with its joint height; and a thinned sample of every design evaluated (H,
-    worst transmission angle, buildable) for the figure; and, per l6, the design that keeps
-    the other four levers at the run's (``kept_*``: worst transmission angle, joint height,
-    buildable)."""
+    """The search of the module docstring.  Returns, per l6 of the grid whose stroke exists, H, the
+    rod gap and the buildable design of the largest worst transmission angle (NaN levers where
+    none is), the design keeping the other levers (``kept_*``), and every design evaluated
+    (``sample_*``) for the figure."""
     if g.carrier != "frozen":
         raise Refusal("design_front shares one stroke per l6 among the other levers, which "
                       "holds with frozen carrier constants only (carrier_constants = frozen)")
@@ -170,7 +119,7 @@ def search(g, n: int, tol: float, box: np.ndarray, constraints: dict, *, l6_poin
     env, cloud = [], []
 
     def at(l6):
-        """The envelope entry at guide rod l6 (None: no stroke), its samples into ``cloud``."""
+        """The envelope entry at guide rod l6 (None: no stroke); its samples go into ``cloud``."""
         g6 = g.with_levers(l6=float(l6))
         s = stroke_of(g6, n, tol, constraints["opening"])
         if s is None:
@@ -219,14 +168,11 @@ def search(g, n: int, tol: float, box: np.ndarray, constraints: dict, *, l6_poin
             e = at(l6_star - 1e-5)
             if e is not None:
                 env.insert(k + 1, e)
-    H, mu, ok = (np.concatenate([c[k] for c in cloud]) for k in range(3))
-    return {"levers": np.array([e[0] for e in env]), "H": np.array([e[1] for e in env]),
-            "rod_gap": np.array([e[2] for e in env]), "mu_worst": np.array([e[3] for e in env]),
-            "joint_height": np.array([e[4] for e in env]),
-            "kept_mu_worst": np.array([e[5] for e in env]),
-            "kept_joint_height": np.array([e[6] for e in env]),
-            "kept_buildable": np.array([e[7] for e in env]),
-            "sample_H": H, "sample_mu_worst": mu, "sample_buildable": ok}
+    out = {k: np.array([e[i] for e in env]) for i, k in enumerate(
+        ("levers", "H", "rod_gap", "mu_worst", "joint_height", "kept_mu_worst", "kept_joint_height",
+         "kept_buildable"))}
+    return out | {k: np.concatenate([c[i] for c in cloud])
+                  for i, k in enumerate(("sample_H", "sample_mu_worst", "sample_buildable"))}
 
 
 def evaluate(g, levers: dict, n: int, tol: float, constraints: dict) -> dict:
@@ -245,17 +191,14 @@ def evaluate(g, levers: dict, n: int, tol: float, constraints: dict) -> dict:
 
 
 def lever_box(ctx: Context) -> np.ndarray:
-    """(5, 2) sampling box of OPTIMISED_LEVERS, mm: options.box_fraction (lo, hi) times the
-    original levers."""
+    """(5, 2) sampling box of OPTIMISED_LEVERS (mm): options.box_fraction times the original levers."""
     lo, hi = (float(v) for v in ctx.options["box_fraction"])
     return np.array([[lo * v, hi * v] for v in ctx.g_original.levers()])
 
 
 def solve_design_front(run: dict, ctx: Context) -> dict:
     cs = constraint_settings(ctx.p)
-    cons = dict(clearance=cs["clearance"], plate_top=cs["plate_top"],
-                mu_min=math.degrees(cs["mu_min"]), opening=cs["opening"],
-                guide_rod_plane=cs["guide_rod_plane"])
+    cons = dict(cs, mu_min=math.degrees(cs["mu_min"]))
     box = lever_box(ctx)
     res = search(ctx.g_original, ctx.n, ctx.tol_floor, box, cons,
                  l6_points=int(ctx.res["front_l6_points"]), samples=int(ctx.res["front_samples"]),

@@ -1,23 +1,13 @@
-"""The rolling-shear linkage constants (Figs. 2-5, Table II) in one frozen record.
+"""The rolling-shear linkage constants (Figs. 2-5, Table II) in one frozen record, mm and rad
+(the paper's fitness G < 1e-11 is in mm); :func:`from_parameters` converts from SI once.
 
-Units inside this package: **millimetres and radians** (the paper's own units; its
-fitness threshold G < 1e-11 is a residual in mm).  :func:`from_parameters` converts the
-SI values of a run record (m, rad) to mm once, at the package boundary.
-
-Frame conventions (resolved in docs/rolling_shear.md, tested in tests):
-
-* fixed frame ``xEy``: origin E = fixed pivot of the guide rod l6, x to the right,
-  **y upwards**, y = 0 is the edge of the lower blade, the overlap line is y = -s;
-* crank pivots: A = (-l10 - l9, l11) (lever AB, l1, theta1) and G = (-l10, l11)
-  (lever GH, l2, theta2) -- read off Eq. (9) as printed;
-* blade carrier (one ternary body): D = E + l6 e^{i theta6} (guide rod end),
-  I = D + l5 e^{i theta5} (joint of rod HI), C = D + l8 e^{i(theta5 + alpha)} (joint of rod
-  BC); blade frame origin O = D + d e^{i(theta5 + beta1)}; blade angle beta = theta5 - beta2.
-"""
+Frame (docs/rolling_shear.md): origin E = fixed pivot of the guide rod l6, y upwards, the
+overlap line y = -s; crank pivots A = (-l10 - l9, l11), G = (-l10, l11) (Eq. 9);
+D = E + l6 e^{i theta6}, I = D + l5 e^{i theta5}, C = D + l8 e^{i(theta5 + alpha)}, blade
+origin O = D + d e^{i(theta5 + beta1)}, blade angle beta = theta5 - beta2."""
 from __future__ import annotations
 
-import math
-from dataclasses import asdict, dataclass, replace
+from dataclasses import dataclass, replace
 from functools import cached_property, lru_cache
 
 import numpy as np
@@ -40,14 +30,8 @@ LINKAGE_KEYS = GEOMETRY_KEYS + ("elbow1", "elbow2")
 
 @dataclass(frozen=True)
 class Geometry:
-    """All constants of the linkage, mm and rad.
-
-    ``elbow1``/``elbow2`` (+1/-1) select the assembly mode of the dyads AB-BC and GH-HI:
-    the sign of the cross product (B - A) x (C - B) (resp. (H - G) x (I - H)).
-    ``guide_mode`` is the sign of cos(theta6): -1 = the carrier joint D hangs to the left
-    of the guide pivot E.  The paper's ranges (theta6 in [pi, 2 pi]) do not separate the two
-    assembly modes of the guide rod, nor those of the isosceles dyad l1 = l3.
-    """
+    """All constants of the linkage, mm and rad; ``elbow1``/``elbow2`` and ``guide_mode`` select
+    the assembly modes the paper's ranges leave open."""
     l1: float
     l2: float
     l3: float
@@ -92,9 +76,6 @@ class Geometry:
     def levers(self, names=OPTIMISED_LEVERS) -> tuple[float, ...]:
         return tuple(getattr(self, n) for n in names)
 
-    def as_dict(self) -> dict:
-        return asdict(self)
-
 
 INTENT_LENGTHS = ("l1", "l3", "l5", "l6", "l9", "l10", "s", "h", "R", "y_joint", "blade_offset",
                   "width")
@@ -114,11 +95,8 @@ def derive(intents: dict, base: "Geometry | None" = None, **modes) -> Geometry:
 
 
 def from_parameters(p: dict) -> Geometry:
-    """Build the geometry from a run's SI parameters (lengths in m, angles in rad).
-
-    The carrier constants are derived from the design intents at run time, so that a change
-    of an intent (or a range-end variant) changes every constant that follows from it.
-    """
+    """The geometry of a run's SI parameters, its carrier constants derived from the design
+    intents at run time (so a range-end variant changes all that follows from it)."""
     intents = {k: float(p[k]) * MM_PER_M for k in INTENT_LENGTHS}
     intents.update(theta6_mid=float(p["theta6_mid"]), elbow_angle=float(p["elbow_angle"]))
     return derive(intents, elbow1=int(p.get("elbow1", 1)), elbow2=int(p.get("elbow2", 1)),
@@ -132,12 +110,8 @@ def with_intent(g: Geometry, **intents) -> Geometry:
 
 
 def cut_points(g: Geometry, n: int):
-    """Stations of the dynamic lowest point on y = -s (Sec. 3.3, step 1).
-
-    The cut runs from right to left (Eq. 8: x decreases with the rolled arc length), over
-    the rolled length ``width`` centred on ``x_mid``; ``n`` equally spaced stations.
-    Returns (huch, x_k): rolled length from the start of the cut and station abscissa.
-    """
+    """Stations of the lowest point on y = -s (Sec. 3.3, step 1): ``n`` equally spaced over the
+    rolled ``width`` centred on ``x_mid``, right to left (Eq. 8).  Returns (huch, x_k)."""
     if n < 2:
         raise Refusal(f"need at least 2 cut points, got {n}")
     huch = _stations(g.width, n)
@@ -146,17 +120,15 @@ def cut_points(g: Geometry, n: int):
 
 @lru_cache(maxsize=64)
 def _stations(width: float, n: int):
-    """``n`` equally spaced stations over [0, width] (read-only): a family scan asks for the
-    same few thousands of times."""
+    """``n`` equally spaced stations over [0, width], read-only and cached."""
     huch = np.linspace(0.0, width, n)
     huch.setflags(write=False)
     return huch
 
 
 def constants(g) -> np.ndarray:
-    """The fields of :data:`LINKAGE_KEYS` read off ``g``, as the (read-only) float array a kernel
-    is called with: numba types an array argument in ~1 us, a named tuple in ~8 us, and the
-    Newton solves are called once per cut point (use :attr:`Geometry.constants`, cached)."""
+    """The fields of :data:`LINKAGE_KEYS` as the read-only float array a kernel takes (numba types
+    an array faster than a named tuple); use the cached :attr:`Geometry.constants`."""
     c = np.array([getattr(g, k) for k in LINKAGE_KEYS], float)
     c.setflags(write=False)
     return c

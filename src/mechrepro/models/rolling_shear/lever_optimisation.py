@@ -1,9 +1,5 @@
-"""Solver ``lever_optimisation`` (Sec. 3.3 step 3, Table II, Fig. 11): the five levers l1,
-l3, l5, l6, l10 against the synthetic horizontal displacement H, within +-
-``lever_bound_fraction`` of the original levers, by each optimiser the scene lists in
-``options.optimisers`` (selPSO, the paper's; differential evolution with the same bounds
-and budget, the comparison).  The optimisers are numerical methods for one problem, so they
-are the scene's options; the effects it honours (the one-lever scan) add outputs."""
+"""Solver ``lever_optimisation`` (Sec. 3.3 step 3, Table II, Fig. 11): l1, l3, l5, l6, l10
+against H within +- ``lever_bound_fraction``, by each of ``options.optimisers``."""
 from __future__ import annotations
 
 from dataclasses import replace
@@ -13,7 +9,7 @@ from mechrepro.units import var
 from . import optimise, stroke
 from .context import Context
 from .continuation import contributions
-from .geometry import OPTIMISED_LEVERS, Geometry, cut_points
+from .geometry import OPTIMISED_LEVERS, cut_points
 from .motion_laws import stroke_outputs
 from .selpso import SelPSOSettings
 
@@ -41,16 +37,6 @@ def by_differential_evolution(ctx: Context) -> optimise.OptimisationResult:
 OPTIMISERS = {"selpso": (by_selpso, "opt_selpso"), "de": (by_differential_evolution, "opt_de")}
 
 
-def anchored_settings(ctx: Context, g: Geometry, x_k) -> stroke.SolverSettings:
-    """Settings whose initial value is the closed-form pose at the first cut point.
-
-    Lever sets far from the original move the cranks by more than the rough initial value
-    can absorb; the continuation is anchored on the exact first point instead.
-    """
-    first = stroke.exact_theta(g, x_k[:1])[0]
-    return replace(ctx.settings, initial_value=tuple(first))
-
-
 def optimised_outputs(ctx: Context, res: optimise.OptimisationResult, prefix: str) -> dict:
     """The optimum, its history and, if it assembles, the stroke of its levers."""
     out = {
@@ -65,7 +51,10 @@ def optimised_outputs(ctx: Context, res: optimise.OptimisationResult, prefix: st
     if res.objective < optimise.PENALTY:
         g = ctx.g.with_levers(**dict(zip(OPTIMISED_LEVERS, map(float, res.levers))))
         x_k = cut_points(g, ctx.n)[1]  # the cut moves with re-derived carrier constants
-        sol = stroke.solve_newton(g, x_k, anchored_settings(ctx, g, x_k))
+        # far lever sets move the cranks by more than the rough initial value absorbs: the
+        # continuation starts from the closed-form pose at the first cut point
+        first = tuple(stroke.exact_theta(g, x_k[:1])[0])
+        sol = stroke.solve_newton(g, x_k, replace(ctx.settings, initial_value=first))
         out.update(stroke_outputs(g, sol.theta, prefix, f"levers optimised by {prefix}"))
     return out
 

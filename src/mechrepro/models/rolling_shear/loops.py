@@ -1,16 +1,12 @@
-"""Loop-closure equations (9) of the two vector polygons, their Jacobian and exact dyads.
-
-Eq. (9) as printed, with theta5, theta6 known (mm, rad):
+"""Loop-closure equations (9), their Jacobian and exact dyads (mm, rad):
 
     b1 = l1 cos t1 - l3 cos t3 - l8 cos(t5 + alpha) - l6 cos t6 - l10 - l9
     b2 = l1 sin t1 - l3 sin t3 - l8 sin(t5 + alpha) - l6 sin t6 + l11
     b3 = l2 cos t2 - l4 cos t4 - l5 cos t5 - l6 cos t6 - l10
     b4 = l2 sin t2 - l4 sin t4 - l5 sin t5 - l6 sin t6 + l11
 
-The first loop holds only theta1, theta3 and the second only theta2, theta4: each is a
-dyad (two bars between a fixed pivot and a carrier joint) with a closed-form solution,
-:func:`dyad`, used as the trusted reference and to explain non-assembly.
-"""
+Each loop is a dyad with a closed-form solution (:func:`dyad`), the reference; the paper's
+angle ranges and the design assembly branch."""
 from __future__ import annotations
 
 import math
@@ -20,9 +16,6 @@ import numpy as np
 from mechrepro.errors import Refusal
 
 from .geometry import Geometry
-
-#: unknowns of Eq. (9), in this order
-UNKNOWNS = ("theta1", "theta2", "theta3", "theta4")
 
 
 class NonAssembly(Refusal):
@@ -40,9 +33,8 @@ def pivots(g: Geometry) -> tuple[complex, complex]:
 
 
 def columns(th) -> tuple:
-    """The unknowns of one candidate (n,) as numpy scalars, or of many (..., n) as arrays:
-    a scipy solve asks for one candidate per call, thousands of times, and arithmetic on
-    scalars costs a fraction of that on 0-d arrays (the same operations, the same bits)."""
+    """The unknowns of one candidate (n,) as scalars, or of many (..., n) as arrays (scalar
+    arithmetic is much cheaper for scipy's one-candidate calls; same bits)."""
     th = np.asarray(th, float)
     return tuple(th) if th.ndim == 1 else tuple(th[..., k] for k in range(th.shape[-1]))
 
@@ -73,12 +65,9 @@ def jacobian(g: Geometry, th) -> np.ndarray:
 
 
 def dyad(P: complex, Q: complex, r_p: float, r_q: float, elbow: int):
-    """Exact dyad: the joint X with |X - P| = r_p, |X - Q| = r_q on the ``elbow`` side.
-
-    ``elbow`` is the sign of (X - P) x (Q - X).  Returns (angle of X - P, angle of X - Q,
-    distance |Q - P|) or raises :class:`NonAssembly` when |Q - P| is outside
-    [|r_p - r_q|, r_p + r_q].
-    """
+    """Exact dyad: the joint X with |X - P| = r_p, |X - Q| = r_q on the ``elbow`` side (sign of
+    (X - P) x (Q - X)).  Returns (angle of X - P, angle of X - Q, |Q - P|); raises
+    :class:`NonAssembly` when the loop cannot close."""
     L = abs(Q - P)
     if not (abs(r_p - r_q) < L < r_p + r_q):
         raise NonAssembly(f"|PQ| = {L:.6g} mm outside ({abs(r_p - r_q):.6g}, {r_p + r_q:.6g}) mm")
@@ -118,10 +107,8 @@ def exact_angles(g: Geometry, theta5: float, theta6: float) -> np.ndarray:
 
 
 def dyad_margins(g: Geometry, theta5, theta6) -> np.ndarray:
-    """Distance to the nearest toggle/fold of each dyad, for arrays of poses (n, 2), mm.
-
-    Positive: assembles with that margin; negative: does not assemble.
-    """
+    """Distance (mm) of each dyad to its nearest toggle/fold for arrays of poses (negative: no
+    assembly)."""
     theta5, theta6 = np.asarray(theta5, float), np.asarray(theta6, float)
     A, G = pivots(g)
     D = g.l6 * np.exp(1j * theta6)
@@ -131,3 +118,32 @@ def dyad_margins(g: Geometry, theta5, theta6) -> np.ndarray:
     m1 = np.minimum(g.l1 + g.l3 - L1, L1 - abs(g.l1 - g.l3))
     m2 = np.minimum(g.l2 + g.l4 - L2, L2 - abs(g.l2 - g.l4))
     return np.stack([m1, m2], axis=-1)
+
+
+TWO_PI = 2.0 * math.pi
+#: the paper's ranges, order theta1..theta6 (lower, upper)
+RANGES = ((math.pi, TWO_PI), (math.pi, TWO_PI), (0.0, math.pi), (0.0, math.pi),
+          (0.0, math.pi), (math.pi, TWO_PI))
+
+
+def wrap(theta):
+    return np.mod(np.asarray(theta, float), TWO_PI)
+
+
+def in_ranges(theta6, which=range(6)) -> bool:
+    """theta (6,) (theta1..theta6) inside the paper's ranges, angles taken mod 2 pi."""
+    t = wrap(theta6)
+    return all(RANGES[i][0] <= t[i] <= RANGES[i][1] for i in which)
+
+
+def on_design_branch(g: Geometry, theta6) -> bool:
+    """The paper's ranges (Sec. 3.1) and the design assembly modes of the guide rod and both
+    dyads: the ranges alone do not separate the guide rod's two modes nor the mirror modes of
+    the dyad l1 = l3, and the machine cannot change mode without passing a toggle."""
+    t = wrap(theta6)
+    if not in_ranges(t):
+        return False
+    if g.guide_mode * math.cos(t[5]) <= 0:
+        return False
+    e1, e2 = elbow_signs(g, t[:4], t[4], t[5])
+    return e1 == g.elbow1 and e2 == g.elbow2

@@ -1,16 +1,59 @@
-"""What one solved stroke gives (Figs. 9-11, 13, 14): the motion laws theta1..theta6, the
-dynamic lowest points (Eq. 7), the blade midpoints (Eq. 5) against trajectory 1 (Eq. 8) and
-the synthetic horizontal displacement H, as dataset variables (mm, rad)."""
+"""What one solved stroke gives (Figs. 9-11, 13, 14) as dataset variables (mm, rad).
+
+Trajectory 1, Eq. (8): theta = huch / r, x = -huch + r sin(theta) + x0, y = r (1 - cos(theta)) + y0.
+The paper does not say which points of Eqs. (5) and (8) correspond (``Geometry.eq8``):
+``rotation`` compares at equal blade rotation from the first cut point,
+dx_i = (x_k,i - x_k,0) + R (beta_i - beta_0); ``literal`` at theta = huch / R from the middle
+cut point m, dx_i = R (sin beta_i - sin theta_i).  H is the mean |dx_i| (Abstract)."""
 from __future__ import annotations
 
 import numpy as np
 
+from mechrepro.errors import Refusal
 from mechrepro.units import var
 
 from .blade import lowest_point, midpoint
 from .geometry import Geometry
 from .loops import dyad_margins
-from .trajectory import horizontal_displacement, trajectory1_for
+
+READINGS = ("rotation", "literal")
+
+
+def trajectory1(huch, r: float, x0: float, y0: float):
+    """Eq. (8): the pure-rolling midpoint trajectory."""
+    huch = np.asarray(huch, float)
+    th = huch / r
+    return -huch + r * np.sin(th) + x0, r * (1.0 - np.cos(th)) + y0
+
+
+def _literal_theta(g, beta, x_k):
+    m = len(x_k) // 2
+    return beta[m] + (x_k[m] - x_k) / g.R
+
+
+def trajectory1_for(g, beta, x_k):
+    """Trajectory 1 sampled at the cut points, in the reading ``g.eq8``."""
+    beta, x_k = np.asarray(beta, float), np.asarray(x_k, float)
+    if g.eq8 == "literal":
+        th = _literal_theta(g, beta, x_k)
+        return x_k + g.R * np.sin(th), -g.s + g.R * (1.0 - np.cos(th))
+    return trajectory1(g.R * beta, g.R, x_k[0] + g.R * beta[0], -g.s)
+
+
+def horizontal_displacement(g, beta, x_k):
+    """Midpoint minus trajectory 1, horizontally, per cut point (mm), reading ``g.eq8``."""
+    beta, x_k = np.asarray(beta, float), np.asarray(x_k, float)
+    if g.eq8 == "literal":
+        return g.R * (np.sin(beta) - np.sin(_literal_theta(g, beta, x_k)))
+    if g.eq8 != "rotation":
+        raise Refusal(f"eq8 reading {g.eq8!r}: allowed {READINGS}")
+    return (x_k - x_k[0]) + g.R * (beta - beta[0])
+
+
+def synthetic_horizontal_displacement(g, beta, x_k) -> float:
+    """Mean |horizontal displacement| over the cut points (the paper's objective)."""
+    return float(np.mean(np.abs(horizontal_displacement(g, beta, x_k))))
+
 
 ANGLE_NAMES = ("theta1", "theta2", "theta3", "theta4", "theta5", "theta6")
 #: cut points of the nested grid on which the motion laws are interpolated (2^12 + 1):
@@ -18,24 +61,17 @@ ANGLE_NAMES = ("theta1", "theta2", "theta3", "theta4", "theta5", "theta6")
 LAW_GRID = 4097
 
 
-def angle_vars(prefix: str, theta: np.ndarray, what: str) -> dict:
-    return {f"{prefix}_{n}": var("cut", theta[:, j], "rad", f"{n}, {what}")
-            for j, n in enumerate(ANGLE_NAMES)}
-
-
 def stroke_outputs(g: Geometry, theta: np.ndarray, prefix: str, what: str) -> dict:
-    """Motion laws, lowest points, midpoints, trajectory 1 and the objective of one stroke.
-
-    H = mean |x_h - x_traj1| over the cut (Sec. 3.3 step 2), the lowest point of Eq. (7)
-    with the overlap line y = -s, the dyad margins of Eq. (9) to toggle and fold.
-    """
+    """Motion laws, lowest points (Eq. 7), midpoints (Eq. 5), trajectory 1 (Eq. 8), H and the
+    dyad margins of one stroke."""
     t5, t6 = theta[:, 4], theta[:, 5]
     xk, yk = lowest_point(g, t5, t6)
     xh, yh = midpoint(g, t5, t6)
     beta = t5 - g.beta2
     x1, y1 = trajectory1_for(g, beta, xk)
     dx = horizontal_displacement(g, beta, xk)
-    out = angle_vars(prefix, theta, what)
+    out = {f"{prefix}_{n}": var("cut", theta[:, j], "rad", f"{n}, {what}")
+           for j, n in enumerate(ANGLE_NAMES)}
     out.update({
         f"{prefix}_x_k": var("cut", xk, "mm", f"dynamic lowest point x_k, Eq. (7), {what}"),
         f"{prefix}_y_k": var("cut", yk, "mm", f"dynamic lowest point y_k, Eq. (7), {what}"),
@@ -64,12 +100,8 @@ def stroke_outputs(g: Geometry, theta: np.ndarray, prefix: str, what: str) -> di
 
 def driving_laws_on_grid(huch: np.ndarray, theta: np.ndarray, width: float,
                          prefix: str, what: str) -> dict:
-    """theta1, theta2 (the driving levers, Figs. 13-14) interpolated by cubic spline on the
-    nested grid of :data:`LAW_GRID` cut points over the rolled length.
-
-    Runs with different numbers of cut points then share one axis, so a study stacks
-    them and the motion laws of a coarse run can be compared with the finest run's at the
-    finest run's own nodes (:mod:`.accuracy`)."""
+    """theta1, theta2 (Figs. 13-14) by cubic spline on the nested LAW_GRID, so that runs with
+    different cut points share one axis (:mod:`.accuracy`)."""
     from scipy.interpolate import CubicSpline
 
     grid = np.linspace(0.0, width, LAW_GRID)
@@ -80,9 +112,6 @@ def driving_laws_on_grid(huch: np.ndarray, theta: np.ndarray, width: float,
 
 
 def pose_error(theta, ref) -> np.ndarray:
-    """|theta - closed form| per cut point and angle (rad, wrapped to [0, pi]).
-
-    Against the closed form on the design branch, all six angles: a solution on the other
-    assembly mode is an error of order 1 rad, not a small one.
-    """
+    """|theta - closed form| per cut point and angle (rad, wrapped to [0, pi]); a wrong assembly
+    mode is an error of order 1 rad."""
     return np.abs(np.angle(np.exp(1j * (np.asarray(theta) - np.asarray(ref)))))

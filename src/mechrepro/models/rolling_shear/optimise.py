@@ -1,17 +1,10 @@
-"""Lever optimisation (Sec. 3.3 step 3): l1, l3, l5, l6, l10 against the synthetic
-horizontal displacement, by selPSO and by scipy's differential evolution.
+"""Lever optimisation (Sec. 3.3 step 3): l1, l3, l5, l6, l10 against H, by selPSO and by
+scipy's differential evolution.
 
-Objective of a lever set: the blade poses of the whole stroke (Eq. 7, warm Newton), the
-synthetic horizontal displacement of the midpoint (Eqs. 5, 8), and a feasibility check
-that both dyads of Eq. (9) assemble on the design branch inside the paper's ranges at
-every cut point.  A lever set that does not assemble gets the flat penalty
-``PENALTY`` (mm), so both optimisers see the same landscape.
-
-Identifiability (see docs): with the lowest point prescribed on y = -s, Eq. (7) fixes the
-blade pose from the guide rod and the carrier: with frozen carrier constants the objective
-depends on l6 only, with re-derived ones on l5 and l6; the other levers enter only through
-the assembly constraint and are not determined by the objective.
-"""
+A lever set's objective: the poses of the stroke (Eq. 7), H (Eqs. 5, 8), and both dyads of
+Eq. (9) on the design branch in the paper's ranges at every cut point, else the flat
+``PENALTY``.  With frozen carrier constants H depends on l6 only (with re-derived ones on
+l5, l6): the other levers enter only through assembly."""
 from __future__ import annotations
 
 import math
@@ -22,14 +15,13 @@ from scipy.optimize import differential_evolution
 
 from mechrepro.timing import phase
 
-from . import closure, kernels, newton
-from . import pose as pose_mod
-from .branch import RANGES
+from . import closure, kernels
+from .blade import exact_pose
 from .geometry import OPTIMISED_LEVERS, Geometry, cut_points
 from .design import Unreachable
-from .loops import NonAssembly, pivots
+from .loops import RANGES, NonAssembly, pivots
 from .selpso import SelPSOSettings, selpso
-from .trajectory import synthetic_horizontal_displacement
+from .motion_laws import synthetic_horizontal_displacement
 
 PENALTY = 1.0e4  # mm, far above any feasible objective
 #: how clearly (rad; relative, on the squared dyad height) the compiled assembly check must
@@ -38,29 +30,27 @@ ASSEMBLY_MARGIN = 1.0e-9
 
 
 def stroke_poses(g: Geometry, x_k, tol: float, max_iter: int = 30) -> np.ndarray:
-    """theta5, theta6 at every cut point: exact first point, warm Newton afterwards, theta6
-    in [0, 2 pi) (:func:`.closure.pose_stroke`); raises NonAssembly off the guide rod's
-    design branch."""
+    """theta5, theta6 at every cut point: exact first point, warm Newton afterwards
+    (:func:`.closure.pose_stroke`); raises NonAssembly off the guide rod's design branch."""
     out = np.empty((len(x_k), 2))
-    guess = pose_mod.exact_pose(g, float(x_k[0]))
+    guess = exact_pose(g, float(x_k[0]))
     x = np.ascontiguousarray(x_k, float)
     i, status, G, det = kernels.kernel("pose_stroke")(
         g.constants, x, float(guess[0]), float(guess[1]), float(tol), int(max_iter),
-        newton.SINGULAR_RTOL, float(g.guide_mode), out)
+        kernels.SINGULAR_RTOL, float(g.guide_mode), out)
     if status == closure.OFF_BRANCH:
         raise NonAssembly(f"cut point {i} (x_k = {float(x_k[i]):.6g} mm): blade pose leaves "
                           f"the guide rod's design branch (theta5 = {out[i, 0]:.4g}, "
                           f"theta6 = {out[i, 1]:.4g} rad)", int(i), float(x_k[i]))
     if i >= 0:
         raise NonAssembly(f"cut point {i} (x_k = {float(x[i]):.6g} mm): blade pose (Eq. 7) "
-                          f"did not converge: {newton.reason(status, det, max_iter)}",
+                          f"did not converge: {kernels.reason(status, det, max_iter)}",
                           int(i), float(x[i]))
     return out
 
 
 def dyad_angles(g: Geometry, theta5, theta6) -> np.ndarray:
-    """Closed-form theta1..theta4 for arrays of poses (n, 4) (:func:`.closure.dyad_joint`);
-    NaN where it cannot assemble."""
+    """Closed-form theta1..theta4 for arrays of poses (n, 4); NaN where a loop cannot close."""
     A, G = pivots(g)
     D = g.l6 * np.exp(1j * theta6)
     C = D + g.l8 * np.exp(1j * (theta5 + g.alpha))
@@ -93,11 +83,8 @@ def check_assembly(g: Geometry, x_k, poses) -> np.ndarray:
 
 
 def objective(g: Geometry, x_k, tol: float) -> float:
-    """Synthetic horizontal displacement of a lever set (mm); raises NonAssembly.
-
-    The cut points are those of ``g`` (same number as ``x_k``): with re-derived carrier
-    constants the cut moves with the machine's mid-cut pose.
-    """
+    """H of a lever set (mm) at the cut points of ``g`` (they move with re-derived carrier
+    constants); raises NonAssembly."""
     x_k = cut_points(g, len(x_k))[1]
     poses = stroke_poses(g, x_k, tol)
     if not (closure.available() and kernels.kernel("assembles_clearly")(
@@ -135,12 +122,8 @@ def optimise_selpso(g, x_k, bounds, settings: SelPSOSettings, rng, tol) -> Optim
 
 def optimise_de(g, x_k, bounds, budget: int, population: int, seed: int,
                 tol) -> OptimisationResult:
-    """scipy differential_evolution with the same bounds and (at most) the same budget.
-
-    Population ~ the swarm size (a multiple of the number of levers); generations so that
-    population x (generations + 1) <= budget; no polishing (it would spend extra
-    evaluations outside the budget).
-    """
+    """scipy differential_evolution with the same bounds and at most the same budget (population
+    ~ the swarm, no polishing, which would spend evaluations outside the budget)."""
     f = penalised(g, x_k, tol)
     n = len(bounds)
     popsize = max(1, int(round(population / n)))

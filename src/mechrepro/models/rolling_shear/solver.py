@@ -1,26 +1,19 @@
-"""rolling_shear's entry point: the scene's solver, its effects, the run's variables (mm, rad).
-
-    solver               what it computes                                    effects it honours
-    continuation         Newton stroke + closed form (continuation.py)       constant_rate_drive, tilt_scan
-    method_comparison    the same + options.methods at every cut point        constant_rate_drive, tilt_scan,
-                         (comparison.py)                                      initial_values
-    lever_optimisation   levers by options.optimisers (lever_optimisation.py) lever_scan
-    family_scan          the admissible family on a grid (family.py)          (none)
-    design_front         H against transmission, buildable levers (front.py)  (none)
-"""
+"""rolling_shear's entry point: the scene's solver (continuation, method_comparison,
+lever_optimisation, family_scan, design_front), its effects and the run's variables."""
 from __future__ import annotations
+
+import math
 
 import numpy as np
 
 from mechrepro.units import var
 
-from .comparison import solve_method_comparison
 from .context import Context, Refused
-from .continuation import solve_continuation
-from .dataset import geometry_outputs
-from .dataset import variables as _variables
+from .continuation import solve_continuation, solve_method_comparison
 from .effects import EFFECTS
 from .family import solve_family_scan
+from .geometry import GEOMETRY_KEYS, OPTIMISED_LEVERS
+from .motion_laws import ANGLE_NAMES
 from .front import solve_design_front
 from .lever_optimisation import solve_lever_optimisation
 
@@ -29,9 +22,55 @@ SOLVERS = {"continuation": solve_continuation, "method_comparison": solve_method
            "design_front": solve_design_front}
 
 
+def geometry_outputs(ctx: Context) -> dict:
+    """The constants of the run's geometry (after calibration and the scene's lever set)
+    and its calibration (mm, rad)."""
+    g = ctx.g
+    out = {f"geometry_{k}": var((), getattr(g, k), "rad" if k in ("alpha", "beta1", "beta2") else "mm",
+                                f"constant {k} of the run's geometry")
+           for k in GEOMETRY_KEYS}
+    out["geometry_tilt"] = var((), dict(ctx.g_original.intents)["theta6_mid"] - math.pi, "rad",
+                               "guide-rod tilt at mid-cut, theta6_mid - pi (calibrated if the run calibrates)")
+    if ctx.calibration is not None:
+        n = ctx.calibration["n"]
+        out["calibrated_H_original"] = var(
+            (), ctx.calibration["H_original"], "mm",
+            f"synthetic horizontal displacement of the original levers after calibration, {n} cut points")
+        if "H_levers" in ctx.calibration:
+            out["calibrated_H_levers"] = var(
+                (), ctx.calibration["H_levers"], "mm",
+                f"synthetic horizontal displacement of the scene's levers, {n} cut points")
+    return out
+
+
+def variables(result: dict, run: dict) -> dict:
+    """The run's variables: the solver's outputs and their coordinates (a refused lever set's:
+    :func:`refusal_variables`)."""
+    if "refused" in result:
+        return refusal_variables(result["refused"])
+    ctx: Context = result["ctx"]
+    data = result["data"]
+    coords = {
+        "cut": var("cut", np.arange(ctx.n), "1", "cut point index"),
+        "huch": var("cut", ctx.huch, "mm", "rolled length from the start of the cut"),
+        "x_k_target": var("cut", ctx.x_k, "mm", "prescribed x of the lowest point on y = -s"),
+        "angle": var("angle", list(ANGLE_NAMES), "1", "unknown angle"),
+        "lever": var("lever", list(OPTIMISED_LEVERS), "1", "optimised lever"),
+        "loop": var("loop", ["ABCD", "GHID"], "1", "dyad of Eq. (9)"),
+    }
+    used = {d for dims, *_ in data.values() for d in dims}
+    out = {k: v for k, v in coords.items() if v[0][0] in used or k in ("cut", "huch", "x_k_target")}
+    out |= {d: var(d, np.arange(np.shape(v[1])[v[0].index(d)]), "1", f"{d} index")
+            for v in data.values() for d in v[0] if d not in out}
+    return out | data | {
+        "length_unit": "mm",
+        "pose_tol_used": var((), ctx.settings.tol_pose, "mm", "tolerance on G of Eq. (7)"),
+        "loops_tol_used": var((), ctx.settings.tol_loops, "mm", "tolerance on G of Eq. (9)"),
+        "blade_radius": var((), ctx.g.R, "mm", "blade arc radius R")}
+
+
 def compute(run: dict) -> dict:
-    """The physics of one run: its solver, which evaluates only the effects it names.
-    A lever set the run refuses by name (:class:`Refused`) gives ``{"refused": ...}``."""
+    """The run's solver; a lever set refused by name gives ``{"refused": ...}``."""
     try:
         ctx = Context(run)
         data = SOLVERS[run["solver"]](run, ctx)
@@ -52,12 +91,6 @@ def refusal_variables(exc: Refused) -> dict:
         "buildable": var((), 0.0 if exc.kind == "unbuildable" else np.nan, "1",
                          "0: the calibrated member breaks a constraint of constraints.py"),
         "length_unit": "mm", "refusal_kind": exc.kind, "refusal": exc.message}
-
-
-def variables(result: dict, run: dict) -> dict:
-    if "refused" in result:
-        return refusal_variables(result["refused"])
-    return _variables(result, run)
 
 
 __all__ = ["EFFECTS", "SOLVERS", "compute", "variables"]

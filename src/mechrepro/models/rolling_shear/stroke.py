@@ -1,45 +1,26 @@
 """The cutting stroke: every cut point solved for theta5, theta6 (Eq. 7) then theta1..4 (Eq. 9).
 
-Methods (solver ``continuation``: newton and exact; solver ``method_comparison``: the
-others, named by the scene's ``options.methods``):
-
-* ``newton``  -- warm-started continuation: each cut point starts from the linear
-  extrapolation of the two previous solutions; the first from the configured initial
-  value.  The default solver.  A point that does not converge, or converges off the
-  design branch (near a toggle the two branches meet), raises :class:`NonAssembly`
-  naming the cut point -- a wrong branch is never returned.
-* ``selpso``  -- the paper's method: every system from the initial value + N(0, 1).
-* ``cold_root``, ``least_squares`` -- scipy from uniformly random starts in [0, 2 pi)^n.
-* ``warm_root``, ``warm_least_squares`` -- the same scipy solvers warm-started along the
-  stroke (the configured initial value, then the same predictor as ``newton``), without
-  the branch check, to show what the continuation alone buys.
-* ``exact``   -- closed form (Brent on |ED| = l6, circle intersections), the reference.
-
-:func:`run_method` never raises for the comparison methods: it records per cut point
-whether the solve converged, whether it is inside the paper's ranges and on the design
-branch, its fitness and wall time.
-"""
+Methods: ``newton`` (warm-started continuation; a point that does not converge or lands off
+the design branch raises :class:`NonAssembly`), ``selpso`` and ``pso_standard`` (from the
+initial value), ``cold_root``/``least_squares`` (scipy from random starts), ``warm_root``/
+``warm_least_squares`` (scipy warm-started, no branch check), ``exact`` (closed form, the
+reference).  :func:`solve_compare` records the comparison methods and never raises."""
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import least_squares, root
 
-from mechrepro.timing import mean_time, phase, time_call
+from mechrepro.timing import mean_time, phase
 
 from . import closure, kernels
 from . import loops as loops_mod
-from . import newton
-from . import pose as pose_mod
-from .branch import in_ranges, on_design_branch, wrap
+from . import blade
 from .geometry import Geometry
-from .loops import NonAssembly
+from .loops import NonAssembly, in_ranges, on_design_branch, wrap
 from .selpso import KernelFitness, SelPSOSettings, selpso
-
-METHODS = ("newton", "selpso", "pso_standard", "cold_root", "least_squares", "warm_root", "warm_least_squares",
-           "exact")
 
 
 @dataclass
@@ -55,7 +36,6 @@ class StrokeSolution:
     time_pose: float                       # mean wall time per solve of Eq. (7), s
     time_loops: float                      # mean wall time per solve of Eq. (9), s
     iterations_loops: np.ndarray
-    histories: list = field(default_factory=list, repr=False)
 
     @property
     def right(self) -> np.ndarray:
@@ -119,9 +99,9 @@ def _continue(g, x_k, settings, guess, theta, fp, fl, it) -> None:
         # assembly mode) the previous solution; a point neither accepts raises
         guesses = [guess] if i == 0 else [guess, list(theta[i - 1])]
         for trial in guesses:
-            rp = newton.pose(g, (trial[4], trial[5]), xk, settings.tol_pose, settings.max_iter)
+            rp = kernels.newton_pose(g, (trial[4], trial[5]), xk, settings.tol_pose, settings.max_iter)
             t5, t6 = rp.x
-            rl = newton.loops(g, trial[:4], t5, t6, settings.tol_loops, settings.max_iter)
+            rl = kernels.newton_loops(g, trial[:4], t5, t6, settings.tol_loops, settings.max_iter)
             th = np.array([*rl.x, t5, t6])
             error = _point_error(g, i, xk, th, rp, rl)
             if error is None:
@@ -137,7 +117,7 @@ def _exact(g: Geometry, x_k) -> np.ndarray:
     theta = np.empty((len(x_k), 6))
     for i, xk in enumerate(x_k):
         try:
-            p = pose_mod.exact_pose(g, float(xk))
+            p = blade.exact_pose(g, float(xk))
             theta[i] = [*loops_mod.exact_angles(g, *p), *p]
         except NonAssembly as exc:
             raise NonAssembly(f"cut point {i} (x_k = {float(xk):.6g} mm): {exc}", i, float(xk)) from None
@@ -145,33 +125,30 @@ def _exact(g: Geometry, x_k) -> np.ndarray:
 
 
 def exact_theta(g: Geometry, x_k) -> np.ndarray:
-    """theta1..theta6 (n x 6, mod 2 pi) of the closed form at every cut point
-    (:func:`.pose.exact_pose`, :func:`.loops.exact_angles`): :func:`solve_exact`'s theta
-    without its residuals."""
+    """theta1..theta6 (n x 6, mod 2 pi) of the closed form at every cut point, without residuals."""
     return wrap(_exact(g, x_k))
 
 
 def solve_exact(g: Geometry, x_k) -> StrokeSolution:
     n = len(x_k)
     theta = _exact(g, x_k)
-    fp = np.array([np.abs(pose_mod.residuals(g, t[4:], xk)).sum() for t, xk in zip(theta, x_k)])
+    fp = np.array([np.abs(blade.pose_residuals(g, t[4:], xk)).sum() for t, xk in zip(theta, x_k)])
     fl = np.array([np.abs(loops_mod.residuals(g, t[:4], t[4], t[5])).sum() for t in theta])
     ok = np.ones(n, bool)
     return StrokeSolution("exact", np.asarray(x_k), wrap(theta), fp, fl, ok, ok.copy(),
                           ok.copy(), math.nan, math.nan, np.zeros(n, int))
 
 
-def _scipy_solve(kind, fun, jac, x0, tol):
-    if kind.endswith("root"):
-        r = root(fun, x0, jac=jac, method="hybr", options={"xtol": 1e-14})
-        return r.x, int(r.nfev)
-    r = least_squares(fun, x0, jac=jac, method="trf", xtol=1e-15, ftol=1e-15, gtol=1e-15)
+def _scipy_solve(kind, fun, jac, x0):
+    """scipy's root (hybrid Powell) or least_squares (trf) from x0: (x, evaluations)."""
+    r = (root(fun, x0, jac=jac, method="hybr", options={"xtol": 1e-14}) if kind.endswith("root")
+         else least_squares(fun, x0, jac=jac, method="trf", xtol=1e-15, ftol=1e-15, gtol=1e-15))
     return r.x, int(r.nfev)
 
 
 def pose_fitness(g: Geometry, xk: float) -> KernelFitness:
     """selPSO's fitness of Eq. (7): G = sum |residuals| (mm), numpy or compiled."""
-    return KernelFitness(lambda X: np.abs(pose_mod.residuals(g, X, xk)).sum(-1),
+    return KernelFitness(lambda X: np.abs(blade.pose_residuals(g, X, xk)).sum(-1),
                          closure.POSE, g.constants, (xk, 0.0, 0.0, 0.0, 0.0, 0.0))
 
 
@@ -183,39 +160,33 @@ def loops_fitness(g: Geometry, t5: float, t6: float) -> KernelFitness:
 
 def _pose_by(method, g, xk, start, settings, rng):
     """theta5, theta6 at one cut point (Eq. 7) by a comparison method."""
-    from .blade import lowest_point_jacobian
-
     if method in ("selpso", "pso_standard"):
         st = settings.pso_pose if method == "selpso" else settings.pso_std_pose
         return selpso(pose_fitness(g, xk), start, st, rng, period=2 * math.pi).x
     start = start if method.startswith("warm_") else rng.uniform(0, 2 * math.pi, 2)
-    return _scipy_solve(method, lambda x: pose_mod.residuals(g, x, xk),
-                        lambda x: lowest_point_jacobian(g, *x), start, settings.tol_pose)[0]
+    return _scipy_solve(method, lambda x: blade.pose_residuals(g, x, xk),
+                        lambda x: blade.lowest_point_jacobian(g, *x), start)[0]
 
 
 def _loops_by(method, g, t5, t6, start, settings, rng):
-    """(theta1..theta4, iterations, history or None) at one cut point (Eq. 9)."""
+    """(theta1..theta4, iterations) at one cut point (Eq. 9)."""
     if method in ("selpso", "pso_standard"):
         st = settings.pso_loops if method == "selpso" else settings.pso_std_loops
         r = selpso(loops_fitness(g, t5, t6), start, st, rng, period=2 * math.pi)
-        return r.x, r.iterations, r.history
+        return r.x, r.iterations
     start = start if method.startswith("warm_") else rng.uniform(0, 2 * math.pi, 4)
-    x, nfev = _scipy_solve(method, lambda x: loops_mod.residuals(g, x, t5, t6),
-                           lambda x: loops_mod.jacobian(g, x), start, settings.tol_loops)
-    return x, nfev, None
+    return _scipy_solve(method, lambda x: loops_mod.residuals(g, x, t5, t6),
+                        lambda x: loops_mod.jacobian(g, x), start)
 
 
 def solve_compare(g: Geometry, x_k, method: str, settings: SolverSettings,
-                  rng: np.random.Generator, keep_history: bool = False) -> StrokeSolution:
-    """selPSO / scipy solves at every cut point, recorded, never raising.
-
-    selPSO starts every system from the initial value; cold scipy from uniformly random
-    starts; warm scipy from the linear extrapolation of the two previous solutions."""
+                  rng: np.random.Generator) -> StrokeSolution:
+    """selPSO / scipy solves at every cut point, recorded, never raising (starts: see module)."""
     n = len(x_k)
     theta = np.empty((n, 6))
     fp, fl, it = np.empty(n), np.empty(n), np.zeros(n, int)
     conv, inr, des = np.zeros(n, bool), np.zeros(n, bool), np.zeros(n, bool)
-    hist, tp, tl = [], 0.0, 0.0
+    tp, tl = 0.0, 0.0
     init = np.asarray(settings.initial_value, float)
     warm = method.startswith("warm_")
     guess = init.copy()
@@ -225,38 +196,30 @@ def solve_compare(g: Geometry, x_k, method: str, settings: SolverSettings,
             t5, t6 = map(float, _pose_by(method, g, xk, guess[4:], settings, rng))
         tp += sw.seconds
         with phase("rolling_shear.loops") as sw:
-            t14, it[i], h = _loops_by(method, g, t5, t6, guess[:4], settings, rng)
+            t14, it[i] = _loops_by(method, g, t5, t6, guess[:4], settings, rng)
         tl += sw.seconds
-        if keep_history and h is not None:
-            hist.append(h)
         th = np.array([*t14, t5, t6])
         if warm:
             guess = 2 * th - prev if i > 0 else th
             prev = th
         theta[i] = wrap(th)
-        fp[i] = float(np.abs(pose_mod.residuals(g, th[4:], xk)).sum())
+        fp[i] = float(np.abs(blade.pose_residuals(g, th[4:], xk)).sum())
         fl[i] = float(np.abs(loops_mod.residuals(g, th[:4], t5, t6)).sum())
         conv[i] = fp[i] < settings.tol_pose and fl[i] < settings.tol_loops
         inr[i] = in_ranges(th)
         des[i] = on_design_branch(g, th)
     return StrokeSolution(method, np.asarray(x_k), theta, fp, fl, conv, inr, des,
-                          tp / n, tl / n, it, hist)
+                          tp / n, tl / n, it)
 
 
 def time_newton_loops(g: Geometry, theta: np.ndarray, settings: SolverSettings,
                       min_time: float = 0.02) -> float:
-    """Mean wall time per Eq. (9) solve of the warm-started continuation, poses given (s).
-
-    Only Eq. (9), and timed as selPSO's time per solve is (issue 27: like for like): the
-    mean over every solve of whole strokes, repeated until ``min_time`` has elapsed (a
-    stroke takes ~10 us, so one stroke alone would be at the timer's resolution), not the
-    fastest stroke.  Each cut point starts from the linear extrapolation of the two previous
-    solutions; the first stroke warms the caches and is not counted.
-    """
+    """Mean wall time per Eq. (9) solve of the warm-started continuation, poses given (s): the
+    mean over whole strokes repeated for ``min_time``, timed as selPSO's is (like for like)."""
     return mean_time(_newton_loops_stroke, g, theta, settings, min_time=min_time) / len(theta)
 
 
 def _newton_loops_stroke(g: Geometry, theta: np.ndarray, settings: SolverSettings) -> None:
     kernels.kernel("loops_stroke")(g.constants, np.ascontiguousarray(theta, float),
                                    float(settings.tol_loops), int(settings.max_iter),
-                                   newton.SINGULAR_RTOL)
+                                   kernels.SINGULAR_RTOL)

@@ -1,9 +1,5 @@
-"""Reproduced values of rolling_shear's reported quantities (config `reported:` block).
-
-Only extraction: the framework builds the rows, verdicts and claim (docs/VALIDATION.md).
-Tables the notebook writes besides validation.csv (Table II, solver comparison) are also
-built here, from the runs.
-"""
+"""Reproduced values of rolling_shear's reported quantities, and the tables the notebook
+writes besides validation.csv; only extraction (the framework builds rows and verdicts)."""
 from __future__ import annotations
 
 import math
@@ -14,6 +10,7 @@ import xarray as xr
 from mechrepro.validation import Quantities, Reproduced, verdict
 
 from .geometry import OPTIMISED_LEVERS
+from .motion_laws import pose_error
 
 Q = Quantities("rolling_shear")
 
@@ -32,12 +29,10 @@ def _geometry_note(ds) -> str:
             "overlap_max_deviation_constant_rate_drive", "newton_vs_closed_form_max_angle_error")
 def original(R):
     ds = R.run("original")
-    H = ds["family_h"].values
-    tilt = ds["family_tilt"].values
+    H, tilt = ds["family_h"].values, ds["family_tilt"].values
     ok = np.isfinite(H)
-    err = max(float(np.max(np.abs(np.angle(np.exp(
-        1j * (ds[f"newton_theta{k}"].values - ds[f"exact_theta{k}"].values))))))
-        for k in range(1, 7))
+    err = max(float(np.max(pose_error(ds[f"newton_theta{k}"].values, ds[f"exact_theta{k}"].values)))
+              for k in range(1, 7))
     return {
         "synthetic_horizontal_displacement_original": Reproduced(
             float(ds["calibrated_H_original"]),
@@ -64,38 +59,45 @@ GRID_MEMBER = ("blade_offset", "R", "width", "y_joint", "eq8_reading", "carrier_
 
 
 def admissible_members(R, fam) -> dict[str, np.ndarray]:
-    """The family-grid members (scene ``family``) that calibrate and can be built under each
-    reading of ``guide_rod_plane`` at the most permissive ends of the constraints' declared
-    ranges (clearance, transmission_min; the plate and the opening are Table I's): a member
-    some plausible machine builds is a plausible machine, so a verdict it flips is not
-    settled (issue 62).  Under the planar reading the blade offset also stays inside its
-    range (its upper end is the planar argument); under the out-of-plane reading the grid's
-    offsets right of I count.  {reading: boolean mask over the members}."""
+    """The family-grid members that calibrate and can be built, per reading of ``guide_rod_plane``,
+    at the most permissive ends of the constraints' ranges (a member some plausible machine
+    builds is plausible); planar members also keep the blade offset in its range."""
     P = R.cfg.raw["parameters"]
-    clearance = float(P["clearance"]["range"][0])                  # mm
-    mu_min = float(min(P["transmission_min"]["range"]))           # deg
-    plate_top = float(R.parameter("plate_thickness_max")) * 1e3
-    opening = float(R.parameter("opening")) * 1e3
+    return buildable_members(fam, **constraint_ends(R),
+                             plate_top=float(R.parameter("plate_thickness_max")) * 1e3,
+                             opening=float(R.parameter("opening")) * 1e3,
+                             blade_range=P["blade_offset"]["range"])
+
+
+def constraint_ends(R, end=min) -> dict:
+    """The constraints' range ends, clearance (mm) and transmission floor (deg): ``min`` the most
+    permissive, ``max`` the strict."""
+    P = R.cfg.raw["parameters"]
+    return {"clearance": float(end(P["clearance"]["range"])), "mu_min": float(end(P["transmission_min"]["range"]))}
+
+
+def buildable_members(fam, *, clearance, mu_min, plate_top, opening, blade_range=(-np.inf, np.inf)):
+    """{reading of ``guide_rod_plane``: mask of the family-grid members that calibrate and can be
+    built at these settings (mm, deg)}, from the margins the family scan stores."""
     v = {k: fam[f"family_member_{k}"].values for k in
          ("tilt", "rod_gap", "joint_height", "mu_min", "mu_max", "rise", "blade_offset", "open_mu")}
     with np.errstate(invalid="ignore"):
         other = (np.isfinite(v["tilt"]) & (v["joint_height"] >= plate_top)
                  & (v["mu_min"] >= mu_min) & (v["mu_max"] <= 180.0 - mu_min) & (v["rise"] <= opening)
                  & (v["open_mu"] >= mu_min))
-        lo, hi = P["blade_offset"]["range"]
+        lo, hi = blade_range
         planar = other & (v["rod_gap"] >= clearance) & (v["blade_offset"] >= lo) & (v["blade_offset"] <= hi)
     return {"planar": planar, "out_of_plane": other}
 
 
-def _member(fam, i) -> str:
-    return ", ".join(f"{k} {fam[f'family_member_{k}'].values[i]}" for k in GRID_MEMBER)
+def _member(fam, i, keys=GRID_MEMBER) -> str:
+    return ", ".join(f"{k} {fam[f'family_member_{k}'].values[i]}" for k in keys)
 
 
 def grid_flips(R, quantity: str, base_status: str, values: np.ndarray, fam, what: str) -> tuple[list, str]:
-    """Re-check a Table II verdict over the admissible grid members (:func:`admissible_members`)
-    under both readings of the guide rod: the members whose own verdict (``values``, the
-    row's value per member, NaN: no value) differs from ``base_status`` flip it.  Returns
-    (flips, note)."""
+    """Re-check a Table II verdict over the admissible members under both readings: members whose
+    own verdict (``values`` per member, NaN: none) differs from ``base_status`` flip it.
+    Returns (flips, note)."""
     spec = R.reported(quantity)
     adm = admissible_members(R, fam)
     flips, counts = [], []
@@ -115,9 +117,8 @@ def grid_flips(R, quantity: str, base_status: str, values: np.ndarray, fam, what
                          f"{values[i]:.4g} at {fam.sizes['cut']} cut points)")
         if len(flipped) > 2:
             flips.append(f"and {len(flipped) - 2} more grid members under the {reading} reading")
-    note = (f"Re-checked over the family grid's members that calibrate and can be built at "
-            f"clearance {R.cfg.raw['parameters']['clearance']['range'][0]} mm and a "
-            f"{min(R.cfg.raw['parameters']['transmission_min']['range'])} deg transmission floor: "
+    note = ("Re-checked over the family grid's members that calibrate and can be built at "
+            "clearance {clearance:g} mm and a {mu_min:g} deg transmission floor: ".format(**constraint_ends(R))
             + "; ".join(counts) + ".")
     return flips, note
 
@@ -141,8 +142,7 @@ def paper_levers(R):
         notes["paper_levers_assemble"] = why
         thetas = (math.nan, math.nan)
     else:
-        H0 = float(ds["calibrated_H_original"])
-        Hp = float(ds["calibrated_H_levers"])
+        H0, Hp = float(ds["calibrated_H_original"]), float(ds["calibrated_H_levers"])
         how = f"{how}, {_geometry_note(ds)}"
         ok = bool(float(ds["levers_assemble"]) == 1.0 and float(ds["newton_right_branch_rate"]) == 1.0)
         notes = {"synthetic_horizontal_displacement_optimised": how,
@@ -168,14 +168,19 @@ def paper_levers(R):
     return out
 
 
+def _optimum(R, scene):
+    """A lever optimisation run, H of the original levers and of selPSO's optimum, the optimum's
+    levers and the one-lever scans' spreads."""
+    opt = R.run(scene)
+    return (opt, float(opt["opt_original_objective"]), float(opt["opt_selpso_objective"]),
+            dict(zip(OPTIMISED_LEVERS, opt["opt_selpso_levers"].values)),
+            dict(zip(opt["lever"].values.tolist(), opt["scan_spread"].values)))
+
+
 @Q.register("our_optimisation_reduction", "our_optimised_h", "optimised_l1", "optimised_l3",
             "optimised_l5", "optimised_l6", "optimised_l10")
 def our_optimisation(R):
-    opt = R.run("optimisation")
-    H0 = float(opt["opt_original_objective"])
-    H1 = float(opt["opt_selpso_objective"])
-    levers = dict(zip(OPTIMISED_LEVERS, opt["opt_selpso_levers"].values))
-    spread = dict(zip(opt["lever"].values.tolist(), opt["scan_spread"].values))
+    opt, H0, H1, levers, spread = _optimum(R, "optimisation")
     frac = float(R.parameter("lever_bound_fraction"))
     out = {
         "our_optimisation_reduction": Reproduced(
@@ -192,9 +197,8 @@ def our_optimisation(R):
 @Q.register("table2_reduction_family_frozen_min", "table2_reduction_family_frozen_max",
             "table2_reduction_family_rederived_min", "table2_reduction_family_rederived_max")
 def family(R):
-    """Table II's reduction over the buildable members of the family grid (constraints.py),
-    per carrier reading; the notes say how many members calibrate and how many can be built,
-    and the range over every calibrated member, buildable or not."""
+    """Table II's reduction over the buildable family-grid members per carrier reading; the notes
+    count the members and give the range over every calibrated one."""
     ds = R.run("family")
     red = ds["family_member_reduction"].values
     carrier = ds["family_member_carrier_constants"].values.astype(str)
@@ -204,12 +208,8 @@ def family(R):
         cal = (carrier == c) & np.isfinite(red)
         sel = cal & built
         lo, hi = int(np.argmin(np.where(sel, red, np.inf))), int(np.argmax(np.where(sel, red, -np.inf)))
-
-        def member(i):
-            return ", ".join(f"{k} {ds[f'family_member_{k}'].values[i]}" for k in
-                             ("blade_offset", "R", "width", "y_joint", "eq8_reading"))
-        lev = ds["family_member_levers_buildable"].values == 1.0 if "family_member_levers_buildable" in ds \
-            else np.zeros_like(sel)
+        member = lambda i: _member(ds, i, GRID_MEMBER[:5])  # noqa: E731
+        lev = ds["family_member_levers_buildable"].values == 1.0
         note = (f"{int(sel.sum())} buildable of {int(cal.sum())} grid members that reach 1.4341 "
                 f"(of {int((carrier == c).sum())}; {ds.sizes['cut']} cut points), in "
                 f"{int((sel & lev).sum())} of them the machine with Table II's levers can be built too; "
@@ -225,8 +225,8 @@ def family(R):
 
 @Q.register("optimisation_shortens_l6")
 def l6_direction(R):
-    """Does our optimisation shorten l6, as Table II's does?  Read under both carrier
-    readings; a direction that differs between them is a flip (inconclusive)."""
+    """Does our optimisation shorten l6, as Table II's does, under both carrier readings (a
+    direction that differs between them is a flip)?"""
     l6_0 = float(R.parameter("l6")) * 1e3
     got = {}
     for scene in ("optimisation", "optimisation_rederived"):
@@ -245,11 +245,7 @@ def l6_direction(R):
 @Q.register("our_optimisation_reduction_rederived", "optimised_l5_rederived",
             "optimised_l6_rederived")
 def our_optimisation_rederived(R):
-    opt = R.run("optimisation_rederived")
-    H0 = float(opt["opt_original_objective"])
-    H1 = float(opt["opt_selpso_objective"])
-    levers = dict(zip(OPTIMISED_LEVERS, opt["opt_selpso_levers"].values))
-    spread = dict(zip(opt["lever"].values.tolist(), opt["scan_spread"].values))
+    _, H0, H1, levers, spread = _optimum(R, "optimisation_rederived")
     return {
         "our_optimisation_reduction_rederived": Reproduced(
             _reduction(H1, H0), note=f"selPSO {H1:.4g} mm against {H0:.4g} mm; one-lever scan spreads "
@@ -262,7 +258,7 @@ def our_optimisation_rederived(R):
 @Q.register("selpso_converges_from_each_initial_value", "selpso_design_branch_rate_initial_values",
             "selpso_success_in_paper_ranges", "selpso_branch_success_rate")
 def selpso_rows(R):
-    """The selPSO rows, from the selPSO-only scene (their re-runs solve selPSO alone)."""
+    """The selPSO rows, from the selPSO-only scene."""
     c = R.run("selpso_initial_values")
     n_iv = int(c["iv_converged"].size)
     r_sel = float(c["selpso_right_branch_rate"])
@@ -306,8 +302,7 @@ def solvers(R):
 
 
 def table2(orig, popt, opt) -> tuple[list, list]:
-    """Table II: the paper's levers (original and optimised, as the runs used them) and ours,
-    with the objective H in our calibrated geometry."""
+    """Table II: the paper's levers (original, optimised) and ours, with H in our geometry."""
     header = ["lever", "paper_original_mm", "paper_optimised_mm", "ours_selpso_mm", "ours_de_mm",
               "objective_spread_mm"]
     sel = dict(zip(OPTIMISED_LEVERS, opt["opt_selpso_levers"].values))
@@ -323,7 +318,7 @@ def table2(orig, popt, opt) -> tuple[list, list]:
 
 
 def lever_scan(opt) -> tuple[list, list]:
-    """The one-lever scans of H (columns: relative change of the lever) and their spread."""
+    """The one-lever scans of H and their spread."""
     scan = opt["scan_objective"].values
     header = ["lever"] + [f"{f:+.3f}" for f in opt["scan_fraction"].values] + ["spread_mm"]
     return header, [[lv] + [float(v) for v in scan[j]] + [float(opt["scan_spread"][j])]
@@ -347,13 +342,11 @@ def solver_comparison(comp: xr.Dataset) -> tuple[list, list]:
     return header, out
 
 
-def recommended(ds, *, clearance: float, mu_min: float) -> tuple[int, str] | None:
-    """The design this project recommends from scene ``design``: the lowest H buildable with
-    the guide rod ``clearance`` beside the plate and a worst transmission angle of at least
-    ``mu_min`` (deg) -- pass the strict ends of those constraints' declared ranges, so that
-    it can be built at every plausible setting.  H depends on l6 alone, so at that l6 the
-    design that changes nothing else (``kept``) is preferred where it qualifies, the
-    envelope's otherwise.  Returns (index over ``l6_grid``, "kept" or "envelope"), or None."""
+def recommended(ds, *, clearance: float, mu_min: float) -> dict | None:
+    """The recommended design of scene ``design``: the lowest H buildable at ``clearance`` and
+    ``mu_min`` (deg; the strict range ends), preferring the design that changes only l6
+    (``kept``) where it qualifies: its index over ``l6_grid``, "kept" or "envelope", levers,
+    worst transmission angle and joint height; None if none qualifies."""
     gap, H = ds["envelope_rod_gap"].values, ds["envelope_H"].values
     with np.errstate(invalid="ignore"):
         kept = (gap >= clearance) & (ds["kept_mu_worst"].values >= mu_min) & (ds["kept_buildable"].values == 1.0)
@@ -364,34 +357,22 @@ def recommended(ds, *, clearance: float, mu_min: float) -> tuple[int, str] | Non
             i = int(np.flatnonzero(ok)[np.argmin(H[ok])])
             if best is None or H[i] < H[best[0]]:
                 best = (i, which)
-    return best
-
-
-def recommended_design(ds, rec) -> dict:
-    """Levers (OPTIMISED_LEVERS order), worst transmission angle and joint height of
-    :func:`recommended`'s design."""
-    i, which = rec
+    if best is None:
+        return None
+    i, which = best
     if which == "kept":
         lv = ds["paper_levers"].values[0].copy()
         lv[OPTIMISED_LEVERS.index("l6")] = ds["envelope_levers"].sel(lever="l6").values[i]
-        return {"levers": lv, "mu_worst": float(ds["kept_mu_worst"][i]),
+        return {"index": i, "which": which, "levers": lv, "mu_worst": float(ds["kept_mu_worst"][i]),
                 "joint_height": float(ds["kept_joint_height"][i])}
-    return {"levers": ds["envelope_levers"].values[i], "mu_worst": float(ds["envelope_mu_worst"][i]),
-            "joint_height": float(ds["envelope_joint_height"][i])}
-
-
-def strict_ends(R) -> dict:
-    """The constraints' strict range ends (clearance mm, transmission floor deg)."""
-    P = R.cfg.raw["parameters"]
-    return {"clearance": float(max(P["clearance"]["range"])),
-            "mu_min": float(max(P["transmission_min"]["range"]))}
+    return {"index": i, "which": which, "levers": ds["envelope_levers"].values[i],
+            "mu_worst": float(ds["envelope_mu_worst"][i]), "joint_height": float(ds["envelope_joint_height"][i])}
 
 
 def design_front(ds, *, clearance: float, mu_min: float, plate_top: float, opening: float,
                  strict: dict) -> tuple[list, list]:
-    """The design-front table: the paper's designs, every front design and the recommended
-    one, with their levers, objectives and buildability margins (mm, deg; the box margin
-    relative to the box width)."""
+    """The design-front table: the paper's designs, the front and the recommended design, with
+    levers, objectives and buildability margins."""
     header = ["design", *[f"{k}_mm" for k in OPTIMISED_LEVERS], "H_mm", "reduction_pct",
               "mu_worst_deg", "rod_gap_margin_mm", "joint_height_margin_mm",
               "transmission_margin_deg", "blade_rise_margin_mm", "box_margin", "buildable"]
@@ -412,12 +393,12 @@ def design_front(ds, *, clearance: float, mu_min: float, plate_top: float, openi
         out.append(row("front", ds["envelope_levers"].values[i], ds["envelope_H"].values[i],
                        ds["envelope_mu_worst"].values[i], ds["envelope_rod_gap"].values[i],
                        ds["envelope_joint_height"].values[i], box[i], 1))
-    rec = recommended(ds, **strict)
-    if rec is not None:
-        d, i = recommended_design(ds, rec), rec[0]
+    d = recommended(ds, **strict)
+    if d is not None:
+        i = d["index"]
         lo, hi = ds["front_box"].values.T
         margin = float(np.min(np.minimum(d["levers"] - lo, hi - d["levers"]) / (hi - lo)))
-        out.append(row(f"recommended ({'only l6 changed' if rec[1] == 'kept' else 'front envelope'})",
+        out.append(row(f"recommended ({'only l6 changed' if d['which'] == 'kept' else 'front envelope'})",
                        d["levers"], ds["envelope_H"].values[i], d["mu_worst"],
                        ds["envelope_rod_gap"].values[i], d["joint_height"], margin, 1))
     return header, out
@@ -427,11 +408,11 @@ def design_front(ds, *, clearance: float, mu_min: float, plate_top: float, openi
             "design_table2_buildable", "design_original_mu_worst", "design_table2_mu_worst")
 def design(R):
     ds = R.run("design")
-    strict = strict_ends(R)
+    strict = constraint_ends(R, max)
     H0 = float(ds["paper_H"].values[0])
     H = ds["envelope_H"].values
     built = np.isfinite(ds["envelope_mu_worst"].values)
-    rec = recommended(ds, **strict)
+    d = recommended(ds, **strict)
     j = int(np.flatnonzero(built)[np.argmin(H[built])]) if built.any() else None
     clearance = float(R.parameter("clearance")) * 1e3
 
@@ -442,13 +423,12 @@ def design(R):
                 f"{height:.0f} mm above the lower blade")
     grid = (f"{int(ds['front_evaluated'])} designs evaluated ({int(ds['front_buildable_count'])} buildable) "
             f"over {ds.sizes['l6_grid']} guide-rod lengths at {ds.sizes['cut']} cut points")
-    if rec is not None:
-        d = recommended_design(ds, rec)
+    if d is not None:
         rec_note = (f"the lowest H buildable at clearance {strict['clearance']:.0f} mm and a "
                     f"{strict['mu_min']:.0f} deg transmission floor (the strict range ends)"
-                    + (", only l6 changed: " if rec[1] == "kept" else ": ")
-                    + describe(d["levers"], d["mu_worst"], rec[0], d["joint_height"]) + f"; {grid}")
-        Hr = float(H[rec[0]])
+                    + (", only l6 changed: " if d["which"] == "kept" else ": ")
+                    + describe(d["levers"], d["mu_worst"], d["index"], d["joint_height"]) + f"; {grid}")
+        Hr = float(H[d["index"]])
     else:
         rec_note, Hr = f"no design qualifies; {grid}", math.nan
     box = np.nanmin(ds["envelope_box_margin"].values, axis=1)

@@ -1,11 +1,7 @@
-"""The chain of one run: geometry, masses and the time grid of one period (Eqs. 1-6).
-
-Shared by the solver (:mod:`.solver`) and the effects (:mod:`.effects`) that are
-evaluated beside it on the same grid.
-"""
+"""The chain of one run: geometry, masses and the time grid of one period (Eqs. 1-6)."""
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, fields, replace
 from functools import lru_cache
 
 import numpy as np
@@ -18,8 +14,7 @@ from .loads import tight_side_mass
 
 @dataclass(frozen=True)
 class Design:
-    """The printed inputs (SI) the predictions depend on: pitches, teeth, sprocket speed,
-    link masses and counts."""
+    """The printed inputs (SI): pitches, teeth, sprocket speed, link masses and counts."""
     p1: float
     p2: float
     z: int
@@ -28,6 +23,10 @@ class Design:
     m_C: float
     M: int
     N: int
+
+    def inputs(self) -> dict:
+        """The printed inputs by name, as :func:`.design.design_quantities` takes them."""
+        return {f.name: getattr(self, f.name) for f in fields(Design)}
 
 
 @dataclass(frozen=True)
@@ -53,10 +52,8 @@ class Chain(Design):
 
     @property
     def chain_speed(self):
-        """The pitch-line speed z (p1 + p2) omega / (2 pi) [m/s]: one pair of pitches per tooth
-        period t2 = 2 pi / (z omega).  The time mean of the tight-side velocity of any model
-        that conserves the chain length (Eqs. 7-10 included), and the constant speed of the
-        rival without the polygon effect (:func:`.solver.constant_speed`)."""
+        """The pitch-line speed z (p1 + p2) omega / (2 pi) [m/s]: the time mean of the tight-side
+        velocity of any model that conserves the chain length, and the constant-speed rival's."""
         return self.z * (self.p1 + self.p2) * self.omega / (2.0 * np.pi)
 
     def stages(self):
@@ -71,7 +68,7 @@ class Chain(Design):
         return phi1 / self.omega, (phi2 - phi1) / self.omega
 
     def load_jerk_max(self):
-        """max |dF_dx/dt| of the exact load in each stage [N/s] (:func:`budget_constants`)."""
+        """max |dF_dx/dt| of the exact load in each stage [N/s]."""
         return list(budget_constants(self.per_chain())[0])
 
     def roundoff_mass(self):
@@ -83,8 +80,7 @@ class Chain(Design):
         return budget_constants(self.per_chain())[1]
 
     def velocity_roundoff_limit(self):
-        """K beyond which round-off dominates the velocity (first difference; see
-        :mod:`.difference`)."""
+        """K beyond which round-off dominates the velocity (first difference)."""
         return budget_constants(self.per_chain())[2]
 
     def per_chain(self) -> "Chain":
@@ -100,15 +96,8 @@ class Chain(Design):
 
 @lru_cache(maxsize=256)
 def budget_constants(chain: Chain, n: int = 129):
-    """What the error budget needs and K does not change, computed once per chain.
-
-    Returns (max |dF_dx/dt| per stage [N/s], the loads' round-off limit of K, the
-    velocity's).  The jerk and the acceleration are smooth within a stage, so a fixed
-    grid of ``n`` angles (ends included) gives their maxima to ~1e-6.  Cached: a K study
-    or a Richardson sequence solves one chain at many K, and computing these in every
-    solve was ~60 % of a solve below K = 1000 (issue 30), which flattened the
-    cost-of-accuracy curve there.
-    """
+    """(max |dF_dx/dt| per stage, the loads' round-off limit of K, the velocity's), from a fixed
+    grid of ``n`` angles; cached per chain, because a K sequence solves one chain many times."""
     jerk, acc = [], []
     phi1, phi2 = chain.phases
     for L, m_link, span in ((chain.p2, chain.m_C, phi1), (chain.p1, chain.m_L, phi2 - phi1)):
@@ -123,7 +112,7 @@ def budget_constants(chain: Chain, n: int = 129):
 
 def chain_from_run(run: dict) -> Chain:
     """The run's chain; ``options.single_pitch``: the rival of one pitch (the tie strap's) for
-    both links, as in a roller chain (rivals.single_pitch), the paper's numbers kept."""
+    both links, as in a roller chain."""
     p = run["parameters"]
     p2 = p["tie_strap_pitch"] if run.get("options", {}).get("single_pitch") else \
         p["drive_link_pitch"]
@@ -135,6 +124,5 @@ def chain_from_run(run: dict) -> Chain:
 
 
 def join_stages(stage1, stage2):
-    """One period from two stages sampled at i = 0..K: stage 2's index 0 repeats t1 and is
-    dropped."""
+    """One period from two stages (stage 2's index 0 repeats t1 and is dropped)."""
     return np.concatenate([stage1, stage2[1:]])

@@ -1,13 +1,7 @@
 """Design maps from the exact solution: peak load, speed fluctuation and the textbook's error
-over many chains at once (the guidelines the paper's conclusion promises and does not show).
-
-Every quantity is a closed-form function of the design (p1, p2, z, omega, m_L, m_C, M, N):
-the exact derivatives of Eqs. (7)-(10) (:func:`.kinematics.stage_derivatives`), loaded by
-Eqs. (14)-(16), (20)-(22), evaluated on a fixed grid of ``n`` angles per stage for all designs
-at once (arrays broadcast against each other), with the extrema refined by a parabola
-through the three samples around each (measured against n = 4097 at the default n = 65: <= 1.5e-6 relative for z = 3..60 at the paper's pitches, 2.7e-6 for z = 3 with 5:1 pitches; the peak is exact, an end sample).
-No difference method, no K: a design costs a few microseconds.
-"""
+over many chains at once (the guidelines the paper's conclusion promises).  The exact
+derivatives of Eqs. (7)-(10) loaded by Eqs. (14)-(16), (20)-(22) on ``n`` angles per stage,
+extrema refined by a parabola; no difference method, no K."""
 from __future__ import annotations
 
 import numpy as np
@@ -18,8 +12,8 @@ from .loads import dynamic_load, tight_side_mass
 
 
 def _refined(y, kind):
-    """min or max along the last axis, refined by a parabola through the neighbours of the
-    sampled extremum when it is interior (an end sample is the extremum itself)."""
+    """min or max along the last axis, refined by a parabola through an interior extremum's
+    neighbours."""
     i = (np.argmin if kind == "min" else np.argmax)(y, axis=-1)
     n = y.shape[-1]
     j = np.clip(i, 1, n - 2)
@@ -33,14 +27,9 @@ def _refined(y, kind):
 
 
 def design_quantities(p1, p2, z, omega, m_L, m_C, M, N, n=65) -> dict:
-    """Exact per-design extrema of one period (arrays broadcast; SI units).
-
-    Returns ``peak_load`` and ``min_load`` [N] (F_dx of the exact derivatives),
-    ``speed_max`` = R omega and ``speed_min`` [m/s], ``speed_fluctuation`` =
-    (R omega - v_min) / (R omega), ``textbook_peak`` = (M m_L + N m_C) R omega^2 sin(pi/z) [N]
-    (Eq. 23 with theta = -pi/z on the whole tight side, the pipeline's assumed constants)
-    and ``textbook_error`` = textbook_peak / peak_load - 1.
-    """
+    """Exact per-design extrema of one period (arrays broadcast; SI): ``peak_load``, ``min_load``,
+    ``speed_max`` = R omega, ``speed_min``, ``speed_fluctuation``, ``textbook_peak`` (Eq. 23 with
+    the assumed theta = -pi/z on the whole tight side) and ``textbook_error``."""
     p1, p2, z, omega, m_L, m_C, M, N = np.broadcast_arrays(
         *(np.asarray(a, float) for a in (p1, p2, z, omega, m_L, m_C, M, N)))
     R = _radius(p1, p2, z)
@@ -85,12 +74,8 @@ def _z_slope(q, base, z, **over):
 
 
 def design_rules(base: dict) -> dict:
-    """The scaling laws read off the design maps at the design ``base`` (keys of
-    :func:`design_quantities`), each a number with the sentence it supports.
-
-    Each is a local exponent d ln q / d ln x of the closed form (or a limit of it); the tests
-    (``tests/test_saw_chain_design.py``) check each against the closed form at other designs.
-    """
+    """The scaling laws at the design ``base``: local exponents d ln q / d ln x of the closed form
+    (or a limit), each with the sentence it supports."""
     z, w = int(base["z"]), float(base["omega"])
     q0 = {k: float(v) for k, v in design_quantities(**base).items()}
     s = base["p1"] + base["p2"]
@@ -143,18 +128,9 @@ def chord_angle(p, R):
 
 
 def rule_speed_fluctuation(p1, p2, z):
-    """Relative speed fluctuation (R omega - v_min) / (R omega) ~ 2 alpha^2 / 27, alpha the
-    chord angle of the longer link (closed form, leading order in alpha: relative error
-    O(alpha^2), 1.1 % at z = 6, p1/p2 = 2).
-
-    While a link of length L seats, its leading hinge runs on the pitch circle
-    (phi = omega t) and its trailing one on the tight side (Eqs. 7, 9), so with
-    lambda = L / R the trailing hinge moves at
-    v / (R omega) = cos phi + (1 - cos phi) sin phi / sqrt(lambda^2 - (1 - cos phi)^2)
-                  = 1 - phi^2 / 2 + phi^3 / (2 lambda) + O(phi^4),
-    lowest at phi = 2 lambda / 3 with 1 - 2 lambda^2 / 27; lambda -> alpha, and the
-    longer link dips deeper.  Equal pitches on 2z links: alpha = pi / z, z^2 x fluctuation
-    -> 2 pi^2 / 27 (row design_fluctuation_equal_pitch_constant)."""
+    """Relative speed fluctuation ~ 2 alpha^2 / 27, alpha the longer link's chord angle (leading
+    order).  With lambda = L / R the trailing hinge moves at
+    v / (R omega) = 1 - phi^2 / 2 + phi^3 / (2 lambda) + O(phi^4), lowest at phi = 2 lambda / 3."""
     R = _radius(*(np.asarray(a, float) for a in (p1, p2, z)))
     return 2.0 * chord_angle(np.maximum(p1, p2), R) ** 2 / 27.0
 
@@ -166,16 +142,9 @@ def _stage_end_load(p, m_link, m_tight, R, omega):
 
 
 def rule_peak_load(p1, p2, z, omega, m_L, m_C, M, N):
-    """Peak tight-side load, exact closed form: the larger of the two stage ends,
-    F = omega^2 R [(M m_L + N m_C + m/2) tan(alpha/2) - m sin(alpha) / 2], alpha = 2 asin(p/2R)
-    the seating link's chord angle, m its mass (Eqs. 14-16, 20-22 at t1-, t2-).
-
-    At the stage end the trailing hinge reaches the tangent point: with g(phi) the velocity
-    ratio of :func:`rule_speed_fluctuation` and lambda = 2 sin(alpha/2),
-    g'(alpha) = (1 - cos alpha) / sin alpha = tan(alpha/2), so a_trail = R omega^2 tan(alpha/2);
-    the leading hinge's a_x = -R omega^2 sin(alpha), the midpoint's the mean of the two.
-    The load peaks there (the trailing hinge's acceleration grows through the stage;
-    checked against the sampled exact solution in the tests)."""
+    """Peak load, exact: the larger stage end of
+    F = omega^2 R [(M m_L + N m_C + m/2) tan(alpha/2) - m sin(alpha) / 2] (Eqs. 14-16, 20-22
+    at t1-, t2-): at the stage end a_trail = R omega^2 tan(alpha/2), a_lead,x = -R omega^2 sin(alpha)."""
     args = [np.asarray(a, float) for a in (p1, p2, z, omega, m_L, m_C, M, N)]
     p1, p2, z, omega, m_L, m_C, M, N = np.broadcast_arrays(*args)
     R, m_tight = _radius(p1, p2, z), tight_side_mass(M, N, m_L, m_C)
@@ -184,9 +153,8 @@ def rule_peak_load(p1, p2, z, omega, m_L, m_C, M, N):
 
 
 def rule_peak_load_simple(p1, p2, M, N, m_L, m_C, omega):
-    """Peak load ~ (M m_L + N m_C) omega^2 p_long / 2: :func:`rule_peak_load` to leading order
-    in alpha (R tan(alpha/2) -> p/2; the seating link's own terms cancel to O(alpha^2)): from
-    the tight side's mass, the sprocket speed and the longer pitch, independent of z."""
+    """Peak load ~ (M m_L + N m_C) omega^2 p_long / 2: :func:`rule_peak_load` to leading order in
+    alpha, independent of z."""
     return tight_side_mass(M, N, m_L, m_C) * np.asarray(omega, float) ** 2 * np.maximum(p1, p2) / 2.0
 
 
@@ -197,9 +165,8 @@ RULES = {"speed_fluctuation_2alpha2_27": "speed_fluctuation",
 
 
 def rule_errors(base: dict, teeth, ratios, n=257) -> dict:
-    """Relative error of each rule of :data:`RULES` against the exact solution
-    (:func:`design_quantities` on ``n`` angles per stage) over teeth x pitch ratios p1/p2 at
-    the base's p1 + p2, masses and links.  Returns {rule: array [teeth, ratios]}."""
+    """Relative error of each rule against the exact solution over teeth x pitch ratios at the
+    base's p1 + p2, masses and links."""
     s = base["p1"] + base["p2"]
     z = np.asarray(teeth, float)[:, None]
     r = np.asarray(ratios, float)[None, :]
@@ -219,11 +186,8 @@ Z_RATIOS, RATIO_TEETH = (1.0, None, 2.0, 5.0), (4, 8, 16)   # None: the base des
 
 
 def design_maps(base: dict, teeth, ratios, speeds, links, rule_teeth, rule_ratios) -> dict:
-    """The design maps of figure design_maps and the rules' errors (:func:`rule_errors`), as
-    plain arrays: over teeth (at the ratios of :data:`Z_RATIOS`, and the peak load also at
-    the base's chain speed z (p1 + p2) omega / 2 pi, the cutting-speed specification), over
-    pitch ratios p1/p2 at p1 + p2 fixed (at :data:`RATIO_TEETH`), over sprocket speed and
-    over the tight side's links M = N, and at the base design itself."""
+    """The maps of figure design_maps (over teeth, also at the base's chain speed; over p1/p2 at
+    fixed p1 + p2; over speed; over links M = N; at the base) and the rules' errors."""
     s = base["p1"] + base["p2"]
     r0 = base["p1"] / base["p2"]
     zr = np.array([r0 if r is None else r for r in Z_RATIOS])[:, None]
@@ -257,8 +221,7 @@ RULE_COLUMNS = ["rule", "formula", "max_abs_error", "worst_teeth", "worst_ratio"
 
 
 def rule_table(ds) -> list[list]:
-    """Rows of ``design_rules.csv`` from a run of effect ``design_maps``: each rule's largest
-    relative error against the exact solution over the checked teeth and pitch ratios."""
+    """Rows of ``design_rules.csv``: each rule's largest error over the checked teeth and ratios."""
     teeth, ratios = ds["rule_teeth"].values, ds["rule_ratio"].values
     rows = []
     for k, rule in enumerate(RULES):

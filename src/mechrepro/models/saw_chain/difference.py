@@ -1,23 +1,10 @@
-"""The kinematic difference method, Eqs. (11)-(13) and (17)-(19), and its error budget.
-
-Each stage is divided into K steps; velocities are backward differences of the
-displacements and accelerations backward differences of those velocities:
+"""The kinematic difference method, Eqs. (11)-(13) and (17)-(19), and its error budget:
 
     V^i = (U^i - U^(i-1)) / dt,   a^i = (V^i - V^(i-1)) / dt,   i = 1..K
 
-with V^0, a^0 given (stage 1: V^0 = (R omega, 0), a^0 = 0; stage 2: the values of O2 at
-t1).  Two errors compete in a load built from the second difference:
-
-- truncation: a^i = a(t_i) - dt a'(t_i) + O(dt^2), first order, estimated by
-  :func:`truncation_load` from the exact jerk;
-- round-off: each position carries a relative error of a few eps, which the second
-  difference divides by dt^2, bounded by :func:`roundoff_load`.
-
-The first falls like 1/K, the second grows like K^2; :func:`roundoff_limit` is the K at
-which the round-off bound reaches the truncation estimate.  Beyond it the error grows
-again (the measured optimum of the pointwise load error lies there, see
-``tests/test_saw_chain_accuracy.py``), so :func:`check_roundoff` refuses such K.
-"""
+Truncation a^i = a(t_i) - dt a'(t_i) + O(dt^2) falls like 1/K; round-off of the second
+difference grows like K^2.  Beyond :func:`roundoff_limit`, where they meet, the error grows
+again, so :func:`check_roundoff` refuses such K."""
 from __future__ import annotations
 
 import math
@@ -37,11 +24,8 @@ class RoundoffError(Refusal):
 
 
 def backward_differences(x, dt, v0, a0):
-    """Velocity and acceleration of positions ``x`` (1-D, K+1 steps) by Eqs. (12)-(13).
-
-    Vectorised over the steps; ``v0``, ``a0`` are the values at index 0.  Written into
-    preallocated arrays because this is the solver's hot path.
-    """
+    """Velocity and acceleration of positions ``x`` (K+1 steps) by Eqs. (12)-(13), from ``v0``,
+    ``a0`` at index 0 (into preallocated arrays: the hot path)."""
     v = np.empty_like(x)
     a = np.empty_like(x)
     v[0], a[0] = v0, a0
@@ -53,51 +37,33 @@ def backward_differences(x, dt, v0, a0):
 
 
 def truncation_load(dt, load_jerk_max):
-    """Leading truncation error of a load from second backward differences [N].
-
-    a^i - a(t_i) = -dt a'(t_i) + O(dt^2), so |F^i - F(t_i)| <~ dt max|dF/dt|.
-    """
+    """Leading truncation error of a load sample, dt max|dF/dt| [N]."""
     return dt * load_jerk_max
 
 
 def roundoff_load(dt, x_max, mass):
-    """Bound of the round-off in a load from second backward differences [N].
-
-    The second difference x_i - 2 x_(i-1) + x_(i-2) combines errors of about eps*x_max
-    with weights summing to 4, then divides by dt^2; ``mass`` is the mass it multiplies.
-    """
+    """Round-off bound of a load sample [N]: errors ~eps x_max with weights summing to 4, divided
+    by dt^2, times the mass they multiply."""
     return 4.0 * EPS * x_max * mass / dt**2
 
 
 def roundoff_limit(stage_times, load_jerk_max, x_max, mass):
-    """Largest K at which the round-off bound stays below the truncation estimate.
-
-    With K steps in every stage, truncation is max_s(T_s J_s)/K and the round-off bound
-    4 eps x m K^2 / min_s(T_s)^2 (the shortest stage has the smallest dt), so
-    K^3 = max_s(T_s J_s) min_s(T_s)^2 / (4 eps x m).
-    """
+    """Largest K with round-off bound below truncation:
+    K^3 = max_s(T_s J_s) min_s(T_s)^2 / (4 eps x m)."""
     trunc = max(T * J for T, J in zip(stage_times, load_jerk_max))
     return int(math.floor((trunc * min(stage_times) ** 2 / (4.0 * EPS * x_max * mass)) ** (1.0 / 3.0)))
 
 
 def velocity_roundoff_limit(stage_times, accel_max, x_max):
-    """Largest K at which the round-off of a velocity stays below its truncation.
-
-    The first backward difference V^i = v(t_i) - dt/2 a(t_i) + O(dt^2) has truncation
-    max_s(T_s A_s)/(2K); its round-off, 2 eps x_max / dt, grows like K (not K^2), so
-    K^2 = max_s(T_s A_s) min_s(T_s) / (4 eps x).  On the paper's chain this is 4.17e6,
-    106x the load limit: a velocity-only run is not refused where the loads are.
-    """
+    """The same for the velocity (first difference, round-off ~K):
+    K^2 = max_s(T_s A_s) min_s(T_s) / (4 eps x)."""
     trunc = max(T * A for T, A in zip(stage_times, accel_max))
     return int(math.floor(math.sqrt(trunc * min(stage_times) / (4.0 * EPS * x_max))))
 
 
 def check_roundoff(K, limit, allow=False, what="loads"):
-    """Raise :class:`RoundoffError` for K beyond the round-off limit, unless ``allow``.
-
-    ``allow`` is for the cost-of-accuracy study, which crosses the limit on purpose to
-    show the round-off floor; its runs carry the flag ``roundoff_dominated``.
-    """
+    """Raise :class:`RoundoffError` for K beyond the limit unless ``allow`` (the cost-of-accuracy
+    study crosses it on purpose)."""
     if K > limit and not allow:
         raise RoundoffError(
             f"K={K}: beyond K={limit} the round-off of the "
@@ -108,9 +74,8 @@ def check_roundoff(K, limit, allow=False, what="loads"):
 
 
 def difference_arrays(chain):
-    """Velocity, acceleration and loads x, y of :func:`difference_method` as plain arrays
-    (no round-off check, no packaging: the hot path of K sequences, :mod:`.richardson`);
-    ``chain``: a :class:`.chain.Chain`."""
+    """Velocity, acceleration and loads x, y of :func:`difference_method` as plain arrays (no
+    round-off check: the hot path of K sequences)."""
     R, w, K = chain.R, chain.omega, chain.K
     n = 2 * K + 1
     vx, ax, Fx, Fy = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
@@ -132,7 +97,6 @@ def difference_arrays(chain):
 
 
 def load_x(chain) -> np.ndarray:
-    """The difference method's total tight-side load F_dx over one period [N] (K refused
-    beyond the round-off limit, as in :func:`.solver.difference_method`)."""
+    """The difference method's load F_dx over one period [N] (K checked against the limit)."""
     check_roundoff(chain.K, chain.roundoff_limit())
     return difference_arrays(chain)[2]

@@ -1,22 +1,5 @@
-"""The saw_chain effects: outputs computed beside the difference method, on its time grid.
-
-Neither is physics the difference method could add or leave out; each is a second model
-of the same period that a scene asks for by name (declared in ``config/papers/saw_chain.yaml``,
-which says why they are effects and not solvers).  Each is a pure function of the
-solver's :class:`Context` returning dataset variables (``mechrepro.units.var``) keyed by
-the names its declaration ``contributes``; it is evaluated, and timed, only when named.
-
-- ``exact_reference``: analytic time derivatives of the closed-form positions of
-  Eqs. (7)-(10), loaded as Eqs. (14)-(16), (20)-(22): the converged reference the
-  difference method is measured against.
-- ``textbook``: the textbook model of the polygon effect, Eq. (23).
-- ``design_maps``: the exact closed form over many designs and the design rules' errors
-  (:mod:`.design`), beside the paper's chain.
-- ``richardson_levels``: the peak load of the difference method at K = 4 ... 32768 and its
-  Richardson extrapolation across them (:mod:`.richardson`), against the exact peak.
-- ``identification``: not a model of the period but an analysis of the paper's six numbers
-  (:mod:`.identification`): which unstated choices of the authors' program they select.
-"""
+"""The saw_chain effects (config ``effects:`` says why they are effects): outputs computed
+beside the difference method on its time grid, each evaluated and timed only when named."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -35,9 +18,8 @@ EFFECTS = EffectRegistry("saw_chain")
 
 @dataclass(frozen=True)
 class Context:
-    """What an effect sees: the chain of the run, its time grid, the constants of Eq. (23)
-    and whether the polygon effect is on (off: the constant-speed rival,
-    :func:`.solver.constant_speed`)."""
+    """What an effect sees: the run's chain, its time grid, the constants of Eq. (23) and whether
+    the polygon effect is on (off: the constant-speed rival)."""
     chain: Chain
     t: np.ndarray
     textbook_phase: float
@@ -46,35 +28,31 @@ class Context:
     parameters: dict | None = None
 
 
+def period_vars(suffix: str, how: str, v, a=None, Fx=None, Fy=None) -> dict:
+    """The period's tight-side velocity, acceleration and loads (those given) as variables
+    ``<quantity><suffix>`` on the time grid, described by ``how``."""
+    spec = (("tight_side_velocity", v, "m/s", "tight-side velocity"),
+            ("tight_side_acceleration", a, "m/s2", "tight-side acceleration"),
+            ("dynamic_load_x", Fx, "N", "total tight-side dynamic load x"),
+            ("dynamic_load_y", Fy, "N", "dynamic load y of the seating link"))
+    return {q + suffix: var("t", x, u, f"{d}, {how}") for q, x, u, d in spec if x is not None}
+
+
 @EFFECTS.register("exact_reference")
 def exact_reference(ctx: Context) -> dict:
     """Velocity, acceleration and loads from the exact derivatives of Eqs. (7)-(10) (of the
     rival's positions, linear in time, when the polygon effect is off)."""
     chain = ctx.chain
     if not ctx.polygon:
-        v, zero = np.full(ctx.t.size, chain.chain_speed), np.zeros(ctx.t.size)
-        return {"tight_side_velocity_exact": var("t", v, "m/s", "tight-side velocity, exact (constant speed)"),
-                "tight_side_acceleration_exact": var("t", zero, "m/s2",
-                                                     "tight-side acceleration, exact (constant speed)"),
-                "dynamic_load_x_exact": var("t", zero.copy(), "N",
-                                            "total tight-side dynamic load x, exact (constant speed)"),
-                "dynamic_load_y_exact": var("t", zero.copy(), "N",
-                                            "dynamic load y of the seating link, exact (constant speed)")}
+        zero = np.zeros(ctx.t.size)
+        return period_vars("_exact", "exact (constant speed)", np.full(ctx.t.size, chain.chain_speed),
+                           zero, zero.copy(), zero.copy())
     vx, ax, Fx, Fy = [], [], [], []
     for L, m_link, phi in chain.stages():
         d = stage_derivatives(phi, chain.R, L, chain.omega)
         fx, fy = dynamic_load(m_link, d["mid_ax"], d["mid_ay"], chain.m_tight, d["trail_ax"])
         vx.append(d["trail_vx"]), ax.append(d["trail_ax"]), Fx.append(fx), Fy.append(fy)
-    return {
-        "tight_side_velocity_exact": var("t", join_stages(*vx), "m/s",
-                                         "tight-side velocity, exact derivative"),
-        "tight_side_acceleration_exact": var("t", join_stages(*ax), "m/s2",
-                                             "tight-side acceleration, exact derivative"),
-        "dynamic_load_x_exact": var("t", join_stages(*Fx), "N",
-                                    "total tight-side dynamic load x, exact derivative"),
-        "dynamic_load_y_exact": var("t", join_stages(*Fy), "N",
-                                    "dynamic load y of the seating link, exact derivative"),
-    }
+    return period_vars("_exact", "exact derivative", *(join_stages(*x) for x in (vx, ax, Fx, Fy)))
 
 
 @EFFECTS.register("textbook")
@@ -83,22 +61,17 @@ def textbook(ctx: Context) -> dict:
     chain = ctx.chain
     v, a, F = textbook_velocity_load(ctx.t, chain.R, chain.omega, ctx.textbook_phase,
                                      ctx.textbook_mass)
-    return {
-        "tight_side_velocity_textbook": var("t", v, "m/s", "tight-side velocity, textbook Eq. (23)"),
-        "tight_side_acceleration_textbook": var("t", a, "m/s2",
-                                                "tight-side acceleration, textbook Eq. (23)"),
-        "dynamic_load_x_textbook": var("t", F, "N", "dynamic load, textbook Eq. (23)"),
-    }
+    return period_vars("_textbook", "textbook Eq. (23)", v, a, F)
 
 
 @EFFECTS.register("identification")
 def identification(ctx: Context) -> dict:
-    """The paper's six numbers fitted by every explanation of :mod:`.identification`, at the
-    declared model error and at both ends of its range."""
+    """The paper's six numbers fitted by every explanation of :mod:`.identification`, at each
+    declared model error."""
     from . import identification as idf
 
     p, ch = ctx.parameters, ctx.chain
-    design = Design(ch.p1, ch.p2, ch.z, ch.omega, ch.m_L, ch.m_C, ch.M, ch.N)
+    design = Design(**ch.inputs())
     paper = np.array([*p["identification_velocities"], *p["identification_loads"]], float)
     s0, s1, ds = p["identification_scan_speed"]
     e0, e1, de = p["identification_scan_stretch"]
@@ -125,7 +98,7 @@ def design_maps(ctx: Context) -> dict:
     from . import design
 
     ch = ctx.chain
-    base = dict(p1=ch.p1, p2=ch.p2, z=ch.z, omega=ch.omega, m_L=ch.m_L, m_C=ch.m_C, M=ch.M, N=ch.N)
+    base = ch.inputs()
     speeds = MAP_SPEEDS_RPM * np.pi / 30
     d = design.design_maps(base, MAP_TEETH, MAP_RATIOS, speeds, MAP_LINKS, RULE_TEETH, RULE_RATIOS)
     units = {"peak_load": "N", "speed_fluctuation": "1", "textbook_error": "1"}
@@ -161,10 +134,8 @@ RICHARDSON_K = 2 ** np.arange(2, 16)
 
 @EFFECTS.register("richardson_levels")
 def richardson_levels(ctx: Context) -> dict:
-    """The peak load of the difference method at each K of :data:`RICHARDSON_K`, and its
-    Richardson extrapolation from K/4, K/2, K (:func:`.richardson.from_levels`), relative
-    errors against the exact peak (:func:`.design.rule_peak_load`, exact); the work of each
-    as samples computed (2K + 1 per solve), counted."""
+    """The plain peak load at each K of :data:`RICHARDSON_K`, its Richardson extrapolation from
+    K/4, K/2, K, their errors against the exact peak and the samples each computes."""
     from dataclasses import replace
 
     from .design import rule_peak_load
@@ -172,7 +143,7 @@ def richardson_levels(ctx: Context) -> dict:
     from .difference import load_x
 
     ch = ctx.chain
-    exact = float(rule_peak_load(ch.p1, ch.p2, ch.z, ch.omega, ch.m_L, ch.m_C, ch.M, ch.N))
+    exact = float(rule_peak_load(**ch.inputs()))
     Ks = RICHARDSON_K[RICHARDSON_K <= ch.roundoff_limit()]
     plain = np.array([float(load_x(replace(ch, K=int(k))).max()) for k in Ks])
     nan = np.full(Ks.size, np.nan)

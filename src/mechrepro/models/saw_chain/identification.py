@@ -1,38 +1,13 @@
-"""Which unstated choices of the authors' program the paper's six numbers select.
+"""Which unstated choices of the authors' program the paper's six numbers select (Sec. 4: the
+band 14.57-14.77 m/s, the measured 14.6 and 0.2 m/s, the loads -74.5 and 209.4 N).
 
-The paper prints six numbers about one chain (Sec. 4): the predicted band 14.57-14.77 m/s
-(Fig. 7), the measured mean 14.6 m/s and fluctuation 0.2 m/s (Fig. 7), and the predicted
-load range -74.5-209.4 N (Fig. 8).  Eqs. (1)-(22) with the printed parameters miss the band
-by 2 % at both ends and the measured mean by 1.5 %.  Candidate explanations, each a choice
-the text leaves open:
-
-- ``reading``: the pitch radius the program used (discrete, :func:`.analysis.pitch_radius_readings`;
-  Eq. (1) is ``eq1``), with Eqs. (5)-(10) evaluated on it;
-- ``speed``: the sprocket speed actually run, s = n / 6550 (one speed for the test and the
-  program, which the authors would have fed the measured speed);
-- ``stretch``: the tested chain's elongation e (pitches x (1 + e) in the measurement; the
-  program uses the printed pitches), bounded by its assumed range;
-- the masses and pitches enter at their printed digits (their rounding is propagated);
-- 209.4 N is the difference method's maximum at the authors' K, which the paper does not
-  give: K is profiled (the integer K whose maximum is nearest).
-
-Predictions (all closed form in s and e, from one evaluation per reading at s = 1, e = 0;
-positions depend on omega t only, so velocities scale with s and loads with s^2, and a
-uniform stretch scales every velocity of the tested chain by 1 + e):
-
-    band ends  s v_lo(r), s v_hi(r)                    (Eqs. 5-10 with R = reading r)
-    measured   s (1 + e) z (p1 + p2) n / 60, s (1 + e) (v_hi - v_lo)(eq1)
-    loads      s^2 F_min(r) (exact), s^2 F_K(r) at the profiled K   (Eqs. 14-22)
-
-Noise: the covariance of the six residuals is the printed digits' rounding (uniform, half a
-unit of the last digit: variance h^2/3) of each number, plus the declared relative model
-error (``identification_model_error``, assumed) times the number, plus the printed inputs'
-rounding (p1, p2, m_L, m_C) propagated through the predictions (J diag(h^2/3) J^T).
-chi^2 = r^T C^-1 r; over the discrete readings the likelihood is exp(-chi^2/2) with s and e
-profiled (minimised); an explanation's intervals are where its profile stays within 1
-(68 %) and 3.84 (95 %) of its minimum.  Reported, not adopted: the model keeps Eq. (1) and
-the printed speed.
-"""
+Explanations: the pitch-radius ``reading`` (:func:`.analysis.pitch_radius_readings`), the
+sprocket ``speed`` factor s actually run, the test chain's ``stretch`` e; K of 209.4 N is
+profiled.  Predictions are closed form in s and e (velocities scale with s, loads with s^2,
+the measured chain's velocities with 1 + e).  Noise: each number's printed rounding
+(variance h^2/3), a declared relative model error, and the printed inputs' rounding
+propagated (J diag(h^2/3) J^T).  chi^2 = r^T C^-1 r, s and e profiled; intervals where the
+profile stays within 1 (68 %) and 3.84 (95 %).  Reported, not adopted."""
 from __future__ import annotations
 
 import math
@@ -73,10 +48,8 @@ def _stage_loads_exact(d: Design, R, n=2001):
 
 
 def last_sample_load(d: Design, R, K):
-    """The difference method's load at the period's last sample t2 for every K of ``K``
-    (array, K >= 2) [N]: Eqs. (19)-(22) there are second backward differences of the
-    positions at t2, t2 - dt, t2 - 2 dt of stage 2 only, so each K costs three positions.
-    It is the method's maximum over the period on the paper's chain (checked in the tests)."""
+    """The difference method's load at the last sample t2 for every K (three positions per K: a
+    second backward difference in stage 2); the method's maximum on the paper's chain."""
     K = np.asarray(K, float)
     phi1, phi2 = stage_angles(d.p1, d.p2, R)
     span = phi2 - phi1
@@ -274,11 +247,8 @@ COLUMNS = ["model_error", "explanation", "reading", "free", "chi2", "p_value", "
 
 
 def table(ds, rpm: float) -> list[list]:
-    """Rows of ``identification.csv``: each explanation at each model error, its best
-    reading, chi^2 with its p-value (6 - free degrees of freedom), its likelihood relative
-    to the best explanation at that model error, the speed [r/min] and stretch [%] with
-    their intervals (NaN: fixed by the explanation; an end at the scan's end is open) and
-    the pulls of the six numbers."""
+    """Rows of ``identification.csv``: each explanation at each model error with its reading,
+    chi^2, p-value, relative likelihood, speed and stretch with intervals, and pulls."""
     from scipy.stats import chi2 as chi2_dist
 
     readings = ds["reading"].attrs["long_name"].split(": ", 1)[1].split(", ")
@@ -307,8 +277,8 @@ READING_COLUMNS = ["model_error", "reading", "chi2", "weight", "speed_rpm", "spe
 
 
 def reading_table(ds, rpm: float) -> list[list]:
-    """Rows of ``identification_readings.csv``: the likelihood over the discrete readings
-    under the joint explanation (speed and stretch profiled), normalised per model error."""
+    """Rows of ``identification_readings.csv``: the likelihood over the readings under the joint
+    explanation, normalised per model error."""
     readings = ds["reading"].attrs["long_name"].split(": ", 1)[1].split(", ")
     s = ds["speed_factor"].values
     rows = []

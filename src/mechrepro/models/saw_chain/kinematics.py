@@ -1,33 +1,20 @@
-"""Closed-form positions of the key points and their exact time derivatives.
-
-In each stage one link is being seated: its leading hinge ("lead") runs on the pitch
-circle, its trailing hinge ("trail") on the tight-side line y = 0 (Eqs. 7 and 9).  With
-phi = omega*tau (tau: time since the stage began), Tx = p1 + 2 p2 and link length L:
+"""Closed-form positions of the key points and their exact time derivatives (the reference).
+In each stage the leading hinge runs on the pitch circle, the trailing one on y = 0
+(Eqs. 7, 9); with phi = omega tau, Tx = p1 + 2 p2 and link length L:
 
     lead  = (Tx + R sin phi, R (1 - cos phi))
     trail = (lead_x - sqrt(L^2 - lead_y^2), 0)
     mid   = (lead + trail) / 2                                  (Eqs. 8, 10)
 
-Stage 1: lead O1, trail O2, L = p2 (drive link, mid A1).
-Stage 2: lead O2, trail O3, L = p1 (tie strap,  mid A2).
-
-The derivatives are exact (differentiated by hand, checked against finite differences
-in the tests) and serve as the converged reference (effect ``exact_reference``).
-"""
+Stage 1: lead O1, trail O2, L = p2 (drive link); stage 2: lead O2, trail O3, L = p1."""
 from __future__ import annotations
 
 import numpy as np
 
 
 def _sin_versine(phi):
-    """sin(phi) and 1 - cos(phi) for 0 <= phi < pi, with one transcendental call.
-
-    With h = sin(phi/2): 1 - cos(phi) = 2 h^2 has no cancellation at small phi, and
-    sin(phi) = 2 h sqrt(1 - h^2) holds on the whole range, since phi/2 < pi/2 (a stage
-    angle 2 asin(p/2R) is below pi).  A stage of a sprocket with few teeth and unequal
-    pitches exceeds pi/2 (z = 3, p1 : p2 = 5 : 1 gives 1.78 rad), so a half-range formula
-    such as cos = sqrt(1 - sin^2) would silently fold the pitch circle back.
-    """
+    """sin(phi) and 1 - cos(phi) = 2 h^2 (h = sin(phi/2)) for 0 <= phi < pi: no cancellation at
+    small phi, and valid for stages beyond pi/2 (few teeth, unequal pitches)."""
     h = np.sin(0.5 * phi)
     h2 = h * h
     return 2.0 * h * np.sqrt(1.0 - h2), 2.0 * h2
@@ -44,11 +31,8 @@ def stage_positions(phi, R, L, Tx):
 
 
 def stage_derivatives(phi, R, L, omega):
-    """Exact velocities [m/s] and accelerations [m/s^2] of trail and midpoint.
-
-    With s = sqrt(L^2 - y^2):  s' = -y y'/s,  s'' = -(y'^2 + y y'' + s'^2)/s,
-    trail_x' = lead_x' - s',  trail_x'' = lead_x'' - s''.
-    """
+    """Exact velocities and accelerations of trail and midpoint: with s = sqrt(L^2 - y^2),
+    s' = -y y'/s, s'' = -(y'^2 + y y'' + s'^2)/s."""
     yl = R * (1.0 - np.cos(phi))
     xl_d, yl_d = R * omega * np.cos(phi), R * omega * np.sin(phi)
     xl_dd, yl_dd = -R * omega**2 * np.sin(phi), R * omega**2 * np.cos(phi)
@@ -62,13 +46,8 @@ def stage_derivatives(phi, R, L, omega):
 
 
 def stage_jerks(phi, R, L, omega):
-    """Exact third time derivatives (jerks) of trail x and midpoint x, y [m/s^3].
-
-    Differentiating s s' = -y y' twice more gives
-    s''' = -(3 y' y'' + y y''' + 3 s' s'') / s,  with y''' = -R omega^3 sin(phi) and
-    lead_x''' = -R omega^3 cos(phi).  The jerk is the leading truncation term of the
-    second backward difference (Eqs. 13, 19): a_i = a(t_i) - dt a'(t_i) + O(dt^2).
-    """
+    """Exact jerks of trail x and midpoint x, y: s''' = -(3 y' y'' + y y''' + 3 s' s'') / s; the
+    leading truncation term of Eqs. (13), (19)."""
     c, sn = np.cos(phi), np.sin(phi)
     y = R * (1.0 - c)
     y1, y2, y3 = R * omega * sn, R * omega**2 * c, -R * omega**3 * sn

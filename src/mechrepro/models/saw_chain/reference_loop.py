@@ -16,7 +16,7 @@ def difference_method_loop(p1, p2, z, omega, m_L, m_C, M, N, K):
     phi2 = phi1 + 2 * math.asin(p1 / (2 * R))
     m_tight = M * m_L + N * m_C
     velocity, load = [R * omega], [0.0]
-    v_prev, vm_prev, a_prev, am_prev = R * omega, R * omega, 0.0, 0.0
+    v_prev = vm_prev = R * omega
     for L, m_link, span in ((p2, m_C, phi1), (p1, m_L, phi2 - phi1)):
         dt = span / K / omega
         x_prev = xm_prev = None
@@ -31,7 +31,7 @@ def difference_method_loop(p1, p2, z, omega, m_L, m_C, M, N, K):
                 a, am = (v - v_prev) / dt, (vm - vm_prev) / dt
                 velocity.append(v)
                 load.append(m_link * am + m_tight * a)
-                v_prev, vm_prev, a_prev, am_prev = v, vm, a, am
+                v_prev, vm_prev = v, vm
             x_prev, xm_prev = xt, xm
-        vm_prev, am_prev = v_prev, a_prev  # A2 starts with O2's values at t1
+        vm_prev = v_prev  # A2 starts with O2's values at t1
     return velocity, load

@@ -1,18 +1,10 @@
 """Richardson extrapolation of the difference method's load extrema across K.
 
-The backward second difference is first order with a smooth error expansion,
-a^i = a(t_i) - dt a'(t_i) + dt^2 c(t_i) + ..., so a load sampled at a fixed time (the
-peak sits at the last sample t2 at every K) obeys q(K) = q + A/K + B/K^2 + ...  Two levels
-K/2, K cancel A: E(K) = 2 q(K) - q(K/2), error B'/K^2 (second order).  A third level K/4
-gives the error estimate of E(K): |E(K) - E(K/2)| / (2^2 - 1), the Richardson estimate of
-a second-order sequence, plus the round-off E(K) carries: 2 b(K) + b(K/2) = 2.25 b(K), b the
-solver's round-off bound of one load sample (:func:`.difference.roundoff_load`), since the
-extrapolation takes twice the finer value.  Round-off grows like K^2 while the truncation of
-E falls like 1/K^2, so E is most accurate near K ~ (limit)^(1/2)...(limit) / 10: on the paper's
-chain 1.1e-6 at K = 4096, against 1.4e-4 for the plain method at the limit K = 39434.  An extremum whose location moves with K (the minimum) has no such
-expansion; :func:`extrapolate_extreme` reports its estimate anyway, and it is the caller's
-to check it against the exact value where one exists (``tests/test_saw_chain_richardson.py``).
-"""
+The peak sits at the last sample at every K, so q(K) = q + A/K + B/K^2 + ...:
+E(K) = 2 q(K) - q(K/2) is second order, and K/4 estimates its error as
+|E(K) - E(K/2)| / 3 plus the round-off it carries (2.25 b(K), b the solver's bound).  An
+extremum that moves with K (the minimum) has no such expansion; its estimate is the
+caller's to check."""
 from __future__ import annotations
 
 import math
@@ -42,7 +34,7 @@ class Extrapolated:
 
     @property
     def steps(self) -> int:
-        """Steps per stage summed over the levels solved (the cost in units of one step)."""
+        """Steps per stage summed over the levels solved."""
         return int(sum(self.K))
 
 
@@ -60,8 +52,8 @@ def extrapolate_extreme(chain: Chain, K: int, fn=np.max) -> Extrapolated:
 
 
 def from_levels(chain: Chain, Ks, q) -> Extrapolated:
-    """The extrapolation and its estimate from three plain values at K/4, K/2, K: Richardson
-    (:mod:`mechrepro.target`) at the method's known order, plus the round-off it carries."""
+    """The extrapolation from plain values at K/4, K/2, K at the method's order, and its estimate
+    plus the round-off."""
     r = RATIO
     E_coarse = extrapolate(q[0], q[1], r, ORDER)
     E_fine = extrapolate(q[1], q[2], r, ORDER)
@@ -72,14 +64,8 @@ def from_levels(chain: Chain, Ks, q) -> Extrapolated:
 
 
 def to_accuracy(chain: Chain, rtol: float, fn=np.max, K0: int = 16) -> Extrapolated:
-    """The cheapest finest K = K0 2^n whose extrapolated extremum has estimate <= rtol |value|.
-
-    Each doubling reuses the two finer levels of the previous one, so reaching K costs
-    the solves at K0/4, K0/2, ..., K once each (< 2K steps in all).  The extrapolation and
-    its estimate are the framework's (:mod:`mechrepro.target`); what is saw_chain's is the
-    method's known order, the round-off bound and the stop where round-off overtakes
-    truncation, which the framework's measured-order target has no way to know.
-    """
+    """The cheapest finest K = K0 2^n whose extrapolated extremum has estimate <= rtol |value|
+    (each doubling reuses the two finer levels); stops where round-off overtakes truncation."""
     Ks = list(_levels(K0))
     q = [float(fn(load_x(replace(chain, K=k)))) for k in Ks]
     limit = chain.roundoff_limit()

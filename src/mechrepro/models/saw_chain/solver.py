@@ -1,12 +1,6 @@
-"""The saw_chain solver: the kinematic difference method of Shi et al. (2012), Eqs. (1)-(22).
-
-One period of the polygon effect (a drive link, then a tie strap, seated on a tooth) is
-sampled with K steps per stage; positions are closed-form (Eqs. 7-10), velocities and
-accelerations backward differences (Eqs. 11-13, 17-19), loads Eqs. (14)-(16), (20)-(22).
-Beside it, the effects a scene names (:mod:`.effects`) contribute their outputs on the
-same grid; the solver reads them by key, and compares with the exact reference when a
-scene asked for it.
-"""
+"""The saw_chain solver: the kinematic difference method, Eqs. (1)-(22), over one period (a
+drive link, then a tie strap, seated on a tooth) with K steps per stage; the effects a
+scene names contribute beside it on the same grid."""
 from __future__ import annotations
 
 import numpy as np
@@ -15,10 +9,10 @@ from mechrepro.units import var
 
 from .chain import Chain, chain_from_run
 from .difference import check_roundoff, difference_arrays, roundoff_load, truncation_load
-from .effects import EFFECTS, Context
+from .effects import EFFECTS, Context, period_vars
 from .kinematics import stage_positions
 
-__all__ = ["EFFECTS", "Chain", "chain_from_run", "compute", "constant_speed", "difference_method", "solve",
+__all__ = ["EFFECTS", "Chain", "chain_from_run", "compute", "constant_speed", "difference_method",
            "stage_switch_index", "variables"]
 
 #: the difference method's outputs and the reference's contribution each is compared with
@@ -27,20 +21,14 @@ COMPARED = {"tight_side_velocity": "tight_side_velocity_exact",
 
 
 def difference_method(chain: Chain, beyond_roundoff_limit: bool = False, loads: bool = True) -> dict:
-    """Tight-side velocity, acceleration and dynamic loads by backward differences.
-
-    Eqs. (11)-(13) in stage 1 (drive link seating, from V^0 = R omega, a^0 = 0 at O2 and
-    A1), Eqs. (17)-(19) in stage 2 (tie strap seating, from O2's values at t1 for both A2
-    and O3, Sec. 3.3 (2)); loads Eqs. (14)-(16) and (20)-(22).  Also the run's error
-    budget (:func:`error_budget`); K beyond the round-off limit is refused unless allowed.
-    With ``loads=False`` only the velocity (a first difference) is computed, and only its
-    own round-off limit (~100x the loads', :func:`.difference.velocity_roundoff_limit`)
-    refuses K: the loads' limit guards the second difference, which such a run never takes.
-    """
+    """Tight-side velocity, acceleration and loads by backward differences: Eqs. (11)-(13) in
+    stage 1 (from V^0 = R omega, a^0 = 0), Eqs. (17)-(19) in stage 2 (from O2's values at t1),
+    loads Eqs. (14)-(16), (20)-(22), and the error budget.  K beyond the round-off limit is
+    refused unless allowed; ``loads=False`` computes the velocity alone, refused only beyond
+    its own (higher) limit."""
     if not loads:
         return velocity_only(chain, beyond_roundoff_limit)
-    limit = chain.roundoff_limit()
-    dominated = check_roundoff(chain.K, limit, beyond_roundoff_limit)
+    budget = error_budget(chain, beyond_roundoff_limit)
     vx, ax, Fx, Fy = difference_arrays(chain)
     return {
         "tight_side_velocity": var("t", vx, "m/s", "tight-side velocity, difference method (Eqs. 12, 18)"),
@@ -48,61 +36,51 @@ def difference_method(chain: Chain, beyond_roundoff_limit: bool = False, loads: 
                                        "tight-side acceleration, difference method (Eqs. 13, 19)"),
         "dynamic_load_x": var("t", Fx, "N", "total tight-side dynamic load x, difference method (Eqs. 16, 22)"),
         "dynamic_load_y": var("t", Fy, "N", "dynamic load y of the seating link, difference method (Eqs. 16, 22)"),
-        **error_budget(chain, limit, dominated),
+        **budget,
     }
 
 
 def velocity_only(chain: Chain, beyond_roundoff_limit: bool = False) -> dict:
     """The tight-side velocity alone, Eqs. (12), (18), refused only beyond its own limit."""
-    limit = chain.velocity_roundoff_limit()
-    dominated = check_roundoff(chain.K, limit, beyond_roundoff_limit, what="velocities")
+    budget = velocity_budget(chain, beyond_roundoff_limit)
     parts = []
     for L, _, phi in chain.stages():
         x = stage_positions(phi, chain.R, L, chain.Tx)["trail_x"]
         parts.append(np.diff(x) * (1.0 / ((phi[1] - phi[0]) / chain.omega)))  # as Eq. (12) in the full method
     vx = np.concatenate([[chain.R * chain.omega], *parts])
     return {"tight_side_velocity": var("t", vx, "m/s", "tight-side velocity, difference method (Eqs. 12, 18)"),
-            "velocity_roundoff_limit_K": var((), limit, "1",
+            **budget}
+
+
+def velocity_budget(chain: Chain, beyond_roundoff_limit: bool) -> dict:
+    """The velocity's round-off limit of K and whether this K is beyond it (refused unless
+    allowed)."""
+    limit = chain.velocity_roundoff_limit()
+    dominated = check_roundoff(chain.K, limit, beyond_roundoff_limit, what="velocities")
+    return {"velocity_roundoff_limit_K": var((), limit, "1",
                                              "K beyond which round-off exceeds truncation in the velocity"),
             "roundoff_dominated": var((), int(dominated), "1",
                                       "1 if K is beyond the velocity's round-off limit")}
 
 
 def constant_speed(chain: Chain, loads: bool = True, beyond_roundoff_limit: bool = False) -> dict:
-    """The rival without the polygon effect (``options.polygon: false``): every point of the
-    tight side moves at the constant pitch-line speed :attr:`.Chain.chain_speed`, so the
-    velocity is that speed and every acceleration and load is zero, on the method's time
-    grid.  Backward differences of positions linear in time give exactly this (up to
-    round-off, which is left out so that the rival's numbers do not depend on the CPU).
-    Not a model of the paper: what a reviewer would propose if the polygon effect did not
-    matter; a check the paper's model passes and this passes too does not test the polygon
-    effect (``rivals.constant_speed`` in the config).  The same K is refused as in the
-    method, so that the rival runs wherever the method would."""
-    n = 2 * chain.K + 1
+    """The rival without the polygon effect (``options.polygon: false``): the pitch-line speed
+    :attr:`.Chain.chain_speed` everywhere, zero acceleration and load (round-off left out, so
+    the rival does not depend on the CPU); K is refused as in the method."""
+    n, how = 2 * chain.K + 1, "constant speed (rival)"
     v = np.full(n, chain.chain_speed)
     if not loads:
-        limit = chain.velocity_roundoff_limit()
-        dominated = check_roundoff(chain.K, limit, beyond_roundoff_limit, what="velocities")
-        return {"tight_side_velocity": var("t", v, "m/s", "tight-side velocity, constant speed (rival)"),
-                "velocity_roundoff_limit_K": var((), limit, "1",
-                                                 "K beyond which round-off exceeds truncation in the velocity"),
-                "roundoff_dominated": var((), int(dominated), "1",
-                                          "1 if K is beyond the velocity's round-off limit")}
+        return {**period_vars("", how, v), **velocity_budget(chain, beyond_roundoff_limit)}
+    zero = np.zeros(n)
+    return {**period_vars("", how, v, zero, zero.copy(), zero.copy()),
+            **error_budget(chain, beyond_roundoff_limit)}
+
+
+def error_budget(chain: Chain, beyond_roundoff_limit: bool) -> dict:
+    """Round-off bound and truncation estimate of one load sample, the round-off limit of K and
+    whether this K is beyond it (:mod:`.difference`); refused unless allowed."""
     limit = chain.roundoff_limit()
     dominated = check_roundoff(chain.K, limit, beyond_roundoff_limit)
-    zero = np.zeros(n)
-    return {
-        "tight_side_velocity": var("t", v, "m/s", "tight-side velocity, constant speed (rival)"),
-        "tight_side_acceleration": var("t", zero, "m/s2", "tight-side acceleration, constant speed (rival)"),
-        "dynamic_load_x": var("t", zero, "N", "total tight-side dynamic load x, constant speed (rival)"),
-        "dynamic_load_y": var("t", zero.copy(), "N", "dynamic load y, constant speed (rival)"),
-        **error_budget(chain, limit, dominated),
-    }
-
-
-def error_budget(chain: Chain, limit: int, dominated: bool) -> dict:
-    """The run's error budget (:mod:`.difference`): round-off bound and truncation estimate
-    of one load sample, the round-off limit of K and whether this K is beyond it."""
     K = chain.K
     truncation = max(truncation_load(T / K, J)
                      for T, J in zip(chain.stage_times(), chain.load_jerk_max()))
@@ -120,29 +98,16 @@ def error_budget(chain: Chain, limit: int, dominated: bool) -> dict:
 
 
 def stage_switch_index(K):
-    """Index of the first sample of stage 2, t1 + dt (Sec. 3.3 (2)).
-
-    Eqs. (18)-(19) start stage 2 from O2's stage-1 values at t1, so its first
-    acceleration is a second difference across t1, where the exact acceleration jumps
-    (the seated drive link stops, the tie strap starts seating).  Both stage-2 points (O3
-    and the midpoint A2) start from O2's stage-1 values, V^K = v(t1) - dt1 a_O2(t1-)/2, and
-    V^(K+1) = v(t1) + dt2 a(t1+)/2 (all three move at R omega at t1), so each acceleration
-    tends to (a(t1+) + (dt1/dt2) a_O2(t1-)) / 2: the one-sided values weighted by the step
-    ratio dt1/dt2 = t1/(t2 - t1) = 0.847, with O2's acceleration in place of A2's on the
-    stage-1 side.  The load sample therefore tends to
-    (F(t1+) + (dt1/dt2) (m_L + M m_L + N m_C) a_O2(t1-)) / 2 = 79.87 N on the paper's chain
-    (79.86 N measured at K = 30000), not the mean of the one-sided loads (92.1 N), and its
-    error does not shrink with K.
-    """
+    """Index of the first sample of stage 2, t1 + dt (Sec. 3.3 (2)).  Eqs. (18)-(19) start
+    stage 2 from O2's stage-1 values, so this acceleration is a second difference across the
+    jump at t1: it tends to a step-ratio-weighted mean of the one-sided values, not the exact
+    load, and its error does not shrink with K."""
     return K + 1
 
 
 def compute(run: dict) -> dict:
-    """The physics of one run: the difference method, and the effects the scene names.
-
-    The runner times this call; the effects are timed inside it, so the solver core's
-    time (``core_time``) is the difference method's cost alone.
-    """
+    """The difference method (or its rival) and the effects the scene names (timed apart, so
+    ``core_time`` is the method's alone)."""
     chain = chain_from_run(run)
     p = run["parameters"]
     opts = run.get("options", {})
@@ -172,12 +137,8 @@ def ranges(ds: dict) -> dict:
 
 
 def errors_against_exact(ds: dict, K: int) -> dict:
-    """Errors of the difference method against the exact reference, relative to max |exact|.
-
-    Pointwise errors exclude the stage-switch sample (reported on its own), so that they
-    show the method's order and its round-off floor; errors of the extremes show what
-    the paper's quoted ranges see.
-    """
+    """Errors of the difference method against the exact reference, relative to max |exact|;
+    pointwise errors exclude the stage-switch sample (reported on its own)."""
     switch = stage_switch_index(K)
     keep = np.arange(ds["t"].size) != switch
     out = {}
@@ -207,8 +168,7 @@ def errors_against_exact(ds: dict, K: int) -> dict:
 
 
 def variables(result: dict, run: dict) -> dict:
-    """A :func:`compute` result as labelled variables, with the scalars a study stacks
-    (ranges, and errors against the exact reference when the scene named it)."""
+    """A :func:`compute` result as labelled variables with the scalars a study stacks."""
     chain, t = result["chain"], result["t"]
     out = {"t": var("t", t, "s", "time since O1 left the tangent point T"),
            "stage": var("t", np.where(np.arange(t.size) <= chain.K, 1, 2), "1",

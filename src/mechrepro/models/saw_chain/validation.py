@@ -285,15 +285,10 @@ DESIGN_RULES = ("design_peak_load_speed_exponent", "design_peak_load_teeth_expon
                 "design_peak_load_pitch_ratio_exponent", "design_textbook_error")
 
 
-def design_base(ch) -> dict:
-    """The design of a Chain, as :func:`.design.design_quantities` takes it."""
-    return dict(p1=ch.p1, p2=ch.p2, z=ch.z, omega=ch.omega, m_L=ch.m_L, m_C=ch.m_C, M=ch.M, N=ch.N)
-
-
 @Q.register(*DESIGN_RULES)
 def design(R):
     """The design rules of the exact solution, at the paper's chain (:func:`.design.design_rules`)."""
-    rules = design_rules(design_base(_chain(R.run(FIG))))
+    rules = design_rules(_chain(R.run(FIG)).inputs())
     return {k: Reproduced(rules[k][0], rules[k][1]) for k in DESIGN_RULES}
 
 
@@ -306,7 +301,7 @@ def rule_errors(R):
     ds = R.run("design_maps")
     ch = _chain(ds)
     teeth, ratios = ds["rule_teeth"].values, ds["rule_ratio"].values
-    at = design.rule_errors(design_base(ch), [ch.z], [ch.p1 / ch.p2])
+    at = design.rule_errors(ch.inputs(), [ch.z], [ch.p1 / ch.p2])
     out = {}
     for row, rule in zip(("design_rule_fluctuation_error", "design_rule_peak_load_error",
                           "design_rule_peak_load_simple_error"), design.RULES):
