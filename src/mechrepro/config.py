@@ -389,6 +389,7 @@ def load_paper(path: str | Path, profile: str = "default",
     _check_effects(raw, where)
     _check_artefacts(raw, where)
     paper = raw.setdefault("paper", path.stem)
+    raw.setdefault("seed", 0)
     if paper != path.stem:
         raise ConfigError(f"{where}: paper = {paper!r}: must be the file's name, {path.stem!r} "
                           "(a paper is discovered from config/papers/<paper>.yaml)")
