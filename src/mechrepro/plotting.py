@@ -76,11 +76,16 @@ def log_ticks(axis) -> None:
     """Label a log ``axis`` where labels cannot collide: at 1, 2 and 5 x 10^k over at most
     two decades, at whole decades beyond; never at matplotlib's minor ticks, whose labels
     on a short log axis crowd into each other.  Call after the data are drawn."""
-    from matplotlib.ticker import LogLocator, NullFormatter
+    from matplotlib.ticker import FuncFormatter, LogLocator, MaxNLocator, NullFormatter
 
     lo, hi = sorted(axis.get_view_interval())
     if lo > 0 and np.log10(hi / lo) <= 2:
         axis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+    if lo > 0 and np.log10(hi / lo) < 1:
+        # within a decade matplotlib falls back to dense linear ticks, which its log
+        # formatter writes as 2.75x10^0: a few plain numbers there
+        axis.set_major_locator(MaxNLocator(nbins=4, steps=[1, 2, 2.5, 5, 10]))
+        axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:.3g}"))
     axis.set_minor_formatter(NullFormatter())
 
 
