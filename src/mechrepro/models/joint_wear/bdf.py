@@ -258,8 +258,6 @@ def bdf(p, t0, y0, t_bound, t_eval, rtol, atol, max_steps):
         j = np.searchsorted(t_eval, t, side="right")
         while kk < j:
             te = t_eval[kk]
-            for r in range(n):
-                Yout[kk, r] = D[0, r]
             pw = 1.0
             acc = np.zeros(n)
             for i in range(order_s):

@@ -147,12 +147,6 @@ def period(fb: FourBar, n_steps: int, theta, depth) -> dict:
     return {**hist, "v_T": v_T, "pressure": p, "offset": e}
 
 
-def wear_per_period(hist: dict, fb: FourBar, period_s: float) -> np.ndarray:
-    """(G5): the depth [m / (m2/N)] one period wears at each angle of the grid, per unit k."""
-    dt = period_s / hist["v_T"].size
-    return np.abs(hist["v_T"]) @ hist["pressure"] * dt
-
-
 def interval_method(period_of, theta, placements, dh_measured, t_cal_h: float,
                     t_end_h: float, interval_h: float, samples: int, step: float):
     """Sec. 4.4 with the groove in the contact: (G5) integrated in tau = k x periods.
@@ -218,15 +212,3 @@ def interval_method(period_of, theta, placements, dh_measured, t_cal_h: float,
     return {"tau": np.asarray(taus), "peak": np.asarray(peaks), "mean": np.asarray(means).T,
             "tau_cal": tau_cal, "profile": profile_end, "refreshes": n_refresh, "steps": steps}
 
-
-def contact_half_angle(u_row, theta):
-    """Half the angle over which u > 0 (one contact zone), the zero crossings interpolated
-    linearly between grid nodes: the contact angle of the foundation solution."""
-    on = np.flatnonzero(u_row > 0.0)
-    if on.size == 0:
-        return 0.0
-    n, dth = u_row.size, TWO_PI / u_row.size
-    lo, hi = on[0], on[-1]
-    f_lo = u_row[lo] / (u_row[lo] - u_row[(lo - 1) % n])
-    f_hi = u_row[hi] / (u_row[hi] - u_row[(hi + 1) % n])
-    return 0.5 * ((hi - lo) + f_lo + f_hi) * dth

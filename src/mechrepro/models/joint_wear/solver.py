@@ -1,27 +1,8 @@
-"""The solvers of joint_wear: a scene's ``solver`` decides the joint model and method, its
-effects (effects.py) the terms; both are declared in ``config/papers/joint_wear.yaml``.
-
-Solvers
--------
-``clearance_implicit``  dynamic clearance joint (Eqs. 5-15), stiff implicit integrator
-                        (``resolution.method``: Radau, BDF, LSODA); wear on that model
-``clearance_explicit``  the same equations with an explicit integrator stopped by a step
-                        budget: its cost per period, extrapolated; no wear
-``continuous_contact``  quasi-static continuous contact (Sec. 3.2), the paper's model;
-                        wear on that model
-``period_by_period``    Fig. 6: the wear simulated one period at a time (timed sample)
-``coefficient_scan``    the calibration (Eqs. 32-34) over load points F and gravity
-                        planes the paper leaves open (contact loss refused)
-``load_point_fit``      F estimated from Tables 3-4 jointly, with its uncertainty, its
-                        contact arc and wear side, and the 86-h wear it predicts
-``load_point_posterior`` F's direction and distance, g and mu as a distribution
-                        conditioned on Tables 3-4 and "upper part"; every mechanics statement
-                        over it, the contact margin over its credible set (Sec. 3.2)
-``constant_sensitivity`` friction, contact exponent, d_max, C_max reading at their range ends
-``local_wear``          local Archard wear per bushing angle vs the uniform depth (Fig. 14)
-
-Each builds a :class:`~.effects.Context`, evaluates the named effects in three stages
-(mechanism terms, wear set-up, wear) and reads their contributions by key.
+"""The solvers of joint_wear (``SOLVERS``; each described under ``solvers:`` in
+``config/papers/joint_wear.yaml``): a scene's solver decides the joint model and method,
+its effects (effects.py) the terms.  Each builds a :class:`~.effects.Context`, evaluates
+the named effects in three stages (mechanism terms, wear set-up, wear) and reads their
+contributions by key.
 """
 from __future__ import annotations
 
@@ -91,27 +72,26 @@ def dynamic_period(fb: FourBar, s: dict) -> dict:
 
 
 def finished_dynamic_period(fb: FourBar, s: dict) -> dict:
-    """A dynamic period that must finish (wear needs a whole period)."""
+    """A dynamic period that must finish (wear and a contact margin need a whole period)."""
     hist = dynamic_period(fb, s)
     if not hist["completed"]:
-        raise RuntimeError(f"joint_wear: {hist['message']}: no period to compute wear from")
+        raise RuntimeError(f"joint_wear: {hist['message']}: no whole period")
     return hist
 
 
+#: the project's contact rule: a joint force below this share of its peak is taken as vanishing
 CONTACT_LOSS_FRACTION = 1e-2
 
 
 def continuous_contact_period(fb: FourBar, s: dict) -> dict:
-    """A quasi-static period for the wear model: refused where contact is lost.
-
-    The continuous-contact model (Sec. 3.2) cannot represent a joint force that vanishes:
-    there the pin flies across the clearance (the dynamic model shows it).  Below 1 % of
-    its peak the force is taken as vanishing -- a refusal, never a verdict."""
+    """A quasi-static period for the wear model, refused (ContactLost) where its joint force
+    falls below CONTACT_LOSS_FRACTION of its peak: the continuous-contact model (Sec. 3.2)
+    cannot represent a vanishing force -- the pin flies across the clearance there."""
     return refuse_contact_loss(quasi_static_period(fb, s))
 
 
 def refuse_contact_loss(hist: dict) -> dict:
-    """``hist`` if its joint force keeps above 1 % of its peak, else ContactLost."""
+    """``hist`` if its joint force keeps above CONTACT_LOSS_FRACTION of its peak."""
     F = np.asarray(hist["F_N"])
     if not F.min() > CONTACT_LOSS_FRACTION * F.max():
         i = int(np.argmin(F))
@@ -137,6 +117,23 @@ def one_period(fb: FourBar, s: dict, joint) -> dict:
     return out
 
 
+def period_factor(fb_v: FourBar, s: dict, joint):
+    """G(R_bush): the wear factor (Eq. 29) of one period of ``joint`` with the bushing of
+    ``fb_v`` at radius R_bush -- what calibration and prediction step through."""
+    def factor(R_bush):
+        fb_w = fb_v.with_bushing_radius(R_bush)
+        return wear.period_wear_factor(joint(fb_w, s), fb_w, fb_v.period,
+                                       s.get("wear_range", "contact_point"), statistics=False)["G"]
+    return factor
+
+
+def wear_factor_of(fb_v: FourBar, s: dict, joint=None):
+    """period_factor of ``joint`` (default continuous_contact_period, which refuses contact
+    loss; quasi_static_period where a margin is measured, not assumed), a radius met again
+    not solved again."""
+    return functools.cache(period_factor(fb_v, s, joint or continuous_contact_period))
+
+
 def closed_form_factor(R0: float, p: float):
     """The wear factor of a rival without mechanics: G(R) = (R0 / R)^p, no four-bar, no
     contact (option ``closed_form_growth: p``).  p = 1 is the worn arc's length growing
@@ -146,12 +143,11 @@ def closed_form_factor(R0: float, p: float):
 
 
 def with_wear(run: dict, fb: FourBar, ctx: Context, res: dict, joint) -> dict:
-    """Stages two and three: the wear set-up, then the wear effects on ``joint`` (or on the
-    closed-form wear factor of option ``closed_form_growth``, a rival)."""
-    ctx = replace(ctx, one_period=lambda fb_w: joint(fb_w, ctx.s))
-    if "closed_form_growth" in ctx.s:
-        ctx = replace(ctx, wear_factor=closed_form_factor(fb.R_bush,
-                                                          float(ctx.s["closed_form_growth"])))
+    """Stages two and three: the wear set-up, then the wear effects on the wear factor of
+    ``joint`` (or the closed form of option ``closed_form_growth``, a rival)."""
+    g = ctx.s.get("closed_form_growth")
+    ctx = replace(ctx, wear_factor=period_factor(fb, ctx.s, joint) if g is None
+                  else closed_form_factor(fb.R_bush, float(g)))
     c = EFFECTS.evaluate(run, ctx, keys=WEAR_SETUP)
     ctx = replace(ctx, sides=c.get("sides", ["B1"]), worn_bushing=c.get("worn_bushing"))
     c = EFFECTS.evaluate(run, ctx, keys=WEAR)
@@ -163,8 +159,7 @@ def with_wear(run: dict, fb: FourBar, ctx: Context, res: dict, joint) -> dict:
 # --- the solvers -----------------------------------------------------------------------------
 def clearance_implicit(run: dict) -> dict:
     fb, ctx = setup(run)
-    res = one_period(fb, ctx.s, dynamic_period)
-    return with_wear(run, fb, ctx, res, finished_dynamic_period)
+    return with_wear(run, fb, ctx, one_period(fb, ctx.s, dynamic_period), finished_dynamic_period)
 
 
 def clearance_explicit(run: dict) -> dict:
@@ -174,8 +169,8 @@ def clearance_explicit(run: dict) -> dict:
 
 def continuous_contact(run: dict) -> dict:
     fb, ctx = setup(run)
-    res = one_period(fb, ctx.s, quasi_static_period)
-    return with_wear(run, fb, ctx, res, continuous_contact_period)
+    return with_wear(run, fb, ctx, one_period(fb, ctx.s, quasi_static_period),
+                     continuous_contact_period)
 
 
 def period_by_period(run: dict) -> dict:
@@ -184,15 +179,9 @@ def period_by_period(run: dict) -> dict:
     fb, ctx = setup(run)
     res = one_period(fb, ctx.s, quasi_static_period)
     n = int(ctx.s["period_by_period_sample"])
-    k = 1e-13   # any coefficient: only the time per period is measured here
-
-    def g_of(R_bush):
-        fb_w = fb.with_bushing_radius(R_bush)
-        return wear.period_wear_factor(quasi_static_period(fb_w, ctx.s), fb_w, fb.period,
-                                       ctx.s.get("wear_range", "contact_point"),
-                                       statistics=False)["G"]
-    with phase("joint_wear.period_by_period") as sw:
-        wear.period_by_period(float(ctx.p["measured_wear_B1"][-1]), n, k, fb.R_bush, g_of)
+    g_of = period_factor(fb, ctx.s, quasi_static_period)
+    with phase("joint_wear.period_by_period") as sw:     # any k: only the time is measured
+        wear.period_by_period(float(ctx.p["measured_wear_B1"][-1]), n, 1e-13, fb.R_bush, g_of)
     res["pbp"] = (n, sw.seconds)
     return res
 
@@ -207,36 +196,11 @@ def load_point(fb: FourBar, E, distance: float, direction_deg: float, g: float) 
     return replace(fb, g=g, F=(E[0] + distance * math.cos(a), E[1] + distance * math.sin(a)))
 
 
-def load_point_grid(run: dict, prefix: str):
-    """The set-up of a solver over load points: the mechanism, its context, E's mid-stroke
-    position and the options ``<prefix>_load_distance``, ``<prefix>_load_direction_deg``,
-    ``<prefix>_gravity``."""
-    fb, ctx = setup(run)
-    s = ctx.s
-    return (fb, ctx, kinematics.load_point_mid_stroke(fb), float(s[f"{prefix}_load_distance"]),
-            np.asarray(s[f"{prefix}_load_direction_deg"], float), gravity_planes(run, s[f"{prefix}_gravity"]))
-
-
 def gravity_planes(run: dict, planes) -> np.ndarray:
     """The gravity values [m/s2] a solver that weighs the plane of motion runs over: the
     scene's, or g = 0 alone where the scene does not name the gravity effect (no link
     weights)."""
     return np.asarray(planes if "gravity" in run["effects"] else [0.0], float)
-
-
-def wear_factor_of(fb_v: FourBar, s: dict, joint=None):
-    """G(R_bush): the wear factor of one continuous-contact period of ``fb_v`` with the
-    bushing at radius R_bush (what calibration and prediction step through).  A radius
-    met again (both sides start calibrating at the new bushing) is not solved again.
-    ``joint``: the period model (default continuous_contact_period, which refuses contact
-    loss; quasi_static_period where a margin is measured, not assumed)."""
-    joint = joint or continuous_contact_period
-
-    @functools.cache
-    def factor(R_bush):
-        fb_w = fb_v.with_bushing_radius(R_bush)
-        return wear.period_wear_factor(joint(fb_w, s), fb_w, fb_v.period, statistics=False)["G"]
-    return factor
 
 
 def coefficient_scan(run: dict) -> dict:
@@ -247,8 +211,11 @@ def coefficient_scan(run: dict) -> dict:
     ``scan_gravity`` [m/s2] stand for planes of motion from horizontal (0) to vertical.
     Only the calibration is run (5 periods per point): it is what fixes the coefficient.
     """
-    fb, ctx, E, d, dirs, gs = load_point_grid(run, "scan")
+    fb, ctx = setup(run)
     s, p = ctx.s, ctx.p
+    E, d = kinematics.load_point_mid_stroke(fb), float(s["scan_load_distance"])
+    dirs = np.asarray(s["scan_load_direction_deg"], float)
+    gs = gravity_planes(run, s["scan_gravity"])
     k = np.full((len(SIDES), gs.size, dirs.size), np.nan)
     L = np.full((gs.size, dirs.size), np.nan)
     F_min = np.full((gs.size, dirs.size), np.nan)
@@ -269,26 +236,16 @@ def _calibrated(fb_v: FourBar, s: dict, p: dict, sides=SIDES, factor=None) -> np
     """K_p [m2/N] of Eqs. (32)-(34) for each side (rows) and interval (columns) with the
     mechanism fb_v on the quasi-static joint (``factor``: its wear_factor_of, if made
     already); ContactLost where continuous contact is lost."""
-    cal_h = float(p["measurement_interval"]) / 3600.0
     factor = factor or wear_factor_of(fb_v, s)
-    return np.array([wear.calibrate(p[f"measured_wear_{side}"], cal_h, fb_v.period,
-                                    fb_v.R_bush, factor,
-                                    dh_measured=p[f"measured_increment_{side}"],
-                                    feedback=float(p["calibration_wear_feedback"]))[0]
+    return np.array([wear.calibrate_side(p, side, fb_v.period, fb_v.R_bush, factor)[0]
                      for side in sides])
 
 
 def _predicted_86h(fb_v: FourBar, s: dict, p: dict, k_mean, factor=None) -> list:
     """The 86-h wear [m] of each side from its calibrated k on fb_v (Sec. 4.4, 2-h steps)."""
-    out = []
-    cal_h = float(p["measurement_interval"]) / 3600.0
     factor = factor or wear_factor_of(fb_v, s)
-    for side, k in zip(SIDES, k_mean):
-        h = np.asarray(p[f"measured_wear_{side}"], float)
-        out.append(wear.predict(h[-1], cal_h * h.size, float(p["prediction_end"]) / 3600.0,
-                                float(s.get("interval_h", 2.0)), float(k), fb_v.period,
-                                fb_v.R_bush, factor)[1][-1])
-    return out
+    return [wear.predict_side(p, side, float(s.get("interval_h", 2.0)), float(k), fb_v.period,
+                              fb_v.R_bush, factor)[1][-1] for side, k in zip(SIDES, k_mean)]
 
 
 def contact_side(hist: dict) -> dict:
@@ -329,7 +286,7 @@ def fit_zeros(fb: FourBar, s: dict, p: dict, E, d: float, dirs, g: float, K_pape
     steps, by Brent's method where they stall, to FIT_TOLERANCE.  ``joint``: the period
     model of the calibration (default: the continuous-contact one, contact loss refused:
     NaN misfit there).  Returns (the grid's misfit, one dict per zero: direction [deg],
-    the bracket and misfits of the last secant step, the mechanism there, its wear
+    the misfit's slope over the last secant bracket [1/deg], the mechanism there, its wear
     factor function and calibrated K_p)."""
     def mech(a):
         return load_point(fb, E, d, a, g)
@@ -390,7 +347,7 @@ def fit_zeros(fb: FourBar, s: dict, p: dict, E, d: float, dirs, g: float, K_pape
             continue     # found from a neighbouring sign change already
         fb_a = mech(a % 360.0)
         factor_a = wear_factor_of(fb_a, s, joint)
-        zeros.append({"direction": float(a % 360.0), "a0": a0, "a1": a1, "m0": m0, "m1": m1,
+        zeros.append({"direction": float(a % 360.0), "slope": (m1 - m0) / (a1 - a0),
                       "fb": fb_a, "factor": factor_a,
                       "K": _calibrated(fb_a, s, p, factor=factor_a)})
     return m, zeros
@@ -429,8 +386,7 @@ def load_point_fit(run: dict) -> dict:
             a, fb_a, factor_a, K = z["direction"], z["fb"], z["factor"], z["K"]
             r = np.log(K / K_paper).ravel()
             se = float(np.std(r, ddof=1) / math.sqrt(r.size))
-            slope = (z["m1"] - z["m0"]) / (z["a1"] - z["a0"])      # per degree
-            sig = abs(se / slope)
+            sig = abs(se / z["slope"])
             hist = continuous_contact_period(fb_a, s)
             f = wear.period_wear_factor(hist, fb_a, fb.period)
             band = []
@@ -464,9 +420,7 @@ def contact_margins(fb_a: FourBar, s: dict) -> dict:
            "qs_margin": float(F.min() / F.max()), "dyn_F_min": math.nan, "dyn_F_max": math.nan,
            "dyn_margin": math.nan, "dyn_min_penetration": math.nan, "dyn_steps": math.nan}
     if row["qs_margin"] >= CONTACT_LOSS_FRACTION:
-        hist = dynamic_period(fb_a, s)
-        if not hist["completed"]:
-            raise RuntimeError(f"joint_wear: {hist['message']}: no settled period")
+        hist = finished_dynamic_period(fb_a, s)
         Fd = np.where(np.asarray(hist["delta"]) > 0.0, np.asarray(hist["F_N"]), 0.0)
         row.update(dyn_F_min=float(Fd.min()), dyn_F_max=float(Fd.max()),
                    dyn_margin=float(Fd.min() / Fd.max()),
@@ -540,7 +494,7 @@ def _branch_point(fb: FourBar, s: dict, p: dict, E, d: float, a0: float, g: floa
     if not zeros:
         return None
     z = min(zeros, key=lambda z: abs(math.remainder(z["direction"] - a0, 360.0)))
-    chi2 = laplace_log_weight(np.log(z["K"] / K_paper), sigma, (z["m1"] - z["m0"]) / (z["a1"] - z["a0"]))[0]
+    chi2 = laplace_log_weight(np.log(z["K"] / K_paper), sigma, z["slope"])[0]
     return {"gravity": g, "direction": z["direction"] % 360.0, "chi2": chi2,
             "qs": quasi_static_period(z["fb"], s), "fb": z["fb"]}
 
@@ -640,7 +594,8 @@ def load_point_posterior(run: dict) -> dict:
     gs, g_prior = gravity_nodes(*(float(x) for x in s["posterior_gravity_range"]), int(s["n_gravity"]))
     if "gravity" not in run["effects"]:
         gs, g_prior = np.zeros(1), np.ones(1)
-    sigma = rounding_sigma(np.array([p[f"measured_increment_{side}"] for side in SIDES]) * 1e3)
+    dh = np.array([p[f"measured_increment_{side}"] for side in SIDES])
+    sigma = rounding_sigma(dh * 1e3)
     misfit = np.full((ds_.size, gs.size, mus.size, dirs.size), np.nan)
     pts = []
     for i, d in enumerate(ds_):
@@ -651,8 +606,7 @@ def load_point_posterior(run: dict) -> dict:
                                                    joint=quasi_static_period)
                 for z in zeros:
                     r = np.log(z["K"] / K_paper)
-                    chi2, width, logw, shift = laplace_log_weight(
-                        r, sigma, (z["m1"] - z["m0"]) / (z["a1"] - z["a0"]))
+                    chi2, width, logw, shift = laplace_log_weight(r, sigma, z["slope"])
                     qs = quasi_static_period(z["fb"], s)
                     f = wear.period_wear_factor(qs, z["fb"], fb.period)
                     F = np.asarray(qs["F_N"])
@@ -673,8 +627,7 @@ def load_point_posterior(run: dict) -> dict:
     # wear factor is then one number per load point, the ten log-ratios differ only by the
     # printed increments over the paper's K_p, and their chi2 about a common level is the
     # same at every load point that fits the level -- no fit needed to weigh it
-    chi2_new = laplace_log_weight(
-        np.log(np.array([p[f"measured_increment_{side}"] for side in SIDES]) / K_paper), sigma, 1.0)[0]
+    chi2_new = laplace_log_weight(np.log(dh / K_paper), sigma, 1.0)[0]
     inside = likelihood_region(np.r_[chi2, chi2_new], float(s["posterior_credible"]))
     new_inside, inside = bool(inside[-1]), inside[:-1]
     if new_inside:      # the new-bushing reading is credible: so is every load point it fits

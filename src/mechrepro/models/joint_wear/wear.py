@@ -264,6 +264,29 @@ def predict(h_start: float, t_start_h: float, t_end_h: float, interval_h: float,
     return nodes, h, np.array(Gs)
 
 
+
+def calibration_hours(p: dict) -> float:
+    """The measurement interval of Tables 3-4 [h] (Eq. 33: every two hours)."""
+    return float(p["measurement_interval"]) / 3600.0
+
+
+def calibrate_side(p: dict, side: str, period: float, R0: float,
+                   wear_factor: Callable[[float], float]):
+    """:func:`calibrate` on the measurements of ``side`` (Tables 3-4) in the SI run
+    parameters ``p``, with their calibration_wear_feedback."""
+    return calibrate(p[f"measured_wear_{side}"], calibration_hours(p), period, R0, wear_factor,
+                     dh_measured=p[f"measured_increment_{side}"],
+                     feedback=float(p["calibration_wear_feedback"]))
+
+
+def predict_side(p: dict, side: str, interval_h: float, k: float, period: float, R0: float,
+                 wear_factor: Callable[[float], float],
+                 worn_bushing: Callable[[float, float], float] | None = bushing_radius):
+    """:func:`predict` of ``side`` from its last measurement to ``prediction_end``."""
+    h = np.asarray(p[f"measured_wear_{side}"], float)
+    return predict(h[-1], calibration_hours(p) * h.size, float(p["prediction_end"]) / 3600.0,
+                   interval_h, k, period, R0, wear_factor, worn_bushing)
+
 def interval_limit(h_start: float, t_start_h: float, t_end_h: float, k: float, period: float,
                    R0: float, wear_factor: Callable[[float], float],
                    worn_bushing: Callable[[float, float], float] = bushing_radius) -> float:
