@@ -277,17 +277,14 @@ def fit_zeros(fb: FourBar, s: dict, p: dict, E, d: float, dirs, g: float, K_pape
     """The load points F at distance ``d`` from ``E`` (gravity ``g``) whose calibration
     reproduces Tables 3-4, the zeros over F's direction of the misfit (tables_misfit).
 
-    The grid ``dirs`` places the sign changes with the misfit of the new bushing's wear
-    factor G(R0) taken for every interval (one period per direction instead of nine: it
-    differs from the misfit by the mean ln(G(R_p) / G(R0)), below 0.01, the wear factor
-    changing by less than 1 % over the first 10 h); each sign change is then bracketed by
-    the misfit itself at the grid points (widened by one grid step where a zero sits
-    within that difference of a grid point) and refined by ``fit_secant_steps`` secant
-    steps, by Brent's method where they stall, to FIT_TOLERANCE.  ``joint``: the period
-    model of the calibration (default: the continuous-contact one, contact loss refused:
-    NaN misfit there).  Returns (the grid's misfit, one dict per zero: direction [deg],
-    the misfit's slope over the last secant bracket [1/deg], the mechanism there, its wear
-    factor function and calibrated K_p)."""
+    The grid ``dirs`` places the sign changes with the new bushing's wear factor G(R0)
+    taken for every interval (one period per direction instead of nine; within 0.01 of the
+    misfit, G changing by < 1 % over 10 h); each is bracketed by the misfit itself (widened
+    by a grid step where needed) and refined by ``fit_secant_steps`` secant steps, by
+    Brent's method where they stall, to FIT_TOLERANCE.  ``joint``: the period model of the
+    calibration (default continuous_contact_period: NaN misfit where contact is lost).
+    Returns (the grid's misfit, one dict per zero: direction [deg], the misfit's slope over
+    the last bracket [1/deg], the mechanism there, its wear factor function and K_p)."""
     def mech(a):
         return load_point(fb, E, d, a, g)
 
@@ -361,16 +358,14 @@ def _K_paper(s: dict, p: dict) -> np.ndarray:
 def load_point_fit(run: dict) -> dict:
     """The load point F estimated from Tables 3-4 jointly (Sec. 4.3-4.4 read backwards).
 
-    With Eq. (32) read as k = K/21, the printed K_p of both tables fix the wear factor G of
-    the paper's own simulation; G depends on F (and the gravity plane), which the paper
-    does not give.  For each gravity value in ``fit_gravity`` F runs over the directions
-    ``fit_load_direction_deg`` at the distance ``load_point_distance`` from E's mid-stroke
-    position; the zeros of the misfit are the estimates (fit_zeros).  Each zero carries
-    the uncertainty of the tables (the scatter of the ten log-ratios, i.e. the rounding of
-    the printed increments, standard error of the mean) turned into direction through the
-    local slope dm/dtheta.  At every estimate: the contact arc, where the wear sits
-    (contact_side), and the 86-h wear of both sides, also at the estimate +- its
-    uncertainty -- the band on Fig. 15.  Contact loss is refused.
+    With Eq. (32) read as k = K/21 the printed K_p fix the wear factor G of the paper's own
+    simulation, and G depends on F (and the gravity plane), which the paper does not give.
+    Per gravity value of ``fit_gravity``, the estimates are the zeros of the misfit over
+    F's direction at ``load_point_distance`` from E's mid-stroke position (fit_zeros), each
+    with the tables' uncertainty (standard error of the ten log-ratios) turned into
+    direction through the local slope.  At every estimate: the contact arc, where the wear
+    sits (contact_side) and the 86-h wear of both sides, also at +- its uncertainty (the
+    band on Fig. 15).  Contact loss is refused.
     """
     fb, ctx = setup(run)
     s, p = ctx.s, ctx.p
@@ -410,10 +405,9 @@ def load_point_fit(run: dict) -> dict:
 def contact_margins(fb_a: FourBar, s: dict) -> dict:
     """The contact margin min F_N / max F_N at the load point of ``fb_a``: of the
     quasi-static period, and where that keeps CONTACT_LOSS_FRACTION, of the dynamic
-    clearance joint (resolution.method, rtol; ``periods`` periods from the settled start,
-    the last one read; 0 where the pin leaves the bushing).  Below the fraction the
-    quasi-static margin stands: the project's rule already calls that contact lost, whatever
-    the dynamics adds (and a rattling pin would cost 100x the steps)."""
+    clearance joint (the last of ``periods`` periods from the settled start; 0 where the
+    pin leaves the bushing).  Below the fraction the quasi-static margin stands: the rule
+    already calls that contact lost, whatever the dynamics adds."""
     qs = quasi_static_period(fb_a, s)
     F = np.asarray(qs["F_N"])
     row = {"qs_F_min": float(F.min()), "qs_F_max": float(F.max()),
@@ -509,17 +503,14 @@ def region_edge(fb: FourBar, s: dict, p: dict, E, d: float, branch: list, K_pape
     """The lowest gravity on one branch of load points (``branch``: its points at the prior
     nodes, ascending g, each with its chi2 and margin) inside the likelihood region (chi2
     within ``threshold``, wear on the upper part), the branch's direction interpolated
-    between its nodes.  The contact margin grows with g along a branch (the link weights
-    carry it), so the credible set's smallest margin sits at such an edge -- which the nodes
-    alone place only to within their spacing, while the likelihood changes by e^-1000 within
-    0.3 m/s2 there, and a narrow ridge of good fit can lie between two nodes outside the
-    region.  So, from the lowest node up, in every interval between nodes whose lower end's
-    margin is below ``bound`` (the smallest credible margin found so far: only there can a
-    credible point lower it) and whose better end is within 10x the threshold (chi2 is smooth in g:
-    no ridge rises out of 1e4), chi2's minimum is sought by ``bisections`` golden-section
-    steps; the first interval with a point inside (or a credible node) gives the edge,
-    bisected ``bisections`` times between the interval's lower end and that point.
-    Returns the edge point, or None."""
+    between its nodes.  The margin grows with g along a branch (the link weights carry it),
+    so the credible set's smallest margin sits at such an edge, which the nodes alone place
+    only to within their spacing (a narrow ridge of good fit can lie between two nodes).
+    So, from the lowest node up, in every interval whose lower end's margin is below
+    ``bound`` (the smallest credible margin so far) and whose better end is within 10x the
+    threshold (chi2 is smooth in g), chi2's minimum is sought by ``bisections``
+    golden-section steps; the first interval with a point inside (or a credible node) gives
+    the edge, bisected ``bisections`` times below that point.  Returns it, or None."""
     gb = np.array([q["gravity"] for q in branch])
     ab = np.unwrap(np.radians([q["direction"] for q in branch]))
 
@@ -569,22 +560,18 @@ def load_point_posterior(run: dict) -> dict:
 
     Unknowns: F's direction and distance from E's mid-stroke position, the gravity
     component in the plane of motion and mu.  Prior: uniform over the nodes
-    ``posterior_distance``, ``posterior_friction`` (cell midpoints of each declared range,
-    mu's in log), the ``n_gravity`` cells of ``posterior_gravity_range`` (gravity_nodes: a
-    resolution, the likelihood falls by e^-1000 within 0.3 m/s2 where the joint nears
-    contact loss) and uniform in direction.  Likelihood: the ten K_p of
-    Tables 3-4 (both sides) with the rounding of the printed increments as their noise
-    (rounding_sigma), and the wear on the upper part of the bushing (Sec. 4.2 (2), the
-    wear-weighted share above the centre > 1/2) as an indicator.  At each node the
-    direction is integrated exactly about every zero of the mean misfit (fit_zeros,
-    laplace_log_weight): the tables fix it to ~0.003 deg, so a grid in direction would
-    need 1e5 points.  At every point: the contact margin, contact arc, wear coefficients
-    and wear factor, and the posterior mass (what the distributions of these statements
-    weigh by).  The credible set is the likelihood region at ``posterior_credible``
-    (likelihood_region: prior-free, so the contested prior of g does not enter it); there
-    the 86-h wear of both sides, and the dynamic margin (contact_margins) at its point of the
-    smallest quasi-static margin.  The contact statement holds only with margin everywhere
-    in the credible set: its smallest margin is the result."""
+    ``posterior_distance``, ``posterior_friction``, the ``n_gravity`` cells of
+    ``posterior_gravity_range`` (gravity_nodes) and in direction.  Likelihood: the ten K_p
+    of Tables 3-4 with the rounding of the printed increments as their noise
+    (rounding_sigma), and the wear on the upper part of the bushing (Sec. 4.2 (2)) as an
+    indicator.  The direction is integrated exactly about every zero of the mean misfit
+    (fit_zeros, laplace_log_weight): the tables fix it too sharply for a grid.  At every
+    point: contact margin, contact arc, wear coefficients, wear factor and posterior mass.
+    The credible set is the likelihood region at ``posterior_credible`` (likelihood_region:
+    prior-free, so the contested prior of g does not enter it); there the 86-h wear of both
+    sides, and the dynamic margin (contact_margins) at its point of the smallest
+    quasi-static margin, the result: the contact statement holds only with margin
+    everywhere in the credible set."""
     fb, ctx = setup(run)
     s, p = ctx.s, ctx.p
     E = kinematics.load_point_mid_stroke(fb)
@@ -684,10 +671,9 @@ def load_point_posterior(run: dict) -> dict:
 def constant_sensitivity(run: dict) -> dict:
     """The assumed constants the scan does not vary, each at both ends of its declared
     range (option ``sensitivity``: {parameter: [lo, hi]} in SI), one at a time at the
-    assumed load point: the calibrated mean coefficient of side B1, the 86-h wear of B1,
-    the contact arc (quasi-static joint), and the wear per period of the settled dynamic
-    joint (Radau, ``rtol``) against the quasi-static one -- d_max and C_max enter only
-    there (the quasi-static joint has no penetration rate, Eq. 14)."""
+    assumed load point: B1's mean coefficient and 86-h wear, the contact arc, and the
+    settled dynamic period's wear (Radau, ``rtol``) against the quasi-static one -- d_max
+    and C_max enter only there (no penetration rate in the quasi-static joint, Eq. 14)."""
     base_fb, ctx = setup(run)
     s = ctx.s
     rows = [("(assumed)", math.nan)]
@@ -712,15 +698,12 @@ def constant_sensitivity(run: dict) -> dict:
 
 
 def local_wear(run: dict) -> dict:
-    """Side B1 with local Archard wear (wear.local_predict: a depth per bushing angle grown
-    interval by interval) against the paper's uniform depth (Eq. 29) on the same joint and
-    schedule; quasi-static joint.  The profile enters the contact gap (groove.py: a
-    conforming contact, the pressure over the arc where the pin meets the worn surface);
-    beside it the mean-circle feedback (wear.mean_circle_increment) at the same points.
-    Options: ``local_load_point`` [distance m, direction deg] of F from E's mid-stroke
-    position (default: the assumed F); ``local_placements`` [[shift, scale], ...] of the
-    Eq.-33 points (wear.wear_range_points), the first the baseline; gravity is the gravity
-    effect's."""
+    """Side B1 with local Archard wear, a depth per bushing angle that enters the contact
+    gap (groove.py), against the paper's uniform depth (Eq. 29) on the same quasi-static
+    joint and schedule, and beside it the mean-circle feedback (wear.mean_circle_increment)
+    at the same points.  Options: ``local_load_point`` [distance m, direction deg] of F from
+    E's mid-stroke position (default: the assumed F); ``local_placements`` [[shift, scale],
+    ...] of the Eq.-33 points (wear.wear_range_points), the first the baseline."""
     fb, ctx = setup(run)
     s, p = ctx.s, ctx.p
     lp = s.get("local_load_point")
