@@ -176,7 +176,6 @@ def warm(methods=COMPILED) -> None:
     b = q.setup(a, a, a, a, a, a, 1.0, 1.0, 0.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 2.0, 0.0, 0.0)
     F_N, ang, delta = q.force(*b, a, a, 0.0, 1.0, 1.5)
     q.friction(F_N, delta, a, 0.0, a, 1.0, 1.0, 0.0, 1.0)
-    q.direction(ang)
     q.contact_angle(ang, a)
     q.steps(np.zeros((2, 2)))
     _WARM.add("physics")

@@ -85,18 +85,6 @@ def friction(F_N, delta, dang, slide, w2R, clearance, v_eps, mu, R_bush):
 
 
 @jit
-def direction(ang_n):
-    """n = (cos, sin) of the contact direction."""
-    n = ang_n.size
-    nx = np.empty(n)
-    ny = np.empty(n)
-    for i in range(n):
-        nx[i] = math.cos(ang_n[i])
-        ny[i] = math.sin(ang_n[i])
-    return nx, ny
-
-
-@jit
 def contact_angle(ang_n, ph2):
     """The contact angle psi on the bushing (coupler frame), in (-pi, pi]."""
     n = ang_n.size

@@ -118,7 +118,7 @@ def _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2, iterations=4) -> dict:
         dang, _ = periodic_derivatives(ang_n, fb.period, second=False)
         v_T, sgn, F_T, tau = qs_numba.friction(F_N, delta, dang, slide, w2R, fb.clearance,
                                                fb.v_eps, fb.mu, fb.R_bush)
-    nx, ny = qs_numba.direction(ang_n)
+    nx, ny = np.cos(ang_n), np.sin(ang_n)
     return {"t": t, "theta1": th1, "theta3": th3, "phi2": ph2, "F_N": F_N, "F_T": F_T,
             "delta": delta, "v_T": v_T, "ang_n": ang_n, "nx": nx, "ny": ny}
 
