@@ -128,16 +128,15 @@ def period(fb: FourBar, n_steps: int, theta, depth) -> dict:
     the groove's offset (G1-G4) in the clearance kinematics, the sliding speed of (G6) as
     ``v_T`` and the pressure over the arc, ``pressure`` (samples x theta).  fb: the bushing
     circle the depth is measured from."""
-    def offset(out, ph2):
-        e = solve_offset(out["F_N"], out["ang_n"] - ph2, theta, depth, fb)[0]
+    def to_global(e, ph2):        # the offset from the bushing (coupler) frame
         c, s = np.cos(ph2), np.sin(ph2)
         return c * e[:, 0] - s * e[:, 1], s * e[:, 0] + c * e[:, 1]
 
-    hist = quasistatic.one_period(fb, n_steps, offset=offset)
+    hist = quasistatic.one_period(fb, n_steps, offset=lambda out, ph2: to_global(
+        solve_offset(out["F_N"], out["ang_n"] - ph2, theta, depth, fb)[0], ph2))
     ph2 = hist["phi2"]
     e, _, p, _ = solve_offset(hist["F_N"], hist["psi"], theta, depth, fb)
-    c, s = np.cos(ph2), np.sin(ph2)
-    ox, oy = c * e[:, 0] - s * e[:, 1], s * e[:, 0] + c * e[:, 1]
+    ox, oy = to_global(e, ph2)
     (dox, doy), _ = quasistatic.periodic_derivatives(np.vstack([ox, oy]), fb.period,
                                                      second=False)
     ang = hist["psi"] + ph2
@@ -161,7 +160,7 @@ def interval_method(period_of, theta, placements, dh_measured, t_cal_h: float,
     interval_h); in between, the foundation (G1-G4) is re-solved on ``samples`` samples of
     that period at every explicit step of ``step`` local relaxation times (a groove worn
     deeper per step than the contact's compliance is bridged by the pin, which then bears on
-    its rims: the steps must resolve the foundation's relaxation).  placements: list of measuring-point angle arrays, the first the baseline.
+    its rims).  placements: measuring-point angle arrays, the first the baseline.
     Returns {tau, peak, mean (placement x step), tau_cal (per placement), profile (the
     baseline's at t_end), refreshes, steps}."""
     from .wear import at_points

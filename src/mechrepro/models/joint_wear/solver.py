@@ -134,20 +134,12 @@ def wear_factor_of(fb_v: FourBar, s: dict, joint=None):
     return functools.cache(period_factor(fb_v, s, joint or continuous_contact_period))
 
 
-def closed_form_factor(R0: float, p: float):
-    """The wear factor of a rival without mechanics: G(R) = (R0 / R)^p, no four-bar, no
-    contact (option ``closed_form_growth: p``).  p = 1 is the worn arc's length growing
-    with the radius at a fixed arc, force and sliding (wear.inverse_radius_prediction); the
-    calibration absorbs G's scale, so only its growth law enters the prediction."""
-    return lambda R_bush: (R0 / R_bush) ** p
-
-
 def with_wear(run: dict, fb: FourBar, ctx: Context, res: dict, joint) -> dict:
     """Stages two and three: the wear set-up, then the wear effects on the wear factor of
     ``joint`` (or the closed form of option ``closed_form_growth``, a rival)."""
     g = ctx.s.get("closed_form_growth")
     ctx = replace(ctx, wear_factor=period_factor(fb, ctx.s, joint) if g is None
-                  else closed_form_factor(fb.R_bush, float(g)))
+                  else wear.closed_form_factor(fb.R_bush, float(g)))
     c = EFFECTS.evaluate(run, ctx, keys=WEAR_SETUP)
     ctx = replace(ctx, sides=c.get("sides", ["B1"]), worn_bushing=c.get("worn_bushing"))
     c = EFFECTS.evaluate(run, ctx, keys=WEAR)
@@ -757,11 +749,9 @@ def local_wear(run: dict) -> dict:
                                 "arc": f0["arc"], "AB_mean": f0["AB_mean"]}}
 
 
-SOLVERS = {"clearance_implicit": clearance_implicit, "clearance_explicit": clearance_explicit,
-           "continuous_contact": continuous_contact, "period_by_period": period_by_period,
-           "coefficient_scan": coefficient_scan, "load_point_fit": load_point_fit,
-           "constant_sensitivity": constant_sensitivity, "local_wear": local_wear,
-           "load_point_posterior": load_point_posterior}
+SOLVERS = {f.__name__: f for f in (
+    clearance_implicit, clearance_explicit, continuous_contact, period_by_period, coefficient_scan,
+    load_point_fit, constant_sensitivity, local_wear, load_point_posterior)}
 
 
 def _methods(runs) -> set:
@@ -776,9 +766,8 @@ def warm(runs=None) -> None:
 
 
 def compute(run: dict) -> dict:
-    """The physics of one run (what the runner times): the scene's solver.  The compiled
-    kernels it uses are loaded first (once per process; the runner has, see warm), so that
-    no measured period carries numba's start."""
+    """The physics of one run (what the runner times): the scene's solver, its compiled
+    kernels loaded first (once per process, see warm)."""
     dynamics.warm(_methods([run]))
     return SOLVERS[run["solver"]](run)
 

@@ -47,18 +47,13 @@ from .geometry import FourBar
 
 
 def contact_arc(psi, in_contact=None):
-    """Angular range [rad] the contact point covers on the bushing (Fig. 4, Arc^j).
+    """Angular range [rad] the contact point covers on the bushing (Fig. 4, Arc^j), psi the
+    contact angle (bushing frame) over one period on a uniform periodic grid.
 
-    psi is the contact angle in the bushing's frame over one period on a uniform periodic
-    grid.  When the contact is continuous (all samples) the path is unwrapped along time;
-    a path whose unwrapped angle drifts by a whole turn over the period (the contact point
-    runs round the bushing) covers the full circle, 2 pi.  Otherwise the range of the
-    unwrapped path is taken, each extreme refined by the vertex of the parabola through it
-    and its two periodic neighbours (differences wrapped into (-pi, pi], so the refinement
-    never runs across the +-pi cut): the range of the smooth contact-point path then
-    converges with the sampling as O(dt^3).  The result never exceeds 2 pi.  With gaps
-    (free flight) the raw sample range about the circular mean is returned: the path is
-    not smooth there.
+    A continuous contact: the range of the path unwrapped along time (contact_arc_bounds,
+    extremes refined by a parabola: O(dt^3) in the sampling), 2 pi where it winds round
+    the bushing.  With gaps (free flight, not smooth) the raw sample range about the
+    circular mean.
     """
     psi = np.asarray(psi, float)
     full = in_contact is None or bool(np.all(in_contact))
@@ -105,13 +100,9 @@ def _vertex(y, i):
 
 
 def contact_arc_quantile(psi, weights=None, q=0.9):
-    """Central range [rad] holding the share q of the contact time (time-weighted).
-
-    A well-posed statistic of where the contact point dwells when the period contains an
-    impact and rattling: the max - min of ``contact_arc`` is set there by a few samples
-    of the impact and moves with the output sampling, while a quantile of the time spent
-    in contact converges as the sampling is refined.  weights: time per sample (uniform
-    sampling: ones, out-of-contact samples: zero).
+    """Central range [rad] holding the share q of the contact time, weights the time per
+    sample (0 out of contact): where the contact point dwells, well-posed under impact and
+    rattling, where the max - min of ``contact_arc`` is set by a few samples of the impact.
     """
     psi = np.asarray(psi, float)
     w = np.ones_like(psi) if weights is None else np.asarray(weights, float)
@@ -296,9 +287,8 @@ def interval_limit(h_start: float, t_start_h: float, t_end_h: float, k: float, p
         dh/dt = k G(R(h)) / T,   h(t_start) = h_start,
 
     integrated by DOP853 to rtol 1e-12 with G evaluated at every stage (one period each):
-    the exact solution the interval study's cost of accuracy is measured against.  The
-    period-by-period sum (Fig. 6) differs from it by O(k G'(R) / 2), ~1e-9 of h per 43 776
-    periods.  Returns h(t_end) [m]."""
+    the exact solution the interval study's cost of accuracy is measured against (the
+    period-by-period sum of Fig. 6 differs from it by O(k G'(R) / 2)).  Returns h(t_end) [m]."""
     from scipy.integrate import solve_ivp
     rate = 3600.0 / period                      # periods per hour
 
@@ -308,6 +298,14 @@ def interval_limit(h_start: float, t_start_h: float, t_end_h: float, k: float, p
     if not r.success:
         raise RuntimeError(f"joint_wear: the interval limit did not integrate: {r.message}")
     return float(r.y[0, -1])
+
+
+def closed_form_factor(R0: float, p: float):
+    """The wear factor of a rival without mechanics: G(R) = (R0 / R)^p, no four-bar, no
+    contact (option ``closed_form_growth: p``).  p = 1 is the worn arc's length growing
+    with the radius at a fixed arc, force and sliding; the calibration absorbs G's scale,
+    so only its growth law enters the prediction."""
+    return lambda R_bush: (R0 / R_bush) ** p
 
 
 def period_by_period(h_start: float, n_periods: int, k: float, R0: float,
@@ -323,12 +321,11 @@ def inverse_radius_prediction(h_measured, dh_measured, interval_h: float, t_end_
                               step_h: float, period: float, R0: float):
     """The comparison without mechanics: the wear factor taken as G(R) = R0 / R (the arc
     length L_arc = R * arc grows with the worn radius at a fixed arc, force and sliding
-    distance), calibrated on the same measured increments (Eqs. 32-34) and predicted by
-    the same interval method (Sec. 4.4).  No four-bar, no contact: whatever it reproduces of
-    Figs. 15-19 follows from the measured data and the 1/R geometry alone.
+    distance: closed_form_factor with p = 1), calibrated on the same measured increments
+    (Eqs. 32-34) and predicted by the same interval method (Sec. 4.4).  No four-bar, no
+    contact: what it reproduces of Figs. 15-19 follows from the measured data and 1/R alone.
     Returns (node times [h], cumulative wear at the nodes [m])."""
-    def G(R):
-        return R0 / R
+    G = closed_form_factor(R0, 1.0)
     h = np.asarray(h_measured, float)
     _, k, _ = calibrate(h, interval_h, period, R0, G, dh_measured=dh_measured)
     nodes, hp, _ = predict(h[-1], interval_h * h.size, t_end_h, step_h, k, period, R0, G)
@@ -414,8 +411,7 @@ def local_predict(dh_measured, interval_h: float, t_end_h: float, step_h: float,
                   period: float, increment: Callable, theta, pts):
     """The interval method with local wear: a depth profile h(theta) on the bushing, grown
     interval by interval by ``increment(profile)`` -- the depth one period of the joint with
-    that profile wears per unit k (groove.wear_per_period: the profile in the contact gap;
-    mean_circle_increment: through a circle only).  Calibration (Eqs. 33-34): in each
+    that profile wears per unit k (mean_circle_increment: through a circle only).  Calibration (Eqs. 33-34): in each
     measured interval p, k_p makes the profile's mean over the Eq.-33 points ``pts`` grow by
     the printed increment dh^P; the profile after 10 h is the one those k_p wore.
     Prediction: k = mean k_p, the profile grown by M periods of local wear per interval.
