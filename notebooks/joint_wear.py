@@ -21,7 +21,7 @@
 # **Unit chain.** Eq. (32) divides K (Tables 3–4, printed in Pa⁻¹) by H (Table 2, "21 HB"):
 # for the wear depth to be a length, H enters as the bare number 21, so k = K/21 in m²/N and
 # Archard's dimensionless coefficient is K_A = k·H = K·9.80665e6 (derivation in
-# `src/mechrepro/models/joint_wear/wear.py` and `docs/joint_wear.md`).
+# `docs/joint_wear.md`, "Unit chain").
 #
 # The validation table is built by the framework from the `reported:` block of the config
 # (`validate_joint_wear`); this notebook draws the figures and shows the table.

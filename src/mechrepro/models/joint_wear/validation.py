@@ -13,6 +13,7 @@ from mechrepro.io import run_attrs
 from mechrepro.validation import Quantities, Reproduced
 
 from . import accuracy, wear
+from .geometry import from_parameters
 
 Q = Quantities("joint_wear")
 SIDES = ("b1", "b2")
@@ -272,39 +273,28 @@ def interval_differences(runs: dict, base: float = 2.0) -> dict:
     """Largest |relative difference| [%] of each longer interval's prediction vs ``base``,
     at the longer run's own interval nodes (Fig. 19)."""
     ref = runs[base]["wear_report"].sel(side="B1").values
-    out = {}
-    for iv in sorted(v for v in runs if v > base):
-        r = runs[iv]
-        node = r["report_is_node"].values > 0.5
-        w = r["wear_report"].sel(side="B1").values
-        out[iv] = float(np.max(np.abs(w[node] / ref[node] - 1.0)) * 100.0)
-    return out
+    nodes = {iv: runs[iv]["report_is_node"].values > 0.5 for iv in sorted(runs) if iv > base}
+    return {iv: float(np.max(np.abs(runs[iv]["wear_report"].sel(side="B1").values[n] / ref[n] - 1.0)) * 100.0)
+            for iv, n in nodes.items()}
 
 
 def inverse_radius_runs(R) -> dict:
     """The G = R0/R comparison (wear.inverse_radius_prediction) on the interval study's
     schedules, side B1: {interval: (nodes, h)}."""
-    runs = _intervals(R)
     par = R.cfg.runs["wear_interval"]["parameters"]            # SI, the study's scene
-    p = lambda n: np.asarray(par[n], float)                    # noqa: E731
-    R0 = float(par["pin_radius"]) + float(par["radial_clearance"])
-    cal_h = float(par["measurement_interval"]) / 3600.0
-    t_end = float(par["prediction_end"]) / 3600.0
-    period = 2.0 * math.pi / float(par["crank_speed"])
-    return {iv: wear.inverse_radius_prediction(p("measured_wear_B1"), p("measured_increment_B1"),
-                                               cal_h, t_end, iv, period, R0)
-            for iv in runs}
+    fb = from_parameters(par)
+    return {iv: wear.inverse_radius_prediction(
+        np.asarray(par["measured_wear_B1"], float), np.asarray(par["measured_increment_B1"], float),
+        wear.calibration_hours(par), float(par["prediction_end"]) / 3600.0, iv, fb.period, fb.R_bush)
+            for iv in _intervals(R)}
 
 
 def inverse_radius_differences(R, base: float = 2.0) -> dict:
     """interval_differences of the G = R0/R comparison: longer intervals vs ``base`` [%]."""
     ir = inverse_radius_runs(R)
     nb, hb = ir[base]
-    out = {}
-    for iv in sorted(v for v in ir if v > base):
-        n, h = ir[iv]
-        out[iv] = float(np.max(np.abs(h / np.interp(n, nb, hb) - 1.0)) * 100.0)
-    return out
+    return {iv: float(np.max(np.abs(h / np.interp(n, nb, hb) - 1.0)) * 100.0)
+            for iv, (n, h) in sorted(ir.items()) if iv > base}
 
 
 @Q.register("wear_86h_b1_inverse_radius", "wear_86h_b1_mechanics_vs_inverse_radius")

@@ -1,21 +1,9 @@
 """Archard wear of the bushing per motion period and the interval method (Eqs. 16-34).
 
-Unit chain (decided from the paper's equations and printed units).  Eq. (32) reads
-    dh_j = K / (H A_a) * F_N S * AB / L_arc   =   K / (H w) * F_N S / L_arc,
-and Tables 3-4 print K in "10^-11 Pa^-1" while Table 2 gives H as "21 HB".  For dh_j to be
-a length, K/H must be in m^2/N = Pa^-1 (F_N S / (w L_arc) is in N/m).  With K in Pa^-1 as
-printed, that holds only if H enters as the bare hardness *number* 21 (the paper's own
-number, Brinell's kgf/mm^2 without its unit):
-    k = K / H_number  [m^2/N],    Archard's dimensionless K_A = k * H = K * 9.80665e6,
-where H = 21 HB = 21 * 9.80665e6 Pa.  The two other readings fail physically:
-  * the table's value as k = K/H itself (H dropped): the paper's own wear per period
-    then implies a wear range L_arc = F_N S / (w G) of ~0.7 m, eleven bushing
-    circumferences;
-  * K dimensionless and H in Pa: the table's unit is wrong, K_A ~ 8e-11 is six orders
-    below any measured Archard coefficient, and the implied wear range is ~3 nm.
-Read as k = K/21, the paper's coefficients are K_A ~ 7.7e-4 (B1) and 5.3e-4 (B2) --
-inside the 1e-4 .. 1e-2 of dry aluminium on steel -- and imply a wear range of ~0.03 m
-(about half the bushing, the "upper part" of Sec. 4.2).
+Unit chain.  Eq. (32) reads dh_j = K / (H w) * F_N S / L_arc with K printed in Pa^-1
+(Tables 3-4) and H as "21 HB" (Table 2): dh_j is a length only if H enters as the bare
+hardness number 21, so k = K / 21 [m^2/N] and Archard's K_A = k H = K * 9.80665e6 (the
+readings this rules out, and why: docs/joint_wear.md, "Unit chain").
 
 Per period (Eq. 29):  dh_j = k * F_N_mean * S / (w * L_wear)  =  k * G,
 G [N/m] is the *wear factor* of one period; it is all the calibration and the
