@@ -702,9 +702,8 @@ def local_wear(run: dict) -> dict:
     if lp:
         d, a = (float(x) for x in lp)
         fb = load_point(fb, kinematics.load_point_mid_stroke(fb), d, a, fb.g)
-    cal_h = float(p["measurement_interval"]) / 3600.0
+    cal_h = wear.calibration_hours(p)
     t_end, step = float(p["prediction_end"]) / 3600.0, float(s["interval_h"])
-    h = np.asarray(p["measured_wear_B1"], float)
     dh = np.asarray(p["measured_increment_B1"], float)
     theta = np.linspace(-math.pi, math.pi, int(s["n_theta"]), endpoint=False)
     h0 = continuous_contact_period(fb, s)
@@ -730,9 +729,8 @@ def local_wear(run: dict) -> dict:
         theta, pts[0])
     factor = wear_factor_of(fb, s)
     with phase("joint_wear.uniform_interval_method") as sw_u:
-        _, k_u, _ = wear.calibrate(h, cal_h, fb.period, fb.R_bush, factor, dh_measured=dh)
-        _, h_u, _ = wear.predict(h[-1], cal_h * h.size, t_end, step, k_u, fb.period, fb.R_bush,
-                                 factor)
+        _, k_u, _ = wear.calibrate_side(p, "B1", fb.period, fb.R_bush, factor)
+        _, h_u, _ = wear.predict_side(p, "B1", step, k_u, fb.period, fb.R_bush, factor)
     M = wear.periods_per_interval(t_cal, fb.period)
     return {"fb": fb, "local": {"hours": nodes, "mean": np.interp(at, g["tau"], g["mean"][0]),
                                 "peak": np.interp(at, g["tau"], g["peak"]), "uniform": h_u,
