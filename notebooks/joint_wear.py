@@ -229,10 +229,8 @@ show("local_vs_uniform_86h_b1_estimated_f", "circle_vs_uniform_86h_b1_estimated_
 # %%
 post = R.run("load_point_posterior")
 rows = [r for r in R.table("verdict_evidence") if r["quantity"] == "continuous_contact_margin_fitted_f"]
-pt = {k: post[f"post_point_{k}"].values for k in ("direction", "distance", "gravity", "chi2", "credible",
-                                                   "upper_share", "qs_margin")}
-up, cred = pt["upper_share"] > 0.5, pt["credible"] == 1
-dchi2 = np.clip(pt["chi2"] - np.nanmin(np.where(up, pt["chi2"], np.nan)), 0, 50)
+pt = F.posterior_points(post)
+up, cred, dchi2 = pt["up"], pt["cred"], pt["dchi2"]
 fig, ax = plt.subplots(1, 3, figsize=(16, 4.6), gridspec_kw={"width_ratios": [1.2, 1.2, 1]},
                        layout="constrained")
 norm = plt.Normalize(0, 50)
@@ -292,9 +290,8 @@ for side, col in (("B1", "tab:blue"), ("B2", "tab:orange")):
     ax.plot(hours, mm(h), "s", color=col, mfc="none", label=f"{side} measured (Tables 3-4)")
 ax.plot(wdyn["hour"], mm(wdyn["wear_predicted"].sel(side="B1")), "x--", color="k",
         label=f"B1 stiff dynamic joint with wear feedback, {dyn_interval:g} h")
-up = fit["fit_sol_upper_share"].values > 0.5
 for side, col in (("B1", "tab:blue"), ("B2", "tab:orange")):   # band of the estimated load points
-    w86 = mm(fit["fit_sol_wear_86h"].sel(side=side).values[up])
+    w86 = mm(np.array(F.fit_band(fit, side)))
     ax.errorbar([86.0], [0.5 * (w86.max() + w86.min())], yerr=[[0.5 * (w86.max() - w86.min())]],
                 color=col, capsize=4, lw=2, label=f"{side} 86 h, load points estimated from Tables 3-4")
 ax.axvline(float(wp["hour"][0]), color="gray", lw=0.6)

@@ -152,3 +152,21 @@ def credible_arcs(post, qs) -> dict:
             "width": np.r_[ends[:, 1] - ends[:, 0], from_si(float(qs["contact_arc_angle"]), "deg")],
             "labels": [f"g {g:.2g}, {a:.0f}°" for g, a in zip(
                 post["post_point_gravity"].values[cr], post["post_point_direction"].values[cr])] + ["assumed F"]}
+
+
+def posterior_points(post) -> dict:
+    """The points of the load-point distribution as drawn: their columns, whether their wear
+    is on the upper part (``up``) and credible (``cred``), and their chi2 above the best
+    upper-part point, clipped to [0, 50] (``dchi2``)."""
+    pt = {k: post[f"post_point_{k}"].values for k in ("direction", "distance", "gravity", "chi2", "credible",
+                                                       "upper_share", "qs_margin")}
+    up = pt["upper_share"] > 0.5
+    return {**pt, "up": up, "cred": pt["credible"] == 1,
+            "dchi2": np.clip(pt["chi2"] - np.nanmin(np.where(up, pt["chi2"], np.nan)), 0, 50)}
+
+
+def fit_band(fit, side: str):
+    """Fig. 15's band at 86 h: the 86-h wear of ``side`` [m] at the load points estimated
+    from Tables 3-4 with the wear on the upper part (their smallest and largest)."""
+    w = fit["fit_sol_wear_86h"].sel(side=side).values[fit["fit_sol_upper_share"].values > 0.5]
+    return w.min(), w.max()
