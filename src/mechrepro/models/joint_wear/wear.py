@@ -399,9 +399,10 @@ def local_predict(dh_measured, interval_h: float, t_end_h: float, step_h: float,
                   period: float, increment: Callable, theta, pts):
     """The interval method with local wear: a depth profile h(theta) on the bushing, grown
     interval by interval by ``increment(profile)`` -- the depth one period of the joint with
-    that profile wears per unit k (mean_circle_increment: through a circle only).  Calibration (Eqs. 33-34): in each
-    measured interval p, k_p makes the profile's mean over the Eq.-33 points ``pts`` grow by
-    the printed increment dh^P; the profile after 10 h is the one those k_p wore.
+    that profile wears per unit k (mean_circle_increment: through a circle only).
+    Calibration (Eqs. 33-34): in each measured interval p, k_p makes the profile's mean over
+    the Eq.-33 points ``pts`` grow by the printed increment dh^P; the profile after 10 h is
+    the one those k_p wore.
     Prediction: k = mean k_p, the profile grown by M periods of local wear per interval.
     Returns (node hours, mean depth over the points [m], max depth [m], k, the profile at
     the end [m])."""
