@@ -21,7 +21,7 @@
 # **Unit chain.** Eq. (32) divides K (Tables 3–4, printed in Pa⁻¹) by H (Table 2, "21 HB"):
 # for the wear depth to be a length, H enters as the bare number 21, so k = K/21 in m²/N and
 # Archard's dimensionless coefficient is K_A = k·H = K·9.80665e6 (derivation in
-# `src/mechrepro/models/joint_wear/wear.py` and `docs/joint_wear.md`).
+# `docs/joint_wear.md`, "Unit chain").
 #
 # The validation table is built by the framework from the `reported:` block of the config
 # (`validate_joint_wear`); this notebook draws the figures and shows the table.
@@ -61,6 +61,11 @@ def paper_value(q):
     return float(table[q]["paper_value"])
 
 
+def show(*quantities):
+    for q in quantities:
+        print(q, table[q]["reproduced_value"], table[q]["note"])
+
+
 # %% [markdown]
 # ## Fig. 13 — contact points on the bushing over a period
 # From the paper's start (pin concentric), the first period contains the free flight, the
@@ -87,22 +92,16 @@ ax[1].hist(deg(psi_c), bins=bins, density=True, alpha=0.6, label="1st period (im
 ax[1].hist(deg(psi_dyn), bins=bins, density=True, alpha=0.6, label="settled period")
 ax[1].set(xlabel="contact angle ψ [deg]", ylabel="share of time in contact [1/deg]", title="distribution of contact points")
 ax[1].legend(fontsize=7)
-post = R.run("load_point_posterior")
-cr = np.flatnonzero(post["post_point_credible"].values == 1)
-ends = post["post_point_arc_ends"].values[cr]
-lo = np.mod(ends[:, 0], 360.0)
-ax[2].barh(np.arange(cr.size), ends[:, 1] - ends[:, 0], left=lo, height=0.6, color="tab:green",
+arcs = F.credible_arcs(R.run("load_point_posterior"), per_qs)
+n = len(arcs["labels"]) - 1
+ax[2].barh(np.arange(n), arcs["width"][:n], left=arcs["left"][:n], height=0.6, color="tab:green",
            label="load points Tables 3–4 imply (credible set)")
-qs_lo = float(np.degrees(np.min(np.unwrap(per_qs["contact_angle"].values)))) % 360.0
-ax[2].barh([cr.size], [deg(float(per_qs["contact_arc_angle"]))], left=qs_lo, height=0.6, color="tab:gray",
-           label="assumed F")
-ax[2].set_yticks(np.arange(cr.size + 1), [f"g {g:.2g}, {a:.0f}°" for g, a in zip(
-    post["post_point_gravity"].values[cr], post["post_point_direction"].values[cr])] + ["assumed F"], fontsize=6)
+ax[2].barh([n], arcs["width"][n:], left=arcs["left"][n:], height=0.6, color="tab:gray", label="assumed F")
+ax[2].set_yticks(np.arange(n + 1), arcs["labels"], fontsize=6)
 ax[2].set(xlabel="contact angle ψ on the bushing [deg] (coupler frame)", title="contact arc at the table-implied F (quasi-static)")
 ax[2].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2)
 R.save_figure(fig, "fig13")
-for q in ("contact_arc_steady_deg", "contact_arc_concentric_q90_deg"):
-    print(q, table[q]["reproduced_value"], table[q]["note"])
+show("contact_arc_steady_deg", "contact_arc_concentric_q90_deg")
 
 # %% [markdown]
 # ## Tables 3 and 4 — equivalent wear coefficients (Eqs. 32–34)
@@ -167,23 +166,18 @@ ax[0].set(xlabel="direction of F from E [deg]", ylabel="mean ln(K_p ours / K_p p
 ax[0].legend(fontsize=7)
 for name, ls in (("local_wear", "-"), ("local_wear_estimated", "--")):
     lw = R.run(name)
-    th, prof = lw["theta"].values, lw["local_profile_end"].values
-    centre = np.angle(np.sum(prof * np.exp(1j * th)))          # draw the worn region unbroken
-    rel = np.angle(np.exp(1j * (th - centre)))
-    o = np.argsort(rel)
-    line, = ax[1].plot(deg(rel[o]), mm(prof[o]), ls, label=f"{name.replace('_', ' ')} (centre {deg(centre):.0f}°)")
+    c = F.centred_profile(lw)
+    line, = ax[1].plot(deg(c["rel"]), mm(c["profile"]), ls, label=f"{name.replace('_', ' ')} (centre {deg(c['centre']):.0f}°)")
     ax[1].axhline(mm(float(lw["uniform_depth"][-1])), ls=ls, color="gray", lw=0.8)
-    pts = np.angle(np.exp(1j * (lw["local_point_angle"].values - centre)))
-    ax[1].plot(deg(pts), mm(np.interp(pts, rel[o], prof[o])), "o", color=line.get_color(), mfc="none", ms=5,
+    ax[1].plot(deg(c["points"]), mm(c["at_points"]), "o", color=line.get_color(), mfc="none", ms=5,
                label=f"{name.replace('_', ' ')}: the 8 measuring points (Eq. 33)")
 ax[1].set_ylim(top=1.8 * ax[1].get_ylim()[1])                 # the legend above the profiles
 ax[1].set(xlabel="bushing angle θ from the worn region's centre [deg] (coupler frame)", ylabel="wear depth at 86 h [mm]",
           title="groove profile vs uniform depth (grey)")
 ax[1].legend(fontsize=7, loc="upper left")
 R.save_figure(fig, "load_point_fit")
-for q in ("load_point_fit_solutions", "load_point_fit_upper_part", "local_vs_uniform_86h_b1",
-          "local_vs_uniform_86h_b1_estimated_f"):
-    print(q, table[q]["reproduced_value"], table[q]["note"])
+show("load_point_fit_solutions", "load_point_fit_upper_part", "local_vs_uniform_86h_b1",
+     "local_vs_uniform_86h_b1_estimated_f")
 
 # %% [markdown]
 # ## The worn groove in the contact
@@ -196,18 +190,13 @@ for q in ("load_point_fit_solutions", "load_point_fit_upper_part", "local_vs_uni
 
 # %%
 lw = R.run("local_wear_estimated")
-th = lw["theta"].values
-centre = np.angle(np.sum(lw["local_profile_end"].values * np.exp(1j * th)))
-rel = np.angle(np.exp(1j * (th - centre)))
-o = np.argsort(rel)
+c = F.centred_profile(lw)
 fig, ax = plt.subplots(1, 2, figsize=(11, 4))
 for var_, ls, lab in (("local_profile_end", "-", "groove in the contact"),
                       ("circle_profile_end", "--", "mean-circle feedback")):
-    line, = ax[0].plot(deg(rel[o]), mm(lw[var_].values[o]), ls, label=lab)
+    line, = ax[0].plot(deg(c["rel"]), mm(lw[var_].values[c["order"]]), ls, label=lab)
 ax[0].axhline(mm(float(lw["uniform_depth"][-1])), color="gray", lw=0.8, label="uniform depth (Eq. 29)")
-pts = np.angle(np.exp(1j * (lw["local_point_angle"].values - centre)))
-ax[0].plot(deg(pts), mm(np.interp(pts, rel[o], lw["local_profile_end"].values[o])), "o", mfc="none",
-           color="k", ms=5, label="measuring points (Eq. 33)")
+ax[0].plot(deg(c["points"]), mm(c["at_points"]), "o", mfc="none", color="k", ms=5, label="measuring points (Eq. 33)")
 ax[0].set(xlabel="bushing angle from the worn region's centre [deg]", ylabel="wear depth at 86 h [mm]",
           title="side B1, estimated F")
 ax[0].legend(fontsize=7, loc="upper left")
@@ -222,9 +211,8 @@ ax[1].set_xticks(x, [f"shift {a:+g}\nspan ×{b:g}" for a, b in
 ax[1].set(ylabel="local / uniform − 1 at 86 h [%]", title="placement of the 8 points on the contact arc")
 ax[1].legend(fontsize=7)
 R.save_figure(fig, "groove")
-for q in ("local_vs_uniform_86h_b1_estimated_f", "circle_vs_uniform_86h_b1_estimated_f",
-          "local_vs_uniform_placement_spread_estimated_f"):
-    print(q, table[q]["reproduced_value"], table[q]["note"])
+show("local_vs_uniform_86h_b1_estimated_f", "circle_vs_uniform_86h_b1_estimated_f",
+     "local_vs_uniform_placement_spread_estimated_f")
 
 # %% [markdown]
 # ## The load point as a distribution, and continuous contact over it (Sec. 3.2)
@@ -241,10 +229,8 @@ for q in ("local_vs_uniform_86h_b1_estimated_f", "circle_vs_uniform_86h_b1_estim
 # %%
 post = R.run("load_point_posterior")
 rows = [r for r in R.table("verdict_evidence") if r["quantity"] == "continuous_contact_margin_fitted_f"]
-pt = {k: post[f"post_point_{k}"].values for k in ("direction", "distance", "gravity", "chi2", "credible",
-                                                   "upper_share", "qs_margin")}
-up, cred = pt["upper_share"] > 0.5, pt["credible"] == 1
-dchi2 = np.clip(pt["chi2"] - np.nanmin(np.where(up, pt["chi2"], np.nan)), 0, 50)
+pt = F.posterior_points(post)
+up, cred, dchi2 = pt["up"], pt["cred"], pt["dchi2"]
 fig, ax = plt.subplots(1, 3, figsize=(16, 4.6), gridspec_kw={"width_ratios": [1.2, 1.2, 1]},
                        layout="constrained")
 norm = plt.Normalize(0, 50)
@@ -280,10 +266,9 @@ R.save_figure(fig, "contact_margin")
 post_rows = F.posterior_table(post)
 R.write_table("load_point_posterior", list(post_rows[0]), [list(r.values()) for r in post_rows])
 print(table["continuous_contact_margin_fitted_f"]["status"], table["continuous_contact_margin_fitted_f"]["note"])
-for q in ("load_point_posterior_g_credible_min", "load_point_posterior_arc_deg_median",
-          "load_point_posterior_k_archard_b1_median", "load_point_posterior_wear_86h_b1_median",
-          "load_point_posterior_wear_86h_b2_median"):
-    print(q, table[q]["reproduced_value"], table[q]["note"])
+show("load_point_posterior_g_credible_min", "load_point_posterior_arc_deg_median",
+     "load_point_posterior_k_archard_b1_median", "load_point_posterior_wear_86h_b1_median",
+     "load_point_posterior_wear_86h_b2_median")
 for r in rows:
     print(f"{r['variant']:28s} {float(r['value']):.4g} {r['status']:6s} {r['label']}")
 
@@ -305,9 +290,8 @@ for side, col in (("B1", "tab:blue"), ("B2", "tab:orange")):
     ax.plot(hours, mm(h), "s", color=col, mfc="none", label=f"{side} measured (Tables 3-4)")
 ax.plot(wdyn["hour"], mm(wdyn["wear_predicted"].sel(side="B1")), "x--", color="k",
         label=f"B1 stiff dynamic joint with wear feedback, {dyn_interval:g} h")
-up = fit["fit_sol_upper_share"].values > 0.5
 for side, col in (("B1", "tab:blue"), ("B2", "tab:orange")):   # band of the estimated load points
-    w86 = mm(fit["fit_sol_wear_86h"].sel(side=side).values[up])
+    w86 = mm(np.array(F.fit_band(fit, side)))
     ax.errorbar([86.0], [0.5 * (w86.max() + w86.min())], yerr=[[0.5 * (w86.max() - w86.min())]],
                 color=col, capsize=4, lw=2, label=f"{side} 86 h, load points estimated from Tables 3-4")
 ax.axvline(float(wp["hour"][0]), color="gray", lw=0.6)

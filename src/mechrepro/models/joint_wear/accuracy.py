@@ -35,25 +35,19 @@ def against_dynamic_reference(st, variable: str) -> np.ndarray:
     return err
 
 
-
-def _dynamic(ds) -> bool:
-    return "method" in ds
-
-
-@ACCURACY.register("wear_per_period")
-def wear_per_period(ds, entry):
-    """Wear per period, proportional to the wear factor G of Eq. (29)."""
-    if _dynamic(ds):
-        return against_dynamic_reference(ds, "wear_factor")
-    return against_finest(ds["wear_factor"].values, ds[entry["knob"]].values, entry["finer"])
+def _per_period(variable: str):
+    """The error of ``variable`` over one period: in the dynamic study against the finest
+    Radau run, in the quasi-static one against the finest sampling."""
+    def error(ds, entry):
+        if "method" in ds:
+            return against_dynamic_reference(ds, variable)
+        return against_finest(ds[variable].values, ds[entry["knob"]].values, entry["finer"])
+    return error
 
 
-@ACCURACY.register("mean_force")
-def mean_force(ds, entry):
-    """Mean joint force over the period, Eq. (22)."""
-    if _dynamic(ds):
-        return against_dynamic_reference(ds, "F_N_mean")
-    return against_finest(ds["F_N_mean"].values, ds[entry["knob"]].values, entry["finer"])
+#: the wear per period (proportional to the wear factor G of Eq. 29), the mean joint force (Eq. 22)
+ACCURACY.register("wear_per_period")(_per_period("wear_factor"))
+ACCURACY.register("mean_force")(_per_period("F_N_mean"))
 
 
 @ACCURACY.register("wear_86h")

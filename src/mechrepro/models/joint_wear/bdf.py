@@ -2,10 +2,8 @@
 scipy's algorithm, one numba call per run, with the outputs of :func:`.radau.radau`.
 
 Why it is compiled: BDF is one of the stiff integrators the cost-of-accuracy study compares
-(default profile), beside a compiled Radau.  scipy's ``BDF`` spends ~0.4 ms of Python per
-step around a few us of arithmetic even with the compiled right-hand side and Jacobian of
-:mod:`.clearance`, so its time per period measured scipy's stepping, not the method (one
-period at rtol 1e-6: 5.6 s against 0.022 s compiled, ``benchmarks/bench_joint_wear.py``).
+beside the compiled Radau; stepped by scipy its time per period would measure scipy's
+per-step Python, not the method.
 
 The code is scipy 1.17's ``BDF`` (``scipy/integrate/_ivp/bdf.py``, the initial step of
 ``common.py``): the predictor from the modified divided differences D, the simplified Newton
@@ -258,8 +256,6 @@ def bdf(p, t0, y0, t_bound, t_eval, rtol, atol, max_steps):
         j = np.searchsorted(t_eval, t, side="right")
         while kk < j:
             te = t_eval[kk]
-            for r in range(n):
-                Yout[kk, r] = D[0, r]
             pw = 1.0
             acc = np.zeros(n)
             for i in range(order_s):

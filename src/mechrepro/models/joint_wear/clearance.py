@@ -14,7 +14,7 @@ Eq. (14) is never evaluated.
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from collections import namedtuple
 
 import numpy as np
 
@@ -24,33 +24,9 @@ from . import loads
 from .geometry import FourBar
 
 
-class Params(NamedTuple):
-    """The constants of one configuration (SI), by name, for the compiled and the Python
-    path alike."""
-    l1: float
-    l2: float
-    l3: float
-    l0: float
-    omega: float
-    P: float
-    Fx: float
-    Fy: float
-    g: float
-    m2: float
-    m3: float
-    R_pin: float
-    R_bush: float
-    K: float
-    n_exp: float
-    d_max: float
-    C_max: float
-    mu: float
-    v_eps: float
-    clearance: float
-    M11: float
-    M22: float
-    am: float
-    damping: float
+#: the constants of one configuration (SI), by name, for the compiled and the Python path alike
+Params = namedtuple("Params", "l1 l2 l3 l0 omega P Fx Fy g m2 m3 R_pin R_bush K n_exp d_max C_max "
+                              "mu v_eps clearance M11 M22 am damping")
 
 
 def params(fb: FourBar, damping: bool) -> Params:
@@ -63,8 +39,8 @@ def params(fb: FourBar, damping: bool) -> Params:
 
 def flat(p: Params) -> np.ndarray:
     """``p`` as a float array, the form scipy's callbacks (:func:`rhs`, :func:`jac`) are
-    given: numba types an array argument in ~1 us but a 24-field record in ~20-30 us,
-    on every one of the ~10^5 callbacks of a scipy period (2-3x the call itself)."""
+    given: numba types an array argument far faster than a 24-field record, on every
+    callback of a scipy period."""
     return np.array(p, dtype=float)
 
 

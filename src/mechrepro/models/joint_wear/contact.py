@@ -10,11 +10,6 @@ from __future__ import annotations
 import numpy as np
 
 
-def penetration(e_norm, clearance):
-    """Eq. (8): delta = e - c (negative: free flight)."""
-    return e_norm - clearance
-
-
 def damping_K2(delta, d_max, C_max):
     """Eq. (14): step damping K''(delta) rising smoothly from 0 to C_max at d_max."""
     x = np.clip(np.asarray(delta, float) / d_max, 0.0, 1.0)
@@ -38,20 +33,6 @@ def normal_force(delta, delta_dot, K, n_exp, d_max, C_max, damping=True):
 def friction_sign(v_T, v_eps):
     """Regularised sign of Eq. (15): v/|v| -> v / sqrt(v^2 + v_eps^2) (smooth at v = 0)."""
     return v_T / np.sqrt(v_T * v_T + v_eps * v_eps)
-
-
-def friction_force(F_N, v_T, mu, v_eps):
-    """Eq. (15), regularised: the tangential force on the bushing, +mu F_N sgn(v_T).
-
-    v_T is the pin's contact point relative to the bushing's (Eq. 10); the friction
-    force drags the bushing along with the pin.
-    """
-    return mu * F_N * friction_sign(v_T, v_eps)
-
-
-def static_penetration(F_N, K, n_exp):
-    """Eq. (11) with delta_dot = 0, inverted: the penetration that carries F_N."""
-    return (np.maximum(np.asarray(F_N, float), 0.0) / K) ** (1.0 / n_exp)
 
 
 def half_contact_angle(delta, R_pin, R_bush):

@@ -13,26 +13,40 @@ from mechrepro.units import var
 
 from . import wear
 
-SIDE = ("side", "1", "side of the bushing (Fig. 10)")
 
 
 def _scalars(items: dict) -> dict:
+    """{name: (value, unit, long_name)} -> scalar variables."""
     return {k: var((), float(v), u, ln) for k, (v, u, ln) in items.items()}
+
+
+def _series(dims, get, spec: dict) -> dict:
+    """{name: (key, unit, long_name)} -> variables over ``dims`` with the values get(key)."""
+    return {k: var(dims, get(key), u, ln) for k, (key, u, ln) in spec.items()}
+
+
+def _column(rows: list):
+    """get(key) of _series over a list of dicts: one float column."""
+    return lambda key: np.array([r[key] for r in rows], float)
+
+
+def _sides(sides=("B1", "B2")) -> dict:
+    return {"side": var("side", np.array(sides, dtype=object), "1", "side of the bushing (Fig. 10)")}
 
 
 def period_part(res: dict, run: dict):
     """The contact history of the simulated period and its wear factor (Eqs. 18-29)."""
     h, f = res["hist"], res["factor"]
     coords = {"t": var("t", np.asarray(h["t"]), "s", "time within the crank period")}
-    v = {
-        "F_N": var("t", h["F_N"], "N", "normal contact force at joint B, Eq. (11)"),
-        "F_T": var("t", h["F_T"], "N", "friction force at joint B, Eq. (15)"),
-        "penetration": var("t", h["delta"], "m", "penetration depth delta, Eq. (8)"),
-        "sliding_velocity": var("t", h["v_T"], "m/s", "tangential relative velocity v_T, Eq. (10)"),
-        "contact_angle": var("t", h["psi"], "rad", "contact point on the bushing, angle in the coupler frame from C->B"),
-        "theta3": var("t", h["theta3"], "rad", "follower angle"),
-        "phi2": var("t", h["phi2"], "rad", "coupler angle C->B"),
-    }
+    v = _series("t", h.__getitem__, {
+        "F_N": ("F_N", "N", "normal contact force at joint B, Eq. (11)"),
+        "F_T": ("F_T", "N", "friction force at joint B, Eq. (15)"),
+        "penetration": ("delta", "m", "penetration depth delta, Eq. (8)"),
+        "sliding_velocity": ("v_T", "m/s", "tangential relative velocity v_T, Eq. (10)"),
+        "contact_angle": ("psi", "rad", "contact point on the bushing, angle in the coupler frame from C->B"),
+        "theta3": ("theta3", "rad", "follower angle"),
+        "phi2": ("phi2", "rad", "coupler angle C->B"),
+    })
     v.update(_scalars({
         "F_N_mean": (f["F_N_mean"], "N", "mean normal contact force over the period, Eq. (22)"),
         "F_N_min": (f["F_N_min"], "N", "minimum normal contact force over the period"),
@@ -66,12 +80,12 @@ def integrator_part(res: dict, run: dict):
     h = res["hist"]
     full = h["full"]
     coords = {"t_full": var("t_full", full["t"], "s", "time since start of the simulation")}
-    v = {
-        "penetration_full": var("t_full", full["delta"], "m", "penetration depth over the whole simulation"),
-        "F_N_full": var("t_full", full["F_N"], "N", "normal contact force over the whole simulation"),
-        "contact_angle_full": var("t_full", full["psi"], "rad", "contact angle over the whole simulation"),
-        "sliding_velocity_full": var("t_full", full["v_T"], "m/s", "sliding velocity over the whole simulation"),
-    }
+    v = _series("t_full", full.__getitem__, {
+        "penetration_full": ("delta", "m", "penetration depth over the whole simulation"),
+        "F_N_full": ("F_N", "N", "normal contact force over the whole simulation"),
+        "contact_angle_full": ("psi", "rad", "contact angle over the whole simulation"),
+        "sliding_velocity_full": ("v_T", "m/s", "sliding velocity over the whole simulation"),
+    })
     v.update(_scalars({
         "nfev": (h["nfev"], "1", "right-hand-side evaluations of the integrator"),
         "steps": (h["steps"], "1", "integrator steps taken"),
@@ -88,8 +102,7 @@ def calibration_part(res: dict, run: dict):
     k, k_mean, G = np.array(w["k"]), np.array(w["k_mean"]), np.array(w["G_cal"])
     M_cal = wear.periods_per_interval(float(p["measurement_interval"]) / 3600.0, res["fb"].period)
     sc = ("side", "cal_hour")
-    coords = {"side": var("side", np.array(w["sides"], dtype=object), *SIDE[1:]),
-              "cal_hour": var("cal_hour", w["cal_hours"], "h", "end of calibration interval P1..P5")}
+    coords = {**_sides(w["sides"]), "cal_hour": var("cal_hour", w["cal_hours"], "h", "end of calibration interval P1..P5")}
     v = {
         "k_calibrated": var(sc, k, "m2/N", "dimensional wear coefficient k = K/H per interval, Eqs. (32)-(34)"),
         "K_table": var(sc, wear.table_from_k(k, H), "1/Pa", "equivalent wear coefficient K = k H_number as Tables 3-4 print it"),
@@ -152,8 +165,7 @@ def scan_part(res: dict, run: dict):
     sc = res["scan"]
     H = float(run["parameters"]["hardness_bushing"])
     gd = ("scan_gravity", "scan_direction")
-    coords = {"side": var("side", np.array(sc["sides"], dtype=object), *SIDE[1:]),
-              "scan_gravity": var("scan_gravity", sc["gravity"], "m/s2", "gravity component in the plane of motion"),
+    coords = {**_sides(sc["sides"]), "scan_gravity": var("scan_gravity", sc["gravity"], "m/s2", "gravity component in the plane of motion"),
               "scan_direction": var("scan_direction", sc["directions"], "deg", "direction of the load point F from E's mid-stroke position")}
     v = {
         "scan_K_table_mean": var(("side", *gd), wear.table_from_k(sc["k"], H), "1/Pa", "mean equivalent wear coefficient (table units) calibrated with this load point and gravity"),
@@ -174,26 +186,42 @@ def fit_part(res: dict, run: dict):
               "fit_direction": var("fit_direction", f["directions"], "deg", "direction of F from E's mid-stroke position"),
               "fit_solution": var("fit_solution", np.arange(len(sols)), "1", "load point reproducing Tables 3-4"),
               "fit_band": var("fit_band", np.array([-1.0, 0.0, 1.0]), "1", "estimate - its uncertainty, the estimate, + its uncertainty"),
-              "side": var("side", np.array(["B1", "B2"], dtype=object), *SIDE[1:])}
-
-    def col(key):
-        return np.array([x[key] for x in sols], float)
-    sv = ("fit_solution",)
+              **_sides()}
     v = {"fit_misfit": var(gd, f["misfit"], "1", "mean ln(K_p ours / K_p paper) over both sides and five intervals, every interval at the new bushing's wear factor (within 0.01 of the misfit; it places the zeros, the misfit refines them; NaN: contact lost)"),
          "fit_load_distance": var((), float(f["distance"]), "m", "distance of F from E's mid-stroke position"),
-         "fit_sol_gravity": var(sv, col("gravity"), "m/s2", "gravity plane of the estimate"),
-         "fit_sol_direction": var(sv, col("direction"), "deg", "estimated direction of F"),
-         "fit_sol_sigma": var(sv, col("sigma_deg"), "deg", "its uncertainty from the tables (standard error of the ten log-ratios through the local slope)"),
-         "fit_sol_misfit": var(sv, col("misfit"), "1", "misfit left at the estimate"),
-         "fit_sol_arc": var(sv, col("arc_deg"), "deg", "contact arc on the bushing at the estimate (new bushing)"),
-         "fit_sol_F_N_mean": var(sv, col("F_N_mean"), "N", "mean joint force at the estimate"),
-         "fit_sol_F_N_min": var(sv, col("F_N_min"), "N", "minimum joint force at the estimate"),
-         "fit_sol_wear_direction": var(sv, col("wear_direction_deg"), "deg", "wear-weighted mean direction of the contact point (lab frame, from +x)"),
-         "fit_sol_upper_share": var(sv, col("upper_share"), "1", "share of the wear above the bushing centre (Sec. 4.2: the upper part)"),
+         **_series("fit_solution", _column(sols), {
+             "fit_sol_gravity": ("gravity", "m/s2", "gravity plane of the estimate"),
+             "fit_sol_direction": ("direction", "deg", "estimated direction of F"),
+             "fit_sol_sigma": ("sigma_deg", "deg", "its uncertainty from the tables (standard error of the ten log-ratios through the local slope)"),
+             "fit_sol_misfit": ("misfit", "1", "misfit left at the estimate"),
+             "fit_sol_arc": ("arc_deg", "deg", "contact arc on the bushing at the estimate (new bushing)"),
+             "fit_sol_F_N_mean": ("F_N_mean", "N", "mean joint force at the estimate"),
+             "fit_sol_F_N_min": ("F_N_min", "N", "minimum joint force at the estimate"),
+             "fit_sol_wear_direction": ("wear_direction_deg", "deg", "wear-weighted mean direction of the contact point (lab frame, from +x)"),
+             "fit_sol_upper_share": ("upper_share", "1", "share of the wear above the bushing centre (Sec. 4.2: the upper part)")}),
          "fit_sol_wear_86h": var(("fit_solution", "fit_band", "side"),
                                  np.array([x["wear_86h"] for x in sols], float).reshape(len(sols), 3, 2),
                                  "m", "wear at 86 h predicted with the estimate (and +- its uncertainty)")}
     return coords, v
+
+
+#: the columns of every point of the load-point distribution: name -> (key, unit, long_name)
+_POST_POINT = {
+    "post_point_distance": ("distance", "m", "F's distance from E"),
+    "post_point_gravity": ("gravity", "m/s2", "gravity in the plane of motion"),
+    "post_point_friction": ("friction", "1", "friction coefficient"),
+    "post_point_direction": ("direction", "deg", "F's direction from E (a zero of the mean misfit)"),
+    "post_point_misfit": ("misfit", "1", "mean misfit left at the zero"),
+    "post_point_chi2": ("chi2", "1", "chi2 of the ten log-ratios about their best common level, rounding noise of the printed increments"),
+    "post_point_width": ("width", "deg", "sd of F's direction the tables allow about the zero"),
+    "post_point_log_likelihood": ("log_lik", "1", "log of the likelihood integrated over the direction [log deg]"),
+    "post_point_credible": ("credible", "1", "1 inside the credible set"),
+    "post_point_upper_share": ("upper_share", "1", "share of the wear above the bushing centre (Sec. 4.2)"),
+    "post_point_qs_margin": ("qs_margin", "1", "quasi-static contact margin min F_N / max F_N"),
+    "post_point_F_N_min": ("F_N_min", "N", "smallest joint force over the quasi-static period"),
+    "post_point_arc": ("arc_deg", "deg", "contact arc on the new bushing (Fig. 13's psi)"),
+    "post_point_wear_factor": ("G", "N/m", "wear factor of the new bushing, Eq. (29)"),
+}
 
 
 def posterior_part(res: dict, run: dict):
@@ -202,15 +230,10 @@ def posterior_part(res: dict, run: dict):
     its posterior weight, whether it is credible and what the mechanics give there.  A run
     without a point keeps one row of NaN (netCDF-3 has no empty dimension)."""
     f = res["posterior"]
-    keys = ("distance", "gravity", "friction", "direction", "misfit", "chi2", "width",
-            "log_lik", "qs_margin", "F_N_min", "arc_deg", "G", "K_b1", "K_b2",
-            "upper_share", "wear_direction_deg", "credible")
+    keys = [k for k, _, _ in _POST_POINT.values()] + ["K_b1", "K_b2"]
     pts = f["points"] or [dict.fromkeys(keys, math.nan) | {"wear_86h": [math.nan] * 2, "arc_ends_deg": [math.nan] * 2}]
     w = np.asarray(f["weight"], float) if f["points"] else np.array([math.nan])
-    sv = ("post_point",)
-
-    def col(key):
-        return np.array([q[key] for q in pts], float)
+    col = _column(pts)
     H = float(run["parameters"]["hardness_bushing"])
     grid = ("post_distance", "post_gravity", "post_friction", "post_direction")
     dyn = f["worst_margins"] or {}
@@ -222,25 +245,12 @@ def posterior_part(res: dict, run: dict):
               "post_friction": var("post_friction", f["friction"], "1", "prior node: friction coefficient"),
               "post_direction": var("post_direction", f["directions"], "deg", "direction of F from E's mid-stroke position"),
               "post_point": var("post_point", np.arange(len(pts)), "1", "load point reproducing the mean of Tables 3-4 at a prior node"),
-              "side": var("side", np.array(["B1", "B2"], dtype=object), *SIDE[1:])}
+              **_sides()}
     v = {"post_misfit": var(grid, f["misfit"], "1", "mean ln(K_p ours / K_p paper), every interval at the new bushing's wear factor (NaN: contact lost)"),
-         "post_point_distance": var(sv, col("distance"), "m", "F's distance from E"),
-         "post_point_gravity": var(sv, col("gravity"), "m/s2", "gravity in the plane of motion"),
-         "post_point_friction": var(sv, col("friction"), "1", "friction coefficient"),
-         "post_point_direction": var(sv, col("direction"), "deg", "F's direction from E (a zero of the mean misfit)"),
-         "post_point_misfit": var(sv, col("misfit"), "1", "mean misfit left at the zero"),
-         "post_point_chi2": var(sv, col("chi2"), "1", "chi2 of the ten log-ratios about their best common level, rounding noise of the printed increments"),
-         "post_point_width": var(sv, col("width"), "deg", "sd of F's direction the tables allow about the zero"),
-         "post_point_log_likelihood": var(sv, col("log_lik"), "1", "log of the likelihood integrated over the direction [log deg]"),
-         "post_point_weight": var(sv, w, "1", "posterior mass (0: the wear is not on the upper part of the bushing)"),
-         "post_point_credible": var(sv, col("credible"), "1", "1 inside the credible set"),
-         "post_point_upper_share": var(sv, col("upper_share"), "1", "share of the wear above the bushing centre (Sec. 4.2)"),
-         "post_point_qs_margin": var(sv, col("qs_margin"), "1", "quasi-static contact margin min F_N / max F_N"),
-         "post_point_F_N_min": var(sv, col("F_N_min"), "N", "smallest joint force over the quasi-static period"),
-         "post_point_arc": var(sv, col("arc_deg"), "deg", "contact arc on the new bushing (Fig. 13's psi)"),
+         **_series("post_point", col, _POST_POINT),
+         "post_point_weight": var("post_point", w, "1", "posterior mass (0: the wear is not on the upper part of the bushing)"),
          "post_point_arc_ends": var(("post_point", "arc_end"), np.array([q["arc_ends_deg"] for q in pts], float).reshape(len(pts), 2), "deg",
                                     "ends of the contact-point arc on the new bushing (coupler frame, on the path unwrapped from its first sample)"),
-         "post_point_wear_factor": var(sv, col("G"), "N/m", "wear factor of the new bushing, Eq. (29)"),
          "post_point_K_table": var(("post_point", "side"), wear.table_from_k(np.c_[col("K_b1"), col("K_b2")], H), "1/Pa", "mean calibrated coefficient (table units)"),
          "post_point_wear_86h": var(("post_point", "side"), np.array([q["wear_86h"] for q in pts], float), "m", "86-h wear (NaN outside the credible set)"),
          **_scalars({"post_margin_min": (f["margin"], "1", "smallest contact margin over the credible set (dynamic at its worst quasi-static point; NaN: no credible point)"),
@@ -262,16 +272,14 @@ def sensitivity_part(res: dict, run: dict):
     rows = res["sens"]
     c = ("sens_case",)
     coords = {"sens_case": var("sens_case", np.arange(len(rows)), "1", "constant at a range end (0: all assumed values)")}
-
-    def col(key):
-        return np.array([r[key] for r in rows], float)
+    col = _column(rows)
     v = {"sens_parameter": var(c, np.array([r["parameter"] for r in rows], dtype=object), "1", "the constant moved"),
-         "sens_value": var(c, col("value"), "1", "its value (SI)"),
          "sens_K_table_mean": var(c, wear.table_from_k(col("K_mean"), float(run["parameters"]["hardness_bushing"])), "1/Pa", "mean coefficient of side B1 (table units)"),
-         "sens_wear_86h": var(c, col("wear_86h"), "m", "wear of B1 at 86 h"),
-         "sens_arc": var(c, col("arc_deg"), "deg", "contact arc (quasi-static, new bushing)"),
-         "sens_qs_vs_dynamic": var(c, col("qs_vs_dynamic"), "1", "quasi-static / settled dynamic wear per period - 1"),
-         "sens_dynamic_steps": var(c, col("dynamic_steps"), "1", "Radau steps of the settled dynamic period")}
+         **_series(c, col, {"sens_value": ("value", "1", "its value (SI)"),
+                            "sens_wear_86h": ("wear_86h", "m", "wear of B1 at 86 h"),
+                            "sens_arc": ("arc_deg", "deg", "contact arc (quasi-static, new bushing)"),
+                            "sens_qs_vs_dynamic": ("qs_vs_dynamic", "1", "quasi-static / settled dynamic wear per period - 1"),
+                            "sens_dynamic_steps": ("dynamic_steps", "1", "Radau steps of the settled dynamic period")})}
     return coords, v
 
 

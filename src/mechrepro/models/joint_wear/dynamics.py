@@ -1,11 +1,9 @@
 """Dynamic clearance joint B: stiff Lankarani-Nikravesh contact integrated implicitly.
 
 The right-hand side and its analytic contact Jacobian are :mod:`.clearance` (written once,
-compiled with numba where installed).  The integrators are scipy's (``Radau``, ``BDF``,
-``LSODA``, ``RK45``); Radau, the default and the pipeline's workhorse, BDF and RK45, the
-cost-of-accuracy study's other stiff and explicit methods, run in compiled copies of scipy's
-algorithms (:mod:`.radau`, :mod:`.bdf`, :mod:`.rk45`) when numba is installed (47x, ~250x
-and 46x faster per period, the same steps to round-off); LSODA is scipy's.
+compiled with numba where installed).  The integrators are scipy's algorithms: Radau (the
+default), BDF and RK45 in compiled copies (:mod:`.radau`, :mod:`.bdf`, :mod:`.rk45`: the
+same steps to round-off, without scipy's per-step Python), the others scipy's own.
 """
 from __future__ import annotations
 
@@ -23,13 +21,10 @@ def initial_state(fb: FourBar, start: str = "concentric", t0: float = 0.0):
     """Initial state at t0.
 
     ``concentric``: the pin centred in the bushing, ideal-mechanism velocities (Sec. 4.1):
-    the first impact excites the clearance's lightly damped "pendulum" mode (the pin
-    rocking on the bushing, omega ~ sqrt(F_N / (c m)) ~ 1e3 rad/s) which friction barely
-    damps once it saturates -- slow to integrate, and its amplitude is then set by the
-    integrator's numerical damping.  ``equilibrium`` (the settled start): positions and
-    rates of the quasi-static continuous-contact solution with clearance kinematics
-    (quasistatic.py), the state the dynamic joint settles on; it leaves the rocking mode
-    unexcited to ~1e-4 deg, so a steady period is integrated from its first step.
+    the first impact excites the clearance's lightly damped rocking mode (~1e3 rad/s).
+    ``equilibrium`` (the settled start): positions and rates of the quasi-static
+    continuous-contact solution with clearance kinematics (quasistatic.py), the state the
+    dynamic joint settles on: a steady period is integrated from its first step.
     """
     from . import kinematics, quasistatic
 
@@ -53,21 +48,18 @@ TOO_SMALL_STEP = "Required step size is less than spacing between numbers."
 
 def simulate(fb: FourBar, t_end: float, n_out: int, method: str = "Radau",
              rtol: float = 1e-5, damping: bool = True, start: str = "concentric",
-             atol_scale: float = 1e-2, max_steps: int | None = None,
+             max_steps: int | None = None,
              t_start: float = 0.0, kernel: str = "auto") -> dict:
     """Integrate the clearance joint over [t_start, t_end], sample n_out uniform points.
 
-    atol on angles is rtol * atol_scale [rad] (on rates 10x that): the clearance is
+    atol on angles is rtol / 100 [rad] (on rates 10x that): the clearance is
     ~3e-4 of the link lengths, so an angle tolerance of rtol alone would let the
-    penetration (~1 um) drown in the error.  A *step budget* ``max_steps`` can stop an
-    integrator that cannot finish -- an explicit one on the stiff contact -- and still
-    report how far it got.  A step budget, never a wall-clock one: where the integration
-    stops must not depend on the machine's load.
+    penetration (~1 um) drown in the error.  A step budget ``max_steps`` (never a wall-clock
+    one: where the integration stops must not depend on the machine's load) can stop an
+    integrator that cannot finish and still report how far it got.
     status: 0 finished, -1 integrator failure, -2 step budget spent.
-
-    ``kernel``: ``"auto"`` runs the methods of :data:`COMPILED` in their compiled copies
-    when numba is installed; ``"scipy"`` (and every other method, and
-    everything without numba) steps scipy's solver.  The two paths agree to round-off.
+    ``kernel``: ``"auto"`` runs the methods of :data:`COMPILED` compiled where numba is
+    installed; ``"scipy"`` steps scipy's solver (the two agree to round-off).
     """
     if method not in METHODS:
         raise Refusal(f"joint_wear: method {method!r}: allowed {', '.join(METHODS)}")
@@ -75,7 +67,7 @@ def simulate(fb: FourBar, t_end: float, n_out: int, method: str = "Radau",
         raise Refusal(f"joint_wear: kernel {kernel!r}: allowed auto, scipy")
     p = clearance.params(fb, damping)
     y0 = initial_state(fb, start, t_start)
-    atol = np.array([1.0, 1.0, 10.0, 10.0]) * rtol * atol_scale
+    atol = np.array([1.0, 1.0, 10.0, 10.0]) * rtol * 1e-2
     t_eval = np.linspace(t_start, t_end, n_out)
     if method in COMPILED and kernel == "auto" and clearance.available():
         out = _compiled(method, p, y0, t_eval, rtol, atol, max_steps)
@@ -156,12 +148,10 @@ _WARM: set = set()     # what warm() has loaded in this process: "physics" and m
 
 def warm(methods=COMPILED) -> None:
     """Load (or, on a fresh clone, compile) the compiled kernels once per process, with the
-    argument types the solvers use, so that a period's measured time is the period's and
-    not numba's one-time start (~1 s per process): the physics, the quasi-static stages,
-    Radau (every dynamic joint's default: constant_sensitivity steps it whatever the scene
-    names) and the other integrators of ``methods`` that are compiled (COMPILED).  An
-    integrator no run of the process steps is not compiled: on a fresh machine BDF alone
-    takes ~9 s to compile, RK45 ~5 s.  Changes no result."""
+    argument types the solvers use, so that a period's measured time is not numba's
+    one-time start: the physics, the quasi-static stages, Radau (constant_sensitivity steps
+    it whatever the scene names) and the other COMPILED integrators of ``methods`` (one no
+    run steps is not compiled).  Changes no result."""
     if not clearance.available():
         return
     todo = [m for m in COMPILED if m in {"Radau", *methods} and m not in _WARM]
@@ -186,7 +176,6 @@ def warm(methods=COMPILED) -> None:
     b = q.setup(a, a, a, a, a, a, 1.0, 1.0, 0.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 2.0, 0.0, 0.0)
     F_N, ang, delta = q.force(*b, a, a, 0.0, 1.0, 1.5)
     q.friction(F_N, delta, a, 0.0, a, 1.0, 1.0, 0.0, 1.0)
-    q.direction(ang)
     q.contact_angle(ang, a)
     q.steps(np.zeros((2, 2)))
     _WARM.add("physics")

@@ -1,17 +1,6 @@
-"""The effects of joint_wear: pure functions of the solver's context, declared in
-``config/papers/joint_wear.yaml`` (``effects:``) and read by the solvers by key.
-
-Three kinds, evaluated in this order by the solvers (solver.py):
-
-mechanism terms (the bare mechanism of ``geometry.from_parameters`` has none of them)
-  ``gravity``          ``gravity``          in-plane gravity g [m/s2]
-  ``friction``         ``friction_coefficient``  mu of Eq. (15)
-  ``contact_damping``  ``damping_ceiling``  C_max of Eq. (14) [N s/m] (dynamic joint only)
-wear set-up
-  ``unbalanced_load``  ``sides``            the bushing sides calibrated and predicted
-  ``wear_update``      ``worn_bushing``     the bushing circle R(R0, h) between intervals
-wear
-  ``archard_wear``     ``wear``             calibration (Eqs. 32-34) + interval prediction
+"""The effects of joint_wear: pure functions of the solver's context, declared (with what
+each contributes) under ``effects:`` in ``config/papers/joint_wear.yaml`` and read by the
+solvers by key, in three stages: mechanism terms, wear set-up, wear (solver.py).
 
 An effect that a scene does not name is never called; the solver then uses the term's
 neutral value (0, no second side, a frozen bushing, no wear prediction).
@@ -34,17 +23,15 @@ EFFECTS = EffectRegistry("joint_wear")
 
 @dataclass
 class Context:
-    """What the effects read: the run's SI parameters and settings, the bare mechanism,
-    and (for the wear effects) the solver's joint model over one period."""
+    """What the effects read: the run's SI parameters and settings, the mechanism, and (for
+    the wear effects) G(R_bush), the wear factor of one period of the solver's joint model
+    with the bushing at radius R_bush (solver.period_factor, or a rival's closed form)."""
     p: dict
     s: dict
     fb: FourBar
-    one_period: Callable[[FourBar], dict] | None = None
+    wear_factor: Callable[[float], float] | None = None
     sides: list = field(default_factory=lambda: ["B1"])
     worn_bushing: Callable[[float, float], float] | None = None
-    #: G(R_bush) in place of the joint model's wear factor (a rival without mechanics:
-    #: solver.closed_form_factor); None: one period of ``one_period`` per radius
-    wear_factor: Callable[[float], float] | None = None
 
 
 # --- mechanism terms ----------------------------------------------------------------------
@@ -87,37 +74,19 @@ def archard_wear(ctx: Context) -> dict:
     """Archard wear of the bushing (Eqs. 16-31): k calibrated on the first 10 h of each
     side (Eqs. 32-34), then predicted to t_end by the interval method (Sec. 3.3, 4.4),
     one period of the solver's joint model per interval."""
-    fb, p, s = ctx.fb, ctx.p, ctx.s
-    R0 = fb.R_bush
-    wear_range = s.get("wear_range", "contact_point")
-
-    def factor(R_bush):
-        if ctx.wear_factor is not None:
-            return ctx.wear_factor(R_bush)
-        fb_w = fb.with_bushing_radius(R_bush)
-        return wear.period_wear_factor(ctx.one_period(fb_w), fb_w, fb.period, wear_range,
-                                       statistics=False)["G"]
-
-    cal_h = float(p["measurement_interval"]) / 3600.0
+    fb, p, s, factor = ctx.fb, ctx.p, ctx.s, ctx.wear_factor
     out = {"sides": [], "k": [], "k_mean": [], "G_cal": [], "nodes": [], "h": [], "G_pred": []}
     with phase("joint_wear.archard_wear") as sw:
         for side in ctx.sides:
-            h_meas = np.asarray(p[f"measured_wear_{side}"], float)
-            k, k_mean, G = wear.calibrate(h_meas, cal_h, fb.period, R0, factor,
-                                          dh_measured=p[f"measured_increment_{side}"],
-                                          feedback=float(p["calibration_wear_feedback"]))
-            t_start = cal_h * h_meas.size
-            nodes, h, Gp = wear.predict(h_meas[-1], t_start, float(p["prediction_end"]) / 3600.0,
-                                        float(s["interval_h"]), k_mean, fb.period, R0, factor,
-                                        worn_bushing=ctx.worn_bushing)
-            for key, val in (("sides", side), ("k", k), ("k_mean", k_mean), ("G_cal", G),
-                             ("nodes", nodes), ("h", h), ("G_pred", Gp)):
+            k, k_mean, G = wear.calibrate_side(p, side, fb.period, fb.R_bush, factor)
+            nodes, h, Gp = wear.predict_side(p, side, float(s["interval_h"]), k_mean, fb.period,
+                                             fb.R_bush, factor, ctx.worn_bushing)
+            for key, val in zip(out, (side, k, k_mean, G, nodes, h, Gp)):
                 out[key].append(val)
-
     out["wall_time_prediction"] = sw.seconds
     if s.get("interval_limit") and ctx.worn_bushing is not None:     # not timed: a reference
-        out["limit"] = [wear.interval_limit(h[0], n[0], n[-1], km, fb.period, R0, factor,
+        out["limit"] = [wear.interval_limit(h[0], n[0], n[-1], km, fb.period, fb.R_bush, factor,
                                             ctx.worn_bushing)
                         for h, n, km in zip(out["h"], out["nodes"], out["k_mean"])]
-    out["cal_hours"] = cal_h * (1 + np.arange(len(out["k"][0])))
+    out["cal_hours"] = wear.calibration_hours(p) * (1 + np.arange(len(out["k"][0])))
     return {"wear": out}

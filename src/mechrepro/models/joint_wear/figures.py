@@ -1,4 +1,5 @@
-"""What the joint_wear notebook draws, taken from the datasets (SI in, SI out).
+"""What the joint_wear notebook draws, taken from the datasets (SI in, SI out; angles a
+dataset stores in degrees stay so).
 
 The notebook only converts to the paper's units (``mechrepro.units.from_si``) and draws.
 """
@@ -7,6 +8,7 @@ from __future__ import annotations
 import numpy as np
 
 from mechrepro.io import run_attrs
+from mechrepro.units import from_si
 
 from . import accuracy, wear
 
@@ -123,3 +125,48 @@ def posterior_table(ds) -> list[dict]:
                     "credible_min": xc.min() if xc.size else np.nan,
                     "credible_max": xc.max() if xc.size else np.nan})
     return out
+
+
+def centred_profile(lw) -> dict:
+    """The groove profile of a local_wear run drawn unbroken about its worn region's centre:
+    the angles from the centre, sorted [rad] (``rel``; ``order`` sorts any profile on the
+    grid the same way), the profile on them, the centre [rad], and the Eq.-33 measuring
+    points from the centre [rad] with the profile there."""
+    th, prof = lw["theta"].values, lw["local_profile_end"].values
+    centre = np.angle(np.sum(prof * np.exp(1j * th)))
+    rel = np.angle(np.exp(1j * (th - centre)))
+    o = np.argsort(rel)
+    pts = np.angle(np.exp(1j * (lw["local_point_angle"].values - centre)))
+    return {"rel": rel[o], "order": o, "profile": prof[o], "centre": centre, "points": pts,
+            "at_points": np.interp(pts, rel[o], prof[o])}
+
+
+def credible_arcs(post, qs) -> dict:
+    """Fig. 13's contact arcs [deg]: of every credible load point of the load-point
+    distribution (its ends, the first in [0, 360)) and of the quasi-static period ``qs`` at
+    the assumed F (from its smallest unwrapped contact angle)."""
+    cr = np.flatnonzero(post["post_point_credible"].values == 1)
+    ends = post["post_point_arc_ends"].values[cr]
+    return {"left": np.r_[np.mod(ends[:, 0], 360.0),
+                          float(np.degrees(np.min(np.unwrap(qs["contact_angle"].values)))) % 360.0],
+            "width": np.r_[ends[:, 1] - ends[:, 0], from_si(float(qs["contact_arc_angle"]), "deg")],
+            "labels": [f"g {g:.2g}, {a:.0f}°" for g, a in zip(
+                post["post_point_gravity"].values[cr], post["post_point_direction"].values[cr])] + ["assumed F"]}
+
+
+def posterior_points(post) -> dict:
+    """The points of the load-point distribution as drawn: their columns, whether their wear
+    is on the upper part (``up``) and credible (``cred``), and their chi2 above the best
+    upper-part point, clipped to [0, 50] (``dchi2``)."""
+    pt = {k: post[f"post_point_{k}"].values for k in ("direction", "distance", "gravity", "chi2", "credible",
+                                                       "upper_share", "qs_margin")}
+    up = pt["upper_share"] > 0.5
+    return {**pt, "up": up, "cred": pt["credible"] == 1,
+            "dchi2": np.clip(pt["chi2"] - np.nanmin(np.where(up, pt["chi2"], np.nan)), 0, 50)}
+
+
+def fit_band(fit, side: str):
+    """Fig. 15's band at 86 h: the 86-h wear of ``side`` [m] at the load points estimated
+    from Tables 3-4 with the wear on the upper part (their smallest and largest)."""
+    w = fit["fit_sol_wear_86h"].sel(side=side).values[fit["fit_sol_upper_share"].values > 0.5]
+    return w.min(), w.max()

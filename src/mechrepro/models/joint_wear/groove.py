@@ -128,16 +128,15 @@ def period(fb: FourBar, n_steps: int, theta, depth) -> dict:
     the groove's offset (G1-G4) in the clearance kinematics, the sliding speed of (G6) as
     ``v_T`` and the pressure over the arc, ``pressure`` (samples x theta).  fb: the bushing
     circle the depth is measured from."""
-    def offset(out, ph2):
-        e = solve_offset(out["F_N"], out["ang_n"] - ph2, theta, depth, fb)[0]
+    def to_global(e, ph2):        # the offset from the bushing (coupler) frame
         c, s = np.cos(ph2), np.sin(ph2)
         return c * e[:, 0] - s * e[:, 1], s * e[:, 0] + c * e[:, 1]
 
-    hist = quasistatic.one_period(fb, n_steps, offset=offset)
+    hist = quasistatic.one_period(fb, n_steps, offset=lambda out, ph2: to_global(
+        solve_offset(out["F_N"], out["ang_n"] - ph2, theta, depth, fb)[0], ph2))
     ph2 = hist["phi2"]
     e, _, p, _ = solve_offset(hist["F_N"], hist["psi"], theta, depth, fb)
-    c, s = np.cos(ph2), np.sin(ph2)
-    ox, oy = c * e[:, 0] - s * e[:, 1], s * e[:, 0] + c * e[:, 1]
+    ox, oy = to_global(e, ph2)
     (dox, doy), _ = quasistatic.periodic_derivatives(np.vstack([ox, oy]), fb.period,
                                                      second=False)
     ang = hist["psi"] + ph2
@@ -145,12 +144,6 @@ def period(fb: FourBar, n_steps: int, theta, depth) -> dict:
     v_T = (-dox * np.sin(ang) + doy * np.cos(ang) + fb.omega * fb.R_pin
            - hist["w2"] * (fb.R_bush + dF))                                    # (G6)
     return {**hist, "v_T": v_T, "pressure": p, "offset": e}
-
-
-def wear_per_period(hist: dict, fb: FourBar, period_s: float) -> np.ndarray:
-    """(G5): the depth [m / (m2/N)] one period wears at each angle of the grid, per unit k."""
-    dt = period_s / hist["v_T"].size
-    return np.abs(hist["v_T"]) @ hist["pressure"] * dt
 
 
 def interval_method(period_of, theta, placements, dh_measured, t_cal_h: float,
@@ -167,7 +160,7 @@ def interval_method(period_of, theta, placements, dh_measured, t_cal_h: float,
     interval_h); in between, the foundation (G1-G4) is re-solved on ``samples`` samples of
     that period at every explicit step of ``step`` local relaxation times (a groove worn
     deeper per step than the contact's compliance is bridged by the pin, which then bears on
-    its rims: the steps must resolve the foundation's relaxation).  placements: list of measuring-point angle arrays, the first the baseline.
+    its rims).  placements: measuring-point angle arrays, the first the baseline.
     Returns {tau, peak, mean (placement x step), tau_cal (per placement), profile (the
     baseline's at t_end), refreshes, steps}."""
     from .wear import at_points
@@ -218,15 +211,3 @@ def interval_method(period_of, theta, placements, dh_measured, t_cal_h: float,
     return {"tau": np.asarray(taus), "peak": np.asarray(peaks), "mean": np.asarray(means).T,
             "tau_cal": tau_cal, "profile": profile_end, "refreshes": n_refresh, "steps": steps}
 
-
-def contact_half_angle(u_row, theta):
-    """Half the angle over which u > 0 (one contact zone), the zero crossings interpolated
-    linearly between grid nodes: the contact angle of the foundation solution."""
-    on = np.flatnonzero(u_row > 0.0)
-    if on.size == 0:
-        return 0.0
-    n, dth = u_row.size, TWO_PI / u_row.size
-    lo, hi = on[0], on[-1]
-    f_lo = u_row[lo] / (u_row[lo] - u_row[(lo - 1) % n])
-    f_hi = u_row[hi] / (u_row[hi] - u_row[(hi + 1) % n])
-    return 0.5 * ((hi - lo) + f_lo + f_hi) * dth

@@ -7,38 +7,12 @@ from a scene without it is refused at load, not in validation.
 
 :func:`cost`: a run is a count of joint periods (what each solver of :mod:`.solver`
 simulates, counted from the run record) times the cost of one period at the run's
-resolution.  Measured on the 2-core VM shared with other agents (load 8-14), CPU seconds
-of ``compute(run)`` in one warm process, every run of the ci and default profiles
-(``/proc`` peak memory of fresh processes for the memory terms):
-
-- quasi-static period, ``n_steps`` samples: 3.5-4.7 ms at 360-720 (coefficient_scan,
-  load_point_fit, the wear runs), 0.27, 0.94, 3.6 s at 65 536, 262 144, 1e6 samples and
-  +340 B per sample (555 MB peak at 1e6);
-- compiled Radau, settled start: 398, 740, 1329, 2872, 9720, 17 504, 29 466, 50 915 steps
-  per period at rtol 1e-5 ... 1e-12 (~ rtol^-0.3), 9197 at 1e-4 (Newton failures in the
-  contact), ~3.1 us per step; the concentric start (impact, rattling) at 1e-7: 1.2 s;
-- scipy's integrators (per step, steps per period): LSODA 45 us, 38 204 settled at 1e-6 and
-  161 857 from the concentric start at 1e-7; BDF 0.5 ms, 13 855 at 1e-6; RK45 0.21 ms,
-  ~1.5e7 steps for a period of the stiff contact (20 000 reach 8.2 ms of 6.25 s), so a run
-  without a step budget is refused by time; their dense output ~50 us and ~400 B per
-  output sample (LSODA at 2e5 samples: 17.7 s, 300 MB), the compiled Radau's ~100 B;
-- local wear (``n_theta`` bushing angles): ~0.13 us and ~50 B per sample and bushing cell
-  its contact patch can reach (the patch, <= ~15 deg, and 2 cells either side: 35 of 720;
-  n_theta 8192 at 360 samples: 16 ms, 5.4 MB; before issue #35 every cell: 12.7 s, 340 MB);
-- a warm solver process (interpreter, numpy, scipy, numba, xarray) peaks at 220-260 MB.
-
-The times are upper readings: the default runs took 75.6 s of CPU here, 19.1 s of wall
-time on the idle machine (README).  Measured over estimated (:func:`solve_seconds`), every
-run of both profiles (105 ci, 125 default): CPU 0.81-9.3, median 0.94 (ci) and 0.98
-(default); the sums 42.7 s against 41.7 s (ci), 75.6 s against 74.6 s (default).  Above
-3 (before issue 58): the dynamic joint at the load points estimated from Tables 3-4 and
-their variants (2.5-9x the assumed point's Radau steps), and 50-52 for the former
-no-gravity rival there, whose contact rattled (110 000 steps where the assumed point
-takes 740 per period) -- nothing in a run record announces that; load_point_posterior solves
-the dynamic joint only where the quasi-static margin keeps the contact rule.  Wall time over the estimate at that load
-(wall ~2-3x CPU): 0.9-19, those two 105-265; on the idle machine ~4x less.
+resolution.  The coefficients are CPU seconds and bytes of ``compute(run)`` in one warm
+process, measured on a loaded 2-core machine (upper readings): a quasi-static period per
+sample, the compiled Radau per step (steps per period ~ rtol^-0.3), scipy's integrators
+per step and per output sample, local wear per sample and reachable bushing cell.
 :data:`SPREAD` is the band a run's measured compute wall time keeps around its estimate,
-from an idle machine to this load.
+from an idle machine to a loaded one.
 """
 from __future__ import annotations
 
@@ -53,9 +27,8 @@ PRODUCED_BY = {v: "archard_wear" for v in (
 #: load (module docstring): what the estimate promises, and what tests/test_inputs.py checks
 SPREAD = (0.1, 300.0)
 
-#: a warm solver process [MB]; a solve job's start [s]: interpreter, imports (1.2 s CPU)
-#: and the cached kernels (0.7 s) -- a fresh clone's first jobs compile them, ~23 s of CPU
-#: here (Radau 17 s), once
+#: a warm solver process [MB]; a solve job's start [s]: interpreter, imports and the
+#: cached kernels
 BASE_MB = 260.0
 JOB_START_S = 2.0
 
@@ -67,9 +40,7 @@ _SCIPY = {"LSODA": (45e-6, 38_000), "BDF": (5e-4, 14_000), "RK45": (2.1e-4, 1.5e
 _SCIPY_SAMPLE_S, _SCIPY_B = 50e-6, 400.0
 _LOCAL_CELL_S, _LOCAL_B, _GROOVE_CELL_S = 0.13e-6, 50.0, 0.65e-6
 _LOCAL_PATCH = math.radians(15.0)   # the widest contact patch of the scenes (assumed F)
-#: steps from the concentric start (impact, rattling) over a settled period's at the same
-#: rtol: compiled Radau at 1e-7 (1.2 s: ~390 000 steps against 1329), LSODA (161 857
-#: against ~76 000)
+#: steps from the concentric start (impact, rattling) over a settled period's at the same rtol
 _CONCENTRIC = {"Radau": 300.0, "scipy": 2.2}
 
 
@@ -136,8 +107,8 @@ def _solve_seconds(run: dict) -> tuple[float, float]:
     if solver == "load_point_fit":
         planes = len(opt.get("fit_gravity", []))
         grid = len(opt.get("fit_load_direction_deg", [])) * planes * 2 * n_cal
-        # each zero of the misfit (measured: 4 per gravity plane): secant steps, the
-        # estimate, its period and the 86-h wear of both sides at it and +- its uncertainty
+        # each zero of the misfit (~4 per gravity plane): secant steps, the estimate, its
+        # period and the 86-h wear of both sides at it and +- its uncertainty
         per_zero = ((int(opt.get("fit_secant_steps", 3)) + 1) * 2 * n_cal + 1
                     + 3 * _wear_periods(run, interval, 2, True))
         return _qs(n) * (grid + 4 * planes * per_zero), qs_mb
@@ -145,10 +116,9 @@ def _solve_seconds(run: dict) -> tuple[float, float]:
         nodes = (len(opt.get("posterior_distance", [])) * len(opt.get("posterior_friction", []))
                  * int(res.get("n_gravity", 1)))
         grid = len(opt.get("fit_load_direction_deg", [])) * 2 * n_cal
-        # each node: ~4 zeros, each with its secant steps (Brent's where they stall, ~20 more
-        # misfits near contact loss), a quasi-static period, and, where credible, the 86-h
-        # wear; the dynamic joint once, at the credible point of the smallest margin
-        # (measured: 9 000-62 000 Radau steps for four periods at rtol 1e-7 near the rule)
+        # each node: ~4 zeros, each with its secant steps (Brent's where they stall), a
+        # quasi-static period and, where credible, the 86-h wear; the dynamic joint once, at
+        # the credible point of the smallest margin (~10x a settled run's steps near the rule)
         per_zero = ((int(opt.get("fit_secant_steps", 3)) + 2) * 2 * n_cal + 2
                     + _wear_periods(run, interval, 2, True)) * _qs(n)
         dyn = 10.0 * _dynamic(res, opt.get("start", "equilibrium"))
@@ -157,8 +127,7 @@ def _solve_seconds(run: dict) -> tuple[float, float]:
         periods = 1 + _wear_periods(run, interval, 1, True)
         n_theta = int(res.get("n_theta", 720))
         cells = n * min(n_theta, n_theta * _LOCAL_PATCH / (2 * math.pi) + 5)
-        # the groove: ~8 000 explicit steps at groove_step 4 (2 100 at the assumed F, 11 400
-        # at the estimated one), each ~0.65 us per sample and angle (measured, 24 x 180)
+        # the groove: ~8 000 explicit steps at groove_step 4, each per sample and angle
         steps = 8000.0 * 4.0 / float(res.get("groove_step", 4.0))
         groove = steps * _GROOVE_CELL_S * int(res.get("groove_samples", 24)) * n_theta
         return (periods * (4 * _qs(n) + _LOCAL_CELL_S * cells) + groove,

@@ -1,4 +1,5 @@
-"""Mass matrix, velocity terms and applied generalised forces of the coupler-follower chain.
+"""Mass matrix of the coupler-follower chain (its velocity terms and applied forces are
+written in clearance.rhs_into and qs_numba.setup).
 
 Minimal coordinates q = (theta3, phi2): the follower hangs from the ideal joint D, the
 coupler from the ideal joint C; the driven crank carries the pin.  With joint B ideal the
@@ -10,9 +11,6 @@ drift, hence no Baumgarte stabilisation needed.  Centres of mass at the link mid
 """
 from __future__ import annotations
 
-
-import numpy as np
-
 from .geometry import FourBar
 
 
@@ -23,14 +21,3 @@ def mass_terms(fb: FourBar):
     a = fb.m2 * fb.l3 * fb.l2 / 2
     return M11, M22, a
 
-
-def applied_forces(fb: FourBar, theta3, phi2):
-    """Generalised forces of the load P at E (towards F) and of gravity (-y).  Vectorised."""
-    c3, s3 = np.cos(theta3), np.sin(theta3)
-    ex, ey = fb.l0 + fb.l3 / 2 * c3, fb.l3 / 2 * s3
-    dx, dy = fb.F[0] - ex, fb.F[1] - ey
-    dn = np.hypot(dx, dy)
-    Px, Py = fb.P * dx / dn, fb.P * dy / dn
-    Q3 = fb.l3 / 2 * (-s3 * Px + c3 * Py) - fb.g * (fb.m3 * fb.l3 / 2 + fb.m2 * fb.l3) * c3
-    Q2 = -fb.g * fb.m2 * fb.l2 / 2 * np.cos(phi2)
-    return Q3, Q2

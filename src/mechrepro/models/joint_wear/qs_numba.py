@@ -32,7 +32,7 @@ def setup(th3, ph2, w3, w2, a3, a2, M11, M22, am, l0, l2, l3, m2, m3, P, Fx, Fy,
         sd = math.sin(th3[i] - ph2[i])
         rhs3 = M11 * a3[i] + am * cd * a2[i] + am * sd * w2[i] ** 2
         rhs2 = am * cd * a3[i] + M22 * a2[i] - am * sd * w3[i] ** 2
-        # loads.applied_forces
+        # the load P at E towards F and the link weights (as clearance.rhs_into)
         ex, ey = l0 + l3 / 2 * c3, l3 / 2 * s3
         dx, dy = Fx - ex, Fy - ey
         dn = math.hypot(dx, dy)
@@ -82,18 +82,6 @@ def friction(F_N, delta, dang, slide, w2R, clearance, v_eps, mu, R_bush):
         F_T[i] = mu * F_N[i] * s
         tau[i] = R_bush * F_T[i]
     return v_T, sgn, F_T, tau
-
-
-@jit
-def direction(ang_n):
-    """n = (cos, sin) of the contact direction."""
-    n = ang_n.size
-    nx = np.empty(n)
-    ny = np.empty(n)
-    for i in range(n):
-        nx[i] = math.cos(ang_n[i])
-        ny[i] = math.sin(ang_n[i])
-    return nx, ny
 
 
 @jit

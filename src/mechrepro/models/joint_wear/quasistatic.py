@@ -1,23 +1,18 @@
 """Continuous-contact joint B, quasi-static (the paper's low-speed assumption, Sec. 3.2).
 
-At 9.6 r/min the pin never leaves the bushing (checked: the dynamic clearance model's
-minimum penetration over a period stays > 0).  The pin then slides on the bushing with
-the penetration that carries the joint force, and the bushing's centre sits at
-r_j = r_i - (c + delta) n (Eqs. 5-8 read backwards).  The joint-B force follows from the
-minimal-coordinate equations of motion (loads.py) solved for the contact force; Eqs.
-(11), (15) give F_N, the penetration and the contact direction.  No stiff dynamics is
-integrated: one period costs a few vectorised array operations.
+The pin slides on the bushing with the penetration that carries the joint force, the
+bushing's centre at r_j = r_i - (c + delta) n (Eqs. 5-8 read backwards).  The joint-B force
+follows from the minimal-coordinate equations of motion (loads.py) solved for it; Eqs. (11),
+(15) give F_N, the penetration and the contact direction.  No stiff dynamics is integrated.
 
-Clearance kinematics.  The coupler and follower do not follow the ideal four-bar: the
-bushing centre is offset from the pin by the eccentricity (c + delta) along n, which
-turns the links by ~c / l (3e-4 rad at c = 0.1 mm, 2e-3 rad once the bushing is worn
-0.5 mm).  That offset is what the dynamic clearance joint settles on; ignoring it puts
-the quasi-static state ~0.01 deg off the dynamic one, enough to ring the clearance's
-lightly damped rocking mode when a dynamic run starts there, and it would hide the
-enlarged clearance from the force history of a worn joint.  The positions are found by a
-fixed point: ideal kinematics -> force -> n -> bushing centre -> link angles (velocities
-and accelerations by spectral differentiation of the periodic angles) -> force ...; the
-correction shrinks by ~c/l per pass: ``passes`` = 2 leaves 1e-10 in the wear per period.
+Clearance kinematics.  The bushing centre is offset from the pin by (c + delta) along n,
+which turns the links by ~c / l.  That offset is what the dynamic clearance joint settles
+on: without it the quasi-static state is off the dynamic one by enough to ring the
+clearance's lightly damped rocking mode when a dynamic run starts there, and a worn joint's
+enlarged clearance would not reach the force history.  The positions are a fixed point:
+ideal kinematics -> force -> n -> bushing centre -> link angles (rates by spectral
+differentiation of the periodic angles) -> force ...; the correction shrinks by ~c/l per
+pass, so ``passes`` = 2 leaves ~1e-10 in the wear per period.
 """
 from __future__ import annotations
 
@@ -118,7 +113,7 @@ def _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2, iterations=4) -> dict:
         dang, _ = periodic_derivatives(ang_n, fb.period, second=False)
         v_T, sgn, F_T, tau = qs_numba.friction(F_N, delta, dang, slide, w2R, fb.clearance,
                                                fb.v_eps, fb.mu, fb.R_bush)
-    nx, ny = qs_numba.direction(ang_n)
+    nx, ny = np.cos(ang_n), np.sin(ang_n)
     return {"t": t, "theta1": th1, "theta3": th3, "phi2": ph2, "F_N": F_N, "F_T": F_T,
             "delta": delta, "v_T": v_T, "ang_n": ang_n, "nx": nx, "ny": ny}
 

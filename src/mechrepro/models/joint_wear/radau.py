@@ -1,13 +1,11 @@
 """Compiled Radau IIA (order 5) for the clearance joint: scipy's algorithm, one numba call
 per period.
 
-Why it stays: the dynamic period is a 4-state system integrated in a few hundred to
-~100 000 steps, and scipy's ``Radau`` spends ~0.6 ms of Python per step around ~1 us of
-arithmetic even with the compiled right-hand side and Jacobian of :mod:`.clearance`
-(``benchmarks/bench_joint_wear.py``: 5.4 ms vs 253 ms for the default period, 47x; the
-default profile integrates ~380 000 Radau steps, ~4 minutes of extra CPU).  BDF and RK45
-have compiled copies too (:mod:`.bdf`, :mod:`.rk45`, sharing this module's start, norm, LU
-and dense-output sampling); LSODA runs in scipy.
+Why it stays: the dynamic period is a 4-state system integrated in hundreds to ~1e5 steps,
+where scipy's ``Radau`` spends its time in per-step Python, not arithmetic (the work-precision
+benchmark ``benchmarks/bench_joint_wear.py``).  BDF and RK45 have compiled copies too
+(:mod:`.bdf`, :mod:`.rk45`, sharing this module's start, norm, LU and dense-output
+sampling); LSODA runs in scipy.
 
 The code is scipy 1.17's ``Radau`` (``scipy/integrate/_ivp/radau.py``, ``common.py``): the
 initial step, the simplified Newton iteration on the transformed collocation system, its

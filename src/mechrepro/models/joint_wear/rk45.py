@@ -2,10 +2,8 @@
 call per run, with the outputs of :func:`.radau.radau`.
 
 Why it is compiled: the explicit integrator is the stiff contact's cost reference (the
-cost-of-accuracy study's RK45 run, stopped by a step budget of 5 000-20 000 steps).  scipy's
-``RK45`` spends ~0.14 ms of Python per step around ~2 us of arithmetic even with the compiled
-right-hand side of :mod:`.clearance`, so its time per period measured scipy's stepping, not
-the method, beside a compiled Radau (the 5 000-step budget: 0.69 s against 0.015 s, 46x).
+cost-of-accuracy study's RK45 run, stopped by a step budget); stepped by scipy its time per
+period would measure scipy's per-step Python, not the method.
 
 The code is scipy 1.17's ``RK45`` (``scipy/integrate/_ivp/rk.py``, the initial step of
 ``common.py``, max_step inf): the Butcher tableau, the error estimate, the step-size

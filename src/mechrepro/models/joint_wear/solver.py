@@ -1,27 +1,8 @@
-"""The solvers of joint_wear: a scene's ``solver`` decides the joint model and method, its
-effects (effects.py) the terms; both are declared in ``config/papers/joint_wear.yaml``.
-
-Solvers
--------
-``clearance_implicit``  dynamic clearance joint (Eqs. 5-15), stiff implicit integrator
-                        (``resolution.method``: Radau, BDF, LSODA); wear on that model
-``clearance_explicit``  the same equations with an explicit integrator stopped by a step
-                        budget: its cost per period, extrapolated; no wear
-``continuous_contact``  quasi-static continuous contact (Sec. 3.2), the paper's model;
-                        wear on that model
-``period_by_period``    Fig. 6: the wear simulated one period at a time (timed sample)
-``coefficient_scan``    the calibration (Eqs. 32-34) over load points F and gravity
-                        planes the paper leaves open (contact loss refused)
-``load_point_fit``      F estimated from Tables 3-4 jointly, with its uncertainty, its
-                        contact arc and wear side, and the 86-h wear it predicts
-``load_point_posterior`` F's direction and distance, g and mu as a distribution
-                        conditioned on Tables 3-4 and "upper part"; every mechanics statement
-                        over it, the contact margin over its credible set (Sec. 3.2)
-``constant_sensitivity`` friction, contact exponent, d_max, C_max reading at their range ends
-``local_wear``          local Archard wear per bushing angle vs the uniform depth (Fig. 14)
-
-Each builds a :class:`~.effects.Context`, evaluates the named effects in three stages
-(mechanism terms, wear set-up, wear) and reads their contributions by key.
+"""The solvers of joint_wear (``SOLVERS``; each described under ``solvers:`` in
+``config/papers/joint_wear.yaml``): a scene's solver decides the joint model and method,
+its effects (effects.py) the terms.  Each builds a :class:`~.effects.Context`, evaluates
+the named effects in three stages (mechanism terms, wear set-up, wear) and reads their
+contributions by key.
 """
 from __future__ import annotations
 
@@ -91,27 +72,26 @@ def dynamic_period(fb: FourBar, s: dict) -> dict:
 
 
 def finished_dynamic_period(fb: FourBar, s: dict) -> dict:
-    """A dynamic period that must finish (wear needs a whole period)."""
+    """A dynamic period that must finish (wear and a contact margin need a whole period)."""
     hist = dynamic_period(fb, s)
     if not hist["completed"]:
-        raise RuntimeError(f"joint_wear: {hist['message']}: no period to compute wear from")
+        raise RuntimeError(f"joint_wear: {hist['message']}: no whole period")
     return hist
 
 
+#: the project's contact rule: a joint force below this share of its peak is taken as vanishing
 CONTACT_LOSS_FRACTION = 1e-2
 
 
 def continuous_contact_period(fb: FourBar, s: dict) -> dict:
-    """A quasi-static period for the wear model: refused where contact is lost.
-
-    The continuous-contact model (Sec. 3.2) cannot represent a joint force that vanishes:
-    there the pin flies across the clearance (the dynamic model shows it).  Below 1 % of
-    its peak the force is taken as vanishing -- a refusal, never a verdict."""
+    """A quasi-static period for the wear model, refused (ContactLost) where its joint force
+    falls below CONTACT_LOSS_FRACTION of its peak: the continuous-contact model (Sec. 3.2)
+    cannot represent a vanishing force -- the pin flies across the clearance there."""
     return refuse_contact_loss(quasi_static_period(fb, s))
 
 
 def refuse_contact_loss(hist: dict) -> dict:
-    """``hist`` if its joint force keeps above 1 % of its peak, else ContactLost."""
+    """``hist`` if its joint force keeps above CONTACT_LOSS_FRACTION of its peak."""
     F = np.asarray(hist["F_N"])
     if not F.min() > CONTACT_LOSS_FRACTION * F.max():
         i = int(np.argmin(F))
@@ -137,21 +117,29 @@ def one_period(fb: FourBar, s: dict, joint) -> dict:
     return out
 
 
-def closed_form_factor(R0: float, p: float):
-    """The wear factor of a rival without mechanics: G(R) = (R0 / R)^p, no four-bar, no
-    contact (option ``closed_form_growth: p``).  p = 1 is the worn arc's length growing
-    with the radius at a fixed arc, force and sliding (wear.inverse_radius_prediction); the
-    calibration absorbs G's scale, so only its growth law enters the prediction."""
-    return lambda R_bush: (R0 / R_bush) ** p
+def period_factor(fb_v: FourBar, s: dict, joint):
+    """G(R_bush): the wear factor (Eq. 29) of one period of ``joint`` with the bushing of
+    ``fb_v`` at radius R_bush -- what calibration and prediction step through."""
+    def factor(R_bush):
+        fb_w = fb_v.with_bushing_radius(R_bush)
+        return wear.period_wear_factor(joint(fb_w, s), fb_w, fb_v.period,
+                                       s.get("wear_range", "contact_point"), statistics=False)["G"]
+    return factor
+
+
+def wear_factor_of(fb_v: FourBar, s: dict, joint=None):
+    """period_factor of ``joint`` (default continuous_contact_period, which refuses contact
+    loss; quasi_static_period where a margin is measured, not assumed), a radius met again
+    not solved again."""
+    return functools.cache(period_factor(fb_v, s, joint or continuous_contact_period))
 
 
 def with_wear(run: dict, fb: FourBar, ctx: Context, res: dict, joint) -> dict:
-    """Stages two and three: the wear set-up, then the wear effects on ``joint`` (or on the
-    closed-form wear factor of option ``closed_form_growth``, a rival)."""
-    ctx = replace(ctx, one_period=lambda fb_w: joint(fb_w, ctx.s))
-    if "closed_form_growth" in ctx.s:
-        ctx = replace(ctx, wear_factor=closed_form_factor(fb.R_bush,
-                                                          float(ctx.s["closed_form_growth"])))
+    """Stages two and three: the wear set-up, then the wear effects on the wear factor of
+    ``joint`` (or the closed form of option ``closed_form_growth``, a rival)."""
+    g = ctx.s.get("closed_form_growth")
+    ctx = replace(ctx, wear_factor=period_factor(fb, ctx.s, joint) if g is None
+                  else wear.closed_form_factor(fb.R_bush, float(g)))
     c = EFFECTS.evaluate(run, ctx, keys=WEAR_SETUP)
     ctx = replace(ctx, sides=c.get("sides", ["B1"]), worn_bushing=c.get("worn_bushing"))
     c = EFFECTS.evaluate(run, ctx, keys=WEAR)
@@ -163,8 +151,7 @@ def with_wear(run: dict, fb: FourBar, ctx: Context, res: dict, joint) -> dict:
 # --- the solvers -----------------------------------------------------------------------------
 def clearance_implicit(run: dict) -> dict:
     fb, ctx = setup(run)
-    res = one_period(fb, ctx.s, dynamic_period)
-    return with_wear(run, fb, ctx, res, finished_dynamic_period)
+    return with_wear(run, fb, ctx, one_period(fb, ctx.s, dynamic_period), finished_dynamic_period)
 
 
 def clearance_explicit(run: dict) -> dict:
@@ -174,8 +161,8 @@ def clearance_explicit(run: dict) -> dict:
 
 def continuous_contact(run: dict) -> dict:
     fb, ctx = setup(run)
-    res = one_period(fb, ctx.s, quasi_static_period)
-    return with_wear(run, fb, ctx, res, continuous_contact_period)
+    return with_wear(run, fb, ctx, one_period(fb, ctx.s, quasi_static_period),
+                     continuous_contact_period)
 
 
 def period_by_period(run: dict) -> dict:
@@ -184,15 +171,9 @@ def period_by_period(run: dict) -> dict:
     fb, ctx = setup(run)
     res = one_period(fb, ctx.s, quasi_static_period)
     n = int(ctx.s["period_by_period_sample"])
-    k = 1e-13   # any coefficient: only the time per period is measured here
-
-    def g_of(R_bush):
-        fb_w = fb.with_bushing_radius(R_bush)
-        return wear.period_wear_factor(quasi_static_period(fb_w, ctx.s), fb_w, fb.period,
-                                       ctx.s.get("wear_range", "contact_point"),
-                                       statistics=False)["G"]
-    with phase("joint_wear.period_by_period") as sw:
-        wear.period_by_period(float(ctx.p["measured_wear_B1"][-1]), n, k, fb.R_bush, g_of)
+    g_of = period_factor(fb, ctx.s, quasi_static_period)
+    with phase("joint_wear.period_by_period") as sw:     # any k: only the time is measured
+        wear.period_by_period(float(ctx.p["measured_wear_B1"][-1]), n, 1e-13, fb.R_bush, g_of)
     res["pbp"] = (n, sw.seconds)
     return res
 
@@ -207,36 +188,11 @@ def load_point(fb: FourBar, E, distance: float, direction_deg: float, g: float) 
     return replace(fb, g=g, F=(E[0] + distance * math.cos(a), E[1] + distance * math.sin(a)))
 
 
-def load_point_grid(run: dict, prefix: str):
-    """The set-up of a solver over load points: the mechanism, its context, E's mid-stroke
-    position and the options ``<prefix>_load_distance``, ``<prefix>_load_direction_deg``,
-    ``<prefix>_gravity``."""
-    fb, ctx = setup(run)
-    s = ctx.s
-    return (fb, ctx, kinematics.load_point_mid_stroke(fb), float(s[f"{prefix}_load_distance"]),
-            np.asarray(s[f"{prefix}_load_direction_deg"], float), gravity_planes(run, s[f"{prefix}_gravity"]))
-
-
 def gravity_planes(run: dict, planes) -> np.ndarray:
     """The gravity values [m/s2] a solver that weighs the plane of motion runs over: the
     scene's, or g = 0 alone where the scene does not name the gravity effect (no link
     weights)."""
     return np.asarray(planes if "gravity" in run["effects"] else [0.0], float)
-
-
-def wear_factor_of(fb_v: FourBar, s: dict, joint=None):
-    """G(R_bush): the wear factor of one continuous-contact period of ``fb_v`` with the
-    bushing at radius R_bush (what calibration and prediction step through).  A radius
-    met again (both sides start calibrating at the new bushing) is not solved again.
-    ``joint``: the period model (default continuous_contact_period, which refuses contact
-    loss; quasi_static_period where a margin is measured, not assumed)."""
-    joint = joint or continuous_contact_period
-
-    @functools.cache
-    def factor(R_bush):
-        fb_w = fb_v.with_bushing_radius(R_bush)
-        return wear.period_wear_factor(joint(fb_w, s), fb_w, fb_v.period, statistics=False)["G"]
-    return factor
 
 
 def coefficient_scan(run: dict) -> dict:
@@ -247,8 +203,11 @@ def coefficient_scan(run: dict) -> dict:
     ``scan_gravity`` [m/s2] stand for planes of motion from horizontal (0) to vertical.
     Only the calibration is run (5 periods per point): it is what fixes the coefficient.
     """
-    fb, ctx, E, d, dirs, gs = load_point_grid(run, "scan")
+    fb, ctx = setup(run)
     s, p = ctx.s, ctx.p
+    E, d = kinematics.load_point_mid_stroke(fb), float(s["scan_load_distance"])
+    dirs = np.asarray(s["scan_load_direction_deg"], float)
+    gs = gravity_planes(run, s["scan_gravity"])
     k = np.full((len(SIDES), gs.size, dirs.size), np.nan)
     L = np.full((gs.size, dirs.size), np.nan)
     F_min = np.full((gs.size, dirs.size), np.nan)
@@ -269,26 +228,16 @@ def _calibrated(fb_v: FourBar, s: dict, p: dict, sides=SIDES, factor=None) -> np
     """K_p [m2/N] of Eqs. (32)-(34) for each side (rows) and interval (columns) with the
     mechanism fb_v on the quasi-static joint (``factor``: its wear_factor_of, if made
     already); ContactLost where continuous contact is lost."""
-    cal_h = float(p["measurement_interval"]) / 3600.0
     factor = factor or wear_factor_of(fb_v, s)
-    return np.array([wear.calibrate(p[f"measured_wear_{side}"], cal_h, fb_v.period,
-                                    fb_v.R_bush, factor,
-                                    dh_measured=p[f"measured_increment_{side}"],
-                                    feedback=float(p["calibration_wear_feedback"]))[0]
+    return np.array([wear.calibrate_side(p, side, fb_v.period, fb_v.R_bush, factor)[0]
                      for side in sides])
 
 
 def _predicted_86h(fb_v: FourBar, s: dict, p: dict, k_mean, factor=None) -> list:
     """The 86-h wear [m] of each side from its calibrated k on fb_v (Sec. 4.4, 2-h steps)."""
-    out = []
-    cal_h = float(p["measurement_interval"]) / 3600.0
     factor = factor or wear_factor_of(fb_v, s)
-    for side, k in zip(SIDES, k_mean):
-        h = np.asarray(p[f"measured_wear_{side}"], float)
-        out.append(wear.predict(h[-1], cal_h * h.size, float(p["prediction_end"]) / 3600.0,
-                                float(s.get("interval_h", 2.0)), float(k), fb_v.period,
-                                fb_v.R_bush, factor)[1][-1])
-    return out
+    return [wear.predict_side(p, side, float(s.get("interval_h", 2.0)), float(k), fb_v.period,
+                              fb_v.R_bush, factor)[1][-1] for side, k in zip(SIDES, k_mean)]
 
 
 def contact_side(hist: dict) -> dict:
@@ -320,17 +269,14 @@ def fit_zeros(fb: FourBar, s: dict, p: dict, E, d: float, dirs, g: float, K_pape
     """The load points F at distance ``d`` from ``E`` (gravity ``g``) whose calibration
     reproduces Tables 3-4, the zeros over F's direction of the misfit (tables_misfit).
 
-    The grid ``dirs`` places the sign changes with the misfit of the new bushing's wear
-    factor G(R0) taken for every interval (one period per direction instead of nine: it
-    differs from the misfit by the mean ln(G(R_p) / G(R0)), below 0.01, the wear factor
-    changing by less than 1 % over the first 10 h); each sign change is then bracketed by
-    the misfit itself at the grid points (widened by one grid step where a zero sits
-    within that difference of a grid point) and refined by ``fit_secant_steps`` secant
-    steps, by Brent's method where they stall, to FIT_TOLERANCE.  ``joint``: the period
-    model of the calibration (default: the continuous-contact one, contact loss refused:
-    NaN misfit there).  Returns (the grid's misfit, one dict per zero: direction [deg],
-    the bracket and misfits of the last secant step, the mechanism there, its wear
-    factor function and calibrated K_p)."""
+    The grid ``dirs`` places the sign changes with the new bushing's wear factor G(R0)
+    taken for every interval (one period per direction instead of nine; within 0.01 of the
+    misfit, G changing by < 1 % over 10 h); each is bracketed by the misfit itself (widened
+    by a grid step where needed) and refined by ``fit_secant_steps`` secant steps, by
+    Brent's method where they stall, to FIT_TOLERANCE.  ``joint``: the period model of the
+    calibration (default continuous_contact_period: NaN misfit where contact is lost).
+    Returns (the grid's misfit, one dict per zero: direction [deg], the misfit's slope over
+    the last bracket [1/deg], the mechanism there, its wear factor function and K_p)."""
     def mech(a):
         return load_point(fb, E, d, a, g)
 
@@ -390,7 +336,7 @@ def fit_zeros(fb: FourBar, s: dict, p: dict, E, d: float, dirs, g: float, K_pape
             continue     # found from a neighbouring sign change already
         fb_a = mech(a % 360.0)
         factor_a = wear_factor_of(fb_a, s, joint)
-        zeros.append({"direction": float(a % 360.0), "a0": a0, "a1": a1, "m0": m0, "m1": m1,
+        zeros.append({"direction": float(a % 360.0), "slope": (m1 - m0) / (a1 - a0),
                       "fb": fb_a, "factor": factor_a,
                       "K": _calibrated(fb_a, s, p, factor=factor_a)})
     return m, zeros
@@ -404,16 +350,14 @@ def _K_paper(s: dict, p: dict) -> np.ndarray:
 def load_point_fit(run: dict) -> dict:
     """The load point F estimated from Tables 3-4 jointly (Sec. 4.3-4.4 read backwards).
 
-    With Eq. (32) read as k = K/21, the printed K_p of both tables fix the wear factor G of
-    the paper's own simulation; G depends on F (and the gravity plane), which the paper
-    does not give.  For each gravity value in ``fit_gravity`` F runs over the directions
-    ``fit_load_direction_deg`` at the distance ``load_point_distance`` from E's mid-stroke
-    position; the zeros of the misfit are the estimates (fit_zeros).  Each zero carries
-    the uncertainty of the tables (the scatter of the ten log-ratios, i.e. the rounding of
-    the printed increments, standard error of the mean) turned into direction through the
-    local slope dm/dtheta.  At every estimate: the contact arc, where the wear sits
-    (contact_side), and the 86-h wear of both sides, also at the estimate +- its
-    uncertainty -- the band on Fig. 15.  Contact loss is refused.
+    With Eq. (32) read as k = K/21 the printed K_p fix the wear factor G of the paper's own
+    simulation, and G depends on F (and the gravity plane), which the paper does not give.
+    Per gravity value of ``fit_gravity``, the estimates are the zeros of the misfit over
+    F's direction at ``load_point_distance`` from E's mid-stroke position (fit_zeros), each
+    with the tables' uncertainty (standard error of the ten log-ratios) turned into
+    direction through the local slope.  At every estimate: the contact arc, where the wear
+    sits (contact_side) and the 86-h wear of both sides, also at +- its uncertainty (the
+    band on Fig. 15).  Contact loss is refused.
     """
     fb, ctx = setup(run)
     s, p = ctx.s, ctx.p
@@ -429,8 +373,7 @@ def load_point_fit(run: dict) -> dict:
             a, fb_a, factor_a, K = z["direction"], z["fb"], z["factor"], z["K"]
             r = np.log(K / K_paper).ravel()
             se = float(np.std(r, ddof=1) / math.sqrt(r.size))
-            slope = (z["m1"] - z["m0"]) / (z["a1"] - z["a0"])      # per degree
-            sig = abs(se / slope)
+            sig = abs(se / z["slope"])
             hist = continuous_contact_period(fb_a, s)
             f = wear.period_wear_factor(hist, fb_a, fb.period)
             band = []
@@ -454,19 +397,16 @@ def load_point_fit(run: dict) -> dict:
 def contact_margins(fb_a: FourBar, s: dict) -> dict:
     """The contact margin min F_N / max F_N at the load point of ``fb_a``: of the
     quasi-static period, and where that keeps CONTACT_LOSS_FRACTION, of the dynamic
-    clearance joint (resolution.method, rtol; ``periods`` periods from the settled start,
-    the last one read; 0 where the pin leaves the bushing).  Below the fraction the
-    quasi-static margin stands: the project's rule already calls that contact lost, whatever
-    the dynamics adds (and a rattling pin would cost 100x the steps)."""
+    clearance joint (the last of ``periods`` periods from the settled start; 0 where the
+    pin leaves the bushing).  Below the fraction the quasi-static margin stands: the rule
+    already calls that contact lost, whatever the dynamics adds."""
     qs = quasi_static_period(fb_a, s)
     F = np.asarray(qs["F_N"])
     row = {"qs_F_min": float(F.min()), "qs_F_max": float(F.max()),
            "qs_margin": float(F.min() / F.max()), "dyn_F_min": math.nan, "dyn_F_max": math.nan,
            "dyn_margin": math.nan, "dyn_min_penetration": math.nan, "dyn_steps": math.nan}
     if row["qs_margin"] >= CONTACT_LOSS_FRACTION:
-        hist = dynamic_period(fb_a, s)
-        if not hist["completed"]:
-            raise RuntimeError(f"joint_wear: {hist['message']}: no settled period")
+        hist = finished_dynamic_period(fb_a, s)
         Fd = np.where(np.asarray(hist["delta"]) > 0.0, np.asarray(hist["F_N"]), 0.0)
         row.update(dyn_F_min=float(Fd.min()), dyn_F_max=float(Fd.max()),
                    dyn_margin=float(Fd.min() / Fd.max()),
@@ -540,7 +480,7 @@ def _branch_point(fb: FourBar, s: dict, p: dict, E, d: float, a0: float, g: floa
     if not zeros:
         return None
     z = min(zeros, key=lambda z: abs(math.remainder(z["direction"] - a0, 360.0)))
-    chi2 = laplace_log_weight(np.log(z["K"] / K_paper), sigma, (z["m1"] - z["m0"]) / (z["a1"] - z["a0"]))[0]
+    chi2 = laplace_log_weight(np.log(z["K"] / K_paper), sigma, z["slope"])[0]
     return {"gravity": g, "direction": z["direction"] % 360.0, "chi2": chi2,
             "qs": quasi_static_period(z["fb"], s), "fb": z["fb"]}
 
@@ -555,17 +495,14 @@ def region_edge(fb: FourBar, s: dict, p: dict, E, d: float, branch: list, K_pape
     """The lowest gravity on one branch of load points (``branch``: its points at the prior
     nodes, ascending g, each with its chi2 and margin) inside the likelihood region (chi2
     within ``threshold``, wear on the upper part), the branch's direction interpolated
-    between its nodes.  The contact margin grows with g along a branch (the link weights
-    carry it), so the credible set's smallest margin sits at such an edge -- which the nodes
-    alone place only to within their spacing, while the likelihood changes by e^-1000 within
-    0.3 m/s2 there, and a narrow ridge of good fit can lie between two nodes outside the
-    region.  So, from the lowest node up, in every interval between nodes whose lower end's
-    margin is below ``bound`` (the smallest credible margin found so far: only there can a
-    credible point lower it) and whose better end is within 10x the threshold (chi2 is smooth in g:
-    no ridge rises out of 1e4), chi2's minimum is sought by ``bisections`` golden-section
-    steps; the first interval with a point inside (or a credible node) gives the edge,
-    bisected ``bisections`` times between the interval's lower end and that point.
-    Returns the edge point, or None."""
+    between its nodes.  The margin grows with g along a branch (the link weights carry it),
+    so the credible set's smallest margin sits at such an edge, which the nodes alone place
+    only to within their spacing (a narrow ridge of good fit can lie between two nodes).
+    So, from the lowest node up, in every interval whose lower end's margin is below
+    ``bound`` (the smallest credible margin so far) and whose better end is within 10x the
+    threshold (chi2 is smooth in g), chi2's minimum is sought by ``bisections``
+    golden-section steps; the first interval with a point inside (or a credible node) gives
+    the edge, bisected ``bisections`` times below that point.  Returns it, or None."""
     gb = np.array([q["gravity"] for q in branch])
     ab = np.unwrap(np.radians([q["direction"] for q in branch]))
 
@@ -615,22 +552,18 @@ def load_point_posterior(run: dict) -> dict:
 
     Unknowns: F's direction and distance from E's mid-stroke position, the gravity
     component in the plane of motion and mu.  Prior: uniform over the nodes
-    ``posterior_distance``, ``posterior_friction`` (cell midpoints of each declared range,
-    mu's in log), the ``n_gravity`` cells of ``posterior_gravity_range`` (gravity_nodes: a
-    resolution, the likelihood falls by e^-1000 within 0.3 m/s2 where the joint nears
-    contact loss) and uniform in direction.  Likelihood: the ten K_p of
-    Tables 3-4 (both sides) with the rounding of the printed increments as their noise
-    (rounding_sigma), and the wear on the upper part of the bushing (Sec. 4.2 (2), the
-    wear-weighted share above the centre > 1/2) as an indicator.  At each node the
-    direction is integrated exactly about every zero of the mean misfit (fit_zeros,
-    laplace_log_weight): the tables fix it to ~0.003 deg, so a grid in direction would
-    need 1e5 points.  At every point: the contact margin, contact arc, wear coefficients
-    and wear factor, and the posterior mass (what the distributions of these statements
-    weigh by).  The credible set is the likelihood region at ``posterior_credible``
-    (likelihood_region: prior-free, so the contested prior of g does not enter it); there
-    the 86-h wear of both sides, and the dynamic margin (contact_margins) at its point of the
-    smallest quasi-static margin.  The contact statement holds only with margin everywhere
-    in the credible set: its smallest margin is the result."""
+    ``posterior_distance``, ``posterior_friction``, the ``n_gravity`` cells of
+    ``posterior_gravity_range`` (gravity_nodes) and in direction.  Likelihood: the ten K_p
+    of Tables 3-4 with the rounding of the printed increments as their noise
+    (rounding_sigma), and the wear on the upper part of the bushing (Sec. 4.2 (2)) as an
+    indicator.  The direction is integrated exactly about every zero of the mean misfit
+    (fit_zeros, laplace_log_weight): the tables fix it too sharply for a grid.  At every
+    point: contact margin, contact arc, wear coefficients, wear factor and posterior mass.
+    The credible set is the likelihood region at ``posterior_credible`` (likelihood_region:
+    prior-free, so the contested prior of g does not enter it); there the 86-h wear of both
+    sides, and the dynamic margin (contact_margins) at its point of the smallest
+    quasi-static margin, the result: the contact statement holds only with margin
+    everywhere in the credible set."""
     fb, ctx = setup(run)
     s, p = ctx.s, ctx.p
     E = kinematics.load_point_mid_stroke(fb)
@@ -640,7 +573,8 @@ def load_point_posterior(run: dict) -> dict:
     gs, g_prior = gravity_nodes(*(float(x) for x in s["posterior_gravity_range"]), int(s["n_gravity"]))
     if "gravity" not in run["effects"]:
         gs, g_prior = np.zeros(1), np.ones(1)
-    sigma = rounding_sigma(np.array([p[f"measured_increment_{side}"] for side in SIDES]) * 1e3)
+    dh = np.array([p[f"measured_increment_{side}"] for side in SIDES])
+    sigma = rounding_sigma(dh * 1e3)
     misfit = np.full((ds_.size, gs.size, mus.size, dirs.size), np.nan)
     pts = []
     for i, d in enumerate(ds_):
@@ -651,8 +585,7 @@ def load_point_posterior(run: dict) -> dict:
                                                    joint=quasi_static_period)
                 for z in zeros:
                     r = np.log(z["K"] / K_paper)
-                    chi2, width, logw, shift = laplace_log_weight(
-                        r, sigma, (z["m1"] - z["m0"]) / (z["a1"] - z["a0"]))
+                    chi2, width, logw, shift = laplace_log_weight(r, sigma, z["slope"])
                     qs = quasi_static_period(z["fb"], s)
                     f = wear.period_wear_factor(qs, z["fb"], fb.period)
                     F = np.asarray(qs["F_N"])
@@ -673,8 +606,7 @@ def load_point_posterior(run: dict) -> dict:
     # wear factor is then one number per load point, the ten log-ratios differ only by the
     # printed increments over the paper's K_p, and their chi2 about a common level is the
     # same at every load point that fits the level -- no fit needed to weigh it
-    chi2_new = laplace_log_weight(
-        np.log(np.array([p[f"measured_increment_{side}"] for side in SIDES]) / K_paper), sigma, 1.0)[0]
+    chi2_new = laplace_log_weight(np.log(dh / K_paper), sigma, 1.0)[0]
     inside = likelihood_region(np.r_[chi2, chi2_new], float(s["posterior_credible"]))
     new_inside, inside = bool(inside[-1]), inside[:-1]
     if new_inside:      # the new-bushing reading is credible: so is every load point it fits
@@ -731,10 +663,9 @@ def load_point_posterior(run: dict) -> dict:
 def constant_sensitivity(run: dict) -> dict:
     """The assumed constants the scan does not vary, each at both ends of its declared
     range (option ``sensitivity``: {parameter: [lo, hi]} in SI), one at a time at the
-    assumed load point: the calibrated mean coefficient of side B1, the 86-h wear of B1,
-    the contact arc (quasi-static joint), and the wear per period of the settled dynamic
-    joint (Radau, ``rtol``) against the quasi-static one -- d_max and C_max enter only
-    there (the quasi-static joint has no penetration rate, Eq. 14)."""
+    assumed load point: B1's mean coefficient and 86-h wear, the contact arc, and the
+    settled dynamic period's wear (Radau, ``rtol``) against the quasi-static one -- d_max
+    and C_max enter only there (no penetration rate in the quasi-static joint, Eq. 14)."""
     base_fb, ctx = setup(run)
     s = ctx.s
     rows = [("(assumed)", math.nan)]
@@ -759,24 +690,20 @@ def constant_sensitivity(run: dict) -> dict:
 
 
 def local_wear(run: dict) -> dict:
-    """Side B1 with local Archard wear (wear.local_predict: a depth per bushing angle grown
-    interval by interval) against the paper's uniform depth (Eq. 29) on the same joint and
-    schedule; quasi-static joint.  The profile enters the contact gap (groove.py: a
-    conforming contact, the pressure over the arc where the pin meets the worn surface);
-    beside it the mean-circle feedback (wear.mean_circle_increment) at the same points.
-    Options: ``local_load_point`` [distance m, direction deg] of F from E's mid-stroke
-    position (default: the assumed F); ``local_placements`` [[shift, scale], ...] of the
-    Eq.-33 points (wear.wear_range_points), the first the baseline; gravity is the gravity
-    effect's."""
+    """Side B1 with local Archard wear, a depth per bushing angle that enters the contact
+    gap (groove.py), against the paper's uniform depth (Eq. 29) on the same quasi-static
+    joint and schedule, and beside it the mean-circle feedback (wear.mean_circle_increment)
+    at the same points.  Options: ``local_load_point`` [distance m, direction deg] of F from
+    E's mid-stroke position (default: the assumed F); ``local_placements`` [[shift, scale],
+    ...] of the Eq.-33 points (wear.wear_range_points), the first the baseline."""
     fb, ctx = setup(run)
     s, p = ctx.s, ctx.p
     lp = s.get("local_load_point")
     if lp:
         d, a = (float(x) for x in lp)
         fb = load_point(fb, kinematics.load_point_mid_stroke(fb), d, a, fb.g)
-    cal_h = float(p["measurement_interval"]) / 3600.0
+    cal_h = wear.calibration_hours(p)
     t_end, step = float(p["prediction_end"]) / 3600.0, float(s["interval_h"])
-    h = np.asarray(p["measured_wear_B1"], float)
     dh = np.asarray(p["measured_increment_B1"], float)
     theta = np.linspace(-math.pi, math.pi, int(s["n_theta"]), endpoint=False)
     h0 = continuous_contact_period(fb, s)
@@ -802,9 +729,8 @@ def local_wear(run: dict) -> dict:
         theta, pts[0])
     factor = wear_factor_of(fb, s)
     with phase("joint_wear.uniform_interval_method") as sw_u:
-        _, k_u, _ = wear.calibrate(h, cal_h, fb.period, fb.R_bush, factor, dh_measured=dh)
-        _, h_u, _ = wear.predict(h[-1], cal_h * h.size, t_end, step, k_u, fb.period, fb.R_bush,
-                                 factor)
+        _, k_u, _ = wear.calibrate_side(p, "B1", fb.period, fb.R_bush, factor)
+        _, h_u, _ = wear.predict_side(p, "B1", step, k_u, fb.period, fb.R_bush, factor)
     M = wear.periods_per_interval(t_cal, fb.period)
     return {"fb": fb, "local": {"hours": nodes, "mean": np.interp(at, g["tau"], g["mean"][0]),
                                 "peak": np.interp(at, g["tau"], g["peak"]), "uniform": h_u,
@@ -821,11 +747,9 @@ def local_wear(run: dict) -> dict:
                                 "arc": f0["arc"], "AB_mean": f0["AB_mean"]}}
 
 
-SOLVERS = {"clearance_implicit": clearance_implicit, "clearance_explicit": clearance_explicit,
-           "continuous_contact": continuous_contact, "period_by_period": period_by_period,
-           "coefficient_scan": coefficient_scan, "load_point_fit": load_point_fit,
-           "constant_sensitivity": constant_sensitivity, "local_wear": local_wear,
-           "load_point_posterior": load_point_posterior}
+SOLVERS = {f.__name__: f for f in (
+    clearance_implicit, clearance_explicit, continuous_contact, period_by_period, coefficient_scan,
+    load_point_fit, constant_sensitivity, local_wear, load_point_posterior)}
 
 
 def _methods(runs) -> set:
@@ -840,9 +764,8 @@ def warm(runs=None) -> None:
 
 
 def compute(run: dict) -> dict:
-    """The physics of one run (what the runner times): the scene's solver.  The compiled
-    kernels it uses are loaded first (once per process; the runner has, see warm), so that
-    no measured period carries numba's start."""
+    """The physics of one run (what the runner times): the scene's solver, its compiled
+    kernels loaded first (once per process, see warm)."""
     dynamics.warm(_methods([run]))
     return SOLVERS[run["solver"]](run)
 

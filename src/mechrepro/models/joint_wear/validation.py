@@ -13,21 +13,19 @@ from mechrepro.io import run_attrs
 from mechrepro.validation import Quantities, Reproduced
 
 from . import accuracy, wear
+from .geometry import from_parameters
 
 Q = Quantities("joint_wear")
 SIDES = ("b1", "b2")
-
-
-def _period(ds) -> float:
-    return float(ds["period"])
 
 
 def _param_si(ds, name):
     return run_attrs(ds)["parameters"]["values_si"][name]
 
 
-def _side(s: str) -> str:
-    return s.upper()
+def _periods_predicted(ds) -> float:
+    """Crank periods from the start to the end of a run's prediction."""
+    return (float(ds["hour"][-1]) - float(ds["hour"][0])) * 3600.0 / float(ds["period"])
 
 
 # ---- Tables 3-4 ---------------------------------------------------------------------------
@@ -36,11 +34,11 @@ def coefficients(R):
     ds = R.run("wear_prediction")
     out = {}
     for s in SIDES:
-        K = ds["K_table"].sel(side=_side(s)).values
+        K = ds["K_table"].sel(side=s.upper()).values
         for i, v in enumerate(K, start=1):
             q = f"k_{s}_p{i}"
             out[q] = Reproduced(float(v), f"paper/ours = {R.paper_value(q) / v:.4g}")
-        km = float(ds["K_table_mean"].sel(side=_side(s)))
+        km = float(ds["K_table_mean"].sel(side=s.upper()))
         out[f"k_mean_{s}"] = Reproduced(km, f"paper/ours = {R.paper_value(f'k_mean_{s}') / km:.4g}; "
                                              f"k = K/21 = {km / 21:.4g} m2/N")
     return out
@@ -52,7 +50,7 @@ def coefficient_scan(R):
     ds = R.run("coefficient_scan")
     out = {}
     for s in SIDES:
-        K = ds["scan_K_table_mean"].sel(side=_side(s)).values
+        K = ds["scan_K_table_mean"].sel(side=s.upper()).values
         lo, hi = float(np.nanmin(K)), float(np.nanmax(K))
         paper = R.cfg.reported[f"k_mean_{s}"]["value"]
         n = int(np.isfinite(K).sum())
@@ -71,7 +69,7 @@ def unit_chain(R):
     H = float(_param_si(ds, "hardness_bushing"))
     K_paper = R.cfg.reported["k_mean_b1"]["value"]
     k_paper = float(wear.k_from_table(K_paper, H))
-    M = wear.periods_per_interval(float(_param_si(ds, "measurement_interval")) / 3600.0, _period(ds))
+    M = wear.periods_per_interval(float(_param_si(ds, "measurement_interval")) / 3600.0, float(ds["period"]))
     dh = float(np.mean(_param_si(ds, "measured_increment_B1"))) / M
     L = wear.implied_wear_range(k_paper, dh, float(ds["F_N_mean"]), float(ds["sliding_distance"]),
                                 float(_param_si(ds, "width")))
@@ -89,12 +87,12 @@ def ratios(R):
     out = {"k_mean_ratio_b1_b2": float(ds["K_table_mean"].sel(side="B1") / ds["K_table_mean"].sel(side="B2"))}
     for s in SIDES:
         paper = np.array([R.cfg.reported[f"k_{s}_p{i}"]["value"] for i in range(1, 6)])
-        ours = ds["K_table"].sel(side=_side(s)).values
+        ours = ds["K_table"].sel(side=s.upper()).values
         dev = (ours / ours.mean()) / (paper / paper.mean()) - 1.0
         out[f"k_pattern_{s}"] = Reproduced(float(np.max(np.abs(dev))),
                                            "per point: " + ", ".join(f"{d:+.2e}" for d in dev))
-        dh = np.asarray(_param_si(ds, f"measured_increment_{_side(s)}"))
-        G = ds["wear_factor_calibration"].sel(side=_side(s)).values
+        dh = np.asarray(_param_si(ds, f"measured_increment_{s.upper()}"))
+        G = ds["wear_factor_calibration"].sel(side=s.upper()).values
         paper_trend = (dh[-1] / paper[-1]) / (dh[0] / paper[0])
         out[f"wear_factor_trend_{s}"] = Reproduced(float(G[-1] / G[0]),
                                                    f"the table implies {paper_trend:.4f}")
@@ -137,13 +135,11 @@ def continuous_contact(R):
 
 
 def weighted_quantiles(x, w, qs=(0.025, 0.5, 0.975)) -> np.ndarray:
-    """Quantiles of a discrete distribution (values x, masses w): the smallest x whose
-    cumulative mass reaches each q."""
+    """Quantiles of a discrete distribution (values x, masses w; NaN and massless values
+    left out): the smallest x whose cumulative mass reaches each q."""
     x, w = np.asarray(x, float), np.asarray(w, float)
     ok = np.isfinite(x) & (w > 0)
-    o = np.argsort(x[ok])
-    c = np.cumsum(w[ok][o]) / np.sum(w[ok])
-    return np.array([x[ok][o][min(int(np.searchsorted(c, q)), c.size - 1)] for q in qs])
+    return np.quantile(x[ok], qs, weights=w[ok], method="inverted_cdf")
 
 
 @Q.register("continuous_contact_margin_fitted_f", "fitted_load_point_misfit",
@@ -214,7 +210,7 @@ def prediction(R):
     ds = R.run("wear_prediction")
     h10 = float(_param_si(ds, "measured_wear_B1")[-1])
     t_end = float(ds["hour"][-1])
-    real = (t_end - float(ds["hour"][0])) * 3600.0 / _period(ds)
+    real = _periods_predicted(ds)
     n_side = float(ds["n_simulations_per_side"])
     return {"wear_86h_b1": float(ds["wear_at_end_B1"]) * 1e3,
             "wear_86h_b2": float(ds["wear_at_end_B2"]) * 1e3,
@@ -228,7 +224,7 @@ def prediction(R):
 @Q.register("wall_time_every_period_extrapolated", "wall_time_ratio")
 def every_period(R):
     ds, tp = R.run("wear_prediction"), R.run("timing_period_by_period")
-    real = (float(ds["hour"][-1]) - float(ds["hour"][0])) * 3600.0 / _period(ds)
+    real = _periods_predicted(ds)
     n, wall = float(tp["pbp_sample_periods"]), float(tp["pbp_sample_wall_time"])
     total = wall / n * real
     return {"wall_time_every_period_extrapolated": Reproduced(total, f"{n:.0f} consecutive periods timed"),
@@ -238,8 +234,7 @@ def every_period(R):
 @Q.register("wall_time_every_period_dynamic_h")
 def every_period_dynamic(R):
     dyn, ds = R.run("period_dynamic"), R.run("wear_prediction")
-    real = (float(ds["hour"][-1]) - float(ds["hour"][0])) * 3600.0 / _period(ds)
-    return float(dyn["period_wall_time"]) * real / 3600.0
+    return float(dyn["period_wall_time"]) * _periods_predicted(ds) / 3600.0
 
 
 @Q.register("wear_86h_dynamic_b1", "wear_86h_dynamic_vs_quasistatic_b1", "wall_time_dynamic_prediction")
@@ -268,52 +263,38 @@ def explicit_steps(R):
 
 
 # ---- interval method (Figs. 17-19) --------------------------------------------------------
-def _intervals(R):
+def _intervals(R) -> dict:
+    """{interval [h]: run} of the interval study."""
     st = R.study("intervals")
-    out = {}
-    for i in range(st.sizes["run"]):
-        r = st.isel(run=i)
-        out[float(r["interval_h"])] = r
-    return out
+    return {float(r["interval_h"]): r for r in (st.isel(run=i) for i in range(st.sizes["run"]))}
 
 
 def interval_differences(runs: dict, base: float = 2.0) -> dict:
     """Largest |relative difference| [%] of each longer interval's prediction vs ``base``,
     at the longer run's own interval nodes (Fig. 19)."""
     ref = runs[base]["wear_report"].sel(side="B1").values
-    out = {}
-    for iv in sorted(v for v in runs if v > base):
-        r = runs[iv]
-        node = r["report_is_node"].values > 0.5
-        w = r["wear_report"].sel(side="B1").values
-        out[iv] = float(np.max(np.abs(w[node] / ref[node] - 1.0)) * 100.0)
-    return out
+    nodes = {iv: runs[iv]["report_is_node"].values > 0.5 for iv in sorted(runs) if iv > base}
+    return {iv: float(np.max(np.abs(runs[iv]["wear_report"].sel(side="B1").values[n] / ref[n] - 1.0)) * 100.0)
+            for iv, n in nodes.items()}
 
 
 def inverse_radius_runs(R) -> dict:
     """The G = R0/R comparison (wear.inverse_radius_prediction) on the interval study's
     schedules, side B1: {interval: (nodes, h)}."""
-    runs = _intervals(R)
     par = R.cfg.runs["wear_interval"]["parameters"]            # SI, the study's scene
-    p = lambda n: np.asarray(par[n], float)                    # noqa: E731
-    R0 = float(par["pin_radius"]) + float(par["radial_clearance"])
-    cal_h = float(par["measurement_interval"]) / 3600.0
-    t_end = float(par["prediction_end"]) / 3600.0
-    period = 2.0 * math.pi / float(par["crank_speed"])
-    return {iv: wear.inverse_radius_prediction(p("measured_wear_B1"), p("measured_increment_B1"),
-                                               cal_h, t_end, iv, period, R0)
-            for iv in runs}
+    fb = from_parameters(par)
+    return {iv: wear.inverse_radius_prediction(
+        np.asarray(par["measured_wear_B1"], float), np.asarray(par["measured_increment_B1"], float),
+        wear.calibration_hours(par), float(par["prediction_end"]) / 3600.0, iv, fb.period, fb.R_bush)
+            for iv in _intervals(R)}
 
 
 def inverse_radius_differences(R, base: float = 2.0) -> dict:
     """interval_differences of the G = R0/R comparison: longer intervals vs ``base`` [%]."""
     ir = inverse_radius_runs(R)
     nb, hb = ir[base]
-    out = {}
-    for iv in sorted(v for v in ir if v > base):
-        n, h = ir[iv]
-        out[iv] = float(np.max(np.abs(h / np.interp(n, nb, hb) - 1.0)) * 100.0)
-    return out
+    return {iv: float(np.max(np.abs(h / np.interp(n, nb, hb) - 1.0)) * 100.0)
+            for iv, (n, h) in sorted(ir.items()) if iv > base}
 
 
 @Q.register("wear_86h_b1_inverse_radius", "wear_86h_b1_mechanics_vs_inverse_radius")

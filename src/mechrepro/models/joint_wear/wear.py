@@ -1,21 +1,9 @@
 """Archard wear of the bushing per motion period and the interval method (Eqs. 16-34).
 
-Unit chain (decided from the paper's equations and printed units).  Eq. (32) reads
-    dh_j = K / (H A_a) * F_N S * AB / L_arc   =   K / (H w) * F_N S / L_arc,
-and Tables 3-4 print K in "10^-11 Pa^-1" while Table 2 gives H as "21 HB".  For dh_j to be
-a length, K/H must be in m^2/N = Pa^-1 (F_N S / (w L_arc) is in N/m).  With K in Pa^-1 as
-printed, that holds only if H enters as the bare hardness *number* 21 (the paper's own
-number, Brinell's kgf/mm^2 without its unit):
-    k = K / H_number  [m^2/N],    Archard's dimensionless K_A = k * H = K * 9.80665e6,
-where H = 21 HB = 21 * 9.80665e6 Pa.  The two other readings fail physically:
-  * the table's value as k = K/H itself (H dropped): the paper's own wear per period
-    then implies a wear range L_arc = F_N S / (w G) of ~0.7 m, eleven bushing
-    circumferences;
-  * K dimensionless and H in Pa: the table's unit is wrong, K_A ~ 8e-11 is six orders
-    below any measured Archard coefficient, and the implied wear range is ~3 nm.
-Read as k = K/21, the paper's coefficients are K_A ~ 7.7e-4 (B1) and 5.3e-4 (B2) --
-inside the 1e-4 .. 1e-2 of dry aluminium on steel -- and imply a wear range of ~0.03 m
-(about half the bushing, the "upper part" of Sec. 4.2).
+Unit chain.  Eq. (32) reads dh_j = K / (H w) * F_N S / L_arc with K printed in Pa^-1
+(Tables 3-4) and H as "21 HB" (Table 2): dh_j is a length only if H enters as the bare
+hardness number 21, so k = K / 21 [m^2/N] and Archard's K_A = k H = K * 9.80665e6 (the
+readings this rules out, and why: docs/joint_wear.md, "Unit chain").
 
 Per period (Eq. 29):  dh_j = k * F_N_mean * S / (w * L_wear)  =  k * G,
 G [N/m] is the *wear factor* of one period; it is all the calibration and the
@@ -47,18 +35,13 @@ from .geometry import FourBar
 
 
 def contact_arc(psi, in_contact=None):
-    """Angular range [rad] the contact point covers on the bushing (Fig. 4, Arc^j).
+    """Angular range [rad] the contact point covers on the bushing (Fig. 4, Arc^j), psi the
+    contact angle (bushing frame) over one period on a uniform periodic grid.
 
-    psi is the contact angle in the bushing's frame over one period on a uniform periodic
-    grid.  When the contact is continuous (all samples) the path is unwrapped along time;
-    a path whose unwrapped angle drifts by a whole turn over the period (the contact point
-    runs round the bushing) covers the full circle, 2 pi.  Otherwise the range of the
-    unwrapped path is taken, each extreme refined by the vertex of the parabola through it
-    and its two periodic neighbours (differences wrapped into (-pi, pi], so the refinement
-    never runs across the +-pi cut): the range of the smooth contact-point path then
-    converges with the sampling as O(dt^3).  The result never exceeds 2 pi.  With gaps
-    (free flight) the raw sample range about the circular mean is returned: the path is
-    not smooth there.
+    A continuous contact: the range of the path unwrapped along time (contact_arc_bounds,
+    extremes refined by a parabola: O(dt^3) in the sampling), 2 pi where it winds round
+    the bushing.  With gaps (free flight, not smooth) the raw sample range about the
+    circular mean.
     """
     psi = np.asarray(psi, float)
     full = in_contact is None or bool(np.all(in_contact))
@@ -105,13 +88,9 @@ def _vertex(y, i):
 
 
 def contact_arc_quantile(psi, weights=None, q=0.9):
-    """Central range [rad] holding the share q of the contact time (time-weighted).
-
-    A well-posed statistic of where the contact point dwells when the period contains an
-    impact and rattling: the max - min of ``contact_arc`` is set there by a few samples
-    of the impact and moves with the output sampling, while a quantile of the time spent
-    in contact converges as the sampling is refined.  weights: time per sample (uniform
-    sampling: ones, out-of-contact samples: zero).
+    """Central range [rad] holding the share q of the contact time, weights the time per
+    sample (0 out of contact): where the contact point dwells, well-posed under impact and
+    rattling, where the max - min of ``contact_arc`` is set by a few samples of the impact.
     """
     psi = np.asarray(psi, float)
     w = np.ones_like(psi) if weights is None else np.asarray(weights, float)
@@ -264,6 +243,29 @@ def predict(h_start: float, t_start_h: float, t_end_h: float, interval_h: float,
     return nodes, h, np.array(Gs)
 
 
+
+def calibration_hours(p: dict) -> float:
+    """The measurement interval of Tables 3-4 [h] (Eq. 33: every two hours)."""
+    return float(p["measurement_interval"]) / 3600.0
+
+
+def calibrate_side(p: dict, side: str, period: float, R0: float,
+                   wear_factor: Callable[[float], float]):
+    """:func:`calibrate` on the measurements of ``side`` (Tables 3-4) in the SI run
+    parameters ``p``, with their calibration_wear_feedback."""
+    return calibrate(p[f"measured_wear_{side}"], calibration_hours(p), period, R0, wear_factor,
+                     dh_measured=p[f"measured_increment_{side}"],
+                     feedback=float(p["calibration_wear_feedback"]))
+
+
+def predict_side(p: dict, side: str, interval_h: float, k: float, period: float, R0: float,
+                 wear_factor: Callable[[float], float],
+                 worn_bushing: Callable[[float, float], float] | None = bushing_radius):
+    """:func:`predict` of ``side`` from its last measurement to ``prediction_end``."""
+    h = np.asarray(p[f"measured_wear_{side}"], float)
+    return predict(h[-1], calibration_hours(p) * h.size, float(p["prediction_end"]) / 3600.0,
+                   interval_h, k, period, R0, wear_factor, worn_bushing)
+
 def interval_limit(h_start: float, t_start_h: float, t_end_h: float, k: float, period: float,
                    R0: float, wear_factor: Callable[[float], float],
                    worn_bushing: Callable[[float, float], float] = bushing_radius) -> float:
@@ -273,9 +275,8 @@ def interval_limit(h_start: float, t_start_h: float, t_end_h: float, k: float, p
         dh/dt = k G(R(h)) / T,   h(t_start) = h_start,
 
     integrated by DOP853 to rtol 1e-12 with G evaluated at every stage (one period each):
-    the exact solution the interval study's cost of accuracy is measured against.  The
-    period-by-period sum (Fig. 6) differs from it by O(k G'(R) / 2), ~1e-9 of h per 43 776
-    periods.  Returns h(t_end) [m]."""
+    the exact solution the interval study's cost of accuracy is measured against (the
+    period-by-period sum of Fig. 6 differs from it by O(k G'(R) / 2)).  Returns h(t_end) [m]."""
     from scipy.integrate import solve_ivp
     rate = 3600.0 / period                      # periods per hour
 
@@ -285,6 +286,14 @@ def interval_limit(h_start: float, t_start_h: float, t_end_h: float, k: float, p
     if not r.success:
         raise RuntimeError(f"joint_wear: the interval limit did not integrate: {r.message}")
     return float(r.y[0, -1])
+
+
+def closed_form_factor(R0: float, p: float):
+    """The wear factor of a rival without mechanics: G(R) = (R0 / R)^p, no four-bar, no
+    contact (option ``closed_form_growth: p``).  p = 1 is the worn arc's length growing
+    with the radius at a fixed arc, force and sliding; the calibration absorbs G's scale,
+    so only its growth law enters the prediction."""
+    return lambda R_bush: (R0 / R_bush) ** p
 
 
 def period_by_period(h_start: float, n_periods: int, k: float, R0: float,
@@ -300,12 +309,11 @@ def inverse_radius_prediction(h_measured, dh_measured, interval_h: float, t_end_
                               step_h: float, period: float, R0: float):
     """The comparison without mechanics: the wear factor taken as G(R) = R0 / R (the arc
     length L_arc = R * arc grows with the worn radius at a fixed arc, force and sliding
-    distance), calibrated on the same measured increments (Eqs. 32-34) and predicted by
-    the same interval method (Sec. 4.4).  No four-bar, no contact: whatever it reproduces of
-    Figs. 15-19 follows from the measured data and the 1/R geometry alone.
+    distance: closed_form_factor with p = 1), calibrated on the same measured increments
+    (Eqs. 32-34) and predicted by the same interval method (Sec. 4.4).  No four-bar, no
+    contact: what it reproduces of Figs. 15-19 follows from the measured data and 1/R alone.
     Returns (node times [h], cumulative wear at the nodes [m])."""
-    def G(R):
-        return R0 / R
+    G = closed_form_factor(R0, 1.0)
     h = np.asarray(h_measured, float)
     _, k, _ = calibrate(h, interval_h, period, R0, G, dh_measured=dh_measured)
     nodes, hp, _ = predict(h[-1], interval_h * h.size, t_end_h, step_h, k, period, R0, G)
@@ -391,10 +399,10 @@ def local_predict(dh_measured, interval_h: float, t_end_h: float, step_h: float,
                   period: float, increment: Callable, theta, pts):
     """The interval method with local wear: a depth profile h(theta) on the bushing, grown
     interval by interval by ``increment(profile)`` -- the depth one period of the joint with
-    that profile wears per unit k (groove.wear_per_period: the profile in the contact gap;
-    mean_circle_increment: through a circle only).  Calibration (Eqs. 33-34): in each
-    measured interval p, k_p makes the profile's mean over the Eq.-33 points ``pts`` grow by
-    the printed increment dh^P; the profile after 10 h is the one those k_p wore.
+    that profile wears per unit k (mean_circle_increment: through a circle only).
+    Calibration (Eqs. 33-34): in each measured interval p, k_p makes the profile's mean over
+    the Eq.-33 points ``pts`` grow by the printed increment dh^P; the profile after 10 h is
+    the one those k_p wore.
     Prediction: k = mean k_p, the profile grown by M periods of local wear per interval.
     Returns (node hours, mean depth over the points [m], max depth [m], k, the profile at
     the end [m])."""
