@@ -94,7 +94,10 @@ class PaperConfig:
 
     @property
     def tables(self) -> list[str]:
-        return list(dict.fromkeys([*self.raw.get("tables", []), *self.framework_tables]))
+        """Every table of the paper: the validation table, the notebook's (``tables:``), then
+        the framework's others."""
+        return list(dict.fromkeys(["validation", *self.raw.get("tables", []),
+                                   *self.framework_tables]))
 
     @property
     def notebook_tables(self) -> list[str]:
