@@ -26,8 +26,9 @@ import sys
 from collections.abc import Callable
 from pathlib import Path
 
-BLOCK = re.compile(r"<!-- run:(\w+) -->.*?<!-- /run:\1 -->", flags=re.S)
-BLOCK_NAME = re.compile(r"<!-- run:(\w+) -->")
+# <!-- run:NAME --> or <!-- run:NAME ARG ARG --> (a block given arguments: notes q1 q2)
+BLOCK = re.compile(r"<!-- run:(\w+)((?: [\w.]+)*) -->.*?<!-- /run:\1 -->", flags=re.S)
+BLOCK_NAME = re.compile(r"<!-- run:(\w+)[ \w.]* -->")
 VERDICTS = ("pass", "fail", "inconclusive", "not_converged")
 
 
@@ -55,20 +56,22 @@ def number(x, digits: int = 4) -> str:
 
 
 def regenerate(text: str, blocks: dict[str, Callable[[Path], str]], root: Path) -> str:
-    """``text`` with every ``<!-- run:NAME -->`` block filled by ``blocks[NAME](root)``."""
+    """``text`` with every ``<!-- run:NAME ARGS -->`` block filled by
+    ``blocks[NAME](root, *ARGS)``."""
     unknown = sorted(set(BLOCK_NAME.findall(text)) - set(blocks))
     if unknown:
         raise KeyError(f"no generator for the block(s) {unknown}; have {sorted(blocks)}")
 
     def fill(m):
-        name = m.group(1)
-        return f"<!-- run:{name} -->\n{blocks[name](root)}\n<!-- /run:{name} -->"
+        name, args = m.group(1), m.group(2)
+        return (f"<!-- run:{name}{args} -->\n{blocks[name](root, *args.split())}\n"
+                f"<!-- /run:{name} -->")
     return BLOCK.sub(fill, text)
 
 
 def block(text: str, name: str) -> str:
     """The current content of block ``name`` of ``text``."""
-    m = re.search(rf"<!-- run:{name} -->\n(.*?)\n<!-- /run:{name} -->", text, flags=re.S)
+    m = re.search(rf"<!-- run:{name}[ \w.]* -->\n(.*?)\n<!-- /run:{name} -->", text, flags=re.S)
     if not m:
         raise KeyError(f"block {name} missing")
     return m.group(1)
@@ -158,9 +161,79 @@ def knobs(results: Path, config_dir: Path = Path("config")) -> str:
     return "\n".join(out)
 
 
+def markdown(header, rows) -> str:
+    """A markdown table (cells with their line breaks and bars made safe)."""
+    cell = lambda t: " ".join(str(t).split()).replace("|", "/")  # noqa: E731
+    return "\n".join(["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+                     + ["| " + " | ".join(cell(c) for c in r) + " |" for r in rows])
+
+
+def counts(root: Path) -> str:
+    """The paper's claim and its verdict counts, independent first, then by evidence class."""
+    c = json.loads((root / "claim.json").read_text())
+    ind = c["independent"]
+    return (f"Claim **{c['claim']}**. Independent: **{ind.get('pass', 0)} pass, "
+            f"{ind.get('fail', 0)} fail, {ind.get('inconclusive', 0)} inconclusive, "
+            f"{ind.get('not_converged', 0)} not converged** (counts by evidence class: "
+            + "; ".join(f"{k} " + ", ".join(f"{n} {s}" for s, n in sorted(v.items()))
+                        for k, v in sorted(c["counts"].items())) + ").")
+
+
+def _validation(root: Path) -> list[dict]:
+    return table_rows(root / "tables" / "validation.csv")
+
+
+def verdicts(root: Path) -> str:
+    """Every row with a verdict (not info): the paper's value, ours with its error bar, the
+    verdict, its evidence class and the rivals it was checked against."""
+    return markdown(["row", "source", "evidence", "paper", "ours", "± error", "verdict",
+                     "rivals"],
+                    [[f"`{r['quantity']}`", r["source"], r["evidence"], number(r["paper_value"]),
+                      f"{number(r['reproduced_value'], 6)} {r['unit']}".strip(),
+                      number(r["error_estimate"], 2), r["status"], r["rivals"] or "—"]
+                     for r in _validation(root) if r["status"] != "info"])
+
+
+def info(root: Path) -> str:
+    """The info rows: what the run measures beside the verdicts."""
+    return markdown(["row", "source", "value", "evidence"],
+                    [[f"`{r['quantity']}`", r["source"],
+                      f"{number(r['reproduced_value'], 5)} {r['unit']}".strip(), r["evidence"]]
+                     for r in _validation(root) if r["status"] == "info"])
+
+
+def not_discriminating(root: Path) -> str:
+    """The independent passes no rival fails (reproduced, not counted)."""
+    return "\n".join(f"* `{r['quantity']}`: {r['status']}, rivals {r['rivals'] or 'none'}"
+                     for r in _validation(root) if r["evidence"] == "not_discriminating")
+
+
+def notes(root: Path, *quantities: str) -> str:
+    """``<!-- run:notes q1 q2 -->``: each row's value and note."""
+    by = {r["quantity"]: r for r in _validation(root)}
+    return "\n".join(f"* `{q}` = {number(by[q]['reproduced_value'], 6)} {by[q]['unit']}: "
+                     f"{' '.join(by[q]['note'].split())}" for q in quantities if q in by)
+
+
+def cost(root: Path) -> str:
+    """The cost-of-accuracy curves: per entry and quantity, the knob's values, errors, times
+    and the observed order."""
+    rows = table_rows(root / "tables" / "cost_of_accuracy.csv")
+    out = []
+    for acc, q in dict.fromkeys((r["accuracy"], r["quantity"]) for r in rows):
+        pts = [r for r in rows if r["accuracy"] == acc and r["quantity"] == q]
+        out.append([acc, q, pts[0]["reference"], " / ".join(r["knob_value"] for r in pts),
+                    " / ".join(f"{float(r['error']):.1e}" for r in pts),
+                    " / ".join(f"{float(r['time_s']):.2g}" for r in pts),
+                    f"{float(pts[0]['observed_order']):.2f}"])
+    return markdown(["entry", "quantity", "reference", "knob values", "errors", "times [s]",
+                     "order"], out)
+
+
 README_BLOCKS = {"claims": claims, "assumed_constants": assumed_constants, "job_times": job_times}
 #: blocks every docs/<paper>.md may use, beside its own models/<paper>/docs.py BLOCKS
-PAPER_BLOCKS = {"knobs": knobs}
+PAPER_BLOCKS = {"knobs": knobs, "counts": counts, "verdicts": verdicts, "info": info,
+                "not_discriminating": not_discriminating, "notes": notes, "cost": cost}
 
 
 def blocks_for(doc: Path) -> tuple[dict, str | None]:

@@ -2,49 +2,10 @@
 (``python -m mechrepro.docs docs/rolling_shear.md results`` on the default results)."""
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 # one formatter for every paper page
 from mechrepro.docs import number as _g, table_rows as _rows
-
-
-def _cell(text: str) -> str:
-    return " ".join(str(text).split()).replace("|", "/")
-
-
-def counts(root: Path) -> str:
-    c = json.loads((root / "claim.json").read_text())
-    ind = c["independent"]
-    return (f"Claim **{c['claim']}**. Independent: **{ind['pass']} pass, {ind['fail']} fail, "
-            f"{ind['inconclusive']} inconclusive, {ind['not_converged']} not converged**.")
-
-
-def verdicts(root: Path) -> str:
-    """Every row with a verdict (not info), with its error bar and what flips it."""
-    out = ["| row | source | paper | ours | ± error | verdict | evidence |",
-           "|---|---|---|---|---|---|---|"]
-    for r in _rows(root / "tables" / "validation.csv"):
-        if r["status"] != "info":
-            out.append(f"| `{r['quantity']}` | {_cell(r['source'])} | {_g(r['paper_value'])} | "
-                       f"{_g(r['reproduced_value'], 5)} {r['unit']} | {_g(r['error_estimate'], 2)} | "
-                       f"{r['status']} | {r['evidence']} |")
-    return "\n".join(out)
-
-
-def info(root: Path) -> str:
-    """The info rows: what the run measures beside the verdicts."""
-    out = ["| row | source | value | evidence |", "|---|---|---|---|"]
-    for r in _rows(root / "tables" / "validation.csv"):
-        if r["status"] == "info":
-            out.append(f"| `{r['quantity']}` | {_cell(r['source'])} | {_g(r['reproduced_value'], 5)} "
-                       f"{r['unit']} | {r['evidence']} |")
-    return "\n".join(out)
-
-
-def notes(root: Path, quantities) -> str:
-    rows = {r["quantity"]: r for r in _rows(root / "tables" / "validation.csv")}
-    return "\n".join(f"- `{q}`: {_cell(rows[q]['note'])}" for q in quantities if q in rows)
 
 
 def design_front(root: Path) -> str:
@@ -82,19 +43,4 @@ def branch(root: Path) -> str:
     return "\n".join(out)
 
 
-BLOCKS = {
-    "counts": counts,
-    "verdicts": verdicts,
-    "info": info,
-    "design_front": design_front,
-    "design_notes": lambda root: notes(root, ["design_recommended_h", "design_lowest_buildable_h",
-                                              "design_table2_buildable"]),
-    "solvers": solvers,
-    "solver_notes": lambda root: notes(root, ["speedup_like_for_like", "selpso_branch_success_rate",
-                                              "selpso_converges_from_each_initial_value"]),
-    "table2_notes": lambda root: notes(root, ["horizontal_displacement_reduction",
-                                              "paper_levers_assemble",
-                                              "table2_reduction_family_frozen_min",
-                                              "table2_reduction_family_rederived_min"]),
-    "branch": branch,
-}
+BLOCKS = {"design_front": design_front, "solvers": solvers, "branch": branch}
