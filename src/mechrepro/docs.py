@@ -8,8 +8,10 @@ A document marks each generated block ::
 
 and this fills them: ``README.md`` from the framework's blocks below (the claim of every
 paper from ``results/<paper>/claim.json``, the assumed constants from the paper configs),
-``docs/<paper>.md`` from the paper's own ``models/<paper>/docs.py`` (``BLOCKS``, each a
-function of ``results/<paper>``)::
+``docs/<paper>.md`` from the blocks every paper page may use (:data:`PAPER_BLOCKS`: counts,
+verdicts, info rows, ``<!-- run:notes q1 q2 -->`` for the notes of named rows, ...) and
+the paper's own ``models/<paper>/docs.py`` (``BLOCKS``), each a function of
+``results/<paper>``::
 
     .venv/bin/python -m mechrepro.docs README.md results
     .venv/bin/python -m mechrepro.docs docs/disk_tension.md results
