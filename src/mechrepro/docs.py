@@ -43,7 +43,8 @@ def table_rows(path: Path) -> list[dict]:
 
 
 def number(x, digits: int = 4) -> str:
-    """A number as the docs print it: '' stays '', NaN is a dash, an integer has no point."""
+    """A number as the docs print it: '' stays '', NaN is a dash, infinity ∞, an integer has
+    no point."""
     if x in ("", None):
         return ""
     try:
@@ -52,6 +53,8 @@ def number(x, digits: int = 4) -> str:
         return str(x)
     if v != v:
         return "—"
+    if abs(v) == float("inf"):     # an error bar of levels that do not contract
+        return "∞" if v > 0 else "-∞"
     if v == int(v) and abs(v) < 1e6:
         return f"{int(v)}"
     return f"{v:.{digits}g}"
@@ -185,15 +188,17 @@ def _validation(root: Path) -> list[dict]:
     return table_rows(root / "tables" / "validation.csv")
 
 
-def verdicts(root: Path) -> str:
-    """Every row with a verdict (not info): the paper's value, ours with its error bar, the
-    verdict, its evidence class and the rivals it was checked against."""
+def verdicts(root: Path, *evidence: str) -> str:
+    """Every row with a verdict (not info; ``<!-- run:verdicts independent ... -->``: of
+    those evidence classes only): the paper's value, ours with its error bar, the verdict,
+    its evidence class and the rivals it was checked against."""
     return markdown(["row", "source", "evidence", "paper", "ours", "± error", "verdict",
                      "rivals"],
                     [[f"`{r['quantity']}`", r["source"], r["evidence"], number(r["paper_value"]),
                       f"{number(r['reproduced_value'], 6)} {r['unit']}".strip(),
                       number(r["error_estimate"], 2), r["status"], r["rivals"] or "—"]
-                     for r in _validation(root) if r["status"] != "info"])
+                     for r in _validation(root) if r["status"] != "info"
+                     and (not evidence or r["evidence"] in evidence)])
 
 
 def info(root: Path) -> str:
