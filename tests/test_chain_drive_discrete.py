@@ -52,9 +52,9 @@ def test_energy_of_a_fixed_roller_set_is_conserved_to_the_integrators_order():
         t = np.linspace(0.0, t_end, steps + 1)
         assert w_max * (t[1] - t[0]) < 2.0        # inside RK4's stability interval
         zeros = np.zeros(2 * steps + 1)
-        Y, V = D.rk4(y0, v0, t, zeros, zeros, np.full(steps, T / (m * a)), 0.0)
-        e = D.energy(Y[:, :, 0].T, V[:, :, 0].T, 0.0, 0.0, T, m, a)
-        drift.append(abs(e[-1] / e[0] - 1))
+        y, v, _ = D.rk4(y0, v0, t, zeros, zeros, np.full(steps, T / (m * a)), 0.0)
+        e0, e1 = (D.energy(yy, vv, 0.0, 0.0, T, m, a)[0] for yy, vv in ((y0, v0), (y, v)))
+        drift.append(abs(e1 / e0 - 1))
     assert drift[0] < 1e-3
     assert math.log2(drift[0] / drift[1]) > 3.9, drift
 
@@ -123,11 +123,12 @@ def test_the_engaging_links_extra_tension_acts_on_the_last_roller_alone():
     K[-1, -1] += extra / a
     want = -(K @ y) / m
     want[-1] += (T + extra) / (m * a) * right
-    got = D._accel(y, np.zeros_like(y), 0.0, right, T / (m * a), 0.0, extra / (m * a))
+    got = np.empty_like(y)
+    D._accel(y, np.zeros_like(y), 0.0, right, T / (m * a), 0.0, extra / (m * a), 0.0, got)
     assert np.allclose(got, want, rtol=1e-12)
 
 
-@pytest.mark.parametrize("effect, option", [("sag", None), ("external_load", None),
+@pytest.mark.parametrize("effect, option", [("external_load", None),
                                             (None, "stationary_string")])
 def test_what_the_discrete_span_cannot_honour_is_refused_by_name(effect, option):
     from mechrepro.models.chain_drive.errors import UnknownChoice
@@ -140,3 +141,19 @@ def test_what_the_discrete_span_cannot_honour_is_refused_by_name(effect, option)
         run.setdefault("options", {})[option] = True
     with pytest.raises(UnknownChoice, match="discrete span"):
         D.sweep(run, prm, np.array([300.0 / geometry.RPM]), run["resolution"])
+
+
+def test_the_sag_load_settles_into_the_beaded_strings_static_sag():
+    """Eq. (2-36)'s kappa P_t on the rollers: a constant load per mass q on every roller of
+    the forced column settles (damped, fixed ends) into the static deflection K y = m q, the
+    beaded string's parabola y_i = q m i (N + 1 - i) a / (2 T); the map's unit columns feel
+    no load."""
+    n, T, m, a, q = 9, 400.0, 7.7e-3, 12.7e-3, 3.0
+    steps, t_end = 20000, 2.0
+    t = np.linspace(0.0, t_end, steps + 1)
+    zeros = np.zeros(2 * steps + 1)
+    y, _, _ = D.rk4(np.zeros((n, 2)), np.zeros((n, 2)), t, zeros, zeros,
+                    np.full(steps, T / (m * a)), 40.0, load=np.full(steps, q))
+    i = np.arange(1, n + 1)
+    assert np.allclose(y[:, 1], q * m * i * (n + 1 - i) * a / (2 * T), rtol=1e-6)
+    assert np.all(y[:, 0] == 0.0)
