@@ -183,14 +183,15 @@ def order_peak(ds, k: int) -> tuple[float, float]:
 
 
 def stable_orders(ds, n: int = 2) -> list[int]:
-    """The first ``n`` resonance orders whose window (:func:`.claims.order_window`) holds no
-    unstable speed: a peak next to a stability edge has no converging amplitude."""
+    """The first ``n`` resonance orders whose window (:func:`.claims.order_window`) lies in
+    the sweep and holds no unstable speed: a peak next to a stability edge has no
+    converging amplitude."""
     sp, un = ds.speed.values, np.asarray(ds.unstable.values, bool)
     out = []
     for k in ds.order.values:
         lo, hi = C.order_window(float(ds.resonance_speed_long.sel(order=k)),
                                 float(ds.resonance_speed_short.sel(order=k)))
-        if not np.any(un & (sp >= lo) & (sp <= hi)):
+        if lo >= sp[0] and hi <= sp[-1] and not np.any(un & (sp >= lo) & (sp <= hi)):
             out.append(int(k))
     return out[:n]
 

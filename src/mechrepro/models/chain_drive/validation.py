@@ -185,7 +185,7 @@ def fig05_one_peak(R):
 @Q.register("length_change_difference_grows_with_order")
 def fig05_difference(R):
     plain = dict(_non_integral(R, "fig05_plain_cd"))
-    withl = dict(_non_integral(R, "fig05_length_cd"))
+    withl = dict(_non_integral(R, "fig05_length_string_cd"))
     diffs = []
     for k in range(1, 6):
         vals = []
