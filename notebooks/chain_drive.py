@@ -264,8 +264,10 @@ fig.suptitle(f"discrete span (scene fig07_tension): {convergence_note('fig07_ten
              f"axes cut at {cap7:g} mm (stable orbits at stability edges)", fontsize=9)
 fig.tight_layout(rect=(0, 0.07, 1, 1))
 R.write_table("discrete_peaks", F.DISCRETE_PEAK_COLUMNS,
-              [r for name in ("fig05_length", "fig06_inertia", "fig07_tension", "fig07_ts-000")
-               for r in F.discrete_peak_rows(R, name)])
+              [r for name, study in (("fig05_length", None), ("fig06_inertia", None),
+                                     ("fig07_tension", None), ("fig07_ts-000", None),
+                                     ("fig08_discrete", "fig08_discrete_levels"))
+               for r in F.discrete_peak_rows(name, F.level_runs(R, name, study))])
 R.save_figure(fig, "fig07")
 
 # %% [markdown]
@@ -274,12 +276,18 @@ R.save_figure(fig, "fig07")
 # %%
 ws, d8 = F.with_base(R, "fig08_wex", "fig08_external", "external_frequency_ratio")
 base = R.run("fig08_none")
+disc8 = R.run("fig08_discrete")
 fig, ax = plt.subplots(len(d8) + 1, 1, figsize=(8, 2.3 * (len(d8) + 1)), sharex=True)
-ax[0].semilogy(base.speed, steady(base))
-mark_unstable(ax[0], base)
+ax[0].semilogy(base.speed, steady(base),
+               label=f"string, {F.resolution(base, 'points_per_pitch')} points per pitch (verdicts)")
+ax[0].semilogy(disc8.speed, steady(disc8), lw=0.9,
+               label="discrete-link span (no external load: table discrete_peaks)")
+mark_unstable(ax[0], base, label="unstable (string)")
+mark_unstable(ax[0], disc8, label="unstable (discrete span)", color="tab:orange")
 ax[0].set(title="; ".join(s for s in ("Fig. 8a: without external load",
                                      convergence_note("fig08_none")) if s),
           ylabel="max |u| [mm]")
+ax[0].legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
 for a, w, d in zip(ax[1:], ws[::-1], d8[::-1]):       # 4, 2, 1
     a.semilogy(base.speed, steady(base), color="0.7", lw=0.8)
     a.semilogy(d.speed, steady(d))

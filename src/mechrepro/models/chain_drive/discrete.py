@@ -253,12 +253,35 @@ def _refuse_unhonoured_keys(named: set) -> None:
             raise UnknownChoice(f"discrete span: {why} ({key})")
 
 
-def _segments(tau, t_r, steps_per_period):
-    """The time grids of the period's segments: [0, t_r] and [t_r, tau] (one when the
-    release coincides with the seating)."""
-    cuts = [0.0, t_r, tau] if t_r > 0 else [0.0, tau]
-    return [np.linspace(a, b, max(int(math.ceil(steps_per_period * (b - a) / tau)), 2) + 1)
-            for a, b in zip(cuts[:-1], cuts[1:])]
+#: RK4 steps within the impact's contact time per this many steps per tooth period: the
+#: 28 us pulse (Eq. 2-4) is resolved by its own steps (>= 5 at the coarsest level in use)
+#: instead of being averaged into one step of ~20 us, so that refining the step refines
+#: the pulse with it
+CONTACT_STEPS = 25
+
+
+def _segments(tau, t_r, steps_per_period, t_i=0.0):
+    """The time grids of the period's segments between its events: the contact [0, t_i]
+    (impact on; ``steps_per_period`` / :data:`CONTACT_STEPS` steps), the release t_r and the
+    seating tau; elsewhere ``steps_per_period`` per tooth period."""
+    cuts = sorted({0.0, tau} | {t for t in (t_i, t_r) if 0.0 < t < tau})
+    out = []
+    for a, b in zip(cuts[:-1], cuts[1:]):
+        n = (math.ceil(steps_per_period / CONTACT_STEPS) if b == t_i else
+             math.ceil(steps_per_period * (b - a) / tau))
+        out.append(np.linspace(a, b, max(int(n), 2) + 1))
+    return out
+
+
+def _contact_time(run, prm) -> float:
+    """The impact's contact time t_i = pi / omega_d (Appendix I); 0 without the impact."""
+    from . import loads
+
+    if "tension_pulse" not in declared_keys(run):
+        return 0.0
+    k = loads.impact_constants(prm["impact_mass_links"] * prm["pitch"] * prm["mass_per_length"],
+                               prm["contact_stiffness"], prm["contact_damping_ratio"])
+    return float(k["t_i"])
 
 
 def period_map(run, prm: dict, omega1: float, steps_per_period: int, start=None):
@@ -289,11 +312,11 @@ def period_map(run, prm: dict, omega1: float, steps_per_period: int, start=None)
         K = 1
         y, v = np.asarray(start[:N0], float)[:, None], np.asarray(start[N0:], float)[:, None]
     amp, p_min = 0.0, math.inf
-    for i, seg in enumerate(_segments(tau, t_r, steps_per_period)):
+    for seg in _segments(tau, t_r, steps_per_period, _contact_time(run, prm)):
         ends, Pt, pulse, load = _drive(run, prm, omega1, seg, seg[1] - seg[0])
         local = (1.0 - share) * pulse            # the engaging link's alone
         nh = 2 * len(seg) - 1
-        if i == 1:                               # release: a roller enters at the driven end
+        if t_r > 0 and seg[0] == t_r:            # release: a roller enters at the driven end
             y = np.vstack([_entering(ends, "u_left", nh, K), y])
             v = np.vstack([_entering(ends, "v_left", nh, K), v])
         y, v, a = rk4(y, v, seg, _end(ends, "u_left", nh), _end(ends, "u_right", nh),

@@ -202,15 +202,25 @@ def stable_orders(ds, n: int = 2) -> list[int]:
 PEAK_BAND = 0.02
 
 
-def discrete_peak_rows(R, name: str, n_orders: int = 2) -> list[list]:
+def level_runs(R, name: str, study: str | None = None) -> list:
+    """The four levels of a discrete sweep, coarsest to finest: the framework's variants of
+    run ``name`` (@coarsest, @coarser, base, @finer), or, with ``study`` (a sweep spelling
+    them out for a scene no verdict reads), its runs by steps per tooth period around the
+    base scene ``name``."""
+    if study is None:
+        return [R.run(f"{name}{s}") for s in LEVEL_RUNS]
+    runs = sorted(R.study_runs(study), key=lambda d: resolution(d, "steps_per_period"))
+    return runs[:2] + [R.run(name)] + runs[2:]
+
+
+def discrete_peak_rows(name: str, ds: list, n_orders: int = 2) -> list[list]:
     """Peak speed and amplitude of the first ``n_orders`` orders away from any instability
-    (:func:`stable_orders`, on the baseline) on run ``name`` at its four levels, with the
-    error of the baseline from both sides by the one estimator
-    (:func:`mechrepro.levels.level_error`: coarsest / coarser / base and coarser / base /
-    finer at the levels' ratio 1.5; the larger bound, plus |base - finer|)."""
+    (:func:`stable_orders`, on the baseline) of the discrete sweep ``name`` at its four
+    levels ``ds`` (:func:`level_runs`), with the error of the baseline from both sides by
+    the one estimator (:func:`mechrepro.levels.level_error`: coarsest / coarser / base and
+    coarser / base / finer at the levels' ratio 1.5; the larger bound, plus |base - finer|)."""
     from mechrepro.levels import level_error
 
-    ds = [R.run(f"{name}{s}") for s in LEVEL_RUNS]
     tol = float(resolution(ds[2], "peak_tol"))
     rows = []
     for k in stable_orders(ds[2], n_orders):
