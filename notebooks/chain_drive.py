@@ -158,6 +158,9 @@ cds, plain = F.with_base(R, "fig05_plain_cd", "fig05_plain", "centre_distance")
 _, withl = F.with_base(R, "fig05_length_cd", "fig05_length", "centre_distance")
 _, withs = F.with_base(R, "fig05_length_string_cd", "fig05_length_string", "centre_distance")
 ppp5 = F.resolution(plain[0], "points_per_pitch")
+# a stable orbit next to an unstable band grows without bound (multiplier -> 1): the axes
+# stop at 50 mm, as Figs. 6 and 7
+cap5 = mm(0.05)
 fig, ax = plt.subplots(len(cds), 1, figsize=(9, 2.6 * len(cds)), sharex=True)
 for a, cd, dp, dl, ds_ in zip(ax, cds, plain, withl, withs):
     a.semilogy(dp.speed, steady(dp), "-", color="0.55", lw=0.8,
@@ -166,16 +169,22 @@ for a, cd, dp, dl, ds_ in zip(ax, cds, plain, withl, withs):
                label=f"string, {ppp5} points per pitch, with length change")
     a.semilogy(dl.speed, steady(dl), "-", color="tab:blue", lw=1.0,
                label="discrete-link span, with length change (verdicts)")
-    mark_unstable(a, dl, label="unstable (discrete span)")
-    mark_unstable(a, dp, label="unstable (string)", color="tab:orange")
-    mark_unstable(a, ds_, label=None, color="tab:orange")
     for k, v in enumerate(dl.resonance_speed_short.values):
         a.axvline(v, color="tab:green", ls=":", lw=0.7,
                   label="short span L_0: tooth = k-th string frequency" if k == 0 else None)
     for k, v in enumerate(dl.resonance_speed_long.values):
         a.axvline(v, color="tab:red", ls=":", lw=0.7,
                   label="long span L_0 + p: tooth = k-th string frequency" if k == 0 else None)
-    a.set(ylabel="max |u| [mm]", title=f"Fig. 5: centre distance {cd:g} pitches")
+    top5 = float(np.nanmax([np.nanmax(steady(x)) for x in (dp, ds_, dl)]))
+    a.set(ylabel="max |u| [mm]", title=f"Fig. 5: centre distance {cd:g} pitches" + (
+        f" (axis cut at {cap5:g} mm: stable orbits at stability edges reach {top5:.3g} mm)"
+        if top5 > cap5 else ""))
+    a.title.set_fontsize(9)
+    if top5 > cap5:
+        a.set_ylim(top=cap5)
+    mark_unstable(a, dl, label="unstable (discrete span)")
+    mark_unstable(a, dp, label="unstable (string)", color="tab:orange")
+    mark_unstable(a, ds_, label=None, color="tab:orange")
 a.set_xlabel("omega_1 [rpm]")
 marks5 = {lb: h for x in ax for h, lb in zip(*x.get_legend_handles_labels())}
 ax[0].legend(marks5.values(), marks5.keys(), fontsize=7, loc="upper left",

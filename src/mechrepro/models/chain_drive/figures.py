@@ -133,8 +133,8 @@ def peak_level_spread(R, name: str, n_peaks: int = 5, window: float = 3.0):
     """How far the steady amplitude of the ``n_peaks`` largest stable peaks of run ``name``
     moves between its @coarsest, @coarser and base levels (the framework runs all three for
     every verdict's reads): (max relative spread, observed order or nan, peak speeds).  The
-    amplitude at a level is its largest stable value within +-``window`` rpm of the base
-    peak; peaks within ``window`` of an unstable speed are left out (a stable orbit at a
+    amplitude at a level is the one-mode vertex (:func:`.claims.one_mode_peak`) of its
+    stable values within +-``window`` rpm of the base peak; peaks within ``window`` of an unstable speed are left out (a stable orbit at a
     stability edge grows without bound there).  An observed order needs a contracting sequence (|d1| > 1.05 |d2|); a spread with
     none is an amplitude that does not converge under refinement, and the figure says so."""
     try:
@@ -156,7 +156,9 @@ def peak_level_spread(R, name: str, n_peaks: int = 5, window: float = 3.0):
         for d in ds:
             m = np.abs(d.speed.values - s0) <= window
             a = np.where(np.asarray(d.unstable.values, bool)[m], np.nan, d.amplitude.values[m])
-            vals.append(np.nanmax(a) if np.isfinite(a).any() else np.nan)
+            # the one-mode vertex, not the largest sample: the levels sample speeds apart
+            vals.append(C.one_mode_peak(d.speed.values[m], a)[1] if np.isfinite(a).any()
+                        else np.nan)
         c2, c, b = vals
         spread = max(spread, np.nanmax(np.abs(np.array([c2, c]) - b)) / b)
         d1, d2 = abs(c2 - c), abs(c - b)
