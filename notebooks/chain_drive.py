@@ -274,7 +274,8 @@ fig.suptitle(f"discrete span (scene fig07_tension): {convergence_note('fig07_ten
 fig.tight_layout(rect=(0, 0.07, 1, 1))
 R.write_table("discrete_peaks", F.DISCRETE_PEAK_COLUMNS,
               [r for name, study in (("fig05_length", None), ("fig06_inertia", None),
-                                     ("fig07_tension", None), ("fig07_ts-000", None),
+                                     ("fig06_i2-000", None), ("fig07_tension", None),
+                                     ("fig07_ts-000", None),
                                      ("fig08_discrete", "fig08_discrete_levels"))
                for r in F.discrete_peak_rows(name, F.level_runs(R, name, study))])
 R.save_figure(fig, "fig07")
