@@ -414,7 +414,8 @@ R.save_figure(fig, "exact_checks")
 # %%
 coa = R.table("cost_of_accuracy")
 entries = list(dict.fromkeys(r["accuracy"] for r in coa))
-fig, ax = plt.subplots(2, 3, figsize=(15, 8))
+rows_c = -(-len(entries) // 3)
+fig, ax = plt.subplots(rows_c, 3, figsize=(15, 4 * rows_c))
 for a, entry in zip(ax.ravel(), entries):
     accuracy.plot(coa, entry, ax=a)   # an unproven reference is drawn NOT CONVERGED, with why
 for a in ax.ravel()[len(entries):]:
