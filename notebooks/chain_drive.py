@@ -387,6 +387,32 @@ fig.tight_layout()
 R.save_figure(fig, "fig10")
 
 # %% [markdown]
+# ## Beyond the paper — stability chart over speed and static tension (discrete-link span)
+# The largest Floquet multiplier of the tooth-period map per (speed, T_s): the design
+# message of Fig. 7 (how low a static tension a drive may run at) as a map; Fig. 7's
+# tensions dotted.  Default profile (ci: one tension, a few speeds).
+
+# %%
+tsc, dc = F.with_base(R, "chart_tension_ts", "chart_tension", "static_tension")
+sp_c = dc[0].speed.values
+rho_c = np.array([d.growth.values for d in dc])
+fig, ax = plt.subplots(figsize=(8, 4))
+mesh = ax.pcolormesh(sp_c, tsc, rho_c, shading="nearest", cmap="viridis",
+                     vmin=float(np.nanmin(rho_c)), vmax=max(1.0, float(np.nanmax(rho_c))))
+if len(tsc) > 1 and np.nanmax(rho_c) > 1 > np.nanmin(rho_c):
+    ax.contour(sp_c, tsc, rho_c, levels=[1.0], colors="r", linewidths=1.2)
+for d7_ in [R.run("fig07_tension")] + R.study_runs("fig07_ts"):
+    ax.axhline(F.parameter(d7_, "static_tension"), color="w", ls=":", lw=0.8)
+fig.colorbar(mesh, ax=ax, label="largest Floquet multiplier [1]")
+un_c = int(np.sum(rho_c > 1))
+ax.set(xlabel="omega_1 [rpm]", ylabel="static tension T_s [N]",
+       title=f"discrete span, {F.resolution(dc[0], 'steps_per_period')} RK4 steps per tooth "
+             f"period: {un_c} of {rho_c.size} (speed, T_s) unstable (red: multiplier 1)")
+ax.title.set_fontsize(9)
+fig.tight_layout()
+R.save_figure(fig, "chart_tension")
+
+# %% [markdown]
 # ## Independent checks: exact moving-string vibration (Wickert–Mote) and a manufactured solution
 
 # %%

@@ -66,27 +66,6 @@ def exact_mode_mixed(ds, entry):
     return _exact(ds, "mixed")
 
 
-def _against_discrete(ds, j: int):
-    """|string peak / discrete-span peak - 1| per run (j = 0 amplitude, 1 speed): the
-    string's pitch-scale error against the chain as it is (option discrete_reference)."""
-    out = []
-    for i in range(ds.sizes["run"]):
-        got = resonance_peak(ds.speed.values, ds.amplitude.isel(run=i).values)[j]
-        ref = resonance_peak(ds.speed.values, ds.amplitude_discrete.isel(run=i).values)[j]
-        out.append(abs(got / ref - 1.0))
-    return np.array(out)
-
-
-@ACCURACY.register("peak_amplitude_vs_discrete")
-def peak_amplitude_vs_discrete(ds, entry):
-    return _against_discrete(ds, 0)
-
-
-@ACCURACY.register("peak_speed_vs_discrete")
-def peak_speed_vs_discrete(ds, entry):
-    return _against_discrete(ds, 1)
-
-
 def _against_central(ds, j: int):
     """(|peak / reference - 1| per run, the reference's own relative error): the reference
     is the central (cfl 0.98) run of the most points per pitch, its error from it and the
