@@ -177,7 +177,7 @@ for a, cd, dp, dl, ds_ in zip(ax, cds, plain, withl, withs):
                   label="long span L_0 + p: tooth = k-th string frequency" if k == 0 else None)
     top5 = float(np.nanmax([np.nanmax(steady(x)) for x in (dp, ds_, dl)]))
     a.set(ylabel="max |u| [mm]", title=f"Fig. 5: centre distance {cd:g} pitches" + (
-        f" (axis cut at {cap5:g} mm: stable orbits at stability edges reach {top5:.3g} mm)"
+        f" (axis cut at {cap5:g} mm; orbits at stability edges reach {top5:.2g} mm)"
         if top5 > cap5 else ""))
     a.title.set_fontsize(9)
     if top5 > cap5:
@@ -444,6 +444,7 @@ rows_c = -(-len(entries) // 3)
 fig, ax = plt.subplots(rows_c, 3, figsize=(15, 4 * rows_c))
 for a, entry in zip(ax.ravel(), entries):
     accuracy.plot(coa, entry, ax=a)   # an unproven reference is drawn NOT CONVERGED, with why
+    log_ticks(a.yaxis)                # a short log axis: no crowded minor labels
 for a in ax.ravel()[len(entries):]:
     a.set_axis_off()
 fig.tight_layout()

@@ -134,9 +134,11 @@ def peak_level_spread(R, name: str, n_peaks: int = 5, window: float = 3.0):
     moves between its @coarsest, @coarser and base levels (the framework runs all three for
     every verdict's reads): (max relative spread, observed order or nan, peak speeds).  The
     amplitude at a level is the one-mode vertex (:func:`.claims.one_mode_peak`) of its
-    stable values within +-``window`` rpm of the base peak; peaks within ``window`` of an unstable speed are left out (a stable orbit at a
-    stability edge grows without bound there).  An observed order needs a contracting sequence (|d1| > 1.05 |d2|); a spread with
-    none is an amplitude that does not converge under refinement, and the figure says so."""
+    stable values within +-``window`` rpm of the base peak; peaks within ``window`` of an
+    unstable speed (a stable orbit at a stability edge grows without bound there) or of a
+    larger peak (a shoulder the window's vertex does not measure) are left out.  An observed
+    order needs a contracting sequence (|d1| > 1.05 |d2|); a spread with none is an
+    amplitude that does not converge under refinement, and the figure says so."""
     try:
         ds = [R.run(f"{name}{s}") for s in ("@coarsest", "@coarser", "")]
     except FileNotFoundError:
@@ -148,6 +150,10 @@ def peak_level_spread(R, name: str, n_peaks: int = 5, window: float = 3.0):
     # a stable orbit next to an unstable band has no limit (its multiplier nears 1)
     near = [np.any(un & (np.abs(base.speed.values - base.speed.values[i]) <= window)) for i in idx]
     idx = idx[~np.array(near, bool)] if len(idx) else idx
+    # a peak the window shares with a larger one (a shoulder) is not what the window's
+    # vertex measures at every level
+    sp = base.speed.values
+    idx = np.array([i for i in idx if A[i] >= np.max(A[np.abs(sp - sp[i]) <= window])], int)
     idx = idx[np.argsort(A[idx])[::-1][:n_peaks]]
     spread, orders = 0.0, []
     for i in idx:
