@@ -15,7 +15,18 @@ from pathlib import Path
 
 from mechrepro.docs import number, table_rows
 
-_rows, _g = table_rows, number
+_rows = table_rows
+
+
+def _g(x, digits: int = 4) -> str:
+    """:func:`mechrepro.docs.number`, with an infinite error bar printed as such (levels that
+    do not contract give none)."""
+    try:
+        if abs(float(x)) == float("inf"):
+            return "∞"
+    except (TypeError, ValueError):
+        pass
+    return number(x, digits)
 
 
 def counts(root: Path) -> str:
