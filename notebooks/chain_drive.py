@@ -55,6 +55,8 @@ def convergence_note(name):
     if not np.isfinite(spread):
         return ""
     if F.levels_converged(spread, order):
+        if not np.isfinite(order) or order < 1.0:
+            return f"peaks agree to {100 * spread:.2g} % between grid levels"
         return f"peaks converge (observed order {order:.2g}, {100 * spread:.2g} % between levels)"
     got = f", observed order {order:.2g}" if np.isfinite(order) else ", levels do not contract"
     return f"amplitudes NOT converged: peaks move {100 * spread:.2g} % between grid levels{got}"

@@ -176,3 +176,15 @@ def test_the_impact_is_resolved_by_its_own_steps_so_the_orbit_converges_in_the_s
     assert np.ptp(amp) < 2e-4 * amp[-1] and np.ptp(rho) < 1e-5, (amp, rho)
     d = np.diff(amp)
     assert np.all(d < 0) and np.all(np.abs(d[1:]) < np.abs(d[:-1])), amp
+
+
+def test_peak_levels_that_agree_to_a_thousandth_are_converged_without_contracting():
+    """A figure title says what the levels say: levels within 0.1 % agree (their differences
+    are the vertex fit's and the sampling's, no order to measure); a larger spread needs a
+    contracting sequence of at least first order."""
+    from mechrepro.models.chain_drive import figures as F
+
+    assert F.levels_converged(2.5e-4, math.nan)
+    assert F.levels_converged(0.01, 1.5)
+    assert not F.levels_converged(0.01, math.nan)
+    assert not F.levels_converged(0.26, 0.43)
