@@ -55,6 +55,8 @@ def convergence_note(name):
     if not np.isfinite(spread):
         return ""
     if F.levels_converged(spread, order):
+        if not np.isfinite(order) or order < 1.0:
+            return f"peaks agree to {100 * spread:.2g} % between grid levels"
         return f"peaks converge (observed order {order:.2g}, {100 * spread:.2g} % between levels)"
     got = f", observed order {order:.2g}" if np.isfinite(order) else ", levels do not contract"
     return f"amplitudes NOT converged: peaks move {100 * spread:.2g} % between grid levels{got}"
@@ -145,60 +147,93 @@ R.save_figure(fig, "fig04")
 
 # %% [markdown]
 # ## Fig. 5 — maximum amplitude vs speed: centre distance and periodic length change
-# Each curve is one vectorised FD computation over all speeds (1.5 rpm grid; 2 rpm in ci).
-# Dotted lines: speeds where the tooth frequency meets the Wickert–Mote frequencies of the
-# short (green) / long (red) span.  19.7 pitches is the start of the paper's range.
+# With length change (the verdicts): the discrete-link span, whose roller released at the
+# driven and seated at the driving sprocket per tooth period *is* the length change.  The
+# paper's string model at its resolution beside it: without (solid) and with (dashed)
+# length change; a span of a non-integral number of links (the solid lines' L_ct) has no
+# discrete counterpart.  Dotted lines: speeds where the tooth frequency meets the
+# Wickert–Mote frequencies of the short (green) / long (red) span.  19.7 pitches is the
+# start of the paper's range.
 
 # %%
 cds, plain = F.with_base(R, "fig05_plain_cd", "fig05_plain", "centre_distance")
 _, withl = F.with_base(R, "fig05_length_cd", "fig05_length", "centre_distance")
+_, withs = F.with_base(R, "fig05_length_string_cd", "fig05_length_string", "centre_distance")
+ppp5 = F.resolution(plain[0], "points_per_pitch")
+# a stable orbit next to an unstable band grows without bound (multiplier -> 1): the axes
+# stop at 50 mm, as Figs. 6 and 7
+cap5 = mm(0.05)
 fig, ax = plt.subplots(len(cds), 1, figsize=(9, 2.6 * len(cds)), sharex=True)
-for a, cd, dp, dl in zip(ax, cds, plain, withl):
-    a.semilogy(dp.speed, steady(dp), "-", label="without length change")
-    a.semilogy(dl.speed, steady(dl), "--", label="with length change")
-    mark_unstable(a, dp)
-    mark_unstable(a, dl, label=None)
+for a, cd, dp, dl, ds_ in zip(ax, cds, plain, withl, withs):
+    a.semilogy(dp.speed, steady(dp), "-", color="0.55", lw=0.8,
+               label=f"string, {ppp5} points per pitch, without length change")
+    a.semilogy(ds_.speed, steady(ds_), "--", color="0.55", lw=0.8,
+               label=f"string, {ppp5} points per pitch, with length change")
+    a.semilogy(dl.speed, steady(dl), "-", color="tab:blue", lw=1.0,
+               label="discrete-link span, with length change (verdicts)")
     for k, v in enumerate(dl.resonance_speed_short.values):
         a.axvline(v, color="tab:green", ls=":", lw=0.7,
                   label="short span L_0: tooth = k-th string frequency" if k == 0 else None)
     for k, v in enumerate(dl.resonance_speed_long.values):
         a.axvline(v, color="tab:red", ls=":", lw=0.7,
                   label="long span L_0 + p: tooth = k-th string frequency" if k == 0 else None)
-    a.set(ylabel="max |u| [mm]", title=f"Fig. 5: centre distance {cd:g} pitches")
+    top5 = float(np.nanmax([np.nanmax(steady(x)) for x in (dp, ds_, dl)]))
+    a.set(ylabel="max |u| [mm]", title=f"Fig. 5: centre distance {cd:g} pitches" + (
+        f" (axis cut at {cap5:g} mm; orbits at stability edges reach {top5:.2g} mm)"
+        if top5 > cap5 else ""))
+    a.title.set_fontsize(9)
+    if top5 > cap5:
+        a.set_ylim(top=cap5)
+    mark_unstable(a, dl, label="unstable (discrete span)")
+    mark_unstable(a, dp, label="unstable (string)", color="tab:orange")
+    mark_unstable(a, ds_, label=None, color="tab:orange")
 a.set_xlabel("omega_1 [rpm]")
-ax[0].legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-fig.suptitle(f"scene fig05_length: {convergence_note('fig05_length')}", fontsize=9)
+marks5 = {lb: h for x in ax for h, lb in zip(*x.get_legend_handles_labels())}
+ax[0].legend(marks5.values(), marks5.keys(), fontsize=7, loc="upper left",
+             bbox_to_anchor=(1.01, 1.0))
+fig.suptitle(f"discrete span (scene fig05_length): {convergence_note('fig05_length')}", fontsize=9)
 fig.tight_layout()
 R.save_figure(fig, "fig05")
 R.write_table("resonance_speeds", F.RESONANCE_COLUMNS, F.resonance_rows(cds, plain, withl))
 R.write_table("timings", F.TIMING_COLUMNS, F.timing_rows(
-    {f"fig05_{label}_cd{cd:g}": ds for label, dss in (("plain", plain), ("length", withl))
+    {f"fig05_{label}_cd{cd:g}": ds for label, dss in (("plain", plain), ("length_string", withs),
+                                                      ("length_discrete", withl))
      for cd, ds in zip(cds, dss)}))
 
 # %% [markdown]
 # ## Fig. 6 — moment of inertia of the driven sprocket, around the 3rd and 4th resonance
+# The discrete-link span (the verdicts) per I2; the paper's string model at its resolution
+# beside it at the scene's own I2.
 
 # %%
 i2s, d6 = F.with_base(R, "fig06_i2", "fig06_inertia", "driven_inertia")
-fig, ax = plt.subplots(figsize=(8, 3.6))
-lines6 = [ax.semilogy(d.speed, steady(d), label=f"I2 = {v:g} kg m^2")[0] for v, d in zip(i2s, d6)]
+string6 = R.run("fig06_string")
+fig, ax = plt.subplots(figsize=(8, 3.8))
+lines6 = [ax.semilogy(d.speed, steady(d), label=f"discrete span, I2 = {v:g} kg m^2")[0]
+          for v, d in zip(i2s, d6)]
+ax.semilogy(string6.speed, steady(string6), "--", color="0.45", lw=0.9,
+            label=f"string, {F.resolution(string6, 'points_per_pitch')} points per pitch, "
+                  f"I2 = {F.parameter(string6, 'driven_inertia'):g} kg m^2")
 # near a stability edge a stable orbit's linear amplitude grows without bound (multiplier
-# -> 1): the axis stops at the march's divergence cap, the title says how far they reach
+# -> 1): the axis stops at 50 mm, the title says how far they reach
 cap6 = mm(0.05)
-top6 = float(np.nanmax([np.nanmax(steady(d)) for d in d6]))
+top6 = float(np.nanmax([np.nanmax(steady(d)) for d in d6 + [string6]]))
 if top6 > cap6:
     ax.set_ylim(top=cap6)
 for v, d, ln in zip(i2s, d6, lines6):
     mark_unstable(ax, d, label=f"unstable, I2 = {v:g}: no steady amplitude" if int(d.unstable.sum())
                   else None, color=ln.get_color())
+mark_unstable(ax, string6, label="unstable (string)" if int(string6.unstable.sum()) else None,
+              color="0.45")
 for v in F.resonances_in_window(d6[0]):
     ax.axvline(v, color="k", ls=":", lw=0.7)
 cut6 = (f"; stable orbits next to unstable bands reach {top6:.3g} mm (axis cut at {cap6:g} mm)"
         if top6 > cap6 else "")
 ax.set(xlabel="omega_1 [rpm]", ylabel="max |u| [mm]",
-       title=f"Fig. 6: effect of I2 (cd 20.25, length change){cut6}\n{convergence_note('fig06_inertia')}")
+       title=f"Fig. 6: effect of I2 (cd 20.25, length change){cut6}\n"
+             f"discrete span: {convergence_note('fig06_inertia')}")
 ax.title.set_fontsize(9)
-ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=3)
+ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2)
 fig.tight_layout()
 R.save_figure(fig, "fig06")
 
@@ -240,7 +275,11 @@ fig.suptitle(f"discrete span (scene fig07_tension): {convergence_note('fig07_ten
              f"axes cut at {cap7:g} mm (stable orbits at stability edges)", fontsize=9)
 fig.tight_layout(rect=(0, 0.07, 1, 1))
 R.write_table("discrete_peaks", F.DISCRETE_PEAK_COLUMNS,
-              F.discrete_peak_rows(R, "fig07_tension") + F.discrete_peak_rows(R, "fig07_ts-000"))
+              [r for name, study in (("fig05_length", None), ("fig06_inertia", None),
+                                     ("fig06_i2-000", None), ("fig07_tension", None),
+                                     ("fig07_ts-000", None),
+                                     ("fig08_discrete", "fig08_discrete_levels"))
+               for r in F.discrete_peak_rows(name, F.level_runs(R, name, study))])
 R.save_figure(fig, "fig07")
 
 # %% [markdown]
@@ -249,12 +288,18 @@ R.save_figure(fig, "fig07")
 # %%
 ws, d8 = F.with_base(R, "fig08_wex", "fig08_external", "external_frequency_ratio")
 base = R.run("fig08_none")
+disc8 = R.run("fig08_discrete")
 fig, ax = plt.subplots(len(d8) + 1, 1, figsize=(8, 2.3 * (len(d8) + 1)), sharex=True)
-ax[0].semilogy(base.speed, steady(base))
-mark_unstable(ax[0], base)
+ax[0].semilogy(base.speed, steady(base),
+               label=f"string, {F.resolution(base, 'points_per_pitch')} points per pitch (verdicts)")
+ax[0].semilogy(disc8.speed, steady(disc8), lw=0.9,
+               label="discrete-link span (no external load: table discrete_peaks)")
+mark_unstable(ax[0], base, label="unstable (string)")
+mark_unstable(ax[0], disc8, label="unstable (discrete span)", color="tab:orange")
 ax[0].set(title="; ".join(s for s in ("Fig. 8a: without external load",
                                      convergence_note("fig08_none")) if s),
           ylabel="max |u| [mm]")
+ax[0].legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
 for a, w, d in zip(ax[1:], ws[::-1], d8[::-1]):       # 4, 2, 1
     a.semilogy(base.speed, steady(base), color="0.7", lw=0.8)
     a.semilogy(d.speed, steady(d))
@@ -344,6 +389,32 @@ fig.tight_layout()
 R.save_figure(fig, "fig10")
 
 # %% [markdown]
+# ## Beyond the paper — stability chart over speed and static tension (discrete-link span)
+# The largest Floquet multiplier of the tooth-period map per (speed, T_s): the design
+# message of Fig. 7 (how low a static tension a drive may run at) as a map; Fig. 7's
+# tensions dotted.  Default profile (ci: one tension, a few speeds).
+
+# %%
+tsc, dc = F.with_base(R, "chart_tension_ts", "chart_tension", "static_tension")
+sp_c = dc[0].speed.values
+rho_c = np.array([d.growth.values for d in dc])
+fig, ax = plt.subplots(figsize=(8, 4))
+mesh = ax.pcolormesh(sp_c, tsc, rho_c, shading="nearest", cmap="viridis",
+                     vmin=float(np.nanmin(rho_c)), vmax=max(1.0, float(np.nanmax(rho_c))))
+if len(tsc) > 1 and np.nanmax(rho_c) > 1 > np.nanmin(rho_c):
+    ax.contour(sp_c, tsc, rho_c, levels=[1.0], colors="r", linewidths=1.2)
+for d7_ in [R.run("fig07_tension")] + R.study_runs("fig07_ts"):
+    ax.axhline(F.parameter(d7_, "static_tension"), color="w", ls=":", lw=0.8)
+fig.colorbar(mesh, ax=ax, label="largest Floquet multiplier [1]")
+un_c = int(np.sum(rho_c > 1))
+ax.set(xlabel="omega_1 [rpm]", ylabel="static tension T_s [N]",
+       title=f"discrete span, {F.resolution(dc[0], 'steps_per_period')} RK4 steps per tooth "
+             f"period: {un_c} of {rho_c.size} (speed, T_s) unstable (red: multiplier 1)")
+ax.title.set_fontsize(9)
+fig.tight_layout()
+R.save_figure(fig, "chart_tension")
+
+# %% [markdown]
 # ## Independent checks: exact moving-string vibration (Wickert–Mote) and a manufactured solution
 
 # %%
@@ -371,9 +442,11 @@ R.save_figure(fig, "exact_checks")
 # %%
 coa = R.table("cost_of_accuracy")
 entries = list(dict.fromkeys(r["accuracy"] for r in coa))
-fig, ax = plt.subplots(2, 3, figsize=(15, 8))
+rows_c = -(-len(entries) // 3)
+fig, ax = plt.subplots(rows_c, 3, figsize=(15, 4 * rows_c))
 for a, entry in zip(ax.ravel(), entries):
     accuracy.plot(coa, entry, ax=a)   # an unproven reference is drawn NOT CONVERGED, with why
+    log_ticks(a.yaxis)                # a short log axis: no crowded minor labels
 for a in ax.ravel()[len(entries):]:
     a.set_axis_off()
 fig.tight_layout()

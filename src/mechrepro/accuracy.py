@@ -19,7 +19,7 @@ A quantity whose errors each run stores names that variable; any other has a fun
 
     @ACCURACY.register("load")
     def load(ds, entry):           # -> errors along the knob's dimension
-        return ...
+        return ...                 # or (errors, the reference's own error estimate)
 
 A quantity taken against the finest point uses :func:`against_finest`.  The framework
 (rule ``validate_<paper>``) turns every entry into the rows of one long-form table,
@@ -287,8 +287,12 @@ def rows(entries: list[dict], dataset: Callable[[str], object],
         fi = finest_index(knob, entry["finer"])
         for qname, qspec in entry["quantities"].items():
             reference = qspec.get("reference", entry["reference"])
-            err = np.asarray(ds[qspec["variable"]].values if "variable" in qspec else
-                             quantities(qname, ds, entry), float)
+            got = ds[qspec["variable"]].values if "variable" in qspec else \
+                quantities(qname, ds, entry)
+            given = qspec.get("reference_error")
+            if isinstance(got, tuple):   # (errors, the reference's own error estimate)
+                got, given = got
+            err = np.asarray(got, float)
             if err.shape != knob.shape:
                 raise ValueError(f"accuracy {entry['name']}.{qname}: "
                                  f"{err.shape} errors for {knob.shape} knob values")
@@ -305,7 +309,7 @@ def rows(entries: list[dict], dataset: Callable[[str], object],
             ulp = np.finfo(float).eps if qspec["error"] == "relative" else 0.0
             ref = assess(reference, h[ref_line], err[ref_line],
                          float(h[fi]) if reference == "finest" else None,
-                         qspec.get("reference_error"), ulp, "one ulp of the reference")
+                         given, ulp, "one ulp of the reference")
             for line in dict.fromkeys(lines):
                 on = on_line(line)
                 sel = np.flatnonzero(on)

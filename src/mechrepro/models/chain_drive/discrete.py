@@ -66,46 +66,98 @@ def energy(y, v, y_left, y_right, tension: float, mass: float, spacing: float):
         np.diff(full, axis=0) ** 2, axis=0)
 
 
-def _accel(y, v, left, right, k_over_m, damp, last=0.0):
-    """Roller accelerations: (P/(m_r p)) (second difference with the end rollers) - damp v,
-    plus ``last`` (an extra tension / (m_r p) in the link to the driving end) on the last."""
-    a = -2.0 * y
-    a[1:] += y[:-1]
-    a[:-1] += y[1:]
-    a[0] += left
-    a[-1] += right
-    a *= k_over_m
-    a[-1] += last * (right - y[-1])
-    return a - damp * v
+def _accel(y, v, left, right, k_over_m, damp, last, load, a):
+    """Roller accelerations into ``a`` (N, K): (P/(m_r p)) (second difference with the end
+    rollers) - damp v, plus ``last`` (an extra tension / (m_r p) in the link to the driving
+    end) on the last roller and the sag load per mass ``load`` on every roller.  The end
+    rollers and the load act on the forced (last) column alone: the other columns are the
+    map's unit states."""
+    n, k_cols = y.shape
+    f = k_cols - 1
+    for k in range(k_cols):
+        lo = left if k == f else 0.0
+        hi = right if k == f else 0.0
+        for i in range(n):
+            below = y[i - 1, k] if i > 0 else lo
+            above = y[i + 1, k] if i < n - 1 else hi
+            a[i, k] = (below - 2.0 * y[i, k] + above) * k_over_m - damp * v[i, k]
+        a[n - 1, k] += last * (hi - y[n - 1, k])
+        if k == f:
+            for i in range(n):
+                a[i, k] += load
 
 
-def rk4(y, v, times, left, right, k_over_m, damp, last=None):
-    """Classical RK4 over ``times`` (n + 1 nodes); ``left``/``right``: the end rollers'
-    positions at the 2 n + 1 half-step nodes, (2n+1,) or (2n+1, K) for K state columns;
-    ``k_over_m``: (P + P_t) / (m_r p) per step (n,); ``last``: the extra of the link to the
-    driving end per step (n,) or None.  y, v: (N, K).  Returns the states at every node
-    (n + 1, N, K) for y and v."""
-    n = len(times) - 1
-    last = np.zeros(n) if last is None else last
-    Y = np.empty((n + 1,) + y.shape)
-    V = np.empty_like(Y)
-    Y[0], V[0] = y, v
-    for j in range(n):
+def _stage(y, v, vs, a, c, ys, vo):
+    """ys = y + c vs, vo = v + c a (one RK4 stage's state)."""
+    n, k_cols = y.shape
+    for i in range(n):
+        for k in range(k_cols):
+            ys[i, k] = y[i, k] + c * vs[i, k]
+            vo[i, k] = v[i, k] + c * a[i, k]
+
+
+def _march(y, v, times, left, right, k_over_m, damp, last, load):
+    """Classical RK4 of :func:`_accel` over ``times`` (n + 1 nodes): ``left``/``right`` the
+    end rollers' positions at the 2 n + 1 half-step nodes, ``k_over_m`` (P + P_t)/(m_r p),
+    ``last`` and ``load`` per step (n,).  y, v: (N, K), the last column forced.  Returns the
+    final y, v and max |y| of the forced column over the period: at the nodes and, where a
+    roller's velocity changes sign within a step, at its turning point (y_j + v_j theta h / 2,
+    theta = v_j / (v_j - v_(j+1)): the maximum to O(h^3), not the nodes' O(h^2), whose
+    jitter with the node placement would read as a change between levels)."""
+    n_rollers, k_cols = y.shape
+    y, v = y.copy(), v.copy()
+    y2, v2, y3, v3 = np.empty_like(y), np.empty_like(y), np.empty_like(y), np.empty_like(y)
+    y4, v4, a1, a2 = np.empty_like(y), np.empty_like(y), np.empty_like(y), np.empty_like(y)
+    a3, a4 = np.empty_like(y), np.empty_like(y)
+    amp = 0.0
+    for i in range(n_rollers):
+        amp = max(amp, abs(y[i, k_cols - 1]))
+    for j in range(len(times) - 1):
         h = times[j + 1] - times[j]
-        kom, ex = k_over_m[j], last[j]
-        l0, l1, l2 = left[2 * j], left[2 * j + 1], left[2 * j + 2]
-        r0, r1, r2 = right[2 * j], right[2 * j + 1], right[2 * j + 2]
-        a1 = _accel(y, v, l0, r0, kom, damp, ex)
-        y2, v2 = y + 0.5 * h * v, v + 0.5 * h * a1
-        a2 = _accel(y2, v2, l1, r1, kom, damp, ex)
-        y3, v3 = y + 0.5 * h * v2, v + 0.5 * h * a2
-        a3 = _accel(y3, v3, l1, r1, kom, damp, ex)
-        y4, v4 = y + h * v3, v + h * a3
-        a4 = _accel(y4, v4, l2, r2, kom, damp, ex)
-        y = y + h / 6.0 * (v + 2 * v2 + 2 * v3 + v4)
-        v = v + h / 6.0 * (a1 + 2 * a2 + 2 * a3 + a4)
-        Y[j + 1], V[j + 1] = y, v
-    return Y, V
+        kom, ex, ld = k_over_m[j], last[j], load[j]
+        _accel(y, v, left[2 * j], right[2 * j], kom, damp, ex, ld, a1)
+        _stage(y, v, v, a1, 0.5 * h, y2, v2)
+        _accel(y2, v2, left[2 * j + 1], right[2 * j + 1], kom, damp, ex, ld, a2)
+        _stage(y, v, v2, a2, 0.5 * h, y3, v3)
+        _accel(y3, v3, left[2 * j + 1], right[2 * j + 1], kom, damp, ex, ld, a3)
+        _stage(y, v, v3, a3, h, y4, v4)
+        _accel(y4, v4, left[2 * j + 2], right[2 * j + 2], kom, damp, ex, ld, a4)
+        f = k_cols - 1
+        for i in range(n_rollers):
+            y0, v0 = y[i, f], v[i, f]
+            for k in range(k_cols):
+                y[i, k] = y[i, k] + h / 6.0 * (v[i, k] + 2.0 * v2[i, k] + 2.0 * v3[i, k]
+                                               + v4[i, k])
+                v[i, k] = v[i, k] + h / 6.0 * (a1[i, k] + 2.0 * a2[i, k] + 2.0 * a3[i, k]
+                                               + a4[i, k])
+            amp = max(amp, abs(y[i, f]))
+            if v0 * v[i, f] < 0.0:
+                amp = max(amp, abs(y0 + 0.5 * v0 * (v0 / (v0 - v[i, f])) * h))
+    return y, v, amp
+
+
+_KERNEL = None
+
+
+def rk4(y, v, times, left, right, k_over_m, damp, last=None, load=None):
+    """Classical RK4 of the rollers over ``times`` (:func:`_march`, compiled by
+    :func:`mechrepro.compiled.jit` where numba is installed, the same source as Python
+    otherwise: a sweep solves hundreds of periodic orbits, each ~1e7 flops in ~1e4 small
+    loops).  ``last``/``load``: None for none.  Returns the final (y, v) and max |y| of the
+    forced (last) column over the nodes."""
+    global _KERNEL
+    if _KERNEL is None:
+        from mechrepro.compiled import jit
+
+        global _accel, _stage
+        _accel, _stage = jit(inline="always")(_accel), jit(inline="always")(_stage)
+        _KERNEL = jit(_march)
+    n = len(times) - 1
+    zeros = np.zeros(n)
+    f64 = lambda x: np.ascontiguousarray(x, dtype=np.float64)  # noqa: E731
+    return _KERNEL(f64(y), f64(v), f64(times), f64(left), f64(right), f64(k_over_m),
+                   float(damp), zeros if last is None else f64(last),
+                   zeros if load is None else f64(load))
 
 
 def events(prm: dict, omega1: float) -> tuple[float, float, int]:
@@ -131,9 +183,10 @@ def events(prm: dict, omega1: float) -> tuple[float, float, int]:
 
 
 def _drive(run, prm, omega1, times, dt):
-    """The end rollers' positions at the half-step nodes, the link tension P_t per step and
-    its impact part D_imp (``tension_pulse``, Eq. 2-4), from the scene's effects (the
-    string's: :mod:`.effects`) on this time grid."""
+    """The end rollers' positions at the half-step nodes, the link tension P_t per step, its
+    impact part D_imp (``tension_pulse``, Eq. 2-4) and the sag load per mass kappa P_t / m
+    (``kappa``, Eq. 2-36; 0 without sag), from the scene's effects (the string's:
+    :mod:`.effects`) on this time grid."""
     half = np.empty(2 * len(times) - 1)
     half[0::2] = times
     half[1::2] = 0.5 * (times[:-1] + times[1:])
@@ -141,10 +194,11 @@ def _drive(run, prm, omega1, times, dt):
     ctx = SpanContext(prm, omega1, half, None, geo, end_velocity=True)
     ends = EFFECTS.evaluate(run, ctx, keys={"u_left", "u_right", "v_left", "v_right"})
     mid = SpanContext(prm, omega1, half[1::2], dt, geo)
-    tens = EFFECTS.evaluate(run, mid, keys=set(span.PT_KEYS))
+    tens = EFFECTS.evaluate(run, mid, keys=set(span.PT_KEYS) | {"kappa"})
     Pt = span.dynamic_tension(tens, (len(times) - 1, 1))[:, 0]
     pulse = np.asarray(tens.total("tension_pulse", np.zeros((len(times) - 1, 1))))[:, 0]
-    return ends, Pt, pulse
+    kappa = float(np.asarray(tens.total("kappa", 0.0)).ravel()[0])
+    return ends, Pt, pulse, kappa * Pt / prm["mass_per_length"]
 
 
 def tension_coefficient(run, prm) -> float:
@@ -187,23 +241,53 @@ def _end(ends, key: str, n: int) -> np.ndarray:
     return np.zeros(n) if x is None else np.asarray(x, float).reshape(n, -1)[:, 0]
 
 
+def _entering(ends, key: str, n: int, k_cols: int) -> np.ndarray:
+    """The state row of a roller released from the driven sprocket: the driven end's
+    position or velocity in the forced (last) column, 0 in the map's unit columns."""
+    row = np.zeros((1, k_cols))
+    row[0, -1] = _end(ends, key, n)[0]
+    return row
+
+
 def _refuse_unhonoured_keys(named: set) -> None:
     """Keys the discrete span cannot honour, refused before any march (never ignored)."""
     from .errors import UnknownChoice
 
     for key, why in (("tension_short", "the elastic four-bar load is not wired in"),
-                     ("tension_external", "an external load's period is not one tooth period"),
-                     ("kappa", "the sag term of Eq. (2-36) is not wired in")):
+                     ("tension_external", "an external load's period is not one tooth period")):
         if key in named:
             raise UnknownChoice(f"discrete span: {why} ({key})")
 
 
-def _segments(tau, t_r, steps_per_period):
-    """The time grids of the period's segments: [0, t_r] and [t_r, tau] (one when the
-    release coincides with the seating)."""
-    cuts = [0.0, t_r, tau] if t_r > 0 else [0.0, tau]
-    return [np.linspace(a, b, max(int(math.ceil(steps_per_period * (b - a) / tau)), 2) + 1)
-            for a, b in zip(cuts[:-1], cuts[1:])]
+#: RK4 steps within the impact's contact time per this many steps per tooth period: the
+#: 28 us pulse (Eq. 2-4) is resolved by its own steps (>= 5 at the coarsest level in use)
+#: instead of being averaged into one step of ~20 us, so that refining the step refines
+#: the pulse with it
+CONTACT_STEPS = 25
+
+
+def _segments(tau, t_r, steps_per_period, t_i=0.0):
+    """The time grids of the period's segments between its events: the contact [0, t_i]
+    (impact on; ``steps_per_period`` / :data:`CONTACT_STEPS` steps), the release t_r and the
+    seating tau; elsewhere ``steps_per_period`` per tooth period."""
+    cuts = sorted({0.0, tau} | {t for t in (t_i, t_r) if 0.0 < t < tau})
+    out = []
+    for a, b in zip(cuts[:-1], cuts[1:]):
+        n = (math.ceil(steps_per_period / CONTACT_STEPS) if b == t_i else
+             math.ceil(steps_per_period * (b - a) / tau))
+        out.append(np.linspace(a, b, max(int(n), 2) + 1))
+    return out
+
+
+def _contact_time(run, prm) -> float:
+    """The impact's contact time t_i = pi / omega_d (Appendix I); 0 without the impact."""
+    from . import loads
+
+    if "tension_pulse" not in declared_keys(run):
+        return 0.0
+    k = loads.impact_constants(prm["impact_mass_links"] * prm["pitch"] * prm["mass_per_length"],
+                               prm["contact_stiffness"], prm["contact_damping_ratio"])
+    return float(k["t_i"])
 
 
 def period_map(run, prm: dict, omega1: float, steps_per_period: int, start=None):
@@ -233,28 +317,24 @@ def period_map(run, prm: dict, omega1: float, steps_per_period: int, start=None)
     else:
         K = 1
         y, v = np.asarray(start[:N0], float)[:, None], np.asarray(start[N0:], float)[:, None]
-    forced = np.zeros(K)
-    forced[-1] = 1.0
     amp, p_min = 0.0, math.inf
-    for i, seg in enumerate(_segments(tau, t_r, steps_per_period)):
-        ends, Pt, pulse = _drive(run, prm, omega1, seg, seg[1] - seg[0])
+    for seg in _segments(tau, t_r, steps_per_period, _contact_time(run, prm)):
+        ends, Pt, pulse, load = _drive(run, prm, omega1, seg, seg[1] - seg[0])
         local = (1.0 - share) * pulse            # the engaging link's alone
         nh = 2 * len(seg) - 1
-        if i == 1:                               # release: a roller enters at the driven end
-            y = np.vstack([forced * _end(ends, "u_left", nh)[0], y])
-            v = np.vstack([forced * _end(ends, "v_left", nh)[0], v])
-        left = _end(ends, "u_left", nh)[:, None] * forced[None, :]
-        right = _end(ends, "u_right", nh)[:, None] * forced[None, :]
-        Y, V = rk4(y, v, seg, left, right, (P + Pt - local) / (m_r * p), damp, local / (m_r * p))
-        y, v = Y[-1], V[-1]
-        amp = max(amp, float(np.max(np.abs(Y[..., -1]))))
+        if t_r > 0 and seg[0] == t_r:            # release: a roller enters at the driven end
+            y = np.vstack([_entering(ends, "u_left", nh, K), y])
+            v = np.vstack([_entering(ends, "v_left", nh, K), v])
+        y, v, a = rk4(y, v, seg, _end(ends, "u_left", nh), _end(ends, "u_right", nh),
+                      (P + Pt - local) / (m_r * p), damp, local / (m_r * p), load)
+        amp = max(amp, a)
         p_min = min(p_min, float(np.min(P + Pt - np.maximum(local, 0.0))))
     # seating at tau: the last roller goes onto the driving sprocket (state dropped) ...
     y, v = y[:-1], v[:-1]
     if t_r == 0:                                 # ... and one leaves the driven sprocket
         ends = _drive(run, prm, omega1, np.array([tau, tau + 1e-9 * tau]), 1e-9 * tau)[0]
-        y = np.vstack([forced * _end(ends, "u_left", 3)[0], y])
-        v = np.vstack([forced * _end(ends, "v_left", 3)[0], v])
+        y = np.vstack([_entering(ends, "u_left", 3, K), y])
+        v = np.vstack([_entering(ends, "v_left", 3, K), v])
     x = np.vstack([y, v])
     return {"M": x[:, :-1] if start is None else None, "b": x[:, -1], "tau": tau, "t_r": t_r,
             "n_short": n_s, "P": P, "P_min": p_min, "amplitude": amp}

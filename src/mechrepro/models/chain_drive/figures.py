@@ -123,20 +123,29 @@ def timing_rows(named_sweeps: dict) -> list[list]:
 CONVERGED_SPREAD = 0.05
 
 
+#: peak amplitudes whose levels agree to this (relative) agree: differences at this level
+#: (the one-mode vertex, the speed sampling, round-off) need no contraction to be small
+AGREE_SPREAD = 1e-3
+
+
 def levels_converged(spread: float, order: float) -> bool:
     """Whether a sweep's peak levels (:func:`peak_level_spread`) show convergence: observed
-    order >= 1 and a spread below :data:`CONVERGED_SPREAD` (26 % at order 0.43 is not)."""
-    return bool(np.isfinite(order) and order >= 1.0 and spread < CONVERGED_SPREAD)
+    order >= 1 and a spread below :data:`CONVERGED_SPREAD` (26 % at order 0.43 is not), or
+    levels that agree to :data:`AGREE_SPREAD` whether they contract or not."""
+    return bool(spread < AGREE_SPREAD or (np.isfinite(order) and order >= 1.0
+                                          and spread < CONVERGED_SPREAD))
 
 
 def peak_level_spread(R, name: str, n_peaks: int = 5, window: float = 3.0):
     """How far the steady amplitude of the ``n_peaks`` largest stable peaks of run ``name``
     moves between its @coarsest, @coarser and base levels (the framework runs all three for
     every verdict's reads): (max relative spread, observed order or nan, peak speeds).  The
-    amplitude at a level is its largest stable value within +-``window`` rpm of the base
-    peak; peaks within ``window`` of an unstable speed are left out (a stable orbit at a
-    stability edge grows without bound there).  An observed order needs a contracting sequence (|d1| > 1.05 |d2|); a spread with
-    none is an amplitude that does not converge under refinement, and the figure says so."""
+    amplitude at a level is the one-mode vertex (:func:`.claims.one_mode_peak`) of its
+    stable values within +-``window`` rpm of the base peak; peaks within ``window`` of an
+    unstable speed (a stable orbit at a stability edge grows without bound there) or of a
+    larger peak (a shoulder the window's vertex does not measure) are left out.  An observed
+    order needs a contracting sequence (|d1| > 1.05 |d2|); a spread with none is an
+    amplitude that does not converge under refinement, and the figure says so."""
     try:
         ds = [R.run(f"{name}{s}") for s in ("@coarsest", "@coarser", "")]
     except FileNotFoundError:
@@ -148,6 +157,10 @@ def peak_level_spread(R, name: str, n_peaks: int = 5, window: float = 3.0):
     # a stable orbit next to an unstable band has no limit (its multiplier nears 1)
     near = [np.any(un & (np.abs(base.speed.values - base.speed.values[i]) <= window)) for i in idx]
     idx = idx[~np.array(near, bool)] if len(idx) else idx
+    # a peak the window shares with a larger one (a shoulder) is not what the window's
+    # vertex measures at every level
+    sp = base.speed.values
+    idx = np.array([i for i in idx if A[i] >= np.max(A[np.abs(sp - sp[i]) <= window])], int)
     idx = idx[np.argsort(A[idx])[::-1][:n_peaks]]
     spread, orders = 0.0, []
     for i in idx:
@@ -156,7 +169,9 @@ def peak_level_spread(R, name: str, n_peaks: int = 5, window: float = 3.0):
         for d in ds:
             m = np.abs(d.speed.values - s0) <= window
             a = np.where(np.asarray(d.unstable.values, bool)[m], np.nan, d.amplitude.values[m])
-            vals.append(np.nanmax(a) if np.isfinite(a).any() else np.nan)
+            # the one-mode vertex, not the largest sample: the levels sample speeds apart
+            vals.append(C.one_mode_peak(d.speed.values[m], a)[1] if np.isfinite(a).any()
+                        else np.nan)
         c2, c, b = vals
         spread = max(spread, np.nanmax(np.abs(np.array([c2, c]) - b)) / b)
         d1, d2 = abs(c2 - c), abs(c - b)
@@ -183,14 +198,15 @@ def order_peak(ds, k: int) -> tuple[float, float]:
 
 
 def stable_orders(ds, n: int = 2) -> list[int]:
-    """The first ``n`` resonance orders whose window (:func:`.claims.order_window`) holds no
-    unstable speed: a peak next to a stability edge has no converging amplitude."""
+    """The first ``n`` resonance orders whose window (:func:`.claims.order_window`) lies in
+    the sweep and holds no unstable speed: a peak next to a stability edge has no
+    converging amplitude."""
     sp, un = ds.speed.values, np.asarray(ds.unstable.values, bool)
     out = []
     for k in ds.order.values:
         lo, hi = C.order_window(float(ds.resonance_speed_long.sel(order=k)),
                                 float(ds.resonance_speed_short.sel(order=k)))
-        if not np.any(un & (sp >= lo) & (sp <= hi)):
+        if lo >= sp[0] and hi <= sp[-1] and not np.any(un & (sp >= lo) & (sp <= hi)):
             out.append(int(k))
     return out[:n]
 
@@ -201,15 +217,25 @@ def stable_orders(ds, n: int = 2) -> list[int]:
 PEAK_BAND = 0.02
 
 
-def discrete_peak_rows(R, name: str, n_orders: int = 2) -> list[list]:
+def level_runs(R, name: str, study: str | None = None) -> list:
+    """The four levels of a discrete sweep, coarsest to finest: the framework's variants of
+    run ``name`` (@coarsest, @coarser, base, @finer), or, with ``study`` (a sweep spelling
+    them out for a scene no verdict reads), its runs by steps per tooth period around the
+    base scene ``name``."""
+    if study is None:
+        return [R.run(f"{name}{s}") for s in LEVEL_RUNS]
+    runs = sorted(R.study_runs(study), key=lambda d: resolution(d, "steps_per_period"))
+    return runs[:2] + [R.run(name)] + runs[2:]
+
+
+def discrete_peak_rows(name: str, ds: list, n_orders: int = 2) -> list[list]:
     """Peak speed and amplitude of the first ``n_orders`` orders away from any instability
-    (:func:`stable_orders`, on the baseline) on run ``name`` at its four levels, with the
-    error of the baseline from both sides by the one estimator
-    (:func:`mechrepro.levels.level_error`: coarsest / coarser / base and coarser / base /
-    finer at the levels' ratio 1.5; the larger bound, plus |base - finer|)."""
+    (:func:`stable_orders`, on the baseline) of the discrete sweep ``name`` at its four
+    levels ``ds`` (:func:`level_runs`), with the error of the baseline from both sides by
+    the one estimator (:func:`mechrepro.levels.level_error`: coarsest / coarser / base and
+    coarser / base / finer at the levels' ratio 1.5; the larger bound, plus |base - finer|)."""
     from mechrepro.levels import level_error
 
-    ds = [R.run(f"{name}{s}") for s in LEVEL_RUNS]
     tol = float(resolution(ds[2], "peak_tol"))
     rows = []
     for k in stable_orders(ds[2], n_orders):

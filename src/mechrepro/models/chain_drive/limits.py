@@ -87,7 +87,7 @@ FIT = {
     "elastic_speed_s": 0.002,      # per speed of the elastic four-bar curve
     "base_mb": 300.0,             # the interpreter with numpy, scipy, xarray, numba
     "run_s": 0.05,                # any run
-    "discrete_step_s": 3e-4,      # per (speed, RK4 step) of the discrete span (2x measured)
+    "discrete_step_s": 8e-5,      # per (speed, RK4 step) of the discrete span, compiled (2x measured)
 }
 
 

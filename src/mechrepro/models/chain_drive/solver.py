@@ -19,7 +19,7 @@ from scipy.integrate import quad
 from mechrepro.timing import phase
 from mechrepro.units import var
 
-from . import discrete, exact, four_bar, galerkin, geometry, loads, shooting, span, timestep
+from . import claims, discrete, exact, four_bar, galerkin, geometry, loads, shooting, span, timestep
 from .effects import EFFECTS, SpanContext, as_run, declared_keys, refuse_unhonoured
 from .galerkin import envelope_statistics  # noqa: F401  (re-exported for the tests)
 from .geometry import RPM
@@ -255,11 +255,20 @@ def speed_sweep(run, prm, res) -> dict:
         **_coord("order", orders, "1", "resonance order k")}
     steps = run.get("options", {}).get("discrete_reference")
     if steps:
-        data["amplitude_discrete"] = var("speed", discrete.sweep(run, prm, omega1, {
-            "steps_per_period": steps})["amplitude"], "m", f"the discrete-link span's periodic "
-            f"amplitude at the same speeds ({steps} RK4 steps per tooth period): the reference "
-            "of the string's cost of accuracy")
+        ref = discrete.sweep(run, prm, omega1, {"steps_per_period": steps})["amplitude"]
+        data["amplitude_discrete"] = var("speed", ref, "m", f"the discrete-link span's periodic "
+                                         f"amplitude at the same speeds ({steps} RK4 steps per "
+                                         "tooth period): the reference of the string's cost of "
+                                         "accuracy")
         data["string_time"] = var((), sw.seconds, "s", "wall time of the string sweep alone")
+        # the errors are the run's own: a shooting sweep's speed axis is its own per run
+        (s_s, a_s), (s_d, a_d) = (claims.one_mode_peak(omega1 * RPM, a)
+                                  for a in (out["amplitude"], ref))
+        data["peak_amplitude_vs_discrete"] = var((), abs(a_s / a_d - 1.0), "1",
+                                                 "|string peak amplitude / discrete span's - 1| "
+                                                 "(one-mode vertex of each)")
+        data["peak_speed_vs_discrete"] = var((), abs(s_s / s_d - 1.0), "1",
+                                             "|string peak speed / discrete span's - 1|")
     if shooting_:
         data["growth_rate"] = var("speed", out["growth_rate"], "1/s",
                                   "Floquet growth rate log(rho)/T of the span")
