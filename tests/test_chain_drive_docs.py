@@ -17,13 +17,16 @@ def _reference():
 
 
 def test_every_block_has_a_generator():
-    assert set(BLOCK_NAME.findall(DOC)) == set(docs.BLOCKS) | set(PAPER_BLOCKS)
+    names = set(BLOCK_NAME.findall(DOC))
+    assert set(docs.BLOCKS) <= names <= set(docs.BLOCKS) | set(PAPER_BLOCKS)
 
 
 def test_the_verdict_table_is_the_committed_default_reference():
     ref = _reference()
-    rows = [line.split("|") for line in block(DOC, "verdicts").splitlines()[2:]]
-    got = {c[1].strip().strip("`"): c[5].strip() for c in rows}
+    lines = block(DOC, "verdicts").splitlines()
+    head = [c.strip() for c in lines[0].split("|")]
+    rows = [dict(zip(head, (c.strip() for c in line.split("|")))) for line in lines[2:]]
+    got = {r["row"].strip("`"): r["verdict"] for r in rows}
     assert got == {q: r["status"] for q, r in ref.items() if r["status"] != "info"
                    and r["evidence"] in ("independent", "not_discriminating")}, (
         "regenerate: python -m mechrepro.docs docs/chain_drive.md results (default run)")

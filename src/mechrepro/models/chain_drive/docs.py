@@ -1,6 +1,6 @@
 """The blocks of docs/chain_drive.md (numbers from a run, not typed), made from
-``results/chain_drive`` (claim.json, validation.csv, discrete_peaks.csv,
-cost_of_accuracy.csv) and filled by :mod:`mechrepro.docs`::
+``results/chain_drive`` (discrete_peaks.csv, cost_of_accuracy.csv; the counts and the verdict
+table are the framework's blocks) and filled by :mod:`mechrepro.docs`::
 
     .venv/bin/python -m mechrepro.docs docs/chain_drive.md results
 
@@ -10,48 +10,11 @@ reference.
 """
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 from mechrepro.docs import number, table_rows
 
-_rows = table_rows
-
-
-def _g(x, digits: int = 4) -> str:
-    """:func:`mechrepro.docs.number`, with an infinite error bar printed as such (levels that
-    do not contract give none)."""
-    try:
-        if abs(float(x)) == float("inf"):
-            return "∞"
-    except (TypeError, ValueError):
-        pass
-    return number(x, digits)
-
-
-def counts(root: Path) -> str:
-    c = json.loads((root / "claim.json").read_text())
-    ind = c["counts"]["independent"]
-    nd = c["counts"].get("not_discriminating", {})
-    return (f"Claim **{c['claim']}**. Independent: **{ind.get('pass', 0)} pass, "
-            f"{ind.get('fail', 0)} fail, {ind.get('inconclusive', 0)} inconclusive, "
-            f"{ind.get('not_converged', 0)} not converged**; reproduced, not discriminating: "
-            f"{nd.get('pass', 0)} pass.")
-
-
-def verdicts(root: Path) -> str:
-    """Every counted or demoted verdict row (not info, construction or target), with its
-    value, error bar, rivals and what the run says about it."""
-    out = ["| row | figure | ours | ± error | verdict | evidence | rivals | note |",
-           "|---|---|---|---|---|---|---|---|"]
-    for r in _rows(root / "tables" / "validation.csv"):
-        if r["evidence"] in ("independent", "not_discriminating") and r["status"] != "info":
-            note = r["note"].replace("|", "/")
-            note = note if len(note) <= 240 else note[:237] + "..."
-            out.append(f"| `{r['quantity']}` | {r['artefact']} | {_g(r['reproduced_value'], 5)} | "
-                       f"{_g(r['error_estimate'], 2)} | {r['status']} | {r['evidence']} | "
-                       f"{r['rivals'] or '—'} | {note} |")
-    return "\n".join(out)
+_rows, _g = table_rows, number
 
 
 def discrete_peaks(root: Path) -> str:
@@ -81,5 +44,4 @@ def string_vs_discrete(root: Path) -> str:
     return "\n".join(out)
 
 
-BLOCKS = {"counts": counts, "verdicts": verdicts, "discrete_peaks": discrete_peaks,
-          "string_vs_discrete": string_vs_discrete}
+BLOCKS = {"discrete_peaks": discrete_peaks, "string_vs_discrete": string_vs_discrete}
