@@ -1,8 +1,11 @@
-"""The numbers in README.md come from the run (mechrepro.docs), never typed: its blocks
-match what the configs and the committed default references say."""
+"""The numbers in README.md and docs/<paper>.md come from the run (mechrepro.docs), never
+typed: their blocks match what the configs and the committed default references say."""
 import csv
+import importlib
 import re
 from pathlib import Path
+
+import pytest
 
 from conftest import ROOT
 from mechrepro import docs
@@ -42,6 +45,56 @@ def test_every_paper_page_lists_its_knobs_as_declared():
         page = (ROOT / "docs" / f"{paper}.md").read_text()
         assert docs.block(page, "knobs") == docs.knobs(ROOT / "results" / paper, ROOT / "config"), (
             f"docs/{paper}.md: regenerate its knobs: python -m mechrepro.docs docs/{paper}.md results")
+
+
+PAPERS = docs._papers(ROOT / "config")
+
+
+def _page(paper):
+    return (ROOT / "docs" / f"{paper}.md").read_text()
+
+
+def _reference(paper):
+    with open(ROOT / "results/reference/default" / f"{paper}.csv", newline="") as fh:
+        return {r["quantity"]: r for r in csv.DictReader(fh)}
+
+
+@pytest.mark.parametrize("paper", PAPERS)
+def test_every_block_a_paper_page_marks_has_a_generator(paper):
+    try:
+        own = set(importlib.import_module(f"mechrepro.models.{paper}.docs").BLOCKS)
+    except ModuleNotFoundError:
+        own = set()
+    names = set(docs.BLOCK_NAME.findall(_page(paper)))
+    assert own <= names <= own | set(docs.PAPER_BLOCKS)
+
+
+@pytest.mark.parametrize("paper", PAPERS)
+def test_a_paper_pages_verdicts_and_counts_are_the_committed_default_reference(paper):
+    """Its verdict table holds every row of the evidence classes it names (all but info
+    rows when it names none), each with the reference's verdict and value; its counts are
+    the reference's independent ones."""
+    page, ref = _page(paper), _reference(paper)
+    hint = f"regenerate: python -m mechrepro.docs docs/{paper}.md results (default run)"
+    if "<!-- run:verdicts" in page:
+        evidence = re.search(r"<!-- run:verdicts([ \w]*) -->", page).group(1).split()
+        lines = docs.block(page, "verdicts").splitlines()
+        head = [c.strip() for c in lines[0].split("|")]
+        rows = [dict(zip(head, (c.strip() for c in line.split("|")))) for line in lines[2:]]
+        got = {r["row"].strip("`"): r for r in rows}
+        assert set(got) == {q for q, r in ref.items() if r["status"] != "info"
+                            and (not evidence or r["evidence"] in evidence)}, hint
+        for q, r in got.items():
+            assert r["verdict"] == ref[q]["status"], (q, hint)
+            if ref[q]["basis"] == "timing":     # a measured time: the reference compares none
+                continue
+            assert float(r["ours"].split()[0]) == pytest.approx(
+                float(ref[q]["reproduced_value"]), rel=1e-5, abs=1e-12), (q, hint)
+    if "<!-- run:counts" in page:
+        counted = [r["status"] for r in ref.values() if r["evidence"] == "independent"]
+        text = docs.block(page, "counts")
+        for s in ("pass", "fail", "inconclusive"):
+            assert re.search(rf"\b{counted.count(s)} {s}\b", text), (s, text, hint)
 
 
 def _output_table() -> list[list[str]]:
