@@ -88,6 +88,8 @@ def test_a_paper_pages_verdicts_and_counts_are_the_committed_default_reference(p
             assert r["verdict"] == ref[q]["status"], (q, hint)
             if ref[q]["basis"] == "timing":     # a measured time: the reference compares none
                 continue
+            if ref[q]["reproduced_value"] in ("", "nan"):     # no value: its verdict only
+                continue
             assert float(r["ours"].split()[0]) == pytest.approx(
                 float(ref[q]["reproduced_value"]), rel=1e-5, abs=1e-12), (q, hint)
     if "<!-- run:counts" in page:
