@@ -23,7 +23,7 @@ INTORDER = 8  # mass of quintics needs 10 for exactness; 8 changes f by < 1e-6 a
 class Argyris(ElementTriArgyris):
     """scikit-fem's Argyris triangle with its 21 global basis functions built in one batched
     product with the inverse Vandermonde matrix (scikit-fem re-evaluates the monomials per
-    function, 6x slower), cached for the other 20 calls; equal to round-off."""
+    function), cached for the other 20 calls; equal to round-off."""
 
     _gcache = None
 
