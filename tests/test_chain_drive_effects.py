@@ -148,7 +148,7 @@ def _bad(mutate, tmp_path):
     d = tmp_path / "config"
     (d / "papers").mkdir(parents=True)
     (d / "schema").mkdir()
-    for f in (CFG.parents[1] / "schema").glob("*.json"):
+    for f in (CFG.parents[1] / "schema").glob("*.yaml"):
         (d / "schema" / f.name).write_text(f.read_text())
     (d / "papers" / "chain_drive.yaml").write_text(yaml.safe_dump(raw, sort_keys=False))
     return d / "papers" / "chain_drive.yaml"

@@ -25,7 +25,7 @@ def _raw(paper):
 def _load(tmp_path, raw):
     d = tmp_path / "config"
     (d / "papers").mkdir(parents=True)
-    for f in (CONFIG / "schema").glob("*.json"):
+    for f in (CONFIG / "schema").glob("*.yaml"):
         (d / "schema").mkdir(exist_ok=True)
         (d / "schema" / f.name).write_text(f.read_text())
     path = d / "papers" / f"{raw['paper']}.yaml"

@@ -1,6 +1,6 @@
 """The one cost-of-accuracy path: error against a trusted reference vs wall time.
 
-A paper declares its studies in config (``accuracy:``; see ``config/schema/paper.schema.json``)::
+A paper declares its studies in config (``accuracy:``; see ``config/schema/paper.schema.yaml``)::
 
     accuracy:
       - name: K                    # one curve family of the table

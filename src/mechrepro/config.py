@@ -5,7 +5,7 @@ unit, the values it may take (``allowed:``) and source, or ``assumed: true`` and
 named **scenes** (effects +
 resolution + parameter overrides) and **studies** (sweeps over a scene).  Loading:
 
-1. the file is validated against ``config/schema/paper.schema.json`` (its shape);
+1. the file is validated against ``config/schema/paper.schema.yaml`` (its shape);
 2. the profile overlay (``profiles: {ci: ...}``) is merged in;
 3. every scene and every study point is expanded into a **run** record and validated
    against the run schema generated from the config (:func:`run_schema`: each parameter's
@@ -271,7 +271,7 @@ def _schema_dir(path: Path) -> Path:
 @functools.lru_cache(maxsize=None)
 def load_schema(name: str, schema_dir: Path) -> dict:
     """A schema file, parsed once per process (treat it as read-only)."""
-    return json.loads((schema_dir / name).read_text())
+    return yaml.safe_load((schema_dir / name).read_text())
 
 
 #: options every run may carry, whatever its paper (read by :mod:`mechrepro.solve`)
@@ -334,7 +334,7 @@ def _cached(cache_dir, key, files, schema_dir: Path, build):
 
     h = hashlib.sha256(repr(key).encode())
     try:
-        for f in [*files, *sorted(schema_dir.glob("*.json")), Path(__file__),
+        for f in [*files, *sorted(schema_dir.glob("*.yaml")), Path(__file__),
                   Path(__file__).with_name("units.py"), Path(__file__).with_name("inputs.py")]:
             h.update(f.name.encode() + b"\0" + f.read_bytes())
     except OSError:
@@ -374,7 +374,7 @@ def load_paper(path: str | Path, profile: str = "default",
     except (OSError, yaml.YAMLError) as exc:
         raise ConfigError(f"{where}: cannot read: {exc}") from exc
     sdir = _schema_dir(path)
-    _validate(raw, load_schema("paper.schema.json", sdir), where)
+    _validate(raw, load_schema("paper.schema.yaml", sdir), where)
     for name, p in raw["parameters"].items():
         if p["unit"] not in UNITS:
             raise ConfigError(f"{where}: parameters.{name}.unit = {p['unit']!r}: "
@@ -388,7 +388,7 @@ def load_paper(path: str | Path, profile: str = "default",
         raw = _deep_merge(raw, profiles[profile])
         # an overlay can break what the file alone satisfied: check the merged result too
         _validate({k: v for k, v in raw.items() if k != "profiles"},
-                  load_schema("paper.schema.json", sdir), f"{where} (profile {profile})")
+                  load_schema("paper.schema.yaml", sdir), f"{where} (profile {profile})")
     _check_effects(raw, where)
     _check_artefacts(raw, where)
     paper = raw.setdefault("paper", path.stem)
@@ -1010,7 +1010,7 @@ def discover_papers(config_dir: str | Path) -> list[str]:
 
 def workflow_config(path: str | Path = "config/config.yaml", overrides=None) -> dict:
     """``config/config.yaml`` read as the paper configs are (:func:`mechrepro.inputs.read_yaml`:
-    UTF-8, each key once, finite numbers) and checked against ``config.schema.json``, then
+    UTF-8, each key once, finite numbers) and checked against ``config.schema.yaml``, then
     with ``overrides`` (Snakemake's ``--config key=value``) merged over it and checked
     again: Snakemake's own reader kept a duplicate ``profile:`` silently and named neither
     file nor key for a bad byte or a schema error.  A :class:`ConfigError` names the file
@@ -1022,7 +1022,7 @@ def workflow_config(path: str | Path = "config/config.yaml", overrides=None) -> 
         raw = read_yaml(path)
     except (OSError, yaml.YAMLError) as exc:
         raise ConfigError(f"{path}: cannot read: {exc}") from exc
-    schema = load_schema("config.schema.json", path.resolve().parent / SCHEMA_DIR_NAME)
+    schema = load_schema("config.schema.yaml", path.resolve().parent / SCHEMA_DIR_NAME)
     if not isinstance(raw, dict):
         raise ConfigError(f"{path}: must be a mapping of {', '.join(schema['properties'])}")
     # the file alone (its keys may come from --config instead), then what will run
