@@ -319,7 +319,7 @@ def rows(entries: list[dict], dataset: Callable[[str], object],
                 why = ref.why if proven or not ref.proven else (
                     f"NOT CONVERGED: the reference's error {ref.error:.2g} is not below "
                     f"this line's errors")
-                p = curve_order(h[sel], err[sel])
+                p = curve_order(h[sel], err[sel]) if entry.get("order", True) else np.nan
                 for i in order:
                     if not on[i]:
                         continue   # another line, the reference itself, or not applicable

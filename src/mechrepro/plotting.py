@@ -97,7 +97,10 @@ SERIES_MIN_PIXELS = 20    # a series whose removal changes fewer pixels is not v
 def _drawn_ticklabels(axis):
     """The tick labels matplotlib draws: those of ticks inside the view (``get_ticklabels``
     also returns those of the ticks just outside it)."""
-    ticks = axis._update_ticks()   # what Axis.draw draws (matplotlib >= 3.1)
+    lo, hi = sorted(axis.get_view_interval())
+    tol = 1e-10 * (hi - lo)
+    ticks = [t for t in axis.get_major_ticks() + axis.get_minor_ticks()
+             if lo - tol <= t.get_loc() <= hi + tol]
     return [lab for t in ticks for lab in (t.label1, t.label2) if lab.get_visible()]
 
 
