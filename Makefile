@@ -12,9 +12,8 @@ UV     := uv==0.13.9
 
 $(STAMP): requirements.lock pyproject.toml
 	$(PYTHON) -m venv $(VENV)
-	# uv installs the pinned set and compiles its bytecode on every core: this whole step
-	# took 39-42 s, with uv's cache empty or warm, where pip's took 95 s (one after the
-	# other on a 2-core VM); pip only brings uv itself (the pip config here names optional
+	# uv installs the pinned set and compiles its bytecode on every core, in well under
+	# half pip's time; pip only brings uv itself (the pip config here names optional
 	# local indexes; hide pip's warnings about them)
 	$(BIN)/pip install --quiet $(UV) 2>&1 | { grep -v "^WARNING: Location" || true; }
 	$(BIN)/uv pip install --python $(BIN)/python --quiet --compile-bytecode -r requirements.lock
@@ -28,10 +27,9 @@ venv: $(STAMP)
 	$(BIN)/python scripts/relocate_venv.py "$(CURDIR)"
 
 # The package's bytecode, compiled here once: every job, Snakemake start and test process then
-# reads it instead of compiling the sources it imports again (50-70 ms of CPU per validate or
-# notebook job, measured with -X importtime; Python does not write it itself where
-# PYTHONDONTWRITEBYTECODE is set, as in many containers).  A no-op (~0.1 s) when it is up
-# to date; a source edited since is compiled in memory, as always.
+# reads it instead of compiling the sources it imports again (Python does not write it itself
+# where PYTHONDONTWRITEBYTECODE is set, as in many containers).  A no-op when it is up to
+# date; a source edited since is compiled in memory, as always.
 # Never an error: where src/ is read-only the processes compile in memory, as before.
 bytecode: $(STAMP)
 	@$(BIN)/python -m compileall -q src > /dev/null 2>&1 || true

@@ -21,7 +21,7 @@ import numpy as np
 
 from .provenance import code_version, file_sha256, package_versions
 
-if TYPE_CHECKING:   # xarray (with pandas, ~0.5 s) is imported where datasets are read:
+if TYPE_CHECKING:   # xarray (with pandas, slow to import) is imported where datasets are read:
     import xarray as xr   # the report, archive and reference jobs write files only
 
 
