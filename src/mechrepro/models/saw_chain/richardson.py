@@ -44,13 +44,6 @@ def _levels(K: int) -> tuple:
     return (K // RATIO**2, K // RATIO, K)
 
 
-def extrapolate_extreme(chain: Chain, K: int, fn=np.max) -> Extrapolated:
-    """``fn`` of the load x over one period, extrapolated from K/4, K/2, K (see module)."""
-    Ks = _levels(K)
-    q = [float(fn(load_x(replace(chain, K=k)))) for k in Ks]
-    return from_levels(chain, Ks, q)
-
-
 def from_levels(chain: Chain, Ks, q) -> Extrapolated:
     """The extrapolation from plain values at K/4, K/2, K at the method's order, and its estimate
     plus the round-off."""

@@ -1,11 +1,15 @@
-"""A per-step Python loop of the whole difference method (the paper's MATLAB style).
-
-Not used by the pipeline: it is the independent reference the vectorised solver is
-tested against and the baseline of ``benchmarks/bench_saw_chain.py``.
-"""
+"""What the saw_chain benchmark times against the pipeline: the whole difference method as
+a per-step Python loop (the paper's MATLAB style; the same as tests/test_saw_chain.py's) and
+the Richardson extrapolation of one extremum from K/4, K/2, K (as tests/test_saw_chain_richardson.py's)."""
 from __future__ import annotations
 
 import math
+from dataclasses import replace
+
+import numpy as np
+
+from mechrepro.models.saw_chain.difference import load_x
+from mechrepro.models.saw_chain.richardson import _levels, from_levels
 
 
 def difference_method_loop(p1, p2, z, omega, m_L, m_C, M, N, K):
@@ -35,3 +39,9 @@ def difference_method_loop(p1, p2, z, omega, m_L, m_C, M, N, K):
             x_prev, xm_prev = xt, xm
         vm_prev = v_prev  # A2 starts with O2's values at t1
     return velocity, load
+
+
+def extrapolate_extreme(chain, K: int, fn=np.max):
+    """``fn`` of the load x over one period, extrapolated from K/4, K/2, K."""
+    Ks = _levels(K)
+    return from_levels(chain, Ks, [float(fn(load_x(replace(chain, K=k)))) for k in Ks])
