@@ -94,7 +94,7 @@ def test_hard_case_K_at_the_refusal_edge():
         solve(run(K=limit + 1, effects=[]))
     # the exact reference has no such limit
     chain = chain_from_run(run(K=10 * limit))
-    exact = exact_reference(Context(chain, chain.time(), 0.0, 0.0))["dynamic_load_x_exact"][1]
+    exact = exact_reference(Context(chain, chain.time()))["dynamic_load_x_exact"][1]
     assert np.all(np.isfinite(exact))
 
 

@@ -13,7 +13,6 @@ from mechrepro.units import var
 from . import stroke
 from .context import Context, Refused
 from .loops import NonAssembly
-from .effects import EFFECTS
 from .motion_laws import driving_laws_on_grid, horizontal_displacement, pose_error, stroke_outputs
 
 
@@ -55,8 +54,8 @@ def exact_stroke(ctx: Context) -> tuple[stroke.StrokeSolution, dict]:
 
 
 def solve_continuation(run: dict, ctx: Context) -> dict:
-    """Newton and closed-form strokes, then the named effects (they read ``ctx.stroke``); a scene
-    lever set that does not assemble is refused by name."""
+    """Newton and closed-form strokes (the named effects read ``ctx.stroke``); a scene lever set
+    that does not assemble is refused by name."""
     try:
         ctx.stroke, data = newton_stroke(ctx)
     except NonAssembly as exc:
@@ -66,14 +65,7 @@ def solve_continuation(run: dict, ctx: Context) -> dict:
     data["levers_assemble"] = var((), 1.0, "1", "1: the lever set assembles over the stroke")
     ctx.reference, exact = exact_stroke(ctx)
     data.update(exact)
-    data.update(contributions(run, ctx))
     return data
-
-
-def contributions(run: dict, ctx: Context) -> dict:
-    """Every contribution of the named effects, by key."""
-    c = EFFECTS.evaluate(run, ctx)
-    return {key: c.get(key) for key in c.keys()}
 
 
 #: the comparison methods and the salt of their random stream
@@ -175,7 +167,7 @@ def _over_seeds(ctx: Context, method: str, sol: stroke.StrokeSolution, err: np.n
 
 
 def solve_method_comparison(run: dict, ctx: Context) -> dict:
-    """The continuation (with its reference and effects), then every listed method."""
+    """The continuation (with its reference), then every listed method."""
     data = solve_continuation(run, ctx)
     for method in ctx.options.get("methods", []):
         data.update(compare(ctx, method))

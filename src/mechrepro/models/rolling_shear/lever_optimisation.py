@@ -8,7 +8,6 @@ from mechrepro.units import var
 
 from . import optimise, stroke
 from .context import Context
-from .continuation import contributions
 from .geometry import OPTIMISED_LEVERS, cut_points
 from .motion_laws import stroke_outputs
 from .selpso import SelPSOSettings
@@ -66,5 +65,4 @@ def solve_lever_optimisation(run: dict, ctx: Context) -> dict:
     for name in ctx.options.get("optimisers", ["selpso"]):  # the paper's by default
         fn, prefix = OPTIMISERS[name]
         data.update(optimised_outputs(ctx, fn(ctx), prefix))
-    data.update(contributions(run, ctx))
     return data

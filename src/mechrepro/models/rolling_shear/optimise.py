@@ -19,7 +19,7 @@ from . import closure, kernels
 from .blade import exact_pose
 from .geometry import OPTIMISED_LEVERS, Geometry, cut_points
 from .design import Unreachable
-from .loops import RANGES, NonAssembly, pivots
+from .loops import RANGES, NonAssembly, dyads
 from .selpso import SelPSOSettings, selpso
 from .motion_laws import synthetic_horizontal_displacement
 
@@ -51,12 +51,8 @@ def stroke_poses(g: Geometry, x_k, tol: float, max_iter: int = 30) -> np.ndarray
 
 def dyad_angles(g: Geometry, theta5, theta6) -> np.ndarray:
     """Closed-form theta1..theta4 for arrays of poses (n, 4); NaN where a loop cannot close."""
-    A, G = pivots(g)
-    D = g.l6 * np.exp(1j * theta6)
-    C = D + g.l8 * np.exp(1j * (theta5 + g.alpha))
-    I = D + g.l5 * np.exp(1j * theta5)
     out = []
-    for P, Q, rp, rq, e in ((A, C, g.l1, g.l3, g.elbow1), (G, I, g.l2, g.l4, g.elbow2)):
+    for P, Q, rp, rq, e in dyads(g, theta5, theta6):
         with np.errstate(invalid="ignore"):
             x, y, _ = closure.python.dyad_joint(P.real, P.imag, Q.real, Q.imag, rp, rq, e)
         out += [np.arctan2(y - P.imag, x - P.real), np.arctan2(y - Q.imag, x - Q.real)]

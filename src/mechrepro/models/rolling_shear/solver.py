@@ -70,12 +70,15 @@ def variables(result: dict, run: dict) -> dict:
 
 
 def compute(run: dict) -> dict:
-    """The run's solver; a lever set refused by name gives ``{"refused": ...}``."""
+    """The run's solver, then the effects the scene names (they read what it leaves in the
+    context); a lever set refused by name gives ``{"refused": ...}``."""
     try:
         ctx = Context(run)
         data = SOLVERS[run["solver"]](run, ctx)
     except Refused as exc:
         return {"refused": exc}
+    c = EFFECTS.evaluate(run, ctx)
+    data.update({key: c.get(key) for key in c.keys()})
     data.update(geometry_outputs(ctx))
     return {"ctx": ctx, "data": data}
 

@@ -18,14 +18,12 @@ EFFECTS = EffectRegistry("saw_chain")
 
 @dataclass(frozen=True)
 class Context:
-    """What an effect sees: the run's chain, its time grid, the constants of Eq. (23) and whether
-    the polygon effect is on (off: the constant-speed rival)."""
+    """What an effect sees: the run's chain, its time grid, its SI parameters (the constants of
+    Eq. (23) among them) and whether the polygon effect is on (off: the constant-speed rival)."""
     chain: Chain
     t: np.ndarray
-    textbook_phase: float
-    textbook_mass: float
-    polygon: bool = True
     parameters: dict | None = None
+    polygon: bool = True
 
 
 def period_vars(suffix: str, how: str, v, a=None, Fx=None, Fy=None) -> dict:
@@ -59,8 +57,8 @@ def exact_reference(ctx: Context) -> dict:
 def textbook(ctx: Context) -> dict:
     """The textbook model, Eq. (23), with its phase theta and mass on the solver's grid."""
     chain = ctx.chain
-    v, a, F = textbook_velocity_load(ctx.t, chain.R, chain.omega, ctx.textbook_phase,
-                                     ctx.textbook_mass)
+    p = ctx.parameters
+    v, a, F = textbook_velocity_load(ctx.t, chain.R, chain.omega, p["textbook_phase"], p["textbook_mass"])
     return period_vars("_textbook", "textbook Eq. (23)", v, a, F)
 
 

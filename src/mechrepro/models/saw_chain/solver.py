@@ -109,19 +109,15 @@ def compute(run: dict) -> dict:
     """The difference method (or its rival) and the effects the scene names (timed apart, so
     ``core_time`` is the method's alone)."""
     chain = chain_from_run(run)
-    p = run["parameters"]
     opts = run.get("options", {})
-    polygon = opts.get("polygon", True)
-    ctx = Context(chain=chain, t=chain.time(), textbook_phase=p["textbook_phase"],
-                  textbook_mass=p["textbook_mass"], polygon=polygon, parameters=p)
-    if polygon:
+    ctx = Context(chain, chain.time(), run["parameters"], opts.get("polygon", True))
+    if ctx.polygon:
         method = difference_method(chain, opts.get("beyond_roundoff_limit", False),
                                    opts.get("loads", True))
     else:   # the rival without the polygon effect (rivals.constant_speed)
         method = constant_speed(chain, opts.get("loads", True), opts.get("beyond_roundoff_limit", False))
-    contributions = EFFECTS.evaluate(run, ctx)
-    beside = {key: contributions.get(key) for key in contributions.keys()}
-    return {"chain": chain, "t": ctx.t, "data": {**method, **beside}}
+    c = EFFECTS.evaluate(run, ctx)
+    return {"chain": chain, "t": ctx.t, "data": method | {key: c.get(key) for key in c.keys()}}
 
 
 def ranges(ds: dict) -> dict:
