@@ -13,7 +13,7 @@ from mechrepro.units import var
 from . import stroke
 from .context import Context, Refused
 from .loops import NonAssembly
-from .motion_laws import driving_laws_on_grid, horizontal_displacement, pose_error, stroke_outputs
+from .motion_laws import driving_laws_on_grid, pose_error, stroke_outputs
 
 
 def newton_stroke(ctx: Context) -> tuple[stroke.StrokeSolution, dict]:
@@ -26,11 +26,6 @@ def newton_stroke(ctx: Context) -> tuple[stroke.StrokeSolution, dict]:
                                     "warm-started Newton"))
     out.update({
         "newton_fitness_loops": var("cut", sol.fitness_loops, "mm", "G of Eq. (9), Newton"),
-        "newton_fitness_pose": var("cut", sol.fitness_pose, "mm", "G of Eq. (7), Newton"),
-        "newton_iterations": var("cut", sol.iterations_loops.astype(float), "1",
-                                 "Newton iterations on Eq. (9)"),
-        "newton_time_per_solve": var((), wall / (2 * ctx.n), "s",
-                                     "Newton wall time per system solve (fastest stroke / 2n)"),
         "newton_stroke_time": var((), wall, "s", "Newton wall time of the whole stroke"),
         "newton_time_per_loops_solve": var(
             (), stroke.time_newton_loops(ctx.g, sol.theta, ctx.settings), "s",
@@ -47,10 +42,7 @@ def newton_stroke(ctx: Context) -> tuple[stroke.StrokeSolution, dict]:
 def exact_stroke(ctx: Context) -> tuple[stroke.StrokeSolution, dict]:
     """The closed-form reference stroke and its outputs."""
     sol = stroke.solve_exact(ctx.g, ctx.x_k)
-    out = stroke_outputs(ctx.g, sol.theta, "exact", "closed-form reference")
-    out["exact_fitness_loops"] = var("cut", sol.fitness_loops, "mm", "G of Eq. (9), exact")
-    out["exact_fitness_pose"] = var("cut", sol.fitness_pose, "mm", "G of Eq. (7), exact")
-    return sol, out
+    return sol, stroke_outputs(ctx.g, sol.theta, "exact", "closed-form reference")
 
 
 def solve_continuation(run: dict, ctx: Context) -> dict:
@@ -82,7 +74,6 @@ def compare(ctx: Context, method: str) -> dict:
     out = {
         f"{w}_theta": var(("cut", "angle"), sol.theta, "rad", f"theta1..theta6, {w}"),
         f"{w}_fitness_loops": var("cut", sol.fitness_loops, "mm", f"G of Eq. (9), {w}"),
-        f"{w}_fitness_pose": var("cut", sol.fitness_pose, "mm", f"G of Eq. (7), {w}"),
         f"{w}_converged": var("cut", sol.converged.astype(np.int8), "1",
                               f"both systems below tolerance, {w}"),
         f"{w}_in_ranges": var("cut", sol.in_ranges.astype(np.int8), "1",
@@ -98,37 +89,14 @@ def compare(ctx: Context, method: str) -> dict:
         f"{w}_time_per_solve": var((), sol.time_loops, "s", f"wall time per Eq. (9) solve, {w}"),
         f"{w}_time_per_pose_solve": var((), sol.time_pose, "s",
                                         f"wall time per Eq. (7) solve, {w}"),
-        f"{w}_fitness_loops_median": var((), np.median(sol.fitness_loops), "mm",
-                                         f"median G of Eq. (9), {w}"),
     }
     if method == "selpso":
-        out.update(_selpso_accuracy(ctx, sol, err))
+        st = ctx.settings.pso_loops
+        out["swarm_x_iter"] = var((), st.swarm * st.max_iter, "1",
+                                  "selPSO budget: particles x iterations on each system")
     if method in ("selpso", "pso_standard") and int(ctx.options.get("seeds", 0)) > 0:
         out.update(_over_seeds(ctx, method, sol, err))
     return out
-
-
-def _selpso_accuracy(ctx: Context, sol: stroke.StrokeSolution, err: np.ndarray) -> dict:
-    """selPSO's cost of accuracy: H from its poses, its largest pose error and the stroke's time."""
-    st = ctx.settings.pso_loops
-    H = np.mean(np.abs(horizontal_displacement(ctx.g, sol.theta[:, 4] - ctx.g.beta2, ctx.x_k)))
-    H_ref = np.mean(np.abs(horizontal_displacement(
-        ctx.g, ctx.reference.theta[:, 4] - ctx.g.beta2, ctx.x_k)))
-    return {
-        "selpso_iterations": var("cut", sol.iterations_loops.astype(float), "1",
-                                 "selPSO iterations on Eq. (9)"),
-        "selpso_synthetic_horizontal_displacement": var(
-            (), H, "mm", "synthetic horizontal displacement from selPSO poses"),
-        "exact_synthetic_horizontal_displacement_ref": var(
-            (), H_ref, "mm", "synthetic horizontal displacement, closed form"),
-        "selpso_pose_error": var(
-            (), np.max(err), "rad",
-            "max |theta1..theta6 - closed form| over the cut (a wrong assembly mode is a large error)"),
-        "selpso_stroke_time": var((), ctx.n * (sol.time_pose + sol.time_loops), "s",
-                                  "selPSO wall time of the whole stroke (Eqs. 7 and 9)"),
-        "swarm_x_iter": var((), st.swarm * st.max_iter, "1",
-                            "selPSO budget: particles x iterations on each system"),
-    }
 
 
 def _over_seeds(ctx: Context, method: str, sol: stroke.StrokeSolution, err: np.ndarray) -> dict:

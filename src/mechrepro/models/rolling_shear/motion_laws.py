@@ -88,10 +88,6 @@ def stroke_outputs(g: Geometry, theta: np.ndarray, prefix: str, what: str) -> di
                                      f"distance of each dyad from toggle/fold, {what}"),
         f"{prefix}_synthetic_horizontal_displacement":
             var((), np.mean(np.abs(dx)), "mm", f"synthetic horizontal displacement, {what}"),
-        f"{prefix}_synthetic_horizontal_displacement_best_anchor":
-            var((), np.mean(np.abs(dx - np.median(dx))), "mm",
-                f"synthetic horizontal displacement with trajectory 1 shifted to its best "
-                f"horizontal position (median), {what}"),
         f"{prefix}_overlap_max_deviation":
             var((), np.max(np.abs(yk + g.s)), "mm", f"max |y_k + s| over the cut, {what}"),
     })

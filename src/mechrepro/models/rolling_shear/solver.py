@@ -62,11 +62,7 @@ def variables(result: dict, run: dict) -> dict:
     out = {k: v for k, v in coords.items() if v[0][0] in used or k in ("cut", "huch", "x_k_target")}
     out |= {d: var(d, np.arange(np.shape(v[1])[v[0].index(d)]), "1", f"{d} index")
             for v in data.values() for d in v[0] if d not in out}
-    return out | data | {
-        "length_unit": "mm",
-        "pose_tol_used": var((), ctx.settings.tol_pose, "mm", "tolerance on G of Eq. (7)"),
-        "loops_tol_used": var((), ctx.settings.tol_loops, "mm", "tolerance on G of Eq. (9)"),
-        "blade_radius": var((), ctx.g.R, "mm", "blade arc radius R")}
+    return out | data | {"length_unit": "mm"}
 
 
 def compute(run: dict) -> dict:

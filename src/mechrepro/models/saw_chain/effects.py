@@ -79,7 +79,7 @@ def identification(ctx: Context) -> dict:
     K = np.arange(2, ch.roundoff_limit() + 1)
     res = [idf.analyse(design, paper, idf.PRINTED, idf.INPUTS_HALF, me, speeds, stretches, K)
            for me in errors]
-    return idf.as_variables(res, paper, errors, speeds, stretches)
+    return idf.as_variables(res, errors, speeds, stretches)
 
 
 #: what the design maps span: teeth, pitch ratios p1/p2, sprocket speeds [r/min], links
@@ -153,7 +153,6 @@ def richardson_levels(ctx: Context) -> dict:
     k = "richardson_k"
     return {
         k: var(k, Ks, "1", "finest steps per stage K of the level"),
-        "richardson_exact_peak": var((), exact, "N", "exact peak load (closed form at the stage end)"),
         "richardson_plain_error": var(k, np.abs(plain - exact) / exact, "1",
                                       "relative error of the plain difference-method peak at K"),
         "richardson_error": var(k, np.abs(value - exact) / exact, "1",
