@@ -78,7 +78,6 @@ class Context:
         n = self.calibration["n"]
         theta = stroke.exact_theta(self.g, cut_points(self.g, n)[1])
         broken = violations(self.g, theta, **settings(self.p))
-        self.calibration["violations"] = broken
         if broken:
             raise Refused("unbuildable", "; ".join(broken) + f" (tilt {self.calibration['tilt']:.4f} "
                           f"rad calibrated on 1.4341, {n} cut points)")

@@ -95,27 +95,20 @@ def compare(ctx: Context, method: str) -> dict:
         out["swarm_x_iter"] = var((), st.swarm * st.max_iter, "1",
                                   "selPSO budget: particles x iterations on each system")
     if method in ("selpso", "pso_standard") and int(ctx.options.get("seeds", 0)) > 0:
-        out.update(_over_seeds(ctx, method, sol, err))
+        out.update(_over_seeds(ctx, method, sol))
     return out
 
 
-def _over_seeds(ctx: Context, method: str, sol: stroke.StrokeSolution, err: np.ndarray) -> dict:
+def _over_seeds(ctx: Context, method: str, sol: stroke.StrokeSolution) -> dict:
     """A stochastic method over ``options.seeds`` strokes: pose-error quantiles, the probability
     of a whole stroke on the design branch, the branch rate per seed and the mean stroke time
     (seed 0: the run's stream; seed k: the stream (run seed, salt, k))."""
-    k_seeds = int(ctx.options["seeds"])
-    salt = METHOD_STREAMS[method]
-    errs, ok, times = [float(np.max(err))], [bool(sol.right.all())], \
-        [ctx.n * (sol.time_pose + sol.time_loops)]
-    rates = [float(sol.right.mean())]
-    for k in range(1, k_seeds):
-        s = stroke.solve_compare(ctx.g, ctx.x_k, method, ctx.settings,
-                                 np.random.default_rng([ctx.seed, salt, k]))
-        errs.append(float(np.max(pose_error(s.theta, ctx.reference.theta))))
-        ok.append(bool(s.right.all()))
-        rates.append(float(s.right.mean()))
-        times.append(ctx.n * (s.time_pose + s.time_loops))
-    errs = np.asarray(errs)
+    sols = [sol] + [stroke.solve_compare(ctx.g, ctx.x_k, method, ctx.settings,
+                                         np.random.default_rng([ctx.seed, METHOD_STREAMS[method], k]))
+                    for k in range(1, int(ctx.options["seeds"]))]
+    errs = np.array([float(np.max(pose_error(s.theta, ctx.reference.theta))) for s in sols])
+    ok, rates = [bool(s.right.all()) for s in sols], [float(s.right.mean()) for s in sols]
+    times = [ctx.n * (s.time_pose + s.time_loops) for s in sols]
     w = method
     return {
         f"{w}_pose_error_seeds": var("seed", errs, "rad",

@@ -23,11 +23,8 @@ def constant_rate_drive(ctx) -> dict:
     r = drive(ctx.g, ctx.stroke.theta)
     w = "both levers at a constant rate between the stroke's end positions"
     return {
-        "crd_theta1": var("cut", r["theta"][:, 0], "rad", f"theta1, {w}"),
-        "crd_theta2": var("cut", r["theta"][:, 1], "rad", f"theta2, {w}"),
         "crd_x_k": var("cut", r["x_k"], "mm", f"lowest point x_k, {w}"),
         "crd_y_k": var("cut", r["y_k"], "mm", f"lowest point y_k, {w}"),
-        "crd_overlap_deviation": var("cut", np.abs(r["y_k"] + ctx.g.s), "mm", f"|y_k + s|, {w}"),
         "crd_overlap_max_deviation": var((), np.max(np.abs(r["y_k"] + ctx.g.s)), "mm",
                                          f"max |y_k + s|, {w}"),
     }

@@ -158,25 +158,15 @@ def loops_fitness(g: Geometry, t5: float, t6: float) -> KernelFitness:
                          closure.LOOPS, g.constants, closure.python.loop_knowns(g, t5, t6))
 
 
-def _pose_by(method, g, xk, start, settings, rng):
-    """theta5, theta6 at one cut point (Eq. 7) by a comparison method."""
+def _solve_by(method, system, fitness, fun, jac, start, settings, rng):
+    """Eq. (7) (``system`` "pose": theta5, theta6) or Eq. (9) ("loops": theta1..theta4) at one
+    cut point by a comparison method: (x, iterations or evaluations)."""
     if method in ("selpso", "pso_standard"):
-        st = settings.pso_pose if method == "selpso" else settings.pso_std_pose
-        return selpso(pose_fitness(g, xk), start, st, rng, period=2 * math.pi).x
-    start = start if method.startswith("warm_") else rng.uniform(0, 2 * math.pi, 2)
-    return _scipy_solve(method, lambda x: blade.pose_residuals(g, x, xk),
-                        lambda x: blade.lowest_point_jacobian(g, *x), start)[0]
-
-
-def _loops_by(method, g, t5, t6, start, settings, rng):
-    """(theta1..theta4, iterations) at one cut point (Eq. 9)."""
-    if method in ("selpso", "pso_standard"):
-        st = settings.pso_loops if method == "selpso" else settings.pso_std_loops
-        r = selpso(loops_fitness(g, t5, t6), start, st, rng, period=2 * math.pi)
+        st = getattr(settings, f"pso_{'' if method == 'selpso' else 'std_'}{system}")
+        r = selpso(fitness(), start, st, rng, period=2 * math.pi)
         return r.x, r.iterations
-    start = start if method.startswith("warm_") else rng.uniform(0, 2 * math.pi, 4)
-    return _scipy_solve(method, lambda x: loops_mod.residuals(g, x, t5, t6),
-                        lambda x: loops_mod.jacobian(g, x), start)
+    start = start if method.startswith("warm_") else rng.uniform(0, 2 * math.pi, len(start))
+    return _scipy_solve(method, fun, jac, start)
 
 
 def solve_compare(g: Geometry, x_k, method: str, settings: SolverSettings,
@@ -193,10 +183,15 @@ def solve_compare(g: Geometry, x_k, method: str, settings: SolverSettings,
     for i, xk in enumerate(x_k):
         xk = float(xk)
         with phase("rolling_shear.pose") as sw:
-            t5, t6 = map(float, _pose_by(method, g, xk, guess[4:], settings, rng))
+            t5, t6 = map(float, _solve_by(
+                method, "pose", lambda: pose_fitness(g, xk), lambda x: blade.pose_residuals(g, x, xk),
+                lambda x: blade.lowest_point_jacobian(g, *x), guess[4:], settings, rng)[0])
         tp += sw.seconds
         with phase("rolling_shear.loops") as sw:
-            t14, it[i] = _loops_by(method, g, t5, t6, guess[:4], settings, rng)
+            t14, it[i] = _solve_by(
+                method, "loops", lambda: loops_fitness(g, t5, t6),
+                lambda x: loops_mod.residuals(g, x, t5, t6), lambda x: loops_mod.jacobian(g, x),
+                guess[:4], settings, rng)
         tl += sw.seconds
         th = np.array([*t14, t5, t6])
         if warm:

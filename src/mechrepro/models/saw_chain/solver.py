@@ -29,15 +29,7 @@ def difference_method(chain: Chain, beyond_roundoff_limit: bool = False, loads: 
     if not loads:
         return velocity_only(chain, beyond_roundoff_limit)
     budget = error_budget(chain, beyond_roundoff_limit)
-    vx, ax, Fx, Fy = difference_arrays(chain)
-    return {
-        "tight_side_velocity": var("t", vx, "m/s", "tight-side velocity, difference method (Eqs. 12, 18)"),
-        "tight_side_acceleration": var("t", ax, "m/s2",
-                                       "tight-side acceleration, difference method (Eqs. 13, 19)"),
-        "dynamic_load_x": var("t", Fx, "N", "total tight-side dynamic load x, difference method (Eqs. 16, 22)"),
-        "dynamic_load_y": var("t", Fy, "N", "dynamic load y of the seating link, difference method (Eqs. 16, 22)"),
-        **budget,
-    }
+    return {**period_vars("", "difference method (Eqs. 11-22)", *difference_arrays(chain)), **budget}
 
 
 def velocity_only(chain: Chain, beyond_roundoff_limit: bool = False) -> dict:
@@ -48,8 +40,7 @@ def velocity_only(chain: Chain, beyond_roundoff_limit: bool = False) -> dict:
         x = stage_positions(phi, chain.R, L, chain.Tx)["trail_x"]
         parts.append(np.diff(x) * (1.0 / ((phi[1] - phi[0]) / chain.omega)))  # as Eq. (12) in the full method
     vx = np.concatenate([[chain.R * chain.omega], *parts])
-    return {"tight_side_velocity": var("t", vx, "m/s", "tight-side velocity, difference method (Eqs. 12, 18)"),
-            **budget}
+    return {**period_vars("", "difference method (Eqs. 12, 18)", vx), **budget}
 
 
 def velocity_budget(chain: Chain, beyond_roundoff_limit: bool) -> dict:
