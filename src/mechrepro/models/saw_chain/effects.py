@@ -153,6 +153,7 @@ def richardson_levels(ctx: Context) -> dict:
     k = "richardson_k"
     return {
         k: var(k, Ks, "1", "finest steps per stage K of the level"),
+        "richardson_exact_peak": var((), exact, "N", "exact peak load (closed form at the stage end)"),
         "richardson_plain_error": var(k, np.abs(plain - exact) / exact, "1",
                                       "relative error of the plain difference-method peak at K"),
         "richardson_error": var(k, np.abs(value - exact) / exact, "1",
