@@ -13,8 +13,6 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import differential_evolution
 
-from mechrepro.timing import phase
-
 from . import closure, kernels
 from .blade import exact_pose
 from .geometry import OPTIMISED_LEVERS, Geometry, cut_points
@@ -105,15 +103,13 @@ class OptimisationResult:
     objective: float
     evaluations: int
     history: np.ndarray      # best objective after each iteration/generation
-    wall_time: float
 
 
 def optimise_selpso(g, x_k, bounds, settings: SelPSOSettings, rng, tol) -> OptimisationResult:
     f = penalised(g, x_k, tol)
     lo, hi = np.asarray(bounds, float).T
-    with phase("rolling_shear.optimise_selpso") as sw:
-        r = selpso(lambda X: np.array([f(x) for x in X]), 0.5 * (lo + hi), settings, rng, lo, hi)
-    return OptimisationResult("selpso", r.x, r.fitness, r.evaluations, r.history, sw.seconds)
+    r = selpso(lambda X: np.array([f(x) for x in X]), 0.5 * (lo + hi), settings, rng, lo, hi)
+    return OptimisationResult("selpso", r.x, r.fitness, r.evaluations, r.history)
 
 
 def optimise_de(g, x_k, bounds, budget: int, population: int, seed: int,
@@ -133,9 +129,8 @@ def optimise_de(g, x_k, bounds, budget: int, population: int, seed: int,
     def callback(intermediate_result):
         hist.append(float(intermediate_result.fun))
 
-    with phase("rolling_shear.optimise_de") as sw:
-        r = differential_evolution(fc, bounds, popsize=popsize, maxiter=maxiter, tol=0.0,
-                                   atol=0.0, seed=seed, polish=False, init="latinhypercube",
-                                   updating="immediate", callback=callback)
+    r = differential_evolution(fc, bounds, popsize=popsize, maxiter=maxiter, tol=0.0, atol=0.0,
+                               seed=seed, polish=False, init="latinhypercube",
+                               updating="immediate", callback=callback)
     return OptimisationResult("differential_evolution", np.asarray(r.x), float(r.fun), count[0],
-                              np.asarray(hist), sw.seconds)
+                              np.asarray(hist))

@@ -78,21 +78,12 @@ def _explain(g, i, xk, theta, why) -> str:
 
 
 def solve_newton(g: Geometry, x_k, settings: SolverSettings) -> StrokeSolution:
-    """Warm-started Newton continuation along the stroke (the pipeline's default)."""
+    """Warm-started Newton continuation along the stroke (the pipeline's default), point by
+    point; its time is the caller's to measure (:func:`.continuation.newton_stroke`)."""
     n = len(x_k)
     theta = np.empty((n, 6))
     fp, fl, it = np.empty(n), np.empty(n), np.empty(n, int)
     guess = list(settings.initial_value)
-    with phase("rolling_shear.solve_newton") as sw:
-        _continue(g, x_k, settings, guess, theta, fp, fl, it)
-    theta = wrap(theta)
-    ok = np.ones(n, bool)
-    return StrokeSolution("newton", np.asarray(x_k), theta, fp, fl, ok, ok.copy(), ok.copy(),
-                          sw.seconds / (2 * n), sw.seconds / (2 * n), it)
-
-
-def _continue(g, x_k, settings, guess, theta, fp, fl, it) -> None:
-    """The continuation proper: fills theta, fitnesses and iterations point by point."""
     for i, xk in enumerate(x_k):
         xk = float(xk)
         # first-order predictor, then (near a toggle it can overshoot onto the other
@@ -111,6 +102,9 @@ def _continue(g, x_k, settings, guess, theta, fp, fl, it) -> None:
         theta[i] = th
         fp[i], fl[i], it[i] = rp.fitness, rl.fitness, rl.iterations
         guess = list(2 * th - theta[i - 1]) if i > 0 else list(th)
+    ok = np.ones(n, bool)
+    return StrokeSolution("newton", np.asarray(x_k), wrap(theta), fp, fl, ok, ok.copy(), ok.copy(),
+                          math.nan, math.nan, it)
 
 
 def _exact(g: Geometry, x_k) -> np.ndarray:
