@@ -19,6 +19,8 @@ from .design import INTENTS, design
 MM_PER_M = 1000.0
 
 LEVERS = ("l1", "l2", "l3", "l4", "l5", "l6", "l8", "l9", "l10", "l11")
+#: the design intents and readings of a family-grid member (solver family_scan)
+GRID_KEYS = ("blade_offset", "R", "width", "y_joint", "eq8_reading", "carrier_constants")
 #: the levers the paper optimises (Sec. 3.3, step 3; Table II)
 OPTIMISED_LEVERS = ("l1", "l3", "l5", "l6", "l10")
 #: constants of a run's geometry stored with it (enough to redraw the linkage; dataset.py)

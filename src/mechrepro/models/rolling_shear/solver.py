@@ -56,7 +56,6 @@ def variables(result: dict, run: dict) -> dict:
         "x_k_target": var("cut", ctx.x_k, "mm", "prescribed x of the lowest point on y = -s"),
         "angle": var("angle", list(ANGLE_NAMES), "1", "unknown angle"),
         "lever": var("lever", list(OPTIMISED_LEVERS), "1", "optimised lever"),
-        "loop": var("loop", ["ABCD", "GHID"], "1", "dyad of Eq. (9)"),
     }
     used = {d for dims, *_ in data.values() for d in dims}
     out = {k: v for k, v in coords.items() if v[0][0] in used or k in ("cut", "huch", "x_k_target")}
