@@ -10,8 +10,6 @@ from mechrepro.errors import Refusal
 from . import optimise, stroke
 from .calibrate import CalibrationError
 from .geometry import cut_points, from_parameters
-from .design import Unreachable
-from .loops import NonAssembly
 from .selpso import SelPSOSettings
 
 
@@ -46,14 +44,11 @@ class Context:
         self.g_original = self.g
         if levers is not None and self.calibration is not None:
             self._check_buildable()
-        if levers is not None:
-            try:
-                self.g = self.g.with_levers(**{k: float(v) for k, v in levers.items()})
-                if self.calibration is not None:
-                    self.calibration["H_levers"] = optimise.objective(
-                        self.g, cut_points(self.g, self.calibration["n"])[1], self.tol_floor)
-            except (NonAssembly, Unreachable) as exc:
-                raise Refused("assembly", f"Table II lever set {dict(levers)}: {exc}") from None
+        if levers is not None:   # NonAssembly, Unreachable: refused by solver.compute
+            self.g = self.g.with_levers(**{k: float(v) for k, v in levers.items()})
+            if self.calibration is not None:
+                self.calibration["H_levers"] = optimise.objective(
+                    self.g, cut_points(self.g, self.calibration["n"])[1], self.tol_floor)
         self.huch, self.x_k = cut_points(self.g, self.n)
         self.settings = self._settings()
         #: the solved stroke (a :class:`stroke.StrokeSolution`), once a solver has it

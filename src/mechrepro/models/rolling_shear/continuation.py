@@ -11,8 +11,7 @@ from mechrepro.timing import time_call
 from mechrepro.units import var
 
 from . import stroke
-from .context import Context, Refused
-from .loops import NonAssembly
+from .context import Context
 from .motion_laws import driving_laws_on_grid, pose_error, stroke_outputs
 
 
@@ -39,25 +38,14 @@ def newton_stroke(ctx: Context) -> tuple[stroke.StrokeSolution, dict]:
     return sol, out
 
 
-def exact_stroke(ctx: Context) -> tuple[stroke.StrokeSolution, dict]:
-    """The closed-form reference stroke and its outputs."""
-    sol = stroke.solve_exact(ctx.g, ctx.x_k)
-    return sol, stroke_outputs(ctx.g, sol.theta, "exact", "closed-form reference")
-
-
 def solve_continuation(run: dict, ctx: Context) -> dict:
-    """Newton and closed-form strokes (the named effects read ``ctx.stroke``); a scene lever set
-    that does not assemble is refused by name."""
-    try:
-        ctx.stroke, data = newton_stroke(ctx)
-    except NonAssembly as exc:
-        if "levers" not in ctx.options:
-            raise
-        raise Refused("assembly", f"lever set {dict(ctx.options['levers'])}: {exc}") from None
+    """Newton and closed-form (the reference) strokes; the named effects read ``ctx.stroke``.
+    A stroke that does not assemble raises NonAssembly (a scene lever set's is refused by
+    :func:`.solver.compute`)."""
+    ctx.stroke, data = newton_stroke(ctx)
     data["levers_assemble"] = var((), 1.0, "1", "1: the lever set assembles over the stroke")
-    ctx.reference, exact = exact_stroke(ctx)
-    data.update(exact)
-    return data
+    ctx.reference = stroke.solve_exact(ctx.g, ctx.x_k)
+    return data | stroke_outputs(ctx.g, ctx.reference.theta, "exact", "closed-form reference")
 
 
 #: the comparison methods and the salt of their random stream

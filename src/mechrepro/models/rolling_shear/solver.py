@@ -9,6 +9,8 @@ import numpy as np
 from mechrepro.units import var
 
 from .context import Context, Refused
+from .design import Unreachable
+from .loops import NonAssembly
 from .continuation import solve_continuation, solve_method_comparison
 from .effects import EFFECTS
 from .family import solve_family_scan
@@ -72,6 +74,10 @@ def compute(run: dict) -> dict:
         data = SOLVERS[run["solver"]](run, ctx)
     except Refused as exc:
         return {"refused": exc}
+    except (NonAssembly, Unreachable) as exc:   # a scene's lever set that does not assemble
+        if "levers" not in run.get("options", {}):
+            raise
+        return {"refused": Refused("assembly", f"lever set {dict(run['options']['levers'])}: {exc}")}
     c = EFFECTS.evaluate(run, ctx)
     data.update({key: c.get(key) for key in c.keys()})
     data.update(geometry_outputs(ctx))
