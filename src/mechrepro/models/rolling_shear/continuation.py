@@ -44,8 +44,8 @@ def solve_continuation(run: dict, ctx: Context) -> dict:
     :func:`.solver.compute`)."""
     ctx.stroke, data = newton_stroke(ctx)
     data["levers_assemble"] = var((), 1.0, "1", "1: the lever set assembles over the stroke")
-    ctx.reference = stroke.solve_exact(ctx.g, ctx.x_k)
-    return data | stroke_outputs(ctx.g, ctx.reference.theta, "exact", "closed-form reference")
+    ctx.reference = stroke.exact_theta(ctx.g, ctx.x_k)
+    return data | stroke_outputs(ctx.g, ctx.reference, "exact", "closed-form reference")
 
 
 #: the comparison methods and the salt of their random stream
@@ -57,7 +57,7 @@ def compare(ctx: Context, method: str) -> dict:
     """One method at every cut point, recorded (never raising)."""
     sol = stroke.solve_compare(ctx.g, ctx.x_k, method, ctx.settings,
                                ctx.rng(METHOD_STREAMS[method]))
-    err = pose_error(sol.theta, ctx.reference.theta)
+    err = pose_error(sol.theta, ctx.reference)
     w = method
     out = {
         f"{w}_theta": var(("cut", "angle"), sol.theta, "rad", f"theta1..theta6, {w}"),
@@ -94,7 +94,7 @@ def _over_seeds(ctx: Context, method: str, sol: stroke.StrokeSolution) -> dict:
     sols = [sol] + [stroke.solve_compare(ctx.g, ctx.x_k, method, ctx.settings,
                                          np.random.default_rng([ctx.seed, METHOD_STREAMS[method], k]))
                     for k in range(1, int(ctx.options["seeds"]))]
-    errs = np.array([float(np.max(pose_error(s.theta, ctx.reference.theta))) for s in sols])
+    errs = np.array([float(np.max(pose_error(s.theta, ctx.reference))) for s in sols])
     ok, rates = [bool(s.right.all()) for s in sols], [float(s.right.mean()) for s in sols]
     times = [ctx.n * (s.time_pose + s.time_loops) for s in sols]
     w = method

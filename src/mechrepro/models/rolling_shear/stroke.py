@@ -3,8 +3,8 @@
 Methods: ``newton`` (warm-started continuation; a point that does not converge or lands off
 the design branch raises :class:`NonAssembly`), ``selpso`` and ``pso_standard`` (from the
 initial value), ``cold_root``/``least_squares`` (scipy from random starts), ``warm_root``/
-``warm_least_squares`` (scipy warm-started, no branch check), ``exact`` (closed form, the
-reference).  :func:`solve_compare` records the comparison methods and never raises."""
+``warm_least_squares`` (scipy warm-started, no branch check); :func:`exact_theta` (closed form)
+is the reference.  :func:`solve_compare` records the comparison methods and never raises."""
 from __future__ import annotations
 
 import math
@@ -107,7 +107,8 @@ def solve_newton(g: Geometry, x_k, settings: SolverSettings) -> StrokeSolution:
                           math.nan, math.nan, it)
 
 
-def _exact(g: Geometry, x_k) -> np.ndarray:
+def exact_theta(g: Geometry, x_k) -> np.ndarray:
+    """theta1..theta6 (n x 6, mod 2 pi) of the closed form at every cut point (the reference)."""
     theta = np.empty((len(x_k), 6))
     for i, xk in enumerate(x_k):
         try:
@@ -115,22 +116,7 @@ def _exact(g: Geometry, x_k) -> np.ndarray:
             theta[i] = [*loops_mod.exact_angles(g, *p), *p]
         except NonAssembly as exc:
             raise NonAssembly(f"cut point {i} (x_k = {float(xk):.6g} mm): {exc}", i, float(xk)) from None
-    return theta
-
-
-def exact_theta(g: Geometry, x_k) -> np.ndarray:
-    """theta1..theta6 (n x 6, mod 2 pi) of the closed form at every cut point, without residuals."""
-    return wrap(_exact(g, x_k))
-
-
-def solve_exact(g: Geometry, x_k) -> StrokeSolution:
-    n = len(x_k)
-    theta = _exact(g, x_k)
-    fp = np.array([np.abs(blade.pose_residuals(g, t[4:], xk)).sum() for t, xk in zip(theta, x_k)])
-    fl = np.array([np.abs(loops_mod.residuals(g, t[:4], t[4], t[5])).sum() for t in theta])
-    ok = np.ones(n, bool)
-    return StrokeSolution("exact", np.asarray(x_k), wrap(theta), fp, fl, ok, ok.copy(),
-                          ok.copy(), math.nan, math.nan, np.zeros(n, int))
+    return wrap(theta)
 
 
 def _scipy_solve(kind, fun, jac, x0):
