@@ -90,10 +90,6 @@ def refusal_variables(exc: Refused) -> dict:
         "levers_assemble": var((), 0.0 if exc.kind == "assembly" else np.nan, "1",
                                "1: the lever set assembles over the stroke; 0: refused; NaN: "
                                "the member was refused before (not calibrated, not buildable)"),
-        "calibrated": var((), float(exc.kind != "calibration"), "1",
-                          "1: the family member reaches the paper's 1.4341 at some tilt"),
-        "buildable": var((), 0.0 if exc.kind == "unbuildable" else np.nan, "1",
-                         "0: the calibrated member breaks a constraint of constraints.py"),
         "length_unit": "mm", "refusal_kind": exc.kind, "refusal": exc.message}
 
 

@@ -71,10 +71,8 @@ def identification(ctx: Context) -> dict:
     p, ch = ctx.parameters, ctx.chain
     design = Design(**ch.inputs())
     paper = np.array([*p["identification_velocities"], *p["identification_loads"]], float)
-    s0, s1, ds = p["identification_scan_speed"]
-    e0, e1, de = p["identification_scan_stretch"]
-    speeds = np.linspace(s0, s1, int(round((s1 - s0) / ds)) + 1)
-    stretches = np.linspace(e0, e1, int(round((e1 - e0) / de)) + 1)
+    speeds, stretches = (np.linspace(a, b, int(round((b - a) / d)) + 1) for a, b, d in
+                         (p["identification_scan_speed"], p["identification_scan_stretch"]))
     errors = list(p["identification_model_errors"])
     K = np.arange(2, ch.roundoff_limit() + 1)
     res = [idf.analyse(design, paper, idf.PRINTED, idf.INPUTS_HALF, me, speeds, stretches, K)
@@ -134,16 +132,14 @@ RICHARDSON_K = 2 ** np.arange(2, 16)
 def richardson_levels(ctx: Context) -> dict:
     """The plain peak load at each K of :data:`RICHARDSON_K`, its Richardson extrapolation from
     K/4, K/2, K, their errors against the exact peak and the samples each computes."""
-    from dataclasses import replace
-
+    from .analysis import load_extreme_at
     from .design import rule_peak_load
     from .richardson import from_levels
-    from .difference import load_x
 
     ch = ctx.chain
     exact = float(rule_peak_load(**ch.inputs()))
     Ks = RICHARDSON_K[RICHARDSON_K <= ch.roundoff_limit()]
-    plain = np.array([float(load_x(replace(ch, K=int(k))).max()) for k in Ks])
+    plain = np.array([load_extreme_at(ch, k) for k in Ks])
     nan = np.full(Ks.size, np.nan)
     value, estimate, samples = nan.copy(), nan.copy(), nan.copy()
     for i in range(2, Ks.size):
