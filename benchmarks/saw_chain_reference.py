@@ -1,6 +1,6 @@
-"""What the saw_chain benchmark times against the pipeline: the whole difference method as
-a per-step Python loop (the paper's MATLAB style; the same as tests/test_saw_chain.py's) and
-the Richardson extrapolation of one extremum from K/4, K/2, K (as tests/test_saw_chain_richardson.py's)."""
+"""What the saw_chain benchmark times against the pipeline: the whole difference method as a
+per-step Python loop (the paper's MATLAB style; as in tests/test_saw_chain.py) and the Richardson
+extrapolation of one extremum from K/4, K/2, K (as in tests/test_saw_chain_richardson.py)."""
 from __future__ import annotations
 
 import math

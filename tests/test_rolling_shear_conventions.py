@@ -21,7 +21,7 @@ def M12(g) -> np.ndarray:
 
 
 def M20(g, theta5: float, theta6: float) -> np.ndarray:
-    """Eq. (4): frame x2Dy2 -> xEy, rotation **+theta5** (the corrected sign of blade's module doc)."""
+    """Eq. (4): frame x2Dy2 -> xEy, rotation **+theta5** (the corrected sign, see blade.py)."""
     c, s = np.cos(theta5), np.sin(theta5)
     return np.array([[c, -s, g.l6 * np.cos(theta6)],
                      [s, c, g.l6 * np.sin(theta6)],

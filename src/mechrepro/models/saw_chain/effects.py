@@ -56,9 +56,9 @@ def exact_reference(ctx: Context) -> dict:
 @EFFECTS.register("textbook")
 def textbook(ctx: Context) -> dict:
     """The textbook model, Eq. (23), with its phase theta and mass on the solver's grid."""
-    chain = ctx.chain
-    p = ctx.parameters
-    v, a, F = textbook_velocity_load(ctx.t, chain.R, chain.omega, p["textbook_phase"], p["textbook_mass"])
+    chain, p = ctx.chain, ctx.parameters
+    v, a, F = textbook_velocity_load(ctx.t, chain.R, chain.omega, p["textbook_phase"],
+                                     p["textbook_mass"])
     return period_vars("_textbook", "textbook Eq. (23)", v, a, F)
 
 
