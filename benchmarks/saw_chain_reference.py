@@ -1,44 +1,23 @@
 """What the saw_chain benchmark times against the pipeline: the whole difference method as a
-per-step Python loop (the paper's MATLAB style; as in tests/test_saw_chain.py) and the Richardson
+per-step Python loop (the paper's MATLAB style), the one tests/test_saw_chain.py checks the
+solver against (loaded from there by path: no copy, no sys.path edit), and the Richardson
 extrapolation of one extremum from K/4, K/2, K (as in tests/test_saw_chain_richardson.py)."""
 from __future__ import annotations
 
-import math
+import importlib.util
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 
 from mechrepro.models.saw_chain.difference import load_x
 from mechrepro.models.saw_chain.richardson import _levels, from_levels
 
-
-def difference_method_loop(p1, p2, z, omega, m_L, m_C, M, N, K):
-    """Tight-side velocity and total dynamic load x over one period, step by step."""
-    R = math.sqrt(p1**2 + p2**2 + 2 * p1 * p2 * math.cos(math.pi / z)) / (2 * math.sin(math.pi / z))
-    Tx = p1 + 2 * p2
-    phi1 = 2 * math.asin(p2 / (2 * R))
-    phi2 = phi1 + 2 * math.asin(p1 / (2 * R))
-    m_tight = M * m_L + N * m_C
-    velocity, load = [R * omega], [0.0]
-    v_prev = vm_prev = R * omega
-    for L, m_link, span in ((p2, m_C, phi1), (p1, m_L, phi2 - phi1)):
-        dt = span / K / omega
-        x_prev = xm_prev = None
-        for i in range(K + 1):
-            phi = span * i / K
-            xl = Tx + R * math.sin(phi)
-            yl = R * (1.0 - math.cos(phi))
-            xt = xl - math.sqrt(L * L - yl * yl)
-            xm = 0.5 * (xl + xt)
-            if i > 0:
-                v, vm = (xt - x_prev) / dt, (xm - xm_prev) / dt
-                a, am = (v - v_prev) / dt, (vm - vm_prev) / dt
-                velocity.append(v)
-                load.append(m_link * am + m_tight * a)
-                v_prev, vm_prev = v, vm
-            x_prev, xm_prev = xt, xm
-        vm_prev = v_prev  # A2 starts with O2's values at t1
-    return velocity, load
+_spec = importlib.util.spec_from_file_location(
+    "saw_chain_test_reference", Path(__file__).resolve().parent.parent / "tests" / "test_saw_chain.py")
+_tests = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(_tests)
+difference_method_loop = _tests.difference_method_loop
 
 
 def extrapolate_extreme(chain, K: int, fn=np.max):
