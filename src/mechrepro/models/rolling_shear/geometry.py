@@ -88,10 +88,8 @@ def derive(intents: dict, base: "Geometry | None" = None, **modes) -> Geometry:
     kw = {k: getattr(base, k) for k in ("elbow1", "elbow2", "guide_mode", "eq8", "carrier")} \
         if base is not None else {}
     kw.update(modes)
-    d = design(**{k: intents[k] for k in INTENTS}, elbow1=kw.get("elbow1", 1),
-               elbow2=kw.get("elbow2", 1))
-    d.pop("elbow1"), d.pop("elbow2")
     levers = {k: intents[k] for k in ("l1", "l3", "l5", "l6", "l9", "l10")}
+    d = design(**{k: intents[k] for k in INTENTS})
     return Geometry(**levers, **d, h=intents["h"], R=intents["R"], s=intents["s"],
                     width=intents["width"], intents=tuple(sorted(intents.items())), **kw)
 
