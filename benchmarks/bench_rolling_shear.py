@@ -75,8 +75,8 @@ def like_for_like(n_points: int = 33) -> None:
     run = load_paper(CONFIG).runs["solver_comparison"]
     run = dict(run, resolution={**run["resolution"], "n_points": n_points})
     ctx = Context(run)
-    ref = stroke.solve_exact(ctx.g, ctx.x_k)
-    t_newton = stroke.time_newton_loops(ctx.g, ref.theta, ctx.settings, min_time=1.0)
+    ref = stroke.exact_theta(ctx.g, ctx.x_k)
+    t_newton = stroke.time_newton_loops(ctx.g, ref, ctx.settings, min_time=1.0)
     print(f"rolling_shear, {n_points} cut points, Eq. (9) only; warm Newton "
           f"{t_newton * 1e6:.1f} us per solve, 100 % design branch")
     s = ctx.settings
@@ -128,7 +128,7 @@ assert closure.available()
 kernels.warm()
 g = from_parameters(load_paper(sys.argv[1]).runs["original"]["parameters"])
 x_k = cut_points(g, 33)[1]
-th = stroke.solve_exact(g, x_k).theta
+th = stroke.exact_theta(g, x_k)
 t5, t6 = th[16, 4], th[16, 5]
 st = SelPSOSettings(swarm=40, max_iter=300, v_max=1.0)
 paths = {
@@ -226,10 +226,9 @@ NEWTON_EVALS, NEWTON_EVALS_LOOSE = 3.2, 2.1
 #: 4 sin/cos, ~18 mul/add and a hypot per point) and one Brent root of ~10 steps of the same
 #: function (+ ~15 of Brent's own) and an atan2
 EXACT_POSE = 601 * (4 * _T + 18 + _S) + 10 * (4 * _T + 33 + _S) + _T
-#: the rest of a closed-form cut point (:func:`.stroke.solve_exact`): both dyads in closed
-#: form (knowns 6 sin/cos; per dyad a hypot, a sqrt, 2 divisions, 2 atan2, ~15) and the
-#: residuals of Eqs. (7) and (9) (14 sin/cos, ~45)
-EXACT_REST = 6 * _T + 2 * (3 * _S + 2 * _S + 2 * _T + 15) + 14 * _T + 45
+#: the rest of a closed-form cut point (:func:`.stroke.exact_theta`): both dyads in closed
+#: form (knowns 6 sin/cos; per dyad a hypot, a sqrt, 2 divisions, 2 atan2, ~15)
+EXACT_REST = 6 * _T + 2 * (3 * _S + 2 * _S + 2 * _T + 15)
 #: per cut point of the lever objective (:func:`.optimise.objective`) besides its Newton on
 #: Eq. (7): the assembly check (:func:`.closure.assembles_clearly`: 6 sin/cos; per dyad a
 #: hypot, a sqrt, 2 divisions, 2 atan2, 2 fmod, ~25) and H (Eq. 8: 2 sin, ~10)

@@ -41,7 +41,7 @@ def main(seeds: int = 20, n_points: int = 9, repeats: int = 5) -> None:
     run = dict(run, resolution={**run["resolution"], "n_points": n_points})
     ctx = Context(run)
     g, st = ctx.g, ctx.settings
-    ref = stroke.solve_exact(g, ctx.x_k).theta
+    ref = stroke.exact_theta(g, ctx.x_k)
     start = np.asarray(st.initial_value[:4], float)
 
     def solve_all(pso, seed):

@@ -23,7 +23,7 @@ from mechrepro.timing import time_call
 from mechrepro.config import load_paper
 from mechrepro.models.saw_chain.solver import chain_from_run, difference_method
 from mechrepro.timing import phase
-from mechrepro.models.saw_chain.reference_loop import difference_method_loop
+from saw_chain_reference import difference_method_loop
 from mechrepro.solve import run_solver
 
 import _floor
@@ -78,7 +78,7 @@ def richardson_vs_plain():
 
     from dataclasses import replace
     from mechrepro.models.saw_chain.design import design_quantities
-    from mechrepro.models.saw_chain.richardson import extrapolate_extreme
+    from saw_chain_reference import extrapolate_extreme
     from mechrepro.models.saw_chain.difference import load_x
 
     cfg = load_paper(ROOT / "config/papers/saw_chain.yaml")

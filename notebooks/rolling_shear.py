@@ -99,10 +99,10 @@ ax[0].set(xlabel="guide-rod tilt theta6_mid - pi [rad]", ylabel="H, original lev
 ax[0].legend(fontsize=7)
 red = fam["family_member_reduction"].values
 built = fam["family_member_buildable"].values == 1.0
-P = R.cfg.raw["parameters"]
-oop = V.buildable_members(fam, clearance=P["clearance"]["value"], mu_min=P["transmission_min"]["value"],
-                          plate_top=P["plate_thickness_max"]["value"],
-                          opening=P["opening"]["value"])["out_of_plane"] & ~built   # only out of plane
+P = R.cfg.raw["parameters"]   # the configured constraints (mm, deg)
+cons = dict(clearance=float(P["clearance"]["value"]), mu_min=float(P["transmission_min"]["value"]),
+            plate_top=float(P["plate_thickness_max"]["value"]), opening=float(P["opening"]["value"]))
+oop = V.buildable_members(fam, **cons)["out_of_plane"] & ~built   # only out of plane
 car = fam["family_member_carrier_constants"].values.astype(str)
 eq8 = fam["family_member_eq8_reading"].values.astype(str)
 bins = np.arange(-60, 50, 2.5)
@@ -263,9 +263,6 @@ R.write_table("lever_scan", *V.lever_scan(opt))
 # %%
 des = R.run("design")
 strict = V.constraint_ends(R, max)
-P = R.cfg.raw["parameters"]
-cons = dict(clearance=float(P["clearance"]["value"]), mu_min=float(P["transmission_min"]["value"]),
-            plate_top=float(P["plate_thickness_max"]["value"]), opening=float(P["opening"]["value"]))
 fig, ax = plt.subplots(1, 2, figsize=(12, 4.2))
 sb = des["sample_buildable"].values == 1.0
 sH, smu = des["sample_H"].values, des["sample_mu_worst"].values

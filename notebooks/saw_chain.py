@@ -120,8 +120,7 @@ print(f"preferred explanation '{best_name}': band {pred[0]:.4f} to {pred[1]:.4f}
 # and under the preferred explanation.
 
 # %%
-rows = idf.table(idn, rpm)
-R.write_table("identification", idf.COLUMNS, rows)
+R.write_table("identification", idf.COLUMNS, idf.table(idn, rpm))
 R.write_table("identification_readings", idf.READING_COLUMNS,
               idf.reading_table(idn, rpm))
 names = [e[0] for e in idf.EXPLANATIONS]
@@ -163,10 +162,6 @@ ax[2].annotate("K fitted:\n≈ 0", (x[-1], 0), xytext=(0, 6), textcoords="offset
 ax[2].set(ylabel="(prediction − paper) / σ [1]")
 ax[2].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=1)
 R.save_figure(fig, "identification")
-for r in rows:
-    if r[0] == errors[0]:
-        print(f"{r[1]:28s} {r[2]:10s} chi2 {r[4]:8.2f} p {r[5]:.3f} rel. likelihood {r[6]:.3g} "
-              f"speed {r[7]:.0f} r/min stretch {r[12]:.2f} %")
 
 # %% [markdown]
 # ## Fig. 8 — total tight-side dynamic load
@@ -346,10 +341,6 @@ ax[3, 3].legend(*ax[3, 0].get_legend_handles_labels(), fontsize=8, loc="center",
 fig.suptitle("saw_chain design maps from the exact solution; ★ the paper's chain")
 fig.subplots_adjust(hspace=0.35, wspace=0.3)
 R.save_figure(fig, "design_maps")
-for row in design.rule_table(dm):
-    print(f"{row[0]:30s} max |error| {row[2]:.2e} (worst z = {row[3]}, p1/p2 = {row[4]:.2f}): {row[1]}")
-for q in (k for k in table if k.startswith("design_")):
-    print(f"{q:52s} {float(table[q]['reproduced_value']):+.5f}  {table[q]['note'].split(':', 1)[1].strip()}")
 
 # %% [markdown]
 # ## Validation table

@@ -12,6 +12,22 @@ from mechrepro.models.rolling_shear.motion_laws import (horizontal_displacement,
 from test_rolling_shear_helpers import geometry, stroke_exact
 
 
+def M12(g) -> np.ndarray:
+    """Eq. (4): frame x1Oy1 (blade) -> x2Dy2 (carrier), as printed (rotation -beta2)."""
+    c, s = np.cos(g.beta2), np.sin(g.beta2)
+    return np.array([[c, s, g.d * np.cos(g.beta1)],
+                     [-s, c, g.d * np.sin(g.beta1)],
+                     [0.0, 0.0, 1.0]])
+
+
+def M20(g, theta5: float, theta6: float) -> np.ndarray:
+    """Eq. (4): frame x2Dy2 -> xEy, rotation **+theta5** (the corrected sign, see blade.py)."""
+    c, s = np.cos(theta5), np.sin(theta5)
+    return np.array([[c, -s, g.l6 * np.cos(theta6)],
+                     [s, c, g.l6 * np.sin(theta6)],
+                     [0.0, 0.0, 1.0]])
+
+
 def M20_printed(g, theta5, theta6):
     """Eq. (4) exactly as printed (rotation -theta5), against which the convention is tested."""
     c, s = np.cos(theta5), np.sin(theta5)
@@ -31,7 +47,7 @@ POSES = [(2.60, 3.35), (2.6438, 3.29), (2.69, 3.17), (2.2, 4.0)]
 @pytest.mark.parametrize("t5,t6", POSES)
 def test_transform_chain_matches_written_out_form(g, t5, t6):
     for p1 in [(0.0, -g.h), (123.0, 45.0), (-700.0, 10.0)]:
-        x, y, _ = blade.M20(g, t5, t6) @ blade.M12(g) @ np.array([*p1, 1.0])
+        x, y, _ = M20(g, t5, t6) @ M12(g) @ np.array([*p1, 1.0])
         xw, yw = blade.to_fixed(g, t5, t6, *p1)
         assert abs(x - xw) < 1e-9 and abs(y - yw) < 1e-9
 
@@ -41,7 +57,7 @@ def test_M20_rotation_sense_agrees_with_loop_equations(g, t5, t6):
     # frame x2Dy2 has x2 along DI: the point (l5, 0) of frame 2 must be I = D + l5 e^{i t5}
     D = g.l6 * np.exp(1j * t6)
     I = D + g.l5 * np.exp(1j * t5)
-    x, y, _ = blade.M20(g, t5, t6) @ np.array([g.l5, 0.0, 1.0])
+    x, y, _ = M20(g, t5, t6) @ np.array([g.l5, 0.0, 1.0])
     assert abs(complex(x, y) - I) < 1e-9
     xp, yp, _ = M20_printed(g, t5, t6) @ np.array([g.l5, 0.0, 1.0])
     assert abs(complex(xp, yp) - I) > 1.0  # the printed sign contradicts Eq. (9)
@@ -49,10 +65,10 @@ def test_M20_rotation_sense_agrees_with_loop_equations(g, t5, t6):
 
 @pytest.mark.parametrize("t5,t6", POSES)
 def test_blade_turns_by_theta5_minus_beta2(g, t5, t6):
-    M = blade.M20(g, t5, t6) @ blade.M12(g)
+    M = M20(g, t5, t6) @ M12(g)
     assert math.isclose(math.atan2(M[1, 0], M[0, 0]), math.remainder(t5 - g.beta2, 2 * math.pi),
                         abs_tol=1e-12)
-    Mp = M20_printed(g, t5, t6) @ blade.M12(g)
+    Mp = M20_printed(g, t5, t6) @ M12(g)
     assert not math.isclose(math.atan2(Mp[1, 0], Mp[0, 0]),
                             math.remainder(t5 - g.beta2, 2 * math.pi), abs_tol=1e-3)
 

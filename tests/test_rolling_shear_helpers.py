@@ -25,7 +25,10 @@ def geometry():
 
 
 def stroke_exact(g, n):
-    return stroke.solve_exact(g, cut_points(g, n)[1])
+    """The closed-form stroke at n cut points (``.theta``, n x 6)."""
+    from types import SimpleNamespace
+
+    return SimpleNamespace(theta=stroke.exact_theta(g, cut_points(g, n)[1]))
 
 
 def grid(**columns):

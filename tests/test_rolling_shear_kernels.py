@@ -146,7 +146,7 @@ def test_newton_continuation_compiled_equals_numpy(monkeypatch):
 
     g = geometry()
     x_k = cut_points(g, 33)[1]
-    first = stroke.solve_exact(g, x_k[:1]).theta[0]
+    first = stroke.exact_theta(g, x_k[:1])[0]
     settings = stroke.SolverSettings(initial_value=tuple(np.round(first, 1)))
 
     def run():

@@ -36,7 +36,7 @@ def _limits(p):
 def test_configured_member_is_buildable_and_the_constraints_have_teeth():
     ctx = Context(run("paper_optimised"))
     g = ctx.g_original
-    theta = stroke.solve_exact(g, cut_points(g, 33)[1]).theta
+    theta = stroke.exact_theta(g, cut_points(g, 33)[1])
     lim = _limits(ctx.p)
     assert violations(g, theta, **lim) == []
     # the guide rod's joint D passes ~245 mm beside the plate (its pivot E ~1.2 m): a

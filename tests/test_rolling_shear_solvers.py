@@ -18,6 +18,13 @@ from test_rolling_shear_helpers import geometry, run
 PSO = SelPSOSettings(swarm=60, max_iter=1000, v_max=1.0)
 
 
+def solve_exact(g, xk):
+    """The closed-form stroke at the cut points ``xk`` (``.theta``, n x 6)."""
+    from types import SimpleNamespace
+
+    return SimpleNamespace(theta=stroke.exact_theta(g, xk))
+
+
 @pytest.fixture(scope="module")
 def g():
     return geometry()
@@ -62,7 +69,7 @@ def test_hard_case_selpso_from_initial_values_far_outside_the_ranges(g, x0):
                                 (4.2, 4.3, 2.6, 2.5, 9.0, -3.0)])
 def test_hard_case_newton_far_initial_value_never_returns_a_wrong_branch(g, x0):
     xk = cut_points(g, 9)[1]
-    ex = stroke.solve_exact(g, xk)
+    ex = solve_exact(g, xk)
     try:
         sol = stroke.solve_newton(g, xk, replace(settings(), initial_value=x0))
     except NonAssembly as exc:
@@ -73,7 +80,7 @@ def test_hard_case_newton_far_initial_value_never_returns_a_wrong_branch(g, x0):
 
 def _toggle_l3(g, n, margin):
     """l3 such that the largest |AC| over the stroke is l1 + l3 - margin."""
-    ex = stroke.solve_exact(g, cut_points(g, n)[1])
+    ex = solve_exact(g, cut_points(g, n)[1])
     A, _ = loops.pivots(g)
     D = g.l6 * np.exp(1j * ex.theta[:, 5])
     C = D + g.l8 * np.exp(1j * (ex.theta[:, 4] + g.alpha))
@@ -90,7 +97,7 @@ def test_hard_case_near_toggle_is_solved_on_the_design_branch(g, margin):
     l3, i_toggle = _toggle_l3(g, n, margin)
     gt = g.with_levers(l3=l3)
     xk = cut_points(gt, n)[1]
-    ex = stroke.solve_exact(gt, xk)
+    ex = solve_exact(gt, xk)
     assert loops.dyad_margins(gt, ex.theta[:, 4], ex.theta[:, 5])[:, 0].min() < 2 * margin
     sol = stroke.solve_newton(gt, xk, replace(settings(), initial_value=tuple(ex.theta[0])))
     assert np.max(np.abs(np.angle(np.exp(1j * (sol.theta - ex.theta))))) < 1e-6
@@ -105,7 +112,7 @@ def test_hard_case_toggle_inside_the_stroke_is_passed_on_the_design_branch(g, ma
     # the retry from the previous point stays on the design branch (issue 27: the toggle of
     # the near-toggle test above sits at the last cut point, where nothing follows it)
     n = 33
-    ex = stroke.solve_exact(g, cut_points(g, n)[1])
+    ex = solve_exact(g, cut_points(g, n)[1])
     _, G = loops.pivots(g)
     D = g.l6 * np.exp(1j * ex.theta[:, 5])
     gi = np.abs(D + g.l5 * np.exp(1j * ex.theta[:, 4]) - G)
@@ -113,7 +120,7 @@ def test_hard_case_toggle_inside_the_stroke_is_passed_on_the_design_branch(g, ma
     assert 0 < i_toggle < n - 1
     gt = replace(g, l4=float(gi.max() - g.l2 + margin))
     xk = cut_points(gt, n)[1]
-    ref = stroke.solve_exact(gt, xk)
+    ref = solve_exact(gt, xk)
     m = loops.dyad_margins(gt, ref.theta[:, 4], ref.theta[:, 5])[:, 1]
     assert int(np.argmin(m)) == i_toggle and m.min() < 2 * margin
     sol = stroke.solve_newton(gt, xk, replace(settings(), initial_value=tuple(ref.theta[0])))
@@ -124,9 +131,9 @@ def test_hard_case_toggle_inside_the_stroke_is_passed_on_the_design_branch(g, ma
 def test_hard_case_wrong_branch_is_refused_not_returned(g):
     # start the continuation on the mirror assembly mode of AB-BC: every point converges,
     # but to the wrong branch, so the solver must raise instead of returning it
-    ex = stroke.solve_exact(g, cut_points(g, 5)[1])
+    ex = solve_exact(g, cut_points(g, 5)[1])
     mirror = replace(g, elbow1=-g.elbow1)
-    start = stroke.solve_exact(mirror, cut_points(g, 5)[1][:1]).theta[0]
+    start = solve_exact(mirror, cut_points(g, 5)[1][:1]).theta[0]
     with pytest.raises(NonAssembly, match="cut point 0 .*another assembly mode"):
         stroke.solve_newton(g, cut_points(g, 5)[1], replace(settings(), initial_value=tuple(start)))
     assert ex.theta.shape == (5, 6)
@@ -137,7 +144,7 @@ def test_hard_case_beyond_toggle_reports_non_assembly_at_the_cut_point(g):
     l3, i_toggle = _toggle_l3(g, n, margin=-0.5)    # 0.5 mm too short at the worst point
     gt = g.with_levers(l3=l3)
     xk = cut_points(gt, n)[1]
-    start = stroke.solve_exact(g.with_levers(l3=l3 + 1.0), xk[:1]).theta[0]
+    start = solve_exact(g.with_levers(l3=l3 + 1.0), xk[:1]).theta[0]
     with pytest.raises(NonAssembly) as exc:
         stroke.solve_newton(gt, xk, replace(settings(), initial_value=tuple(start)))
     msg = str(exc.value)
@@ -145,7 +152,7 @@ def test_hard_case_beyond_toggle_reports_non_assembly_at_the_cut_point(g):
     # it fails where the dyad is stretched beyond reach, not somewhere random
     assert abs(exc.value.cut_point - i_toggle) <= 3
     with pytest.raises(NonAssembly, match="loop ABCD"):
-        stroke.solve_exact(gt, xk)
+        solve_exact(gt, xk)
 
 
 def test_hard_case_lever_set_that_cannot_assemble_names_the_cut_point(g):

@@ -8,7 +8,6 @@ from mechrepro.solve import solve
 from mechrepro.models.saw_chain.difference import RoundoffError
 from mechrepro.models.saw_chain.geometry import MeshingError, pitch_radius, stage_angles
 from mechrepro.models.saw_chain.kinematics import stage_derivatives, stage_positions
-from mechrepro.models.saw_chain.reference_loop import difference_method_loop
 
 P = dict(tie_strap_pitch=8.91e-3, drive_link_pitch=7.56e-3, teeth=8,
          sprocket_speed=6550 * 2 * math.pi / 60, tie_strap_mass=1.906e-3,
@@ -21,6 +20,37 @@ def run(K=200, effects=("exact_reference", "textbook"), **over):
     return {"paper": "saw_chain", "run": "t", "scene": "t", "solver": "difference_method",
             "effects": list(effects),
             "resolution": {"K": K}, "options": {}, "parameters": {**P, **over}}
+
+
+def difference_method_loop(p1, p2, z, omega, m_L, m_C, M, N, K):
+    """Tight-side velocity and total dynamic load x over one period, step by step: the whole
+    difference method as a per-step Python loop (the paper's MATLAB style), the independent
+    reference the vectorised solver is tested against."""
+    R = math.sqrt(p1**2 + p2**2 + 2 * p1 * p2 * math.cos(math.pi / z)) / (2 * math.sin(math.pi / z))
+    Tx = p1 + 2 * p2
+    phi1 = 2 * math.asin(p2 / (2 * R))
+    phi2 = phi1 + 2 * math.asin(p1 / (2 * R))
+    m_tight = M * m_L + N * m_C
+    velocity, load = [R * omega], [0.0]
+    v_prev = vm_prev = R * omega
+    for L, m_link, span in ((p2, m_C, phi1), (p1, m_L, phi2 - phi1)):
+        dt = span / K / omega
+        x_prev = xm_prev = None
+        for i in range(K + 1):
+            phi = span * i / K
+            xl = Tx + R * math.sin(phi)
+            yl = R * (1.0 - math.cos(phi))
+            xt = xl - math.sqrt(L * L - yl * yl)
+            xm = 0.5 * (xl + xt)
+            if i > 0:
+                v, vm = (xt - x_prev) / dt, (xm - xm_prev) / dt
+                a, am = (v - v_prev) / dt, (vm - vm_prev) / dt
+                velocity.append(v)
+                load.append(m_link * am + m_tight * a)
+                v_prev, vm_prev = v, vm
+            x_prev, xm_prev = xt, xm
+        vm_prev = v_prev  # A2 starts with O2's values at t1
+    return velocity, load
 
 
 def test_pitch_radius_closes_the_polygon_and_matches_regular_polygon():

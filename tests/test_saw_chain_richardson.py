@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from mechrepro.models.saw_chain.analysis import equivalent_K
-from mechrepro.models.saw_chain.richardson import extrapolate_extreme, to_accuracy
+from mechrepro.models.saw_chain.richardson import _levels, from_levels, to_accuracy
 from mechrepro.models.saw_chain.chain import chain_from_run
 from mechrepro.models.saw_chain.difference import load_x
 from mechrepro.solve import solve
@@ -16,6 +16,13 @@ from mechrepro.solve import solve
 from test_saw_chain import run
 
 DIGITS = 60
+
+
+def extrapolate_extreme(chain, K: int, fn=np.max):
+    """``fn`` of the load x over one period, extrapolated from K/4, K/2, K (richardson's
+    levels and estimate)."""
+    Ks = _levels(K)
+    return from_levels(chain, Ks, [float(fn(load_x(replace(chain, K=k)))) for k in Ks])
 
 
 def _series(x, first, step):

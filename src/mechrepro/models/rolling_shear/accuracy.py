@@ -15,13 +15,6 @@ def _relative(values, reference):
     return np.abs(values - reference) / np.abs(reference)
 
 
-@ACCURACY.register("selpso_objective_h")
-def selpso_objective_h(ds, entry):
-    """|H from the selPSO poses - H of the closed form| / H of the closed form."""
-    return _relative(ds["selpso_synthetic_horizontal_displacement"].values,
-                     ds["exact_synthetic_horizontal_displacement_ref"].values)
-
-
 @ACCURACY.register("newton_motion_laws")
 def newton_motion_laws(ds, entry):
     """max over the cut and the six angles of |theta_Newton - theta_closed form| (rad)."""

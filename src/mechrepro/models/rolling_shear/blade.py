@@ -19,24 +19,9 @@ from .geometry import GEOMETRY_KEYS, Geometry
 from .loops import NonAssembly, columns, on_design_branch, pivots, residuals, stacked
 
 
-def M12(g: Geometry) -> np.ndarray:
-    """Eq. (4): frame x1Oy1 (blade) -> x2Dy2 (carrier), as printed (rotation -beta2)."""
-    c, s = np.cos(g.beta2), np.sin(g.beta2)
-    return np.array([[c, s, g.d * np.cos(g.beta1)],
-                     [-s, c, g.d * np.sin(g.beta1)],
-                     [0.0, 0.0, 1.0]])
-
-
-def M20(g: Geometry, theta5: float, theta6: float) -> np.ndarray:
-    """Eq. (4): frame x2Dy2 -> xEy, rotation **+theta5** (corrected sign, see module doc)."""
-    c, s = np.cos(theta5), np.sin(theta5)
-    return np.array([[c, -s, g.l6 * np.cos(theta6)],
-                     [s, c, g.l6 * np.sin(theta6)],
-                     [0.0, 0.0, 1.0]])
-
-
 def to_fixed(g: Geometry, theta5, theta6, x1, y1):
-    """Eq. (4) for arrays of poses (:func:`.closure.to_fixed`, = M20 @ M12 @ p)."""
+    """Eq. (4), M20 M12 (x1, y1), for arrays of poses (:func:`.closure.to_fixed`; M20 rotates by
+    **+theta5**, the corrected sign, see module doc)."""
     from .closure import python
 
     return python.to_fixed(g, np.asarray(theta5, float), np.asarray(theta6, float), x1, y1)

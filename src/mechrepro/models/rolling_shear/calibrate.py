@@ -86,6 +86,5 @@ def calibrate_tilt(g: Geometry, target: float, n: int, tol: float,
         lo, hi = (lo - step, lo) if flo > 0 else (hi, hi + step)
     tilt = brentq(fn, lo, hi, xtol=1e-13, rtol=1e-13)
     gc = with_intent(g, theta6_mid=math.pi + tilt)
-    return gc, {"tilt": tilt, "H": float(seen[tilt]), "tilt_min": float(TILTS[ok].min()), "H_scan": H,
-                "n_scan": n_scan, "H_at_min_tilt": float(H[ok][0]),
+    return gc, {"tilt": tilt, "H": float(seen[tilt]), "H_scan": H, "n_scan": n_scan,
                 "n_scanned": len(TILTS) if whole_scan else i + 2}

@@ -23,7 +23,7 @@ from scipy.optimize import root
 
 from .blade import carrier_points, exact_pose, pose_residuals
 from .geometry import Geometry
-from .loops import pivots
+from .loops import dyads, pivots
 
 #: the readings of constraint 1 (config ``guide_rod_plane``)
 PLANES = ("planar", "out_of_plane")
@@ -56,13 +56,9 @@ def dyad_transmission(g: Geometry, theta5, theta6, levers=None) -> np.ndarray:
     l10); NaN where a dyad does not close."""
     from .closure import python
 
-    l1, l3, l5, l10 = (g.l1, g.l3, g.l5, g.l10) if levers is None else levers.T
-    t5, t6 = np.atleast_1d(theta5), np.atleast_1d(theta6)
-    D = g.l6 * np.exp(1j * t6)
-    C, I = D + g.l8 * np.exp(1j * (t5 + g.alpha)), D + l5 * np.exp(1j * t5)
-    A, G = -l10 - g.l9 + 1j * g.l11, -l10 + 1j * g.l11
     worst = np.inf
-    for piv, joint, rp, rq, e in ((A, C, l1, l3, g.elbow1), (G, I, g.l2, g.l4, g.elbow2)):
+    for piv, joint, rp, rq, e in dyads(g, np.atleast_1d(theta5), np.atleast_1d(theta6),
+                                       None if levers is None else levers.T):
         with np.errstate(invalid="ignore"):
             x, y, _ = python.dyad_joint(piv.real, piv.imag, joint.real, joint.imag, rp, rq, e)
             tip = x + 1j * y

@@ -10,8 +10,6 @@ from mechrepro.errors import Refusal
 from . import optimise, stroke
 from .calibrate import CalibrationError
 from .geometry import cut_points, from_parameters
-from .design import Unreachable
-from .loops import NonAssembly
 from .selpso import SelPSOSettings
 
 
@@ -46,14 +44,11 @@ class Context:
         self.g_original = self.g
         if levers is not None and self.calibration is not None:
             self._check_buildable()
-        if levers is not None:
-            try:
-                self.g = self.g.with_levers(**{k: float(v) for k, v in levers.items()})
-                if self.calibration is not None:
-                    self.calibration["H_levers"] = optimise.objective(
-                        self.g, cut_points(self.g, self.calibration["n"])[1], self.tol_floor)
-            except (NonAssembly, Unreachable) as exc:
-                raise Refused("assembly", f"Table II lever set {dict(levers)}: {exc}") from None
+        if levers is not None:   # NonAssembly, Unreachable: refused by solver.compute
+            self.g = self.g.with_levers(**{k: float(v) for k, v in levers.items()})
+            if self.calibration is not None:
+                self.calibration["H_levers"] = optimise.objective(
+                    self.g, cut_points(self.g, self.calibration["n"])[1], self.tol_floor)
         self.huch, self.x_k = cut_points(self.g, self.n)
         self.settings = self._settings()
         #: the solved stroke (a :class:`stroke.StrokeSolution`), once a solver has it
@@ -78,7 +73,6 @@ class Context:
         n = self.calibration["n"]
         theta = stroke.exact_theta(self.g, cut_points(self.g, n)[1])
         broken = violations(self.g, theta, **settings(self.p))
-        self.calibration["violations"] = broken
         if broken:
             raise Refused("unbuildable", "; ".join(broken) + f" (tilt {self.calibration['tilt']:.4f} "
                           f"rad calibrated on 1.4341, {n} cut points)")

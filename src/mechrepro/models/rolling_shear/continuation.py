@@ -11,10 +11,8 @@ from mechrepro.timing import time_call
 from mechrepro.units import var
 
 from . import stroke
-from .context import Context, Refused
-from .loops import NonAssembly
-from .effects import EFFECTS
-from .motion_laws import driving_laws_on_grid, horizontal_displacement, pose_error, stroke_outputs
+from .context import Context
+from .motion_laws import driving_laws_on_grid, pose_error, stroke_outputs
 
 
 def newton_stroke(ctx: Context) -> tuple[stroke.StrokeSolution, dict]:
@@ -27,11 +25,6 @@ def newton_stroke(ctx: Context) -> tuple[stroke.StrokeSolution, dict]:
                                     "warm-started Newton"))
     out.update({
         "newton_fitness_loops": var("cut", sol.fitness_loops, "mm", "G of Eq. (9), Newton"),
-        "newton_fitness_pose": var("cut", sol.fitness_pose, "mm", "G of Eq. (7), Newton"),
-        "newton_iterations": var("cut", sol.iterations_loops.astype(float), "1",
-                                 "Newton iterations on Eq. (9)"),
-        "newton_time_per_solve": var((), wall / (2 * ctx.n), "s",
-                                     "Newton wall time per system solve (fastest stroke / 2n)"),
         "newton_stroke_time": var((), wall, "s", "Newton wall time of the whole stroke"),
         "newton_time_per_loops_solve": var(
             (), stroke.time_newton_loops(ctx.g, sol.theta, ctx.settings), "s",
@@ -45,35 +38,14 @@ def newton_stroke(ctx: Context) -> tuple[stroke.StrokeSolution, dict]:
     return sol, out
 
 
-def exact_stroke(ctx: Context) -> tuple[stroke.StrokeSolution, dict]:
-    """The closed-form reference stroke and its outputs."""
-    sol = stroke.solve_exact(ctx.g, ctx.x_k)
-    out = stroke_outputs(ctx.g, sol.theta, "exact", "closed-form reference")
-    out["exact_fitness_loops"] = var("cut", sol.fitness_loops, "mm", "G of Eq. (9), exact")
-    out["exact_fitness_pose"] = var("cut", sol.fitness_pose, "mm", "G of Eq. (7), exact")
-    return sol, out
-
-
 def solve_continuation(run: dict, ctx: Context) -> dict:
-    """Newton and closed-form strokes, then the named effects (they read ``ctx.stroke``); a scene
-    lever set that does not assemble is refused by name."""
-    try:
-        ctx.stroke, data = newton_stroke(ctx)
-    except NonAssembly as exc:
-        if "levers" not in ctx.options:
-            raise
-        raise Refused("assembly", f"lever set {dict(ctx.options['levers'])}: {exc}") from None
+    """Newton and closed-form (the reference) strokes; the named effects read ``ctx.stroke``.
+    A stroke that does not assemble raises NonAssembly (a scene lever set's is refused by
+    :func:`.solver.compute`)."""
+    ctx.stroke, data = newton_stroke(ctx)
     data["levers_assemble"] = var((), 1.0, "1", "1: the lever set assembles over the stroke")
-    ctx.reference, exact = exact_stroke(ctx)
-    data.update(exact)
-    data.update(contributions(run, ctx))
-    return data
-
-
-def contributions(run: dict, ctx: Context) -> dict:
-    """Every contribution of the named effects, by key."""
-    c = EFFECTS.evaluate(run, ctx)
-    return {key: c.get(key) for key in c.keys()}
+    ctx.reference = stroke.exact_theta(ctx.g, ctx.x_k)
+    return data | stroke_outputs(ctx.g, ctx.reference, "exact", "closed-form reference")
 
 
 #: the comparison methods and the salt of their random stream
@@ -85,12 +57,11 @@ def compare(ctx: Context, method: str) -> dict:
     """One method at every cut point, recorded (never raising)."""
     sol = stroke.solve_compare(ctx.g, ctx.x_k, method, ctx.settings,
                                ctx.rng(METHOD_STREAMS[method]))
-    err = pose_error(sol.theta, ctx.reference.theta)
+    err = pose_error(sol.theta, ctx.reference)
     w = method
     out = {
         f"{w}_theta": var(("cut", "angle"), sol.theta, "rad", f"theta1..theta6, {w}"),
         f"{w}_fitness_loops": var("cut", sol.fitness_loops, "mm", f"G of Eq. (9), {w}"),
-        f"{w}_fitness_pose": var("cut", sol.fitness_pose, "mm", f"G of Eq. (7), {w}"),
         f"{w}_converged": var("cut", sol.converged.astype(np.int8), "1",
                               f"both systems below tolerance, {w}"),
         f"{w}_in_ranges": var("cut", sol.in_ranges.astype(np.int8), "1",
@@ -106,56 +77,26 @@ def compare(ctx: Context, method: str) -> dict:
         f"{w}_time_per_solve": var((), sol.time_loops, "s", f"wall time per Eq. (9) solve, {w}"),
         f"{w}_time_per_pose_solve": var((), sol.time_pose, "s",
                                         f"wall time per Eq. (7) solve, {w}"),
-        f"{w}_fitness_loops_median": var((), np.median(sol.fitness_loops), "mm",
-                                         f"median G of Eq. (9), {w}"),
     }
     if method == "selpso":
-        out.update(_selpso_accuracy(ctx, sol, err))
+        st = ctx.settings.pso_loops
+        out["swarm_x_iter"] = var((), st.swarm * st.max_iter, "1",
+                                  "selPSO budget: particles x iterations on each system")
     if method in ("selpso", "pso_standard") and int(ctx.options.get("seeds", 0)) > 0:
-        out.update(_over_seeds(ctx, method, sol, err))
+        out.update(_over_seeds(ctx, method, sol))
     return out
 
 
-def _selpso_accuracy(ctx: Context, sol: stroke.StrokeSolution, err: np.ndarray) -> dict:
-    """selPSO's cost of accuracy: H from its poses, its largest pose error and the stroke's time."""
-    st = ctx.settings.pso_loops
-    H = np.mean(np.abs(horizontal_displacement(ctx.g, sol.theta[:, 4] - ctx.g.beta2, ctx.x_k)))
-    H_ref = np.mean(np.abs(horizontal_displacement(
-        ctx.g, ctx.reference.theta[:, 4] - ctx.g.beta2, ctx.x_k)))
-    return {
-        "selpso_iterations": var("cut", sol.iterations_loops.astype(float), "1",
-                                 "selPSO iterations on Eq. (9)"),
-        "selpso_synthetic_horizontal_displacement": var(
-            (), H, "mm", "synthetic horizontal displacement from selPSO poses"),
-        "exact_synthetic_horizontal_displacement_ref": var(
-            (), H_ref, "mm", "synthetic horizontal displacement, closed form"),
-        "selpso_pose_error": var(
-            (), np.max(err), "rad",
-            "max |theta1..theta6 - closed form| over the cut (a wrong assembly mode is a large error)"),
-        "selpso_stroke_time": var((), ctx.n * (sol.time_pose + sol.time_loops), "s",
-                                  "selPSO wall time of the whole stroke (Eqs. 7 and 9)"),
-        "swarm_x_iter": var((), st.swarm * st.max_iter, "1",
-                            "selPSO budget: particles x iterations on each system"),
-    }
-
-
-def _over_seeds(ctx: Context, method: str, sol: stroke.StrokeSolution, err: np.ndarray) -> dict:
+def _over_seeds(ctx: Context, method: str, sol: stroke.StrokeSolution) -> dict:
     """A stochastic method over ``options.seeds`` strokes: pose-error quantiles, the probability
     of a whole stroke on the design branch, the branch rate per seed and the mean stroke time
     (seed 0: the run's stream; seed k: the stream (run seed, salt, k))."""
-    k_seeds = int(ctx.options["seeds"])
-    salt = METHOD_STREAMS[method]
-    errs, ok, times = [float(np.max(err))], [bool(sol.right.all())], \
-        [ctx.n * (sol.time_pose + sol.time_loops)]
-    rates = [float(sol.right.mean())]
-    for k in range(1, k_seeds):
-        s = stroke.solve_compare(ctx.g, ctx.x_k, method, ctx.settings,
-                                 np.random.default_rng([ctx.seed, salt, k]))
-        errs.append(float(np.max(pose_error(s.theta, ctx.reference.theta))))
-        ok.append(bool(s.right.all()))
-        rates.append(float(s.right.mean()))
-        times.append(ctx.n * (s.time_pose + s.time_loops))
-    errs = np.asarray(errs)
+    sols = [sol] + [stroke.solve_compare(ctx.g, ctx.x_k, method, ctx.settings,
+                                         np.random.default_rng([ctx.seed, METHOD_STREAMS[method], k]))
+                    for k in range(1, int(ctx.options["seeds"]))]
+    errs = np.array([float(np.max(pose_error(s.theta, ctx.reference))) for s in sols])
+    ok, rates = [bool(s.right.all()) for s in sols], [float(s.right.mean()) for s in sols]
+    times = [ctx.n * (s.time_pose + s.time_loops) for s in sols]
     w = method
     return {
         f"{w}_pose_error_seeds": var("seed", errs, "rad",
@@ -175,7 +116,7 @@ def _over_seeds(ctx: Context, method: str, sol: stroke.StrokeSolution, err: np.n
 
 
 def solve_method_comparison(run: dict, ctx: Context) -> dict:
-    """The continuation (with its reference and effects), then every listed method."""
+    """The continuation (with its reference), then every listed method."""
     data = solve_continuation(run, ctx)
     for method in ctx.options.get("methods", []):
         data.update(compare(ctx, method))

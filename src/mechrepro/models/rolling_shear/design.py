@@ -22,7 +22,7 @@ INTENTS = ("l1", "l3", "l5", "l6", "l9", "l10", "s", "h", "R", "y_joint", "theta
 
 
 def design(*, l1, l3, l5, l6, l9, l10, s, h, R, y_joint, theta6_mid, elbow_angle,
-           blade_offset=None, elbow1=1, elbow2=1) -> dict:
+           blade_offset=None) -> dict:
     """Derived constants (mm, rad) from the design intents above."""
     l2, l4 = l1, l3
     D = l6 * complex(math.cos(theta6_mid), math.sin(theta6_mid))
@@ -45,4 +45,4 @@ def design(*, l1, l3, l5, l6, l9, l10, s, h, R, y_joint, theta6_mid, elbow_angle
     d = abs(O - D)
     beta1 = math.atan2((O - D).imag, (O - D).real) - beta2
     return {"l2": l2, "l4": l4, "l8": l8, "l11": l11, "alpha": alpha, "beta1": beta1,
-            "beta2": beta2, "d": d, "x_mid": x_mid, "elbow1": elbow1, "elbow2": elbow2}
+            "beta2": beta2, "d": d, "x_mid": x_mid}

@@ -7,7 +7,6 @@ import math
 import numpy as np
 
 from mechrepro.effects import EffectRegistry
-from mechrepro.timing import phase
 from mechrepro.units import var
 
 from . import optimise
@@ -24,11 +23,8 @@ def constant_rate_drive(ctx) -> dict:
     r = drive(ctx.g, ctx.stroke.theta)
     w = "both levers at a constant rate between the stroke's end positions"
     return {
-        "crd_theta1": var("cut", r["theta"][:, 0], "rad", f"theta1, {w}"),
-        "crd_theta2": var("cut", r["theta"][:, 1], "rad", f"theta2, {w}"),
         "crd_x_k": var("cut", r["x_k"], "mm", f"lowest point x_k, {w}"),
         "crd_y_k": var("cut", r["y_k"], "mm", f"lowest point y_k, {w}"),
-        "crd_overlap_deviation": var("cut", np.abs(r["y_k"] + ctx.g.s), "mm", f"|y_k + s|, {w}"),
         "crd_overlap_max_deviation": var((), np.max(np.abs(r["y_k"] + ctx.g.s)), "mm",
                                          f"max |y_k + s|, {w}"),
     }
@@ -66,14 +62,13 @@ def initial_values(ctx) -> dict:
     rng = ctx.rng(4)
     st = ctx.settings.pso_loops
     hist = np.full((len(inits), st.max_iter + 1), np.nan)
-    rows = []   # per initial value: iterations, fitness, converged, design branch, in ranges, time
+    rows = []   # per initial value: iterations, converged, design branch, in ranges
     for k, x0 in enumerate(inits):
-        with phase("rolling_shear.initial_values") as sw:
-            r = selpso(loops_fitness(ctx.g, t5, t6), x0, st, rng, period=2 * math.pi)
+        r = selpso(loops_fitness(ctx.g, t5, t6), x0, st, rng, period=2 * math.pi)
         hist[k, :r.history.size] = r.history
         th = np.array([*r.x, t5, t6])
-        rows.append((r.iterations, r.fitness, r.converged, on_design_branch(ctx.g, th), in_ranges(th), sw.seconds))
-    iters, fit, conv, design, inr, times = zip(*rows)
+        rows.append((r.iterations, r.converged, on_design_branch(ctx.g, th), in_ranges(th)))
+    iters, conv, design, inr = zip(*rows)
     return {
         "iv_initial_value": var(("initial_value", "unknown"), inits, "rad",
                                 "initial values theta1..theta4 of selPSO"),
@@ -81,13 +76,11 @@ def initial_values(ctx) -> dict:
                                   "best fitness G of Eq. (9) after each iteration"),
         "iv_iterations": var("initial_value", np.asarray(iters, float), "1",
                              "iterations to G < tol"),
-        "iv_fitness": var("initial_value", np.asarray(fit), "mm", "final fitness G"),
         "iv_converged": var("initial_value", np.asarray(conv, np.int8), "1", "G < tol reached"),
         "iv_design_branch": var("initial_value", np.asarray(design, np.int8), "1",
                                 "solution on the design branch"),
         "iv_in_ranges": var("initial_value", np.asarray(inr, np.int8), "1",
                             "solution inside the paper's ranges (on the design branch or its mirror mode)"),
-        "iv_time": var("initial_value", np.asarray(times), "s", "wall time of the solve"),
         "iv_cut_point_x_k": var((), ctx.x_k[i_mid], "mm", "cut point of Fig. 12 solves"),
     }
 
@@ -112,6 +105,4 @@ def lever_scan(ctx) -> dict:
                               "synthetic horizontal displacement, one lever varied (NaN: no assembly)"),
         "scan_spread": var("lever", np.nanmax(H, axis=1) - np.nanmin(H, axis=1), "mm",
                            "max - min of the objective over the scan"),
-        "scan_feasible_fraction": var("lever", np.isfinite(H).mean(axis=1), "1",
-                                      "fraction of the scan that assembles"),
     }

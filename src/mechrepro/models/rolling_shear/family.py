@@ -14,11 +14,10 @@ from mechrepro.units import var
 from . import optimise
 from .calibrate import CalibrationError, calibrate_tilt
 from .context import Context
-from .geometry import cut_points, with_intent
+from .geometry import GRID_KEYS, cut_points, with_intent
 from .design import Unreachable
 from .loops import NonAssembly
 
-GRID_KEYS = ("blade_offset", "R", "width", "y_joint", "eq8_reading", "carrier_constants")
 #: what :func:`calibrated_member` returns, in order: variable family_member_<name>, unit, long name
 COLUMNS = (
     ("tilt", "rad", "calibrated guide-rod tilt (NaN: the member cannot reach the target)"),

@@ -22,7 +22,7 @@ from .constraints import settings as constraint_settings
 from .context import Context
 from .design import Unreachable
 from .geometry import OPTIMISED_LEVERS, cut_points
-from .loops import RANGES, NonAssembly
+from .loops import RANGES, NonAssembly, dyads
 from .motion_laws import synthetic_horizontal_displacement
 
 #: the four levers sampled at each l6 (OPTIMISED_LEVERS without l6)
@@ -33,17 +33,10 @@ def dyad_metrics(g, poses: np.ndarray, levers: np.ndarray, open_q=None) -> dict:
     """Eq. (9)'s two dyads for many lever sets ``levers`` (m, 4: l1, l3, l5, l10) at one stroke
     ``poses`` (n, 2), vectorised: (m,) arrays ``assembles``, ``mu_worst``, ``mu_min``, ``mu_max``
     (deg), ``joint_height`` (mm) and ``open_mu`` (deg, at the open pose ``open_q``)."""
-    l1, l3, l5, l10 = (levers[:, k, None] for k in range(4))
-    t5, t6 = poses[None, :, 0], poses[None, :, 1]
-    D = g.l6 * np.exp(1j * t6)
-    C = D + g.l8 * np.exp(1j * (t5 + g.alpha))
-    I = D + l5 * np.exp(1j * t5)
-    A = -l10 - g.l9 + 1j * g.l11
-    G = -l10 + 1j * g.l11
+    loops = dyads(g, poses[None, :, 0], poses[None, :, 1], [levers[:, k, None] for k in range(4)])
     ok = np.ones(levers.shape[0], bool)
     mu_lo, mu_hi = np.full(levers.shape[0], np.inf), np.full(levers.shape[0], -np.inf)
-    for P, Q, rp, rq, e, (ri, rj) in ((A, C, l1, l3, g.elbow1, (0, 2)),
-                                      (G, I, g.l2, g.l4, g.elbow2, (1, 3))):
+    for (P, Q, rp, rq, e), (ri, rj) in zip(loops, ((0, 2), (1, 3))):
         P, Q = np.broadcast_arrays(P, Q)
         with np.errstate(invalid="ignore"):
             x, y, _ = closure.python.dyad_joint(P.real, P.imag, Q.real, Q.imag, rp, rq, e)
@@ -57,7 +50,7 @@ def dyad_metrics(g, poses: np.ndarray, levers: np.ndarray, open_q=None) -> dict:
             mu_lo = np.minimum(mu_lo, mu.min(axis=1))
             mu_hi = np.maximum(mu_hi, mu.max(axis=1))
     worst = np.minimum(mu_lo, 180.0 - mu_hi)
-    height = np.minimum(C.imag.min(), I.imag.min(axis=1))
+    height = np.minimum(loops[0][1].imag.min(), loops[1][1].imag.min(axis=1))
     out = {"assembles": ok & np.isfinite(worst), "mu_worst": np.where(ok, worst, np.nan),
            "mu_min": mu_lo, "mu_max": mu_hi, "joint_height": height}
     out["open_mu"] = (np.full(levers.shape[0], np.nan) if open_q is None

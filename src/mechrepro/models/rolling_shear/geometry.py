@@ -19,6 +19,8 @@ from .design import INTENTS, design
 MM_PER_M = 1000.0
 
 LEVERS = ("l1", "l2", "l3", "l4", "l5", "l6", "l8", "l9", "l10", "l11")
+#: the design intents and readings of a family-grid member (solver family_scan)
+GRID_KEYS = ("blade_offset", "R", "width", "y_joint", "eq8_reading", "carrier_constants")
 #: the levers the paper optimises (Sec. 3.3, step 3; Table II)
 OPTIMISED_LEVERS = ("l1", "l3", "l5", "l6", "l10")
 #: constants of a run's geometry stored with it (enough to redraw the linkage; dataset.py)
@@ -86,10 +88,8 @@ def derive(intents: dict, base: "Geometry | None" = None, **modes) -> Geometry:
     kw = {k: getattr(base, k) for k in ("elbow1", "elbow2", "guide_mode", "eq8", "carrier")} \
         if base is not None else {}
     kw.update(modes)
-    d = design(**{k: intents[k] for k in INTENTS}, elbow1=kw.get("elbow1", 1),
-               elbow2=kw.get("elbow2", 1))
-    d.pop("elbow1"), d.pop("elbow2")
     levers = {k: intents[k] for k in ("l1", "l3", "l5", "l6", "l9", "l10")}
+    d = design(**{k: intents[k] for k in INTENTS})
     return Geometry(**levers, **d, h=intents["h"], R=intents["R"], s=intents["s"],
                     width=intents["width"], intents=tuple(sorted(intents.items())), **kw)
 

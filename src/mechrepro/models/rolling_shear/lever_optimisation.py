@@ -8,7 +8,6 @@ from mechrepro.units import var
 
 from . import optimise, stroke
 from .context import Context
-from .continuation import contributions
 from .geometry import OPTIMISED_LEVERS, cut_points
 from .motion_laws import stroke_outputs
 from .selpso import SelPSOSettings
@@ -43,10 +42,6 @@ def optimised_outputs(ctx: Context, res: optimise.OptimisationResult, prefix: st
         f"{prefix}_levers": var("lever", res.levers, "mm", f"optimised l1, l3, l5, l6, l10, {prefix}"),
         f"{prefix}_objective": var((), res.objective, "mm",
                                    f"optimised synthetic horizontal displacement, {prefix}"),
-        f"{prefix}_evaluations": var((), res.evaluations, "1", f"objective evaluations, {prefix}"),
-        f"{prefix}_wall_time": var((), res.wall_time, "s", f"wall time, {prefix}"),
-        f"{prefix}_history": var(f"{prefix}_generation", res.history, "mm",
-                                 f"best objective per iteration, {prefix}"),
     }
     if res.objective < optimise.PENALTY:
         g = ctx.g.with_levers(**dict(zip(OPTIMISED_LEVERS, map(float, res.levers))))
@@ -66,5 +61,4 @@ def solve_lever_optimisation(run: dict, ctx: Context) -> dict:
     for name in ctx.options.get("optimisers", ["selpso"]):  # the paper's by default
         fn, prefix = OPTIMISERS[name]
         data.update(optimised_outputs(ctx, fn(ctx), prefix))
-    data.update(contributions(run, ctx))
     return data

@@ -32,6 +32,18 @@ def pivots(g: Geometry) -> tuple[complex, complex]:
     return complex(-g.l10 - g.l9, g.l11), complex(-g.l10, g.l11)
 
 
+def dyads(g: Geometry, theta5, theta6, levers=None) -> tuple:
+    """Eq. (9)'s two dyads at poses theta5, theta6 (arrays broadcast), with lever lengths
+    ``levers`` = (l1, l3, l5, l10) of their own if given (arrays): (crank pivot, carrier joint,
+    crank, rod, elbow) of loop ABCD, then of GHID; points as complex x + iy (mm)."""
+    l1, l3, l5, l10 = (g.l1, g.l3, g.l5, g.l10) if levers is None else levers
+    t5 = np.asarray(theta5, float)
+    D = g.l6 * np.exp(1j * np.asarray(theta6, float))
+    C, I = D + g.l8 * np.exp(1j * (t5 + g.alpha)), D + l5 * np.exp(1j * t5)
+    return ((-l10 - g.l9 + 1j * g.l11, C, l1, l3, g.elbow1),
+            (-l10 + 1j * g.l11, I, g.l2, g.l4, g.elbow2))
+
+
 def columns(th) -> tuple:
     """The unknowns of one candidate (n,) as scalars, or of many (..., n) as arrays (scalar
     arithmetic is much cheaper for scipy's one-candidate calls; same bits)."""
@@ -109,15 +121,9 @@ def exact_angles(g: Geometry, theta5: float, theta6: float) -> np.ndarray:
 def dyad_margins(g: Geometry, theta5, theta6) -> np.ndarray:
     """Distance (mm) of each dyad to its nearest toggle/fold for arrays of poses (negative: no
     assembly)."""
-    theta5, theta6 = np.asarray(theta5, float), np.asarray(theta6, float)
-    A, G = pivots(g)
-    D = g.l6 * np.exp(1j * theta6)
-    C = D + g.l8 * np.exp(1j * (theta5 + g.alpha))
-    I = D + g.l5 * np.exp(1j * theta5)
-    L1, L2 = np.abs(C - A), np.abs(I - G)
-    m1 = np.minimum(g.l1 + g.l3 - L1, L1 - abs(g.l1 - g.l3))
-    m2 = np.minimum(g.l2 + g.l4 - L2, L2 - abs(g.l2 - g.l4))
-    return np.stack([m1, m2], axis=-1)
+    m = [np.minimum(rp + rq - np.abs(Q - P), np.abs(Q - P) - abs(rp - rq))
+         for P, Q, rp, rq, _ in dyads(g, theta5, theta6)]
+    return np.stack(m, axis=-1)
 
 
 TWO_PI = 2.0 * math.pi

@@ -14,7 +14,6 @@ from mechrepro.units import var
 
 from .blade import lowest_point, midpoint
 from .geometry import Geometry
-from .loops import dyad_margins
 
 READINGS = ("rotation", "literal")
 
@@ -62,8 +61,8 @@ LAW_GRID = 4097
 
 
 def stroke_outputs(g: Geometry, theta: np.ndarray, prefix: str, what: str) -> dict:
-    """Motion laws, lowest points (Eq. 7), midpoints (Eq. 5), trajectory 1 (Eq. 8), H and the
-    dyad margins of one stroke."""
+    """Motion laws, lowest points (Eq. 7), midpoints (Eq. 5), trajectory 1 (Eq. 8) and H of one
+    stroke."""
     t5, t6 = theta[:, 4], theta[:, 5]
     xk, yk = lowest_point(g, t5, t6)
     xh, yh = midpoint(g, t5, t6)
@@ -81,17 +80,10 @@ def stroke_outputs(g: Geometry, theta: np.ndarray, prefix: str, what: str) -> di
         f"{prefix}_y_h": var("cut", yh, "mm", f"blade midpoint y_h, Eq. (5), {what}"),
         f"{prefix}_x_traj1": var("cut", x1, "mm", f"trajectory 1 x, Eq. (8), {what}"),
         f"{prefix}_y_traj1": var("cut", y1, "mm", f"trajectory 1 y, Eq. (8), {what}"),
-        f"{prefix}_beta": var("cut", beta, "rad", f"blade angle beta = theta5 - beta2, {what}"),
         f"{prefix}_horizontal_displacement": var("cut", dx, "mm",
                                                  f"midpoint minus trajectory 1 (slip), {what}"),
-        f"{prefix}_dyad_margin": var(("cut", "loop"), dyad_margins(g, t5, t6), "mm",
-                                     f"distance of each dyad from toggle/fold, {what}"),
         f"{prefix}_synthetic_horizontal_displacement":
             var((), np.mean(np.abs(dx)), "mm", f"synthetic horizontal displacement, {what}"),
-        f"{prefix}_synthetic_horizontal_displacement_best_anchor":
-            var((), np.mean(np.abs(dx - np.median(dx))), "mm",
-                f"synthetic horizontal displacement with trajectory 1 shifted to its best "
-                f"horizontal position (median), {what}"),
         f"{prefix}_overlap_max_deviation":
             var((), np.max(np.abs(yk + g.s)), "mm", f"max |y_k + s| over the cut, {what}"),
     })

@@ -13,13 +13,11 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import differential_evolution
 
-from mechrepro.timing import phase
-
 from . import closure, kernels
 from .blade import exact_pose
 from .geometry import OPTIMISED_LEVERS, Geometry, cut_points
 from .design import Unreachable
-from .loops import RANGES, NonAssembly, pivots
+from .loops import RANGES, NonAssembly, dyads
 from .selpso import SelPSOSettings, selpso
 from .motion_laws import synthetic_horizontal_displacement
 
@@ -51,12 +49,8 @@ def stroke_poses(g: Geometry, x_k, tol: float, max_iter: int = 30) -> np.ndarray
 
 def dyad_angles(g: Geometry, theta5, theta6) -> np.ndarray:
     """Closed-form theta1..theta4 for arrays of poses (n, 4); NaN where a loop cannot close."""
-    A, G = pivots(g)
-    D = g.l6 * np.exp(1j * theta6)
-    C = D + g.l8 * np.exp(1j * (theta5 + g.alpha))
-    I = D + g.l5 * np.exp(1j * theta5)
     out = []
-    for P, Q, rp, rq, e in ((A, C, g.l1, g.l3, g.elbow1), (G, I, g.l2, g.l4, g.elbow2)):
+    for P, Q, rp, rq, e in dyads(g, theta5, theta6):
         with np.errstate(invalid="ignore"):
             x, y, _ = closure.python.dyad_joint(P.real, P.imag, Q.real, Q.imag, rp, rq, e)
         out += [np.arctan2(y - P.imag, x - P.real), np.arctan2(y - Q.imag, x - Q.real)]
@@ -109,15 +103,13 @@ class OptimisationResult:
     objective: float
     evaluations: int
     history: np.ndarray      # best objective after each iteration/generation
-    wall_time: float
 
 
 def optimise_selpso(g, x_k, bounds, settings: SelPSOSettings, rng, tol) -> OptimisationResult:
     f = penalised(g, x_k, tol)
     lo, hi = np.asarray(bounds, float).T
-    with phase("rolling_shear.optimise_selpso") as sw:
-        r = selpso(lambda X: np.array([f(x) for x in X]), 0.5 * (lo + hi), settings, rng, lo, hi)
-    return OptimisationResult("selpso", r.x, r.fitness, r.evaluations, r.history, sw.seconds)
+    r = selpso(lambda X: np.array([f(x) for x in X]), 0.5 * (lo + hi), settings, rng, lo, hi)
+    return OptimisationResult("selpso", r.x, r.fitness, r.evaluations, r.history)
 
 
 def optimise_de(g, x_k, bounds, budget: int, population: int, seed: int,
@@ -137,9 +129,8 @@ def optimise_de(g, x_k, bounds, budget: int, population: int, seed: int,
     def callback(intermediate_result):
         hist.append(float(intermediate_result.fun))
 
-    with phase("rolling_shear.optimise_de") as sw:
-        r = differential_evolution(fc, bounds, popsize=popsize, maxiter=maxiter, tol=0.0,
-                                   atol=0.0, seed=seed, polish=False, init="latinhypercube",
-                                   updating="immediate", callback=callback)
+    r = differential_evolution(fc, bounds, popsize=popsize, maxiter=maxiter, tol=0.0, atol=0.0,
+                               seed=seed, polish=False, init="latinhypercube",
+                               updating="immediate", callback=callback)
     return OptimisationResult("differential_evolution", np.asarray(r.x), float(r.fun), count[0],
-                              np.asarray(hist), sw.seconds)
+                              np.asarray(hist))

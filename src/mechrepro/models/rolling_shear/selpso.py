@@ -57,7 +57,7 @@ class SelPSOResult:
 
 def selpso(fitness, x_init, settings: SelPSOSettings, rng: np.random.Generator,
            lower=None, upper=None, period: float | None = None) -> SelPSOResult:
-    """Minimise ``fitness`` from ``x_init`` (n,), or from an (N, n) initial swarm.
+    """Minimise ``fitness`` from ``x_init`` (n,).
 
     With ``lower``/``upper`` the swarm is drawn in the box and clipped to it (lever optimisation).
     ``period`` reduces the initial value modulo 2 pi first: a large angle carries enough
@@ -66,25 +66,19 @@ def selpso(fitness, x_init, settings: SelPSOSettings, rng: np.random.Generator,
     x_init = np.asarray(x_init, float)
     if period is not None:
         x_init = np.mod(x_init, period)
-    if x_init.ndim == 2:
-        X = x_init.copy()
-        N, n = X.shape
+    N, n = st.swarm, x_init.size
+    if lower is not None:
+        X = lower + (upper - lower) * rng.random((N, n))
+        V = 0.1 * (upper - lower) * rng.standard_normal((N, n))
     else:
-        N, n = st.swarm, x_init.size
-        if lower is not None:
-            X = lower + (upper - lower) * rng.random((N, n))
-        else:
-            X = x_init + st.init_scale * rng.standard_normal((N, n))
-    span = (upper - lower) if lower is not None else st.init_scale
-    V = 0.1 * span * rng.standard_normal((N, n)) if lower is not None else \
-        st.init_scale * rng.standard_normal((N, n))
+        X = x_init + st.init_scale * rng.standard_normal((N, n))
+        V = st.init_scale * rng.standard_normal((N, n))
     G = fitness(X)
     evals = N
     pbest, pG = X.copy(), G.copy()
     ib = int(np.argmin(G))
     gbest, gG = X[ib].copy(), float(G[ib])
-    if (isinstance(fitness, KernelFitness) and lower is None and N >= 2
-            and X.dtype == float and V.dtype == float and closure.available()):
+    if isinstance(fitness, KernelFitness) and lower is None and N >= 2 and closure.available():
         hist = np.empty(st.max_iter + 1)
         hist[0] = gG
         gG, k = iterate(

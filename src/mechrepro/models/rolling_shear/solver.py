@@ -9,6 +9,8 @@ import numpy as np
 from mechrepro.units import var
 
 from .context import Context, Refused
+from .design import Unreachable
+from .loops import NonAssembly
 from .continuation import solve_continuation, solve_method_comparison
 from .effects import EFFECTS
 from .family import solve_family_scan
@@ -56,26 +58,28 @@ def variables(result: dict, run: dict) -> dict:
         "x_k_target": var("cut", ctx.x_k, "mm", "prescribed x of the lowest point on y = -s"),
         "angle": var("angle", list(ANGLE_NAMES), "1", "unknown angle"),
         "lever": var("lever", list(OPTIMISED_LEVERS), "1", "optimised lever"),
-        "loop": var("loop", ["ABCD", "GHID"], "1", "dyad of Eq. (9)"),
     }
     used = {d for dims, *_ in data.values() for d in dims}
     out = {k: v for k, v in coords.items() if v[0][0] in used or k in ("cut", "huch", "x_k_target")}
     out |= {d: var(d, np.arange(np.shape(v[1])[v[0].index(d)]), "1", f"{d} index")
             for v in data.values() for d in v[0] if d not in out}
-    return out | data | {
-        "length_unit": "mm",
-        "pose_tol_used": var((), ctx.settings.tol_pose, "mm", "tolerance on G of Eq. (7)"),
-        "loops_tol_used": var((), ctx.settings.tol_loops, "mm", "tolerance on G of Eq. (9)"),
-        "blade_radius": var((), ctx.g.R, "mm", "blade arc radius R")}
+    return out | data | {"length_unit": "mm"}
 
 
 def compute(run: dict) -> dict:
-    """The run's solver; a lever set refused by name gives ``{"refused": ...}``."""
+    """The run's solver, then the effects the scene names (they read what it leaves in the
+    context); a lever set refused by name gives ``{"refused": ...}``."""
     try:
         ctx = Context(run)
         data = SOLVERS[run["solver"]](run, ctx)
     except Refused as exc:
         return {"refused": exc}
+    except (NonAssembly, Unreachable) as exc:   # a scene's lever set that does not assemble
+        if "levers" not in run.get("options", {}):
+            raise
+        return {"refused": Refused("assembly", f"lever set {dict(run['options']['levers'])}: {exc}")}
+    c = EFFECTS.evaluate(run, ctx)
+    data.update({key: c.get(key) for key in c.keys()})
     data.update(geometry_outputs(ctx))
     return {"ctx": ctx, "data": data}
 
@@ -86,10 +90,6 @@ def refusal_variables(exc: Refused) -> dict:
         "levers_assemble": var((), 0.0 if exc.kind == "assembly" else np.nan, "1",
                                "1: the lever set assembles over the stroke; 0: refused; NaN: "
                                "the member was refused before (not calibrated, not buildable)"),
-        "calibrated": var((), float(exc.kind != "calibration"), "1",
-                          "1: the family member reaches the paper's 1.4341 at some tilt"),
-        "buildable": var((), 0.0 if exc.kind == "unbuildable" else np.nan, "1",
-                         "0: the calibrated member breaks a constraint of constraints.py"),
         "length_unit": "mm", "refusal_kind": exc.kind, "refusal": exc.message}
 
 

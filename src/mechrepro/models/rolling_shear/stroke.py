@@ -3,8 +3,8 @@
 Methods: ``newton`` (warm-started continuation; a point that does not converge or lands off
 the design branch raises :class:`NonAssembly`), ``selpso`` and ``pso_standard`` (from the
 initial value), ``cold_root``/``least_squares`` (scipy from random starts), ``warm_root``/
-``warm_least_squares`` (scipy warm-started, no branch check), ``exact`` (closed form, the
-reference).  :func:`solve_compare` records the comparison methods and never raises."""
+``warm_least_squares`` (scipy warm-started, no branch check); :func:`exact_theta` (closed form)
+is the reference.  :func:`solve_compare` records the comparison methods and never raises."""
 from __future__ import annotations
 
 import math
@@ -78,21 +78,12 @@ def _explain(g, i, xk, theta, why) -> str:
 
 
 def solve_newton(g: Geometry, x_k, settings: SolverSettings) -> StrokeSolution:
-    """Warm-started Newton continuation along the stroke (the pipeline's default)."""
+    """Warm-started Newton continuation along the stroke (the pipeline's default), point by
+    point; its time is the caller's to measure (:func:`.continuation.newton_stroke`)."""
     n = len(x_k)
     theta = np.empty((n, 6))
     fp, fl, it = np.empty(n), np.empty(n), np.empty(n, int)
     guess = list(settings.initial_value)
-    with phase("rolling_shear.solve_newton") as sw:
-        _continue(g, x_k, settings, guess, theta, fp, fl, it)
-    theta = wrap(theta)
-    ok = np.ones(n, bool)
-    return StrokeSolution("newton", np.asarray(x_k), theta, fp, fl, ok, ok.copy(), ok.copy(),
-                          sw.seconds / (2 * n), sw.seconds / (2 * n), it)
-
-
-def _continue(g, x_k, settings, guess, theta, fp, fl, it) -> None:
-    """The continuation proper: fills theta, fitnesses and iterations point by point."""
     for i, xk in enumerate(x_k):
         xk = float(xk)
         # first-order predictor, then (near a toggle it can overshoot onto the other
@@ -111,9 +102,13 @@ def _continue(g, x_k, settings, guess, theta, fp, fl, it) -> None:
         theta[i] = th
         fp[i], fl[i], it[i] = rp.fitness, rl.fitness, rl.iterations
         guess = list(2 * th - theta[i - 1]) if i > 0 else list(th)
+    ok = np.ones(n, bool)
+    return StrokeSolution("newton", np.asarray(x_k), wrap(theta), fp, fl, ok, ok.copy(), ok.copy(),
+                          math.nan, math.nan, it)
 
 
-def _exact(g: Geometry, x_k) -> np.ndarray:
+def exact_theta(g: Geometry, x_k) -> np.ndarray:
+    """theta1..theta6 (n x 6, mod 2 pi) of the closed form at every cut point (the reference)."""
     theta = np.empty((len(x_k), 6))
     for i, xk in enumerate(x_k):
         try:
@@ -121,22 +116,7 @@ def _exact(g: Geometry, x_k) -> np.ndarray:
             theta[i] = [*loops_mod.exact_angles(g, *p), *p]
         except NonAssembly as exc:
             raise NonAssembly(f"cut point {i} (x_k = {float(xk):.6g} mm): {exc}", i, float(xk)) from None
-    return theta
-
-
-def exact_theta(g: Geometry, x_k) -> np.ndarray:
-    """theta1..theta6 (n x 6, mod 2 pi) of the closed form at every cut point, without residuals."""
-    return wrap(_exact(g, x_k))
-
-
-def solve_exact(g: Geometry, x_k) -> StrokeSolution:
-    n = len(x_k)
-    theta = _exact(g, x_k)
-    fp = np.array([np.abs(blade.pose_residuals(g, t[4:], xk)).sum() for t, xk in zip(theta, x_k)])
-    fl = np.array([np.abs(loops_mod.residuals(g, t[:4], t[4], t[5])).sum() for t in theta])
-    ok = np.ones(n, bool)
-    return StrokeSolution("exact", np.asarray(x_k), wrap(theta), fp, fl, ok, ok.copy(),
-                          ok.copy(), math.nan, math.nan, np.zeros(n, int))
+    return wrap(theta)
 
 
 def _scipy_solve(kind, fun, jac, x0):
@@ -158,25 +138,15 @@ def loops_fitness(g: Geometry, t5: float, t6: float) -> KernelFitness:
                          closure.LOOPS, g.constants, closure.python.loop_knowns(g, t5, t6))
 
 
-def _pose_by(method, g, xk, start, settings, rng):
-    """theta5, theta6 at one cut point (Eq. 7) by a comparison method."""
+def _solve_by(method, system, fitness, fun, jac, start, settings, rng):
+    """Eq. (7) (``system`` "pose": theta5, theta6) or Eq. (9) ("loops": theta1..theta4) at one
+    cut point by a comparison method: (x, iterations or evaluations)."""
     if method in ("selpso", "pso_standard"):
-        st = settings.pso_pose if method == "selpso" else settings.pso_std_pose
-        return selpso(pose_fitness(g, xk), start, st, rng, period=2 * math.pi).x
-    start = start if method.startswith("warm_") else rng.uniform(0, 2 * math.pi, 2)
-    return _scipy_solve(method, lambda x: blade.pose_residuals(g, x, xk),
-                        lambda x: blade.lowest_point_jacobian(g, *x), start)[0]
-
-
-def _loops_by(method, g, t5, t6, start, settings, rng):
-    """(theta1..theta4, iterations) at one cut point (Eq. 9)."""
-    if method in ("selpso", "pso_standard"):
-        st = settings.pso_loops if method == "selpso" else settings.pso_std_loops
-        r = selpso(loops_fitness(g, t5, t6), start, st, rng, period=2 * math.pi)
+        st = getattr(settings, f"pso_{'' if method == 'selpso' else 'std_'}{system}")
+        r = selpso(fitness(), start, st, rng, period=2 * math.pi)
         return r.x, r.iterations
-    start = start if method.startswith("warm_") else rng.uniform(0, 2 * math.pi, 4)
-    return _scipy_solve(method, lambda x: loops_mod.residuals(g, x, t5, t6),
-                        lambda x: loops_mod.jacobian(g, x), start)
+    start = start if method.startswith("warm_") else rng.uniform(0, 2 * math.pi, len(start))
+    return _scipy_solve(method, fun, jac, start)
 
 
 def solve_compare(g: Geometry, x_k, method: str, settings: SolverSettings,
@@ -193,10 +163,15 @@ def solve_compare(g: Geometry, x_k, method: str, settings: SolverSettings,
     for i, xk in enumerate(x_k):
         xk = float(xk)
         with phase("rolling_shear.pose") as sw:
-            t5, t6 = map(float, _pose_by(method, g, xk, guess[4:], settings, rng))
+            t5, t6 = map(float, _solve_by(
+                method, "pose", lambda: pose_fitness(g, xk), lambda x: blade.pose_residuals(g, x, xk),
+                lambda x: blade.lowest_point_jacobian(g, *x), guess[4:], settings, rng)[0])
         tp += sw.seconds
         with phase("rolling_shear.loops") as sw:
-            t14, it[i] = _loops_by(method, g, t5, t6, guess[:4], settings, rng)
+            t14, it[i] = _solve_by(
+                method, "loops", lambda: loops_fitness(g, t5, t6),
+                lambda x: loops_mod.residuals(g, x, t5, t6), lambda x: loops_mod.jacobian(g, x),
+                guess[:4], settings, rng)
         tl += sw.seconds
         th = np.array([*t14, t5, t6])
         if warm:

@@ -9,7 +9,7 @@ import xarray as xr
 
 from mechrepro.validation import Quantities, Reproduced, verdict
 
-from .geometry import OPTIMISED_LEVERS
+from .geometry import GRID_KEYS, OPTIMISED_LEVERS
 from .motion_laws import pose_error
 
 Q = Quantities("rolling_shear")
@@ -55,7 +55,6 @@ def original(R):
     }
 
 
-GRID_MEMBER = ("blade_offset", "R", "width", "y_joint", "eq8_reading", "carrier_constants")
 
 
 def admissible_members(R, fam) -> dict[str, np.ndarray]:
@@ -90,7 +89,7 @@ def buildable_members(fam, *, clearance, mu_min, plate_top, opening, blade_range
     return {"planar": planar, "out_of_plane": other}
 
 
-def _member(fam, i, keys=GRID_MEMBER) -> str:
+def _member(fam, i, keys=GRID_KEYS) -> str:
     return ", ".join(f"{k} {fam[f'family_member_{k}'].values[i]}" for k in keys)
 
 
@@ -208,7 +207,7 @@ def family(R):
         cal = (carrier == c) & np.isfinite(red)
         sel = cal & built
         lo, hi = int(np.argmin(np.where(sel, red, np.inf))), int(np.argmax(np.where(sel, red, -np.inf)))
-        member = lambda i: _member(ds, i, GRID_MEMBER[:5])  # noqa: E731
+        member = lambda i: _member(ds, i, GRID_KEYS[:5])  # noqa: E731
         lev = ds["family_member_levers_buildable"].values == 1.0
         note = (f"{int(sel.sum())} buildable of {int(cal.sum())} grid members that reach 1.4341 "
                 f"(of {int((carrier == c).sum())}; {ds.sizes['cut']} cut points), in "

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .geometry import stage_angles
+from .geometry import radius, stage_angles
 from .kinematics import stage_derivatives
 from .loads import dynamic_load, tight_side_mass
 
@@ -32,7 +32,7 @@ def design_quantities(p1, p2, z, omega, m_L, m_C, M, N, n=65) -> dict:
     the assumed theta = -pi/z on the whole tight side) and ``textbook_error``."""
     p1, p2, z, omega, m_L, m_C, M, N = np.broadcast_arrays(
         *(np.asarray(a, float) for a in (p1, p2, z, omega, m_L, m_C, M, N)))
-    R = _radius(p1, p2, z)
+    R = radius(p1, p2, z)
     phi1, phi2 = stage_angles(p1, p2, R)
     m_tight = tight_side_mass(M, N, m_L, m_C)
     u = np.linspace(0.0, 1.0, n)
@@ -50,11 +50,6 @@ def design_quantities(p1, p2, z, omega, m_L, m_C, M, N, n=65) -> dict:
     return {"peak_load": peak, "min_load": np.minimum(*Fmin), "speed_max": v_top,
             "speed_min": v_low, "speed_fluctuation": (v_top - v_low) / v_top,
             "textbook_peak": textbook, "textbook_error": textbook / peak - 1.0}
-
-
-def _radius(p1, p2, z):
-    """Eq. (1) on arrays (:func:`.geometry.pitch_radius` checks one design at a time)."""
-    return np.sqrt(p1**2 + p2**2 + 2 * p1 * p2 * np.cos(np.pi / z)) / (2 * np.sin(np.pi / z))
 
 
 def log_slope(f, x, x0, rel=1e-3):
@@ -131,7 +126,7 @@ def rule_speed_fluctuation(p1, p2, z):
     """Relative speed fluctuation ~ 2 alpha^2 / 27, alpha the longer link's chord angle (leading
     order).  With lambda = L / R the trailing hinge moves at
     v / (R omega) = 1 - phi^2 / 2 + phi^3 / (2 lambda) + O(phi^4), lowest at phi = 2 lambda / 3."""
-    R = _radius(*(np.asarray(a, float) for a in (p1, p2, z)))
+    R = radius(*(np.asarray(a, float) for a in (p1, p2, z)))
     return 2.0 * chord_angle(np.maximum(p1, p2), R) ** 2 / 27.0
 
 
@@ -147,7 +142,7 @@ def rule_peak_load(p1, p2, z, omega, m_L, m_C, M, N):
     at t1-, t2-): at the stage end a_trail = R omega^2 tan(alpha/2), a_lead,x = -R omega^2 sin(alpha)."""
     args = [np.asarray(a, float) for a in (p1, p2, z, omega, m_L, m_C, M, N)]
     p1, p2, z, omega, m_L, m_C, M, N = np.broadcast_arrays(*args)
-    R, m_tight = _radius(p1, p2, z), tight_side_mass(M, N, m_L, m_C)
+    R, m_tight = radius(p1, p2, z), tight_side_mass(M, N, m_L, m_C)
     return np.maximum(_stage_end_load(p1, m_L, m_tight, R, omega),
                       _stage_end_load(p2, m_C, m_tight, R, omega))
 

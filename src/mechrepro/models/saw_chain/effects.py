@@ -18,14 +18,12 @@ EFFECTS = EffectRegistry("saw_chain")
 
 @dataclass(frozen=True)
 class Context:
-    """What an effect sees: the run's chain, its time grid, the constants of Eq. (23) and whether
-    the polygon effect is on (off: the constant-speed rival)."""
+    """What an effect sees: the run's chain, its time grid, its SI parameters (the constants of
+    Eq. (23) among them) and whether the polygon effect is on (off: the constant-speed rival)."""
     chain: Chain
     t: np.ndarray
-    textbook_phase: float
-    textbook_mass: float
-    polygon: bool = True
     parameters: dict | None = None
+    polygon: bool = True
 
 
 def period_vars(suffix: str, how: str, v, a=None, Fx=None, Fy=None) -> dict:
@@ -58,9 +56,9 @@ def exact_reference(ctx: Context) -> dict:
 @EFFECTS.register("textbook")
 def textbook(ctx: Context) -> dict:
     """The textbook model, Eq. (23), with its phase theta and mass on the solver's grid."""
-    chain = ctx.chain
-    v, a, F = textbook_velocity_load(ctx.t, chain.R, chain.omega, ctx.textbook_phase,
-                                     ctx.textbook_mass)
+    chain, p = ctx.chain, ctx.parameters
+    v, a, F = textbook_velocity_load(ctx.t, chain.R, chain.omega, p["textbook_phase"],
+                                     p["textbook_mass"])
     return period_vars("_textbook", "textbook Eq. (23)", v, a, F)
 
 
@@ -73,15 +71,13 @@ def identification(ctx: Context) -> dict:
     p, ch = ctx.parameters, ctx.chain
     design = Design(**ch.inputs())
     paper = np.array([*p["identification_velocities"], *p["identification_loads"]], float)
-    s0, s1, ds = p["identification_scan_speed"]
-    e0, e1, de = p["identification_scan_stretch"]
-    speeds = np.linspace(s0, s1, int(round((s1 - s0) / ds)) + 1)
-    stretches = np.linspace(e0, e1, int(round((e1 - e0) / de)) + 1)
+    speeds, stretches = (np.linspace(a, b, int(round((b - a) / d)) + 1) for a, b, d in
+                         (p["identification_scan_speed"], p["identification_scan_stretch"]))
     errors = list(p["identification_model_errors"])
     K = np.arange(2, ch.roundoff_limit() + 1)
     res = [idf.analyse(design, paper, idf.PRINTED, idf.INPUTS_HALF, me, speeds, stretches, K)
            for me in errors]
-    return idf.as_variables(res, paper, errors, speeds, stretches)
+    return idf.as_variables(res, errors, speeds, stretches)
 
 
 #: what the design maps span: teeth, pitch ratios p1/p2, sprocket speeds [r/min], links
@@ -136,16 +132,14 @@ RICHARDSON_K = 2 ** np.arange(2, 16)
 def richardson_levels(ctx: Context) -> dict:
     """The plain peak load at each K of :data:`RICHARDSON_K`, its Richardson extrapolation from
     K/4, K/2, K, their errors against the exact peak and the samples each computes."""
-    from dataclasses import replace
-
+    from .analysis import load_extreme_at
     from .design import rule_peak_load
     from .richardson import from_levels
-    from .difference import load_x
 
     ch = ctx.chain
     exact = float(rule_peak_load(**ch.inputs()))
     Ks = RICHARDSON_K[RICHARDSON_K <= ch.roundoff_limit()]
-    plain = np.array([float(load_x(replace(ch, K=int(k))).max()) for k in Ks])
+    plain = np.array([load_extreme_at(ch, k) for k in Ks])
     nan = np.full(Ks.size, np.nan)
     value, estimate, samples = nan.copy(), nan.copy(), nan.copy()
     for i in range(2, Ks.size):

@@ -15,6 +15,11 @@ class MeshingError(Refusal):
 def pitch_radius(p1, p2, z):
     """Pitch radius, Eq. (1): R = sqrt(p1^2 + p2^2 + 2 p1 p2 cos(pi/z)) / (2 sin(pi/z)) [m]."""
     check_meshing(p1, p2, z)
+    return radius(p1, p2, z)
+
+
+def radius(p1, p2, z):
+    """Eq. (1) unchecked, on arrays of designs (broadcast)."""
     return np.sqrt(p1**2 + p2**2 + 2 * p1 * p2 * np.cos(np.pi / z)) / (2 * np.sin(np.pi / z))
 
 

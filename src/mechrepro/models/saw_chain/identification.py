@@ -194,7 +194,7 @@ PRINTED = (0.005, 0.005, 0.05, 0.05, 0.05, 0.05)
 INPUTS_HALF = (0.005e-3, 0.005e-3, 0.0005e-3, 0.0005e-3)
 
 
-def as_variables(results, paper, errors, speeds, stretches) -> dict:
+def as_variables(results, errors, speeds, stretches) -> dict:
     """The fits of :func:`analyse` at each model error as dataset variables."""
     from mechrepro.units import var
 
@@ -216,7 +216,6 @@ def as_variables(results, paper, errors, speeds, stretches) -> dict:
             f"{i} {k}" for i, k in enumerate(DATA))),
         "speed_factor": var("speed_factor", speeds, "1", "sprocket speed run / 6550 r/min (scan)"),
         "stretch": var("stretch", stretches, "1", "elongation of the tested chain (scan)"),
-        "paper_number": var(dm, np.asarray(paper, float), "1", "the paper's six numbers [m/s, N]"),
         "fit_reading": var((me, ex), np.array([[readings.index(f.reading) for f in r] for r in fits]),
                            "1", "best pitch-radius reading of each explanation"),
         "fit_chi2": var((me, ex), g(fits, "chi2"), "1", "chi^2 of each explanation's best fit"),

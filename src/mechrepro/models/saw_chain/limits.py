@@ -3,6 +3,7 @@ the solver's own refusals evaluated on the run record."""
 from __future__ import annotations
 
 from .chain import chain_from_run
+from .difference import RoundoffError, check_roundoff
 
 
 def check(run: dict) -> list[str]:
@@ -14,15 +15,13 @@ def check(run: dict) -> list[str]:
         return [f"parameters: {exc}; allowed: positive finite pitches and teeth >= 3"]
     opts = run.get("options", {})
     loads = opts.get("loads", True)
-    K = chain.K
     limit = chain.roundoff_limit() if loads else chain.velocity_roundoff_limit()
-    if K > limit and not opts.get("beyond_roundoff_limit", False):
-        what = ("second backward difference exceeds its truncation error, so the loads"
-                if loads else "first backward difference exceeds its truncation error, so "
-                "the velocities (options.loads: false)")
-        return [f"resolution.K = {K}: beyond K = {limit} (this run's round-off limit) the "
-                f"round-off of the {what} get less accurate, not more (the solver refuses "
-                f"it); allowed: K <= {limit}, or options.beyond_roundoff_limit: true on purpose"]
+    try:
+        check_roundoff(chain.K, limit, opts.get("beyond_roundoff_limit", False),
+                       "loads" if loads else "velocities (options.loads: false)")
+    except RoundoffError as exc:
+        return [f"resolution.K = {chain.K}: {exc} (the solver refuses it; or "
+                f"options.beyond_roundoff_limit: true on purpose)"]
     return []
 
 

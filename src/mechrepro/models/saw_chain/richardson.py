@@ -16,8 +16,8 @@ from mechrepro.errors import Refusal
 from mechrepro.levels import extrapolate, richardson_error
 
 from .chain import Chain
+from .analysis import load_extreme_at
 from .difference import roundoff_load
-from .difference import load_x
 
 RATIO = 2
 ORDER = 1          # the backward second difference's, with a smooth expansion (see module)
@@ -44,13 +44,6 @@ def _levels(K: int) -> tuple:
     return (K // RATIO**2, K // RATIO, K)
 
 
-def extrapolate_extreme(chain: Chain, K: int, fn=np.max) -> Extrapolated:
-    """``fn`` of the load x over one period, extrapolated from K/4, K/2, K (see module)."""
-    Ks = _levels(K)
-    q = [float(fn(load_x(replace(chain, K=k)))) for k in Ks]
-    return from_levels(chain, Ks, q)
-
-
 def from_levels(chain: Chain, Ks, q) -> Extrapolated:
     """The extrapolation from plain values at K/4, K/2, K at the method's order, and its estimate
     plus the round-off."""
@@ -67,7 +60,7 @@ def to_accuracy(chain: Chain, rtol: float, fn=np.max, K0: int = 16) -> Extrapola
     """The cheapest finest K = K0 2^n whose extrapolated extremum has estimate <= rtol |value|
     (each doubling reuses the two finer levels); stops where round-off overtakes truncation."""
     Ks = list(_levels(K0))
-    q = [float(fn(load_x(replace(chain, K=k)))) for k in Ks]
+    q = [load_extreme_at(chain, k, fn) for k in Ks]
     limit = chain.roundoff_limit()
     previous = math.inf
     while True:
@@ -79,4 +72,4 @@ def to_accuracy(chain: Chain, rtol: float, fn=np.max, K0: int = 16) -> Extrapola
             return replace(e, K=tuple(Ks), plain=tuple(q), estimate=math.inf)
         previous = e.estimate
         Ks.append(Ks[-1] * RATIO)
-        q.append(float(fn(load_x(replace(chain, K=Ks[-1])))))
+        q.append(load_extreme_at(chain, Ks[-1], fn))

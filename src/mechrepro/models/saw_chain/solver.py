@@ -29,15 +29,7 @@ def difference_method(chain: Chain, beyond_roundoff_limit: bool = False, loads: 
     if not loads:
         return velocity_only(chain, beyond_roundoff_limit)
     budget = error_budget(chain, beyond_roundoff_limit)
-    vx, ax, Fx, Fy = difference_arrays(chain)
-    return {
-        "tight_side_velocity": var("t", vx, "m/s", "tight-side velocity, difference method (Eqs. 12, 18)"),
-        "tight_side_acceleration": var("t", ax, "m/s2",
-                                       "tight-side acceleration, difference method (Eqs. 13, 19)"),
-        "dynamic_load_x": var("t", Fx, "N", "total tight-side dynamic load x, difference method (Eqs. 16, 22)"),
-        "dynamic_load_y": var("t", Fy, "N", "dynamic load y of the seating link, difference method (Eqs. 16, 22)"),
-        **budget,
-    }
+    return {**period_vars("", "difference method (Eqs. 11-22)", *difference_arrays(chain)), **budget}
 
 
 def velocity_only(chain: Chain, beyond_roundoff_limit: bool = False) -> dict:
@@ -48,18 +40,14 @@ def velocity_only(chain: Chain, beyond_roundoff_limit: bool = False) -> dict:
         x = stage_positions(phi, chain.R, L, chain.Tx)["trail_x"]
         parts.append(np.diff(x) * (1.0 / ((phi[1] - phi[0]) / chain.omega)))  # as Eq. (12) in the full method
     vx = np.concatenate([[chain.R * chain.omega], *parts])
-    return {"tight_side_velocity": var("t", vx, "m/s", "tight-side velocity, difference method (Eqs. 12, 18)"),
-            **budget}
+    return {**period_vars("", "difference method (Eqs. 12, 18)", vx), **budget}
 
 
 def velocity_budget(chain: Chain, beyond_roundoff_limit: bool) -> dict:
-    """The velocity's round-off limit of K and whether this K is beyond it (refused unless
-    allowed)."""
-    limit = chain.velocity_roundoff_limit()
-    dominated = check_roundoff(chain.K, limit, beyond_roundoff_limit, what="velocities")
-    return {"velocity_roundoff_limit_K": var((), limit, "1",
-                                             "K beyond which round-off exceeds truncation in the velocity"),
-            "roundoff_dominated": var((), int(dominated), "1",
+    """Whether this K is beyond the velocity's round-off limit (refused unless allowed)."""
+    dominated = check_roundoff(chain.K, chain.velocity_roundoff_limit(), beyond_roundoff_limit,
+                               what="velocities")
+    return {"roundoff_dominated": var((), int(dominated), "1",
                                       "1 if K is beyond the velocity's round-off limit")}
 
 
@@ -109,19 +97,15 @@ def compute(run: dict) -> dict:
     """The difference method (or its rival) and the effects the scene names (timed apart, so
     ``core_time`` is the method's alone)."""
     chain = chain_from_run(run)
-    p = run["parameters"]
     opts = run.get("options", {})
-    polygon = opts.get("polygon", True)
-    ctx = Context(chain=chain, t=chain.time(), textbook_phase=p["textbook_phase"],
-                  textbook_mass=p["textbook_mass"], polygon=polygon, parameters=p)
-    if polygon:
+    ctx = Context(chain, chain.time(), run["parameters"], opts.get("polygon", True))
+    if ctx.polygon:
         method = difference_method(chain, opts.get("beyond_roundoff_limit", False),
                                    opts.get("loads", True))
     else:   # the rival without the polygon effect (rivals.constant_speed)
         method = constant_speed(chain, opts.get("loads", True), opts.get("beyond_roundoff_limit", False))
-    contributions = EFFECTS.evaluate(run, ctx)
-    beside = {key: contributions.get(key) for key in contributions.keys()}
-    return {"chain": chain, "t": ctx.t, "data": {**method, **beside}}
+    c = EFFECTS.evaluate(run, ctx)
+    return {"chain": chain, "t": ctx.t, "data": method | {key: c.get(key) for key in c.keys()}}
 
 
 def ranges(ds: dict) -> dict:
@@ -155,9 +139,6 @@ def errors_against_exact(ds: dict, K: int) -> dict:
                                               f"RMS over samples (stage switch excluded) of |{q} - exact|, relative to max |exact|")
         out[f"{q}_error_switch"] = var((), float(err[switch]), "1",
                                        f"|{q} - exact| at the stage-switch sample t1 + dt, relative to max |exact|")
-        for end, fn in (("min", np.min), ("max", np.max)):
-            out[f"{q}_error_of_{end}"] = var((), float(abs(fn(ds[q]) - fn(ref)) / scale), "1",
-                                             f"error of the {end} of {q} vs exact, relative to max |exact|")
     if "dynamic_load_x" not in ds:
         return out
     out["dynamic_load_x_switch"] = var((), float(ds["dynamic_load_x"][switch]), "N",
