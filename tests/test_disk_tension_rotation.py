@@ -106,7 +106,7 @@ def test_the_critical_speed_effect_reads_the_centrifugal_condition(cfg):
     for bc in ("clamped", "free_disk"):
         ds = _solve_once(critical_run(cfg, n_elements=64, centrifugal_bc=bc,
                                       rolling_radius=[0.065]))
-        cs = ds["axisym_critical_speed_untensioned"]
+        cs = ds["critical_speed_untensioned"]
         assert cs.attrs["centrifugal_bc"] == bc
         out[bc] = float(cs.sel(n_d=2)) * rpm
     assert out["clamped"] == pytest.approx(5862.4, abs=0.5)
@@ -173,7 +173,7 @@ def test_the_critical_speed_of_a_buckled_rolled_disk_does_not_exist(cfg):
     from mechrepro.models.disk_tension import validation as v
 
     hot = _solve_once(critical_run(cfg, temperature_amplitude=100))
-    cs = hot["axisym_critical_speed"].values
+    cs = hot["critical_speed"].values
     assert np.isnan(cs[1:4, 0]).all() and np.isfinite(cs[1:4, 2:]).all()
     low = v.lowest_critical_speed(hot)
     assert np.isnan(low[1:4]).all() and np.isfinite(low[[0, 4, 5, 6, 7]]).all()
@@ -203,7 +203,7 @@ def test_the_southwell_row_checks_every_clamping_radius(cfg):
     assert got.value is True or got.value == 1
     assert "r_f 75 mm: -3.5e-02" in got.note and "N_d^2 - lambda = 0.64" in got.note
     broken = far.copy(deep=True)
-    broken["axisym_critical_speed_southwell"] *= 0.999      # eigen above "Southwell" at 75 mm
+    broken["critical_speed_southwell"] *= 0.999      # eigen above "Southwell" at 75 mm
     got = v._cs_southwell(_Results({"critical_speed": base},
                                    {"critical_speed_rf": _study([broken])}))
     assert not got.value

@@ -286,8 +286,8 @@ def eq9(ctx) -> dict:
 def critical_load(ctx) -> dict:
     """Load factor on the residual stress that buckles the disk (inf: never)."""
     lam = np.array([ctx.model.critical_load(k) for k in _stiffened(ctx)])
-    dims = ("r_c", "n_d") if lam.ndim == 2 else ("r_c",)
-    return {"critical_load_factor": var(dims, lam, "1", "load factor that buckles (inf: never)")}
+    return {"critical_load_factor": var(("r_c", "n_d"), lam, "1",
+                                        "load factor that buckles (inf: never)")}
 
 
 @EFFECTS.register("modal_matrices")

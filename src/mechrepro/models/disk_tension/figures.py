@@ -4,11 +4,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from mechrepro.units import from_si
+
 def by_clamp(R, scene, study) -> list:
     """[(r_f [mm], dataset)] of ``scene`` and of the runs of its r_f ``study``."""
-    st = R.study(study)
-    return [(clamp_mm(ds), ds) for ds in [R.run(scene)] + [st.isel(run=i)
-                                                            for i in range(st.sizes["run"])]]
+    return [(clamp_mm(ds), ds) for ds in [R.run(scene), *R.study_runs(study)]]
 
 
 def rc_grid(R) -> dict:
@@ -43,9 +43,9 @@ def accuracy_goal(R, quantity: str) -> float:
 
 def eq9_and_eigen_times(grid: dict, plate2d) -> dict:
     """Wall time [s] of Eq. (5) and of Eq. (9): axisym grid and plain 2-D sweep."""
-    return {"axisym": (sum(float(g["axisym_time_eigen"]) for g in grid.values()),
-                       sum(float(g["axisym_time_eq9"]) for g in grid.values())),
-            "plate2d": (float(plate2d["plate2d_time_eigen"]), float(plate2d["plate2d_time_eq9"]))}
+    return {"axisym": (sum(float(g["time_eigen"]) for g in grid.values()),
+                       sum(float(g["time_eq9"]) for g in grid.values())),
+            "plate2d": (float(plate2d["time_eigen"]), float(plate2d["time_eq9"]))}
 
 
 def buckling_series(R):
@@ -53,10 +53,10 @@ def buckling_series(R):
     and each N_d's critical amplitude A lambda_cr (omega~^2 is linear in A, Eq. 3)."""
     base, st = R.run("buckling"), R.study("buckling_sweep")
     amps = np.r_[float(base["amplitude_used"]), st["amplitude_used"].values.astype(float)]
-    w2 = np.vstack([base["axisym_omega2_rolled"].isel(r_c=0).values,
-                    st["axisym_omega2_rolled"].isel(r_c=0).values])
+    w2 = np.vstack([base["omega2_rolled"].isel(r_c=0).values,
+                    st["omega2_rolled"].isel(r_c=0).values])
     order = np.argsort(amps)
-    a_cr = amps[0] * base["axisym_critical_load_factor"].isel(r_c=0).values
+    a_cr = amps[0] * base["critical_load_factor"].isel(r_c=0).values
     return amps[order], w2[order], a_cr
 
 
@@ -81,6 +81,5 @@ def effect_cold_warm(R, scenes=("table12", "table12_plate2d", "stressed_axisym",
 
 
 def clamp_mm(ds) -> float:
-    """r_f [mm] of a run or of one run of a study (whose coordinate keeps the config's unit)."""
-    v = ds["clamp_radius"]
-    return float(v) * (1e3 if v.attrs.get("units", "m") == "m" else 1.0)
+    """r_f [mm] of a run."""
+    return float(from_si(float(ds["clamp_radius"]), "mm"))

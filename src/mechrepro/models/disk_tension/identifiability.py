@@ -346,16 +346,11 @@ def _bound(end, grid, other, other_grid, name, other_name, unit) -> str:
     return ""
 
 
-def _reader(ds, prefix):
-    """The values of variable ``k`` of a run (``prefix`` + k, or k itself)."""
-    return lambda k: ds[prefix + k if prefix + k in ds else k].values
-
-
-def table(ds, prefix="axisym_") -> list[list]:
+def table(ds) -> list[list]:
     """Rows of ``identifiability.csv``: per data subset and constant the best fit, the
     extents of the joint (s, c) region at 68 and 95 % with what bounds them and which numbers
     pin it; c s along the valley floor; the degenerate direction; the in-plane condition."""
-    g = _reader(ds, prefix)
+    g = lambda k: ds[k].values  # noqa: E731
     widths, fine = g("scan_width") * 1e3, g("scan_scale")
     rows = []
     for j, name in enumerate(SUBSETS):
@@ -414,9 +409,9 @@ COLUMNS = ["data", "constant", "unit", "best", "lo_68", "hi_68", "lo_95", "hi_95
            "bounded_68", "bounded_95", "pinned_by"]
 
 
-def readings(ds, prefix="axisym_") -> list[list]:
+def readings(ds) -> list[list]:
     """Rows of the joint fit and of the single-alpha calibration, per data subset."""
-    g = _reader(ds, prefix)
+    g = lambda k: ds[k].values  # noqa: E731
     out = []
     for j, name in enumerate(SUBSETS):
         out.append([name, "joint fit", CONDITIONS[int(g("best_condition")[j])],

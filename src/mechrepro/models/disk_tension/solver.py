@@ -1,7 +1,7 @@
 """The two solvers of disk_tension, one discretisation of the clamped disk each: ``axisym``
 (:mod:`.axisym`) and ``plate2d`` (:mod:`.plate2d`).  Both run the effects (:mod:`.effects`) in
 three stages read by key -- what the load and mesh need, the load (Eq. 4), then after the
-core ([K], [M] of Eq. 1, Eq. 6, [K^(sigma)] of Eq. 3) the analyses, named ``<solver>_*``.
+core ([K], [M] of Eq. 1, Eq. 6, [K^(sigma)] of Eq. 3) the analyses.
 """
 from __future__ import annotations
 
@@ -72,14 +72,12 @@ class Disk:
         return np.sqrt(np.array([np.mean(w2[n]) for n in self.n_d]))
 
     def put(self, name, *variable):
-        self.vars[f"{self.solver}_{name}"] = var(*variable)
+        self.vars[name] = var(*variable)
 
-    def keep(self, contributions, prefix=""):
-        """Write the contributions to the dataset (coordinates unprefixed)."""
-        for key in contributions.keys():
-            if key not in BEFORE_LOAD | LOAD:
-                value = contributions.get(key)
-                self.vars[key if value[0] == (key,) else prefix + key] = value
+    def keep(self, contributions):
+        """Write the contributions to the dataset (but what the solver consumes)."""
+        self.vars.update({k: contributions.get(k) for k in contributions.keys()
+                          if k not in BEFORE_LOAD | LOAD})
 
 
 # --- the core of each solver -----------------------------------------------------------------
@@ -87,8 +85,7 @@ def _axisym(ctx: Disk):
     n_el = int(ctx.resolution.get("n_elements", 64))
     model = AxisymDisk(r_f=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho,
                        n_d=ctx.n_d, n_elements=n_el)
-    ctx.vars["radial_node"] = var("radial_node", np.arange(n_el + 1), "1",
-                                  "node of the radial mesh")
+    ctx.put("radial_node", "radial_node", np.arange(n_el + 1), "1", "node of the radial mesh")
     ctx.put("mesh_r", "radial_node", model.mesh.nodes, "m", "axisym: radius of each node of "
             "the cubic Hermite elements")
     return model
@@ -103,11 +100,9 @@ def _plate2d(ctx: Disk):
                       seed=int(ctx.run.get("seed", 0)))
     ctx.put("n_dofs", (), model.basis.N, "1", "plate2d: number of Argyris DOFs")
     # Fig. 3: the mesh itself (annulus r_f..b; the core r < r_f is clamped)
-    ctx.vars["mesh_node"] = var("mesh_node", np.arange(model.mesh.p.shape[1]), "1",
-                                "node of the 2-D mesh")
-    ctx.vars["mesh_cell"] = var("mesh_cell", np.arange(model.mesh.t.shape[1]), "1",
-                                "triangle of the 2-D mesh")
-    ctx.vars["vertex"] = var("vertex", [0, 1, 2], "1", "triangle vertex")
+    ctx.put("mesh_node", "mesh_node", np.arange(model.mesh.p.shape[1]), "1", "node of the 2-D mesh")
+    ctx.put("mesh_cell", "mesh_cell", np.arange(model.mesh.t.shape[1]), "1", "triangle of the mesh")
+    ctx.put("vertex", "vertex", [0, 1, 2], "1", "triangle vertex")
     ctx.put("mesh_x", "mesh_node", model.mesh.p[0], "m", "plate2d: node x")
     ctx.put("mesh_y", "mesh_node", model.mesh.p[1], "m", "plate2d: node y")
     ctx.put("mesh_cells", ("mesh_cell", "vertex"), model.mesh.t.T.astype(np.int32), "1",
@@ -142,7 +137,7 @@ def _plate2d_stress_profile(ctx: Disk, sigma):
 
     r, sr, st = ctx.model.polar_stress(sigma)
     means, edges, _ = binned_statistic(r, [sr, st], "mean", bins=80)   # NaN: an empty bin
-    ctx.vars["r_bin"] = var("r_bin", 0.5 * (edges[1:] + edges[:-1]), "m", "radius (bin centre)")
+    ctx.put("r_bin", "r_bin", 0.5 * (edges[1:] + edges[:-1]), "m", "radius (bin centre)")
     for nm, mean in zip(("sigma_r", "sigma_theta"), means):
         ctx.put(f"{nm}_binned", "r_bin", mean, "Pa",
                 f"plate2d: FE {nm} averaged over radial bins (first r_c)")
@@ -167,7 +162,7 @@ def _compare(ctx: Disk):
     name = ctx.solver
 
     def get(key):
-        return ctx.vars[f"{name}_{key}"][1] if f"{name}_{key}" in ctx.vars else None
+        return ctx.vars[key][1] if key in ctx.vars else None
 
     f_u, f_r, f_ex = get("f_unrolled"), get("f_rolled"), get("f_exact")
     if f_ex is not None:
@@ -216,8 +211,8 @@ def compute(run: dict) -> Disk:
     load = stage(LOAD)
     ctx.loads, ctx.heat = load.get("thermal_load"), load.get("cutting_heat_stress")
     _discretise(ctx)
-    for contributions, prefix in ((before, ""), (load, ""), (stage(), f"{ctx.solver}_")):
-        ctx.keep(contributions, prefix)
+    for contributions in (before, load, stage()):
+        ctx.keep(contributions)
     _compare(ctx)
     return ctx
 
