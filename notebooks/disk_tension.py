@@ -37,7 +37,7 @@ profile = "default"
 import numpy as np
 
 from mechrepro import accuracy
-from mechrepro.models.disk_tension import figures
+from mechrepro.models.disk_tension import design, figures, identifiability as idf
 from mechrepro.plotting import plt
 from mechrepro.results import PaperResults
 from mechrepro.units import from_si
@@ -160,19 +160,20 @@ R.save_figure(fig, "fig07")
 # %% [markdown]
 # ## Fig. 8 — Δf by Eq. (9) vs r_c
 # Solid: Δω²/(2ω)/2π, the linearised conversion that reproduces the paper's 70.0 Hz from
-# Table 1; dashed: exact conversion √(ω²+Δω²) − ω; dots: eigen-analysis (the key says so).
+# Table 1; dashed: exact conversion √(ω²+Δω²) − ω; dots: eigen-analysis.
 # The paper's two numbers at r_c = 65 mm, 70.0 Hz (Eq. 9) and 67.6 Hz (eigen), lie 2.4 Hz
 # apart: hollow markers, labelled beside them.
 
 # %%
 fig, axes = plt.subplots(1, 3, figsize=(13, 4.2))
 for ax, (rf, ds), letter in zip(axes, sorted(grid.items()), "abc"):
-    rc = mm(ds["r_c"])
+    rc, eig = mm(ds["r_c"]), ds["f_rolled"] - ds["f_unrolled"]
     for n in ND:
-        ax.plot(rc, ds["delta_f_eq9_linearised"].sel(n_d=n), "-", color=COLORS[n], label=f"N_d={n}")
-        ax.plot(rc, ds["delta_f_eq9_exact"].sel(n_d=n), "--", lw=0.8, color=COLORS[n])
-        ax.plot(rc, ds["f_rolled"].sel(n_d=n) - ds["f_unrolled"].sel(n_d=n), ".",
-                color=COLORS[n])
+        ax.plot(rc, ds["delta_f_eq9_linearised"].sel(n_d=n), "-", color=COLORS[n],
+                label=f"N_d={n}" + (", Eq. (9) linearised" if n == 0 else ""))
+        ax.plot(rc, ds["delta_f_eq9_exact"].sel(n_d=n), "--", lw=0.8, color=COLORS[n],
+                label="Eq. (9), exact conversion" if n == 0 else None)
+        ax.plot(rc, eig.sel(n_d=n), ".", color=COLORS[n], label="eigen-analysis" if n == 0 else None)
     if rf == 25:
         # 70.0 and 67.6 Hz lie 2.4 Hz apart: drawn on the curves and, apart, in a zoom below
         x65 = mm(paper_pts["r_c"])
@@ -184,8 +185,7 @@ for ax, (rf, ds), letter in zip(axes, sorted(grid.items()), "abc"):
                    mew=1.1, label="paper eigen" if a is ax else None)
         for n in (3, 4):
             zoom.plot(rc, ds["delta_f_eq9_linearised"].sel(n_d=n), "-", color=COLORS[n])
-            zoom.plot(rc, ds["f_rolled"].sel(n_d=n) - ds["f_unrolled"].sel(n_d=n),
-                      ".", color=COLORS[n])
+            zoom.plot(rc, eig.sel(n_d=n), ".", color=COLORS[n])
         zoom.set(xlim=(x65 - 4, x65 + 4), ylim=(paper_pts["delta_f_eigen"] - 4,
                                                 paper_pts["delta_f_eq9"] + 2))
         zoom.tick_params(labelsize=6)
@@ -193,14 +193,8 @@ for ax, (rf, ds), letter in zip(axes, sorted(grid.items()), "abc"):
                 f"{paper_pts['delta_f_eigen']:.1f} Hz (+)", fontsize=7, transform=ax.transAxes)
     ax.axhline(0, color="k", lw=0.6)
     ax.set(xlabel="r_c [mm]", ylabel="Δf [Hz]", title=f"Fig. 8{letter}: r_f = {rf} mm")
-from matplotlib.lines import Line2D  # noqa: E402
-
-key = [Line2D([], [], color="0.3", ls="-", label="Eq. (9), linearised"),
-       Line2D([], [], color="0.3", ls="--", lw=0.8, label="Eq. (9), exact conversion"),
-       Line2D([], [], color="0.3", ls="", marker=".", label="eigen-analysis")]
-handles, labels = axes[0].get_legend_handles_labels()
-fig.legend(handles + key, labels + [k.get_label() for k in key], loc="lower center", ncol=5,
-           fontsize=8, bbox_to_anchor=(0.5, -0.16))
+fig.legend(*axes[0].get_legend_handles_labels(), loc="lower center", ncol=5, fontsize=8,
+           bbox_to_anchor=(0.5, -0.16))
 R.save_figure(fig, "fig08")
 
 # %% [markdown]
@@ -275,10 +269,9 @@ R.save_figure(fig, "buckling")
 
 # %%
 hdr = ["N_d"] + [str(n) for n in ND]
-R.write_table("table1", hdr, figures.matrix_rows(t12["k_sigma_hat"]))
-R.write_table("table2", hdr, figures.matrix_rows(t12["m_hat"]))
-R.write_table("table1_plate2d", hdr, figures.matrix_rows(t12_2d["k_sigma_hat"]))
-R.write_table("table2_plate2d", hdr, figures.matrix_rows(t12_2d["m_hat"]))
+for ds, solver in ((t12, ""), (t12_2d, "_plate2d")):
+    R.write_table(f"table1{solver}", hdr, figures.matrix_rows(ds["k_sigma_hat"]))
+    R.write_table(f"table2{solver}", hdr, figures.matrix_rows(ds["m_hat"]))
 
 # %% [markdown]
 # ## Cost of accuracy
@@ -323,8 +316,6 @@ R.save_figure(fig, "cost_of_accuracy")
 # the data). Right: the profiles over s (each point minimised over a continuous c).
 
 # %%
-from mechrepro.models.disk_tension import identifiability as idf
-
 idn = R.run("identifiability")
 R.write_table("identifiability", idf.COLUMNS, idf.table(idn))
 R.write_table("identifiability_readings",
@@ -413,8 +404,7 @@ R.save_figure(fig, "identifiability")
 # %%
 cs = R.run("critical_speed")
 cs_free = R.run("critical_speed_centrifugal_free")
-from mechrepro.models.disk_tension.validation import lowest_critical_speed
-RPM = 60 / (2 * np.pi)
+from mechrepro.models.disk_tension.validation import RPM, lowest_critical_speed
 fig, axes = plt.subplots(1, 2, figsize=(12, 4.2))
 rc_mm = cs["r_c"].values * 1e3
 for n in (2, 3, 4):
@@ -453,39 +443,32 @@ R.save_figure(fig, "critical_speed")
 # tensioning spends (they reach zero at buckling).
 
 # %%
-from mechrepro.models.disk_tension import design
-
 dm_runs = figures.by_clamp(R, "design_map", "design_map_rf")
 cut = R.run("design_map_in_cut")
 dm_rows = design.table(dm_runs + [(figures.clamp_mm(cut), cut)])
 R.write_table("design_map", design.COLUMNS, dm_rows)
 fig, axes = plt.subplots(2, 3, figsize=(15, 8.8), constrained_layout=True)
-maps = [axes[0, 0], axes[0, 1], axes[0, 2], axes[1, 0]]
-for ax, (rf, ds) in zip(maps, dm_runs):
-    rc_mm = ds["r_c"].values * 1e3
-    amp = ds["design_amplitude"].values
-    low = design.lowest_map(ds) * RPM
-    pc = ax.pcolormesh(np.broadcast_to(rc_mm[:, None], amp.shape), amp, low,
-                       shading="gouraud", cmap="viridis")
-    fig.colorbar(pc, ax=ax, label="lowest critical speed [rpm]")
+ax, ax_f = axes[1, 1], axes[1, 2]
+for a, (rf, ds), c in zip(axes.flat, dm_runs, ("C0", "C1", "C2", "C3")):   # maps, then curves
+    rc_mm, amp = ds["r_c"].values * 1e3, ds["design_amplitude"].values
+    low = design.lowest_map(ds)
+    unt = float(np.nanmin(low[:, 0]))
+    pc = a.pcolormesh(np.broadcast_to(rc_mm[:, None], amp.shape), amp, low * RPM,
+                      shading="gouraud", cmap="viridis")
+    fig.colorbar(pc, ax=a, label="lowest critical speed [rpm]")
     a_cr = ds["design_buckling_amplitude"].values
     for m, ls in zip(ds["design_margin"].values, ("--", "-", "--")):
-        ax.plot(rc_mm, a_cr / m, ls, color="w", lw=1.4 if ls == "-" else 0.8)
+        a.plot(rc_mm, a_cr / m, ls, color="w", lw=1.4 if ls == "-" else 0.8)
     q = int(np.argmin(np.abs(ds["design_margin"].values - float(ds["design_stated_margin"]))))
     k, v = design.best(ds, q)
-    ax.plot(rc_mm[k], ds["design_best_amplitude"].values[q, k], "*", color="r", ms=13, mec="k")
+    a.plot(rc_mm[k], ds["design_best_amplitude"].values[q, k], "*", color="r", ms=13, mec="k")
     j65 = int(np.argmin(np.abs(rc_mm - 65)))
-    ax.plot(65, 50, "o", color="w", mec="k", ms=7)
-    ax.set(xlabel="rolling radius r_c [mm]", ylabel="rolling amplitude A [°C]",
-           ylim=(0, np.nanmax(amp) * 1.02),
-           title=f"r_f = {rf:.0f} mm: ★ {v * RPM:.0f}, ○ "
-                 f"{float(ds['design_paper_amplitude_speed'][j65]) * RPM:.0f}, "
-                 f"untensioned {float(np.nanmin(low[:, 0])):.0f} rpm")
-ax, ax_f = axes[1, 1], axes[1, 2]
-for (rf, ds), c in zip(dm_runs, ("C0", "C1", "C2", "C3")):
-    q = int(np.argmin(np.abs(ds["design_margin"].values - float(ds["design_stated_margin"]))))
-    unt = float(np.nanmin(design.lowest_map(ds)[:, 0]))
-    rc_mm = ds["r_c"].values * 1e3
+    a.plot(65, 50, "o", color="w", mec="k", ms=7)
+    a.set(xlabel="rolling radius r_c [mm]", ylabel="rolling amplitude A [°C]",
+          ylim=(0, np.nanmax(amp) * 1.02),
+          title=f"r_f = {rf:.0f} mm: ★ {v * RPM:.0f}, ○ "
+                f"{float(ds['design_paper_amplitude_speed'][j65]) * RPM:.0f}, "
+                f"untensioned {unt * RPM:.0f} rpm")
     ax.plot(rc_mm, 100 * (ds["design_best_speed"].values[q] / unt - 1), "o-", ms=3,
             color=c, label=f"r_f {rf:.0f} mm, best A")
     ax.plot(rc_mm, 100 * (ds["design_paper_amplitude_speed"].values / unt - 1), ":",

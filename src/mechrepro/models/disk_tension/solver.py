@@ -11,7 +11,7 @@ from mechrepro.errors import Refusal
 from mechrepro.timing import phase
 from mechrepro.units import var
 
-from . import calibration, thermal
+from . import calibration
 from .axisym import AxisymDisk
 from .effects import EFFECTS
 from .modal import frequency
@@ -54,12 +54,8 @@ class Disk:
         }
 
     def _check(self):
-        if not 0 < self.r_f < self.b:
-            raise Refusal(f"clamp_radius r_f = {self.r_f} m must lie in (0, b = {self.b} m)")
-        if self.bc not in thermal.INPLANE_BCS:
-            raise Refusal(f"inplane_bc = {self.bc!r}: allowed {thermal.INPLANE_BCS}")
-        if self.solver not in DISCRETISATIONS:
-            raise Refusal(f"solver = {self.solver!r}: allowed {list(DISCRETISATIONS)}")
+        """What the config cannot refuse (the schema, cross_checks and the effect protocol
+        refuse the rest at load)."""
         if self.stress_model != "thermal_analogy" and self.solver != "axisym":
             raise Refusal(f"options.residual_stress = {self.stress_model!r}: the rivals' stress "
                           "is closed-form, on the axisym harmonics only (the 2-D model solves "
