@@ -212,13 +212,13 @@ for (rf, ds), sym in zip(sorted(grid.items()), ["o-", "s--", "^:"]):
 ax.set(xlabel="r_c [mm]", ylabel="|f(Eq. 9) / f(eigen) − 1| [1]",
        title="Eq. (9) error (o r_f=25, s 55, ^ 75 mm)")
 ax.legend(fontsize=7)
-times = figures.eq9_and_eigen_times(grid, plain2d)
+times = [figures.eigen_and_eq9_times(*grid.values()), figures.eigen_and_eq9_times(plain2d)]
 ax = axes[1]
 labels = [f"axisym\n({len(grid)} r_f × {grid[25].sizes['r_c']} r_c × {len(ND)} N_d)",
           f"plate2d\n({plain2d.sizes['r_c']} r_c, r_f=25)"]
 x = np.arange(2)
-ax.bar(x - 0.2, [times[m][0] for m in times], 0.4, label="eigen-analysis, Eq. (5)")
-ax.bar(x + 0.2, [times[m][1] for m in times], 0.4, label="first order, Eq. (9)")
+ax.bar(x - 0.2, [t[0] for t in times], 0.4, label="eigen-analysis, Eq. (5)")
+ax.bar(x + 0.2, [t[1] for t in times], 0.4, label="first order, Eq. (9)")
 ax.set_yscale("log")
 ax.set_xticks(x, labels)
 ax.set(ylabel="wall time [s]", title="cost: Eq. (9) vs eigen-analysis")
@@ -402,8 +402,7 @@ R.save_figure(fig, "identifiability")
 # number). Right: the lowest over N_d, for larger clamping ratios.
 
 # %%
-cs = R.run("critical_speed")
-cs_free = R.run("critical_speed_centrifugal_free")
+cs, cs_free = R.run("critical_speed"), R.run("critical_speed_centrifugal_free")
 from mechrepro.models.disk_tension.validation import RPM, lowest_critical_speed
 fig, axes = plt.subplots(1, 2, figsize=(12, 4.2))
 rc_mm = cs["r_c"].values * 1e3

@@ -82,8 +82,7 @@ def _axisym(ctx: Disk):
     model = AxisymDisk(r_f=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho,
                        n_d=ctx.n_d, n_elements=n_el)
     ctx.put("radial_node", "radial_node", np.arange(n_el + 1), "1", "node of the radial mesh")
-    ctx.put("mesh_r", "radial_node", model.mesh.nodes, "m", "axisym: radius of each node of "
-            "the cubic Hermite elements")
+    ctx.put("mesh_r", "radial_node", model.mesh.nodes, "m", "radius of the Hermite elements' nodes")
     return model
 
 
@@ -102,7 +101,7 @@ def _plate2d(ctx: Disk):
     ctx.put("mesh_x", "mesh_node", model.mesh.p[0], "m", "plate2d: node x")
     ctx.put("mesh_y", "mesh_node", model.mesh.p[1], "m", "plate2d: node y")
     ctx.put("mesh_cells", ("mesh_cell", "vertex"), model.mesh.t.T.astype(np.int32), "1",
-            "plate2d: node indices of each triangle")
+            "node indices of each triangle")
     return model
 
 
@@ -155,18 +154,13 @@ def _discretise(ctx: Disk):
 
 def _compare(ctx: Disk):
     """Errors against the references, Eq. (9) against Eq. (5), the accuracy points' times."""
-    name = ctx.solver
-
-    def get(key):
-        return ctx.vars[key][1] if key in ctx.vars else None
+    get = lambda key: ctx.vars[key][1] if key in ctx.vars else None  # noqa: E731
 
     f_u, f_r, f_ex = get("f_unrolled"), get("f_rolled"), get("f_exact")
     if f_ex is not None:
         err = f_u / f_ex - 1.0
-        ctx.put("error_unrolled", "n_d", err, "1",
-                f"{name}: relative error of the unrolled frequency vs exact")
-        ctx.put("error_unrolled_max", (), np.max(np.abs(err)), "1",
-                f"{name}: max |relative error| of unrolled frequencies vs exact")
+        ctx.put("error_unrolled", "n_d", err, "1", "relative error of the unrolled frequency")
+        ctx.put("error_unrolled_max", (), np.max(np.abs(err)), "1", "its max |value| over N_d")
         _log_sums(ctx, "unrolled", f_u, f_ex, "the unrolled frequencies")
     if get("f_stressed_exact") is not None:
         _log_sums(ctx, "stressed", get("f_stressed"), get("f_stressed_exact"),
@@ -177,17 +171,16 @@ def _compare(ctx: Disk):
                   "(Richardson of 64 and 128 elements, error ~1e-8)")
     if f_r is not None and get("delta_omega2_eq9") is not None:
         f_eq9 = frequency(ctx.omega_unrolled[None, :] ** 2 + get("delta_omega2_eq9"))
-        err = np.abs(f_eq9 - f_r) / f_r
-        ctx.put("eq9_rel_error", ("r_c", "n_d"), err, "1",
-                f"{name}: |f by Eq. (9) - f by eigen-analysis| / f")
+        ctx.put("eq9_rel_error", ("r_c", "n_d"), np.abs(f_eq9 - f_r) / f_r, "1",
+                "|f by Eq. (9) - f by eigen-analysis| / f")
     if get("time_eigen") is not None:
         t = sum(float(get(k)) for k in ("time_unrolled", "time_stress", "time_eigen"))
-        ctx.put("time_solve", (), t, "s", f"{name}: wall time of assembly + unrolled + K^(sigma) "
-                "+ rolled eigen-analysis over the r_c grid")
+        ctx.put("time_solve", (), t, "s", "wall time of assembly + unrolled + K^(sigma) + rolled "
+                "eigen-analysis over the r_c grid")
     if get("time_stressed") is not None:
         t = float(get("time_unrolled")) + float(get("time_stressed"))
-        ctx.put("time_stressed_solve", (), t, "s", f"{name}: wall time of assembly + unrolled + "
-                "K^(sigma) and Eq. (5) under the reference stresses")
+        ctx.put("time_stressed_solve", (), t, "s", "wall time of assembly + unrolled + K^(sigma) "
+                "and Eq. (5) under the reference stresses")
 
 
 def _log_sums(ctx: Disk, what: str, f, f_exact, of: str, reference="exact Bessel solution"):

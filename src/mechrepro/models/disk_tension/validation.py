@@ -7,7 +7,7 @@ import numpy as np
 from mechrepro.validation import Quantities, Reproduced
 
 from . import design
-from .figures import by_clamp, clamp_mm, rc_grid
+from .figures import by_clamp, clamp_mm, eigen_and_eq9_times, rc_grid
 from .modal import degenerate_harmonics, harmonic_coupling_symmetry
 
 Q = Quantities("disk_tension")
@@ -16,9 +16,7 @@ RC_PAPER = 0.065  # r_c of Table 1 / Sec. 4.3 [m]
 
 
 def _at(ds, var, r_c=None, n_d=4):
-    sel = {"n_d": n_d}
-    if r_c is not None:
-        sel["r_c"] = r_c
+    sel = {"n_d": n_d} if r_c is None else {"n_d": n_d, "r_c": r_c}
     return float(ds[var].sel(sel, method="nearest"))
 
 
@@ -195,12 +193,17 @@ def _rotation(R):
 
 
 # --- Figs. 6-8 trends ----------------------------------------------------------------------
-@Q.register("fig6a_nd2to4_max_near_rc65")
-def _f6a_max(R):
-    a = _grid(R)[25]
-    am = [_argext(a, "f_rolled", n, np.nanargmax) for n in (2, 3, 4)]
-    return Reproduced(all(55 <= x <= 75 for x in am),
-                      note="argmax r_c [mm] for N_d=2,3,4: " + ", ".join(f"{x:.0f}" for x in am))
+@Q.register("fig6a_nd2to4_max_near_rc65", "fig6a_nd0_1_min_near_rc45")
+def _f6a_extrema(R):
+    """Each extremum within one step (10 mm) of the paper's r_c."""
+    out = {}
+    for q, what, fn, n_d, (lo, hi) in (
+            ("fig6a_nd2to4_max_near_rc65", "argmax", np.nanargmax, (2, 3, 4), (55, 75)),
+            ("fig6a_nd0_1_min_near_rc45", "argmin", np.nanargmin, (0, 1), (35, 55))):
+        at = [_argext(_grid(R)[25], "f_rolled", n, fn) for n in n_d]
+        out[q] = Reproduced(all(lo <= x <= hi for x in at), note=f"{what} r_c [mm] for N_d="
+                            + ",".join(map(str, n_d)) + ": " + ", ".join(f"{x:.0f}" for x in at))
+    return out
 
 
 @Q.register("fig6a_nd2to4_below_unrolled_near_edge")
@@ -210,14 +213,6 @@ def _f6a_edge(R):
          for n in (2, 3, 4)]
     return Reproduced(all(x < 0 for x in d), note="f(r_c = 105 mm) - f(unrolled) for N_d=2,3,4: "
                       + ", ".join(f"{x:.1f}" for x in d) + " Hz")
-
-
-@Q.register("fig6a_nd0_1_min_near_rc45")
-def _f6a_min(R):
-    a = _grid(R)[25]
-    am = [_argext(a, "f_rolled", n, np.nanargmin) for n in (0, 1)]
-    return Reproduced(all(35 <= x <= 55 for x in am),
-                      note="argmin r_c [mm] for N_d=0,1: " + ", ".join(f"{x:.0f}" for x in am))
 
 
 @Q.register("fig6_optimal_rc_moves_outward_with_rf")
@@ -274,9 +269,7 @@ def _eq9_err(R):
 
 @Q.register("eq9_speedup_over_eigen")
 def _eq9_speed(R):
-    g = _grid(R)
-    t_eig = sum(float(ds["time_eigen"]) for ds in g.values())
-    t_eq9 = sum(float(ds["time_eq9"]) for ds in g.values())
+    t_eig, t_eq9 = eigen_and_eq9_times(*_grid(R).values())
     return Reproduced(t_eig / t_eq9, note=f"grid: eigen {t_eig:.3g} s, Eq. (9) {t_eq9:.3g} s "
                                           "(same K^(sigma))")
 
@@ -344,14 +337,11 @@ def _slotted(R):
 
 @Q.register("buckling_flag_matches_critical_load")
 def _buckling(R):
-    st = R.study("buckling_sweep")
-    b0 = R.run("buckling")
-    amp = np.r_[float(b0["amplitude_used"]), st["amplitude_used"].values.astype(float)]
-    lam = np.r_[float(b0["critical_load_factor"].sel(n_d=2).values[0]),
-                st["critical_load_factor"].sel(n_d=2).values[:, 0]]
-    buck = np.r_[int(b0["buckled"].sel(n_d=2).values[0]),
-                 st["buckled"].sel(n_d=2).values[:, 0].astype(int)]
-    a_cr = amp * lam
+    runs = [R.run("buckling"), *R.study_runs("buckling_sweep")]
+    amp = np.array([float(ds["amplitude_used"]) for ds in runs])
+    lam, buck = (np.array([float(ds[k].sel(n_d=2).values[0]) for ds in runs])
+                 for k in ("critical_load_factor", "buckled"))
+    a_cr, buck = amp * lam, buck.astype(int)
     ok = bool(np.all((amp > a_cr[0]) == (buck == 1)) and np.ptp(a_cr) < 1e-6 * a_cr[0])
     return Reproduced(ok, note=f"critical amplitude N_d=2 at r_c=105 mm: {a_cr[0]:.2f} degC; "
                                f"buckled flags {buck.tolist()} for A = {amp.tolist()}")
