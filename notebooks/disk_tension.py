@@ -56,8 +56,6 @@ grid = figures.rc_grid(R)
 clamped, fig07 = R.run("rc_grid_clamped"), R.run("fig07_sensitivity")
 plain2d, slotted = R.run("plate2d_rc_sweep"), R.run("slotted_rc_sweep")
 paper_pts = figures.paper_points(R)
-print(f"thickness h = {from_si(float(t12['thickness']), 'mm'):.4f} mm, alpha_eff = "
-      f"{float(t12['alpha_effective']):.4g} 1/K (x{float(t12['stress_scale']):.4f})")
 
 # %% [markdown]
 # ## Fig. 3 — the FE models of the disk
@@ -318,10 +316,7 @@ R.save_figure(fig, "cost_of_accuracy")
 # %%
 idn = R.run("identifiability")
 R.write_table("identifiability", idf.COLUMNS, idf.table(idn))
-R.write_table("identifiability_readings",
-              ["data", "reading", "inplane_bc", "s_mm", "stress_scale"]
-              + [f"table1_nd{n}_rel" for n in range(5)] + ["f_rolled_hz", "delta_chi2"],
-              idf.readings(idn))
+R.write_table("identifiability_readings", idf.READING_COLUMNS, idf.readings(idn))
 s_mm, c_grid = idn["scan_width"].values * 1e3, idn["scan_scale"].values
 levels = idn["fit_level"].values
 fig, axes = plt.subplots(1, 3, figsize=(15.5, 5.2))
@@ -496,8 +491,7 @@ R.save_figure(fig, "design_map")
 # nothing memoised (a fresh process, or the first run).
 
 # %%
-R.write_table("effect_cold_warm", ["scene", "effect", "warm_s", "cold_s"],
-              figures.effect_cold_warm(R))
+R.write_table("effect_cold_warm", ["scene", "effect", "warm_s", "cold_s"], figures.effect_cold_warm(R))
 
 # %% [markdown]
 # ## Validation table

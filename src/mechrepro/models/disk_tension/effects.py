@@ -93,8 +93,7 @@ def slots(ctx) -> dict:
     from .plate2d import Slots  # scikit-fem is imported only by scenes that use it
 
     s = Slots(int(ctx.p["slot_count"]), ctx.p["slot_depth"], ctx.p["slot_width"])
-    return {"slots": s,
-            "slot_count": var((), s.count, "1", "number of radial expansion slots")}
+    return {"slots": s, "slot_count": var((), s.count, "1", "number of radial expansion slots")}
 
 
 # --- stage 2: the load --------------------------------------------------------------------
@@ -164,9 +163,8 @@ def _exact_frequencies(ctx, sigma=0.0, memo=True):
 @EFFECTS.register("exact_reference")
 def exact_reference(ctx) -> dict:
     """Exact Bessel frequencies of the unrolled clamped-free annulus (plain disk)."""
-    key = _disk_key(ctx)
     return {"f_exact": var("n_d", _exact_frequencies(ctx), "Hz", "exact unrolled frequency"),
-            "exact_reference_time_cold": _cold("exact_reference", key,
+            "exact_reference_time_cold": _cold("exact_reference", _disk_key(ctx),
                                                lambda: _exact_frequencies(ctx, memo=False))}
 
 

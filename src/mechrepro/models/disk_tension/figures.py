@@ -26,10 +26,7 @@ def rolling_band(ds):
 def paper_points(R) -> dict:
     """The paper's own numbers drawn on Figs. 6 and 8 (Sec. 4.3), from the validation table."""
     rows = {r["quantity"]: r for r in R.validation()}
-
-    def paper(q):
-        return float(rows[q]["paper_value"])
-
+    paper = lambda q: float(rows[q]["paper_value"])  # noqa: E731
     return {"r_c": 0.065,
             "f_unrolled": float(rows["f_unrolled_nd4_rf25"]["reproduced_value"]),
             "f_rolled": paper("f_rolled_nd4_rc65_rf25"),

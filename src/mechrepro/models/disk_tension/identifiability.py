@@ -149,8 +149,7 @@ def interval(values, prof, level=1.0, floor=None):
 
 
 CONDITIONS = ("clamped", "free_disk")
-DATA = ["Table 1 N_d=0", "Table 1 N_d=1", "Table 1 N_d=2", "Table 1 N_d=3", "Table 1 N_d=4",
-        "f~ 502.1 Hz"]
+DATA = [f"Table 1 N_d={n}" for n in range(5)] + ["f~ 502.1 Hz"]
 
 
 #: the data subsets fitted: Table 1 with Fig. 6a's 502.1 Hz, and Table 1 alone
@@ -407,6 +406,8 @@ def table(ds) -> list[list]:
 
 COLUMNS = ["data", "constant", "unit", "best", "lo_68", "hi_68", "lo_95", "hi_95",
            "bounded_68", "bounded_95", "pinned_by"]
+READING_COLUMNS = (["data", "reading", "inplane_bc", "s_mm", "stress_scale"]
+                   + [f"table1_nd{n}_rel" for n in range(5)] + ["f_rolled_hz", "delta_chi2"])
 
 
 def readings(ds) -> list[list]:

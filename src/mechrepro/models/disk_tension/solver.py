@@ -121,8 +121,7 @@ def _stress_stiffness(ctx: Disk):
             ks = [model.stress_stiffness(ld.sigma) for ld in ctx.loads]
     if ctx.solver == "plate2d":
         _plate2d_stress_profile(ctx, sig[0])
-    ctx.put("time_stress", (), sw.seconds, "s", f"{ctx.solver}: wall time of the thermal stress "
-            "and K^(sigma) for all r_c")
+    ctx.put("time_stress", (), sw.seconds, "s", "wall time of thermal stress + K^(sigma), all r_c")
     return ks
 
 
@@ -134,8 +133,7 @@ def _plate2d_stress_profile(ctx: Disk, sigma):
     means, edges, _ = binned_statistic(r, [sr, st], "mean", bins=80)   # NaN: an empty bin
     ctx.put("r_bin", "r_bin", 0.5 * (edges[1:] + edges[:-1]), "m", "radius (bin centre)")
     for nm, mean in zip(("sigma_r", "sigma_theta"), means):
-        ctx.put(f"{nm}_binned", "r_bin", mean, "Pa",
-                f"plate2d: FE {nm} averaged over radial bins (first r_c)")
+        ctx.put(f"{nm}_binned", "r_bin", mean, "Pa", f"FE {nm} averaged on radial bins (first r_c)")
 
 
 def _discretise(ctx: Disk):
@@ -144,8 +142,7 @@ def _discretise(ctx: Disk):
         ctx.model = model = DISCRETISATIONS[ctx.solver](ctx)
         w2 = model.unrolled()
     ctx.put("f_unrolled", "n_d", frequency(w2), "Hz", f"{ctx.solver}: unrolled frequency, Eq. (6)")
-    ctx.put("time_unrolled", (), sw.seconds, "s",
-            f"{ctx.solver}: wall time of assembly + unrolled eigen-analysis")
+    ctx.put("time_unrolled", (), sw.seconds, "s", "wall time of assembly + unrolled eigen-analysis")
     if ctx.loads is not None:
         ctx.k_sigma = _stress_stiffness(ctx)
     if ctx.heat is not None:
@@ -185,10 +182,9 @@ def _compare(ctx: Disk):
 
 def _log_sums(ctx: Disk, what: str, f, f_exact, of: str, reference="exact Bessel solution"):
     """sum ln(f / 1 Hz) of model and reference: every mode converges from above."""
-    ctx.put(f"ln_f_{what}_sum", (), float(np.sum(np.log(f))), "1",
-            f"{ctx.solver}: sum of ln(f / 1 Hz) over {of}")
+    ctx.put(f"ln_f_{what}_sum", (), float(np.sum(np.log(f))), "1", f"sum of ln(f / 1 Hz) over {of}")
     ctx.put(f"ln_f_{what}_exact_sum", (), float(np.sum(np.log(f_exact))), "1",
-            f"{ctx.solver}: sum of ln(f_exact / 1 Hz) over {of} ({reference})")
+            f"sum of ln(f_exact / 1 Hz) over {of} ({reference})")
 
 
 def compute(run: dict) -> Disk:

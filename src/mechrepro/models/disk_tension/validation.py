@@ -360,16 +360,14 @@ def _joint_fit(R):
         cut = "; ".join(f"{k[-2:]} % {r[k]}" for k in ("bounded_68", "bounded_95") if r[k])
         return (f"68 % {r['lo_68']}-{r['hi_68']}, 95 % {r['lo_95']}-{r['hi_95']}"
                 + (f" (cut by the scan: {cut})" if cut else ""))
-    out = {}
-    j = list(idf.SUBSETS).index("table1")
-    for q, const in (("joint_fit_gaussian_width", "gaussian_width"),
-                     ("joint_fit_stress_scale", "stress_scale")):
+    out, j = {}, list(idf.SUBSETS).index("table1")
+    cs, d, bc = (rows["table1", k] for k in ("stress_scale_x_width", "degenerate_direction",
+                                             "inplane_bc"))
+    for const in ("gaussian_width", "stress_scale"):
         t, a = rows[("table1", const)], rows[("table1_and_f_rolled", const)]
         best = float(ds["best_width"].values[j]) * 1e3 if const == "gaussian_width" \
             else float(ds["best_scale"].values[j])
-        cs, d = rows[("table1", "stress_scale_x_width")], rows[("table1", "degenerate_direction")]
-        bc = rows[("table1", "inplane_bc")]
-        out[q] = Reproduced(best, note=(
+        out[f"joint_fit_{const}"] = Reproduced(best, note=(
             f"Table 1 alone: {t['best']} {t['unit']}, joint (s, c) region {extent(t)}, pinned "
             f"by {t['pinned_by']}; with 502.1 Hz: {a['best']}, {extent(a)}. Table 1 fixes c s "
             f"({cs['best']} mm, 95 % {cs['lo_95']}-{cs['hi_95']} mm along the valley floor) "
@@ -384,11 +382,6 @@ RPM = design.RPM
 #: Southwell's first-order form for r_f up to SOUTHWELL_CLOSE_RF_MM (at 75 mm the first-order
 #: form's denominator N_d^2 - lambda amplifies the neglected second-order term)
 SOUTHWELL_CLOSE, SOUTHWELL_CLOSE_RF_MM = 5e-3, 55.0
-
-
-def _cs_runs(R) -> list:
-    """[(r_f [mm], dataset)] of the critical speeds."""
-    return by_clamp(R, "critical_speed", "critical_speed_rf")
 
 
 def lowest_critical_speed(ds) -> np.ndarray:
@@ -433,7 +426,7 @@ def _cs_min(R):
 @Q.register("critical_speed_best_rc")
 def _cs_best(R):
     """r_c [mm] of the best lowest critical speed; the gain at each r_f."""
-    runs = _cs_runs(R)
+    runs = by_clamp(R, "critical_speed", "critical_speed_rf")
     other = R.run("critical_speed_centrifugal_free")
     notes = [_best_note(rf, ds) for rf, ds in runs]
     notes.append("centrifugal_bc free_disk: " + _best_note(clamp_mm(other), other))
@@ -470,7 +463,7 @@ def _design(R):
 @Q.register("critical_speed_vs_southwell")
 def _cs_southwell(R):
     """eigen <= Southwell everywhere, within SOUTHWELL_CLOSE up to SOUTHWELL_CLOSE_RF_MM."""
-    ok, notes, runs = True, [], _cs_runs(R)
+    ok, notes, runs = True, [], by_clamp(R, "critical_speed", "critical_speed_rf")
     for rf, ds in runs:
         ex = ds["critical_speed_untensioned"].values
         sw = ds["critical_speed_southwell"].values
