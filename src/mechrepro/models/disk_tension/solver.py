@@ -71,7 +71,7 @@ class Disk:
         self.vars[name] = var(*variable)
 
     def keep(self, contributions):
-        """Write the contributions to the dataset (but what the solver consumes)."""
+        """Write the contributions to the dataset, all but those the solver consumes."""
         self.vars.update({k: contributions.get(k) for k in contributions.keys()
                           if k not in BEFORE_LOAD | LOAD})
 
