@@ -221,18 +221,15 @@ def stressed_reference(ctx) -> dict:
                          "reference needs a stable disk (choose a smaller compression)")
     with phase("disk_tension.stressed_reference_exact"):
         f_ex = np.array([_exact_frequencies(ctx, s) for s in s0])
-    key = _disk_key(ctx, tuple(s0))
-    f = frequency(w2)
-    err = f / f_ex - 1.0
-    dims = ("reference_stress", "n_d")
+    f, dims = frequency(w2), ("reference_stress", "n_d")
     return {
         "reference_stress": var("reference_stress", s0, "Pa", "uniform in-plane stress"),
         "f_stressed": var(dims, f, "Hz", "frequency under the uniform stress, Eqs. 3, 5"),
         "f_stressed_exact": var(dims, f_ex, "Hz", "exact frequency under the uniform stress"),
-        "error_stressed": var(dims, err, "1", "relative error of the stressed frequency"),
+        "error_stressed": var(dims, f / f_ex - 1.0, "1", "relative error of f_stressed"),
         "time_stressed": var((), sw.seconds, "s", "wall time of K^(sigma) and Eq. (5) there"),
         "stressed_reference_time_cold": _cold(
-            "stressed_reference", key,
+            "stressed_reference", _disk_key(ctx, tuple(s0)),
             lambda: [_exact_frequencies(ctx, s, memo=False) for s in s0], plus=sw.seconds),
     }
 

@@ -26,16 +26,14 @@ class Disk:
 
     def __init__(self, run: dict):
         p, self.run, self.p = run["parameters"], run, run["parameters"]
-        self.solver = run["solver"]
-        self.resolution = run.get("resolution", {})
+        self.solver, self.resolution = run["solver"], run.get("resolution", {})
         self.b = 0.5 * p["outer_diameter"]
         self.r_f = p["clamp_radius"]
         self.r_c = np.atleast_1d(np.asarray(p["rolling_radius"], float))
         self.n_d = np.atleast_1d(np.asarray(p["nodal_diameters"], int))
         self.E, self.nu, self.rho = p["youngs_modulus"], p["poisson_ratio"], p["density"]
-        self.alpha = p["thermal_expansion"]
         self.A, self.s = p["temperature_amplitude"], p["gaussian_width"]
-        self.bc = p["inplane_bc"]
+        self.alpha, self.bc = p["thermal_expansion"], p["inplane_bc"]
         #: the residual-stress model: the paper's, or a rival's (config rivals:)
         self.stress_model = run.get("options", {}).get("residual_stress", "thermal_analogy")
         self._check()

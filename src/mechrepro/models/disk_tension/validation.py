@@ -8,7 +8,8 @@ from mechrepro.validation import Quantities, Reproduced
 
 from . import design
 from .figures import by_clamp, clamp_mm, eigen_and_eq9_times, rc_grid
-from .modal import degenerate_harmonics, harmonic_coupling_symmetry
+from .modal import (degenerate_harmonics, delta_f_exact, delta_f_linearised,
+                    harmonic_coupling_symmetry)
 
 Q = Quantities("disk_tension")
 TWO_PI = 2 * np.pi
@@ -103,8 +104,7 @@ def _paper_d4(R):
 @Q.register("paper_70hz_is_linearised_conversion")
 def _seventy(R):
     d, w = _paper_d4(R)
-    lin = d / (2 * w) / TWO_PI
-    exact = np.sqrt(w**2 + d) / TWO_PI - w / TWO_PI
+    lin, exact = delta_f_linearised(w, d), delta_f_exact(w, d)
     target = R.paper_value("delta_f_eq9_nd4_rc65_rf25")
     return Reproduced(bool(abs(lin - target) < 0.05 < abs(exact - target)),
                       note=f"Table 1's entry over 2 omega: {lin:.2f} Hz; exact conversion "
@@ -114,7 +114,7 @@ def _seventy(R):
 @Q.register("rayleigh_cap_on_delta_f_eigen")
 def _rayleigh(R):
     d, w = _paper_d4(R)
-    cap = np.sqrt(w**2 + d) / TWO_PI - w / TWO_PI
+    cap = delta_f_exact(w, d)
     need = (w + TWO_PI * R.paper_value("delta_f_eigen_nd4_rc65_rf25")) ** 2 - w**2
     return Reproduced(float(cap), note=f"the paper's 67.6 Hz would need Delta omega^2 >= "
                                        f"{need:.3g} rad^2/s^2 > Table 1's own entry")
