@@ -37,7 +37,7 @@ profile = "default"
 import numpy as np
 
 from mechrepro import accuracy
-from mechrepro.models.disk_tension import figures
+from mechrepro.models.disk_tension import design, figures, identifiability as idf
 from mechrepro.plotting import plt
 from mechrepro.results import PaperResults
 from mechrepro.units import from_si
@@ -56,8 +56,6 @@ grid = figures.rc_grid(R)
 clamped, fig07 = R.run("rc_grid_clamped"), R.run("fig07_sensitivity")
 plain2d, slotted = R.run("plate2d_rc_sweep"), R.run("slotted_rc_sweep")
 paper_pts = figures.paper_points(R)
-print(f"thickness h = {from_si(float(t12['thickness']), 'mm'):.4f} mm, alpha_eff = "
-      f"{float(t12['alpha_effective']):.4g} 1/K (x{float(t12['stress_scale']):.4f})")
 
 # %% [markdown]
 # ## Fig. 3 — the FE models of the disk
@@ -68,15 +66,15 @@ print(f"thickness h = {from_si(float(t12['thickness']), 'mm'):.4f} mm, alpha_eff
 # %%
 fig, axes = plt.subplots(1, 2, figsize=(11, 5.2), gridspec_kw={"width_ratios": [1.2, 1]})
 ax = axes[0]
-ax.triplot(mm(t12_2d["plate2d_mesh_x"]), mm(t12_2d["plate2d_mesh_y"]),
-           t12_2d["plate2d_mesh_cells"].values, lw=0.3, color="k")
+ax.triplot(mm(t12_2d["mesh_x"]), mm(t12_2d["mesh_y"]),
+           t12_2d["mesh_cells"].values, lw=0.3, color="k")
 ax.add_patch(plt.Circle((0, 0), mm(t12_2d["clamp_radius"]), color="0.7", label="clamped r ≤ r_f"))
 ax.set(aspect="equal", xlabel="x [mm]", ylabel="y [mm]",
        title=f"Fig. 3: 2-D mesh ({t12_2d.sizes['mesh_cell']} triangles, "
-             f"{int(t12_2d['plate2d_n_dofs'])} Argyris DOFs)")
+             f"{int(t12_2d['n_dofs'])} Argyris DOFs)")
 ax.legend(fontsize=8, loc="upper right")
 ax = axes[1]
-nodes = mm(t12["axisym_mesh_r"])
+nodes = mm(t12["mesh_r"])
 ax.plot(nodes, np.zeros_like(nodes), "|", ms=12, color="k")
 ax.axvspan(0, nodes[0], color="0.8", label="clamped")
 ax.set(xlabel="r [mm]", yticks=[], xlim=(0, nodes[-1] * 1.02),
@@ -112,7 +110,7 @@ for ds, ls in ((t12, "-"), (t12_cl, "--")):
     ax.plot(r, from_si(ds["sigma_r"].isel(r_c=0), "MPa"), ls, color="C0", label=f"σ_r, {bc}")
 rb = mm(t12_2d["r_bin"])
 for var, color, sym in (("sigma_theta", "C3", "σ_θ"), ("sigma_r", "C0", "σ_r")):
-    ax.plot(rb, from_si(t12_2d[f"plate2d_{var}_binned"], "MPa"), ".", color=color, ms=3,
+    ax.plot(rb, from_si(t12_2d[f"{var}_binned"], "MPa"), ".", color=color, ms=3,
             label=f"{sym}, 2-D FE ({t12_2d['sigma_theta'].attrs['inplane_bc']})")
 ax.axhline(0, color="k", lw=0.6)
 ax.set(xlabel="r [mm]", ylabel="residual stress [MPa]", xlim=(0, r.max()),
@@ -130,11 +128,11 @@ fig, axes = plt.subplots(1, 3, figsize=(13, 4.2), sharey=False)
 for ax, (rf, ds), letter in zip(axes, sorted(grid.items()), "abc"):
     rc = mm(ds["r_c"])
     for n in ND:
-        ax.plot(rc, ds["axisym_f_rolled"].sel(n_d=n), "o-", ms=3, color=COLORS[n], label=f"N_d={n}")
-        ax.plot([0], [float(ds["axisym_f_unrolled"].sel(n_d=n))], "o", mfc="none", color=COLORS[n])
+        ax.plot(rc, ds["f_rolled"].sel(n_d=n), "o-", ms=3, color=COLORS[n], label=f"N_d={n}")
+        ax.plot([0], [float(ds["f_unrolled"].sel(n_d=n))], "o", mfc="none", color=COLORS[n])
     if rf == 25:
         for n in ND:
-            ax.plot(rc, clamped["axisym_f_rolled"].sel(n_d=n), ":", lw=1, color=COLORS[n],
+            ax.plot(rc, clamped["f_rolled"].sel(n_d=n), ":", lw=1, color=COLORS[n],
                     label="clamped" if n == 0 else None)
         ax.plot([0, mm(paper_pts["r_c"])], [paper_pts["f_unrolled"], paper_pts["f_rolled"]], "*",
                 color="k", ms=9, label="paper (Sec. 4.3)")
@@ -150,7 +148,7 @@ R.save_figure(fig, "fig06")
 # %%
 fig, ax = plt.subplots(figsize=(6, 4))
 for n in ND:
-    ax.plot(mm(fig07["r_a"]), fig07["axisym_sensitivity_delta_f"].sel(n_d=n), "o-", ms=3,
+    ax.plot(mm(fig07["r_a"]), fig07["sensitivity_delta_f"].sel(n_d=n), "o-", ms=3,
             color=COLORS[n], label=f"N_d={n}")
 ax.set(xlabel="r_a [mm]", ylabel="Δf for +1 % stiffness [Hz]",
        title="Fig. 7: sensitivity of natural frequency to stiffness (r_f = 25 mm)")
@@ -160,19 +158,20 @@ R.save_figure(fig, "fig07")
 # %% [markdown]
 # ## Fig. 8 — Δf by Eq. (9) vs r_c
 # Solid: Δω²/(2ω)/2π, the linearised conversion that reproduces the paper's 70.0 Hz from
-# Table 1; dashed: exact conversion √(ω²+Δω²) − ω; dots: eigen-analysis (the key says so).
+# Table 1; dashed: exact conversion √(ω²+Δω²) − ω; dots: eigen-analysis.
 # The paper's two numbers at r_c = 65 mm, 70.0 Hz (Eq. 9) and 67.6 Hz (eigen), lie 2.4 Hz
 # apart: hollow markers, labelled beside them.
 
 # %%
 fig, axes = plt.subplots(1, 3, figsize=(13, 4.2))
 for ax, (rf, ds), letter in zip(axes, sorted(grid.items()), "abc"):
-    rc = mm(ds["r_c"])
+    rc, eig = mm(ds["r_c"]), ds["f_rolled"] - ds["f_unrolled"]
     for n in ND:
-        ax.plot(rc, ds["axisym_delta_f_eq9_linearised"].sel(n_d=n), "-", color=COLORS[n], label=f"N_d={n}")
-        ax.plot(rc, ds["axisym_delta_f_eq9_exact"].sel(n_d=n), "--", lw=0.8, color=COLORS[n])
-        ax.plot(rc, ds["axisym_f_rolled"].sel(n_d=n) - ds["axisym_f_unrolled"].sel(n_d=n), ".",
-                color=COLORS[n])
+        ax.plot(rc, ds["delta_f_eq9_linearised"].sel(n_d=n), "-", color=COLORS[n],
+                label=f"N_d={n}" + (", Eq. (9) linearised" if n == 0 else ""))
+        ax.plot(rc, ds["delta_f_eq9_exact"].sel(n_d=n), "--", lw=0.8, color=COLORS[n],
+                label="Eq. (9), exact conversion" if n == 0 else None)
+        ax.plot(rc, eig.sel(n_d=n), ".", color=COLORS[n], label="eigen-analysis" if n == 0 else None)
     if rf == 25:
         # 70.0 and 67.6 Hz lie 2.4 Hz apart: drawn on the curves and, apart, in a zoom below
         x65 = mm(paper_pts["r_c"])
@@ -183,9 +182,8 @@ for ax, (rf, ds), letter in zip(axes, sorted(grid.items()), "abc"):
             a.plot([x65], [paper_pts["delta_f_eigen"]], "P", mfc="none", mec="k", ms=7 * ms,
                    mew=1.1, label="paper eigen" if a is ax else None)
         for n in (3, 4):
-            zoom.plot(rc, ds["axisym_delta_f_eq9_linearised"].sel(n_d=n), "-", color=COLORS[n])
-            zoom.plot(rc, ds["axisym_f_rolled"].sel(n_d=n) - ds["axisym_f_unrolled"].sel(n_d=n),
-                      ".", color=COLORS[n])
+            zoom.plot(rc, ds["delta_f_eq9_linearised"].sel(n_d=n), "-", color=COLORS[n])
+            zoom.plot(rc, eig.sel(n_d=n), ".", color=COLORS[n])
         zoom.set(xlim=(x65 - 4, x65 + 4), ylim=(paper_pts["delta_f_eigen"] - 4,
                                                 paper_pts["delta_f_eq9"] + 2))
         zoom.tick_params(labelsize=6)
@@ -193,14 +191,8 @@ for ax, (rf, ds), letter in zip(axes, sorted(grid.items()), "abc"):
                 f"{paper_pts['delta_f_eigen']:.1f} Hz (+)", fontsize=7, transform=ax.transAxes)
     ax.axhline(0, color="k", lw=0.6)
     ax.set(xlabel="r_c [mm]", ylabel="Δf [Hz]", title=f"Fig. 8{letter}: r_f = {rf} mm")
-from matplotlib.lines import Line2D  # noqa: E402
-
-key = [Line2D([], [], color="0.3", ls="-", label="Eq. (9), linearised"),
-       Line2D([], [], color="0.3", ls="--", lw=0.8, label="Eq. (9), exact conversion"),
-       Line2D([], [], color="0.3", ls="", marker=".", label="eigen-analysis")]
-handles, labels = axes[0].get_legend_handles_labels()
-fig.legend(handles + key, labels + [k.get_label() for k in key], loc="lower center", ncol=5,
-           fontsize=8, bbox_to_anchor=(0.5, -0.16))
+fig.legend(*axes[0].get_legend_handles_labels(), loc="lower center", ncol=5, fontsize=8,
+           bbox_to_anchor=(0.5, -0.16))
 R.save_figure(fig, "fig08")
 
 # %% [markdown]
@@ -213,18 +205,18 @@ fig, axes = plt.subplots(1, 2, figsize=(11, 4))
 ax = axes[0]
 for (rf, ds), sym in zip(sorted(grid.items()), ["o-", "s--", "^:"]):
     for n in ND:
-        ax.semilogy(mm(ds["r_c"]), ds["axisym_eq9_rel_error"].sel(n_d=n), sym, ms=3,
+        ax.semilogy(mm(ds["r_c"]), ds["eq9_rel_error"].sel(n_d=n), sym, ms=3,
                     color=COLORS[n], label=f"N_d={n}" if rf == 25 else None)
 ax.set(xlabel="r_c [mm]", ylabel="|f(Eq. 9) / f(eigen) − 1| [1]",
        title="Eq. (9) error (o r_f=25, s 55, ^ 75 mm)")
 ax.legend(fontsize=7)
-times = figures.eq9_and_eigen_times(grid, plain2d)
+times = [figures.eigen_and_eq9_times(*grid.values()), figures.eigen_and_eq9_times(plain2d)]
 ax = axes[1]
 labels = [f"axisym\n({len(grid)} r_f × {grid[25].sizes['r_c']} r_c × {len(ND)} N_d)",
           f"plate2d\n({plain2d.sizes['r_c']} r_c, r_f=25)"]
 x = np.arange(2)
-ax.bar(x - 0.2, [times[m][0] for m in times], 0.4, label="eigen-analysis, Eq. (5)")
-ax.bar(x + 0.2, [times[m][1] for m in times], 0.4, label="first order, Eq. (9)")
+ax.bar(x - 0.2, [t[0] for t in times], 0.4, label="eigen-analysis, Eq. (5)")
+ax.bar(x + 0.2, [t[1] for t in times], 0.4, label="first order, Eq. (9)")
 ax.set_yscale("log")
 ax.set_xticks(x, labels)
 ax.set(ylabel="wall time [s]", title="cost: Eq. (9) vs eigen-analysis")
@@ -239,13 +231,13 @@ R.save_figure(fig, "eq9_vs_eigen")
 # %%
 fig, ax = plt.subplots(figsize=(7, 4.2))
 for n in (2, 3, 4):
-    ax.plot(mm(plain2d["r_c"]), plain2d["plate2d_f_rolled"].sel(n_d=n), "o-", ms=3, color=COLORS[n],
+    ax.plot(mm(plain2d["r_c"]), plain2d["f_rolled"].sel(n_d=n), "o-", ms=3, color=COLORS[n],
             label=f"plain, N_d={n}")
-    p = slotted["plate2d_f_rolled_pair"].sel(n_d=n)
+    p = slotted["f_rolled_pair"].sel(n_d=n)
     ax.fill_between(mm(slotted["r_c"]), p.isel(member=0), p.isel(member=1), color=COLORS[n], alpha=0.3)
     ax.plot(mm(slotted["r_c"]), p.mean("member"), "s--", ms=3, color=COLORS[n], label=f"slotted, N_d={n}")
     for ds, mk in ((plain2d, "o"), (slotted, "s")):
-        ax.plot([0], [float(ds["plate2d_f_unrolled"].sel(n_d=n))], mk, mfc="none", color=COLORS[n])
+        ax.plot([0], [float(ds["f_unrolled"].sel(n_d=n))], mk, mfc="none", color=COLORS[n])
 ax.set(xlabel="r_c [mm]", ylabel="natural frequency [Hz]",
        title=f"slotted sawblade ({int(slotted['slot_count'])} slots) vs plain disk, r_f = 25 mm")
 ax.legend(fontsize=7, ncol=2)
@@ -275,10 +267,9 @@ R.save_figure(fig, "buckling")
 
 # %%
 hdr = ["N_d"] + [str(n) for n in ND]
-R.write_table("table1", hdr, figures.matrix_rows(t12["axisym_k_sigma_hat"]))
-R.write_table("table2", hdr, figures.matrix_rows(t12["axisym_m_hat"]))
-R.write_table("table1_plate2d", hdr, figures.matrix_rows(t12_2d["plate2d_k_sigma_hat"]))
-R.write_table("table2_plate2d", hdr, figures.matrix_rows(t12_2d["plate2d_m_hat"]))
+for ds, solver in ((t12, ""), (t12_2d, "_plate2d")):
+    R.write_table(f"table1{solver}", hdr, figures.matrix_rows(ds["k_sigma_hat"]))
+    R.write_table(f"table2{solver}", hdr, figures.matrix_rows(ds["m_hat"]))
 
 # %% [markdown]
 # ## Cost of accuracy
@@ -302,7 +293,7 @@ for ax, entry in zip(axes.ravel(), ("axisym_stressed", "plate2d_stressed", "axis
     ax.set_xlabel(textwrap.fill(ax.get_xlabel(), 60))   # the long "what is timed" labels
     ax.margins(x=0.12)                                  # room for the last point's label
     ax.xaxis.set_minor_formatter(mticker.NullFormatter())   # minor labels collide on short spans
-ref_err = float(t12_2d["plate2d_reference_error_unrolled"])
+ref_err = float(t12_2d["reference_error_unrolled"])
 axes[1, 1].axhline(ref_err, color="k", ls=":", lw=0.8)
 axes[1, 1].annotate("accuracy of the rolled reference", (axes[1, 1].get_xlim()[0], ref_err),
                     fontsize=7, xytext=(4, 3), textcoords="offset points")
@@ -323,22 +314,17 @@ R.save_figure(fig, "cost_of_accuracy")
 # the data). Right: the profiles over s (each point minimised over a continuous c).
 
 # %%
-from mechrepro.models.disk_tension import identifiability as idf
-
 idn = R.run("identifiability")
 R.write_table("identifiability", idf.COLUMNS, idf.table(idn))
-R.write_table("identifiability_readings",
-              ["data", "reading", "inplane_bc", "s_mm", "stress_scale"]
-              + [f"table1_nd{n}_rel" for n in range(5)] + ["f_rolled_hz", "delta_chi2"],
-              idf.readings(idn))
+R.write_table("identifiability_readings", idf.READING_COLUMNS, idf.readings(idn))
 s_mm, c_grid = idn["scan_width"].values * 1e3, idn["scan_scale"].values
 levels = idn["fit_level"].values
 fig, axes = plt.subplots(1, 3, figsize=(15.5, 5.2))
 ss = np.geomspace(0.6, s_mm.max() * 1.4, 200)
 for j, (ax, name) in enumerate(zip(axes[:2], idf.SUBSETS)):
-    lo, hi = idn["axisym_region_c_lo"].values[j], idn["axisym_region_c_hi"].values[j]
-    best_s = float(idn["axisym_best_width"].values[j]) * 1e3
-    best_c = float(idn["axisym_best_scale"].values[j])
+    lo, hi = idn["region_c_lo"].values[j], idn["region_c_hi"].values[j]
+    best_s = float(idn["best_width"].values[j]) * 1e3
+    best_c = float(idn["best_scale"].values[j])
     for li, color in ((1, "#9ecae1"), (0, "#2171b5")):      # 95 % below 68 %
         for a, hatch in ((1, None), (0, "///")):
             ok = np.isfinite(lo[li, a])
@@ -360,15 +346,15 @@ for j, (ax, name) in enumerate(zip(axes[:2], idf.SUBSETS)):
             if cut.any():
                 ax.plot(s_mm[cut], edge * s_mm[cut], color="tab:red", lw=3)
     ax.plot([], [], color="tab:red", lw=3, label="region cut by a scan bound")
-    slope = float(idn["axisym_direction_slope"].values[j])
-    half = float(idn["axisym_direction_halfwidth"].values[j][0]) * np.sqrt(levels[1] / levels[0])
+    slope = float(idn["direction_slope"].values[j])
+    half = float(idn["direction_halfwidth"].values[j][0]) * np.sqrt(levels[1] / levels[0])
     t = np.linspace(-half, half, 2) / np.hypot(1.0, slope)
     ax.plot(best_s * np.exp(t), best_s * best_c * np.exp((1 + slope) * t), "k-", lw=1.2,
             label="degenerate direction: the χ² Hessian's soft axis at the best fit")
     ax.axhline(best_s * best_c, color="0.5", lw=0.8, ls="--", zorder=0,
                label="c·s constant through the best fit")
     ax.plot([best_s], [best_s * best_c], "o", color="k", ms=6, label="best fit")
-    single = (float(idn["axisym_single_width"]) * 1e3, float(idn["axisym_single_scale"]))
+    single = (float(idn["single_width"]) * 1e3, float(idn["single_scale"]))
     ax.plot([single[0]], [single[0] * single[1]], "x", color="tab:orange", ms=9, mew=2,
             label="single-α calibration")
     ax.axvspan(0.5, s_mm.min(), color="0.88", zorder=0)
@@ -383,8 +369,8 @@ for j, (ax, name) in enumerate(zip(axes[:2], idf.SUBSETS)):
     ax.xaxis.set_major_formatter(mticker.FuncFormatter(lambda v, _: f"{v:g}"))
 ax = axes[2]
 for j, name in enumerate(idf.SUBSETS):
-    base = float(idn["axisym_chi2_min"].values[j])
-    ax.plot(s_mm, idn["axisym_prof_width"].values[j] - base, label=name)
+    base = float(idn["chi2_min"].values[j])
+    ax.plot(s_mm, idn["prof_width"].values[j] - base, label=name)
 for level, ls in zip(levels, (":", "--")):
     ax.axhline(level, color="k", ls=ls, lw=0.8, label=f"Δχ² = {level:.2f}")
 ax.set(xlabel="Gaussian width s [mm]", ylabel="profile Δχ² (Birge-scaled) [1]", ylim=(0, 14),
@@ -411,18 +397,16 @@ R.save_figure(fig, "identifiability")
 # number). Right: the lowest over N_d, for larger clamping ratios.
 
 # %%
-cs = R.run("critical_speed")
-cs_free = R.run("critical_speed_centrifugal_free")
-from mechrepro.models.disk_tension.validation import lowest_critical_speed
-RPM = 60 / (2 * np.pi)
+cs, cs_free = R.run("critical_speed"), R.run("critical_speed_centrifugal_free")
+from mechrepro.models.disk_tension.validation import RPM, lowest_critical_speed
 fig, axes = plt.subplots(1, 2, figsize=(12, 4.2))
 rc_mm = cs["r_c"].values * 1e3
 for n in (2, 3, 4):
-    line, = axes[0].plot(rc_mm, cs["axisym_critical_speed"].sel(n_d=n).values * RPM, "o-",
+    line, = axes[0].plot(rc_mm, cs["critical_speed"].sel(n_d=n).values * RPM, "o-",
                          color=COLORS[n], label=f"N_d={n}")
-    axes[0].axhline(float(cs["axisym_critical_speed_untensioned"].sel(n_d=n)) * RPM,
+    axes[0].axhline(float(cs["critical_speed_untensioned"].sel(n_d=n)) * RPM,
                     color=COLORS[n], ls="--", lw=0.8)
-    axes[0].plot(rc_mm, cs_free["axisym_critical_speed"].sel(n_d=n).values * RPM, ":",
+    axes[0].plot(rc_mm, cs_free["critical_speed"].sel(n_d=n).values * RPM, ":",
                  color=COLORS[n], lw=1, label="dotted: free_disk" if n == 2 else None)
 axes[0].set(xlabel="rolling radius r_c [mm]", ylabel="critical speed [rpm]",
             title="r_f = 25 mm: rolled (solid; dotted: free_disk) vs unrolled (dashed)")
@@ -430,7 +414,7 @@ axes[0].legend(fontsize=8)
 for i, (rf, ds) in enumerate(figures.by_clamp(R, "critical_speed", "critical_speed_rf")):
     low = lowest_critical_speed(ds) * RPM
     line, = axes[1].plot(rc_mm, low, "o-", label=f"r_f = {rf:.0f} mm")
-    axes[1].axhline(float(ds["axisym_critical_speed_untensioned"].min()) * RPM,
+    axes[1].axhline(float(ds["critical_speed_untensioned"].min()) * RPM,
                     color=line.get_color(), ls="--", lw=0.8)
     if i == 0:
         axes[1].plot(rc_mm, lowest_critical_speed(cs_free) * RPM, "o:", ms=3,
@@ -453,50 +437,43 @@ R.save_figure(fig, "critical_speed")
 # tensioning spends (they reach zero at buckling).
 
 # %%
-from mechrepro.models.disk_tension import design
-
 dm_runs = figures.by_clamp(R, "design_map", "design_map_rf")
 cut = R.run("design_map_in_cut")
 dm_rows = design.table(dm_runs + [(figures.clamp_mm(cut), cut)])
 R.write_table("design_map", design.COLUMNS, dm_rows)
 fig, axes = plt.subplots(2, 3, figsize=(15, 8.8), constrained_layout=True)
-maps = [axes[0, 0], axes[0, 1], axes[0, 2], axes[1, 0]]
-for ax, (rf, ds) in zip(maps, dm_runs):
-    rc_mm = ds["r_c"].values * 1e3
-    amp = ds["axisym_design_amplitude"].values
-    low = design.lowest_map(ds) * RPM
-    pc = ax.pcolormesh(np.broadcast_to(rc_mm[:, None], amp.shape), amp, low,
-                       shading="gouraud", cmap="viridis")
-    fig.colorbar(pc, ax=ax, label="lowest critical speed [rpm]")
-    a_cr = ds["axisym_design_buckling_amplitude"].values
-    for m, ls in zip(ds["design_margin"].values, ("--", "-", "--")):
-        ax.plot(rc_mm, a_cr / m, ls, color="w", lw=1.4 if ls == "-" else 0.8)
-    q = int(np.argmin(np.abs(ds["design_margin"].values - float(ds["axisym_design_stated_margin"]))))
-    k, v = design.best(ds, q)
-    ax.plot(rc_mm[k], ds["axisym_design_best_amplitude"].values[q, k], "*", color="r", ms=13, mec="k")
-    j65 = int(np.argmin(np.abs(rc_mm - 65)))
-    ax.plot(65, 50, "o", color="w", mec="k", ms=7)
-    ax.set(xlabel="rolling radius r_c [mm]", ylabel="rolling amplitude A [°C]",
-           ylim=(0, np.nanmax(amp) * 1.02),
-           title=f"r_f = {rf:.0f} mm: ★ {v * RPM:.0f}, ○ "
-                 f"{float(ds['axisym_design_paper_amplitude_speed'][j65]) * RPM:.0f}, "
-                 f"untensioned {float(np.nanmin(low[:, 0])):.0f} rpm")
 ax, ax_f = axes[1, 1], axes[1, 2]
-for (rf, ds), c in zip(dm_runs, ("C0", "C1", "C2", "C3")):
-    q = int(np.argmin(np.abs(ds["design_margin"].values - float(ds["axisym_design_stated_margin"]))))
-    unt = float(np.nanmin(design.lowest_map(ds)[:, 0]))
-    rc_mm = ds["r_c"].values * 1e3
-    ax.plot(rc_mm, 100 * (ds["axisym_design_best_speed"].values[q] / unt - 1), "o-", ms=3,
+for a, (rf, ds), c in zip(axes.flat, dm_runs, ("C0", "C1", "C2", "C3")):   # maps, then curves
+    rc_mm, amp = ds["r_c"].values * 1e3, ds["design_amplitude"].values
+    low = design.lowest_map(ds)
+    unt = float(np.nanmin(low[:, 0]))
+    pc = a.pcolormesh(np.broadcast_to(rc_mm[:, None], amp.shape), amp, low * RPM,
+                      shading="gouraud", cmap="viridis")
+    fig.colorbar(pc, ax=a, label="lowest critical speed [rpm]")
+    a_cr = ds["design_buckling_amplitude"].values
+    for m, ls in zip(ds["design_margin"].values, ("--", "-", "--")):
+        a.plot(rc_mm, a_cr / m, ls, color="w", lw=1.4 if ls == "-" else 0.8)
+    q = int(np.argmin(np.abs(ds["design_margin"].values - float(ds["design_stated_margin"]))))
+    k, v = design.best(ds, q)
+    a.plot(rc_mm[k], ds["design_best_amplitude"].values[q, k], "*", color="r", ms=13, mec="k")
+    j65 = int(np.argmin(np.abs(rc_mm - 65)))
+    a.plot(65, 50, "o", color="w", mec="k", ms=7)
+    a.set(xlabel="rolling radius r_c [mm]", ylabel="rolling amplitude A [°C]",
+          ylim=(0, np.nanmax(amp) * 1.02),
+          title=f"r_f = {rf:.0f} mm: ★ {v * RPM:.0f}, ○ "
+                f"{float(ds['design_paper_amplitude_speed'][j65]) * RPM:.0f}, "
+                f"untensioned {unt * RPM:.0f} rpm")
+    ax.plot(rc_mm, 100 * (ds["design_best_speed"].values[q] / unt - 1), "o-", ms=3,
             color=c, label=f"r_f {rf:.0f} mm, best A")
-    ax.plot(rc_mm, 100 * (ds["axisym_design_paper_amplitude_speed"].values / unt - 1), ":",
+    ax.plot(rc_mm, 100 * (ds["design_paper_amplitude_speed"].values / unt - 1), ":",
             color=c, label=f"r_f {rf:.0f} mm, A = 50 °C")
-    fr = ds["axisym_design_best_frequency_ratio"].values[q]
+    fr = ds["design_best_frequency_ratio"].values[q]
     ax_f.plot(rc_mm, fr[:, 0], "-", color=c, label=f"r_f {rf:.0f} mm, N_d = 0")
     ax_f.plot(rc_mm, fr[:, 1], ":", color=c, label=f"r_f {rf:.0f} mm, N_d = 1")
 unt25 = float(np.nanmin(design.lowest_map(dm_runs[0][1])[:, 0]))
-qc = int(np.argmin(np.abs(cut["design_margin"].values - float(cut["axisym_design_stated_margin"]))))
-ax.plot(cut["r_c"].values * 1e3, 100 * (cut["axisym_design_best_speed"].values[qc] / unt25 - 1),
-        "k--", lw=1.2, label=f"r_f 25 mm in the cut, rim +{float(cut['axisym_design_rim_temperature_rise']):.0f} °C")
+qc = int(np.argmin(np.abs(cut["design_margin"].values - float(cut["design_stated_margin"]))))
+ax.plot(cut["r_c"].values * 1e3, 100 * (cut["design_best_speed"].values[qc] / unt25 - 1),
+        "k--", lw=1.2, label=f"r_f 25 mm in the cut, rim +{float(cut['design_rim_temperature_rise']):.0f} °C")
 ax.axhline(0, color="k", lw=0.8)
 ax.set(xlabel="rolling radius r_c [mm]", ylabel="lowest critical speed over untensioned [%]",
        title="the design curve (stated margin; a gap: buckled)", ylim=(-120, 60))
@@ -514,8 +491,7 @@ R.save_figure(fig, "design_map")
 # nothing memoised (a fresh process, or the first run).
 
 # %%
-R.write_table("effect_cold_warm", ["scene", "effect", "warm_s", "cold_s"],
-              figures.effect_cold_warm(R))
+R.write_table("effect_cold_warm", ["scene", "effect", "warm_s", "cold_s"], figures.effect_cold_warm(R))
 
 # %% [markdown]
 # ## Validation table

@@ -57,8 +57,8 @@ def test_the_batched_critical_speed_is_the_generalised_eigenproblem_s():
 
 
 def test_at_zero_intensity_the_map_is_the_untensioned_critical_speed(mapped):
-    cs = mapped["axisym_design_critical_speed"].values[:, 0, :]
-    untensioned = mapped["axisym_critical_speed_untensioned"].values
+    cs = mapped["design_critical_speed"].values[:, 0, :]
+    untensioned = mapped["critical_speed_untensioned"].values
     np.testing.assert_allclose(cs, np.broadcast_to(untensioned, cs.shape), rtol=1e-9)
     low = design.lowest_map(mapped)[:, 0]
     np.testing.assert_allclose(low, np.min(untensioned[2:]), rtol=1e-9)
@@ -68,17 +68,17 @@ def test_the_buckling_margin_is_respected(mapped):
     """Every optimum rolls at most A_cr / m; where the margin binds it rolls exactly that; the
     disk at the optimum stands (every at-rest frequency real), and the map is buckled only
     beyond A_cr."""
-    a_cr = mapped["axisym_design_buckling_amplitude"].values
+    a_cr = mapped["design_buckling_amplitude"].values
     m = mapped["design_margin"].values
-    a = mapped["axisym_design_best_amplitude"].values
-    binds = mapped["axisym_design_best_binds"].values
+    a = mapped["design_best_amplitude"].values
+    binds = mapped["design_best_binds"].values
     assert np.all(a <= a_cr[None, :] / m[:, None] * (1 + 1e-12))
     at = binds == design.BINDS.index("buckling margin")
     assert at.any()
     np.testing.assert_allclose(a[at], np.broadcast_to(a_cr[None, :] / m[:, None], a.shape)[at],
                                rtol=1e-12)
-    assert np.all(mapped["axisym_design_best_frequency_ratio"].values > 0)
-    amp = mapped["axisym_design_amplitude"].values
+    assert np.all(mapped["design_best_frequency_ratio"].values > 0)
+    amp = mapped["design_amplitude"].values
     gone = np.isnan(design.lowest_map(mapped))
     np.testing.assert_array_equal(gone, amp >= a_cr[:, None])
 
@@ -95,7 +95,7 @@ def test_the_optimum_is_what_a_direct_critical_speed_run_gives_there(cfg, mapped
                                  temperature_amplitude=r["amplitude_opt_degc"],
                                  nodal_diameters=list(range(11)))
         ds = _solve_once(run)
-        cs = ds["axisym_critical_speed"].values[0]
+        cs = ds["critical_speed"].values[0]
         assert not np.isnan(cs).any()
         assert np.min(cs[2:]) * design.RPM == pytest.approx(r["critical_speed_opt_rpm"], rel=1e-9)
         assert int(np.argmin(cs[2:])) + 2 == r["lowest_mode_nd"]
@@ -107,17 +107,17 @@ def test_the_highest_harmonic_of_the_map_never_decides(cfg, r_f):
     disk nor the first to buckle (at r_f = 75 mm the lowest is N_d = 5 and rolling near the
     rim buckles N_d = 9 first): the map's harmonics are enough."""
     ds = _solve_once(design_run(cfg, rolling_radius=(45, 65, 85, 95, 105, 115), clamp_radius=r_f))
-    cs = ds["axisym_design_critical_speed"].values
+    cs = ds["design_critical_speed"].values
     standing = ~np.isnan(cs).any(axis=-1)
     assert np.all(np.argmin(cs[standing][:, 2:], axis=-1) + 2 < 10)
-    assert np.all(ds["axisym_design_buckling_mode"].values < 10)
+    assert np.all(ds["design_buckling_mode"].values < 10)
 
 
 def test_a_map_with_no_standing_disk_has_no_optimum(cfg):
     """A design table row whose every r_c has buckled says 'buckled', never a number."""
     ds = _solve_once(design_run(cfg, rolling_radius=(65,)))
     gone = ds.copy()
-    gone["axisym_design_best_speed"] = gone["axisym_design_best_speed"] * np.nan
+    gone["design_best_speed"] = gone["design_best_speed"] * np.nan
     row = dict(zip(design.COLUMNS, design.table([(25.0, gone)])[1]))
     assert row["binds"] == "buckled" and np.isnan(row["critical_speed_opt_rpm"])
 
@@ -132,5 +132,5 @@ def test_the_cutting_heat_compresses_the_rim_and_lowers_the_critical_speed(cfg):
     assert design.lowest_map(hot)[0, 0] < design.lowest_map(cold)[0, 0]
     zero = _solve_once(design_run(cfg, scene="design_map_in_cut", rim_temperature_rise=0.0))
     np.testing.assert_allclose(design.lowest_map(zero), design.lowest_map(cold), rtol=1e-9)
-    assert float(hot["axisym_design_rim_temperature_rise"]) > 0
-    assert float(cold["axisym_design_rim_temperature_rise"]) == 0
+    assert float(hot["design_rim_temperature_rise"]) > 0
+    assert float(cold["design_rim_temperature_rise"]) == 0

@@ -67,7 +67,7 @@ def test_region_ends_say_which_scan_bounds_them(small):
     assert float(s["hi_95"]) / float(s["lo_95"]) > 10
     slope = float(rows[("table1", "degenerate_direction")]["best"])
     assert -1.2 < slope < -0.6
-    soft, stiff = small["axisym_direction_halfwidth"].values[list(idf.SUBSETS).index("table1")]
+    soft, stiff = small["direction_halfwidth"].values[list(idf.SUBSETS).index("table1")]
     assert soft > 30 * stiff
 
 
@@ -76,18 +76,18 @@ def test_the_region_is_the_chi2_surface_about_the_joint_fit(small):
     profile meets it at the best s, and the 68 % region there contains the best c; each
     region's extent in s is where the s profile crosses its level."""
     for j, name in enumerate(idf.SUBSETS):
-        base = float(small["axisym_chi2_min"].values[j])
+        base = float(small["chi2_min"].values[j])
         w = small["scan_width"].values
         for prof in ("prof_width", "prof_scale"):
-            assert small[f"axisym_{prof}"].values[j].min() >= base - 1e-9 * max(base, 1)
-        i = int(np.argmin(abs(w - float(small["axisym_best_width"].values[j]))))
-        a = int(small["axisym_best_condition"].values[j])
-        c = float(small["axisym_best_scale"].values[j])
-        lo, hi = small["axisym_region_c_lo"].values[j], small["axisym_region_c_hi"].values[j]
+            assert small[prof].values[j].min() >= base - 1e-9 * max(base, 1)
+        i = int(np.argmin(abs(w - float(small["best_width"].values[j]))))
+        a = int(small["best_condition"].values[j])
+        c = float(small["best_scale"].values[j])
+        lo, hi = small["region_c_lo"].values[j], small["region_c_hi"].values[j]
         assert lo[0, a, i] <= c <= hi[0, a, i], name
         for li, level in enumerate(idf.LEVELS.values()):
             some = np.isfinite(lo[li]).any(axis=0)
-            inside = small["axisym_prof_width"].values[j] <= base + level
+            inside = small["prof_width"].values[j] <= base + level
             assert np.array_equal(some, inside), (name, level)
 
 
@@ -102,7 +102,7 @@ def test_a_region_cut_by_the_c_scan_is_flagged(small):
                              scan_stress_scale=[0.25, 2.4, 0.25])
     ds = _solve_once(run)
     j = list(idf.SUBSETS).index("table1")
-    hi = ds["axisym_region_c_hi"].values[j, 1]
+    hi = ds["region_c_hi"].values[j, 1]
     assert np.nanmax(hi) == pytest.approx(ds["scan_scale"].values[-1])
     rows = _rows(ds)
     assert "hi: c scan end 2.4" in rows[("table1", "stress_scale")]["bounded_95"]
@@ -115,8 +115,8 @@ def test_the_c_profile_is_smooth(small):
     the s grid (the grid minimum's teeth reached 0.5 in chi^2 above c = 1.8)."""
     j = list(idf.SUBSETS).index("table1")
     c = small["scan_scale"].values
-    p = small["axisym_prof_scale"].values[j]
-    floor = small["axisym_prof_scale_width"].values[j] * 1e3
+    p = small["prof_scale"].values[j]
+    floor = small["prof_scale_width"].values[j] * 1e3
     wall = np.nonzero(floor <= floor.min() + 1e-9)[0].min()     # s reaches 1 mm
     k = int(np.argmin(p))
     seg = p[k:wall]

@@ -1,6 +1,7 @@
 """disk_tension 2-D Argyris model: exact solution, degenerate pairs, slots, hard cases."""
 import numpy as np
 import pytest
+import scipy.sparse.linalg as spla
 
 from mechrepro.models.disk_tension import exact, thermal
 from mechrepro.models.disk_tension.axisym import AxisymDisk
@@ -71,6 +72,22 @@ def test_plate2d_rolled_agrees_with_axisym_and_eq9_pairs(plain, axi):
     # pairs rotated onto the unrolled cos/sin basis: m^hat is a unit matrix (Table 2)
     np.testing.assert_allclose(np.diag(m_hat), 1.0, atol=2e-3)
     np.testing.assert_allclose(m_hat - np.diag(np.diag(m_hat)), 0.0, atol=1e-8)
+
+
+def critical_load_2d(p, Ks):
+    """Smallest positive load factor of K + lambda K^(sigma) on the 2-D mesh (inf if none)."""
+    mu = spla.eigsh(p._sub(Ks), k=3, M=p._sub(p.K), which="SA", return_eigenvectors=False)
+    neg = mu[mu < 0]
+    return float(-1.0 / neg.min()) if neg.size else float("inf")
+
+
+@pytest.mark.slow
+def test_plate2d_critical_load_agrees_with_axisym(plain, axi):
+    """Rolling near the rim (r_c = 105 mm) buckles the 2-D disk at the axisym load factor."""
+    t105 = (lambda r: thermal.temperature(r, 50, 0.105, 0.005))
+    lam = critical_load_2d(plain, plain.stress_stiffness(plain.residual_stress(t105, ALPHA)))
+    lam_axi = np.min(axi.critical_load(axi.stress_stiffness(sigma_axi(0.105))))
+    assert np.isfinite(lam) and lam == pytest.approx(lam_axi, rel=2e-2)
 
 
 @pytest.mark.slow

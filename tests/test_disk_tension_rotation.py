@@ -106,7 +106,7 @@ def test_the_critical_speed_effect_reads_the_centrifugal_condition(cfg):
     for bc in ("clamped", "free_disk"):
         ds = _solve_once(critical_run(cfg, n_elements=64, centrifugal_bc=bc,
                                       rolling_radius=[0.065]))
-        cs = ds["axisym_critical_speed_untensioned"]
+        cs = ds["critical_speed_untensioned"]
         assert cs.attrs["centrifugal_bc"] == bc
         out[bc] = float(cs.sel(n_d=2)) * rpm
     assert out["clamped"] == pytest.approx(5862.4, abs=0.5)
@@ -148,12 +148,9 @@ def test_a_buckled_disk_has_no_critical_speed_in_any_harmonic():
     assert np.isinf(rotation.critical_speed(d.K[0], d.M[0], Kc[0], 0))
 
 
-def _study(runs):
-    return xr.concat(runs, dim="run", data_vars="all", coords="minimal", compat="override")
-
-
 class _Results:
-    """What the validation extractors read (PaperResults' run and study)."""
+    """What the validation extractors read (PaperResults' run, study and study_runs);
+    ``studies``: the run datasets of each study."""
 
     def __init__(self, runs, studies):
         self.runs, self.studies = runs, studies
@@ -162,6 +159,10 @@ class _Results:
         return self.runs[name]
 
     def study(self, name):
+        return xr.concat(self.studies[name], dim="run", data_vars="all", coords="minimal",
+                         compat="override")
+
+    def study_runs(self, name):
         return self.studies[name]
 
 
@@ -173,7 +174,7 @@ def test_the_critical_speed_of_a_buckled_rolled_disk_does_not_exist(cfg):
     from mechrepro.models.disk_tension import validation as v
 
     hot = _solve_once(critical_run(cfg, temperature_amplitude=100))
-    cs = hot["axisym_critical_speed"].values
+    cs = hot["critical_speed"].values
     assert np.isnan(cs[1:4, 0]).all() and np.isfinite(cs[1:4, 2:]).all()
     low = v.lowest_critical_speed(hot)
     assert np.isnan(low[1:4]).all() and np.isfinite(low[[0, 4, 5, 6, 7]]).all()
@@ -183,7 +184,7 @@ def test_the_critical_speed_of_a_buckled_rolled_disk_does_not_exist(cfg):
     assert np.isnan(v.lowest_critical_speed(melted)).all()
     free = _solve_once(critical_run(cfg, temperature_amplitude=2000, centrifugal_bc="free_disk"))
     R = _Results({"critical_speed": melted, "critical_speed_centrifugal_free": free},
-                 {"critical_speed_rf": _study([hot, melted])})
+                 {"critical_speed_rf": [hot, melted]})
     best = v._cs_best(R)
     assert np.isnan(best.value)
     assert "does not exist" in best.note and "rpm" not in best.note.split(";")[0]
@@ -198,12 +199,12 @@ def test_the_southwell_row_checks_every_clamping_radius(cfg):
     base = _solve_once(critical_run(cfg, n_elements=64, rolling_radius=[0.065]))
     far = _solve_once(critical_run(cfg, n_elements=64, rolling_radius=[0.065],
                                    clamp_radius=0.075))
-    R = _Results({"critical_speed": base}, {"critical_speed_rf": _study([far])})
+    R = _Results({"critical_speed": base}, {"critical_speed_rf": [far]})
     got = v._cs_southwell(R)
     assert got.value is True or got.value == 1
     assert "r_f 75 mm: -3.5e-02" in got.note and "N_d^2 - lambda = 0.64" in got.note
     broken = far.copy(deep=True)
-    broken["axisym_critical_speed_southwell"] *= 0.999      # eigen above "Southwell" at 75 mm
+    broken["critical_speed_southwell"] *= 0.999      # eigen above "Southwell" at 75 mm
     got = v._cs_southwell(_Results({"critical_speed": base},
-                                   {"critical_speed_rf": _study([broken])}))
+                                   {"critical_speed_rf": [broken]}))
     assert not got.value

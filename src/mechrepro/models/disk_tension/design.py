@@ -85,7 +85,7 @@ COLUMNS = ["r_f_mm", "rim_temperature_rise_degc", "buckling_margin", "stated", "
 
 def best(ds, q):
     """(index of the r_c of the best lowest critical speed at margin ``q``, that speed)."""
-    v = np.asarray(ds["axisym_design_best_speed"].values[q], float)
+    v = np.asarray(ds["design_best_speed"].values[q], float)
     if np.isnan(v).all():
         return -1, float("nan")
     k = int(np.nanargmax(v))
@@ -98,35 +98,35 @@ def table(runs, paper_rc=0.065, paper_amplitude=50.0) -> list[list]:
     rows = []
     for rf, ds in runs:
         rc = ds["r_c"].values
-        stated = float(ds["axisym_design_stated_margin"])
+        stated = float(ds["design_stated_margin"])
         j65 = int(np.argmin(np.abs(rc - paper_rc)))
         if abs(rc[j65] - paper_rc) > 1e-9:
             raise Refusal(f"the design map's r_c grid has no {paper_rc * 1e3:g} mm")
         unt = float(lowest_map(ds)[0, 0])         # A = 0: the same at every r_c
-        at65 = float(ds["axisym_design_paper_amplitude_speed"].values[j65])
+        at65 = float(ds["design_paper_amplitude_speed"].values[j65])
         step = float(np.diff(rc).max() * 1e3) if len(rc) > 1 else float("nan")
         for q, m in enumerate(ds["design_margin"].values):
             k, v = best(ds, q)
-            head = [rf, float(ds["axisym_design_rim_temperature_rise"]), float(m),
+            head = [rf, float(ds["design_rim_temperature_rise"]), float(m),
                     bool(abs(m - stated) < 1e-12)]
             if k < 0:       # every r_c buckled: no optimum, no number
                 rows.append(head + [float("nan"), step, float("nan"), float("nan"), "buckled", -1]
                             + [float("nan")] * 6 + [-1, float("nan"), float("nan")])
                 continue
-            a = float(ds["axisym_design_best_amplitude"].values[q, k])
-            fr = ds["axisym_design_best_frequency_ratio"].values[q, k]
+            a = float(ds["design_best_amplitude"].values[q, k])
+            fr = ds["design_best_frequency_ratio"].values[q, k]
             rows.append(head + [
                 float(rc[k] * 1e3), step, a, a / paper_amplitude,
-                BINDS[int(ds["axisym_design_best_binds"].values[q, k])],
-                int(ds["axisym_design_best_mode"].values[q, k]),
+                BINDS[int(ds["design_best_binds"].values[q, k])],
+                int(ds["design_best_mode"].values[q, k]),
                 v * RPM, unt * RPM, v / unt - 1, at65 * RPM, v / at65 - 1,
-                float(ds["axisym_design_best_speed"].values[q, j65]) * RPM,
-                float(ds["axisym_design_buckling_amplitude"].values[k]),
-                int(ds["axisym_design_buckling_mode"].values[k]), float(fr[0]), float(fr[1])])
+                float(ds["design_best_speed"].values[q, j65]) * RPM,
+                float(ds["design_buckling_amplitude"].values[k]),
+                int(ds["design_buckling_mode"].values[k]), float(fr[0]), float(fr[1])])
     return rows
 
 
 def lowest_map(ds) -> np.ndarray:
     """The lowest critical speed over N_d >= 2 [rad/s], (r_c, design_step); NaN: buckled."""
-    return lowest_over(np.asarray(ds["axisym_design_critical_speed"].values, float),
+    return lowest_over(np.asarray(ds["design_critical_speed"].values, float),
                        ds["n_d"].values, 2)

@@ -93,8 +93,7 @@ def slots(ctx) -> dict:
     from .plate2d import Slots  # scikit-fem is imported only by scenes that use it
 
     s = Slots(int(ctx.p["slot_count"]), ctx.p["slot_depth"], ctx.p["slot_width"])
-    return {"slots": s,
-            "slot_count": var((), s.count, "1", "number of radial expansion slots")}
+    return {"slots": s, "slot_count": var((), s.count, "1", "number of radial expansion slots")}
 
 
 # --- stage 2: the load --------------------------------------------------------------------
@@ -164,9 +163,8 @@ def _exact_frequencies(ctx, sigma=0.0, memo=True):
 @EFFECTS.register("exact_reference")
 def exact_reference(ctx) -> dict:
     """Exact Bessel frequencies of the unrolled clamped-free annulus (plain disk)."""
-    key = _disk_key(ctx)
     return {"f_exact": var("n_d", _exact_frequencies(ctx), "Hz", "exact unrolled frequency"),
-            "exact_reference_time_cold": _cold("exact_reference", key,
+            "exact_reference_time_cold": _cold("exact_reference", _disk_key(ctx),
                                                lambda: _exact_frequencies(ctx, memo=False))}
 
 
@@ -223,18 +221,15 @@ def stressed_reference(ctx) -> dict:
                          "reference needs a stable disk (choose a smaller compression)")
     with phase("disk_tension.stressed_reference_exact"):
         f_ex = np.array([_exact_frequencies(ctx, s) for s in s0])
-    key = _disk_key(ctx, tuple(s0))
-    f = frequency(w2)
-    err = f / f_ex - 1.0
-    dims = ("reference_stress", "n_d")
+    f, dims = frequency(w2), ("reference_stress", "n_d")
     return {
         "reference_stress": var("reference_stress", s0, "Pa", "uniform in-plane stress"),
         "f_stressed": var(dims, f, "Hz", "frequency under the uniform stress, Eqs. 3, 5"),
         "f_stressed_exact": var(dims, f_ex, "Hz", "exact frequency under the uniform stress"),
-        "error_stressed": var(dims, err, "1", "relative error of the stressed frequency"),
+        "error_stressed": var(dims, f / f_ex - 1.0, "1", "relative error of f_stressed"),
         "time_stressed": var((), sw.seconds, "s", "wall time of K^(sigma) and Eq. (5) there"),
         "stressed_reference_time_cold": _cold(
-            "stressed_reference", key,
+            "stressed_reference", _disk_key(ctx, tuple(s0)),
             lambda: [_exact_frequencies(ctx, s, memo=False) for s in s0], plus=sw.seconds),
     }
 
@@ -286,8 +281,8 @@ def eq9(ctx) -> dict:
 def critical_load(ctx) -> dict:
     """Load factor on the residual stress that buckles the disk (inf: never)."""
     lam = np.array([ctx.model.critical_load(k) for k in _stiffened(ctx)])
-    dims = ("r_c", "n_d") if lam.ndim == 2 else ("r_c",)
-    return {"critical_load_factor": var(dims, lam, "1", "load factor that buckles (inf: never)")}
+    return {"critical_load_factor": var(("r_c", "n_d"), lam, "1",
+                                        "load factor that buckles (inf: never)")}
 
 
 @EFFECTS.register("modal_matrices")
@@ -317,14 +312,12 @@ def modal_matrices(ctx) -> dict:
 
 @EFFECTS.register("stiffness_sensitivity")
 def stiffness_sensitivity(ctx) -> dict:
-    """Fig. 7: Delta f of a 1 % stiffer 10 mm annulus at each r_a (re-solved per r_a)."""
+    """Fig. 7: Delta f of a 1 % stiffer 10 mm annulus at each r_a (re-solved per r_a; annuli
+    outside [r_f, b] are refused at load, :mod:`.limits`)."""
     p = ctx.p
     r_a = np.atleast_1d(np.asarray(p["annulus_radii"], float))
-    w = p["annulus_width"]
-    if np.any(r_a - w / 2 < ctx.r_f - 1e-12) or np.any(r_a + w / 2 > ctx.b + 1e-12):
-        raise Refusal(f"annulus radii {r_a} +/- {w / 2} must stay inside [r_f, b]")
-    d = ctx.model.sensitivity(r_a=r_a, width=w, increase=p["stiffness_increase"],
-                              E=ctx.E, nu=ctx.nu, rho=ctx.rho)
+    d = ctx.model.sensitivity(r_a=r_a, width=p["annulus_width"], E=ctx.E, nu=ctx.nu, rho=ctx.rho,
+                              increase=p["stiffness_increase"])
     return {"r_a": var("r_a", r_a, "m", "centre radius of the stiffened annulus"),
             "sensitivity_delta_f": var(("r_a", "n_d"), d, "Hz", "Delta f of Fig. 7")}
 
@@ -345,14 +338,11 @@ def identifiability(ctx) -> dict:
     scales = np.arange(c0, c1 + dc / 2, dc)
     fine = np.linspace(c0, c1, int(round((c1 - c0) / (dc / FINE_SCALE))) + 1)
     fine_widths = np.linspace(w0, w1, int(round((w1 - w0) / (dw / FINE_WIDTH))) + 1)
-    r = idf.analyse(ctx.model, widths=widths, scales=scales, fine=fine,
-                    fine_widths=fine_widths,
-                    single_width=ctx.s,
-                    table1_paper=np.asarray(p["fit_table1_diagonal"], float),
+    r = idf.analyse(ctx.model, widths=widths, scales=scales, fine=fine, fine_widths=fine_widths,
+                    single_width=ctx.s, table1_paper=np.asarray(p["fit_table1_diagonal"], float),
                     f_rolled_paper=float(p["fit_rolled_frequency"]),
-                    r_c=p["calibration_rolling_radius"],
-                    amplitude=p["calibration_temperature_amplitude"], alpha=ctx.alpha,
-                    E=ctx.E, nu=ctx.nu)
+                    r_c=p["calibration_rolling_radius"], alpha=ctx.alpha, E=ctx.E, nu=ctx.nu,
+                    amplitude=p["calibration_temperature_amplitude"])
     sub, dat, lvl = "fit_data", "fit_datum", ("fit_data", "fit_level", "scan_condition",
                                                 "scan_width")
     out = {

@@ -66,13 +66,15 @@ def frequency_determinant(lam, n, ratio, nu, tension=0.0):
 
 
 def frequency_parameters(n, ratio, nu, count=1, lam_max=60.0, step=0.02, chunk=8.0,
-                         tension=0.0):
+                         tension=0.0, memo=True):
     """The first ``count`` roots lambda for harmonic ``n`` under ``tension`` = N b^2 / D,
-    memoised: the determinant is entire, so every sign change on the scan grid brackets one."""
+    memoised (``memo``): the determinant is entire, so every sign change on the scan grid
+    brackets one."""
     if not (0.0 < ratio < 1.0):
         raise Refusal(f"a/b = {ratio} must be in (0, 1) for the annular plate")
-    return np.array(_roots(int(n), float(ratio), float(nu), int(count), float(lam_max),
-                           float(step), float(chunk), float(tension)))
+    roots = _roots if memo else _roots.__wrapped__
+    return np.array(roots(int(n), float(ratio), float(nu), int(count), float(lam_max),
+                          float(step), float(chunk), float(tension)))
 
 
 @lru_cache(maxsize=1024)
@@ -94,10 +96,6 @@ def natural_frequencies(n_d, *, a, b, h, E, nu, rho, count=1, sigma=0.0, memo=Tr
     """Exact frequencies [Hz] of harmonic n_d under a uniform stress ``sigma`` [Pa]."""
     D = E * h**3 / (12 * (1 - nu**2))
     t = float(sigma) * h * b * b / D
-    if memo:
-        lam = frequency_parameters(int(n_d), a / b, nu, count=count, tension=t)
-    else:
-        lam = np.array(_roots.__wrapped__(int(n_d), float(a / b), float(nu), int(count), 60.0,
-                                          0.02, 8.0, t))
+    lam = frequency_parameters(int(n_d), a / b, nu, count=count, tension=t, memo=memo)
     omega = (lam / b) ** 2 * np.sqrt(D / (rho * h))
     return omega / (2 * np.pi)

@@ -4,11 +4,12 @@ from __future__ import annotations
 
 import numpy as np
 
+from mechrepro.units import from_si
+
+
 def by_clamp(R, scene, study) -> list:
     """[(r_f [mm], dataset)] of ``scene`` and of the runs of its r_f ``study``."""
-    st = R.study(study)
-    return [(clamp_mm(ds), ds) for ds in [R.run(scene)] + [st.isel(run=i)
-                                                            for i in range(st.sizes["run"])]]
+    return [(clamp_mm(ds), ds) for ds in [R.run(scene), *R.study_runs(study)]]
 
 
 def rc_grid(R) -> dict:
@@ -25,10 +26,7 @@ def rolling_band(ds):
 def paper_points(R) -> dict:
     """The paper's own numbers drawn on Figs. 6 and 8 (Sec. 4.3), from the validation table."""
     rows = {r["quantity"]: r for r in R.validation()}
-
-    def paper(q):
-        return float(rows[q]["paper_value"])
-
+    paper = lambda q: float(rows[q]["paper_value"])  # noqa: E731
     return {"r_c": 0.065,
             "f_unrolled": float(rows["f_unrolled_nd4_rf25"]["reproduced_value"]),
             "f_rolled": paper("f_rolled_nd4_rc65_rf25"),
@@ -41,22 +39,19 @@ def accuracy_goal(R, quantity: str) -> float:
     return next(float(r["paper_value"]) for r in R.validation() if r["quantity"] == quantity)
 
 
-def eq9_and_eigen_times(grid: dict, plate2d) -> dict:
-    """Wall time [s] of Eq. (5) and of Eq. (9): axisym grid and plain 2-D sweep."""
-    return {"axisym": (sum(float(g["axisym_time_eigen"]) for g in grid.values()),
-                       sum(float(g["axisym_time_eq9"]) for g in grid.values())),
-            "plate2d": (float(plate2d["plate2d_time_eigen"]), float(plate2d["plate2d_time_eq9"]))}
+def eigen_and_eq9_times(*runs) -> tuple[float, float]:
+    """Wall time [s] of Eq. (5) and of Eq. (9) over ``runs`` (the same K^(sigma))."""
+    return tuple(sum(float(ds[k]) for ds in runs) for k in ("time_eigen", "time_eq9"))
 
 
 def buckling_series(R):
     """The hard case (r_c = 105 mm): amplitudes A [K] ascending, omega~^2 of each (A, N_d),
     and each N_d's critical amplitude A lambda_cr (omega~^2 is linear in A, Eq. 3)."""
-    base, st = R.run("buckling"), R.study("buckling_sweep")
-    amps = np.r_[float(base["amplitude_used"]), st["amplitude_used"].values.astype(float)]
-    w2 = np.vstack([base["axisym_omega2_rolled"].isel(r_c=0).values,
-                    st["axisym_omega2_rolled"].isel(r_c=0).values])
+    runs = [R.run("buckling"), *R.study_runs("buckling_sweep")]
+    amps = np.array([float(ds["amplitude_used"]) for ds in runs])
+    w2 = np.array([ds["omega2_rolled"].isel(r_c=0).values for ds in runs])
     order = np.argsort(amps)
-    a_cr = amps[0] * base["axisym_critical_load_factor"].isel(r_c=0).values
+    a_cr = amps[0] * runs[0]["critical_load_factor"].isel(r_c=0).values
     return amps[order], w2[order], a_cr
 
 
@@ -68,19 +63,11 @@ def matrix_rows(da) -> list[list]:
 def effect_cold_warm(R, scenes=("table12", "table12_plate2d", "stressed_axisym",
                                 "stressed_plate2d")) -> list[list]:
     """Rows [scene, effect, warm s, cold s] of the memoised effects."""
-    rows = []
-    for scene in scenes:
-        ds = R.run(scene)
-        timed = [str(e) for e in ds["timed_effect"].values]
-        for effect in timed:
-            key = next((k for k in ds.data_vars if k.endswith(f"{effect}_time_cold")), None)
-            if key is not None:
-                rows.append([scene, effect, float(ds["effect_time"].values[timed.index(effect)]),
-                             float(ds[key])])
-    return rows
+    return [[scene, str(e), float(ds["effect_time"].values[i]), float(ds[f"{e}_time_cold"])]
+            for scene, ds in ((s, R.run(s)) for s in scenes)
+            for i, e in enumerate(ds["timed_effect"].values) if f"{e}_time_cold" in ds]
 
 
 def clamp_mm(ds) -> float:
-    """r_f [mm] of a run or of one run of a study (whose coordinate keeps the config's unit)."""
-    v = ds["clamp_radius"]
-    return float(v) * (1e3 if v.attrs.get("units", "m") == "m" else 1.0)
+    """r_f [mm] of a run."""
+    return float(from_si(float(ds["clamp_radius"]), "mm"))

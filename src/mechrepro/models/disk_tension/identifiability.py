@@ -149,8 +149,7 @@ def interval(values, prof, level=1.0, floor=None):
 
 
 CONDITIONS = ("clamped", "free_disk")
-DATA = ["Table 1 N_d=0", "Table 1 N_d=1", "Table 1 N_d=2", "Table 1 N_d=3", "Table 1 N_d=4",
-        "f~ 502.1 Hz"]
+DATA = [f"Table 1 N_d={n}" for n in range(5)] + ["f~ 502.1 Hz"]
 
 
 #: the data subsets fitted: Table 1 with Fig. 6a's 502.1 Hz, and Table 1 alone
@@ -346,16 +345,11 @@ def _bound(end, grid, other, other_grid, name, other_name, unit) -> str:
     return ""
 
 
-def _reader(ds, prefix):
-    """The values of variable ``k`` of a run (``prefix`` + k, or k itself)."""
-    return lambda k: ds[prefix + k if prefix + k in ds else k].values
-
-
-def table(ds, prefix="axisym_") -> list[list]:
+def table(ds) -> list[list]:
     """Rows of ``identifiability.csv``: per data subset and constant the best fit, the
     extents of the joint (s, c) region at 68 and 95 % with what bounds them and which numbers
     pin it; c s along the valley floor; the degenerate direction; the in-plane condition."""
-    g = _reader(ds, prefix)
+    g = lambda k: ds[k].values  # noqa: E731
     widths, fine = g("scan_width") * 1e3, g("scan_scale")
     rows = []
     for j, name in enumerate(SUBSETS):
@@ -412,11 +406,13 @@ def table(ds, prefix="axisym_") -> list[list]:
 
 COLUMNS = ["data", "constant", "unit", "best", "lo_68", "hi_68", "lo_95", "hi_95",
            "bounded_68", "bounded_95", "pinned_by"]
+READING_COLUMNS = (["data", "reading", "inplane_bc", "s_mm", "stress_scale"]
+                   + [f"table1_nd{n}_rel" for n in range(5)] + ["f_rolled_hz", "delta_chi2"])
 
 
-def readings(ds, prefix="axisym_") -> list[list]:
+def readings(ds) -> list[list]:
     """Rows of the joint fit and of the single-alpha calibration, per data subset."""
-    g = _reader(ds, prefix)
+    g = lambda k: ds[k].values  # noqa: E731
     out = []
     for j, name in enumerate(SUBSETS):
         out.append([name, "joint fit", CONDITIONS[int(g("best_condition")[j])],

@@ -379,13 +379,6 @@ class PlateDisk:
             out.append(ev.mean())
         return np.array(out)
 
-    def critical_load(self, Ks):
-        """Smallest positive load factor of K + lambda K^(sigma) (inf if none)."""
-        Kf, Ksf = self._sub(self.K), self._sub(Ks)
-        mu = spla.eigsh(Ksf, k=3, M=Kf, which="SA", return_eigenvectors=False)
-        neg = mu[mu < 0]
-        return float(-1.0 / neg.min()) if neg.size else float("inf")
-
     def modal_matrices(self, Ks):
         """Eqs. (16)-(17), each rolled pair rotated onto its unrolled cos/sin basis first."""
         from .modal import align_pair

@@ -1,7 +1,7 @@
 """The two solvers of disk_tension, one discretisation of the clamped disk each: ``axisym``
 (:mod:`.axisym`) and ``plate2d`` (:mod:`.plate2d`).  Both run the effects (:mod:`.effects`) in
 three stages read by key -- what the load and mesh need, the load (Eq. 4), then after the
-core ([K], [M] of Eq. 1, Eq. 6, [K^(sigma)] of Eq. 3) the analyses, named ``<solver>_*``.
+core ([K], [M] of Eq. 1, Eq. 6, [K^(sigma)] of Eq. 3) the analyses.
 """
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ from mechrepro.errors import Refusal
 from mechrepro.timing import phase
 from mechrepro.units import var
 
-from . import calibration, thermal
+from . import calibration
 from .axisym import AxisymDisk
 from .effects import EFFECTS
 from .modal import frequency
@@ -26,16 +26,14 @@ class Disk:
 
     def __init__(self, run: dict):
         p, self.run, self.p = run["parameters"], run, run["parameters"]
-        self.solver = run["solver"]
-        self.resolution = run.get("resolution", {})
+        self.solver, self.resolution = run["solver"], run.get("resolution", {})
         self.b = 0.5 * p["outer_diameter"]
         self.r_f = p["clamp_radius"]
         self.r_c = np.atleast_1d(np.asarray(p["rolling_radius"], float))
         self.n_d = np.atleast_1d(np.asarray(p["nodal_diameters"], int))
         self.E, self.nu, self.rho = p["youngs_modulus"], p["poisson_ratio"], p["density"]
-        self.alpha = p["thermal_expansion"]
         self.A, self.s = p["temperature_amplitude"], p["gaussian_width"]
-        self.bc = p["inplane_bc"]
+        self.alpha, self.bc = p["thermal_expansion"], p["inplane_bc"]
         #: the residual-stress model: the paper's, or a rival's (config rivals:)
         self.stress_model = run.get("options", {}).get("residual_stress", "thermal_analogy")
         self._check()
@@ -54,12 +52,8 @@ class Disk:
         }
 
     def _check(self):
-        if not 0 < self.r_f < self.b:
-            raise Refusal(f"clamp_radius r_f = {self.r_f} m must lie in (0, b = {self.b} m)")
-        if self.bc not in thermal.INPLANE_BCS:
-            raise Refusal(f"inplane_bc = {self.bc!r}: allowed {thermal.INPLANE_BCS}")
-        if self.solver not in DISCRETISATIONS:
-            raise Refusal(f"solver = {self.solver!r}: allowed {list(DISCRETISATIONS)}")
+        """What the config cannot refuse (the schema, cross_checks and the effect protocol
+        refuse the rest at load)."""
         if self.stress_model != "thermal_analogy" and self.solver != "axisym":
             raise Refusal(f"options.residual_stress = {self.stress_model!r}: the rivals' stress "
                           "is closed-form, on the axisym harmonics only (the 2-D model solves "
@@ -72,14 +66,12 @@ class Disk:
         return np.sqrt(np.array([np.mean(w2[n]) for n in self.n_d]))
 
     def put(self, name, *variable):
-        self.vars[f"{self.solver}_{name}"] = var(*variable)
+        self.vars[name] = var(*variable)
 
-    def keep(self, contributions, prefix=""):
-        """Write the contributions to the dataset (coordinates unprefixed)."""
-        for key in contributions.keys():
-            if key not in BEFORE_LOAD | LOAD:
-                value = contributions.get(key)
-                self.vars[key if value[0] == (key,) else prefix + key] = value
+    def keep(self, contributions):
+        """Write the contributions to the dataset, all but those the solver consumes."""
+        self.vars.update({k: contributions.get(k) for k in contributions.keys()
+                          if k not in BEFORE_LOAD | LOAD})
 
 
 # --- the core of each solver -----------------------------------------------------------------
@@ -87,10 +79,8 @@ def _axisym(ctx: Disk):
     n_el = int(ctx.resolution.get("n_elements", 64))
     model = AxisymDisk(r_f=ctx.r_f, b=ctx.b, h=ctx.h, E=ctx.E, nu=ctx.nu, rho=ctx.rho,
                        n_d=ctx.n_d, n_elements=n_el)
-    ctx.vars["radial_node"] = var("radial_node", np.arange(n_el + 1), "1",
-                                  "node of the radial mesh")
-    ctx.put("mesh_r", "radial_node", model.mesh.nodes, "m", "axisym: radius of each node of "
-            "the cubic Hermite elements")
+    ctx.put("radial_node", "radial_node", np.arange(n_el + 1), "1", "node of the radial mesh")
+    ctx.put("mesh_r", "radial_node", model.mesh.nodes, "m", "radius of the Hermite elements' nodes")
     return model
 
 
@@ -103,15 +93,13 @@ def _plate2d(ctx: Disk):
                       seed=int(ctx.run.get("seed", 0)))
     ctx.put("n_dofs", (), model.basis.N, "1", "plate2d: number of Argyris DOFs")
     # Fig. 3: the mesh itself (annulus r_f..b; the core r < r_f is clamped)
-    ctx.vars["mesh_node"] = var("mesh_node", np.arange(model.mesh.p.shape[1]), "1",
-                                "node of the 2-D mesh")
-    ctx.vars["mesh_cell"] = var("mesh_cell", np.arange(model.mesh.t.shape[1]), "1",
-                                "triangle of the 2-D mesh")
-    ctx.vars["vertex"] = var("vertex", [0, 1, 2], "1", "triangle vertex")
+    ctx.put("mesh_node", "mesh_node", np.arange(model.mesh.p.shape[1]), "1", "node of the 2-D mesh")
+    ctx.put("mesh_cell", "mesh_cell", np.arange(model.mesh.t.shape[1]), "1", "triangle of the mesh")
+    ctx.put("vertex", "vertex", [0, 1, 2], "1", "triangle vertex")
     ctx.put("mesh_x", "mesh_node", model.mesh.p[0], "m", "plate2d: node x")
     ctx.put("mesh_y", "mesh_node", model.mesh.p[1], "m", "plate2d: node y")
     ctx.put("mesh_cells", ("mesh_cell", "vertex"), model.mesh.t.T.astype(np.int32), "1",
-            "plate2d: node indices of each triangle")
+            "node indices of each triangle")
     return model
 
 
@@ -131,8 +119,7 @@ def _stress_stiffness(ctx: Disk):
             ks = [model.stress_stiffness(ld.sigma) for ld in ctx.loads]
     if ctx.solver == "plate2d":
         _plate2d_stress_profile(ctx, sig[0])
-    ctx.put("time_stress", (), sw.seconds, "s", f"{ctx.solver}: wall time of the thermal stress "
-            "and K^(sigma) for all r_c")
+    ctx.put("time_stress", (), sw.seconds, "s", "wall time of thermal stress + K^(sigma), all r_c")
     return ks
 
 
@@ -142,10 +129,9 @@ def _plate2d_stress_profile(ctx: Disk, sigma):
 
     r, sr, st = ctx.model.polar_stress(sigma)
     means, edges, _ = binned_statistic(r, [sr, st], "mean", bins=80)   # NaN: an empty bin
-    ctx.vars["r_bin"] = var("r_bin", 0.5 * (edges[1:] + edges[:-1]), "m", "radius (bin centre)")
+    ctx.put("r_bin", "r_bin", 0.5 * (edges[1:] + edges[:-1]), "m", "radius (bin centre)")
     for nm, mean in zip(("sigma_r", "sigma_theta"), means):
-        ctx.put(f"{nm}_binned", "r_bin", mean, "Pa",
-                f"plate2d: FE {nm} averaged over radial bins (first r_c)")
+        ctx.put(f"{nm}_binned", "r_bin", mean, "Pa", f"FE {nm} averaged on radial bins (first r_c)")
 
 
 def _discretise(ctx: Disk):
@@ -154,8 +140,7 @@ def _discretise(ctx: Disk):
         ctx.model = model = DISCRETISATIONS[ctx.solver](ctx)
         w2 = model.unrolled()
     ctx.put("f_unrolled", "n_d", frequency(w2), "Hz", f"{ctx.solver}: unrolled frequency, Eq. (6)")
-    ctx.put("time_unrolled", (), sw.seconds, "s",
-            f"{ctx.solver}: wall time of assembly + unrolled eigen-analysis")
+    ctx.put("time_unrolled", (), sw.seconds, "s", "wall time of assembly + unrolled eigen-analysis")
     if ctx.loads is not None:
         ctx.k_sigma = _stress_stiffness(ctx)
     if ctx.heat is not None:
@@ -164,18 +149,13 @@ def _discretise(ctx: Disk):
 
 def _compare(ctx: Disk):
     """Errors against the references, Eq. (9) against Eq. (5), the accuracy points' times."""
-    name = ctx.solver
-
-    def get(key):
-        return ctx.vars[f"{name}_{key}"][1] if f"{name}_{key}" in ctx.vars else None
+    get = lambda key: ctx.vars[key][1] if key in ctx.vars else None  # noqa: E731
 
     f_u, f_r, f_ex = get("f_unrolled"), get("f_rolled"), get("f_exact")
     if f_ex is not None:
         err = f_u / f_ex - 1.0
-        ctx.put("error_unrolled", "n_d", err, "1",
-                f"{name}: relative error of the unrolled frequency vs exact")
-        ctx.put("error_unrolled_max", (), np.max(np.abs(err)), "1",
-                f"{name}: max |relative error| of unrolled frequencies vs exact")
+        ctx.put("error_unrolled", "n_d", err, "1", "relative error of the unrolled frequency")
+        ctx.put("error_unrolled_max", (), np.max(np.abs(err)), "1", "its max |value| over N_d")
         _log_sums(ctx, "unrolled", f_u, f_ex, "the unrolled frequencies")
     if get("f_stressed_exact") is not None:
         _log_sums(ctx, "stressed", get("f_stressed"), get("f_stressed_exact"),
@@ -186,25 +166,23 @@ def _compare(ctx: Disk):
                   "(Richardson of 64 and 128 elements, error ~1e-8)")
     if f_r is not None and get("delta_omega2_eq9") is not None:
         f_eq9 = frequency(ctx.omega_unrolled[None, :] ** 2 + get("delta_omega2_eq9"))
-        err = np.abs(f_eq9 - f_r) / f_r
-        ctx.put("eq9_rel_error", ("r_c", "n_d"), err, "1",
-                f"{name}: |f by Eq. (9) - f by eigen-analysis| / f")
+        ctx.put("eq9_rel_error", ("r_c", "n_d"), np.abs(f_eq9 - f_r) / f_r, "1",
+                "|f by Eq. (9) - f by eigen-analysis| / f")
     if get("time_eigen") is not None:
         t = sum(float(get(k)) for k in ("time_unrolled", "time_stress", "time_eigen"))
-        ctx.put("time_solve", (), t, "s", f"{name}: wall time of assembly + unrolled + K^(sigma) "
-                "+ rolled eigen-analysis over the r_c grid")
+        ctx.put("time_solve", (), t, "s", "wall time of assembly + unrolled + K^(sigma) + rolled "
+                "eigen-analysis over the r_c grid")
     if get("time_stressed") is not None:
         t = float(get("time_unrolled")) + float(get("time_stressed"))
-        ctx.put("time_stressed_solve", (), t, "s", f"{name}: wall time of assembly + unrolled + "
-                "K^(sigma) and Eq. (5) under the reference stresses")
+        ctx.put("time_stressed_solve", (), t, "s", "wall time of assembly + unrolled + K^(sigma) "
+                "and Eq. (5) under the reference stresses")
 
 
 def _log_sums(ctx: Disk, what: str, f, f_exact, of: str, reference="exact Bessel solution"):
     """sum ln(f / 1 Hz) of model and reference: every mode converges from above."""
-    ctx.put(f"ln_f_{what}_sum", (), float(np.sum(np.log(f))), "1",
-            f"{ctx.solver}: sum of ln(f / 1 Hz) over {of}")
+    ctx.put(f"ln_f_{what}_sum", (), float(np.sum(np.log(f))), "1", f"sum of ln(f / 1 Hz) over {of}")
     ctx.put(f"ln_f_{what}_exact_sum", (), float(np.sum(np.log(f_exact))), "1",
-            f"{ctx.solver}: sum of ln(f_exact / 1 Hz) over {of} ({reference})")
+            f"sum of ln(f_exact / 1 Hz) over {of} ({reference})")
 
 
 def compute(run: dict) -> Disk:
@@ -216,8 +194,8 @@ def compute(run: dict) -> Disk:
     load = stage(LOAD)
     ctx.loads, ctx.heat = load.get("thermal_load"), load.get("cutting_heat_stress")
     _discretise(ctx)
-    for contributions, prefix in ((before, ""), (load, ""), (stage(), f"{ctx.solver}_")):
-        ctx.keep(contributions, prefix)
+    for contributions in (before, load, stage()):
+        ctx.keep(contributions)
     _compare(ctx)
     return ctx
 
