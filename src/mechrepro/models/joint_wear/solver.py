@@ -14,7 +14,7 @@ import numpy as np
 from scipy import optimize, stats
 
 from mechrepro.errors import Refusal
-from mechrepro.timing import phase
+from mechrepro.timing import EFFECT, phase
 
 from . import dataset, dynamics, groove, kinematics, quasistatic, wear
 from .effects import EFFECTS, Context
@@ -135,16 +135,26 @@ def wear_factor_of(fb_v: FourBar, s: dict, joint=None):
 
 
 def with_wear(run: dict, fb: FourBar, ctx: Context, res: dict, joint) -> dict:
-    """Stages two and three: the wear set-up, then the wear effects on the wear factor of
-    ``joint`` (or the closed form of option ``closed_form_growth``, a rival)."""
+    """Stages two and three: the wear set-up, then the wear effect's law applied to each
+    side with the wear factor of ``joint`` (or the closed form of option
+    ``closed_form_growth``, a rival), timed as that effect's contribution."""
     g = ctx.s.get("closed_form_growth")
-    ctx = replace(ctx, wear_factor=period_factor(fb, ctx.s, joint) if g is None
-                  else wear.closed_form_factor(fb.R_bush, float(g)))
+    factor = (period_factor(fb, ctx.s, joint) if g is None
+              else wear.closed_form_factor(fb.R_bush, float(g)))
     c = EFFECTS.evaluate(run, ctx, keys=WEAR_SETUP)
-    ctx = replace(ctx, sides=c.get("sides", ["B1"]), worn_bushing=c.get("worn_bushing"))
+    sides, worn = c.get("sides", ["B1"]), c.get("worn_bushing")
     c = EFFECTS.evaluate(run, ctx, keys=WEAR)
-    if "wear" in c:
-        res["wear"] = c.get("wear")
+    if "wear" not in c:
+        return res
+    with phase(EFFECT + c.sources("wear")[0]) as sw:
+        rows = [c.get("wear")(side, fb.period, fb.R_bush, factor, worn) for side in sides]
+    w = {k: [r[k] for r in rows] for k in rows[0]}
+    w["wall_time_prediction"] = sw.seconds
+    if ctx.s.get("interval_limit") and worn is not None:     # not timed: a reference
+        w["limit"] = [wear.interval_limit(h[0], n[0], n[-1], km, fb.period, fb.R_bush, factor,
+                                          worn) for h, n, km in zip(w["h"], w["nodes"], w["k_mean"])]
+    w["cal_hours"] = wear.calibration_hours(ctx.p) * (1 + np.arange(len(w["k"][0])))
+    res["wear"] = w
     return res
 
 
@@ -575,14 +585,13 @@ def load_point_posterior(run: dict) -> dict:
         gs, g_prior = np.zeros(1), np.ones(1)
     dh = np.array([p[f"measured_increment_{side}"] for side in SIDES])
     sigma = rounding_sigma(dh * 1e3)
-    misfit = np.full((ds_.size, gs.size, mus.size, dirs.size), np.nan)
     pts = []
-    for i, d in enumerate(ds_):
+    for d in ds_:
         for j, g in enumerate(gs):
-            for k, mu in enumerate(mus):
+            for mu in mus:
                 fb_n = replace(fb, mu=float(mu))
-                misfit[i, j, k], zeros = fit_zeros(fb_n, s, p, E, float(d), dirs, float(g), K_paper,
-                                                   joint=quasi_static_period)
+                _, zeros = fit_zeros(fb_n, s, p, E, float(d), dirs, float(g), K_paper,
+                                     joint=quasi_static_period)
                 for z in zeros:
                     r = np.log(z["K"] / K_paper)
                     chi2, width, logw, shift = laplace_log_weight(r, sigma, z["slope"])
@@ -645,17 +654,14 @@ def load_point_posterior(run: dict) -> dict:
     margin = dyn.get("margin", math.nan)
     for q in pts:
         del q["fb"], q["factor"]
-    for e in edges:
-        del e["fb"]
     w = np.zeros(len(pts))
     if upper.any():
         lp = log_post[upper]
         w[upper] = np.exp(lp - lp.max()) / np.sum(np.exp(lp - lp.max()))
-    return {"fb": fb, "posterior": {"misfit": misfit, "directions": dirs, "distance": ds_,
-                                    "gravity": gs, "friction": mus, "points": pts,
+    return {"fb": fb, "posterior": {"gravity": gs, "points": pts,
                                     "weight": w, "worst": worst and {k: worst[k] for k in (
                                         "distance", "gravity", "friction", "direction", "qs_margin")},
-                                    "worst_margins": dyn, "margin": margin, "edges": edges,
+                                    "worst_margins": dyn, "margin": margin,
                                     "chi2_new_bushing": chi2_new, "new_bushing_credible": new_inside,
                                     "level": float(s["posterior_credible"])}}
 
