@@ -200,6 +200,7 @@ _POST_POINT = {
     "post_point_misfit": ("misfit", "1", "mean misfit left at the zero"),
     "post_point_chi2": ("chi2", "1", "chi2 of the ten log-ratios about their best common level, rounding noise of the printed increments"),
     "post_point_credible": ("credible", "1", "1 inside the credible set"),
+    "post_point_upper_share": ("upper_share", "1", "share of the wear above the bushing centre (Sec. 4.2)"),
     "post_point_qs_margin": ("qs_margin", "1", "quasi-static contact margin min F_N / max F_N"),
     "post_point_arc": ("arc_deg", "deg", "contact arc on the new bushing (Fig. 13's psi)"),
     "post_point_wear_factor": ("G", "N/m", "wear factor of the new bushing, Eq. (29)"),

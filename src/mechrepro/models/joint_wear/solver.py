@@ -291,22 +291,19 @@ def fit_zeros(fb: FourBar, s: dict, p: dict, E, d: float, dirs, g: float, K_pape
         return load_point(fb, E, d, a, g)
 
     @functools.cache
-    def misfit(a):
-        """The misfit at direction a [deg] (NaN where contact loss is refused)."""
+    def misfit(a, new_bushing=False):
+        """The misfit at direction a [deg] (NaN where contact loss is refused); with
+        ``new_bushing`` every interval at the new bushing's wear factor (the grid's)."""
         fb_v = mech(a)
         try:
-            return tables_misfit(fb_v, s, p, K_paper, wear_factor_of(fb_v, s, joint))
+            factor = wear_factor_of(fb_v, s, joint)
+            if new_bushing:
+                G0 = factor(fb_v.R_bush)
+                factor = lambda R: G0      # noqa: E731
+            return tables_misfit(fb_v, s, p, K_paper, factor)
         except ContactLost:
             return math.nan
-
-    def grid_misfit(a):
-        fb_v = mech(a)
-        try:
-            G0 = wear_factor_of(fb_v, s, joint)(fb_v.R_bush)
-            return tables_misfit(fb_v, s, p, K_paper, lambda R: G0)
-        except ContactLost:         # refused
-            return math.nan
-    m = np.array([grid_misfit(a) for a in dirs])
+    m = np.array([misfit(a, True) for a in dirs])
     n = dirs.size
     at = lambda j: float(dirs[j % n]) + 360.0 * (j // n)          # noqa: E731  unwrapped
     zeros = []
@@ -396,10 +393,8 @@ def load_point_fit(run: dict) -> dict:
                 band.append(_predicted_86h(fb_b, s, p, np.mean(_calibrated(
                     fb_b, s, p, factor=factor_b), axis=1), factor_b))
             sols.append({"gravity": float(g), "direction": float(a % 360.0), "sigma_deg": sig,
-                         "misfit": float(np.mean(r)),
-                         "misfit_se": se, "F": fb_a.F, "arc_deg": math.degrees(f["arc"]),
-                         "F_N_mean": f["F_N_mean"], "F_N_min": f["F_N_min"],
-                         **contact_side(hist), "wear_86h": np.array(band)})    # 3 x 2 sides
+                         "arc_deg": math.degrees(f["arc"]), **contact_side(hist),
+                         "wear_86h": np.array(band)})    # 3 x 2 sides
     return {"fb": fb, "fit": {"misfit": m, "directions": dirs, "gravity": gs, "distance": d,
                               "solutions": sols}}
 
@@ -410,17 +405,12 @@ def contact_margins(fb_a: FourBar, s: dict) -> dict:
     clearance joint (the last of ``periods`` periods from the settled start; 0 where the
     pin leaves the bushing).  Below the fraction the quasi-static margin stands: the rule
     already calls that contact lost, whatever the dynamics adds."""
-    qs = quasi_static_period(fb_a, s)
-    F = np.asarray(qs["F_N"])
-    row = {"qs_F_min": float(F.min()), "qs_F_max": float(F.max()),
-           "qs_margin": float(F.min() / F.max()), "dyn_F_min": math.nan, "dyn_F_max": math.nan,
-           "dyn_margin": math.nan, "dyn_min_penetration": math.nan, "dyn_steps": math.nan}
+    F = np.asarray(quasi_static_period(fb_a, s)["F_N"])
+    row = {"qs_margin": float(F.min() / F.max()), "dyn_margin": math.nan}
     if row["qs_margin"] >= CONTACT_LOSS_FRACTION:
         hist = finished_dynamic_period(fb_a, s)
         Fd = np.where(np.asarray(hist["delta"]) > 0.0, np.asarray(hist["F_N"]), 0.0)
-        row.update(dyn_F_min=float(Fd.min()), dyn_F_max=float(Fd.max()),
-                   dyn_margin=float(Fd.min() / Fd.max()),
-                   dyn_min_penetration=float(np.min(hist["delta"])), dyn_steps=float(hist["steps"]))
+        row["dyn_margin"] = float(Fd.min() / Fd.max())
     row["margin"] = float(np.nanmin([row["qs_margin"], row["dyn_margin"]]))
     return row
 
@@ -602,7 +592,7 @@ def load_point_posterior(run: dict) -> dict:
                                 "direction": (z["direction"] + shift) % 360.0, "misfit": float(np.mean(r)),
                                 "chi2": chi2, "width": width, "log_lik": logw,
                                 "log_prior": math.log(g_prior[j]),
-                                "qs_margin": float(F.min() / F.max()), "F_N_min": float(F.min()),
+                                "qs_margin": float(F.min() / F.max()),
                                 "arc_deg": math.degrees(f["arc"]), "G": f["G"],
                                 "arc_ends_deg": np.degrees(wear.contact_arc_bounds(qs["psi"]) or (math.nan, math.nan)),
                                 "K_b1": float(np.mean(z["K"][0])), "K_b2": float(np.mean(z["K"][1])),
@@ -684,14 +674,12 @@ def constant_sensitivity(run: dict) -> dict:
         K = _calibrated(fb, s, p, sides=("B1",))[0]
         h86 = _predicted_86h(fb, s, p, [float(np.mean(K))])[0]
         qs = wear.period_wear_factor(continuous_contact_period(fb, s), fb, fb.period)
-        with phase("joint_wear.constant_sensitivity") as sw:
-            dyn = finished_dynamic_period(fb, {**s, "n_out": int(s["n_steps"]), "periods": 1,
-                                               "method": "Radau", "start": "equilibrium"})
+        dyn = finished_dynamic_period(fb, {**s, "n_out": int(s["n_steps"]), "periods": 1,
+                                           "method": "Radau", "start": "equilibrium"})
         g_dyn = wear.period_wear_factor(dyn, fb, fb.period)["G"]
         out.append({"parameter": name, "value": v, "K_mean": float(np.mean(K)),
                     "wear_86h": h86, "arc_deg": math.degrees(qs["arc"]),
-                    "qs_vs_dynamic": qs["G"] / g_dyn - 1.0, "dynamic_steps": dyn["steps"],
-                    "dynamic_wall": sw.seconds})
+                    "qs_vs_dynamic": qs["G"] / g_dyn - 1.0, "dynamic_steps": dyn["steps"]})
     return {"fb": base_fb, "sens": out}
 
 
