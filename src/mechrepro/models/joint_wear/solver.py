@@ -24,8 +24,8 @@ from .geometry import FourBar, from_parameters
 MECHANISM = ("gravity", "friction_coefficient", "damping_ceiling")
 WEAR_SETUP = ("sides", "worn_bushing")
 WEAR = ("wear",)
-NO_FACTOR = dict.fromkeys(("S", "F_N_mean", "AB_mean", "A_mean", "arc", "arc_q90", "L_arc",
-                           "L_wear", "G", "min_penetration", "F_N_min", "F_N_max"), math.nan)
+NO_FACTOR = dict.fromkeys(("S", "F_N_mean", "arc", "arc_q90", "L_arc", "L_wear", "G",
+                           "min_penetration", "F_N_min"), math.nan)
 
 
 class ContactLost(Refusal):
@@ -384,14 +384,11 @@ def load_point_fit(run: dict) -> dict:
             hist = continuous_contact_period(fb_a, s)
             f = wear.period_wear_factor(hist, fb_a, fb.period)
             band = []
-            for da in (-sig, 0.0, sig):
-                if da == 0.0:     # the estimate itself: calibrated above
-                    band.append(_predicted_86h(fb_a, s, p, np.mean(K, axis=1), factor_a))
-                    continue
-                fb_b = load_point(fb, E, d, a + da, g)
-                factor_b = wear_factor_of(fb_b, s)
-                band.append(_predicted_86h(fb_b, s, p, np.mean(_calibrated(
-                    fb_b, s, p, factor=factor_b), axis=1), factor_b))
+            for da in (-sig, 0.0, sig):     # the estimate itself (da = 0): calibrated above
+                fb_b = fb_a if da == 0.0 else load_point(fb, E, d, a + da, g)
+                factor_b = factor_a if da == 0.0 else wear_factor_of(fb_b, s)
+                K_b = K if da == 0.0 else _calibrated(fb_b, s, p, factor=factor_b)
+                band.append(_predicted_86h(fb_b, s, p, np.mean(K_b, axis=1), factor_b))
             sols.append({"gravity": float(g), "direction": float(a % 360.0), "sigma_deg": sig,
                          "arc_deg": math.degrees(f["arc"]), **contact_side(hist),
                          "wear_86h": np.array(band)})    # 3 x 2 sides
