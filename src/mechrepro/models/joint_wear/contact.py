@@ -1,4 +1,4 @@
-"""Contact kinematics and clearance forces of joint B (Eqs. 5-15, 18-20).
+"""Contact kinematics of joint B (Eqs. 5, 10, 15, 18-19).
 
 Conventions: i = pin (on the crank), j = bushing (on the coupler).  e = r_i - r_j
 (Eq. 5), n = e/|e| points from the bushing centre to the pin centre, t = n turned by
@@ -8,26 +8,6 @@ bushing's moment about its centre is R_j F_T.
 from __future__ import annotations
 
 import numpy as np
-
-
-def damping_K2(delta, d_max, C_max):
-    """Eq. (14): step damping K''(delta) rising smoothly from 0 to C_max at d_max."""
-    x = np.clip(np.asarray(delta, float) / d_max, 0.0, 1.0)
-    return C_max * x * x * (3.0 - 2.0 * x)
-
-
-def normal_force(delta, delta_dot, K, n_exp, d_max, C_max, damping=True):
-    """Eq. (11): F_N = K' delta^n + K'' delta_dot, zero out of contact, never adhesive.
-
-    A damping term that would pull the bodies together on separation is clipped at zero:
-    the contact cannot transmit tension.
-    """
-    delta = np.asarray(delta, float)
-    dp = np.maximum(delta, 0.0)
-    F = K * dp ** n_exp
-    if damping:
-        F = F + damping_K2(dp, d_max, C_max) * delta_dot
-    return np.where(delta > 0.0, np.maximum(F, 0.0), 0.0)
 
 
 def friction_sign(v_T, v_eps):
@@ -47,7 +27,3 @@ def contact_chord(delta, R_pin, R_bush):
     th = half_contact_angle(delta, R_pin, R_bush)
     return np.sqrt(2.0 * R_bush ** 2 * (1.0 - np.cos(2.0 * th)))
 
-
-def contact_area(delta, R_pin, R_bush, width):
-    """Eq. (20): A_a = |AB| w [m2]."""
-    return contact_chord(delta, R_pin, R_bush) * width

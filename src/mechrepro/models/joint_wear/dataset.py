@@ -44,17 +44,13 @@ def period_part(res: dict, run: dict):
         "penetration": ("delta", "m", "penetration depth delta, Eq. (8)"),
         "sliding_velocity": ("v_T", "m/s", "tangential relative velocity v_T, Eq. (10)"),
         "contact_angle": ("psi", "rad", "contact point on the bushing, angle in the coupler frame from C->B"),
-        "theta3": ("theta3", "rad", "follower angle"),
         "phi2": ("phi2", "rad", "coupler angle C->B"),
     })
     v.update(_scalars({
         "F_N_mean": (f["F_N_mean"], "N", "mean normal contact force over the period, Eq. (22)"),
         "F_N_min": (f["F_N_min"], "N", "minimum normal contact force over the period"),
-        "F_N_max": (f["F_N_max"], "N", "maximum normal contact force over the period"),
         "min_penetration": (f["min_penetration"], "m", "minimum penetration over the period"),
         "sliding_distance": (f["S"], "m", "sliding distance over the period, Eq. (21)"),
-        "contact_chord_mean": (f["AB_mean"], "m", "mean contact arc chord |AB|, Eq. (23)"),
-        "contact_area_mean": (f["A_mean"], "m2", "mean contact area, Eq. (24)"),
         "contact_arc_angle": (f["arc"], "rad", "angular range of the contact point on the bushing (Fig. 13)"),
         "contact_arc_q90": (f["arc_q90"], "rad", "central range of the contact angle holding 90 % of the contact time (well-posed under rattling)"),
         "L_arc": (f["L_arc"], "m", "length of the contact-point arc on the bushing, Arc^j"),
@@ -68,8 +64,6 @@ def period_part(res: dict, run: dict):
 def mechanism_part(res: dict, run: dict):
     fb = res["fb"]
     return {}, _scalars({
-        "contact_stiffness": (fb.K_contact, "N/m^1.5", "K' of Eq. (12)"),
-        "radial_clearance": (fb.clearance, "m", "radial clearance c"),
         "bushing_radius": (fb.R_bush, "m", "bushing radius R_j (new bushing)"),
         "period": (fb.period, "s", "crank period"),
     })
@@ -82,9 +76,7 @@ def integrator_part(res: dict, run: dict):
     coords = {"t_full": var("t_full", full["t"], "s", "time since start of the simulation")}
     v = _series("t_full", full.__getitem__, {
         "penetration_full": ("delta", "m", "penetration depth over the whole simulation"),
-        "F_N_full": ("F_N", "N", "normal contact force over the whole simulation"),
         "contact_angle_full": ("psi", "rad", "contact angle over the whole simulation"),
-        "sliding_velocity_full": ("v_T", "m/s", "sliding velocity over the whole simulation"),
     })
     v.update(_scalars({
         "nfev": (h["nfev"], "1", "right-hand-side evaluations of the integrator"),
@@ -170,7 +162,6 @@ def scan_part(res: dict, run: dict):
     v = {
         "scan_K_table_mean": var(("side", *gd), wear.table_from_k(sc["k"], H), "1/Pa", "mean equivalent wear coefficient (table units) calibrated with this load point and gravity"),
         "scan_L_arc": var(gd, sc["L_arc"], "m", "contact-point arc length on the bushing (new bushing)"),
-        "scan_F_N_min": var(gd, sc["F_N_min"], "N", "minimum joint force over the period (new bushing)"),
         "scan_load_distance": var((), float(sc["distance"]), "m", "distance of F from E's mid-stroke position in the scan"),
     }
     return coords, v
@@ -188,16 +179,11 @@ def fit_part(res: dict, run: dict):
               "fit_band": var("fit_band", np.array([-1.0, 0.0, 1.0]), "1", "estimate - its uncertainty, the estimate, + its uncertainty"),
               **_sides()}
     v = {"fit_misfit": var(gd, f["misfit"], "1", "mean ln(K_p ours / K_p paper) over both sides and five intervals, every interval at the new bushing's wear factor (within 0.01 of the misfit; it places the zeros, the misfit refines them; NaN: contact lost)"),
-         "fit_load_distance": var((), float(f["distance"]), "m", "distance of F from E's mid-stroke position"),
          **_series("fit_solution", _column(sols), {
              "fit_sol_gravity": ("gravity", "m/s2", "gravity plane of the estimate"),
              "fit_sol_direction": ("direction", "deg", "estimated direction of F"),
              "fit_sol_sigma": ("sigma_deg", "deg", "its uncertainty from the tables (standard error of the ten log-ratios through the local slope)"),
-             "fit_sol_misfit": ("misfit", "1", "misfit left at the estimate"),
              "fit_sol_arc": ("arc_deg", "deg", "contact arc on the bushing at the estimate (new bushing)"),
-             "fit_sol_F_N_mean": ("F_N_mean", "N", "mean joint force at the estimate"),
-             "fit_sol_F_N_min": ("F_N_min", "N", "minimum joint force at the estimate"),
-             "fit_sol_wear_direction": ("wear_direction_deg", "deg", "wear-weighted mean direction of the contact point (lab frame, from +x)"),
              "fit_sol_upper_share": ("upper_share", "1", "share of the wear above the bushing centre (Sec. 4.2: the upper part)")}),
          "fit_sol_wear_86h": var(("fit_solution", "fit_band", "side"),
                                  np.array([x["wear_86h"] for x in sols], float).reshape(len(sols), 3, 2),
@@ -213,20 +199,17 @@ _POST_POINT = {
     "post_point_direction": ("direction", "deg", "F's direction from E (a zero of the mean misfit)"),
     "post_point_misfit": ("misfit", "1", "mean misfit left at the zero"),
     "post_point_chi2": ("chi2", "1", "chi2 of the ten log-ratios about their best common level, rounding noise of the printed increments"),
-    "post_point_width": ("width", "deg", "sd of F's direction the tables allow about the zero"),
-    "post_point_log_likelihood": ("log_lik", "1", "log of the likelihood integrated over the direction [log deg]"),
     "post_point_credible": ("credible", "1", "1 inside the credible set"),
     "post_point_upper_share": ("upper_share", "1", "share of the wear above the bushing centre (Sec. 4.2)"),
     "post_point_qs_margin": ("qs_margin", "1", "quasi-static contact margin min F_N / max F_N"),
-    "post_point_F_N_min": ("F_N_min", "N", "smallest joint force over the quasi-static period"),
     "post_point_arc": ("arc_deg", "deg", "contact arc on the new bushing (Fig. 13's psi)"),
     "post_point_wear_factor": ("G", "N/m", "wear factor of the new bushing, Eq. (29)"),
 }
 
 
 def posterior_part(res: dict, run: dict):
-    """The load point as a distribution (solver load_point_posterior): the mean misfit over
-    the prior grid and every point the tables allow (a zero of the misfit at a node), with
+    """The load point as a distribution (solver load_point_posterior): every point the
+    tables allow (a zero of the misfit at a node), with
     its posterior weight, whether it is credible and what the mechanics give there.  A run
     without a point keeps one row of NaN (netCDF-3 has no empty dimension)."""
     f = res["posterior"]
@@ -235,19 +218,14 @@ def posterior_part(res: dict, run: dict):
     w = np.asarray(f["weight"], float) if f["points"] else np.array([math.nan])
     col = _column(pts)
     H = float(run["parameters"]["hardness_bushing"])
-    grid = ("post_distance", "post_gravity", "post_friction", "post_direction")
     dyn = f["worst_margins"] or {}
     worst = f["worst"] or {}
     if not f["points"]:
         f = {**f, "chi2_new_bushing": math.nan, "new_bushing_credible": False}
-    coords = {"post_distance": var("post_distance", f["distance"], "m", "prior node: F's distance from E's mid-stroke position"),
-              "post_gravity": var("post_gravity", f["gravity"], "m/s2", "prior node: gravity component in the plane of motion"),
-              "post_friction": var("post_friction", f["friction"], "1", "prior node: friction coefficient"),
-              "post_direction": var("post_direction", f["directions"], "deg", "direction of F from E's mid-stroke position"),
+    coords = {"post_gravity": var("post_gravity", f["gravity"], "m/s2", "prior node: gravity component in the plane of motion"),
               "post_point": var("post_point", np.arange(len(pts)), "1", "load point reproducing the mean of Tables 3-4 at a prior node"),
               **_sides()}
-    v = {"post_misfit": var(grid, f["misfit"], "1", "mean ln(K_p ours / K_p paper), every interval at the new bushing's wear factor (NaN: contact lost)"),
-         **_series("post_point", col, _POST_POINT),
+    v = {**_series("post_point", col, _POST_POINT),
          "post_point_weight": var("post_point", w, "1", "posterior mass (0: the wear is not on the upper part of the bushing)"),
          "post_point_arc_ends": var(("post_point", "arc_end"), np.array([q["arc_ends_deg"] for q in pts], float).reshape(len(pts), 2), "deg",
                                     "ends of the contact-point arc on the new bushing (coupler frame, on the path unwrapped from its first sample)"),
@@ -259,8 +237,6 @@ def posterior_part(res: dict, run: dict):
                         for k, u, ln in (("gravity", "m/s2", "gravity"), ("distance", "m", "F's distance from E"),
                                          ("friction", "1", "friction coefficient"), ("direction", "deg", "F's direction from E"),
                                          ("qs_margin", "1", "quasi-static margin"))},
-                     "post_edges": (len(f.get("edges", [])), "1", "branches whose lower edge in g was followed (region_edge)"),
-                     "post_worst_dyn_steps": (dyn.get("dyn_steps", math.nan), "1", "Radau steps of its dynamic periods"),
                      "post_credible_level": (f["level"], "1", "level of the likelihood region (chi2 quantile, 4 degrees of freedom)"),
                      "post_chi2_new_bushing": (f["chi2_new_bushing"], "1", "chi2 of Tables 3-4 read with every calibration interval on the new bushing (the same at every load point)"),
                      "post_new_bushing_credible": (f["new_bushing_credible"], "1", "1 if that reading is inside the likelihood region")})}
@@ -299,7 +275,6 @@ def local_part(res: dict, run: dict):
          "placement_shift": var(pl, lw["placements"][:, 0], "1", "shift of the points' centre from the contact arc's midpoint, in arcs"),
          "placement_scale": var(pl, lw["placements"][:, 1], "1", "span of the points over the contact arc's"),
          "placement_mean_depth": var(pl, lw["placement_mean"], "m", "groove model, 86 h: mean depth over the points so placed (calibrated on them)"),
-         "placement_peak_depth": var(pl, lw["placement_peak"], "m", "groove model, 86 h: deepest point (calibrated on the points so placed)"),
          "uniform_depth": var(h, lw["uniform"], "m", "uniform model (Eq. 29) on the same joint and schedule"),
          "local_profile_end": var(("theta",), lw["profile"], "m", "groove model: wear profile at the end"),
          "local_point_angle": var(("local_point",), np.angle(np.exp(1j * np.asarray(lw["points"]))), "rad",

@@ -39,7 +39,7 @@ def initial_state(fb: FourBar, start: str = "concentric", t0: float = 0.0):
     return np.array([float(th3), float(ph2), float(w3), float(w2)])
 
 
-METHODS = ("Radau", "BDF", "LSODA", "RK45", "DOP853", "RK23")
+METHODS = ("Radau", "BDF", "LSODA", "RK45")
 IMPLICIT = ("Radau", "BDF", "LSODA")
 #: the methods with a compiled copy of scipy's algorithm (the others step scipy's)
 COMPILED = ("Radau", "BDF", "RK45")

@@ -7,13 +7,9 @@ neutral value (0, no second side, a frozen bushing, no wear prediction).
 """
 from __future__ import annotations
 
-from collections.abc import Callable
-from dataclasses import dataclass, field
-
-import numpy as np
+from dataclasses import dataclass
 
 from mechrepro.effects import EffectRegistry
-from mechrepro.timing import phase
 
 from . import wear
 from .geometry import FourBar
@@ -23,15 +19,10 @@ EFFECTS = EffectRegistry("joint_wear")
 
 @dataclass
 class Context:
-    """What the effects read: the run's SI parameters and settings, the mechanism, and (for
-    the wear effects) G(R_bush), the wear factor of one period of the solver's joint model
-    with the bushing at radius R_bush (solver.period_factor, or a rival's closed form)."""
+    """What the effects read: the run's SI parameters and settings and the mechanism."""
     p: dict
     s: dict
     fb: FourBar
-    wear_factor: Callable[[float], float] | None = None
-    sides: list = field(default_factory=lambda: ["B1"])
-    worn_bushing: Callable[[float, float], float] | None = None
 
 
 # --- mechanism terms ----------------------------------------------------------------------
@@ -71,22 +62,16 @@ def wear_update(ctx: Context) -> dict:
 # --- wear -----------------------------------------------------------------------------------
 @EFFECTS.register("archard_wear")
 def archard_wear(ctx: Context) -> dict:
-    """Archard wear of the bushing (Eqs. 16-31): k calibrated on the first 10 h of each
-    side (Eqs. 32-34), then predicted to t_end by the interval method (Sec. 3.3, 4.4),
-    one period of the solver's joint model per interval."""
-    fb, p, s, factor = ctx.fb, ctx.p, ctx.s, ctx.wear_factor
-    out = {"sides": [], "k": [], "k_mean": [], "G_cal": [], "nodes": [], "h": [], "G_pred": []}
-    with phase("joint_wear.archard_wear") as sw:
-        for side in ctx.sides:
-            k, k_mean, G = wear.calibrate_side(p, side, fb.period, fb.R_bush, factor)
-            nodes, h, Gp = wear.predict_side(p, side, float(s["interval_h"]), k_mean, fb.period,
-                                             fb.R_bush, factor, ctx.worn_bushing)
-            for key, val in zip(out, (side, k, k_mean, G, nodes, h, Gp)):
-                out[key].append(val)
-    out["wall_time_prediction"] = sw.seconds
-    if s.get("interval_limit") and ctx.worn_bushing is not None:     # not timed: a reference
-        out["limit"] = [wear.interval_limit(h[0], n[0], n[-1], km, fb.period, fb.R_bush, factor,
-                                            ctx.worn_bushing)
-                        for h, n, km in zip(out["h"], out["nodes"], out["k_mean"])]
-    out["cal_hours"] = wear.calibration_hours(p) * (1 + np.arange(len(out["k"][0])))
-    return {"wear": out}
+    """Archard wear of the bushing (Eqs. 16-31): for one side, k calibrated on its first
+    10 h (Eqs. 32-34), then the wear predicted to t_end by the interval method (Sec. 3.3,
+    4.4), as a function of the wear factor G(R_bush) of the solver's joint model, which
+    the solver applies to each side (solver.with_wear)."""
+    p, interval_h = ctx.p, float(ctx.s["interval_h"])
+
+    def side_wear(side: str, period: float, R0: float, factor, worn_bushing) -> dict:
+        k, k_mean, G = wear.calibrate_side(p, side, period, R0, factor)
+        nodes, h, Gp = wear.predict_side(p, side, interval_h, k_mean, period, R0, factor,
+                                         worn_bushing)
+        return {"sides": side, "k": k, "k_mean": k_mean, "G_cal": G, "nodes": nodes, "h": h,
+                "G_pred": Gp}
+    return {"wear": side_wear}

@@ -35,8 +35,7 @@ JOB_START_S = 2.0
 _QS_S, _QS_PER_SAMPLE_S, _QS_B = 3.0e-3, 3.5e-6, 340.0
 _RADAU_STEP_S, _RADAU_B = 3.1e-6, 100.0
 # scipy's integrators: (seconds per step, steps per settled period at rtol 1e-6)
-_SCIPY = {"LSODA": (45e-6, 38_000), "BDF": (5e-4, 14_000), "RK45": (2.1e-4, 1.5e7),
-          "RK23": (2.1e-4, 1.5e7), "DOP853": (2.1e-4, 1.5e7)}
+_SCIPY = {"LSODA": (45e-6, 38_000), "BDF": (5e-4, 14_000), "RK45": (2.1e-4, 1.5e7)}
 _SCIPY_SAMPLE_S, _SCIPY_B = 50e-6, 400.0
 _LOCAL_CELL_S, _LOCAL_B, _GROOVE_CELL_S = 0.13e-6, 50.0, 0.65e-6
 _LOCAL_PATCH = math.radians(15.0)   # the widest contact patch of the scenes (assumed F)

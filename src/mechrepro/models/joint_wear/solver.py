@@ -14,7 +14,7 @@ import numpy as np
 from scipy import optimize, stats
 
 from mechrepro.errors import Refusal
-from mechrepro.timing import phase
+from mechrepro.timing import EFFECT, phase
 
 from . import dataset, dynamics, groove, kinematics, quasistatic, wear
 from .effects import EFFECTS, Context
@@ -24,8 +24,8 @@ from .geometry import FourBar, from_parameters
 MECHANISM = ("gravity", "friction_coefficient", "damping_ceiling")
 WEAR_SETUP = ("sides", "worn_bushing")
 WEAR = ("wear",)
-NO_FACTOR = dict.fromkeys(("S", "F_N_mean", "AB_mean", "A_mean", "arc", "arc_q90", "L_arc",
-                           "L_wear", "G", "min_penetration", "F_N_min", "F_N_max"), math.nan)
+NO_FACTOR = dict.fromkeys(("S", "F_N_mean", "arc", "arc_q90", "L_arc", "L_wear", "G",
+                           "min_penetration", "F_N_min"), math.nan)
 
 
 class ContactLost(Refusal):
@@ -135,16 +135,26 @@ def wear_factor_of(fb_v: FourBar, s: dict, joint=None):
 
 
 def with_wear(run: dict, fb: FourBar, ctx: Context, res: dict, joint) -> dict:
-    """Stages two and three: the wear set-up, then the wear effects on the wear factor of
-    ``joint`` (or the closed form of option ``closed_form_growth``, a rival)."""
+    """Stages two and three: the wear set-up, then the wear effect's law applied to each
+    side with the wear factor of ``joint`` (or the closed form of option
+    ``closed_form_growth``, a rival), timed as that effect's contribution."""
     g = ctx.s.get("closed_form_growth")
-    ctx = replace(ctx, wear_factor=period_factor(fb, ctx.s, joint) if g is None
-                  else wear.closed_form_factor(fb.R_bush, float(g)))
+    factor = (period_factor(fb, ctx.s, joint) if g is None
+              else wear.closed_form_factor(fb.R_bush, float(g)))
     c = EFFECTS.evaluate(run, ctx, keys=WEAR_SETUP)
-    ctx = replace(ctx, sides=c.get("sides", ["B1"]), worn_bushing=c.get("worn_bushing"))
+    sides, worn = c.get("sides", ["B1"]), c.get("worn_bushing")
     c = EFFECTS.evaluate(run, ctx, keys=WEAR)
-    if "wear" in c:
-        res["wear"] = c.get("wear")
+    if "wear" not in c:
+        return res
+    with phase(EFFECT + c.sources("wear")[0]) as sw:
+        rows = [c.get("wear")(side, fb.period, fb.R_bush, factor, worn) for side in sides]
+    w = {k: [r[k] for r in rows] for k in rows[0]}
+    w["wall_time_prediction"] = sw.seconds
+    if ctx.s.get("interval_limit") and worn is not None:     # not timed: a reference
+        w["limit"] = [wear.interval_limit(h[0], n[0], n[-1], km, fb.period, fb.R_bush, factor,
+                                          worn) for h, n, km in zip(w["h"], w["nodes"], w["k_mean"])]
+    w["cal_hours"] = wear.calibration_hours(ctx.p) * (1 + np.arange(len(w["k"][0])))
+    res["wear"] = w
     return res
 
 
@@ -281,22 +291,19 @@ def fit_zeros(fb: FourBar, s: dict, p: dict, E, d: float, dirs, g: float, K_pape
         return load_point(fb, E, d, a, g)
 
     @functools.cache
-    def misfit(a):
-        """The misfit at direction a [deg] (NaN where contact loss is refused)."""
+    def misfit(a, new_bushing=False):
+        """The misfit at direction a [deg] (NaN where contact loss is refused); with
+        ``new_bushing`` every interval at the new bushing's wear factor (the grid's)."""
         fb_v = mech(a)
         try:
-            return tables_misfit(fb_v, s, p, K_paper, wear_factor_of(fb_v, s, joint))
+            factor = wear_factor_of(fb_v, s, joint)
+            if new_bushing:
+                G0 = factor(fb_v.R_bush)
+                factor = lambda R: G0      # noqa: E731
+            return tables_misfit(fb_v, s, p, K_paper, factor)
         except ContactLost:
             return math.nan
-
-    def grid_misfit(a):
-        fb_v = mech(a)
-        try:
-            G0 = wear_factor_of(fb_v, s, joint)(fb_v.R_bush)
-            return tables_misfit(fb_v, s, p, K_paper, lambda R: G0)
-        except ContactLost:         # refused
-            return math.nan
-    m = np.array([grid_misfit(a) for a in dirs])
+    m = np.array([misfit(a, True) for a in dirs])
     n = dirs.size
     at = lambda j: float(dirs[j % n]) + 360.0 * (j // n)          # noqa: E731  unwrapped
     zeros = []
@@ -377,19 +384,14 @@ def load_point_fit(run: dict) -> dict:
             hist = continuous_contact_period(fb_a, s)
             f = wear.period_wear_factor(hist, fb_a, fb.period)
             band = []
-            for da in (-sig, 0.0, sig):
-                if da == 0.0:     # the estimate itself: calibrated above
-                    band.append(_predicted_86h(fb_a, s, p, np.mean(K, axis=1), factor_a))
-                    continue
-                fb_b = load_point(fb, E, d, a + da, g)
-                factor_b = wear_factor_of(fb_b, s)
-                band.append(_predicted_86h(fb_b, s, p, np.mean(_calibrated(
-                    fb_b, s, p, factor=factor_b), axis=1), factor_b))
+            for da in (-sig, 0.0, sig):     # the estimate itself (da = 0): calibrated above
+                fb_b = fb_a if da == 0.0 else load_point(fb, E, d, a + da, g)
+                factor_b = factor_a if da == 0.0 else wear_factor_of(fb_b, s)
+                K_b = K if da == 0.0 else _calibrated(fb_b, s, p, factor=factor_b)
+                band.append(_predicted_86h(fb_b, s, p, np.mean(K_b, axis=1), factor_b))
             sols.append({"gravity": float(g), "direction": float(a % 360.0), "sigma_deg": sig,
-                         "misfit": float(np.mean(r)),
-                         "misfit_se": se, "F": fb_a.F, "arc_deg": math.degrees(f["arc"]),
-                         "F_N_mean": f["F_N_mean"], "F_N_min": f["F_N_min"],
-                         **contact_side(hist), "wear_86h": np.array(band)})    # 3 x 2 sides
+                         "arc_deg": math.degrees(f["arc"]), **contact_side(hist),
+                         "wear_86h": np.array(band)})    # 3 x 2 sides
     return {"fb": fb, "fit": {"misfit": m, "directions": dirs, "gravity": gs, "distance": d,
                               "solutions": sols}}
 
@@ -400,17 +402,12 @@ def contact_margins(fb_a: FourBar, s: dict) -> dict:
     clearance joint (the last of ``periods`` periods from the settled start; 0 where the
     pin leaves the bushing).  Below the fraction the quasi-static margin stands: the rule
     already calls that contact lost, whatever the dynamics adds."""
-    qs = quasi_static_period(fb_a, s)
-    F = np.asarray(qs["F_N"])
-    row = {"qs_F_min": float(F.min()), "qs_F_max": float(F.max()),
-           "qs_margin": float(F.min() / F.max()), "dyn_F_min": math.nan, "dyn_F_max": math.nan,
-           "dyn_margin": math.nan, "dyn_min_penetration": math.nan, "dyn_steps": math.nan}
+    F = np.asarray(quasi_static_period(fb_a, s)["F_N"])
+    row = {"qs_margin": float(F.min() / F.max()), "dyn_margin": math.nan}
     if row["qs_margin"] >= CONTACT_LOSS_FRACTION:
         hist = finished_dynamic_period(fb_a, s)
         Fd = np.where(np.asarray(hist["delta"]) > 0.0, np.asarray(hist["F_N"]), 0.0)
-        row.update(dyn_F_min=float(Fd.min()), dyn_F_max=float(Fd.max()),
-                   dyn_margin=float(Fd.min() / Fd.max()),
-                   dyn_min_penetration=float(np.min(hist["delta"])), dyn_steps=float(hist["steps"]))
+        row["dyn_margin"] = float(Fd.min() / Fd.max())
     row["margin"] = float(np.nanmin([row["qs_margin"], row["dyn_margin"]]))
     return row
 
@@ -575,14 +572,13 @@ def load_point_posterior(run: dict) -> dict:
         gs, g_prior = np.zeros(1), np.ones(1)
     dh = np.array([p[f"measured_increment_{side}"] for side in SIDES])
     sigma = rounding_sigma(dh * 1e3)
-    misfit = np.full((ds_.size, gs.size, mus.size, dirs.size), np.nan)
     pts = []
-    for i, d in enumerate(ds_):
+    for d in ds_:
         for j, g in enumerate(gs):
-            for k, mu in enumerate(mus):
+            for mu in mus:
                 fb_n = replace(fb, mu=float(mu))
-                misfit[i, j, k], zeros = fit_zeros(fb_n, s, p, E, float(d), dirs, float(g), K_paper,
-                                                   joint=quasi_static_period)
+                _, zeros = fit_zeros(fb_n, s, p, E, float(d), dirs, float(g), K_paper,
+                                     joint=quasi_static_period)
                 for z in zeros:
                     r = np.log(z["K"] / K_paper)
                     chi2, width, logw, shift = laplace_log_weight(r, sigma, z["slope"])
@@ -593,7 +589,7 @@ def load_point_posterior(run: dict) -> dict:
                                 "direction": (z["direction"] + shift) % 360.0, "misfit": float(np.mean(r)),
                                 "chi2": chi2, "width": width, "log_lik": logw,
                                 "log_prior": math.log(g_prior[j]),
-                                "qs_margin": float(F.min() / F.max()), "F_N_min": float(F.min()),
+                                "qs_margin": float(F.min() / F.max()),
                                 "arc_deg": math.degrees(f["arc"]), "G": f["G"],
                                 "arc_ends_deg": np.degrees(wear.contact_arc_bounds(qs["psi"]) or (math.nan, math.nan)),
                                 "K_b1": float(np.mean(z["K"][0])), "K_b2": float(np.mean(z["K"][1])),
@@ -645,17 +641,14 @@ def load_point_posterior(run: dict) -> dict:
     margin = dyn.get("margin", math.nan)
     for q in pts:
         del q["fb"], q["factor"]
-    for e in edges:
-        del e["fb"]
     w = np.zeros(len(pts))
     if upper.any():
         lp = log_post[upper]
         w[upper] = np.exp(lp - lp.max()) / np.sum(np.exp(lp - lp.max()))
-    return {"fb": fb, "posterior": {"misfit": misfit, "directions": dirs, "distance": ds_,
-                                    "gravity": gs, "friction": mus, "points": pts,
+    return {"fb": fb, "posterior": {"gravity": gs, "points": pts,
                                     "weight": w, "worst": worst and {k: worst[k] for k in (
                                         "distance", "gravity", "friction", "direction", "qs_margin")},
-                                    "worst_margins": dyn, "margin": margin, "edges": edges,
+                                    "worst_margins": dyn, "margin": margin,
                                     "chi2_new_bushing": chi2_new, "new_bushing_credible": new_inside,
                                     "level": float(s["posterior_credible"])}}
 
@@ -678,14 +671,12 @@ def constant_sensitivity(run: dict) -> dict:
         K = _calibrated(fb, s, p, sides=("B1",))[0]
         h86 = _predicted_86h(fb, s, p, [float(np.mean(K))])[0]
         qs = wear.period_wear_factor(continuous_contact_period(fb, s), fb, fb.period)
-        with phase("joint_wear.constant_sensitivity") as sw:
-            dyn = finished_dynamic_period(fb, {**s, "n_out": int(s["n_steps"]), "periods": 1,
-                                               "method": "Radau", "start": "equilibrium"})
+        dyn = finished_dynamic_period(fb, {**s, "n_out": int(s["n_steps"]), "periods": 1,
+                                           "method": "Radau", "start": "equilibrium"})
         g_dyn = wear.period_wear_factor(dyn, fb, fb.period)["G"]
         out.append({"parameter": name, "value": v, "K_mean": float(np.mean(K)),
                     "wear_86h": h86, "arc_deg": math.degrees(qs["arc"]),
-                    "qs_vs_dynamic": qs["G"] / g_dyn - 1.0, "dynamic_steps": dyn["steps"],
-                    "dynamic_wall": sw.seconds})
+                    "qs_vs_dynamic": qs["G"] / g_dyn - 1.0, "dynamic_steps": dyn["steps"]})
     return {"fb": base_fb, "sens": out}
 
 

@@ -10,6 +10,7 @@ import math
 import numpy as np
 
 from mechrepro.io import run_attrs
+from mechrepro.levels import level_error
 from mechrepro.validation import Quantities, Reproduced
 
 from . import accuracy, wear
@@ -113,11 +114,9 @@ def arc_concentric(R):
     ds = R.run("fig13_contact_points")
     psi, on = ds["contact_angle"].values, (ds["penetration"].values > 0).astype(float)
     # the same trajectory read at 1/4, 1/2 and all of its output samples: the statistic's
-    # sampling error (Richardson from the three; the integrator's steps do not change)
+    # sampling error by the levels' estimator (the integrator's steps do not change)
     q = [math.degrees(wear.contact_arc_quantile(psi[::m], on[::m], 0.9)) for m in (4, 2, 1)]
-    d1, d2 = q[0] - q[1], q[1] - q[2]
-    ratio = abs(d1) / abs(d2) if d2 else math.inf
-    err = abs(d2) * ratio / (ratio - 1.0) if ratio > 1.05 else max(abs(d1), abs(d2))
+    err = level_error(*q, 2.0, math.inf)[0]
     return Reproduced(math.degrees(float(ds["contact_arc_q90"])),
                       f"max-min over the output samples {math.degrees(float(ds['contact_arc_angle'])):.3g} deg "
                       f"(set by the impact, not well defined); sampling: {psi.size // 4}, {psi.size // 2}, "

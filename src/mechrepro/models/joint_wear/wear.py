@@ -168,16 +168,6 @@ def implied_wear_range(k, dh_per_period, F_mean, S, width):
     return k * F_mean * S / (width * dh_per_period)
 
 
-def local_wear_depth(k: float, F_mean: float, S: float, A_mean: float) -> float:
-    """Eq. (25): dh* = (K/H) F_N S / A_a -- the depth if all wear sat at one point G."""
-    return k * F_mean * S / A_mean
-
-
-def distributed_wear_depth(dh_star: float, AB_mean: float, L_wear: float) -> float:
-    """Eq. (28): the volume of Eq. (26) spread over the wear range: dh* AB / L."""
-    return dh_star * AB_mean / L_wear
-
-
 def bushing_radius(R0: float, h: float) -> float:
     """Worn bushing circle: diameter D0 + h (Sec. 4.4 step 1), so R = R0 + h / 2."""
     return R0 + 0.5 * h
