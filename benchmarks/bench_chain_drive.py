@@ -101,7 +101,7 @@ def _peak_interp(a):
 
 def _scene(profile: str, name: str):
     run = load_paper(ROOT / "config/papers/chain_drive.yaml", profile).runs[name]
-    return dict(run["parameters"]), dict(run["resolution"]), run["effects"]
+    return dict(run["parameters"]), dict(run["resolution"]), run   # the run: its effects
 
 
 def _march(a, differencing, kernel):

@@ -167,7 +167,7 @@ def test_the_impact_is_resolved_by_its_own_steps_so_the_orbit_converges_in_the_s
     1e-5."""
     run, prm = _prm("fig07_tension")
     tau, t_r, _ = D.events(prm, 371.674 / geometry.RPM)
-    t_i = D._contact_time(D.as_run(run), prm)
+    t_i = D._contact_time(run, prm)
     seg = D._segments(tau, t_r, 300, t_i)
     assert seg[0][-1] == t_i and len(seg[0]) - 1 == 12
     got = [D.periodic_orbit(run, prm, 371.674 / geometry.RPM, n) for n in (133, 200, 300, 450)]

@@ -35,7 +35,7 @@ import math
 import numpy as np
 
 from . import span
-from .effects import EFFECTS, SpanContext, as_run, declared_keys
+from .effects import EFFECTS, SpanContext, declared_keys
 
 
 def beaded_frequencies(n: int, tension: float, mass: float, spacing: float) -> np.ndarray:
@@ -203,7 +203,7 @@ def _drive(run, prm, omega1, times, dt):
 
 def tension_coefficient(run, prm) -> float:
     """k of P = T_s + k c^2 from the scene's effects (0 without speed tensioning)."""
-    return float(EFFECTS.evaluate(as_run(run), SpanContext(prm, 1.0, np.zeros(0), None,
+    return float(EFFECTS.evaluate(run, SpanContext(prm, 1.0, np.zeros(0), None,
                                                            span.span_geometry(prm, True)),
                                   keys={"tension_coefficient"}).total("tension_coefficient"))
 
@@ -297,7 +297,6 @@ def period_map(run, prm: dict, omega1: float, steps_per_period: int, start=None)
     coincides with the seating (t_r = 0).  With ``start`` (a state x) only that orbit is
     marched: M is None, b its state after the period and ``amplitude`` max |y| over the
     free rollers along it."""
-    run = as_run(run)
     named = declared_keys(run)
     _refuse_unhonoured_keys(named)
     m, p = prm["mass_per_length"], prm["pitch"]
@@ -388,7 +387,7 @@ def sweep(run, prm: dict, omega1, res: dict) -> dict:
 
     if "edge_tol" in res:
         sigma = prm["transverse_damping"] / (2 * prm["mass_per_length"])
-        only = stability_only(as_run(run))
+        only = stability_only(run)
         peak_tol = float(res["peak_tol"]) / geometry.RPM
         omega1, sols, done = adaptive_sweep(
             evaluate, omega1, edge_tol=float(res["edge_tol"]) / geometry.RPM,

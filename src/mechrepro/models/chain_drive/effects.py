@@ -27,8 +27,7 @@ kinematics is computed lazily, only when a named effect asks for it.
 """
 from __future__ import annotations
 
-from functools import cache, cached_property
-from pathlib import Path
+from functools import cached_property
 
 import numpy as np
 
@@ -89,10 +88,6 @@ class SpanContext:
         """Times as a (T, 1) or (T, S) array (broadcasts against ``omega1[None, :]``)."""
         return self.t if self.t.ndim == 2 else self.t[:, None]
 
-    def times_of(self, i: int):
-        """The times of speed ``i``."""
-        return self.t[:, i] if self.t.ndim == 2 else self.t
-
     def blocked(self, fn) -> dict:
         """``fn(rows) -> {key: (rows, S) array or scalar}`` evaluated block of time rows by
         block (~64k samples each, so that the temporaries of the elementwise formulas stay
@@ -135,29 +130,6 @@ class SpanContext:
                 omega1, k=k, I2=self.prm["driven_inertia"], n1=self.n1, n2=self.n2,
                 p_c=self.p_c, f_p=self.span["f_p"])
         return self.cache[key]
-
-
-CONFIG = Path(__file__).resolve().parents[4] / "config" / "papers" / "chain_drive.yaml"
-
-
-@cache
-def _declarations() -> dict:
-    from mechrepro.inputs import read_yaml
-
-    return {e: list(spec["contributes"]) for e, spec in read_yaml(CONFIG)["effects"].items()}
-
-
-def as_run(effects) -> dict:
-    """A run record with ``contributes`` (what each named effect declares) for every named
-    effect: a run from the config as it is, or a plain list of effect names (tests,
-    benchmarks) or a run whose effects were swapped, completed from the declarations of
-    ``config/papers/chain_drive.yaml``."""
-    run = effects if isinstance(effects, dict) else {"effects": list(effects)}
-    have = run.get("contributes", {})
-    if all(e in have for e in run["effects"]):
-        return run
-    return {**run, "contributes": {e: have.get(e, _declarations().get(e, []))
-                                   for e in run["effects"]}}
 
 
 def declared_keys(run: dict) -> set:

@@ -25,7 +25,7 @@ from mechrepro.timing import phase
 from mechrepro.units import var
 
 from . import four_bar, galerkin_kernel, geometry, loads
-from .effects import EFFECTS, SpanContext, as_run, refuse_unhonoured
+from .effects import EFFECTS, SpanContext, refuse_unhonoured
 from .geometry import RPM
 from .span import dynamic_tension, span_geometry
 from .errors import DivergenceError, KernelUnavailable, RecordError, UnknownChoice
@@ -222,7 +222,7 @@ def contributions(run: dict, prm: dict, omega1: float, geo: dict, t, step, regis
     """The forcing contributions of the named effects at the times ``t`` (flattened) of one
     speed."""
     ctx = SpanContext(prm, [omega1], np.ravel(t), step, geo, end_velocity=True)
-    return (registry or EFFECTS).evaluate(as_run(run), ctx, keys=FORCING_KEYS)
+    return (registry or EFFECTS).evaluate(run, ctx, keys=FORCING_KEYS)
 
 
 def forcing_arrays(run: dict, prm: dict, omega1: float, geo: dict, t, step=None,
@@ -437,7 +437,6 @@ def _galerkin_setup(run, prm, res) -> dict:
     n1, m = int(prm["n1"]), prm["mass_per_length"]
     geo = span_geometry(prm, False)
     L = geo["L_ct"]
-    run = as_run(run)
     refuse_unhonoured(run, STEADY_KEYS + FORCING_KEYS, "galerkin")
     steady = EFFECTS.evaluate(run, SpanContext(prm, [prm["speed"]], np.zeros(0), None, geo),
                               keys=STEADY_KEYS)

@@ -20,7 +20,7 @@ from mechrepro.timing import phase
 from mechrepro.units import var
 
 from . import claims, discrete, exact, four_bar, galerkin, geometry, loads, shooting, span, timestep
-from .effects import EFFECTS, SpanContext, as_run, declared_keys, refuse_unhonoured
+from .effects import EFFECTS, SpanContext, declared_keys, refuse_unhonoured
 from .galerkin import envelope_statistics  # noqa: F401  (re-exported for the tests)
 from .geometry import RPM
 from .errors import UnknownChoice
@@ -35,7 +35,6 @@ def _coord(name, values, units, long_name):
 def _contributions(run, ctx, keys, solver):
     """Every named effect on ``ctx`` (a figure's own time grid), after refusing those that
     declare a key the solver does not consume."""
-    run = as_run(run)
     refuse_unhonoured(run, keys, solver)
     return EFFECTS.evaluate(run, ctx)
 
@@ -187,7 +186,7 @@ def dense_near_elastic(run, prm, omega1, half_width: float, n_speeds: int) -> np
     so the parametric (Mathieu) bands it pumps cluster there and are narrow (Fig. 9a: 0.9 rpm
     at 1210.9-1211.8 rpm, 0.3 % below omega_c, between two points of an 8 rpm grid).  The
     dense count scales with n_speeds, so refining n_speeds refines it too."""
-    geo = span.span_geometry(prm, "long" in declared_keys(as_run(run)))
+    geo = span.span_geometry(prm, "long" in declared_keys(run))
     r2 = geometry.pitch_radius(prm["pitch"], int(prm["n2"]))
     extra = [omega1]
     for L in sorted({geo["L_short"], geo["L_long"]}):
@@ -302,7 +301,6 @@ def discrete_sweep(run, prm, omega1, res, wc=None) -> dict:
     """Figs. 5-8 on the discrete-link span (:func:`.discrete.sweep`): per speed the periodic
     orbit's amplitude and largest Floquet multiplier of the tooth-period map, with the
     moving-string resonance speeds of the span (the string's, for comparison)."""
-    run = as_run(run)
     out = discrete.sweep(run, prm, omega1, res)
     omega1 = out["omega1"]
     orders = np.arange(1, int(res.get("orders", 8)) + 1)
