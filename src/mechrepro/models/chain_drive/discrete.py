@@ -45,27 +45,6 @@ def beaded_frequencies(n: int, tension: float, mass: float, spacing: float) -> n
     return 2.0 * np.sqrt(tension / (mass * spacing)) * np.sin(k * np.pi / (2 * (n + 1)))
 
 
-def stiffness(n: int, tension: float, spacing: float) -> np.ndarray:
-    """Transverse stiffness matrix of n rollers between fixed ends: T/a tridiag(-1, 2, -1)."""
-    return tension / spacing * (2 * np.eye(n) - np.eye(n, k=1) - np.eye(n, k=-1))
-
-
-def modal_frequencies(n: int, tension: float, mass: float, spacing: float) -> np.ndarray:
-    """Natural frequencies [rad/s] of the roller set without motion (eigenvalues of K / m)."""
-    return np.sqrt(np.linalg.eigvalsh(stiffness(n, tension, spacing)) / mass)
-
-
-def energy(y, v, y_left, y_right, tension: float, mass: float, spacing: float):
-    """Kinetic + elastic transverse energy of the rollers (ends included in the links);
-    y, v: (N, ...) with the end positions broadcasting against one roller's row."""
-    y = np.asarray(y, float)
-    row = y.shape[1:]
-    full = np.concatenate([np.broadcast_to(y_left, row)[None], y,
-                           np.broadcast_to(y_right, row)[None]])
-    return 0.5 * mass * np.sum(v * v, axis=0) + 0.5 * tension / spacing * np.sum(
-        np.diff(full, axis=0) ** 2, axis=0)
-
-
 def _accel(y, v, left, right, k_over_m, damp, last, load, a):
     """Roller accelerations into ``a`` (N, K): (P/(m_r p)) (second difference with the end
     rollers) - damp v, plus ``last`` (an extra tension / (m_r p) in the link to the driving

@@ -69,11 +69,6 @@ class GalerkinModel:
         self._Sx0 = k * np.pi / L
         self._SxL = k * np.pi / L * np.cos(k * np.pi)
 
-    def rhs(self, t, y, ends, tension):
-        """y = (phi, psi, z, psi') with z = phi' + beta; ends(t) -> (g, h, g', h');
-        tension(t) -> P_t."""
-        return self.rhs_values(y, *ends(t), tension(t))
-
     def rhs_values(self, y, g, h, gd, hd, Pt):
         """The right-hand side for given end motion (g, h, g', h') and dynamic tension P_t."""
         nt, nl = self.n_t, self.n_l
@@ -103,13 +98,6 @@ class GalerkinModel:
         fl += (ex0 - Pt) * self.Cend0 + (-exL + Pt) * self.CendL
         return np.concatenate([dphi, dpsi, self.Mt_inv @ ft, self.Ml_inv @ fl])
 
-    def transverse(self, y, t, ends, xi):
-        """u2 at x = xi: modal part plus the end-motion line."""
-        k = np.arange(1, self.n_t + 1) * np.pi / self.L
-        e = np.array([ends(tt)[:2] for tt in np.atleast_1d(t)])
-        return (np.asarray(y)[..., :self.n_t] @ np.sin(k * xi)
-                + (1 - xi / self.L) * e[:, 0] + xi / self.L * e[:, 1])
-
     def u2_at(self, y, xi):
         """Transverse displacement at x = xi of state(s) y (without the end motion part)."""
         k = np.arange(1, self.n_t + 1) * np.pi / self.L
@@ -125,32 +113,6 @@ class GalerkinModel:
         A = np.block([[np.zeros((n, n)), np.eye(n)], [-Minv @ K, -Minv @ G]])
         lam = np.max(np.abs(np.linalg.eigvals(A)))
         return 2.78 / lam
-
-
-def rk4(f, t0, y0, dt, n_steps, record_every=1, y_cap=1e3):
-    """Classical fourth-order Runge-Kutta with a fixed step (the paper's integrator).
-
-    Stops with a clear error once the state leaves any physical range (|y| > y_cap, in m,
-    m/s) -- before it overflows into inf/NaN."""
-    y = np.array(y0, float)
-    t = t0
-    out_t, out_y = [t], [y.copy()]
-    # stages at the step ends take one-sided limits: with the step aligned to the tooth
-    # period, the kinks of the end motion fall on step boundaries, never inside a step
-    eps = 1e-9 * dt
-    for i in range(n_steps):
-        k1 = f(t + eps, y)
-        k2 = f(t + dt / 2, y + dt / 2 * k1)
-        k3 = f(t + dt / 2, y + dt / 2 * k2)
-        k4 = f(t + dt - eps, y + dt * k3)
-        y = y + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
-        t = t0 + (i + 1) * dt
-        if not np.all(np.isfinite(y)) or np.max(np.abs(y)) > y_cap:
-            raise DivergenceError(f"RK4 diverged at t = {t:.4g} s (step {dt:.3g} s too large?)")
-        if (i + 1) % record_every == 0:
-            out_t.append(t)
-            out_y.append(y.copy())
-    return np.array(out_t), np.array(out_y)
 
 
 def rk4_tabulated(model, y0, dt, n_steps, F, record_every=1, y_cap=1e3, kernel="auto"):
@@ -196,18 +158,6 @@ def stage_times(dt, n_steps):
     eps = 1e-9 * dt
     base = np.arange(n_steps)[:, None] * dt
     return base + np.array([eps, dt / 2, dt / 2, dt - eps])[None, :]
-
-
-def library(f, t0, y0, t_end, t_eval, rtol=1e-6, atol=1e-12, method="DOP853", max_step=np.inf):
-    """scipy solve_ivp (adaptive, error-controlled) on the same right-hand side.
-
-    ``max_step`` must not exceed the width of the shortest forcing pulse, or the adaptive
-    controller may step over an impact without seeing it."""
-    sol = solve_ivp(f, (t0, t_end), y0, method=method, t_eval=t_eval, rtol=rtol, atol=atol,
-                    max_step=max_step)
-    if not sol.success:
-        raise RuntimeError(f"solve_ivp failed: {sol.message}")
-    return sol.t, sol.y.T, sol.nfev
 
 
 # the contributions the Galerkin model consumes (no span-length state, no sag term: the
@@ -375,14 +325,6 @@ def library_piecewise(rhs, forcing_on, edges, y0, t_eval, rtol=1e-9, atol=1e-14,
         y = sol.y[:, -1]
     out[t_eval >= edges[-1]] = y
     return out, nfev
-
-
-def forcing(run: dict, prm: dict, omega1: float, geo: dict, step=None, registry=None):
-    """A scalar function t -> (g, h, g', h', P_t) for adaptive integrators."""
-    def at(t):
-        F = forcing_arrays(run, prm, omega1, geo, t, step, registry)
-        return tuple(float(F[k]) for k in ("g", "h", "gd", "hd", "Pt"))
-    return at
 
 
 # ---------------------------------------------------------------------------- the Fig. 10 scene

@@ -1,7 +1,6 @@
 """The low/medium-speed span: contributions -> excitation -> FD sweep (Sec. 2.3.2).
 
-One call solves a whole operating-speed sweep as one array computation (``vectorised``),
-or speed by speed (``loop``, kept for the benchmark and the equivalence test).
+One call solves a whole operating-speed sweep as one array computation.
 """
 from __future__ import annotations
 
@@ -11,7 +10,7 @@ import numpy as np
 
 from . import fd, geometry
 from .effects import EFFECTS, SpanContext, declared_keys, refuse_unhonoured
-from .errors import PitchScaleInstability, UnknownChoice
+from .errors import PitchScaleInstability
 
 # the contributions the finite-difference march consumes (effects.py lists every key)
 FD_KEYS = ("tension_coefficient", "tension_pulse", "tension", "tension_external",
@@ -207,32 +206,16 @@ def assemble(run, prm: dict, omega1, res: dict, registry=EFFECTS,
             "tension_coefficient": k_c}
 
 
-def sweep(run, prm, omega1, res, mode: str = "vectorised", probes=(), record_every=0,
-          registry=EFFECTS) -> dict:
-    """Maximum steady amplitude vs operating speed (Figs. 5-9)."""
+def sweep(run, prm, omega1, res, probes=(), record_every=0, registry=EFFECTS) -> dict:
+    """Maximum steady amplitude vs operating speed (Figs. 5-9): every speed in one march."""
     a = assemble(run, prm, omega1, res, registry)
-    kw = dict(m=a["m"], c_d=a["c_d"], grid=a["grid"], dt=a["dt"], n_steps=a["n_steps"],
-              measure_from=a["measure_from"], u_cap=float(res.get("u_cap", 0.05)),
-              n_blocks=GROWTH_BLOCKS,
-              differencing=res.get("differencing"))
-    if mode == "vectorised":
-        r = fd.march(c=a["c"], P=a["P"], exc=a["exc"], s_star=a["s_star"], probes=probes,
-                     record_every=record_every, **kw)
-        out = {"amplitude": r.amplitude, "growth": r.growth, "unstable": r.unstable,
-               "probes": r.probes, "t_rec": r.t_rec}
-    elif mode == "loop":
-        amp, gr, un = [], [], []
-        for i in range(a["omega1"].size):
-            sl = slice(i, i + 1)
-            e = a["exc"]
-            exc = fd.Excitation(**{k: (None if getattr(e, k) is None else getattr(e, k)[:, sl])
-                                   for k in ("tension", "u_left", "u_right", "long", "load")})
-            r = fd.march(c=a["c"][sl], P=a["P"][sl], exc=exc, s_star=a["s_star"][sl], **kw)
-            amp.append(r.amplitude[0]); gr.append(r.growth[0]); un.append(r.unstable[0])
-        out = {"amplitude": np.array(amp), "growth": np.array(gr), "unstable": np.array(un),
-               "probes": None, "t_rec": None}
-    else:
-        raise UnknownChoice(f"sweep mode {mode!r}: allowed vectorised, loop")
+    r = fd.march(c=a["c"], P=a["P"], exc=a["exc"], s_star=a["s_star"], m=a["m"], c_d=a["c_d"],
+                 grid=a["grid"], dt=a["dt"], n_steps=a["n_steps"],
+                 measure_from=a["measure_from"], u_cap=float(res.get("u_cap", 0.05)),
+                 n_blocks=GROWTH_BLOCKS, differencing=res.get("differencing"), probes=probes,
+                 record_every=record_every)
+    out = {"amplitude": r.amplitude, "growth": r.growth, "unstable": r.unstable,
+           "probes": r.probes, "t_rec": r.t_rec}
     slack = a["P_min"] <= 0
     out["unstable"] = out["unstable"] | slack
     out.update({k: a[k] for k in ("grid", "span", "c", "P", "P_min", "dt", "n_steps", "s_star",

@@ -411,16 +411,6 @@ def _ratios(R, coupled: str, uncoupled: str) -> dict:
             for n in sorted(set(c) & set(u))}
 
 
-def _over_modes(values: dict, at: int, what: str) -> tuple[float, float, str]:
-    """(value at the drawn count, largest deviation over the study, note)."""
-    v = values[at]
-    err = max(abs(x - v) for x in values.values())
-    note = (f"{what} {' / '.join(f'{x:.3g}' for x in values.values())} at "
-            f"{' / '.join(str(n) for n in values)} transverse modes (drawn at {at}; error = "
-            "the largest deviation over the mode study)")
-    return v, err, note
-
-
 #: a record whose envelope changes by more than this from its third to its last quarter is
 #: not steady (the bound of transient_reaches_steady_state): its "steady amplitude" has not
 #: converged in record length
