@@ -168,19 +168,13 @@ FORCING_KEYS = ("tension_pulse", "tension", "tension_external", "tension_short",
                 "u_right", "v_left", "v_right")
 
 
-def contributions(run: dict, prm: dict, omega1: float, geo: dict, t, step, registry=None):
-    """The forcing contributions of the named effects at the times ``t`` (flattened) of one
-    speed."""
-    ctx = SpanContext(prm, [omega1], np.ravel(t), step, geo, end_velocity=True)
-    return (registry or EFFECTS).evaluate(run, ctx, keys=FORCING_KEYS)
-
-
 def forcing_arrays(run: dict, prm: dict, omega1: float, geo: dict, t, step=None,
                    registry=None) -> dict:
     """g, h, g', h' (Eqs. 2-24/25 and their time derivatives) and P_t at the times ``t``
     (any shape), from the contributions of the named effects (zero where none)."""
     t = np.asarray(t, float)
-    c = contributions(run, prm, omega1, geo, t, step, registry)
+    c = (registry or EFFECTS).evaluate(run, SpanContext(prm, [omega1], np.ravel(t), step, geo,
+                                                        end_velocity=True), keys=FORCING_KEYS)
     out = {"Pt": dynamic_tension(c, (t.size, 1)).reshape(t.shape)}
     for name, key in (("g", "u_left"), ("h", "u_right"), ("gd", "v_left"), ("hd", "v_right")):
         v = c.get(key)
@@ -329,10 +323,6 @@ def library_piecewise(rhs, forcing_on, edges, y0, t_eval, rtol=1e-9, atol=1e-14,
 
 # ---------------------------------------------------------------------------- the Fig. 10 scene
 
-def _coord(name, values, units, long_name):
-    return {name: var(name, values, units, long_name)}
-
-
 def _resonant_speed(run, prm, tension_coefficient, L) -> float:
     """omega1 from options.resonance: tooth frequency = ``detuning`` x the j-th longitudinal or
     the k-th transverse frequency of the span (derived, never typed in); else ``speed``."""
@@ -442,7 +432,7 @@ def _library_check(run, prm, res, g, u_all, t_all, Fe, F_lib) -> dict:
         "library_wall_time": var((), sw.seconds, "s", "wall time of solve_ivp"),
         "library_nfev": var((), nfev, "1", "right-hand-side calls of solve_ivp"),
         "rk4_nfev": var((), 4 * g["n_steps"], "1", "right-hand-side calls of RK4"),
-        **_coord("t_library", t_lib, "s", "time")}
+        "t_library": var("t_library", t_lib, "s", "time")}
 
 
 def solve_scene(run, prm, res):
@@ -492,7 +482,7 @@ def solve_scene(run, prm, res):
                                 "(whole tooth periods)"),
         "steady_ratio": var((), stats["steady_ratio"], "1",
                             "max |u| last quarter / third quarter (whole tooth periods)"),
-        **_coord("t", t_all[::rec], "s", "time")}
+        "t": var("t", t_all[::rec], "s", "time")}
     if opts.get("compare_library", False):
         data.update(_library_check(run, prm, res, g, u_all, t_all, Fe,
                                    {k: v[cut[1]:] for k, v in F.items()}))
