@@ -2,8 +2,9 @@
 
 The solvers and the effects each honours are declared in ``config/papers/chain_drive.yaml``
 (a scene naming an effect its solver does not honour is refused when the config is
-loaded).  Every solver builds a :class:`.effects.SpanContext`, calls ``EFFECTS.evaluate``
-and reads the contributions by key; none reads an effect's name.
+loaded).  Every solver builds a :class:`.effects.SpanContext`, asks ``EFFECTS`` for the
+contributions by key (``evaluate``, or ``stages`` where some fix the grid of others) and
+reads them by key; none reads an effect's name.
 
 ``impact_load`` (Fig. 1), ``rigid_four_bar`` (Fig. 3), ``elastic_four_bar`` (Fig. 4),
 ``speed_sweep`` (Figs. 5-9: maximum steady amplitude vs operating speed, one vectorised FD
@@ -21,7 +22,6 @@ from mechrepro.units import var
 
 from . import claims, discrete, exact, four_bar, galerkin, geometry, loads, shooting, span, timestep
 from .effects import EFFECTS, SpanContext, declared_keys, refuse_unhonoured
-from .galerkin import envelope_statistics  # noqa: F401  (re-exported for the tests)
 from .geometry import RPM
 from .errors import UnknownChoice
 
