@@ -101,7 +101,7 @@ def _peak_interp(a):
 
 def _scene(profile: str, name: str):
     run = load_paper(ROOT / "config/papers/chain_drive.yaml", profile).runs[name]
-    return dict(run["parameters"]), dict(run["resolution"]), run["effects"]
+    return dict(run["parameters"]), dict(run["resolution"]), run   # the run: its effects
 
 
 def _march(a, differencing, kernel):
@@ -268,11 +268,16 @@ def library_check(profile: str) -> None:
             pf = G.PiecewiseForcing(run, prm, g["w1"], g["geo"], g["window"], edges)
             return G.library_piecewise(model.rhs_values, pf.on, edges, y0, t_ev, rtol=rtol)
 
-        def old():
-            at = G.forcing(run, prm, g["w1"], g["geo"], step=g["window"])
-            _, y, nfev = G.library(lambda t, y: model.rhs_values(y, *at(t)), 0.0, y0, t_ev[-1],
-                                   t_ev, rtol=1e-9, atol=1e-14, max_step=g["dt"])
-            return y, nfev
+        def old():   # one solve_ivp across the kinks, the forcing evaluated per call
+            from scipy.integrate import solve_ivp
+
+            def at(t):
+                F = G.forcing_arrays(run, prm, g["w1"], g["geo"], t, g["window"])
+                return tuple(float(F[k]) for k in ("g", "h", "gd", "hd", "Pt"))
+            sol = solve_ivp(lambda t, y: model.rhs_values(y, *at(t)), (0.0, t_ev[-1]), y0,
+                            method="DOP853", t_eval=t_ev, rtol=1e-9, atol=1e-14,
+                            max_step=g["dt"])
+            return sol.y.T, sol.nfev
 
         (y_ref, _), _ = _timed(lambda: new(1e-12), 1)
         (y_old, n_old), t_old = _timed(old, 1)

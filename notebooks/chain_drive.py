@@ -71,7 +71,7 @@ def mark_unstable(ax, ds, label="unstable: no steady amplitude", color="r"):
     """Every sweep marks the speeds whose periodic orbit is unstable (or whose span goes
     slack) as ticks along the top of the axis, never as amplitudes; call after the curves
     (the ticks sit at the axis's upper limit, which they do not move)."""
-    sp, _ = F.unstable(ds)
+    sp = ds.speed.values[np.asarray(ds.unstable.values, bool)]
     if sp.size:
         top = ax.get_ylim()[1]
         ax.plot(sp, np.full(sp.size, top), "|", color=color, ms=8, label=label)
@@ -100,7 +100,7 @@ R.save_figure(fig, "fig01")
 # %%
 d3 = R.run("fig03")
 fig, ax = plt.subplots(2, 3, figsize=(12, 5.5), sharex=True)
-for j, n2 in enumerate(F.panel_order(d3)):
+for j, n2 in enumerate(d3.n2.values[np.argsort(d3.panel.values)]):   # panels a, b, c
     ax[0, j].plot(ms(d3.t), d3.omega2.sel(n2=n2))
     ax[0, j].set(title=f"Fig. 3{'abc'[j]}: (n1, n2) = ({F.parameter(d3, 'n1'):g}, {n2})",
                  ylabel="omega_2 [rpm]")
@@ -335,7 +335,7 @@ for a, name, lab in ((ax[0], "fig09a", "(a) n1 = n2 = 24, I2 = 0.002"),
     # links can carry (drawn apart from growth, like slack)
     if out.any():
         a.plot(sp[out], np.full(out.sum(), ymax), "v", mfc="none", color="0.35", ms=5,
-               label=f"growth in a mode shorter than {F.validity_limit(d):g} pitches: "
+               label=f"growth in a mode shorter than {F.parameter(d, 'valid_wavelength'):g} pitches: "
                      "outside the string model")
     if sl.any():
         a.plot(sp[sl], np.full(sl.sum(), ymin), "|", color="0.5", ms=10,
@@ -424,7 +424,8 @@ for dname, mk in (("central", "o-"), ("mixed", "s-")):
     ax[0].loglog(ef.points, ef.error_max.sel(differencing=dname), mk, label=f"exact mode, {dname}")
     ax[0].loglog(mms.points, mms.error_max.sel(differencing=dname), mk.replace("-", "--"),
                  label=f"manufactured, {dname}")
-    ax[1].loglog(ef.points, F.frequency_error(ef, dname), mk, label=dname)
+    ax[1].loglog(ef.points, np.abs(ef.omega_fd.sel(differencing=dname).values
+                                   / float(ef.omega_exact) - 1), mk, label=dname)
 ax[0].set(xlabel="grid intervals [1]", ylabel="max error [m]", title="convergence (exact mode at c = 0.5 c_w)")
 ax[0].legend(fontsize=7)
 ax[1].set(xlabel="grid intervals [1]", ylabel="|omega_FD / omega_WM - 1| [1]", title="first frequency vs Wickert-Mote")

@@ -13,6 +13,15 @@ from mechrepro.models.chain_drive import errors, fd, shooting, solver
 from mechrepro.solve import pack, solve
 
 
+def declared(effects) -> dict:
+    """A run record for a list of effect names (or a run whose effects were swapped), with
+    what each declares it contributes (the config's ``effects:``), as a config run has."""
+    spec = load_paper("config/papers/chain_drive.yaml").raw["effects"]
+    run = effects if isinstance(effects, dict) else {"effects": list(effects)}
+    return {**run, "contributes": {e: spec.get(e, {}).get("contributes", [])
+                                   for e in run["effects"]}}
+
+
 def test_compute_then_variables_is_the_frameworks_solve():
     run = load_paper("config/papers/chain_drive.yaml").runs["accuracy_peak"]
     result = chain_drive.compute(run)

@@ -16,12 +16,32 @@ from mechrepro.models.chain_drive import four_bar, geometry
 CONFIG = Path(__file__).resolve().parents[1] / "config" / "papers" / "chain_drive.yaml"
 
 
+def stiffness(n: int, tension: float, spacing: float) -> np.ndarray:
+    """Transverse stiffness matrix of n rollers between fixed ends: T/a tridiag(-1, 2, -1)."""
+    return tension / spacing * (2 * np.eye(n) - np.eye(n, k=1) - np.eye(n, k=-1))
+
+
+def modal_frequencies(n: int, tension: float, mass: float, spacing: float) -> np.ndarray:
+    """Natural frequencies [rad/s] of the roller set without motion (eigenvalues of K / m)."""
+    return np.sqrt(np.linalg.eigvalsh(stiffness(n, tension, spacing)) / mass)
+
+
+def energy(y, v, y_left, y_right, tension: float, mass: float, spacing: float):
+    """Kinetic + elastic transverse energy of the rollers (ends included in the links)."""
+    y = np.asarray(y, float)
+    row = y.shape[1:]
+    full = np.concatenate([np.broadcast_to(y_left, row)[None], y,
+                           np.broadcast_to(y_right, row)[None]])
+    return 0.5 * mass * np.sum(v * v, axis=0) + 0.5 * tension / spacing * np.sum(
+        np.diff(full, axis=0) ** 2, axis=0)
+
+
 def test_modes_without_motion_are_the_beaded_strings():
     """N masses m at spacing a under tension T between fixed ends:
     omega_k = 2 sqrt(T / (m a)) sin(k pi / (2 (N + 1)))."""
     for n, T, m, a in ((1, 400.0, 7.7e-3, 12.7e-3), (19, 400.0, 7.7e-3, 12.7e-3),
                        (40, 123.0, 1e-2, 5e-3)):
-        got = D.modal_frequencies(n, T, m, a)
+        got = modal_frequencies(n, T, m, a)
         assert np.allclose(got, D.beaded_frequencies(n, T, m, a), rtol=1e-12, atol=0)
 
 
@@ -33,7 +53,7 @@ def test_modes_approach_the_strings_at_second_order():
     errs = []
     for n in (15, 31, 63, 127):
         a = L / (n + 1)
-        errs.append(np.abs(D.modal_frequencies(n, T, rho * a, a)[:5] / exact - 1))
+        errs.append(np.abs(modal_frequencies(n, T, rho * a, a)[:5] / exact - 1))
     order = np.log2(np.array(errs[:-1]) / np.array(errs[1:]))
     assert np.all(np.abs(order[-1] - 2.0) < 0.02), order
     assert np.all(np.diff(np.array(errs), axis=0) < 0)
@@ -53,7 +73,7 @@ def test_energy_of_a_fixed_roller_set_is_conserved_to_the_integrators_order():
         assert w_max * (t[1] - t[0]) < 2.0        # inside RK4's stability interval
         zeros = np.zeros(2 * steps + 1)
         y, v, _ = D.rk4(y0, v0, t, zeros, zeros, np.full(steps, T / (m * a)), 0.0)
-        e0, e1 = (D.energy(yy, vv, 0.0, 0.0, T, m, a)[0] for yy, vv in ((y0, v0), (y, v)))
+        e0, e1 = (energy(yy, vv, 0.0, 0.0, T, m, a)[0] for yy, vv in ((y0, v0), (y, v)))
         drift.append(abs(e1 / e0 - 1))
     assert drift[0] < 1e-3
     assert math.log2(drift[0] / drift[1]) > 3.9, drift
@@ -119,7 +139,7 @@ def test_the_engaging_links_extra_tension_acts_on_the_last_roller_alone():
     n, T, extra, m, a = 7, 400.0, 150.0, 7.7e-3, 12.7e-3
     rng = np.random.default_rng(1)
     y, right = rng.normal(size=(n, 1)), 0.3
-    K = D.stiffness(n, T, a)
+    K = stiffness(n, T, a)
     K[-1, -1] += extra / a
     want = -(K @ y) / m
     want[-1] += (T + extra) / (m * a) * right
@@ -167,7 +187,7 @@ def test_the_impact_is_resolved_by_its_own_steps_so_the_orbit_converges_in_the_s
     1e-5."""
     run, prm = _prm("fig07_tension")
     tau, t_r, _ = D.events(prm, 371.674 / geometry.RPM)
-    t_i = D._contact_time(D.as_run(run), prm)
+    t_i = D._contact_time(run, prm)
     seg = D._segments(tau, t_r, 300, t_i)
     assert seg[0][-1] == t_i and len(seg[0]) - 1 == 12
     got = [D.periodic_orbit(run, prm, 371.674 / geometry.RPM, n) for n in (133, 200, 300, 450)]

@@ -6,7 +6,59 @@ import pytest
 
 from mechrepro.models.chain_drive import galerkin, geometry
 
+from mechrepro.models.chain_drive.errors import DivergenceError
+
 M, EA, L = 0.61, 2e6, 0.254
+
+
+def rk4(f, t0, y0, dt, n_steps, y_cap=1e3):
+    """Classical RK4 with a fixed step on a right-hand side f(t, y): the reference the
+    tabulated, compiled RK4 of the scenes is checked against.  Stages at the step ends take
+    one-sided limits (the kinks of the end motion sit on step boundaries)."""
+    y = np.array(y0, float)
+    out_t, out_y = [t0], [y.copy()]
+    eps = 1e-9 * dt
+    for i in range(n_steps):
+        t = t0 + i * dt
+        k1 = f(t + eps, y)
+        k2 = f(t + dt / 2, y + dt / 2 * k1)
+        k3 = f(t + dt / 2, y + dt / 2 * k2)
+        k4 = f(t + dt - eps, y + dt * k3)
+        y = y + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+        if not np.all(np.isfinite(y)) or np.max(np.abs(y)) > y_cap:
+            raise DivergenceError(f"RK4 diverged at t = {t + dt:.4g} s")
+        out_t.append(t0 + (i + 1) * dt)
+        out_y.append(y.copy())
+    return np.array(out_t), np.array(out_y)
+
+
+def library(f, t0, y0, t_end, t_eval, rtol=1e-6, atol=1e-12, max_step=np.inf):
+    """solve_ivp (DOP853) on the same right-hand side."""
+    from scipy.integrate import solve_ivp
+
+    sol = solve_ivp(f, (t0, t_end), y0, method="DOP853", t_eval=t_eval, rtol=rtol, atol=atol,
+                    max_step=max_step)
+    assert sol.success, sol.message
+    return sol.t, sol.y.T, sol.nfev
+
+
+def rhs(model, ends, tension):
+    """f(t, y) of the model with scalar end motion ends(t) -> (g, h, g', h') and P_t(t)."""
+    return lambda t, y: model.rhs_values(y, *ends(t), tension(t))
+
+
+def transverse(model, y, t, ends, xi):
+    """u2 at x = xi: the modal part plus the end-motion line."""
+    e = np.array([ends(tt)[:2] for tt in np.atleast_1d(t)])
+    return model.u2_at(y, xi) + (1 - xi / model.L) * e[:, 0] + xi / model.L * e[:, 1]
+
+
+def forcing(run, prm, omega1, geo, step=None):
+    """The forcing t -> (g, h, g', h', P_t) as a scalar function of t."""
+    def at(t):
+        F = galerkin.forcing_arrays(run, prm, omega1, geo, t, step)
+        return tuple(float(F[k]) for k in ("g", "h", "gd", "hd", "Pt"))
+    return at
 
 
 def _linear_frequencies(model):
@@ -53,24 +105,24 @@ def test_rk4_agrees_with_solve_ivp_on_the_coupled_model():
     def tension(t):
         return 50.0 * math.sin(2 * w * t)
 
-    f = lambda t, y: model.rhs(t, y, ends, tension)  # noqa: E731
+    f = rhs(model, ends, tension)
     y0 = np.zeros(2 * (model.n_t + model.n_l))
     dt = 0.5 * model.max_stable_step()
     n = int(0.01 / dt)
-    t, y = galerkin.rk4(f, 0.0, y0, dt, n)
-    t2, y2, _ = galerkin.library(f, 0.0, y0, t[-1], t, rtol=1e-9)
-    u1 = model.transverse(y, t, ends, L / 3)
-    u2 = model.transverse(y2, t2, ends, L / 3)
+    t, y = rk4(f, 0.0, y0, dt, n)
+    t2, y2, _ = library(f, 0.0, y0, t[-1], t, rtol=1e-9)
+    u1 = transverse(model, y, t, ends, L / 3)
+    u2 = transverse(model, y2, t2, ends, L / 3)
     assert np.max(np.abs(u1 - u2)) / np.max(np.abs(u2)) < 1e-3
 
 
 def test_rk4_past_its_limit_fails_loudly():
     model = galerkin.GalerkinModel(L=L, m=M, EA=EA, P=600.0, c=10.0, c_d=0.0, n_t=4, n_l=2)
-    f = lambda t, y: model.rhs(t, y, lambda t: (0.0, 0.0, 0.0, 0.0), lambda t: 0.0)  # noqa: E731
+    f = rhs(model, lambda t: (0.0, 0.0, 0.0, 0.0), lambda t: 0.0)
     y0 = np.zeros(12)
     y0[6] = 1e-3          # a little modal momentum
     with pytest.raises(FloatingPointError, match="RK4 diverged"):
-        galerkin.rk4(f, 0.0, y0, 3.0 * model.max_stable_step(), 20000)
+        rk4(f, 0.0, y0, 3.0 * model.max_stable_step(), 20000)
 
 
 # ---------------------------------------------------------------------------- issue 18: speed
@@ -144,8 +196,8 @@ def test_segmented_library_is_closer_to_a_tight_solution_than_one_across_the_kin
     pf = galerkin.PiecewiseForcing(run, prm, g["w1"], g["geo"], g["window"], edges)
     ref, _ = galerkin.library_piecewise(model.rhs_values, pf.on, edges, y0, t_ev, rtol=1e-12)
     seg, n_seg = galerkin.library_piecewise(model.rhs_values, pf.on, edges, y0, t_ev, rtol=1e-9)
-    at = galerkin.forcing(run, prm, g["w1"], g["geo"], step=g["window"])
-    _, one, n_one = galerkin.library(lambda t, y: model.rhs_values(y, *at(t)), 0.0, y0,
+    at = forcing(run, prm, g["w1"], g["geo"], step=g["window"])
+    _, one, n_one = library(lambda t, y: model.rhs_values(y, *at(t)), 0.0, y0,
                                      t_ev[-1], t_ev, rtol=1e-9, atol=1e-14, max_step=g["dt"])
     scale = np.max(np.abs(ref))
     assert n_seg < n_one

@@ -6,6 +6,7 @@ import pytest
 
 from mechrepro.models.chain_drive import exact, fd, span
 from mechrepro.models.chain_drive.effects import EFFECTS
+from test_chain_drive_contract import declared
 
 M, T, L = 0.61, 400.0, 0.254
 CW = math.sqrt(T / M)
@@ -98,7 +99,7 @@ def test_longitudinal_coupling_is_not_a_finite_difference_effect():
                contact_damping_ratio=0.1, external_load_ratio=0.0, external_frequency_ratio=1.0,
                speed_min=10.0, speed_max=20.0)
     with pytest.raises(ValueError, match=r"finite-difference solver does not honour \['longitudinal_coupling'\]"):
-        span.assemble(["longitudinal_coupling"], prm, np.array([10.0]),
+        span.assemble(declared(["longitudinal_coupling"]), prm, np.array([10.0]),
                       dict(points_per_pitch=2, cfl=0.9, decay_times=0.1, window_periods=1))
     with pytest.raises(KeyError, match="unknown effect"):
         EFFECTS.select(["polygonal"])
@@ -113,7 +114,7 @@ def test_impact_pulse_much_shorter_than_the_time_step_in_the_march():
                n1=24, n2=24, centre_distance=20.0, lambda_support=0.9, axial_stiffness=2e6,
                driven_inertia=0.002, impact_mass_links=2, contact_stiffness=2e8,
                contact_damping_ratio=0.1, speed=300 * math.pi / 30)
-    out = timestep.compare(["speed_tensioning", "impact", "sag"], prm,
+    out = timestep.compare(declared(["speed_tensioning", "impact", "sag"]), prm,
                            dict(points_per_pitch=3, cfl=0.9, tooth_periods=1.5, refine=5))
     assert out["dt_max"] > 2 * out["contact_time"]
     assert out["uniform_averaged"]["error"] < 0.05
@@ -130,7 +131,7 @@ def test_time_step_adapts_to_the_dynamic_tension():
                speed_min=20.0, speed_max=30.0)
     res = dict(points_per_pitch=2, cfl=0.9, decay_times=0.2, window_periods=1)
     om = np.array([20.0, 30.0])
-    a = span.assemble(["external_load"], prm, om, res)
+    a = span.assemble(declared(["external_load"]), prm, om, res)
     static = fd.stable_time_step(a["grid"].dx, a["c"], T, M, 0.9)
     dynamic = fd.stable_time_step(a["grid"].dx, a["c"], T + np.max(a["exc"].tension, axis=0), M, 0.9)
     assert a["dt"] < static and a["dt"] <= dynamic * (1 + 1e-12)
@@ -163,7 +164,7 @@ def test_central_with_a_pitch_scale_kick_is_refused_before_marching(fig07, monke
     res = {**res, "differencing": "central", "cfl": 0.98, "points_per_pitch": ppp,
            "method": "march", "decay_times": 1, "window_periods": 1}
     with pytest.raises(PitchScaleInstability, match=f"{why}.*mixed differencing"):
-        span.sweep({**run, "effects": effects}, prm, np.array([50.0]), res)
+        span.sweep(declared({**run, "effects": effects}), prm, np.array([50.0]), res)
 
 
 def test_the_refused_scheme_grows_in_grid_scale_modes_and_mixed_does_not(fig07, monkeypatch):
@@ -174,7 +175,7 @@ def test_the_refused_scheme_grows_in_grid_scale_modes_and_mixed_does_not(fig07, 
     from mechrepro.models.chain_drive.geometry import RPM
 
     run, prm, res = fig07
-    run = {**run, "effects": LENGTH_SWITCH}
+    run = declared({**run, "effects": LENGTH_SWITCH})
     for ppp in (4, 8):
         mixed = shooting.periodic_solution(run, prm, 500 / RPM,
                                            {**res, "differencing": "mixed", "points_per_pitch": ppp})
@@ -210,7 +211,7 @@ def _order3_peak(effects, ppp):
 
     run = load_paper("config/papers/chain_drive.yaml").runs["accuracy_peak"]
     res = {**run["resolution"], "points_per_pitch": ppp, "decay_times": 12}
-    out = span.sweep({**run, "effects": effects}, dict(run["parameters"]),
+    out = span.sweep(declared({**run, "effects": effects}), dict(run["parameters"]),
                      np.array([376.9]) / RPM, res)
     return float(out["amplitude"][0])
 
@@ -237,8 +238,8 @@ def test_distributed_end_motion_leaves_the_floquet_multipliers_alone():
 
     run = load_paper("config/papers/chain_drive.yaml").runs["fig09a"]
     prm, res = dict(run["parameters"]), dict(run["resolution"])
-    poly = {**run, "effects": [e.replace("end_excitation_distributed", "end_excitation")
-                               for e in run["effects"]]}
+    poly = declared({**run, "effects": [e.replace("end_excitation_distributed", "end_excitation")
+                                        for e in run["effects"]]})
     a, b = (shooting.periodic_solution(r, prm, 1211.5 / RPM, res) for r in (run, poly))
     assert a.rho == pytest.approx(b.rho, rel=1e-12)
     assert a.amplitude != pytest.approx(b.amplitude, rel=1e-3)

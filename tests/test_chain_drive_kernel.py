@@ -13,6 +13,7 @@ import pytest
 from mechrepro.accuracy import observed_order
 from mechrepro.models.chain_drive import exact, fd, fd_kernel, span
 from mechrepro.models.chain_drive.effects import EFFECTS
+from test_chain_drive_contract import declared
 
 needs_numba = pytest.mark.skipif(not fd_kernel.available(), reason="numba not installed")
 
@@ -47,7 +48,7 @@ def test_compiled_loop_equals_numpy_loop_with_length_change_and_sag(differencing
                "length_change", "sag"]
     res = dict(points_per_pitch=2, cfl=0.98, decay_times=0.3, window_periods=1)
     om = np.linspace(PRM["speed_min"], PRM["speed_max"], 11)
-    a = span.assemble(effects, PRM, om, res, EFFECTS)
+    a = span.assemble(declared(effects), PRM, om, res, EFFECTS)
     assert a["grid"].n_short != a["grid"].n_long and a["exc"].load is not None
     assert a["exc"].long.any() and (~a["exc"].long).any()
     kw = dict(c=a["c"], P=a["P"], m=a["m"], c_d=a["c_d"], grid=a["grid"], dt=a["dt"],

@@ -7,7 +7,8 @@ from scipy.integrate import quad
 
 from mechrepro.accuracy import observed_order
 from mechrepro.effects import EffectRegistry
-from mechrepro.models.chain_drive import EFFECTS, exact, four_bar, geometry, loads, span
+from mechrepro.models.chain_drive import EFFECTS, exact, fd, four_bar, geometry, loads, span
+from test_chain_drive_contract import declared
 
 P_C = 0.0127
 BASE = dict(pitch=P_C, mass_per_length=0.61, static_tension=400.0, transverse_damping=12.2,
@@ -117,7 +118,9 @@ def test_elastic_four_bar_resonance_from_span_stiffness():
     for w in ws:
         sol = four_bar.elastic_four_bar(w, k=k, I2=0.002, n1=24, n2=24, p_c=P_C, f_p=0.5)
         tt = np.linspace(0, 2 * math.pi / (24 * w), 64, endpoint=False)
-        ptp.append(np.ptp(four_bar.polygonal_load_elastic(tt, sol, w, k)))
+        pt = (sol["p"] * tt)[:, None]
+        ptp.append(np.ptp(four_bar.polygonal_load_elastic_speeds(np.sin(pt), np.cos(pt), [sol],
+                                                                 [w], k)))
     assert abs(ws[np.argmax(ptp)] / wc - 1) < 0.02
     assert np.all(np.isfinite(ptp))
 
@@ -125,9 +128,18 @@ def test_elastic_four_bar_resonance_from_span_stiffness():
 def test_vectorised_sweep_equals_per_speed_loop():
     om = np.linspace(BASE["speed_min"], BASE["speed_max"], 4)
     eff = ["speed_tensioning", "polygonal_rigid", "end_excitation", "length_change", "impact"]
-    a = span.sweep(eff, BASE, om, COARSE, mode="vectorised")
-    b = span.sweep(eff, BASE, om, COARSE, mode="loop")
-    np.testing.assert_allclose(a["amplitude"], b["amplitude"], rtol=1e-10)
+    a = span.sweep(declared(eff), BASE, om, COARSE)
+    x = span.assemble(declared(eff), BASE, om, COARSE)
+    e, b = x["exc"], []
+    for i in range(om.size):      # the same inputs marched speed by speed
+        sl = slice(i, i + 1)
+        exc = fd.Excitation(**{k: (None if getattr(e, k) is None else getattr(e, k)[:, sl])
+                               for k in ("tension", "u_left", "u_right", "long", "load")})
+        b.append(fd.march(c=x["c"][sl], P=x["P"][sl], exc=exc, s_star=x["s_star"][sl], m=x["m"],
+                          c_d=x["c_d"], grid=x["grid"], dt=x["dt"], n_steps=x["n_steps"],
+                          measure_from=x["measure_from"], u_cap=0.05,
+                          n_blocks=span.GROWTH_BLOCKS).amplitude[0])
+    np.testing.assert_allclose(a["amplitude"], b, rtol=1e-10)
     assert np.all(a["amplitude"] > 0)
 
 
@@ -142,10 +154,10 @@ def test_effect_that_is_off_is_never_evaluated():
                 raise AssertionError(f"effect {_n} evaluated although off")
             reg.register(name)(boom)
     om = np.array([BASE["speed_min"]])
-    out = span.sweep(on, BASE, om, COARSE, registry=reg)
+    out = span.sweep(declared(on), BASE, om, COARSE, registry=reg)
     assert np.isfinite(out["amplitude"]).all()
     with pytest.raises(AssertionError, match="external_load"):
-        span.sweep(on + ["external_load"], BASE, om, COARSE, registry=reg)
+        span.sweep(declared(on + ["external_load"]), BASE, om, COARSE, registry=reg)
 
 
 def test_end_excitation_phase_sets_first_mode_response():
@@ -159,7 +171,7 @@ def test_end_excitation_phase_sets_first_mode_response():
         L = span.span_geometry(prm, False)["L_ct"]
         w1 = geometry.resonance_speed(1, L, n1=24, p_c=P_C, T_s=400, m=0.61,
                                       tension_coefficient=0.9 * 0.61)
-        r = span.sweep(["speed_tensioning", "end_excitation"], prm, np.array([0.3 * w1, w1]), res)
+        r = span.sweep(declared(["speed_tensioning", "end_excitation"]), prm, np.array([0.3 * w1, w1]), res)
         out[cd] = r["amplitude"][1] / r["amplitude"][0]
     assert out[20.0] > 2.0 > out[20.5]
 

@@ -7,6 +7,7 @@ from threadpoolctl import threadpool_limits
 from mechrepro.config import load_paper
 from mechrepro.models.chain_drive import fd, shooting, solver, span
 from mechrepro.models.chain_drive.geometry import RPM
+from test_chain_drive_contract import declared
 
 
 @pytest.fixture(scope="module")
@@ -78,7 +79,7 @@ def test_fig09a_band_below_the_elastic_resonance_and_map_unchanged_by_a_finer_gr
 
 def test_an_external_load_sets_the_period():
     prm = {"n1": 24, "external_load_ratio": 0.2, "external_frequency_ratio": 4.0}
-    T, q = shooting.excitation_period(prm, {"effects": ["external_load"]}, 10.0)
+    T, q = shooting.excitation_period(prm, declared(["external_load"]), 10.0)
     assert q == 6 and T == pytest.approx(6 * 2 * np.pi / (24 * 10.0))
 
 

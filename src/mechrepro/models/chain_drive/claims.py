@@ -92,12 +92,6 @@ def order_window(long_speed: float, short_speed: float, width: float = ORDER_WIN
     return lo * (1 - width), hi * (1 + width)
 
 
-def count_peaks(speed, amp, lo: float, hi: float, stable=None) -> int:
-    speed = np.asarray(speed, float)
-    idx = peaks(speed, amp, stable=stable)
-    return int(np.sum((speed[idx] >= lo) & (speed[idx] <= hi)))
-
-
 def peak_speeds(speed, amp, lo: float, hi: float, stable=None) -> list[float]:
     speed = np.asarray(speed, float)
     idx = peaks(speed, amp, stable=stable)

@@ -35,7 +35,7 @@ import math
 import numpy as np
 
 from . import span
-from .effects import EFFECTS, SpanContext, as_run, declared_keys
+from .effects import EFFECTS, SpanContext, declared_keys
 
 
 def beaded_frequencies(n: int, tension: float, mass: float, spacing: float) -> np.ndarray:
@@ -43,27 +43,6 @@ def beaded_frequencies(n: int, tension: float, mass: float, spacing: float) -> n
     ``tension`` between fixed ends: omega_k = 2 sqrt(T / (m a)) sin(k pi / (2 (n + 1)))."""
     k = np.arange(1, n + 1)
     return 2.0 * np.sqrt(tension / (mass * spacing)) * np.sin(k * np.pi / (2 * (n + 1)))
-
-
-def stiffness(n: int, tension: float, spacing: float) -> np.ndarray:
-    """Transverse stiffness matrix of n rollers between fixed ends: T/a tridiag(-1, 2, -1)."""
-    return tension / spacing * (2 * np.eye(n) - np.eye(n, k=1) - np.eye(n, k=-1))
-
-
-def modal_frequencies(n: int, tension: float, mass: float, spacing: float) -> np.ndarray:
-    """Natural frequencies [rad/s] of the roller set without motion (eigenvalues of K / m)."""
-    return np.sqrt(np.linalg.eigvalsh(stiffness(n, tension, spacing)) / mass)
-
-
-def energy(y, v, y_left, y_right, tension: float, mass: float, spacing: float):
-    """Kinetic + elastic transverse energy of the rollers (ends included in the links);
-    y, v: (N, ...) with the end positions broadcasting against one roller's row."""
-    y = np.asarray(y, float)
-    row = y.shape[1:]
-    full = np.concatenate([np.broadcast_to(y_left, row)[None], y,
-                           np.broadcast_to(y_right, row)[None]])
-    return 0.5 * mass * np.sum(v * v, axis=0) + 0.5 * tension / spacing * np.sum(
-        np.diff(full, axis=0) ** 2, axis=0)
 
 
 def _accel(y, v, left, right, k_over_m, damp, last, load, a):
@@ -203,7 +182,7 @@ def _drive(run, prm, omega1, times, dt):
 
 def tension_coefficient(run, prm) -> float:
     """k of P = T_s + k c^2 from the scene's effects (0 without speed tensioning)."""
-    return float(EFFECTS.evaluate(as_run(run), SpanContext(prm, 1.0, np.zeros(0), None,
+    return float(EFFECTS.evaluate(run, SpanContext(prm, 1.0, np.zeros(0), None,
                                                            span.span_geometry(prm, True)),
                                   keys={"tension_coefficient"}).total("tension_coefficient"))
 
@@ -297,7 +276,6 @@ def period_map(run, prm: dict, omega1: float, steps_per_period: int, start=None)
     coincides with the seating (t_r = 0).  With ``start`` (a state x) only that orbit is
     marched: M is None, b its state after the period and ``amplitude`` max |y| over the
     free rollers along it."""
-    run = as_run(run)
     named = declared_keys(run)
     _refuse_unhonoured_keys(named)
     m, p = prm["mass_per_length"], prm["pitch"]
@@ -388,7 +366,7 @@ def sweep(run, prm: dict, omega1, res: dict) -> dict:
 
     if "edge_tol" in res:
         sigma = prm["transverse_damping"] / (2 * prm["mass_per_length"])
-        only = stability_only(as_run(run))
+        only = stability_only(run)
         peak_tol = float(res["peak_tol"]) / geometry.RPM
         omega1, sols, done = adaptive_sweep(
             evaluate, omega1, edge_tol=float(res["edge_tol"]) / geometry.RPM,

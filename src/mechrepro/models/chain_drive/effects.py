@@ -1,9 +1,11 @@
 """The effects of a chain_drive scene: one pure function ``fn(ctx) -> {key: value}`` each.
 
 Declared once in ``config/papers/chain_drive.yaml`` (``effects:``: what each contributes,
-its units, which solvers honour it).  Every solver builds a :class:`SpanContext` and calls
-``EFFECTS.evaluate(run, ctx, keys=...)``, selecting the effects by the keys they declare
-(:func:`declared_keys`), never by name; it reads the contributions by key:
+its units, which solvers honour it; a run record carries it as ``contributes``).  Every
+solver builds a :class:`SpanContext` and asks the framework's registry for contributions
+by key (``EFFECTS.evaluate(run, ctx, keys=...)``, or ``EFFECTS.stages(run, ctx)`` stage by
+stage), selecting the effects by the keys they declare (:func:`declared_keys`), never by
+name; it reads the contributions by key:
 
 =====================  ===========  =====================================================
 key                    shape        meaning
@@ -27,8 +29,7 @@ kinematics is computed lazily, only when a named effect asks for it.
 """
 from __future__ import annotations
 
-from functools import cache, cached_property
-from pathlib import Path
+from functools import cached_property
 
 import numpy as np
 
@@ -41,27 +42,7 @@ EFFECTS = EffectRegistry("chain_drive")
 G = 9.80665   # standard gravity [m/s^2]
 
 
-BLOCK = 1 << 16      # samples per block of :func:`blocked`
-
-
-def blocked(fn, n_rows: int, n_cols: int) -> dict:
-    """Evaluate ``fn(slice of rows)`` in blocks of rows and assemble the (n_rows, n_cols)
-    outputs (0-d/scalar outputs are taken from the first block)."""
-    rows = max(1, BLOCK // max(n_cols, 1))
-    if n_rows <= 2 * rows:
-        return fn(slice(0, n_rows))
-    out: dict = {}
-    for r0 in range(0, n_rows, rows):
-        sl = slice(r0, min(r0 + rows, n_rows))
-        part = fn(sl)
-        for k, v in part.items():
-            if np.ndim(v) == 2:
-                if k not in out:
-                    out[k] = np.empty((n_rows, np.shape(v)[1]), np.asarray(v).dtype)
-                out[k][sl] = v
-            elif k not in out:
-                out[k] = v
-    return out
+BLOCK = 1 << 16      # samples per block of :meth:`SpanContext.blocked`
 
 
 class SpanContext:
@@ -89,16 +70,27 @@ class SpanContext:
         """Times as a (T, 1) or (T, S) array (broadcasts against ``omega1[None, :]``)."""
         return self.t if self.t.ndim == 2 else self.t[:, None]
 
-    def times_of(self, i: int):
-        """The times of speed ``i``."""
-        return self.t[:, i] if self.t.ndim == 2 else self.t
-
     def blocked(self, fn) -> dict:
         """``fn(rows) -> {key: (rows, S) array or scalar}`` evaluated block of time rows by
         block (~64k samples each, so that the temporaries of the elementwise formulas stay
         in cache instead of streaming (T, S) arrays through memory once per operation) and
-        assembled; the same numbers as one call on all rows."""
-        return blocked(fn, self.T.shape[0], self.omega1.size)
+        assembled (0-d/scalar outputs from the first block); the same numbers as one call
+        on all rows."""
+        n_rows, n_cols = self.T.shape[0], self.omega1.size
+        rows = max(1, BLOCK // max(n_cols, 1))
+        if n_rows <= 2 * rows:
+            return fn(slice(0, n_rows))
+        out: dict = {}
+        for r0 in range(0, n_rows, rows):
+            sl = slice(r0, min(r0 + rows, n_rows))
+            for k, v in fn(sl).items():
+                if np.ndim(v) == 2:
+                    if k not in out:
+                        out[k] = np.empty((n_rows, np.shape(v)[1]), np.asarray(v).dtype)
+                    out[k][sl] = v
+                elif k not in out:
+                    out[k] = v
+        return out
 
     def _last_block(self, name: str, rows: slice, fn) -> dict:
         """``fn()`` for the time rows ``rows``, kept until other rows are asked: the effects
@@ -135,29 +127,6 @@ class SpanContext:
                 omega1, k=k, I2=self.prm["driven_inertia"], n1=self.n1, n2=self.n2,
                 p_c=self.p_c, f_p=self.span["f_p"])
         return self.cache[key]
-
-
-CONFIG = Path(__file__).resolve().parents[4] / "config" / "papers" / "chain_drive.yaml"
-
-
-@cache
-def _declarations() -> dict:
-    from mechrepro.inputs import read_yaml
-
-    return {e: list(spec["contributes"]) for e, spec in read_yaml(CONFIG)["effects"].items()}
-
-
-def as_run(effects) -> dict:
-    """A run record with ``contributes`` (what each named effect declares) for every named
-    effect: a run from the config as it is, or a plain list of effect names (tests,
-    benchmarks) or a run whose effects were swapped, completed from the declarations of
-    ``config/papers/chain_drive.yaml``."""
-    run = effects if isinstance(effects, dict) else {"effects": list(effects)}
-    have = run.get("contributes", {})
-    if all(e in have for e in run["effects"]):
-        return run
-    return {**run, "contributes": {e: have.get(e, _declarations().get(e, []))
-                                   for e in run["effects"]}}
 
 
 def declared_keys(run: dict) -> set:

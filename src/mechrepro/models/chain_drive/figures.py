@@ -32,43 +32,24 @@ def with_base(R, study: str, scene: str, key: str):
     return [values[i] for i in order], [runs[i] for i in order]
 
 
-def unstable(ds):
-    """Speeds [rpm] and amplitudes [m] of a sweep where the response grows or the span goes
-    slack (the figures mark them; they are never drawn as peaks)."""
-    mask = np.asarray(ds.unstable.values, bool)
-    return ds.speed.values[mask], ds.amplitude.values[mask]
-
-
 def steady(ds) -> np.ndarray:
     """A sweep's steady amplitude [m], nan where the speed is unstable: an unstable periodic
     orbit has no steady amplitude (:func:`.claims.steady`)."""
     return C.steady(ds.amplitude.values, ~np.asarray(ds.unstable.values, bool))
 
 
-def outside_validity(ds) -> np.ndarray:
-    """The growing speeds whose critical Floquet mode is shorter than the string model holds
-    (``outside_validity``; none in a march's dataset): to be drawn apart from the growth the
-    model can claim."""
-    if "outside_validity" not in ds:
-        return np.zeros(ds.speed.size, bool)
-    return np.asarray(ds.outside_validity.values, bool)
-
-
-def validity_limit(ds) -> float:
-    """The shortest wavelength [pitches] the string model holds for, as the run used it
-    (the assumed parameter ``valid_wavelength``)."""
-    return parameter(ds, "valid_wavelength")
-
-
 def stability_classes(ds) -> dict[str, np.ndarray]:
     """Fig. 9: the speeds of a sweep by what the string model says there, as masks over
     ``ds.speed``: ``stable`` (a steady amplitude), ``growth`` (a Floquet multiplier > 1 in
     a mode the string represents), ``outside`` (growth in a mode shorter than its validity
-    limit, :func:`outside_validity`) and ``slack`` (P + P_t <= 0: no string at all).  Every
+    limit, the assumed parameter ``valid_wavelength``) and ``slack`` (P + P_t <= 0: no string at all).  Every
     speed is in exactly one class."""
     un = np.asarray(ds.unstable.values, bool)
     slack = np.asarray(ds.slack.values, bool) if "slack" in ds else np.zeros_like(un)
-    outside = outside_validity(ds) & un & ~slack
+    # growth in a mode shorter than the string holds (``outside_validity``; none in a
+    # march's dataset): drawn apart from the growth the model can claim
+    outside = (np.asarray(ds.outside_validity.values, bool) if "outside_validity" in ds
+               else np.zeros_like(un)) & un & ~slack
     return {"stable": ~un, "growth": un & ~slack & ~outside, "outside": outside, "slack": slack}
 
 
@@ -76,16 +57,6 @@ def resonances_in_window(ds) -> np.ndarray:
     """Short- and long-span resonance speeds [rpm] of a sweep that lie inside its speed range."""
     v = np.concatenate([ds.resonance_speed_short.values, ds.resonance_speed_long.values])
     return v[(v >= float(ds.speed[0])) & (v <= float(ds.speed[-1]))]
-
-
-def panel_order(ds) -> np.ndarray:
-    """Driven tooth numbers of Fig. 3 in the paper's panel order (a, b, c)."""
-    return ds.n2.values[np.argsort(ds.panel.values)]
-
-
-def frequency_error(ds, differencing: str) -> np.ndarray:
-    """|omega_FD / omega_Wickert-Mote - 1| of the exact-mode check per grid."""
-    return np.abs(ds.omega_fd.sel(differencing=differencing).values / float(ds.omega_exact) - 1)
 
 
 RESONANCE_COLUMNS = ["centre_distance_pitches", "order", "curve", "short_span_rpm",

@@ -186,33 +186,11 @@ def elastic_four_bar(omega1: float, *, k: float, I2: float, n1: int, n2: int, p_
     return {"X": X, "A": A, "F": F, "coef": fc, "p": p, "r1": r1, "r2": r2}
 
 
-def polygonal_load_elastic(t, sol: dict, omega1: float, k: float):
-    """Eq. (2-22): D_pol = k (x2 - x1 - L)."""
-    l1, m1, l2, m2 = sol["X"]
-    fc, p = sol["coef"], sol["p"]
-    N, a1, a2 = fc["N"], fc["a1"], fc["a2"]
-    t = np.asarray(t, float)
-    return k * omega1 / (N * p) * ((N * a1 - l1) * np.sin(p * t) + m1 * np.cos(p * t)
-                                   + 0.5 * (N * a2 - l2) * np.sin(2 * p * t)
-                                   + 0.5 * m2 * np.cos(2 * p * t) - m1 - 0.5 * m2)
-
-
-def polygonal_load_elastic_sc(sin_pt, cos_pt, sol: dict, omega1: float, k: float):
-    """:func:`polygonal_load_elastic` from sin(p t), cos(p t) (p = n1 omega1, shared by
-    both span stiffnesses); the second harmonic by the double-angle formulas."""
-    l1, m1, l2, m2 = sol["X"]
-    fc, p = sol["coef"], sol["p"]
-    N, a1, a2 = fc["N"], fc["a1"], fc["a2"]
-    s2 = 2 * sin_pt * cos_pt
-    c2 = 1 - 2 * sin_pt * sin_pt
-    return k * omega1 / (N * p) * ((N * a1 - l1) * sin_pt + m1 * cos_pt
-                                   + 0.5 * (N * a2 - l2) * s2
-                                   + 0.5 * m2 * c2 - m1 - 0.5 * m2)
-
-
 def polygonal_load_elastic_speeds(sin_pt, cos_pt, sols, omega1, k: float):
-    """:func:`polygonal_load_elastic_sc` for S speeds at once: sin(p t), cos(p t) shaped
-    (T, S), ``sols`` the S solutions of :func:`elastic_four_bar`, ``omega1`` (S,)."""
+    """Eq. (2-22), D_pol = k (x2 - x1 - L), for S speeds at once from sin(p t), cos(p t)
+    shaped (T, S) (p = n1 omega1, shared by both span stiffnesses; the second harmonic by
+    the double-angle formulas), ``sols`` the S solutions of :func:`elastic_four_bar`,
+    ``omega1`` (S,)."""
     X = np.array([s["X"] for s in sols])                       # (S, 4)
     l1, m1, l2, m2 = X.T
     N = np.array([s["coef"]["N"] for s in sols])

@@ -25,7 +25,7 @@ from mechrepro.timing import phase
 from mechrepro.units import var
 
 from . import four_bar, galerkin_kernel, geometry, loads
-from .effects import EFFECTS, SpanContext, as_run, refuse_unhonoured
+from .effects import EFFECTS, SpanContext, refuse_unhonoured
 from .geometry import RPM
 from .span import dynamic_tension, span_geometry
 from .errors import DivergenceError, KernelUnavailable, RecordError, UnknownChoice
@@ -69,11 +69,6 @@ class GalerkinModel:
         self._Sx0 = k * np.pi / L
         self._SxL = k * np.pi / L * np.cos(k * np.pi)
 
-    def rhs(self, t, y, ends, tension):
-        """y = (phi, psi, z, psi') with z = phi' + beta; ends(t) -> (g, h, g', h');
-        tension(t) -> P_t."""
-        return self.rhs_values(y, *ends(t), tension(t))
-
     def rhs_values(self, y, g, h, gd, hd, Pt):
         """The right-hand side for given end motion (g, h, g', h') and dynamic tension P_t."""
         nt, nl = self.n_t, self.n_l
@@ -103,13 +98,6 @@ class GalerkinModel:
         fl += (ex0 - Pt) * self.Cend0 + (-exL + Pt) * self.CendL
         return np.concatenate([dphi, dpsi, self.Mt_inv @ ft, self.Ml_inv @ fl])
 
-    def transverse(self, y, t, ends, xi):
-        """u2 at x = xi: modal part plus the end-motion line."""
-        k = np.arange(1, self.n_t + 1) * np.pi / self.L
-        e = np.array([ends(tt)[:2] for tt in np.atleast_1d(t)])
-        return (np.asarray(y)[..., :self.n_t] @ np.sin(k * xi)
-                + (1 - xi / self.L) * e[:, 0] + xi / self.L * e[:, 1])
-
     def u2_at(self, y, xi):
         """Transverse displacement at x = xi of state(s) y (without the end motion part)."""
         k = np.arange(1, self.n_t + 1) * np.pi / self.L
@@ -125,32 +113,6 @@ class GalerkinModel:
         A = np.block([[np.zeros((n, n)), np.eye(n)], [-Minv @ K, -Minv @ G]])
         lam = np.max(np.abs(np.linalg.eigvals(A)))
         return 2.78 / lam
-
-
-def rk4(f, t0, y0, dt, n_steps, record_every=1, y_cap=1e3):
-    """Classical fourth-order Runge-Kutta with a fixed step (the paper's integrator).
-
-    Stops with a clear error once the state leaves any physical range (|y| > y_cap, in m,
-    m/s) -- before it overflows into inf/NaN."""
-    y = np.array(y0, float)
-    t = t0
-    out_t, out_y = [t], [y.copy()]
-    # stages at the step ends take one-sided limits: with the step aligned to the tooth
-    # period, the kinks of the end motion fall on step boundaries, never inside a step
-    eps = 1e-9 * dt
-    for i in range(n_steps):
-        k1 = f(t + eps, y)
-        k2 = f(t + dt / 2, y + dt / 2 * k1)
-        k3 = f(t + dt / 2, y + dt / 2 * k2)
-        k4 = f(t + dt - eps, y + dt * k3)
-        y = y + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
-        t = t0 + (i + 1) * dt
-        if not np.all(np.isfinite(y)) or np.max(np.abs(y)) > y_cap:
-            raise DivergenceError(f"RK4 diverged at t = {t:.4g} s (step {dt:.3g} s too large?)")
-        if (i + 1) % record_every == 0:
-            out_t.append(t)
-            out_y.append(y.copy())
-    return np.array(out_t), np.array(out_y)
 
 
 def rk4_tabulated(model, y0, dt, n_steps, F, record_every=1, y_cap=1e3, kernel="auto"):
@@ -198,18 +160,6 @@ def stage_times(dt, n_steps):
     return base + np.array([eps, dt / 2, dt / 2, dt - eps])[None, :]
 
 
-def library(f, t0, y0, t_end, t_eval, rtol=1e-6, atol=1e-12, method="DOP853", max_step=np.inf):
-    """scipy solve_ivp (adaptive, error-controlled) on the same right-hand side.
-
-    ``max_step`` must not exceed the width of the shortest forcing pulse, or the adaptive
-    controller may step over an impact without seeing it."""
-    sol = solve_ivp(f, (t0, t_end), y0, method=method, t_eval=t_eval, rtol=rtol, atol=atol,
-                    max_step=max_step)
-    if not sol.success:
-        raise RuntimeError(f"solve_ivp failed: {sol.message}")
-    return sol.t, sol.y.T, sol.nfev
-
-
 # the contributions the Galerkin model consumes (no span-length state, no sag term: the
 # config refuses length_change and sag for this solver): the steady ones, evaluated once
 # (they fix the speed, P and the model), and the forcing
@@ -218,19 +168,13 @@ FORCING_KEYS = ("tension_pulse", "tension", "tension_external", "tension_short",
                 "u_right", "v_left", "v_right")
 
 
-def contributions(run: dict, prm: dict, omega1: float, geo: dict, t, step, registry=None):
-    """The forcing contributions of the named effects at the times ``t`` (flattened) of one
-    speed."""
-    ctx = SpanContext(prm, [omega1], np.ravel(t), step, geo, end_velocity=True)
-    return (registry or EFFECTS).evaluate(as_run(run), ctx, keys=FORCING_KEYS)
-
-
 def forcing_arrays(run: dict, prm: dict, omega1: float, geo: dict, t, step=None,
                    registry=None) -> dict:
     """g, h, g', h' (Eqs. 2-24/25 and their time derivatives) and P_t at the times ``t``
     (any shape), from the contributions of the named effects (zero where none)."""
     t = np.asarray(t, float)
-    c = contributions(run, prm, omega1, geo, t, step, registry)
+    c = (registry or EFFECTS).evaluate(run, SpanContext(prm, [omega1], np.ravel(t), step, geo,
+                                                        end_velocity=True), keys=FORCING_KEYS)
     out = {"Pt": dynamic_tension(c, (t.size, 1)).reshape(t.shape)}
     for name, key in (("g", "u_left"), ("h", "u_right"), ("gd", "v_left"), ("hd", "v_right")):
         v = c.get(key)
@@ -377,19 +321,7 @@ def library_piecewise(rhs, forcing_on, edges, y0, t_eval, rtol=1e-9, atol=1e-14,
     return out, nfev
 
 
-def forcing(run: dict, prm: dict, omega1: float, geo: dict, step=None, registry=None):
-    """A scalar function t -> (g, h, g', h', P_t) for adaptive integrators."""
-    def at(t):
-        F = forcing_arrays(run, prm, omega1, geo, t, step, registry)
-        return tuple(float(F[k]) for k in ("g", "h", "gd", "hd", "Pt"))
-    return at
-
-
 # ---------------------------------------------------------------------------- the Fig. 10 scene
-
-def _coord(name, values, units, long_name):
-    return {name: var(name, values, units, long_name)}
-
 
 def _resonant_speed(run, prm, tension_coefficient, L) -> float:
     """omega1 from options.resonance: tooth frequency = ``detuning`` x the j-th longitudinal or
@@ -437,7 +369,6 @@ def _galerkin_setup(run, prm, res) -> dict:
     n1, m = int(prm["n1"]), prm["mass_per_length"]
     geo = span_geometry(prm, False)
     L = geo["L_ct"]
-    run = as_run(run)
     refuse_unhonoured(run, STEADY_KEYS + FORCING_KEYS, "galerkin")
     steady = EFFECTS.evaluate(run, SpanContext(prm, [prm["speed"]], np.zeros(0), None, geo),
                               keys=STEADY_KEYS)
@@ -501,7 +432,7 @@ def _library_check(run, prm, res, g, u_all, t_all, Fe, F_lib) -> dict:
         "library_wall_time": var((), sw.seconds, "s", "wall time of solve_ivp"),
         "library_nfev": var((), nfev, "1", "right-hand-side calls of solve_ivp"),
         "rk4_nfev": var((), 4 * g["n_steps"], "1", "right-hand-side calls of RK4"),
-        **_coord("t_library", t_lib, "s", "time")}
+        "t_library": var("t_library", t_lib, "s", "time")}
 
 
 def solve_scene(run, prm, res):
@@ -551,7 +482,7 @@ def solve_scene(run, prm, res):
                                 "(whole tooth periods)"),
         "steady_ratio": var((), stats["steady_ratio"], "1",
                             "max |u| last quarter / third quarter (whole tooth periods)"),
-        **_coord("t", t_all[::rec], "s", "time")}
+        "t": var("t", t_all[::rec], "s", "time")}
     if opts.get("compare_library", False):
         data.update(_library_check(run, prm, res, g, u_all, t_all, Fe,
                                    {k: v[cut[1]:] for k, v in F.items()}))

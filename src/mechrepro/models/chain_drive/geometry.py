@@ -26,10 +26,6 @@ def chain_speed(omega1, n1: int, p_c: float):
     return n1 * p_c * np.asarray(omega1, float) / (2.0 * np.pi)
 
 
-def omega_from_chain_speed(c, n1: int, p_c: float):
-    return 2.0 * np.pi * np.asarray(c, float) / (n1 * p_c)
-
-
 def fractional_pitch(L_ct: float, p_c: float) -> float:
     """Eq. (2-6): f_p = (L_ct - i* p_c) / p_c with 0 <= f_p < 1."""
     q = L_ct / p_c
@@ -53,11 +49,6 @@ def axial_tension(T_s, tension_coefficient, c):
     """P = T_s + k c^2 (Eq. 2-36 with Eq. 2-1): k = lambda m with speed tensioning, else 0
     (the ``tension_coefficient`` contributed by the effects).  The one place P is formed."""
     return T_s + tension_coefficient * np.asarray(c, float) ** 2
-
-
-def wave_speed(P, m):
-    """Transverse wave speed sqrt(P/m) of the string under axial tension P."""
-    return np.sqrt(np.asarray(P, float) / m)
 
 
 def s_star(c, T_s, m):

@@ -27,7 +27,7 @@ import math
 import numpy as np
 
 from . import geometry
-from .effects import as_run, declared_keys
+from .effects import declared_keys
 
 def stability_only(run: dict) -> bool:
     """Whether nothing but "is any speed unstable" is read from this run, so that its
@@ -126,7 +126,7 @@ def _speeds(run: dict, prm: dict) -> np.ndarray:
 
 def size(run: dict) -> dict:
     """Speeds, grid points and steps of a speed sweep (no effect evaluated)."""
-    prm, res, keys = run["parameters"], run["resolution"], declared_keys(as_run(run))
+    prm, res, keys = run["parameters"], run["resolution"], declared_keys(run)
     w = _speeds(run, prm)
     L0, L1 = _span(prm, "long" in keys)
     ppp, p, m = int(res["points_per_pitch"]), prm["pitch"], prm["mass_per_length"]

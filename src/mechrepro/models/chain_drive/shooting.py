@@ -179,7 +179,6 @@ def periodic_solution(run, prm: dict, omega1: float, res: dict,
     never its result: the multipliers first, and the bounds only where
     :func:`bounds_undecided` leaves them a chance (at the edges of the stability tongues
     the squarings prove nothing and cost ~1/4 of the eigenvalues)."""
-    run = span.as_run(run)
     T, _ = excitation_period(prm, run, omega1)
     a = span.assemble(run, prm, [omega1], res, registry, period=T)
     N, n1 = a["n_steps"], a["grid"].n_long + 1
@@ -376,7 +375,6 @@ def sweep(run, prm: dict, omega1, res: dict, registry=EFFECTS) -> dict:
     :func:`adaptive_sweep` started from ``omega1``, with the outputs of :func:`.span.sweep`
     (``growth`` is the Floquet multiplier rho here, ``unstable`` = rho > 1 or slack).
     Resolution: ``edge_tol`` and ``peak_tol`` (rpm) the bisection widths."""
-    run = span.as_run(run)
     sigma = prm["transverse_damping"] / (2 * prm["mass_per_length"])
     only = stability_only(run)
     seen_w: list = []        # the speeds solved so far (sorted) and their solutions

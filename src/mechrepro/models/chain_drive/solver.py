@@ -2,8 +2,9 @@
 
 The solvers and the effects each honours are declared in ``config/papers/chain_drive.yaml``
 (a scene naming an effect its solver does not honour is refused when the config is
-loaded).  Every solver builds a :class:`.effects.SpanContext`, calls ``EFFECTS.evaluate``
-and reads the contributions by key; none reads an effect's name.
+loaded).  Every solver builds a :class:`.effects.SpanContext`, asks ``EFFECTS`` for the
+contributions by key (``evaluate``, or ``stages`` where some fix the grid of others) and
+reads them by key; none reads an effect's name.
 
 ``impact_load`` (Fig. 1), ``rigid_four_bar`` (Fig. 3), ``elastic_four_bar`` (Fig. 4),
 ``speed_sweep`` (Figs. 5-9: maximum steady amplitude vs operating speed, one vectorised FD
@@ -20,33 +21,38 @@ from mechrepro.timing import phase
 from mechrepro.units import var
 
 from . import claims, discrete, exact, four_bar, galerkin, geometry, loads, shooting, span, timestep
-from .effects import EFFECTS, SpanContext, as_run, declared_keys, refuse_unhonoured
-from .galerkin import envelope_statistics  # noqa: F401  (re-exported for the tests)
+from .effects import EFFECTS, SpanContext, declared_keys, refuse_unhonoured
 from .geometry import RPM
 from .errors import UnknownChoice
-
-
-def _coord(name, values, units, long_name):
-    """A labelled coordinate ``{name: (name, values, attrs)}`` (a variable named like its
-    only dimension: :func:`mechrepro.solve.pack` makes it that dimension's coordinate)."""
-    return {name: var(name, values, units, long_name)}
 
 
 def _contributions(run, ctx, keys, solver):
     """Every named effect on ``ctx`` (a figure's own time grid), after refusing those that
     declare a key the solver does not consume."""
-    run = as_run(run)
     refuse_unhonoured(run, keys, solver)
     return EFFECTS.evaluate(run, ctx)
 
 
-def resonance_table(prm, tension_coefficient, span_geo, orders) -> dict:
-    """Speeds where the tooth frequency meets the k-th moving-string frequency (Wickert-Mote)
-    of the short, long and mean span, with P = T_s + k c^2 (k: the tension coefficient)."""
+def sweep_geometry(prm, tension_coefficient, geo, orders, omega1, wc) -> dict:
+    """What every speed sweep writes beside its amplitudes: the speeds where the tooth
+    frequency meets the k-th moving-string frequency (Wickert-Mote) of the short, long and
+    mean span, with P = T_s + k c^2 (k: the tension coefficient), the span lengths and the
+    drive's elastic four-bar resonance (nan outside a speed_window_elastic)."""
     kw = dict(n1=int(prm["n1"]), p_c=prm["pitch"], T_s=prm["static_tension"],
               m=prm["mass_per_length"], tension_coefficient=tension_coefficient)
-    return {name: np.array([geometry.resonance_speed(k, span_geo[name], **kw) for k in orders])
-            for name in ("L_short", "L_long", "L_ct")}
+    out = {f"resonance_speed_{name}": var(
+        "order", np.array([geometry.resonance_speed(k, geo[L], **kw) for k in orders]) * RPM,
+        "rpm", f"tooth frequency = k-th moving-string frequency, {what}")
+        for name, L, what in (("short", "L_short", "short span"), ("long", "L_long", "long span"),
+                              ("mean", "L_ct", "span L_ct"))}
+    return {**out,
+            "L_short": var((), geo["L_short"], "m", "short span length L_0"),
+            "L_long": var((), geo["L_long"], "m", "long span length"),
+            "fractional_pitch": var((), geo["f_p"], "1", "fractional pitch f_p, Eq. (2-6)"),
+            "elastic_resonance_speed": var((), np.nan if wc is None else wc * RPM, "rpm",
+                                           "omega_c of the drive's elastic four-bar (k = AE/L_ct)"),
+            "speed": var("speed", omega1 * RPM, "rpm", "driving sprocket speed omega_1"),
+            "order": var("order", orders, "1", "resonance order k")}
 
 
 # ---------------------------------------------------------------------------- Figs. 1, 3, 4
@@ -77,8 +83,8 @@ def impact_load(run, prm, res):
         "impulse_quadrature": var((), J_quad, "N*s", "impulse of one impact by quadrature of Eq. (2-4)"),
         "impulse_closed_form": var((), J_exact, "N*s", "impulse of one impact in closed form"),
         "pressure_angle": var((), np.rad2deg(eta), "deg", "angle eta, Eq. (2-3) from ANSI tooth form"),
-        **_coord("t_near", t_near, "s", "time after impact"),
-        **_coord("t_wide", t_wide, "s", "time")}
+        "t_near": var("t_near", t_near, "s", "time after impact"),
+        "t_wide": var("t_wide", t_wide, "s", "time")}
 
 
 def rigid_four_bar(run, prm, res):
@@ -121,21 +127,18 @@ def rigid_four_bar(run, prm, res):
     if out["u_left"]:
         data["u_left"] = var(("n2", "t"), out["u_left"], "m",
                              "driven-end transverse displacement u_0, Eq. (2-25)")
-    return {**data, **_coord("t", t, "s", "time"),
-            **_coord("n2", cases, "1", "driven sprocket tooth number"),
-            **_coord("check_speed", speeds * RPM, "rpm", "check speed")}
+    return {**data, "t": var("t", t, "s", "time"),
+            "n2": var("n2", cases, "1", "driven sprocket tooth number"),
+            "check_speed": var("check_speed", speeds * RPM, "rpm", "check speed")}
 
 
 def elastic_four_bar(run, prm, res):
     """Fig. 4: the elastic four-bar load (contributions ``tension_short``/``tension_long``,
     switched by the span-length state ``long``) below, at, between, at and above its two
     resonances, and its peak-to-peak value over a speed window for k1 and k2."""
-    n1, n2, p = int(prm["n1"]), int(prm["n2"]), prm["pitch"]
+    n1 = int(prm["n1"])
     geo = span.span_geometry(prm, True)
-    r2 = geometry.pitch_radius(p, n2)
-    wc_short, wc_long = (four_bar.elastic_resonance(prm["axial_stiffness"] / geo[L],
-                                                    prm["driven_inertia"], r2, n1)
-                         for L in ("L_short", "L_long"))
+    wc_short, wc_long = (omega_c(prm, geo[L]) for L in ("L_short", "L_long"))
     # the paper's omega_c1 < omega_c2: the long (softer) span resonates first
     wc1, wc2 = min(wc_short, wc_long), max(wc_short, wc_long)
     window = run.get("options", {}).get("speed_window_elastic")
@@ -162,19 +165,23 @@ def elastic_four_bar(run, prm, res):
                                  "peak-to-peak D_pol, k2 = AE/(L_0+p)"),
         "omega_c1": var((), wc1 * RPM, "rpm", "first resonance of the elastic four-bar (long span)"),
         "omega_c2": var((), wc2 * RPM, "rpm", "second resonance of the elastic four-bar (short span)"),
-        **_coord("case", cases * RPM, "rpm", "driving speed of Fig. 4 case"),
-        **_coord("phase", s, "1", "time in tooth periods"),
-        **_coord("curve_speed", curve_w * RPM, "rpm", "driving speed")}
+        "case": var("case", cases * RPM, "rpm", "driving speed of Fig. 4 case"),
+        "phase": var("phase", s, "1", "time in tooth periods"),
+        "curve_speed": var("curve_speed", curve_w * RPM, "rpm", "driving speed")}
+
+
+def omega_c(prm, L: float) -> float:
+    """The elastic four-bar resonance omega_c = r2 sqrt(k/I2)/n1 of a span L, k = AE/L."""
+    return four_bar.elastic_resonance(prm["axial_stiffness"] / L, prm["driven_inertia"],
+                                      geometry.pitch_radius(prm["pitch"], int(prm["n2"])),
+                                      int(prm["n1"]))
 
 
 def elastic_speed_window(prm, window) -> tuple[float, float]:
-    """Speeds [lo, hi] x omega_c of the drive's own elastic four-bar resonance
-    omega_c = r2 sqrt(k/I2)/n1 with k = AE/L_ct: a medium-speed window placed around the
-    resonance of *this* drive, not a speed range copied from another drive."""
-    geo = span.span_geometry(prm, False)
-    wc = four_bar.elastic_resonance(prm["axial_stiffness"] / geo["L_ct"], prm["driven_inertia"],
-                                    geometry.pitch_radius(prm["pitch"], int(prm["n2"])),
-                                    int(prm["n1"]))
+    """Speeds [lo, hi] x omega_c of the drive's own elastic four-bar resonance with
+    k = AE/L_ct: a medium-speed window placed around the resonance of *this* drive, not a
+    speed range copied from another drive."""
+    wc = omega_c(prm, span.span_geometry(prm, False)["L_ct"])
     return float(window[0] * wc), float(window[1] * wc)
 
 
@@ -184,15 +191,13 @@ def dense_near_elastic(run, prm, omega1, half_width: float, n_speeds: int) -> np
     """The speed axis with n_speeds // 3 extra speeds within +-half_width (relative) of each
     elastic four-bar resonance omega_c = r2 sqrt(k/I2)/n1 (k = AE/L of the short and long
     span) inside the sweep.  Why: the undamped elastic D_pol (Eqs. 2-11..2-23) peaks there,
-    so the parametric (Mathieu) bands it pumps cluster there and are narrow (Fig. 9a: 0.9 rpm
-    at 1210.9-1211.8 rpm, 0.3 % below omega_c, between two points of an 8 rpm grid).  The
-    dense count scales with n_speeds, so refining n_speeds refines it too."""
-    geo = span.span_geometry(prm, "long" in declared_keys(as_run(run)))
-    r2 = geometry.pitch_radius(prm["pitch"], int(prm["n2"]))
+    so the parametric (Mathieu) bands it pumps cluster there and are narrow, narrower than a
+    uniform grid's step.  The dense count scales with n_speeds, so refining n_speeds refines
+    it too."""
+    geo = span.span_geometry(prm, "long" in declared_keys(run))
     extra = [omega1]
     for L in sorted({geo["L_short"], geo["L_long"]}):
-        wc = four_bar.elastic_resonance(prm["axial_stiffness"] / L, prm["driven_inertia"], r2,
-                                        int(prm["n1"]))
+        wc = omega_c(prm, L)
         if omega1[0] <= wc <= omega1[-1]:
             extra.append(np.linspace(wc * (1 - half_width), wc * (1 + half_width),
                                      max(3, n_speeds // 3)))
@@ -223,10 +228,9 @@ def speed_sweep(run, prm, res) -> dict:
         else:
             out = span.sweep(run, prm, omega1, res)
     orders = np.arange(1, int(res.get("orders", 8)) + 1)
-    geo = dict(out["span"])
-    reso = resonance_table(prm, out["tension_coefficient"], geo, orders)
     g = out["grid"]
     data = {
+        **sweep_geometry(prm, out["tension_coefficient"], out["span"], orders, omega1, wc),
         "amplitude": var("speed", out["amplitude"], "m", "maximum steady transverse amplitude"),
         "growth": var("speed", np.minimum(out["growth"], 1e300), "1",
                       "spectral radius of the one-period monodromy matrix (Floquet multiplier); "
@@ -237,22 +241,9 @@ def speed_sweep(run, prm, res) -> dict:
                         "1 where the response grows (Mathieu instability) or the span goes slack"),
         "slack": var("speed", out["slack"].astype("i1"), "1", "1 where P + P_t <= 0 somewhere"),
         "s_star": var("speed", out["s_star"], "1", "first-difference weight s* (0 = central differencing; Eq. (2-38) otherwise)"),
-        "resonance_speed_short": var("order", reso["L_short"] * RPM, "rpm",
-                                     "tooth frequency = k-th moving-string frequency, short span"),
-        "resonance_speed_long": var("order", reso["L_long"] * RPM, "rpm",
-                                    "tooth frequency = k-th moving-string frequency, long span"),
-        "resonance_speed_mean": var("order", reso["L_ct"] * RPM, "rpm",
-                                    "tooth frequency = k-th moving-string frequency, span L_ct"),
         "time_step": var((), out["dt"], "s", "time step: cfl x the von Neumann limit dx/sqrt(c_w^2 - c^2)"),
         "n_steps": var((), out["n_steps"], "1", "number of time steps"),
-        "n_points": var((), g.n_long + 1, "1", "grid points of the long span"),
-        "L_short": var((), geo["L_short"], "m", "short span length L_0"),
-        "L_long": var((), geo["L_long"], "m", "long span length"),
-        "fractional_pitch": var((), geo["f_p"], "1", "fractional pitch f_p, Eq. (2-6)"),
-        "elastic_resonance_speed": var((), np.nan if wc is None else wc * RPM, "rpm",
-                                           "omega_c of the drive's elastic four-bar (k = AE/L_ct)"),
-        **_coord("speed", omega1 * RPM, "rpm", "driving sprocket speed omega_1"),
-        **_coord("order", orders, "1", "resonance order k")}
+        "n_points": var((), g.n_long + 1, "1", "grid points of the long span")}
     steps = run.get("options", {}).get("discrete_reference")
     if steps:
         ref = discrete.sweep(run, prm, omega1, {"steps_per_period": steps})["amplitude"]
@@ -302,14 +293,13 @@ def discrete_sweep(run, prm, omega1, res, wc=None) -> dict:
     """Figs. 5-8 on the discrete-link span (:func:`.discrete.sweep`): per speed the periodic
     orbit's amplitude and largest Floquet multiplier of the tooth-period map, with the
     moving-string resonance speeds of the span (the string's, for comparison)."""
-    run = as_run(run)
     out = discrete.sweep(run, prm, omega1, res)
     omega1 = out["omega1"]
     orders = np.arange(1, int(res.get("orders", 8)) + 1)
     geo = span.span_geometry(prm, "long" in declared_keys(run))
-    reso = resonance_table(prm, discrete.tension_coefficient(run, prm), geo, orders)
     steps = int(res["steps_per_period"])
     return {
+        **sweep_geometry(prm, discrete.tension_coefficient(run, prm), geo, orders, omega1, wc),
         "amplitude": var("speed", out["amplitude"], "m",
                          "maximum transverse roller amplitude of the periodic orbit"),
         "growth": var("speed", out["rho"], "1", "largest Floquet multiplier of the tooth-period "
@@ -319,21 +309,11 @@ def discrete_sweep(run, prm, omega1, res, wc=None) -> dict:
         "slack": var("speed", out["slack"].astype("i1"), "1", "1 where P + P_t <= 0 somewhere"),
         "periodicity_residual": var("speed", out["residual"], "m",
                                     "max |x(T) - x*| of the orbit marched once more"),
-        **{f"resonance_speed_{k}": var("order", reso[L] * RPM, "rpm",
-                                       f"tooth frequency = k-th moving-string frequency, {k} span")
-           for k, L in (("short", "L_short"), ("long", "L_long"), ("mean", "L_ct"))},
         "steps_per_period": var((), steps, "1", "RK4 steps per tooth period"),
         "sampling_converged": var((), int(out["sampling_converged"]), "1",
                                   "1 when the adaptive speed refinement finished"),
         "n_steps": var((), steps, "1", "RK4 steps per tooth period"),
-        "n_points": var((), out["n_rollers"] + 2, "1", "rollers of the short span, ends included"),
-        "L_short": var((), geo["L_short"], "m", "short span length L_0"),
-        "L_long": var((), geo["L_long"], "m", "long span length"),
-        "fractional_pitch": var((), geo["f_p"], "1", "fractional pitch f_p, Eq. (2-6)"),
-        "elastic_resonance_speed": var((), np.nan if wc is None else wc * RPM, "rpm",
-                                       "omega_c of the drive's elastic four-bar (k = AE/L_ct)"),
-        **_coord("speed", omega1 * RPM, "rpm", "driving sprocket speed omega_1"),
-        **_coord("order", orders, "1", "resonance order k")}
+        "n_points": var((), out["n_rollers"] + 2, "1", "rollers of the short span, ends included")}
 
 
 # ---------------------------------------------------------------------------- Sec. 3.1, checks
@@ -352,7 +332,7 @@ def impact_timestep(run, prm, res):
         "dt_equal_accuracy": var((), out["uniform_equal_accuracy"]["dt"], "s",
                                      "uniform step reaching the non-uniform accuracy"),
         "contact_time": var((), out["contact_time"], "s", "impact contact time pi/omega_d"),
-        **_coord("strategy", names, "1", "time-step strategy")}
+        "strategy": var("strategy", names, "1", "time-step strategy")}
 
 
 SOLVERS = {"impact_load": impact_load, "rigid_four_bar": rigid_four_bar,

@@ -1,7 +1,6 @@
 """The low/medium-speed span: contributions -> excitation -> FD sweep (Sec. 2.3.2).
 
-One call solves a whole operating-speed sweep as one array computation (``vectorised``),
-or speed by speed (``loop``, kept for the benchmark and the equivalence test).
+One call solves a whole operating-speed sweep as one array computation.
 """
 from __future__ import annotations
 
@@ -10,8 +9,8 @@ import math
 import numpy as np
 
 from . import fd, geometry
-from .effects import EFFECTS, SpanContext, as_run, declared_keys, refuse_unhonoured
-from .errors import PitchScaleInstability, UnknownChoice
+from .effects import EFFECTS, SpanContext, declared_keys, refuse_unhonoured
+from .errors import PitchScaleInstability
 
 # the contributions the finite-difference march consumes (effects.py lists every key)
 FD_KEYS = ("tension_coefficient", "tension_pulse", "tension", "tension_external",
@@ -94,7 +93,7 @@ def refuse_undamped_pitch_scale(res: dict, run: dict, span_geo: dict) -> None:
     impact pulse, central is unstable at 67-88 of the 200 Fig. 5 speeds on every grid."""
     if res.get("differencing") != "central":
         return
-    kicks = pitch_scale_inputs(as_run(run), span_geo)
+    kicks = pitch_scale_inputs(run, span_geo)
     if kicks:
         raise PitchScaleInstability(
             "central differencing with " + " and ".join(kicks) + ": without numerical damping "
@@ -116,7 +115,7 @@ def excitation_tooth_periods(prm: dict, run) -> int:
     from .errors import PeriodicityError
 
     n1 = int(prm["n1"])
-    if ("tension_external" not in declared_keys(as_run(run))
+    if ("tension_external" not in declared_keys(run)
             or prm.get("external_load_ratio", 0.0) == 0.0):
         return 1
     r = float(prm["external_frequency_ratio"])
@@ -126,40 +125,20 @@ def excitation_tooth_periods(prm: dict, run) -> int:
     raise PeriodicityError(f"external load ratio {r}: no common period with the teeth")
 
 
-class _Merged:
-    """Two :class:`~mechrepro.effects.Contributions` of disjoint effects read as one."""
-
-    def __init__(self, first, second):
-        self.parts = (first, second)
-
-    def __contains__(self, key):
-        return any(key in p for p in self.parts)
-
-    def get(self, key, default=None):
-        for p in self.parts:
-            if key in p:
-                return p.get(key)
-        return default
-
-
-def assemble(effects, prm: dict, omega1, res: dict, registry=EFFECTS,
+def assemble(run, prm: dict, omega1, res: dict, registry=EFFECTS,
              period: float | None = None) -> dict:
-    """Evaluate the named effects on the time grid of a sweep; return the march inputs.
+    """Stage the run's effects on the time grid of a sweep; return the march inputs.
 
-    ``effects``: the run (or a list of effect names).  What the named effects declare they
-    contribute (never their names) decides the order: first the steady contributions (the
-    tension coefficient) fix the axial tension P, hence the characteristic speeds and the
-    first time step; a declared span-length state (``long``) makes the grid cover both span
-    lengths (otherwise the span is the common tangent L_ct).  Then the effects that form
-    the dynamic tension are evaluated on the time grid, refined until the step is stable
-    for the dynamic tension too (each refinement evaluates them again on its finer grid),
-    and the others (end motion, sag) once, on the final grid.
+    What the named effects declare they contribute (``run["contributes"]``, never their
+    names) decides the stages: the steady contributions (the tension coefficient) fix the
+    axial tension P, hence the first time step; a declared span-length state (``long``)
+    makes the grid cover both span lengths.  Then the dynamic tension, refined until the
+    step is stable for it too (each refinement stages it again on its finer grid), and
+    the rest (end motion, sag) once, on the final grid.
 
     ``period`` (s): march exactly one excitation period instead of settling + window (the
-    shooting of :mod:`.shooting`): the step is the stable step shortened so that a whole
-    number (>= 3) of steps spans the period, and no settling time is added.
+    shooting of :mod:`.shooting`): a whole number (>= 3) of steps spans the period.
     """
-    run = as_run(effects)
     refuse_unhonoured(run, FD_KEYS, "finite-difference", registry)
     m, T_s, c_d = prm["mass_per_length"], prm["static_tension"], prm["transverse_damping"]
     omega1 = np.atleast_1d(np.asarray(omega1, float))
@@ -173,9 +152,8 @@ def assemble(effects, prm: dict, omega1, res: dict, registry=EFFECTS,
     # excitation, its tooth frequency and the speed tensioning keep the chain speed
     c_op = np.zeros_like(c) if run.get("options", {}).get("stationary_string") else c
     cache: dict = {}
-    steady = registry.evaluate(run, SpanContext(prm, omega1, np.zeros(0), None, span,
-                                                cache=cache), keys=STEADY_KEYS)
-    k_c = steady.total("tension_coefficient")
+    k_c = registry.stages(run, SpanContext(prm, omega1, np.zeros(0), None, span, cache=cache))(
+        STEADY_KEYS).total("tension_coefficient")
     P = geometry.axial_tension(T_s, k_c, c)
     sigma = c_d / (2 * m)
     tau_max = float(np.max(geometry.tooth_period(omega1, int(prm["n1"]))))
@@ -184,8 +162,7 @@ def assemble(effects, prm: dict, omega1, res: dict, registry=EFFECTS,
     q = excitation_tooth_periods(prm, run)
     if q > 1:
         # an external load repeats every q tooth periods: each growth block must hold a
-        # whole excitation period, or its slow modulation reads as growth and the window's
-        # maximum misses the period's (Fig. 8 at omega_ex = omega_1: 24 tooth periods)
+        # whole excitation period, or its slow modulation reads as growth
         window = max(window, GROWTH_BLOCKS * q * tau_max)
     # the span-length state is part of P_t only where it picks the elastic load
     tension = set(PT_KEYS) | (
@@ -198,9 +175,11 @@ def assemble(effects, prm: dict, omega1, res: dict, registry=EFFECTS,
             dt = period / n_steps
         else:
             n_steps = int(math.ceil((settle + window) / dt))
-        t = np.arange(n_steps + 1) * dt
-        ctx = SpanContext(prm, omega1, t, dt, span, cache=cache)
-        contrib = registry.evaluate(run, ctx, keys=tension)
+        # each pass stages the effects on its own time grid: the dynamic tension first
+        # (it decides whether the step is stable), the rest once the step is final
+        stages = registry.stages(run, SpanContext(prm, omega1, np.arange(n_steps + 1) * dt, dt,
+                                                  span, cache=cache))
+        contrib = stages(tension)
         Pt = dynamic_tension(contrib, (n_steps + 1, omega1.size))
         P_max = P + np.max(Pt, axis=0)
         P_min = P + np.min(Pt, axis=0)
@@ -211,12 +190,11 @@ def assemble(effects, prm: dict, omega1, res: dict, registry=EFFECTS,
                                  float(res["cfl"]))
     else:
         raise fd.StabilityError("no stable time step found for the dynamic tension")
-    # the same context: the sprocket kinematics computed for the tension is reused
-    contrib = _Merged(contrib, registry.evaluate(
-        run, ctx, keys=set(FD_KEYS) - tension - set(STEADY_KEYS)))
-    kappa = contrib.get("kappa")
-    exc = fd.Excitation(tension=Pt, long=contrib.get("long"), u_left=contrib.get("u_left"),
-                        u_right=contrib.get("u_right"),
+    rest = stages(set(FD_KEYS) - tension - set(STEADY_KEYS))
+    long = contrib.get("long") if "long" in contrib else rest.get("long")
+    kappa = rest.get("kappa")
+    exc = fd.Excitation(tension=Pt, long=long, u_left=rest.get("u_left"),
+                        u_right=rest.get("u_right"),
                         load=None if kappa is None else kappa[None, :] * Pt)
     return {"grid": grid, "span": span, "c": c_op, "P": P, "P_min": P_min, "dt": dt,
             "n_steps": n_steps, "exc": exc,
@@ -228,32 +206,16 @@ def assemble(effects, prm: dict, omega1, res: dict, registry=EFFECTS,
             "tension_coefficient": k_c}
 
 
-def sweep(effects, prm, omega1, res, mode: str = "vectorised", probes=(), record_every=0,
-          registry=EFFECTS) -> dict:
-    """Maximum steady amplitude vs operating speed (Figs. 5-9)."""
-    a = assemble(effects, prm, omega1, res, registry)
-    kw = dict(m=a["m"], c_d=a["c_d"], grid=a["grid"], dt=a["dt"], n_steps=a["n_steps"],
-              measure_from=a["measure_from"], u_cap=float(res.get("u_cap", 0.05)),
-              n_blocks=GROWTH_BLOCKS,
-              differencing=res.get("differencing"))
-    if mode == "vectorised":
-        r = fd.march(c=a["c"], P=a["P"], exc=a["exc"], s_star=a["s_star"], probes=probes,
-                     record_every=record_every, **kw)
-        out = {"amplitude": r.amplitude, "growth": r.growth, "unstable": r.unstable,
-               "probes": r.probes, "t_rec": r.t_rec}
-    elif mode == "loop":
-        amp, gr, un = [], [], []
-        for i in range(a["omega1"].size):
-            sl = slice(i, i + 1)
-            e = a["exc"]
-            exc = fd.Excitation(**{k: (None if getattr(e, k) is None else getattr(e, k)[:, sl])
-                                   for k in ("tension", "u_left", "u_right", "long", "load")})
-            r = fd.march(c=a["c"][sl], P=a["P"][sl], exc=exc, s_star=a["s_star"][sl], **kw)
-            amp.append(r.amplitude[0]); gr.append(r.growth[0]); un.append(r.unstable[0])
-        out = {"amplitude": np.array(amp), "growth": np.array(gr), "unstable": np.array(un),
-               "probes": None, "t_rec": None}
-    else:
-        raise UnknownChoice(f"sweep mode {mode!r}: allowed vectorised, loop")
+def sweep(run, prm, omega1, res, probes=(), record_every=0, registry=EFFECTS) -> dict:
+    """Maximum steady amplitude vs operating speed (Figs. 5-9): every speed in one march."""
+    a = assemble(run, prm, omega1, res, registry)
+    r = fd.march(c=a["c"], P=a["P"], exc=a["exc"], s_star=a["s_star"], m=a["m"], c_d=a["c_d"],
+                 grid=a["grid"], dt=a["dt"], n_steps=a["n_steps"],
+                 measure_from=a["measure_from"], u_cap=float(res.get("u_cap", 0.05)),
+                 n_blocks=GROWTH_BLOCKS, differencing=res.get("differencing"), probes=probes,
+                 record_every=record_every)
+    out = {"amplitude": r.amplitude, "growth": r.growth, "unstable": r.unstable,
+           "probes": r.probes, "t_rec": r.t_rec}
     slack = a["P_min"] <= 0
     out["unstable"] = out["unstable"] | slack
     out.update({k: a[k] for k in ("grid", "span", "c", "P", "P_min", "dt", "n_steps", "s_star",

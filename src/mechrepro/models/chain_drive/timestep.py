@@ -17,7 +17,7 @@ import numpy as np
 from mechrepro.timing import phase
 
 from . import fd, geometry, loads
-from .effects import EFFECTS, SpanContext, as_run, refuse_unhonoured
+from .effects import EFFECTS, SpanContext, refuse_unhonoured
 from .span import dynamic_tension, make_grid, span_geometry
 
 
@@ -75,7 +75,6 @@ def compare(run, prm: dict, res: dict, registry=EFFECTS) -> dict:
     """Errors (vs a fine uniform reference) and wall times of the time-step strategies.
 
     ``run``: the run (or a list of effect names)."""
-    run = as_run(run)
     refuse_unhonoured(run, STEADY_KEYS + FORCING_KEYS, "impact_timestep", registry)
     n1, p, m = int(prm["n1"]), prm["pitch"], prm["mass_per_length"]
     w1 = prm["speed"]

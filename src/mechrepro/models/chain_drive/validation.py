@@ -149,37 +149,34 @@ def _windows(ds_l, k):
                           float(ds_l.resonance_speed_short.sel(order=k)))
 
 
-@Q.register(*[f"two_peaks_with_length_change_order{k}" for k in (2, 3, 4, 5)])
-def fig05_two_peaks(R):
-    runs = _non_integral(R, "fig05_length_cd")
+def _peak_counts(R, study, row, ok, with_window):
+    """Per order 2-5, whether every non-integral centre distance of ``study`` has ``ok``
+    (a test of the count) peaks in the order's window (:func:`.claims.order_window`, the
+    short- and long-span speeds its run tabulates)."""
+    runs = _non_integral(R, study)
     out = {}
     for k in (2, 3, 4, 5):
-        ok, notes = True, []
+        good, notes = True, []
         for cd, ds in runs:
             lo, hi = _windows(ds, k)
             pk = C.peak_speeds(ds.speed.values, ds.amplitude.values, lo, hi, stable=_stable(ds))
-            ok &= len(pk) >= 2
-            notes.append(f"{cd:g} p: {[round(x, 1) for x in pk]} in [{lo:.0f}, {hi:.0f}]")
-        out[f"two_peaks_with_length_change_order{k}"] = Reproduced(bool(ok), "; ".join(notes))
+            good &= ok(len(pk))
+            notes.append(f"{cd:g} p: {[round(x, 1) for x in pk]}"
+                         + (f" in [{lo:.0f}, {hi:.0f}]" if with_window else ""))
+        out[f"{row}{k}"] = Reproduced(bool(good), "; ".join(notes))
     return out
+
+
+@Q.register(*[f"two_peaks_with_length_change_order{k}" for k in (2, 3, 4, 5)])
+def fig05_two_peaks(R):
+    return _peak_counts(R, "fig05_length_cd", "two_peaks_with_length_change_order",
+                        lambda n: n >= 2, True)
 
 
 @Q.register(*[f"one_peak_without_length_change_order{k}" for k in (2, 3, 4, 5)])
 def fig05_one_peak(R):
-    runs = _non_integral(R, "fig05_plain_cd")
-    out = {}
-    for k in (2, 3, 4, 5):
-        ok, notes = True, []
-        for cd, ds in runs:
-            # the same window as the length-change check: each run tabulates the short- and
-            # long-span speeds of its centre distance
-            lo, hi = C.order_window(float(ds.resonance_speed_long.sel(order=k)),
-                                    float(ds.resonance_speed_short.sel(order=k)))
-            pk = C.peak_speeds(ds.speed.values, ds.amplitude.values, lo, hi, stable=_stable(ds))
-            ok &= len(pk) == 1
-            notes.append(f"{cd:g} p: {[round(x, 1) for x in pk]}")
-        out[f"one_peak_without_length_change_order{k}"] = Reproduced(bool(ok), "; ".join(notes))
-    return out
+    return _peak_counts(R, "fig05_plain_cd", "one_peak_without_length_change_order",
+                        lambda n: n == 1, False)
 
 
 @Q.register("length_change_difference_grows_with_order")
@@ -411,16 +408,6 @@ def _ratios(R, coupled: str, uncoupled: str) -> dict:
             for n in sorted(set(c) & set(u))}
 
 
-def _over_modes(values: dict, at: int, what: str) -> tuple[float, float, str]:
-    """(value at the drawn count, largest deviation over the study, note)."""
-    v = values[at]
-    err = max(abs(x - v) for x in values.values())
-    note = (f"{what} {' / '.join(f'{x:.3g}' for x in values.values())} at "
-            f"{' / '.join(str(n) for n in values)} transverse modes (drawn at {at}; error = "
-            "the largest deviation over the mode study)")
-    return v, err, note
-
-
 #: a record whose envelope changes by more than this from its third to its last quarter is
 #: not steady (the bound of transient_reaches_steady_state): its "steady amplitude" has not
 #: converged in record length
@@ -549,16 +536,19 @@ def fig10_steady(R):
                       not_converged="; ".join(why))
 
 
+def _rk4_check(R, scene):
+    d = R.run(scene)
+    return Reproduced(float(d.rk4_vs_library), f"RK4 {int(d.rk4_nfev)} rhs calls vs DOP853 {int(d.library_nfev)}")
+
+
 @Q.register("rk4_vs_solve_ivp_coupled")
 def rk4_coupled(R):
-    d = R.run("rk4_check_coupled")
-    return Reproduced(float(d.rk4_vs_library), f"RK4 {int(d.rk4_nfev)} rhs calls vs DOP853 {int(d.library_nfev)}")
+    return _rk4_check(R, "rk4_check_coupled")
 
 
 @Q.register("rk4_vs_solve_ivp_uncoupled")
 def rk4_uncoupled(R):
-    d = R.run("rk4_check_uncoupled")
-    return Reproduced(float(d.rk4_vs_library), f"RK4 {int(d.rk4_nfev)} rhs calls vs DOP853 {int(d.library_nfev)}")
+    return _rk4_check(R, "rk4_check_uncoupled")
 
 
 # ----------------------------------------------------------------------------- verification
