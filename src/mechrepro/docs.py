@@ -232,7 +232,7 @@ def cost(root: Path) -> str:
         out.append([acc, q, pts[0]["reference"], " / ".join(r["knob_value"] for r in pts),
                     " / ".join(f"{float(r['error']):.1e}" for r in pts),
                     " / ".join(f"{float(r['time_s']):.2g}" for r in pts),
-                    f"{float(pts[0]['observed_order']):.2f}"])
+                    number(pts[0]["observed_order"], 3)])
     return markdown(["entry", "quantity", "reference", "knob values", "errors", "times [s]",
                      "order"], out)
 
