@@ -11,7 +11,7 @@ the key, the value and what is allowed:
 - NaN or infinity anywhere (``.nan``, ``.inf``): JSON-schema comparisons with NaN are
   false, so ``minimum: 0`` lets NaN through to the solver;
 - a parameter whose value, in SI, is implausible for its dimension (:data:`PLAUSIBLE`,
-  :data:`NAMED`) or for its machine class (:data:`RANGES`, per paper): the unit of another
+  :data:`NAMED`) or for its machine class (its ``plausible:`` range): the unit of another
   scale typed for the paper's (8.91 m for a chain pitch of 8.91 mm, 908 m for a shear's
   908 mm link, 206 MPa for a steel's 206 GPa), in the declared value and in every scene,
   study, sweep and profile override.
@@ -93,116 +93,23 @@ NAMED = {
                                 "roller chains 6.35-114.3 mm, saw chains 6.35-10.26 mm)"),
 }
 
-# paper -> {parameter: (lowest, highest, unit, why)}: the machine class of each paper's
-# dimensional parameters, in the unit given.  Each range is narrower than a factor 1000
-# where the class allows it (then every value inside it leaves it when typed in the unit
-# one step of 1000 away: m for mm, kg for g, MPa for GPa), and wide enough never to refuse
-# a design choice of that class.  Zero is never refused here (no unit makes a zero; the
-# schema decides).  An angular speed's slip is a factor 60 / (2 pi) = 9.55 (the rad/s
-# number typed for r/min, or the r/min number with unit rad/s): its range is narrower than
-# that where the machine runs at one speed (saw_chain, joint_wear), so both slips leave
-# it; chain_drive's own speeds span 50-800 r/min, and its range only catches larger slips.
-# Parameters without a machine class (stiffnesses, damping, tolerances, fitted values) are
-# left to the schema's `allowed`.
-_ANGLE = (-360.0, 360.0, "deg", "an angle within one turn (a value in degrees given in "
-                                "rad is ~57x too large)")
-RANGES: dict[str, dict[str, tuple[float, float, str, str]]] = {
-    "saw_chain": {
-        "tie_strap_mass": (0.1, 50, "g", "a chain link (saw chain links 1-3 g; 50 g is a "
-                                         "25 mm pitch roller chain link)"),
-        "drive_link_mass": (0.1, 50, "g", "a chain link (saw chain links 1-3 g; 50 g is a "
-                                          "25 mm pitch roller chain link)"),
-        "textbook_mass": (0.5, 300, "g", "the textbook's moving mass, between one link "
-                                         "(1.3 g) and the whole tight side (102 g) of a saw "
-                                         "chain, with margin"),
-        "sprocket_speed": (2000, 16000, "rpm", "a chain-saw sprocket (idle ~2800 r/min, "
-                                               "cutting 9000-14000 r/min)"),
-        "textbook_phase": _ANGLE,
-    },
-    "chain_drive": {
-        "mass_per_length": (0.05, 40, "kg/m", "a roller chain (ISO 606: 0.15 kg/m at "
-                                              "6.35 mm pitch to ~22 kg/m at 76 mm)"),
-        "static_tension": (5, 2e5, "N", "a roller chain's static tension (breaking loads "
-                                        "of ISO 606 chains are 4 kN to 1 MN)"),
-        "speed": (1, 10000, "rpm", "a roller chain sprocket (ISO 10823: up to ~6000 r/min)"),
-        "speed_min": (1, 10000, "rpm", "a roller chain sprocket (up to ~6000 r/min)"),
-        "speed_max": (1, 10000, "rpm", "a roller chain sprocket (up to ~6000 r/min)"),
-    },
-    "disk_tension": {
-        "outer_diameter": (50, 2000, "mm", "a circular saw blade (50 mm to ~2 m log saws)"),
-        **{k: (2, 1000, "mm", "a radius on a circular saw blade of at most 2 m diameter")
-           for k in ("clamp_radius", "rolling_radius", "calibration_clamp_radius",
-                     "calibration_rolling_radius", "annulus_radii")},
-        **{k: (0.05, 100, "mm", "a width of a heated or rolled band on a saw blade")
-           for k in ("gaussian_width", "annulus_width",
-                     "scan_gaussian_width")},
-        "slot_depth": (0.1, 500, "mm", "a slot in a saw blade of at most 2 m diameter"),
-        "slot_width": (0.1, 500, "mm", "a slot in a saw blade of at most 2 m diameter"),
-        "youngs_modulus": (40, 700, "GPa", "a metal (magnesium 45 GPa, steel 190-215 GPa, "
-                                           "tungsten carbide ~600 GPa)"),
-        "density": (1000, 25000, "kg/m3", "a metal (magnesium 1740, steel 7850, tungsten "
-                                          "19300 kg/m3)"),
-        "thermal_expansion": (1e-6, 1e-4, "1/K", "a metal (tungsten 4.5e-6, steel 1.2e-5, "
-                                                 "magnesium 2.6e-5 per K)"),
-        "calibration_frequency": (1, 20000, "Hz", "a natural frequency of a saw blade "
-                                                  "(tens of Hz to a few kHz)"),
-        "fit_rolled_frequency": (1, 20000, "Hz", "a natural frequency of a saw blade "
-                                                 "(tens of Hz to a few kHz)"),
-    },
-    "joint_wear": {
-        **{k: (5, 5000, "mm", "a link of a planar four-bar linkage (5 mm to 5 m)")
-           for k in ("crank_length", "coupler_length", "follower_length", "ground_length")},
-        **{k: (0.01, 500, "kg", "a link of a planar four-bar linkage (10 g to 500 kg)")
-           for k in ("coupler_mass", "follower_mass")},
-        "load": (1, 50000, "N", "a load on a planar linkage of at most 500 kg links"),
-        "crank_speed": (3, 28, "r/min", "the crank of a low-speed wear test of a linkage "
-                                        "(the paper's rig 9.6 r/min; its continuous-contact "
-                                        "model, Sec. 3.2, assumes low speed)"),
-        "pin_radius": (0.01, 500, "mm", "a joint pin (watch pivots of ~0.05 mm to 0.5 m)"),
-        "radial_clearance": (0.001, 5, "mm", "a radial clearance of a journal (1 um to 5 mm)"),
-        "width": (1, 500, "mm", "a bushing width (1 mm to 0.5 m)"),
-        **{k: (1, 700, "GPa", "a pin or bushing material (polymers ~1 GPa to tungsten "
-                              "carbide ~600 GPa)") for k in ("E_pin", "E_bushing")},
-        **{k: (1e-4, 10, "mm", "a measured wear depth of a journal (0.1 um to 10 mm)")
-           for k in ("measured_wear_B1", "measured_wear_B2", "measured_increment_B1",
-                     "measured_increment_B2")},
-    },
-    "rolling_shear": {
-        **{k: (20, 20000, "mm", "a link of a plate shear (20 mm to 20 m)")
-           for k in ("l1", "l3", "l5", "l6", "l9", "l10")},
-        "s": (0.1, 200, "mm", "a blade overlap (0.1 to 200 mm)"),
-        "width": (200, 10000, "mm", "a plate width of a plate shear (0.2 to 10 m)"),
-        "opening": (10, 2000, "mm", "a blade opening of a plate shear (10 mm to 2 m)"),
-        "R": (1000, 500000, "mm", "the arc radius of a rolling-cut blade (1 m to 500 m)"),
-        "h": (10, 5000, "mm", "a height in a plate shear (10 mm to 5 m)"),
-        "blade_offset": (10, 20000, "mm", "an offset of the blade in a plate shear (10 mm "
-                                          "to 20 m either way)"),
-        "clearance": (5, 2000, "mm", "a clearance in a plate shear (5 mm to 2 m)"),
-        "plate_thickness_max": (1, 1000, "mm", "a plate thickness (1 mm to 1 m)"),
-        "y_joint": (10, 5000, "mm", "a joint height in a plate shear (10 mm to 5 m)"),
-        "transmission_min": _ANGLE,
-        "elbow_angle": _ANGLE,
-        "theta6_mid": _ANGLE,
-    },
-}
 
-
-def _plausibility(name: str, value, unit: str, paper: str | None = None) -> str | None:
-    """Why ``value`` (in ``unit``) is implausible for parameter ``name`` of ``paper``, or
-    None."""
+def _plausibility(name: str, value, unit: str, declared: dict | None = None) -> str | None:
+    """Why ``value`` (in ``unit``) is implausible for parameter ``name`` (with its machine
+    class's range ``declared``, the parameter's ``plausible:``), or None."""
     if unit not in UNITS or isinstance(value, bool):
         return None
     values = value if isinstance(value, list) else [value]
-    declared = RANGES.get(paper or "", {}).get(name)
     for v in values:
         if not isinstance(v, (int, float)) or isinstance(v, bool):
             continue
         si, si_unit = to_si(v, unit)
         rules = []
-        if declared and UNITS.get(declared[2], (0, None))[1] == si_unit and si != 0:
-            lo, hi, u, why = declared
+        if isinstance(declared, dict) and UNITS.get(declared.get("unit"), (0, None))[1] == si_unit \
+                and si != 0:
+            lo, hi, u = declared["min"], declared["max"], declared["unit"]
             rules.append((to_si(lo, u)[0], to_si(hi, u)[0],
-                          f"{why}: {lo:g} to {hi:g} {u} in magnitude"))
+                          f"{declared['why']}: {lo:g} to {hi:g} {u} in magnitude"))
         rules += [NAMED[k] for k in NAMED if k[0] in name.lower() and k[1] == si_unit]
         rules += [PLAUSIBLE[si_unit]] if si_unit in PLAUSIBLE else []
         for lo, hi, why in rules:
@@ -212,18 +119,18 @@ def _plausibility(name: str, value, unit: str, paper: str | None = None) -> str 
     return None
 
 
-def check_parameters(raw: dict, paper: str | None = None) -> list[str]:
-    """Implausible parameter values of ``paper`` (default: the file's ``paper:``): the
-    declared ones, and scene, study and profile overrides (in the parameter's declared unit)."""
+def check_parameters(raw: dict) -> list[str]:
+    """Implausible parameter values of a paper config: the declared ones, and scene, study
+    and profile overrides (in the parameter's declared unit)."""
     params = raw.get("parameters") if isinstance(raw, dict) else None
     if not isinstance(params, dict):
         return []
-    paper = raw.get("paper") if isinstance(raw.get("paper"), str) else paper
     units = {n: p.get("unit") for n, p in params.items() if isinstance(p, dict)}
     out = []
 
     def check(where, name, value, unit):
-        msg = _plausibility(name, value, unit, paper) if unit else None
+        declared = params[name].get("plausible") if isinstance(params.get(name), dict) else None
+        msg = _plausibility(name, value, unit, declared) if unit else None
         if msg:
             out.append(f"{where} = {value!r}: {msg}")
 
@@ -270,7 +177,7 @@ def read_yaml(path: str | Path):
     if bad:
         raise InputError("; ".join(f"{w} = {v!r}: not a finite number, allowed are finite "
                                    f"numbers" for w, v in bad))
-    implausible = check_parameters(raw, path.stem)
+    implausible = check_parameters(raw)
     if implausible:
         raise InputError("; ".join(implausible))
     return raw
