@@ -349,7 +349,6 @@ R.save_figure(fig, "selpso_branch")
 coa = R.table("cost_of_accuracy")
 # one panel per (entry, error kind): radians and relative errors never share an axis
 panels = list(dict.fromkeys((r["accuracy"], r["error_kind"]) for r in coa))
-stochastic = {e["name"] for e in R.cfg.raw["accuracy"] if e["study"] == "coa_selpso"}
 ncol = 3
 nrow = -(-len(panels) // ncol)
 fig, ax = plt.subplots(nrow, ncol, figsize=(15, 4.6 * nrow), squeeze=False)
@@ -359,10 +358,6 @@ for a, (name, kind) in zip(ax.flat, panels):
     log_ticks(a.xaxis)
     log_ticks(a.yaxis)
     a.set_title(f"{name}: {kind} error", fontsize=9)
-    if name in stochastic:   # an order fitted to quantiles over seeds means nothing
-        for text in a.get_legend().get_texts():
-            lab = text.get_text()
-            text.set_text(lab.split(", order")[0] + (")" if ", order" in lab else ""))
 for a in ax.flat[len(panels):]:
     a.set_visible(False)
 fig.tight_layout()
