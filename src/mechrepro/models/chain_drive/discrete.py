@@ -141,24 +141,14 @@ def rk4(y, v, times, left, right, k_over_m, damp, last=None, load=None):
 
 def events(prm: dict, omega1: float) -> tuple[float, float, int]:
     """(tau, t_r, n_short): the tooth period, the release time in [0, tau) of the roller
-    leaving the driven sprocket (the driven tooth phase of :func:`.four_bar.tooth_phases`
-    wraps there; the driving sprocket seats one at t = 0, tau, ...) and the free rollers of
-    the short span.  Chain travel since the last engagement d1 = r1 (cos theta_10 - cos
-    theta_1) reaches p - s_off at the release (s_off: the driven sprocket's phase f_p)."""
+    leaving the driven sprocket (:func:`.four_bar.driven_wrap_time`) and the free rollers of
+    the short span."""
     from . import four_bar, geometry
 
-    p, n1, n2 = prm["pitch"], int(prm["n1"]), int(prm["n2"])
+    p, n1 = prm["pitch"], int(prm["n1"])
     geo = span.span_geometry(prm, True)
-    r1, r2 = geometry.pitch_radius(p, n1), geometry.pitch_radius(p, n2)
-    tau = float(geometry.tooth_period(omega1, n1))
-    s_off = four_bar._driven_offset(n2, r2, geo["f_p"])
-    th10 = np.pi / 2 - np.pi / n1
-    if s_off < 1e-12 * p or geo["f_p"] == 0.0:
-        t_r = 0.0
-    else:
-        th1 = math.acos(math.cos(th10) - (p - s_off) / r1)
-        t_r = (th1 - th10) / omega1
-    return tau, float(t_r), int(round(geo["L_short"] / p)) - 1
+    t_r = four_bar.driven_wrap_time(omega1, n1, int(prm["n2"]), p, geo["f_p"])
+    return float(geometry.tooth_period(omega1, n1)), t_r, int(round(geo["L_short"] / p)) - 1
 
 
 def _drive(run, prm, omega1, times, dt):

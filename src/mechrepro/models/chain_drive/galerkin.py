@@ -193,16 +193,9 @@ def forcing_breakpoints(prm: dict, omega1: float, geo: dict, window, t_end: floa
     k tau -/+ window/2 and k tau + t_i -/+ window/2.  Edges of effects that are not named
     only cost an extra interval.  Edges closer than 1e-9 tau are merged.
     """
-    n1, n2, p = int(prm["n1"]), int(prm["n2"]), prm["pitch"]
+    n1, p = int(prm["n1"]), prm["pitch"]
     tau = float(geometry.tooth_period(omega1, n1))
-    r1, r2 = geometry.pitch_radius(p, n1), geometry.pitch_radius(p, n2)
-    th10 = np.pi / 2 - np.pi / n1
-    th20_start = np.pi / 2 - np.pi / n2
-    th20 = th20_start + four_bar.driven_phase(n2, geo["f_p"])
-    # driven wrap: r1 (cos th10 - cos th1) = (-s_off) mod p_c within each tooth period
-    d = np.mod(-r2 * (np.cos(th20_start) - np.cos(th20)), p)
-    t_wrap = (np.arccos(np.clip(np.cos(th10) - d / r1, -1.0, 1.0)) - th10) / omega1
-    offsets = [0.0, float(t_wrap)]
+    offsets = [0.0, four_bar.driven_wrap_time(omega1, n1, int(prm["n2"]), p, geo["f_p"])]
     if window:
         t_i = loads.impact_constants(prm["impact_mass_links"] * p * prm["mass_per_length"],
                                      prm["contact_stiffness"],
