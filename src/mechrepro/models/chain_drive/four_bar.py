@@ -10,7 +10,7 @@ import math
 import numpy as np
 
 from . import samples
-from .geometry import pitch_radius
+from .geometry import pitch_radius, span_geometry
 from .samples import kinematics_formulas, phase_formulas, tooth_constants
 
 
@@ -221,3 +221,17 @@ def elastic_resonance(k: float, I2: float, r2: float, n1: int) -> float:
     """Driving speed omega1 at which the tooth frequency n1 omega1 meets the torsional
     frequency r2 sqrt(k/I2) of the driven sprocket on the span spring k = AE/L."""
     return r2 * np.sqrt(k / I2) / n1
+
+
+def omega_c(prm, L: float) -> float:
+    """The elastic four-bar resonance omega_c = r2 sqrt(k/I2)/n1 of a span L, k = AE/L."""
+    return elastic_resonance(prm["axial_stiffness"] / L, prm["driven_inertia"],
+                             pitch_radius(prm["pitch"], int(prm["n2"])), int(prm["n1"]))
+
+
+def elastic_speed_window(prm, window) -> tuple[float, float]:
+    """Speeds [lo, hi] x omega_c of the drive's own elastic four-bar resonance with
+    k = AE/L_ct: a medium-speed window placed around the resonance of *this* drive, not a
+    speed range copied from another drive."""
+    wc = omega_c(prm, span_geometry(prm, False)["L_ct"])
+    return float(window[0] * wc), float(window[1] * wc)
