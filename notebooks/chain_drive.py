@@ -361,29 +361,22 @@ R.save_figure(fig, "fig09")
 
 # %%
 fig, ax = plt.subplots(2, 1, figsize=(9, 6))
-for a, (coupled, uncoupled) in zip(ax, (("fig10_longitudinal", "fig10_uncoupled"),
-                                        ("fig10_transverse5", "fig10_transverse5_uncoupled"))):
+for a, (coupled, uncoupled, head) in zip(ax, (
+        ("fig10_longitudinal", "fig10_uncoupled",
+         "Fig. 10a: near the first longitudinal resonance ({:.0f} rpm, {:g} x)"),
+        ("fig10_transverse5", "fig10_transverse5_uncoupled",
+         "Fig. 10b: fifth transverse resonance ({:.0f} rpm)"))):
     dc, du = R.run(coupled), R.run(uncoupled)
     a.plot(ms(dc.t), mm(dc.u_probe_rk4), lw=0.6, label="coupled, RK4")
     a.plot(ms(du.t), mm(du.u_probe_rk4), lw=0.6, alpha=0.7, label="uncoupled, RK4")
     a.set(ylabel="u(L/3) [mm]")
     a.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-
-
-def modes_note(coupled, uncoupled):
-    """The drawn mode count, its RK4 cost and the coupled/uncoupled ratio over the mode study."""
-    cost = sum(float(R.run(x).rk4_wall_time) for x in (coupled, uncoupled))
+    # the drawn mode count, its RK4 cost and the coupled/uncoupled ratio over the mode study
+    cost = float(dc.rk4_wall_time) + float(du.rk4_wall_time)
     ratios = ", ".join(f"{k}: {v:.3g}" for k, v in V.mode_ratios(R, coupled, uncoupled).items())
-    return (f"{V.drawn_modes(R, coupled)} transverse modes ({cost:.1f} s of RK4 for the pair); "
-            f"coupled/uncoupled by modes {ratios}")
-
-
-ax[0].set_title(f"Fig. 10a: near the first longitudinal resonance "
-                f"({float(R.run('fig10_longitudinal').speed):.0f} rpm, "
-                f"{float(R.run('fig10_longitudinal').detuning):g} x)\n"
-                f"{modes_note('fig10_longitudinal', 'fig10_uncoupled')}", fontsize=8)
-ax[1].set_title(f"Fig. 10b: fifth transverse resonance ({float(R.run('fig10_transverse5').speed):.0f} rpm)\n"
-                f"{modes_note('fig10_transverse5', 'fig10_transverse5_uncoupled')}", fontsize=8)
+    a.set_title(head.format(float(dc.speed), float(dc.detuning)) + f"\n{V.drawn_modes(R, coupled)} "
+                f"transverse modes ({cost:.1f} s of RK4 for the pair); coupled/uncoupled by modes "
+                f"{ratios}", fontsize=8)
 ax[1].set(xlabel="t [ms]")
 fig.tight_layout()
 R.save_figure(fig, "fig10")
