@@ -30,8 +30,8 @@ import numpy as np
 
 from mechrepro import accuracy
 from mechrepro.models.chain_drive import figures as F
+from mechrepro.models.chain_drive import validation as V
 from mechrepro.plotting import log_ticks, plt
-from mechrepro.io import run_attrs
 from mechrepro.results import PaperResults
 from mechrepro.units import from_si
 
@@ -76,6 +76,26 @@ def mark_unstable(ax, ds, label="unstable: no steady amplitude", color="r"):
         top = ax.get_ylim()[1]
         ax.plot(sp, np.full(sp.size, top), "|", color=color, ms=8, label=label)
         ax.set_ylim(top=top)
+
+
+#: near a stability edge a stable orbit's amplitude grows without bound (multiplier -> 1):
+#: the amplitude axes of Figs. 5-7 stop at 50 mm
+CAP = mm(0.05)
+
+
+def cap_axis(ax, *dss):
+    """Cut ``ax`` at :data:`CAP` where the sweeps' steady amplitudes reach beyond it (call
+    before :func:`mark_unstable`); returns the title's note on how far they reach."""
+    top = float(np.nanmax([np.nanmax(steady(d)) for d in dss]))
+    if not top > CAP:
+        return ""
+    ax.set_ylim(top=CAP)
+    return f"axis cut at {CAP:g} mm; stable orbits at stability edges reach {top:.2g} mm"
+
+
+def shared_legend(axes):
+    """Every panel's labelled marks once (handles by label)."""
+    return {lb: h for x in axes for h, lb in zip(*x.get_legend_handles_labels())}
 
 
 # %% [markdown]
@@ -160,9 +180,6 @@ cds, plain = F.with_base(R, "fig05_plain_cd", "fig05_plain", "centre_distance")
 _, withl = F.with_base(R, "fig05_length_cd", "fig05_length", "centre_distance")
 _, withs = F.with_base(R, "fig05_length_string_cd", "fig05_length_string", "centre_distance")
 ppp5 = F.resolution(plain[0], "points_per_pitch")
-# a stable orbit next to an unstable band grows without bound (multiplier -> 1): the axes
-# stop at 50 mm, as Figs. 6 and 7
-cap5 = mm(0.05)
 fig, ax = plt.subplots(len(cds), 1, figsize=(9, 2.6 * len(cds)), sharex=True)
 for a, cd, dp, dl, ds_ in zip(ax, cds, plain, withl, withs):
     a.semilogy(dp.speed, steady(dp), "-", color="0.55", lw=0.8,
@@ -177,18 +194,15 @@ for a, cd, dp, dl, ds_ in zip(ax, cds, plain, withl, withs):
     for k, v in enumerate(dl.resonance_speed_long.values):
         a.axvline(v, color="tab:red", ls=":", lw=0.7,
                   label="long span L_0 + p: tooth = k-th string frequency" if k == 0 else None)
-    top5 = float(np.nanmax([np.nanmax(steady(x)) for x in (dp, ds_, dl)]))
-    a.set(ylabel="max |u| [mm]", title=f"Fig. 5: centre distance {cd:g} pitches" + (
-        f" (axis cut at {cap5:g} mm; orbits at stability edges reach {top5:.2g} mm)"
-        if top5 > cap5 else ""))
+    cut5 = cap_axis(a, dp, ds_, dl)
+    a.set(ylabel="max |u| [mm]",
+          title=f"Fig. 5: centre distance {cd:g} pitches" + (f" ({cut5})" if cut5 else ""))
     a.title.set_fontsize(9)
-    if top5 > cap5:
-        a.set_ylim(top=cap5)
     mark_unstable(a, dl, label="unstable (discrete span)")
     mark_unstable(a, dp, label="unstable (string)", color="tab:orange")
     mark_unstable(a, ds_, label=None, color="tab:orange")
 a.set_xlabel("omega_1 [rpm]")
-marks5 = {lb: h for x in ax for h, lb in zip(*x.get_legend_handles_labels())}
+marks5 = shared_legend(ax)
 ax[0].legend(marks5.values(), marks5.keys(), fontsize=7, loc="upper left",
              bbox_to_anchor=(1.01, 1.0))
 fig.suptitle(f"discrete span (scene fig05_length): {convergence_note('fig05_length')}", fontsize=9)
@@ -214,12 +228,7 @@ lines6 = [ax.semilogy(d.speed, steady(d), label=f"discrete span, I2 = {v:g} kg m
 ax.semilogy(string6.speed, steady(string6), "--", color="0.45", lw=0.9,
             label=f"string, {F.resolution(string6, 'points_per_pitch')} points per pitch, "
                   f"I2 = {F.parameter(string6, 'driven_inertia'):g} kg m^2")
-# near a stability edge a stable orbit's linear amplitude grows without bound (multiplier
-# -> 1): the axis stops at 50 mm, the title says how far they reach
-cap6 = mm(0.05)
-top6 = float(np.nanmax([np.nanmax(steady(d)) for d in d6 + [string6]]))
-if top6 > cap6:
-    ax.set_ylim(top=cap6)
+cut6 = cap_axis(ax, *d6, string6)
 for v, d, ln in zip(i2s, d6, lines6):
     mark_unstable(ax, d, label=f"unstable, I2 = {v:g}: no steady amplitude" if int(d.unstable.sum())
                   else None, color=ln.get_color())
@@ -227,10 +236,9 @@ mark_unstable(ax, string6, label="unstable (string)" if int(string6.unstable.sum
               color="0.45")
 for v in F.resonances_in_window(d6[0]):
     ax.axvline(v, color="k", ls=":", lw=0.7)
-cut6 = (f"; stable orbits next to unstable bands reach {top6:.3g} mm (axis cut at {cap6:g} mm)"
-        if top6 > cap6 else "")
 ax.set(xlabel="omega_1 [rpm]", ylabel="max |u| [mm]",
-       title=f"Fig. 6: effect of I2 (cd 20.25, length change){cut6}\n"
+       title=f"Fig. 6: effect of I2 (cd 20.25, length change)" + (f"; {cut6}" if cut6 else "")
+             + "\n"
              f"discrete span: {convergence_note('fig06_inertia')}")
 ax.title.set_fontsize(9)
 ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2)
@@ -247,32 +255,29 @@ levels7 = {lv: {F.parameter(x, "static_tension"): x for x in
                 (R.run(n + lv) for n in ["fig07_tension"] + R.cfg.studies["fig07_ts"])}
            for lv in F.LEVEL_RUNS}
 string7 = R.run("fig07_string")
-# a stable orbit next to an unstable band grows without bound (multiplier -> 1): the axis
-# stops at 50 mm, as Fig. 6's
-cap7 = mm(0.05)
 fig, ax = plt.subplots(len(tss), 1, figsize=(8, 2.5 * len(tss)), sharex=True)
 for a, v, d in zip(ax, tss[::-1], d7[::-1]):          # the paper's order: high to low tension
     a.semilogy(d.speed, steady(d), label="discrete-link span (verdicts)")
-    if abs(v - F.parameter(string7, "static_tension")) < 1e-9:
+    with_string = abs(v - F.parameter(string7, "static_tension")) < 1e-9
+    if with_string:
         a.semilogy(string7.speed, steady(string7), "--", lw=0.9,
                    label=f"string, {F.resolution(string7, 'points_per_pitch')} points per pitch "
                          "(mixed, the paper's)")
     counts = " / ".join(str(int(levels7[lv][v].unstable.sum())) for lv in F.LEVEL_RUNS)
     steps = " / ".join(str(F.resolution(levels7[lv][v], "steps_per_period")) for lv in F.LEVEL_RUNS)
     a.set(ylabel="max |y| [mm]")
-    if a.get_ylim()[1] > cap7:
-        a.set_ylim(top=cap7)
-    if abs(v - F.parameter(string7, "static_tension")) < 1e-9:
+    cap_axis(a, d, *([string7] if with_string else []))
+    if with_string:
         mark_unstable(a, string7, label="unstable (string)", color="tab:orange")
     mark_unstable(a, d, label="unstable (discrete span)")
     a.set_title(f"Fig. 7: T_s = {v:g} N: unstable speeds {counts} at {steps} RK4 steps per "
                 "tooth period", fontsize=9)
 a.set_xlabel("omega_1 [rpm]")
 # one legend below the panels, clear of every curve
-marks7 = {lb: h for x in ax for h, lb in zip(*x.get_legend_handles_labels())}
+marks7 = shared_legend(ax)
 fig.legend(marks7.values(), marks7.keys(), fontsize=7, loc="lower center", ncol=2)
 fig.suptitle(f"discrete span (scene fig07_tension): {convergence_note('fig07_tension')}\n"
-             f"axes cut at {cap7:g} mm (stable orbits at stability edges)", fontsize=9)
+             f"axes cut at {CAP:g} mm (stable orbits at stability edges)", fontsize=9)
 fig.tight_layout(rect=(0, 0.07, 1, 1))
 R.write_table("discrete_peaks", F.DISCRETE_PEAK_COLUMNS,
               [r for name, study in (("fig05_length", None), ("fig06_inertia", None),
@@ -356,34 +361,22 @@ R.save_figure(fig, "fig09")
 
 # %%
 fig, ax = plt.subplots(2, 1, figsize=(9, 6))
-for a, (coupled, uncoupled) in zip(ax, (("fig10_longitudinal", "fig10_uncoupled"),
-                                        ("fig10_transverse5", "fig10_transverse5_uncoupled"))):
+for a, (coupled, uncoupled, head) in zip(ax, (
+        ("fig10_longitudinal", "fig10_uncoupled",
+         "Fig. 10a: near the first longitudinal resonance ({:.0f} rpm, {:g} x)"),
+        ("fig10_transverse5", "fig10_transverse5_uncoupled",
+         "Fig. 10b: fifth transverse resonance ({:.0f} rpm)"))):
     dc, du = R.run(coupled), R.run(uncoupled)
     a.plot(ms(dc.t), mm(dc.u_probe_rk4), lw=0.6, label="coupled, RK4")
     a.plot(ms(du.t), mm(du.u_probe_rk4), lw=0.6, alpha=0.7, label="uncoupled, RK4")
     a.set(ylabel="u(L/3) [mm]")
     a.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-
-
-def modes_note(coupled, uncoupled):
-    """The drawn mode count, its RK4 cost and the coupled/uncoupled ratio over the mode study."""
-    runs = {}
-    for name in (coupled, uncoupled):
-        for d in [R.run(name)] + R.study_runs(name + "_modes"):
-            runs.setdefault(int(run_attrs(d)["resolution"]["n_transverse"]), {})[name] = d
-    n = int(run_attrs(R.run(coupled))["resolution"]["n_transverse"])
-    cost = sum(float(R.run(x).rk4_wall_time) for x in (coupled, uncoupled))
-    ratios = ", ".join(f"{k}: {float(v[coupled].steady_amplitude) / float(v[uncoupled].steady_amplitude):.3g}"
-                       for k, v in sorted(runs.items()) if len(v) == 2)
-    return f"{n} transverse modes ({cost:.1f} s of RK4 for the pair); coupled/uncoupled by modes {ratios}"
-
-
-ax[0].set_title(f"Fig. 10a: near the first longitudinal resonance "
-                f"({float(R.run('fig10_longitudinal').speed):.0f} rpm, "
-                f"{float(R.run('fig10_longitudinal').detuning):g} x)\n"
-                f"{modes_note('fig10_longitudinal', 'fig10_uncoupled')}", fontsize=8)
-ax[1].set_title(f"Fig. 10b: fifth transverse resonance ({float(R.run('fig10_transverse5').speed):.0f} rpm)\n"
-                f"{modes_note('fig10_transverse5', 'fig10_transverse5_uncoupled')}", fontsize=8)
+    # the drawn mode count, its RK4 cost and the coupled/uncoupled ratio over the mode study
+    cost = float(dc.rk4_wall_time) + float(du.rk4_wall_time)
+    ratios = ", ".join(f"{k}: {v:.3g}" for k, v in V.mode_ratios(R, coupled, uncoupled).items())
+    a.set_title(head.format(float(dc.speed), float(dc.detuning)) + f"\n{V.drawn_modes(R, coupled)} "
+                f"transverse modes ({cost:.1f} s of RK4 for the pair); coupled/uncoupled by modes "
+                f"{ratios}", fontsize=8)
 ax[1].set(xlabel="t [ms]")
 fig.tight_layout()
 R.save_figure(fig, "fig10")
@@ -403,8 +396,8 @@ mesh = ax.pcolormesh(sp_c, tsc, rho_c, shading="nearest", cmap="viridis",
                      vmin=float(np.nanmin(rho_c)), vmax=max(1.0, float(np.nanmax(rho_c))))
 if len(tsc) > 1 and np.nanmax(rho_c) > 1 > np.nanmin(rho_c):
     ax.contour(sp_c, tsc, rho_c, levels=[1.0], colors="r", linewidths=1.2)
-for d7_ in [R.run("fig07_tension")] + R.study_runs("fig07_ts"):
-    ax.axhline(F.parameter(d7_, "static_tension"), color="w", ls=":", lw=0.8)
+for v in tss:
+    ax.axhline(v, color="w", ls=":", lw=0.8)
 fig.colorbar(mesh, ax=ax, label="largest Floquet multiplier [1]")
 un_c = int(np.sum(rho_c > 1))
 ax.set(xlabel="omega_1 [rpm]", ylabel="static tension T_s [N]",

@@ -7,7 +7,7 @@ import pytest
 
 from mechrepro.models.chain_drive import claims as C
 from mechrepro.models.chain_drive.galerkin import envelope_statistics
-from mechrepro.models.chain_drive.solver import elastic_speed_window
+from mechrepro.models.chain_drive.four_bar import elastic_speed_window
 
 
 def _curve(extra_peak_height):
@@ -94,7 +94,7 @@ def test_dense_near_elastic_adds_speeds_around_the_resonance():
 
     run = load_paper("config/papers/chain_drive.yaml").runs["fig09a"]
     prm = dict(run["parameters"])
-    prm["speed_min"], prm["speed_max"] = solver.elastic_speed_window(prm, [0.25, 1.25])
+    prm["speed_min"], prm["speed_max"] = elastic_speed_window(prm, [0.25, 1.25])
     wc = prm["speed_max"] / 1.25
     base = np.linspace(prm["speed_min"], prm["speed_max"], 150)
     dense = solver.dense_near_elastic(run, prm, base, 0.01, 150)

@@ -93,7 +93,7 @@ def test_release_and_seating_follow_the_four_bar(cd):
     run, prm = _prm(centre_distance=cd * 12.7e-3)
     w = 400.0 / geometry.RPM
     tau, t_r, n_s = D.events(prm, w)
-    geo = D.span.span_geometry(prm, True)
+    geo = geometry.span_geometry(prm, True)
     assert n_s == round(geo["L_short"] / prm["pitch"]) - 1
     t = np.linspace(0.0, tau, 200001)[1:-1]
     ph = four_bar.tooth_phases(t, w, n1=int(prm["n1"]), n2=int(prm["n2"]), p_c=prm["pitch"],

@@ -4,7 +4,7 @@ import math
 import numpy as np
 import pytest
 
-from mechrepro.models.chain_drive import exact, fd, span
+from mechrepro.models.chain_drive import exact, fd, geometry, span
 from mechrepro.models.chain_drive.effects import EFFECTS
 from test_chain_drive_contract import declared
 
@@ -197,7 +197,7 @@ def test_no_scene_or_variant_is_refused_for_a_pitch_scale_kick(profile):
     for name, run in cfg.runs.items():
         if run["solver"] != "speed_sweep":
             continue
-        geo = span.span_geometry(run["parameters"], "long" in span.declared_keys(run))
+        geo = geometry.span_geometry(run["parameters"], "long" in span.declared_keys(run))
         span.refuse_undamped_pitch_scale(run["resolution"], run, geo)
         checked += 1
     assert checked > 40

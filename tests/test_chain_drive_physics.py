@@ -168,7 +168,7 @@ def test_end_excitation_phase_sets_first_mode_response():
     out = {}
     for cd in (20.0, 20.5):
         prm["centre_distance"] = cd
-        L = span.span_geometry(prm, False)["L_ct"]
+        L = geometry.span_geometry(prm, False)["L_ct"]
         w1 = geometry.resonance_speed(1, L, n1=24, p_c=P_C, T_s=400, m=0.61,
                                       tension_coefficient=0.9 * 0.61)
         r = span.sweep(declared(["speed_tensioning", "end_excitation"]), prm, np.array([0.3 * w1, w1]), res)

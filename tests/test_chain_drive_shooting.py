@@ -5,7 +5,7 @@ import pytest
 from threadpoolctl import threadpool_limits
 
 from mechrepro.config import load_paper
-from mechrepro.models.chain_drive import fd, shooting, solver, span
+from mechrepro.models.chain_drive import fd, four_bar, shooting, solver, span
 from mechrepro.models.chain_drive.geometry import RPM
 from test_chain_drive_contract import declared
 
@@ -60,7 +60,7 @@ def test_fig09a_band_below_the_elastic_resonance_and_map_unchanged_by_a_finer_gr
     bisection width) from a grid twice as fine."""
     run, prm, res = fig09a
     window = run["options"]["speed_window_elastic"]
-    prm["speed_min"], prm["speed_max"] = solver.elastic_speed_window(prm, window)
+    prm["speed_min"], prm["speed_max"] = four_bar.elastic_speed_window(prm, window)
     sigma = prm["transverse_damping"] / (2 * prm["mass_per_length"])
     bands = []
     with threadpool_limits(1):

@@ -65,26 +65,12 @@ def peaks(speed, amp, prominence: float = PEAK_PROMINENCE, stable=None):
     ``stable``: optional mask; unstable (capped) speeds are excluded from the search (an
     instability is reported as such, not as a resonance peak)."""
     a = np.nan_to_num(np.asarray(amp, float), nan=0.0)
-    if stable is not None:
-        a = np.where(np.asarray(stable, bool), a, np.nan)
-        # split at unstable speeds: a peak never straddles an instability band
-        out = []
-        ok = np.isfinite(a)
-        start = None
-        for i in range(a.size + 1):
-            if i < a.size and ok[i]:
-                start = i if start is None else start
-            elif start is not None:
-                seg = a[start:i]
-                if seg.size >= 3:
-                    idx = find_peaks(seg, prominence)
-                    out.extend(start + idx)
-                start = None
-        return np.array(out, int)
-    if a.size < 3:
-        return np.array([], int)
-    idx = find_peaks(a, prominence)
-    return idx
+    ok = np.ones(a.size, int) if stable is None else np.asarray(stable, bool).astype(int)
+    # split at unstable speeds: a peak never straddles an instability band
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], ok, [0]])))
+    out = [start + find_peaks(a[start:stop], prominence)
+           for start, stop in zip(edges[::2], edges[1::2]) if stop - start >= 3]
+    return np.concatenate(out).astype(int) if out else np.array([], int)
 
 
 def order_window(long_speed: float, short_speed: float, width: float = ORDER_WINDOW):

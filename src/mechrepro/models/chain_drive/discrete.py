@@ -34,7 +34,7 @@ import math
 
 import numpy as np
 
-from . import span
+from . import geometry, span
 from .effects import EFFECTS, SpanContext, declared_keys
 
 
@@ -141,24 +141,14 @@ def rk4(y, v, times, left, right, k_over_m, damp, last=None, load=None):
 
 def events(prm: dict, omega1: float) -> tuple[float, float, int]:
     """(tau, t_r, n_short): the tooth period, the release time in [0, tau) of the roller
-    leaving the driven sprocket (the driven tooth phase of :func:`.four_bar.tooth_phases`
-    wraps there; the driving sprocket seats one at t = 0, tau, ...) and the free rollers of
-    the short span.  Chain travel since the last engagement d1 = r1 (cos theta_10 - cos
-    theta_1) reaches p - s_off at the release (s_off: the driven sprocket's phase f_p)."""
-    from . import four_bar, geometry
+    leaving the driven sprocket (:func:`.four_bar.driven_wrap_time`) and the free rollers of
+    the short span."""
+    from . import four_bar
 
-    p, n1, n2 = prm["pitch"], int(prm["n1"]), int(prm["n2"])
-    geo = span.span_geometry(prm, True)
-    r1, r2 = geometry.pitch_radius(p, n1), geometry.pitch_radius(p, n2)
-    tau = float(geometry.tooth_period(omega1, n1))
-    s_off = four_bar._driven_offset(n2, r2, geo["f_p"])
-    th10 = np.pi / 2 - np.pi / n1
-    if s_off < 1e-12 * p or geo["f_p"] == 0.0:
-        t_r = 0.0
-    else:
-        th1 = math.acos(math.cos(th10) - (p - s_off) / r1)
-        t_r = (th1 - th10) / omega1
-    return tau, float(t_r), int(round(geo["L_short"] / p)) - 1
+    p, n1 = prm["pitch"], int(prm["n1"])
+    geo = geometry.span_geometry(prm, True)
+    t_r = four_bar.driven_wrap_time(omega1, n1, int(prm["n2"]), p, geo["f_p"])
+    return float(geometry.tooth_period(omega1, n1)), t_r, int(round(geo["L_short"] / p)) - 1
 
 
 def _drive(run, prm, omega1, times, dt):
@@ -169,7 +159,7 @@ def _drive(run, prm, omega1, times, dt):
     half = np.empty(2 * len(times) - 1)
     half[0::2] = times
     half[1::2] = 0.5 * (times[:-1] + times[1:])
-    geo = span.span_geometry(prm, True)
+    geo = geometry.span_geometry(prm, True)
     ctx = SpanContext(prm, omega1, half, None, geo, end_velocity=True)
     ends = EFFECTS.evaluate(run, ctx, keys={"u_left", "u_right", "v_left", "v_right"})
     mid = SpanContext(prm, omega1, half[1::2], dt, geo)
@@ -182,15 +172,12 @@ def _drive(run, prm, omega1, times, dt):
 
 def tension_coefficient(run, prm) -> float:
     """k of P = T_s + k c^2 from the scene's effects (0 without speed tensioning)."""
-    return float(EFFECTS.evaluate(run, SpanContext(prm, 1.0, np.zeros(0), None,
-                                                           span.span_geometry(prm, True)),
-                                  keys={"tension_coefficient"}).total("tension_coefficient"))
+    ctx = SpanContext(prm, 1.0, np.zeros(0), None, geometry.span_geometry(prm, True))
+    return float(EFFECTS.evaluate(run, ctx, keys={"tension_coefficient"}).total("tension_coefficient"))
 
 
 def _axial_tension(run, prm, omega1) -> float:
     """P = T_s + k c^2 (:func:`.geometry.axial_tension`)."""
-    from . import geometry
-
     c = float(geometry.chain_speed(omega1, int(prm["n1"]), prm["pitch"]))
     return float(geometry.axial_tension(prm["static_tension"], tension_coefficient(run, prm), c))
 
@@ -264,9 +251,7 @@ def _contact_time(run, prm) -> float:
 
     if "tension_pulse" not in declared_keys(run):
         return 0.0
-    k = loads.impact_constants(prm["impact_mass_links"] * prm["pitch"] * prm["mass_per_length"],
-                               prm["contact_stiffness"], prm["contact_damping_ratio"])
-    return float(k["t_i"])
+    return float(loads.impact_of(prm)["t_i"])
 
 
 def period_map(run, prm: dict, omega1: float, steps_per_period: int, start=None):
@@ -347,7 +332,7 @@ def sweep(run, prm: dict, omega1, res: dict) -> dict:
     amplitude peak of prominence >= 0.05 mm (:func:`.claims.peaks`) that is no stable
     orbit at a stability edge (whose amplitude grows without bound as rho -> 1 and would
     set a relative prominence), so that a peak or an edge is located to those widths."""
-    from . import claims, geometry
+    from . import claims
     from .errors import UnknownChoice
     from .limits import stability_only
     from .shooting import PeriodicSolution, adaptive_sweep

@@ -4,17 +4,15 @@ table are the framework's blocks) and filled by :mod:`mechrepro.docs`::
 
     .venv/bin/python -m mechrepro.docs docs/chain_drive.md results
 
-Run it on the default profile's results after the last change;
-tests/test_chain_drive_docs.py checks the verdict table against the committed default
-reference.
+Run it on the default profile's results after the last change; tests/test_docs.py checks
+the page's blocks against the committed default reference.
 """
 from __future__ import annotations
 
 from pathlib import Path
 
-from mechrepro.docs import number, table_rows
-
-_rows, _g = table_rows, number
+from mechrepro.docs import number as _g
+from mechrepro.docs import table_rows as _rows
 
 
 def discrete_peaks(root: Path) -> str:

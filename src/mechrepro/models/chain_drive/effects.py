@@ -49,7 +49,7 @@ class SpanContext:
     """What the effects see: parameters (SI), operating speeds ``omega1`` (S,), times ``t``
     ((T,) shared by every speed, or (T, S)), the averaging window ``step`` of pulses shorter
     than a time step (None: point values, Sec. 3.1), and the span geometry
-    (:func:`.span.span_geometry`)."""
+    (:func:`.geometry.span_geometry`)."""
 
     def __init__(self, prm: dict, omega1, t, step, span: dict, end_velocity: bool = False,
                  cache: dict | None = None):
@@ -158,9 +158,7 @@ def speed_tensioning(ctx: SpanContext) -> dict:
 def impact(ctx: SpanContext) -> dict:
     """Eqs. (2-2)-(2-4): impact load, averaged exactly over ``ctx.step`` (point values
     without); a pulse of t_i = 28 us, shorter than a wave's transit over one pitch."""
-    k = loads.impact_constants(ctx.prm["impact_mass_links"] * ctx.p_c * ctx.prm["mass_per_length"],
-                               ctx.prm["contact_stiffness"], ctx.prm["contact_damping_ratio"])
-    step = ctx.step
+    k, step = loads.impact_of(ctx.prm), ctx.step
 
     def rows(r):
         st = step[r] if np.ndim(step) == 2 else step

@@ -61,29 +61,27 @@ def free_vibration_check(prm: dict, res: dict) -> dict:
     cw = np.sqrt(T / m)
     c = float(res["speed_ratio"]) * cw
     pts = np.atleast_1d(res["points"]).astype(int)
-    out = {"central": [], "mixed": []}
-    for name, s_star in (("central", 0.0), ("mixed", None)):
-        for n in pts:
-            out[name].append(free_vibration(int(n), L=L, m=m, T=T, c=c, k=int(res.get("mode", 1)),
-                                            cfl=float(res["cfl"]),
-                                            periods=float(res.get("periods", 4)), s_star=s_star))
-
-    def col(i):
-        return np.array([[r[i] for r in out[k]] for k in ("central", "mixed")])
-
+    col = _by_scheme(pts, lambda n, s: free_vibration(
+        n, L=L, m=m, T=T, c=c, k=int(res.get("mode", 1)), cfl=float(res["cfl"]),
+        periods=float(res.get("periods", 4)), s_star=s))
     dims = ("differencing", "points")
     return {
         "error_max": var(dims, col(0), "m",
                          "max |u_FD - u_exact| after the march (unit mode amplitude)"),
         "omega_fd": var(dims, col(1), "rad/s", "frequency from zero crossings of the FD response"),
-        "omega_exact": var((), float(out["central"][0][2]), "rad/s",
+        "omega_exact": var((), float(col(2)[0, 0]), "rad/s",
                            "Wickert-Mote frequency k pi (c_w^2-c^2)/(c_w L)"),
-        "time_step": var(dims, col(3), "s", "time step"),
-        "march_wall_time": var(dims, col(4), "s", "wall time of the march"),
         # one time per grid for each differencing (the cost-of-accuracy curves)
         "march_wall_time_central": var("points", col(4)[0], "s", "wall time of the central march"),
         "march_wall_time_mixed": var("points", col(4)[1], "s", "wall time of the mixed march"),
         **_differencing_coords(pts)}
+
+
+def _by_scheme(pts, solve):
+    """``solve(n, s_star)`` on every grid of ``pts``, central (s* = 0) then mixed (None: Eq.
+    2-38); returns column i of the results as a (differencing, points) array."""
+    rows = {k: [solve(int(n), s) for n in pts] for k, s in (("central", 0.0), ("mixed", None))}
+    return lambda i: np.array([[r[i] for r in rows[k]] for k in ("central", "mixed")])
 
 
 def _differencing_coords(pts) -> dict:
@@ -132,16 +130,8 @@ def manufactured(n: int, *, L=0.25, m=0.6, T=400.0, c=5.0, c_d=10.0, cfl=0.9, t_
 def manufactured_check(prm: dict, res: dict) -> dict:
     """Convergence table over ``res["points"]`` for central and mixed differencing."""
     pts = np.atleast_1d(res["points"]).astype(int)
-    rows = {k: [manufactured(int(n), cfl=float(res["cfl"]), s_star=s, kappa=0.01) for n in pts]
-            for k, s in (("central", 0.0), ("mixed", None))}
-
-    def col(i):
-        return np.array([[r[i] for r in rows[k]] for k in ("central", "mixed")])
-
+    col = _by_scheme(pts, lambda n, s: manufactured(n, cfl=float(res["cfl"]), s_star=s, kappa=0.01))
     dims = ("differencing", "points")
     return {
         "error_max": var(dims, col(0), "1", "max relative error against the manufactured solution"),
-        "time_step": var(dims, col(1), "s", "time step"),
-        "dx": var("points", col(2)[0], "m", "grid spacing"),
-        "march_wall_time": var(dims, col(3), "s", "wall time of the march"),
         **_differencing_coords(pts)}

@@ -53,6 +53,13 @@ def stability_classes(ds) -> dict[str, np.ndarray]:
     return {"stable": ~un, "growth": un & ~slack & ~outside, "outside": outside, "slack": slack}
 
 
+def order_window(ds, k: int) -> tuple[float, float]:
+    """:func:`.claims.order_window` of a sweep's order k (the short- and long-span resonance
+    speeds it tabulates)."""
+    return C.order_window(float(ds.resonance_speed_long.sel(order=k)),
+                          float(ds.resonance_speed_short.sel(order=k)))
+
+
 def resonances_in_window(ds) -> np.ndarray:
     """Short- and long-span resonance speeds [rpm] of a sweep that lie inside its speed range."""
     v = np.concatenate([ds.resonance_speed_short.values, ds.resonance_speed_long.values])
@@ -161,8 +168,7 @@ def order_peak(ds, k: int) -> tuple[float, float]:
     :func:`.claims.order_window` of its short- and long-span resonance speeds), at the
     one-mode vertex through its neighbours (:func:`.claims.one_mode_peak`)."""
     sp = ds.speed.values
-    lo, hi = C.order_window(float(ds.resonance_speed_long.sel(order=k)),
-                            float(ds.resonance_speed_short.sel(order=k)))
+    lo, hi = order_window(ds, k)
     m = (sp >= lo) & (sp <= hi)
     a = np.where(np.asarray(ds.unstable.values, bool), np.nan, ds.amplitude.values)[m]
     return C.one_mode_peak(sp[m], a) if np.isfinite(a).any() else (np.nan, np.nan)
@@ -175,8 +181,7 @@ def stable_orders(ds, n: int = 2) -> list[int]:
     sp, un = ds.speed.values, np.asarray(ds.unstable.values, bool)
     out = []
     for k in ds.order.values:
-        lo, hi = C.order_window(float(ds.resonance_speed_long.sel(order=k)),
-                                float(ds.resonance_speed_short.sel(order=k)))
+        lo, hi = order_window(ds, k)
         if lo >= sp[0] and hi <= sp[-1] and not np.any(un & (sp >= lo) & (sp <= hi)):
             out.append(int(k))
     return out[:n]

@@ -5,10 +5,12 @@ All functions broadcast over time and operating speed.  Angles in rad, SI units.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from . import samples
-from .geometry import pitch_radius
+from .geometry import pitch_radius, span_geometry
 from .samples import kinematics_formulas, phase_formulas, tooth_constants
 
 
@@ -37,6 +39,17 @@ def _driven_offset(n2, r2, f_p):
     """The driven sprocket's travel at t = 0, s_off in [0, p_c) (its phase f_p, Eq. 2-7)."""
     th20_start = np.pi / 2 - np.pi / n2
     return r2 * (np.cos(th20_start) - np.cos(th20_start + driven_phase(n2, f_p)))
+
+
+def driven_wrap_time(omega1: float, n1: int, n2: int, p_c: float, f_p: float) -> float:
+    """The time in [0, tau) at which a roller leaves the driven sprocket (its tooth phase
+    wraps, Eq. 2-8; the driving sprocket seats one at t = 0, tau, ...): the chain travel
+    since the last engagement r1 (cos theta_10 - cos theta_1) reaches p_c - s_off."""
+    s_off = _driven_offset(n2, pitch_radius(p_c, n2), f_p)
+    if s_off < 1e-12 * p_c or f_p == 0.0:
+        return 0.0
+    th10 = np.pi / 2 - np.pi / n1
+    return (math.acos(math.cos(th10) - (p_c - s_off) / pitch_radius(p_c, n1)) - th10) / omega1
 
 
 def tooth_phases(t, omega1, *, n1: int, n2: int, p_c: float, f_p: float) -> dict:
@@ -208,3 +221,17 @@ def elastic_resonance(k: float, I2: float, r2: float, n1: int) -> float:
     """Driving speed omega1 at which the tooth frequency n1 omega1 meets the torsional
     frequency r2 sqrt(k/I2) of the driven sprocket on the span spring k = AE/L."""
     return r2 * np.sqrt(k / I2) / n1
+
+
+def omega_c(prm, L: float) -> float:
+    """The elastic four-bar resonance omega_c = r2 sqrt(k/I2)/n1 of a span L, k = AE/L."""
+    return elastic_resonance(prm["axial_stiffness"] / L, prm["driven_inertia"],
+                             pitch_radius(prm["pitch"], int(prm["n2"])), int(prm["n1"]))
+
+
+def elastic_speed_window(prm, window) -> tuple[float, float]:
+    """Speeds [lo, hi] x omega_c of the drive's own elastic four-bar resonance with
+    k = AE/L_ct: a medium-speed window placed around the resonance of *this* drive, not a
+    speed range copied from another drive."""
+    wc = omega_c(prm, span_geometry(prm, False)["L_ct"])
+    return float(window[0] * wc), float(window[1] * wc)

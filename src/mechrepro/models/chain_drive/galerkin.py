@@ -26,8 +26,8 @@ from mechrepro.units import var
 
 from . import four_bar, galerkin_kernel, geometry, loads
 from .effects import EFFECTS, SpanContext, refuse_unhonoured
-from .geometry import RPM
-from .span import dynamic_tension, span_geometry
+from .geometry import RPM, span_geometry
+from .span import dynamic_tension
 from .errors import DivergenceError, KernelUnavailable, RecordError, UnknownChoice
 
 
@@ -98,10 +98,11 @@ class GalerkinModel:
         fl += (ex0 - Pt) * self.Cend0 + (-exL + Pt) * self.CendL
         return np.concatenate([dphi, dpsi, self.Mt_inv @ ft, self.Ml_inv @ fl])
 
-    def u2_at(self, y, xi):
-        """Transverse displacement at x = xi of state(s) y (without the end motion part)."""
+    def u2_at(self, y, xi, g=0.0, h=0.0):
+        """Transverse displacement at x = xi of state(s) y, plus the end motion's line
+        (L - xi)/L g + xi/L h where the end displacements g, h are given."""
         k = np.arange(1, self.n_t + 1) * np.pi / self.L
-        return np.asarray(y)[..., :self.n_t] @ np.sin(k * xi)
+        return np.asarray(y)[..., :self.n_t] @ np.sin(k * xi) + (1 - xi / self.L) * g + xi / self.L * h
 
     def max_stable_step(self) -> float:
         """RK4 stability bound from the highest linearised eigenvalue (|lambda| dt <= 2.78)."""
@@ -193,20 +194,11 @@ def forcing_breakpoints(prm: dict, omega1: float, geo: dict, window, t_end: floa
     k tau -/+ window/2 and k tau + t_i -/+ window/2.  Edges of effects that are not named
     only cost an extra interval.  Edges closer than 1e-9 tau are merged.
     """
-    n1, n2, p = int(prm["n1"]), int(prm["n2"]), prm["pitch"]
+    n1, p = int(prm["n1"]), prm["pitch"]
     tau = float(geometry.tooth_period(omega1, n1))
-    r1, r2 = geometry.pitch_radius(p, n1), geometry.pitch_radius(p, n2)
-    th10 = np.pi / 2 - np.pi / n1
-    th20_start = np.pi / 2 - np.pi / n2
-    th20 = th20_start + four_bar.driven_phase(n2, geo["f_p"])
-    # driven wrap: r1 (cos th10 - cos th1) = (-s_off) mod p_c within each tooth period
-    d = np.mod(-r2 * (np.cos(th20_start) - np.cos(th20)), p)
-    t_wrap = (np.arccos(np.clip(np.cos(th10) - d / r1, -1.0, 1.0)) - th10) / omega1
-    offsets = [0.0, float(t_wrap)]
+    offsets = [0.0, four_bar.driven_wrap_time(omega1, n1, int(prm["n2"]), p, geo["f_p"])]
     if window:
-        t_i = loads.impact_constants(prm["impact_mass_links"] * p * prm["mass_per_length"],
-                                     prm["contact_stiffness"],
-                                     prm["contact_damping_ratio"])["t_i"]
+        t_i = loads.impact_of(prm)["t_i"]
         h = 0.5 * window
         offsets += [-h, h, t_i - h, t_i + h]
     k = np.arange(-1, math.ceil(t_end / tau) + 2)[:, None] * tau
@@ -386,7 +378,6 @@ def _galerkin_setup(run, prm, res) -> dict:
     tau = 2 * np.pi / (n1 * w1)
     per_tooth = math.ceil(tau / (float(res["rk4_cfl"]) * dt_limit))
     return {"model": model, "prm": prm, "geo": geo, "L": L, "w1": w1, "c": c, "P": P,
-            "dt_limit": dt_limit,
             "per_tooth": per_tooth, "dt": tau / per_tooth,
             "n_steps": per_tooth * max(int(math.ceil(float(res["duration"]) / tau)), 4),
             # impact pulses shorter than the step enter with their exact impulse, spread over
@@ -413,26 +404,20 @@ def _library_check(run, prm, res, g, u_all, t_all, Fe, F_lib) -> dict:
     RK4's): ~3x fewer right-hand-side calls than one integration across the kinks at the
     same rtol, and ~400x closer to the solution at rtol 1e-12 (5e-11 instead of 2e-8
     relative, benchmarks/bench_chain_drive.py)."""
-    model, xi, L = g["model"], g["xi"], g["L"]
+    model, xi = g["model"], g["xi"]
     n_lib, edges = _library_window(res, g, t_all)
-    with phase("chain_drive.library_check") as sw:
+    with phase("chain_drive.library_check"):
         pf = PiecewiseForcing(run, prm, g["w1"], g["geo"], g["window"], edges, F=F_lib)
         y_lib, nfev = library_piecewise(model.rhs_values, pf.on, edges,
                                         np.zeros(2 * (model.n_t + model.n_l)), t_all[:n_lib + 1],
                                         rtol=float(res.get("library_rtol", 1e-9)), atol=1e-14)
-    t_lib = t_all[:n_lib + 1]
-    u_lib = (model.u2_at(y_lib, xi) + (1 - xi / L) * Fe["g"][:n_lib + 1]
-             + xi / L * Fe["h"][:n_lib + 1])
+    u_lib = model.u2_at(y_lib, xi, Fe["g"][:n_lib + 1], Fe["h"][:n_lib + 1])
     scale = np.max(np.abs(u_all[:n_lib + 1]))
     return {
-        "u_probe_library": var("t_library", u_lib, "m",
-                               "transverse displacement at the probe, solve_ivp DOP853 (first periods)"),
         "rk4_vs_library": var((), np.max(np.abs(u_all[:n_lib + 1] - u_lib)) / scale, "1",
                               "max |u_RK4 - u_library| / max |u| over the library window"),
-        "library_wall_time": var((), sw.seconds, "s", "wall time of solve_ivp"),
         "library_nfev": var((), nfev, "1", "right-hand-side calls of solve_ivp"),
-        "rk4_nfev": var((), 4 * g["n_steps"], "1", "right-hand-side calls of RK4"),
-        "t_library": var("t_library", t_lib, "s", "time")}
+        "rk4_nfev": var((), 4 * g["n_steps"], "1", "right-hand-side calls of RK4")}
 
 
 def solve_scene(run, prm, res):
@@ -457,20 +442,14 @@ def solve_scene(run, prm, res):
         Fe = {k: v[cut[0]:cut[1]] for k, v in F.items()}
         t_all, y_all = rk4_tabulated(model, np.zeros(2 * (model.n_t + model.n_l)), dt,
                                               n_steps, Fs, record_every=1)
-    u_all = model.u2_at(y_all, xi) + (1 - xi / L) * Fe["g"] + xi / L * Fe["h"]
+    u_all = model.u2_at(y_all, xi, Fe["g"], Fe["h"])
     stats = envelope_statistics(u_all, g["per_tooth"])
     rec = max(n_steps // int(res["samples"]), 1)
     data = {
         "u_probe_rk4": var("t", u_all[::rec], "m", "transverse displacement at the probe, RK4 "
                            f"(every {rec}th step, for the figure)"),
         "rk4_time_step": var((), dt, "s", "RK4 step (a whole number per tooth period)"),
-        "rk4_step_limit": var((), g["dt_limit"], "s", "RK4 linear stability limit"),
         "rk4_wall_time": var((), sw_rk.seconds, "s", "wall time of the forcing and RK4"),
-        "chain_speed": var((), c, "m/s", "chain speed"),
-        "longitudinal_frequency": var((), geometry.longitudinal_frequency(1, prm["axial_stiffness"],
-                                                                          m, c, L), "rad/s",
-                                      "first longitudinal frequency of the moving span"),
-        "tooth_frequency": var((), n1 * w1, "rad/s", "tooth frequency n1 omega1"),
         "speed": var((), w1 * RPM, "rpm", "driving sprocket speed"),
         "detuning": var((), float(opts.get("detuning", 1.0)), "1",
                         "tooth frequency / the resonance frequency named in options"),

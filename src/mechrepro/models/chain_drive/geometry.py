@@ -6,6 +6,8 @@ length ``m`` (the paper's m_1), span length ``L``.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 RPM = 30.0 / np.pi   # rad/s -> rpm
@@ -43,6 +45,21 @@ def span_lengths(L_ct: float, p_c: float) -> tuple[float, float]:
     f = fractional_pitch(L_ct, p_c)
     L0 = L_ct - f * p_c
     return (L0, L0) if f == 0.0 else (L0, L0 + p_c)
+
+
+def span_geometry(prm: dict, length_change: bool = True) -> dict:
+    """Common tangent, fractional pitch (Eq. 2-6) and the two span lengths (both L_ct
+    without ``length_change``: the centre distance as an average span length)."""
+    p = prm["pitch"]
+    n1, n2 = int(prm["n1"]), int(prm["n2"])
+    C = prm["centre_distance"] * p
+    r1, r2 = pitch_radius(p, n1), pitch_radius(p, n2)
+    L_ct = math.sqrt(C**2 - (r2 - r1) ** 2)
+    f_p = fractional_pitch(L_ct, p)
+    L0, L1 = span_lengths(L_ct, p)
+    if not length_change:
+        L0 = L1 = L_ct      # the centre distance as an average span length (Fig. 5, solid)
+    return {"L_ct": L_ct, "f_p": f_p, "L_short": L0, "L_long": L1}
 
 
 def axial_tension(T_s, tension_coefficient, c):

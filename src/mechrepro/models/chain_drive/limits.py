@@ -26,7 +26,7 @@ import math
 
 import numpy as np
 
-from . import geometry
+from . import four_bar, geometry
 from .effects import declared_keys
 
 def stability_only(run: dict) -> bool:
@@ -101,24 +101,13 @@ def shooting_flops(points: int, steps_per_period):
             + 4.0 * (2 * n) ** 3)
 
 
-def _span(prm: dict, length_change: bool) -> tuple[float, float]:
-    """(L_short, L_long) as :func:`.span.span_geometry` (common tangent, Eq. 2-6)."""
-    p, n1, n2 = prm["pitch"], int(prm["n1"]), int(prm["n2"])
-    r1, r2 = geometry.pitch_radius(p, n1), geometry.pitch_radius(p, n2)
-    L_ct = math.sqrt((prm["centre_distance"] * p) ** 2 - (r2 - r1) ** 2)
-    return geometry.span_lengths(L_ct, p) if length_change else (L_ct, L_ct)
-
-
 def _speeds(run: dict, prm: dict) -> np.ndarray:
     """The initial speed axis [rad/s] (:func:`.solver.speed_sweep`)."""
     res, opt = run["resolution"], run.get("options", {})
     lo, hi = prm["speed_min"], prm["speed_max"]
     window = opt.get("speed_window_elastic")
     if window:
-        L = _span(prm, False)[0]
-        wc = float(geometry.pitch_radius(prm["pitch"], int(prm["n2"]))
-                   * math.sqrt(prm["axial_stiffness"] / L / prm["driven_inertia"]) / int(prm["n1"]))
-        lo, hi = window[0] * wc, window[1] * wc
+        lo, hi = four_bar.elastic_speed_window(prm, window)
     n = int(res["n_speeds"])
     extra = 2 * max(3, n // 3) if opt.get("dense_near_elastic") else 0
     return np.linspace(lo, hi, n + extra)
@@ -128,7 +117,7 @@ def size(run: dict) -> dict:
     """Speeds, grid points and steps of a speed sweep (no effect evaluated)."""
     prm, res, keys = run["parameters"], run["resolution"], declared_keys(run)
     w = _speeds(run, prm)
-    L0, L1 = _span(prm, "long" in keys)
+    L0, L1 = (geometry.span_geometry(prm, "long" in keys)[k] for k in ("L_short", "L_long"))
     ppp, p, m = int(res["points_per_pitch"]), prm["pitch"], prm["mass_per_length"]
     n = (int(round(L0 / p)) * ppp + ppp) if L0 != L1 else max(int(round(L1 / p * ppp)), 4)
     c = geometry.chain_speed(w, int(prm["n1"]), p)

@@ -30,6 +30,13 @@ def impact_constants(m_i: float, k_i: float, zeta_i: float) -> dict:
             "c_i": c_i, "k_i": k_i, "m_i": m_i, "t_i": np.pi / (wn * np.sqrt(1 - zeta_i**2))}
 
 
+def impact_of(prm: dict) -> dict:
+    """:func:`impact_constants` of a run's parameters: the impacting mass of
+    ``impact_mass_links`` links (Sec. 2.1.1), its contact stiffness and damping ratio."""
+    return impact_constants(prm["impact_mass_links"] * prm["pitch"] * prm["mass_per_length"],
+                            prm["contact_stiffness"], prm["contact_damping_ratio"])
+
+
 def relative_velocity(omega1, p_c: float):
     """Eq. (2-2): V_rel = omega1 p_c."""
     return np.asarray(omega1, float) * p_c

@@ -401,17 +401,10 @@ def sweep(run, prm: dict, omega1, res: dict, registry=EFFECTS) -> dict:
     rho = np.array([s.rho for s in sols])
     lower = np.array([s.rho_lower for s in sols])
     slack = np.array([s.slack for s in sols])
-    c = geometry.chain_speed(w, int(prm["n1"]), prm["pitch"])
     return {"omega1": w, "amplitude": np.array([s.amplitude for s in sols]), "growth": rho,
             "growth_rate": np.array([s.growth_rate for s in sols]),
             "rho_lower": lower, "rho_upper": np.array([s.rho_upper for s in sols]),
             "mode_wavelength": np.array([s.mode_wavelength for s in sols]),
-            "unstable": (lower > 1.0) | slack, "slack": slack,
-            "steps_per_period": np.array([s.n_steps for s in sols]),
-            "residual": np.array([s.residual for s in sols]), "sampling_converged": done,
-            "grid": a["grid"], "span": a["span"], "c": c,
-            "s_star": (np.zeros_like(c) if res.get("differencing") == "central"
-                       else geometry.s_star(c, prm["static_tension"], prm["mass_per_length"])),
-            "dt": min(s.period / s.n_steps for s in sols),
-            "n_steps": int(sum(s.n_steps for s in sols)),
+            "unstable": (lower > 1.0) | slack, "slack": slack, "sampling_converged": done,
+            "grid": a["grid"], "span": a["span"], "n_steps": int(sum(s.n_steps for s in sols)),
             "tension_coefficient": a["tension_coefficient"]}

@@ -33,11 +33,13 @@ def _contributions(run, ctx, keys, solver):
     return EFFECTS.evaluate(run, ctx)
 
 
-def sweep_geometry(prm, tension_coefficient, geo, orders, omega1, wc) -> dict:
+def sweep_geometry(prm, tension_coefficient, geo, res, omega1, wc, slack) -> dict:
     """What every speed sweep writes beside its amplitudes: the speeds where the tooth
     frequency meets the k-th moving-string frequency (Wickert-Mote) of the short, long and
-    mean span, with P = T_s + k c^2 (k: the tension coefficient), the span lengths and the
-    drive's elastic four-bar resonance (nan outside a speed_window_elastic)."""
+    mean span (orders 1 .. ``res["orders"]``), with P = T_s + k c^2 (k: the tension
+    coefficient), the span lengths, the drive's elastic four-bar resonance (nan outside a
+    speed_window_elastic) and the slack speeds."""
+    orders = np.arange(1, int(res.get("orders", 8)) + 1)
     kw = dict(n1=int(prm["n1"]), p_c=prm["pitch"], T_s=prm["static_tension"],
               m=prm["mass_per_length"], tension_coefficient=tension_coefficient)
     out = {f"resonance_speed_{name}": var(
@@ -52,7 +54,8 @@ def sweep_geometry(prm, tension_coefficient, geo, orders, omega1, wc) -> dict:
             "elastic_resonance_speed": var((), np.nan if wc is None else wc * RPM, "rpm",
                                            "omega_c of the drive's elastic four-bar (k = AE/L_ct)"),
             "speed": var("speed", omega1 * RPM, "rpm", "driving sprocket speed omega_1"),
-            "order": var("order", orders, "1", "resonance order k")}
+            "order": var("order", orders, "1", "resonance order k"),
+            "slack": var("speed", slack.astype("i1"), "1", "1 where P + P_t <= 0 somewhere")}
 
 
 # ---------------------------------------------------------------------------- Figs. 1, 3, 4
@@ -61,12 +64,11 @@ def impact_load(run, prm, res):
     """Fig. 1: the tension contributed at 300 rpm near one impact (point values) and over
     three tooth periods (step-averaged), with the impact model's closed-form checks."""
     w1, n1, p = prm["speed"], int(prm["n1"]), prm["pitch"]
-    k = loads.impact_constants(prm["impact_mass_links"] * p * prm["mass_per_length"],
-                               prm["contact_stiffness"], prm["contact_damping_ratio"])
+    k = loads.impact_of(prm)
     tau = float(geometry.tooth_period(w1, n1))
     n = int(res["samples"])
     t_near, t_wide = np.linspace(0, 1.5 * k["t_i"], n), np.linspace(0, 3 * tau, n)
-    geo = span.span_geometry(prm, False)
+    geo = geometry.span_geometry(prm, False)
     near, wide = (span.dynamic_tension(_contributions(run, SpanContext(prm, [w1], t, step, geo),
                                                       ("tension_pulse",), "impact_load"),
                                        (n, 1))[:, 0]
@@ -78,7 +80,6 @@ def impact_load(run, prm, res):
         "impact_load_near": var("t_near", near, "N", "impact load D_imp near the impact, Eq. (2-4)"),
         "impact_load_wide": var("t_wide", wide, "N", "impact load over three tooth periods (step-averaged)"),
         "contact_time": var((), k["t_i"], "s", "contact duration pi/omega_d (Appendix I)"),
-        "tooth_period": var((), tau, "s", "tooth period 2 pi/(n1 omega1)"),
         "impact_peak": var((), near.max(), "N", "peak impact load"),
         "impulse_quadrature": var((), J_quad, "N*s", "impulse of one impact by quadrature of Eq. (2-4)"),
         "impulse_closed_form": var((), J_exact, "N*s", "impulse of one impact in closed form"),
@@ -100,11 +101,10 @@ def rigid_four_bar(run, prm, res):
     t_check = np.stack([np.linspace(0, 2 * float(geometry.tooth_period(w, n1)), samples)
                         for w in speeds], axis=1)
     keys = ("tension", "u_left", "u_right")
-    out = {"omega2": [], "polygonal_load": [], "u_left": [], "peak_load_by_speed": [],
-           "fractional_pitch": []}
+    out = {"omega2": [], "polygonal_load": [], "u_left": [], "peak_load_by_speed": []}
     for n2 in cases:
         p2 = {**prm, "n2": n2}
-        geo = span.span_geometry(p2, True)
+        geo = geometry.span_geometry(p2, True)
         ctx = SpanContext(p2, [w1], t, None, geo)
         c = _contributions(run, ctx, keys, "rigid_four_bar")
         out["omega2"].append(ctx.kinematics["omega2"][:, 0] * RPM)
@@ -114,13 +114,11 @@ def rigid_four_bar(run, prm, res):
         check = _contributions(run, SpanContext(p2, speeds, t_check, None, geo), keys,
                                "rigid_four_bar").total("tension", np.zeros(t_check.shape))
         out["peak_load_by_speed"].append(np.max(np.abs(check), axis=0))
-        out["fractional_pitch"].append(geo["f_p"])
     data = {
         "omega2": var(("n2", "t"), out["omega2"], "rpm", "driven sprocket speed omega_2, Eq. (2-7)"),
         "polygonal_load": var(("n2", "t"), out["polygonal_load"], "N", "dynamic load D_pol, Eq. (2-10)"),
         "peak_load_by_speed": var(("n2", "check_speed"), out["peak_load_by_speed"], "N",
                                   "max |D_pol| at the check speeds"),
-        "fractional_pitch": var("n2", out["fractional_pitch"], "1", "fractional pitch f_p, Eq. (2-6)"),
         "panel": var("n2", np.array([panels.index(n) for n in cases], dtype=np.int32), "1",
                      "panel of Fig. 3 (0 = a, 1 = b, 2 = c) in the order of options.cases"),
     }
@@ -137,12 +135,12 @@ def elastic_four_bar(run, prm, res):
     switched by the span-length state ``long``) below, at, between, at and above its two
     resonances, and its peak-to-peak value over a speed window for k1 and k2."""
     n1 = int(prm["n1"])
-    geo = span.span_geometry(prm, True)
-    wc_short, wc_long = (omega_c(prm, geo[L]) for L in ("L_short", "L_long"))
+    geo = geometry.span_geometry(prm, True)
+    wc_short, wc_long = (four_bar.omega_c(prm, geo[L]) for L in ("L_short", "L_long"))
     # the paper's omega_c1 < omega_c2: the long (softer) span resonates first
     wc1, wc2 = min(wc_short, wc_long), max(wc_short, wc_long)
     window = run.get("options", {}).get("speed_window_elastic")
-    lo, hi = elastic_speed_window(prm, window) if window else (prm["speed_min"], prm["speed_max"])
+    lo, hi = four_bar.elastic_speed_window(prm, window) if window else (prm["speed_min"], prm["speed_max"])
     curve_w = np.linspace(lo, hi, int(res["n_speeds"]))
     keys = ("tension_short", "tension_long", "long")
     cache: dict = {}
@@ -170,21 +168,6 @@ def elastic_four_bar(run, prm, res):
         "curve_speed": var("curve_speed", curve_w * RPM, "rpm", "driving speed")}
 
 
-def omega_c(prm, L: float) -> float:
-    """The elastic four-bar resonance omega_c = r2 sqrt(k/I2)/n1 of a span L, k = AE/L."""
-    return four_bar.elastic_resonance(prm["axial_stiffness"] / L, prm["driven_inertia"],
-                                      geometry.pitch_radius(prm["pitch"], int(prm["n2"])),
-                                      int(prm["n1"]))
-
-
-def elastic_speed_window(prm, window) -> tuple[float, float]:
-    """Speeds [lo, hi] x omega_c of the drive's own elastic four-bar resonance with
-    k = AE/L_ct: a medium-speed window placed around the resonance of *this* drive, not a
-    speed range copied from another drive."""
-    wc = omega_c(prm, span.span_geometry(prm, False)["L_ct"])
-    return float(window[0] * wc), float(window[1] * wc)
-
-
 # ---------------------------------------------------------------------------- Figs. 5-9
 
 def dense_near_elastic(run, prm, omega1, half_width: float, n_speeds: int) -> np.ndarray:
@@ -194,10 +177,10 @@ def dense_near_elastic(run, prm, omega1, half_width: float, n_speeds: int) -> np
     so the parametric (Mathieu) bands it pumps cluster there and are narrow, narrower than a
     uniform grid's step.  The dense count scales with n_speeds, so refining n_speeds refines
     it too."""
-    geo = span.span_geometry(prm, "long" in declared_keys(run))
+    geo = geometry.span_geometry(prm, "long" in declared_keys(run))
     extra = [omega1]
     for L in sorted({geo["L_short"], geo["L_long"]}):
-        wc = omega_c(prm, L)
+        wc = four_bar.omega_c(prm, L)
         if omega1[0] <= wc <= omega1[-1]:
             extra.append(np.linspace(wc * (1 - half_width), wc * (1 + half_width),
                                      max(3, n_speeds // 3)))
@@ -212,7 +195,7 @@ def speed_sweep(run, prm, res) -> dict:
     wc = None
     if window:
         prm = dict(prm)
-        prm["speed_min"], prm["speed_max"] = elastic_speed_window(prm, window)
+        prm["speed_min"], prm["speed_max"] = four_bar.elastic_speed_window(prm, window)
         wc = prm["speed_max"] / window[1]
     omega1 = span.speed_axis(prm, int(res["n_speeds"]))
     dense = run.get("options", {}).get("dense_near_elastic")
@@ -227,10 +210,9 @@ def speed_sweep(run, prm, res) -> dict:
             omega1 = out["omega1"]
         else:
             out = span.sweep(run, prm, omega1, res)
-    orders = np.arange(1, int(res.get("orders", 8)) + 1)
-    g = out["grid"]
     data = {
-        **sweep_geometry(prm, out["tension_coefficient"], out["span"], orders, omega1, wc),
+        **sweep_geometry(prm, out["tension_coefficient"], out["span"], res, omega1, wc,
+                         out["slack"]),
         "amplitude": var("speed", out["amplitude"], "m", "maximum steady transverse amplitude"),
         "growth": var("speed", np.minimum(out["growth"], 1e300), "1",
                       "spectral radius of the one-period monodromy matrix (Floquet multiplier); "
@@ -239,11 +221,12 @@ def speed_sweep(run, prm, res) -> dict:
                       "ratio of last to first block maximum in the measuring window"),
         "unstable": var("speed", out["unstable"].astype("i1"), "1",
                         "1 where the response grows (Mathieu instability) or the span goes slack"),
-        "slack": var("speed", out["slack"].astype("i1"), "1", "1 where P + P_t <= 0 somewhere"),
-        "s_star": var("speed", out["s_star"], "1", "first-difference weight s* (0 = central differencing; Eq. (2-38) otherwise)"),
-        "time_step": var((), out["dt"], "s", "time step: cfl x the von Neumann limit dx/sqrt(c_w^2 - c^2)"),
         "n_steps": var((), out["n_steps"], "1", "number of time steps"),
-        "n_points": var((), g.n_long + 1, "1", "grid points of the long span")}
+        "n_points": var((), out["grid"].n_long + 1, "1", "grid points of the long span")}
+    if shooting_:
+        data["sampling_converged"] = var((), int(out["sampling_converged"]), "1",
+                                         "1 when the adaptive speed bisection finished (edges "
+                                         "and peaks at edge_tol/peak_tol)")
     steps = run.get("options", {}).get("discrete_reference")
     if steps:
         ref = discrete.sweep(run, prm, omega1, {"steps_per_period": steps})["amplitude"]
@@ -269,10 +252,6 @@ def speed_sweep(run, prm, res) -> dict:
         data["rho_upper"] = var("speed", out["rho_upper"], "1",
                                 "proven upper bound of rho (= rho where computed): rho^K <= "
                                 "||M^K||_F; below exp(-sigma T/2) proves a stable speed")
-        data["steps_per_period"] = var("speed", out["steps_per_period"], "1",
-                                       "time steps per excitation period (shooting)")
-        data["periodicity_residual"] = var("speed", out["residual"], "m",
-                                           "max |x(T) - x*| of the steady state marched once more")
         wl = out["mode_wavelength"] / prm["pitch"]
         limit = float(prm["valid_wavelength"])   # pitches (assumed: the config says why)
         data["critical_mode_wavelength"] = var(
@@ -283,9 +262,6 @@ def speed_sweep(run, prm, res) -> dict:
             "1", f"1 where the span grows in a Floquet mode shorter than "
             f"{limit:g} pitches: outside the string model's "
             "validity (a chain of rigid links has no such mode); still counted as growth")
-        data["sampling_converged"] = var((), int(out["sampling_converged"]), "1",
-                                         "1 when the adaptive speed bisection finished (edges "
-                                         "and peaks at edge_tol/peak_tol)")
     return data
 
 
@@ -294,22 +270,17 @@ def discrete_sweep(run, prm, omega1, res, wc=None) -> dict:
     orbit's amplitude and largest Floquet multiplier of the tooth-period map, with the
     moving-string resonance speeds of the span (the string's, for comparison)."""
     out = discrete.sweep(run, prm, omega1, res)
-    omega1 = out["omega1"]
-    orders = np.arange(1, int(res.get("orders", 8)) + 1)
-    geo = span.span_geometry(prm, "long" in declared_keys(run))
+    geo = geometry.span_geometry(prm, "long" in declared_keys(run))
     steps = int(res["steps_per_period"])
     return {
-        **sweep_geometry(prm, discrete.tension_coefficient(run, prm), geo, orders, omega1, wc),
+        **sweep_geometry(prm, discrete.tension_coefficient(run, prm), geo, res, out["omega1"], wc,
+                         out["slack"]),
         "amplitude": var("speed", out["amplitude"], "m",
                          "maximum transverse roller amplitude of the periodic orbit"),
         "growth": var("speed", out["rho"], "1", "largest Floquet multiplier of the tooth-period "
                       "map of the discrete span (rollers relabelled)"),
         "unstable": var("speed", out["unstable"].astype("i1"), "1",
                         "1 where a Floquet multiplier exceeds 1 or a link goes slack"),
-        "slack": var("speed", out["slack"].astype("i1"), "1", "1 where P + P_t <= 0 somewhere"),
-        "periodicity_residual": var("speed", out["residual"], "m",
-                                    "max |x(T) - x*| of the orbit marched once more"),
-        "steps_per_period": var((), steps, "1", "RK4 steps per tooth period"),
         "sampling_converged": var((), int(out["sampling_converged"]), "1",
                                   "1 when the adaptive speed refinement finished"),
         "n_steps": var((), steps, "1", "RK4 steps per tooth period"),

@@ -9,6 +9,7 @@ import math
 import numpy as np
 
 from . import fd, geometry
+from .geometry import span_geometry
 from .effects import EFFECTS, SpanContext, declared_keys, refuse_unhonoured
 from .errors import PitchScaleInstability
 
@@ -20,21 +21,6 @@ FD_KEYS = ("tension_coefficient", "tension_pulse", "tension", "tension_external"
 PT_KEYS = ("tension_pulse", "tension", "tension_external")
 # what the axial tension P is formed from (:func:`.geometry.axial_tension`): evaluated first
 STEADY_KEYS = ("tension_coefficient",)
-
-
-def span_geometry(prm: dict, length_change: bool = True) -> dict:
-    """Common tangent, fractional pitch (Eq. 2-6) and the two span lengths (both L_ct
-    without ``length_change``: the centre distance as an average span length)."""
-    p = prm["pitch"]
-    n1, n2 = int(prm["n1"]), int(prm["n2"])
-    C = prm["centre_distance"] * p
-    r1, r2 = geometry.pitch_radius(p, n1), geometry.pitch_radius(p, n2)
-    L_ct = math.sqrt(C**2 - (r2 - r1) ** 2)
-    f_p = geometry.fractional_pitch(L_ct, p)
-    L0, L1 = geometry.span_lengths(L_ct, p)
-    if not length_change:
-        L0 = L1 = L_ct      # the centre distance as an average span length (Fig. 5, solid)
-    return {"L_ct": L_ct, "f_p": f_p, "L_short": L0, "L_long": L1}
 
 
 def make_grid(span: dict, p_c: float, points_per_pitch: int) -> fd.Grid:
@@ -214,11 +200,8 @@ def sweep(run, prm, omega1, res, probes=(), record_every=0, registry=EFFECTS) ->
                  measure_from=a["measure_from"], u_cap=float(res.get("u_cap", 0.05)),
                  n_blocks=GROWTH_BLOCKS, differencing=res.get("differencing"), probes=probes,
                  record_every=record_every)
-    out = {"amplitude": r.amplitude, "growth": r.growth, "unstable": r.unstable,
-           "probes": r.probes, "t_rec": r.t_rec}
     slack = a["P_min"] <= 0
-    out["unstable"] = out["unstable"] | slack
-    out.update({k: a[k] for k in ("grid", "span", "c", "P", "P_min", "dt", "n_steps", "s_star",
-                                  "tension_coefficient")})
-    out["slack"] = slack
-    return out
+    return {"amplitude": r.amplitude, "growth": r.growth, "unstable": r.unstable | slack,
+            "slack": slack, "probes": r.probes, "t_rec": r.t_rec,
+            **{k: a[k] for k in ("grid", "span", "c", "P", "P_min", "dt", "n_steps", "s_star",
+                                 "tension_coefficient")}}

@@ -18,7 +18,8 @@ from mechrepro.timing import phase
 
 from . import fd, geometry, loads
 from .effects import EFFECTS, SpanContext, refuse_unhonoured
-from .span import dynamic_tension, make_grid, span_geometry
+from .geometry import span_geometry
+from .span import FD_KEYS, STEADY_KEYS, dynamic_tension, make_grid
 
 
 def nonuniform_times(t_end: float, tau: float, dt_max: float, dt_min: float, delta: float,
@@ -34,11 +35,9 @@ def nonuniform_times(t_end: float, tau: float, dt_max: float, dt_min: float, del
     return np.array(ts)
 
 
-# the contributions this march consumes (a uniform span: no length change): the steady one
-# (the axial tension, once per comparison) and the forcing (once per time grid)
-STEADY_KEYS = ("tension_coefficient",)
-FORCING_KEYS = ("tension_pulse", "tension", "tension_external", "tension_short", "tension_long", "u_left",
-                "u_right", "kappa")
+# the contributions this march consumes (the FD march's, a uniform span: no length change):
+# the steady one (the axial tension, once per comparison) and the forcing (once per time grid)
+FORCING_KEYS = tuple(k for k in FD_KEYS if k not in STEADY_KEYS + ("long",))
 
 
 def response(run: dict, prm: dict, t: np.ndarray, points_per_pitch: int, averaged: bool,
@@ -80,8 +79,7 @@ def compare(run, prm: dict, res: dict, registry=EFFECTS) -> dict:
     w1 = prm["speed"]
     tau = 2 * np.pi / (n1 * w1)
     t_end = float(res.get("tooth_periods", 4)) * tau
-    kimp = loads.impact_constants(prm["impact_mass_links"] * p * m, prm["contact_stiffness"],
-                                  prm["contact_damping_ratio"])
+    kimp = loads.impact_of(prm)
     geo = span_geometry(prm, False)
     ppp = int(res["points_per_pitch"])
     grid = make_grid(geo, p, ppp)

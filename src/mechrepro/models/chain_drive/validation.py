@@ -15,6 +15,7 @@ from mechrepro.validation import Quantities, Reproduced
 
 from . import claims as C
 from . import fd
+from . import figures as F
 from .errors import UnknownChoice
 
 Q = Quantities("chain_drive")
@@ -144,11 +145,6 @@ def _non_integral(R, study):
     return [(cd, ds) for cd, ds in zip(cds, runs) if float(ds.fractional_pitch) > 0]
 
 
-def _windows(ds_l, k):
-    return C.order_window(float(ds_l.resonance_speed_long.sel(order=k)),
-                          float(ds_l.resonance_speed_short.sel(order=k)))
-
-
 def _peak_counts(R, study, row, ok, with_window):
     """Per order 2-5, whether every non-integral centre distance of ``study`` has ``ok``
     (a test of the count) peaks in the order's window (:func:`.claims.order_window`, the
@@ -158,7 +154,7 @@ def _peak_counts(R, study, row, ok, with_window):
     for k in (2, 3, 4, 5):
         good, notes = True, []
         for cd, ds in runs:
-            lo, hi = _windows(ds, k)
+            lo, hi = F.order_window(ds, k)
             pk = C.peak_speeds(ds.speed.values, ds.amplitude.values, lo, hi, stable=_stable(ds))
             good &= ok(len(pk))
             notes.append(f"{cd:g} p: {[round(x, 1) for x in pk]}"
@@ -233,18 +229,10 @@ def fig05_system_b_amp(R):
 
 
 # ----------------------------------------------------------------------------- Fig. 6
-def _by_inertia(R):
-    vals, runs = _study_runs(R, "fig06_i2", "driven_inertia")
-    vals = list(vals) + [R.parameter("driven_inertia")]
-    runs = runs + [R.run("fig06_inertia")]
-    order = np.argsort(vals)
-    return [vals[i] for i in order], [runs[i] for i in order]
-
-
 @Q.register("inertia_raises_resonance_amplitude_order3", "inertia_raises_resonance_amplitude_order4",
             "inertia_adds_peaks")
 def fig06(R):
-    i2s, runs = _by_inertia(R)
+    i2s, runs = F.with_base(R, "fig06_i2", "fig06_inertia", "driven_inertia")
     i2 = [f"{v:g}" for v in i2s]
     un = [int(d.unstable.sum()) for d in runs]
     rho = [float(np.nanmax(d.growth.values[~_stable(d)])) if un[j] else math.nan
@@ -309,20 +297,6 @@ def fig07_base(R):
 
 
 # ----------------------------------------------------------------------------- Fig. 8
-def _fig08_base(R):
-    base = R.run("fig08_none")
-    idx = C.peaks(base.speed.values, base.amplitude.values, stable=_stable(base))
-    pk_speeds = base.speed.values[idx]
-    return base, pk_speeds
-
-
-def _loaded(R):
-    ws, runs = _study_runs(R, "fig08_wex", "external_frequency_ratio")
-    out = {float(w): d for w, d in zip(ws, runs)}
-    out[R.parameter("external_frequency_ratio")] = R.run("fig08_external")
-    return out
-
-
 def _fig08_effects(base, pk_speeds, d):
     """Peak levels (nan where a peak's band holds an unstable speed) and off-peak medians
     over the speeds stable with and without the load."""
@@ -339,8 +313,9 @@ def _fig08_effects(base, pk_speeds, d):
             "external_load_raises_offpeak_w4", "external_load_raises_offpeak_w1",
             "external_effect_grows_as_frequency_falls")
 def fig08(R):
-    base, pk = _fig08_base(R)
-    loaded = _loaded(R)
+    base = R.run("fig08_none")
+    pk = base.speed.values[C.peaks(base.speed.values, base.amplitude.values, stable=_stable(base))]
+    loaded = dict(zip(*F.with_base(R, "fig08_wex", "fig08_external", "external_frequency_ratio")))
     out, ratios = {}, {}
     for w, d in sorted(loaded.items()):
         level, level0, med, med0 = _fig08_effects(base, pk, d)
@@ -397,11 +372,11 @@ def _by_modes(R, scene: str, study: str) -> dict:
             for d in [R.run(scene)] + R.study_runs(study)}
 
 
-def _drawn(R, scene: str) -> int:
+def drawn_modes(R, scene: str) -> int:
     return int(run_attrs(R.run(scene))["resolution"]["n_transverse"])
 
 
-def _ratios(R, coupled: str, uncoupled: str) -> dict:
+def mode_ratios(R, coupled: str, uncoupled: str) -> dict:
     """coupled / uncoupled steady amplitude at the probe per mode count."""
     c, u = _by_modes(R, coupled, coupled + "_modes"), _by_modes(R, uncoupled, uncoupled + "_modes")
     return {n: float(c[n].steady_amplitude) / float(u[n].steady_amplitude)
@@ -442,8 +417,8 @@ def _converged_coupling(R, q: str, coupled: str, uncoupled: str, f) -> Reproduce
     (:data:`ROUND_OFF_10`, measured across the platform variants)."""
     from mechrepro.validation import band, level_error
 
-    r = _ratios(R, coupled, uncoupled)
-    n = _drawn(R, coupled)
+    r = mode_ratios(R, coupled, uncoupled)
+    n = drawn_modes(R, coupled)
     step = {float(run_attrs(d)["resolution"]["rk4_cfl"]): (d, u) for d, u in
             zip(R.study_runs(coupled + "_step"), R.study_runs(uncoupled + "_step"))}
     (dc, du), = step.values()
@@ -521,7 +496,7 @@ def fig10_steady(R):
     runs = {n: _by_modes(R, n, n + "_modes") for n in names}
     counts = sorted(set.intersection(*(set(v) for v in runs.values())))
     dev = {k: max(abs(float(runs[n][k].steady_ratio) - 1) for n in names) for k in counts}
-    n = _drawn(R, "fig10_transverse5")
+    n = drawn_modes(R, "fig10_transverse5")
     v = dev[n]
     half = max(abs(float(d.steady_ratio) - 1) for name in names for d in R.study_runs(name + "_step"))
     e_m, _, ok, how = level_error(dev[n // 4], dev[n // 2], v, 2.0, band(R.reported(q), v))
