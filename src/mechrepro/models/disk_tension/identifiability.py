@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import thermal
-from .modal import eigen, frequency
+from .modal import eigen, frequency, positive_definite
 
 #: half a unit of the last printed digit of Table 1's diagonals and of 502.1 Hz
 PRINTED = {"table1": np.array([0.005e5, 0.005e4, 0.005e5, 0.005e6, 0.005e6]), "f_rolled": 0.05}
@@ -30,15 +30,9 @@ def unit_table1(disk, *, s, inplane_bc, r_c, amplitude, alpha, E, nu):
     return disk.eq9(Ks), Ks
 
 
-def _lowest_stable(K, M, bandwidth=3):
+def _lowest_stable(K, M):
     """omega^2 of the lowest mode of (K, M), None when K has buckled."""
-    from .modal import BANDED_MAX, BANDED_MIN, lowest_banded, positive_definite
-
-    if BANDED_MIN <= len(K) <= BANDED_MAX:
-        x = lowest_banded(K, M, bandwidth)
-        if x is not None:
-            return float((x @ K @ x) / (x @ M @ x))
-    return float(eigen(K, M, 1, bandwidth)[0][0]) if positive_definite(K) else None
+    return float(eigen(K, M, 1, 3)[0][0]) if positive_definite(K) else None
 
 
 def scan(disk, *, widths, scales, fine, conditions, n_d_eigen=4, **load):
