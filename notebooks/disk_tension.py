@@ -335,11 +335,9 @@ for j, (ax, name) in enumerate(zip(axes[:2], idf.SUBSETS)):
                                 label=f"Δχ² ≤ {levels[li]:.2f} ({list(idf.LEVELS)[li]} %)"
                                 + (", clamped only" if hatch else ""))
         # where the region reaches a scan's end: the s scan's ends, the c scan's ends
-        inside = np.isfinite(lo[li]).any(axis=0)
-        c_lo = np.where(inside, np.nanmin(np.where(np.isfinite(lo[li]), lo[li], np.inf), 0), np.nan)
-        c_hi = np.where(inside, np.nanmax(np.where(np.isfinite(hi[li]), hi[li], -np.inf), 0), np.nan)
+        c_lo, c_hi = np.fmin.reduce(lo[li]), np.fmax.reduce(hi[li])   # over the conditions
         for k in (0, -1):
-            if inside[k]:
+            if np.isfinite(c_lo[k]):
                 ax.plot([s_mm[k]] * 2, [c_lo[k] * s_mm[k], c_hi[k] * s_mm[k]],
                         color="tab:red", lw=3, solid_capstyle="butt")
         for edge, cut in ((c_grid[0], c_lo <= c_grid[0]), (c_grid[-1], c_hi >= c_grid[-1])):

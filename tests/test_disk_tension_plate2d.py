@@ -120,10 +120,7 @@ def test_six_slots_split_the_nd3_pair_but_not_nd4():
 
 
 def test_mesh_bad_input_and_coarse_limit():
-    with pytest.raises(ValueError, match="too coarse"):
-        polar_mesh(RF, B, 2, 4)
-    with pytest.raises(ValueError, match="r_f"):
-        polar_mesh(0.2, B, 2, 16)
+    # too coarse a mesh and r_f >= b are refused at load (test_disk_tension_solver.py)
     with pytest.raises(ValueError, match="slot depth"):
         polar_mesh(RF, B, 4, 16, Slots(4, 0.2, 0.002))
     m = polar_mesh(RF, B, 1, 8)

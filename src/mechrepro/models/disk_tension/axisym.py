@@ -19,8 +19,6 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.polynomial.legendre import leggauss
 
-from mechrepro.errors import Refusal
-
 #: Gauss-Legendre points and weights on [-1, 1]: 6, exact for the polynomial parts (the
 #: Gaussian stress needs a few more points than they do)
 XG, WG = leggauss(6)
@@ -43,11 +41,8 @@ class RadialMesh:
 
 
 def radial_mesh(r_f, b, n_elements, breakpoints=()):
-    """Uniform mesh of ``n_elements`` on [r_f, b]; extra ``breakpoints`` become nodes."""
-    if n_elements < 1:
-        raise Refusal(f"n_elements = {n_elements} must be >= 1")
-    if not (0 < r_f < b):
-        raise Refusal(f"need 0 < r_f < b, got r_f = {r_f}, b = {b}")
+    """Uniform mesh of ``n_elements`` (>= 1) on [r_f, b] (0 < r_f < b: the config refuses the
+    rest at load); extra ``breakpoints`` become nodes."""
     nodes = np.linspace(r_f, b, int(n_elements) + 1)
     ell = (b - r_f) / n_elements
     for x in breakpoints:
@@ -124,8 +119,6 @@ def stress_stiffness(mesh, n_d, sr, st, h, quad=None):
 
 class AxisymDisk:
     """The clamped disk discretised per harmonic (one dense block per N_d)."""
-
-    label = "axisym"
 
     def __init__(self, *, r_f, b, h, E, nu, rho, n_d, n_elements):
         self.mesh = radial_mesh(r_f, b, n_elements)
