@@ -411,11 +411,8 @@ def readings(ds) -> list[list]:
     for j, name in enumerate(SUBSETS):
         out.append([name, "joint fit", CONDITIONS[int(g("best_condition")[j])],
                     float(g("best_width")[j]) * 1e3, float(g("best_scale")[j]),
-                    *[float(x) for x in g("best_table1_rel")[j]], float(g("best_f_rolled")[j]),
-                    0.0])
-        out.append([name, "single-alpha calibration", "free_disk",
-                    float(g("single_width")) * 1e3,
-                    float(g("single_scale")), *[float(x) for x in g("single_table1_rel")],
-                    float(g("single_f_rolled")),
-                    float(g("single_chi2")[j] - g("chi2_min")[j])])
+                    *map(float, g("best_table1_rel")[j]), float(g("best_f_rolled")[j]), 0.0])
+        out.append([name, "single-alpha calibration", "free_disk", float(g("single_width")) * 1e3,
+                    float(g("single_scale")), *map(float, g("single_table1_rel")),
+                    float(g("single_f_rolled")), float(g("single_chi2")[j] - g("chi2_min")[j])])
     return out
