@@ -159,17 +159,11 @@ class AxisymDisk:
         return {n: stress_stiffness(self.mesh, n, sr, st, self.h, quad=self.quad)
                 for n in self.n_d}
 
-    def _once(self, what, Ks, fn):
-        """``fn(Ks)`` once per (analysis, K^(sigma) object), kept with the object."""
-        key = (what, id(Ks))
-        hit = self._memo.get(key)
-        if hit is None or hit[0] is not Ks:
-            hit = self._memo[key] = (Ks, fn(Ks))
-        return hit[1]
-
     def rolled(self, Ks):
         """Eq. (5) per harmonic: omega~^2 and mode of the fundamental."""
-        return self._once("rolled", Ks, self._rolled)
+        from .modal import once
+
+        return once(self._memo, "rolled", Ks, self._rolled)
 
     def _rolled(self, Ks):
         from .modal import eigen
@@ -187,9 +181,9 @@ class AxisymDisk:
         return np.array([eq9_delta_omega2(self.phi[n], Ks[n], self.M[n])[0] for n in self.n_d])
 
     def critical_load(self, Ks):
-        from .modal import critical_load_factor
+        from .modal import critical_load_factor, once
 
-        return self._once("critical_load", Ks, lambda Ks: np.array(
+        return once(self._memo, "critical_load", Ks, lambda Ks: np.array(
             [critical_load_factor(self.K[n], Ks[n]) for n in self.n_d]))
 
     def modal_matrices(self, Ks):

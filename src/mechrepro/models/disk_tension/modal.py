@@ -52,6 +52,15 @@ def lowest_banded(K, M, bandwidth, tol=1e-13, maxiter=200):
     return None
 
 
+def once(memo: dict, what, Ks, fn):
+    """``fn(Ks)`` once per (analysis ``what``, K^(sigma) object), kept in ``memo`` with the
+    object (so that its id cannot be reused while the model lives)."""
+    hit = memo.get((what, id(Ks)))
+    if hit is None or hit[0] is not Ks:
+        hit = memo[what, id(Ks)] = (Ks, fn(Ks))
+    return hit[1]
+
+
 def positive_definite(K) -> bool:
     """Whether the (stressed) stiffness K is positive definite: the disk has not buckled."""
     try:

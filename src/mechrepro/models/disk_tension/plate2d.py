@@ -204,7 +204,7 @@ class PlateDisk:
         outer = np.nonzero(rad > rad.max() * (1 - 1e-9))[0]
         self.ring_theta = np.arctan2(*self.mesh.p[::-1, outer])
         self.ring_dofs = self.basis.nodal_dofs[0, outer]
-        self._inplane = None
+        self._inplane, self._memo = None, {}   # _memo: results per K^(sigma) (modal.once)
         # ARPACK's start vector, seeded: the rotation of each degenerate pair it returns
         # (the raw Eq. 17 entries) is then reproducible
         self._v0 = np.random.default_rng(seed).standard_normal(len(self.free))
@@ -338,10 +338,9 @@ class PlateDisk:
         """omega~^2 per N_d (the pair mean; both members in ``rolled_pairs``), labelled by
         subspace MAC against the unrolled modes; solved once per K^(sigma) object (kept with
         its result, so that its id cannot be reused while the model lives)."""
-        memo = self.__dict__.setdefault("_rolled_memo", {})
-        if id(Ks) not in memo or memo[id(Ks)][0] is not Ks:
-            memo[id(Ks)] = (Ks, *self._rolled(Ks))
-        _, out, self.rolled_modes, self.rolled_pairs = memo[id(Ks)]
+        from .modal import once
+
+        out, self.rolled_modes, self.rolled_pairs = once(self._memo, "rolled", Ks, self._rolled)
         return out, self.rolled_modes
 
     def _rolled(self, Ks):
@@ -361,15 +360,10 @@ class PlateDisk:
         return np.array(out), modes, both
 
     def eq9(self, Ks):
-        """Eq. (9) per N_d; for a pair, the mean of the eigenvalues of its 2x2 block."""
-        out, self.eq9_pairs = [], {}
-        for n in self.n_d:
-            P = self.pair[n]
-            B = P.T @ (Ks @ P)
-            ev = np.linalg.eigvalsh(0.5 * (B + B.T))
-            self.eq9_pairs[n] = ev
-            out.append(ev.mean())
-        return np.array(out)
+        """Eq. (9) per N_d; for a pair, the mean of the eigenvalues of its 2x2 block
+        Phi^T K^(sigma) Phi (degenerate first-order perturbation): half its trace."""
+        return np.array([np.trace(self.pair[n].T @ (Ks @ self.pair[n])) / self.pair[n].shape[1]
+                         for n in self.n_d])
 
     def modal_matrices(self, Ks):
         """Eqs. (16)-(17), each rolled pair rotated onto its unrolled cos/sin basis first."""
