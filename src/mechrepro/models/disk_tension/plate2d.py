@@ -60,12 +60,6 @@ def symmetric_lu(A):
                      options=dict(SymmetricMode=True))
 
 
-def shift_inverse(A, M, shift):
-    """(A - shift M)^-1 as the operator of ARPACK's shift-invert mode."""
-    lu = symmetric_lu(A - shift * M if shift else A)
-    return spla.LinearOperator(A.shape, matvec=lu.solve, dtype=float)
-
-
 @dataclass(frozen=True)
 class Slots:
     """Radial expansion slots cut from the outer edge (constant angular width)."""
@@ -215,8 +209,9 @@ class PlateDisk:
 
     def _eigs(self, K, k, shift):
         A, M = self._sub(K), self._sub(self.M)
+        lu = symmetric_lu(A - shift * M if shift else A)   # (A - shift M)^-1: ARPACK's shift-invert
         lam, vec = spla.eigsh(A, k=k, M=M, sigma=shift, which="LM", v0=self._v0,
-                              OPinv=shift_inverse(A, M, shift))
+                              OPinv=spla.LinearOperator(A.shape, matvec=lu.solve, dtype=float))
         order = np.argsort(lam)
         full = np.zeros((self.basis.N, k))
         full[self.free] = vec[:, order]
@@ -265,11 +260,6 @@ class PlateDisk:
             self.pair[n] = P
             self.omega2[n] = lam[idx]
         return np.array([self.omega2[n].mean() for n in self.n_d])
-
-    @property
-    def Phi(self):
-        """The unrolled modal matrix of Eqs. (16)-(17): the cos member of each N_d."""
-        return np.stack([self.pair[n][:, 0] for n in self.n_d], axis=1)
 
     # -- thermal analogy: plane stress ---------------------------------------------
     def _inplane_problem(self, inplane_bc):
@@ -369,7 +359,7 @@ class PlateDisk:
         """Eqs. (16)-(17), each rolled pair rotated onto its unrolled cos/sin basis first."""
         from .modal import align_pair
 
-        Phi = self.Phi
+        Phi = np.stack([self.pair[n][:, 0] for n in self.n_d], axis=1)   # the cos members
         k_hat = Phi.T @ (Ks @ Phi)
         self.rolled(Ks)
         canon = []
