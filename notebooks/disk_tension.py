@@ -90,7 +90,8 @@ fig, ax = plt.subplots(figsize=(6, 3.4))
 r = mm(t12["r"])
 ax.plot(r, from_si(t12["temperature"].isel(r_c=0), "degC"), "-")
 ax.axvspan(0, mm(t12["clamp_radius"]), color="0.85", label="clamped r ≤ r_f")
-ax.axvspan(*mm(figures.rolling_band(t12)), color="tab:orange", alpha=0.15, label="rolling width 4s")
+rc65, s = float(t12["r_c"][0]), float(t12["width_used"])   # the rolled width 4 s (Sec. 3.2)
+ax.axvspan(mm(rc65 - 2 * s), mm(rc65 + 2 * s), color="tab:orange", alpha=0.15, label="rolling width 4s")
 ax.set(xlabel="r [mm]", ylabel="T [°C]", title="Fig. 4: thermal-analogy temperature, Eq. (4)",
        xlim=(0, r.max()))
 ax.legend(fontsize=8)
@@ -297,7 +298,7 @@ ref_err = float(t12_2d["reference_error_unrolled"])
 axes[1, 1].axhline(ref_err, color="k", ls=":", lw=0.8)
 axes[1, 1].annotate("accuracy of the rolled reference", (axes[1, 1].get_xlim()[0], ref_err),
                     fontsize=7, xytext=(4, 3), textcoords="offset points")
-axes[1, 1].axhline(figures.accuracy_goal(R, "plate2d_unrolled_vs_exact"), color="k", ls=":", lw=0.8)
+axes[1, 1].axhline(paper_pts["plate2d_goal"], color="k", ls=":", lw=0.8)
 axes[1, 1].legend(fontsize=8, loc="lower right", bbox_to_anchor=(1.0, 0.12))   # clear of the curves
 R.save_figure(fig, "cost_of_accuracy")
 
@@ -335,11 +336,9 @@ for j, (ax, name) in enumerate(zip(axes[:2], idf.SUBSETS)):
                                 label=f"Δχ² ≤ {levels[li]:.2f} ({list(idf.LEVELS)[li]} %)"
                                 + (", clamped only" if hatch else ""))
         # where the region reaches a scan's end: the s scan's ends, the c scan's ends
-        inside = np.isfinite(lo[li]).any(axis=0)
-        c_lo = np.where(inside, np.nanmin(np.where(np.isfinite(lo[li]), lo[li], np.inf), 0), np.nan)
-        c_hi = np.where(inside, np.nanmax(np.where(np.isfinite(hi[li]), hi[li], -np.inf), 0), np.nan)
+        c_lo, c_hi = np.fmin.reduce(lo[li]), np.fmax.reduce(hi[li])   # over the conditions
         for k in (0, -1):
-            if inside[k]:
+            if np.isfinite(c_lo[k]):
                 ax.plot([s_mm[k]] * 2, [c_lo[k] * s_mm[k], c_hi[k] * s_mm[k]],
                         color="tab:red", lw=3, solid_capstyle="butt")
         for edge, cut in ((c_grid[0], c_lo <= c_grid[0]), (c_grid[-1], c_hi >= c_grid[-1])):

@@ -121,11 +121,10 @@ def test_free_disk_hoop_force_balances():
 
 
 def test_thermal_stress_bad_input():
-    with pytest.raises(ValueError, match="inplane_bc"):
-        thermal.thermal_stress([0.05], amplitude=1, r_c=0.05, s=0.005, r_f=0.025, b=B, E=E,
-                               nu=NU, alpha=ALPHA, inplane_bc="glued")
-    with pytest.raises(ValueError, match="r_f"):
-        thermal.thermal_stress([0.05], amplitude=1, r_c=0.05, s=0.005, r_f=0.2, b=B, E=E,
+    # a bad inplane_bc, r_f or s is refused at load (test_disk_tension_solver.py); the
+    # clamped annulus's stress is not evaluated inside the clamp
+    with pytest.raises(ValueError, match="r >= r_f"):
+        thermal.thermal_stress([0.01], amplitude=1, r_c=0.05, s=0.005, r_f=0.025, b=B, E=E,
                                nu=NU, alpha=ALPHA)
 
 
@@ -182,8 +181,6 @@ def test_buckling_is_reported_not_square_rooted():
     assert w2[n2] < 0
     f = modal.frequency(w2)
     assert np.isnan(f[n2]) and np.array_equal(np.isnan(f), w2 < 0)
-    with pytest.raises(modal.BucklingError):
-        modal.frequency(w2, buckled="raise")
     # at the critical load factor the lowest eigenvalue of N_d = 2 crosses zero
     w2c, _ = d.rolled({n: lam[n2] * k for n, k in Ks.items()})
     assert abs(w2c[n2]) < 1e-8 * d.omega2[2]
@@ -208,9 +205,7 @@ def test_rolling_inside_the_clamp_changes_nothing_with_clamped_inplane_condition
 def test_very_coarse_and_very_thin_axisymmetric_models_stay_finite():
     fe = exact.natural_frequencies(4, a=0.025, b=B, h=H, E=E, nu=NU, rho=RHO)[0]
     one = disk(n_elements=1, n_d=[4])
-    assert 0 < np.sqrt(one.omega2[4]) / (2 * np.pi) / fe - 1 < 0.5
-    with pytest.raises(ValueError, match="n_elements"):
-        radial_mesh(0.025, B, 0)
+    assert 0 < np.sqrt(one.omega2[4]) / (2 * np.pi) / fe - 1 < 0.5   # n_elements < 1: at load
     thin = AxisymDisk(r_f=0.025, b=B, h=H / 20, E=E, nu=NU, rho=RHO, n_d=[4], n_elements=32)
     thin.unrolled()
     Ks = thin.stress_stiffness(stress(0.105))

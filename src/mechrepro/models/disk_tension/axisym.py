@@ -19,8 +19,6 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.polynomial.legendre import leggauss
 
-from mechrepro.errors import Refusal
-
 #: Gauss-Legendre points and weights on [-1, 1]: 6, exact for the polynomial parts (the
 #: Gaussian stress needs a few more points than they do)
 XG, WG = leggauss(6)
@@ -43,11 +41,8 @@ class RadialMesh:
 
 
 def radial_mesh(r_f, b, n_elements, breakpoints=()):
-    """Uniform mesh of ``n_elements`` on [r_f, b]; extra ``breakpoints`` become nodes."""
-    if n_elements < 1:
-        raise Refusal(f"n_elements = {n_elements} must be >= 1")
-    if not (0 < r_f < b):
-        raise Refusal(f"need 0 < r_f < b, got r_f = {r_f}, b = {b}")
+    """Uniform mesh of ``n_elements`` (>= 1) on [r_f, b] (0 < r_f < b: the config refuses the
+    rest at load); extra ``breakpoints`` become nodes."""
     nodes = np.linspace(r_f, b, int(n_elements) + 1)
     ell = (b - r_f) / n_elements
     for x in breakpoints:
@@ -125,8 +120,6 @@ def stress_stiffness(mesh, n_d, sr, st, h, quad=None):
 class AxisymDisk:
     """The clamped disk discretised per harmonic (one dense block per N_d)."""
 
-    label = "axisym"
-
     def __init__(self, *, r_f, b, h, E, nu, rho, n_d, n_elements):
         self.mesh = radial_mesh(r_f, b, n_elements)
         self.quad = quadrature(self.mesh)
@@ -166,17 +159,11 @@ class AxisymDisk:
         return {n: stress_stiffness(self.mesh, n, sr, st, self.h, quad=self.quad)
                 for n in self.n_d}
 
-    def _once(self, what, Ks, fn):
-        """``fn(Ks)`` once per (analysis, K^(sigma) object), kept with the object."""
-        key = (what, id(Ks))
-        hit = self._memo.get(key)
-        if hit is None or hit[0] is not Ks:
-            hit = self._memo[key] = (Ks, fn(Ks))
-        return hit[1]
-
     def rolled(self, Ks):
         """Eq. (5) per harmonic: omega~^2 and mode of the fundamental."""
-        return self._once("rolled", Ks, self._rolled)
+        from .modal import once
+
+        return once(self._memo, "rolled", Ks, self._rolled)
 
     def _rolled(self, Ks):
         from .modal import eigen
@@ -194,9 +181,9 @@ class AxisymDisk:
         return np.array([eq9_delta_omega2(self.phi[n], Ks[n], self.M[n])[0] for n in self.n_d])
 
     def critical_load(self, Ks):
-        from .modal import critical_load_factor
+        from .modal import critical_load_factor, once
 
-        return self._once("critical_load", Ks, lambda Ks: np.array(
+        return once(self._memo, "critical_load", Ks, lambda Ks: np.array(
             [critical_load_factor(self.K[n], Ks[n]) for n in self.n_d]))
 
     def modal_matrices(self, Ks):

@@ -102,8 +102,7 @@ def roll_tension(ctx) -> dict:
     """Eq. (4) temperature of every r_c and its plane-stress field (the run's inplane_bc)."""
     loads = [thermal_load(ctx, rc) for rc in ctx.r_c]
     r = np.linspace(0.0, ctx.b, N_RADII)
-    sr = np.full((len(loads), len(r)), np.nan)
-    st = sr.copy()
+    sr, st = np.full((2, len(loads), len(r)), np.nan)
     ok = r >= (ctx.r_f if ctx.bc == "clamped" else r[1])
     for j, ld in enumerate(loads):
         sr[j, ok], st[j, ok] = ld.sigma[0](r[ok]), ld.sigma[1](r[ok])
@@ -326,18 +325,30 @@ def stiffness_sensitivity(ctx) -> dict:
 FINE_SCALE, FINE_WIDTH = 40, 5
 
 
+def _scan(start, stop, step, fine):
+    """(the scan start..stop by step, the same span ``fine`` times finer)."""
+    return (np.arange(start, stop + step / 2, step),
+            np.linspace(start, stop, int(round((stop - start) / (step / fine))) + 1))
+
+
+def _legend(names) -> str:
+    """'0 a, 1 b, ...': what each integer code stands for."""
+    return ", ".join(f"{i} {k}" for i, k in enumerate(names))
+
+
+def _coded(dim, names, what):
+    """Coordinate ``dim``: the integer codes of ``names``, named by :func:`_legend`."""
+    return var(dim, np.arange(len(names)), "1", f"{what}: {_legend(names)}")
+
+
 @EFFECTS.register("identifiability")
 def identifiability(ctx) -> dict:
     """What the paper's numbers pin down: the joint fit of :mod:`.identifiability`."""
     from . import identifiability as idf
 
     p = ctx.p
-    w0, w1, dw = p["scan_gaussian_width"]
-    c0, c1, dc = p["scan_stress_scale"]
-    widths = np.arange(w0, w1 + dw / 2, dw)
-    scales = np.arange(c0, c1 + dc / 2, dc)
-    fine = np.linspace(c0, c1, int(round((c1 - c0) / (dc / FINE_SCALE))) + 1)
-    fine_widths = np.linspace(w0, w1, int(round((w1 - w0) / (dw / FINE_WIDTH))) + 1)
+    widths, fine_widths = _scan(*p["scan_gaussian_width"], FINE_WIDTH)
+    scales, fine = _scan(*p["scan_stress_scale"], FINE_SCALE)
     r = idf.analyse(ctx.model, widths=widths, scales=scales, fine=fine, fine_widths=fine_widths,
                     single_width=ctx.s, table1_paper=np.asarray(p["fit_table1_diagonal"], float),
                     f_rolled_paper=float(p["fit_rolled_frequency"]),
@@ -346,13 +357,10 @@ def identifiability(ctx) -> dict:
     sub, dat, lvl = "fit_data", "fit_datum", ("fit_data", "fit_level", "scan_condition",
                                                 "scan_width")
     out = {
-        "fit_data": var(sub, np.arange(len(idf.SUBSETS)), "1", "data fitted: "
-                        + ", ".join(f"{i} {k}" for i, k in enumerate(idf.SUBSETS))),
-        "fit_datum": var(dat, np.arange(len(idf.DATA)), "1", "paper number: "
-                         + ", ".join(f"{i} {k}" for i, k in enumerate(idf.DATA))),
+        "fit_data": _coded(sub, idf.SUBSETS, "data fitted"),
+        "fit_datum": _coded(dat, idf.DATA, "paper number"),
         "fit_parameter": var("fit_parameter", [0, 1], "1", "0 gaussian width, 1 stress scale"),
-        "scan_condition": var("scan_condition", [0, 1], "1", "in-plane condition: "
-                              + ", ".join(f"{i} {k}" for i, k in enumerate(idf.CONDITIONS))),
+        "scan_condition": _coded("scan_condition", idf.CONDITIONS, "in-plane condition"),
         "scan_width": var("scan_width", fine_widths, "m", "Gaussian width s (fine grid)"),
         "scan_scale": var("scan_scale", fine, "1", "stress scale c = E alpha A / handbook"),
         "fit_level": var("fit_level", list(idf.LEVELS.values()), "1",
@@ -486,8 +494,8 @@ def design_map(ctx) -> dict:
                                             "the scene's A", **bc),
         "design_best_amplitude": var(dims, best["a"], "K", "the A maximising it"),
         "design_best_speed": var(dims, best["v"], "rad/s", "the lowest critical speed there", **bc),
-        "design_best_binds": var(dims, best["binds"], "1", "what binds there: "
-                                 + ", ".join(f"{i} {b}" for i, b in enumerate(design.BINDS))),
+        "design_best_binds": var(dims, best["binds"], "1",
+                                 "what binds there: " + _legend(design.BINDS)),
         "design_best_mode": var(dims, best["mode"], "1", "N_d of the lowest critical speed there"),
         "design_best_frequency_ratio": var(dims + ("n_d",), best_f, "1", "rolled / unrolled "
                                            "frequency at rest there"),

@@ -65,30 +65,32 @@ def frequency_determinant(lam, n, ratio, nu, tension=0.0):
     return np.linalg.det(boundary_matrix(lam, n, ratio, nu, tension))
 
 
-def frequency_parameters(n, ratio, nu, count=1, lam_max=60.0, step=0.02, chunk=8.0,
-                         tension=0.0, memo=True):
+#: the root scan of frequency_parameters: up to lambda = LAM_MAX by STEP, CHUNK at a time
+LAM_MAX, STEP, CHUNK = 60.0, 0.02, 8.0
+
+
+def frequency_parameters(n, ratio, nu, count=1, tension=0.0, memo=True):
     """The first ``count`` roots lambda for harmonic ``n`` under ``tension`` = N b^2 / D,
     memoised (``memo``): the determinant is entire, so every sign change on the scan grid
     brackets one."""
     if not (0.0 < ratio < 1.0):
         raise Refusal(f"a/b = {ratio} must be in (0, 1) for the annular plate")
     roots = _roots if memo else _roots.__wrapped__
-    return np.array(roots(int(n), float(ratio), float(nu), int(count), float(lam_max),
-                          float(step), float(chunk), float(tension)))
+    return np.array(roots(int(n), float(ratio), float(nu), int(count), float(tension)))
 
 
 @lru_cache(maxsize=1024)
-def _roots(n, ratio, nu, count, lam_max, step, chunk, tension=0.0):
+def _roots(n, ratio, nu, count, tension):
     f = lambda x: float(frequency_determinant(x, n, ratio, nu, tension))  # noqa: E731
-    roots, lo = [], step
-    while len(roots) < count and lo < lam_max:
-        lams = np.arange(lo, min(lo + chunk, lam_max) + step / 2, step)
+    roots, lo = [], STEP
+    while len(roots) < count and lo < LAM_MAX:
+        lams = np.arange(lo, min(lo + CHUNK, LAM_MAX) + STEP / 2, STEP)
         det = frequency_determinant(lams, n, ratio, nu, tension)
         idx = np.nonzero(np.sign(det[:-1]) * np.sign(det[1:]) < 0)[0]
         roots += [brentq(f, lams[i], lams[i + 1], xtol=1e-15, rtol=1e-15) for i in idx]
         lo = lams[-1]
     if len(roots) < count:
-        raise RuntimeError(f"found only {len(roots)} roots below lambda = {lam_max}")
+        raise RuntimeError(f"found only {len(roots)} roots below lambda = {LAM_MAX}")
     return tuple(roots[:count])
 
 

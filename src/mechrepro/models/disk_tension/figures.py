@@ -17,26 +17,17 @@ def rc_grid(R) -> dict:
     return {int(round(rf)): ds for rf, ds in by_clamp(R, "rc_grid", "fig06")}
 
 
-def rolling_band(ds):
-    """(r_c - 2 s, r_c + 2 s) [m] of the first r_c: the rolled width 4 s of Sec. 3.2."""
-    rc, s = float(ds["r_c"].values[0]), float(ds["width_used"])
-    return rc - 2 * s, rc + 2 * s
-
-
 def paper_points(R) -> dict:
-    """The paper's own numbers drawn on Figs. 6 and 8 (Sec. 4.3), from the validation table."""
+    """The paper's own numbers drawn on Figs. 6 and 8 (Sec. 4.3) and the 2-D model's accuracy
+    goal, from the validation table."""
     rows = {r["quantity"]: r for r in R.validation()}
     paper = lambda q: float(rows[q]["paper_value"])  # noqa: E731
     return {"r_c": 0.065,
             "f_unrolled": float(rows["f_unrolled_nd4_rf25"]["reproduced_value"]),
             "f_rolled": paper("f_rolled_nd4_rc65_rf25"),
             "delta_f_eq9": paper("delta_f_eq9_nd4_rc65_rf25"),
-            "delta_f_eigen": paper("delta_f_eigen_nd4_rc65_rf25")}
-
-
-def accuracy_goal(R, quantity: str) -> float:
-    """The bound of one of our accuracy goals (a ``target`` row of the validation table)."""
-    return next(float(r["paper_value"]) for r in R.validation() if r["quantity"] == quantity)
+            "delta_f_eigen": paper("delta_f_eigen_nd4_rc65_rf25"),
+            "plate2d_goal": paper("plate2d_unrolled_vs_exact")}
 
 
 def eigen_and_eq9_times(*runs) -> tuple[float, float]:

@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import thermal
-from .modal import eigen, frequency
+from .modal import eigen, frequency, positive_definite
 
 #: half a unit of the last printed digit of Table 1's diagonals and of 502.1 Hz
 PRINTED = {"table1": np.array([0.005e5, 0.005e4, 0.005e5, 0.005e6, 0.005e6]), "f_rolled": 0.05}
@@ -30,15 +30,9 @@ def unit_table1(disk, *, s, inplane_bc, r_c, amplitude, alpha, E, nu):
     return disk.eq9(Ks), Ks
 
 
-def _lowest_stable(K, M, bandwidth=3):
+def _lowest_stable(K, M):
     """omega^2 of the lowest mode of (K, M), None when K has buckled."""
-    from .modal import BANDED_MAX, BANDED_MIN, lowest_banded, positive_definite
-
-    if BANDED_MIN <= len(K) <= BANDED_MAX:
-        x = lowest_banded(K, M, bandwidth)
-        if x is not None:
-            return float((x @ K @ x) / (x @ M @ x))
-    return float(eigen(K, M, 1, bandwidth)[0][0]) if positive_definite(K) else None
+    return float(eigen(K, M, 1, 3)[0][0]) if positive_definite(K) else None
 
 
 def scan(disk, *, widths, scales, fine, conditions, n_d_eigen=4, **load):
@@ -173,6 +167,14 @@ def _golden(f, lo, hi, iters=40):
     return np.where(first, x1, x2), np.where(first, f1, f2)
 
 
+def _refine(f, grid, k, at_k):
+    """(x, f(x)) minimising ``f`` between the ``grid`` neighbours of each grid minimum ``k``
+    (where ``f`` is ``at_k``), the grid point where the continuous minimum is no lower."""
+    x, fx = _golden(f, grid[np.maximum(k - 1, 0)], grid[np.minimum(k + 1, len(grid) - 1)])
+    keep = at_k <= fx
+    return np.where(keep, grid[k], x), np.where(keep, at_k, fx)
+
+
 def _profiles(fm, fine_widths, table1_paper, f_rolled_paper, uses, chunk=64):
     """Raw chi^2 profiles over s and c per condition and the other constant's minimiser
     along each (the valley floor), one dict per data subset of ``uses``: on the fine grid,
@@ -199,20 +201,12 @@ def _profiles(fm, fine_widths, table1_paper, f_rolled_paper, uses, chunk=64):
             return _chi2(chi2_terms(t1, f4, table1_paper, f_rolled_paper), use)
 
         # s profile: c between the grid neighbours of the grid minimum at each (condition, s)
-        k = g["ks"]
         W, A = np.broadcast_arrays(fine_widths[None, :], conds)
-        c_s, p_s = _golden(lambda c: chi2_at(W, A, c).reshape(c.shape),
-                           fm.fine[np.maximum(k - 1, 0)], fm.fine[np.minimum(k + 1, nc - 1)])
-        keep = g["ps"] <= p_s
-        p_s, c_s = np.where(keep, g["ps"], p_s), np.where(keep, fm.fine[k], c_s)
+        c_s, p_s = _refine(lambda c: chi2_at(W, A, c).reshape(c.shape), fm.fine, g["ks"], g["ps"])
         # c profile: s between the grid neighbours of the grid minimum at each (condition, c)
-        i = g["is"]
         C, A = np.broadcast_arrays(fm.fine[None, :], conds)
-        s_c, p_c = _golden(lambda w: chi2_at(w, A, C).reshape(w.shape),
-                           fine_widths[np.maximum(i - 1, 0)],
-                           fine_widths[np.minimum(i + 1, nw - 1)])
-        keep = g["pc"] <= p_c
-        p_c, s_c = np.where(keep, g["pc"], p_c), np.where(keep, fine_widths[i], s_c)
+        s_c, p_c = _refine(lambda w: chi2_at(w, A, C).reshape(w.shape), fine_widths, g["is"],
+                           g["pc"])
         # the best point: polished from the best profile point (Nelder-Mead in grid units)
         a = int(np.argmin(p_s.min(axis=1)))
         ib = int(np.argmin(p_s[a]))
@@ -417,11 +411,8 @@ def readings(ds) -> list[list]:
     for j, name in enumerate(SUBSETS):
         out.append([name, "joint fit", CONDITIONS[int(g("best_condition")[j])],
                     float(g("best_width")[j]) * 1e3, float(g("best_scale")[j]),
-                    *[float(x) for x in g("best_table1_rel")[j]], float(g("best_f_rolled")[j]),
-                    0.0])
-        out.append([name, "single-alpha calibration", "free_disk",
-                    float(g("single_width")) * 1e3,
-                    float(g("single_scale")), *[float(x) for x in g("single_table1_rel")],
-                    float(g("single_f_rolled")),
-                    float(g("single_chi2")[j] - g("chi2_min")[j])])
+                    *map(float, g("best_table1_rel")[j]), float(g("best_f_rolled")[j]), 0.0])
+        out.append([name, "single-alpha calibration", "free_disk", float(g("single_width")) * 1e3,
+                    float(g("single_scale")), *map(float, g("single_table1_rel")),
+                    float(g("single_f_rolled")), float(g("single_chi2")[j] - g("chi2_min")[j])])
     return out

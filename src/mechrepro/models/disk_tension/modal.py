@@ -6,14 +6,7 @@ import math
 
 import numpy as np
 
-from mechrepro.errors import Refusal
-
 TWO_PI = 2.0 * np.pi
-
-
-class BucklingError(Refusal, ArithmeticError):
-    """A requested frequency does not exist because the stressed plate has buckled."""
-
 
 #: sizes (unknowns) of the banded problems solved by inverse iteration (see ``eigen``)
 BANDED_MIN, BANDED_MAX = 64, 128
@@ -59,6 +52,15 @@ def lowest_banded(K, M, bandwidth, tol=1e-13, maxiter=200):
     return None
 
 
+def once(memo: dict, what, Ks, fn):
+    """``fn(Ks)`` once per (analysis ``what``, K^(sigma) object), kept in ``memo`` with the
+    object (so that its id cannot be reused while the model lives)."""
+    hit = memo.get((what, id(Ks)))
+    if hit is None or hit[0] is not Ks:
+        hit = memo[what, id(Ks)] = (Ks, fn(Ks))
+    return hit[1]
+
+
 def positive_definite(K) -> bool:
     """Whether the (stressed) stiffness K is positive definite: the disk has not buckled."""
     try:
@@ -68,14 +70,11 @@ def positive_definite(K) -> bool:
     return True
 
 
-def frequency(omega2, buckled="nan"):
-    """f = sqrt(omega^2) / 2 pi [Hz]; a negative omega^2 (buckled) gives NaN (``"nan"``, the
-    caller stores a buckled flag) or raises :class:`BucklingError` (``"raise"``)."""
+def frequency(omega2):
+    """f = sqrt(omega^2) / 2 pi [Hz]; a negative omega^2 (buckled) gives NaN (the caller
+    stores a buckled flag)."""
     omega2 = np.asarray(omega2, float)
-    neg = omega2 < 0
-    if np.any(neg) and buckled == "raise":
-        raise BucklingError(f"omega^2 = {omega2[neg]} < 0: the stressed plate has buckled")
-    return np.sqrt(np.where(neg, np.nan, omega2)) / TWO_PI
+    return np.sqrt(np.where(omega2 < 0, np.nan, omega2)) / TWO_PI
 
 
 def eq9_delta_omega2(phi, K_sigma, M):

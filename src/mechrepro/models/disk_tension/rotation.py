@@ -17,8 +17,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechrepro.errors import Refusal
-
 from .modal import positive_definite
 
 
@@ -28,13 +26,10 @@ def centrifugal_stress(r, *, omega, rho, nu, r_f, b, inplane_bc="clamped"):
     q = rho * omega**2
     if inplane_bc == "free_disk":
         A, B = (3 + nu) / 8 * q * b * b, 0.0
-    elif inplane_bc == "clamped":
-        # u(r_f) = 0: (1 - nu) A - (1 + nu) B / a^2 = (1 - nu^2) / 8 q a^2;  sigma_r(b) = 0
+    else:   # clamped (the config's enum refuses the rest), u(r_f) = 0: (1 - nu) A - (1 + nu) B / a^2 = (1 - nu^2) / 8 q a^2;  sigma_r(b) = 0
         a = r_f
         M = np.array([[1 - nu, -(1 + nu) / a**2], [1.0, 1.0 / b**2]])
         A, B = np.linalg.solve(M, [(1 - nu**2) / 8 * q * a * a, (3 + nu) / 8 * q * b * b])
-    else:
-        raise Refusal(f"inplane_bc = {inplane_bc!r}: allowed ('clamped', 'free_disk')")
     return (A + B / r**2 - (3 + nu) / 8 * q * r**2,
             A - B / r**2 - (1 + 3 * nu) / 8 * q * r**2)
 

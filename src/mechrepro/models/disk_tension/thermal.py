@@ -10,8 +10,6 @@ from scipy.special import erf
 
 from mechrepro.errors import Refusal
 
-INPLANE_BCS = ("clamped", "free_disk")
-
 
 def temperature(r, amplitude, r_c, s):
     """Eq. (4): T(r) = A exp(-(r - r_c)^2 / 2 s^2)  [K]."""
@@ -32,13 +30,8 @@ def thermal_stress(r, *, amplitude, r_c, s, r_f, b, E, nu, alpha, inplane_bc="cl
     u = (1+nu) alpha Q/r + C1 r + C2/r with Q(r) = int_{r0}^r T rho d rho, and
     sigma_r = -alpha E Q/r^2 + E/(1-nu^2) ((1+nu) C1 - (1-nu) C2/r^2),
     sigma_theta = alpha E Q/r^2 - alpha E T + E/(1-nu^2) ((1+nu) C1 + (1-nu) C2/r^2).
+    ``inplane_bc`` (clamped or free_disk), 0 <= r_f < b and s > 0 are the config's to refuse.
     """
-    if inplane_bc not in INPLANE_BCS:
-        raise Refusal(f"inplane_bc = {inplane_bc!r}: allowed {INPLANE_BCS}")
-    if not (0.0 <= r_f < b):
-        raise Refusal(f"clamp radius r_f = {r_f} must satisfy 0 <= r_f < b = {b}")
-    if s <= 0:
-        raise Refusal(f"Gaussian width s = {s} must be > 0")
     r = np.asarray(r, float)
     r0 = 0.0 if inplane_bc == "free_disk" else r_f
     if np.any(r < r0 - 1e-12) or np.any(r <= 0):

@@ -465,15 +465,13 @@ def _cs_southwell(R):
     """eigen <= Southwell everywhere, within SOUTHWELL_CLOSE up to SOUTHWELL_CLOSE_RF_MM."""
     ok, notes, runs = True, [], by_clamp(R, "critical_speed", "critical_speed_rf")
     for rf, ds in runs:
-        ex = ds["critical_speed_untensioned"].values
-        sw = ds["critical_speed_southwell"].values
-        lam = ds["southwell_coefficient"].values
-        nd = ds["n_d"].values
+        ex, sw, lam, nd = (ds[k].values for k in ("critical_speed_untensioned",
+                                                  "critical_speed_southwell",
+                                                  "southwell_coefficient", "n_d"))
         fin = np.isfinite(ex)
         rel = ex[fin] / sw[fin] - 1
-        ok &= bool(np.all(rel <= 1e-9))
-        if rf <= SOUTHWELL_CLOSE_RF_MM:
-            ok &= bool(np.all(rel > -SOUTHWELL_CLOSE))
+        ok &= bool(np.all(rel <= 1e-9) and (rf > SOUTHWELL_CLOSE_RF_MM
+                                            or np.all(rel > -SOUTHWELL_CLOSE)))
         j = int(np.argmin(rel))
         n = int(nd[fin][j])
         notes.append(f"r_f {rf:.0f} mm: " + ", ".join(f"{x:.1e}" for x in rel)
