@@ -16,11 +16,10 @@ from .validation import read_table, write_csv
 
 
 def headline(results: Path, paper: str) -> list[dict]:
-    """The rows of the paper's headline curve (first entry, first quantity)."""
+    """The rows of the paper's headline curve (first entry, first quantity, first line)."""
     table = read_table(results / paper / "tables" / "cost_of_accuracy.csv")
-    first = table[0]
-    return [r for r in table
-            if r["accuracy"] == first["accuracy"] and r["quantity"] == first["quantity"]]
+    key = ("accuracy", "quantity", "line")
+    return [r for r in table if all(r.get(k, "") == table[0].get(k, "") for k in key)]
 
 
 COLUMNS = ["paper", "knob", "reference", "error_quantity", "knob_range", "best_error",
@@ -65,9 +64,12 @@ def write_summary(png: str, csv: str, results: str, config_dir: str, papers: lis
     for paper in with_accuracy(config_dir, papers):
         h = headline(results, paper)
         ax.loglog([float(r["time_s"]) for r in h], [float(r["error"]) for r in h], "o-",
-                  label=f"{paper}: {h[0]['quantity']} vs {h[0]['reference']} (knob {h[0]['knob']})")
+                  label=f"{paper}: {h[0]['quantity']}{' ' + h[0]['line'] if h[0].get('line') else ''}"
+                        f" vs {h[0]['reference']} "
+                        f"[{h[0].get('error_unit') or '1'}] (knob {h[0]['knob']})")
     ax.set_xlabel("wall time per solve [s]")
-    ax.set_ylabel("error (headline quantity)")
+    # the headline quantities differ in kind: each curve's unit is in its label
+    ax.set_ylabel("error of the headline quantity [its unit, in the legend]")
     ax.set_title("cost of accuracy, all papers")
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14))   # clear of the data
     savefig(fig, png)
