@@ -394,14 +394,14 @@ def test_one_parameter_in_one_scene_reruns_exactly_its_solve_jobs(paper, workflo
     (lambda t: t.replace("{value: 8.91,  unit: mm,", "{value: 8.91,  unit: m,"),
      "chain pitch between 3 mm and 200 mm"),
     (lambda t: t.replace("Sec. 4 (p1)", "Sec. 4 (p1) \udce9"), "not UTF-8"),
-    (lambda t: t.replace("      fig07_fig08: {resolution: {K: 300}}",
-                         "      fig07_fig08: {resolution: {K: 50000}}"),
+    (lambda t: t.replace("scenes: {fig07_fig08: {resolution: {K: 300}},",
+                         "scenes: {fig07_fig08: {resolution: {K: 50000}},"),
      "resolution.K = 50000: beyond K = 39434"),
     (lambda t: t.replace("    effects: [textbook]", "    effects: []", 1),
      "scenes.speed_12000.effects = []"),
-    (lambda t: t.replace("      fig07_fig08: {resolution: {K: 300}}",
-                         "      fig07_fig08: {resolution: {K: 300}}\n"
-                         "      accuracy: {resolution: {K: 9000000}}"),
+    (lambda t: t.replace("scenes: {fig07_fig08: {resolution: {K: 300}},",
+                         "scenes: {accuracy: {resolution: {K: 9000000}}, "
+                         "fig07_fig08: {resolution: {K: 300}},"),
      "expected to take 2900 MB, above the solve rule's 2000 MB"),
 ], ids=["nan", "duplicate scenes", "8.91 m pitch", "latin-1 byte", "K beyond round-off",
         "emptied effects", "memory above the rule"])
@@ -426,7 +426,9 @@ def _refused_and_nothing_lost(run, tmp_path, edit, expect):
     shutil.copytree(run, work, symlinks=True)
     before = hashes(work / "results")
     path = work / "config" / "papers" / f"{PAPER}.yaml"
-    path.write_bytes(edit(path.read_text()).encode("utf-8", "surrogateescape"))
+    text = path.read_text()
+    assert edit(text) != text, "the edit does not match the config: update the test"
+    path.write_bytes(edit(text).encode("utf-8", "surrogateescape"))
     proc = sm(work, check=False)
     out = proc.stdout + proc.stderr
     assert proc.returncode != 0 and f"config/papers/{PAPER}.yaml" in out, out[-2000:]

@@ -90,7 +90,7 @@ def test_hard_case_K_at_the_refusal_edge():
     ds = solve(run(K=limit, effects=WITH_EXACT))
     assert int(ds["roundoff_dominated"]) == 0
     assert float(ds["dynamic_load_x_error_pointwise"]) < 1e-3
-    with pytest.raises(RoundoffError, match=rf"K={limit + 1}: .*Use K <= {limit}"):
+    with pytest.raises(RoundoffError, match=rf"K = {limit + 1}: .*allowed: K <= {limit}"):
         solve(run(K=limit + 1, effects=[]))
     # the exact reference has no such limit
     chain = chain_from_run(run(K=10 * limit))

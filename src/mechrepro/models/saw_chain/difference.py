@@ -66,10 +66,10 @@ def check_roundoff(K, limit, allow=False, what="loads"):
     study crosses it on purpose)."""
     if K > limit and not allow:
         raise RoundoffError(
-            f"K={K}: beyond K={limit} the round-off of the "
+            f"K = {K}: beyond K = {limit} the round-off of the "
             f"{'second' if what == 'loads' else 'first'} backward difference "
-            f"exceeds its truncation error, so the {what} get less accurate, not more. "
-            f"Use K <= {limit}.")
+            f"exceeds its truncation error, so the {what} get less accurate, not more; "
+            f"allowed: K <= {limit}")
     return K > limit
 
 
