@@ -10,9 +10,9 @@ ROOT = Path(__file__).resolve().parent.parent
 
 
 def pytest_configure(config):
-    """xdist hands out groups largest first (`--loadscope-reorder`, its default), which put
-    the one-test other-platform run last: it started 47 minutes into a 58-minute suite.  The
-    order below is the schedule."""
+    """xdist hands out groups largest first (`--loadscope-reorder`, its default), which
+    ranks by test count and puts one-test groups that take minutes last; the order of
+    :func:`pytest_collection_modifyitems` is the schedule."""
     if hasattr(config.option, "loadscopereorder"):
         config.option.loadscopereorder = False
 
@@ -33,17 +33,13 @@ def pytest_collection_modifyitems(config, items):
         if group == "ci_pipeline":     # it reads a pipeline run: `-m "not slow"` leaves it out
             item.add_marker(pytest.mark.slow)
         groups[item.nodeid] = group
-    # the groups that take minutes go first (a worker takes groups in this
-    # order): the session's ci run on one worker, SLURM on the other (its 78 s are nearly
-    # all the executor waiting between status checks: the ci run's two-core jobs get both
-    # cores meanwhile; last of these, it kept a core idle for a minute), then the
-    # other-platform ci run, the faults and the reliability tests, and the many short
-    # groups last, where they even out the workers' ends.  Collected in file order, the
-    # other-platform run started after 30 of a 36-minute suite; with the reliability tests
-    # (212 s) among the short groups, they started at 441 s and ended 120 s after the
-    # other worker had gone idle (654 s, against 534 s)
-    first = ("ci_pipeline", "tests/test_slurm.py", "tests/test_pipeline.py",
-             "tests/test_faults.py", "tests/test_reliability.py")
+    # the groups that take minutes go first (a worker takes groups in this order): the
+    # session's ci run on one worker, SLURM on the other (mostly the executor waiting
+    # between status checks, while the ci run's two-core jobs get both cores), then the
+    # faults and the reliability tests; the many short groups last, where they even out
+    # the workers' ends
+    first = ("ci_pipeline", "tests/test_slurm.py", "tests/test_faults.py",
+             "tests/test_reliability.py")
     items.sort(key=lambda i: first.index(groups[i.nodeid]) if groups[i.nodeid] in first
                else len(first))
 
@@ -168,10 +164,13 @@ def one_paper_pipeline(tmp_path_factory, papers: str, dst: Path) -> tuple[Path, 
 
 @pytest.fixture(scope="session")
 def workflow(request, tmp_path_factory):
-    """The ci-profile pipeline, run once per test session in a copy of the workflow; or,
-    when every selected test that reads it is a per-artefact test (`pytest -k
-    chain_drive-fig05`), no pipeline: only the selected artefacts' runs, solved in this
-    process tree, and their rows (:func:`check_artefacts`)."""
+    """The ci-profile pipeline, run once per test session in a copy of the workflow under
+    the platform variant ``ci_variant`` of config/reference.yaml (other BLAS kernels, numpy
+    SIMD at its baseline, numba for a generic CPU): the committed reference was measured
+    natively on another machine, so its check here compares two platforms; or, when every
+    selected test that reads it is a per-artefact test (`pytest -k chain_drive-fig05`), no
+    pipeline: only the selected artefacts' runs, solved in this process tree, and their
+    rows (:func:`check_artefacts`)."""
     work = tmp_path_factory.mktemp("wf")
     artefacts = set()
     for item in request.session.items:
@@ -179,7 +178,10 @@ def workflow(request, tmp_path_factory):
             continue
         params = getattr(item, "callspec", None) and item.callspec.params
         if item.module.__name__ != "test_artefacts" or not params:
+            from mechrepro.reference import settings, variant_env
+
             copy_workflow(work)
-            return work, snakemake(work)
+            conf = settings(work / "config")
+            return work, snakemake(work, env=variant_env(conf["variants"][conf["ci_variant"]]))
         artefacts.add(f"{params['paper']}-{params['artefact']}")
     return check_artefacts(work, sorted(artefacts))
