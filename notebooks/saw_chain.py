@@ -173,18 +173,7 @@ R.save_figure(fig, "identification")
 # first stage-2 acceleration straddles the jump (row `stage_switch_load`).
 
 # %%
-fig, ax = plt.subplots(figsize=(6.5, 4))
-ax.plot(t_ms, fig_run["dynamic_load_x"], "-", label=f"difference method (K={K})")
-ax.plot(t_ms, fig_run["dynamic_load_x_exact"], ":", color="k", label="exact derivative")
-ax.plot(t_ms, fig_run["dynamic_load_x_textbook"], "--", label="textbook, Eq. (23)")
-for q, c in (("dynamic_load_min", "tab:blue"), ("dynamic_load_max", "tab:blue"),
-             ("textbook_load_min", "tab:orange"), ("textbook_load_max", "tab:orange")):
-    ax.axhline(value(q, "paper_value"), color=c, lw=0.7, ls="-.")
-ax.plot([], [], color="gray", ls="-.", lw=0.7, label="paper's ranges (Sec. 4)")
-ax.axvline(t1_ms, color="gray", lw=0.5)
-ax.set(xlabel="t [ms]", ylabel="dynamic load F_dx [N]", title="Fig. 8")
-ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-R.save_figure(fig, "fig08")
+R.figure("fig08")
 
 # %% [markdown]
 # ## Dependence on K, and the K the paper's numbers correspond to

@@ -89,8 +89,13 @@ class PaperConfig:
     def figures(self) -> list[str]:
         return list(self.raw.get("figures", {}))
 
+    def figure(self, name: str) -> dict:
+        """The declaration of figure ``name``: {caption, draw (``module.function``), reads}."""
+        spec = self.raw.get("figures", {})[name]
+        return {"caption": spec, "draw": None, "reads": []} if isinstance(spec, str) else spec
+
     def caption(self, figure: str) -> str:
-        return self.raw.get("figures", {})[figure]
+        return self.figure(figure)["caption"]
 
     @property
     def tables(self) -> list[str]:
@@ -418,6 +423,7 @@ def load_paper(path: str | Path, profile: str = "default",
                 raise ConfigError(f"{where}: {key}: {name!r} is neither a scene nor a study")
     _add_variants(cfg, raw, schema, where)
     _add_ablations(cfg, raw, where)
+    _check_figures(cfg, where)
     for name, run in cfg.runs.items():
         _cross_check(raw.get("cross_checks", {}), run, f"{where} (run {name})")
     return cfg
@@ -986,6 +992,23 @@ def _check_artefacts(raw: dict, where: str) -> None:
         if spec["artefact"] not in allowed:
             raise ConfigError(f"{where}: reported.{q}.artefact = {spec['artefact']!r}: allowed: "
                               f"a figure, a table or text ({', '.join(allowed)})")
+
+
+def _check_figures(cfg: PaperConfig, where: str) -> None:
+    """A figure draws with a function of its paper's model package and reads runs and
+    studies of this profile."""
+    models = Path(__file__).parent / "models" / cfg.paper
+    for name in cfg.figures:
+        spec = cfg.figure(name)
+        if spec["draw"] and not (models / f"{spec['draw'].split('.')[0]}.py").exists():
+            raise ConfigError(f"{where}: figures.{name}.draw = {spec['draw']!r}: no module "
+                              f"{spec['draw'].split('.')[0]}.py in src/mechrepro/models/"
+                              f"{cfg.paper}; allowed: module.function of that package")
+        for r in spec["reads"]:
+            if r not in cfg.runs and r not in cfg.studies:
+                raise ConfigError(f"{where}: figures.{name}.reads: {r!r} is neither a run nor a "
+                                  f"study of profile {cfg.profile}; allowed: a scene, a study "
+                                  f"or one of their runs")
 
 
 def _check_overlay_names(raw: dict, overlay, at: str) -> None:

@@ -32,10 +32,11 @@ def _figure_level_extents(fig, renderer):
     return [a.get_window_extent(renderer) for a in artists if a.get_visible()]
 
 
-def content_crop(fig, pad_inches: float | None = None):
-    """Draw ``fig`` once and return its RGBA pixels cropped to the drawn content plus
-    ``pad_inches`` (savefig.pad_inches), or None when content may lie outside the canvas
-    (drawn content touching its edge, or a legend, figure text or axes text beyond it).
+def content_crop(fig, pad_inches: float | None = None, drawn: bool = False):
+    """Draw ``fig`` once (``drawn``: read the canvas as its last draw left it) and return
+    its RGBA pixels cropped to the drawn content plus ``pad_inches`` (savefig.pad_inches),
+    or None when content may lie outside the canvas (drawn content touching its edge, or a
+    legend, figure text or axes text beyond it).
 
     This is ``bbox_inches="tight"`` measured on the pixels already drawn: matplotlib's
     tight bbox needs a layout pass over every tick label before the drawing pass (~40 %
@@ -49,7 +50,8 @@ def content_crop(fig, pad_inches: float | None = None):
     for bb in _figure_level_extents(fig, renderer):
         if bb.x0 < 0 or bb.y0 < 0 or bb.x1 > w or bb.y1 > h:
             return None
-    fig.canvas.draw()
+    if not drawn:
+        fig.canvas.draw()
     # an axes' text wholly outside the canvas leaves no pixel at its edge (accuracy.plot's
     # NOT CONVERGED note under an axis label was cut off so): found by its extent, read
     # after the draw has placed it
@@ -277,11 +279,13 @@ def _invisible_series(fig) -> list[str]:
     return out
 
 
-def lint(fig) -> list[str]:
+def lint(fig, drawn: bool = False) -> list[str]:
     """What is wrong with ``fig`` as a reader sees it: two texts that overlap, a legend over
     data, an axis with numbers and no unit, a labelled series that draws nothing visible.
-    Leaves every artist of ``fig`` as it was (its canvas is drawn again to be saved)."""
-    fig.canvas.draw()
+    ``drawn``: the canvas holds the figure's last draw, as it stands.  Leaves every artist
+    of ``fig`` as it was, not its canvas (drawn again without the series)."""
+    if not drawn:
+        fig.canvas.draw()
     r = fig.canvas.get_renderer()
     return (_overlapping_texts(fig, r) + _legends_over_data(fig, r)
             + _axes_without_units(fig) + _invisible_series(fig))
@@ -300,15 +304,17 @@ def savefig(fig, path, close: bool = True) -> None:
     """Write ``fig`` atomically as PNG without volatile metadata, cropped to its content,
     with what :func:`lint` finds wrong in it recorded in the PNG (:func:`lint_record`).
 
-    One drawing pass, cropped on its pixels (:func:`content_crop`); when content may lie
-    outside the canvas, matplotlib's own tight bbox (one layout pass, then the drawing
-    pass at that bbox: the crop of ``bbox_inches="tight"`` without its extra draw).
+    One drawing pass, cropped on its pixels (:func:`content_crop`) and read by the lint,
+    whose series check draws once more; when content may lie outside the canvas,
+    matplotlib's own tight bbox (one layout pass, then the drawing pass at that bbox: the
+    crop of ``bbox_inches="tight"`` without its extra draw).
     """
-    problems = lint(fig)
+    fig.canvas.draw()
+    crop = content_crop(fig, drawn=True)
+    problems = lint(fig, drawn=True)
     for p in problems:
         print(f"figure lint: {path}: {p}")
     meta = {"Software": None, LINT_KEY: json.dumps(problems)}
-    crop = content_crop(fig)
     with atomic_path(path) as tmp:
         if crop is not None:
             matplotlib.image.imsave(tmp, crop, format="png", dpi=fig.dpi, metadata=meta)

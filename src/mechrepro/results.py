@@ -5,7 +5,8 @@ Notebooks stay short by going through :class:`PaperResults` for every read and w
     R = PaperResults(paper, results_dir, config_file, profile)
     ds = R.run("fig07_velocity")          # one run, loaded and closed
     st = R.study("cost_of_accuracy")      # the gathered study
-    R.save_figure(fig, "fig07")           # results/<paper>/figures/fig07.png
+    R.figure("fig07")                     # drawn as config figures.fig07 declares, saved
+                                          # as results/<paper>/figures/fig07.png
     R.validation()                        # the table validate_<paper> built, for display
     R.table("cost_of_accuracy")           # the framework's long-form cost of accuracy
 """
@@ -23,17 +24,45 @@ class PaperResults:
         self.paper = paper
         self.root = Path(results_dir) / paper
         self.cfg = load_paper(config_file, profile, CACHE_DIR)
+        self._reads = None     # while a figure draws: what it declared it reads
+
+    def _may_read(self, name: str) -> None:
+        if self._reads is not None and name not in self._reads[1]:
+            raise KeyError(f"{self.paper}: figure {self._reads[0]} reads {name!r}, which its "
+                           f"declaration (config figures.{self._reads[0]}.reads) does not name")
 
     def run(self, name: str):
+        self._may_read(name)
         return open_dataset(self.root / "runs" / f"{name}.nc")
 
     def study(self, name: str):
+        self._may_read(name)
         return open_dataset(self.root / "studies" / f"{name}.nc")
 
     def study_runs(self, name: str) -> list:
         """The run datasets of a study, in sweep order (what the study file cannot stack:
         variables whose length differs between runs, e.g. adaptively sampled speeds)."""
-        return [self.run(r) for r in self.cfg.studies[name]]
+        self._may_read(name)
+        return [open_dataset(self.root / "runs" / f"{r}.nc") for r in self.cfg.studies[name]]
+
+    def draw(self, name: str):
+        """Figure ``name`` drawn as its declaration says (config ``figures.<name>``: the
+        function ``draw`` of models/<paper>/, given this object, opening only the runs and
+        studies of its ``reads``)."""
+        import importlib
+
+        spec = self.cfg.figure(name)
+        module, function = spec["draw"].rsplit(".", 1)
+        draw = getattr(importlib.import_module(f"mechrepro.models.{self.paper}.{module}"), function)
+        self._reads = (name, set(spec["reads"]))
+        try:
+            return draw(self)
+        finally:
+            self._reads = None
+
+    def figure(self, name: str) -> None:
+        """Draw declared figure ``name`` (:meth:`draw`) and save it (:meth:`save_figure`)."""
+        self.save_figure(self.draw(name), name)
 
     def figure_path(self, name: str) -> Path:
         return self.root / "figures" / f"{name}.png"
@@ -61,6 +90,12 @@ class PaperResults:
         from .validation import read_table
 
         return read_table(self.table_path("validation"))
+
+    def value(self, quantity: str, column: str = "reproduced_value") -> float:
+        """A number of the validation table's row ``quantity`` (in the row's unit)."""
+        if not hasattr(self, "_rows"):
+            self._rows = {r["quantity"]: r for r in self.validation()}
+        return float(self._rows[quantity][column])
 
     def write_table(self, name: str, header, rows) -> Path:
         if name not in self.cfg.tables:
