@@ -1000,7 +1000,8 @@ def _check_figures(cfg: PaperConfig, where: str) -> None:
     models = Path(__file__).parent / "models" / cfg.paper
     for name in cfg.figures:
         spec = cfg.figure(name)
-        if spec["draw"] and not (models / f"{spec['draw'].split('.')[0]}.py").exists():
+        if spec["draw"] and "." in spec["draw"] \
+                and not (models / f"{spec['draw'].split('.')[0]}.py").exists():
             raise ConfigError(f"{where}: figures.{name}.draw = {spec['draw']!r}: no module "
                               f"{spec['draw'].split('.')[0]}.py in src/mechrepro/models/"
                               f"{cfg.paper}; allowed: module.function of that package")

@@ -47,13 +47,14 @@ class PaperResults:
 
     def draw(self, name: str):
         """Figure ``name`` drawn as its declaration says (config ``figures.<name>``: the
-        function ``draw`` of models/<paper>/, given this object, opening only the runs and
-        studies of its ``reads``)."""
+        function ``draw`` of models/<paper>/ (``module.function``, or a function of the
+        package), given this object, opening only the runs and studies of its ``reads``)."""
         import importlib
 
         spec = self.cfg.figure(name)
-        module, function = spec["draw"].rsplit(".", 1)
-        draw = getattr(importlib.import_module(f"mechrepro.models.{self.paper}.{module}"), function)
+        module, _, function = spec["draw"].rpartition(".")
+        package = f"mechrepro.models.{self.paper}"
+        draw = getattr(importlib.import_module(f"{package}.{module}" if module else package), function)
         self._reads = (name, set(spec["reads"]))
         try:
             return draw(self)

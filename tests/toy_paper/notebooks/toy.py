@@ -18,19 +18,12 @@ config_file = "config/papers/toy.yaml"
 profile = "default"
 
 # %%
-from mechrepro.plotting import plt
 from mechrepro.results import PaperResults
 
 R = PaperResults(paper, results_dir, config_file, profile)
-ds = R.run("response")
 
 # %% [markdown]
 # ## Fig. 1 — the free response, central differences against the exact Eq. (3)
 
 # %%
-fig, ax = plt.subplots()
-ax.plot(ds["t"], ds["displacement"], label="central differences")
-ax.plot(ds["t"], ds["displacement_exact"], "--", label="exact, Eq. (3)")
-ax.set(xlabel="t [s]", ylabel="x [m]")
-ax.legend()
-R.save_figure(fig, "fig01")
+R.figure("fig01")

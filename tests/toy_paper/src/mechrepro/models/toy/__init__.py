@@ -81,3 +81,16 @@ def natural_frequency(R):
     i = np.flatnonzero((x[:-1] < 0) & (x[1:] >= 0))
     up = t[i] - x[i] * (t[i + 1] - t[i]) / (x[i + 1] - x[i])
     return Reproduced(float(1.0 / np.mean(np.diff(up))), f"{up.size} upward zero crossings")
+
+
+def fig01(R):
+    """Fig. 1: the free response, central differences against the exact Eq. (3)."""
+    from mechrepro.plotting import plt
+
+    ds = R.run("response")
+    fig, ax = plt.subplots()
+    ax.plot(ds["t"], ds["displacement"], label="central differences")
+    ax.plot(ds["t"], ds["displacement_exact"], "--", label="exact, Eq. (3)")
+    ax.set(xlabel="t [s]", ylabel="x [m]")
+    ax.legend()
+    return fig
