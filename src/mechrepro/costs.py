@@ -3,7 +3,7 @@
 ``effect_cost`` sums the time split every run stores (:mod:`mechrepro.timing`) into one
 row per (solver, effect) -- the report's effect-cost table; ``job_time`` sets each solver
 job's wall time (Snakemake's benchmark file) against the solve time of its runs, so the
-overhead of starting a job shows.  Both tables are written by ``validate_<paper>``.
+overhead of starting a job shows, and against the declared cost model's estimate.  Both tables are written by ``validate_<paper>``.
 """
 from __future__ import annotations
 
@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 EFFECT_COST_COLUMNS = ["solver", "effect", "runs", "time_s", "share"]
-JOB_TIME_COLUMNS = ["job", "runs", "solve_s", "job_s"]
+JOB_TIME_COLUMNS = ["job", "runs", "solve_s", "job_s", "estimate_s"]
 MARGINAL_COLUMNS = ["scene", "solver", "effect", "direct_s", "marginal_s", "marginal_median_s",
                     "marginal_min_s", "marginal_max_s", "below_noise", "with_s", "without_s"]
 VERIFICATION_COLUMNS = ["variant", "kind", "runs", "solve_s", "share", "rows", "decides",
@@ -71,13 +71,18 @@ def benchmark_seconds(tsv: str | Path) -> float:
         return float("nan")
 
 
-def job_time(paper_root: str | Path, jobs: dict[str, list[str]]) -> list[dict]:
+def job_time(paper_root: str | Path, jobs: dict[str, list[str]],
+             estimates: dict[str, float] | None = None) -> list[dict]:
+    """Per solve job: its runs' own solve time, the job's wall time and what the paper's
+    declared cost model expected of it (``estimates``, :func:`mechrepro.limits.job_costs`):
+    every run measures the cost model it was admitted and scheduled by."""
     root = Path(paper_root)
     rows = []
     for job, runs in jobs.items():
         solve = sum(run_times(root / "runs" / f"{r}.nc")["wall"] for r in runs)
         rows.append({"job": job, "runs": len(runs), "solve_s": solve,
-                     "job_s": benchmark_seconds(root / "benchmarks" / f"solve__{job}.tsv")})
+                     "job_s": benchmark_seconds(root / "benchmarks" / f"solve__{job}.tsv"),
+                     "estimate_s": (estimates or {}).get(job, float("nan"))})
     return rows
 
 

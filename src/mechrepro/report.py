@@ -285,8 +285,8 @@ def banner(check_file: Path, profile: str) -> dict:
 
 
 def time_view(results: Path, papers: list[str]) -> dict | None:
-    """Per paper: the solves' own time against the solver jobs' wall time, and the paper's
-    other jobs (validation, notebook)."""
+    """Per paper: the solves' own time against the solver jobs' wall time and what the
+    paper's cost model expected of them, and the paper's other jobs (validation, notebook)."""
     from .costs import benchmark_seconds
 
     def cell(x: float) -> str:
@@ -303,15 +303,18 @@ def time_view(results: Path, papers: list[str]) -> dict | None:
         # the paper's job total is then n/a, not a crash
         job = sum(float(x[head.index("job_s")] or "nan") for x in r)
         runs = sum(int(x[head.index("runs")]) for x in r)
+        est = sum(float(x[head.index("estimate_s")] or "nan") for x in r) \
+            if "estimate_s" in head else float("nan")
         other = [benchmark_seconds(results / paper / "benchmarks" / f"{k}.tsv")
                  for k in ("validate", "notebook")]
         rows.append([paper, str(len(r)), str(runs), f"{solve:.3g}",
                      cell(job if job > 0 else float("nan")),
-                     f"{(job - solve) / job:.0%}" if job > 0 else "n/a", *map(cell, other)])
+                     f"{(job - solve) / job:.0%}" if job > 0 else "n/a", cell(est),
+                     *map(cell, other)])
     if not rows:
         return None
     return {"head": ["paper", "solver jobs", "runs", "solve [s]", "job [s]", "overhead",
-                     "validation job [s]", "notebook job [s]"], "rows": rows}
+                     "cost model [s]", "validation job [s]", "notebook job [s]"], "rows": rows}
 
 
 def render(context: dict) -> str:

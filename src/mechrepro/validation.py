@@ -830,7 +830,9 @@ def write_costs(cfg, results_dir: str, files: ResultFiles | None = None) -> None
         mc = costs.marginal(root, cfg.ablations)
         write_csv(root / "tables" / "effect_marginal_cost.csv", costs.MARGINAL_COLUMNS,
                   [[r[c] for c in costs.MARGINAL_COLUMNS] for r in mc])
-    jt = costs.job_time(root, cfg.solve_jobs())
+    from .limits import job_costs
+
+    jt = costs.job_time(root, cfg.solve_jobs(), {j: c["seconds"] for j, c in job_costs(cfg).items()})
     write_csv(root / "tables" / "job_time.csv", costs.JOB_TIME_COLUMNS,
               [[r[c] for c in costs.JOB_TIME_COLUMNS] for r in jt])
     targets = accuracy.target_rows(cfg, root)
