@@ -90,9 +90,12 @@ class PaperConfig:
         return list(self.raw.get("figures", {}))
 
     def figure(self, name: str) -> dict:
-        """The declaration of figure ``name``: {caption, draw (``module.function``), reads}."""
+        """The declaration of figure ``name``: {caption, draw (``module.function``, by default
+        ``figures.<name>``), reads}."""
         spec = self.raw.get("figures", {})[name]
-        return {"caption": spec, "draw": None, "reads": []} if isinstance(spec, str) else spec
+        if isinstance(spec, str):
+            return {"caption": spec, "draw": None, "reads": []}
+        return {"draw": f"figures.{name}", **spec}
 
     def caption(self, figure: str) -> str:
         return self.figure(figure)["caption"]
