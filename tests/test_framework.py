@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from conftest import ROOT
 from mechrepro import io as mio
 from mechrepro import accuracy
 from mechrepro.accuracy import observed_order
@@ -128,3 +129,19 @@ def test_the_writer_encodes_cf_types_without_touching_the_callers_dataset(tmp_pa
     assert back["n"].dtype == np.int32 and back["big"].dtype == np.float64
     assert float(back["big"]) == 2.0**40 and back["n"].values.tolist() == [1, 2, 3]
     assert back["a"].attrs["units"] == "degree" and "_FillValue" not in back["t"].encoding
+
+
+def test_modules_only_validation_and_notebook_read_are_imported_by_no_solver_module():
+    """A solve job's code (workflow/rules/common.smk model_code) leaves out a model's
+    validation.py and figures.py, so editing a figure reruns no solve: true only while no
+    other module of the model imports them."""
+    import ast
+
+    only_after = {"validation", "figures"}
+    for path in (ROOT / "src" / "mechrepro" / "models").glob("*/*.py"):
+        if path.stem in only_after:
+            continue
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom) and node.level == 1:
+                names = {node.module} if node.module else {a.name for a in node.names}
+                assert not names & only_after, f"{path.relative_to(ROOT)} imports {names & only_after}"
