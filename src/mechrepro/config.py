@@ -1012,7 +1012,7 @@ def _check_figures(cfg: PaperConfig, where: str) -> None:
             if r not in cfg.runs and r not in cfg.studies:
                 raise ConfigError(f"{where}: figures.{name}.reads: {r!r} is neither a run nor a "
                                   f"study of profile {cfg.profile}; allowed: a scene, a study "
-                                  f"or one of their runs")
+                                  f"or one of their runs (a name covers its @variants)")
 
 
 def _check_overlay_names(raw: dict, overlay, at: str) -> None:

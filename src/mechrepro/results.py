@@ -27,7 +27,9 @@ class PaperResults:
         self._reads = None     # while a figure draws: what it declared it reads
 
     def _may_read(self, name: str) -> None:
-        if self._reads is not None and name not in self._reads[1]:
+        # a declared run or study covers its verdict variants (<name>@coarser, ...), which
+        # differ between profiles
+        if self._reads is not None and name.split("@")[0] not in self._reads[1]:
             raise KeyError(f"{self.paper}: figure {self._reads[0]} reads {name!r}, which its "
                            f"declaration (config figures.{self._reads[0]}.reads) does not name")
 
@@ -48,7 +50,8 @@ class PaperResults:
     def draw(self, name: str):
         """Figure ``name`` drawn as its declaration says (config ``figures.<name>``: the
         function ``draw`` of models/<paper>/ (``module.function``, or a function of the
-        package), given this object, opening only the runs and studies of its ``reads``)."""
+        package), given this object, opening only the runs and studies of its ``reads`` and
+        their verdict variants)."""
         import importlib
 
         spec = self.cfg.figure(name)
