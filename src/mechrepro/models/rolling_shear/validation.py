@@ -75,6 +75,14 @@ def constraint_ends(R, end=min) -> dict:
     return {"clearance": float(end(P["clearance"]["range"])), "mu_min": float(end(P["transmission_min"]["range"]))}
 
 
+def configured_constraints(R) -> dict:
+    """The buildability constraints at their configured values (mm, deg): the keywords of
+    :func:`buildable_members` and :func:`design_front`."""
+    P = R.cfg.raw["parameters"]
+    return dict(clearance=float(P["clearance"]["value"]), mu_min=float(P["transmission_min"]["value"]),
+                plate_top=float(P["plate_thickness_max"]["value"]), opening=float(P["opening"]["value"]))
+
+
 def buildable_members(fam, *, clearance, mu_min, plate_top, opening, blade_range=(-np.inf, np.inf)):
     """{reading of ``guide_rod_plane``: mask of the family-grid members that calibrate and can be
     built at these settings (mm, deg)}, from the margins the family scan stores."""
