@@ -127,7 +127,8 @@ def peak_level_spread(R, name: str, n_peaks: int = 5, window: float = 3.0):
     unstable speed (a stable orbit at a stability edge grows without bound there) or of a
     larger peak (a shoulder the window's vertex does not measure) are left out.  An observed
     order needs a contracting sequence (|d1| > 1.05 |d2|); a spread with none is an
-    amplitude that does not converge under refinement, and the figure says so."""
+    amplitude that does not converge under refinement, and the figure says so.  (nan, nan,
+    []) where the profile runs no such level (ci runs no @coarsest of some sweeps)."""
     levels = [f"{name}{s}" for s in ("@coarsest", "@coarser", "")]
     if any(n not in R.cfg.runs for n in levels):     # a profile that runs no such level
         return float("nan"), float("nan"), []
