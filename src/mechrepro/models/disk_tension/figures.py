@@ -1,13 +1,14 @@
 """disk_tension's figures, each drawn from the results it declares (config ``figures``), and
-what they draw, taken from the runs in SI.  matplotlib is imported by the draw functions only:
-validate_disk_tension imports the helpers of this module and never draws."""
+what they draw, taken from the runs in SI.  matplotlib (and the fit's module) are imported by
+the draw functions only: validate_disk_tension imports the helpers of this module and never
+draws."""
 from __future__ import annotations
 
 import numpy as np
 
 from mechrepro.units import from_si
 
-from . import design, identifiability as idf
+from . import design
 
 ND = [0, 1, 2, 3, 4]
 COLORS = {n: f"C{n}" for n in ND}
@@ -110,7 +111,8 @@ def fig04(R):
     ax.plot(r, from_si(t12["temperature"].isel(r_c=0), "degC"), "-")
     ax.axvspan(0, mm(t12["clamp_radius"]), color="0.85", label="clamped r ≤ r_f")
     rc65, s = float(t12["r_c"][0]), float(t12["width_used"])
-    ax.axvspan(mm(rc65 - 2 * s), mm(rc65 + 2 * s), color="tab:orange", alpha=0.15, label="rolling width 4s")
+    ax.axvspan(mm(rc65 - 2 * s), mm(rc65 + 2 * s), color="tab:orange", alpha=0.15,
+               label="rolling width 4s")
     ax.set(xlabel="r [mm]", ylabel="T [°C]", title="Fig. 4: thermal-analogy temperature, Eq. (4)",
            xlim=(0, r.max()))
     ax.legend(fontsize=8)
@@ -161,7 +163,8 @@ def fig06(R):
             ax.plot([0, mm(paper_pts["r_c"])], [paper_pts["f_unrolled"], paper_pts["f_rolled"]],
                     "*", color="k", ms=9, label="paper (Sec. 4.3)")
         ax.axvspan(0, rf, color="0.9")
-        ax.set(xlabel="r_c [mm]", ylabel="natural frequency [Hz]", title=f"Fig. 6{letter}: r_f = {rf} mm")
+        ax.set(xlabel="r_c [mm]", ylabel="natural frequency [Hz]",
+               title=f"Fig. 6{letter}: r_f = {rf} mm")
     fig.legend(*axes[0].get_legend_handles_labels(), loc="lower center", ncol=6, fontsize=8,
                bbox_to_anchor=(0.5, -0.1))
     return fig
@@ -199,7 +202,8 @@ def fig08(R):
                     label=f"N_d={n}" + (", Eq. (9) linearised" if n == 0 else ""))
             ax.plot(rc, ds["delta_f_eq9_exact"].sel(n_d=n), "--", lw=0.8, color=COLORS[n],
                     label="Eq. (9), exact conversion" if n == 0 else None)
-            ax.plot(rc, eig.sel(n_d=n), ".", color=COLORS[n], label="eigen-analysis" if n == 0 else None)
+            ax.plot(rc, eig.sel(n_d=n), ".", color=COLORS[n],
+                    label="eigen-analysis" if n == 0 else None)
         if rf == 25:
             x65 = mm(paper_pts["r_c"])
             zoom = ax.inset_axes([0.06, 0.04, 0.36, 0.27])
@@ -265,8 +269,10 @@ def slotted_blade(R):
         ax.plot(mm(plain2d["r_c"]), plain2d["f_rolled"].sel(n_d=n), "o-", ms=3, color=COLORS[n],
                 label=f"plain, N_d={n}")
         p = slotted["f_rolled_pair"].sel(n_d=n)
-        ax.fill_between(mm(slotted["r_c"]), p.isel(member=0), p.isel(member=1), color=COLORS[n], alpha=0.3)
-        ax.plot(mm(slotted["r_c"]), p.mean("member"), "s--", ms=3, color=COLORS[n], label=f"slotted, N_d={n}")
+        ax.fill_between(mm(slotted["r_c"]), p.isel(member=0), p.isel(member=1), color=COLORS[n],
+                        alpha=0.3)
+        ax.plot(mm(slotted["r_c"]), p.mean("member"), "s--", ms=3, color=COLORS[n],
+                label=f"slotted, N_d={n}")
         for ds, mk in ((plain2d, "o"), (slotted, "s")):
             ax.plot([0], [float(ds["f_unrolled"].sel(n_d=n))], mk, mfc="none", color=COLORS[n])
     ax.set(xlabel="r_c [mm]", ylabel="natural frequency [Hz]",
@@ -333,6 +339,8 @@ def identifiability(R):
     import matplotlib.ticker as mticker
 
     from mechrepro.plotting import plt
+
+    from . import identifiability as idf
 
     idn = R.run("identifiability")
     s_mm, c_grid = idn["scan_width"].values * 1e3, idn["scan_scale"].values
@@ -481,7 +489,8 @@ def design_map(R):
     unt25 = float(np.nanmin(design.lowest_map(dm_runs[0][1])[:, 0]))
     qc = int(np.argmin(np.abs(cut["design_margin"].values - float(cut["design_stated_margin"]))))
     ax.plot(cut["r_c"].values * 1e3, 100 * (cut["design_best_speed"].values[qc] / unt25 - 1),
-            "k--", lw=1.2, label=f"r_f 25 mm in the cut, rim +{float(cut['design_rim_temperature_rise']):.0f} °C")
+            "k--", lw=1.2,
+            label=f"r_f 25 mm in the cut, rim +{float(cut['design_rim_temperature_rise']):.0f} °C")
     ax.axhline(0, color="k", lw=0.8)
     ax.set(xlabel="rolling radius r_c [mm]", ylabel="lowest critical speed over untensioned [%]",
            title="the design curve (stated margin; a gap: buckled)", ylim=(-120, 60))
