@@ -130,3 +130,9 @@ def lowest_map(ds) -> np.ndarray:
     """The lowest critical speed over N_d >= 2 [rad/s], (r_c, design_step); NaN: buckled."""
     return lowest_over(np.asarray(ds["design_critical_speed"].values, float),
                        ds["n_d"].values, 2)
+
+
+def lowest_critical_speed(ds) -> np.ndarray:
+    """The lowest critical speed over N_d of each r_c [rad/s] of a critical-speed run; NaN:
+    buckled."""
+    return lowest_over(np.asarray(ds["critical_speed"].values, float), ds["n_d"].values)

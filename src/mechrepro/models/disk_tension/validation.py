@@ -377,16 +377,11 @@ def _joint_fit(R):
     return out
 
 
-RPM = design.RPM
+RPM, lowest_critical_speed = design.RPM, design.lowest_critical_speed
 #: row critical_speed_vs_southwell: the eigen-based critical speed is within this of
 #: Southwell's first-order form for r_f up to SOUTHWELL_CLOSE_RF_MM (at 75 mm the first-order
 #: form's denominator N_d^2 - lambda amplifies the neglected second-order term)
 SOUTHWELL_CLOSE, SOUTHWELL_CLOSE_RF_MM = 5e-3, 55.0
-
-
-def lowest_critical_speed(ds) -> np.ndarray:
-    """The lowest critical speed over N_d of each r_c [rad/s]; NaN: buckled."""
-    return design.lowest_over(np.asarray(ds["critical_speed"].values, float), ds["n_d"].values)
 
 
 def best_rolling_radius(ds) -> tuple[float, float, str]:
