@@ -92,10 +92,7 @@ class PaperConfig:
     def figure(self, name: str) -> dict:
         """The declaration of figure ``name``: {caption, draw (``module.function``, by default
         ``figures.<name>``), reads}."""
-        spec = self.raw.get("figures", {})[name]
-        if isinstance(spec, str):
-            return {"caption": spec, "draw": None, "reads": []}
-        return {"draw": f"figures.{name}", **spec}
+        return {"draw": f"figures.{name}", **self.raw.get("figures", {})[name]}
 
     def caption(self, figure: str) -> str:
         return self.figure(figure)["caption"]
@@ -1003,8 +1000,7 @@ def _check_figures(cfg: PaperConfig, where: str) -> None:
     models = Path(__file__).parent / "models" / cfg.paper
     for name in cfg.figures:
         spec = cfg.figure(name)
-        if spec["draw"] and "." in spec["draw"] \
-                and not (models / f"{spec['draw'].split('.')[0]}.py").exists():
+        if "." in spec["draw"] and not (models / f"{spec['draw'].split('.')[0]}.py").exists():
             raise ConfigError(f"{where}: figures.{name}.draw = {spec['draw']!r}: no module "
                               f"{spec['draw'].split('.')[0]}.py in src/mechrepro/models/"
                               f"{cfg.paper}; allowed: module.function of that package")

@@ -186,11 +186,11 @@ def paper_view(paper: str, results: Path, config_dir: Path, profile: str, out_di
         # ours: an artefact of no paper statement, or one whose every row cites us
         a["ours"] = not a["rows"] or all("ours" in r["source"] for r in a["rows"])
         a["caption"] = cfg.caption(a["id"]) if a["id"] in cfg.figures else a["title"]
-        spec = cfg.figure(a["id"]) if a["id"] in cfg.figures else {}
         # where a reader finds the figure's code and data
-        a["drawn"] = spec.get("draw") and (f"models/{paper}/{spec['draw'].replace('.', '.py: ', 1)}"
-                                           if "." in spec["draw"] else f"models/{paper}: {spec['draw']}",
-                                           ", ".join(spec["reads"]) or "its tables")
+        spec = cfg.figure(a["id"]) if a["id"] in cfg.figures else None
+        a["drawn"] = spec and (f"models/{paper}/" + (spec["draw"] if "." in spec["draw"] else
+                                                     "__init__." + spec["draw"]).replace(".", ".py: ", 1),
+                               ", ".join(spec["reads"]) or "its tables")
     tables = []
     for t in cfg.tables:
         if t in ("validation", "discrimination") or not (root / "tables" / f"{t}.csv").exists():
