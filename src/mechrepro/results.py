@@ -54,6 +54,8 @@ class PaperResults:
         their verdict variants)."""
         import importlib
 
+        if name not in self.cfg.figures:
+            raise KeyError(f"{self.paper}: figure {name!r} not declared in config 'figures'")
         spec = self.cfg.figure(name)
         module, _, function = spec["draw"].rpartition(".")
         package = f"mechrepro.models.{self.paper}"
@@ -65,22 +67,14 @@ class PaperResults:
             self._reads = None
 
     def figure(self, name: str) -> None:
-        """Draw declared figure ``name`` (:meth:`draw`) and save it (:meth:`save_figure`)."""
-        self.save_figure(self.draw(name), name)
+        """Draw declared figure ``name`` (:meth:`draw`) and save it, linted, as
+        ``figures/<name>.png`` (:func:`mechrepro.plotting.savefig`)."""
+        from .plotting import savefig
 
-    def figure_path(self, name: str) -> Path:
-        return self.root / "figures" / f"{name}.png"
+        savefig(self.draw(name), self.root / "figures" / f"{name}.png")
 
     def table_path(self, name: str) -> Path:
         return self.root / "tables" / f"{name}.csv"
-
-    def save_figure(self, fig, name: str) -> Path:
-        from .plotting import savefig
-
-        if name not in self.cfg.figures:
-            raise KeyError(f"{self.paper}: figure {name!r} not declared in config 'figures'")
-        savefig(fig, self.figure_path(name))
-        return self.figure_path(name)
 
     def table(self, name: str) -> list[dict]:
         """A written table as rows of dicts (e.g. the framework's ``cost_of_accuracy``,
