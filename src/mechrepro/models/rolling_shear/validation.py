@@ -158,18 +158,15 @@ def paper_levers(R):
                                           "ranges (a lever set that does not assemble is refused "
                                           "by name and fails this check)"}
         thetas = (float(np.ptp(ds["newton_theta1"].values)), float(np.ptp(ds["newton_theta2"].values)))
-    values = {"synthetic_horizontal_displacement_optimised": Hp,
-              "horizontal_displacement_reduction": _reduction(Hp, H0),
-              "paper_levers_assemble": ok}
-    per_member = {"synthetic_horizontal_displacement_optimised": (fam["family_member_H_levers"].values, "H"),
-                  "horizontal_displacement_reduction": (fam["family_member_reduction"].values, "reduction"),
-                  "paper_levers_assemble": (fam["family_member_assembles"].values, "assembles")}
+    # each row: its value, and the family scan's variable that holds it per member
+    rows = {"synthetic_horizontal_displacement_optimised": (Hp, "H_levers", "H"),
+            "horizontal_displacement_reduction": (_reduction(Hp, H0), "reduction", "reduction"),
+            "paper_levers_assemble": (ok, "assembles", "assembles")}
     out = {}
-    for q, value in values.items():
+    for q, (value, member, what) in rows.items():
         base = verdict(R.reported(q), value) if not (isinstance(value, float) and math.isnan(value)) else ""
-        member_values, what = per_member[q]
-        flips, note = (grid_flips(R, q, base, member_values, fam, what) if base in ("pass", "fail")
-                       else ([], ""))
+        flips, note = (grid_flips(R, q, base, fam[f"family_member_{member}"].values, fam, what)
+                       if base in ("pass", "fail") else ([], ""))
         out[q] = Reproduced(value, note=" ".join(x for x in (notes[q], note) if x), flips=flips)
     out["theta1_range_paper_levers"], out["theta2_range_paper_levers"] = thetas
     return out
