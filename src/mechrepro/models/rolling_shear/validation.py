@@ -158,28 +158,24 @@ def paper_levers(R):
                                           "ranges (a lever set that does not assemble is refused "
                                           "by name and fails this check)"}
         thetas = (float(np.ptp(ds["newton_theta1"].values)), float(np.ptp(ds["newton_theta2"].values)))
-    values = {"synthetic_horizontal_displacement_optimised": Hp,
-              "horizontal_displacement_reduction": _reduction(Hp, H0),
-              "paper_levers_assemble": ok}
-    per_member = {"synthetic_horizontal_displacement_optimised": (fam["family_member_H_levers"].values, "H"),
-                  "horizontal_displacement_reduction": (fam["family_member_reduction"].values, "reduction"),
-                  "paper_levers_assemble": (fam["family_member_assembles"].values, "assembles")}
+    # each row: its value, and the family scan's variable that holds it per member
+    rows = {"synthetic_horizontal_displacement_optimised": (Hp, "H_levers", "H"),
+            "horizontal_displacement_reduction": (_reduction(Hp, H0), "reduction", "reduction"),
+            "paper_levers_assemble": (ok, "assembles", "assembles")}
     out = {}
-    for q, value in values.items():
+    for q, (value, member, what) in rows.items():
         base = verdict(R.reported(q), value) if not (isinstance(value, float) and math.isnan(value)) else ""
-        member_values, what = per_member[q]
-        flips, note = (grid_flips(R, q, base, member_values, fam, what) if base in ("pass", "fail")
-                       else ([], ""))
+        flips, note = (grid_flips(R, q, base, fam[f"family_member_{member}"].values, fam, what)
+                       if base in ("pass", "fail") else ([], ""))
         out[q] = Reproduced(value, note=" ".join(x for x in (notes[q], note) if x), flips=flips)
     out["theta1_range_paper_levers"], out["theta2_range_paper_levers"] = thetas
     return out
 
 
-def _optimum(R, scene):
-    """A lever optimisation run, H of the original levers and of selPSO's optimum, the optimum's
-    levers and the one-lever scans' spreads."""
-    opt = R.run(scene)
-    return (opt, float(opt["opt_original_objective"]), float(opt["opt_selpso_objective"]),
+def _optimum(opt):
+    """Of a lever optimisation run: H of the original levers and of selPSO's optimum, the
+    optimum's levers and the one-lever scans' spreads."""
+    return (float(opt["opt_original_objective"]), float(opt["opt_selpso_objective"]),
             dict(zip(OPTIMISED_LEVERS, opt["opt_selpso_levers"].values)),
             dict(zip(opt["lever"].values.tolist(), opt["scan_spread"].values)))
 
@@ -187,7 +183,8 @@ def _optimum(R, scene):
 @Q.register("our_optimisation_reduction", "our_optimised_h", "optimised_l1", "optimised_l3",
             "optimised_l5", "optimised_l6", "optimised_l10")
 def our_optimisation(R):
-    opt, H0, H1, levers, spread = _optimum(R, "optimisation")
+    opt = R.run("optimisation")
+    H0, H1, levers, spread = _optimum(opt)
     frac = float(R.parameter("lever_bound_fraction"))
     out = {
         "our_optimisation_reduction": Reproduced(
@@ -235,10 +232,8 @@ def l6_direction(R):
     """Does our optimisation shorten l6, as Table II's does, under both carrier readings (a
     direction that differs between them is a flip)?"""
     l6_0 = float(R.parameter("l6")) * 1e3
-    got = {}
-    for scene in ("optimisation", "optimisation_rederived"):
-        opt = R.run(scene)
-        got[scene] = float(dict(zip(OPTIMISED_LEVERS, opt["opt_selpso_levers"].values))["l6"])
+    got = {scene: float(_optimum(R.run(scene))[2]["l6"])
+           for scene in ("optimisation", "optimisation_rederived")}
     l6 = got["optimisation"]
     flips = [] if (got["optimisation_rederived"] < l6_0) == (l6 < l6_0) else [
         f"{'pass' if got['optimisation_rederived'] < l6_0 else 'fail'} with re-derived carrier "
@@ -252,7 +247,7 @@ def l6_direction(R):
 @Q.register("our_optimisation_reduction_rederived", "optimised_l5_rederived",
             "optimised_l6_rederived")
 def our_optimisation_rederived(R):
-    _, H0, H1, levers, spread = _optimum(R, "optimisation_rederived")
+    H0, H1, levers, spread = _optimum(R.run("optimisation_rederived"))
     return {
         "our_optimisation_reduction_rederived": Reproduced(
             _reduction(H1, H0), note=f"selPSO {H1:.4g} mm against {H0:.4g} mm; one-lever scan spreads "
@@ -312,9 +307,8 @@ def table2(orig, popt, opt) -> tuple[list, list]:
     """Table II: the paper's levers (original, optimised) and ours, with H in our geometry."""
     header = ["lever", "paper_original_mm", "paper_optimised_mm", "ours_selpso_mm", "ours_de_mm",
               "objective_spread_mm"]
-    sel = dict(zip(OPTIMISED_LEVERS, opt["opt_selpso_levers"].values))
+    _, _, sel, spread = _optimum(opt)
     de = dict(zip(OPTIMISED_LEVERS, opt["opt_de_levers"].values))
-    spread = dict(zip(opt["lever"].values.tolist(), opt["scan_spread"].values))
     rows_ = [[k, round(float(orig[f"geometry_{k}"]), 9), round(float(popt[f"geometry_{k}"]), 9),
               float(sel[k]), float(de[k]), float(spread[k])] for k in OPTIMISED_LEVERS]
     rows_.append(["objective H at the run's cut points (geometry calibrated on 1.4341)",
@@ -356,24 +350,19 @@ def recommended(ds, *, clearance: float, mu_min: float) -> dict | None:
     worst transmission angle and joint height; None if none qualifies."""
     gap, H = ds["envelope_rod_gap"].values, ds["envelope_H"].values
     with np.errstate(invalid="ignore"):
-        kept = (gap >= clearance) & (ds["kept_mu_worst"].values >= mu_min) & (ds["kept_buildable"].values == 1.0)
-        env = (gap >= clearance) & (ds["envelope_mu_worst"].values >= mu_min)
-    best = None
-    for which, ok in (("kept", kept), ("envelope", env)):
-        if ok.any():
-            i = int(np.flatnonzero(ok)[np.argmin(H[ok])])
-            if best is None or H[i] < H[best[0]]:
-                best = (i, which)
-    if best is None:
+        ok = {w: (gap >= clearance) & (ds[f"{w}_mu_worst"].values >= mu_min) for w in ("kept", "envelope")}
+        ok["kept"] &= ds["kept_buildable"].values == 1.0
+    # the lowest H of each; "kept" first, so that it wins a tie
+    best = [(int(np.flatnonzero(m)[np.argmin(H[m])]), w) for w, m in ok.items() if m.any()]
+    if not best:
         return None
-    i, which = best
+    i, which = min(best, key=lambda b: H[b[0]])
+    lv = ds["envelope_levers"].values[i]
     if which == "kept":
         lv = ds["paper_levers"].values[0].copy()
         lv[OPTIMISED_LEVERS.index("l6")] = ds["envelope_levers"].sel(lever="l6").values[i]
-        return {"index": i, "which": which, "levers": lv, "mu_worst": float(ds["kept_mu_worst"][i]),
-                "joint_height": float(ds["kept_joint_height"][i])}
-    return {"index": i, "which": which, "levers": ds["envelope_levers"].values[i],
-            "mu_worst": float(ds["envelope_mu_worst"][i]), "joint_height": float(ds["envelope_joint_height"][i])}
+    return {"index": i, "which": which, "levers": lv, "mu_worst": float(ds[f"{which}_mu_worst"][i]),
+            "joint_height": float(ds[f"{which}_joint_height"][i])}
 
 
 def design_front(ds, *, clearance: float, mu_min: float, plate_top: float, opening: float,
