@@ -177,9 +177,9 @@ R.figure("critical_speed")
 # tensioning spends (they reach zero at buckling).
 
 # %%
-dm_runs = figures.by_clamp(R, "design_map", "design_map_rf")
+dm_runs = design.by_clamp(R, "design_map", "design_map_rf")
 cut = R.run("design_map_in_cut")
-R.write_table("design_map", design.COLUMNS, design.table(dm_runs + [(figures.clamp_mm(cut), cut)]))
+R.write_table("design_map", design.COLUMNS, design.table(dm_runs + [(design.clamp_mm(cut), cut)]))
 R.figure("design_map")
 
 # %% [markdown]

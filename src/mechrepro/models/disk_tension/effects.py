@@ -126,7 +126,7 @@ def cutting_heat(ctx) -> dict:
               r_f=ctx.r_f, b=ctx.b, E=ctx.E, nu=ctx.nu, alpha=p["thermal_expansion"],
               inplane_bc=p["centrifugal_bc"])
     r = np.linspace(ctx.r_f, ctx.b, N_RADII)
-    sr, st = thermal.thermal_stress(r, **kw)
+    st = thermal.thermal_stress(r, **kw)[1]
     return {
         "cutting_heat_stress": ThermalLoad(
             r_c=ctx.b, alpha=kw["alpha"], inplane_bc=kw["inplane_bc"], sigma=thermal.field(**kw),
@@ -134,7 +134,6 @@ def cutting_heat(ctx) -> dict:
         "r_heat": var("r_heat", r, "m", "radius of the cutting-heat stress"),
         "heat_temperature": var("r_heat", thermal.temperature(r, kw["amplitude"], ctx.b, kw["s"]),
                                 "K", "temperature rise of the blade in the cut"),
-        "heat_sigma_r": var("r_heat", sr, "Pa", "radial stress of the cutting heat"),
         "heat_sigma_theta": var("r_heat", st, "Pa", "hoop stress of the cutting heat"),
     }
 

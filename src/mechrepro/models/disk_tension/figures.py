@@ -1,14 +1,18 @@
 """disk_tension's figures, each drawn from the results it declares (config ``figures``), and
-what they draw, taken from the runs in SI.  matplotlib (and the fit's module) are imported by
-the draw functions only: validate_disk_tension imports the helpers of this module and never
-draws."""
+what they draw, taken from the runs in SI."""
 from __future__ import annotations
 
+import textwrap
+
+import matplotlib.ticker as mticker
 import numpy as np
 
+from mechrepro import accuracy
+from mechrepro.plotting import plt
 from mechrepro.units import from_si
 
-from . import design
+from . import design, identifiability as idf
+from .design import RPM, by_clamp, eigen_and_eq9_times, rc_grid
 
 ND = [0, 1, 2, 3, 4]
 COLORS = {n: f"C{n}" for n in ND}
@@ -18,42 +22,14 @@ def mm(x):
     return from_si(np.asarray(x, float), "mm")
 
 
-def by_clamp(R, scene, study) -> list:
-    """[(r_f [mm], dataset)] of ``scene`` and of the runs of its r_f ``study``."""
-    return [(clamp_mm(ds), ds) for ds in [R.run(scene), *R.study_runs(study)]]
-
-
-def rc_grid(R) -> dict:
-    """{r_f [mm]: dataset} of Figs. 6 and 8: scene ``rc_grid`` and study ``fig06``."""
-    return {int(round(rf)): ds for rf, ds in by_clamp(R, "rc_grid", "fig06")}
-
-
 def paper_points(R) -> dict:
-    """The paper's own numbers drawn on Figs. 6 and 8 (Sec. 4.3) and the 2-D model's accuracy
-    goal, from the validation table."""
+    """The paper's own numbers drawn on Figs. 6 and 8 (Sec. 4.3), from the validation table."""
     paper = lambda q: R.value(q, "paper_value")  # noqa: E731
     return {"r_c": 0.065,
             "f_unrolled": R.value("f_unrolled_nd4_rf25"),
             "f_rolled": paper("f_rolled_nd4_rc65_rf25"),
             "delta_f_eq9": paper("delta_f_eq9_nd4_rc65_rf25"),
-            "delta_f_eigen": paper("delta_f_eigen_nd4_rc65_rf25"),
-            "plate2d_goal": paper("plate2d_unrolled_vs_exact")}
-
-
-def eigen_and_eq9_times(*runs) -> tuple[float, float]:
-    """Wall time [s] of Eq. (5) and of Eq. (9) over ``runs`` (the same K^(sigma))."""
-    return tuple(sum(float(ds[k]) for ds in runs) for k in ("time_eigen", "time_eq9"))
-
-
-def buckling_series(R):
-    """The hard case (r_c = 105 mm): amplitudes A [K] ascending, omega~^2 of each (A, N_d),
-    and each N_d's critical amplitude A lambda_cr (omega~^2 is linear in A, Eq. 3)."""
-    runs = [R.run("buckling"), *R.study_runs("buckling_sweep")]
-    amps = np.array([float(ds["amplitude_used"]) for ds in runs])
-    w2 = np.array([ds["omega2_rolled"].isel(r_c=0).values for ds in runs])
-    order = np.argsort(amps)
-    a_cr = amps[0] * runs[0]["critical_load_factor"].isel(r_c=0).values
-    return amps[order], w2[order], a_cr
+            "delta_f_eigen": paper("delta_f_eigen_nd4_rc65_rf25")}
 
 
 def matrix_rows(da) -> list[list]:
@@ -69,17 +45,10 @@ def effect_cold_warm(R, scenes=("table12", "table12_plate2d", "stressed_axisym",
             for i, e in enumerate(ds["timed_effect"].values) if f"{e}_time_cold" in ds]
 
 
-def clamp_mm(ds) -> float:
-    """r_f [mm] of a run."""
-    return float(from_si(float(ds["clamp_radius"]), "mm"))
-
-
 def fig03(R):
     """Fig. 3: the finite-element models of the disk: the 2-D Argyris mesh of the flexible
     annulus (the core r < r_f is clamped, meshed only for the free-disk plane-stress problem)
     and the radial cubic Hermite elements of the axisymmetric model."""
-    from mechrepro.plotting import plt
-
     t12, t12_2d = R.run("table12"), R.run("table12_plate2d")
     fig, axes = plt.subplots(1, 2, figsize=(11, 5.2), gridspec_kw={"width_ratios": [1.2, 1]})
     ax = axes[0]
@@ -103,8 +72,6 @@ def fig03(R):
 def fig04(R):
     """Fig. 4: the thermal-analogy temperature of Eq. (4) (r_c = 65 mm, A = 50 degC, s = 5 mm),
     with the rolled width 4 s (Sec. 3.2)."""
-    from mechrepro.plotting import plt
-
     t12 = R.run("table12")
     fig, ax = plt.subplots(figsize=(6, 3.4))
     r = mm(t12["r"])
@@ -123,8 +90,6 @@ def fig05(R):
     """Fig. 5: the residual stress after rolling, sigma_r and sigma_theta along the radius (the
     load is axisymmetric, where the paper draws a contour on 1/12 of the disk): closed form for
     both in-plane conditions and the 2-D model's plane-stress P2 field (radial bin means)."""
-    from mechrepro.plotting import plt
-
     t12, t12_cl, t12_2d = R.run("table12"), R.run("table12_clamped"), R.run("table12_plate2d")
     r = mm(t12["r"])
     fig, ax = plt.subplots(figsize=(6.5, 4))
@@ -147,8 +112,6 @@ def fig06(R):
     """Fig. 6a-c: the natural frequencies after rolling against r_c by the eigen-analysis
     (Eq. 5), r_f = 25, 55, 75 mm; unrolled at r_c = 0 (open markers); r_f = 25 mm also under
     the clamped in-plane condition (dotted) and with the paper's 434.5 / 502.1 Hz (Sec. 4.3)."""
-    from mechrepro.plotting import plt
-
     grid, clamped, paper_pts = rc_grid(R), R.run("rc_grid_clamped"), paper_points(R)
     fig, axes = plt.subplots(1, 3, figsize=(13, 4.2), sharey=False)
     for ax, (rf, ds), letter in zip(axes, sorted(grid.items()), "abc"):
@@ -173,8 +136,6 @@ def fig06(R):
 def fig07(R):
     """Fig. 7: the frequency change of each N_d for a 1 % stiffer 10 mm annulus at r_a
     (r_f = 25 mm, Sec. 4.2): where stiffening helps which mode."""
-    from mechrepro.plotting import plt
-
     ds = R.run("fig07_sensitivity")
     fig, ax = plt.subplots(figsize=(6, 4))
     for n in ND:
@@ -191,8 +152,6 @@ def fig08(R):
     omega) (solid: reproduces the paper's 70.0 Hz from Table 1) and exact conversion (dashed),
     against the eigen-analysis (dots); at r_f = 25 mm the paper's 70.0 Hz (Eq. 9) and 67.6 Hz
     (eigen), 2.4 Hz apart, on the curves and in a zoom."""
-    from mechrepro.plotting import plt
-
     grid, paper_pts = rc_grid(R), paper_points(R)
     fig, axes = plt.subplots(1, 3, figsize=(13, 4.2))
     for ax, (rf, ds), letter in zip(axes, sorted(grid.items()), "abc"):
@@ -231,8 +190,6 @@ def eq9_vs_eigen(R):
     """Eq. (9) against the eigen-analysis over the whole grid of Figs. 6/8: the relative
     frequency error, and the wall time of each (the same K^(sigma): eigen-solves against
     quadratic forms), the paper's 'less computational effort' (Conclusion 1)."""
-    from mechrepro.plotting import plt
-
     grid, plain2d = rc_grid(R), R.run("plate2d_rc_sweep")
     fig, axes = plt.subplots(1, 2, figsize=(11, 4))
     ax = axes[0]
@@ -261,8 +218,6 @@ def slotted_blade(R):
     """Beyond the paper: a sawblade with radial expansion slots on the 2-D model against the
     plain disk, frequencies after rolling against r_c (N_d = 2-4); the slots split the pairs
     (drawn as a band), the optimal r_c per mode moves."""
-    from mechrepro.plotting import plt
-
     plain2d, slotted = R.run("plate2d_rc_sweep"), R.run("slotted_rc_sweep")
     fig, ax = plt.subplots(figsize=(7, 4.2))
     for n in (2, 3, 4):
@@ -285,11 +240,13 @@ def buckling(R):
     """Hard case: rolling near the rim (r_c = 105 mm) lowers omega~^2 of N_d >= 2 linearly in
     the amplitude A (Eq. 3) through zero at each mode's critical amplitude (dotted), where the
     solver reports a buckled flag, never sqrt(negative)."""
-    from mechrepro.plotting import plt
-
+    runs = [R.run("buckling"), *R.study_runs("buckling_sweep")]
+    amps = np.array([float(ds["amplitude_used"]) for ds in runs])
+    order = np.argsort(amps)
+    w2 = np.array([ds["omega2_rolled"].isel(r_c=0).values for ds in runs])[order]
+    a_cr = from_si(amps[0] * runs[0]["critical_load_factor"].isel(r_c=0).values, "degC")
+    amps = from_si(amps[order], "degC")
     fig, ax = plt.subplots(figsize=(6.5, 4))
-    amps, w2, a_cr = buckling_series(R)
-    amps, a_cr = from_si(amps, "degC"), from_si(a_cr, "degC")
     for j, n in enumerate(ND):
         ax.plot(amps, w2[:, j], "o-", color=COLORS[n], label=f"N_d={n}")
         if np.isfinite(a_cr[j]) and a_cr[j] < 2 * amps.max():
@@ -307,13 +264,6 @@ def cost_of_accuracy(R):
     solution; bottom, the unrolled disk against its Bessel solution, and the 2-D model's
     rolled frequencies against the axisym Richardson reference (dotted: that reference's own
     accuracy on the unrolled frequencies, and the 2-D model's goal)."""
-    import textwrap
-
-    import matplotlib.ticker as mticker
-
-    from mechrepro import accuracy
-    from mechrepro.plotting import plt
-
     coa = R.table("cost_of_accuracy")
     fig, axes = plt.subplots(2, 2, figsize=(12, 9.2), constrained_layout=True)
     for ax, entry in zip(axes.ravel(), ("axisym_stressed", "plate2d_stressed", "axisym", "plate2d")):
@@ -336,12 +286,6 @@ def identifiability(R):
     minimised over the in-plane condition; hatched: clamped only) drawn as c s against s, the
     best fit, the chi^2 Hessian's soft axis, the single-alpha calibration and the scan bounds
     that cut a region; right, the profiles over s."""
-    import matplotlib.ticker as mticker
-
-    from mechrepro.plotting import plt
-
-    from . import identifiability as idf
-
     idn = R.run("identifiability")
     s_mm, c_grid = idn["scan_width"].values * 1e3, idn["scan_scale"].values
     levels = idn["fit_level"].values
@@ -416,9 +360,7 @@ def critical_speed(R):
     against r_c, rolled (A = 50 degC, alpha calibrated) and unrolled, per N_d at r_f = 25 mm
     (dotted: the other end of centrifugal_bc, free_disk), and the lowest over N_d per r_f, the
     design curve; a buckled rolled disk has none (a gap)."""
-    from mechrepro.plotting import plt
-
-    RPM, lowest = design.RPM, design.lowest_critical_speed
+    lowest = design.lowest_critical_speed
     cs, cs_free = R.run("critical_speed"), R.run("critical_speed_centrifugal_free")
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.2))
     rc_mm = cs["r_c"].values * 1e3
@@ -453,9 +395,6 @@ def design_map(R):
     optimum and the paper's r_c = 65 mm at A = 50 degC; the best lowest critical speed per r_c
     over the untensioned one (also in the cut, rim hotter); the N_d = 0, 1 frequency margins
     at rest that tensioning spends."""
-    from mechrepro.plotting import plt
-
-    RPM = design.RPM
     dm_runs, cut = by_clamp(R, "design_map", "design_map_rf"), R.run("design_map_in_cut")
     fig, axes = plt.subplots(2, 3, figsize=(15, 8.8), constrained_layout=True)
     ax, ax_f = axes[1, 1], axes[1, 2]

@@ -7,7 +7,7 @@ import numpy as np
 from mechrepro.validation import Quantities, Reproduced
 
 from . import design
-from .figures import by_clamp, clamp_mm, eigen_and_eq9_times, rc_grid
+from .design import RPM, by_clamp, clamp_mm, eigen_and_eq9_times, lowest_critical_speed, rc_grid
 from .modal import (degenerate_harmonics, delta_f_exact, delta_f_linearised,
                     harmonic_coupling_symmetry)
 
@@ -377,7 +377,6 @@ def _joint_fit(R):
     return out
 
 
-RPM, lowest_critical_speed = design.RPM, design.lowest_critical_speed
 #: row critical_speed_vs_southwell: the eigen-based critical speed is within this of
 #: Southwell's first-order form for r_f up to SOUTHWELL_CLOSE_RF_MM (at 75 mm the first-order
 #: form's denominator N_d^2 - lambda amplifies the neglected second-order term)
