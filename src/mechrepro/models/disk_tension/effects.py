@@ -14,7 +14,7 @@ from mechrepro.levels import extrapolate
 from mechrepro.timing import phase
 from mechrepro.units import var
 
-from . import calibration, exact, thermal
+from . import calibration, design, exact, identifiability as idf, rotation, thermal
 from .axisym import AxisymDisk
 from .modal import delta_f_exact, delta_f_linearised, frequency
 
@@ -343,8 +343,6 @@ def _coded(dim, names, what):
 @EFFECTS.register("identifiability")
 def identifiability(ctx) -> dict:
     """What the paper's numbers pin down: the joint fit of :mod:`.identifiability`."""
-    from . import identifiability as idf
-
     p = ctx.p
     widths, fine_widths = _scan(*p["scan_gaussian_width"], FINE_WIDTH)
     scales, fine = _scan(*p["scan_stress_scale"], FINE_SCALE)
@@ -397,8 +395,6 @@ def identifiability(ctx) -> dict:
 
 def _centrifugal_stiffness(ctx):
     """K^(c) of every harmonic: Eq. (3) of the centrifugal stress at Omega = 1 rad/s."""
-    from . import rotation
-
     kw = dict(omega=1.0, rho=ctx.rho, nu=ctx.nu, r_f=ctx.r_f, b=ctx.b,
               inplane_bc=ctx.p["centrifugal_bc"])
     return ctx.model.stress_stiffness((lambda r: rotation.centrifugal_stress(r, **kw)[0],
@@ -409,8 +405,6 @@ def _centrifugal_stiffness(ctx):
 def critical_speed(ctx) -> dict:
     """The travelling-wave critical speed per N_d (:mod:`.rotation`), untensioned (with
     Southwell's first-order form) and with the rolled stress of every r_c (NaN: buckled)."""
-    from . import rotation
-
     model, bc = ctx.model, ctx.p["centrifugal_bc"]
     Kc = _centrifugal_stiffness(ctx)
     with phase("disk_tension.critical_speed") as sw:
@@ -439,8 +433,6 @@ def critical_speed(ctx) -> dict:
 @EFFECTS.register("design_map")
 def design_map(ctx) -> dict:
     """The tensioning design map (:mod:`.design`) at every ``buckling_margin``."""
-    from . import design
-
     p, model = ctx.p, ctx.model
     Kc = _centrifugal_stiffness(ctx)
     if not ctx.A > 0:

@@ -6,7 +6,7 @@ import numpy as np
 
 from mechrepro.validation import Quantities, Reproduced
 
-from . import design
+from . import design, identifiability as idf
 from .design import RPM, by_clamp, clamp_mm, eigen_and_eq9_times, lowest_critical_speed, rc_grid
 from .modal import (degenerate_harmonics, delta_f_exact, delta_f_linearised,
                     harmonic_coupling_symmetry)
@@ -350,8 +350,6 @@ def _buckling(R):
 @Q.register("joint_fit_gaussian_width", "joint_fit_stress_scale")
 def _joint_fit(R):
     """The joint fit to Table 1 alone; the notes: its regions, pins, direction, 502.1 Hz."""
-    from . import identifiability as idf
-
     ds = R.run("identifiability")
     rows = {(r[0], r[1]): dict(zip(idf.COLUMNS, r)) for r in idf.table(ds)}
     single = {(r[0], r[1]): r for r in idf.readings(ds)}[("table1", "single-alpha calibration")]
