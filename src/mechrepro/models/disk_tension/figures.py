@@ -22,16 +22,6 @@ def mm(x):
     return from_si(np.asarray(x, float), "mm")
 
 
-def paper_points(R) -> dict:
-    """The paper's own numbers drawn on Figs. 6 and 8 (Sec. 4.3), from the validation table."""
-    paper = lambda q: R.value(q, "paper_value")  # noqa: E731
-    return {"r_c": 0.065,
-            "f_unrolled": R.value("f_unrolled_nd4_rf25"),
-            "f_rolled": paper("f_rolled_nd4_rc65_rf25"),
-            "delta_f_eq9": paper("delta_f_eq9_nd4_rc65_rf25"),
-            "delta_f_eigen": paper("delta_f_eigen_nd4_rc65_rf25")}
-
-
 def matrix_rows(da) -> list[list]:
     """Rows ``[N_d, entries...]`` of a modal matrix (Tables 1-2)."""
     return [[int(n)] + [float(v) for v in da.sel(row=n).values] for n in da["row"].values]
@@ -112,7 +102,8 @@ def fig06(R):
     """Fig. 6a-c: the natural frequencies after rolling against r_c by the eigen-analysis
     (Eq. 5), r_f = 25, 55, 75 mm; unrolled at r_c = 0 (open markers); r_f = 25 mm also under
     the clamped in-plane condition (dotted) and with the paper's 434.5 / 502.1 Hz (Sec. 4.3)."""
-    grid, clamped, paper_pts = rc_grid(R), R.run("rc_grid_clamped"), paper_points(R)
+    grid, clamped = rc_grid(R), R.run("rc_grid_clamped")
+    f_u, f_r = R.value("f_unrolled_nd4_rf25"), R.value("f_rolled_nd4_rc65_rf25", "paper_value")
     fig, axes = plt.subplots(1, 3, figsize=(13, 4.2), sharey=False)
     for ax, (rf, ds), letter in zip(axes, sorted(grid.items()), "abc"):
         rc = mm(ds["r_c"])
@@ -123,8 +114,7 @@ def fig06(R):
             for n in ND:
                 ax.plot(rc, clamped["f_rolled"].sel(n_d=n), ":", lw=1, color=COLORS[n],
                         label="clamped" if n == 0 else None)
-            ax.plot([0, mm(paper_pts["r_c"])], [paper_pts["f_unrolled"], paper_pts["f_rolled"]],
-                    "*", color="k", ms=9, label="paper (Sec. 4.3)")
+            ax.plot([0, mm(0.065)], [f_u, f_r], "*", color="k", ms=9, label="paper (Sec. 4.3)")
         ax.axvspan(0, rf, color="0.9")
         ax.set(xlabel="r_c [mm]", ylabel="natural frequency [Hz]",
                title=f"Fig. 6{letter}: r_f = {rf} mm")
@@ -152,7 +142,8 @@ def fig08(R):
     omega) (solid: reproduces the paper's 70.0 Hz from Table 1) and exact conversion (dashed),
     against the eigen-analysis (dots); at r_f = 25 mm the paper's 70.0 Hz (Eq. 9) and 67.6 Hz
     (eigen), 2.4 Hz apart, on the curves and in a zoom."""
-    grid, paper_pts = rc_grid(R), paper_points(R)
+    grid, x65 = rc_grid(R), mm(0.065)     # the paper's Delta f at r_c = 65 mm (Sec. 4.3)
+    d_eq9, d_eig = (R.value(f"delta_f_{k}_nd4_rc65_rf25", "paper_value") for k in ("eq9", "eigen"))
     fig, axes = plt.subplots(1, 3, figsize=(13, 4.2))
     for ax, (rf, ds), letter in zip(axes, sorted(grid.items()), "abc"):
         rc, eig = mm(ds["r_c"]), ds["f_rolled"] - ds["f_unrolled"]
@@ -164,21 +155,19 @@ def fig08(R):
             ax.plot(rc, eig.sel(n_d=n), ".", color=COLORS[n],
                     label="eigen-analysis" if n == 0 else None)
         if rf == 25:
-            x65 = mm(paper_pts["r_c"])
             zoom = ax.inset_axes([0.06, 0.04, 0.36, 0.27])
             for a, ms in ((ax, 1.0), (zoom, 0.8)):
-                a.plot([x65], [paper_pts["delta_f_eq9"]], "*", mfc="none", mec="k", ms=12 * ms,
-                       mew=1.1, label="paper Eq. (9)" if a is ax else None)
-                a.plot([x65], [paper_pts["delta_f_eigen"]], "P", mfc="none", mec="k", ms=7 * ms,
-                       mew=1.1, label="paper eigen" if a is ax else None)
+                a.plot([x65], [d_eq9], "*", mfc="none", mec="k", ms=12 * ms, mew=1.1,
+                       label="paper Eq. (9)" if a is ax else None)
+                a.plot([x65], [d_eig], "P", mfc="none", mec="k", ms=7 * ms, mew=1.1,
+                       label="paper eigen" if a is ax else None)
             for n in (3, 4):
                 zoom.plot(rc, ds["delta_f_eq9_linearised"].sel(n_d=n), "-", color=COLORS[n])
                 zoom.plot(rc, eig.sel(n_d=n), ".", color=COLORS[n])
-            zoom.set(xlim=(x65 - 4, x65 + 4), ylim=(paper_pts["delta_f_eigen"] - 4,
-                                                    paper_pts["delta_f_eq9"] + 2))
+            zoom.set(xlim=(x65 - 4, x65 + 4), ylim=(d_eig - 4, d_eq9 + 2))
             zoom.tick_params(labelsize=6)
-            ax.text(0.44, 0.05, f"zoom at {x65:.0f} mm, paper:\n{paper_pts['delta_f_eq9']:.1f} Hz (★), "
-                    f"{paper_pts['delta_f_eigen']:.1f} Hz (+)", fontsize=7, transform=ax.transAxes)
+            ax.text(0.44, 0.05, f"zoom at {x65:.0f} mm, paper:\n{d_eq9:.1f} Hz (★), {d_eig:.1f} Hz (+)",
+                    fontsize=7, transform=ax.transAxes)
         ax.axhline(0, color="k", lw=0.6)
         ax.set(xlabel="r_c [mm]", ylabel="Δf [Hz]", title=f"Fig. 8{letter}: r_f = {rf} mm")
     fig.legend(*axes[0].get_legend_handles_labels(), loc="lower center", ncol=5, fontsize=8,
