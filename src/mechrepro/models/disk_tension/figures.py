@@ -12,10 +12,9 @@ from mechrepro.plotting import plt
 from mechrepro.units import from_si
 
 from . import design, identifiability as idf
-from .design import RPM, by_clamp, eigen_and_eq9_times, rc_grid
+from .design import RPM, by_clamp, eigen_and_eq9_times, lowest_critical_speed as lowest, rc_grid
 
 ND = [0, 1, 2, 3, 4]
-COLORS = {n: f"C{n}" for n in ND}
 
 
 def mm(x):
@@ -108,11 +107,11 @@ def fig06(R):
     for ax, (rf, ds), letter in zip(axes, sorted(grid.items()), "abc"):
         rc = mm(ds["r_c"])
         for n in ND:
-            ax.plot(rc, ds["f_rolled"].sel(n_d=n), "o-", ms=3, color=COLORS[n], label=f"N_d={n}")
-            ax.plot([0], [float(ds["f_unrolled"].sel(n_d=n))], "o", mfc="none", color=COLORS[n])
+            ax.plot(rc, ds["f_rolled"].sel(n_d=n), "o-", ms=3, color=f"C{n}", label=f"N_d={n}")
+            ax.plot([0], [float(ds["f_unrolled"].sel(n_d=n))], "o", mfc="none", color=f"C{n}")
         if rf == 25:
             for n in ND:
-                ax.plot(rc, clamped["f_rolled"].sel(n_d=n), ":", lw=1, color=COLORS[n],
+                ax.plot(rc, clamped["f_rolled"].sel(n_d=n), ":", lw=1, color=f"C{n}",
                         label="clamped" if n == 0 else None)
             ax.plot([0, mm(0.065)], [f_u, f_r], "*", color="k", ms=9, label="paper (Sec. 4.3)")
         ax.axvspan(0, rf, color="0.9")
@@ -130,7 +129,7 @@ def fig07(R):
     fig, ax = plt.subplots(figsize=(6, 4))
     for n in ND:
         ax.plot(mm(ds["r_a"]), ds["sensitivity_delta_f"].sel(n_d=n), "o-", ms=3,
-                color=COLORS[n], label=f"N_d={n}")
+                color=f"C{n}", label=f"N_d={n}")
     ax.set(xlabel="r_a [mm]", ylabel="Δf for +1 % stiffness [Hz]",
            title="Fig. 7: sensitivity of natural frequency to stiffness (r_f = 25 mm)")
     ax.legend(fontsize=7)
@@ -148,11 +147,11 @@ def fig08(R):
     for ax, (rf, ds), letter in zip(axes, sorted(grid.items()), "abc"):
         rc, eig = mm(ds["r_c"]), ds["f_rolled"] - ds["f_unrolled"]
         for n in ND:
-            ax.plot(rc, ds["delta_f_eq9_linearised"].sel(n_d=n), "-", color=COLORS[n],
+            ax.plot(rc, ds["delta_f_eq9_linearised"].sel(n_d=n), "-", color=f"C{n}",
                     label=f"N_d={n}" + (", Eq. (9) linearised" if n == 0 else ""))
-            ax.plot(rc, ds["delta_f_eq9_exact"].sel(n_d=n), "--", lw=0.8, color=COLORS[n],
+            ax.plot(rc, ds["delta_f_eq9_exact"].sel(n_d=n), "--", lw=0.8, color=f"C{n}",
                     label="Eq. (9), exact conversion" if n == 0 else None)
-            ax.plot(rc, eig.sel(n_d=n), ".", color=COLORS[n],
+            ax.plot(rc, eig.sel(n_d=n), ".", color=f"C{n}",
                     label="eigen-analysis" if n == 0 else None)
         if rf == 25:
             zoom = ax.inset_axes([0.06, 0.04, 0.36, 0.27])
@@ -162,8 +161,8 @@ def fig08(R):
                 a.plot([x65], [d_eig], "P", mfc="none", mec="k", ms=7 * ms, mew=1.1,
                        label="paper eigen" if a is ax else None)
             for n in (3, 4):
-                zoom.plot(rc, ds["delta_f_eq9_linearised"].sel(n_d=n), "-", color=COLORS[n])
-                zoom.plot(rc, eig.sel(n_d=n), ".", color=COLORS[n])
+                zoom.plot(rc, ds["delta_f_eq9_linearised"].sel(n_d=n), "-", color=f"C{n}")
+                zoom.plot(rc, eig.sel(n_d=n), ".", color=f"C{n}")
             zoom.set(xlim=(x65 - 4, x65 + 4), ylim=(d_eig - 4, d_eq9 + 2))
             zoom.tick_params(labelsize=6)
             ax.text(0.44, 0.05, f"zoom at {x65:.0f} mm, paper:\n{d_eq9:.1f} Hz (★), {d_eig:.1f} Hz (+)",
@@ -185,7 +184,7 @@ def eq9_vs_eigen(R):
     for (rf, ds), sym in zip(sorted(grid.items()), ["o-", "s--", "^:"]):
         for n in ND:
             ax.semilogy(mm(ds["r_c"]), ds["eq9_rel_error"].sel(n_d=n), sym, ms=3,
-                        color=COLORS[n], label=f"N_d={n}" if rf == 25 else None)
+                        color=f"C{n}", label=f"N_d={n}" if rf == 25 else None)
     ax.set(xlabel="r_c [mm]", ylabel="|f(Eq. 9) / f(eigen) − 1| [1]",
            title="Eq. (9) error (o r_f=25, s 55, ^ 75 mm)")
     ax.legend(fontsize=7)
@@ -210,15 +209,15 @@ def slotted_blade(R):
     plain2d, slotted = R.run("plate2d_rc_sweep"), R.run("slotted_rc_sweep")
     fig, ax = plt.subplots(figsize=(7, 4.2))
     for n in (2, 3, 4):
-        ax.plot(mm(plain2d["r_c"]), plain2d["f_rolled"].sel(n_d=n), "o-", ms=3, color=COLORS[n],
+        ax.plot(mm(plain2d["r_c"]), plain2d["f_rolled"].sel(n_d=n), "o-", ms=3, color=f"C{n}",
                 label=f"plain, N_d={n}")
         p = slotted["f_rolled_pair"].sel(n_d=n)
-        ax.fill_between(mm(slotted["r_c"]), p.isel(member=0), p.isel(member=1), color=COLORS[n],
+        ax.fill_between(mm(slotted["r_c"]), p.isel(member=0), p.isel(member=1), color=f"C{n}",
                         alpha=0.3)
-        ax.plot(mm(slotted["r_c"]), p.mean("member"), "s--", ms=3, color=COLORS[n],
+        ax.plot(mm(slotted["r_c"]), p.mean("member"), "s--", ms=3, color=f"C{n}",
                 label=f"slotted, N_d={n}")
         for ds, mk in ((plain2d, "o"), (slotted, "s")):
-            ax.plot([0], [float(ds["f_unrolled"].sel(n_d=n))], mk, mfc="none", color=COLORS[n])
+            ax.plot([0], [float(ds["f_unrolled"].sel(n_d=n))], mk, mfc="none", color=f"C{n}")
     ax.set(xlabel="r_c [mm]", ylabel="natural frequency [Hz]",
            title=f"slotted sawblade ({int(slotted['slot_count'])} slots) vs plain disk, r_f = 25 mm")
     ax.legend(fontsize=7, ncol=2)
@@ -237,9 +236,9 @@ def buckling(R):
     amps = from_si(amps[order], "degC")
     fig, ax = plt.subplots(figsize=(6.5, 4))
     for j, n in enumerate(ND):
-        ax.plot(amps, w2[:, j], "o-", color=COLORS[n], label=f"N_d={n}")
+        ax.plot(amps, w2[:, j], "o-", color=f"C{n}", label=f"N_d={n}")
         if np.isfinite(a_cr[j]) and a_cr[j] < 2 * amps.max():
-            ax.axvline(a_cr[j], color=COLORS[n], ls=":", lw=0.8)
+            ax.axvline(a_cr[j], color=f"C{n}", ls=":", lw=0.8)
     ax.axhline(0, color="k", lw=0.8)
     ax.set(xlabel="temperature amplitude A [°C]", ylabel="ω̃² [rad²/s²]",
            title="buckling: ω̃² through zero at the critical amplitude (dotted)")
@@ -282,8 +281,7 @@ def identifiability(R):
     ss = np.geomspace(0.6, s_mm.max() * 1.4, 200)
     for j, (ax, name) in enumerate(zip(axes[:2], idf.SUBSETS)):
         lo, hi = idn["region_c_lo"].values[j], idn["region_c_hi"].values[j]
-        best_s = float(idn["best_width"].values[j]) * 1e3
-        best_c = float(idn["best_scale"].values[j])
+        best_s, best_c = float(idn["best_width"].values[j]) * 1e3, float(idn["best_scale"].values[j])
         for li, color in ((1, "#9ecae1"), (0, "#2171b5")):      # 95 % below 68 %
             for a, hatch in ((1, None), (0, "///")):
                 ok = np.isfinite(lo[li, a])
@@ -349,17 +347,16 @@ def critical_speed(R):
     against r_c, rolled (A = 50 degC, alpha calibrated) and unrolled, per N_d at r_f = 25 mm
     (dotted: the other end of centrifugal_bc, free_disk), and the lowest over N_d per r_f, the
     design curve; a buckled rolled disk has none (a gap)."""
-    lowest = design.lowest_critical_speed
     cs, cs_free = R.run("critical_speed"), R.run("critical_speed_centrifugal_free")
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.2))
     rc_mm = cs["r_c"].values * 1e3
     for n in (2, 3, 4):
         axes[0].plot(rc_mm, cs["critical_speed"].sel(n_d=n).values * RPM, "o-",
-                     color=COLORS[n], label=f"N_d={n}")
+                     color=f"C{n}", label=f"N_d={n}")
         axes[0].axhline(float(cs["critical_speed_untensioned"].sel(n_d=n)) * RPM,
-                        color=COLORS[n], ls="--", lw=0.8)
+                        color=f"C{n}", ls="--", lw=0.8)
         axes[0].plot(rc_mm, cs_free["critical_speed"].sel(n_d=n).values * RPM, ":",
-                     color=COLORS[n], lw=1, label="dotted: free_disk" if n == 2 else None)
+                     color=f"C{n}", lw=1, label="dotted: free_disk" if n == 2 else None)
     axes[0].set(xlabel="rolling radius r_c [mm]", ylabel="critical speed [rpm]",
                 title="r_f = 25 mm: rolled (solid; dotted: free_disk) vs unrolled (dashed)")
     axes[0].legend(fontsize=8)

@@ -8,11 +8,10 @@ from mechrepro.validation import Quantities, Reproduced
 
 from . import design, identifiability as idf
 from .design import RPM, by_clamp, clamp_mm, eigen_and_eq9_times, lowest_critical_speed, rc_grid
-from .modal import (degenerate_harmonics, delta_f_exact, delta_f_linearised,
+from .modal import (TWO_PI, degenerate_harmonics, delta_f_exact, delta_f_linearised,
                     harmonic_coupling_symmetry)
 
 Q = Quantities("disk_tension")
-TWO_PI = 2 * np.pi
 RC_PAPER = 0.065  # r_c of Table 1 / Sec. 4.3 [m]
 
 
