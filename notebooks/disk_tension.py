@@ -38,7 +38,6 @@ from mechrepro.models.disk_tension import design, figures, identifiability as id
 from mechrepro.results import PaperResults
 
 R = PaperResults(paper, results_dir, config_file, profile)
-t12, t12_2d = R.run("table12"), R.run("table12_plate2d")
 
 # %% [markdown]
 # ## Fig. 3 — the FE models of the disk
@@ -117,9 +116,9 @@ R.figure("buckling")
 
 # %%
 hdr = ["N_d"] + [str(n) for n in figures.ND]
-for ds, solver in ((t12, ""), (t12_2d, "_plate2d")):
-    R.write_table(f"table1{solver}", hdr, figures.matrix_rows(ds["k_sigma_hat"]))
-    R.write_table(f"table2{solver}", hdr, figures.matrix_rows(ds["m_hat"]))
+for scene, solver in (("table12", ""), ("table12_plate2d", "_plate2d")):
+    for table, var in (("table1", "k_sigma_hat"), ("table2", "m_hat")):
+        R.write_table(f"{table}{solver}", hdr, figures.matrix_rows(R.run(scene)[var]))
 
 # %% [markdown]
 # ## Cost of accuracy
@@ -177,9 +176,9 @@ R.figure("critical_speed")
 # tensioning spends (they reach zero at buckling).
 
 # %%
-dm_runs = figures.by_clamp(R, "design_map", "design_map_rf")
+dm_runs = design.by_clamp(R, "design_map", "design_map_rf")
 cut = R.run("design_map_in_cut")
-R.write_table("design_map", design.COLUMNS, design.table(dm_runs + [(figures.clamp_mm(cut), cut)]))
+R.write_table("design_map", design.COLUMNS, design.table(dm_runs + [(design.clamp_mm(cut), cut)]))
 R.figure("design_map")
 
 # %% [markdown]

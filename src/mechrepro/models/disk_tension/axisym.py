@@ -19,6 +19,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.polynomial.legendre import leggauss
 
+from .modal import align_signs, critical_load_factor, eigen, eq9_delta_omega2, once
+
 #: Gauss-Legendre points and weights on [-1, 1]: 6, exact for the polynomial parts (the
 #: Gaussian stress needs a few more points than they do)
 XG, WG = leggauss(6)
@@ -137,8 +139,6 @@ class AxisymDisk:
 
     def unrolled(self):
         """omega^2 and mass-normalised mode of the fundamental of each N_d, Eq. (6)."""
-        from .modal import eigen
-
         self.omega2, self.phi = {}, {}
         for n in self.n_d:
             lam, phi = eigen(self.K[n], self.M[n], 1, BANDWIDTH)
@@ -161,13 +161,9 @@ class AxisymDisk:
 
     def rolled(self, Ks):
         """Eq. (5) per harmonic: omega~^2 and mode of the fundamental."""
-        from .modal import once
-
         return once(self._memo, "rolled", Ks, self._rolled)
 
     def _rolled(self, Ks):
-        from .modal import eigen
-
         out, modes = [], {}
         for n in self.n_d:
             lam, phi = eigen(self.K[n] + Ks[n], self.M[n], 1, BANDWIDTH)
@@ -176,13 +172,9 @@ class AxisymDisk:
         return np.array(out), modes
 
     def eq9(self, Ks):
-        from .modal import eq9_delta_omega2
-
         return np.array([eq9_delta_omega2(self.phi[n], Ks[n], self.M[n])[0] for n in self.n_d])
 
     def critical_load(self, Ks):
-        from .modal import critical_load_factor, once
-
         return once(self._memo, "critical_load", Ks, lambda Ks: np.array(
             [critical_load_factor(self.K[n], Ks[n]) for n in self.n_d]))
 
@@ -195,16 +187,12 @@ class AxisymDisk:
 
     def m_hat_diag(self, Ks, scale=1.0):
         """Diagonal of Eq. (17) with K^(sigma) scaled by ``scale`` (mode change vs stress)."""
-        from .modal import align_signs
-
         _, modes = self.rolled(Ks if scale == 1.0 else {n: scale * Ks[n] for n in self.n_d})
         return np.array([align_signs(modes[n][:, None], self.M[n], self.phi[n][:, None])[:, 0]
                          @ self.M[n] @ self.phi[n] for n in self.n_d])
 
     def sensitivity(self, *, r_a, width, increase, E, nu, rho):
         """Fig. 7: Delta f [Hz] of each N_d for D raised by ``increase`` in |r - r_a| <= width/2."""
-        from .modal import eigen
-
         D = E * self.h**3 / (12 * (1 - nu**2))
         r_f, b = self.mesh.nodes[0], self.mesh.nodes[-1]
         out = np.full((len(r_a), len(self.n_d)), np.nan)

@@ -2,13 +2,15 @@
 critical speed under a buckling margin, A <= A_cr / m.  The rolled stress is linear in A, so
 one [K^(sigma)] per r_c gives every a = A / A_0; per harmonic n, omega~^2 (Eq. 5) and
 Omega_c = 1 / sqrt(mu_max) of (n^2 M - K^(c)) phi = mu (K + a K^(sigma)) phi come from one
-symmetric eigen-decomposition per (r_c, a, n) in the basis M = L L^T.
+symmetric eigen-decomposition per (r_c, a, n) in the basis M = L L^T.  Also the groupings of
+runs by flange radius that the figures, the rows and the notebook read.
 """
 from __future__ import annotations
 
 import numpy as np
 
 from mechrepro.errors import Refusal
+from mechrepro.units import from_si
 
 #: what binds at an optimum (stored as this code)
 BINDS = ("untensioned", "buckling margin", "interior", "scan cap")
@@ -136,3 +138,23 @@ def lowest_critical_speed(ds) -> np.ndarray:
     """The lowest critical speed over N_d of each r_c [rad/s] of a critical-speed run; NaN:
     buckled."""
     return lowest_over(np.asarray(ds["critical_speed"].values, float), ds["n_d"].values)
+
+
+def clamp_mm(ds) -> float:
+    """r_f [mm] of a run."""
+    return float(from_si(float(ds["clamp_radius"]), "mm"))
+
+
+def by_clamp(R, scene, study) -> list:
+    """[(r_f [mm], dataset)] of ``scene`` and of the runs of its r_f ``study``."""
+    return [(clamp_mm(ds), ds) for ds in [R.run(scene), *R.study_runs(study)]]
+
+
+def rc_grid(R) -> dict:
+    """{r_f [mm]: dataset} of Figs. 6 and 8: scene ``rc_grid`` and study ``fig06``."""
+    return {int(round(rf)): ds for rf, ds in by_clamp(R, "rc_grid", "fig06")}
+
+
+def eigen_and_eq9_times(*runs) -> tuple[float, float]:
+    """Wall time [s] of Eq. (5) and of Eq. (9) over ``runs`` (the same K^(sigma))."""
+    return tuple(sum(float(ds[k]) for ds in runs) for k in ("time_eigen", "time_eq9"))

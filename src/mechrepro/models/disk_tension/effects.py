@@ -14,7 +14,7 @@ from mechrepro.levels import extrapolate
 from mechrepro.timing import phase
 from mechrepro.units import var
 
-from . import calibration, exact, thermal
+from . import calibration, design, exact, identifiability as idf, rotation, thermal
 from .axisym import AxisymDisk
 from .modal import delta_f_exact, delta_f_linearised, frequency
 
@@ -126,7 +126,7 @@ def cutting_heat(ctx) -> dict:
               r_f=ctx.r_f, b=ctx.b, E=ctx.E, nu=ctx.nu, alpha=p["thermal_expansion"],
               inplane_bc=p["centrifugal_bc"])
     r = np.linspace(ctx.r_f, ctx.b, N_RADII)
-    sr, st = thermal.thermal_stress(r, **kw)
+    st = thermal.thermal_stress(r, **kw)[1]
     return {
         "cutting_heat_stress": ThermalLoad(
             r_c=ctx.b, alpha=kw["alpha"], inplane_bc=kw["inplane_bc"], sigma=thermal.field(**kw),
@@ -134,7 +134,6 @@ def cutting_heat(ctx) -> dict:
         "r_heat": var("r_heat", r, "m", "radius of the cutting-heat stress"),
         "heat_temperature": var("r_heat", thermal.temperature(r, kw["amplitude"], ctx.b, kw["s"]),
                                 "K", "temperature rise of the blade in the cut"),
-        "heat_sigma_r": var("r_heat", sr, "Pa", "radial stress of the cutting heat"),
         "heat_sigma_theta": var("r_heat", st, "Pa", "hoop stress of the cutting heat"),
     }
 
@@ -344,8 +343,6 @@ def _coded(dim, names, what):
 @EFFECTS.register("identifiability")
 def identifiability(ctx) -> dict:
     """What the paper's numbers pin down: the joint fit of :mod:`.identifiability`."""
-    from . import identifiability as idf
-
     p = ctx.p
     widths, fine_widths = _scan(*p["scan_gaussian_width"], FINE_WIDTH)
     scales, fine = _scan(*p["scan_stress_scale"], FINE_SCALE)
@@ -398,8 +395,6 @@ def identifiability(ctx) -> dict:
 
 def _centrifugal_stiffness(ctx):
     """K^(c) of every harmonic: Eq. (3) of the centrifugal stress at Omega = 1 rad/s."""
-    from . import rotation
-
     kw = dict(omega=1.0, rho=ctx.rho, nu=ctx.nu, r_f=ctx.r_f, b=ctx.b,
               inplane_bc=ctx.p["centrifugal_bc"])
     return ctx.model.stress_stiffness((lambda r: rotation.centrifugal_stress(r, **kw)[0],
@@ -410,8 +405,6 @@ def _centrifugal_stiffness(ctx):
 def critical_speed(ctx) -> dict:
     """The travelling-wave critical speed per N_d (:mod:`.rotation`), untensioned (with
     Southwell's first-order form) and with the rolled stress of every r_c (NaN: buckled)."""
-    from . import rotation
-
     model, bc = ctx.model, ctx.p["centrifugal_bc"]
     Kc = _centrifugal_stiffness(ctx)
     with phase("disk_tension.critical_speed") as sw:
@@ -440,8 +433,6 @@ def critical_speed(ctx) -> dict:
 @EFFECTS.register("design_map")
 def design_map(ctx) -> dict:
     """The tensioning design map (:mod:`.design`) at every ``buckling_margin``."""
-    from . import design
-
     p, model = ctx.p, ctx.model
     Kc = _centrifugal_stiffness(ctx)
     if not ctx.A > 0:

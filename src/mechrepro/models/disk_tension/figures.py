@@ -1,59 +1,24 @@
 """disk_tension's figures, each drawn from the results it declares (config ``figures``), and
-what they draw, taken from the runs in SI.  matplotlib (and the fit's module) are imported by
-the draw functions only: validate_disk_tension imports the helpers of this module and never
-draws."""
+what they draw, taken from the runs in SI."""
 from __future__ import annotations
 
+import textwrap
+
+import matplotlib.ticker as mticker
 import numpy as np
 
+from mechrepro import accuracy
+from mechrepro.plotting import plt
 from mechrepro.units import from_si
 
-from . import design
+from . import design, identifiability as idf
+from .design import RPM, by_clamp, eigen_and_eq9_times, lowest_critical_speed as lowest, rc_grid
 
 ND = [0, 1, 2, 3, 4]
-COLORS = {n: f"C{n}" for n in ND}
 
 
 def mm(x):
     return from_si(np.asarray(x, float), "mm")
-
-
-def by_clamp(R, scene, study) -> list:
-    """[(r_f [mm], dataset)] of ``scene`` and of the runs of its r_f ``study``."""
-    return [(clamp_mm(ds), ds) for ds in [R.run(scene), *R.study_runs(study)]]
-
-
-def rc_grid(R) -> dict:
-    """{r_f [mm]: dataset} of Figs. 6 and 8: scene ``rc_grid`` and study ``fig06``."""
-    return {int(round(rf)): ds for rf, ds in by_clamp(R, "rc_grid", "fig06")}
-
-
-def paper_points(R) -> dict:
-    """The paper's own numbers drawn on Figs. 6 and 8 (Sec. 4.3) and the 2-D model's accuracy
-    goal, from the validation table."""
-    paper = lambda q: R.value(q, "paper_value")  # noqa: E731
-    return {"r_c": 0.065,
-            "f_unrolled": R.value("f_unrolled_nd4_rf25"),
-            "f_rolled": paper("f_rolled_nd4_rc65_rf25"),
-            "delta_f_eq9": paper("delta_f_eq9_nd4_rc65_rf25"),
-            "delta_f_eigen": paper("delta_f_eigen_nd4_rc65_rf25"),
-            "plate2d_goal": paper("plate2d_unrolled_vs_exact")}
-
-
-def eigen_and_eq9_times(*runs) -> tuple[float, float]:
-    """Wall time [s] of Eq. (5) and of Eq. (9) over ``runs`` (the same K^(sigma))."""
-    return tuple(sum(float(ds[k]) for ds in runs) for k in ("time_eigen", "time_eq9"))
-
-
-def buckling_series(R):
-    """The hard case (r_c = 105 mm): amplitudes A [K] ascending, omega~^2 of each (A, N_d),
-    and each N_d's critical amplitude A lambda_cr (omega~^2 is linear in A, Eq. 3)."""
-    runs = [R.run("buckling"), *R.study_runs("buckling_sweep")]
-    amps = np.array([float(ds["amplitude_used"]) for ds in runs])
-    w2 = np.array([ds["omega2_rolled"].isel(r_c=0).values for ds in runs])
-    order = np.argsort(amps)
-    a_cr = amps[0] * runs[0]["critical_load_factor"].isel(r_c=0).values
-    return amps[order], w2[order], a_cr
 
 
 def matrix_rows(da) -> list[list]:
@@ -69,17 +34,10 @@ def effect_cold_warm(R, scenes=("table12", "table12_plate2d", "stressed_axisym",
             for i, e in enumerate(ds["timed_effect"].values) if f"{e}_time_cold" in ds]
 
 
-def clamp_mm(ds) -> float:
-    """r_f [mm] of a run."""
-    return float(from_si(float(ds["clamp_radius"]), "mm"))
-
-
 def fig03(R):
     """Fig. 3: the finite-element models of the disk: the 2-D Argyris mesh of the flexible
     annulus (the core r < r_f is clamped, meshed only for the free-disk plane-stress problem)
     and the radial cubic Hermite elements of the axisymmetric model."""
-    from mechrepro.plotting import plt
-
     t12, t12_2d = R.run("table12"), R.run("table12_plate2d")
     fig, axes = plt.subplots(1, 2, figsize=(11, 5.2), gridspec_kw={"width_ratios": [1.2, 1]})
     ax = axes[0]
@@ -103,8 +61,6 @@ def fig03(R):
 def fig04(R):
     """Fig. 4: the thermal-analogy temperature of Eq. (4) (r_c = 65 mm, A = 50 degC, s = 5 mm),
     with the rolled width 4 s (Sec. 3.2)."""
-    from mechrepro.plotting import plt
-
     t12 = R.run("table12")
     fig, ax = plt.subplots(figsize=(6, 3.4))
     r = mm(t12["r"])
@@ -123,8 +79,6 @@ def fig05(R):
     """Fig. 5: the residual stress after rolling, sigma_r and sigma_theta along the radius (the
     load is axisymmetric, where the paper draws a contour on 1/12 of the disk): closed form for
     both in-plane conditions and the 2-D model's plane-stress P2 field (radial bin means)."""
-    from mechrepro.plotting import plt
-
     t12, t12_cl, t12_2d = R.run("table12"), R.run("table12_clamped"), R.run("table12_plate2d")
     r = mm(t12["r"])
     fig, ax = plt.subplots(figsize=(6.5, 4))
@@ -147,21 +101,19 @@ def fig06(R):
     """Fig. 6a-c: the natural frequencies after rolling against r_c by the eigen-analysis
     (Eq. 5), r_f = 25, 55, 75 mm; unrolled at r_c = 0 (open markers); r_f = 25 mm also under
     the clamped in-plane condition (dotted) and with the paper's 434.5 / 502.1 Hz (Sec. 4.3)."""
-    from mechrepro.plotting import plt
-
-    grid, clamped, paper_pts = rc_grid(R), R.run("rc_grid_clamped"), paper_points(R)
+    grid, clamped = rc_grid(R), R.run("rc_grid_clamped")
+    f_u, f_r = R.value("f_unrolled_nd4_rf25"), R.value("f_rolled_nd4_rc65_rf25", "paper_value")
     fig, axes = plt.subplots(1, 3, figsize=(13, 4.2), sharey=False)
     for ax, (rf, ds), letter in zip(axes, sorted(grid.items()), "abc"):
         rc = mm(ds["r_c"])
         for n in ND:
-            ax.plot(rc, ds["f_rolled"].sel(n_d=n), "o-", ms=3, color=COLORS[n], label=f"N_d={n}")
-            ax.plot([0], [float(ds["f_unrolled"].sel(n_d=n))], "o", mfc="none", color=COLORS[n])
+            ax.plot(rc, ds["f_rolled"].sel(n_d=n), "o-", ms=3, color=f"C{n}", label=f"N_d={n}")
+            ax.plot([0], [float(ds["f_unrolled"].sel(n_d=n))], "o", mfc="none", color=f"C{n}")
         if rf == 25:
             for n in ND:
-                ax.plot(rc, clamped["f_rolled"].sel(n_d=n), ":", lw=1, color=COLORS[n],
+                ax.plot(rc, clamped["f_rolled"].sel(n_d=n), ":", lw=1, color=f"C{n}",
                         label="clamped" if n == 0 else None)
-            ax.plot([0, mm(paper_pts["r_c"])], [paper_pts["f_unrolled"], paper_pts["f_rolled"]],
-                    "*", color="k", ms=9, label="paper (Sec. 4.3)")
+            ax.plot([0, mm(0.065)], [f_u, f_r], "*", color="k", ms=9, label="paper (Sec. 4.3)")
         ax.axvspan(0, rf, color="0.9")
         ax.set(xlabel="r_c [mm]", ylabel="natural frequency [Hz]",
                title=f"Fig. 6{letter}: r_f = {rf} mm")
@@ -173,13 +125,11 @@ def fig06(R):
 def fig07(R):
     """Fig. 7: the frequency change of each N_d for a 1 % stiffer 10 mm annulus at r_a
     (r_f = 25 mm, Sec. 4.2): where stiffening helps which mode."""
-    from mechrepro.plotting import plt
-
     ds = R.run("fig07_sensitivity")
     fig, ax = plt.subplots(figsize=(6, 4))
     for n in ND:
         ax.plot(mm(ds["r_a"]), ds["sensitivity_delta_f"].sel(n_d=n), "o-", ms=3,
-                color=COLORS[n], label=f"N_d={n}")
+                color=f"C{n}", label=f"N_d={n}")
     ax.set(xlabel="r_a [mm]", ylabel="Δf for +1 % stiffness [Hz]",
            title="Fig. 7: sensitivity of natural frequency to stiffness (r_f = 25 mm)")
     ax.legend(fontsize=7)
@@ -191,35 +141,32 @@ def fig08(R):
     omega) (solid: reproduces the paper's 70.0 Hz from Table 1) and exact conversion (dashed),
     against the eigen-analysis (dots); at r_f = 25 mm the paper's 70.0 Hz (Eq. 9) and 67.6 Hz
     (eigen), 2.4 Hz apart, on the curves and in a zoom."""
-    from mechrepro.plotting import plt
-
-    grid, paper_pts = rc_grid(R), paper_points(R)
+    grid, x65 = rc_grid(R), mm(0.065)     # the paper's Delta f at r_c = 65 mm (Sec. 4.3)
+    d_eq9, d_eig = (R.value(f"delta_f_{k}_nd4_rc65_rf25", "paper_value") for k in ("eq9", "eigen"))
     fig, axes = plt.subplots(1, 3, figsize=(13, 4.2))
     for ax, (rf, ds), letter in zip(axes, sorted(grid.items()), "abc"):
         rc, eig = mm(ds["r_c"]), ds["f_rolled"] - ds["f_unrolled"]
         for n in ND:
-            ax.plot(rc, ds["delta_f_eq9_linearised"].sel(n_d=n), "-", color=COLORS[n],
+            ax.plot(rc, ds["delta_f_eq9_linearised"].sel(n_d=n), "-", color=f"C{n}",
                     label=f"N_d={n}" + (", Eq. (9) linearised" if n == 0 else ""))
-            ax.plot(rc, ds["delta_f_eq9_exact"].sel(n_d=n), "--", lw=0.8, color=COLORS[n],
+            ax.plot(rc, ds["delta_f_eq9_exact"].sel(n_d=n), "--", lw=0.8, color=f"C{n}",
                     label="Eq. (9), exact conversion" if n == 0 else None)
-            ax.plot(rc, eig.sel(n_d=n), ".", color=COLORS[n],
+            ax.plot(rc, eig.sel(n_d=n), ".", color=f"C{n}",
                     label="eigen-analysis" if n == 0 else None)
         if rf == 25:
-            x65 = mm(paper_pts["r_c"])
             zoom = ax.inset_axes([0.06, 0.04, 0.36, 0.27])
             for a, ms in ((ax, 1.0), (zoom, 0.8)):
-                a.plot([x65], [paper_pts["delta_f_eq9"]], "*", mfc="none", mec="k", ms=12 * ms,
-                       mew=1.1, label="paper Eq. (9)" if a is ax else None)
-                a.plot([x65], [paper_pts["delta_f_eigen"]], "P", mfc="none", mec="k", ms=7 * ms,
-                       mew=1.1, label="paper eigen" if a is ax else None)
+                a.plot([x65], [d_eq9], "*", mfc="none", mec="k", ms=12 * ms, mew=1.1,
+                       label="paper Eq. (9)" if a is ax else None)
+                a.plot([x65], [d_eig], "P", mfc="none", mec="k", ms=7 * ms, mew=1.1,
+                       label="paper eigen" if a is ax else None)
             for n in (3, 4):
-                zoom.plot(rc, ds["delta_f_eq9_linearised"].sel(n_d=n), "-", color=COLORS[n])
-                zoom.plot(rc, eig.sel(n_d=n), ".", color=COLORS[n])
-            zoom.set(xlim=(x65 - 4, x65 + 4), ylim=(paper_pts["delta_f_eigen"] - 4,
-                                                    paper_pts["delta_f_eq9"] + 2))
+                zoom.plot(rc, ds["delta_f_eq9_linearised"].sel(n_d=n), "-", color=f"C{n}")
+                zoom.plot(rc, eig.sel(n_d=n), ".", color=f"C{n}")
+            zoom.set(xlim=(x65 - 4, x65 + 4), ylim=(d_eig - 4, d_eq9 + 2))
             zoom.tick_params(labelsize=6)
-            ax.text(0.44, 0.05, f"zoom at {x65:.0f} mm, paper:\n{paper_pts['delta_f_eq9']:.1f} Hz (★), "
-                    f"{paper_pts['delta_f_eigen']:.1f} Hz (+)", fontsize=7, transform=ax.transAxes)
+            ax.text(0.44, 0.05, f"zoom at {x65:.0f} mm, paper:\n{d_eq9:.1f} Hz (★), {d_eig:.1f} Hz (+)",
+                    fontsize=7, transform=ax.transAxes)
         ax.axhline(0, color="k", lw=0.6)
         ax.set(xlabel="r_c [mm]", ylabel="Δf [Hz]", title=f"Fig. 8{letter}: r_f = {rf} mm")
     fig.legend(*axes[0].get_legend_handles_labels(), loc="lower center", ncol=5, fontsize=8,
@@ -231,15 +178,13 @@ def eq9_vs_eigen(R):
     """Eq. (9) against the eigen-analysis over the whole grid of Figs. 6/8: the relative
     frequency error, and the wall time of each (the same K^(sigma): eigen-solves against
     quadratic forms), the paper's 'less computational effort' (Conclusion 1)."""
-    from mechrepro.plotting import plt
-
     grid, plain2d = rc_grid(R), R.run("plate2d_rc_sweep")
     fig, axes = plt.subplots(1, 2, figsize=(11, 4))
     ax = axes[0]
     for (rf, ds), sym in zip(sorted(grid.items()), ["o-", "s--", "^:"]):
         for n in ND:
             ax.semilogy(mm(ds["r_c"]), ds["eq9_rel_error"].sel(n_d=n), sym, ms=3,
-                        color=COLORS[n], label=f"N_d={n}" if rf == 25 else None)
+                        color=f"C{n}", label=f"N_d={n}" if rf == 25 else None)
     ax.set(xlabel="r_c [mm]", ylabel="|f(Eq. 9) / f(eigen) − 1| [1]",
            title="Eq. (9) error (o r_f=25, s 55, ^ 75 mm)")
     ax.legend(fontsize=7)
@@ -261,20 +206,18 @@ def slotted_blade(R):
     """Beyond the paper: a sawblade with radial expansion slots on the 2-D model against the
     plain disk, frequencies after rolling against r_c (N_d = 2-4); the slots split the pairs
     (drawn as a band), the optimal r_c per mode moves."""
-    from mechrepro.plotting import plt
-
     plain2d, slotted = R.run("plate2d_rc_sweep"), R.run("slotted_rc_sweep")
     fig, ax = plt.subplots(figsize=(7, 4.2))
     for n in (2, 3, 4):
-        ax.plot(mm(plain2d["r_c"]), plain2d["f_rolled"].sel(n_d=n), "o-", ms=3, color=COLORS[n],
+        ax.plot(mm(plain2d["r_c"]), plain2d["f_rolled"].sel(n_d=n), "o-", ms=3, color=f"C{n}",
                 label=f"plain, N_d={n}")
         p = slotted["f_rolled_pair"].sel(n_d=n)
-        ax.fill_between(mm(slotted["r_c"]), p.isel(member=0), p.isel(member=1), color=COLORS[n],
+        ax.fill_between(mm(slotted["r_c"]), p.isel(member=0), p.isel(member=1), color=f"C{n}",
                         alpha=0.3)
-        ax.plot(mm(slotted["r_c"]), p.mean("member"), "s--", ms=3, color=COLORS[n],
+        ax.plot(mm(slotted["r_c"]), p.mean("member"), "s--", ms=3, color=f"C{n}",
                 label=f"slotted, N_d={n}")
         for ds, mk in ((plain2d, "o"), (slotted, "s")):
-            ax.plot([0], [float(ds["f_unrolled"].sel(n_d=n))], mk, mfc="none", color=COLORS[n])
+            ax.plot([0], [float(ds["f_unrolled"].sel(n_d=n))], mk, mfc="none", color=f"C{n}")
     ax.set(xlabel="r_c [mm]", ylabel="natural frequency [Hz]",
            title=f"slotted sawblade ({int(slotted['slot_count'])} slots) vs plain disk, r_f = 25 mm")
     ax.legend(fontsize=7, ncol=2)
@@ -285,15 +228,17 @@ def buckling(R):
     """Hard case: rolling near the rim (r_c = 105 mm) lowers omega~^2 of N_d >= 2 linearly in
     the amplitude A (Eq. 3) through zero at each mode's critical amplitude (dotted), where the
     solver reports a buckled flag, never sqrt(negative)."""
-    from mechrepro.plotting import plt
-
+    runs = [R.run("buckling"), *R.study_runs("buckling_sweep")]
+    amps = np.array([float(ds["amplitude_used"]) for ds in runs])
+    order = np.argsort(amps)
+    w2 = np.array([ds["omega2_rolled"].isel(r_c=0).values for ds in runs])[order]
+    a_cr = from_si(amps[0] * runs[0]["critical_load_factor"].isel(r_c=0).values, "degC")
+    amps = from_si(amps[order], "degC")
     fig, ax = plt.subplots(figsize=(6.5, 4))
-    amps, w2, a_cr = buckling_series(R)
-    amps, a_cr = from_si(amps, "degC"), from_si(a_cr, "degC")
     for j, n in enumerate(ND):
-        ax.plot(amps, w2[:, j], "o-", color=COLORS[n], label=f"N_d={n}")
+        ax.plot(amps, w2[:, j], "o-", color=f"C{n}", label=f"N_d={n}")
         if np.isfinite(a_cr[j]) and a_cr[j] < 2 * amps.max():
-            ax.axvline(a_cr[j], color=COLORS[n], ls=":", lw=0.8)
+            ax.axvline(a_cr[j], color=f"C{n}", ls=":", lw=0.8)
     ax.axhline(0, color="k", lw=0.8)
     ax.set(xlabel="temperature amplitude A [°C]", ylabel="ω̃² [rad²/s²]",
            title="buckling: ω̃² through zero at the critical amplitude (dotted)")
@@ -307,13 +252,6 @@ def cost_of_accuracy(R):
     solution; bottom, the unrolled disk against its Bessel solution, and the 2-D model's
     rolled frequencies against the axisym Richardson reference (dotted: that reference's own
     accuracy on the unrolled frequencies, and the 2-D model's goal)."""
-    import textwrap
-
-    import matplotlib.ticker as mticker
-
-    from mechrepro import accuracy
-    from mechrepro.plotting import plt
-
     coa = R.table("cost_of_accuracy")
     fig, axes = plt.subplots(2, 2, figsize=(12, 9.2), constrained_layout=True)
     for ax, entry in zip(axes.ravel(), ("axisym_stressed", "plate2d_stressed", "axisym", "plate2d")):
@@ -336,12 +274,6 @@ def identifiability(R):
     minimised over the in-plane condition; hatched: clamped only) drawn as c s against s, the
     best fit, the chi^2 Hessian's soft axis, the single-alpha calibration and the scan bounds
     that cut a region; right, the profiles over s."""
-    import matplotlib.ticker as mticker
-
-    from mechrepro.plotting import plt
-
-    from . import identifiability as idf
-
     idn = R.run("identifiability")
     s_mm, c_grid = idn["scan_width"].values * 1e3, idn["scan_scale"].values
     levels = idn["fit_level"].values
@@ -349,8 +281,7 @@ def identifiability(R):
     ss = np.geomspace(0.6, s_mm.max() * 1.4, 200)
     for j, (ax, name) in enumerate(zip(axes[:2], idf.SUBSETS)):
         lo, hi = idn["region_c_lo"].values[j], idn["region_c_hi"].values[j]
-        best_s = float(idn["best_width"].values[j]) * 1e3
-        best_c = float(idn["best_scale"].values[j])
+        best_s, best_c = float(idn["best_width"].values[j]) * 1e3, float(idn["best_scale"].values[j])
         for li, color in ((1, "#9ecae1"), (0, "#2171b5")):      # 95 % below 68 %
             for a, hatch in ((1, None), (0, "///")):
                 ok = np.isfinite(lo[li, a])
@@ -416,19 +347,16 @@ def critical_speed(R):
     against r_c, rolled (A = 50 degC, alpha calibrated) and unrolled, per N_d at r_f = 25 mm
     (dotted: the other end of centrifugal_bc, free_disk), and the lowest over N_d per r_f, the
     design curve; a buckled rolled disk has none (a gap)."""
-    from mechrepro.plotting import plt
-
-    RPM, lowest = design.RPM, design.lowest_critical_speed
     cs, cs_free = R.run("critical_speed"), R.run("critical_speed_centrifugal_free")
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.2))
     rc_mm = cs["r_c"].values * 1e3
     for n in (2, 3, 4):
         axes[0].plot(rc_mm, cs["critical_speed"].sel(n_d=n).values * RPM, "o-",
-                     color=COLORS[n], label=f"N_d={n}")
+                     color=f"C{n}", label=f"N_d={n}")
         axes[0].axhline(float(cs["critical_speed_untensioned"].sel(n_d=n)) * RPM,
-                        color=COLORS[n], ls="--", lw=0.8)
+                        color=f"C{n}", ls="--", lw=0.8)
         axes[0].plot(rc_mm, cs_free["critical_speed"].sel(n_d=n).values * RPM, ":",
-                     color=COLORS[n], lw=1, label="dotted: free_disk" if n == 2 else None)
+                     color=f"C{n}", lw=1, label="dotted: free_disk" if n == 2 else None)
     axes[0].set(xlabel="rolling radius r_c [mm]", ylabel="critical speed [rpm]",
                 title="r_f = 25 mm: rolled (solid; dotted: free_disk) vs unrolled (dashed)")
     axes[0].legend(fontsize=8)
@@ -453,9 +381,6 @@ def design_map(R):
     optimum and the paper's r_c = 65 mm at A = 50 degC; the best lowest critical speed per r_c
     over the untensioned one (also in the cut, rim hotter); the N_d = 0, 1 frequency margins
     at rest that tensioning spends."""
-    from mechrepro.plotting import plt
-
-    RPM = design.RPM
     dm_runs, cut = by_clamp(R, "design_map", "design_map_rf"), R.run("design_map_in_cut")
     fig, axes = plt.subplots(2, 3, figsize=(15, 8.8), constrained_layout=True)
     ax, ax_f = axes[1, 1], axes[1, 2]

@@ -17,6 +17,8 @@ from skfem.helpers import dd, ddot, div, grad, sym_grad, trace
 
 from mechrepro.errors import Refusal
 
+from .modal import align_pair, once
+
 INTORDER = 8  # mass of quintics needs 10 for exactness; 8 changes f by < 1e-6 and is faster
 
 
@@ -328,8 +330,6 @@ class PlateDisk:
         """omega~^2 per N_d (the pair mean; both members in ``rolled_pairs``), labelled by
         subspace MAC against the unrolled modes; solved once per K^(sigma) object (kept with
         its result, so that its id cannot be reused while the model lives)."""
-        from .modal import once
-
         out, self.rolled_modes, self.rolled_pairs = once(self._memo, "rolled", Ks, self._rolled)
         return out, self.rolled_modes
 
@@ -357,8 +357,6 @@ class PlateDisk:
 
     def modal_matrices(self, Ks):
         """Eqs. (16)-(17), each rolled pair rotated onto its unrolled cos/sin basis first."""
-        from .modal import align_pair
-
         Phi = np.stack([self.pair[n][:, 0] for n in self.n_d], axis=1)   # the cos members
         k_hat = Phi.T @ (Ks @ Phi)
         self.rolled(Ks)

@@ -36,7 +36,12 @@ class Disk:
         self.alpha, self.bc = p["thermal_expansion"], p["inplane_bc"]
         #: the residual-stress model: the paper's, or a rival's (config rivals:)
         self.stress_model = run.get("options", {}).get("residual_stress", "thermal_analogy")
-        self._check()
+        # what the config cannot refuse (the schema, cross_checks and the effect protocol
+        # refuse the rest at load)
+        if self.stress_model != "thermal_analogy" and self.solver != "axisym":
+            raise Refusal(f"options.residual_stress = {self.stress_model!r}: the rivals' stress "
+                          "is closed-form, on the axisym harmonics only (the 2-D model solves "
+                          "the paper's plane-stress field by FE)")
         self.h = calibration.thickness(f_target=p["calibration_frequency"],
                                        n_d=int(p["calibration_nodal_diameter"]),
                                        r_f=p["calibration_clamp_radius"], b=self.b,
@@ -50,14 +55,6 @@ class Disk:
                              "N_d = 4 frequency, Sec. 4.3)"),
             "clamp_radius": var((), self.r_f, "m", "clamping radius r_f"),
         }
-
-    def _check(self):
-        """What the config cannot refuse (the schema, cross_checks and the effect protocol
-        refuse the rest at load)."""
-        if self.stress_model != "thermal_analogy" and self.solver != "axisym":
-            raise Refusal(f"options.residual_stress = {self.stress_model!r}: the rivals' stress "
-                          "is closed-form, on the axisym harmonics only (the 2-D model solves "
-                          "the paper's plane-stress field by FE)")
 
     @property
     def omega_unrolled(self):
@@ -108,7 +105,8 @@ DISCRETISATIONS = {"axisym": _axisym, "plate2d": _plate2d}
 
 def _stress_stiffness(ctx: Disk):
     """[K^(sigma)] of every r_c, Eq. (3): from the closed-form stress on the harmonics, from
-    the 2-D plane-stress FE solution of the same temperature on the mesh."""
+    the 2-D plane-stress FE solution of the same temperature on the mesh (whose first r_c's
+    field, averaged on radial bins, Fig. 5 draws)."""
     model = ctx.model
     with phase("disk_tension.stress") as sw:
         if ctx.solver == "plate2d":
@@ -118,20 +116,15 @@ def _stress_stiffness(ctx: Disk):
         else:
             ks = [model.stress_stiffness(ld.sigma) for ld in ctx.loads]
     if ctx.solver == "plate2d":
-        _plate2d_stress_profile(ctx, sig[0])
+        from scipy.stats import binned_statistic
+
+        r, sr, st = model.polar_stress(sig[0])
+        means, edges, _ = binned_statistic(r, [sr, st], "mean", bins=80)   # NaN: an empty bin
+        ctx.put("r_bin", "r_bin", 0.5 * (edges[1:] + edges[:-1]), "m", "radius (bin centre)")
+        for nm, mean in zip(("sigma_r", "sigma_theta"), means):
+            ctx.put(f"{nm}_binned", "r_bin", mean, "Pa", f"FE {nm} averaged on radial bins (first r_c)")
     ctx.put("time_stress", (), sw.seconds, "s", "wall time of thermal stress + K^(sigma), all r_c")
     return ks
-
-
-def _plate2d_stress_profile(ctx: Disk, sigma):
-    """FE stress of the first r_c averaged on radial bins (Fig. 5)."""
-    from scipy.stats import binned_statistic
-
-    r, sr, st = ctx.model.polar_stress(sigma)
-    means, edges, _ = binned_statistic(r, [sr, st], "mean", bins=80)   # NaN: an empty bin
-    ctx.put("r_bin", "r_bin", 0.5 * (edges[1:] + edges[:-1]), "m", "radius (bin centre)")
-    for nm, mean in zip(("sigma_r", "sigma_theta"), means):
-        ctx.put(f"{nm}_binned", "r_bin", mean, "Pa", f"FE {nm} averaged on radial bins (first r_c)")
 
 
 def _discretise(ctx: Disk):

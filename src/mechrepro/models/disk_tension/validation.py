@@ -6,13 +6,12 @@ import numpy as np
 
 from mechrepro.validation import Quantities, Reproduced
 
-from . import design
-from .figures import by_clamp, clamp_mm, eigen_and_eq9_times, rc_grid
-from .modal import (degenerate_harmonics, delta_f_exact, delta_f_linearised,
+from . import design, identifiability as idf
+from .design import RPM, by_clamp, clamp_mm, eigen_and_eq9_times, lowest_critical_speed, rc_grid
+from .modal import (TWO_PI, degenerate_harmonics, delta_f_exact, delta_f_linearised,
                     harmonic_coupling_symmetry)
 
 Q = Quantities("disk_tension")
-TWO_PI = 2 * np.pi
 RC_PAPER = 0.065  # r_c of Table 1 / Sec. 4.3 [m]
 
 
@@ -350,8 +349,6 @@ def _buckling(R):
 @Q.register("joint_fit_gaussian_width", "joint_fit_stress_scale")
 def _joint_fit(R):
     """The joint fit to Table 1 alone; the notes: its regions, pins, direction, 502.1 Hz."""
-    from . import identifiability as idf
-
     ds = R.run("identifiability")
     rows = {(r[0], r[1]): dict(zip(idf.COLUMNS, r)) for r in idf.table(ds)}
     single = {(r[0], r[1]): r for r in idf.readings(ds)}[("table1", "single-alpha calibration")]
@@ -377,7 +374,6 @@ def _joint_fit(R):
     return out
 
 
-RPM, lowest_critical_speed = design.RPM, design.lowest_critical_speed
 #: row critical_speed_vs_southwell: the eigen-based critical speed is within this of
 #: Southwell's first-order form for r_f up to SOUTHWELL_CLOSE_RF_MM (at 75 mm the first-order
 #: form's denominator N_d^2 - lambda amplifies the neglected second-order term)
