@@ -182,12 +182,12 @@ def load_point_fit(R):
               title="load point from Tables 3-4 (▲ wear on the upper part)")
     ax[0].legend(fontsize=7)
     for name, ls in (("local_wear", "-"), ("local_wear_estimated", "--")):
-        lw = R.run(name)
+        lw, label = R.run(name), name.replace("_", " ")
         c = centred_profile(lw)
-        line, = ax[1].plot(_deg(c["rel"]), _mm(c["profile"]), ls, label=f"{name.replace('_', ' ')} (centre {_deg(c['centre']):.0f}°)")
+        line, = ax[1].plot(_deg(c["rel"]), _mm(c["profile"]), ls, label=f"{label} (centre {_deg(c['centre']):.0f}°)")
         ax[1].axhline(_mm(float(lw["uniform_depth"][-1])), ls=ls, color="gray", lw=0.8)
         ax[1].plot(_deg(c["points"]), _mm(c["at_points"]), "o", color=line.get_color(), mfc="none", ms=5,
-                   label=f"{name.replace('_', ' ')}: the 8 measuring points (Eq. 33)")
+                   label=f"{label}: the 8 measuring points (Eq. 33)")
     ax[1].set_ylim(top=1.8 * ax[1].get_ylim()[1])                 # the legend above the profiles
     ax[1].set(xlabel="bushing angle θ from the worn region's centre [deg] (coupler frame)", ylabel="wear depth at 86 h [mm]",
               title="groove profile vs uniform depth (grey)")
@@ -201,17 +201,16 @@ def groove(R):
     paper's uniform depth (Eq. 29); and local / uniform - 1 at 86 h over the placement of the
     8 measuring points of Eq. (33)."""
     lw = R.run("local_wear_estimated")
-    c = centred_profile(lw)
+    c, u = centred_profile(lw), float(lw["uniform_depth"][-1])
     fig, ax = plt.subplots(1, 2, figsize=(11, 4))
     for var_, ls, lab in (("local_profile_end", "-", "groove in the contact"),
                           ("circle_profile_end", "--", "mean-circle feedback")):
         ax[0].plot(_deg(c["rel"]), _mm(lw[var_].values[c["order"]]), ls, label=lab)
-    ax[0].axhline(_mm(float(lw["uniform_depth"][-1])), color="gray", lw=0.8, label="uniform depth (Eq. 29)")
+    ax[0].axhline(_mm(u), color="gray", lw=0.8, label="uniform depth (Eq. 29)")
     ax[0].plot(_deg(c["points"]), _mm(c["at_points"]), "o", mfc="none", color="k", ms=5, label="measuring points (Eq. 33)")
     ax[0].set(xlabel="bushing angle from the worn region's centre [deg]", ylabel="wear depth at 86 h [mm]",
               title="side B1, estimated F")
     ax[0].legend(fontsize=7, loc="upper left")
-    u = float(lw["uniform_depth"][-1])
     x = np.arange(lw.sizes["placement"])
     ax[1].plot(x, 100 * (lw["placement_mean_depth"].values / u - 1), "o", label="groove in the contact")
     ax[1].plot([0], [100 * (float(lw["circle_mean_depth"][-1]) / u - 1)], "s", mfc="none",
