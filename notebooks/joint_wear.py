@@ -41,8 +41,10 @@ table = {r["quantity"]: r for r in R.validation()}
 
 
 def show(*quantities):
-    for q in quantities:
-        print(q, table[q]["reproduced_value"], table[q]["note"])
+    """Rows of the validation table (all without ``quantities``) with their notes."""
+    for r in (table[q] for q in quantities or table):
+        print(f"{r['status']:12s} {r['evidence']:12s} {r['quantity']:40s} paper {r['paper_value']:>12s} "
+              f"ours {r['reproduced_value']:>12s} {r['unit']}  {r['note']}")
 
 
 # %% [markdown]
@@ -70,9 +72,7 @@ show("contact_arc_steady_deg", "contact_arc_concentric_q90_deg")
 
 # %%
 for side, name in (("B1", "table3"), ("B2", "table4")):
-    s = side.lower()
-    paper_K = {f"p{i}": R.value(f"k_{s}_p{i}", "paper_value") for i in range(1, 6)} | {"mean": R.value(f"k_mean_{s}", "paper_value")}
-    rows = F.coefficient_table(R.run("wear_prediction"), paper_K, side)
+    rows = F.coefficient_table(R, side)
     R.write_table(name, ["point", "hour", "paper_K_per_Pa", "ours_K_per_Pa", "paper_over_ours"], rows)
     for r in rows:
         print(side, r[0], f"paper {r[2]:.4e}  ours {r[3]:.4e} 1/Pa  paper/ours {r[4]:.4g}")
@@ -128,16 +128,11 @@ show("local_vs_uniform_86h_b1_estimated_f", "circle_vs_uniform_86h_b1_estimated_
 
 # %%
 R.figure("contact_margin")
-post = R.run("load_point_posterior")
-post_rows = F.posterior_table(post)
+post_rows = F.posterior_table(R.run("load_point_posterior"))
 R.write_table("load_point_posterior", list(post_rows[0]), [list(r.values()) for r in post_rows])
-print(table["continuous_contact_margin_fitted_f"]["status"], table["continuous_contact_margin_fitted_f"]["note"])
-show("load_point_posterior_g_credible_min", "load_point_posterior_arc_deg_median",
+show("continuous_contact_margin_fitted_f", "load_point_posterior_g_credible_min", "load_point_posterior_arc_deg_median",
      "load_point_posterior_k_archard_b1_median", "load_point_posterior_wear_86h_b1_median",
      "load_point_posterior_wear_86h_b2_median")
-for r in R.table("verdict_evidence"):
-    if r["quantity"] == "continuous_contact_margin_fitted_f":
-        print(f"{r['variant']:28s} {float(r['value']):.4g} {r['status']:6s} {r['label']}")
 
 # %% [markdown]
 # ## Figs. 15 and 16 — prediction 10 → 86 h, B1 and B2
@@ -159,7 +154,7 @@ R.figure("fig16")
 # %%
 for name in ("fig17", "fig18", "fig19"):
     R.figure(name)
-print(table["interval_error_grows"]["note"])
+show("interval_error_grows")
 
 # %% [markdown]
 # ## Cost of accuracy
@@ -181,5 +176,4 @@ R.figure("cost_of_accuracy")
 # ## Validation table (built by `validate_joint_wear` from the config's `reported:` block)
 
 # %%
-for r in table.values():
-    print(f"{r['status']:12s} {r['evidence']:12s} {r['quantity']:40s} paper {r['paper_value']:>12s} ours {r['reproduced_value']:>12s} {r['unit']}")
+show()

@@ -162,7 +162,6 @@ def scan_part(res: dict, run: dict):
     v = {
         "scan_K_table_mean": var(("side", *gd), wear.table_from_k(sc["k"], H), "1/Pa", "mean equivalent wear coefficient (table units) calibrated with this load point and gravity"),
         "scan_L_arc": var(gd, sc["L_arc"], "m", "contact-point arc length on the bushing (new bushing)"),
-        "scan_load_distance": var((), float(sc["distance"]), "m", "distance of F from E's mid-stroke position in the scan"),
     }
     return coords, v
 

@@ -116,17 +116,20 @@ def _scipy(p, method, y0, t_eval, rtol, atol, max_steps) -> dict:
             "wall": sw.seconds}
 
 
+def _kernels() -> dict:
+    """The compiled integrators of :data:`COMPILED` by name."""
+    from .bdf import bdf
+    from .radau import radau
+    from .rk45 import rk45
+    return {"Radau": radau, "BDF": bdf, "RK45": rk45}
+
+
 def _compiled(method, p, y0, t_eval, rtol, atol, max_steps) -> dict:
     """:func:`_scipy` for a method of :data:`COMPILED`, its compiled copy (one call)."""
     from mechrepro.timing import phase
 
-    from .bdf import bdf
-    from .radau import radau
-    from .rk45 import rk45
-
     with phase("joint_wear.compiled_integration") as sw:
-        Yout, m, nfev, steps, status, t_reached = {"Radau": radau, "BDF": bdf,
-                                                   "RK45": rk45}[method](
+        Yout, m, nfev, steps, status, t_reached = _kernels()[method](
             p, float(t_eval[0]), np.asarray(y0, float), float(t_eval[-1]), t_eval,
             float(rtol), np.asarray(atol, float), int(max_steps or 0))
     message = {0: "finished", -1: TOO_SMALL_STEP}.get(
@@ -158,14 +161,11 @@ def warm(methods=COMPILED) -> None:
     if not todo and "physics" in _WARM:
         return
     from . import qs_numba as q
-    from .bdf import bdf
-    from .radau import radau
-    from .rk45 import rk45
 
     p = clearance.Params(*np.ones(len(clearance.Params._fields)))
     y, te, at = np.zeros(4), np.zeros(1), np.ones(4)
     for m in todo:
-        {"Radau": radau, "BDF": bdf, "RK45": rk45}[m](p, 0.0, y, 0.0, te, 1e-5, at, 0)
+        _kernels()[m](p, 0.0, y, 0.0, te, 1e-5, at, 0)
         _WARM.add(m)
     if "physics" in _WARM:
         return

@@ -13,21 +13,6 @@ from mechrepro.units import from_si
 
 from . import accuracy, wear
 
-SIDES = ("B1", "B2")
-
-
-def contact_angle(psi):
-    """The contact point on the bushing (Fig. 13) as an angle in [0, 2 pi) [rad], coupler
-    frame, 0 = direction C -> B."""
-    return np.mod(np.asarray(psi, float), 2 * np.pi)
-
-
-def contact_points_in_contact(ds):
-    """(t, contact angle) of the whole dynamic simulation where the pin touches (delta > 0)."""
-    c = ds["penetration_full"].values > 0
-    return ds["t_full"].values[c], contact_angle(ds["contact_angle_full"].values[c])
-
-
 def measured_wear(ds, side: str):
     """Tables 3-4: the measured cumulative wear h^P of ``side`` at the ends of the
     calibration intervals, with the new bushing at 0 h: (hours [h], wear [m])."""
@@ -35,23 +20,14 @@ def measured_wear(ds, side: str):
     return np.r_[0.0, ds["cal_hour"].values], np.r_[0.0, np.asarray(h, float)]
 
 
-def coefficient_table(ds, paper: dict, side: str) -> list[list]:
-    """Rows of Table 3 (B1) or 4 (B2): point, hour, paper K, our K [1/Pa], paper / ours.
-
-    ``paper``: {"p1".."p5", "mean": the paper's value}."""
-    K = ds["K_table"].sel(side=side).values
-    hours = ds["cal_hour"].values
-    rows = [[f"P{i + 1}", float(hours[i]), paper[f"p{i + 1}"], float(K[i]),
-             paper[f"p{i + 1}"] / float(K[i])] for i in range(K.size)]
-    Km = float(ds["K_table_mean"].sel(side=side))
-    rows.append(["mean", "", paper["mean"], Km, paper["mean"] / Km])
-    return rows
-
-
-def calibration_replay_error(ds, side: str):
-    """Fig. 16 (in-sample): (replay with the mean coefficient - measured) / measured [1]."""
-    _, h = measured_wear(ds, side)
-    return ds["wear_calibration_replay"].sel(side=side).values / h[1:] - 1.0
+def coefficient_table(R, side: str) -> list[list]:
+    """Rows of Table 3 (B1) or 4 (B2): point, hour, paper K, our K [1/Pa], paper / ours."""
+    ds, s = R.run("wear_prediction"), side.lower()
+    K, hours = ds["K_table"].sel(side=side).values, ds["cal_hour"].values
+    rows = [[f"P{i}", float(hours[i - 1]), R.value(f"k_{s}_p{i}", "paper_value"), float(K[i - 1])]
+            for i in range(1, K.size + 1)]
+    rows.append(["mean", "", R.value(f"k_mean_{s}", "paper_value"), float(ds["K_table_mean"].sel(side=side))])
+    return [r + [r[2] / r[3]] for r in rows]
 
 
 def relative_to(base, other, side: str = "B1"):
@@ -63,37 +39,10 @@ def relative_to(base, other, side: str = "B1"):
     return hrs, w / base["wear_report"].sel(side=side).values[ok] - 1.0
 
 
-def linear_extrapolation(ds, side: str = "B1"):
-    """The measured wear rate of the first 10 h continued, relative to the prediction
-    (Fig. 16 substitute): (hours, relative difference [1])."""
-    hh = ds["report_hour"].values
-    base = ds["wear_report"].sel(side=side).values
-    return hh, base[0] * hh / hh[0] / base - 1.0
-
-
-def interval_runs(runs) -> dict:
+def interval_runs(R) -> dict:
     """{interval length [h]: run}, sorted, of the runs of the interval study (Figs. 17-19)."""
-    out = {float(run_attrs(d)["resolution"]["interval_h"]): d for d in runs}
+    out = {float(run_attrs(d)["resolution"]["interval_h"]): d for d in R.study_runs("intervals")}
     return dict(sorted(out.items()))
-
-
-def quasistatic_errors(st_qs, st_dyn) -> dict:
-    """Relative error of the quasi-static wear per period over its samples per period,
-    against the finest Radau run (model + sampling) and against its own finest sampling."""
-    ref = st_dyn.isel(run=accuracy.finest_radau(st_dyn))
-    G = st_qs["wear_factor"].values
-    n = st_qs["n_steps"].values
-    return {"n_steps": n, "reference": f"Radau rtol={float(ref['rtol']):g}",
-            "vs_dynamic": np.abs(G / float(ref["wear_factor"]) - 1.0),
-            "vs_finest": np.abs(G / G[np.argmax(n)] - 1.0)}
-
-
-def explicit_points(st_exp) -> list[dict]:
-    """The explicit RK45 runs: step budget, time reached and extrapolated time per period."""
-    return [{"rtol": float(st_exp["rtol"][i]), "steps": float(st_exp["steps"][i]),
-             "t_reached": float(st_exp["t_reached"][i]),
-             "period_wall_time": float(st_exp["period_wall_time"][i])}
-            for i in range(st_exp.sizes["run"])]
 
 
 def posterior_table(ds) -> list[dict]:
@@ -104,20 +53,16 @@ def posterior_table(ds) -> list[dict]:
     w = ds["post_point_weight"].values
     cred = ds["post_point_credible"].values == 1
     H = float(run_attrs(ds)["parameters"]["values_si"]["hardness_bushing"])
-    K = ds["post_point_K_table"]
-    cols = {
-        ("gravity", "m/s2"): ds["post_point_gravity"].values,
-        ("distance_F_E", "m"): ds["post_point_distance"].values,
-        ("friction_coefficient", "1"): ds["post_point_friction"].values,
-        ("direction_F_E", "deg"): ds["post_point_direction"].values,
-        ("contact_margin_quasistatic", "1"): ds["post_point_qs_margin"].values,
-        ("contact_arc", "deg"): ds["post_point_arc"].values,
-        ("wear_factor_new_bushing", "N/m"): ds["post_point_wear_factor"].values,
-        ("k_archard_b1", "1"): wear.archard_dimensionless(wear.k_from_table(K.sel(side="B1").values, H), H),
-        ("k_archard_b2", "1"): wear.archard_dimensionless(wear.k_from_table(K.sel(side="B2").values, H), H),
-        ("wear_86h_b1", "mm"): ds["post_point_wear_86h"].sel(side="B1").values * 1e3,
-        ("wear_86h_b2", "mm"): ds["post_point_wear_86h"].sel(side="B2").values * 1e3,
-    }
+    cols = {(name, unit): ds[f"post_point_{v}"].values for name, unit, v in (
+        ("gravity", "m/s2", "gravity"), ("distance_F_E", "m", "distance"),
+        ("friction_coefficient", "1", "friction"), ("direction_F_E", "deg", "direction"),
+        ("contact_margin_quasistatic", "1", "qs_margin"), ("contact_arc", "deg", "arc"),
+        ("wear_factor_new_bushing", "N/m", "wear_factor"))}
+    for s in ("B1", "B2"):
+        K = ds["post_point_K_table"].sel(side=s).values
+        cols[(f"k_archard_{s.lower()}", "1")] = wear.archard_dimensionless(wear.k_from_table(K, H), H)
+    for s in ("B1", "B2"):
+        cols[(f"wear_86h_{s.lower()}", "mm")] = ds["post_point_wear_86h"].sel(side=s).values * 1e3
     out = []
     for (name, unit), x in cols.items():
         q = weighted_quantiles(x, w) if np.any(w > 0) else np.full(3, np.nan)
@@ -142,37 +87,6 @@ def centred_profile(lw) -> dict:
             "at_points": np.interp(pts, rel[o], prof[o])}
 
 
-def credible_arcs(post, qs) -> dict:
-    """Fig. 13's contact arcs [deg]: of every credible load point of the load-point
-    distribution (its ends, the first in [0, 360)) and of the quasi-static period ``qs`` at
-    the assumed F (from its smallest unwrapped contact angle)."""
-    cr = np.flatnonzero(post["post_point_credible"].values == 1)
-    ends = post["post_point_arc_ends"].values[cr]
-    return {"left": np.r_[np.mod(ends[:, 0], 360.0),
-                          float(np.degrees(np.min(np.unwrap(qs["contact_angle"].values)))) % 360.0],
-            "width": np.r_[ends[:, 1] - ends[:, 0], from_si(float(qs["contact_arc_angle"]), "deg")],
-            "labels": [f"g {g:.2g}, {a:.0f}°" for g, a in zip(
-                post["post_point_gravity"].values[cr], post["post_point_direction"].values[cr])] + ["assumed F"]}
-
-
-def posterior_points(post) -> dict:
-    """The points of the load-point distribution as drawn: their columns, whether their wear
-    is on the upper part (``up``) and credible (``cred``), and their chi2 above the best
-    upper-part point, clipped to [0, 50] (``dchi2``)."""
-    pt = {k: post[f"post_point_{k}"].values for k in ("direction", "distance", "gravity", "chi2", "credible",
-                                                       "upper_share", "qs_margin")}
-    up = pt["upper_share"] > 0.5
-    return {**pt, "up": up, "cred": pt["credible"] == 1,
-            "dchi2": np.clip(pt["chi2"] - np.nanmin(np.where(up, pt["chi2"], np.nan)), 0, 50)}
-
-
-def fit_band(fit, side: str):
-    """Fig. 15's band at 86 h: the 86-h wear of ``side`` [m] at the load points estimated
-    from Tables 3-4 with the wear on the upper part (their smallest and largest)."""
-    w = fit["fit_sol_wear_86h"].sel(side=side).values[fit["fit_sol_upper_share"].values > 0.5]
-    return w.min(), w.max()
-
-
 # --- the figures -----------------------------------------------------------------------------
 
 def _mm(x):
@@ -191,26 +105,35 @@ def fig13(R):
     settled dynamic and the quasi-static period; middle: their distribution over the bushing;
     right: the quasi-static contact arc at the load points Tables 3-4 imply (credible set of
     scene load_point_posterior) against the assumed F's few degrees."""
-    per_dyn, per_qs = R.run("period_dynamic"), R.run("period_quasistatic")
+    cp, per_dyn, per_qs, post = (R.run(n) for n in ("fig13_contact_points", "period_dynamic",
+                                                    "period_quasistatic", "load_point_posterior"))
+    on = cp["penetration_full"].values > 0                # the pin touches the bushing
+
+    def psi(x):      # the contact angle on the bushing [deg] in [0, 360), 0 = direction C -> B
+        return _deg(np.mod(np.asarray(x, float), 2 * np.pi))
+    psi_c, psi_dyn = psi(cp["contact_angle_full"].values[on]), psi(per_dyn["contact_angle"].values)
     fig, ax = plt.subplots(1, 3, figsize=(15, 4), layout="constrained")
-    tc, psi_c = contact_points_in_contact(R.run("fig13_contact_points"))
-    psi_dyn, psi_qs = (contact_angle(d["contact_angle"].values) for d in (per_dyn, per_qs))
-    ax[0].plot(tc, _deg(psi_c), ".", ms=1.5, label="dynamic, concentric start (1st period)")
-    ax[0].plot(per_dyn["t"], _deg(psi_dyn), "-", label="dynamic, settled period")
-    ax[0].plot(per_qs["t"], _deg(psi_qs), "--", label="quasi-static continuous contact")
+    ax[0].plot(cp["t_full"].values[on], psi_c, ".", ms=1.5, label="dynamic, concentric start (1st period)")
+    ax[0].plot(per_dyn["t"], psi_dyn, "-", label="dynamic, settled period")
+    ax[0].plot(per_qs["t"], psi(per_qs["contact_angle"].values), "--", label="quasi-static continuous contact")
     ax[0].set(xlabel="t [s]", ylabel="contact angle ψ on the bushing [deg]\n(coupler frame, 0 = direction C→B)", title="Fig. 13")
     ax[0].legend(fontsize=7)
-    bins = np.linspace(np.floor(_deg(psi_c).min()) - 1, np.ceil(_deg(psi_c).max()) + 1, 80)
-    ax[1].hist(_deg(psi_c), bins=bins, density=True, alpha=0.6, label="1st period (impact, rattling, sliding)")
-    ax[1].hist(_deg(psi_dyn), bins=bins, density=True, alpha=0.6, label="settled period")
+    bins = np.linspace(np.floor(psi_c.min()) - 1, np.ceil(psi_c.max()) + 1, 80)
+    ax[1].hist(psi_c, bins=bins, density=True, alpha=0.6, label="1st period (impact, rattling, sliding)")
+    ax[1].hist(psi_dyn, bins=bins, density=True, alpha=0.6, label="settled period")
     ax[1].set(xlabel="contact angle ψ [deg]", ylabel="share of time in contact [1/deg]", title="distribution of contact points")
     ax[1].legend(fontsize=7)
-    arcs = credible_arcs(R.run("load_point_posterior"), per_qs)
-    n = len(arcs["labels"]) - 1
-    ax[2].barh(np.arange(n), arcs["width"][:n], left=arcs["left"][:n], height=0.6, color="tab:green",
-               label="load points Tables 3–4 imply (credible set)")
-    ax[2].barh([n], arcs["width"][n:], left=arcs["left"][n:], height=0.6, color="tab:gray", label="assumed F")
-    ax[2].set_yticks(np.arange(n + 1), arcs["labels"], fontsize=6)
+    # the contact arcs of the credible load points (their ends, the first in [0, 360)) and of
+    # the quasi-static period at the assumed F (from its smallest unwrapped contact angle)
+    cr = np.flatnonzero(post["post_point_credible"].values == 1)
+    ends, n = post["post_point_arc_ends"].values[cr], cr.size
+    ax[2].barh(np.arange(n), ends[:, 1] - ends[:, 0], left=np.mod(ends[:, 0], 360.0), height=0.6,
+               color="tab:green", label="load points Tables 3–4 imply (credible set)")
+    ax[2].barh([n], [from_si(float(per_qs["contact_arc_angle"]), "deg")], height=0.6, color="tab:gray",
+               left=[float(np.degrees(np.min(np.unwrap(per_qs["contact_angle"].values)))) % 360.0], label="assumed F")
+    labels = [f"g {g:.2g}, {a:.0f}°" for g, a in zip(post["post_point_gravity"].values[cr],
+                                                      post["post_point_direction"].values[cr])]
+    ax[2].set_yticks(np.arange(n + 1), labels + ["assumed F"], fontsize=6)
     ax[2].set(xlabel="contact angle ψ on the bushing [deg] (coupler frame)", title="contact arc at the table-implied F (quasi-static)")
     ax[2].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2)
     return fig
@@ -259,12 +182,12 @@ def load_point_fit(R):
               title="load point from Tables 3-4 (▲ wear on the upper part)")
     ax[0].legend(fontsize=7)
     for name, ls in (("local_wear", "-"), ("local_wear_estimated", "--")):
-        lw = R.run(name)
+        lw, label = R.run(name), name.replace("_", " ")
         c = centred_profile(lw)
-        line, = ax[1].plot(_deg(c["rel"]), _mm(c["profile"]), ls, label=f"{name.replace('_', ' ')} (centre {_deg(c['centre']):.0f}°)")
+        line, = ax[1].plot(_deg(c["rel"]), _mm(c["profile"]), ls, label=f"{label} (centre {_deg(c['centre']):.0f}°)")
         ax[1].axhline(_mm(float(lw["uniform_depth"][-1])), ls=ls, color="gray", lw=0.8)
         ax[1].plot(_deg(c["points"]), _mm(c["at_points"]), "o", color=line.get_color(), mfc="none", ms=5,
-                   label=f"{name.replace('_', ' ')}: the 8 measuring points (Eq. 33)")
+                   label=f"{label}: the 8 measuring points (Eq. 33)")
     ax[1].set_ylim(top=1.8 * ax[1].get_ylim()[1])                 # the legend above the profiles
     ax[1].set(xlabel="bushing angle θ from the worn region's centre [deg] (coupler frame)", ylabel="wear depth at 86 h [mm]",
               title="groove profile vs uniform depth (grey)")
@@ -278,17 +201,16 @@ def groove(R):
     paper's uniform depth (Eq. 29); and local / uniform - 1 at 86 h over the placement of the
     8 measuring points of Eq. (33)."""
     lw = R.run("local_wear_estimated")
-    c = centred_profile(lw)
+    c, u = centred_profile(lw), float(lw["uniform_depth"][-1])
     fig, ax = plt.subplots(1, 2, figsize=(11, 4))
     for var_, ls, lab in (("local_profile_end", "-", "groove in the contact"),
                           ("circle_profile_end", "--", "mean-circle feedback")):
         ax[0].plot(_deg(c["rel"]), _mm(lw[var_].values[c["order"]]), ls, label=lab)
-    ax[0].axhline(_mm(float(lw["uniform_depth"][-1])), color="gray", lw=0.8, label="uniform depth (Eq. 29)")
+    ax[0].axhline(_mm(u), color="gray", lw=0.8, label="uniform depth (Eq. 29)")
     ax[0].plot(_deg(c["points"]), _mm(c["at_points"]), "o", mfc="none", color="k", ms=5, label="measuring points (Eq. 33)")
     ax[0].set(xlabel="bushing angle from the worn region's centre [deg]", ylabel="wear depth at 86 h [mm]",
               title="side B1, estimated F")
     ax[0].legend(fontsize=7, loc="upper left")
-    u = float(lw["uniform_depth"][-1])
     x = np.arange(lw.sizes["placement"])
     ax[1].plot(x, 100 * (lw["placement_mean_depth"].values / u - 1), "o", label="groove in the contact")
     ax[1].plot([0], [100 * (float(lw["circle_mean_depth"][-1]) / u - 1)], "s", mfc="none",
@@ -308,8 +230,11 @@ def contact_margin(R):
     smallest), and that smallest margin at every re-check of the row (verdict evidence)."""
     post = R.run("load_point_posterior")
     rows = [r for r in R.table("verdict_evidence") if r["quantity"] == "continuous_contact_margin_fitted_f"]
-    pt = posterior_points(post)
-    up, cred, dchi2 = pt["up"], pt["cred"], pt["dchi2"]
+    pt = {k: post[f"post_point_{k}"].values for k in ("direction", "distance", "gravity", "chi2", "credible",
+                                                       "upper_share", "qs_margin")}
+    up, cred = pt["upper_share"] > 0.5, pt["credible"] == 1      # wear on the upper part; credible
+    # chi2 above the best upper-part point, clipped to the colour scale
+    dchi2 = np.clip(pt["chi2"] - np.nanmin(np.where(up, pt["chi2"], np.nan)), 0, 50)
     fig, ax = plt.subplots(1, 3, figsize=(16, 4.6), gridspec_kw={"width_ratios": [1.2, 1.2, 1]},
                            layout="constrained")
     norm = plt.Normalize(0, 50)
@@ -350,19 +275,20 @@ def fig15(R):
     joint, 2-h intervals) against the measured points of Tables 3-4, beside the model
     variants (no wear update, swept-patch wear range, the worn bushing fed back into the
     stiff dynamic joint) and the 86-h band of the load points estimated from Tables 3-4."""
-    wp, wnu, wsp, wdyn = (R.run(n) for n in ("wear_prediction", "wear_no_update", "wear_swept_patch", "wear_dynamic"))
-    fit = R.run("load_point_fit")
+    wp, wdyn, fit = R.run("wear_prediction"), R.run("wear_dynamic"), R.run("load_point_fit")
+    lines = ((wp, "o-", {"ms": 3}, "predicted (quasi-static, 2 h)"), (R.run("wear_no_update"), ":", {}, "without wear_update"),
+             (R.run("wear_swept_patch"), "-.", {"lw": 0.8}, "wear range L_arc+|AB|"))
     fig, ax = plt.subplots(figsize=(7, 4.5))
     for side, col in (("B1", "tab:blue"), ("B2", "tab:orange")):
-        ax.plot(wp["hour"], _mm(wp["wear_predicted"].sel(side=side)), "o-", ms=3, color=col, label=f"{side} predicted (quasi-static, 2 h)")
-        ax.plot(wnu["hour"], _mm(wnu["wear_predicted"].sel(side=side)), ":", color=col, label=f"{side} without wear_update")
-        ax.plot(wsp["hour"], _mm(wsp["wear_predicted"].sel(side=side)), "-.", color=col, lw=0.8, label=f"{side} wear range L_arc+|AB|")
+        for d, fmt, kw, lab in lines:
+            ax.plot(d["hour"], _mm(d["wear_predicted"].sel(side=side)), fmt, color=col, label=f"{side} {lab}", **kw)
         hours, h = measured_wear(wp, side)
         ax.plot(hours, _mm(h), "s", color=col, mfc="none", label=f"{side} measured (Tables 3-4)")
     ax.plot(wdyn["hour"], _mm(wdyn["wear_predicted"].sel(side="B1")), "x--", color="k",
             label=f"B1 stiff dynamic joint with wear feedback, {run_attrs(wdyn)['resolution']['interval_h']:g} h")
     for side, col in (("B1", "tab:blue"), ("B2", "tab:orange")):   # band of the estimated load points
-        w86 = _mm(np.array(fit_band(fit, side)))
+        w = fit["fit_sol_wear_86h"].sel(side=side).values[fit["fit_sol_upper_share"].values > 0.5]
+        w86 = _mm(np.array((w.min(), w.max())))     # wear on the upper part: smallest, largest
         ax.errorbar([86.0], [0.5 * (w86.max() + w86.min())], yerr=[[0.5 * (w86.max() - w86.min())]],
                     color=col, capsize=4, lw=2, label=f"{side} 86 h, load points estimated from Tables 3-4")
     ax.axvline(float(wp["hour"][0]), color="gray", lw=0.6)
@@ -376,19 +302,21 @@ def fig16(R):
     in-sample calibration replay with the mean coefficient against Tables 3-4; right how far
     the model variants and a straight-line extrapolation of the measured rate lie from our
     B1 prediction (a model-to-model spread, not a prediction error)."""
-    wp, wnu, wsp, wdyn = (R.run(n) for n in ("wear_prediction", "wear_no_update", "wear_swept_patch", "wear_dynamic"))
+    wp, wdyn = R.run("wear_prediction"), R.run("wear_dynamic")
     fig, ax = plt.subplots(1, 2, figsize=(10, 4))
     for side in ("B1", "B2"):
-        ax[0].plot(wp["cal_hour"], 100 * calibration_replay_error(wp, side), "o-", label=side)
+        _, h = measured_wear(wp, side)
+        ax[0].plot(wp["cal_hour"], 100 * (wp["wear_calibration_replay"].sel(side=side).values / h[1:] - 1.0),
+                   "o-", label=side)
     ax[0].axhline(0, color="k", lw=0.6)
     ax[0].set(xlabel="t [h]", ylabel="(replay with mean K - measured) / measured [%]", title="Fig. 16 (in-sample, 2-10 h)")
     ax[0].legend(fontsize=7)
-    for lab, d in (("without wear_update", wnu), ("wear range L_arc+|AB|", wsp),
+    for lab, d in (("without wear_update", R.run("wear_no_update")), ("wear range L_arc+|AB|", R.run("wear_swept_patch")),
                    (f"stiff dynamic joint ({run_attrs(wdyn)['resolution']['interval_h']:g} h)", wdyn)):
         hrs, rel = relative_to(wp, d)
         ax[1].plot(hrs, 100 * rel, "o-", ms=3, label=lab)
-    hrs, rel = linear_extrapolation(wp)
-    ax[1].plot(hrs, 100 * rel, label="linear extrapolation of measured rate")
+    hh, base = wp["report_hour"].values, wp["wear_report"].sel(side="B1").values   # the first 10 h's rate
+    ax[1].plot(hh, 100 * (base[0] * hh / hh[0] / base - 1.0), label="linear extrapolation of measured rate")
     ax[1].set(xlabel="t [h]", ylabel="relative to our B1 prediction [%]", title="Fig. 16 substitute: model spread")
     ax[1].legend(fontsize=7)
     return fig
@@ -398,7 +326,7 @@ def fig17(R):
     """Fig. 17: the cumulative wear of B1 predicted with every interval length of the
     interval study (Sec. 3.3), against the measured points of Table 3."""
     fig, ax = plt.subplots(figsize=(7, 4.5))
-    for iv, d in interval_runs(R.study_runs("intervals")).items():
+    for iv, d in interval_runs(R).items():
         ax.plot(d["hour"], _mm(d["wear_predicted"].sel(side="B1")), "o-" if iv >= 2 else "-", ms=4, lw=1,
                 label=f"{iv:g} h ({int(d['n_simulations_per_side'])} simulations)")
     hours, h = measured_wear(R.run("wear_prediction"), "B1")
@@ -408,13 +336,15 @@ def fig17(R):
     return fig
 
 
-def _interval_differences(runs: dict, base_iv: float, others, title: str):
-    """Figs. 18-19: the B1 prediction of each interval length in ``others`` relative to
-    that of ``base_iv`` [%], at the measurement times both schedules reach."""
+def _vs_interval(R, base, title: str):
+    """Figs. 18-19: the B1 prediction of every interval length longer than ``base`` (None:
+    the finest) relative to that of ``base`` [%], at the measurement times both reach."""
+    runs = interval_runs(R)
+    base = min(runs) if base is None else base
     fig, ax = plt.subplots(figsize=(6.5, 4))
-    for iv in others:
-        hrs, rel = relative_to(runs[base_iv], runs[iv])
-        ax.plot(hrs, 100 * rel, "o-", ms=3, label=f"{iv:g} h vs {base_iv:g} h")
+    for iv in (v for v in runs if v > base):
+        hrs, rel = relative_to(runs[base], runs[iv])
+        ax.plot(hrs, 100 * rel, "o-", ms=3, label=f"{iv:g} h vs {base:g} h")
     ax.set(xlabel="t [h]", ylabel="relative difference [%]", title=title)
     ax.legend(fontsize=7)
     return fig
@@ -423,15 +353,12 @@ def _interval_differences(runs: dict, base_iv: float, others, title: str):
 def fig18(R):
     """Fig. 18 substitute (the paper compares with measurements after 10 h, not in its
     text): every interval length's B1 prediction relative to the finest interval's."""
-    runs = interval_runs(R.study_runs("intervals"))
-    ivals = list(runs)
-    return _interval_differences(runs, ivals[0], ivals[1:], "Fig. 18 substitute: vs the finest interval")
+    return _vs_interval(R, None, "Fig. 18 substitute: vs the finest interval")
 
 
 def fig19(R):
     """Fig. 19: the 4, 8 and 16 h interval predictions of B1 relative to the 2 h one."""
-    runs = interval_runs(R.study_runs("intervals"))
-    return _interval_differences(runs, 2.0, [v for v in runs if v > 2], "Fig. 19")
+    return _vs_interval(R, 2.0, "Fig. 19")
 
 
 def cost_of_accuracy(R):
@@ -442,22 +369,27 @@ def cost_of_accuracy(R):
     wear per period against the dynamic reference and against its finest sampling."""
     coa = R.table("cost_of_accuracy")
     fig, ax = plt.subplots(1, 4, figsize=(20, 4.3), sharey=False)
-    accuracy_plot(coa, "dynamic", ax[0])
-    for e in explicit_points(R.study("accuracy_explicit")):
-        w = e["period_wall_time"]
+    for a, entry, title in zip(ax, ("dynamic", "quasistatic", "interval"), (
+            "one period, dynamic joint: implicit (and explicit RK45)", "one period, quasi-static joint",
+            "wear at 86 h vs interval length")):
+        accuracy_plot(coa, entry, a)
+        a.set_title(title)
+    ex = R.study("accuracy_explicit")      # step budget, time reached, extrapolated time per period
+    for i in range(ex.sizes["run"]):
+        rtol, steps, t, w = (float(ex[k][i]) for k in ("rtol", "steps", "t_reached", "period_wall_time"))
         ax[0].axvline(w, color="r", ls=":", lw=1)
-        ax[0].annotate(f"RK45 rtol={e['rtol']:g}: step budget {e['steps']:.0f}\nreached {e['t_reached']:.3g} s, "
+        ax[0].annotate(f"RK45 rtol={rtol:g}: step budget {steps:.0f}\nreached {t:.3g} s, "
                        f"extrapolated {w:.3g} s/period", (w, 0.97), xycoords=("data", "axes fraction"),
                        fontsize=6, color="r", rotation=90, ha="right", va="top")
         ax[0].set_xlim(right=max(ax[0].get_xlim()[1], 10 ** np.ceil(np.log10(w))))   # in view
-    ax[0].set_title("one period, dynamic joint: implicit (and explicit RK45)")
-    accuracy_plot(coa, "quasistatic", ax[1])
-    ax[1].set_title("one period, quasi-static joint")
-    accuracy_plot(coa, "interval", ax[2])
-    ax[2].set_title("wear at 86 h vs interval length")
-    qe = quasistatic_errors(R.study("accuracy_quasistatic"), R.study("accuracy_dynamic"))
-    ax[3].loglog(qe["n_steps"], qe["vs_dynamic"] + 1e-16, "o-", label=f"quasi-static vs {qe['reference']}")
-    ax[3].loglog(qe["n_steps"], qe["vs_finest"] + 1e-16, "s--", label="quasi-static vs its finest")
+    # the quasi-static wear per period against the finest Radau run (model + sampling) and
+    # against its own finest sampling
+    st_qs, st_dyn = R.study("accuracy_quasistatic"), R.study("accuracy_dynamic")
+    ref = st_dyn.isel(run=accuracy.finest_radau(st_dyn))
+    G, n = st_qs["wear_factor"].values, st_qs["n_steps"].values
+    ax[3].loglog(n, np.abs(G / float(ref["wear_factor"]) - 1.0) + 1e-16, "o-",
+                 label=f"quasi-static vs Radau rtol={float(ref['rtol']):g}")
+    ax[3].loglog(n, np.abs(G / G[np.argmax(n)] - 1.0) + 1e-16, "s--", label="quasi-static vs its finest")
     ax[3].set(xlabel="samples per period [1]", ylabel="relative error of wear per period [1]",
               title="quasi-static vs dynamic joint")
     ax[3].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2))

@@ -90,6 +90,11 @@ def continuous_contact_period(fb: FourBar, s: dict) -> dict:
     return refuse_contact_loss(quasi_static_period(fb, s))
 
 
+def margin(hist: dict) -> float:
+    """The contact margin min F_N / max F_N of a period."""
+    return float(np.min(hist["F_N"]) / np.max(hist["F_N"]))
+
+
 def refuse_contact_loss(hist: dict) -> dict:
     """``hist`` if its joint force keeps above CONTACT_LOSS_FRACTION of its peak."""
     F = np.asarray(hist["F_N"])
@@ -402,8 +407,7 @@ def contact_margins(fb_a: FourBar, s: dict) -> dict:
     clearance joint (the last of ``periods`` periods from the settled start; 0 where the
     pin leaves the bushing).  Below the fraction the quasi-static margin stands: the rule
     already calls that contact lost, whatever the dynamics adds."""
-    F = np.asarray(quasi_static_period(fb_a, s)["F_N"])
-    row = {"qs_margin": float(F.min() / F.max()), "dyn_margin": math.nan}
+    row = {"qs_margin": margin(quasi_static_period(fb_a, s)), "dyn_margin": math.nan}
     if row["qs_margin"] >= CONTACT_LOSS_FRACTION:
         hist = finished_dynamic_period(fb_a, s)
         Fd = np.where(np.asarray(hist["delta"]) > 0.0, np.asarray(hist["F_N"]), 0.0)
@@ -584,12 +588,11 @@ def load_point_posterior(run: dict) -> dict:
                     chi2, width, logw, shift = laplace_log_weight(r, sigma, z["slope"])
                     qs = quasi_static_period(z["fb"], s)
                     f = wear.period_wear_factor(qs, z["fb"], fb.period)
-                    F = np.asarray(qs["F_N"])
                     pts.append({"distance": float(d), "gravity": float(g), "friction": float(mu),
                                 "direction": (z["direction"] + shift) % 360.0, "misfit": float(np.mean(r)),
                                 "chi2": chi2, "width": width, "log_lik": logw,
                                 "log_prior": math.log(g_prior[j]),
-                                "qs_margin": float(F.min() / F.max()),
+                                "qs_margin": margin(qs),
                                 "arc_deg": math.degrees(f["arc"]), "G": f["G"],
                                 "arc_ends_deg": np.degrees(wear.contact_arc_bounds(qs["psi"]) or (math.nan, math.nan)),
                                 "K_b1": float(np.mean(z["K"][0])), "K_b2": float(np.mean(z["K"][1])),
@@ -632,13 +635,11 @@ def load_point_posterior(run: dict) -> dict:
         e = region_edge(replace(fb, mu=br[0]["friction"]), s, p, E, br[0]["distance"], br, K_paper,
                         sigma, threshold, int(s["edge_bisections"]), bound)
         if e is not None:
-            F = np.asarray(e["qs"]["F_N"])
             edges.append({"distance": br[0]["distance"], "friction": br[0]["friction"],
                           "gravity": e["gravity"], "direction": e["direction"], "chi2": e["chi2"],
-                          "qs_margin": float(F.min() / F.max()), "fb": e["fb"]})
+                          "qs_margin": margin(e["qs"]), "fb": e["fb"]})
     worst = min([q for q in pts if q["credible"]] + edges, key=lambda q: q["qs_margin"], default=None)
     dyn = contact_margins(worst["fb"], s) if worst else {}
-    margin = dyn.get("margin", math.nan)
     for q in pts:
         del q["fb"], q["factor"]
     w = np.zeros(len(pts))
@@ -648,7 +649,7 @@ def load_point_posterior(run: dict) -> dict:
     return {"fb": fb, "posterior": {"gravity": gs, "points": pts,
                                     "weight": w, "worst": worst and {k: worst[k] for k in (
                                         "distance", "gravity", "friction", "direction", "qs_margin")},
-                                    "worst_margins": dyn, "margin": margin,
+                                    "worst_margins": dyn, "margin": dyn.get("margin", math.nan),
                                     "chi2_new_bushing": chi2_new, "new_bushing_credible": new_inside,
                                     "level": float(s["posterior_credible"])}}
 

@@ -187,10 +187,6 @@ def load_point_posterior(R):
     return out
 
 
-def _finest_radau(st):
-    return st.isel(run=accuracy.finest_radau(st))
-
-
 @Q.register("quasistatic_vs_dynamic_wear_per_period")
 def qs_vs_dynamic(R):
     ref = R.run("period_dynamic_converged")
@@ -255,7 +251,8 @@ def dynamic_feedback(R):
 @Q.register("explicit_steps_per_period")
 def explicit_steps(R):
     st = R.study("accuracy_explicit")
-    ref = _finest_radau(R.study("accuracy_dynamic"))
+    dyn = R.study("accuracy_dynamic")
+    ref = dyn.isel(run=accuracy.finest_radau(dyn))
     steps = float(st["steps"][0]) * float(st["period"][0]) / float(st["t_reached"][0])
     return Reproduced(steps, f"RK45 reached t = {float(st['t_reached'][0]):.3g} s in {float(st['steps'][0]):.0f} steps; "
                              f"Radau rtol {float(ref['rtol']):g}: {float(ref['steps']):.0f} steps per period")
@@ -328,17 +325,6 @@ def simulation_counts(R):
 
 
 # ---- the load point estimated from Tables 3-4 -----------------------------------------------
-def _fit_table(fit) -> str:
-    rows = []
-    for i in range(fit.sizes["fit_solution"]):
-        r = fit.isel(fit_solution=i)
-        rows.append(f"g {float(r['fit_sol_gravity']):g}: {float(r['fit_sol_direction']):.2f} "
-                    f"+- {float(r['fit_sol_sigma']):.1e} deg, arc {float(r['fit_sol_arc']):.1f} deg, "
-                    f"upper {float(r['fit_sol_upper_share']):.2f}, "
-                    f"86 h B1 {float(r['fit_sol_wear_86h'].sel(side='B1', fit_band=0.0)) * 1e3:.4f} mm")
-    return "; ".join(rows)
-
-
 @Q.register("load_point_fit_solutions", "load_point_fit_upper_part", "load_point_fit_arc_deg",
             "load_point_fit_wear_86h_b1_lo", "load_point_fit_wear_86h_b1_hi",
             "load_point_fit_wear_86h_b2_lo", "load_point_fit_wear_86h_b2_hi",
@@ -348,7 +334,11 @@ def load_point(R):
     n = fit.sizes["fit_solution"]
     up = fit["fit_sol_upper_share"].values > 0.5
     arcs = fit["fit_sol_arc"].values
-    table = _fit_table(fit)
+    table = "; ".join(f"g {float(r['fit_sol_gravity']):g}: {float(r['fit_sol_direction']):.2f} "
+                      f"+- {float(r['fit_sol_sigma']):.1e} deg, arc {float(r['fit_sol_arc']):.1f} deg, "
+                      f"upper {float(r['fit_sol_upper_share']):.2f}, "
+                      f"86 h B1 {float(r['fit_sol_wear_86h'].sel(side='B1', fit_band=0.0)) * 1e3:.4f} mm"
+                      for r in (fit.isel(fit_solution=i) for i in range(n)))
     sel = fit.isel(fit_solution=np.flatnonzero(up)) if up.any() else fit
     w = {s: sel["fit_sol_wear_86h"].sel(side=s).values * 1e3 for s in ("B1", "B2")}
     qs = R.run("period_quasistatic")
