@@ -5,7 +5,7 @@ Modules: geometry (Table 1-2, Eqs. 12-13), kinematics (ideal four-bar), loads (m
 coordinate equations of motion), contact (Eqs. 5-15, 18-20), quasistatic (continuous
 contact), dynamics (stiff clearance contact), wear (Eqs. 16-34, Sec. 3.3), effects (the
 effects a scene names), solver (the solvers a scene names), dataset (result -> Dataset),
-accuracy (cost-of-accuracy errors), figures (what the notebook draws).
+accuracy (cost-of-accuracy errors), figures (the draw function of every declared figure).
 """
 # imported on first use (mechrepro.lazy): the notebook, which reads datasets, does not
 # import the solvers and scipy
