@@ -133,34 +133,23 @@ def peak_level_spread(R, name: str, n_peaks: int = 5, window: float = 3.0):
     if any(n not in R.cfg.runs for n in levels):     # a profile that runs no such level
         return float("nan"), float("nan"), []
     ds = [R.run(n) for n in levels]
-    base = ds[2]
-    un = np.asarray(base.unstable.values, bool)
-    A = np.where(un, 0.0, base.amplitude.values)
-    idx = C.peaks(base.speed.values, A)
-    # a stable orbit next to an unstable band has no limit (its multiplier nears 1)
-    near = [np.any(un & (np.abs(base.speed.values - base.speed.values[i]) <= window)) for i in idx]
-    idx = idx[~np.array(near, bool)] if len(idx) else idx
-    # a peak the window shares with a larger one (a shoulder) is not what the window's
-    # vertex measures at every level
-    sp = base.speed.values
-    idx = np.array([i for i in idx if A[i] >= np.max(A[np.abs(sp - sp[i]) <= window])], int)
+    sp, un = ds[2].speed.values, np.asarray(ds[2].unstable.values, bool)
+    A = np.where(un, 0.0, ds[2].amplitude.values)
+    # left out: a stable orbit next to an unstable band (no limit: its multiplier nears 1)
+    # and a peak the window shares with a larger one (a shoulder: not what the window's
+    # vertex measures at every level)
+    idx = np.array([i for i in C.peaks(sp, A) if not np.any(un & (np.abs(sp - sp[i]) <= window))
+                    and A[i] >= np.max(A[np.abs(sp - sp[i]) <= window])], int)
     idx = idx[np.argsort(A[idx])[::-1][:n_peaks]]
     spread, orders = 0.0, []
     for i in idx:
-        s0 = float(base.speed.values[i])
-        vals = []
-        for d in ds:
-            m = np.abs(d.speed.values - s0) <= window
-            a = np.where(np.asarray(d.unstable.values, bool)[m], np.nan, d.amplitude.values[m])
-            # the one-mode vertex, not the largest sample: the levels sample speeds apart
-            vals.append(C.one_mode_peak(d.speed.values[m], a)[1] if np.isfinite(a).any()
-                        else np.nan)
-        c2, c, b = vals
+        # the one-mode vertex, not the largest sample: the levels sample speeds apart
+        c2, c, b = (_vertex(d, np.abs(d.speed.values - sp[i]) <= window)[1] for d in ds)
         spread = max(spread, np.nanmax(np.abs(np.array([c2, c]) - b)) / b)
         d1, d2 = abs(c2 - c), abs(c - b)
         orders.append(np.log(d1 / d2) / np.log(1.5) if d2 > 0 and d1 > 1.05 * d2 else np.nan)
     order = float(np.nanmin(orders)) if np.isfinite(orders).all() and orders else float("nan")
-    return float(spread), order, [float(base.speed.values[i]) for i in idx]
+    return float(spread), order, [float(sp[i]) for i in idx]
 
 
 LEVEL_RUNS = ("@coarsest", "@coarser", "", "@finer")
@@ -172,11 +161,15 @@ def order_peak(ds, k: int) -> tuple[float, float]:
     """(speed [rpm], amplitude [m]) of the largest stable peak of order k (within
     :func:`.claims.order_window` of its short- and long-span resonance speeds), at the
     one-mode vertex through its neighbours (:func:`.claims.one_mode_peak`)."""
-    sp = ds.speed.values
     lo, hi = order_window(ds, k)
-    m = (sp >= lo) & (sp <= hi)
-    a = np.where(np.asarray(ds.unstable.values, bool), np.nan, ds.amplitude.values)[m]
-    return C.one_mode_peak(sp[m], a) if np.isfinite(a).any() else (np.nan, np.nan)
+    return _vertex(ds, (ds.speed.values >= lo) & (ds.speed.values <= hi))
+
+
+def _vertex(ds, m) -> tuple[float, float]:
+    """(speed, amplitude) of the one-mode vertex (:func:`.claims.one_mode_peak`) of the
+    stable speeds of ``ds`` in the mask ``m``; nan where none is stable."""
+    a = steady(ds)[m]
+    return C.one_mode_peak(ds.speed.values[m], a) if np.isfinite(a).any() else (np.nan, np.nan)
 
 
 def stable_orders(ds, n: int = 2) -> list[int]:
