@@ -24,20 +24,12 @@ def _peaks(ds) -> np.ndarray:
                      for i in range(ds.sizes["run"])])
 
 
-def _finest(ds, entry, values, error):
-    return against_finest(values, ds[entry["knob"]].values, entry["finer"], error)
-
-
-for _j, _q in enumerate(("peak_amplitude", "peak_speed")):   # columns of :func:`_peaks`
-    ACCURACY.register(_q)(lambda ds, entry, j=_j, q=_q: _finest(
-        ds, entry, _peaks(ds)[:, j], entry["quantities"][q]["error"]))
-
-
-@ACCURACY.register("steady_amplitude")
-def steady_amplitude(ds, entry):
-    """Galerkin steady amplitude at the probe (last quarter of whole tooth periods)."""
-    return _finest(ds, entry, ds.steady_amplitude.values,
-                   entry["quantities"]["steady_amplitude"]["error"])
+# against the finest run: the resonance peak of a sweep, and the Galerkin steady amplitude at
+# the probe (last quarter of whole tooth periods)
+for _q, _get in (("peak_amplitude", lambda ds: _peaks(ds)[:, 0]), ("peak_speed", lambda ds: _peaks(ds)[:, 1]),
+                 ("steady_amplitude", lambda ds: ds.steady_amplitude.values)):
+    ACCURACY.register(_q)(lambda ds, entry, q=_q, get=_get: against_finest(
+        get(ds), ds[entry["knob"]].values, entry["finer"], entry["quantities"][q]["error"]))
 
 
 # max |u_FD - u_exact| after the march over the unit amplitude of the exact mode

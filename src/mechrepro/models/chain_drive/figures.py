@@ -177,12 +177,9 @@ def stable_orders(ds, n: int = 2) -> list[int]:
     the sweep and holds no unstable speed: a peak next to a stability edge has no
     converging amplitude."""
     sp, un = ds.speed.values, np.asarray(ds.unstable.values, bool)
-    out = []
-    for k in ds.order.values:
-        lo, hi = order_window(ds, k)
-        if lo >= sp[0] and hi <= sp[-1] and not np.any(un & (sp >= lo) & (sp <= hi)):
-            out.append(int(k))
-    return out[:n]
+    windows = {int(k): order_window(ds, k) for k in ds.order.values}
+    return [k for k, (lo, hi) in windows.items()
+            if lo >= sp[0] and hi <= sp[-1] and not np.any(un & (sp >= lo) & (sp <= hi))][:n]
 
 
 #: the band the levels' differences are compared with (:func:`mechrepro.levels.level_error`
@@ -191,14 +188,14 @@ def stable_orders(ds, n: int = 2) -> list[int]:
 PEAK_BAND = 0.02
 
 
-def level_runs(R, name: str, study: str | None = None) -> list:
+def level_runs(R, name: str) -> list:
     """The four levels of a discrete sweep, coarsest to finest: the framework's variants of
-    run ``name`` (@coarsest, @coarser, base, @finer), or, with ``study`` (a sweep spelling
-    them out for a scene no verdict reads), its runs by steps per tooth period around the
-    base scene ``name``."""
-    if study is None:
+    run ``name`` (@coarsest, @coarser, base, @finer), or, where the framework runs none (a
+    scene no verdict reads), the runs of the study ``<name>_levels`` spelling them out, by
+    steps per tooth period around the base scene ``name``."""
+    if f"{name}@coarsest" in R.cfg.runs:
         return [R.run(f"{name}{s}") for s in LEVEL_RUNS]
-    runs = sorted(R.study_runs(study), key=lambda d: resolution(d, "steps_per_period"))
+    runs = sorted(R.study_runs(f"{name}_levels"), key=lambda d: resolution(d, "steps_per_period"))
     return runs[:2] + [R.run(name)] + runs[2:]
 
 

@@ -10,7 +10,6 @@ import math
 
 import numpy as np
 
-from mechrepro.io import run_attrs
 from mechrepro.validation import Quantities, Reproduced
 
 from . import claims as C
@@ -197,12 +196,9 @@ def fig05_integral(R):
                       f"20 pitches: f_p = {float(ds.fractional_pitch):g}, span lengths equal")
 
 
-def _amplification(ds):
-    return C.amplification(ds.speed.values, ds.amplitude.values,
-                           float(ds.resonance_speed_mean.sel(order=1)), stable=_stable(ds))
-
-
-def _amplified(a: float, expect: bool) -> Reproduced:
+def _amplified(ds, expect: bool) -> Reproduced:
+    a = C.amplification(ds.speed.values, ds.amplitude.values,
+                        float(ds.resonance_speed_mean.sel(order=1)), stable=_stable(ds))
     if not np.isfinite(a):
         return Reproduced(math.nan, f"{NO_STEADY}: a speed within 5 % of the first resonance "
                                     "is unstable")
@@ -211,10 +207,9 @@ def _amplified(a: float, expect: bool) -> Reproduced:
                       "at the lowest stable speed)")
 
 
-Q.register("system_a_20p_amplified_first_resonance")(
-    lambda R: _amplified(_amplification(R.run("fig05_length")), True))
+Q.register("system_a_20p_amplified_first_resonance")(lambda R: _amplified(R.run("fig05_length"), True))
 Q.register("system_b_20p5_not_amplified_first_resonance")(
-    lambda R: _amplified(_amplification(_at_cd(R, "fig05_length_cd", 20.5)), False))
+    lambda R: _amplified(_at_cd(R, "fig05_length_cd", 20.5), False))
 
 
 # ----------------------------------------------------------------------------- Fig. 6
@@ -234,14 +229,12 @@ def fig06(R):
         lv = [C.resonance_peak_level(d.speed.values, d.amplitude.values, r, stable=_stable(d))
               for d, r in zip(runs, res)]
         where = f"unstable speeds within 2 % of the order-{k} resonances {near} for I2 = {i2} kg m^2"
-        if any(near):
-            out[f"inertia_raises_resonance_amplitude_order{k}"] = Reproduced(
-                math.nan, f"{NO_STEADY}: {where} (largest Floquet multiplier "
-                f"{[f'{x:.4g}' for x in rho]}); peak levels {[f'{x * 1e3:.3g}' for x in lv]} mm")
-        else:
-            out[f"inertia_raises_resonance_amplitude_order{k}"] = Reproduced(
-                C.monotone_increasing(lv), f"peak levels {[f'{x * 1e3:.3g}' for x in lv]} mm "
-                f"for I2 = {i2} kg m^2 (every speed within 2 % of a resonance stable)")
+        out[f"inertia_raises_resonance_amplitude_order{k}"] = Reproduced(
+            math.nan, f"{NO_STEADY}: {where} (largest Floquet multiplier "
+            f"{[f'{x:.4g}' for x in rho]}); peak levels {[f'{x * 1e3:.3g}' for x in lv]} mm"
+        ) if any(near) else Reproduced(
+            C.monotone_increasing(lv), f"peak levels {[f'{x * 1e3:.3g}' for x in lv]} mm "
+            f"for I2 = {i2} kg m^2 (every speed within 2 % of a resonance stable)")
     npk = [len(C.peaks(d.speed.values, d.amplitude.values, stable=_stable(d))) for d in runs]
     note = f"peaks {npk}, unstable speeds {un} of {[d.speed.size for d in runs]} for I2 = {i2} kg m^2"
     out["inertia_adds_peaks"] = (
@@ -264,7 +257,7 @@ def _stability_verdict(d, expect_unstable: bool) -> Reproduced:
     """No instability (or some) on the discrete span, with its unstable bands; the
     framework re-checks it at every level (a verdict that changes there is inconclusive)."""
     n = int(d.unstable.sum())
-    steps = int(run_attrs(d)["resolution"]["steps_per_period"])
+    steps = int(F.resolution(d, "steps_per_period"))
     return Reproduced(bool((n > 0) == expect_unstable),
                       f"{n} of {d.speed.size} speeds grow or go slack at {steps} RK4 steps per "
                       f"tooth period (bands {_bands(d)} rpm; largest Floquet multiplier "
@@ -282,28 +275,22 @@ Q.register("no_instability_ts400")(lambda R: _stability_verdict(R.run("fig07_ten
 
 
 # ----------------------------------------------------------------------------- Fig. 8
-def _fig08_effects(base, pk_speeds, d):
-    """Peak levels (nan where a peak's band holds an unstable speed) and off-peak medians
-    over the speeds stable with and without the load."""
-    sp = base.speed.values
-    level0 = C.level_at(sp, base.amplitude.values, pk_speeds, stable=_stable(base))
-    level = C.level_at(d.speed.values, d.amplitude.values, pk_speeds, stable=_stable(d))
-    off = C.off_peak_mask(sp, pk_speeds) & _stable(base) & _stable(d)
-    med0 = float(np.median(base.amplitude.values[off]))
-    med = float(np.median(d.amplitude.values[off]))
-    return level, level0, med, med0
-
-
 @Q.register("external_load_lowers_peaks_w4", "external_load_lowers_peaks_w1",
             "external_load_raises_offpeak_w4", "external_load_raises_offpeak_w1",
             "external_effect_grows_as_frequency_falls")
 def fig08(R):
     base = R.run("fig08_none")
-    pk = base.speed.values[C.peaks(base.speed.values, base.amplitude.values, stable=_stable(base))]
+    sp = base.speed.values
+    pk = sp[C.peaks(sp, base.amplitude.values, stable=_stable(base))]
+    # peak levels: nan where a peak's band holds an unstable speed
+    level0 = C.level_at(sp, base.amplitude.values, pk, stable=_stable(base))
     loaded = dict(zip(*F.with_base(R, "fig08_wex", "fig08_external", "external_frequency_ratio")))
     out, ratios = {}, {}
     for w, d in sorted(loaded.items()):
-        level, level0, med, med0 = _fig08_effects(base, pk, d)
+        level = C.level_at(d.speed.values, d.amplitude.values, pk, stable=_stable(d))
+        # off-peak medians over the speeds stable with and without the load
+        off = C.off_peak_mask(sp, pk) & _stable(base) & _stable(d)
+        med0, med = (float(np.median(x.amplitude.values[off])) for x in (base, d))
         ratios[w] = med / med0
         tag = f"{w:g}"
         if tag in ("4", "1"):
@@ -348,12 +335,12 @@ for _q, _scene, _unstable in (("medium_speed_stable_24_24_i2_0p002", "fig09a", F
 
 def _by_modes(R, scene: str, study: str) -> dict:
     """{transverse modes: run dataset} of a Fig. 10 scene and its mode study."""
-    return {int(run_attrs(d)["resolution"]["n_transverse"]): d
+    return {int(F.resolution(d, "n_transverse")): d
             for d in [R.run(scene)] + R.study_runs(study)}
 
 
 def drawn_modes(R, scene: str) -> int:
-    return int(run_attrs(R.run(scene))["resolution"]["n_transverse"])
+    return int(F.resolution(R.run(scene), "n_transverse"))
 
 
 def mode_ratios(R, coupled: str, uncoupled: str) -> dict:
@@ -406,7 +393,7 @@ def _converged_coupling(R, q: str, coupled: str, uncoupled: str, f) -> Reproduce
     :data:`STEADY` per quarter: the steady amplitude is still moving with the record
     length); and wherever its response depends on round-off (:data:`ROUND_OFF_10`)."""
     r = mode_ratios(R, coupled, uncoupled)
-    (cfl, (dc, du)), = {float(run_attrs(d)["resolution"]["rk4_cfl"]): (d, u) for d, u in
+    (cfl, (dc, du)), = {float(F.resolution(d, "rk4_cfl")): (d, u) for d, u in
                         zip(R.study_runs(coupled + "_step"), R.study_runs(uncoupled + "_step"))}.items()
     v, err, levels, bad = _mode_levels(R, q, {k: f(x) for k, x in r.items()}, drawn_modes(R, coupled),
                                        f(float(dc.steady_amplitude) / float(du.steady_amplitude)))
