@@ -95,12 +95,9 @@ R.figure("fig06")
 # ## Fig. 7 — static tension (instabilities appear as T_s falls)
 
 # %%
-R.write_table("discrete_peaks", F.DISCRETE_PEAK_COLUMNS,
-              [r for name, study in (("fig05_length", None), ("fig06_inertia", None),
-                                     ("fig06_i2-000", None), ("fig07_tension", None),
-                                     ("fig07_ts-000", None),
-                                     ("fig08_discrete", "fig08_discrete_levels"))
-               for r in F.discrete_peak_rows(name, F.level_runs(R, name, study))])
+R.write_table("discrete_peaks", F.DISCRETE_PEAK_COLUMNS, [
+    r for name in ("fig05_length", "fig06_inertia", "fig06_i2-000", "fig07_tension", "fig07_ts-000",
+                   "fig08_discrete") for r in F.discrete_peak_rows(name, F.level_runs(R, name))])
 R.figure("fig07")
 
 

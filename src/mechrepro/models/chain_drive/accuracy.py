@@ -16,54 +16,26 @@ from . import claims as C
 ACCURACY = AccuracyQuantities("chain_drive")
 
 
-def resonance_peak(speed, amplitude) -> tuple[float, float]:
-    """The resonance peak of a sweep (Figs. 5-9): its amplitude and speed at the one-mode
-    vertex through the largest sample and its neighbours (:func:`.claims.one_mode_peak`;
-    the speed axis may be adaptive).  Returns (amplitude, speed)."""
-    sp, a = C.one_mode_peak(speed, amplitude)
-    return a, sp
-
-
 def _peaks(ds) -> np.ndarray:
-    """(amplitude, speed) of the resonance peak of every run of a sweep study."""
-    return np.array([resonance_peak(ds.speed.values, ds.amplitude.isel(run=i).values)
+    """(amplitude, speed) of the resonance peak of every run of a sweep study (Figs. 5-9):
+    the one-mode vertex through the largest sample and its neighbours
+    (:func:`.claims.one_mode_peak`; the speed axis may be adaptive)."""
+    return np.array([C.one_mode_peak(ds.speed.values, ds.amplitude.isel(run=i).values)[::-1]
                      for i in range(ds.sizes["run"])])
 
 
-def _finest(ds, entry, values, error):
-    return against_finest(values, ds[entry["knob"]].values, entry["finer"], error)
+# against the finest run: the resonance peak of a sweep, and the Galerkin steady amplitude at
+# the probe (last quarter of whole tooth periods)
+for _q, _get in (("peak_amplitude", lambda ds: _peaks(ds)[:, 0]), ("peak_speed", lambda ds: _peaks(ds)[:, 1]),
+                 ("steady_amplitude", lambda ds: ds.steady_amplitude.values)):
+    ACCURACY.register(_q)(lambda ds, entry, q=_q, get=_get: against_finest(
+        get(ds), ds[entry["knob"]].values, entry["finer"], entry["quantities"][q]["error"]))
 
 
-@ACCURACY.register("peak_amplitude")
-def peak_amplitude(ds, entry):
-    return _finest(ds, entry, _peaks(ds)[:, 0], entry["quantities"]["peak_amplitude"]["error"])
-
-
-@ACCURACY.register("peak_speed")
-def peak_speed(ds, entry):
-    return _finest(ds, entry, _peaks(ds)[:, 1], entry["quantities"]["peak_speed"]["error"])
-
-
-@ACCURACY.register("steady_amplitude")
-def steady_amplitude(ds, entry):
-    """Galerkin steady amplitude at the probe (last quarter of whole tooth periods)."""
-    return _finest(ds, entry, ds.steady_amplitude.values,
-                   entry["quantities"]["steady_amplitude"]["error"])
-
-
-def _exact(ds, differencing):
-    """max |u_FD - u_exact| after the march over the unit amplitude of the exact mode."""
-    return ds.error_max.sel(differencing=differencing).values / 1.0
-
-
-@ACCURACY.register("exact_mode_central")
-def exact_mode_central(ds, entry):
-    return _exact(ds, "central")
-
-
-@ACCURACY.register("exact_mode_mixed")
-def exact_mode_mixed(ds, entry):
-    return _exact(ds, "mixed")
+# max |u_FD - u_exact| after the march over the unit amplitude of the exact mode
+for _d in ("central", "mixed"):
+    ACCURACY.register(f"exact_mode_{_d}")(
+        lambda ds, entry, d=_d: ds.error_max.sel(differencing=d).values / 1.0)
 
 
 def _against_central(ds, j: int):
@@ -82,11 +54,5 @@ def _against_central(ds, j: int):
     return err, e_ref
 
 
-@ACCURACY.register("peak_amplitude_vs_central")
-def peak_amplitude_vs_central(ds, entry):
-    return _against_central(ds, 0)
-
-
-@ACCURACY.register("peak_speed_vs_central")
-def peak_speed_vs_central(ds, entry):
-    return _against_central(ds, 1)
+for _j, _q in enumerate(("peak_amplitude_vs_central", "peak_speed_vs_central")):
+    ACCURACY.register(_q)(lambda ds, entry, j=_j: _against_central(ds, j))

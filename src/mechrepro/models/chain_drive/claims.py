@@ -149,13 +149,15 @@ def amplification(speed, amp, target: float, window: float = 0.05, stable=None) 
     return float(np.max(a[band]) / a[np.argmax(ok)])
 
 
+def _near(speed, at_speeds, width: float) -> np.ndarray:
+    """True where the speed is within +-width (relative) of any finite one of ``at_speeds``."""
+    r = np.asarray([x for x in np.ravel(at_speeds) if np.isfinite(x)], float)
+    return np.any(np.abs(np.asarray(speed, float)[:, None] / r[None, :] - 1) <= width, axis=1)
+
+
 def off_peak_mask(speed, peak_speeds_, width: float = 0.04):
     """True where the speed is more than width (relative) from every given peak speed."""
-    speed = np.asarray(speed, float)
-    r = np.asarray([x for x in np.ravel(peak_speeds_) if np.isfinite(x)])
-    if r.size == 0:
-        return np.ones(speed.shape, bool)
-    return np.all(np.abs(speed[:, None] / r[None, :] - 1) > width, axis=1)
+    return ~_near(speed, peak_speeds_, width)
 
 
 def level_at(speed, amp, at_speeds, window: float = 0.01, stable=None) -> float:
@@ -173,12 +175,7 @@ def level_at(speed, amp, at_speeds, window: float = 0.01, stable=None) -> float:
 
 def unstable_in_bands(speed, stable, at_speeds, window: float) -> int:
     """How many speeds within +-window (relative) of any of ``at_speeds`` are unstable."""
-    speed = np.asarray(speed, float)
-    r = np.asarray([x for x in np.ravel(at_speeds) if np.isfinite(x)])
-    if r.size == 0:
-        return 0
-    near = np.any(np.abs(speed[:, None] / r[None, :] - 1) <= window, axis=1)
-    return int(np.sum(near & ~np.asarray(stable, bool)))
+    return int(np.sum(_near(speed, at_speeds, window) & ~np.asarray(stable, bool)))
 
 
 def resonance_peak_level(speed, amp, resonances, window: float = 0.02, stable=None) -> float:

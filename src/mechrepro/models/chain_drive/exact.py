@@ -64,17 +64,19 @@ def free_vibration_check(prm: dict, res: dict) -> dict:
     col = _by_scheme(pts, lambda n, s: free_vibration(
         n, L=L, m=m, T=T, c=c, k=int(res.get("mode", 1)), cfl=float(res["cfl"]),
         periods=float(res.get("periods", 4)), s_star=s))
-    dims = ("differencing", "points")
     return {
-        "error_max": var(dims, col(0), "m",
+        "error_max": var(DIMS, col(0), "m",
                          "max |u_FD - u_exact| after the march (unit mode amplitude)"),
-        "omega_fd": var(dims, col(1), "rad/s", "frequency from zero crossings of the FD response"),
+        "omega_fd": var(DIMS, col(1), "rad/s", "frequency from zero crossings of the FD response"),
         "omega_exact": var((), float(col(2)[0, 0]), "rad/s",
                            "Wickert-Mote frequency k pi (c_w^2-c^2)/(c_w L)"),
         # one time per grid for each differencing (the cost-of-accuracy curves)
         "march_wall_time_central": var("points", col(4)[0], "s", "wall time of the central march"),
         "march_wall_time_mixed": var("points", col(4)[1], "s", "wall time of the mixed march"),
         **_differencing_coords(pts)}
+
+
+DIMS = ("differencing", "points")
 
 
 def _by_scheme(pts, solve):
@@ -131,7 +133,6 @@ def manufactured_check(prm: dict, res: dict) -> dict:
     """Convergence table over ``res["points"]`` for central and mixed differencing."""
     pts = np.atleast_1d(res["points"]).astype(int)
     col = _by_scheme(pts, lambda n, s: manufactured(n, cfl=float(res["cfl"]), s_star=s, kappa=0.01))
-    dims = ("differencing", "points")
     return {
-        "error_max": var(dims, col(0), "1", "max relative error against the manufactured solution"),
+        "error_max": var(DIMS, col(0), "1", "max relative error against the manufactured solution"),
         **_differencing_coords(pts)}

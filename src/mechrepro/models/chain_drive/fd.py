@@ -32,7 +32,7 @@ when numba is installed; the numpy loop below is the reference and the fallback.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.linalg import lapack
@@ -161,7 +161,6 @@ class MarchResult:
     final: np.ndarray | None = None       # (S, n+1) last state
     n_steps: int = 0
     dt: float = 0.0
-    info: dict = field(default_factory=dict)
 
 
 def _factor(dl, d, du):

@@ -232,8 +232,6 @@ def _build(lanes):
             for k in range(B):
                 for i in range(n + 1):
                     final[s0 + k, i] = u_cur[i, k]
-            up_ = u_prev
-            uc_ = u_cur
 
     return march_lanes
 

@@ -133,34 +133,23 @@ def peak_level_spread(R, name: str, n_peaks: int = 5, window: float = 3.0):
     if any(n not in R.cfg.runs for n in levels):     # a profile that runs no such level
         return float("nan"), float("nan"), []
     ds = [R.run(n) for n in levels]
-    base = ds[2]
-    un = np.asarray(base.unstable.values, bool)
-    A = np.where(un, 0.0, base.amplitude.values)
-    idx = C.peaks(base.speed.values, A)
-    # a stable orbit next to an unstable band has no limit (its multiplier nears 1)
-    near = [np.any(un & (np.abs(base.speed.values - base.speed.values[i]) <= window)) for i in idx]
-    idx = idx[~np.array(near, bool)] if len(idx) else idx
-    # a peak the window shares with a larger one (a shoulder) is not what the window's
-    # vertex measures at every level
-    sp = base.speed.values
-    idx = np.array([i for i in idx if A[i] >= np.max(A[np.abs(sp - sp[i]) <= window])], int)
+    sp, un = ds[2].speed.values, np.asarray(ds[2].unstable.values, bool)
+    A = np.where(un, 0.0, ds[2].amplitude.values)
+    # left out: a stable orbit next to an unstable band (no limit: its multiplier nears 1)
+    # and a peak the window shares with a larger one (a shoulder: not what the window's
+    # vertex measures at every level)
+    idx = np.array([i for i in C.peaks(sp, A) if not np.any(un & (np.abs(sp - sp[i]) <= window))
+                    and A[i] >= np.max(A[np.abs(sp - sp[i]) <= window])], int)
     idx = idx[np.argsort(A[idx])[::-1][:n_peaks]]
     spread, orders = 0.0, []
     for i in idx:
-        s0 = float(base.speed.values[i])
-        vals = []
-        for d in ds:
-            m = np.abs(d.speed.values - s0) <= window
-            a = np.where(np.asarray(d.unstable.values, bool)[m], np.nan, d.amplitude.values[m])
-            # the one-mode vertex, not the largest sample: the levels sample speeds apart
-            vals.append(C.one_mode_peak(d.speed.values[m], a)[1] if np.isfinite(a).any()
-                        else np.nan)
-        c2, c, b = vals
+        # the one-mode vertex, not the largest sample: the levels sample speeds apart
+        c2, c, b = (_vertex(d, np.abs(d.speed.values - sp[i]) <= window)[1] for d in ds)
         spread = max(spread, np.nanmax(np.abs(np.array([c2, c]) - b)) / b)
         d1, d2 = abs(c2 - c), abs(c - b)
         orders.append(np.log(d1 / d2) / np.log(1.5) if d2 > 0 and d1 > 1.05 * d2 else np.nan)
     order = float(np.nanmin(orders)) if np.isfinite(orders).all() and orders else float("nan")
-    return float(spread), order, [float(base.speed.values[i]) for i in idx]
+    return float(spread), order, [float(sp[i]) for i in idx]
 
 
 LEVEL_RUNS = ("@coarsest", "@coarser", "", "@finer")
@@ -172,11 +161,15 @@ def order_peak(ds, k: int) -> tuple[float, float]:
     """(speed [rpm], amplitude [m]) of the largest stable peak of order k (within
     :func:`.claims.order_window` of its short- and long-span resonance speeds), at the
     one-mode vertex through its neighbours (:func:`.claims.one_mode_peak`)."""
-    sp = ds.speed.values
     lo, hi = order_window(ds, k)
-    m = (sp >= lo) & (sp <= hi)
-    a = np.where(np.asarray(ds.unstable.values, bool), np.nan, ds.amplitude.values)[m]
-    return C.one_mode_peak(sp[m], a) if np.isfinite(a).any() else (np.nan, np.nan)
+    return _vertex(ds, (ds.speed.values >= lo) & (ds.speed.values <= hi))
+
+
+def _vertex(ds, m) -> tuple[float, float]:
+    """(speed, amplitude) of the one-mode vertex (:func:`.claims.one_mode_peak`) of the
+    stable speeds of ``ds`` in the mask ``m``; nan where none is stable."""
+    a = steady(ds)[m]
+    return C.one_mode_peak(ds.speed.values[m], a) if np.isfinite(a).any() else (np.nan, np.nan)
 
 
 def stable_orders(ds, n: int = 2) -> list[int]:
@@ -184,12 +177,9 @@ def stable_orders(ds, n: int = 2) -> list[int]:
     the sweep and holds no unstable speed: a peak next to a stability edge has no
     converging amplitude."""
     sp, un = ds.speed.values, np.asarray(ds.unstable.values, bool)
-    out = []
-    for k in ds.order.values:
-        lo, hi = order_window(ds, k)
-        if lo >= sp[0] and hi <= sp[-1] and not np.any(un & (sp >= lo) & (sp <= hi)):
-            out.append(int(k))
-    return out[:n]
+    windows = {int(k): order_window(ds, k) for k in ds.order.values}
+    return [k for k, (lo, hi) in windows.items()
+            if lo >= sp[0] and hi <= sp[-1] and not np.any(un & (sp >= lo) & (sp <= hi))][:n]
 
 
 #: the band the levels' differences are compared with (:func:`mechrepro.levels.level_error`
@@ -198,14 +188,14 @@ def stable_orders(ds, n: int = 2) -> list[int]:
 PEAK_BAND = 0.02
 
 
-def level_runs(R, name: str, study: str | None = None) -> list:
+def level_runs(R, name: str) -> list:
     """The four levels of a discrete sweep, coarsest to finest: the framework's variants of
-    run ``name`` (@coarsest, @coarser, base, @finer), or, with ``study`` (a sweep spelling
-    them out for a scene no verdict reads), its runs by steps per tooth period around the
-    base scene ``name``."""
-    if study is None:
+    run ``name`` (@coarsest, @coarser, base, @finer), or, where the framework runs none (a
+    scene no verdict reads), the runs of the study ``<name>_levels`` spelling them out, by
+    steps per tooth period around the base scene ``name``."""
+    if f"{name}@coarsest" in R.cfg.runs:
         return [R.run(f"{name}{s}") for s in LEVEL_RUNS]
-    runs = sorted(R.study_runs(study), key=lambda d: resolution(d, "steps_per_period"))
+    runs = sorted(R.study_runs(f"{name}_levels"), key=lambda d: resolution(d, "steps_per_period"))
     return runs[:2] + [R.run(name)] + runs[2:]
 
 

@@ -448,7 +448,6 @@ def solve_scene(run, prm, res):
     data = {
         "u_probe_rk4": var("t", u_all[::rec], "m", "transverse displacement at the probe, RK4 "
                            f"(every {rec}th step, for the figure)"),
-        "rk4_time_step": var((), dt, "s", "RK4 step (a whole number per tooth period)"),
         "rk4_wall_time": var((), sw_rk.seconds, "s", "wall time of the forcing and RK4"),
         "speed": var((), w1 * RPM, "rpm", "driving sprocket speed"),
         "detuning": var((), float(opts.get("detuning", 1.0)), "1",

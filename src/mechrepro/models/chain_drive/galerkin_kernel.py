@@ -203,7 +203,6 @@ def warm() -> None:
 def rk4_tabulated(model, y0, dt, n_steps, F, record_every=1, y_cap=1e3):
     """Compiled :func:`.galerkin.rk4_tabulated`: same arguments, same result to round-off."""
     nt, nl = model.n_t, model.n_l
-    w = model.w
 
     def c2(a):
         return np.ascontiguousarray(a, dtype=float)

@@ -44,11 +44,9 @@ def stability_only(run: dict) -> bool:
             and run.get("variant") not in (None, "coarser", "coarsest"))
 
 
-def solve_key(run: dict):
-    """What the solve reads of a run's identity beyond its record (:meth:`mechrepro.config.
-    PaperConfig.same_solve`): whether its sweep is stability-only, which follows from its
-    variant (:func:`stability_only`)."""
-    return stability_only(run)
+#: what the solve reads of a run's identity beyond its record (:meth:`mechrepro.config.
+#: PaperConfig.same_solve`): whether its sweep is stability-only, which follows from its variant
+solve_key = stability_only
 
 
 #: what a fresh solve process spends before its first run (imports, numba kernels)

@@ -223,10 +223,6 @@ def speed_sweep(run, prm, res) -> dict:
                         "1 where the response grows (Mathieu instability) or the span goes slack"),
         "n_steps": var((), out["n_steps"], "1", "number of time steps"),
         "n_points": var((), out["grid"].n_long + 1, "1", "grid points of the long span")}
-    if shooting_:
-        data["sampling_converged"] = var((), int(out["sampling_converged"]), "1",
-                                         "1 when the adaptive speed bisection finished (edges "
-                                         "and peaks at edge_tol/peak_tol)")
     steps = run.get("options", {}).get("discrete_reference")
     if steps:
         ref = discrete.sweep(run, prm, omega1, {"steps_per_period": steps})["amplitude"]
@@ -244,6 +240,9 @@ def speed_sweep(run, prm, res) -> dict:
         data["peak_speed_vs_discrete"] = var((), abs(s_s / s_d - 1.0), "1",
                                              "|string peak speed / discrete span's - 1|")
     if shooting_:
+        data["sampling_converged"] = var((), int(out["sampling_converged"]), "1",
+                                         "1 when the adaptive speed bisection finished (edges "
+                                         "and peaks at edge_tol/peak_tol)")
         data["growth_rate"] = var("speed", out["growth_rate"], "1/s",
                                   "Floquet growth rate log(rho)/T of the span")
         data["rho_lower"] = var("speed", out["rho_lower"], "1",

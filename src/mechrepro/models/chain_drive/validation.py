@@ -10,7 +10,6 @@ import math
 
 import numpy as np
 
-from mechrepro.io import run_attrs
 from mechrepro.validation import Quantities, Reproduced
 
 from . import claims as C
@@ -91,16 +90,16 @@ def _curve_peak(sp, y):
 def fig04(R):
     d = R.run("fig04_elastic")
     sp = d.curve_speed.values
-    pk_long, pk_short = (_curve_peak(sp, d[k].values) for k in ("peak_to_peak_long", "peak_to_peak_short"))
-    wc1, wc2 = float(d.omega_c1), float(d.omega_c2)
     peak = float(max(d.peak_to_peak_long.max(), d.peak_to_peak_short.max()))
     # a peak read off the speed grid is known to half its local step
     step = float(np.max(np.diff(sp)))
+    out = {}
+    for c, span in (("c1", "long"), ("c2", "short")):     # omega_c1: the long (softer) span
+        pk, wc = _curve_peak(sp, d[f"peak_to_peak_{span}"].values), float(d[f"omega_{c}"])
+        out[f"elastic_resonance_omega_{c}"] = Reproduced(
+            pk / wc, f"peak {pk:.1f} rpm, omega_{c} {wc:.1f} rpm", error=0.5 * step / wc)
     return {
-        "elastic_resonance_omega_c1": Reproduced(pk_long / wc1, f"peak {pk_long:.1f} rpm, omega_c1 {wc1:.1f} rpm",
-                                                 error=0.5 * step / wc1),
-        "elastic_resonance_omega_c2": Reproduced(pk_short / wc2, f"peak {pk_short:.1f} rpm, omega_c2 {wc2:.1f} rpm",
-                                                 error=0.5 * step / wc2),
+        **out,
         "elastic_load_limited_at_resonance": Reproduced(bool(np.all(np.isfinite(d.load_shape.values))),
                                                         f"max peak-to-peak {peak:.3g} N (finite)"),
         "elastic_load_peak_over_static_tension": Reproduced(
@@ -119,11 +118,9 @@ def _resonance_ratio(ds, k):
                                   f">= 0.05 mm within 6 %)", error=0.5 * step / pred)
 
 
-@Q.register("resonance_speed_order1_cd20p0", "resonance_speed_order3_cd20p0",
-            "resonance_speed_order5_cd20p0")
+@Q.register(*[f"resonance_speed_order{k}_cd20p0" for k in (1, 3, 5)])
 def fig05_system_a(R):
-    ds = R.run("fig05_plain")
-    return {f"resonance_speed_order{k}_cd20p0": _resonance_ratio(ds, k) for k in (1, 3, 5)}
+    return {f"resonance_speed_order{k}_cd20p0": _resonance_ratio(R.run("fig05_plain"), k) for k in (1, 3, 5)}
 
 
 def _at_cd(R, study, cd):
@@ -134,10 +131,10 @@ def _at_cd(R, study, cd):
     return runs[i]
 
 
-@Q.register("resonance_speed_order2_cd20p5", "resonance_speed_order4_cd20p5")
+@Q.register(*[f"resonance_speed_order{k}_cd20p5" for k in (2, 4)])
 def fig05_system_b(R):
-    ds = _at_cd(R, "fig05_plain_cd", 20.5)
-    return {f"resonance_speed_order{k}_cd20p5": _resonance_ratio(ds, k) for k in (2, 4)}
+    return {f"resonance_speed_order{k}_cd20p5": _resonance_ratio(_at_cd(R, "fig05_plain_cd", 20.5), k)
+            for k in (2, 4)}
 
 
 def _non_integral(R, study):
@@ -163,16 +160,11 @@ def _peak_counts(R, study, row, ok, with_window):
     return out
 
 
-@Q.register(*[f"two_peaks_with_length_change_order{k}" for k in (2, 3, 4, 5)])
-def fig05_two_peaks(R):
-    return _peak_counts(R, "fig05_length_cd", "two_peaks_with_length_change_order",
-                        lambda n: n >= 2, True)
-
-
-@Q.register(*[f"one_peak_without_length_change_order{k}" for k in (2, 3, 4, 5)])
-def fig05_one_peak(R):
-    return _peak_counts(R, "fig05_plain_cd", "one_peak_without_length_change_order",
-                        lambda n: n == 1, False)
+for _study, _row, _ok, _window in (
+        ("fig05_length_cd", "two_peaks_with_length_change_order", lambda n: n >= 2, True),
+        ("fig05_plain_cd", "one_peak_without_length_change_order", lambda n: n == 1, False)):
+    Q.register(*[f"{_row}{k}" for k in (2, 3, 4, 5)])(
+        lambda R, a=(_study, _row, _ok, _window): _peak_counts(R, *a))
 
 
 @Q.register("length_change_difference_grows_with_order")
@@ -204,12 +196,9 @@ def fig05_integral(R):
                       f"20 pitches: f_p = {float(ds.fractional_pitch):g}, span lengths equal")
 
 
-def _amplification(ds):
-    return C.amplification(ds.speed.values, ds.amplitude.values,
-                           float(ds.resonance_speed_mean.sel(order=1)), stable=_stable(ds))
-
-
-def _amplified(a: float, expect: bool) -> Reproduced:
+def _amplified(ds, expect: bool) -> Reproduced:
+    a = C.amplification(ds.speed.values, ds.amplitude.values,
+                        float(ds.resonance_speed_mean.sel(order=1)), stable=_stable(ds))
     if not np.isfinite(a):
         return Reproduced(math.nan, f"{NO_STEADY}: a speed within 5 % of the first resonance "
                                     "is unstable")
@@ -218,14 +207,9 @@ def _amplified(a: float, expect: bool) -> Reproduced:
                       "at the lowest stable speed)")
 
 
-@Q.register("system_a_20p_amplified_first_resonance")
-def fig05_system_a_amp(R):
-    return _amplified(_amplification(R.run("fig05_length")), True)
-
-
-@Q.register("system_b_20p5_not_amplified_first_resonance")
-def fig05_system_b_amp(R):
-    return _amplified(_amplification(_at_cd(R, "fig05_length_cd", 20.5)), False)
+Q.register("system_a_20p_amplified_first_resonance")(lambda R: _amplified(R.run("fig05_length"), True))
+Q.register("system_b_20p5_not_amplified_first_resonance")(
+    lambda R: _amplified(_at_cd(R, "fig05_length_cd", 20.5), False))
 
 
 # ----------------------------------------------------------------------------- Fig. 6
@@ -245,14 +229,12 @@ def fig06(R):
         lv = [C.resonance_peak_level(d.speed.values, d.amplitude.values, r, stable=_stable(d))
               for d, r in zip(runs, res)]
         where = f"unstable speeds within 2 % of the order-{k} resonances {near} for I2 = {i2} kg m^2"
-        if any(near):
-            out[f"inertia_raises_resonance_amplitude_order{k}"] = Reproduced(
-                math.nan, f"{NO_STEADY}: {where} (largest Floquet multiplier "
-                f"{[f'{x:.4g}' for x in rho]}); peak levels {[f'{x * 1e3:.3g}' for x in lv]} mm")
-        else:
-            out[f"inertia_raises_resonance_amplitude_order{k}"] = Reproduced(
-                C.monotone_increasing(lv), f"peak levels {[f'{x * 1e3:.3g}' for x in lv]} mm "
-                f"for I2 = {i2} kg m^2 (every speed within 2 % of a resonance stable)")
+        out[f"inertia_raises_resonance_amplitude_order{k}"] = Reproduced(
+            math.nan, f"{NO_STEADY}: {where} (largest Floquet multiplier "
+            f"{[f'{x:.4g}' for x in rho]}); peak levels {[f'{x * 1e3:.3g}' for x in lv]} mm"
+        ) if any(near) else Reproduced(
+            C.monotone_increasing(lv), f"peak levels {[f'{x * 1e3:.3g}' for x in lv]} mm "
+            f"for I2 = {i2} kg m^2 (every speed within 2 % of a resonance stable)")
     npk = [len(C.peaks(d.speed.values, d.amplitude.values, stable=_stable(d))) for d in runs]
     note = f"peaks {npk}, unstable speeds {un} of {[d.speed.size for d in runs]} for I2 = {i2} kg m^2"
     out["inertia_adds_peaks"] = (
@@ -275,7 +257,7 @@ def _stability_verdict(d, expect_unstable: bool) -> Reproduced:
     """No instability (or some) on the discrete span, with its unstable bands; the
     framework re-checks it at every level (a verdict that changes there is inconclusive)."""
     n = int(d.unstable.sum())
-    steps = int(run_attrs(d)["resolution"]["steps_per_period"])
+    steps = int(F.resolution(d, "steps_per_period"))
     return Reproduced(bool((n > 0) == expect_unstable),
                       f"{n} of {d.speed.size} speeds grow or go slack at {steps} RK4 steps per "
                       f"tooth period (bands {_bands(d)} rpm; largest Floquet multiplier "
@@ -285,40 +267,30 @@ def _stability_verdict(d, expect_unstable: bool) -> Reproduced:
 @Q.register("no_instability_ts800", "instability_ts200", "instability_ts100")
 def fig07_study(R):
     ts, runs = _study_runs(R, "fig07_ts", "static_tension")
-    at = {t: runs[int(np.argmin(np.abs(ts - t)))] for t in (800.0, 200.0, 100.0)}
-    return {"no_instability_ts800": _stability_verdict(at[800.0], False),
-            "instability_ts200": _stability_verdict(at[200.0], True),
-            "instability_ts100": _stability_verdict(at[100.0], True)}
+    return {f"{'no_' if t > 400 else ''}instability_ts{t:.0f}":
+            _stability_verdict(runs[int(np.argmin(np.abs(ts - t)))], t < 400) for t in (800.0, 200.0, 100.0)}
 
 
-@Q.register("no_instability_ts400")
-def fig07_base(R):
-    return _stability_verdict(R.run("fig07_tension"), False)
+Q.register("no_instability_ts400")(lambda R: _stability_verdict(R.run("fig07_tension"), False))
 
 
 # ----------------------------------------------------------------------------- Fig. 8
-def _fig08_effects(base, pk_speeds, d):
-    """Peak levels (nan where a peak's band holds an unstable speed) and off-peak medians
-    over the speeds stable with and without the load."""
-    sp = base.speed.values
-    level0 = C.level_at(sp, base.amplitude.values, pk_speeds, stable=_stable(base))
-    level = C.level_at(d.speed.values, d.amplitude.values, pk_speeds, stable=_stable(d))
-    off = C.off_peak_mask(sp, pk_speeds) & _stable(base) & _stable(d)
-    med0 = float(np.median(base.amplitude.values[off]))
-    med = float(np.median(d.amplitude.values[off]))
-    return level, level0, med, med0
-
-
 @Q.register("external_load_lowers_peaks_w4", "external_load_lowers_peaks_w1",
             "external_load_raises_offpeak_w4", "external_load_raises_offpeak_w1",
             "external_effect_grows_as_frequency_falls")
 def fig08(R):
     base = R.run("fig08_none")
-    pk = base.speed.values[C.peaks(base.speed.values, base.amplitude.values, stable=_stable(base))]
+    sp = base.speed.values
+    pk = sp[C.peaks(sp, base.amplitude.values, stable=_stable(base))]
+    # peak levels: nan where a peak's band holds an unstable speed
+    level0 = C.level_at(sp, base.amplitude.values, pk, stable=_stable(base))
     loaded = dict(zip(*F.with_base(R, "fig08_wex", "fig08_external", "external_frequency_ratio")))
     out, ratios = {}, {}
     for w, d in sorted(loaded.items()):
-        level, level0, med, med0 = _fig08_effects(base, pk, d)
+        level = C.level_at(d.speed.values, d.amplitude.values, pk, stable=_stable(d))
+        # off-peak medians over the speeds stable with and without the load
+        off = C.off_peak_mask(sp, pk) & _stable(base) & _stable(d)
+        med0, med = (float(np.median(x.amplitude.values[off])) for x in (base, d))
         ratios[w] = med / med0
         tag = f"{w:g}"
         if tag in ("4", "1"):
@@ -348,14 +320,9 @@ def _fig09(d, expect_unstable: bool):
                       f"{float(d.elastic_resonance_speed):.0f} rpm")
 
 
-@Q.register("medium_speed_stable_24_24_i2_0p002")
-def fig09a(R):
-    return _fig09(R.run("fig09a"), False)
-
-
-@Q.register("medium_speed_unstable_15_40_i2_0p0005")
-def fig09b(R):
-    return _fig09(R.run("fig09b"), True)
+for _q, _scene, _unstable in (("medium_speed_stable_24_24_i2_0p002", "fig09a", False),
+                              ("medium_speed_unstable_15_40_i2_0p0005", "fig09b", True)):
+    Q.register(_q)(lambda R, s=_scene, u=_unstable: _fig09(R.run(s), u))
 
 
 # ----------------------------------------------------------------------------- Fig. 10
@@ -368,12 +335,12 @@ def fig09b(R):
 
 def _by_modes(R, scene: str, study: str) -> dict:
     """{transverse modes: run dataset} of a Fig. 10 scene and its mode study."""
-    return {int(run_attrs(d)["resolution"]["n_transverse"]): d
+    return {int(F.resolution(d, "n_transverse")): d
             for d in [R.run(scene)] + R.study_runs(study)}
 
 
 def drawn_modes(R, scene: str) -> int:
-    return int(run_attrs(R.run(scene))["resolution"]["n_transverse"])
+    return int(F.resolution(R.run(scene), "n_transverse"))
 
 
 def mode_ratios(R, coupled: str, uncoupled: str) -> dict:
@@ -402,49 +369,47 @@ ROUND_OFF_10 = {
                          "reference runs); 0.056 / 0.152 at 12 modes in ci"}
 
 
-def _converged_coupling(R, q: str, coupled: str, uncoupled: str, f) -> Reproduced:
-    """f(coupled / uncoupled steady amplitude) at the drawn count, refined in modes and step.
-
-    Modes: the drawn count n and n/2, n/4 (the mode studies) at the drawn RK4 step give the
-    error and order by the one estimator (:func:`mechrepro.validation.level_error`, ratio
-    2); step: the drawn count at half the step adds |difference| (two levels).  The value
-    does not converge (``not_converged``) where the mode levels do not contract, where
-    their error estimate (modes and step) exceeds the value itself (levels that far from
-    the asymptotic range fix no digit of it, and round-off then moves them: 0.056 natively,
-    0.152 under another BLAS at 12 modes in ci), or where a drawn record is not steady
-    (envelope change > :data:`STEADY` per quarter: the steady amplitude is still moving with
-    the record length); and wherever its response depends on round-off
-    (:data:`ROUND_OFF_10`, measured across the platform variants)."""
+def _mode_levels(R, q: str, vals: dict, n: int, v_half: float):
+    """The value at the drawn count ``n`` of ``vals`` ({transverse modes: value}) refined in
+    modes and step: the levels n/4, n/2, n at the drawn RK4 step give the error by the one
+    estimator (:func:`mechrepro.validation.level_error`, ratio 2), the drawn count at half
+    the step (``v_half``) adds |difference|.  Returns (value, error, note, why it does not
+    converge: levels that do not contract)."""
     from mechrepro.validation import band, level_error
 
+    v = vals[n]
+    e_m, _, ok, how = level_error(vals[n // 4], vals[n // 2], v, 2.0, band(R.reported(q), v))
+    note = (f"{' / '.join(f'{vals[k]:.3g}' for k in (n // 4, n // 2, n))} at {n // 4} / "
+            f"{n // 2} / {n} transverse modes ({how}); {v_half:.3g} at half the RK4 step")
+    return v, e_m + abs(v_half - v), note, [] if ok else [f"the mode levels do not contract: {how}"]
+
+
+def _converged_coupling(R, q: str, coupled: str, uncoupled: str, f) -> Reproduced:
+    """f(coupled / uncoupled steady amplitude) at the drawn count, refined in modes and step
+    (:func:`_mode_levels`).  The value does not converge (``not_converged``) where the mode
+    levels do not contract, where their error estimate (modes and step) exceeds the value
+    itself (levels that far from the asymptotic range fix no digit of it, and round-off
+    then moves them), or where a drawn record is not steady (envelope change >
+    :data:`STEADY` per quarter: the steady amplitude is still moving with the record
+    length); and wherever its response depends on round-off (:data:`ROUND_OFF_10`)."""
     r = mode_ratios(R, coupled, uncoupled)
-    n = drawn_modes(R, coupled)
-    step = {float(run_attrs(d)["resolution"]["rk4_cfl"]): (d, u) for d, u in
-            zip(R.study_runs(coupled + "_step"), R.study_runs(uncoupled + "_step"))}
-    (dc, du), = step.values()
-    v = f(r[n])
-    v_half = f(float(dc.steady_amplitude) / float(du.steady_amplitude))
-    e_m, order, ok, how = level_error(f(r[n // 4]), f(r[n // 2]), v, 2.0, band(R.reported(q), v))
-    e_s = abs(v_half - v)
-    unsteady = {name: float(R.run(name).steady_ratio) for name in (coupled, uncoupled)
-                if abs(float(R.run(name).steady_ratio) - 1) > STEADY}
-    note = (f"{' / '.join(f'{f(r[k]):.3g}' for k in (n // 4, n // 2, n))} at {n // 4} / "
-            f"{n // 2} / {n} transverse modes ({how}); {v_half:.3g} at half the RK4 step "
-            f"({next(iter(step)):g}); last / third quarter of the drawn records "
-            f"{float(R.run(coupled).steady_ratio):.3f} (coupled), "
-            f"{float(R.run(uncoupled).steady_ratio):.3f} (uncoupled)")
-    why = [ROUND_OFF_10[coupled]] if coupled in ROUND_OFF_10 else []
-    if not ok:
-        why.append(f"the mode levels do not contract: {how}")
-    elif e_m + e_s > abs(v):
-        why.append(f"the error estimate from modes and step, {e_m + e_s:.3g}, exceeds the "
-                   f"value {v:.3g} itself: no digit of it is known")
+    (cfl, (dc, du)), = {float(F.resolution(d, "rk4_cfl")): (d, u) for d, u in
+                        zip(R.study_runs(coupled + "_step"), R.study_runs(uncoupled + "_step"))}.items()
+    v, err, levels, bad = _mode_levels(R, q, {k: f(x) for k, x in r.items()}, drawn_modes(R, coupled),
+                                       f(float(dc.steady_amplitude) / float(du.steady_amplitude)))
+    ratio = {name: float(R.run(name).steady_ratio) for name in (coupled, uncoupled)}
+    note = (f"{levels} ({cfl:g}); last / third quarter of the drawn records "
+            f"{ratio[coupled]:.3f} (coupled), {ratio[uncoupled]:.3f} (uncoupled)")
+    why = ([ROUND_OFF_10[coupled]] if coupled in ROUND_OFF_10 else []) + (bad or (
+        [f"the error estimate from modes and step, {err:.3g}, exceeds the value {v:.3g} "
+         "itself: no digit of it is known"] if err > abs(v) else []))
+    unsteady = {k: x for k, x in ratio.items() if abs(x - 1) > STEADY}
     if unsteady:
         why.append("the drawn record is not steady (" + ", ".join(
             f"{k}: last / third quarter {x:.3f}" for k, x in unsteady.items())
             + f", more than {STEADY:g} apart): its steady amplitude still moves with the "
             "record length")
-    return Reproduced(v, note, error=0.0 if why else e_m + e_s, not_converged="; ".join(why))
+    return Reproduced(v, note, error=0.0 if why else err, not_converged="; ".join(why))
 
 
 @Q.register("weak_coupling_near_first_longitudinal_resonance")
@@ -485,30 +450,20 @@ ROUND_OFF_10A = ["the coupled Fig. 10a record depends on round-off: worst |last 
 @Q.register("transient_reaches_steady_state")
 def fig10_steady(R):
     """The worst envelope change of the four Fig. 10 records, refined in modes and step as
-    :func:`_converged_coupling` refines the ratios (modes n/4, n/2, n at the drawn step by
-    the one estimator; the drawn count at half the step): not converged where the mode
-    levels do not contract or where the records depend on round-off
-    (:data:`ROUND_OFF_10A`, measured across the platform variants)."""
-    from mechrepro.validation import band, level_error
-
-    q = "transient_reaches_steady_state"
+    :func:`_converged_coupling` refines the ratios (:func:`_mode_levels`): not converged
+    where the mode levels do not contract or where the records depend on round-off
+    (:data:`ROUND_OFF_10A`)."""
     names = ("fig10_longitudinal", "fig10_uncoupled", "fig10_transverse5", "fig10_transverse5_uncoupled")
     runs = {n: _by_modes(R, n, n + "_modes") for n in names}
-    counts = sorted(set.intersection(*(set(v) for v in runs.values())))
+    counts = set.intersection(*(set(v) for v in runs.values()))
     dev = {k: max(abs(float(runs[n][k].steady_ratio) - 1) for n in names) for k in counts}
     n = drawn_modes(R, "fig10_transverse5")
-    v = dev[n]
     half = max(abs(float(d.steady_ratio) - 1) for name in names for d in R.study_runs(name + "_step"))
-    e_m, _, ok, how = level_error(dev[n // 4], dev[n // 2], v, 2.0, band(R.reported(q), v))
-    note = (f"worst |last / third quarter - 1| = {' / '.join(f'{dev[k]:.3g}' for k in (n // 4, n // 2, n))} "
-            f"at {n // 4} / {n // 2} / {n} transverse modes ({how}); {half:.3g} at half the RK4 "
-            "step; at the drawn count: " + "; ".join(
-                f"{name}: {float(runs[name][n].steady_ratio):.3f}" for name in names))
-    why = list(ROUND_OFF_10A)
-    if not ok:
-        why.append(f"the mode levels do not contract: {how}")
-    return Reproduced(v, note, error=0.0 if why else e_m + abs(half - v),
-                      not_converged="; ".join(why))
+    v, err, levels, bad = _mode_levels(R, "transient_reaches_steady_state", dev, n, half)
+    why = ROUND_OFF_10A + bad
+    return Reproduced(v, f"worst |last / third quarter - 1| = {levels}; at the drawn count: " + "; ".join(
+        f"{name}: {float(runs[name][n].steady_ratio):.3f}" for name in names),
+        error=0.0 if why else err, not_converged="; ".join(why))
 
 
 def _rk4_check(R, scene):
@@ -516,14 +471,8 @@ def _rk4_check(R, scene):
     return Reproduced(float(d.rk4_vs_library), f"RK4 {int(d.rk4_nfev)} rhs calls vs DOP853 {int(d.library_nfev)}")
 
 
-@Q.register("rk4_vs_solve_ivp_coupled")
-def rk4_coupled(R):
-    return _rk4_check(R, "rk4_check_coupled")
-
-
-@Q.register("rk4_vs_solve_ivp_uncoupled")
-def rk4_uncoupled(R):
-    return _rk4_check(R, "rk4_check_uncoupled")
+for _m in ("coupled", "uncoupled"):
+    Q.register(f"rk4_vs_solve_ivp_{_m}")(lambda R, s=f"rk4_check_{_m}": _rk4_check(R, s))
 
 
 # ----------------------------------------------------------------------------- verification
@@ -539,15 +488,15 @@ def exact_mode(R):
     ef = R.run("exact_free")
     n = ef.points.values.astype(float)
     i80 = int(np.argmin(np.abs(n - 80)))
-    w = {d: float(ef.omega_fd.sel(differencing=d)[i80]) / float(ef.omega_exact) for d in ("central", "mixed")}
-    cw = 1.0
-    ratio = (fd.stable_time_step(1.0, np.array([0.5 * cw]), cw * cw, 1.0, cfl=1.0)
-             / fd.characteristic_time_step(1.0, np.array([0.5 * cw]), cw * cw, 1.0))
+    # c_w = 1, c = 0.5 c_w
+    ratio = (fd.stable_time_step(1.0, np.array([0.5]), 1.0, 1.0, cfl=1.0)
+             / fd.characteristic_time_step(1.0, np.array([0.5]), 1.0, 1.0))
     return {
-        "wickert_mote_first_frequency": Reproduced(w["central"], f"{int(n[i80])} intervals"),
-        "wickert_mote_first_frequency_mixed": Reproduced(w["mixed"], f"{int(n[i80])} intervals"),
-        "fd_observed_order_exact_mode_central": _order(1 / n, ef.error_max.sel(differencing="central").values),
-        "fd_observed_order_exact_mode_mixed": _order(1 / n, ef.error_max.sel(differencing="mixed").values),
+        **{"wickert_mote_first_frequency" + tag: Reproduced(
+            float(ef.omega_fd.sel(differencing=d)[i80]) / float(ef.omega_exact), f"{int(n[i80])} intervals")
+           for d, tag in (("central", ""), ("mixed", "_mixed"))},
+        **{f"fd_observed_order_exact_mode_{d}": _order(1 / n, ef.error_max.sel(differencing=d).values)
+           for d in ("central", "mixed")},
         "stability_limit_over_characteristic_bound": Reproduced(
             ratio, "dx/sqrt(c_w^2 - c^2) over dx/(c + c_w) at c = 0.5 c_w (= sqrt(3))"),
     }
@@ -557,8 +506,8 @@ def exact_mode(R):
 def manufactured(R):
     d = R.run("manufactured")
     h = 1 / d.points.values.astype(float)
-    return {"fd_observed_order_manufactured_central": _order(h, d.error_max.sel(differencing="central").values),
-            "fd_observed_order_manufactured_mixed": _order(h, d.error_max.sel(differencing="mixed").values)}
+    return {f"fd_observed_order_manufactured_{k}": _order(h, d.error_max.sel(differencing=k).values)
+            for k in ("central", "mixed")}
 
 
 @Q.register("timestep_uniform_sampled_error", "timestep_uniform_averaged_error",
