@@ -22,6 +22,30 @@ def model(paper: str):
     return importlib.import_module(f"mechrepro.models.{paper}")
 
 
+def model_modules(paper: str) -> list[str]:
+    """The modules of ``models/<paper>/`` a solve imports (paths relative to the mechrepro
+    package): those the package reaches from its
+    ``__init__`` by relative imports (at any depth, in functions too) and by its lazy
+    exports (a string naming a sibling module).  What only validation and notebook read
+    (validation.py, figures.py, accuracy.py, ...) is left out, so editing it reruns no solve."""
+    import ast
+
+    pkg = Path(__file__).parent / "models" / paper
+    seen, todo = set(), ["__init__"]
+    while todo:
+        name = todo.pop()
+        if name in seen or not (pkg / f"{name}.py").exists():
+            continue
+        seen.add(name)
+        for node in ast.walk(ast.parse((pkg / f"{name}.py").read_text())):
+            if isinstance(node, ast.ImportFrom) and node.level == 1:
+                todo += [node.module.split(".")[0]] if node.module else [a.name for a in node.names]
+            elif name == "__init__" and isinstance(node, ast.Constant) \
+                    and isinstance(node.value, str) and node.value.isidentifier():
+                todo.append(node.value)
+    return sorted(f"models/{paper}/{m}.py" for m in seen)
+
+
 def paper_part(paper: str, module: str, name: str, required: bool = True):
     """``name`` (``Q``, ``ACCURACY``) from ``models/<paper>/<module>.py``, or from the
     package itself where a small paper keeps everything in its ``__init__``."""

@@ -103,16 +103,12 @@ NOTEBOOK_CORE = CORE + ["config.py", "units.py", "results.py", "validation.py", 
                         "plotting.py", "notebook.py", "kernel.py", "registry.py", "lazy.py"]
 
 
-#: what only validate_<paper> and notebook_<paper> read of a model: the extraction of
-#: validation values and the figures (tests/test_staleness.py: no other module imports them)
-READ_ONLY_AFTER_SOLVE = ("validation.py", "figures.py")
-
-
 def model_code(paper):
-    """What a solver job imports: the framework core and the model, not the modules only the
-    paper's validation and notebook read (:data:`READ_ONLY_AFTER_SOLVE`)."""
-    return [f for f in code(*SOLVER_CORE, f"models/{paper}")
-            if not (Path(f).parent.name == paper and Path(f).name in READ_ONLY_AFTER_SOLVE)]
+    """What a solver job imports: the framework core and the modules of its model the solve
+    reaches (mechrepro.solve.model_modules), not those only validation and notebook read."""
+    from mechrepro.solve import model_modules
+
+    return code(*SOLVER_CORE, *model_modules(paper))
 
 
 _SOLVE_JOBS = {}
