@@ -32,3 +32,21 @@ def test_the_marginal_cost_carries_its_rounds_spread(tmp_path, without, noise):
     assert row["marginal_median_s"] == pytest.approx(np.median(d))
     assert (row["marginal_min_s"], row["marginal_max_s"]) == pytest.approx((d.min(), d.max()))
     assert row["below_noise"] is noise
+
+
+def test_a_run_counts_how_often_each_effect_and_phase_is_evaluated():
+    """Evaluations are a cost no machine changes: every run stores them beside the times."""
+    from mechrepro.timing import EFFECT, phase, timed_run, timing_variables
+
+    def work():
+        for _ in range(3):
+            with phase("model.step"):
+                with phase(EFFECT + "drag"):
+                    pass
+        with phase(EFFECT + "drag"):
+            pass
+
+    _, seconds, timer = timed_run(work, min_time=0.0)
+    v = timing_variables(seconds, timer, ["drag", "unused"])
+    assert v["effect_calls"][1] == [4, 0]
+    assert v["timed_phase"][1] == ["model.step"] and v["phase_calls"][1] == [3]

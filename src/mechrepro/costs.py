@@ -1,7 +1,8 @@
 """What a paper's runs cost: per effect, per solver core, and per job against its solves.
 
-``effect_cost`` sums the time split every run stores (:mod:`mechrepro.timing`) into one
-row per (solver, effect) -- the report's effect-cost table; ``job_time`` sets each solver
+``effect_cost`` sums the time split and the evaluation counts every run stores
+(:mod:`mechrepro.timing`) into one row per (solver, effect or named phase) -- the report's
+effect-cost table; ``job_time`` sets each solver
 job's wall time (Snakemake's benchmark file) against the solve time of its runs, so the
 overhead of starting a job shows, and against the declared cost model's estimate.  Both tables are written by ``validate_<paper>``.
 """
@@ -13,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-EFFECT_COST_COLUMNS = ["solver", "effect", "runs", "time_s", "share"]
+EFFECT_COST_COLUMNS = ["solver", "effect", "runs", "calls", "time_s", "share"]
 JOB_TIME_COLUMNS = ["job", "runs", "solve_s", "job_s", "estimate_s"]
 MARGINAL_COLUMNS = ["scene", "solver", "effect", "direct_s", "marginal_s", "marginal_median_s",
                     "marginal_min_s", "marginal_max_s", "below_noise", "with_s", "without_s"]
@@ -35,28 +36,38 @@ def _run_times(path: str) -> dict:
         out = {"solver": getattr(nc, "solver", "") or "(undeclared)",
                "wall": float(nc["wall_time"][...]),
                "core": float(nc["core_time"][...]) if "core_time" in nc.variables else np.nan,
-               "effects": {},
+               "effects": {}, "calls": {}, "phases": {},
                "rounds": (np.asarray(nc["timing_rounds"][...], float)
                           if "timing_rounds" in nc.variables else np.array([]))}
         if "effect_time" in nc.variables:
             names = [str(x) for x in nc["timed_effect"][...]]
             out["effects"] = dict(zip(names, np.asarray(nc["effect_time"][...], float)))
+            if "effect_calls" in nc.variables:
+                out["calls"] = dict(zip(names, np.asarray(nc["effect_calls"][...], int)))
+        if "phase_time" in nc.variables:
+            out["phases"] = {str(k): (float(t), int(c)) for k, t, c in zip(
+                nc["timed_phase"][...], nc["phase_time"][...], nc["phase_calls"][...])}
     return out
 
 
 def effect_cost(run_files) -> list[dict]:
-    """One row per (solver, effect), and a ``(solver core)`` row per solver: the summed time
-    over the runs that used it, and its share of those runs' wall time."""
-    acc: dict[tuple[str, str], list[float]] = {}
+    """One row per (solver, effect), a ``(solver core)`` row per solver and a ``(phase)
+    <name>`` row per phase a model names (inside the core or an effect, so phases are not
+    added to the rest): the summed time over the runs that used it, how often it was
+    evaluated, and its share of those runs' wall time."""
+    acc: dict[tuple[str, str], list[tuple]] = {}
     for f in run_files:
         t = run_times(f)
-        acc.setdefault((t["solver"], "(solver core)"), []).append((t["core"], t["wall"]))
+        acc.setdefault((t["solver"], "(solver core)"), []).append((t["core"], t["wall"], 1))
         for e, sec in t["effects"].items():
-            acc.setdefault((t["solver"], e), []).append((sec, t["wall"]))
+            acc.setdefault((t["solver"], e), []).append((sec, t["wall"], t["calls"].get(e, np.nan)))
+        for name, (sec, calls) in t["phases"].items():
+            acc.setdefault((t["solver"], f"(phase) {name}"), []).append((sec, t["wall"], calls))
     rows = []
     for (solver, effect), v in sorted(acc.items()):
-        sec, wall = np.array(v).T
+        sec, wall, calls = np.array(v, float).T
         rows.append({"solver": solver, "effect": effect, "runs": len(v),
+                     "calls": int(calls.sum()) if np.isfinite(calls).all() else np.nan,
                      "time_s": float(np.nansum(sec)),
                      "share": float(np.nansum(sec) / wall.sum()) if wall.sum() > 0 else np.nan})
     return rows

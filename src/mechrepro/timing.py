@@ -22,16 +22,19 @@ EFFECT = "effect:"
 
 
 class Timer:
-    """Seconds spent per named phase (nested phases are counted in each enclosing one)."""
+    """Seconds spent per named phase (nested phases are counted in each enclosing one) and
+    how often each was entered: its evaluations, a cost no machine changes."""
 
     def __init__(self):
         self.phases: dict[str, float] = defaultdict(float)
+        self.calls: dict[str, int] = defaultdict(int)
 
     @contextmanager
     def phase(self, name: str):
         with _measured() as block:
             yield block
         self.phases[name] += block.seconds
+        self.calls[name] += 1
 
     def effects(self) -> dict[str, float]:
         return {k.removeprefix(EFFECT): v for k, v in self.phases.items() if k.startswith(EFFECT)}
@@ -115,8 +118,11 @@ def timed_run(fn, *args, min_time: float = 0.05, max_repeat: int = 50, **kwargs)
 
 def timing_variables(seconds: float, timer: Timer | None, effects: list[str]) -> dict:
     """The run's time split as dataset variables: ``wall_time`` (the solve), ``core_time``
-    (everything but the effects' contributions) and ``effect_time`` over ``timed_effect``."""
+    (everything but the effects' contributions), ``effect_time`` and ``effect_calls`` over
+    ``timed_effect``, and ``phase_time`` and ``phase_calls`` of the model's named phases over
+    ``timed_phase``."""
     per = timer.effects() if timer is not None else {}
+    calls = {k.removeprefix(EFFECT): v for k, v in (timer.calls if timer else {}).items()}
     eff = [float(per.get(e, 0.0)) for e in effects]
     out = {
         "wall_time": ((), seconds, {"units": "s", "long_name": "wall time of one solve"}),
@@ -126,4 +132,13 @@ def timing_variables(seconds: float, timer: Timer | None, effects: list[str]) ->
     if effects:
         out["effect_time"] = (("timed_effect",), eff,
                               {"units": "s", "long_name": "wall time of each effect's contribution"})
+        out["effect_calls"] = (("timed_effect",), [int(calls.get(e, 0)) for e in effects],
+                               {"units": "1", "long_name": "evaluations of each effect"})
+    named = sorted(k for k in (timer.phases if timer else {}) if not k.startswith(EFFECT))
+    if named:
+        out["timed_phase"] = (("timed_phase",), named, {"long_name": "phase a model names"})
+        out["phase_time"] = (("timed_phase",), [timer.phases[k] for k in named],
+                             {"units": "s", "long_name": "wall time spent in each named phase"})
+        out["phase_calls"] = (("timed_phase",), [int(timer.calls[k]) for k in named],
+                              {"units": "1", "long_name": "times each named phase was entered"})
     return out
