@@ -25,6 +25,7 @@ class PaperResults:
         self.root = Path(results_dir) / paper
         self.cfg = load_paper(config_file, profile, CACHE_DIR)
         self._reads = None     # while a figure draws: what it declared it reads
+        self._rows = None      # the validation table by quantity, read once
 
     def _may_read(self, name: str) -> None:
         # a declared run or study covers its verdict variants (<name>@coarser, ...), which
@@ -89,11 +90,15 @@ class PaperResults:
 
         return read_table(self.table_path("validation"))
 
+    def row(self, quantity: str) -> dict:
+        """The validation table's row of ``quantity``."""
+        if self._rows is None:
+            self._rows = {r["quantity"]: r for r in self.validation()}
+        return self._rows[quantity]
+
     def value(self, quantity: str, column: str = "reproduced_value") -> float:
         """A number of the validation table's row ``quantity`` (in the row's unit)."""
-        if not hasattr(self, "_rows"):
-            self._rows = {r["quantity"]: r for r in self.validation()}
-        return float(self._rows[quantity][column])
+        return float(self.row(quantity)[column])
 
     def write_table(self, name: str, header, rows) -> Path:
         if name not in self.cfg.tables:

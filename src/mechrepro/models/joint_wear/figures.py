@@ -263,7 +263,7 @@ def contact_margin(R):
     ax[2].axvline(1.0, color="r", lw=1, ls="--", label="1 % rule")
     ax[2].set_yticks(np.arange(len(rows)), [r["variant"] for r in rows], fontsize=7)
     ax[2].invert_yaxis()
-    status = next(r["status"] for r in R.validation() if r["quantity"] == "continuous_contact_margin_fitted_f")
+    status = R.row("continuous_contact_margin_fitted_f")["status"]
     ax[2].set(xlabel="smallest margin over the credible set [%]", xlim=(0, 1.3 * 100 * max(vals + [0.01])),
               title=f"every re-check (green pass, red fail): {status}")
     ax[2].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16))

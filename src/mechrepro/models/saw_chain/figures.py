@@ -30,7 +30,7 @@ def fig07(R):
     t_ms, t1_ms = from_si(run["t"], "ms"), from_si(stage_one_end(run), "ms")
     best, best_name = _preferred(idn)
     pred = idn["fit_prediction"].values[0, best]
-    lo, hi = paper_band({r["quantity"]: r for r in R.validation()}["measured_velocity_mean"])
+    lo, hi = paper_band(R.row("measured_velocity_mean"))
     v = run["tight_side_velocity"].values
     paper_lo, paper_hi = (R.value(q, "paper_value") for q in ("tight_side_velocity_min", "tight_side_velocity_max"))
     bands = {   # label: (low, high, colour)
