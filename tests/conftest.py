@@ -23,8 +23,8 @@ def pytest_collection_modifyitems(config, items):
     test that reads the session's ci pipeline run goes to one group, so the pipeline runs
     once; every other test stays with its module, whose module-scoped fixtures (a SLURM
     cluster, a solved disk) are then set up once.  First among the hooks: xdist's own
-    (which turns the marks into the groups) must see them (without tryfirst it ran before,
-    and two workers each ran the whole ci pipeline: 857 s and 768 s of setup)."""
+    (which turns the marks into the groups) must see them (run after it, each worker would
+    run the whole ci pipeline)."""
     groups = {}
     for item in items:
         group = "ci_pipeline" if "workflow" in getattr(item, "fixturenames", ()) else \

@@ -2,7 +2,8 @@
 notebook drew it through its declaration (PaperResults.figure: the declared function, opening
 only the declared runs and studies) and the lint found nothing in it (no two texts overlap, no
 legend over data, every labelled series visible, axes with units: recorded in the PNG by
-mechrepro.plotting.savefig; drawing it again here gives the same pixels at twice the time)."""
+mechrepro.plotting.savefig; drawing it again here would repeat that work for the same
+pixels)."""
 import importlib
 
 import pytest
