@@ -8,7 +8,7 @@ CORES  ?= 2
 STAMP  := $(VENV)/.installed
 UV     := uv==0.13.9
 
-.PHONY: reproduce test venv bytecode ci-reproduce reference benchmark screenshot clean
+.PHONY: reproduce test venv bytecode ci-reproduce reference benchmark costs screenshot clean
 
 $(STAMP): requirements.lock pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -68,6 +68,11 @@ reference: bytecode
 ## Speed benchmarks (ratios measured side by side)
 benchmark: bytecode
 	for f in benchmarks/bench_*.py; do echo "== $$f"; PYTHONPATH=src $(BIN)/python $$f || exit 1; done
+
+## Refit the cost coefficients (config/costs.csv: seconds per work term of each solver, and
+## each paper's job start) from the default run in results/ (after `make reproduce`)
+costs: bytecode
+	PYTHONPATH=src $(BIN)/python -m mechrepro.costs results
 
 ## Render the report in headless Chromium to results/report/screenshot.png
 screenshot:

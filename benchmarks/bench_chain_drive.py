@@ -474,8 +474,7 @@ def floor(profile: str, measure: bool = False) -> None:
     its declared cost model (:func:`.limits.size`, no solve), its flops counted as
 
     - march: speeds x points x steps x FLOPS_PER_UPDATE;
-    - shooting, per speed of the initial grid (the adaptive refinement multiplies it by
-      ~1.7, :data:`.limits.SHOOTING_REFINE`; a method that needed no refinement would
+    - shooting, per speed of the initial grid (the adaptive refinement adds speeds; a method that needed no refinement would
       still need these): :func:`.limits.shooting_flops`, the monodromy march of 2n + 1
       lanes over one period, one LU solve and one Hessenberg reduction;
     - Galerkin: RK4 steps x :func:`rk4_step_flops` of the run's model (its step, modes
@@ -486,18 +485,19 @@ def floor(profile: str, measure: bool = False) -> None:
 
     at :data:`_floor.RATE` (benchmarks/_floor.py).  The effects' evaluation on the time grid
     (transcendentals, ~30-60 % of a march today) is not in the floor."""
+    from mechrepro import limits as costs
     from mechrepro.models.chain_drive import galerkin, limits
     cfg = load_paper(ROOT / "config/papers/chain_drive.yaml", profile)
     rows = []
     for name, run in cfg.runs.items():
-        est = limits.cost(run)["seconds"]
+        est = costs.run_cost("chain_drive", run)["seconds"]
         if run["solver"] == "galerkin":
             g = galerkin._galerkin_setup(run, run["parameters"], run["resolution"])
             mdl = g["model"]
             rows.append((name, "galerkin RK4", g["n_steps"] * rk4_step_flops(
                 mdl.n_t, mdl.n_l, mdl.x.size, mdl.coupling), est))
             continue
-        if run["solver"] != "speed_sweep":
+        if run["solver"] != "speed_sweep" or run["resolution"].get("method") == "discrete":
             rows.append((name, f"{run['solver']} (not counted)", 0.0, est))
             continue
         z = limits.size(run)
@@ -508,8 +508,7 @@ def floor(profile: str, measure: bool = False) -> None:
         else:
             rows.append((name, "speed_sweep shooting",
                          float(limits.shooting_flops(n, z["steps_per_period"]).sum()), est))
-    _floor.report("chain_drive", profile, rows, "limits.cost, per run: an upper reading "
-                  "fitted on loaded cores", cfg.runs if measure else None)
+    _floor.report("chain_drive", profile, rows, "limits.run_cost, per run (config/costs.csv)", cfg.runs if measure else None)
 
 
 def _to_rtol(values: dict, order: float, rtol: float):

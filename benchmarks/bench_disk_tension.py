@@ -310,7 +310,7 @@ def floor(profile="default", measure=False):
     calibration of alpha (one eigen-analysis, cached per process), Eq. (9) and the
     bookkeeping; a rolled_reference is counted once per set of parameters, as the process
     solves it once (the measured runs share it in config order, as a job does)."""
-    from mechrepro.models.disk_tension import limits
+    from mechrepro import limits
 
     cfg = load_paper(ROOT / "config/papers/disk_tension.yaml", profile)
     rows, seen = [], set()
@@ -320,8 +320,8 @@ def floor(profile="default", measure=False):
         if "rolled_reference" in run["effects"] and key not in seen:
             seen.add(key)
             flops += rolled_reference_flops(run)
-        rows.append((name, run["solver"], flops, limits.cost(run)["seconds"]))
-    _floor.report("disk_tension", profile, rows, "limits.cost, per run",
+        rows.append((name, run["solver"], flops, limits.run_cost("disk_tension", run)["seconds"]))
+    _floor.report("disk_tension", profile, rows, "limits.run_cost, per run",
                   cfg.runs if measure else None)
 
 

@@ -20,7 +20,6 @@ import math
 import os
 import time
 from pathlib import Path
-from unittest import mock
 
 # must precede the first numpy import: OpenBLAS reads it when it loads
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
@@ -142,7 +141,7 @@ SAMPLE, LOCAL_CELL = 40, 10
 
 def floor(profile="default", measure=False):
     """joint_wear's solve floor from operation counts.  A run is counted as its cost
-    model counts it (:func:`.limits.solve_seconds`: quasi-static periods of n samples per
+    model counts it (:func:`.limits.work`: quasi-static periods of n samples per
     solver, dynamic periods of the Radau steps it estimates from rtol, scipy's steps,
     local-wear cells), each unit priced in flops instead of fitted seconds:
 
@@ -156,22 +155,22 @@ def floor(profile="default", measure=False):
     at :data:`_floor.RATE`.  The compiled Radau's own output samples are not counted.
     The Radau step counts are the cost model's estimates from rtol (a run whose contact
     rattles takes up to 50x more, which no run record announces)."""
+    from mechrepro import limits as costs
     from mechrepro.models.joint_wear import limits
 
     cfg = load_paper(ROOT / "config/papers/joint_wear.yaml", profile)
-    scipy = {k: (SCIPY_STEP[k], steps) for k, (_, steps) in limits._SCIPY.items()}
     rows = []
     for name, run in cfg.runs.items():
-        est = limits.solve_seconds(run)
-        with mock.patch.multiple(limits, _qs=qs_flops, _RADAU_STEP_S=RADAU_STEP,
-                                 _SCIPY=scipy, _SCIPY_SAMPLE_S=SAMPLE,
-                                 _LOCAL_CELL_S=LOCAL_CELL):
-            flops = limits.solve_seconds(run)
+        n = int(run["resolution"].get("n_steps", 720))
+        price = {"qs_samples": qs_flops(n) / n, "Radau_steps": RADAU_STEP, "dynamic_samples": SAMPLE,
+                 "local_cells": LOCAL_CELL, "groove_cells": LOCAL_CELL,
+                 **{f"{k}_steps": v for k, v in SCIPY_STEP.items()}}
+        flops = sum(price.get(k, 0.0) * v for k, v in limits.work(run).items())
         kind = run["solver"]
         if kind.startswith("clearance"):
             kind += " " + run["resolution"].get("method", "Radau")
-        rows.append((name, kind, flops, est))
-    _floor.report("joint_wear", profile, rows, "limits.solve_seconds, one compute per run",
+        rows.append((name, kind, flops, costs.compute_seconds("joint_wear", run)))
+    _floor.report("joint_wear", profile, rows, "limits.compute_seconds, one compute per run",
                   cfg.runs if measure else None)
 
 

@@ -352,12 +352,12 @@ def floor(profile: str = "default", measure: bool = False) -> None:
     objectives that raise (non-assembling tilts and lever sets: less than one objective
     each), the outputs (motion laws, errors against the closed form), the numpy and Python
     bookkeeping of the comparison methods and the random draws of the cold starts."""
-    from mechrepro.models.rolling_shear import limits
+    from mechrepro import limits
 
     cfg = load_paper(CONFIG, profile)
-    rows = [(name, run["solver"], run_flops(run), limits.cost(run)["seconds"])
+    rows = [(name, run["solver"], run_flops(run), limits.run_cost("rolling_shear", run)["seconds"])
             for name, run in cfg.runs.items()]
-    _floor.report("rolling_shear", profile, rows, "limits.cost, per run",
+    _floor.report("rolling_shear", profile, rows, "limits.run_cost, per run",
                   cfg.runs if measure else None)
 
 

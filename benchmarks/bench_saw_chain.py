@@ -139,8 +139,8 @@ def floor(profile="default", measure=False):
     Nothing else is counted: the error budget and the effects'
     bookkeeping are O(1) per run.  A run with a ``target`` accuracy is sized at its
     configured K, as ``compute(run)`` solves it (the job's refinement repeats it at
-    doubled K; the cost model's estimate includes that and the ~0.3 s of writing)."""
-    from mechrepro.models.saw_chain import limits
+    doubled K; the cost model's estimate includes that)."""
+    from mechrepro import limits
 
     cfg = load_paper(ROOT / "config/papers/saw_chain.yaml", profile)
     rows = []
@@ -149,8 +149,8 @@ def floor(profile="default", measure=False):
         per = FLOPS_METHOD if run.get("options", {}).get("loads", True) else FLOPS_VELOCITY
         per += FLOPS_EXACT * ("exact_reference" in eff) + FLOPS_TEXTBOOK * ("textbook" in eff)
         kind = "+".join([run["solver"], *sorted(eff)])
-        rows.append((name, kind, 2 * (K + 1) * per, limits.cost(run)["seconds"]))
-    _floor.report("saw_chain", profile, rows, "limits.cost, per run written (0.3 s each)",
+        rows.append((name, kind, 2 * (K + 1) * per, limits.run_cost("saw_chain", run)["seconds"]))
+    _floor.report("saw_chain", profile, rows, "limits.run_cost, per run (config/costs.csv)",
                   cfg.runs if measure else None)
 
 

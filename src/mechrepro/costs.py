@@ -152,3 +152,107 @@ def _decides(row, variant: str) -> bool:
     if c[1] == "level" and row.kind in ("compare", "bound"):
         return True   # the error bar is made of the levels: without them no verdict
     return c[3] not in ("excluded", row.verdict)
+
+
+# --- the cost table (mechrepro.limits.COSTS) --------------------------------------------
+
+#: the share of a solver's runs its fitted estimate stays above (:func:`fit`)
+QUANTILE = 0.9
+TABLE_COLUMNS = ["paper", "solver", "term", "coefficient", "runs", "quantile", "machine"]
+
+
+def fit(work: list[dict[str, float]], seconds) -> dict[str, float]:
+    """Seconds per unit of each work term: a least-squares fit of the relative error
+    (each run weighs alike, whether it takes milliseconds or minutes) with no negative
+    coefficient, then scaled up to the :data:`QUANTILE` of measured / estimated, so the
+    estimate stays above that share of the runs (conservative: admission and cluster
+    requests must not run short)."""
+    from scipy.optimize import nnls
+
+    terms = sorted({k for w in work for k in w})
+    t = np.maximum(np.asarray(seconds, float), 1e-6)
+    a = np.array([[w.get(k, 0.0) for k in terms] for w in work], float)
+    scale = np.maximum(a.max(axis=0), 1e-300)       # columns of comparable size for nnls
+    c = nnls(a / scale / t[:, None], np.ones(len(t)))[0] / scale
+    est = a @ c
+    c = c * np.quantile(t / np.where(est > 0, est, np.inf), QUANTILE, method="higher")
+    return dict(zip(terms, c))
+
+
+def _machine() -> str:
+    import os
+    import platform
+
+    try:
+        cpu = next(ln.split(":", 1)[1].strip() for ln in open("/proc/cpuinfo")
+                   if ln.startswith("model name"))
+    except (OSError, StopIteration):
+        cpu = platform.processor() or platform.machine()
+    return f"{cpu} ({os.cpu_count()} cores)"
+
+
+def measurements(results: str | Path, config_dir: str | Path = "config",
+                 profile: str = "default") -> list[dict]:
+    """The table's rows from a finished run's result tree: per paper and solver the fitted
+    seconds per work term (:func:`fit`) from every run file whose record is today's (its
+    ``wall_time_s``, or every solve of an accuracy target), and per paper the job start, the
+    most any of its solve jobs spent beyond its runs' measured compute."""
+    import json
+
+    import netCDF4
+
+    from .config import discover_papers, load_paper
+    from .limits import work as work_of
+
+    rows, machine = [], _machine()
+    for paper in discover_papers(config_dir):
+        cfg = load_paper(Path(config_dir) / "papers" / f"{paper}.yaml", profile)
+        root, same, by_solver, spent = Path(results) / paper, cfg.same_solve(), {}, {}
+        for name, run in cfg.runs.items():
+            f = root / "runs" / f"{name}.nc"
+            w = work_of(paper, run)
+            if w is None or name in same or not f.exists():
+                continue
+            with netCDF4.Dataset(f) as nc:
+                if nc.resolution != json.dumps(run["resolution"], sort_keys=True):
+                    continue            # solved from another record: not this form's run
+                sec = float(nc["target_seconds_all_solves"][...]
+                            if "target_seconds_all_solves" in nc.variables else nc.wall_time_s)
+            by_solver.setdefault(run["solver"], []).append((w, sec))
+            least = float(run.get("options", {}).get("timing_min_s", 0.02))
+            spent[name] = int(run.get("timing_repeat", 1)) * max(sec, least)
+        for solver, pairs in sorted(by_solver.items()):
+            for term, c in fit(*zip(*pairs)).items():
+                rows.append({"paper": paper, "solver": solver, "term": term, "coefficient": f"{c:.4g}",
+                             "runs": sum(w.get(term, 0) > 0 for w, _ in pairs),
+                             "quantile": QUANTILE, "machine": machine})
+        starts = [benchmark_seconds(root / "benchmarks" / f"solve__{job}.tsv")
+                  - sum(spent.get(r, 0.0) for r in runs) for job, runs in cfg.solve_jobs().items()
+                  if all(r in spent or r in same for r in runs)]
+        if by_solver and starts:
+            rows.append({"paper": paper, "solver": "(job)", "term": "start",
+                         "coefficient": f"{max(0.0, np.nanmax(starts)):.4g}", "runs": len(starts),
+                         "quantile": 1.0, "machine": machine})
+    return rows
+
+
+def main(argv=None) -> None:
+    """``python -m mechrepro.costs RESULTS [PROFILE]``: write the cost table
+    (:data:`mechrepro.limits.COSTS`) from a finished run of that profile (default: default)."""
+    import sys
+
+    from .limits import COSTS
+
+    argv = sys.argv[1:] if argv is None else argv
+    if not argv:
+        raise SystemExit(main.__doc__)
+    rows = measurements(argv[0], COSTS.parent, argv[1] if len(argv) > 1 else "default")
+    with open(COSTS, "w", newline="") as f:
+        w = csv.DictWriter(f, TABLE_COLUMNS, lineterminator="\n")
+        w.writeheader()
+        w.writerows(rows)
+    print(f"{COSTS}: {len(rows)} coefficients from {argv[0]}")
+
+
+if __name__ == "__main__":
+    main()

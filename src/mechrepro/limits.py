@@ -8,9 +8,11 @@ A model declares them in ``mechrepro/models/<paper>/limits.py``:
 - ``check(run) -> list[str]``: the solver's refusals, as ``"<key> = <value>: <why>;
   allowed: <what>"`` (the same conditions the solver raises on, evaluated on the run
   record alone, cheaply);
-- ``cost(run) -> {"mem_mb": float, "seconds": float}``: the expected peak memory and
-  solve time of one run (a measured fit, whose measurement the docstring gives), and
-  optionally ``JOB_START_S``, what a solve process spends once before its first run;
+- ``work(run) -> {term: amount}``: the cost FORM of one run, the work it does counted
+  from its record (grid points x steps, periods, particles x iterations, ...), and
+  ``mem_mb(run)``, its expected peak memory [MB] (typed: no run records its memory, so
+  there is nothing to fit).  The seconds per unit of each term, and what a solve process
+  spends once, are data: :data:`COSTS`, written by ``python -m mechrepro.costs``;
 - ``PRODUCED_BY = {variable: effect}``: solver outputs that exist only when a scene names
   that effect (beside the effects' declared contributions), and ``NEEDS_EFFECTS =
   {solver: why}``: solvers whose run without effects gives nothing a reported quantity
@@ -21,13 +23,15 @@ A model declares them in ``mechrepro/models/<paper>/limits.py``:
   sweeps).
 
 A solve job solves its runs one after the other in one process: its memory is the largest
-run's, its time the sum (:func:`job_costs`).  A job expected above the solve rule's
+run's, its time its start plus the sum (:func:`job_costs`).  A job expected above the solve rule's
 declared memory (:data:`SOLVE_MEM_MB`) or time (:data:`SOLVE_RUNTIME_MIN`) is refused
 unless the run is started with ``--config over_budget=true`` on purpose; then the job
 asks its executor for the estimate (a cluster gets the true request).
 """
 from __future__ import annotations
 
+import csv
+import functools
 import importlib
 import math
 from pathlib import Path
@@ -37,8 +41,63 @@ SOLVE_MEM_MB = 2000
 SOLVE_RUNTIME_MIN = 30
 
 
+#: the measured cost coefficients, in config/ because the workflow reads it with the
+#: configs, at load, before any job (:mod:`mechrepro.costs` writes it from a default run)
+COSTS = Path(__file__).resolve().parents[2] / "config" / "costs.csv"
+
+#: the refinements a run solved to an accuracy target (:mod:`mechrepro.target`) is costed at
+TARGET_LEVELS = 4
+
+
 class LimitError(ValueError):
     pass
+
+
+def coefficients() -> dict[tuple[str, str], dict[str, float]]:
+    """{(paper, solver): {term: seconds per unit}} of the table (solver ``(job)``, term
+    ``start``: what a paper's solve process spends beyond its runs' compute), read once."""
+    return _read(COSTS)
+
+
+@functools.lru_cache(maxsize=None)
+def _read(path: Path) -> dict[tuple[str, str], dict[str, float]]:
+    out: dict[tuple[str, str], dict[str, float]] = {}
+    try:
+        with open(path, newline="") as f:
+            for row in csv.DictReader(f):
+                out.setdefault((row["paper"], row["solver"]), {})[row["term"]] = float(row["coefficient"])
+    except OSError as exc:
+        raise LimitError(f"{path}: cannot read the cost table ({exc.strerror}); allowed: the "
+                         f"table `python -m mechrepro.costs results` writes after a default run")
+    return out
+
+
+def _fit(paper: str, solver: str) -> dict[str, float]:
+    fit = coefficients().get((paper, solver))
+    if fit is None:
+        raise LimitError(f"{COSTS}: no cost coefficients for paper {paper}, solver {solver}; "
+                         f"allowed: a table with them, which `python -m mechrepro.costs results` "
+                         f"writes after a default run that solved it (make benchmark)")
+    return fit
+
+
+def work(paper: str, run: dict) -> dict[str, float] | None:
+    """The work terms of one run (its model's ``work``; a run solved to an accuracy target:
+    summed over :data:`TARGET_LEVELS` refinements of its knob), None if undeclared."""
+    mod = _model(paper)
+    if mod is None or not hasattr(mod, "work"):
+        return None
+    t = run.get("target")
+    if not t:
+        return mod.work(run)
+    out: dict[str, float] = {}
+    res, knob = run["resolution"], t["knob"]
+    for k in range(TARGET_LEVELS):
+        v = res[knob] * float(t["factor"]) ** k if not isinstance(res[knob], list) \
+            else [x * float(t["factor"]) ** k for x in res[knob]]
+        for term, w in mod.work({**run, "resolution": {**res, knob: v}}).items():
+            out[term] = out.get(term, 0.0) + w
+    return out
 
 
 def _model(paper: str):
@@ -67,9 +126,31 @@ def refusals(cfg) -> list[str]:
     return out
 
 
+def compute_seconds(paper: str, run: dict) -> float | None:
+    """The expected time of one ``compute(run)`` [s] (what a run's ``wall_time_s``
+    measures): its work terms times the table's coefficients for its solver."""
+    w = work(paper, run)
+    if w is None:
+        return None
+    fit = _fit(paper, run["solver"])
+    missing = sorted(set(w) - set(fit))
+    if missing:
+        raise LimitError(f"{COSTS}: paper {paper}, solver {run['solver']} has no coefficient for "
+                         f"work term(s) {', '.join(missing)}; allowed: a table written by "
+                         f"`python -m mechrepro.costs results` after a default run with this code")
+    return sum(fit[k] * v for k, v in w.items())
+
+
 def run_cost(paper: str, run: dict) -> dict | None:
-    mod = _model(paper)
-    return mod.cost(run) if mod is not None and hasattr(mod, "cost") else None
+    """{"mem_mb", "seconds"} of one run in its job: its compute, repeated for the rounds of
+    an alternated timing (``timing_repeat``) and to the least time a fast solve is repeated
+    for (``options.timing_min_s``, :func:`mechrepro.solve._min_time`)."""
+    sec = compute_seconds(paper, run)
+    if sec is None:
+        return None
+    least = float(run.get("options", {}).get("timing_min_s", 0.02))
+    return {"mem_mb": _model(paper).mem_mb(run),
+            "seconds": int(run.get("timing_repeat", 1)) * max(sec, least)}
 
 
 def solve_key(paper: str, run: dict):
@@ -81,16 +162,16 @@ def solve_key(paper: str, run: dict):
 
 
 def job_costs(cfg) -> dict[str, dict]:
-    """{solve job: {"mem_mb", "seconds", "largest"}} for the jobs whose runs all declare a
-    cost (memory: the largest run, time: the sum; runs are solved one after the other)."""
-    out = {}
+    """{solve job: {"mem_mb", "seconds", "largest", "longest"}} for the jobs whose runs all
+    declare a cost (memory: the largest run; time: the paper's job start plus the sum, runs
+    being solved one after the other, a run that repeats another's solve not counted)."""
+    out, same = {}, cfg.same_solve()
     for job, runs in cfg.solve_jobs().items():
-        costs = {r: run_cost(cfg.paper, cfg.runs[r]) for r in runs}
-        if any(c is None for c in costs.values()):
+        costs = {r: run_cost(cfg.paper, cfg.runs[r]) for r in runs if r not in same}
+        if not costs or any(c is None for c in costs.values()):
             continue
         largest = max(costs, key=lambda r: costs[r]["mem_mb"])
-        # a model may declare what its job process spends once before its first run
-        start = getattr(_model(cfg.paper), "JOB_START_S", 0.0)
+        start = _fit(cfg.paper, "(job)").get("start", 0.0)
         out[job] = {"mem_mb": costs[largest]["mem_mb"], "largest": largest,
                     "longest": max(costs, key=lambda r: costs[r]["seconds"]),
                     "seconds": start + sum(c["seconds"] for c in costs.values())}
@@ -176,8 +257,11 @@ def check_all(cfgs: dict, allow_over_budget: bool = False, cache_dir=None) -> No
     problems = []
     for cfg in cfgs.values():
         problems += missing_effects(cfg, cache_dir) + refusals(cfg)
-        if not allow_over_budget:
-            problems += over_budget(cfg)
+        try:      # a solver or term the cost table lacks is refused even over budget
+            job_costs(cfg)
+            problems += [] if allow_over_budget else over_budget(cfg)
+        except LimitError as exc:
+            problems.append(str(exc))
     if problems:
         raise LimitError("\n".join(problems))
 

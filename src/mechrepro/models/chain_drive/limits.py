@@ -1,24 +1,23 @@
-"""chain_drive's declared cost (read by :mod:`mechrepro.limits` before any job, which also
+"""chain_drive's cost form (read by :mod:`mechrepro.limits` before any job, which also
 solves the longest jobs' papers last and refuses a job above its rule's budget).
 
 The work of a run follows from its resolution and parameters without solving anything
 (:func:`size`): the FD grid (points per pitch x span length), the step (cfl x the von Neumann
-limit dx/sqrt(c_w^2 - c^2) at the static tension P = T_s + k c^2; the dynamic tension
-shortens it further, by a factor the fit absorbs), the speeds and
+limit dx/sqrt(c_w^2 - c^2) at the static tension P = T_s + k c^2), the speeds and
 
-- a march (Figs. 5, 8, accuracy studies): S speeds x (n + 1) points x the steps of settling
-  + window; its memory is the (time, speed) excitation arrays the effects fill;
-- shooting (Figs. 6, 7, 9): per speed one march of 2n + 1 lanes over one tooth period
-  (N steps) plus the monodromy's bounds / eigenvalues (~ (2n)^3), at about
-  :data:`SHOOTING_REFINE` x the initial speeds (the adaptive bisection of edges and peaks);
+- a march (Figs. 5, 8, accuracy studies): speeds x (n + 1) points x the steps of settling
+  + window, and per (step, speed) sample each effect's excitation; its memory is the
+  (time, speed) excitation arrays the effects fill;
+- shooting (Figs. 6, 7, 9): per initial speed one march of 2n + 1 lanes over one tooth
+  period plus the monodromy's bounds / eigenvalues (:func:`shooting_flops`; the adaptive
+  bisection of edges and peaks adds speeds in proportion, which the fit absorbs);
 - the discrete span (Fig. 7): speeds x RK4 steps per tooth period;
 - Galerkin (Fig. 10): RK4 steps x (modes)^2; the exact / manufactured checks and the
   time-step study: their grids.
 
-The fit (:data:`FIT`, measured on 2 shared, loaded cores: upper readings) reads a
-run's work, not its name, so a resolution edited in the config moves its estimate; a job
-above the solve rule's 2000 MB / 30 min is refused before any job, with the estimate.
-``benchmarks/bench_chain_drive.py --floor`` counts the same work in flops (the floor).
+The seconds per unit of each term are data (config/costs.csv), so a resolution edited in
+the config moves its estimate; ``benchmarks/bench_chain_drive.py --floor`` counts the same
+work in flops (the floor).  Memory stays typed (no run records it).
 """
 from __future__ import annotations
 
@@ -49,44 +48,13 @@ def stability_only(run: dict) -> bool:
 solve_key = stability_only
 
 
-#: what a fresh solve process spends before its first run (imports, numba kernels)
-JOB_START_S = 3.0
-
-#: evaluated speeds / initial speeds of an adaptive shooting sweep (edges, growth-rate bumps
-#: and peaks bisected): measured 1.2-2.9 over the 24 shooting runs of the default batch
-#: (mean 1.7), 3.2-3.6 for fig09b and its former @finer level (many unstable bands); a rival with a
-#: flat growth rate can reach ~4.6 (fig07_ts-001 overdamped)
-SHOOTING_REFINE = 3.5
-
 #: flops per grid-point update of the FD step (rhs 6 mul + 7 add, forward elimination 2,
 #: back substitution 3, the speed's coefficients)
 FLOPS_PER_UPDATE = 19
 
-# Fitted to the default profile's jobs (CPU seconds: each run's solve time x its job's
-# CPU / wall, 2 shared cores under load, so upper readings; idle is ~1.5-2x faster): each
-# job's estimate lies 1.1-2.7x above its measured CPU (batch 279 s, fig09b 99-140 s,
-# fig07_ts 184 s, fig05_plain_cd 56 s, fig05_length_cd 93 s); single runs scatter 0.3-3x
-# around the fit (the load came and went).  Anchors: fig05_plain (751 speeds
-# x 81 points x 5290 steps) 3.05 s CPU and fig05_plain at the former @finer level (1126 x 121 x 12866) 15.3 s
-# (~7 ns per update, ~0.18 us per (step, speed) sample of the effects); peak memory 344 and
-# 686 MB in fresh processes (34 bytes per sample above ~215 MB); shooting fig07_tension
-# (85 points, ~81 steps per period) 26 ms per speed for the ~42 Mflop of
-# :func:`shooting_flops`.
-FIT = {
-    "march_update_s": 1e-8,       # per grid-point update of a march
-    "march_effect_s": 2.6e-7,       # per (time step, speed) sample of the effects
-    "march_mem_mb": 4e-5,         # per (time step, speed) sample: the excitation arrays
-    "shoot_flop_s": 5.5e-10,      # per flop of :func:`shooting_flops`
-    "shoot_speed_s": 1.5e-3,        # per speed: effects on one period, Python, packaging
-    "galerkin_s": 2.5e-4,           # per n_t x duration / rk4_cfl x (modes)^2
-    "library_s": 2.0,             # the solve_ivp comparison of a Galerkin run
-    "timestep_s": 0.12,            # per tooth period x refine of the time-step study
-    "grid_s": 2.5e-6,               # per points^2 (x periods) of an exact / manufactured check
-    "elastic_speed_s": 0.002,      # per speed of the elastic four-bar curve
-    "base_mb": 300.0,             # the interpreter with numpy, scipy, xarray, numba
-    "run_s": 0.05,                # any run
-    "discrete_step_s": 8e-5,      # per (speed, RK4 step) of the discrete span, compiled (2x measured)
-}
+#: the interpreter with numpy, scipy, xarray, numba [MB]; a march's (step, speed) sample of
+#: the excitation arrays [MB]
+BASE_MB, SAMPLE_MB = 300.0, 4e-5
 
 
 def shooting_flops(points: int, steps_per_period):
@@ -136,42 +104,49 @@ def size(run: dict) -> dict:
     return out
 
 
-def cost(run: dict) -> dict:
-    """Expected peak memory (MB) and solve time (s) of one run in a warm solve process
-    (module docstring; a job adds :data:`JOB_START_S` once)."""
-    f, res, solver = FIT, run["resolution"], run["solver"]
-    mem, seconds = f["base_mb"], f["run_s"]
+def work(run: dict) -> dict:
+    """The work terms of one run (module docstring)."""
+    res, solver, opt = run["resolution"], run["solver"], run.get("options", {})
+    out = {"run": 1.0}
     if solver == "speed_sweep" and res.get("method") == "discrete":
-        # per speed two tooth-period marches of 2N + 2 lanes of ~20 rollers (numpy RK4)
-        seconds += f["discrete_step_s"] * _speeds(run, run["parameters"]).size \
-            * int(res["steps_per_period"]) * (SHOOTING_REFINE if "edge_tol" in res else 1)
+        # per speed two tooth-period marches of 2N + 2 lanes of ~20 rollers (numpy RK4);
+        # an adaptive sweep (edge_tol) bisects edges: its own term
+        key = "adaptive_rk4_steps" if "edge_tol" in res else "rk4_steps"
+        out[key] = _speeds(run, run["parameters"]).size * int(res["steps_per_period"])
     elif solver == "speed_sweep":
         z = size(run)
-        S, n1 = z["speeds"], z["points"]
         if "steps" in z:
-            seconds += z["steps"] * S * (f["march_update_s"] * n1 + f["march_effect_s"])
-            mem += f["march_mem_mb"] * z["steps"] * S
+            samples = float(z["steps"] * z["speeds"])
+            out |= {"updates": samples * z["points"],
+                    **{f"{e} samples": samples for e in run["effects"]}}
         else:
-            per = (f["shoot_flop_s"] * shooting_flops(n1, z["steps_per_period"])
-                   + f["shoot_speed_s"])
-            seconds += SHOOTING_REFINE * float(per.sum())
+            # a stability-only sweep stops at its first unstable speed: terms of its own
+            pre = "stability " if stability_only(run) else ""
+            out |= {f"{pre}shooting_flops": float(shooting_flops(z["points"], z["steps_per_period"]).sum()),
+                    f"{pre}shooting_speeds": float(z["speeds"])}
     elif solver == "galerkin":
         # RK4 steps ~ n_t x duration / rk4_cfl (the highest mode sets the step), each
-        # ~ (modes)^2; the solve_ivp comparison adds its own seconds
+        # ~ (modes)^2; the solve_ivp comparison on its own
         nt = int(res["n_transverse"])
         modes = nt + int(res["n_longitudinal"])
-        seconds += f["galerkin_s"] * nt * float(res["duration"]) / float(res["rk4_cfl"]) \
-            * modes * modes
-        if run.get("options", {}).get("compare_library"):
-            seconds += f["library_s"]
+        out["mode_steps"] = nt * float(res["duration"]) / float(res["rk4_cfl"]) * modes * modes
+        out["library"] = float(bool(opt.get("compare_library")))
     elif solver == "impact_timestep":
         # uniform and non-uniform marches refined to dt_min = t_i / refine
-        seconds += f["timestep_s"] * float(res["tooth_periods"]) * float(res["refine"]) \
-            * (int(res["points_per_pitch"]) / 4) ** 2
+        out["periods"] = (float(res["tooth_periods"]) * float(res["refine"])
+                          * (int(res["points_per_pitch"]) / 4) ** 2)
     elif solver in ("exact_free", "manufactured"):
         # one march per grid and scheme: points x steps ~ points^2 (x periods)
-        seconds += f["grid_s"] * sum(int(n) ** 2 for n in res["points"]) \
-            * float(res.get("periods", 4))
+        out["grid"] = sum(int(n) ** 2 for n in res["points"]) * float(res.get("periods", 4))
     elif solver == "elastic_four_bar":
-        seconds += f["elastic_speed_s"] * int(res.get("n_speeds", 1))
-    return {"mem_mb": mem, "seconds": seconds}
+        out["speeds"] = float(res.get("n_speeds", 1))
+    return out
+
+
+def mem_mb(run: dict) -> float:
+    """Peak memory [MB]: the process plus a march's excitation arrays."""
+    res = run["resolution"]
+    if run["solver"] != "speed_sweep" or res.get("method", "march") != "march":
+        return BASE_MB
+    z = size(run)
+    return BASE_MB + SAMPLE_MB * z["steps"] * z["speeds"]

@@ -1,7 +1,10 @@
-"""disk_tension's load-time limits (read by :mod:`mechrepro.limits` before any job): the
-stiffened annuli of Fig. 7 inside the flexible region, which the effect
-:func:`.effects.stiffness_sensitivity` would otherwise refuse inside the job."""
+"""disk_tension's load-time limits and cost form (read by :mod:`mechrepro.limits` before any
+job): the stiffened annuli of Fig. 7 inside the flexible region, which the effect
+:func:`.effects.stiffness_sensitivity` would otherwise refuse inside the job, and the work
+of a run (:func:`work`; the seconds per unit are data, config/costs.csv)."""
 from __future__ import annotations
+
+import math
 
 import numpy as np
 
@@ -26,12 +29,27 @@ def check(run: dict) -> list[str]:
     return out
 
 
-def cost(run: dict) -> dict:
-    """Peak memory [MB] and time [s] of one run: quadratic in the radial elements, linear in
-    the cells of the 2-D mesh (fits above the benchmark's measurements)."""
+def _size(run: dict) -> int:
+    """Radial elements of the axisymmetric model, or cells of the 2-D mesh."""
     res = run["resolution"]
     if "n_elements" in res:
-        n = int(res["n_elements"])
-        return {"mem_mb": 160 + 7.5e-4 * n * n, "seconds": 2.5 + 1.2e-4 * n * n}
-    cells = int(res.get("n_rings", 1)) * int(res.get("n_sectors", 8))
-    return {"mem_mb": 160 + 0.2 * cells, "seconds": 1.0 + 5e-3 * cells}
+        return int(res["n_elements"])
+    return int(res.get("n_rings", 1)) * int(res.get("n_sectors", 8))
+
+
+def work(run: dict) -> dict:
+    """The cost form: an assembly linear and an eigen-solve quadratic in the size
+    (:func:`_size`), and each effect's work linear in it and in the points of the swept
+    parameters it solves again (rolling radii, nodal diameters; the design map's amplitude
+    steps too)."""
+    n, p = float(_size(run)), run["parameters"]
+    grid = n * math.prod(len(v) for v in p.values() if isinstance(v, list))
+    return {"run": 1.0, "size": n, "size^2": n * n,
+            **{e: grid * (int(p["design_steps"]) if e == "design_map" else 1) for e in run["effects"]}}
+
+
+def mem_mb(run: dict) -> float:
+    """Peak memory [MB] (typed, no run records it): dense matrices quadratic in the radial
+    elements, the 2-D mesh's linear in its cells."""
+    n = _size(run)
+    return 160 + (7.5e-4 * n * n if "n_elements" in run["resolution"] else 0.2 * n)

@@ -1,18 +1,17 @@
-"""joint_wear's load-time declarations and cost (read by :mod:`mechrepro.limits` before any job).
+"""joint_wear's load-time declarations and cost form (read by :mod:`mechrepro.limits` before any job).
 
 ``PRODUCED_BY``: the dataset parts built from the wear result (:mod:`.dataset`
 ``calibration_part``, ``prediction_part``, keyed on ``res["wear"]``) exist only when a
 scene names ``archard_wear`` (:func:`.solver.with_wear`); a reported quantity reading them
 from a scene without it is refused at load, not in validation.
 
-:func:`cost`: a run is a count of joint periods (what each solver of :mod:`.solver`
-simulates, counted from the run record) times the cost of one period at the run's
-resolution.  The coefficients are CPU seconds and bytes of ``compute(run)`` in one warm
-process, measured on a loaded 2-core machine (upper readings): a quasi-static period per
-sample, the compiled Radau per step (steps per period ~ rtol^-0.3), scipy's integrators
-per step and per output sample, local wear per sample and reachable bushing cell.
-:data:`SPREAD` is the band a run's measured compute wall time keeps around its estimate,
-from an idle machine to a loaded one.
+:func:`work`: a run is a count of joint periods (what each solver of :mod:`.solver`
+simulates, counted from the run record) times the work of one period at the run's
+resolution: a quasi-static period and its samples, the compiled Radau's or scipy's
+integrator steps (steps per settled period ~ rtol^-0.3, many more from a concentric
+start, where impacts and rattling set the step) and output samples, local wear's reachable
+bushing cells and the groove's explicit steps.  The seconds per unit are data
+(config/costs.csv); memory stays typed (no run records it).
 """
 from __future__ import annotations
 
@@ -23,54 +22,46 @@ PRODUCED_BY = {v: "archard_wear" for v in (
     "wear_calibration_replay", "k_mean", "wear_predicted", "wear_factor_prediction",
     "wear_report", "report_is_node")}
 
-#: a run's measured compute wall time over :func:`solve_seconds`, idle machine to this
-#: load (module docstring): what the estimate promises, and what tests/test_inputs.py checks
-SPREAD = (0.1, 300.0)
-
-#: a warm solver process [MB]; a solve job's start [s]: interpreter, imports and the
-#: cached kernels
-BASE_MB = 260.0
-JOB_START_S = 2.0
-
-_QS_S, _QS_PER_SAMPLE_S, _QS_B = 3.0e-3, 3.5e-6, 340.0
-_RADAU_STEP_S, _RADAU_B = 3.1e-6, 100.0
-# scipy's integrators: (seconds per step, steps per settled period at rtol 1e-6)
-_SCIPY = {"LSODA": (45e-6, 38_000), "BDF": (5e-4, 14_000), "RK45": (2.1e-4, 1.5e7)}
-_SCIPY_SAMPLE_S, _SCIPY_B = 50e-6, 400.0
-_LOCAL_CELL_S, _LOCAL_B, _GROOVE_CELL_S = 0.13e-6, 50.0, 0.65e-6
+#: a warm solver process [MB], and bytes per sample of a quasi-static period, a dynamic
+#: run's output (the compiled Radau's, scipy's) and a local-wear bushing cell
+BASE_MB, _QS_B, _RADAU_B, _SCIPY_B, _LOCAL_B = 260.0, 340.0, 100.0, 400.0, 50.0
+#: integrator steps per settled period at rtol 1e-5 (Radau) or 1e-6 (scipy's)
+_STEPS = {"Radau": 400.0, "LSODA": 38_000, "BDF": 14_000, "RK45": 1.5e7}
 _LOCAL_PATCH = math.radians(15.0)   # the widest contact patch of the scenes (assumed F)
 #: steps from the concentric start (impact, rattling) over a settled period's at the same rtol
 _CONCENTRIC = {"Radau": 300.0, "scipy": 2.2}
 
 
-def _qs(n: int) -> float:
-    """One quasi-static period [s] (module docstring)."""
-    return _QS_S + _QS_PER_SAMPLE_S * n
+def _add(out: dict, terms: dict, times: float = 1.0) -> dict:
+    for k, v in terms.items():
+        out[k] = out.get(k, 0.0) + times * v
+    return out
 
 
-def _dynamic(res: dict, start: str) -> float:
-    """One run of the dynamic joint (``periods`` periods, ``n_out`` samples each) [s],
-    with its settled start (a 4-pass quasi-static period of 720 samples)."""
+def _qs(n: int) -> dict:
+    """One quasi-static period of ``n`` samples."""
+    return {"qs_periods": 1.0, "qs_samples": float(n)}
+
+
+def _dynamic(res: dict, start: str) -> dict:
+    """One run of the dynamic joint (``periods`` periods, ``n_out`` samples each), with its
+    settled start (a 4-pass quasi-static period of 720 samples)."""
     method, rtol = res.get("method", "Radau"), float(res.get("rtol", 1e-5))
-    periods, samples = int(res.get("periods", 1)), int(res.get("periods", 1)) * int(res["n_out"])
+    periods = int(res.get("periods", 1))
     concentric = start == "concentric"
     if method == "Radau":
-        steps = 400.0 * (1e-5 / rtol) ** 0.3 if rtol <= 1e-5 else 400.0 * (rtol / 1e-5) ** 1.36
+        steps = _STEPS["Radau"] * ((1e-5 / rtol) ** 0.3 if rtol <= 1e-5 else (rtol / 1e-5) ** 1.36)
         steps *= periods * (_CONCENTRIC["Radau"] if concentric else 1.0)
-        seconds = _RADAU_STEP_S * steps + 1e-6 * samples
     else:
-        per_step, steps = _SCIPY[method]
-        steps *= (1e-6 / rtol) ** 0.3 * periods * (_CONCENTRIC["scipy"] if concentric else 1.0)
-        if res.get("max_steps"):
-            steps = min(steps, int(res["max_steps"]))
-        seconds = per_step * steps + _SCIPY_SAMPLE_S * samples
-    return seconds + (0.0 if concentric else 2 * _qs(720))
+        steps = _STEPS[method] * (1e-6 / rtol) ** 0.3 * periods * (_CONCENTRIC["scipy"] if concentric else 1.0)
+        steps = min(steps, int(res["max_steps"])) if res.get("max_steps") else steps
+    out = {f"{method}_steps": steps, "dynamic_samples": float(periods * int(res["n_out"]))}
+    return out if concentric else _add(out, _qs(720), 2)
 
 
 def _dynamic_mb(res: dict) -> float:
-    samples = int(res.get("periods", 1)) * int(res.get("n_out", 720))
     per = _RADAU_B if res.get("method", "Radau") == "Radau" else _SCIPY_B
-    return per * samples / 1e6
+    return per * int(res.get("periods", 1)) * int(res.get("n_out", 720)) / 1e6
 
 
 def _wear_periods(run: dict, interval_h: float, sides: int, update: bool) -> int:
@@ -83,26 +74,23 @@ def _wear_periods(run: dict, interval_h: float, sides: int, update: bool) -> int
     return sides * (n_cal + (max(n_int, 1) if update else 1))
 
 
-def _solve_seconds(run: dict) -> tuple[float, float]:
-    """(seconds of one ``compute(run)``, extra MB above the process)."""
+def _work(run: dict) -> tuple[dict, float]:
+    """(work terms of one ``compute(run)``, extra MB above the process)."""
     res, opt, eff = run["resolution"], run.get("options", {}), run["effects"]
     n, solver = int(res.get("n_steps", 720)), run["solver"]
     interval = float(res.get("interval_h", 2.0))
-    wear = "archard_wear" in eff
     worn = _wear_periods(run, interval, 2 if "unbalanced_load" in eff else 1,
-                         "wear_update" in eff) if wear else 0
-    qs_mb = _QS_B * n / 1e6
+                         "wear_update" in eff) if "archard_wear" in eff else 0
+    qs, qs_mb, n_cal = _qs(n), _QS_B * n / 1e6, len(run["parameters"]["measured_wear_B1"])
     if solver in ("clearance_implicit", "clearance_explicit"):
-        one = _dynamic(res, opt.get("start", "equilibrium"))
-        return one * (1 + worn), _dynamic_mb(res)
+        return _add({}, _dynamic(res, opt.get("start", "equilibrium")), 1 + worn), _dynamic_mb(res)
     if solver == "continuous_contact":
-        return _qs(n) * (1 + worn), qs_mb
+        return _add({}, qs, 1 + worn), qs_mb
     if solver == "period_by_period":
-        return _qs(n) * (1 + int(opt.get("period_by_period_sample", 300))), qs_mb
-    n_cal = len(run["parameters"]["measured_wear_B1"])
+        return _add({}, qs, 1 + int(opt.get("period_by_period_sample", 300))), qs_mb
     if solver == "coefficient_scan":
         points = len(opt.get("scan_load_direction_deg", [])) * len(opt.get("scan_gravity", []))
-        return _qs(n) * points * (1 + 2 * n_cal), qs_mb
+        return _add({}, qs, points * (1 + 2 * n_cal)), qs_mb
     if solver == "load_point_fit":
         planes = len(opt.get("fit_gravity", []))
         grid = len(opt.get("fit_load_direction_deg", [])) * planes * 2 * n_cal
@@ -110,50 +98,40 @@ def _solve_seconds(run: dict) -> tuple[float, float]:
         # period and the 86-h wear of both sides at it and +- its uncertainty
         per_zero = ((int(opt.get("fit_secant_steps", 3)) + 1) * 2 * n_cal + 1
                     + 3 * _wear_periods(run, interval, 2, True))
-        return _qs(n) * (grid + 4 * planes * per_zero), qs_mb
+        return _add({}, qs, grid + 4 * planes * per_zero), qs_mb
     if solver == "load_point_posterior":
         nodes = (len(opt.get("posterior_distance", [])) * len(opt.get("posterior_friction", []))
                  * int(res.get("n_gravity", 1)))
-        grid = len(opt.get("fit_load_direction_deg", [])) * 2 * n_cal
+        grid = len(opt.get("fit_load_direction_deg", []))
         # each node: ~4 zeros, each with its secant steps (Brent's where they stall), a
         # quasi-static period and, where credible, the 86-h wear; the dynamic joint once, at
         # the credible point of the smallest margin (~10x a settled run's steps near the rule)
         per_zero = ((int(opt.get("fit_secant_steps", 3)) + 2) * 2 * n_cal + 2
-                    + _wear_periods(run, interval, 2, True)) * _qs(n)
-        dyn = 10.0 * _dynamic(res, opt.get("start", "equilibrium"))
-        return nodes * (_qs(n) * grid / (2 * n_cal) + 4 * per_zero) + dyn, max(qs_mb, _dynamic_mb(res))
+                    + _wear_periods(run, interval, 2, True))
+        out = _add({}, qs, nodes * (grid + 4 * per_zero))
+        return (_add(out, _dynamic(res, opt.get("start", "equilibrium")), 10),
+                max(qs_mb, _dynamic_mb(res)))
     if solver == "local_wear":
         periods = 1 + _wear_periods(run, interval, 1, True)
         n_theta = int(res.get("n_theta", 720))
         cells = n * min(n_theta, n_theta * _LOCAL_PATCH / (2 * math.pi) + 5)
         # the groove: ~8 000 explicit steps at groove_step 4, each per sample and angle
-        steps = 8000.0 * 4.0 / float(res.get("groove_step", 4.0))
-        groove = steps * _GROOVE_CELL_S * int(res.get("groove_samples", 24)) * n_theta
-        return (periods * (4 * _qs(n) + _LOCAL_CELL_S * cells) + groove,
+        groove = 8000.0 * 4.0 / float(res.get("groove_step", 4.0)) \
+            * int(res.get("groove_samples", 24)) * n_theta
+        return (_add({"local_cells": periods * cells, "groove_cells": groove}, qs, 4 * periods),
                 max(qs_mb, _LOCAL_B * cells / 1e6))
     if solver == "constant_sensitivity":
         rows = 1 + 2 * len(opt.get("sensitivity", {}))
-        dyn = _dynamic({"method": "Radau", "rtol": res.get("rtol", 1e-6), "n_out": n},
-                       "equilibrium")
-        return rows * (_qs(n) * (1 + _wear_periods(run, interval, 1, True)) + dyn), qs_mb
-    return _qs(n), qs_mb     # a solver added later: no fit yet, one quasi-static period
+        dyn = _dynamic({"method": "Radau", "rtol": res.get("rtol", 1e-6), "n_out": n}, "equilibrium")
+        return _add(_add({}, qs, rows * (1 + _wear_periods(run, interval, 1, True))), dyn, rows), qs_mb
+    return qs, qs_mb     # a solver added later: one quasi-static period
 
 
-def cost(run: dict) -> dict:
-    """Expected peak memory (MB) and time (s) of one run in a warm solve process (module
-    docstring; a job adds :data:`JOB_START_S` once): its compute, repeated for the
-    rounds of a ``marginal_cost:`` scene's alternated timing, at least the 20 ms a fast
-    solve is repeated for, plus packing and writing (~0.05 s)."""
-    seconds, extra_mb = _solve_seconds(run)
-    if run.get("target"):   # mechrepro.target refines its knob level by level: ~8 doublings
-        knob, res = run["target"]["knob"], run["resolution"]
-        levels = [_solve_seconds({**run, "resolution": {**res, knob: res[knob] * 2 ** k}})
-                  for k in range(8)]
-        seconds, extra_mb = sum(s for s, _ in levels), levels[-1][1]
-    rounds = int(run.get("timing_repeat", 1))
-    return {"mem_mb": BASE_MB + extra_mb, "seconds": rounds * max(seconds, 0.02) + 0.05}
+def work(run: dict) -> dict:
+    """The work terms of one ``compute(run)`` (module docstring), with a term per run."""
+    return {"run": 1.0, **_work(run)[0]}
 
 
-def solve_seconds(run: dict) -> float:
-    """The expected time of one ``compute(run)`` [s] (what a run's ``wall_time`` measures)."""
-    return _solve_seconds(run)[0]
+def mem_mb(run: dict) -> float:
+    """Peak memory [MB] of one run in a warm solve process."""
+    return BASE_MB + _work(run)[1]

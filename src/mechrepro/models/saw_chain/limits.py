@@ -1,4 +1,4 @@
-"""saw_chain's load-time limits and cost (read by :mod:`mechrepro.limits` before any job):
+"""saw_chain's load-time limits and cost form (read by :mod:`mechrepro.limits` before any job):
 the solver's own refusals evaluated on the run record."""
 from __future__ import annotations
 
@@ -25,16 +25,20 @@ def check(run: dict) -> list[str]:
     return []
 
 
-#: what a solve process spends before its first run: the model's imports (scipy, xarray),
-#: which the first run's compute pays
-JOB_START_S = 0.7
+#: effects whose work does not follow K: their own design grids and fits, once per run
+_OWN_WORK = ("identification", "design_maps", "richardson_levels")
 
 
-def cost(run: dict) -> dict:
-    """Peak memory and time of one run, linear in K (2K+1 samples of ~16 arrays plus the write);
-    the fit lies above measurements in fresh processes."""
-    K = int(run["resolution"]["K"])
-    return {"mem_mb": 200 + 3.0e-4 * K, "seconds": 0.3 + 1.5e-6 * K}
+def work(run: dict) -> dict:
+    """The cost form: 2K + 1 samples of the difference method and its references, plus the
+    effects that solve grids of their own (:data:`_OWN_WORK`)."""
+    return {"run": 1.0, "K": float(run["resolution"]["K"]),
+            **{e: 1.0 for e in run["effects"] if e in _OWN_WORK}}
+
+
+def mem_mb(run: dict) -> float:
+    """Peak memory [MB]: the interpreter with its imports plus ~16 arrays of 2K + 1 samples."""
+    return 200 + 3.0e-4 * int(run["resolution"]["K"])
 
 
 #: the difference method alone is read by no reported quantity: each compares it with
