@@ -169,8 +169,8 @@ def floor(profile="default", measure=False):
         kind = run["solver"]
         if kind.startswith("clearance"):
             kind += " " + run["resolution"].get("method", "Radau")
-        rows.append((name, kind, flops, costs.compute_seconds("joint_wear", run)))
-    _floor.report("joint_wear", profile, rows, "limits.compute_seconds, one compute per run",
+        rows.append((name, kind, flops, costs.run_cost("joint_wear", run)["compute_s"]))
+    _floor.report("joint_wear", profile, rows, "limits.run_cost compute_s, one compute per run",
                   cfg.runs if measure else None)
 
 

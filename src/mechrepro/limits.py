@@ -34,6 +34,7 @@ import csv
 import functools
 import importlib
 import math
+from collections import Counter
 from pathlib import Path
 
 #: what the solve rule declares (workflow/rules/solve.smk reads these)
@@ -62,22 +63,20 @@ def coefficients() -> dict[tuple[str, str], dict[str, float]]:
 @functools.lru_cache(maxsize=None)
 def _read(path: Path) -> dict[tuple[str, str], dict[str, float]]:
     out: dict[tuple[str, str], dict[str, float]] = {}
-    try:
-        with open(path, newline="") as f:
-            for row in csv.DictReader(f):
-                out.setdefault((row["paper"], row["solver"]), {})[row["term"]] = float(row["coefficient"])
-    except OSError as exc:
-        raise LimitError(f"{path}: cannot read the cost table ({exc.strerror}); allowed: the "
-                         f"table `python -m mechrepro.costs results` writes after a default run")
+    with open(path, newline="") as f:
+        for row in csv.DictReader(f):
+            out.setdefault((row["paper"], row["solver"]), {})[row["term"]] = float(row["coefficient"])
     return out
 
 
-def _fit(paper: str, solver: str) -> dict[str, float]:
-    fit = coefficients().get((paper, solver))
-    if fit is None:
-        raise LimitError(f"{COSTS}: no cost coefficients for paper {paper}, solver {solver}; "
-                         f"allowed: a table with them, which `python -m mechrepro.costs results` "
-                         f"writes after a default run that solved it (make benchmark)")
+def _fit(paper: str, solver: str, terms=("start",)) -> dict[str, float]:
+    fit = coefficients().get((paper, solver), {})
+    lack = [t for t in terms if t not in fit]
+    if lack:
+        raise LimitError(f"{COSTS}: no cost coefficients for paper {paper}, solver {solver}"
+                         + (f", work term(s) {', '.join(lack)}" if fit else "") + "; allowed: the "
+                         "table `python -m mechrepro.costs results` writes after a default run "
+                         "that solved it with this code (make costs)")
     return fit
 
 
@@ -85,19 +84,13 @@ def work(paper: str, run: dict) -> dict[str, float] | None:
     """The work terms of one run (its model's ``work``; a run solved to an accuracy target:
     summed over :data:`TARGET_LEVELS` refinements of its knob), None if undeclared."""
     mod = _model(paper)
-    if mod is None or not hasattr(mod, "work"):
-        return None
-    t = run.get("target")
-    if not t:
-        return mod.work(run)
-    out: dict[str, float] = {}
-    res, knob = run["resolution"], t["knob"]
-    for k in range(TARGET_LEVELS):
-        v = res[knob] * float(t["factor"]) ** k if not isinstance(res[knob], list) \
-            else [x * float(t["factor"]) ** k for x in res[knob]]
-        for term, w in mod.work({**run, "resolution": {**res, knob: v}}).items():
-            out[term] = out.get(term, 0.0) + w
-    return out
+    if not hasattr(mod, "work") or not run.get("target"):
+        return mod.work(run) if hasattr(mod, "work") else None
+    out, res, knob, r = Counter(), run["resolution"], run["target"]["knob"], float(run["target"]["factor"])
+    for k in range(TARGET_LEVELS):     # the target's refinements (ratio > 1: finer is larger)
+        v = [x * r ** k for x in res[knob]] if isinstance(res[knob], list) else res[knob] * r ** k
+        out.update(mod.work({**run, "resolution": {**res, knob: v}}))
+    return dict(out)
 
 
 def _model(paper: str):
@@ -126,31 +119,19 @@ def refusals(cfg) -> list[str]:
     return out
 
 
-def compute_seconds(paper: str, run: dict) -> float | None:
-    """The expected time of one ``compute(run)`` [s] (what a run's ``wall_time_s``
-    measures): its work terms times the table's coefficients for its solver."""
+def run_cost(paper: str, run: dict) -> dict | None:
+    """{"mem_mb", "seconds", "compute_s"} of one run: ``compute_s`` the expected time of its
+    ``compute(run)`` (what its ``wall_time_s`` measures), its work terms times the table's
+    coefficients for its solver; ``seconds`` its time in its job, that repeated for the
+    rounds of an alternated timing (``timing_repeat``) and to the least time a fast solve
+    is repeated for (``options.timing_min_s``, :func:`mechrepro.solve._min_time`)."""
     w = work(paper, run)
     if w is None:
         return None
-    fit = _fit(paper, run["solver"])
-    missing = sorted(set(w) - set(fit))
-    if missing:
-        raise LimitError(f"{COSTS}: paper {paper}, solver {run['solver']} has no coefficient for "
-                         f"work term(s) {', '.join(missing)}; allowed: a table written by "
-                         f"`python -m mechrepro.costs results` after a default run with this code")
-    return sum(fit[k] * v for k, v in w.items())
-
-
-def run_cost(paper: str, run: dict) -> dict | None:
-    """{"mem_mb", "seconds"} of one run in its job: its compute, repeated for the rounds of
-    an alternated timing (``timing_repeat``) and to the least time a fast solve is repeated
-    for (``options.timing_min_s``, :func:`mechrepro.solve._min_time`)."""
-    sec = compute_seconds(paper, run)
-    if sec is None:
-        return None
-    least = float(run.get("options", {}).get("timing_min_s", 0.02))
-    return {"mem_mb": _model(paper).mem_mb(run),
-            "seconds": int(run.get("timing_repeat", 1)) * max(sec, least)}
+    fit = _fit(paper, run["solver"], w)
+    sec = sum(fit[k] * v for k, v in w.items())
+    return {"mem_mb": _model(paper).mem_mb(run), "compute_s": sec, "seconds": int(
+        run.get("timing_repeat", 1)) * max(sec, float(run.get("options", {}).get("timing_min_s", 0.02)))}
 
 
 def solve_key(paper: str, run: dict):
@@ -171,10 +152,9 @@ def job_costs(cfg) -> dict[str, dict]:
         if not costs or any(c is None for c in costs.values()):
             continue
         largest = max(costs, key=lambda r: costs[r]["mem_mb"])
-        start = _fit(cfg.paper, "(job)").get("start", 0.0)
         out[job] = {"mem_mb": costs[largest]["mem_mb"], "largest": largest,
                     "longest": max(costs, key=lambda r: costs[r]["seconds"]),
-                    "seconds": start + sum(c["seconds"] for c in costs.values())}
+                    "seconds": _fit(cfg.paper, "(job)")["start"] + sum(c["seconds"] for c in costs.values())}
     return out
 
 
@@ -257,11 +237,9 @@ def check_all(cfgs: dict, allow_over_budget: bool = False, cache_dir=None) -> No
     problems = []
     for cfg in cfgs.values():
         problems += missing_effects(cfg, cache_dir) + refusals(cfg)
-        try:      # a solver or term the cost table lacks is refused even over budget
-            job_costs(cfg)
-            problems += [] if allow_over_budget else over_budget(cfg)
-        except LimitError as exc:
-            problems.append(str(exc))
+        job_costs(cfg)    # a solver or work term the cost table lacks: refused, over budget or not
+        if not allow_over_budget:
+            problems += over_budget(cfg)
     if problems:
         raise LimitError("\n".join(problems))
 

@@ -117,24 +117,22 @@ def work(run: dict) -> dict:
         z = size(run)
         if "steps" in z:
             samples = float(z["steps"] * z["speeds"])
-            out |= {"updates": samples * z["points"],
-                    **{f"{e} samples": samples for e in run["effects"]}}
+            out |= {"updates": samples * z["points"], **{f"{e} samples": samples for e in run["effects"]}}
         else:
             # a stability-only sweep stops at its first unstable speed: terms of its own
             pre = "stability " if stability_only(run) else ""
             out |= {f"{pre}shooting_flops": float(shooting_flops(z["points"], z["steps_per_period"]).sum()),
                     f"{pre}shooting_speeds": float(z["speeds"])}
     elif solver == "galerkin":
-        # RK4 steps ~ n_t x duration / rk4_cfl (the highest mode sets the step), each
-        # ~ (modes)^2; the solve_ivp comparison on its own
-        nt = int(res["n_transverse"])
-        modes = nt + int(res["n_longitudinal"])
-        out["mode_steps"] = nt * float(res["duration"]) / float(res["rk4_cfl"]) * modes * modes
-        out["library"] = float(bool(opt.get("compare_library")))
+        # RK4 steps ~ n_t x duration / rk4_cfl (the highest mode sets the step), each a
+        # projection on the modes (~ modes, ~ modes^2 coupled); the solve_ivp comparison
+        nt, nl = int(res["n_transverse"]), int(res["n_longitudinal"])
+        steps = nt * float(res["duration"]) / float(res["rk4_cfl"])
+        out |= {"steps": steps, "mode_steps": steps * (nt + nl), "library": float(bool(opt.get("compare_library"))),
+                "coupled mode^2 steps": steps * (nt + nl) ** 2 * ("longitudinal_coupling" in run["effects"])}
     elif solver == "impact_timestep":
         # uniform and non-uniform marches refined to dt_min = t_i / refine
-        out["periods"] = (float(res["tooth_periods"]) * float(res["refine"])
-                          * (int(res["points_per_pitch"]) / 4) ** 2)
+        out["periods"] = float(res["tooth_periods"]) * float(res["refine"]) * (int(res["points_per_pitch"]) / 4) ** 2
     elif solver in ("exact_free", "manufactured"):
         # one march per grid and scheme: points x steps ~ points^2 (x periods)
         out["grid"] = sum(int(n) ** 2 for n in res["points"]) * float(res.get("periods", 4))
@@ -145,8 +143,6 @@ def work(run: dict) -> dict:
 
 def mem_mb(run: dict) -> float:
     """Peak memory [MB]: the process plus a march's excitation arrays."""
-    res = run["resolution"]
-    if run["solver"] != "speed_sweep" or res.get("method", "march") != "march":
+    if run["solver"] != "speed_sweep" or run["resolution"].get("method", "march") != "march":
         return BASE_MB
-    z = size(run)
-    return BASE_MB + SAMPLE_MB * z["steps"] * z["speeds"]
+    return BASE_MB + SAMPLE_MB * (z := size(run))["steps"] * z["speeds"]

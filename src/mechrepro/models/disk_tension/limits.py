@@ -51,5 +51,4 @@ def work(run: dict) -> dict:
 def mem_mb(run: dict) -> float:
     """Peak memory [MB] (typed, no run records it): dense matrices quadratic in the radial
     elements, the 2-D mesh's linear in its cells."""
-    n = _size(run)
-    return 160 + (7.5e-4 * n * n if "n_elements" in run["resolution"] else 0.2 * n)
+    return 160 + (7.5e-4 * _size(run) ** 2 if "n_elements" in run["resolution"] else 0.2 * _size(run))
