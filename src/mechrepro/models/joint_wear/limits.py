@@ -7,9 +7,9 @@ from a scene without it is refused at load, not in validation.
 
 :func:`work`: a run is a count of joint periods (what each solver of :mod:`.solver`
 simulates, counted from the run record) times the work of one period at the run's
-resolution: a quasi-static period and its samples, a dynamic period per integrator and
-start (:func:`_dynamic`) and its output samples, local wear's reachable bushing cells and
-the groove's explicit steps.  The seconds per unit are data (config/costs.csv); memory
+resolution: a quasi-static period's samples, a dynamic period's integrator steps per
+integrator and start (:func:`_dynamic`) and its output samples, local wear's reachable
+bushing cells and the groove's explicit steps.  The seconds per unit are data (config/costs.csv); memory
 stays typed (no run records it).
 """
 from __future__ import annotations
@@ -25,23 +25,29 @@ PRODUCED_BY = {v: "archard_wear" for v in (
 #: a warm solver process [MB], and bytes per sample of a quasi-static period, a dynamic
 #: run's output (the compiled Radau's, scipy's) and a local-wear bushing cell
 BASE_MB, _QS_B, _RADAU_B, _SCIPY_B, _LOCAL_B = 260.0, 340.0, 100.0, 400.0, 50.0
+#: integrator steps per settled period at rtol 1e-5 (Radau) or 1e-6 (scipy's)
+_STEPS = {"Radau": 400.0, "LSODA": 38_000, "BDF": 14_000, "RK45": 1.5e7}
 _LOCAL_PATCH = math.radians(15.0)   # the widest contact patch of the scenes (assumed F)
 
 
 def _qs(n: int, times: float = 1.0) -> Counter:
-    """``times`` quasi-static periods of ``n`` samples."""
-    return Counter({"qs_periods": times, "qs_samples": times * n})
+    """``times`` quasi-static periods of ``n`` samples (a period's setup costs as much as
+    ~360 samples: the form stays linear in n and one run fixes it)."""
+    return Counter({"qs_samples": times * (n + 360)})
 
 
 def _dynamic(res: dict, start: str, times: float = 1.0) -> Counter:
-    """``times`` runs of the dynamic joint: its periods for its integrator and start (steps
-    per period ~ rtol^-0.25 below the Radau's 1e-5, ~ rtol^1.15 above it, where the contact
-    rattles; a concentric start impacts and rattles), its output samples and its settled
+    """``times`` runs of the dynamic joint: its integrator's steps (per settled period at
+    rtol 1e-5 (Radau) or 1e-6 (the others), ~ rtol^-0.25, but ~ rtol^1.15 for the Radau
+    above 1e-5, where the contact rattles; at most ``max_steps``; a concentric start,
+    which impacts and rattles, a term of its own), its output samples and its settled
     start (a 4-pass quasi-static period of 720 samples)."""
     method, rtol = res.get("method", "Radau"), float(res.get("rtol", 1e-5))
-    steps = (1e-5 / rtol) ** 0.25 if rtol <= 1e-5 else (rtol / 1e-5) ** 1.15
-    periods = times * int(res.get("periods", 1))
-    out = Counter({f"{method} {start} periods": periods * steps, "dynamic_samples": periods * int(res["n_out"])})
+    ref, periods = (1e-5 if method == "Radau" else 1e-6), times * int(res.get("periods", 1))
+    rattles = method == "Radau" and rtol > ref
+    steps = _STEPS[method] * periods * ((rtol / ref) ** 1.15 if rattles else (ref / rtol) ** 0.25)
+    out = Counter({f"{method} {start} steps": min(steps, float(res.get("max_steps") or math.inf)),
+                   "dynamic_samples": periods * int(res["n_out"])})
     return out if start == "concentric" else out + _qs(720, 2 * times)
 
 

@@ -25,15 +25,11 @@ def check(run: dict) -> list[str]:
     return []
 
 
-#: effects whose work does not follow K: their own design grids and fits, once per run
-_OWN_WORK = ("identification", "design_maps", "richardson_levels")
-
-
 def work(run: dict) -> dict:
     """The cost form: 2K + 1 samples of the difference method and its references, plus the
-    effects that solve grids of their own (:data:`_OWN_WORK`)."""
-    return {"run": 1.0, "K": float(run["resolution"]["K"]),
-            **{e: 1.0 for e in run["effects"] if e in _OWN_WORK}}
+    effects that solve design grids and fits of their own, once per run."""
+    return {"run": 1.0, "K": float(run["resolution"]["K"]), **{e: 1.0 for e in run["effects"]
+                                                              if e in ("identification", "design_maps", "richardson_levels")}}
 
 
 def mem_mb(run: dict) -> float:
