@@ -180,15 +180,13 @@ def fit(work: list[dict[str, float]], seconds) -> dict[str, float]:
 
 
 def _machine() -> str:
+    """The CPU model and core count of the machine that fits (the one that ran the results)."""
     import os
     import platform
 
-    try:
-        cpu = next(ln.split(":", 1)[1].strip() for ln in open("/proc/cpuinfo")
-                   if ln.startswith("model name"))
-    except (OSError, StopIteration):
-        cpu = platform.processor() or platform.machine()
-    return f"{cpu} ({os.cpu_count()} cores)"
+    cpu = [ln.split(":", 1)[1].strip() for ln in open("/proc/cpuinfo") if ln.startswith("model name")] \
+        if os.path.exists("/proc/cpuinfo") else []
+    return f"{(cpu or [platform.processor() or platform.machine()])[0]} ({os.cpu_count()} cores)"
 
 
 def measurements(results: str | Path, config_dir: str | Path = "config",

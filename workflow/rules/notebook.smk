@@ -8,7 +8,9 @@ for _paper in PAPERS:
              runs_of(_paper, variants=True) + studies_of(_paper, variants=True),
              [f"{RESULTS}/{_paper}/tables/{t}.csv" for t in CFG[_paper].framework_tables]
              + [f"{RESULTS}/{_paper}/claim.json"],
-             config=[paper_config(_paper)], code=code(*VALIDATE_CORE, f"models/{_paper}"))
+             # the cost table made job_time.csv's estimates (mechrepro.limits.COSTS)
+             config=[paper_config(_paper), BASE / "config/costs.csv"],
+             code=code(*VALIDATE_CORE, f"models/{_paper}"))
 
     rule:
         name:
