@@ -414,7 +414,7 @@ def shooting_vs_march(profile: str, scene: str = "fig09a", n_uniform: int = 450,
         for name, r, rs in (("shooting", run, res), ("reference", run, res_ref),
                             (f"march {n_uniform}", run_m, res_m), (settled, run_m, res_s)):
             t0 = time.perf_counter()
-            d = pack(solver.speed_sweep(r, prm, rs), r)
+            d = pack(solver.speed_sweep({**r, "parameters": prm, "resolution": rs}), r)
             out[name] = (d, time.perf_counter() - t0)
     d_ref = out["reference"][0]
     sp_ref, a_ref = _top_peaks(d_ref.speed.values, d_ref.amplitude.values,

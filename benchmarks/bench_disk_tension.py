@@ -35,7 +35,8 @@ ROOT = Path(__file__).resolve().parent.parent
 from mechrepro.timing import phase, time_call  # noqa: E402
 from mechrepro.models.disk_tension.effects import thermal_load  # noqa: E402
 from mechrepro.config import load_paper  # noqa: E402
-from mechrepro.models.disk_tension import compute, exact  # noqa: E402
+from mechrepro.models.disk_tension import exact  # noqa: E402
+from mechrepro.solve import compute  # noqa: E402
 from mechrepro.models.disk_tension.axisym import AxisymDisk  # noqa: E402
 from mechrepro.levels import extrapolate  # noqa: E402
 

@@ -57,12 +57,12 @@ CONFIG = ROOT / "config/papers/rolling_shear.yaml"
 CHILD = r"""
 import json, sys, time
 from mechrepro.config import load_paper
-from mechrepro.models.rolling_shear import solver
+from mechrepro.solve import compute
 runs = load_paper(sys.argv[1], sys.argv[2]).runs
 out = {}
 for name, run in runs.items():
     t = time.perf_counter()
-    solver.compute(run)
+    compute(run)
     out[name] = time.perf_counter() - t
 print(json.dumps(out))
 """
@@ -70,7 +70,7 @@ print(json.dumps(out))
 
 def like_for_like(n_points: int = 33) -> None:
     from mechrepro.models.rolling_shear import stroke
-    from mechrepro.models.rolling_shear.context import Context
+    from mechrepro.models.rolling_shear.run_context import Context
 
     run = load_paper(CONFIG).runs["solver_comparison"]
     run = dict(run, resolution={**run["resolution"], "n_points": n_points})

@@ -33,7 +33,7 @@ CONFIG = ROOT / "config/papers/rolling_shear.yaml"
 def main(seeds: int = 20, n_points: int = 9, repeats: int = 5) -> None:
     from mechrepro.models.rolling_shear import stroke
     from mechrepro.models.rolling_shear.loops import on_design_branch
-    from mechrepro.models.rolling_shear.context import Context
+    from mechrepro.models.rolling_shear.run_context import Context
     from mechrepro.models.rolling_shear.motion_laws import pose_error
     from mechrepro.models.rolling_shear.selpso import selpso
 

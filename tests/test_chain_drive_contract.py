@@ -1,5 +1,6 @@
-"""chain_drive exposes the framework's compute-only contract (only ``compute`` is timed) and
-its deliberate errors are mechrepro.errors.Refusal subclasses."""
+"""chain_drive's solvers follow the framework's contract (``SOLVERS[run["solver"]](run, ctx)``
+returns labelled variables; only that call is timed) and its deliberate errors are
+mechrepro.errors.Refusal subclasses."""
 import subprocess
 import sys
 
@@ -9,8 +10,8 @@ import pytest
 from mechrepro.config import load_paper
 from mechrepro.errors import Refusal
 from mechrepro.models import chain_drive
-from mechrepro.models.chain_drive import errors, fd, shooting, solver
-from mechrepro.solve import pack, solve
+from mechrepro.models.chain_drive import errors, fd, shooting
+from mechrepro.solve import UnknownSolver, compute, pack, solve
 
 
 def declared(effects) -> dict:
@@ -24,7 +25,7 @@ def declared(effects) -> dict:
 
 def test_compute_then_variables_is_the_frameworks_solve():
     run = load_paper("config/papers/chain_drive.yaml").runs["accuracy_peak"]
-    result = chain_drive.compute(run)
+    result = compute(run)
     # labelled variables (mechrepro.units.var), no Dataset: the framework packs them
     assert all(isinstance(v, str) or (isinstance(v, tuple) and len(v) == 3)
                for v in result.values())
@@ -47,7 +48,7 @@ def test_deliberate_errors_are_refusals():
             assert issubclass(obj, Refusal)
     assert fd.StabilityError is errors.StabilityError
     assert shooting.PeriodicityError is errors.PeriodicityError
-    with pytest.raises(errors.UnknownChoice):
-        solver.compute({"solver": "nope", "parameters": {}, "resolution": {}})
+    with pytest.raises(UnknownSolver):
+        compute({"paper": "chain_drive", "solver": "nope", "parameters": {}, "resolution": {}})
     with pytest.raises(errors.StabilityError):
         fd.stable_time_step(1e-3, [0.0], [-1.0], 1.0)

@@ -153,3 +153,28 @@ def test_a_solve_job_s_code_holds_what_its_model_imports_and_not_its_figures():
             capture_output=True, text=True, check=True, cwd=ROOT,
             env={**os.environ, "PYTHONPATH": str(ROOT / "src")})
         assert set(loaded.stdout.split()) <= names, (paper, set(loaded.stdout.split()) - names)
+
+
+def test_the_framework_calls_a_papers_solver_as_run_ctx_and_refuses_an_unknown_one(monkeypatch):
+    """mechrepro.solve.compute looks the run's solver up in its paper's ``SOLVERS`` and calls
+    it as ``solver(run, context(run))`` (None for a paper without ``context``); a name the
+    table lacks is one refusal naming the paper, the solver and what is allowed.  Every
+    paper's table holds exactly the solvers its config declares."""
+    import sys
+    import types
+
+    from mechrepro.inputs import read_yaml
+    from mechrepro.solve import UnknownSolver, compute, model
+
+    demo = types.ModuleType("mechrepro.models.demo")
+    demo.SOLVERS = {"echo": lambda run, ctx: (run, ctx)}
+    monkeypatch.setitem(sys.modules, "mechrepro.models.demo", demo)
+    run = {"paper": "demo", "solver": "echo"}
+    assert compute(run) == (run, None)
+    demo.context = lambda r: ("context of", r["solver"])
+    assert compute(run) == (run, ("context of", "echo"))
+    with pytest.raises(UnknownSolver, match="demo: solver 'nope': allowed echo"):
+        compute({**run, "solver": "nope"})
+    for paper in read_yaml(ROOT / "config" / "config.yaml")["papers"]:
+        declared = read_yaml(ROOT / "config" / "papers" / f"{paper}.yaml")["solvers"]
+        assert set(model(paper).SOLVERS) == set(declared), paper

@@ -10,6 +10,7 @@ import pytest
 
 from mechrepro.config import load_paper
 from mechrepro.models.joint_wear import solver
+from mechrepro.solve import compute
 
 from conftest import ROOT
 
@@ -88,7 +89,7 @@ def test_a_synthetic_paper_s_load_point_is_in_its_credible_set():
     K_true = solver._calibrated(fb_t, s, p_true, factor=solver.wear_factor_of(fb_t, s, solver.quasi_static_period))
     K_print = [[float(f"{k * 21:.4e}") for k in row] for row in K_true]
     run["options"]["fit_K_paper"] = K_print
-    post = solver.compute(run)["posterior"]
+    post = compute(run)["posterior"]
     hits = [q for q in post["points"] if q["credible"] and q["gravity"] == pytest.approx(g_true)
             and abs(q["direction"] - a_true) < 3 * q["width"] + 2e-3]
     assert hits, [(round(q["gravity"], 3), round(q["direction"], 3), q["width"], q["chi2"], q["upper_share"], q["credible"]) for q in post["points"]]

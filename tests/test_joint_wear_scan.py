@@ -8,6 +8,7 @@ import pytest
 
 from mechrepro.config import load_paper
 from mechrepro.models.joint_wear import solver, wear
+from mechrepro.solve import compute
 
 from conftest import ROOT
 
@@ -40,7 +41,7 @@ def _scan(directions, gravity):
     run["resolution"] = dict(run["resolution"], n_steps=360)
     run["options"] = dict(run["options"], scan_load_direction_deg=directions,
                           scan_gravity=gravity)
-    return solver.compute(run)["scan"]
+    return compute(run)["scan"]
 
 
 def test_scan_refuses_the_load_points_where_contact_is_lost():

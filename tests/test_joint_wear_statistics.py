@@ -124,7 +124,7 @@ def test_dynamic_accuracy_reference_is_proven():
     300x more in one decade than in the decades before, so the differences between
     successive levels do not shrink (drawn NOT CONVERGED)."""
     from mechrepro.accuracy import MARGIN, assess
-    from mechrepro.models.joint_wear import solver
+    from mechrepro.solve import compute
 
     runs = [r for n, r in CFG.runs.items()
             if n.startswith("accuracy_dynamic-") and "@" not in n
@@ -132,7 +132,7 @@ def test_dynamic_accuracy_reference_is_proven():
     rtol = np.array([float(r["resolution"]["rtol"]) for r in runs])
     assert rtol.min() <= 1e-12
     assert all(np.isclose(rtol, 10.0 ** k, rtol=1e-9).any() for k in range(-12, -4))
-    f = [solver.compute(r)["factor"] for r in runs]
+    f = [compute(r)["factor"] for r in runs]
     i_ref = int(np.argmin(rtol))
     on = np.arange(len(runs)) != i_ref
     for q in ("G", "F_N_mean"):

@@ -8,7 +8,7 @@ import pytest
 
 from mechrepro.models.rolling_shear import front, stroke
 from mechrepro.models.rolling_shear.constraints import broken, margins, open_pose
-from mechrepro.models.rolling_shear.context import Context
+from mechrepro.models.rolling_shear.run_context import Context
 from mechrepro.models.rolling_shear.geometry import cut_points
 from mechrepro.models.rolling_shear.loops import NonAssembly
 

@@ -7,7 +7,7 @@ import pytest
 
 from mechrepro.models.rolling_shear import front
 from mechrepro.models.rolling_shear.constraints import margins, settings
-from mechrepro.models.rolling_shear.context import Context
+from mechrepro.models.rolling_shear.run_context import Context
 from mechrepro.models.rolling_shear.geometry import OPTIMISED_LEVERS, cut_points
 from mechrepro.models.rolling_shear.stroke import exact_theta
 

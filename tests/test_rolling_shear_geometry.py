@@ -135,7 +135,7 @@ def test_forward_drive_with_reverse_solved_laws_reproduces_the_stroke(g):
 def test_every_run_recalibrates_for_its_own_intents():
     """A range-end variant of an intent re-fits the tilt: H of the original levers is the
     paper's number again (the calibration target comes from the reported block)."""
-    from mechrepro.models.rolling_shear.context import Context
+    from mechrepro.models.rolling_shear.run_context import Context
 
     base = run("original", "ci")
     assert base["calibration"]["theta6_mid"]["quantity"] == "synthetic_horizontal_displacement_original"

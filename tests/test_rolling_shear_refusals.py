@@ -7,12 +7,11 @@ import pytest
 
 from mechrepro.models.rolling_shear import stroke
 
-from mechrepro.solve import solve
+from mechrepro.solve import compute, solve
 from mechrepro.models.rolling_shear.calibrate import TILTS, CalibrationError, calibrate_tilt
 from mechrepro.models.rolling_shear.constraints import violations
-from mechrepro.models.rolling_shear.context import Context
+from mechrepro.models.rolling_shear.run_context import Context
 from mechrepro.models.rolling_shear.geometry import cut_points
-from mechrepro.models.rolling_shear.solver import compute
 from mechrepro.models.rolling_shear.validation import paper_levers
 
 from test_rolling_shear_helpers import Results, config, run

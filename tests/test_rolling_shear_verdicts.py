@@ -11,11 +11,10 @@ import pytest
 from mechrepro.models.rolling_shear import stroke
 from mechrepro.models.rolling_shear.blade import carrier_points
 from mechrepro.models.rolling_shear.constraints import margins, settings, violations
-from mechrepro.models.rolling_shear.context import Context
+from mechrepro.models.rolling_shear.run_context import Context
 from mechrepro.models.rolling_shear.geometry import cut_points
-from mechrepro.models.rolling_shear.solver import compute
 from mechrepro.models.rolling_shear.validation import admissible_members, paper_levers
-from mechrepro.solve import solve
+from mechrepro.solve import compute, solve
 from mechrepro.validation import level_error
 
 from test_rolling_shear_helpers import Results, config, grid, run

@@ -10,16 +10,34 @@ from pathlib import Path
 
 import numpy as np
 
+from .errors import Refusal
 from .timing import timed_run, timing_variables
 
 
+class UnknownSolver(Refusal):
+    """A run names a solver its paper's ``SOLVERS`` does not hold."""
+
+
 def model(paper: str):
-    """The model package of a paper.  One contract for every paper: ``compute(run)`` (the
-    physics: what is timed) and ``variables(result, run) -> {name: var(...)}`` (what the
-    run's file holds, labelled with :func:`mechrepro.units.var`; the framework packs it,
-    :func:`pack`); optionally ``warm(runs)`` (load the compiled kernels those runs use;
-    called once per solver process, before the first timed run)."""
+    """The model package of a paper.  One contract for every paper: ``SOLVERS``, a table
+    {solver name: ``solver(run, ctx) -> result``} (the physics, called by :func:`compute`:
+    what is timed) with an optional ``context(run)`` that builds ``ctx`` (without one a
+    solver gets None and reads the run), and ``variables(result, run) -> {name: var(...)}``
+    (what the run's file holds, labelled with :func:`mechrepro.units.var`; the framework
+    packs it, :func:`pack`); optionally ``warm(runs)`` (load the compiled kernels those runs
+    use; called once per solver process, before the first timed run)."""
     return importlib.import_module(f"mechrepro.models.{paper}")
+
+
+def compute(run: dict):
+    """The physics of one run, untimed: ``SOLVERS[run["solver"]](run, context(run))`` of its
+    paper (:func:`model`); a solver the paper does not hold is refused."""
+    m = model(run["paper"])
+    if run.get("solver") not in m.SOLVERS:
+        raise UnknownSolver(f"{run['paper']}: solver {run.get('solver')!r}: allowed "
+                            f"{', '.join(m.SOLVERS)}")
+    context = getattr(m, "context", None)
+    return m.SOLVERS[run["solver"]](run, context and context(run))
 
 
 def model_modules(paper: str) -> list[str]:
@@ -78,16 +96,15 @@ def pack(variables: dict, run: dict):
 
 
 def solve(run: dict):
-    """One run's Dataset, untimed (tests, benchmarks, notebooks): its paper's ``compute``,
-    packed.  The pipeline's jobs time the same call (:func:`run_solver`)."""
-    m = model(run["paper"])
-    return pack(m.variables(m.compute(run), run), run)
+    """One run's Dataset, untimed (tests, benchmarks, notebooks): :func:`compute`, packed.
+    The pipeline's jobs time the same call (:func:`run_solver`)."""
+    return pack(model(run["paper"]).variables(compute(run), run), run)
 
 
 def run_solver(run: dict):
     """Solve one run and attach its measured time, split into solver core and effects.
 
-    Only the physics (``compute(run)``) is timed, not its packaging (:func:`pack`), so
+    Only the physics (:func:`compute`) is timed, not its packaging (:func:`pack`), so
     that the cost of accuracy is not blurred by xarray overhead.
     Fast solves are repeated and the fastest call kept (:func:`mechrepro.timing.time_call`).
     A run with a ``target`` accuracy is solved at the cheapest setting that meets it
@@ -132,8 +149,7 @@ def alternated(runs: dict[str, dict], rounds: int) -> dict[str, tuple]:
     times: dict[str, list[float]] = {name: [] for name in runs}
     for _ in range(rounds):
         for name, run in runs.items():
-            m = model(run["paper"])
-            out = timed_run(m.compute, run, min_time=_min_time(run))
+            out = timed_run(compute, run, min_time=_min_time(run))
             times[name].append(out[1])
             if name not in best or out[1] < best[name][1]:
                 best[name] = out
@@ -145,7 +161,7 @@ def _solve_once(run: dict, timed: tuple | None = None):
     """Solve (or take the ``timed`` (result, seconds, timer) of :func:`alternated`) and
     pack the Dataset with the run's times."""
     m = model(run["paper"])
-    result, seconds, timer, *rounds = timed or timed_run(m.compute, run, min_time=_min_time(run))
+    result, seconds, timer, *rounds = timed or timed_run(compute, run, min_time=_min_time(run))
     ds = pack(m.variables(result, run), run)
     if rounds:
         ds["timing_rounds"] = ("timing_round", np.asarray(rounds[0], float),
@@ -226,7 +242,7 @@ def main(argv: list[str]) -> None:
         elif again:
             ds = _solve_once(run, solved[same[name]])
         elif name in same.values():
-            solved[name] = timed_run(model(paper).compute, run, min_time=_min_time(run))
+            solved[name] = timed_run(compute, run, min_time=_min_time(run))
             ds = _solve_once(run, solved[name])
         else:
             ds = run_solver(run)

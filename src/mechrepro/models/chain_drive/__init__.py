@@ -14,7 +14,7 @@ from __future__ import annotations
 from mechrepro.lazy import lazy_exports
 
 #: public name -> submodule that defines it
-_LAZY = {"EFFECTS": "effects", "compute": "solver", "variables": "solver",
+_LAZY = {"EFFECTS": "effects", "SOLVERS": "solver", "variables": "solver",
          "warm": "solver"}
 
 __all__ = list(_LAZY)

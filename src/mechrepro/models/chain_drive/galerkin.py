@@ -420,10 +420,11 @@ def _library_check(run, prm, res, g, u_all, t_all, Fe, F_lib) -> dict:
         "rk4_nfev": var((), 4 * g["n_steps"], "1", "right-hand-side calls of RK4")}
 
 
-def solve_scene(run, prm, res):
+def solve_scene(run, ctx=None):
     """Fig. 10: the coupled Galerkin model (Eqs. 2-39..2-41) at the speed of
     ``options.resonance``, RK4 with a whole number of steps per tooth period; optionally
     compared with solve_ivp over the first tooth periods (``options.compare_library``)."""
+    prm, res = run["parameters"], run["resolution"]
     opts = run.get("options", {})
     g = _galerkin_setup(run, prm, res)
     model, dt, n_steps, xi, L, c, w1 = (g[k] for k in ("model", "dt", "n_steps", "xi", "L", "c", "w1"))

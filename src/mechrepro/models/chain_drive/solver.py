@@ -1,8 +1,9 @@
-"""``compute(run)`` then ``variables``: the scene's ``solver`` computes, its effects are the physics.
+"""The solvers of chain_drive (``SOLVERS``, each ``solver(run, ctx)`` returning labelled
+variables; the paper has no run-wide context, so ``ctx`` is None).
 
 The solvers and the effects each honours are declared in ``config/papers/chain_drive.yaml``
 (a scene naming an effect its solver does not honour is refused when the config is
-loaded).  Every solver builds a :class:`.effects.SpanContext`, asks ``EFFECTS`` for the
+loaded).  Every solver builds a :class:`.effects.SpanContext` per case, asks ``EFFECTS`` for the
 contributions by key (``evaluate``, or ``stages`` where some fix the grid of others) and
 reads them by key; none reads an effect's name.
 
@@ -23,7 +24,6 @@ from mechrepro.units import var
 from . import claims, discrete, exact, four_bar, galerkin, geometry, loads, shooting, span, timestep
 from .effects import EFFECTS, SpanContext, declared_keys, refuse_unhonoured
 from .geometry import RPM
-from .errors import UnknownChoice
 
 
 def _contributions(run, ctx, keys, solver):
@@ -60,9 +60,10 @@ def sweep_geometry(prm, tension_coefficient, geo, res, omega1, wc, slack) -> dic
 
 # ---------------------------------------------------------------------------- Figs. 1, 3, 4
 
-def impact_load(run, prm, res):
+def impact_load(run, ctx=None):
     """Fig. 1: the tension contributed at 300 rpm near one impact (point values) and over
     three tooth periods (step-averaged), with the impact model's closed-form checks."""
+    prm, res = run["parameters"], run["resolution"]
     w1, n1, p = prm["speed"], int(prm["n1"]), prm["pitch"]
     k = loads.impact_of(prm)
     tau = float(geometry.tooth_period(w1, n1))
@@ -88,10 +89,11 @@ def impact_load(run, prm, res):
         "t_wide": var("t_wide", t_wide, "s", "time")}
 
 
-def rigid_four_bar(run, prm, res):
+def rigid_four_bar(run, ctx=None):
     """Fig. 3: driven speed and the contributed tension (D_pol) over two tooth periods at
     ``speed``, one case per driven tooth number in ``options.cases`` (default: n2), and the
     peak load at 0.5, 1 and 2 x ``speed``."""
+    prm, res = run["parameters"], run["resolution"]
     n1 = int(prm["n1"])
     panels = [int(x) for x in run.get("options", {}).get("cases", [prm["n2"]])]
     cases = sorted(panels)   # a CF dimension coordinate is monotonic; the panel is kept beside
@@ -130,10 +132,11 @@ def rigid_four_bar(run, prm, res):
             "check_speed": var("check_speed", speeds * RPM, "rpm", "check speed")}
 
 
-def elastic_four_bar(run, prm, res):
+def elastic_four_bar(run, ctx=None):
     """Fig. 4: the elastic four-bar load (contributions ``tension_short``/``tension_long``,
     switched by the span-length state ``long``) below, at, between, at and above its two
     resonances, and its peak-to-peak value over a speed window for k1 and k2."""
+    prm, res = run["parameters"], run["resolution"]
     n1 = int(prm["n1"])
     geo = geometry.span_geometry(prm, True)
     wc_short, wc_long = (four_bar.omega_c(prm, geo[L]) for L in ("L_short", "L_long"))
@@ -187,10 +190,11 @@ def dense_near_elastic(run, prm, omega1, half_width: float, n_speeds: int) -> np
     return np.unique(np.concatenate(extra))
 
 
-def speed_sweep(run, prm, res) -> dict:
+def speed_sweep(run, ctx=None) -> dict:
     """Figs. 5-9: maximum steady amplitude vs operating speed, one vectorised FD march
     (:func:`.span.sweep`) or shooting per speed (:func:`.shooting.sweep`), with the
     moving-string resonance speeds of the span."""
+    prm, res = run["parameters"], run["resolution"]
     window = run.get("options", {}).get("speed_window_elastic")
     wc = None
     if window:
@@ -288,8 +292,9 @@ def discrete_sweep(run, prm, omega1, res, wc=None) -> dict:
 
 # ---------------------------------------------------------------------------- Sec. 3.1, checks
 
-def impact_timestep(run, prm, res):
+def impact_timestep(run, ctx=None):
     """Sec. 3.1: the non-uniform step refined near impacts vs uniform steps (error, wall time)."""
+    prm, res = run["parameters"], run["resolution"]
     out = timestep.compare(run, prm, res)
     names = ["uniform_sampled", "uniform_averaged", "nonuniform", "uniform_equal_accuracy"]
     return {
@@ -308,8 +313,10 @@ def impact_timestep(run, prm, res):
 SOLVERS = {"impact_load": impact_load, "rigid_four_bar": rigid_four_bar,
            "elastic_four_bar": elastic_four_bar, "speed_sweep": speed_sweep,
            "galerkin": galerkin.solve_scene, "impact_timestep": impact_timestep,
-           "exact_free": lambda run, prm, res: exact.free_vibration_check(prm, res),
-           "manufactured": lambda run, prm, res: exact.manufactured_check(prm, res)}
+           "exact_free": lambda run, ctx: exact.free_vibration_check(run["parameters"],
+                                                                     run["resolution"]),
+           "manufactured": lambda run, ctx: exact.manufactured_check(run["parameters"],
+                                                                     run["resolution"])}
 
 
 def warm(runs=None) -> None:
@@ -331,15 +338,6 @@ def warm(runs=None) -> None:
         galerkin_kernel.warm()
 
 
-def compute(run: dict) -> dict:
-    """The run's physics (what the framework times): the variables of its solver, labelled
-    (:func:`mechrepro.units.var`), which :func:`mechrepro.solve.pack` packs."""
-    solver = run.get("solver")
-    if solver not in SOLVERS:
-        raise UnknownChoice(f"chain_drive: solver {solver!r}: allowed {sorted(SOLVERS)}")
-    return SOLVERS[solver](run, run["parameters"], run["resolution"])
-
-
 def variables(result: dict, run: dict | None = None) -> dict:
-    """The run's variables: :func:`compute` already returns them."""
+    """The run's variables: its solver already returns them."""
     return result

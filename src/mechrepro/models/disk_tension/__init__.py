@@ -10,7 +10,7 @@ from __future__ import annotations
 from mechrepro.lazy import lazy_exports
 
 #: public name -> submodule that defines it
-_LAZY = {"EFFECTS": "effects", "compute": "solver", "variables": "solver"}
+_LAZY = {"EFFECTS": "effects", "SOLVERS": "solver", "context": "solver", "variables": "solver"}
 
 __all__ = list(_LAZY)
 __getattr__, __dir__ = lazy_exports(__name__, _LAZY)

@@ -100,9 +100,6 @@ def _plate2d(ctx: Disk):
     return model
 
 
-DISCRETISATIONS = {"axisym": _axisym, "plate2d": _plate2d}
-
-
 def _stress_stiffness(ctx: Disk):
     """[K^(sigma)] of every r_c, Eq. (3): from the closed-form stress on the harmonics, from
     the 2-D plane-stress FE solution of the same temperature on the mesh (whose first r_c's
@@ -127,10 +124,11 @@ def _stress_stiffness(ctx: Disk):
     return ks
 
 
-def _discretise(ctx: Disk):
-    """The solver core: [K], [M], the unrolled eigen-analysis (Eq. 6) and [K^(sigma)]."""
+def _discretise(ctx: Disk, mesh):
+    """The solver core: [K], [M] (``mesh(ctx)``), the unrolled eigen-analysis (Eq. 6) and
+    [K^(sigma)]."""
     with phase("disk_tension.unrolled") as sw:
-        ctx.model = model = DISCRETISATIONS[ctx.solver](ctx)
+        ctx.model = model = mesh(ctx)
         w2 = model.unrolled()
     ctx.put("f_unrolled", "n_d", frequency(w2), "Hz", f"{ctx.solver}: unrolled frequency, Eq. (6)")
     ctx.put("time_unrolled", (), sw.seconds, "s", "wall time of assembly + unrolled eigen-analysis")
@@ -178,19 +176,25 @@ def _log_sums(ctx: Disk, what: str, f, f_exact, of: str, reference="exact Bessel
             f"sum of ln(f_exact / 1 Hz) over {of} ({reference})")
 
 
-def compute(run: dict) -> Disk:
-    """Evaluate the run's effects stage by stage around its solver's core."""
-    ctx = Disk(run)
-    stage = EFFECTS.stages(run, ctx)
-    before = stage(BEFORE_LOAD)
-    ctx.alpha, ctx.slots = before.get("thermal_expansion", ctx.alpha), before.get("slots")
-    load = stage(LOAD)
-    ctx.loads, ctx.heat = load.get("thermal_load"), load.get("cutting_heat_stress")
-    _discretise(ctx)
-    for contributions in (before, load, stage()):
-        ctx.keep(contributions)
-    _compare(ctx)
-    return ctx
+def staged(mesh):
+    """A solver ``(run, ctx: Disk) -> Disk``: the run's effects evaluated stage by stage
+    around the core on the discretisation ``mesh`` (:func:`_axisym`, :func:`_plate2d`)."""
+    def solve(run: dict, ctx: Disk) -> Disk:
+        stage = EFFECTS.stages(run, ctx)
+        before = stage(BEFORE_LOAD)
+        ctx.alpha, ctx.slots = before.get("thermal_expansion", ctx.alpha), before.get("slots")
+        load = stage(LOAD)
+        ctx.loads, ctx.heat = load.get("thermal_load"), load.get("cutting_heat_stress")
+        _discretise(ctx, mesh)
+        for contributions in (before, load, stage()):
+            ctx.keep(contributions)
+        _compare(ctx)
+        return ctx
+    return solve
+
+
+SOLVERS = {"axisym": staged(_axisym), "plate2d": staged(_plate2d)}
+context = Disk
 
 
 def variables(ctx: Disk, run: dict | None = None) -> dict:

@@ -12,7 +12,7 @@ accuracy (cost-of-accuracy errors), figures (the draw function of every declared
 from mechrepro.lazy import lazy_exports  # noqa: E402
 
 #: public name -> submodule that defines it
-_LAZY = {'EFFECTS': 'effects', 'SOLVERS': 'solver', 'compute': 'solver', 'setup': 'solver', 'variables': 'solver', 'warm': 'solver'}
+_LAZY = {'EFFECTS': 'effects', 'SOLVERS': 'solver', 'context': 'solver', 'setup': 'solver', 'variables': 'solver', 'warm': 'solver'}
 
 __all__ = list(_LAZY)
 __getattr__, __dir__ = lazy_exports(__name__, _LAZY)

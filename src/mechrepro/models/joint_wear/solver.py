@@ -1,8 +1,9 @@
 """The solvers of joint_wear (``SOLVERS``; each described under ``solvers:`` in
 ``config/papers/joint_wear.yaml``): a scene's solver decides the joint model and method,
-its effects (effects.py) the terms.  Each builds a :class:`~.effects.Context`, evaluates
-the named effects in three stages (mechanism terms, wear set-up, wear) and reads their
-contributions by key.
+its effects (effects.py) the terms.  Each is called as ``solver(run, ctx)`` with the run's
+:class:`~.effects.Context` (:func:`context`: the mechanism with the terms of the first of the
+three stages of effects, mechanism terms, wear set-up, wear), evaluates the later stages and
+reads their contributions by key.
 """
 from __future__ import annotations
 
@@ -164,26 +165,24 @@ def with_wear(run: dict, fb: FourBar, ctx: Context, res: dict, joint) -> dict:
 
 
 # --- the solvers -----------------------------------------------------------------------------
-def clearance_implicit(run: dict) -> dict:
-    fb, ctx = setup(run)
-    return with_wear(run, fb, ctx, one_period(fb, ctx.s, dynamic_period), finished_dynamic_period)
+def clearance_implicit(run: dict, ctx: Context) -> dict:
+    return with_wear(run, ctx.fb, ctx, one_period(ctx.fb, ctx.s, dynamic_period),
+                     finished_dynamic_period)
 
 
-def clearance_explicit(run: dict) -> dict:
-    fb, ctx = setup(run)
-    return one_period(fb, ctx.s, dynamic_period)
+def clearance_explicit(run: dict, ctx: Context) -> dict:
+    return one_period(ctx.fb, ctx.s, dynamic_period)
 
 
-def continuous_contact(run: dict) -> dict:
-    fb, ctx = setup(run)
-    return with_wear(run, fb, ctx, one_period(fb, ctx.s, quasi_static_period),
+def continuous_contact(run: dict, ctx: Context) -> dict:
+    return with_wear(run, ctx.fb, ctx, one_period(ctx.fb, ctx.s, quasi_static_period),
                      continuous_contact_period)
 
 
-def period_by_period(run: dict) -> dict:
+def period_by_period(run: dict, ctx: Context) -> dict:
     """Fig. 6: a sample of consecutive periods, each simulated and its wear added before
     the next (the bushing grows every period); only its time is a result."""
-    fb, ctx = setup(run)
+    fb = ctx.fb
     res = one_period(fb, ctx.s, quasi_static_period)
     n = int(ctx.s["period_by_period_sample"])
     g_of = period_factor(fb, ctx.s, quasi_static_period)
@@ -210,7 +209,7 @@ def gravity_planes(run: dict, planes) -> np.ndarray:
     return np.asarray(planes if "gravity" in run["effects"] else [0.0], float)
 
 
-def coefficient_scan(run: dict) -> dict:
+def coefficient_scan(run: dict, ctx: Context) -> dict:
     """The mean calibrated coefficient of both sides over load points F and gravity planes.
 
     F is placed at ``scan_load_distance`` [m] from E's mid-stroke position in each of the
@@ -218,7 +217,7 @@ def coefficient_scan(run: dict) -> dict:
     ``scan_gravity`` [m/s2] stand for planes of motion from horizontal (0) to vertical.
     Only the calibration is run (5 periods per point): it is what fixes the coefficient.
     """
-    fb, ctx = setup(run)
+    fb = ctx.fb
     s, p = ctx.s, ctx.p
     E, d = kinematics.load_point_mid_stroke(fb), float(s["scan_load_distance"])
     dirs = np.asarray(s["scan_load_direction_deg"], float)
@@ -359,7 +358,7 @@ def _K_paper(s: dict, p: dict) -> np.ndarray:
     return np.asarray(s["fit_K_paper"], float) / wear.hardness_number(float(p["hardness_bushing"]))
 
 
-def load_point_fit(run: dict) -> dict:
+def load_point_fit(run: dict, ctx: Context) -> dict:
     """The load point F estimated from Tables 3-4 jointly (Sec. 4.3-4.4 read backwards).
 
     With Eq. (32) read as k = K/21 the printed K_p fix the wear factor G of the paper's own
@@ -371,7 +370,7 @@ def load_point_fit(run: dict) -> dict:
     sits (contact_side) and the 86-h wear of both sides, also at +- its uncertainty (the
     band on Fig. 15).  Contact loss is refused.
     """
-    fb, ctx = setup(run)
+    fb = ctx.fb
     s, p = ctx.s, ctx.p
     E, d = kinematics.load_point_mid_stroke(fb), float(p["load_point_distance"])
     dirs = np.asarray(s["fit_load_direction_deg"], float)
@@ -548,7 +547,7 @@ def region_edge(fb: FourBar, s: dict, p: dict, E, d: float, branch: list, K_pape
     return None
 
 
-def load_point_posterior(run: dict) -> dict:
+def load_point_posterior(run: dict, ctx: Context) -> dict:
     """The load point F as a distribution the tables allow (Secs. 3.2, 4.2-4.3).
 
     Unknowns: F's direction and distance from E's mid-stroke position, the gravity
@@ -654,13 +653,13 @@ def load_point_posterior(run: dict) -> dict:
                                     "level": float(s["posterior_credible"])}}
 
 
-def constant_sensitivity(run: dict) -> dict:
+def constant_sensitivity(run: dict, ctx: Context) -> dict:
     """The assumed constants the scan does not vary, each at both ends of its declared
     range (option ``sensitivity``: {parameter: [lo, hi]} in SI), one at a time at the
     assumed load point: B1's mean coefficient and 86-h wear, the contact arc, and the
     settled dynamic period's wear (Radau, ``rtol``) against the quasi-static one -- d_max
     and C_max enter only there (no penetration rate in the quasi-static joint, Eq. 14)."""
-    base_fb, ctx = setup(run)
+    base_fb = ctx.fb
     s = ctx.s
     rows = [("(assumed)", math.nan)]
     for name, ends in s["sensitivity"].items():
@@ -681,14 +680,14 @@ def constant_sensitivity(run: dict) -> dict:
     return {"fb": base_fb, "sens": out}
 
 
-def local_wear(run: dict) -> dict:
+def local_wear(run: dict, ctx: Context) -> dict:
     """Side B1 with local Archard wear, a depth per bushing angle that enters the contact
     gap (groove.py), against the paper's uniform depth (Eq. 29) on the same quasi-static
     joint and schedule, and beside it the mean-circle feedback (wear.mean_circle_increment)
     at the same points.  Options: ``local_load_point`` [distance m, direction deg] of F from
     E's mid-stroke position (default: the assumed F); ``local_placements`` [[shift, scale],
     ...] of the Eq.-33 points (wear.wear_range_points), the first the baseline."""
-    fb, ctx = setup(run)
+    fb = ctx.fb
     s, p = ctx.s, ctx.p
     lp = s.get("local_load_point")
     if lp:
@@ -755,11 +754,11 @@ def warm(runs=None) -> None:
     dynamics.warm(dynamics.COMPILED if runs is None else _methods(runs))
 
 
-def compute(run: dict) -> dict:
-    """The physics of one run (what the runner times): the scene's solver, its compiled
-    kernels loaded first (once per process, see warm)."""
+def context(run: dict) -> Context:
+    """The run's mechanism with the terms its effects contribute (:func:`setup`), its
+    compiled kernels loaded first (once per process, see warm)."""
     dynamics.warm(_methods([run]))
-    return SOLVERS[run["solver"]](run)
+    return setup(run)[1]
 
 
 variables = dataset.variables

@@ -6,7 +6,7 @@ from __future__ import annotations
 from mechrepro.lazy import lazy_exports
 
 #: public name -> submodule that defines it
-_LAZY = {"EFFECTS": "effects", "SOLVERS": "solver", "compute": "solver",
+_LAZY = {"EFFECTS": "effects", "SOLVERS": "solver", "context": "solver",
          "variables": "solver", "warm": "kernels"}
 
 __all__ = list(_LAZY)

@@ -11,7 +11,7 @@ from mechrepro.timing import time_call
 from mechrepro.units import var
 
 from . import stroke
-from .context import Context
+from .run_context import Context
 from .motion_laws import driving_laws_on_grid, pose_error, stroke_outputs
 
 
@@ -41,7 +41,7 @@ def newton_stroke(ctx: Context) -> tuple[stroke.StrokeSolution, dict]:
 def solve_continuation(run: dict, ctx: Context) -> dict:
     """Newton and closed-form (the reference) strokes; the named effects read ``ctx.stroke``.
     A stroke that does not assemble raises NonAssembly (a scene lever set's is refused by
-    :func:`.solver.compute`)."""
+    :func:`.solver.refusing`)."""
     ctx.stroke, data = newton_stroke(ctx)
     data["levers_assemble"] = var((), 1.0, "1", "1: the lever set assembles over the stroke")
     ctx.reference = stroke.exact_theta(ctx.g, ctx.x_k)

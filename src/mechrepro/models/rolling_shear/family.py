@@ -13,7 +13,7 @@ from mechrepro.units import var
 
 from . import optimise
 from .calibrate import CalibrationError, calibrate_tilt
-from .context import Context
+from .run_context import Context
 from .geometry import GRID_KEYS, cut_points, with_intent
 from .design import Unreachable
 from .loops import NonAssembly

@@ -19,7 +19,7 @@ from mechrepro.units import var
 from . import closure, optimise
 from .constraints import dyad_transmission, open_pose
 from .constraints import settings as constraint_settings
-from .context import Context
+from .run_context import Context
 from .design import Unreachable
 from .geometry import OPTIMISED_LEVERS, cut_points
 from .loops import RANGES, NonAssembly, dyads

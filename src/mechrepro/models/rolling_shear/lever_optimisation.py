@@ -7,7 +7,7 @@ from dataclasses import replace
 from mechrepro.units import var
 
 from . import optimise, stroke
-from .context import Context
+from .run_context import Context
 from .geometry import OPTIMISED_LEVERS, cut_points
 from .motion_laws import stroke_outputs
 from .selpso import SelPSOSettings

@@ -1,5 +1,5 @@
-"""rolling_shear's entry point: the scene's solver (continuation, method_comparison,
-lever_optimisation, family_scan, design_front), its effects and the run's variables."""
+"""rolling_shear's solvers (continuation, method_comparison, lever_optimisation, family_scan,
+design_front), each followed by the effects the scene names, and the run's variables."""
 from __future__ import annotations
 
 import math
@@ -8,7 +8,7 @@ import numpy as np
 
 from mechrepro.units import var
 
-from .context import Context, Refused
+from .run_context import Context, Refused
 from .design import Unreachable
 from .loops import NonAssembly
 from .continuation import solve_continuation, solve_method_comparison
@@ -18,11 +18,6 @@ from .geometry import GEOMETRY_KEYS, OPTIMISED_LEVERS
 from .motion_laws import ANGLE_NAMES
 from .front import solve_design_front
 from .lever_optimisation import solve_lever_optimisation
-
-SOLVERS = {"continuation": solve_continuation, "method_comparison": solve_method_comparison,
-           "lever_optimisation": solve_lever_optimisation, "family_scan": solve_family_scan,
-           "design_front": solve_design_front}
-
 
 def geometry_outputs(ctx: Context) -> dict:
     """The constants of the run's geometry (after calibration and the scene's lever set)
@@ -66,22 +61,41 @@ def variables(result: dict, run: dict) -> dict:
     return out | data | {"length_unit": "mm"}
 
 
-def compute(run: dict) -> dict:
-    """The run's solver, then the effects the scene names (they read what it leaves in the
-    context); a lever set refused by name gives ``{"refused": ...}``."""
+def refusing(run: dict, fn, *args):
+    """``fn(*args)``, or the :class:`Refused` it raises: a lever set refused by name, or one of
+    the scene's that does not assemble, is a result (:func:`refusal_variables`), not a crash."""
     try:
-        ctx = Context(run)
-        data = SOLVERS[run["solver"]](run, ctx)
+        return fn(*args)
     except Refused as exc:
-        return {"refused": exc}
-    except (NonAssembly, Unreachable) as exc:   # a scene's lever set that does not assemble
+        return exc
+    except (NonAssembly, Unreachable) as exc:
         if "levers" not in run.get("options", {}):
             raise
-        return {"refused": Refused("assembly", f"lever set {dict(run['options']['levers'])}: {exc}")}
-    c = EFFECTS.evaluate(run, ctx)
-    data.update({key: c.get(key) for key in c.keys()})
-    data.update(geometry_outputs(ctx))
-    return {"ctx": ctx, "data": data}
+        return Refused("assembly", f"lever set {dict(run['options']['levers'])}: {exc}")
+
+
+def context(run: dict) -> Context | Refused:
+    """The run's :class:`Context`, or why its lever set is refused."""
+    return refusing(run, Context, run)
+
+
+def with_effects(solver):
+    """``solver(run, ctx)`` followed by the effects the scene names (they read what it leaves
+    in the context) and the geometry's constants; a refused lever set gives ``{"refused": ...}``."""
+    def solve(run: dict, ctx: Context | Refused) -> dict:
+        data = ctx if isinstance(ctx, Refused) else refusing(run, solver, run, ctx)
+        if isinstance(data, Refused):
+            return {"refused": data}
+        c = EFFECTS.evaluate(run, ctx)
+        return {"ctx": ctx, "data": data | {key: c.get(key) for key in c.keys()}
+                | geometry_outputs(ctx)}
+    return solve
+
+
+SOLVERS = {name: with_effects(solver) for name, solver in (
+    ("continuation", solve_continuation), ("method_comparison", solve_method_comparison),
+    ("lever_optimisation", solve_lever_optimisation), ("family_scan", solve_family_scan),
+    ("design_front", solve_design_front))}
 
 
 def refusal_variables(exc: Refused) -> dict:
@@ -93,4 +107,4 @@ def refusal_variables(exc: Refused) -> dict:
         "length_unit": "mm", "refusal_kind": exc.kind, "refusal": exc.message}
 
 
-__all__ = ["EFFECTS", "SOLVERS", "compute", "variables"]
+__all__ = ["EFFECTS", "SOLVERS", "context", "variables"]

@@ -12,8 +12,8 @@ from .difference import check_roundoff, difference_arrays, roundoff_load, trunca
 from .effects import EFFECTS, Context, period_vars
 from .kinematics import stage_positions
 
-__all__ = ["EFFECTS", "Chain", "chain_from_run", "compute", "constant_speed", "difference_method",
-           "stage_switch_index", "variables"]
+__all__ = ["EFFECTS", "SOLVERS", "Chain", "chain_from_run", "constant_speed", "context",
+           "difference_method", "stage_switch_index", "variables"]
 
 #: the difference method's outputs and the reference's contribution each is compared with
 COMPARED = {"tight_side_velocity": "tight_side_velocity_exact",
@@ -93,19 +93,28 @@ def stage_switch_index(K):
     return K + 1
 
 
-def compute(run: dict) -> dict:
+def context(run: dict) -> Context:
+    """What the solver and the effects see: the run's chain, its time grid, its SI parameters
+    and whether the polygon effect is on (``options.polygon: false``: the constant-speed
+    rival, rivals.constant_speed)."""
+    chain = chain_from_run(run)
+    return Context(chain, chain.time(), run["parameters"], run.get("options", {}).get("polygon", True))
+
+
+def one_period(run: dict, ctx: Context) -> dict:
     """The difference method (or its rival) and the effects the scene names (timed apart, so
     ``core_time`` is the method's alone)."""
-    chain = chain_from_run(run)
-    opts = run.get("options", {})
-    ctx = Context(chain, chain.time(), run["parameters"], opts.get("polygon", True))
+    opts, chain = run.get("options", {}), ctx.chain
     if ctx.polygon:
         method = difference_method(chain, opts.get("beyond_roundoff_limit", False),
                                    opts.get("loads", True))
-    else:   # the rival without the polygon effect (rivals.constant_speed)
+    else:
         method = constant_speed(chain, opts.get("loads", True), opts.get("beyond_roundoff_limit", False))
     c = EFFECTS.evaluate(run, ctx)
     return {"chain": chain, "t": ctx.t, "data": method | {key: c.get(key) for key in c.keys()}}
+
+
+SOLVERS = {"difference_method": one_period}
 
 
 def ranges(ds: dict) -> dict:
@@ -149,7 +158,7 @@ def errors_against_exact(ds: dict, K: int) -> dict:
 
 
 def variables(result: dict, run: dict) -> dict:
-    """A :func:`compute` result as labelled variables with the scalars a study stacks."""
+    """A :func:`one_period` result as labelled variables with the scalars a study stacks."""
     chain, t = result["chain"], result["t"]
     out = {"t": var("t", t, "s", "time since O1 left the tangent point T"),
            "stage": var("t", np.where(np.arange(t.size) <= chain.K, 1, 2), "1",

@@ -43,19 +43,25 @@ def exact_reference(ctx: Context) -> dict:
     return {"displacement_exact": var("t", x, "m", "displacement, exact Eq. (3)")}
 
 
-def compute(run: dict) -> dict:
+def context(run: dict) -> Context:
+    """The run's oscillator and its time grid, ``steps_per_period`` steps per undamped period."""
     p = run["parameters"]
     # options.springs = parallel: the rival reading of the textbook's spring as its two equal
     # halves side by side instead of in series, four times as stiff (rivals.stiffer_spring)
     parallel = run.get("options", {}).get("springs") == "parallel"
     m, k = p["mass"], p["stiffness"] * (4.0 if parallel else 1.0)
-    w = np.sqrt(k / m)
     n = run["resolution"]["steps_per_period"]
-    dt = 2 * np.pi / w / n
-    t = dt * np.arange(5 * n + 1)
-    ctx = Context(t=t, mass=m, stiffness=k, damping_ratio=p["damping_ratio"])
+    dt = 2 * np.pi / np.sqrt(k / m) / n
+    return Context(t=dt * np.arange(5 * n + 1), mass=m, stiffness=k,
+                   damping_ratio=p["damping_ratio"])
+
+
+def central_difference(run: dict, ctx: Context) -> dict:
+    """Eq. (1) marched by central differences from x(0) = 1, v(0) = 0."""
     c = EFFECTS.evaluate(run, ctx)
     damping = float(c.total("damping_coefficient")) if "damping_coefficient" in c else 0.0
+    t, m, k = ctx.t, ctx.mass, ctx.stiffness
+    dt = t[1]                                               # the grid's step, exactly
     x = np.empty_like(t)
     x[0] = 1.0
     x[1] = 1.0 - 0.5 * dt**2 * k / m                        # Taylor start, v(0) = 0
@@ -64,6 +70,9 @@ def compute(run: dict) -> dict:
         x[i + 1] = ((2 * m / dt**2 - k) * x[i] - b * x[i - 1]) / a
     beside = {key: c.get(key) for key in c.keys() if key != "damping_coefficient"}
     return {"t": t, "x": x, "beside": beside}
+
+
+SOLVERS = {"central_difference": central_difference}
 
 
 def variables(result: dict, run: dict) -> dict:

@@ -44,7 +44,7 @@ class Context:
         self.g_original = self.g
         if levers is not None and self.calibration is not None:
             self._check_buildable()
-        if levers is not None:   # NonAssembly, Unreachable: refused by solver.compute
+        if levers is not None:   # NonAssembly, Unreachable: refused by solver.refusing
             self.g = self.g.with_levers(**{k: float(v) for k, v in levers.items()})
             if self.calibration is not None:
                 self.calibration["H_levers"] = optimise.objective(
