@@ -27,7 +27,7 @@ class PaperResults:
         self.paper = paper
         self.root = Path(results_dir) / paper
         self.cfg = load_paper(config_file, profile, CACHE_DIR)
-        self._reads = None     # while a figure draws: what it declared it reads
+        self._reads = None     # while a figure draws or a table is made: what it declared it reads
         self._rows = None      # the validation table by quantity, read once
 
     def _may_read(self, name: str) -> None:
