@@ -26,7 +26,6 @@ config_file = "config/papers/chain_drive.yaml"
 profile = "default"
 
 # %%
-from mechrepro.models.chain_drive import figures as F
 from mechrepro.results import PaperResults
 
 R = PaperResults(paper, results_dir, config_file, profile)
@@ -71,15 +70,9 @@ R.figure("fig04")
 # start of the paper's range.
 
 # %%
-cds, plain = F.with_base(R, "fig05_plain_cd", "fig05_plain", "centre_distance")
-_, withl = F.with_base(R, "fig05_length_cd", "fig05_length", "centre_distance")
-_, withs = F.with_base(R, "fig05_length_string_cd", "fig05_length_string", "centre_distance")
 R.figure("fig05")
-R.write_table("resonance_speeds", F.RESONANCE_COLUMNS, F.resonance_rows(cds, plain, withl))
-R.write_table("timings", F.TIMING_COLUMNS, F.timing_rows(
-    {f"fig05_{label}_cd{cd:g}": ds for label, dss in (("plain", plain), ("length_string", withs),
-                                                      ("length_discrete", withl))
-     for cd, ds in zip(cds, dss)}))
+R.tabulate("resonance_speeds")
+R.tabulate("timings")
 
 
 # %% [markdown]
@@ -95,9 +88,7 @@ R.figure("fig06")
 # ## Fig. 7 — static tension (instabilities appear as T_s falls)
 
 # %%
-R.write_table("discrete_peaks", F.DISCRETE_PEAK_COLUMNS, [
-    r for name in ("fig05_length", "fig06_inertia", "fig06_i2-000", "fig07_tension", "fig07_ts-000",
-                   "fig08_discrete") for r in F.discrete_peak_rows(name, F.level_runs(R, name))])
+R.tabulate("discrete_peaks")
 R.figure("fig07")
 
 

@@ -34,7 +34,6 @@ config_file = "config/papers/disk_tension.yaml"
 profile = "default"
 
 # %%
-from mechrepro.models.disk_tension import design, figures, identifiability as idf
 from mechrepro.results import PaperResults
 
 R = PaperResults(paper, results_dir, config_file, profile)
@@ -115,10 +114,8 @@ R.figure("buckling")
 # ## Tables 1 and 2 (r_c = 65 mm, r_f = 25 mm)
 
 # %%
-hdr = ["N_d"] + [str(n) for n in figures.ND]
-for scene, solver in (("table12", ""), ("table12_plate2d", "_plate2d")):
-    for table, var in (("table1", "k_sigma_hat"), ("table2", "m_hat")):
-        R.write_table(f"{table}{solver}", hdr, figures.matrix_rows(R.run(scene)[var]))
+for table in ("table1", "table2", "table1_plate2d", "table2_plate2d"):
+    R.tabulate(table)
 
 # %% [markdown]
 # ## Cost of accuracy
@@ -146,9 +143,8 @@ R.figure("cost_of_accuracy")
 # the data). Right: the profiles over s (each point minimised over a continuous c).
 
 # %%
-idn = R.run("identifiability")
-R.write_table("identifiability", idf.COLUMNS, idf.table(idn))
-R.write_table("identifiability_readings", idf.READING_COLUMNS, idf.readings(idn))
+R.tabulate("identifiability")
+R.tabulate("identifiability_readings")
 R.figure("identifiability")
 
 # %% [markdown]
@@ -176,9 +172,7 @@ R.figure("critical_speed")
 # tensioning spends (they reach zero at buckling).
 
 # %%
-dm_runs = design.by_clamp(R, "design_map", "design_map_rf")
-cut = R.run("design_map_in_cut")
-R.write_table("design_map", design.COLUMNS, design.table(dm_runs + [(design.clamp_mm(cut), cut)]))
+R.tabulate("design_map")
 R.figure("design_map")
 
 # %% [markdown]
@@ -189,7 +183,7 @@ R.figure("design_map")
 # nothing memoised (a fresh process, or the first run).
 
 # %%
-R.write_table("effect_cold_warm", ["scene", "effect", "warm_s", "cold_s"], figures.effect_cold_warm(R))
+R.tabulate("effect_cold_warm")
 
 # %% [markdown]
 # ## Validation table

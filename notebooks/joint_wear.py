@@ -72,10 +72,10 @@ show("contact_arc_steady_deg", "contact_arc_concentric_q90_deg")
 
 # %%
 for side, name in (("B1", "table3"), ("B2", "table4")):
-    rows = F.coefficient_table(R, side)
-    R.write_table(name, ["point", "hour", "paper_K_per_Pa", "ours_K_per_Pa", "paper_over_ours"], rows)
-    for r in rows:
-        print(side, r[0], f"paper {r[2]:.4e}  ours {r[3]:.4e} 1/Pa  paper/ours {r[4]:.4g}")
+    R.tabulate(name)
+    for r in R.table(name):
+        paper, ours, ratio = (float(r[c]) for c in ("paper_K_per_Pa", "ours_K_per_Pa", "paper_over_ours"))
+        print(side, r["point"], f"paper {paper:.4e}  ours {ours:.4e} 1/Pa  paper/ours {ratio:.4g}")
 
 # %% [markdown]
 # ## The absolute coefficient over the assumptions the paper leaves open
@@ -128,8 +128,7 @@ show("local_vs_uniform_86h_b1_estimated_f", "circle_vs_uniform_86h_b1_estimated_
 
 # %%
 R.figure("contact_margin")
-post_rows = F.posterior_table(R.run("load_point_posterior"))
-R.write_table("load_point_posterior", list(post_rows[0]), [list(r.values()) for r in post_rows])
+R.tabulate("load_point_posterior")
 show("continuous_contact_margin_fitted_f", "load_point_posterior_g_credible_min", "load_point_posterior_arc_deg_median",
      "load_point_posterior_k_archard_b1_median", "load_point_posterior_wear_86h_b1_median",
      "load_point_posterior_wear_86h_b2_median")

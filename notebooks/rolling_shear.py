@@ -35,7 +35,6 @@ config_file = "config/papers/rolling_shear.yaml"
 profile = "default"
 
 # %%
-from mechrepro.models.rolling_shear import validation as V
 from mechrepro.results import PaperResults
 
 R = PaperResults(paper, results_dir, config_file, profile)
@@ -98,9 +97,8 @@ R.figure("fig14")
 # ## Table II and the lever scans: which levers the objective determines
 
 # %%
-orig, popt, opt = R.run("original"), R.run("paper_optimised"), R.run("optimisation")
-R.write_table("table2", *V.table2(orig, popt, opt))
-R.write_table("lever_scan", *V.lever_scan(opt))
+R.tabulate("table2")
+R.tabulate("lever_scan")
 
 # %% [markdown]
 # ## Design under buildability: H against the force transmission
@@ -112,16 +110,14 @@ R.write_table("lever_scan", *V.lever_scan(opt))
 # and the design we recommend (buildable at the strict ends of the constraints' ranges).
 
 # %%
-des = R.run("design")
 R.figure("design_front")
-R.write_table("design_front", *V.design_front(des, strict=V.constraint_ends(R, max),
-                                              **V.configured_constraints(R)))
+R.tabulate("design_front")
 
 # %% [markdown]
 # ## Solver comparison
 
 # %%
-R.write_table("solver_comparison", *V.solver_comparison(R.run("solver_comparison")))
+R.tabulate("solver_comparison")
 
 # %% [markdown]
 # ## selPSO's branch benchmark: success against the initial spread

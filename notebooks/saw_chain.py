@@ -29,10 +29,7 @@ config_file = "config/papers/saw_chain.yaml"
 profile = "default"
 
 # %%
-from mechrepro.models.saw_chain import design
-from mechrepro.models.saw_chain import identification as idf
 from mechrepro.results import PaperResults
-from mechrepro.units import from_si
 
 R = PaperResults(paper, results_dir, config_file, profile)
 
@@ -61,11 +58,8 @@ R.figure("fig07")
 # and under the preferred explanation.
 
 # %%
-idn = R.run("identification")
-rpm = float(from_si(float(idn["sprocket_speed"]), "rpm"))   # the printed 6550
-R.write_table("identification", idf.COLUMNS, idf.table(idn, rpm))
-R.write_table("identification_readings", idf.READING_COLUMNS,
-              idf.reading_table(idn, rpm))
+R.tabulate("identification")
+R.tabulate("identification_readings")
 R.figure("identification")
 
 # %% [markdown]
@@ -128,8 +122,7 @@ R.figure("richardson")
 # over teeth 6–40 and pitch ratios 1–2 (table `design_rules.csv`).
 
 # %%
-dm = R.run("design_maps")
-R.write_table("design_rules", design.RULE_COLUMNS, design.rule_table(dm))
+R.tabulate("design_rules")
 R.figure("design_maps")
 
 # %% [markdown]

@@ -3,7 +3,9 @@ notebook drew it through its declaration (PaperResults.figure: the declared func
 only the declared runs and studies) and the lint found nothing in it (no two texts overlap, no
 legend over data, every labelled series visible, axes with units: recorded in the PNG by
 mechrepro.plotting.savefig; drawing it again here would repeat that work for the same
-pixels)."""
+pixels).  One test per declared table (config ``tables``): the notebook wrote it, with the
+header its declared function gives from the declared runs and studies."""
+import csv
 import importlib
 
 import pytest
@@ -11,8 +13,10 @@ import pytest
 from conftest import ROOT
 from mechrepro.inputs import read_yaml
 
-FIGURES = [(paper, fig) for paper in read_yaml(ROOT / "config" / "config.yaml")["papers"]
-           for fig in read_yaml(ROOT / "config" / "papers" / f"{paper}.yaml")["figures"]]
+PAPERS = {paper: read_yaml(ROOT / "config" / "papers" / f"{paper}.yaml")
+          for paper in read_yaml(ROOT / "config" / "config.yaml")["papers"]}
+FIGURES = [(paper, fig) for paper, raw in PAPERS.items() for fig in raw["figures"]]
+TABLES = [(paper, table) for paper, raw in PAPERS.items() for table in raw.get("tables", {})]
 
 
 @pytest.mark.parametrize("paper,figure", FIGURES, ids=[f"{p}-{f}" for p, f in FIGURES])
@@ -31,3 +35,18 @@ def test_figure_is_drawn_from_what_it_declares_and_passes_the_lint(workflow, pap
     for name in spec["reads"]:
         assert (res / "runs" / f"{name}.nc").exists() or (res / "studies" / f"{name}.nc").exists(), name
     assert lint_record(res / "figures" / f"{figure}.png") == []
+
+
+@pytest.mark.parametrize("paper,table", TABLES, ids=[f"{p}-{t}" for p, t in TABLES])
+def test_table_is_made_from_what_it_declares(workflow, paper, table, monkeypatch):
+    from mechrepro.results import PaperResults
+
+    work, _ = workflow
+    monkeypatch.chdir(work)     # the config cache of PaperResults, beside the workflow's
+    R = PaperResults(paper, "results", f"config/papers/{paper}.yaml", "ci")
+    res = work / "results" / paper
+    for name in R.cfg.table(table)["reads"]:
+        assert (res / "runs" / f"{name}.nc").exists() or (res / "studies" / f"{name}.nc").exists(), name
+    header, _ = R.make(table)   # the declared function, opening only the declared reads
+    with open(res / "tables" / f"{table}.csv", newline="") as f:
+        assert next(csv.reader(f)) == [str(h) for h in header]

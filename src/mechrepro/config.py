@@ -94,6 +94,11 @@ class PaperConfig:
         ``figures.<name>``), reads}."""
         return {"draw": f"figures.{name}", **self.raw.get("figures", {})[name]}
 
+    def table(self, name: str) -> dict:
+        """The declaration of notebook table ``name``: {caption, make (``module.function``
+        returning (header, rows), by default ``figures.<name>``), reads}."""
+        return {"make": f"figures.{name}", **self.raw.get("tables", {})[name]}
+
     def caption(self, figure: str) -> str:
         return self.figure(figure)["caption"]
 
@@ -101,7 +106,7 @@ class PaperConfig:
     def tables(self) -> list[str]:
         """Every table of the paper: the validation table, the notebook's (``tables:``), then
         the framework's others."""
-        return list(dict.fromkeys(["validation", *self.raw.get("tables", []),
+        return list(dict.fromkeys(["validation", *self.raw.get("tables", {}),
                                    *self.framework_tables]))
 
     @property
@@ -423,7 +428,7 @@ def load_paper(path: str | Path, profile: str = "default",
                 raise ConfigError(f"{where}: {key}: {name!r} is neither a scene nor a study")
     _add_variants(cfg, raw, schema, where)
     _add_ablations(cfg, raw, where)
-    _check_figures(cfg, where)
+    _check_makers(cfg, where)
     for name, run in cfg.runs.items():
         _cross_check(raw.get("cross_checks", {}), run, f"{where} (run {name})")
     return cfg
@@ -987,26 +992,30 @@ def _calibration(raw: dict) -> dict:
 
 def _check_artefacts(raw: dict, where: str) -> None:
     """A reported row's ``artefact`` is a declared figure or table, or ``text``."""
-    allowed = [*raw.get("figures", {}), *raw.get("tables", []), "text"]
+    allowed = [*raw.get("figures", {}), *raw.get("tables", {}), "text"]
     for q, spec in raw["reported"].items():
         if spec["artefact"] not in allowed:
             raise ConfigError(f"{where}: reported.{q}.artefact = {spec['artefact']!r}: allowed: "
                               f"a figure, a table or text ({', '.join(allowed)})")
 
 
-def _check_figures(cfg: PaperConfig, where: str) -> None:
-    """A figure draws with a function of its paper's model package and reads runs and
-    studies of this profile."""
+#: what declares each kind of artefact's function: a figure's ``draw``, a table's ``make``
+MAKER = {"figures": "draw", "tables": "make"}
+
+
+def _check_makers(cfg: PaperConfig, where: str) -> None:
+    """A figure draws and a table is made with a function of its paper's model package, from
+    runs and studies of this profile."""
     models = Path(__file__).parent / "models" / cfg.paper
-    for name in cfg.figures:
-        spec = cfg.figure(name)
-        if "." in spec["draw"] and not (models / f"{spec['draw'].split('.')[0]}.py").exists():
-            raise ConfigError(f"{where}: figures.{name}.draw = {spec['draw']!r}: no module "
-                              f"{spec['draw'].split('.')[0]}.py in src/mechrepro/models/"
+    for kind, key, name in ((k, key, n) for k, key in MAKER.items() for n in cfg.raw.get(k, {})):
+        spec = getattr(cfg, kind[:-1])(name)
+        if "." in spec[key] and not (models / f"{spec[key].split('.')[0]}.py").exists():
+            raise ConfigError(f"{where}: {kind}.{name}.{key} = {spec[key]!r}: no module "
+                              f"{spec[key].split('.')[0]}.py in src/mechrepro/models/"
                               f"{cfg.paper}; allowed: module.function of that package")
         for r in spec["reads"]:
             if r not in cfg.runs and r not in cfg.studies:
-                raise ConfigError(f"{where}: figures.{name}.reads: {r!r} is neither a run nor a "
+                raise ConfigError(f"{where}: {kind}.{name}.reads: {r!r} is neither a run nor a "
                                   f"study of profile {cfg.profile}; allowed: a scene, a study "
                                   f"or one of their runs (a name covers its @variants)")
 

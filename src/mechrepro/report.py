@@ -166,6 +166,13 @@ def claim_sentence(claim: dict, rows: list[dict]) -> str:
     return "; ".join(parts) + "."
 
 
+def made_by(paper: str, spec: dict, key: str) -> tuple[str, str]:
+    """Where a reader finds a declared figure's or table's code and data: its function
+    (``spec[key]``) as ``models/<paper>/<module>.py: <function>``, and the runs it reads."""
+    return (f"models/{paper}/" + (spec[key] if "." in spec[key] else "__init__." + spec[key])
+            .replace(".", ".py: ", 1), ", ".join(spec["reads"]) or "its tables")
+
+
 def paper_view(paper: str, results: Path, config_dir: Path, profile: str, out_dir: Path) -> dict:
     cfg = load_paper(config_dir / "papers" / f"{paper}.yaml", profile, CACHE_DIR)
     root = results / paper
@@ -186,18 +193,16 @@ def paper_view(paper: str, results: Path, config_dir: Path, profile: str, out_di
         # ours: an artefact of no paper statement, or one whose every row cites us
         a["ours"] = not a["rows"] or all("ours" in r["source"] for r in a["rows"])
         a["caption"] = cfg.caption(a["id"]) if a["id"] in cfg.figures else a["title"]
-        # where a reader finds the figure's code and data
-        spec = cfg.figure(a["id"]) if a["id"] in cfg.figures else None
-        a["drawn"] = spec and (f"models/{paper}/" + (spec["draw"] if "." in spec["draw"] else
-                                                     "__init__." + spec["draw"]).replace(".", ".py: ", 1),
-                               ", ".join(spec["reads"]) or "its tables")
+        a["drawn"] = a["id"] in cfg.figures and made_by(paper, cfg.figure(a["id"]), "draw")
     tables = []
     for t in cfg.tables:
         if t in ("validation", "discrimination") or not (root / "tables" / f"{t}.csv").exists():
             continue
         head, body = _read_csv(root / "tables" / f"{t}.csv")
+        spec = cfg.table(t) if t in cfg.notebook_tables else None
         tables.append({"title": TABLE_TITLES.get(t, f"Table {t}"), "head": head,
-                       "rows": [[_num(c) for c in row] for row in body]})
+                       "rows": [[_num(c) for c in row] for row in body],
+                       "caption": spec and spec["caption"], "made": spec and made_by(paper, spec, "make")})
     assumed = [{"name": k, "value": f"{v['value']} {v['unit'] if v['unit'] != '1' else ''}".strip(),
                 "range": (f"{v['range'][0]} … {v['range'][1]}: {v.get('range_why', '')}"
                           if "range" in v else f"calibrated on {v['calibrated_on']}"

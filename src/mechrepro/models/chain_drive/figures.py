@@ -74,12 +74,13 @@ RESONANCE_COLUMNS = ["centre_distance_pitches", "order", "curve", "short_span_rp
                      "long_span_rpm", "simulated_peaks_rpm"]
 
 
-def resonance_rows(centre_distances, plain, length) -> list[list]:
+def resonance_speeds(R) -> tuple[list, list]:
     """Table resonance_speeds (Fig. 5): per centre distance, order and curve (without /
     with length change), the short- and long-span resonance speeds and the simulated peaks
     (prominence >= 0.05 mm, stable speeds) in the order's window (:func:`.claims.order_window`)."""
+    cds, plain = with_base(R, "fig05_plain_cd", "fig05_plain", "centre_distance")
     rows = []
-    for cd, dp, dl in zip(centre_distances, plain, length):
+    for cd, dp, dl in zip(cds, plain, with_base(R, "fig05_length_cd", "fig05_length", "centre_distance")[1]):
         for k in dp.order.values:
             for label, ds in (("plain", dp), ("length", dl)):
                 short = float(ds.resonance_speed_short.sel(order=k))
@@ -88,16 +89,21 @@ def resonance_rows(centre_distances, plain, length) -> list[list]:
                 found = C.peak_speeds(ds.speed.values, ds.amplitude.values, lo, hi,
                                       stable=~ds.unstable.values.astype(bool))
                 rows.append([cd, int(k), label, short, long, " ".join(f"{x:.1f}" for x in found)])
-    return rows
+    return RESONANCE_COLUMNS, rows
 
 
 TIMING_COLUMNS = ["sweep", "speeds", "grid_points", "time_steps", "wall_time_s"]
 
 
-def timing_rows(named_sweeps: dict) -> list[list]:
-    """Table timings: speeds, grid points, time steps and wall time of each named sweep."""
-    return [[name, int(ds.speed.size), int(ds.n_points), int(ds.n_steps), float(ds.wall_time)]
-            for name, ds in named_sweeps.items()]
+def timings(R) -> tuple[list, list]:
+    """Table timings: speeds, grid points, time steps and wall time of each sweep of Fig. 5,
+    per centre distance: the string without and with length change, the discrete-link span."""
+    rows = []
+    for label, run in (("plain", "plain"), ("length_string", "length_string"), ("length_discrete", "length")):
+        for cd, ds in zip(*with_base(R, f"fig05_{run}_cd", f"fig05_{run}", "centre_distance")):
+            rows.append([f"fig05_{label}_cd{cd:g}", int(ds.speed.size), int(ds.n_points), int(ds.n_steps),
+                         float(ds.wall_time)])
+    return TIMING_COLUMNS, rows
 
 
 #: peak amplitudes that move less than this between grid levels, contracting at least at
@@ -197,6 +203,13 @@ def level_runs(R, name: str) -> list:
         return [R.run(f"{name}{s}") for s in LEVEL_RUNS]
     runs = sorted(R.study_runs(f"{name}_levels"), key=lambda d: resolution(d, "steps_per_period"))
     return runs[:2] + [R.run(name)] + runs[2:]
+
+
+def discrete_peaks(R) -> tuple[list, list]:
+    """Table discrete_peaks: :func:`discrete_peak_rows` of the discrete-link sweeps of Figs. 5-8."""
+    return DISCRETE_PEAK_COLUMNS, [
+        r for name in ("fig05_length", "fig06_inertia", "fig06_i2-000", "fig07_tension", "fig07_ts-000",
+                       "fig08_discrete") for r in discrete_peak_rows(name, level_runs(R, name))]
 
 
 def discrete_peak_rows(name: str, ds: list, n_orders: int = 2) -> list[list]:

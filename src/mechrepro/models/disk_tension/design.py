@@ -128,6 +128,13 @@ def table(runs, paper_rc=0.065, paper_amplitude=50.0) -> list[list]:
     return rows
 
 
+def map_table(R) -> tuple[list, list]:
+    """Table ``design_map``: :func:`table` of every flange radius of the map, then of the blade
+    in the cut (rim hotter)."""
+    cut = R.run("design_map_in_cut")
+    return COLUMNS, table(by_clamp(R, "design_map", "design_map_rf") + [(clamp_mm(cut), cut)])
+
+
 def lowest_map(ds) -> np.ndarray:
     """The lowest critical speed over N_d >= 2 [rad/s], (r_c, design_step); NaN: buckled."""
     return lowest_over(np.asarray(ds["design_critical_speed"].values, float),

@@ -3,6 +3,7 @@ what they draw, taken from the runs in SI."""
 from __future__ import annotations
 
 import textwrap
+from functools import partial
 
 import matplotlib.ticker as mticker
 import numpy as np
@@ -21,17 +22,27 @@ def mm(x):
     return from_si(np.asarray(x, float), "mm")
 
 
-def matrix_rows(da) -> list[list]:
-    """Rows ``[N_d, entries...]`` of a modal matrix (Tables 1-2)."""
-    return [[int(n)] + [float(v) for v in da.sel(row=n).values] for n in da["row"].values]
+def matrix_table(R, scene: str, matrix: str) -> tuple[list, list]:
+    """A modal matrix of run ``scene`` (Tables 1-2): header and rows ``[N_d, entries...]``."""
+    da = R.run(scene)[matrix]
+    return ["N_d"] + [str(n) for n in ND], [[int(n)] + [float(v) for v in da.sel(row=n).values]
+                                            for n in da["row"].values]
+
+
+#: Tables 1 ([K^(sigma)]) and 2 ([m^], Eq. 17), by the axisymmetric and the 2-D plate model
+table1 = partial(matrix_table, scene="table12", matrix="k_sigma_hat")
+table2 = partial(matrix_table, scene="table12", matrix="m_hat")
+table1_plate2d = partial(matrix_table, scene="table12_plate2d", matrix="k_sigma_hat")
+table2_plate2d = partial(matrix_table, scene="table12_plate2d", matrix="m_hat")
 
 
 def effect_cold_warm(R, scenes=("table12", "table12_plate2d", "stressed_axisym",
-                                "stressed_plate2d")) -> list[list]:
-    """Rows [scene, effect, warm s, cold s] of the memoised effects."""
-    return [[scene, str(e), float(ds["effect_time"].values[i]), float(ds[f"{e}_time_cold"])]
-            for scene, ds in ((s, R.run(s)) for s in scenes)
-            for i, e in enumerate(ds["timed_effect"].values) if f"{e}_time_cold" in ds]
+                                "stressed_plate2d")) -> tuple[list, list]:
+    """Table [scene, effect, warm s, cold s] of the memoised effects."""
+    return ["scene", "effect", "warm_s", "cold_s"], [
+        [scene, str(e), float(ds["effect_time"].values[i]), float(ds[f"{e}_time_cold"])]
+        for scene, ds in ((s, R.run(s)) for s in scenes)
+        for i, e in enumerate(ds["timed_effect"].values) if f"{e}_time_cold" in ds]
 
 
 def fig03(R):

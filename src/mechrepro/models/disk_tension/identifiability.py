@@ -416,3 +416,13 @@ def readings(ds) -> list[list]:
                     float(g("single_scale")), *map(float, g("single_table1_rel")),
                     float(g("single_f_rolled")), float(g("single_chi2")[j] - g("chi2_min")[j])])
     return out
+
+
+def fit_table(R) -> tuple[list, list]:
+    """Table ``identifiability``: :func:`table` of run ``identifiability``."""
+    return COLUMNS, table(R.run("identifiability"))
+
+
+def readings_table(R) -> tuple[list, list]:
+    """Table ``identifiability_readings``: :func:`readings` of run ``identifiability``."""
+    return READING_COLUMNS, readings(R.run("identifiability"))

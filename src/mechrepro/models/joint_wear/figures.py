@@ -20,14 +20,25 @@ def measured_wear(ds, side: str):
     return np.r_[0.0, ds["cal_hour"].values], np.r_[0.0, np.asarray(h, float)]
 
 
-def coefficient_table(R, side: str) -> list[list]:
-    """Rows of Table 3 (B1) or 4 (B2): point, hour, paper K, our K [1/Pa], paper / ours."""
+def table3(R) -> tuple[list, list]:
+    """Table 3: the equivalent wear coefficients of side B1 (:func:`coefficient_table`)."""
+    return coefficient_table(R, "B1")
+
+
+def table4(R) -> tuple[list, list]:
+    """Table 4: the equivalent wear coefficients of side B2 (:func:`coefficient_table`)."""
+    return coefficient_table(R, "B2")
+
+
+def coefficient_table(R, side: str) -> tuple[list, list]:
+    """Table 3 (B1) or 4 (B2): point, hour, paper K, our K [1/Pa], paper / ours."""
     ds, s = R.run("wear_prediction"), side.lower()
     K, hours = ds["K_table"].sel(side=side).values, ds["cal_hour"].values
     rows = [[f"P{i}", float(hours[i - 1]), R.value(f"k_{s}_p{i}", "paper_value"), float(K[i - 1])]
             for i in range(1, K.size + 1)]
     rows.append(["mean", "", R.value(f"k_mean_{s}", "paper_value"), float(ds["K_table_mean"].sel(side=side))])
-    return [r + [r[2] / r[3]] for r in rows]
+    header = ["point", "hour", "paper_K_per_Pa", "ours_K_per_Pa", "paper_over_ours"]
+    return header, [r + [r[2] / r[3]] for r in rows]
 
 
 def relative_to(base, other, side: str = "B1"):
@@ -45,11 +56,12 @@ def interval_runs(R) -> dict:
     return dict(sorted(out.items()))
 
 
-def posterior_table(ds) -> list[dict]:
+def load_point_posterior(R) -> tuple[list, list]:
     """The load-point distribution's statements (scene load_point_posterior): per
     quantity its posterior 2.5 / 50 / 97.5 % (mass-weighted, wear on the upper part) and its
     range over the credible set (the 95 % likelihood region)."""
     from .validation import weighted_quantiles
+    ds = R.run("load_point_posterior")
     w = ds["post_point_weight"].values
     cred = ds["post_point_credible"].values == 1
     H = float(run_attrs(ds)["parameters"]["values_si"]["hardness_bushing"])
@@ -70,7 +82,7 @@ def posterior_table(ds) -> list[dict]:
         out.append({"quantity": name, "unit": unit, "q025": q[0], "median": q[1], "q975": q[2],
                     "credible_min": xc.min() if xc.size else np.nan,
                     "credible_max": xc.max() if xc.size else np.nan})
-    return out
+    return list(out[0]), [list(r.values()) for r in out]
 
 
 def centred_profile(lw) -> dict:

@@ -1,11 +1,11 @@
 """Reproduced values of rolling_shear's reported quantities, and the tables the notebook
-writes besides validation.csv; only extraction (the framework builds rows and verdicts)."""
+writes besides validation.csv (config ``tables``, ``make: validation.<id>``); only extraction
+(the framework builds rows and verdicts)."""
 from __future__ import annotations
 
 import math
 
 import numpy as np
-import xarray as xr
 
 from mechrepro.validation import Quantities, Reproduced, verdict
 
@@ -77,7 +77,7 @@ def constraint_ends(R, end=min) -> dict:
 
 def configured_constraints(R) -> dict:
     """The buildability constraints at their configured values (mm, deg): the keywords of
-    :func:`buildable_members` and :func:`design_front`."""
+    :func:`buildable_members` (and the margins of :func:`design_front`)."""
     P = R.cfg.raw["parameters"]
     return dict(clearance=float(P["clearance"]["value"]), mu_min=float(P["transmission_min"]["value"]),
                 plate_top=float(P["plate_thickness_max"]["value"]), opening=float(P["opening"]["value"]))
@@ -303,8 +303,9 @@ def solvers(R):
     }
 
 
-def table2(orig, popt, opt) -> tuple[list, list]:
+def table2(R) -> tuple[list, list]:
     """Table II: the paper's levers (original, optimised) and ours, with H in our geometry."""
+    orig, popt, opt = R.run("original"), R.run("paper_optimised"), R.run("optimisation")
     header = ["lever", "paper_original_mm", "paper_optimised_mm", "ours_selpso_mm", "ours_de_mm",
               "objective_spread_mm"]
     _, _, sel, spread = _optimum(opt)
@@ -318,15 +319,18 @@ def table2(orig, popt, opt) -> tuple[list, list]:
     return header, rows_
 
 
-def lever_scan(opt) -> tuple[list, list]:
-    """The one-lever scans of H and their spread."""
+def lever_scan(R) -> tuple[list, list]:
+    """The one-lever scans of H about our optimum (run ``optimisation``) and their spread."""
+    opt = R.run("optimisation")
     scan = opt["scan_objective"].values
     header = ["lever"] + [f"{f:+.3f}" for f in opt["scan_fraction"].values] + ["spread_mm"]
     return header, [[lv] + [float(v) for v in scan[j]] + [float(opt["scan_spread"][j])]
                     for j, lv in enumerate(opt["lever"].values.tolist())]
 
 
-def solver_comparison(comp: xr.Dataset) -> tuple[list, list]:
+def solver_comparison(R) -> tuple[list, list]:
+    """The position solvers of run ``solver_comparison`` on Eq. (9), side by side."""
+    comp = R.run("solver_comparison")
     header = ["method", "success_rate", "in_paper_ranges_rate", "right_branch_rate",
               "median_fitness_loops_mm", "max_fitness_loops_mm", "time_per_loops_solve_s",
               "time_per_pose_solve_s"]
@@ -365,10 +369,12 @@ def recommended(ds, *, clearance: float, mu_min: float) -> dict | None:
             "joint_height": float(ds[f"{which}_joint_height"][i])}
 
 
-def design_front(ds, *, clearance: float, mu_min: float, plate_top: float, opening: float,
-                 strict: dict) -> tuple[list, list]:
-    """The design-front table: the paper's designs, the front and the recommended design, with
-    levers, objectives and buildability margins."""
+def design_front(R) -> tuple[list, list]:
+    """The design-front table of run ``design``: the paper's designs, the front and the
+    design recommended at the strict ends of the constraints' ranges, with levers, objectives
+    and the buildability margins at the configured constraints."""
+    ds, strict = R.run("design"), constraint_ends(R, max)
+    clearance, mu_min, plate_top, opening = configured_constraints(R).values()
     header = ["design", *[f"{k}_mm" for k in OPTIMISED_LEVERS], "H_mm", "reduction_pct",
               "mu_worst_deg", "rod_gap_margin_mm", "joint_height_margin_mm",
               "transmission_margin_deg", "blade_rise_margin_mm", "box_margin", "buildable"]

@@ -68,13 +68,35 @@ def fig07(R):
     return fig
 
 
+def _identification(R):
+    """Run ``identification`` and the sprocket speed it was run at in r/min (the printed 6550)."""
+    idn = R.run("identification")
+    return idn, float(from_si(float(idn["sprocket_speed"]), "rpm"))
+
+
+def identification_table(R) -> tuple[list, list]:
+    """Table ``identification``: each explanation at each model error
+    (:func:`.identification.table`)."""
+    return idf.COLUMNS, idf.table(*_identification(R))
+
+
+def identification_readings(R) -> tuple[list, list]:
+    """Table ``identification_readings``: the readings under the joint explanation
+    (:func:`.identification.reading_table`)."""
+    return idf.READING_COLUMNS, idf.reading_table(*_identification(R))
+
+
+def design_rules(R) -> tuple[list, list]:
+    """Table ``design_rules``: each closed-form rule's largest error (:func:`.design.rule_table`)."""
+    return design.RULE_COLUMNS, design.rule_table(R.run("design_maps"))
+
+
 def identification(R):
     """What the paper's six numbers select (run ``identification``, ``identification.py``):
     χ² over the sprocket speed run for each pitch-radius reading (stretch profiled; 68 % and
     95 % levels), each explanation's χ² at the three model errors, and the pulls of the six
     numbers as printed and under the preferred explanation."""
-    idn = R.run("identification")
-    rpm = float(from_si(float(idn["sprocket_speed"]), "rpm"))   # the printed 6550
+    idn, rpm = _identification(R)
     best, best_name = _preferred(idn)
     names = [e[0] for e in idf.EXPLANATIONS]
     readings = [r.split(" ", 1)[1] for r in idn["reading"].attrs["long_name"].split(": ", 1)[1].split(", ")]
