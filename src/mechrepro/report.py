@@ -200,7 +200,7 @@ def paper_view(paper: str, results: Path, config_dir: Path, profile: str, out_di
             continue
         head, body = _read_csv(root / "tables" / f"{t}.csv")
         spec = cfg.table(t) if t in cfg.notebook_tables else None
-        tables.append({"title": TABLE_TITLES.get(t, f"Table {t}"), "head": head,
+        tables.append({"title": TABLE_TITLES.get(t, f"{t}.csv"), "head": head,
                        "rows": [[_num(c) for c in row] for row in body],
                        "caption": spec and spec["caption"], "made": spec and made_by(paper, spec, "make")})
     assumed = [{"name": k, "value": f"{v['value']} {v['unit'] if v['unit'] != '1' else ''}".strip(),
