@@ -51,6 +51,24 @@ def quasi_static_period(fb: FourBar, s: dict) -> dict:
     return quasistatic.one_period(fb, int(s["n_steps"]))
 
 
+def kept_periods(s: dict, size: int = 512):
+    """quasi_static_period for one run's ``s``, keeping its last ``size`` periods: the fit's
+    brackets and zeros and the calibration revisit load points and bushing radii, and a
+    mechanism met again (by value; the damping of Eq. 14 does not enter the quasi-static
+    joint) is not solved again.  Made per run, so that no run's time depends on what ran
+    before it in the process; the kept arrays are read-only (shared)."""
+    @functools.lru_cache(maxsize=size)
+    def period(fb_q: FourBar) -> dict:
+        hist = quasi_static_period(fb_q, s)
+        for v in hist.values():
+            v.flags.writeable = False
+        return hist
+
+    def joint(fb: FourBar, _s: dict) -> dict:
+        return dict(period(replace(fb, C_max=0.0, d_max=0.0)))
+    return joint
+
+
 def dynamic_period(fb: FourBar, s: dict) -> dict:
     """Dynamic clearance joint; the last of ``periods`` periods, as one period.  An
     integration stopped by its step budget returns what it reached, flagged."""
@@ -469,21 +487,23 @@ def gravity_nodes(lo: float, hi: float, n: int) -> tuple[np.ndarray, np.ndarray]
     return 0.5 * (e[1:] + e[:-1]), np.diff(e) / (hi - lo)
 
 
-def _branch_point(fb: FourBar, s: dict, p: dict, E, d: float, a0: float, g: float, K_paper, sigma):
+def _branch_point(fb: FourBar, s: dict, p: dict, E, d: float, a0: float, g: float, K_paper, sigma,
+                  joint=quasi_static_period):
     """The zero of the misfit within 3 deg of direction ``a0`` at gravity ``g`` (one
-    branch of the load points the tables allow), with its chi2 and quasi-static period;
-    None where the branch has no zero there (contact refused or the branch ended)."""
+    branch of the load points the tables allow), with its chi2 and quasi-static period
+    (``joint``: quasi_static_period or the run's kept_periods); None where the branch has
+    no zero there (contact refused or the branch ended)."""
     # xtol 1e-5 deg: the misfit moves by < 1e-4 of FIT_TOLERANCE there, and chi2, taken
     # about the ratios' common level, not at all
     _, zeros = fit_zeros(fb, s, p, E, d, np.array([a0 - 3.0, a0 + 3.0]), g, K_paper,
-                         joint=quasi_static_period, xtol=1e-5)
+                         joint=joint, xtol=1e-5)
     zeros = [z for z in zeros if abs(math.remainder(z["direction"] - a0, 360.0)) <= 3.0]
     if not zeros:
         return None
     z = min(zeros, key=lambda z: abs(math.remainder(z["direction"] - a0, 360.0)))
     chi2 = laplace_log_weight(np.log(z["K"] / K_paper), sigma, z["slope"])[0]
     return {"gravity": g, "direction": z["direction"] % 360.0, "chi2": chi2,
-            "qs": quasi_static_period(z["fb"], s), "fb": z["fb"]}
+            "qs": joint(z["fb"], s), "fb": z["fb"]}
 
 
 def _inside(r, threshold: float) -> bool:
@@ -492,7 +512,7 @@ def _inside(r, threshold: float) -> bool:
 
 
 def region_edge(fb: FourBar, s: dict, p: dict, E, d: float, branch: list, K_paper, sigma,
-                threshold: float, bisections: int, bound: float):
+                threshold: float, bisections: int, bound: float, joint=quasi_static_period):
     """The lowest gravity on one branch of load points (``branch``: its points at the prior
     nodes, ascending g, each with its chi2 and margin) inside the likelihood region (chi2
     within ``threshold``, wear on the upper part), the branch's direction interpolated
@@ -503,12 +523,14 @@ def region_edge(fb: FourBar, s: dict, p: dict, E, d: float, branch: list, K_pape
     ``bound`` (the smallest credible margin so far) and whose better end is within 10x the
     threshold (chi2 is smooth in g), chi2's minimum is sought by ``bisections``
     golden-section steps; the first interval with a point inside (or a credible node) gives
-    the edge, bisected ``bisections`` times below that point.  Returns it, or None."""
+    the edge, bisected ``bisections`` times below that point (``joint``: _branch_point's).
+    Returns it, or None."""
     gb = np.array([q["gravity"] for q in branch])
     ab = np.unwrap(np.radians([q["direction"] for q in branch]))
 
     def at(g):
-        return _branch_point(fb, s, p, E, d, math.degrees(float(np.interp(g, gb, ab))), g, K_paper, sigma)
+        return _branch_point(fb, s, p, E, d, math.degrees(float(np.interp(g, gb, ab))), g, K_paper,
+                             sigma, joint)
     phi = 0.5 * (math.sqrt(5.0) - 1.0)
     for i, q in enumerate(branch):
         lo = float(gb[i - 1]) if i else float(s["posterior_gravity_range"][0])
@@ -576,17 +598,18 @@ def load_point_posterior(run: dict) -> dict:
         gs, g_prior = np.zeros(1), np.ones(1)
     dh = np.array([p[f"measured_increment_{side}"] for side in SIDES])
     sigma = rounding_sigma(dh * 1e3)
+    qs_of = kept_periods(s)
     pts = []
     for d in ds_:
         for j, g in enumerate(gs):
             for mu in mus:
                 fb_n = replace(fb, mu=float(mu))
                 _, zeros = fit_zeros(fb_n, s, p, E, float(d), dirs, float(g), K_paper,
-                                     joint=quasi_static_period)
+                                     joint=qs_of)
                 for z in zeros:
                     r = np.log(z["K"] / K_paper)
                     chi2, width, logw, shift = laplace_log_weight(r, sigma, z["slope"])
-                    qs = quasi_static_period(z["fb"], s)
+                    qs = qs_of(z["fb"], s)
                     f = wear.period_wear_factor(qs, z["fb"], fb.period)
                     pts.append({"distance": float(d), "gravity": float(g), "friction": float(mu),
                                 "direction": (z["direction"] + shift) % 360.0, "misfit": float(np.mean(r)),
@@ -633,7 +656,7 @@ def load_point_posterior(run: dict) -> dict:
         bound = min([q["qs_margin"] for q in pts if q["credible"]] + [e["qs_margin"] for e in edges],
                     default=math.inf)
         e = region_edge(replace(fb, mu=br[0]["friction"]), s, p, E, br[0]["distance"], br, K_paper,
-                        sigma, threshold, int(s["edge_bisections"]), bound)
+                        sigma, threshold, int(s["edge_bisections"]), bound, qs_of)
         if e is not None:
             edges.append({"distance": br[0]["distance"], "friction": br[0]["friction"],
                           "gravity": e["gravity"], "direction": e["direction"], "chi2": e["chi2"],
