@@ -177,5 +177,5 @@ def warm(methods=COMPILED) -> None:
     F_N, ang, delta = q.force(*b, a, a, 0.0, 1.0, 1.5)
     q.friction(F_N, delta, a, 0.0, a, 1.0, 1.0, 0.0, 1.0)
     q.contact_angle(ang, a)
-    q.steps(np.zeros((2, 2)))
+    q.periodic_part(np.zeros((2, 2)))
     _WARM.add("physics")

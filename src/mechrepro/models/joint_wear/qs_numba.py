@@ -96,6 +96,52 @@ def contact_angle(ang_n, ph2):
 
 
 @jit
+def periodic_part(a):
+    """The periodic part of angles sampled uniformly over one period (the rows of ``a``,
+    2-D) and the turns per period k taken from it (periodic_derivatives): where some step
+    reaches pi the rows are unwrapped (:func:`unwrap`; below pi it corrects none), then,
+    where some row turns (|k| > 0.5 before rounding, half to even), a_i - 2 pi k i / n.
+    Returns (the part, k per row, whether some row turns)."""
+    step, turn = steps(a)
+    if not step < math.pi:
+        a = unwrap(a)
+        turn = steps(a)[1]
+    rows, n = a.shape
+    k = np.zeros(rows)
+    if turn <= 0.5:
+        return a, k, False
+    per = np.empty_like(a)
+    for r in range(rows):
+        k[r] = np.rint((a[r, -1] + (a[r, 1] - a[r, 0]) - a[r, 0]) / (2.0 * math.pi))
+        c = 2.0 * math.pi * k[r]
+        for i in range(n):
+            per[r, i] = a[r, i] - c * i / n
+    return per, k, True
+
+
+@jit
+def unwrap(a):
+    """``np.unwrap`` of the rows of ``a`` (2-D; period 2 pi, discontinuity pi), operation
+    for operation: each step reduced to [-pi, pi) by numpy's floating remainder (the sign of
+    the divisor), a step of exactly +pi kept at +pi, the corrections of the steps of pi and
+    more summed left to right."""
+    rows, n = a.shape
+    out = np.empty_like(a)
+    for r in range(rows):
+        out[r, 0] = a[r, 0]
+        c = 0.0
+        for i in range(1, n):
+            dd = a[r, i] - a[r, i - 1]
+            red = (dd + math.pi) % (2.0 * math.pi) - math.pi    # Python's float % is numpy's
+            if red == -math.pi and dd > 0.0:
+                red = math.pi
+            corr = 0.0 if abs(dd) < math.pi else red - dd
+            c = corr if i == 1 else c + corr
+            out[r, i] = a[r, i] + c
+    return out
+
+
+@jit
 def steps(a):
     """Over the rows of ``a`` (2-D): the largest |a[i] - a[i-1]| (np.unwrap corrects none
     below pi) and the largest |a[-1] + (a[1] - a[0]) - a[0]| / 2 pi (the turns per period

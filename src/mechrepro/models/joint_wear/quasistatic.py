@@ -146,17 +146,8 @@ def periodic_derivatives(angle, period, second=True, harmonics=HARMONICS):
     """
     a = np.asarray(angle, float)
     n = a.shape[-1]
-    step, turn = qs_numba.steps(a.reshape(-1, n))
-    if not step < np.pi:    # below pi np.unwrap adds zero corrections: skipped, exactly
-        a = np.unwrap(a, axis=-1)
-        _, turn = qs_numba.steps(a.reshape(-1, n))
-    turns = not turn <= 0.5     # some row's k below is not zero
-    if turns:
-        k = np.round((a[..., -1] + (a[..., 1] - a[..., 0]) - a[..., 0]) / (2 * np.pi))[..., None]
-        per = a - 2 * np.pi * k * np.arange(n) / n
-    else:
-        per = a
-    f = np.fft.rfft(per, axis=-1)
+    per, k, turns = qs_numba.periodic_part(np.ascontiguousarray(a.reshape(-1, n)))
+    f = np.fft.rfft(per.reshape(a.shape), axis=-1)
     factors = _omegas(n, period)
     f[..., min(harmonics + 1, (n - 1) // 2 + 1):] = 0.0   # incl. the Nyquist mode of an even n
     if second:      # both derivatives in one inverse transform
@@ -165,5 +156,5 @@ def periodic_derivatives(angle, period, second=True, harmonics=HARMONICS):
     else:
         d1, d2 = np.fft.irfft(factors[0] * f, n, axis=-1), None
     if turns:
-        d1 = d1 + 2 * np.pi * k / period
+        d1 = d1 + 2 * np.pi * k.reshape(a.shape[:-1] + (1,)) / period
     return d1, d2
