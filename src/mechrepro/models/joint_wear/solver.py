@@ -55,17 +55,29 @@ def kept_periods(s: dict, size: int = 512):
     """quasi_static_period for one run's ``s``, keeping its last ``size`` periods: the fit's
     brackets and zeros and the calibration revisit load points and bushing radii, and a
     mechanism met again (by value; the damping of Eq. 14 does not enter the quasi-static
-    joint) is not solved again.  Made per run, so that no run's time depends on what ran
-    before it in the process; the kept arrays are read-only (shared)."""
-    @functools.lru_cache(maxsize=size)
-    def period(fb_q: FourBar) -> dict:
-        hist = quasi_static_period(fb_q, s)
-        for v in hist.values():
-            v.flags.writeable = False
-        return hist
+    joint) is not solved again.  Its ``many(fbs, s)`` solves the bushings of one mechanism
+    not kept yet together (quasistatic.periods).  Made per run, so that no run's time
+    depends on what ran before it in the process; the kept arrays are read-only (shared)."""
+    kept: dict = {}
 
-    def joint(fb: FourBar, _s: dict) -> dict:
-        return dict(period(replace(fb, C_max=0.0, d_max=0.0)))
+    def many(fbs, _s: dict) -> list:
+        keys = [replace(fb, C_max=0.0, d_max=0.0) for fb in fbs]
+        new = list(dict.fromkeys(k for k in keys if k not in kept))
+        for k, hist in zip(new, quasistatic.periods(new, int(s["n_steps"])) if new else ()):
+            for v in hist.values():
+                v.flags.writeable = False
+            kept[k] = hist
+        out = []
+        for k in keys:
+            kept[k] = kept.pop(k)           # the most recently used last
+            out.append(dict(kept[k]))
+        while len(kept) > size:
+            del kept[next(iter(kept))]
+        return out
+
+    def joint(fb: FourBar, s_: dict) -> dict:
+        return many([fb], s_)[0]
+    joint.many = many
     return joint
 
 
@@ -153,8 +165,16 @@ def period_factor(fb_v: FourBar, s: dict, joint):
 def wear_factor_of(fb_v: FourBar, s: dict, joint=None):
     """period_factor of ``joint`` (default continuous_contact_period, which refuses contact
     loss; quasi_static_period where a margin is measured, not assumed), a radius met again
-    not solved again."""
-    return functools.cache(period_factor(fb_v, s, joint or continuous_contact_period))
+    not solved again; where the joint solves several bushings together (``joint.many``:
+    kept_periods), ``factor.many(radii)`` does (the radii of a calibration)."""
+    joint = joint or continuous_contact_period
+    factor = functools.cache(period_factor(fb_v, s, joint))
+    if hasattr(joint, "many"):
+        def many(radii):
+            joint.many([fb_v.with_bushing_radius(R) for R in radii], s)
+            return [factor(R) for R in radii]
+        factor.many = many
+    return factor
 
 
 def with_wear(run: dict, fb: FourBar, ctx: Context, res: dict, joint) -> dict:
