@@ -16,34 +16,35 @@ from mechrepro.compiled import jit
 
 @jit
 def setup(th3, ph2, w3, w2, a3, a2, M11, M22, am, l0, l2, l3, m2, m3, P, Fx, Fy, g):
-    """b3, b2 (the equations of motion without the joint force) and J^T of the joint."""
-    n = th3.size
-    b3 = np.empty(n)
-    b2 = np.empty(n)
-    j11 = np.empty(n)
-    j12 = np.empty(n)
-    j21 = np.empty(n)
-    j22 = np.empty(n)
-    det = np.empty(n)
-    for i in range(n):
-        c3, s3 = math.cos(th3[i]), math.sin(th3[i])
-        c2, s2 = math.cos(ph2[i]), math.sin(ph2[i])
-        cd = math.cos(th3[i] - ph2[i])
-        sd = math.sin(th3[i] - ph2[i])
-        rhs3 = M11 * a3[i] + am * cd * a2[i] + am * sd * w2[i] ** 2
-        rhs2 = am * cd * a3[i] + M22 * a2[i] - am * sd * w3[i] ** 2
-        # the load P at E towards F and the link weights (as clearance.rhs_into)
-        ex, ey = l0 + l3 / 2 * c3, l3 / 2 * s3
-        dx, dy = Fx - ex, Fy - ey
-        dn = math.hypot(dx, dy)
-        Px, Py = P * dx / dn, P * dy / dn
-        Q3 = l3 / 2 * (-s3 * Px + c3 * Py) - g * (m3 * l3 / 2 + m2 * l3) * c3
-        Q2 = -g * m2 * l2 / 2 * c2
-        b3[i] = rhs3 - Q3
-        b2[i] = rhs2 - Q2
-        j11[i], j12[i] = -l3 * s3, l3 * c3
-        j21[i], j22[i] = -l2 * s2, l2 * c2
-        det[i] = j11[i] * j22[i] - j12[i] * j21[i]
+    """b3, b2 (the equations of motion without the joint force) and J^T of the joint (2-D:
+    a row per link motion)."""
+    b3 = np.empty(th3.shape)
+    b2 = np.empty(th3.shape)
+    j11 = np.empty(th3.shape)
+    j12 = np.empty(th3.shape)
+    j21 = np.empty(th3.shape)
+    j22 = np.empty(th3.shape)
+    det = np.empty(th3.shape)
+    for r in range(th3.shape[0]):
+        for i in range(th3.shape[1]):
+            c3, s3 = math.cos(th3[r, i]), math.sin(th3[r, i])
+            c2, s2 = math.cos(ph2[r, i]), math.sin(ph2[r, i])
+            cd = math.cos(th3[r, i] - ph2[r, i])
+            sd = math.sin(th3[r, i] - ph2[r, i])
+            rhs3 = M11 * a3[r, i] + am * cd * a2[r, i] + am * sd * w2[r, i] ** 2
+            rhs2 = am * cd * a3[r, i] + M22 * a2[r, i] - am * sd * w3[r, i] ** 2
+            # the load P at E towards F and the link weights (as clearance.rhs_into)
+            ex, ey = l0 + l3 / 2 * c3, l3 / 2 * s3
+            dx, dy = Fx - ex, Fy - ey
+            dn = math.hypot(dx, dy)
+            Px, Py = P * dx / dn, P * dy / dn
+            Q3 = l3 / 2 * (-s3 * Px + c3 * Py) - g * (m3 * l3 / 2 + m2 * l3) * c3
+            Q2 = -g * m2 * l2 / 2 * c2
+            b3[r, i] = rhs3 - Q3
+            b2[r, i] = rhs2 - Q2
+            j11[r, i], j12[r, i] = -l3 * s3, l3 * c3
+            j21[r, i], j22[r, i] = -l2 * s2, l2 * c2
+            det[r, i] = j11[r, i] * j22[r, i] - j12[r, i] * j21[r, i]
     return b3, b2, j11, j12, j21, j22, det
 
 
@@ -106,11 +107,12 @@ def periodic_part(a, group):
     (one call of periodic_derivatives): where some step of the group reaches pi its rows
     are unwrapped (:func:`unwrap`; below pi it corrects none), then, where some row of it
     turns (|k| > 0.5 before rounding, half to even), a_i - 2 pi k i / n.  Returns (the
-    part, k per row, whether the row's group turns)."""
+    part, k per row, whether the row's group turns, whether some group turns)."""
     rows, n = a.shape
     out = a.copy()
     k = np.zeros(rows)
     turns = np.zeros(rows, np.bool_)
+    some = False
     for g in range(0, rows, group):
         e = g + group
         step, turn = steps(out, g, e)
@@ -119,13 +121,14 @@ def periodic_part(a, group):
             turn = steps(out, g, e)[1]
         if turn <= 0.5:
             continue
+        some = True
         for r in range(g, e):
             k[r] = np.rint((out[r, -1] + (out[r, 1] - out[r, 0]) - out[r, 0]) / (2.0 * math.pi))
             c = 2.0 * math.pi * k[r]
             turns[r] = True
             for i in range(n):
                 out[r, i] = out[r, i] - c * i / n
-    return out, k, turns
+    return out, k, turns, some
 
 
 @jit

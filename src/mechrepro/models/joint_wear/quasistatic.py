@@ -118,13 +118,13 @@ def _contact_state(fb, bush, t, th1, th3, ph2, w3, w2, a3, a2, iterations=4,
     where installed, the same source as Python otherwise); the spectral derivative of the
     contact direction between them is numpy's FFT."""
     R, K, c = bush
-    rows, n = t.shape
+    rows = t.shape[0]
     M11, M22, am = loads.mass_terms(fb)
     m = 1 if same_motion else rows
-    b = qs_numba.setup(*(np.ravel(x[:m]) for x in (th3, ph2, w3, w2, a3, a2)), M11, M22, am,
-                       fb.l0, fb.l2, fb.l3, fb.m2, fb.m3, fb.P, float(fb.F[0]), float(fb.F[1]),
-                       fb.g)
-    b3, b2, j11, j12, j21, j22, det = (x.reshape(m, n).repeat(rows // m, 0) for x in b)
+    b = qs_numba.setup(*(np.ascontiguousarray(x[:m]) for x in (th3, ph2, w3, w2, a3, a2)),
+                       M11, M22, am, fb.l0, fb.l2, fb.l3, fb.m2, fb.m3, fb.P, float(fb.F[0]),
+                       float(fb.F[1]), fb.g)
+    b3, b2, j11, j12, j21, j22, det = (x.repeat(rows, 0) for x in b) if m < rows else b
     tau = np.zeros_like(t)
     slide = fb.omega * fb.R_pin
     w2R = w2 * R[:, None]
@@ -169,7 +169,7 @@ def periodic_derivatives(angle, period, second=True, harmonics=HARMONICS):
     a = np.asarray(angle, float)
     n = a.shape[-1]
     group = a.shape[-2] if a.ndim == 3 else a.size // n
-    per, k, turns = qs_numba.periodic_part(np.ascontiguousarray(a.reshape(-1, n)), group)
+    per, k, turns, some = qs_numba.periodic_part(np.ascontiguousarray(a.reshape(-1, n)), group)
     f = np.fft.rfft(per.reshape(a.shape), axis=-1)
     factors = _omegas(n, period)
     f[..., min(harmonics + 1, (n - 1) // 2 + 1):] = 0.0   # incl. the Nyquist mode of an even n
@@ -178,7 +178,7 @@ def periodic_derivatives(angle, period, second=True, harmonics=HARMONICS):
                               axis=-1)
     else:
         d1, d2 = np.fft.irfft(factors[0] * f, n, axis=-1), None
-    if turns.any():     # the rows of the calls where some row turns
+    if some:     # the rows of the calls where some row turns
         d1 = np.where(turns.reshape(a.shape[:-1] + (1,)),
                       d1 + 2 * np.pi * k.reshape(a.shape[:-1] + (1,)) / period, d1)
     return d1, d2
