@@ -1,6 +1,7 @@
 """The element-wise stages of the quasi-static contact state (quasistatic.py), written once.
 
-Each stage is one loop over the samples of a period (a few hundred), rather than ~25 numpy
+Each stage is one loop over the samples of a period (a few hundred; a row of them per
+bushing where quasistatic.periods solves several together), rather than ~25 numpy
 operations each paying numpy's call overhead: compiled with numba where installed (cached
 on disk), the same source run as Python otherwise (slow, but the same arithmetic).  The
 spectral derivative between the stages stays numpy's FFT.
