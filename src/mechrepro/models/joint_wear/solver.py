@@ -8,7 +8,8 @@ from __future__ import annotations
 
 import functools
 import math
-from dataclasses import replace
+import operator
+from dataclasses import fields, replace
 
 import numpy as np
 from scipy import optimize, stats
@@ -51,19 +52,24 @@ def quasi_static_period(fb: FourBar, s: dict) -> dict:
     return quasistatic.one_period(fb, int(s["n_steps"]))
 
 
+#: what a quasi-static period reads of a mechanism: all but the damping of Eq. (14)
+_QS_KEY = operator.attrgetter(*(f.name for f in fields(FourBar) if f.name not in ("C_max", "d_max")))
+
+
 def kept_periods(s: dict, size: int = 512):
     """quasi_static_period for one run's ``s``, keeping its last ``size`` periods: the fit's
     brackets and zeros and the calibration revisit load points and bushing radii, and a
-    mechanism met again (by value; the damping of Eq. 14 does not enter the quasi-static
-    joint) is not solved again.  Its ``many(fbs, s)`` solves the bushings of one mechanism
-    not kept yet together (quasistatic.periods).  Made per run, so that no run's time
-    depends on what ran before it in the process; the kept arrays are read-only (shared)."""
+    mechanism met again (by the values a quasi-static period reads, _QS_KEY) is not solved
+    again.  Its ``many(fbs, s)`` solves the bushings of one mechanism not kept yet together
+    (quasistatic.periods).  Made per run, so that no run's time depends on what ran before
+    it in the process; the kept arrays are read-only (shared)."""
     kept: dict = {}
 
     def many(fbs, _s: dict) -> list:
-        keys = [replace(fb, C_max=0.0, d_max=0.0) for fb in fbs]
-        new = list(dict.fromkeys(k for k in keys if k not in kept))
-        for k, hist in zip(new, quasistatic.periods(new, int(s["n_steps"])) if new else ()):
+        keys = [_QS_KEY(fb) for fb in fbs]
+        new = {k: fb for k, fb in zip(keys, fbs) if k not in kept}
+        for k, hist in zip(new, quasistatic.periods(list(new.values()), int(s["n_steps"]))
+                           if new else ()):
             for v in hist.values():
                 v.flags.writeable = False
             kept[k] = hist
@@ -157,23 +163,34 @@ def period_factor(fb_v: FourBar, s: dict, joint):
     ``fb_v`` at radius R_bush -- what calibration and prediction step through."""
     def factor(R_bush):
         fb_w = fb_v.with_bushing_radius(R_bush)
-        return wear.period_wear_factor(joint(fb_w, s), fb_w, fb_v.period,
-                                       s.get("wear_range", "contact_point"), statistics=False)["G"]
+        return _factor_G(joint(fb_w, s), fb_w, fb_v, s)
     return factor
+
+
+def _factor_G(hist: dict, fb_w: FourBar, fb_v: FourBar, s: dict) -> float:
+    """G (Eq. 29) of the period ``hist`` of fb_v's mechanism with the bushing of ``fb_w``."""
+    return wear.period_wear_factor(hist, fb_w, fb_v.period, s.get("wear_range", "contact_point"),
+                                   statistics=False)["G"]
 
 
 def wear_factor_of(fb_v: FourBar, s: dict, joint=None):
     """period_factor of ``joint`` (default continuous_contact_period, which refuses contact
     loss; quasi_static_period where a margin is measured, not assumed), a radius met again
-    not solved again; where the joint solves several bushings together (``joint.many``:
-    kept_periods), ``factor.many(radii)`` does (the radii of a calibration)."""
+    not solved again; ``factor.many(radii)`` gives several (a calibration's), solved
+    together where the joint can (``joint.many``: kept_periods)."""
     joint = joint or continuous_contact_period
-    factor = functools.cache(period_factor(fb_v, s, joint))
-    if hasattr(joint, "many"):
-        def many(radii):
-            joint.many([fb_v.with_bushing_radius(R) for R in radii], s)
-            return [factor(R) for R in radii]
-        factor.many = many
+    G: dict = {}
+
+    def many(radii):
+        new = [fb_v.with_bushing_radius(R) for R in dict.fromkeys(radii) if R not in G]
+        hists = joint.many(new, s) if hasattr(joint, "many") else (joint(f, s) for f in new)
+        for fb_w, hist in zip(new, hists):
+            G[fb_w.R_bush] = _factor_G(hist, fb_w, fb_v, s)
+        return [G[R] for R in radii]
+
+    def factor(R_bush):
+        return many([R_bush])[0]
+    factor.many = many
     return factor
 
 
