@@ -3,6 +3,7 @@ and of the whole 86-hour prediction.  Not a test: it prints numbers against the 
 
     PYTHONPATH=src .venv/bin/python benchmarks/bench_joint_wear.py [--explicit-steps 20000]
     PYTHONPATH=src .venv/bin/python benchmarks/bench_joint_wear.py --floor [--profile ci] [--measure]
+    PYTHONPATH=src .venv/bin/python benchmarks/bench_joint_wear.py --runs [RUN ...] [--profile ci] [--against REF]
 
 The second prints only the solve floor of the profile's runs from operation counts
 (:func:`floor`), with ``--measure`` beside their measured solve (benchmarks/_floor.py);
@@ -16,6 +17,7 @@ and its time per period is extrapolated from the simulated time it reached.
 from __future__ import annotations
 
 import argparse
+import importlib
 import math
 import os
 import time
@@ -43,10 +45,9 @@ def best_of(fn, repeats):
     return best, out
 
 
-def _reference_quasistatic(ref: str):
-    """quasistatic.py as it is at git ``ref``, with the kernels it calls (the whole model
-    package of that commit, imported as a package of its own beside the working tree's)."""
-    import importlib
+def _reference(ref: str):
+    """The model package as it is at git ``ref``, imported as a package of its own beside
+    the working tree's (its submodules: ``importlib.import_module(name + ".quasistatic")``)."""
     import importlib.util
     import io
     import subprocess
@@ -65,7 +66,7 @@ def _reference_quasistatic(ref: str):
                                                   submodule_search_locations=[str(pkg)])
     sys.modules[name] = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(sys.modules[name])
-    return importlib.import_module(f"{name}.quasistatic")
+    return sys.modules[name]
 
 
 def side_by_side(cfg, repeats, against="main"):
@@ -91,7 +92,7 @@ def side_by_side(cfg, repeats, against="main"):
         t_new, r_new = best_of(lambda: run("auto"), repeats)
         print(f"  {method:5s} rtol {rtol:.0e} {start:11s}: scipy {t_old:8.3f} s -> compiled "
               f"{t_new:8.4f} s  ({t_old / t_new:6.1f}x; steps {r_old['steps']} / {r_new['steps']})")
-    old = _reference_quasistatic(against)
+    old = importlib.import_module(_reference(against).__name__ + ".quasistatic")
     for n in (360, 720):
         old.one_period(fb, n)
         quasistatic.one_period(fb, n)
@@ -99,6 +100,29 @@ def side_by_side(cfg, repeats, against="main"):
         t_new, _ = best_of(lambda: quasistatic.one_period(fb, n), 20 * repeats)
         print(f"  quasi-static period, {n} samples: {against} {t_old * 1e3:6.2f} ms -> "
               f"{t_new * 1e3:6.2f} ms ({t_old / t_new:4.1f}x)")
+
+
+def runs_side_by_side(profile: str, names, against="main"):
+    """The solve time of the profile's runs ``names`` (every run without) with the model at
+    git ``against`` and with the working tree's, in one process, run by run in turn (both
+    under the same load), their kernels loaded first."""
+    import mechrepro.models.joint_wear as new
+    cfg = load_paper(ROOT / "config/papers/joint_wear.yaml", profile)
+    old = _reference(against)
+    runs = {r: cfg.runs[r] for r in names or cfg.runs}
+    old.warm(list(runs.values()))
+    new.warm(list(runs.values()))
+    total = [0.0, 0.0]
+    print(f"runs of profile {profile} side by side ({against} -> working tree)")
+    for name, run in runs.items():
+        t = []
+        for model in (old, new):
+            t0 = time.perf_counter()
+            model.compute(run)
+            t.append(time.perf_counter() - t0)
+        total = [a + b for a, b in zip(total, t)]
+        print(f"  {name:44s} {t[0]:8.2f} s -> {t[1]:8.2f} s ({t[0] / t[1]:4.2f}x)", flush=True)
+    print(f"  {'all':44s} {total[0]:8.2f} s -> {total[1]:8.2f} s ({total[0] / total[1]:4.2f}x)")
 
 
 _T, _S = _floor.TRANSCENDENTAL, _floor.SQRT
@@ -182,9 +206,15 @@ def main():
     ap.add_argument("--side-by-side-only", action="store_true")
     ap.add_argument("--against", default="main",
                     help="git commit whose quasi-static period the working tree's is timed against")
+    ap.add_argument("--runs", nargs="*",
+                    help="only the solve time of these runs of --profile (none named: all), "
+                         "--against's model and the working tree's in turn")
     a = ap.parse_args()
     if a.floor:
         floor(a.profile, a.measure)
+        return
+    if a.runs is not None:
+        runs_side_by_side(a.profile, a.runs, a.against)
         return
     cfg = load_paper(ROOT / "config/papers/joint_wear.yaml")
     side_by_side(cfg, a.repeats, a.against)

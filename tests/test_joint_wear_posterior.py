@@ -98,3 +98,46 @@ def test_a_synthetic_paper_s_load_point_is_in_its_credible_set():
 def replace_mu(fb, mu):
     from dataclasses import replace
     return replace(fb, mu=mu)
+
+
+def test_bushings_solved_together_are_each_ones_period_bit_for_bit():
+    """The calibration's radii solved as rows of one batch (quasistatic.periods, through
+    kept_periods.many) give every array of each one's own one_period exactly -- also where
+    the contact direction wraps round (90 and 315 deg) -- and a kept period is the period."""
+    from mechrepro.models.joint_wear import kinematics, quasistatic
+
+    fb, ctx = solver.setup(CFG.runs["load_point_posterior"])
+    E = kinematics.load_point_mid_stroke(fb)
+    for a in (0.0, 90.0, 315.0):
+        fb_a = solver.load_point(fb, E, 0.65, a, 9.8)
+        fbs = [fb_a.with_bushing_radius(fb_a.R_bush + h) for h in (0.0, 2e-5, 1e-4, 4e-4)]
+        kept = solver.kept_periods(ctx.s)
+        for together in (quasistatic.periods(fbs, 360), kept.many(fbs, ctx.s),
+                         [kept(f, ctx.s) for f in fbs]):
+            for f, h in zip(fbs, together):
+                alone = quasistatic.one_period(f, 360)
+                assert set(h) == set(alone)
+                for k in alone:
+                    assert np.array_equal(h[k], alone[k]), (a, k)
+
+
+def test_unwrap_and_the_stacked_derivatives_are_numpy_s_bit_for_bit():
+    """qs_numba.unwrap is np.unwrap (steps of exactly +-pi, NaN and inf included), and a
+    stack of calls of periodic_derivatives (3-D) gives each call's own result."""
+    from mechrepro.models.joint_wear import qs_numba, quasistatic
+
+    rng = np.random.default_rng(3)
+    for _ in range(200):
+        a = np.cumsum(rng.choice([math.pi, -math.pi, 2.0, -2.5, 0.1, np.nan, np.inf],
+                                 (3, 40), p=[.2, .2, .2, .2, .16, .02, .02]), axis=1)
+        u = a.copy()
+        qs_numba.unwrap(u, 0, 3)
+        with np.errstate(invalid="ignore"):
+            assert np.array_equal(u, np.unwrap(a), equal_nan=True)
+    t = np.linspace(0.0, 2 * math.pi, 64, endpoint=False)
+    calls = np.array([[np.angle(np.exp(1j * (t + 0.3 * np.sin(2 * t)))), 0.2 * np.cos(t)],
+                      [0.4 * np.sin(t), t + 0.1 * np.cos(3 * t)]])
+    d1, d2 = quasistatic.periodic_derivatives(calls, 2.0)
+    for c in range(2):
+        e1, e2 = quasistatic.periodic_derivatives(calls[c], 2.0)
+        assert np.array_equal(d1[c], e1) and np.array_equal(d2[c], e2)

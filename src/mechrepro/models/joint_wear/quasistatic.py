@@ -37,26 +37,41 @@ def one_period(fb: FourBar, n_steps: int, passes: int = 2, t0: float = 0.0,
     offset(state, phi2) -> (x, y): the pin centre's offset from the bushing centre (global
     frame) for a worn groove (groove.py); default the circle's (c + delta) n.
     """
+    return periods([fb], n_steps, passes, t0, settled, offset)[0]
+
+
+def periods(fbs, n_steps: int, passes: int = 2, t0: float = 0.0, settled: bool = False,
+            offset=None) -> list:
+    """:func:`one_period` of mechanisms that differ in the bushing alone (R_j and K', as
+    FourBar.with_bushing_radius makes them), solved together: every stage runs over all
+    their samples at once (rows), each row's arithmetic that of its own one_period.
+    ``offset``: one mechanism only."""
+    fb, rows = fbs[0], len(fbs)
+    bush = tuple(np.array(x, float) for x in zip(*((f.R_bush, f.K_contact, f.clearance) for f in fbs)))
     if settled:
         passes = max(passes, 4)
     ideal = _ideal_cached if n_steps <= CACHED_GRID else _ideal
-    t, th1, th3, ph2, w3, w2, a3, a2, px, py = (x.copy() for x in ideal(
+    t, th1, th3, ph2, w3, w2, a3, a2, px, py = (np.repeat(x[None], rows, 0) for x in ideal(
         fb.l0, fb.l1, fb.l2, fb.l3, fb.omega, int(n_steps), float(t0)))
     # intermediate passes only steer the link angles: a rougher friction fixed point will do
     rough = 4 if settled else 2
-    out = _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2, rough if passes else 4)
+    out = _contact_state(fb, bush, t, th1, th3, ph2, w3, w2, a3, a2, rough if passes else 4,
+                         same_motion=True)
     for i in range(passes):
         if offset is None:
-            ecc = fb.clearance + out["delta"]
+            ecc = bush[2][:, None] + out["delta"]
             ox, oy = ecc * out["nx"], ecc * out["ny"]
         else:
-            ox, oy = offset(out, ph2)
+            ox, oy = offset({k: v[0] for k, v in out.items()}, ph2[0])
         th3, ph2 = kinematics.positions_from_point(fb, px - ox, py - oy)
-        (w3, w2), (a3, a2) = periodic_derivatives(np.vstack([th3, ph2]), fb.period)
-        out = _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2, 4 if i == passes - 1 else rough)
+        d1, d2 = periodic_derivatives(np.stack([th3, ph2], axis=1), fb.period)
+        w3, w2, a3, a2 = d1[:, 0], d1[:, 1], d2[:, 0], d2[:, 1]
+        out = _contact_state(fb, bush, t, th1, th3, ph2, w3, w2, a3, a2,
+                             4 if i == passes - 1 else rough)
     # the contact angle of the last pass only (the passes before steer by n alone)
-    out.update(psi=qs_numba.contact_angle(out.pop("ang_n"), ph2), w3=w3, w2=w2)
-    return out
+    out.update(psi=qs_numba.contact_angle(out.pop("ang_n").ravel(), ph2.ravel()).reshape(ph2.shape),
+               w3=w3, w2=w2)
+    return [{k: v[r] for k, v in out.items()} for r in range(rows)]
 
 
 def _ideal(l0, l1, l2, l3, omega, n_steps, t0):
@@ -91,28 +106,35 @@ class _Links(NamedTuple):
         return 2.0 * math.pi / self.omega
 
 
-def _contact_state(fb, t, th1, th3, ph2, w3, w2, a3, a2, iterations=4) -> dict:
-    """Joint-B force, its normal/friction split and the penetration for given link motion.
+def _contact_state(fb, bush, t, th1, th3, ph2, w3, w2, a3, a2, iterations=4,
+                   same_motion=False) -> dict:
+    """Joint-B force, its normal/friction split and the penetration for given link motion
+    (rows: the bushings ``bush`` = (R_j, K', c) of :func:`periods`; ``same_motion``: the
+    same link motion in every row, whose equations of motion are then set up once).
 
     M q'' + c(q, q') = Q_applied + J^T f + [0, R_j F_T] solved for the joint force f; the
     friction moment R_j F_T is ~1e-3 of the load terms, so ``iterations`` passes (4 leave
     1e-9) settle it.  The element-wise stages are :mod:`.qs_numba` (compiled with numba
     where installed, the same source as Python otherwise); the spectral derivative of the
     contact direction between them is numpy's FFT."""
+    R, K, c = bush
+    rows = t.shape[0]
     M11, M22, am = loads.mass_terms(fb)
-    b3, b2, j11, j12, j21, j22, det = qs_numba.setup(
-        th3, ph2, w3, w2, a3, a2, M11, M22, am, fb.l0, fb.l2, fb.l3, fb.m2, fb.m3, fb.P,
-        float(fb.F[0]), float(fb.F[1]), fb.g)
+    m = 1 if same_motion else rows
+    b = qs_numba.setup(*(np.ascontiguousarray(x[:m]) for x in (th3, ph2, w3, w2, a3, a2)),
+                       M11, M22, am, fb.l0, fb.l2, fb.l3, fb.m2, fb.m3, fb.P, float(fb.F[0]),
+                       float(fb.F[1]), fb.g)
+    b3, b2, j11, j12, j21, j22, det = (x.repeat(rows, 0) for x in b) if m < rows else b
     tau = np.zeros_like(t)
     slide = fb.omega * fb.R_pin
-    w2R = w2 * fb.R_bush
+    w2R = w2 * R[:, None]
     sgn = contact.friction_sign(slide - w2R, fb.v_eps)
     for _ in range(iterations):
         F_N, ang_n, delta = qs_numba.force(b3, b2, j11, j12, j21, j22, det, tau, sgn, fb.mu,
-                                           fb.K_contact, fb.n_exp)
-        dang, _ = periodic_derivatives(ang_n, fb.period, second=False)
-        v_T, sgn, F_T, tau = qs_numba.friction(F_N, delta, dang, slide, w2R, fb.clearance,
-                                               fb.v_eps, fb.mu, fb.R_bush)
+                                           K, fb.n_exp)
+        dang = periodic_derivatives(ang_n[:, None], fb.period, second=False)[0][:, 0]
+        v_T, sgn, F_T, tau = qs_numba.friction(F_N, delta, dang, slide, w2R, c,
+                                               fb.v_eps, fb.mu, R)
     nx, ny = np.cos(ang_n), np.sin(ang_n)
     return {"t": t, "theta1": th1, "theta3": th3, "phi2": ph2, "F_N": F_N, "F_T": F_T,
             "delta": delta, "v_T": v_T, "ang_n": ang_n, "nx": nx, "ny": ny}
@@ -134,7 +156,7 @@ def _omegas(n, period):
 
 def periodic_derivatives(angle, period, second=True, harmonics=HARMONICS):
     """First (and second) time derivative of angles sampled uniformly over one period
-    (the last axis).
+    (the last axis; a 3-D ``angle`` is a stack of independent calls, one per first index).
 
     Spectral differentiation of the periodic part; a secular 2 pi k per period (a link
     that turns fully) is removed first and its constant rate added back.  Only the first
@@ -146,17 +168,9 @@ def periodic_derivatives(angle, period, second=True, harmonics=HARMONICS):
     """
     a = np.asarray(angle, float)
     n = a.shape[-1]
-    step, turn = qs_numba.steps(a.reshape(-1, n))
-    if not step < np.pi:    # below pi np.unwrap adds zero corrections: skipped, exactly
-        a = np.unwrap(a, axis=-1)
-        _, turn = qs_numba.steps(a.reshape(-1, n))
-    turns = not turn <= 0.5     # some row's k below is not zero
-    if turns:
-        k = np.round((a[..., -1] + (a[..., 1] - a[..., 0]) - a[..., 0]) / (2 * np.pi))[..., None]
-        per = a - 2 * np.pi * k * np.arange(n) / n
-    else:
-        per = a
-    f = np.fft.rfft(per, axis=-1)
+    group = a.shape[-2] if a.ndim == 3 else a.size // n
+    per, k, turns, some = qs_numba.periodic_part(np.ascontiguousarray(a.reshape(-1, n)), group)
+    f = np.fft.rfft(per.reshape(a.shape), axis=-1)
     factors = _omegas(n, period)
     f[..., min(harmonics + 1, (n - 1) // 2 + 1):] = 0.0   # incl. the Nyquist mode of an even n
     if second:      # both derivatives in one inverse transform
@@ -164,6 +178,7 @@ def periodic_derivatives(angle, period, second=True, harmonics=HARMONICS):
                               axis=-1)
     else:
         d1, d2 = np.fft.irfft(factors[0] * f, n, axis=-1), None
-    if turns:
-        d1 = d1 + 2 * np.pi * k / period
+    if some:     # the rows of the calls where some row turns
+        d1 = np.where(turns.reshape(a.shape[:-1] + (1,)),
+                      d1 + 2 * np.pi * k.reshape(a.shape[:-1] + (1,)) / period, d1)
     return d1, d2

@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import functools
 import math
-from dataclasses import replace
+import operator
+from dataclasses import fields, replace
 
 import numpy as np
 from scipy import optimize, stats
@@ -50,6 +51,41 @@ def setup(run: dict) -> tuple[FourBar, Context]:
 def quasi_static_period(fb: FourBar, s: dict) -> dict:
     """Quasi-static continuous contact over one period (n_steps uniform samples)."""
     return quasistatic.one_period(fb, int(s["n_steps"]))
+
+
+#: what a quasi-static period reads of a mechanism: all but the damping of Eq. (14)
+_QS_KEY = operator.attrgetter(*(f.name for f in fields(FourBar) if f.name not in ("C_max", "d_max")))
+
+
+def kept_periods(s: dict, size: int = 512):
+    """quasi_static_period for one run's ``s``, keeping its last ``size`` periods: the fit's
+    brackets and zeros and the calibration revisit load points and bushing radii, and a
+    mechanism met again (by the values a quasi-static period reads, _QS_KEY) is not solved
+    again.  Its ``many(fbs, s)`` solves the bushings of one mechanism not kept yet together
+    (quasistatic.periods).  Made per run, so that no run's time depends on what ran before
+    it in the process; the kept arrays are read-only (shared)."""
+    kept: dict = {}
+
+    def many(fbs, _s: dict) -> list:
+        keys = [_QS_KEY(fb) for fb in fbs]
+        new = {k: fb for k, fb in zip(keys, fbs) if k not in kept}
+        for k, hist in zip(new, quasistatic.periods(list(new.values()), int(s["n_steps"]))
+                           if new else ()):
+            for v in hist.values():
+                v.flags.writeable = False
+            kept[k] = hist
+        out = []
+        for k in keys:
+            kept[k] = kept.pop(k)           # the most recently used last
+            out.append(dict(kept[k]))
+        while len(kept) > size:
+            del kept[next(iter(kept))]
+        return out
+
+    def joint(fb: FourBar, s_: dict) -> dict:
+        return many([fb], s_)[0]
+    joint.many = many
+    return joint
 
 
 def dynamic_period(fb: FourBar, s: dict) -> dict:
@@ -128,16 +164,35 @@ def period_factor(fb_v: FourBar, s: dict, joint):
     ``fb_v`` at radius R_bush -- what calibration and prediction step through."""
     def factor(R_bush):
         fb_w = fb_v.with_bushing_radius(R_bush)
-        return wear.period_wear_factor(joint(fb_w, s), fb_w, fb_v.period,
-                                       s.get("wear_range", "contact_point"), statistics=False)["G"]
+        return _factor_G(joint(fb_w, s), fb_w, fb_v, s)
     return factor
+
+
+def _factor_G(hist: dict, fb_w: FourBar, fb_v: FourBar, s: dict) -> float:
+    """G (Eq. 29) of the period ``hist`` of fb_v's mechanism with the bushing of ``fb_w``."""
+    return wear.period_wear_factor(hist, fb_w, fb_v.period, s.get("wear_range", "contact_point"),
+                                   statistics=False)["G"]
 
 
 def wear_factor_of(fb_v: FourBar, s: dict, joint=None):
     """period_factor of ``joint`` (default continuous_contact_period, which refuses contact
     loss; quasi_static_period where a margin is measured, not assumed), a radius met again
-    not solved again."""
-    return functools.cache(period_factor(fb_v, s, joint or continuous_contact_period))
+    not solved again; ``factor.many(radii)`` gives several (a calibration's), solved
+    together where the joint can (``joint.many``: kept_periods)."""
+    joint = joint or continuous_contact_period
+    G: dict = {}
+
+    def many(radii):
+        new = [fb_v.with_bushing_radius(R) for R in dict.fromkeys(radii) if R not in G]
+        hists = joint.many(new, s) if hasattr(joint, "many") else (joint(f, s) for f in new)
+        for fb_w, hist in zip(new, hists):
+            G[fb_w.R_bush] = _factor_G(hist, fb_w, fb_v, s)
+        return [G[R] for R in radii]
+
+    def factor(R_bush):
+        return many([R_bush])[0]
+    factor.many = many
+    return factor
 
 
 def with_wear(run: dict, fb: FourBar, ctx: Context, res: dict, joint) -> dict:
@@ -468,21 +523,23 @@ def gravity_nodes(lo: float, hi: float, n: int) -> tuple[np.ndarray, np.ndarray]
     return 0.5 * (e[1:] + e[:-1]), np.diff(e) / (hi - lo)
 
 
-def _branch_point(fb: FourBar, s: dict, p: dict, E, d: float, a0: float, g: float, K_paper, sigma):
+def _branch_point(fb: FourBar, s: dict, p: dict, E, d: float, a0: float, g: float, K_paper, sigma,
+                  joint=quasi_static_period):
     """The zero of the misfit within 3 deg of direction ``a0`` at gravity ``g`` (one
-    branch of the load points the tables allow), with its chi2 and quasi-static period;
-    None where the branch has no zero there (contact refused or the branch ended)."""
+    branch of the load points the tables allow), with its chi2 and quasi-static period
+    (``joint``: quasi_static_period or the run's kept_periods); None where the branch has
+    no zero there (contact refused or the branch ended)."""
     # xtol 1e-5 deg: the misfit moves by < 1e-4 of FIT_TOLERANCE there, and chi2, taken
     # about the ratios' common level, not at all
     _, zeros = fit_zeros(fb, s, p, E, d, np.array([a0 - 3.0, a0 + 3.0]), g, K_paper,
-                         joint=quasi_static_period, xtol=1e-5)
+                         joint=joint, xtol=1e-5)
     zeros = [z for z in zeros if abs(math.remainder(z["direction"] - a0, 360.0)) <= 3.0]
     if not zeros:
         return None
     z = min(zeros, key=lambda z: abs(math.remainder(z["direction"] - a0, 360.0)))
     chi2 = laplace_log_weight(np.log(z["K"] / K_paper), sigma, z["slope"])[0]
     return {"gravity": g, "direction": z["direction"] % 360.0, "chi2": chi2,
-            "qs": quasi_static_period(z["fb"], s), "fb": z["fb"]}
+            "qs": joint(z["fb"], s), "fb": z["fb"]}
 
 
 def _inside(r, threshold: float) -> bool:
@@ -491,7 +548,7 @@ def _inside(r, threshold: float) -> bool:
 
 
 def region_edge(fb: FourBar, s: dict, p: dict, E, d: float, branch: list, K_paper, sigma,
-                threshold: float, bisections: int, bound: float):
+                threshold: float, bisections: int, bound: float, joint=quasi_static_period):
     """The lowest gravity on one branch of load points (``branch``: its points at the prior
     nodes, ascending g, each with its chi2 and margin) inside the likelihood region (chi2
     within ``threshold``, wear on the upper part), the branch's direction interpolated
@@ -502,12 +559,14 @@ def region_edge(fb: FourBar, s: dict, p: dict, E, d: float, branch: list, K_pape
     ``bound`` (the smallest credible margin so far) and whose better end is within 10x the
     threshold (chi2 is smooth in g), chi2's minimum is sought by ``bisections``
     golden-section steps; the first interval with a point inside (or a credible node) gives
-    the edge, bisected ``bisections`` times below that point.  Returns it, or None."""
+    the edge, bisected ``bisections`` times below that point (``joint``: _branch_point's).
+    Returns it, or None."""
     gb = np.array([q["gravity"] for q in branch])
     ab = np.unwrap(np.radians([q["direction"] for q in branch]))
 
     def at(g):
-        return _branch_point(fb, s, p, E, d, math.degrees(float(np.interp(g, gb, ab))), g, K_paper, sigma)
+        return _branch_point(fb, s, p, E, d, math.degrees(float(np.interp(g, gb, ab))), g, K_paper,
+                             sigma, joint)
     phi = 0.5 * (math.sqrt(5.0) - 1.0)
     for i, q in enumerate(branch):
         lo = float(gb[i - 1]) if i else float(s["posterior_gravity_range"][0])
@@ -575,17 +634,18 @@ def load_point_posterior(run: dict, ctx: Context) -> dict:
         gs, g_prior = np.zeros(1), np.ones(1)
     dh = np.array([p[f"measured_increment_{side}"] for side in SIDES])
     sigma = rounding_sigma(dh * 1e3)
+    qs_of = kept_periods(s)
     pts = []
     for d in ds_:
         for j, g in enumerate(gs):
             for mu in mus:
                 fb_n = replace(fb, mu=float(mu))
                 _, zeros = fit_zeros(fb_n, s, p, E, float(d), dirs, float(g), K_paper,
-                                     joint=quasi_static_period)
+                                     joint=qs_of)
                 for z in zeros:
                     r = np.log(z["K"] / K_paper)
                     chi2, width, logw, shift = laplace_log_weight(r, sigma, z["slope"])
-                    qs = quasi_static_period(z["fb"], s)
+                    qs = qs_of(z["fb"], s)
                     f = wear.period_wear_factor(qs, z["fb"], fb.period)
                     pts.append({"distance": float(d), "gravity": float(g), "friction": float(mu),
                                 "direction": (z["direction"] + shift) % 360.0, "misfit": float(np.mean(r)),
@@ -632,7 +692,7 @@ def load_point_posterior(run: dict, ctx: Context) -> dict:
         bound = min([q["qs_margin"] for q in pts if q["credible"]] + [e["qs_margin"] for e in edges],
                     default=math.inf)
         e = region_edge(replace(fb, mu=br[0]["friction"]), s, p, E, br[0]["distance"], br, K_paper,
-                        sigma, threshold, int(s["edge_bisections"]), bound)
+                        sigma, threshold, int(s["edge_bisections"]), bound, qs_of)
         if e is not None:
             edges.append({"distance": br[0]["distance"], "friction": br[0]["friction"],
                           "gravity": e["gravity"], "direction": e["direction"], "chi2": e["chi2"],

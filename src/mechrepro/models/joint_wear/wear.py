@@ -187,6 +187,7 @@ def calibrate(h_measured, interval_h: float, period: float, R0: float,
     ``feedback`` (Sec. 4.3 does not say whether the calibration grew the bushing: 1, it did,
     as the prediction's step 1; 0, every interval on the new bushing);
     dh_measured: the increments dh^P the tables print (default: differences of h^P).
+    ``wear_factor.many(radii)``, where it has one, gives the G of several radii at once.
     Returns (k_p per interval, mean k, the wear factors G_p used).
     """
     h = np.concatenate([[0.0], np.asarray(h_measured, float)])
@@ -194,7 +195,9 @@ def calibrate(h_measured, interval_h: float, period: float, R0: float,
     if dh.shape != h[1:].shape:
         raise Refusal(f"joint_wear: {dh.size} increments for {h.size - 1} cumulative values")
     M = periods_per_interval(interval_h, period)
-    G = np.array([wear_factor(bushing_radius(R0, feedback * hp)) for hp in h[:-1]])
+    radii = [bushing_radius(R0, feedback * hp) for hp in h[:-1]]
+    many = getattr(wear_factor, "many", None)
+    G = np.array(many(radii) if many else [wear_factor(R) for R in radii])
     k = dh / M / G                                                              # Eq. (34)
     return k, float(np.mean(k)), G
 
