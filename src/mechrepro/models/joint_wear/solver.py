@@ -623,7 +623,7 @@ def load_point_posterior(run: dict, ctx: Context) -> dict:
     sides, and the dynamic margin (contact_margins) at its point of the smallest
     quasi-static margin, the result: the contact statement holds only with margin
     everywhere in the credible set."""
-    fb, ctx = setup(run)
+    fb = ctx.fb
     s, p = ctx.s, ctx.p
     E = kinematics.load_point_mid_stroke(fb)
     dirs = np.asarray(s["fit_load_direction_deg"], float)
