@@ -91,6 +91,21 @@ def test_every_result_records_what_made_it(wf):
         results / "runs" / f"{SCENE}.nc")["made_by"]["record"]
 
 
+def test_the_toy_pipeline_is_whole_and_its_additions_stay_in_the_copy(wf):
+    """conftest.toy_pipeline: its ci run passed the reference check and was archived, with
+    the study it adds (TOY_ADDED) solved; tests/toy_paper itself has neither the study nor
+    the ci overlay (test_adding_a_paper counts its keys)."""
+    work, _ = wf
+    check = (work / "results" / f"report{TAG}" / "reference_check.txt").read_text()
+    assert check.splitlines()[0].endswith(": OK") and f"{PAPER}: 1 quantities" in check, check
+    assert verify(work / "results", work / "results" / f"archive{TAG}" / "manifest.json") == []
+    assert (work / "results" / PAPER / "studies" / "steps.nc").exists()
+    copied = yaml.safe_load((work / "config" / "papers" / f"{PAPER}.yaml").read_text())
+    assert {"studies", "profiles"} <= set(copied)
+    own = yaml.safe_load((conftest.TOY / "config" / "papers" / f"{PAPER}.yaml").read_text())
+    assert not {"studies", "profiles"} & set(own)
+
+
 def test_restore_then_edit_reruns_the_solve(wf, tmp_path):
     """The archive restored into a fresh checkout schedules nothing but its own archive; an
     edit of one scene then reruns its solve job, whose new numbers the reference check sees."""
