@@ -137,12 +137,13 @@ def check_artefacts(work: Path, artefacts) -> tuple[Path, str]:
     return work, log.getvalue()
 
 
-def one_paper_pipeline(tmp_path_factory, papers: str, dst: Path) -> tuple[Path, str]:
-    """A copy in ``dst`` of the ci pipeline of ``papers`` (`papers=[saw_chain]`), run once
-    per test session whichever xdist worker asks first: the fault and reliability tests
-    each break a copy of saw_chain's (13-16 s to run), and built twice it was run twice.
-    The copy keeps the time stamps (a moved project with its results schedules nothing:
-    test_faults), so the copy is as the run left it."""
+def one_paper_pipeline(tmp_path_factory, papers: str, dst: Path,
+                       prepare=copy_workflow) -> tuple[Path, str]:
+    """A copy in ``dst`` of the ci pipeline of ``papers`` (`papers=[saw_chain]`) in the
+    workflow copy ``prepare`` makes, run once per test session whichever xdist worker asks
+    first: each fault, reliability and staleness test breaks a copy of one such run, and
+    built twice it was run twice.  The copy keeps the time stamps (a moved project with its
+    results schedules nothing: test_faults), so the copy is as the run left it."""
     import fcntl
 
     base = tmp_path_factory.getbasetemp()
@@ -156,10 +157,61 @@ def one_paper_pipeline(tmp_path_factory, papers: str, dst: Path) -> tuple[Path, 
         if not log.exists():
             shutil.rmtree(built, ignore_errors=True)
             built.mkdir()
-            copy_workflow(built)
+            prepare(built)
             log.write_text(snakemake(built, base=[*SNAKEMAKE, f"papers=[{papers}]"]))
     shutil.copytree(built, dst, symlinks=True, dirs_exist_ok=True)
     return dst, log.read_text()
+
+
+TOY = ROOT / "tests" / "toy_paper"
+# what the fault, reliability and staleness tests need that the toy paper lacks (toy_workflow)
+TOY_ADDED = """
+studies:
+  steps: {scene: response, description: "steps per period swept (tests: a study to break)",
+    sweep: {steps_per_period: [16, 32, 64, 128]}}
+profiles:
+  ci:
+    scenes: {response: {resolution: {steps_per_period: 32}}}
+    studies:
+      steps: {sweep: {steps_per_period: [16, 32, 64]}}
+"""
+
+
+def toy_workflow(dst: Path, reference: Path | None = None) -> Path:
+    """A workflow copy in ``dst`` with the toy paper (tests/toy_paper, one scene, one figure,
+    one reported row) added as test_adding_a_paper adds it, the cheapest whole pipeline to
+    break: the faults, reliability and staleness tests run it (`papers=[toy]`).  Added in
+    the copy only (tests/toy_paper stays as small as its test requires), TOY_ADDED: a study
+    (`steps`, a sweep of steps_per_period on scene `response`: a study and its runs to
+    break) and a `profiles: ci:` overlay (its scene and study coarser: profile input to
+    break); and the toy's ci reference, so that its reference check and archive run: copied
+    from ``reference`` (a built copy's results/reference/ci/toy.csv, as a checkout that
+    commits the paper has it), or made by `python -m mechrepro.reference ci` (native
+    platform only, as docs/ADDING_A_PAPER.md makes one)."""
+    import subprocess
+
+    copy_workflow(dst)
+    for src in sorted(p for p in TOY.rglob("*") if p.is_file() and "__pycache__" not in p.parts):
+        (dst / src.relative_to(TOY)).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy2(src, dst / src.relative_to(TOY))
+    cfg = dst / "config" / "papers" / "toy.yaml"
+    cfg.write_text(cfg.read_text() + TOY_ADDED)
+    ref = dst / "results" / "reference" / "ci" / "toy.csv"
+    if reference is not None:
+        shutil.copy2(reference, ref)
+        return dst
+    proc = subprocess.run([sys.executable, "-m", "mechrepro.reference", "ci", "ref-ci",
+                           "--papers", "toy", "--variants", "native"], cwd=dst,
+                          capture_output=True, text=True, timeout=900)
+    assert proc.returncode == 0 and ref.exists(), proc.stdout[-3000:] + proc.stderr[-3000:]
+    shutil.rmtree(dst / "ref-ci")
+    return dst
+
+
+def toy_pipeline(tmp_path_factory, dst: Path) -> tuple[Path, str]:
+    """A copy in ``dst`` of the toy's ci pipeline (:func:`toy_workflow`), run once per
+    session (:func:`one_paper_pipeline`)."""
+    return one_paper_pipeline(tmp_path_factory, "toy", dst, prepare=toy_workflow)
 
 
 @pytest.fixture(scope="session")

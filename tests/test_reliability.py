@@ -3,8 +3,9 @@
 Heal decides by content, under the run lock: a copy without time stamps schedules nothing
 and deletes nothing, a second run started while one writes is refused before it touches
 anything, an interrupted run keeps what it finished, a result changed behind the
-workflow's back is removed and rebuilt.  The pipeline tests run saw_chain's ci profile
-(about 10 s) in a copy of the workflow.
+workflow's back is removed and rebuilt.  The pipeline tests break a copy of the toy paper's
+ci pipeline (conftest.toy_pipeline, the smallest whole one); the bad-input tests refuse
+edits of saw_chain's config (see BAD_PAPER) in a copy of its ci pipeline.
 """
 import os
 import shutil
@@ -16,18 +17,25 @@ import time
 import pytest
 
 import snakemake_fork
-from conftest import one_paper_pipeline
+from conftest import one_paper_pipeline, toy_pipeline
 from mechrepro import heal as healmod
 from mechrepro.io import read_sum, sum_path, write_text
 from mechrepro.provenance import file_sha256
 
-PAPER = "saw_chain"
+PAPER = "toy"
+# the bad-input tests edit saw_chain's config (the edits of test_inputs.BAD and those below
+# name its text and reach its own checks: a chain pitch's plausible range, K's round-off
+# limit, its solve job's memory estimate), so they refuse a run of saw_chain's pipeline
+BAD_PAPER = "saw_chain"
 SM = [sys.executable, "-m", "snakemake", "--cores", "2", "--config", "profile=ci",
       f"papers=[{PAPER}]"]
+# the disk-full test's tmpfs: the results' size plus this (kB): room for the new tables and
+# figures and what update() keeps aside, not for a second archive (the toy's: 120 kB)
+ROOM_K = 300
 
 
-def sm(work, *args, check=True):
-    proc = snakemake_fork.run([*SM[3:], *args], work, timeout=900)
+def sm(work, *args, check=True, paper=PAPER):
+    proc = snakemake_fork.run([*SM[3:-1], f"papers=[{paper}]", *args], work, timeout=900)
     if check and proc.returncode != 0:
         raise AssertionError(proc.stdout[-3000:] + proc.stderr[-3000:])
     return proc
@@ -102,11 +110,17 @@ def test_heal_cli_has_help_and_a_dry_run(tmp_path):
     assert out.returncode == 0 and "--dry-run" in out.stdout
 
 
-# --- the pipeline (saw_chain, ci profile) -------------------------------------------------
+# --- the pipeline (the toy paper, ci profile) --------------------------------------------
 
 @pytest.fixture(scope="module")
 def run(tmp_path_factory):
-    return one_paper_pipeline(tmp_path_factory, PAPER, tmp_path_factory.mktemp("rel"))[0]
+    return toy_pipeline(tmp_path_factory, tmp_path_factory.mktemp("rel"))[0]
+
+
+@pytest.fixture(scope="module")
+def bad_run(tmp_path_factory):
+    """saw_chain's ci pipeline, whose config the bad-input tests edit (BAD_PAPER)."""
+    return one_paper_pipeline(tmp_path_factory, BAD_PAPER, tmp_path_factory.mktemp("bad"))[0]
 
 
 pipeline = pytest.mark.slow
@@ -406,8 +420,9 @@ def test_one_parameter_in_one_scene_reruns_exactly_its_solve_jobs(paper, workflo
      "expected to take 2900 MB, above the solve rule's 2000 MB"),
 ], ids=["nan", "duplicate scenes", "8.91 m pitch", "latin-1 byte", "K beyond round-off",
         "emptied effects", "memory above the rule"])
-def test_bad_input_stops_a_real_run_before_any_job_and_loses_nothing(run, tmp_path, edit, expect):
-    _refused_and_nothing_lost(run, tmp_path, edit, [expect])
+def test_bad_input_stops_a_real_run_before_any_job_and_loses_nothing(bad_run, tmp_path, edit,
+                                                                     expect):
+    _refused_and_nothing_lost(bad_run, tmp_path, edit, [expect])
 
 
 def _bad_inputs():
@@ -418,21 +433,22 @@ def _bad_inputs():
 
 @pipeline
 @pytest.mark.parametrize("name, edit, expect", _bad_inputs(), ids=[b[0] for b in _bad_inputs()])
-def test_every_bad_input_class_of_test_inputs_loses_nothing(run, tmp_path, name, edit, expect):
-    _refused_and_nothing_lost(run, tmp_path, edit, expect)
+def test_every_bad_input_class_of_test_inputs_loses_nothing(bad_run, tmp_path, name, edit,
+                                                            expect):
+    _refused_and_nothing_lost(bad_run, tmp_path, edit, expect)
 
 
 def _refused_and_nothing_lost(run, tmp_path, edit, expect):
     work = tmp_path / "w"
     shutil.copytree(run, work, symlinks=True)
     before = hashes(work / "results")
-    path = work / "config" / "papers" / f"{PAPER}.yaml"
+    path = work / "config" / "papers" / f"{BAD_PAPER}.yaml"
     text = path.read_text()
     assert edit(text) != text, "the edit does not match the config: update the test"
     path.write_bytes(edit(text).encode("utf-8", "surrogateescape"))
-    proc = sm(work, check=False)
+    proc = sm(work, check=False, paper=BAD_PAPER)
     out = proc.stdout + proc.stderr
-    assert proc.returncode != 0 and f"config/papers/{PAPER}.yaml" in out, out[-2000:]
+    assert proc.returncode != 0 and f"config/papers/{BAD_PAPER}.yaml" in out, out[-2000:]
     assert all(e in out for e in expect), (expect, out[-2000:])
     assert "rule " not in out and "Traceback" not in out, out[-2000:]
     assert hashes(work / "results") == before
@@ -693,7 +709,7 @@ def test_a_disk_full_while_archiving_is_archived_again_once_there_is_room(run, t
     sm_cmd = " ".join(SM)
     script = f"""
 cd {work}
-mount -t tmpfs -o size={used + 1100}k tmpfs results || exit 77
+mount -t tmpfs -o size={used + ROOM_K}k tmpfs results || exit 77
 cp -a {saved}/. results/
 {sm_cmd} --forcerun validate_{PAPER} > full.log 2>&1; echo "full=$?"
 mount -o remount,size=200m results

@@ -3,8 +3,9 @@ copied or touched project reruns exactly the jobs whose results were made by som
 else than today's run records, code and packages, never by time stamps, and the archive
 certifies only current results.
 
-Each test breaks a copy of saw_chain's ci pipeline (conftest.one_paper_pipeline) as a user
-would, then runs Snakemake as `make ci-reproduce` does.
+Each test breaks a copy of the toy paper's ci pipeline (conftest.toy_pipeline: the smallest
+whole pipeline; staleness does not depend on the paper) as a user would, then runs Snakemake
+as `make ci-reproduce` does.
 """
 import json
 import os
@@ -19,8 +20,12 @@ from mechrepro.io import open_dataset, read_sum, run_attrs
 
 pytestmark = pytest.mark.slow
 
-PAPER, TAG = "saw_chain", "-saw_chain"
+PAPER, TAG = "toy", "-toy"
 SOLVE = f"rule solve_{PAPER}__batch:"
+# the edit: one parameter of one scene, set in its config to SCALE times its value
+SCENE, PARAM, SCALE = "response", "stiffness", 12500 / 12000
+SOURCE = f"src/mechrepro/models/{PAPER}/__init__.py"    # a module its solve job imports
+DRIFT = "natural_frequency: reference"      # the reference check's line for the edited row
 OLD_TIME = 946_684_800 * 10**9     # 2000-01-01: an edit that keeps an old time stamp
 
 
@@ -31,7 +36,7 @@ def snakemake(work, *args, check=True):
 
 @pytest.fixture(scope="module")
 def wf(tmp_path_factory):
-    return conftest.one_paper_pipeline(tmp_path_factory, PAPER, tmp_path_factory.mktemp("st"))
+    return conftest.toy_pipeline(tmp_path_factory, tmp_path_factory.mktemp("st"))
 
 
 @pytest.fixture
@@ -41,30 +46,30 @@ def copy(wf, tmp_path):
     return tmp_path / "w"
 
 
-def set_speed(work, rpm=12500, keep_time=False):
-    """The saw_chain scene speed_12000's sprocket speed (r/min), edited in its config."""
+def set_param(work, keep_time=False):
+    """PARAM of scene SCENE, set in its config to SCALE times the paper's value."""
     path = work / "config" / "papers" / f"{PAPER}.yaml"
     st = path.stat()
     raw = yaml.safe_load(path.read_text())
-    raw["scenes"]["speed_12000"]["parameters"]["sprocket_speed"] = rpm
+    value = raw["parameters"][PARAM]["value"] * SCALE
+    raw["scenes"][SCENE].setdefault("parameters", {})[PARAM] = value
     path.write_text(yaml.safe_dump(raw, sort_keys=False))
     if keep_time:
         os.utime(path, ns=(st.st_atime_ns, st.st_mtime_ns))
 
 
-def speed_recorded(work):
-    ds = open_dataset(work / "results" / PAPER / "runs" / "speed_12000.nc")
+def recorded(work):
+    ds = open_dataset(work / "results" / PAPER / "runs" / f"{SCENE}.nc")
     return run_attrs(ds)["parameters"]
 
 
 def rerun_after_the_edit(work, before):
-    """The edited scene is solved again: its result records the new speed, the reference
+    """The edited scene is solved again: its result records the new value, the reference
     check sees the new numbers drift and the archive refuses them (the last one is kept)."""
     log = snakemake(work, check=False)
     assert SOLVE in log, log[-3000:]
-    assert speed_recorded(work)["values_si"]["sprocket_speed"] == pytest.approx(
-        before * 12500 / 12000, rel=1e-12)
-    assert "dynamic_load_max_at_12000rpm: reference" in log and "not archiving" in log
+    assert recorded(work)["values_si"][PARAM] == pytest.approx(before * SCALE, rel=1e-12)
+    assert DRIFT in log and "not archiving" in log
     return log
 
 
@@ -81,9 +86,24 @@ def test_every_result_records_what_made_it(wf):
               *results.glob("figures/*.png"), results / "notebook.ipynb"]:
         made_by = read_sum(f)["made_by"]
         assert {"code", "packages", "inputs"} <= set(made_by), f
-    attrs = run_attrs(open_dataset(results / "runs" / "speed_12000.nc"))
+    attrs = run_attrs(open_dataset(results / "runs" / f"{SCENE}.nc"))
     assert json.loads(attrs["made_by"])["record"] == read_sum(
-        results / "runs" / "speed_12000.nc")["made_by"]["record"]
+        results / "runs" / f"{SCENE}.nc")["made_by"]["record"]
+
+
+def test_the_toy_pipeline_is_whole_and_its_additions_stay_in_the_copy(wf):
+    """conftest.toy_pipeline: its ci run passed the reference check and was archived, with
+    the study it adds (TOY_ADDED) solved; tests/toy_paper itself has neither the study nor
+    the ci overlay (test_adding_a_paper counts its keys)."""
+    work, _ = wf
+    check = (work / "results" / f"report{TAG}" / "reference_check.txt").read_text()
+    assert check.splitlines()[0].endswith(": OK") and f"{PAPER}: 1 quantities" in check, check
+    assert verify(work / "results", work / "results" / f"archive{TAG}" / "manifest.json") == []
+    assert (work / "results" / PAPER / "studies" / "steps.nc").exists()
+    copied = yaml.safe_load((work / "config" / "papers" / f"{PAPER}.yaml").read_text())
+    assert {"studies", "profiles"} <= set(copied)
+    own = yaml.safe_load((conftest.TOY / "config" / "papers" / f"{PAPER}.yaml").read_text())
+    assert not {"studies", "profiles"} & set(own)
 
 
 def test_restore_then_edit_reruns_the_solve(wf, tmp_path):
@@ -93,14 +113,15 @@ def test_restore_then_edit_reruns_the_solve(wf, tmp_path):
 
     work, _ = wf
     (tmp_path / "fresh").mkdir()
-    fresh = conftest.copy_workflow(tmp_path / "fresh")
+    fresh = conftest.toy_workflow(tmp_path / "fresh",
+                                  work / "results" / "reference" / "ci" / f"{PAPER}.csv")
     restore(work / "results" / f"archive{TAG}" / "mechrepro-results.tar.gz", fresh)
     from test_pipeline import scheduled
 
-    # restore puts the archive under archive/, where this one-paper run's is archive-saw_chain/
+    # restore puts the archive under archive/, where this one-paper run's is archive-toy/
     assert scheduled(snakemake(fresh, "-n")) <= {"archive", "all"}
-    set_speed(fresh)
-    log = rerun_after_the_edit(fresh, speed_recorded(work)["values_si"]["sprocket_speed"])
+    set_param(fresh)
+    log = rerun_after_the_edit(fresh, recorded(work)["values_si"][PARAM])
     assert "changed since it was made: its run records" in log
 
 
@@ -108,13 +129,13 @@ def test_no_metadata_then_edit_with_an_old_time_stamp(copy):
     """`rm -rf .snakemake`, then the config edited with its old time stamp kept (as `cp -p`
     from a backup leaves it): the solve reruns, from what the result records."""
     shutil.rmtree(copy / ".snakemake")
-    before = speed_recorded(copy)["values_si"]["sprocket_speed"]
-    set_speed(copy, keep_time=True)
+    before = recorded(copy)["values_si"][PARAM]
+    set_param(copy, keep_time=True)
     rerun_after_the_edit(copy, before)
 
 
 def test_a_source_edit_with_an_old_time_stamp_reruns_its_jobs(copy):
-    src = copy / "src" / "mechrepro" / "models" / PAPER / "solver.py"
+    src = copy / SOURCE
     src.write_text(src.read_text() + "\n# an edit restored from a backup with cp -p\n")
     os.utime(src, ns=(OLD_TIME, OLD_TIME))
     log = snakemake(copy)
@@ -131,8 +152,8 @@ def test_time_stamps_never_decide(copy):
             if p.is_file() and (top != "results" or "benchmarks" in p.parts):
                 os.utime(p)
     assert "Nothing to be done" in snakemake(copy, "-n")
-    before = speed_recorded(copy)["values_si"]["sprocket_speed"]
-    set_speed(copy, keep_time=True)
+    before = recorded(copy)["values_si"][PARAM]
+    set_param(copy, keep_time=True)
     for p in (copy / "results").rglob("benchmarks/*"):
         os.utime(p)
     rerun_after_the_edit(copy, before)
@@ -143,12 +164,12 @@ def test_the_archive_refuses_a_result_that_is_not_current(copy):
     from mechrepro.archive import ArchiveRefused, certify
 
     results = copy / "results"
-    f = results / PAPER / "runs" / "speed_12000.nc"
+    f = results / PAPER / "runs" / f"{SCENE}.nc"
     side = f.parent / f".{f.name}.sum"
     rec = json.loads(side.read_text())
     rec["made_by"]["packages"] = "0" * 64
     side.write_text(json.dumps(rec))
-    with pytest.raises(ArchiveRefused, match="speed_12000.nc: changed since it was made: .*the "
+    with pytest.raises(ArchiveRefused, match=f"{SCENE}.nc: changed since it was made: .*the "
                                              "package set"):
         certify(results, [str(f)], results / f".jobs{TAG}.json")
 
