@@ -169,7 +169,7 @@ def prepare(name: str, sets: list[str], base: Path = Path("."), profile: str | N
             (tmp / item).symlink_to(os.path.relpath(base / item, exp))
         (tmp / "config" / "schema").symlink_to(os.path.relpath(base / "config" / "schema",
                                                                exp / "config"))
-        for extra in ("reference.yaml",):
+        for extra in ("reference.yaml", "costs.csv"):
             shutil.copy2(base / "config" / extra, tmp / "config" / extra)
         (tmp / "config" / "config.yaml").write_text(
             f"# config/config.yaml of the project for experiment {name}\n"
