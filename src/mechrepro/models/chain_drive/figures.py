@@ -36,6 +36,23 @@ def with_base(R, study: str, scene: str, key: str):
     return [values[i] for i in order], [runs[i] for i in order]
 
 
+def by_modes(R, scene: str, study: str) -> dict:
+    """{transverse modes: run dataset} of a Fig. 10 scene and its mode study."""
+    return {int(resolution(d, "n_transverse")): d
+            for d in [R.run(scene)] + R.study_runs(study)}
+
+
+def drawn_modes(R, scene: str) -> int:
+    return int(resolution(R.run(scene), "n_transverse"))
+
+
+def mode_ratios(R, coupled: str, uncoupled: str) -> dict:
+    """coupled / uncoupled steady amplitude at the probe per mode count."""
+    c, u = by_modes(R, coupled, coupled + "_modes"), by_modes(R, uncoupled, uncoupled + "_modes")
+    return {n: float(c[n].steady_amplitude) / float(u[n].steady_amplitude)
+            for n in sorted(set(c) & set(u))}
+
+
 def steady(ds) -> np.ndarray:
     """A sweep's steady amplitude [m], nan where the speed is unstable: an unstable periodic
     orbit has no steady amplitude (:func:`.claims.steady`)."""
@@ -540,8 +557,6 @@ def fig10(R):
     L/3 with and without longitudinal coupling, 5 % below the first longitudinal resonance
     (10a: exactly at it the undamped longitudinal response has no steady state) and at the
     fifth transverse resonance (10b), with the coupled/uncoupled ratio over the mode study."""
-    from . import validation as V       # validation imports this module
-
     fig, ax = plt.subplots(2, 1, figsize=(9, 6))
     for a, (coupled, uncoupled, head) in zip(ax, (
             ("fig10_longitudinal", "fig10_uncoupled",
@@ -555,9 +570,9 @@ def fig10(R):
         a.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
         # the drawn mode count, its RK4 cost and the coupled/uncoupled ratio over the mode study
         cost = float(dc.rk4_wall_time) + float(du.rk4_wall_time)
-        ratios = ", ".join(f"{k}: {v:.3g}" for k, v in V.mode_ratios(R, coupled, uncoupled).items())
+        ratios = ", ".join(f"{k}: {v:.3g}" for k, v in mode_ratios(R, coupled, uncoupled).items())
         a.set_title(head.format(float(dc.speed), float(dc.detuning))
-                    + f"\n{V.drawn_modes(R, coupled)} transverse modes ({cost:.1f} s of RK4 for "
+                    + f"\n{drawn_modes(R, coupled)} transverse modes ({cost:.1f} s of RK4 for "
                     f"the pair); coupled/uncoupled by modes {ratios}", fontsize=8)
     ax[1].set(xlabel="t [ms]")
     fig.tight_layout()

@@ -333,23 +333,6 @@ for _q, _scene, _unstable in (("medium_speed_stable_24_24_i2_0p002", "fig09a", F
 # studies, and carries the spread over the study as its error: pass / fail / inconclusive
 # then follow from |value - threshold| against it.
 
-def _by_modes(R, scene: str, study: str) -> dict:
-    """{transverse modes: run dataset} of a Fig. 10 scene and its mode study."""
-    return {int(F.resolution(d, "n_transverse")): d
-            for d in [R.run(scene)] + R.study_runs(study)}
-
-
-def drawn_modes(R, scene: str) -> int:
-    return int(F.resolution(R.run(scene), "n_transverse"))
-
-
-def mode_ratios(R, coupled: str, uncoupled: str) -> dict:
-    """coupled / uncoupled steady amplitude at the probe per mode count."""
-    c, u = _by_modes(R, coupled, coupled + "_modes"), _by_modes(R, uncoupled, uncoupled + "_modes")
-    return {n: float(c[n].steady_amplitude) / float(u[n].steady_amplitude)
-            for n in sorted(set(c) & set(u))}
-
-
 #: a record whose envelope changes by more than this from its third to its last quarter is
 #: not steady (the bound of transient_reaches_steady_state): its "steady amplitude" has not
 #: converged in record length
@@ -392,10 +375,10 @@ def _converged_coupling(R, q: str, coupled: str, uncoupled: str, f) -> Reproduce
     then moves them), or where a drawn record is not steady (envelope change >
     :data:`STEADY` per quarter: the steady amplitude is still moving with the record
     length); and wherever its response depends on round-off (:data:`ROUND_OFF_10`)."""
-    r = mode_ratios(R, coupled, uncoupled)
+    r = F.mode_ratios(R, coupled, uncoupled)
     (cfl, (dc, du)), = {float(F.resolution(d, "rk4_cfl")): (d, u) for d, u in
                         zip(R.study_runs(coupled + "_step"), R.study_runs(uncoupled + "_step"))}.items()
-    v, err, levels, bad = _mode_levels(R, q, {k: f(x) for k, x in r.items()}, drawn_modes(R, coupled),
+    v, err, levels, bad = _mode_levels(R, q, {k: f(x) for k, x in r.items()}, F.drawn_modes(R, coupled),
                                        f(float(dc.steady_amplitude) / float(du.steady_amplitude)))
     ratio = {name: float(R.run(name).steady_ratio) for name in (coupled, uncoupled)}
     note = (f"{levels} ({cfl:g}); last / third quarter of the drawn records "
@@ -454,10 +437,10 @@ def fig10_steady(R):
     where the mode levels do not contract or where the records depend on round-off
     (:data:`ROUND_OFF_10A`)."""
     names = ("fig10_longitudinal", "fig10_uncoupled", "fig10_transverse5", "fig10_transverse5_uncoupled")
-    runs = {n: _by_modes(R, n, n + "_modes") for n in names}
+    runs = {n: F.by_modes(R, n, n + "_modes") for n in names}
     counts = set.intersection(*(set(v) for v in runs.values()))
     dev = {k: max(abs(float(runs[n][k].steady_ratio) - 1) for n in names) for k in counts}
-    n = drawn_modes(R, "fig10_transverse5")
+    n = F.drawn_modes(R, "fig10_transverse5")
     half = max(abs(float(d.steady_ratio) - 1) for name in names for d in R.study_runs(name + "_step"))
     v, err, levels, bad = _mode_levels(R, "transient_reaches_steady_state", dev, n, half)
     why = ROUND_OFF_10A + bad
