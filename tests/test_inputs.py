@@ -371,3 +371,18 @@ def test_the_cost_table_is_read_once_and_a_missing_solver_is_refused_at_load(tmp
     work = [{"run": 1.0, "K": k} for k in (10, 100, 1000, 10000)]
     c = costs.fit(work, [0.01 + 1e-5 * k for k in (10, 100, 1000, 10000)])
     assert c["run"] == pytest.approx(0.01, rel=1e-6) and c["K"] == pytest.approx(1e-5, rel=1e-6)
+
+
+def test_a_refit_from_no_runs_loses_no_coefficient(tmp_path, monkeypatch, capsys):
+    """`python -m mechrepro.costs` given a tree without runs (or none at all, or `--help`)
+    stops with one line and leaves the table as it was."""
+    from mechrepro import costs, limits
+
+    before = limits.COSTS.read_bytes()
+    table = tmp_path / "costs.csv"
+    table.write_bytes(before)
+    monkeypatch.setattr(limits, "COSTS", table)
+    for argv in (["--help"], [str(tmp_path / "missing")], [str(tmp_path)]):
+        with pytest.raises(SystemExit):
+            costs.main(argv)
+        assert table.read_bytes() == before, argv

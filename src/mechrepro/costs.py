@@ -236,20 +236,33 @@ def measurements(results: str | Path, config_dir: str | Path = "config",
 
 def main(argv=None) -> None:
     """``python -m mechrepro.costs RESULTS [PROFILE]``: write the cost table
-    (:data:`mechrepro.limits.COSTS`) from a finished run of that profile (default: default)."""
-    import sys
+    (:data:`mechrepro.limits.COSTS`) from a finished run of that profile (default: default).
+    A solver the run did not measure keeps its row; a run that measured nothing writes
+    nothing."""
+    import argparse
 
+    from .io import atomic_path
     from .limits import COSTS
 
-    argv = sys.argv[1:] if argv is None else argv
-    if not argv:
-        raise SystemExit(main.__doc__)
-    rows = measurements(argv[0], COSTS.parent, argv[1] if len(argv) > 1 else "default")
-    with open(COSTS, "w", newline="") as f:
+    ap = argparse.ArgumentParser(prog="python -m mechrepro.costs", description=main.__doc__)
+    ap.add_argument("results", help="a finished run's result tree, e.g. results")
+    ap.add_argument("profile", nargs="?", default="default", help="its profile (default: default)")
+    args = ap.parse_args(argv)
+    if not Path(args.results).is_dir():
+        raise SystemExit(f"mechrepro.costs: {args.results}: no such result tree; {COSTS} unchanged")
+    rows = measurements(args.results, COSTS.parent, args.profile)
+    if not rows:
+        raise SystemExit(f"mechrepro.costs: {args.results}: no run of profile {args.profile} "
+                         f"solved by today's records; {COSTS} unchanged")
+    fitted = {(r["paper"], r["solver"]) for r in rows}
+    with open(COSTS, newline="") as f:
+        kept = [r for r in csv.DictReader(f) if (r["paper"], r["solver"]) not in fitted]
+    with atomic_path(COSTS, record=False) as tmp, open(tmp, "w", newline="") as f:
         w = csv.DictWriter(f, TABLE_COLUMNS, lineterminator="\n")
         w.writeheader()
-        w.writerows(rows)
-    print(f"{COSTS}: {len(rows)} coefficients from {argv[0]}")
+        w.writerows(sorted(rows + kept, key=lambda r: (r["paper"], r["solver"], r["term"])))
+    print(f"{COSTS}: {len(rows)} coefficients from {args.results}"
+          + (f", {len(kept)} kept (solvers it did not measure)" if kept else ""))
 
 
 if __name__ == "__main__":
