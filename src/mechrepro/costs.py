@@ -248,12 +248,10 @@ def main(argv=None) -> None:
     ap.add_argument("results", help="a finished run's result tree, e.g. results")
     ap.add_argument("profile", nargs="?", default="default", help="its profile (default: default)")
     args = ap.parse_args(argv)
-    if not Path(args.results).is_dir():
-        raise SystemExit(f"mechrepro.costs: {args.results}: no such result tree; {COSTS} unchanged")
     rows = measurements(args.results, COSTS.parent, args.profile)
     if not rows:
         raise SystemExit(f"mechrepro.costs: {args.results}: no run of profile {args.profile} "
-                         f"solved by today's records; {COSTS} unchanged")
+                         f"solved by today's records there; {COSTS} unchanged")
     fitted = {(r["paper"], r["solver"]) for r in rows}
     with open(COSTS, newline="") as f:
         kept = [r for r in csv.DictReader(f) if (r["paper"], r["solver"]) not in fitted]
