@@ -8,7 +8,6 @@ ran before, and the compiled and the Python path execute the same source.
 from __future__ import annotations
 
 import hashlib
-import inspect
 import os
 from functools import cache
 from pathlib import Path

@@ -254,13 +254,15 @@ def _contact_time(run, prm) -> float:
     return float(loads.impact_of(prm)["t_i"])
 
 
-def period_map(run, prm: dict, omega1: float, steps_per_period: int, start=None):
+def period_map(run, prm: dict, omega1: float, steps_per_period: int, start=None, drives=None):
     """One tooth period of the discrete span from just after the seating at t = 0, events
     included: the affine map x -> M x + b of the free rollers' state x = (y, v).  Without
     the ``long`` state (no length_change effect) the roller set is fixed: the release
     coincides with the seating (t_r = 0).  With ``start`` (a state x) only that orbit is
     marched: M is None, b its state after the period and ``amplitude`` max |y| over the
-    free rollers along it."""
+    free rollers along it.  ``drives``: the excitation of each segment and of the seating
+    (:func:`_drive`, returned as ``drives``) of an earlier call at this speed, not
+    evaluated again."""
     named = declared_keys(run)
     _refuse_unhonoured_keys(named)
     m, p = prm["mass_per_length"], prm["pitch"]
@@ -281,8 +283,11 @@ def period_map(run, prm: dict, omega1: float, steps_per_period: int, start=None)
         K = 1
         y, v = np.asarray(start[:N0], float)[:, None], np.asarray(start[N0:], float)[:, None]
     amp, p_min = 0.0, math.inf
-    for seg in _segments(tau, t_r, steps_per_period, _contact_time(run, prm)):
-        ends, Pt, pulse, load = _drive(run, prm, omega1, seg, seg[1] - seg[0])
+    segments = _segments(tau, t_r, steps_per_period, _contact_time(run, prm))
+    grids = [(g, g[1] - g[0]) for g in segments] + (   # and the seating, where a roller enters
+        [(np.array([tau, tau + 1e-9 * tau]), 1e-9 * tau)] if t_r == 0 else [])
+    drives = drives or [_drive(run, prm, omega1, g, dt) for g, dt in grids]
+    for seg, (ends, Pt, pulse, load) in zip(segments, drives):
         local = (1.0 - share) * pulse            # the engaging link's alone
         nh = 2 * len(seg) - 1
         if t_r > 0 and seg[0] == t_r:            # release: a roller enters at the driven end
@@ -295,12 +300,12 @@ def period_map(run, prm: dict, omega1: float, steps_per_period: int, start=None)
     # seating at tau: the last roller goes onto the driving sprocket (state dropped) ...
     y, v = y[:-1], v[:-1]
     if t_r == 0:                                 # ... and one leaves the driven sprocket
-        ends = _drive(run, prm, omega1, np.array([tau, tau + 1e-9 * tau]), 1e-9 * tau)[0]
+        ends = drives[-1][0]
         y = np.vstack([_entering(ends, "u_left", 3, K), y])
         v = np.vstack([_entering(ends, "v_left", 3, K), v])
     x = np.vstack([y, v])
     return {"M": x[:, :-1] if start is None else None, "b": x[:, -1], "tau": tau, "t_r": t_r,
-            "n_short": n_s, "P": P, "P_min": p_min, "amplitude": amp}
+            "n_short": n_s, "P": P, "P_min": p_min, "amplitude": amp, "drives": drives}
 
 
 def floquet(M: np.ndarray) -> np.ndarray:
@@ -316,7 +321,7 @@ def periodic_orbit(run, prm: dict, omega1: float, steps_per_period: int) -> dict
     pm = period_map(run, prm, omega1, steps_per_period)
     M, b = pm["M"], pm["b"]
     x = np.linalg.solve(np.eye(M.shape[0]) - M, b)
-    orbit = period_map(run, prm, omega1, steps_per_period, start=x)
+    orbit = period_map(run, prm, omega1, steps_per_period, start=x, drives=pm["drives"])
     return {"x": x, "rho": float(np.max(np.abs(floquet(M)))), "amplitude": orbit["amplitude"],
             "tau": pm["tau"], "n_short": pm["n_short"], "slack": pm["P_min"] <= 0.0,
             "residual": float(np.max(np.abs(orbit["b"] - x)))}

@@ -31,7 +31,6 @@ when numba is installed; the numpy loop below is the reference and the fallback.
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
