@@ -43,9 +43,11 @@ reproduce: bytecode
 	PYTHONPATH=src $(BIN)/python -m mechrepro.reproduce results -- --cores $(CORES) --rerun-incomplete
 
 ## Run every test (unit tests, config errors, pipeline + reference check on the ci profile),
-## on every core (tests/conftest.py groups what must share a worker)
+## on every core (tests/conftest.py groups what must share a worker); one worker more than
+## cores: the workers beside the ci pipeline's run at low priority and fill what it and the
+## SLURM tests' waiting leave idle
 test: bytecode
-	$(BIN)/python -m pytest -q -n $(CORES) --dist loadgroup
+	$(BIN)/python -m pytest -q -n $$(( $(CORES) + 1 )) --dist loadgroup
 
 ## The fast profile, as CI runs it, into results-ci/
 ci-reproduce: bytecode

@@ -19,7 +19,7 @@ def pytest_configure(config):
 
 @pytest.hookimpl(tryfirst=True)
 def pytest_collection_modifyitems(config, items):
-    """Under xdist (`make test`: `-n 2 --dist loadgroup`) a worker takes whole groups: every
+    """Under xdist (`make test`: `-n 3 --dist loadgroup` on 2 cores) a worker takes whole groups: every
     test that reads the session's ci pipeline run goes to one group, so the pipeline runs
     once; every other test stays with its module, whose module-scoped fixtures (a SLURM
     cluster, a solved disk) are then set up once.  First among the hooks: xdist's own
