@@ -53,17 +53,19 @@ def _accel(y, v, left, right, k_over_m, damp, last, load, a):
     map's unit states."""
     n, k_cols = y.shape
     f = k_cols - 1
-    for k in range(k_cols):
-        lo = left if k == f else 0.0
-        hi = right if k == f else 0.0
-        for i in range(n):
-            below = y[i - 1, k] if i > 0 else lo
-            above = y[i + 1, k] if i < n - 1 else hi
+    for i in range(n):              # row by row: the unit columns' loop runs along memory
+        for k in range(f):
+            below = y[i - 1, k] if i > 0 else 0.0
+            above = y[i + 1, k] if i < n - 1 else 0.0
             a[i, k] = (below - 2.0 * y[i, k] + above) * k_over_m - damp * v[i, k]
-        a[n - 1, k] += last * (hi - y[n - 1, k])
-        if k == f:
-            for i in range(n):
-                a[i, k] += load
+        below = y[i - 1, f] if i > 0 else left
+        above = y[i + 1, f] if i < n - 1 else right
+        a[i, f] = (below - 2.0 * y[i, f] + above) * k_over_m - damp * v[i, f]
+    for k in range(f):
+        a[n - 1, k] += last * (0.0 - y[n - 1, k])
+    a[n - 1, f] += last * (right - y[n - 1, f])
+    for i in range(n):
+        a[i, f] += load
 
 
 def _stage(y, v, vs, a, c, ys, vo):
