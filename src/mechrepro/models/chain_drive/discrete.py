@@ -51,19 +51,15 @@ def _accel(y, v, left, right, k_over_m, damp, last, load, a):
     end) on the last roller and the sag load per mass ``load`` on every roller.  The end
     rollers and the load act on the forced (last) column alone: the other columns are the
     map's unit states."""
-    n, k_cols = y.shape
-    f = k_cols - 1
-    for i in range(n):              # row by row: the unit columns' loop runs along memory
-        for k in range(f):
-            below = y[i - 1, k] if i > 0 else 0.0
-            above = y[i + 1, k] if i < n - 1 else 0.0
+    n, f = y.shape[0], y.shape[1] - 1
+    for i in range(n):              # row by row: the loop over the columns runs along memory
+        for k in range(f + 1):
+            lo, hi = (left, right) if k == f else (0.0, 0.0)
+            below = y[i - 1, k] if i > 0 else lo
+            above = y[i + 1, k] if i < n - 1 else hi
             a[i, k] = (below - 2.0 * y[i, k] + above) * k_over_m - damp * v[i, k]
-        below = y[i - 1, f] if i > 0 else left
-        above = y[i + 1, f] if i < n - 1 else right
-        a[i, f] = (below - 2.0 * y[i, f] + above) * k_over_m - damp * v[i, f]
-    for k in range(f):
-        a[n - 1, k] += last * (0.0 - y[n - 1, k])
-    a[n - 1, f] += last * (right - y[n - 1, f])
+    for k in range(f + 1):
+        a[n - 1, k] += last * ((right if k == f else 0.0) - y[n - 1, k])
     for i in range(n):
         a[i, f] += load
 
