@@ -68,7 +68,7 @@ def test_fig09a_band_below_the_elastic_resonance_and_map_unchanged_by_a_finer_gr
         for n in (n0, 2 * n0):
             om = solver.dense_near_elastic(run, prm, span.speed_axis(prm, n), 0.01, n)
             w, sols, done = shooting.adaptive_sweep(
-                lambda v: shooting.periodic_solution(run, prm, v, res), om,
+                lambda ws: [shooting.periodic_solution(run, prm, v, res) for v in ws], om,
                 edge_tol=0.05 / RPM, peak_tol=0.2 / RPM, rate_floor=-0.5 * sigma)
             un = np.array([x.rho > 1 or x.slack for x in sols]).astype(int)
             edges = np.flatnonzero(np.diff(un))
@@ -148,6 +148,11 @@ def test_bounded_speeds_keep_the_exact_verdicts(fig09a):
     assert skipped >= 10
 
 
+def each(evaluate):
+    """adaptive_sweep's evaluator (a list of speeds at a time) of a one-speed ``evaluate``."""
+    return lambda ws: [evaluate(w) for w in ws]
+
+
 def _synthetic(peak_at: float):
     """A stable sweep with one resonance peak (amplitude 1 / (1 + (w - peak)^2)), no edges
     and no growth-rate bumps: only the amplitude-peak refinement adds speeds."""
@@ -166,9 +171,9 @@ def test_stability_only_variants_refine_only_the_growth_rate_bumps():
     speeds, and stops at the first unstable speed."""
     kw = dict(peak_tol=0.01, rate_floor=-0.1)   # log 0.5 is below: no growth-rate bumps
     grid = np.linspace(0.0, 10.0, 11)
-    w, sols, done = shooting.adaptive_sweep(_synthetic(4.3), grid, edge_tol=0.01, **kw)
+    w, sols, done = shooting.adaptive_sweep(each(_synthetic(4.3)), grid, edge_tol=0.01, **kw)
     assert done and w.size > grid.size and np.min(np.abs(w - 4.3)) < 0.01
-    w0, sols0, done0 = shooting.adaptive_sweep(_synthetic(4.3), grid, edge_tol=0.01,
+    w0, sols0, done0 = shooting.adaptive_sweep(each(_synthetic(4.3)), grid, edge_tol=0.01,
                                                prominence=None, until_unstable=True, **kw)
     assert done0 and np.array_equal(w0, grid)
 
@@ -176,7 +181,7 @@ def test_stability_only_variants_refine_only_the_growth_rate_bumps():
         s = _synthetic(4.3)(w)
         s.rho = s.rho_lower = s.rho_upper = 2.0 if 4.2 < w < 4.6 else 0.5
         return s
-    w1, _, done1 = shooting.adaptive_sweep(tongue, np.r_[grid, 4.4], edge_tol=0.01,
+    w1, _, done1 = shooting.adaptive_sweep(each(tongue), np.r_[grid, 4.4], edge_tol=0.01,
                                            prominence=None, until_unstable=True, **kw)
     assert done1 and w1.size == grid.size + 1
     base = {"options": {"variants": "stability"}}

@@ -129,8 +129,7 @@ def rk4(y, v, times, left, right, k_over_m, damp, last=None, load=None):
         global _accel, _stage
         _accel, _stage = jit(inline="always")(_accel), jit(inline="always")(_stage)
         _KERNEL = jit(_march)
-    n = len(times) - 1
-    zeros = np.zeros(n)
+    zeros = np.zeros(len(times) - 1)
     f64 = lambda x: np.ascontiguousarray(x, dtype=np.float64)  # noqa: E731
     return _KERNEL(f64(y), f64(v), f64(times), f64(left), f64(right), f64(k_over_m),
                    float(damp), zeros if last is None else f64(last),
@@ -149,35 +148,39 @@ def events(prm: dict, omega1: float) -> tuple[float, float, int]:
     return float(geometry.tooth_period(omega1, n1)), t_r, int(round(geo["L_short"] / p)) - 1
 
 
-def _drive(run, prm, omega1, times, dt):
-    """The end rollers' positions at the half-step nodes, the link tension P_t per step, its
-    impact part D_imp (``tension_pulse``, Eq. 2-4) and the sag load per mass kappa P_t / m
-    (``kappa``, Eq. 2-36; 0 without sag), from the scene's effects (the string's:
-    :mod:`.effects`) on this time grid."""
-    half = np.empty(2 * len(times) - 1)
-    half[0::2] = times
-    half[1::2] = 0.5 * (times[:-1] + times[1:])
-    geo = geometry.span_geometry(prm, True)
-    ctx = SpanContext(prm, omega1, half, None, geo, end_velocity=True)
-    ends = EFFECTS.evaluate(run, ctx, keys={"u_left", "u_right", "v_left", "v_right"})
-    mid = SpanContext(prm, omega1, half[1::2], dt, geo)
-    tens = EFFECTS.evaluate(run, mid, keys=set(span.PT_KEYS) | {"kappa"})
-    Pt = span.dynamic_tension(tens, (len(times) - 1, 1))[:, 0]
-    pulse = np.asarray(tens.total("tension_pulse", np.zeros((len(times) - 1, 1))))[:, 0]
-    kappa = float(np.asarray(tens.total("kappa", 0.0)).ravel()[0])
-    return ends, Pt, pulse, kappa * Pt / prm["mass_per_length"]
+def drives_of(run, prm, omegas, steps_per_period) -> list:
+    """Per speed, :func:`period_map`'s excitation on each of its grids (:func:`_grids`): the
+    end rollers at the half-step nodes, P_t per step, its impact part D_imp (Eq. 2-4), the
+    sag load kappa P_t / m (Eq. 2-36), from the scene's effects (:mod:`.effects`), evaluated
+    once per set of speeds with grids of equal lengths (elementwise on their block)."""
+    grids = [_grids(run, prm, w, steps_per_period)[-1] for w in omegas]
+    groups, out, geo = {}, [[] for _ in omegas], geometry.span_geometry(prm, True)
+    for i, g in enumerate(grids):
+        groups.setdefault(tuple(len(t) for t, _ in g), []).append(i)
+    for idx in groups.values():
+        w = np.array([omegas[i] for i in idx], float)
+        for k in range(len(grids[idx[0]])):
+            t = np.stack([grids[i][k][0] for i in idx], 1)
+            half = np.empty((2 * len(t) - 1, w.size))
+            half[0::2], half[1::2] = t, 0.5 * (t[:-1] + t[1:])
+            ends = EFFECTS.evaluate(run, SpanContext(prm, w, half, None, geo, end_velocity=True),
+                                    keys=(keys := {"u_left", "u_right", "v_left", "v_right"}))
+            ends = {key: ends.get(key) if key in ends else np.zeros(half.shape) for key in keys}
+            tens = EFFECTS.evaluate(run, SpanContext(prm, w, half[1::2], np.array(
+                [grids[i][k][1] for i in idx]), geo), keys=set(span.PT_KEYS) | {"kappa"})
+            Pt = span.dynamic_tension(tens, (len(t) - 1, w.size))
+            pulse = np.asarray(tens.total("tension_pulse", np.zeros(Pt.shape)))
+            kappa = np.broadcast_to(np.asarray(tens.total("kappa", 0.0), float).ravel(), w.shape)
+            for j, i in enumerate(idx):
+                out[i].append(({key: x[:, j] for key, x in ends.items()}, Pt[:, j], pulse[:, j],
+                               float(kappa[j]) * Pt[:, j] / prm["mass_per_length"]))
+    return out
 
 
 def tension_coefficient(run, prm) -> float:
     """k of P = T_s + k c^2 from the scene's effects (0 without speed tensioning)."""
     ctx = SpanContext(prm, 1.0, np.zeros(0), None, geometry.span_geometry(prm, True))
     return float(EFFECTS.evaluate(run, ctx, keys={"tension_coefficient"}).total("tension_coefficient"))
-
-
-def _axial_tension(run, prm, omega1) -> float:
-    """P = T_s + k c^2 (:func:`.geometry.axial_tension`)."""
-    c = float(geometry.chain_speed(omega1, int(prm["n1"]), prm["pitch"]))
-    return float(geometry.axial_tension(prm["static_tension"], tension_coefficient(run, prm), c))
 
 
 #: RK4's stability interval on the imaginary axis is |omega dt| <= 2 sqrt(2); a margin
@@ -199,17 +202,11 @@ def _refuse_unstable_step(P, m_r, p, n_free, dt, steps, tau) -> None:
                              f"{w_max:.4g} rad/s at P = {P:.4g} N): at least {need} steps")
 
 
-def _end(ends, key: str, n: int) -> np.ndarray:
-    """An end roller's position or velocity at the nodes (zero without end motion)."""
-    x = ends.get(key)
-    return np.zeros(n) if x is None else np.asarray(x, float).reshape(n, -1)[:, 0]
-
-
-def _entering(ends, key: str, n: int, k_cols: int) -> np.ndarray:
+def _entering(ends, key: str, k_cols: int) -> np.ndarray:
     """The state row of a roller released from the driven sprocket: the driven end's
     position or velocity in the forced (last) column, 0 in the map's unit columns."""
     row = np.zeros((1, k_cols))
-    row[0, -1] = _end(ends, key, n)[0]
+    row[0, -1] = ends[key][0]
     return row
 
 
@@ -252,6 +249,17 @@ def _contact_time(run, prm) -> float:
     return float(loads.impact_of(prm)["t_i"])
 
 
+def _grids(run, prm, omega1, steps_per_period):
+    """tau, t_r (0 without the ``long`` state), n_short (:func:`events`) and the time grids
+    with their steps: the segments between the events (:func:`_segments`), then the
+    seating, where a roller enters when t_r = 0."""
+    tau, t_r, n_s = events(prm, omega1)
+    t_r = t_r if "long" in declared_keys(run) else 0.0
+    return tau, t_r, n_s, [(g, g[1] - g[0]) for g in _segments(
+        tau, t_r, steps_per_period, _contact_time(run, prm))] + (
+        [(np.array([tau, tau + 1e-9 * tau]), 1e-9 * tau)] if t_r == 0 else [])
+
+
 def period_map(run, prm: dict, omega1: float, steps_per_period: int, start=None, drives=None):
     """One tooth period of the discrete span from just after the seating at t = 0, events
     included: the affine map x -> M x + b of the free rollers' state x = (y, v).  Without
@@ -259,17 +267,15 @@ def period_map(run, prm: dict, omega1: float, steps_per_period: int, start=None,
     coincides with the seating (t_r = 0).  With ``start`` (a state x) only that orbit is
     marched: M is None, b its state after the period and ``amplitude`` max |y| over the
     free rollers along it.  ``drives``: the excitation of each segment and of the seating
-    (:func:`_drive`, returned as ``drives``) of an earlier call at this speed, not
+    (:func:`drives_of`, returned as ``drives``) of an earlier call at this speed, not
     evaluated again."""
-    named = declared_keys(run)
-    _refuse_unhonoured_keys(named)
+    _refuse_unhonoured_keys(declared_keys(run))
     m, p = prm["mass_per_length"], prm["pitch"]
     m_r, damp = m * p, prm["transverse_damping"] * p / (m * p)
-    tau, t_r, n_s = events(prm, omega1)
+    tau, t_r, n_s, grids = _grids(run, prm, omega1, steps_per_period)
     share = float(prm.get("impact_share", 1.0))
-    if "long" not in named:
-        t_r = 0.0
-    P = _axial_tension(run, prm, omega1)
+    P = float(geometry.axial_tension(prm["static_tension"], tension_coefficient(run, prm), float(
+        geometry.chain_speed(omega1, int(prm["n1"]), prm["pitch"]))))     # P = T_s + k c^2
     _refuse_unstable_step(P, m_r, p, n_s + 1, tau / steps_per_period, steps_per_period, tau)
     N0 = n_s
     if start is None:                            # unit columns + the forced column
@@ -281,17 +287,13 @@ def period_map(run, prm: dict, omega1: float, steps_per_period: int, start=None,
         K = 1
         y, v = np.asarray(start[:N0], float)[:, None], np.asarray(start[N0:], float)[:, None]
     amp, p_min = 0.0, math.inf
-    segments = _segments(tau, t_r, steps_per_period, _contact_time(run, prm))
-    grids = [(g, g[1] - g[0]) for g in segments] + (   # and the seating, where a roller enters
-        [(np.array([tau, tau + 1e-9 * tau]), 1e-9 * tau)] if t_r == 0 else [])
-    drives = drives or [_drive(run, prm, omega1, g, dt) for g, dt in grids]
-    for seg, (ends, Pt, pulse, load) in zip(segments, drives):
+    drives = drives or drives_of(run, prm, [omega1], steps_per_period)[0]
+    for (seg, _), (ends, Pt, pulse, load) in zip(grids[:len(grids) - (t_r == 0)], drives):
         local = (1.0 - share) * pulse            # the engaging link's alone
-        nh = 2 * len(seg) - 1
         if t_r > 0 and seg[0] == t_r:            # release: a roller enters at the driven end
-            y = np.vstack([_entering(ends, "u_left", nh, K), y])
-            v = np.vstack([_entering(ends, "v_left", nh, K), v])
-        y, v, a = rk4(y, v, seg, _end(ends, "u_left", nh), _end(ends, "u_right", nh),
+            y = np.vstack([_entering(ends, "u_left", K), y])
+            v = np.vstack([_entering(ends, "v_left", K), v])
+        y, v, a = rk4(y, v, seg, ends["u_left"], ends["u_right"],
                       (P + Pt - local) / (m_r * p), damp, local / (m_r * p), load)
         amp = max(amp, a)
         p_min = min(p_min, float(np.min(P + Pt - np.maximum(local, 0.0))))
@@ -299,8 +301,8 @@ def period_map(run, prm: dict, omega1: float, steps_per_period: int, start=None,
     y, v = y[:-1], v[:-1]
     if t_r == 0:                                 # ... and one leaves the driven sprocket
         ends = drives[-1][0]
-        y = np.vstack([_entering(ends, "u_left", 3, K), y])
-        v = np.vstack([_entering(ends, "v_left", 3, K), v])
+        y = np.vstack([_entering(ends, "u_left", K), y])
+        v = np.vstack([_entering(ends, "v_left", K), v])
     x = np.vstack([y, v])
     return {"M": x[:, :-1] if start is None else None, "b": x[:, -1], "tau": tau, "t_r": t_r,
             "n_short": n_s, "P": P, "P_min": p_min, "amplitude": amp, "drives": drives}
@@ -312,11 +314,11 @@ def floquet(M: np.ndarray) -> np.ndarray:
     return mu[np.argsort(-np.abs(mu))]
 
 
-def periodic_orbit(run, prm: dict, omega1: float, steps_per_period: int) -> dict:
+def periodic_orbit(run, prm: dict, omega1: float, steps_per_period: int, drives=None) -> dict:
     """Periodic steady state x* = (I - M)^-1 b of the tooth-period map, its largest
     Floquet multiplier and its amplitude (max |y| over the free rollers along one period
-    marched from x*, which returns to x*: the residual)."""
-    pm = period_map(run, prm, omega1, steps_per_period)
+    marched from x*, which returns to x*: the residual).  ``drives``: :func:`drives_of`."""
+    pm = period_map(run, prm, omega1, steps_per_period, drives=drives)
     M, b = pm["M"], pm["b"]
     x = np.linalg.solve(np.eye(M.shape[0]) - M, b)
     orbit = period_map(run, prm, omega1, steps_per_period, start=x, drives=pm["drives"])
@@ -345,12 +347,13 @@ def sweep(run, prm: dict, omega1, res: dict) -> dict:
                             "(the rollers move with the chain)")
     n = int(res["steps_per_period"])
 
-    def evaluate(w):
-        g = periodic_orbit(run, prm, w, n)
-        return PeriodicSolution(amplitude=g["amplitude"], rho=g["rho"],
-                                growth_rate=math.log(g["rho"]) / g["tau"], period=g["tau"],
-                                n_steps=n, residual=g["residual"], slack=g["slack"],
-                                multipliers=np.empty(0), rho_lower=g["rho"], rho_upper=g["rho"])
+    def evaluate(ws):     # the excitation of 64 speeds at a time (drives_of)
+        gs = [periodic_orbit(run, prm, w, n, d) for c in range(0, len(ws), 64)
+              for w, d in zip(ws[c:c + 64], drives_of(run, prm, ws[c:c + 64], n))]
+        return [PeriodicSolution(
+            amplitude=g["amplitude"], rho=g["rho"], growth_rate=math.log(g["rho"]) / g["tau"],
+            period=g["tau"], n_steps=n, residual=g["residual"], slack=g["slack"],
+            multipliers=np.empty(0), rho_lower=g["rho"], rho_upper=g["rho"]) for g in gs]
 
     if "edge_tol" in res:
         sigma = prm["transverse_damping"] / (2 * prm["mass_per_length"])
@@ -368,11 +371,11 @@ def sweep(run, prm: dict, omega1, res: dict) -> dict:
                    for j in (i - 1, i) if w[j + 1] - w[j] > peak_tol} - set(pts)
             if not new:
                 break
-            pts.update({v: evaluate(v) for v in sorted(new)})
+            pts.update(zip(sorted(new), evaluate(sorted(new))))
         omega1 = np.array(sorted(pts))
         sols = [pts[v] for v in omega1]
     else:
-        sols, done = [evaluate(float(w)) for w in omega1], True
+        sols, done = evaluate([float(w) for w in omega1]), True
     rho = np.array([g.rho for g in sols])
     slack = np.array([g.slack for g in sols])
     return {"omega1": np.asarray(omega1, float), "amplitude": np.array([g.amplitude for g in sols]),

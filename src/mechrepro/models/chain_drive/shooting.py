@@ -293,8 +293,8 @@ def _inside(x0: float, x1: float, r: float, floor: float) -> float:
 def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
                    peak_tol: float, rate_floor: float, prominence: float | None = 0.02,
                    max_evals: int = 3000, until_unstable: bool = False):
-    """Sample ``evaluate(omega) -> PeriodicSolution`` from the initial ``speeds`` (rad/s,
-    the scene's speed axis), then refine
+    """Sample ``evaluate([omega, ...]) -> [PeriodicSolution, ...]`` (a batch at a time) from
+    the initial ``speeds`` (rad/s, the scene's speed axis), then refine
 
     (i) every interval whose ends differ in stability, down to ``edge_tol``: at the zero
         of the growth rate interpolated between its ends when both multipliers are exact
@@ -322,7 +322,7 @@ def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
     from .claims import find_peaks
 
     with threadpool_limits(1, user_api="blas"):     # many small (2n x 2n) eigenproblems
-        pts = {float(w): evaluate(float(w)) for w in np.asarray(speeds, float)}
+        pts = dict(zip(ws := [float(w) for w in np.asarray(speeds, float)], evaluate(ws)))
         done = False
         while len(pts) < max_evals:
             w = np.array(sorted(pts))
@@ -363,8 +363,7 @@ def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
             if not new:
                 done = True
                 break
-            for v in sorted(new):
-                pts[v] = evaluate(v)
+            pts.update(zip(sorted(new), evaluate(sorted(new))))
     w = np.array(sorted(pts))
     return w, [pts[v] for v in w], done
 
@@ -392,7 +391,7 @@ def sweep(run, prm: dict, omega1, res: dict, registry=EFFECTS) -> dict:
         seen[v] = sol
         return sol
 
-    w, sols, done = adaptive_sweep(evaluate, omega1,
+    w, sols, done = adaptive_sweep(lambda ws: [evaluate(v) for v in ws], omega1,
                              edge_tol=float(res["edge_tol"]) / geometry.RPM,
                              peak_tol=float(res["peak_tol"]) / geometry.RPM,
                              rate_floor=-0.5 * sigma, prominence=None if only else 0.02,
