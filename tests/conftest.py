@@ -8,8 +8,8 @@ import yaml
 
 ROOT = Path(__file__).resolve().parent.parent
 # one BLAS thread per test process (read when numpy loads, so before any worker imports it):
-# xdist runs a worker per core and more, and OpenBLAS threads spin on cores the other
-# workers use (test_disk_tension_rotation under `-n 2`: 31 CPU-s with its threads, 5 without)
+# xdist runs a worker per core and more, and OpenBLAS threads would spin on cores the other
+# workers use
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 

@@ -371,7 +371,7 @@ def sweep(run, prm: dict, omega1, res: dict) -> dict:
                    for j in (i - 1, i) if w[j + 1] - w[j] > peak_tol} - set(pts)
             if not new:
                 break
-            pts.update(zip(sorted(new), evaluate(sorted(new))))
+            pts.update(zip(ws := sorted(new), evaluate(ws)))
         omega1 = np.array(sorted(pts))
         sols = [pts[v] for v in omega1]
     else:

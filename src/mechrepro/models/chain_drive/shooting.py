@@ -363,7 +363,7 @@ def adaptive_sweep(evaluate, speeds, *, edge_tol: float,
             if not new:
                 done = True
                 break
-            pts.update(zip(sorted(new), evaluate(sorted(new))))
+            pts.update(zip(ws := sorted(new), evaluate(ws)))
     w = np.array(sorted(pts))
     return w, [pts[v] for v in w], done
 
