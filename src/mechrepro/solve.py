@@ -45,22 +45,24 @@ def model_modules(paper: str) -> list[str]:
     package): those the package reaches from its
     ``__init__`` by relative imports (at any depth, in functions too) and by its lazy
     exports (a string naming a sibling module).  What only validation and notebook read
-    (validation.py, figures.py, accuracy.py, ...) is left out, so editing it reruns no solve."""
+    (validation.py, figures.py, accuracy.py, ...) is left out, so editing it reruns no solve.
+    The imports are found as text, not parsed (every Snakemake start asks, for each solve
+    job): a match in a string or comment can only add a module, never miss one."""
     import ast
+    import re
 
     pkg = Path(__file__).parent / "models" / paper
-    seen, todo = set(), ["__init__"]
+    seen, todo = set(), ["__init__"] + [n.value for n in ast.walk(ast.parse(
+        (pkg / "__init__.py").read_text())) if isinstance(n, ast.Constant)
+        and isinstance(n.value, str) and n.value.isidentifier()]
     while todo:
         name = todo.pop()
         if name in seen or not (pkg / f"{name}.py").exists():
             continue
         seen.add(name)
-        for node in ast.walk(ast.parse((pkg / f"{name}.py").read_text())):
-            if isinstance(node, ast.ImportFrom) and node.level == 1:
-                todo += [node.module.split(".")[0]] if node.module else [a.name for a in node.names]
-            elif name == "__init__" and isinstance(node, ast.Constant) \
-                    and isinstance(node.value, str) and node.value.isidentifier():
-                todo.append(node.value)
+        for module, names in re.findall(r"^[ \t]*from \.(?!\.)(\w*)[\w.]* import (\([^)]*\)|.*)",
+                                        (pkg / f"{name}.py").read_text(), re.M):
+            todo += [module] if module else re.findall(r"\w+", names)
     return sorted(f"models/{paper}/{m}.py" for m in seen)
 
 
