@@ -55,12 +55,11 @@ for _paper in PAPERS:
 
 
 # one gather job per fanned-out study, made by the same code
-_GATHER = Job("gather", [], [], {"code": code("cli.py")})
+_GATHER, _FANNED = Job("gather", [], [], {"code": code("cli.py")}), fanned_out_studies()
 for _paper in PAPERS:
-    for _study in CFG[_paper].studies:
-        if re.fullmatch(fanned_out_studies(), _study):
-            job("gather", [f"{RESULTS}/{_paper}/runs/{r}.nc" for r in CFG[_paper].studies[_study]],
-                [f"{RESULTS}/{_paper}/studies/{_study}.nc"], **_GATHER.sources)
+    for _study in filter(re.compile(_FANNED).fullmatch, CFG[_paper].studies):
+        job("gather", [f"{RESULTS}/{_paper}/runs/{r}.nc" for r in CFG[_paper].studies[_study]],
+            [f"{RESULTS}/{_paper}/studies/{_study}.nc"], **_GATHER.sources)
 
 
 rule gather:
@@ -70,7 +69,7 @@ rule gather:
     output:
         f"{RESULTS}/{{paper}}/studies/{{study}}.nc",
     wildcard_constraints:
-        study=fanned_out_studies(),
+        study=_FANNED,
     params:
         python=RUN["python"],
         results=lambda wc, output: str(Path(output[0]).parents[2]),
