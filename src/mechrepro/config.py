@@ -144,9 +144,13 @@ class PaperConfig:
         scene that is also a point of a study, a rival that sets a value a study
         sweeps), which the solve job solves once and writes under each name with the one
         measured time (:func:`mechrepro.solve.main`).  Runs timed against each other
-        (``marginal_cost:``) or solved to an accuracy target are never merged."""
+        (``marginal_cost:``) or solved to an accuracy target are never merged.  Worked out
+        once per loaded config (every planning step asks; outside the dataclass fields, so
+        a config cut down by :func:`dataclasses.replace` works its own out)."""
+        if "_same" in self.__dict__:
+            return self.__dict__["_same"]
         first: dict[str, str] = {}
-        out: dict[str, str] = {}
+        out = self.__dict__["_same"] = {}
         for name, run in self.runs.items():
             if run.get("target") or run.get("timing_repeat"):
                 continue

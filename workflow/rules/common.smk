@@ -111,23 +111,12 @@ def model_code(paper):
     return code(*SOLVER_CORE, *model_modules(paper))
 
 
-_SOLVE_JOBS = {}
-
-
-def solve_jobs(paper):
-    """The paper's solve jobs (PaperConfig.solve_jobs), worked out once per workflow start:
-    every study asks which job holds it whole."""
-    if paper not in _SOLVE_JOBS:
-        _SOLVE_JOBS[paper] = CFG[paper].solve_jobs()
-    return _SOLVE_JOBS[paper]
-
-
 def fanned_out_studies():
     """Studies that `gather` stacks: those no solver job holds whole (a regex for its
     wildcard, so that it and the batch jobs never both claim a study file)."""
     return "|".join(s for p in PAPERS for s in CFG[p].studies
                     if not any(s in CFG[p].studies_solved_with(r)
-                               for r in solve_jobs(p).values())) or "^$"
+                               for r in CFG[p].solve_jobs().values())) or "^$"
 
 
 def records_of(paper, runs):

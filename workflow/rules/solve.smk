@@ -8,7 +8,7 @@
 # are the job's params: a changed record reruns exactly the job that solves it.
 
 for _paper in PAPERS:
-    for _job, _runs in solve_jobs(_paper).items():
+    for _job, _runs in CFG[_paper].solve_jobs().items():
         _J = job(f"solve_{_paper}__{_job}", [],
                  [f"{RESULTS}/{_paper}/runs/{r}.nc" for r in _runs]
                  + [f"{RESULTS}/{_paper}/studies/{s}.nc"
