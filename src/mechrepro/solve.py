@@ -47,7 +47,8 @@ def model_modules(paper: str) -> list[str]:
     exports (a string naming a sibling module).  What only validation and notebook read
     (validation.py, figures.py, accuracy.py, ...) is left out, so editing it reruns no solve.
     The imports are found as text, not parsed (every Snakemake start asks, for each solve
-    job): a match in a string or comment can only add a module, never miss one."""
+    job), each at the start of its line: a match in a string or comment can only add a
+    module (tests/test_framework.py checks that none a model loads is missed)."""
     import ast
     import re
 
