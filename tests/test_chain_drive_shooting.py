@@ -68,7 +68,7 @@ def test_fig09a_band_below_the_elastic_resonance_and_map_unchanged_by_a_finer_gr
         for n in (n0, 2 * n0):
             om = solver.dense_near_elastic(run, prm, span.speed_axis(prm, n), 0.01, n)
             w, sols, done = shooting.adaptive_sweep(
-                lambda ws: [shooting.periodic_solution(run, prm, v, res) for v in ws], om,
+                each(lambda v: shooting.periodic_solution(run, prm, v, res)), om,
                 edge_tol=0.05 / RPM, peak_tol=0.2 / RPM, rate_floor=-0.5 * sigma)
             un = np.array([x.rho > 1 or x.slack for x in sols]).astype(int)
             edges = np.flatnonzero(np.diff(un))
