@@ -54,12 +54,12 @@ def test_negative_pitch_names_file_key_value_and_range(edit_config):
 
 
 def test_unknown_effect_lists_allowed(edit_config):
-    path = edit_config("saw_chain", lambda r: r["scenes"]["fig07_fig08"]["effects"].append("warp_drive"))
+    path = edit_config("saw_chain", lambda r: r["scenes"]["fig07_fig08"]["outputs"].append("warp_drive"))
     with pytest.raises(ConfigError) as e:
         load_paper(path)
     msg = str(e.value)
-    declared = ", ".join(sorted(yaml.safe_load(path.read_text())["effects"]))
-    assert "fig07_fig08" in msg and "'warp_drive'" in msg and f"effects: {declared}" in msg
+    declared = ", ".join(sorted(yaml.safe_load(path.read_text())["outputs"]))
+    assert "fig07_fig08" in msg and "'warp_drive'" in msg and f"outputs: {declared}" in msg
 
 
 def test_a_parameter_no_one_declared_is_named(edit_config):

@@ -6,7 +6,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mechrepro.config import load_paper
+from mechrepro.config import declared, load_paper
 from mechrepro.solve import solve
 from mechrepro.errors import Refusal
 from mechrepro.levels import extrapolate
@@ -15,7 +15,7 @@ from mechrepro.inputs import read_yaml
 
 ROOT = Path(__file__).resolve().parent.parent
 TABLE1 = np.array([-1.70e5, -3.41e4, 3.82e5, 1.16e6, 2.40e6])
-DECLARED = read_yaml((ROOT / "config" / "papers" / "disk_tension.yaml"))["effects"]
+DECLARED = declared(read_yaml((ROOT / "config" / "papers" / "disk_tension.yaml")))
 
 
 @pytest.fixture(scope="module")
@@ -25,9 +25,10 @@ def cfg():
 
 def table12(cfg, n_elements=64, references=False, **params):
     run = copy.deepcopy(cfg.runs["table12"])
-    run["effects"] = ["stress_calibration", "roll_tension", "eigen", "eq9", "modal_matrices"]
-    run["effects"] += ["exact_reference", "rolled_reference"] if references else []
-    run["contributes"] = {e: DECLARED[e]["contributes"] for e in run["effects"]}
+    run["effects"] = ["stress_calibration", "roll_tension"]
+    run["outputs"] = ["eigen", "eq9", "modal_matrices"]
+    run["outputs"] += ["exact_reference", "rolled_reference"] if references else []
+    run["contributes"] = {e: DECLARED[e]["contributes"] for e in run["effects"] + run["outputs"]}
     run["resolution"] = {"n_elements": n_elements}
     run["parameters"].update(params)
     return solve(run)
@@ -58,8 +59,8 @@ def test_calibrated_numbers_do_not_move_with_the_inplane_condition_but_table1_ra
 
 def test_a_stable_disk_cannot_show_table2s_093_as_a_mode_change(cfg):
     ds = table12(cfg)
-    ds_b = solve({**cfg.runs["table12"], "effects": ["stress_calibration", "roll_tension",
-                                                     "modal_matrices", "critical_load"],
+    ds_b = solve({**cfg.runs["table12"], "effects": ["stress_calibration", "roll_tension"],
+                  "outputs": ["modal_matrices", "critical_load"],
                   "resolution": {"n_elements": 64}})
     lam = float(ds_b["buckling_load_factor"])
     assert 1.0 < lam < 5.0
@@ -85,7 +86,7 @@ def richardson(f_coarse, f_fine):
 
 def reference_pair(n_elements):
     """The largest pair (n, 2n) present with 2n <= 128 (beyond 128 elements round-off
-    exceeds the h^4 error): the element counts of effect rolled_reference."""
+    exceeds the h^4 error): the element counts of output rolled_reference."""
     have = sorted(set(int(n) for n in n_elements))
     pairs = [(n, 2 * n) for n in have if 2 * n in have and 2 * n <= 128]
     if not pairs:
@@ -102,7 +103,7 @@ def test_richardson_reference_beats_the_finest_run_on_the_exact_solution(cfg):
     err_ref = np.max(np.abs(ref / exact - 1))
     err_128 = np.max(np.abs(runs[128]["f_unrolled"].values / exact - 1))
     assert err_ref < 1e-8 and err_ref < err_128
-    # effect exact_reference stores the same reference (and its error) in every run
+    # output exact_reference stores the same reference (and its error) in every run
     for ds in runs.values():
         assert float(ds["reference_error_unrolled"]) == pytest.approx(err_ref, rel=1e-9)
     np.testing.assert_allclose(runs[32]["f_rolled_reference"],
@@ -143,7 +144,7 @@ def test_one_uncertainty_per_calibrated_number_from_the_printed_digits(cfg):
 
 
 def test_the_fit_data_are_the_reported_values():
-    """effect identifiability's data (solver inputs) are the reported Table 1 and 502.1 Hz."""
+    """output identifiability's data (solver inputs) are the reported Table 1 and 502.1 Hz."""
     raw = read_yaml((ROOT / "config" / "papers" / "disk_tension.yaml"))
     p, rep = raw["parameters"], raw["reported"]
     assert p["fit_table1_diagonal"]["value"][:4] == [rep[f"table1_diag_nd{n}"]["value"]

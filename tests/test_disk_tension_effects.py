@@ -1,6 +1,6 @@
-"""disk_tension: the effect protocol -- an effect not named is never evaluated (for each
-solver), every effect changes the output of a scene built to show it, and what the effects
-return is what the config declares (its keys), each array with a unit."""
+"""disk_tension: the effect protocol -- an effect or output not named is never evaluated (for
+each solver), every one changes the output of a scene built to show it, and what the effects
+and outputs return is what the config declares (its keys), each array with a unit."""
 import copy
 import re
 from pathlib import Path
@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mechrepro.config import load_paper
+from mechrepro.config import declared, load_paper
 from mechrepro.models.disk_tension import EFFECTS
 from mechrepro.solve import solve
 from mechrepro.inputs import read_yaml
@@ -16,7 +16,8 @@ from mechrepro.units import UNITS
 
 ROOT = Path(__file__).resolve().parent.parent
 CFG = ROOT / "config" / "papers" / "disk_tension.yaml"
-DECLARED = read_yaml(CFG)["effects"]
+RAW = read_yaml(CFG)
+DECLARED = declared(RAW)   # effects and outputs, one namespace
 SMALL = {"axisym": {"n_elements": 8}, "plate2d": {"n_rings": 3, "n_sectors": 24}}
 
 
@@ -25,12 +26,15 @@ def cfg():
     return load_paper(CFG, "ci")
 
 
-def small_run(cfg, scene, effects=None, solver=None, **parameters):
-    """A fast run of ``scene``: coarse mesh, one r_c, no repeated timings."""
+def small_run(cfg, scene, named=None, solver=None, **parameters):
+    """A fast run of ``scene``: coarse mesh, one r_c, no repeated timings; ``named`` (effects
+    and outputs) replaces the scene's own."""
     run = copy.deepcopy(cfg.runs[scene])
     run["solver"] = solver or run["solver"]
-    run["effects"] = list(run["effects"] if effects is None else effects)
-    run["contributes"] = {e: DECLARED[e]["contributes"] for e in run["effects"]}
+    if named is not None:
+        run["effects"] = [e for e in named if e not in RAW["outputs"]]
+        run["outputs"] = [e for e in named if e in RAW["outputs"]]
+    run["contributes"] = {e: DECLARED[e]["contributes"] for e in run["effects"] + run["outputs"]}
     run["resolution"] = dict(SMALL[run["solver"]])
     run["options"] = {"timing_min_s": 0.0}
     run["parameters"].update({"rolling_radius": [0.065], **parameters})
@@ -43,10 +47,10 @@ def test_an_effect_the_scene_does_not_name_is_never_evaluated(cfg, monkeypatch, 
     assert run["solver"] == solver
 
     def boom(ctx):
-        raise AssertionError("an effect the scene does not name was evaluated")
+        raise AssertionError("an effect or output the scene does not name was evaluated")
 
     for name in EFFECTS.names:
-        if name not in run["effects"]:
+        if name not in run["effects"] + run["outputs"]:
             monkeypatch.setitem(EFFECTS._fn, name, boom)
     ds = solve(run)
     assert "f_rolled" in ds
@@ -57,7 +61,7 @@ def _changed(a, b, var):
                                                          equal_nan=True))
 
 
-# effect -> (solver, the scene's other effects, a variable switching it on must change)
+# effect or output -> (solver, the scene's others, a variable switching it on must change)
 SHOWS = {
     "stress_calibration": ("axisym", ["roll_tension"], "sigma_theta"),
     "slots": ("plate2d", [], "f_unrolled"),
@@ -110,13 +114,13 @@ def test_contributions_are_the_declared_keys_with_units(cfg, monkeypatch, solver
             seen[_name] = out = _fn(ctx)
             return out
         monkeypatch.setitem(EFFECTS._fn, name, wrapped)
-    effects = [e for e, d in DECLARED.items() if solver in d["honoured_by"]
-               and not (e in ("exact_reference", "rolled_reference", "stressed_reference")
-                        and solver == "plate2d")]
+    named = [e for e, d in DECLARED.items() if solver in d["honoured_by"]
+             and not (e in ("exact_reference", "rolled_reference", "stressed_reference")
+                      and solver == "plate2d")]
     if scene == "fig07_sensitivity":
-        effects = ["stiffness_sensitivity"]
-    solve(small_run(cfg, scene, effects))
-    assert set(seen) == set(effects)
+        named = ["stiffness_sensitivity"]
+    solve(small_run(cfg, scene, named))
+    assert set(seen) == set(named)
     for name, out in seen.items():
         assert set(out) <= set(DECLARED[name]["contributes"])
         for key, value in out.items():

@@ -1,4 +1,4 @@
-"""disk_tension: run records, effect selection, config/schema errors, determinism."""
+"""disk_tension: run records, effect and output selection, config/schema errors, determinism."""
 import copy
 from pathlib import Path
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 import yaml
 
-from mechrepro.config import ConfigError, load_paper
+from mechrepro.config import ConfigError, declared, load_paper
 from mechrepro.effects import UnknownEffect
 from mechrepro.io import check_cf
 from mechrepro.models.disk_tension import EFFECTS
@@ -22,14 +22,15 @@ def cfg():
     return load_paper(CFG, "ci")
 
 
-DECLARED = read_yaml(CFG)["effects"]
+DECLARED = declared(read_yaml(CFG))   # effects and outputs
 
 
 def run_of(cfg, scene, **over):
     run = copy.deepcopy(cfg.runs[scene])
     run["parameters"].update(over.pop("parameters", {}))
     run.update(over)
-    run["contributes"] = {e: DECLARED.get(e, {}).get("contributes", []) for e in run["effects"]}
+    run["contributes"] = {e: DECLARED.get(e, {}).get("contributes", [])
+                          for e in run["effects"] + run["outputs"]}
     return run
 
 
@@ -45,11 +46,11 @@ def test_table12_run_is_cf_complete_and_reproduces_sec_4_3(cfg):
 
 def test_unselected_effects_are_never_called(cfg, monkeypatch):
     def boom(ctx):
-        raise AssertionError("an effect that is off was evaluated")
+        raise AssertionError("an effect or output that is off was evaluated")
 
-    run = run_of(cfg, "buckling", effects=["stress_calibration", "roll_tension"])
+    run = run_of(cfg, "buckling", effects=["stress_calibration", "roll_tension"], outputs=[])
     for name in EFFECTS.names:
-        if name not in run["effects"]:
+        if name not in run["effects"] + run["outputs"]:
             monkeypatch.setitem(EFFECTS._fn, name, boom)
     ds = solve(run)
     assert "sigma_theta" in ds and "f_unrolled" in ds and "f_rolled" not in ds
@@ -59,7 +60,8 @@ def test_unknown_effect_and_bad_parameters_fail_clearly(cfg):
     with pytest.raises(UnknownEffect, match="stress_stiffening"):
         solve(run_of(cfg, "table12", effects=["stress_stiffening"]))
     with pytest.raises(ValueError, match="needs the residual stress"):
-        solve(run_of(cfg, "table12", effects=["eigen"]))   # a bad inplane_bc: refused at load
+        # a bad inplane_bc: refused at load
+        solve(run_of(cfg, "table12", effects=[], outputs=["eigen"]))
 
 
 @pytest.mark.parametrize("change, match", [
@@ -79,9 +81,9 @@ def test_a_bad_clamp_radius_condition_or_solver_is_refused_at_load(config_copy, 
         load_paper(path)
 
 
-@pytest.mark.parametrize("scene, solver, effects, match", [
+@pytest.mark.parametrize("scene, solver, named, match", [
     ("table12", None, ["axisym", "eigen"], "'axisym' is not a declared effect"),
-    ("table12", None, ["exact_reference", "eigen"], "effect 'eigen' requires \\['roll_tension'\\]"),
+    ("table12", None, ["exact_reference", "eigen"], "output 'eigen' requires \\['roll_tension'\\]"),
     ("table12", None, ["roll_tension", "slots"], "'slots' is not honoured by solver 'axisym'"),
     ("fig07_sensitivity", "plate2d", ["stiffness_sensitivity"],
      "'stiffness_sensitivity' is not honoured by solver 'plate2d'"),
@@ -89,10 +91,11 @@ def test_a_bad_clamp_radius_condition_or_solver_is_refused_at_load(config_copy, 
      "effect 'slots' excludes \\['exact_reference'\\]"),
 ])
 def test_combinations_the_solvers_cannot_honour_are_refused_at_load(config_copy, scene, solver,
-                                                                    effects, match):
+                                                                    named, match):
     path = config_copy / "papers" / "disk_tension.yaml"
     raw = read_yaml(path)
-    raw["scenes"][scene]["effects"] = effects
+    raw["scenes"][scene]["effects"] = [e for e in named if e not in raw["outputs"]]
+    raw["scenes"][scene]["outputs"] = [e for e in named if e in raw["outputs"]]
     if solver:
         raw["scenes"][scene]["solver"] = solver
     path.write_text(yaml.safe_dump(raw))
@@ -101,9 +104,10 @@ def test_combinations_the_solvers_cannot_honour_are_refused_at_load(config_copy,
 
 
 def test_roll_tension_computes_only_the_scenes_inplane_condition(cfg):
-    run = run_of(cfg, "buckling", effects=["stress_calibration", "roll_tension"])
+    run = run_of(cfg, "buckling", effects=["stress_calibration", "roll_tension"], outputs=[])
     for bc in ("clamped", "free_disk"):
-        ds = solve(run_of(cfg, "buckling", effects=run["effects"], parameters={"inplane_bc": bc}))
+        ds = solve(run_of(cfg, "buckling", effects=run["effects"], outputs=run["outputs"],
+                          parameters={"inplane_bc": bc}))
         assert ds["sigma_theta"].dims == ("r_c", "r") and bc in ds["sigma_theta"].attrs["long_name"]
         inside = ds["r"].values < cfg.runs["buckling"]["parameters"]["clamp_radius"]
         # the clamped annulus has no stress inside the clamp; the free disk has
@@ -144,7 +148,7 @@ def test_schema_rejects_typos_and_out_of_range_values(config_copy):
     with pytest.raises(ConfigError, match="poisson_ratio"):
         load_paper(path)
     bad = copy.deepcopy(raw)
-    bad["scenes"]["table12"]["effects"] = ["roll_tension", "eigne"]
+    bad["scenes"]["table12"]["outputs"] = ["exact_reference", "eigne"]
     path.write_text(yaml.safe_dump(bad))
     with pytest.raises(ConfigError, match="eigne"):
         load_paper(path)

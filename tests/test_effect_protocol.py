@@ -1,5 +1,6 @@
 """The effect protocol of the framework: declarations checked at config load, contributions
-evaluated only for named effects, each timed, the time split stored with the run."""
+evaluated only for named effects and outputs (outputs after every effect), each timed, the
+time split stored with the run."""
 from __future__ import annotations
 
 import copy
@@ -11,7 +12,7 @@ import yaml
 
 from mechrepro import effects as fx
 from mechrepro import timing
-from mechrepro.config import ConfigError, discover_papers, load_all, load_paper
+from mechrepro.config import ConfigError, declared, discover_papers, load_all, load_paper
 from mechrepro.inputs import read_yaml
 
 CONFIG = Path(__file__).resolve().parents[1] / "config"
@@ -36,13 +37,13 @@ def _load(tmp_path, raw):
 @pytest.mark.parametrize("paper", PAPERS)
 def test_every_scene_declares_a_solver_that_honours_its_effects(paper):
     raw = _raw(paper)
-    assert raw.get("solvers") and raw.get("effects"), f"{paper}: declare solvers: and effects:"
+    assert raw.get("solvers") and declared(raw), f"{paper}: declare solvers: and effects: or outputs:"
     for name, scene in raw["scenes"].items():
         assert scene.get("solver") in raw["solvers"], f"{paper}: scene {name} names no solver"
     cfg = load_all(CONFIG, [paper])[paper]
     for run in cfg.runs.values():
         assert run["solver"] in raw["solvers"]
-        assert set(run["contributes"]) == set(run["effects"])
+        assert set(run["contributes"]) == set(run["effects"]) | set(run["outputs"])
 
 
 @pytest.mark.parametrize("paper", PAPERS)
@@ -50,22 +51,23 @@ def test_every_declared_effect_is_implemented_and_vice_versa(paper):
     import importlib
 
     registry = importlib.import_module(f"mechrepro.models.{paper}").EFFECTS
-    assert set(registry.names) == set(_raw(paper)["effects"])
+    assert set(registry.names) == set(declared(_raw(paper)))
 
 
 @pytest.mark.parametrize("paper", PAPERS)
 def test_an_effect_the_solver_does_not_honour_is_refused_at_load(paper, tmp_path):
     raw = _raw(paper)
-    for scene_name, scene in raw["scenes"].items():
+    for (scene_name, scene), kind in ((s, k) for s in raw["scenes"].items()
+                                      for k in ("effects", "outputs")):
         solver = scene["solver"]
-        foreign = [e for e, d in raw["effects"].items()
-                   if solver not in d["honoured_by"] and e not in scene["effects"]]
+        foreign = [e for e, d in raw.get(kind, {}).items()
+                   if solver not in d["honoured_by"] and e not in scene.get(kind, [])]
         if foreign:
             break
     else:
-        pytest.skip(f"{paper}: every solver honours every effect")
+        pytest.skip(f"{paper}: every solver honours every effect and output")
     bad = copy.deepcopy(raw)
-    bad["scenes"][scene_name]["effects"] = list(scene["effects"]) + [foreign[0]]
+    bad["scenes"][scene_name][kind] = list(scene.get(kind, [])) + [foreign[0]]
     bad.pop("profiles", None)
     with pytest.raises(ConfigError, match=rf"{foreign[0]}.*not honoured by solver {solver!r}"):
         _load(tmp_path, bad)
@@ -124,6 +126,25 @@ def test_evaluate_calls_only_named_effects_times_each_and_checks_declared_keys()
         reg.evaluate({"effects": ["a"], "contributes": {"a": ["kappa"]}}, ctx=None)
     with pytest.raises(fx.UnknownEffect):
         reg.evaluate({"effects": ["z"]}, ctx=None)
+
+
+def test_outputs_come_after_every_effect_and_are_timed_apart():
+    reg, calls = fx.EffectRegistry("demo"), []
+    for name in ("ref", "load", "drag"):     # registered with an output first
+        reg.register(name)(lambda ctx, name=name: calls.append(name) or {name: 1.0})
+    run = {"effects": ["load", "drag"], "outputs": ["ref"],
+           "contributes": {"ref": ["ref"], "load": ["load"], "drag": ["drag"]}}
+    timer = timing.Timer()
+    token = timing._current.set(timer)
+    try:
+        stage = reg.stages(run, ctx=None)
+        assert stage({"load"}).keys() == ["load"] and calls == ["load"]
+        assert stage().keys() == ["drag", "ref"] and stage().keys() == []
+    finally:
+        timing._current.reset(token)
+    assert calls == ["load", "drag", "ref"]
+    assert set(timer.phases) == {"effect:load", "effect:drag", "output:ref"}
+    assert set(timer.effects()) == {"load", "drag", "ref"}
 
 
 def test_timed_run_keeps_the_phases_of_the_fastest_call():

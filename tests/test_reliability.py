@@ -415,9 +415,9 @@ def test_one_parameter_in_one_scene_reruns_exactly_its_solve_jobs(paper, workflo
     (lambda t: t.replace("scenes: {fig07_fig08: {resolution: {K: 300}},",
                          "scenes: {fig07_fig08: {resolution: {K: 50000}},"),
      "resolution.K = 50000: beyond K = 39434"),
-    (lambda t: t.replace("speed_12000: {solver: difference_method, effects: [textbook],",
-                         "speed_12000: {solver: difference_method, effects: [],"),
-     "scenes.speed_12000.effects = []"),
+    (lambda t: t.replace("speed_12000: {solver: difference_method, outputs: [textbook],",
+                         "speed_12000: {solver: difference_method, outputs: [],"),
+     "scenes.speed_12000.outputs = []"),
     (lambda t: t.replace("scenes: {fig07_fig08: {resolution: {K: 300}},",
                          "scenes: {accuracy: {resolution: {K: 9000000}}, "
                          "fig07_fig08: {resolution: {K: 300}},"),

@@ -1,8 +1,10 @@
-"""rolling_shear's effect protocol: each solver runs with every effect its scene does not
-name replaced by one that raises; each effect, switched on, changes the output of a scene
+"""rolling_shear's effect protocol: each solver runs with every effect and output its scene
+does not name replaced by one that raises; each, switched on, changes the output of a scene
 built to show it."""
 import numpy as np
 import pytest
+
+from mechrepro.config import declared
 
 from mechrepro.models.rolling_shear import EFFECTS, SOLVERS
 
@@ -13,10 +15,14 @@ from test_rolling_shear_helpers import config, run
 PAPER_H = 1.4341  # mm, the calibration target (Sec. 4)
 
 
-def small(scene, effects, **options):
+def small(scene, named, **options):
+    """A small run of ``scene`` naming ``named`` (effects and outputs, each in its list)."""
+    raw = config("ci").raw
+    assert set(named) <= set(declared(raw)), named
     r = run(scene, "ci")
-    r["effects"] = list(effects)
-    r["contributes"] = {e: config("ci").raw["effects"][e]["contributes"] for e in effects}
+    r["effects"] = [e for e in named if e in raw["effects"]]
+    r["outputs"] = [o for o in named if o in raw["outputs"]]
+    r["contributes"] = {e: declared(raw)[e]["contributes"] for e in named}
     r["resolution"]["calibration_points"] = 17
     r["resolution"]["n_points"] = 5
     r["options"] = {**r.get("options", {}), **options}
@@ -25,14 +31,14 @@ def small(scene, effects, **options):
 
 @pytest.fixture
 def raising():
-    """Solve a run with every effect it does not name replaced by one that raises."""
+    """Solve a run with every effect and output it does not name replaced by one that raises."""
     def boom(ctx):
-        raise AssertionError("evaluated an effect the scene did not name")
+        raise AssertionError("evaluated an effect or output the scene did not name")
 
     def solve_raising(r):
         with pytest.MonkeyPatch.context() as mp:
             for name in EFFECTS.names:
-                if name not in r["effects"]:
+                if name not in r["effects"] + r["outputs"]:
                     mp.setitem(EFFECTS._fn, name, boom)
             return solve(r)
     return solve_raising
@@ -58,13 +64,13 @@ def test_every_solver_has_a_small_scene():
 
 
 @pytest.mark.parametrize("solver", sorted(SMALL_SCENES))
-def test_solver_never_evaluates_an_effect_the_scene_does_not_name(raising, solver):
+def test_solver_never_evaluates_an_effect_or_output_the_scene_does_not_name(raising, solver):
     r = SMALL_SCENES[solver]()
     assert r["solver"] == solver
     ds = raising(r)
     assert "geometry_tilt" in ds
     for e in EFFECTS.names:
-        assert not set(config("ci").raw["effects"][e]["contributes"]) & set(ds.data_vars), e
+        assert not set(declared(config("ci").raw)[e]["contributes"]) & set(ds.data_vars), e
 
 
 def test_constant_rate_drive_lets_the_lowest_point_leave_the_overlap_line(raising):
@@ -98,8 +104,8 @@ def test_initial_values_give_the_fig12_histories(raising):
 
 
 def test_lever_scan_shows_that_only_l6_moves_the_objective(raising):
-    def scene(effects):
-        r = small("optimisation", effects, optimisers=["selpso"])
+    def scene(outputs):
+        r = small("optimisation", outputs, optimisers=["selpso"])
         r["resolution"].update(n_points=3, opt_swarm=4, opt_iter=2, scan_points=3)
         return r
 

@@ -105,8 +105,12 @@ def test_paper_optimised_levers_assemble_in_our_geometry(g):
 
 
 @pytest.mark.parametrize("edit,expect", [
-    (lambda c: c["scenes"]["original"].__setitem__("effects", ["tilt_scan", "magic"]),
+    (lambda c: c["scenes"]["original"].__setitem__("effects", ["constant_rate_drive", "magic"]),
      "'magic' is not a declared effect"),
+    (lambda c: c["scenes"]["original"].__setitem__("outputs", ["tilt_scan", "magic"]),
+     "'magic' is not a declared output"),
+    (lambda c: c["scenes"]["original"].__setitem__("effects", ["tilt_scan"]),
+     "'tilt_scan' is not a declared effect"),
     (lambda c: c["scenes"]["original"]["resolution"].__setitem__("n_points", 1), ">= 2"),
     (lambda c: c["parameters"]["l1"].__setitem__("value", -5), "l1"),
 ])

@@ -96,7 +96,7 @@ def test_selpso_error_over_seeds_is_measured_not_one_draw():
 
 def test_tilt_scan_is_done_only_when_named_and_gives_the_whole_scan():
     r = run("original")
-    r["effects"] = [e for e in r["effects"] if e != "tilt_scan"]
+    r["outputs"] = [e for e in r["outputs"] if e != "tilt_scan"]
     out = compute(r)
     cal = out["ctx"].calibration
     assert cal["n_scanned"] < len(TILTS) and "family_h" not in out["data"]

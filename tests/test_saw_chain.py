@@ -15,10 +15,11 @@ P = dict(tie_strap_pitch=8.91e-3, drive_link_pitch=7.56e-3, teeth=8,
          textbook_phase=-math.pi / 8, textbook_mass=0.102464)
 
 
-def run(K=200, effects=("exact_reference", "textbook"), **over):
-    """A run of the difference_method solver naming ``effects`` (what the config loader builds)."""
+def run(K=200, outputs=("exact_reference", "textbook"), **over):
+    """A run of the difference_method solver naming ``outputs`` (what the config loader builds;
+    saw_chain declares no effects)."""
     return {"paper": "saw_chain", "run": "t", "scene": "t", "solver": "difference_method",
-            "effects": list(effects),
+            "effects": [], "outputs": list(outputs),
             "resolution": {"K": K}, "options": {}, "parameters": {**P, **over}}
 
 
@@ -77,7 +78,7 @@ def test_exact_derivatives_match_finite_differences_of_positions():
 
 
 def test_tight_side_speed_bounds_and_mean_are_closed_form():
-    ds = solve(run(K=2000, effects=["exact_reference"]))
+    ds = solve(run(K=2000, outputs=["exact_reference"]))
     v = ds["tight_side_velocity_exact"].values
     R_omega = float(ds["pitch_radius"]) * P["sprocket_speed"]
     assert v.max() == pytest.approx(R_omega, rel=1e-12)  # at both stage ends
@@ -91,7 +92,7 @@ def test_tight_side_speed_bounds_and_mean_are_closed_form():
 def test_difference_method_converges_first_order_to_exact():
     errs, Ks = [], [100, 300, 1000, 3000]
     for K in Ks:
-        ds = solve(run(K=K, effects=["exact_reference"]))
+        ds = solve(run(K=K, outputs=["exact_reference"]))
         errs.append(float(ds["dynamic_load_x_error_pointwise"]))
     assert all(a > b for a, b in zip(errs, errs[1:]))
     slope = np.polyfit(np.log(1.0 / np.array(Ks)), np.log(errs), 1)[0]
@@ -100,7 +101,7 @@ def test_difference_method_converges_first_order_to_exact():
 
 def test_vectorised_equals_per_step_loop():
     K = 500
-    ds = solve(run(K=K, effects=[]))
+    ds = solve(run(K=K, outputs=[]))
     v, F = difference_method_loop(P["tie_strap_pitch"], P["drive_link_pitch"], 8,
                                   P["sprocket_speed"], P["tie_strap_mass"], P["drive_link_mass"],
                                   32, 32, K)

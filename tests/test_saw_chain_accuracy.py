@@ -21,7 +21,7 @@ WITH_EXACT = ["exact_reference"]
 
 
 def allowed(K, **over):
-    r = run(K=K, effects=WITH_EXACT, **over)
+    r = run(K=K, outputs=WITH_EXACT, **over)
     r["options"] = {"beyond_roundoff_limit": True, "timing_min_s": 0.0}
     return r
 
@@ -41,7 +41,7 @@ def test_leading_error_is_minus_dt_times_the_load_jerk():
     chain = chain_from_run(run(K=1))
     errs = []
     for K in (250, 1000):  # round-off stays far below the O(dt^2) remainder
-        ds = solve(run(K=K, effects=WITH_EXACT))
+        ds = solve(run(K=K, outputs=WITH_EXACT))
         F, Fe = ds["dynamic_load_x"].values, ds["dynamic_load_x_exact"].values
         dt = chain.stage_times()[1] / K
         # stage 2 interior samples, away from the switch: compare with -dt dF/dt
@@ -58,7 +58,7 @@ def test_leading_error_is_minus_dt_times_the_load_jerk():
 def test_stage_switch_sample_does_not_converge_and_is_reported_apart():
     vals = []
     for K in (100, 1000, 10000):
-        ds = solve(run(K=K, effects=WITH_EXACT))
+        ds = solve(run(K=K, outputs=WITH_EXACT))
         s = stage_switch_index(K)
         F, Fe = ds["dynamic_load_x"].values, ds["dynamic_load_x_exact"].values
         assert float(ds["dynamic_load_x_switch"]) == F[s]
@@ -87,11 +87,11 @@ def test_refusal_threshold_sits_at_the_measured_optimum():
 
 def test_hard_case_K_at_the_refusal_edge():
     limit = chain_from_run(run(K=1)).roundoff_limit()
-    ds = solve(run(K=limit, effects=WITH_EXACT))
+    ds = solve(run(K=limit, outputs=WITH_EXACT))
     assert int(ds["roundoff_dominated"]) == 0
     assert float(ds["dynamic_load_x_error_pointwise"]) < 1e-3
     with pytest.raises(RoundoffError, match=rf"K = {limit + 1}: .*allowed: K <= {limit}"):
-        solve(run(K=limit + 1, effects=[]))
+        solve(run(K=limit + 1, outputs=[]))
     # the exact reference has no such limit
     chain = chain_from_run(run(K=10 * limit))
     exact = exact_reference(Context(chain, chain.time()))["dynamic_load_x_exact"][1]
@@ -123,7 +123,7 @@ def test_hard_case_three_teeth_very_unequal_stages(p1, p2):
     assert (T1 + T2) * chain.omega == pytest.approx(2 * math.pi / 3, rel=1e-14)
     errs = []
     for K in (300, 3000):
-        ds = solve(run(K=K, effects=WITH_EXACT, **over))
+        ds = solve(run(K=K, outputs=WITH_EXACT, **over))
         v = ds["tight_side_velocity_exact"].values
         assert v.max() == pytest.approx(chain.R * chain.omega, rel=1e-12)
         assert np.all(np.isfinite(ds["dynamic_load_x"].values))
@@ -131,7 +131,7 @@ def test_hard_case_three_teeth_very_unequal_stages(p1, p2):
     assert math.log(errs[0] / errs[1]) / math.log(10) == pytest.approx(1.0, abs=0.05)
     v_loop, F_loop = difference_method_loop(p1, p2, 3, chain.omega, chain.m_L, chain.m_C,
                                             chain.M, chain.N, 300)
-    ds = solve(run(K=300, effects=WITH_EXACT, **over))
+    ds = solve(run(K=300, outputs=WITH_EXACT, **over))
     np.testing.assert_allclose(ds["dynamic_load_x"].values, F_loop, rtol=0,
                                atol=float(ds["roundoff_load_bound"]))
     # the limit still guards the short stage
@@ -154,7 +154,7 @@ def test_velocity_band_of_eq1_radius_equals_the_solvers_exact_band():
     R = pitch_radius_readings(chain.p1, chain.p2, chain.z)["eq1"]
     assert R == pytest.approx(chain.R, rel=1e-15)
     lo, hi = velocity_band(chain.p1, chain.p2, chain.omega, R)
-    v = solve(run(K=20000, effects=["exact_reference"]))["tight_side_velocity_exact"].values
+    v = solve(run(K=20000, outputs=["exact_reference"]))["tight_side_velocity_exact"].values
     assert lo == pytest.approx(v.min(), rel=1e-9) and hi == pytest.approx(v.max(), rel=1e-12)
     assert lo <= v.min()
 
@@ -229,7 +229,7 @@ def test_velocity_only_run_is_not_refused_at_the_load_limit():
     limit, v_limit = chain.roundoff_limit(), chain.velocity_roundoff_limit()
     assert v_limit > 100 * limit
     K = 4 * limit
-    r = run(K=K, effects=WITH_EXACT)
+    r = run(K=K, outputs=WITH_EXACT)
     r["options"] = {"loads": False}
     ds = solve(r)
     assert "dynamic_load_x" not in ds and int(ds["roundoff_dominated"]) == 0
@@ -237,7 +237,7 @@ def test_velocity_only_run_is_not_refused_at_the_load_limit():
     np.testing.assert_array_equal(ds["tight_side_velocity"].values, full["tight_side_velocity"].values)
     assert float(ds["tight_side_velocity_error_pointwise"]) < 1e-4
     with pytest.raises(RoundoffError, match="velocities"):
-        solve(run(K=v_limit + 1, effects=[], **{}) | {"options": {"loads": False}})
+        solve(run(K=v_limit + 1, outputs=[], **{}) | {"options": {"loads": False}})
 
 
 def test_stage_switch_sample_tends_to_the_step_weighted_value():
@@ -251,7 +251,7 @@ def test_stage_switch_sample_tends_to_the_step_weighted_value():
     F_plus = m2 * plus["mid_ax"] + chain.m_tight * plus["trail_ax"]
     limit = (F_plus + T1 / T2 * (m2 + chain.m_tight) * minus["trail_ax"]) / 2
     assert limit == pytest.approx(79.87, abs=0.01)
-    ds = solve(run(K=30000, effects=WITH_EXACT))
+    ds = solve(run(K=30000, outputs=WITH_EXACT))
     assert float(ds["dynamic_load_x_switch"]) == pytest.approx(limit, rel=1e-3)
 
 
@@ -260,7 +260,7 @@ def _velocity_only_scene(K):
     def edit(raw):
         raw["scenes"]["velocity_only"] = {
             "description": "the tight-side velocity alone (issue 63)", "solver": "difference_method",
-            "effects": ["exact_reference"], "resolution": {"K": K},
+            "outputs": ["exact_reference"], "resolution": {"K": K},
             "options": {"loads": False, "keep_history": False}}
     return edit
 

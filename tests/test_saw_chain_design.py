@@ -27,8 +27,8 @@ def test_design_quantities_equal_the_exact_reference_of_the_solver(over):
     bounded minimisation of velocity_band for the speed minimum)."""
     names = dict(p1="tie_strap_pitch", p2="drive_link_pitch", z="teeth", M="tie_straps_tight_side",
                  N="drive_links_tight_side")
-    r = run(K=20000, effects=["exact_reference"], **{names[k]: v for k, v in over.items()})
-    r["options"] = {"beyond_roundoff_limit": True}   # only the exact effect is read
+    r = run(K=20000, outputs=["exact_reference"], **{names[k]: v for k, v in over.items()})
+    r["options"] = {"beyond_roundoff_limit": True}   # only the exact output is read
     ds = solve(r)
     d = q(**over)
     F = ds["dynamic_load_x_exact"].values
@@ -93,8 +93,8 @@ def test_rule_unequal_pitches_raise_fluctuation_and_peak_load():
     assert design_rules(BASE)["design_peak_load_pitch_ratio_exponent"][0] > 0
 
 
-def test_rule_textbook_error_is_the_textbook_effects_own_peak():
-    ds = solve(run(K=2000, effects=["exact_reference", "textbook"]))
+def test_rule_textbook_error_is_the_textbook_outputs_own_peak():
+    ds = solve(run(K=2000, outputs=["exact_reference", "textbook"]))
     tb = float(np.abs(ds["dynamic_load_x_textbook"].values).max())
     d = q()
     assert d["textbook_peak"] == pytest.approx(tb, rel=1e-6)
@@ -122,7 +122,7 @@ def test_rule_peak_load_matches_the_solvers_exact_reference(over):
 
     names = dict(p1="tie_strap_pitch", p2="drive_link_pitch", z="teeth", M="tie_straps_tight_side",
                  N="drive_links_tight_side")
-    ds = solve(run(K=200, effects=["exact_reference"], **{names[k]: v for k, v in over.items()}))
+    ds = solve(run(K=200, outputs=["exact_reference"], **{names[k]: v for k, v in over.items()}))
     assert float(design.rule_peak_load(**{**BASE, **over})) == pytest.approx(
         float(ds["dynamic_load_x_exact"].max()), rel=1e-12)
 
@@ -154,10 +154,10 @@ def test_rule_peak_load_simple_from_mass_speed_and_pitch():
     assert far < 1e-4
 
 
-def test_design_maps_effect_and_rule_table():
+def test_design_maps_output_and_rule_table():
     from mechrepro.models.saw_chain import design
 
-    ds = solve(run(K=10, effects=["design_maps"]))
+    ds = solve(run(K=10, outputs=["design_maps"]))
     rows = {r[0]: r for r in design.rule_table(ds)}
     assert rows["peak_load_stage_end"][2] < 1e-12
     assert 0.005 < rows["speed_fluctuation_2alpha2_27"][2] < 0.011

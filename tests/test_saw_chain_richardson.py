@@ -93,11 +93,11 @@ def chain_exact():
     return chain_from_run(run(K=1)), float(exact_peak_60_digits())
 
 
-def test_the_exact_reference_effect_matches_the_60_digit_peak(chain_exact):
+def test_the_exact_reference_output_matches_the_60_digit_peak(chain_exact):
     """The solver's exact_reference (hand-differentiated, float) peaks at the last sample t2,
     at the 60-digit value to round-off (measured 1.3e-15 relative)."""
     _, exact = chain_exact
-    F = solve(run(K=4000, effects=["exact_reference"]))["dynamic_load_x_exact"].values
+    F = solve(run(K=4000, outputs=["exact_reference"]))["dynamic_load_x_exact"].values
     assert int(np.argmax(F)) == F.size - 1
     assert F[-1] == pytest.approx(exact, rel=1e-13)
     assert exact == pytest.approx(217.8503506565, abs=1e-9)
@@ -161,7 +161,7 @@ def test_richardson_run_is_what_the_figures_draw(chain_exact):
     exact peak is the 60-digit one, its errors are the plain and extrapolated peaks' true
     errors, and its work counts 2K + 1 samples per solve."""
     chain, exact = chain_exact
-    ds = solve(run(K=10, effects=["richardson_levels"]))
+    ds = solve(run(K=10, outputs=["richardson_levels"]))
     assert float(ds["richardson_exact_peak"]) == pytest.approx(exact, rel=1e-13)
     Ks = ds["richardson_k"].values
     i = int(np.flatnonzero(Ks == 128)[0])

@@ -22,8 +22,8 @@ CONFIG = ROOT / "config" / "papers" / "saw_chain.yaml"
 RIVAL_PASSES = {"proposed_closer_to_measurement_than_textbook", "textbook_load_exceeds_proposed"}
 
 
-def rival(K=200, effects=("exact_reference", "textbook")):
-    r = run(K=K, effects=effects)
+def rival(K=200, outputs=("exact_reference", "textbook")):
+    r = run(K=K, outputs=outputs)
     r["options"] = {"polygon": False}
     return r
 
@@ -48,7 +48,7 @@ def test_constant_speed_is_the_pitch_line_speed_with_no_load():
                                   base["tight_side_velocity_textbook"].values)
     np.testing.assert_array_equal(ds["t"].values, t)
     # the velocity alone, too
-    only = run(K=200, effects=["exact_reference"])
+    only = run(K=200, outputs=["exact_reference"])
     only["options"] = {"polygon": False, "loads": False}
     np.testing.assert_allclose(solve(only)["tight_side_velocity"].values, v, rtol=1e-15)
 

@@ -300,16 +300,17 @@ def run_schema(raw: dict) -> dict:
     declared once: each parameter's ``allowed:``, each resolution knob's ``description:``
     and ``allowed:`` under ``refine:``, the options under ``options:`` (and
     :data:`FRAMEWORK_OPTIONS`), the resolution keys a solver needs
-    (``solvers.<s>.resolution``) and those an effect needs (``effects.<e>.resolution``,
-    ``.options``); shared fragments under ``defs:`` (``{"$ref": "#/$defs/<name>"}``)."""
+    (``solvers.<s>.resolution``) and those an effect or output needs
+    (``effects.<e>.resolution``, ``.options``; ``outputs.<o>...``); shared fragments under
+    ``defs:`` (``{"$ref": "#/$defs/<name>"}``)."""
     knobs = {k: {**v.get("allowed", {}), "description": v["description"]}
              for k, v in raw.get("refine", {}).items()}
     needs = [({"solver": {"const": s}}, {"resolution": {"required": spec["resolution"]}})
              for s, spec in raw["solvers"].items() if spec.get("resolution")]
-    for e, spec in raw["effects"].items():
+    for kind, e, spec in ((k, e, v) for k in ("effects", "outputs") for e, v in raw[k].items()):
         then = {k: {"required": spec[k]} for k in ("resolution", "options") if spec.get(k)}
         if then:
-            needs.append(({"effects": {"contains": {"const": e}}}, then))
+            needs.append(({kind: {"contains": {"const": e}}}, then))
     schema = {
         "$schema": "https://json-schema.org/draft/2020-12/schema",
         "title": f"{raw['paper']} run (values in config units)",
@@ -318,7 +319,8 @@ def run_schema(raw: dict) -> dict:
         "$defs": raw.get("defs", {}),
         "properties": {
             "solver": {"enum": list(raw["solvers"])},
-            "effects": {"type": "array", "uniqueItems": True, "items": {"enum": list(raw["effects"])}},
+            **{k: {"type": "array", "uniqueItems": True, "items": {"enum": list(raw[k])}}
+               for k in ("effects", "outputs")},
             "resolution": {"type": "object", "additionalProperties": False, "properties": knobs},
             "options": {"type": "object", "additionalProperties": False,
                         "properties": {**FRAMEWORK_OPTIONS, **raw.get("options", {})}},
@@ -403,6 +405,8 @@ def load_paper(path: str | Path, profile: str = "default",
         # an overlay can break what the file alone satisfied: check the merged result too
         _validate({k: v for k, v in raw.items() if k != "profiles"},
                   load_schema("paper.schema.yaml", sdir), f"{where} (profile {profile})")
+    raw.setdefault("effects", {})
+    raw.setdefault("outputs", {})
     _check_effects(raw, where)
     _check_artefacts(raw, where)
     paper = raw.setdefault("paper", path.stem)
@@ -473,53 +477,64 @@ LEVELS = {"finer": -1, "coarser": 1, "coarsest": 2}
 VARIANT_LEVEL = "coarser"
 
 
+def declared(raw: dict) -> dict[str, dict]:
+    """Every effect and output of the paper config by name (one namespace)."""
+    return {**raw.get("effects", {}), **raw.get("outputs", {})}
+
+
 def _check_effects(raw: dict, where: str) -> None:
     """The effect protocol (:mod:`mechrepro.effects`), checked before any job is planned:
-    every scene names a declared solver and only effects that solver honours, with what
-    they require and without what they exclude.  Never silently ignored."""
-    solvers, effects = raw["solvers"], raw["effects"]
-    for name, spec in effects.items():
+    every scene names a declared solver and only effects and outputs that solver honours,
+    with what they require and without what they exclude.  Never silently ignored."""
+    solvers, decl = raw["solvers"], declared(raw)
+    if set(raw["effects"]) & set(raw["outputs"]):
+        raise ConfigError(f"{where}: {sorted(set(raw['effects']) & set(raw['outputs']))} "
+                          "declared both as effects and as outputs")
+    for kind, name, spec in ((k, n, v) for k in ("effects", "outputs") for n, v in raw[k].items()):
+        at = f"{where}: {kind}.{name}"
         for s in spec["honoured_by"]:
             if s not in solvers:
-                raise ConfigError(f"{where}: effects.{name}.honoured_by: solver {s!r} is not "
-                                  f"declared; solvers: {', '.join(solvers) or '(none)'}")
-        for key in ("requires", "excludes"):
-            for e in spec.get(key, []):
-                if e not in effects:
-                    raise ConfigError(f"{where}: effects.{name}.{key}: {e!r} is not a declared "
-                                      f"effect; effects: {', '.join(effects)}")
+                raise ConfigError(f"{at}.honoured_by: solver {s!r} is not declared; solvers: "
+                                  f"{', '.join(solvers) or '(none)'}")
+        for key, e in ((k, e) for k in ("requires", "excludes") for e in spec.get(k, [])):
+            if e not in decl:
+                raise ConfigError(f"{at}.{key}: {e!r} is not a declared effect or output; "
+                                  f"declared: {', '.join(decl)}")
         for k, unit in spec.get("units", {}).items():
             if k not in spec["contributes"]:
-                raise ConfigError(f"{where}: effects.{name}.units.{k}: not one of its "
-                                  f"contributions {spec['contributes']}")
+                raise ConfigError(f"{at}.units.{k}: not one of its contributions "
+                                  f"{spec['contributes']}")
             if unit not in UNITS and not _udunits_like(unit):
-                raise ConfigError(f"{where}: effects.{name}.units.{k} = {unit!r}: not a unit")
+                raise ConfigError(f"{at}.units.{k} = {unit!r}: not a unit")
     for scene, spec in raw["scenes"].items():
-        _check_scene_effects(raw, spec["solver"], spec["effects"], f"{where}: scenes.{scene}")
+        _check_scene_effects(raw, spec["solver"], spec.get("effects", []),
+                             f"{where}: scenes.{scene}", spec.get("outputs", []))
 
 
-def _check_scene_effects(raw: dict, solver: str, named: list[str], at: str) -> None:
-    """One scene's (or rival's) solver and effects against the declarations."""
-    solvers, effects = raw["solvers"], raw["effects"]
+def _check_scene_effects(raw: dict, solver: str, effects: list[str], at: str,
+                         outputs: list[str] = ()) -> None:
+    """One scene's (or rival's) solver, effects and outputs against the declarations."""
+    solvers, decl = raw["solvers"], declared(raw)
     if solver not in solvers:
         raise ConfigError(f"{at}.solver = {solver!r}: not declared; solvers: "
                           f"{', '.join(solvers) or '(none)'}")
-    for e in named:   # first what the solver cannot do at all, then combinations
-        if e not in effects:
-            raise ConfigError(f"{at}.effects: {e!r} is not a declared effect; effects: "
-                              f"{', '.join(effects)}")
-        if solver not in effects[e]["honoured_by"]:
-            raise ConfigError(f"{at}: effect {e!r} is not honoured by solver {solver!r} "
-                              f"(honoured by: {', '.join(effects[e]['honoured_by'])}); "
+    for k, e in [("effect", e) for e in effects] + [("output", e) for e in outputs]:
+        if e not in raw[k + "s"]:
+            raise ConfigError(f"{at}.{k}s: {e!r} is not a declared {k}; {k}s: "
+                              f"{', '.join(raw[k + 's']) or '(none)'}")
+    kind = {**dict.fromkeys(effects, "effect"), **dict.fromkeys(outputs, "output")}
+    for e, k in kind.items():   # first what the solver cannot do at all, then combinations
+        if solver not in decl[e]["honoured_by"]:
+            raise ConfigError(f"{at}: {k} {e!r} is not honoured by solver {solver!r} "
+                              f"(honoured by: {', '.join(decl[e]['honoured_by'])}); "
                               "remove it or choose one of those solvers")
-    for e in named:
-        decl = effects[e]
-        missing = [r for r in decl.get("requires", []) if r not in named]
+    for e, k in kind.items():
+        missing = [r for r in decl[e].get("requires", []) if r not in kind]
         if missing:
-            raise ConfigError(f"{at}: effect {e!r} requires {missing}")
-        clash = [x for x in decl.get("excludes", []) if x in named]
+            raise ConfigError(f"{at}: {k} {e!r} requires {missing}")
+        clash = [x for x in decl[e].get("excludes", []) if x in kind]
         if clash:
-            raise ConfigError(f"{at}: effect {e!r} excludes {clash}")
+            raise ConfigError(f"{at}: {k} {e!r} excludes {clash}")
 
 
 def _udunits_like(unit: str) -> bool:
@@ -808,8 +823,9 @@ def _add_variants(cfg: PaperConfig, raw: dict, run_schema: dict, where: str) -> 
 def _add_ablations(cfg: PaperConfig, raw: dict, where: str) -> None:
     """One run per effect of each ``marginal_cost:`` scene, with that effect removed: the
     difference of the two solves' times is what the effect costs the solver (the work it
-    causes inside the solve, not only its own evaluation). An effect another one requires
-    cannot be removed alone and gets no run."""
+    causes inside the solve, not only its own evaluation). An effect another one (or an
+    output) requires cannot be removed alone and gets no run; an output's cost is its own
+    time (:mod:`mechrepro.effects`)."""
     for scene in raw.get("marginal_cost", []):
         if scene not in raw["scenes"]:
             raise ConfigError(f"{where}: marginal_cost: {scene!r} is not a scene; scenes: "
@@ -820,18 +836,24 @@ def _add_ablations(cfg: PaperConfig, raw: dict, where: str) -> None:
         for e in base["effects"]:
             effects = [x for x in base["effects"] if x != e]
             try:
-                _check_scene_effects(raw, base["solver"], effects, f"{where}: marginal_cost")
+                _check_scene_effects(raw, base["solver"], effects, f"{where}: marginal_cost",
+                                     base["outputs"])
             except ConfigError:
                 continue
             cfg.runs[f"{scene}@without-{e}"] = {
                 **base, "run": f"{scene}@without-{e}", "variant": f"without-{e}",
-                "effects": effects,
-                "contributes": {x: raw["effects"][x]["contributes"] for x in effects}}
+                "effects": effects, "contributes": _contributes(raw, effects, base["outputs"])}
+
+
+def _contributes(raw: dict, *named: list[str]) -> dict[str, list[str]]:
+    decl = declared(raw)
+    return {e: decl[e]["contributes"] for names in named for e in names}
 
 
 def _differs(variant_run: dict, base: dict) -> bool:
     return any(variant_run[k] != base[k]
-               for k in ("parameters", "resolution", "effects", "solver", "options", "seed"))
+               for k in ("parameters", "resolution", "effects", "outputs", "solver", "options",
+                         "seed"))
 
 
 def _refined(raw, base: dict, variant: str, where: str, why: str) -> dict:
@@ -877,13 +899,13 @@ def _variant_run(raw, base: dict, variant: str, run_schema, where, why,
         effects += [e for e in spec.get("effects_on", []) if e not in effects]
         solver = spec.get("solver", solver)
         options.update(spec.get("options", {}))
-        _check_scene_effects(raw, solver, effects, f"{where}: {why}")
+        _check_scene_effects(raw, solver, effects, f"{where}: {why}", base["outputs"])
     else:
         # a scene or sweep that sets the constant itself keeps its own value
         params.update({p: v for p, v in overrides.items()
                        if p not in scene.get("parameters", {}) and p not in base["sweep"]})
-    record = {"solver": solver, "effects": effects, "resolution": resolution,
-              "parameters": params, "options": options}
+    record = {"solver": solver, "effects": effects, "outputs": base["outputs"],
+              "resolution": resolution, "parameters": params, "options": options}
     if kind in ("rival", "range", "family") and at:
         try:
             coarse = _refined(raw, base, at, where, why)
@@ -897,7 +919,7 @@ def _variant_run(raw, base: dict, variant: str, run_schema, where, why,
         si[k], units[k] = to_si(v, raw["parameters"][k]["unit"])
     return {**base, "run": f"{base['run']}@{variant}", "variant": variant,
             "solver": solver, "effects": effects, "options": options, "seed": seed,
-            "contributes": {e: raw["effects"][e]["contributes"] for e in effects},
+            "contributes": _contributes(raw, effects, base["outputs"]),
             "resolution": resolution, "parameters": si, "units": units}
 
 
@@ -928,8 +950,9 @@ def _make_run(raw, scene_name, study, index, point, run_schema, where) -> dict:
         else:
             raise ConfigError(f"{where}: studies.{study}.sweep.{key}: not a resolution key of "
                               f"scene {scene_name!r} nor a parameter")
-    record = {"solver": scene["solver"], "effects": list(scene["effects"]),
-              "resolution": resolution, "parameters": params, "options": scene.get("options", {})}
+    record = {"solver": scene["solver"], "effects": list(scene.get("effects", [])),
+              "outputs": list(scene.get("outputs", [])), "resolution": resolution,
+              "parameters": params, "options": scene.get("options", {})}
     origin = f"{where} (run {scene_name if study is None else f'{study}[{index}]'})"
     _validate(record, run_schema, origin)
     si, units = {}, {}
@@ -946,8 +969,9 @@ def _make_run(raw, scene_name, study, index, point, run_schema, where) -> dict:
                         for k in point},
         "solver": scene["solver"],
         "effects": record["effects"],
-        # what each named effect declares it contributes (checked when it is evaluated)
-        "contributes": {e: raw["effects"][e]["contributes"] for e in record["effects"]},
+        "outputs": record["outputs"],
+        # what each named effect and output declares it contributes (checked when evaluated)
+        "contributes": _contributes(raw, record["effects"], record["outputs"]),
         "resolution": resolution,
         "options": record["options"],
         "parameters": si,

@@ -1,6 +1,9 @@
-"""The effect protocol: a scene's solver and effects decide exactly what runs.
+"""The effect protocol: a scene's solver, effects and outputs decide exactly what runs.
 
-Declared once per paper in its config (``config/papers/<paper>.yaml``)::
+An **effect** is physics the solve includes; an **output** is what is computed from the
+solved model beside it (a reference solution, an analysis, a comparison model), so that the
+scene's physics never depends on it.  Both are declared once per paper in its config
+(``config/papers/<paper>.yaml``), outputs under ``outputs:`` with the same fields::
 
     solvers:
       finite_difference: {description: "Eqs. (2-36)-(2-38), implicit march"}
@@ -14,16 +17,18 @@ Declared once per paper in its config (``config/papers/<paper>.yaml``)::
         excludes: []                    # effects that must not
 
 and checked when the config is loaded (:func:`mechrepro.config.load_paper`): a scene that
-names an effect its solver does not honour is refused before any job is planned.
+names an effect or output its solver does not honour is refused before any job is planned.
 
-Implemented once per paper: ``@EFFECTS.register("impact")`` on a pure function
-``fn(ctx) -> {key: value}`` of the solver's context.  A solver calls
+Implemented once per paper, effects and outputs alike: ``@EFFECTS.register("impact")`` on a
+pure function ``fn(ctx) -> {key: value}`` of the solver's context.  A solver calls
 :meth:`EffectRegistry.evaluate` with its run and context and reads the returned
 :class:`Contributions` by *key* (``tension``, ``u_left``, ...), never by effect name: an
 effect that is not named is never looked up, let alone called, and each one that is
 named is timed (:mod:`mechrepro.timing`), so the report can say what it costs.  A solver
 that needs some contributions before others asks for them by key, stage by stage
-(:meth:`EffectRegistry.stages`); each effect is still evaluated once.
+(:meth:`EffectRegistry.stages`); each effect is still evaluated once.  The outputs come
+last, after every effect, each timed as ``output:<name>``; an output's cost is its own time,
+never a difference of solves (``marginal_cost:`` removes effects only).
 """
 from __future__ import annotations
 
@@ -32,7 +37,7 @@ from typing import Any
 
 from .errors import Refusal
 from .registry import Registry
-from .timing import EFFECT, phase
+from .timing import EFFECT, OUTPUT, phase
 
 
 class UnknownEffect(Refusal, KeyError):
@@ -114,13 +119,13 @@ class EffectRegistry(Registry):
 class Stages:
     """A solver's named effects evaluated stage by stage, each exactly once: ``stage(keys)``
     evaluates those not yet evaluated whose declaration contributes any of ``keys`` (what
-    the solver's next step reads), ``stage()`` all the rest.  A solver names keys, never
-    effects.  The keys an effect returns must be the ones its declaration lists
-    (``run["contributes"]``, from the config)."""
+    the solver's next step reads), ``stage()`` all the rest and then the run's outputs.  A
+    solver names keys, never effects.  The keys an effect or output returns must be the ones
+    its declaration lists (``run["contributes"]``, from the config)."""
 
     def __init__(self, registry: EffectRegistry, run: dict, ctx):
         self.registry, self.run, self.ctx = registry, run, ctx
-        self.pending = list(run["effects"])
+        self.pending, self.outputs = list(run["effects"]), list(run.get("outputs", ()))
 
     def __call__(self, keys: Iterable[str] | None = None) -> Contributions:
         declared = self.run.get("contributes", {})
@@ -128,8 +133,12 @@ class Stages:
         names = [e for e in self.pending if keys is None or set(declared.get(e, ())) & keys]
         self.pending = [e for e in self.pending if e not in names]
         out = Contributions()
-        for name, fn in self.registry.select(names).items():
-            with phase(EFFECT + name):
+        timed = [(n, fn, EFFECT) for n, fn in self.registry.select(names).items()]
+        if keys is None:
+            timed += [(n, fn, OUTPUT) for n, fn in self.registry.select(self.outputs).items()]
+            self.outputs = []
+        for name, fn, kind in timed:
+            with phase(kind + name):
                 values = fn(self.ctx)
             if name in declared and set(values) - set(declared[name]):
                 raise ContributionError(

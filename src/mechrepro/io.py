@@ -166,6 +166,7 @@ def provenance_attrs(run: dict) -> dict:
         "sweep": json.dumps(run.get("sweep", {}), sort_keys=True),
         "sweep_units": json.dumps(run.get("sweep_units", {}), sort_keys=True),
         "effects": json.dumps(run["effects"]),
+        "outputs": json.dumps(run.get("outputs", [])),
         "resolution": json.dumps(run["resolution"], sort_keys=True),
         "parameters": json.dumps({"values_si": run["parameters"], "units_si": run["units"],
                                   "options": run.get("options", {}), "seed": run.get("seed")},
@@ -258,7 +259,7 @@ def open_dataset(path: str | Path, indexes: bool = True) -> xr.Dataset:
 def run_attrs(ds: xr.Dataset) -> dict:
     """Decode the JSON provenance attributes of a run dataset."""
     out = dict(ds.attrs)
-    for k in ("effects", "resolution", "parameters", "sweep", "package_versions"):
+    for k in ("effects", "outputs", "resolution", "parameters", "sweep", "package_versions"):
         if k in out and isinstance(out[k], str):
             out[k] = json.loads(out[k])
     return out

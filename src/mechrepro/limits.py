@@ -321,10 +321,10 @@ def _extractor_reads(paper: str) -> dict[str, list[tuple[str, str, str, int]]]:
 
 
 def missing_effects(cfg, cache_dir=None) -> list[str]:
-    """A scene whose effect list lacks an effect whose contribution a reported quantity
-    reads from it (an emptied effect list would otherwise fail in validation, after the
-    solve jobs)."""
-    effects = cfg.raw.get("effects", {})
+    """A scene whose effects and outputs lack one whose contribution a reported quantity
+    reads from it (an emptied list would otherwise fail in validation, after the solve
+    jobs)."""
+    effects = {**cfg.raw["effects"], **cfg.raw["outputs"]}   # config.declared
     by_key = {k: e for e, spec in effects.items() for k in spec.get("contributes", [])}
     # a model may name solver outputs that exist only with an effect (not its declared
     # contributions): models/<paper>/limits.py PRODUCED_BY = {variable: effect}
@@ -345,13 +345,14 @@ def missing_effects(cfg, cache_dir=None) -> list[str]:
             if key not in by_key or not members or members[0] not in cfg.runs:
                 continue
             run, need = cfg.runs[members[0]], by_key[key]
-            if need in run["effects"] or (run["scene"], need) in seen:
+            kind_of = "outputs" if need in cfg.raw["outputs"] else "effects"
+            if need in run[kind_of] or (run["scene"], need) in seen:
                 continue
             seen.add((run["scene"], need))
-            out.append(f"{cfg.path}: scenes.{run['scene']}.effects = {run['effects']}: "
+            out.append(f"{cfg.path}: scenes.{run['scene']}.{kind_of} = {run[kind_of]}: "
                        f"reported quantity {q} reads {key!r} from {kind} {name} "
-                       f"(models/{cfg.paper}/validation.py line {line}), which effect "
-                       f"{need!r} contributes; allowed: effects including {need!r} (honoured "
+                       f"(models/{cfg.paper}/validation.py line {line}), which {kind_of[:-1]} "
+                       f"{need!r} contributes; allowed: {kind_of} including {need!r} (honoured "
                        f"by {', '.join(effects[need]['honoured_by'])})")
     # a solver that computes nothing a reported quantity reads without effects:
     # models/<paper>/limits.py NEEDS_EFFECTS = {solver: why}
@@ -359,10 +360,10 @@ def missing_effects(cfg, cache_dir=None) -> list[str]:
     read = {r for spec in cfg.reported.values() for r in spec.get("reads", [])}
     for scene, spec in cfg.raw["scenes"].items():
         studies = {s for s in cfg.studies if cfg.runs[cfg.studies[s][0]]["scene"] == scene}
-        if (spec["solver"] in needs and not cfg.runs[scene]["effects"]
+        if (spec["solver"] in needs and not (spec.get("effects") or spec.get("outputs"))
                 and (scene in read or studies & read)
                 and not any(scene in o for o in out)):
-            out.append(f"{cfg.path}: scenes.{scene}.effects = []: solver {spec['solver']} "
-                       f"needs effects ({needs[spec['solver']]}); allowed: at least one of "
+            out.append(f"{cfg.path}: scenes.{scene}: no effects or outputs: solver "
+                       f"{spec['solver']} needs one ({needs[spec['solver']]}); allowed: at least one of "
                        f"{', '.join(e for e, d in effects.items() if spec['solver'] in d['honoured_by'])}")
     return out

@@ -56,7 +56,7 @@ details.table{margin:.4em 0}.scroll{overflow-x:auto;max-width:100%}
 """
 
 TABLE_TITLES = {
-    "effect_cost": "What each effect costs (summed over every run, verdict variants included)",
+    "effect_cost": "What each effect and output costs (summed over every run, verdict variants included)",
     "effect_marginal_cost": "What each effect costs the solve: its own evaluation (direct) "
                             "beside the scene's time with it minus without it (marginal)",
     "job_time": "Solver jobs: the solves' own time against the job's wall time",

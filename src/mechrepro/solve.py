@@ -170,11 +170,11 @@ def _solve_once(run: dict, timed: tuple | None = None):
         ds["timing_rounds"] = ("timing_round", np.asarray(rounds[0], float),
                                {"units": "s", "long_name": "solve time of each alternated round"})
     # variables, not only attributes, so that gather stacks them along a study
-    effects = list(run["effects"])
-    ds = ds.assign(timing_variables(seconds, timer, effects))
-    if effects:
-        ds = ds.assign_coords(timed_effect=("timed_effect", effects,
-                                            {"long_name": "effect named by the scene"}))
+    named = [*run["effects"], *run.get("outputs", ())]
+    ds = ds.assign(timing_variables(seconds, timer, named))
+    if named:
+        ds = ds.assign_coords(timed_effect=("timed_effect", named,
+                                            {"long_name": "effect or output named by the scene"}))
     ds.attrs["wall_time_s"] = seconds
     return ds
 
@@ -238,7 +238,7 @@ def main(argv: list[str]) -> None:
         t0 = time.perf_counter()
         again = same.get(name) in solved
         print(f"[{paper} {i + 1}/{n}] {name}: solver={run.get('solver')} effects={run['effects']} "
-              f"resolution={run['resolution']}" + (f": the solve of {same[name]}" if again else ""),
+              f"outputs={run.get('outputs', [])} resolution={run['resolution']}" + (f": the solve of {same[name]}" if again else ""),
               flush=True)
         if name in timed:
             ds = _solve_once(run, timed.pop(name))

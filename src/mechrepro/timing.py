@@ -1,10 +1,11 @@
-"""The one timer: what a run costs, split into the solver core and each effect.
+"""The one timer: what a run costs, split into the solver core and each effect or output.
 
 The runner (:func:`mechrepro.solve.run_solver`) makes a :class:`Timer` current while a run
 is computed; :meth:`EffectRegistry.evaluate <mechrepro.effects.EffectRegistry.evaluate>`
-times each effect's contribution under ``effect:<name>``, a model names its own phases
+times each effect's contribution under ``effect:<name>`` and each output under
+``output:<name>``, a model names its own phases
 with :func:`phase` (whose handle also gives the block's seconds, for a cost-of-accuracy
-study that reports them), and everything not inside an effect is the solver core.  The
+study that reports them), and everything not inside either is the solver core.  The
 split is stored in the run's netCDF (:func:`timing_variables`) and summed per paper into
 the report's effect-cost table (:mod:`mechrepro.costs`).
 
@@ -18,7 +19,7 @@ from collections import defaultdict
 from contextlib import contextmanager
 from contextvars import ContextVar
 
-EFFECT = "effect:"
+EFFECT, OUTPUT = "effect:", "output:"
 
 
 class Timer:
@@ -37,7 +38,13 @@ class Timer:
         self.calls[name] += 1
 
     def effects(self) -> dict[str, float]:
-        return {k.removeprefix(EFFECT): v for k, v in self.phases.items() if k.startswith(EFFECT)}
+        """Seconds per effect and output the run named (by name)."""
+        return {_named(k): v for k, v in self.phases.items() if _named(k) != k}
+
+
+def _named(phase: str) -> str:
+    """An effect's or output's name from its phase; any other phase unchanged."""
+    return phase.removeprefix(EFFECT).removeprefix(OUTPUT)
 
 
 _current: ContextVar[Timer | None] = ContextVar("mechrepro_timer", default=None)
@@ -122,19 +129,19 @@ def timing_variables(seconds: float, timer: Timer | None, effects: list[str]) ->
     ``timed_effect``, and ``phase_time`` and ``phase_calls`` of the model's named phases over
     ``timed_phase``."""
     per = timer.effects() if timer is not None else {}
-    calls = {k.removeprefix(EFFECT): v for k, v in (timer.calls if timer else {}).items()}
+    calls = {_named(k): v for k, v in (timer.calls if timer else {}).items()}
     eff = [float(per.get(e, 0.0)) for e in effects]
     out = {
         "wall_time": ((), seconds, {"units": "s", "long_name": "wall time of one solve"}),
         "core_time": ((), max(seconds - sum(eff), 0.0),
-                      {"units": "s", "long_name": "wall time of the solver core (not in an effect)"}),
+                      {"units": "s", "long_name": "wall time of the solver core (no effect or output)"}),
     }
     if effects:
         out["effect_time"] = (("timed_effect",), eff,
-                              {"units": "s", "long_name": "wall time of each effect's contribution"})
+                              {"units": "s", "long_name": "wall time of each effect or output"})
         out["effect_calls"] = (("timed_effect",), [int(calls.get(e, 0)) for e in effects],
-                               {"units": "1", "long_name": "evaluations of each effect"})
-    named = sorted(k for k in (timer.phases if timer else {}) if not k.startswith(EFFECT))
+                               {"units": "1", "long_name": "evaluations of each effect or output"})
+    named = sorted(k for k in (timer.phases if timer else {}) if _named(k) == k)
     if named:
         out["timed_phase"] = (("timed_phase",), named, {"long_name": "phase a model names"})
         out["phase_time"] = (("timed_phase",), [timer.phases[k] for k in named],

@@ -1,7 +1,7 @@
 """Cost-of-accuracy quantities of disk_tension (config ``accuracy:``): the errors along a
 study's runs, against exact (Bessel) solutions wherever one exists; the rolled Gaussian
 stress has none, so the 2-D model's rolled errors are taken against the axisym Richardson
-reference of effect ``rolled_reference``.
+reference of output ``rolled_reference``.
 """
 from __future__ import annotations
 

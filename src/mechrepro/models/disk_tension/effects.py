@@ -1,5 +1,6 @@
-"""The effects of disk_tension: pure functions ``fn(ctx) -> {key: value}`` declared in
-``config/papers/disk_tension.yaml``, evaluated in three stages by :mod:`.solver`."""
+"""The effects and outputs of disk_tension: pure functions ``fn(ctx) -> {key: value}`` declared
+in ``config/papers/disk_tension.yaml``, the effects evaluated in three stages by :mod:`.solver`,
+the outputs (references, analyses) after the last."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -26,7 +27,7 @@ REFERENCE_ELEMENTS = (64, 128)
 #: radii at which the closed-form temperature and stress are stored
 N_RADII = 256
 
-#: seconds of a fresh solve of each memoised effect, per (effect, input), once per process
+#: seconds of a fresh solve of each memoised effect or output, per (name, input), once per process
 _COLD: dict = {}
 
 

@@ -285,7 +285,7 @@ def analyse(disk, *, widths, scales, fine, fine_widths, single_width, table1_pap
             f_rolled_paper, **load):
     """The joint fit of (c, s, in-plane condition) to each data subset (:data:`SUBSETS`)
     and the single-alpha reading (s = ``single_width``, free_disk, c on Table 1's N_d = 4
-    entry), as the arrays of effect ``identifiability``; ``fine`` must be uniform."""
+    entry), as the arrays of output ``identifiability``; ``fine`` must be uniform."""
     unit, w2 = scan(disk, widths=widths, scales=scales, fine=fine, conditions=CONDITIONS, **load)
     fm = FineModel(widths, unit, w2, fine)
     u = np.r_[PRINTED["table1"], PRINTED["f_rolled"]]

@@ -39,13 +39,14 @@ def _size(run: dict) -> int:
 
 def work(run: dict) -> dict:
     """The cost form: an assembly linear and an eigen-solve quadratic in the size
-    (:func:`_size`), and each effect's work linear in it and in the points of the swept
-    parameters it solves again (rolling radii, nodal diameters; the design map's amplitude
-    steps too)."""
+    (:func:`_size`), and each effect's and output's work linear in it and in the points of
+    the swept parameters it solves again (rolling radii, nodal diameters; the design map's
+    amplitude steps too)."""
     n, p = float(_size(run)), run["parameters"]
     grid = n * math.prod(len(v) for v in p.values() if isinstance(v, list))
     return {"run": 1.0, "size": n, "size^2": n * n,
-            **{e: grid * (int(p["design_steps"]) if e == "design_map" else 1) for e in run["effects"]}}
+            **{e: grid * (int(p["design_steps"]) if e == "design_map" else 1)
+               for e in run["effects"] + run["outputs"]}}
 
 
 def mem_mb(run: dict) -> float:

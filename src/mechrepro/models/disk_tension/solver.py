@@ -1,7 +1,7 @@
 """The two solvers of disk_tension, one discretisation of the clamped disk each: ``axisym``
 (:mod:`.axisym`) and ``plate2d`` (:mod:`.plate2d`).  Both run the effects (:mod:`.effects`) in
 three stages read by key -- what the load and mesh need, the load (Eq. 4), then after the
-core ([K], [M] of Eq. 1, Eq. 6, [K^(sigma)] of Eq. 3) the analyses.
+core ([K], [M] of Eq. 1, Eq. 6, [K^(sigma)] of Eq. 3) the rest and the outputs (the analyses).
 """
 from __future__ import annotations
 
@@ -178,7 +178,8 @@ def _log_sums(ctx: Disk, what: str, f, f_exact, of: str, reference="exact Bessel
 
 def staged(mesh):
     """A solver ``(run, ctx: Disk) -> Disk``: the run's effects evaluated stage by stage
-    around the core on the discretisation ``mesh`` (:func:`_axisym`, :func:`_plate2d`)."""
+    around the core on the discretisation ``mesh`` (:func:`_axisym`, :func:`_plate2d`), its
+    outputs in the last stage."""
     def solve(run: dict, ctx: Disk) -> Disk:
         stage = EFFECTS.stages(run, ctx)
         before = stage(BEFORE_LOAD)

@@ -39,9 +39,9 @@ def newton_stroke(ctx: Context) -> tuple[stroke.StrokeSolution, dict]:
 
 
 def solve_continuation(run: dict, ctx: Context) -> dict:
-    """Newton and closed-form (the reference) strokes; the named effects read ``ctx.stroke``.
-    A stroke that does not assemble raises NonAssembly (a scene lever set's is refused by
-    :func:`.solver.refusing`)."""
+    """Newton and closed-form (the reference) strokes; the named effects and outputs read
+    ``ctx.stroke``.  A stroke that does not assemble raises NonAssembly (a scene lever set's
+    is refused by :func:`.solver.refusing`)."""
     ctx.stroke, data = newton_stroke(ctx)
     data["levers_assemble"] = var((), 1.0, "1", "1: the lever set assembles over the stroke")
     ctx.reference = stroke.exact_theta(ctx.g, ctx.x_k)

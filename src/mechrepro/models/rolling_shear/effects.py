@@ -1,5 +1,5 @@
-"""The effects of rolling_shear (config ``effects:``): the drive law of the Fig. 9 contrast and
-outputs that cost extra solves; each a pure function of the :class:`~.run_context.Context`."""
+"""rolling_shear's effect (config ``effects:``), the Fig. 9 contrast's drive law, and outputs
+(``outputs:``) costing extra solves; each a pure function of the :class:`~.run_context.Context`."""
 from __future__ import annotations
 
 import math

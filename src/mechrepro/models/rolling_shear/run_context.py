@@ -1,4 +1,4 @@
-"""The run's linkage as every solver and effect sees it (mm, rad): the geometry (tilt
+"""The run's linkage as every solver, effect and output sees it (mm, rad): the geometry (tilt
 calibrated on the original levers, Sec. 4, then the scene's levers), the cut points, the
 pose solvers' settings and one random stream per consumer."""
 from __future__ import annotations
@@ -56,7 +56,7 @@ class Context:
 
     def _calibrate(self) -> dict:
         """Fit the tilt on the original levers in every run (range-end variants re-calibrate); the
-        scan stops at its bracket, the effect tilt_scan scans the rest at its own cost."""
+        scan stops at its bracket, the output tilt_scan scans the rest at its own cost."""
         from .calibrate import calibrate_tilt
 
         n_cal = int(self.res["calibration_points"])

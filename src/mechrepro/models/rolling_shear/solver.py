@@ -1,5 +1,5 @@
 """rolling_shear's solvers (continuation, method_comparison, lever_optimisation, family_scan,
-design_front), each followed by the effects the scene names, and the run's variables."""
+design_front), each followed by the scene's named effects and outputs; the run's variables."""
 from __future__ import annotations
 
 import math
@@ -80,8 +80,9 @@ def context(run: dict) -> Context | Refused:
 
 
 def with_effects(solver):
-    """``solver(run, ctx)`` followed by the effects the scene names (they read what it leaves
-    in the context) and the geometry's constants; a refused lever set gives ``{"refused": ...}``."""
+    """``solver(run, ctx)`` followed by the effects and outputs the scene names (they read what
+    it leaves in the context) and the geometry's constants; a refused lever set gives
+    ``{"refused": ...}``."""
     def solve(run: dict, ctx: Context | Refused) -> dict:
         data = ctx if isinstance(ctx, Refused) else refusing(run, solver, run, ctx)
         if isinstance(data, Refused):

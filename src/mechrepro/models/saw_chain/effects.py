@@ -1,4 +1,4 @@
-"""The saw_chain effects (config ``effects:`` says why they are effects): outputs computed
+"""The saw_chain outputs (config ``outputs:`` says why; no effects): references and analyses
 beside the difference method on its time grid, each evaluated and timed only when named."""
 from __future__ import annotations
 
@@ -18,7 +18,7 @@ EFFECTS = EffectRegistry("saw_chain")
 
 @dataclass(frozen=True)
 class Context:
-    """What an effect sees: the run's chain, its time grid, its SI parameters (the constants of
+    """What an output sees: the run's chain, its time grid, its SI parameters (the constants of
     Eq. (23) among them) and whether the polygon effect is on (off: the constant-speed rival)."""
     chain: Chain
     t: np.ndarray
@@ -123,7 +123,7 @@ def design_maps(ctx: Context) -> dict:
     return out
 
 
-#: the levels of effect richardson_levels: K = 4 ... 32768, doubling (below the round-off
+#: the levels of output richardson_levels: K = 4 ... 32768, doubling (below the round-off
 #: limit 39 434 of the paper's chain)
 RICHARDSON_K = 2 ** np.arange(2, 16)
 

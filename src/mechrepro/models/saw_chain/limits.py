@@ -27,8 +27,8 @@ def check(run: dict) -> list[str]:
 
 def work(run: dict) -> dict:
     """The cost form: 2K + 1 samples of the difference method and its references, plus the
-    effects that solve design grids and fits of their own, once per run."""
-    return {"run": 1.0, "K": float(run["resolution"]["K"]), **{e: 1.0 for e in run["effects"]
+    outputs that solve design grids and fits of their own, once per run."""
+    return {"run": 1.0, "K": float(run["resolution"]["K"]), **{e: 1.0 for e in run["outputs"]
                                                               if e in ("identification", "design_maps", "richardson_levels")}}
 
 
@@ -38,6 +38,6 @@ def mem_mb(run: dict) -> float:
 
 
 #: the difference method alone is read by no reported quantity: each compares it with
-#: the exact reference or the textbook method (effects), or reads their contributions
+#: the exact reference or the textbook method (outputs), or reads their contributions
 NEEDS_EFFECTS = {"difference_method": "every reported quantity reads it beside the exact "
                                       "reference or the textbook method"}

@@ -1,5 +1,5 @@
 """The saw_chain solver: the kinematic difference method, Eqs. (1)-(22), over one period (a
-drive link, then a tie strap, seated on a tooth) with K steps per stage; the effects a
+drive link, then a tie strap, seated on a tooth) with K steps per stage; the outputs a
 scene names contribute beside it on the same grid."""
 from __future__ import annotations
 
@@ -94,7 +94,7 @@ def stage_switch_index(K):
 
 
 def context(run: dict) -> Context:
-    """What the solver and the effects see: the run's chain, its time grid, its SI parameters
+    """What the solver and the outputs see: the run's chain, its time grid, its SI parameters
     and whether the polygon effect is on (``options.polygon: false``: the constant-speed
     rival, rivals.constant_speed)."""
     chain = chain_from_run(run)
@@ -102,7 +102,7 @@ def context(run: dict) -> Context:
 
 
 def one_period(run: dict, ctx: Context) -> dict:
-    """The difference method (or its rival) and the effects the scene names (timed apart, so
+    """The difference method (or its rival) and the outputs the scene names (timed apart, so
     ``core_time`` is the method's alone)."""
     opts, chain = run.get("options", {}), ctx.chain
     if ctx.polygon:

@@ -57,7 +57,7 @@ def velocity_band_rows(R):
 
 @Q.register("identification_preferred_weight", "identification_speed", "identification_stretch")
 def identified(R):
-    """What the paper's six numbers select (effect identification, :mod:`.identification`)."""
+    """What the paper's six numbers select (output identification, :mod:`.identification`)."""
     from . import identification as idf
 
     ds = R.run("identification")
