@@ -121,9 +121,9 @@ for table in ("table1", "table2", "table1_plate2d", "table2_plate2d"):
 # ## Cost of accuracy
 # Written by the framework from the config's `accuracy:` block (`tables/cost_of_accuracy.csv`),
 # against exact solutions wherever one exists: top, the stress-stiffened disk under a uniform
-# in-plane stress (−3 and +10 MPa) against its Bessel solution (effect `stressed_reference`);
+# in-plane stress (−3 and +10 MPa) against its Bessel solution (output `stressed_reference`);
 # bottom, the unrolled disk against its Bessel solution, and the 2-D model's rolled (Gaussian
-# stress) frequencies against the axisym Richardson reference (effect `rolled_reference`; its
+# stress) frequencies against the axisym Richardson reference (output `rolled_reference`; its
 # own accuracy on the unrolled frequencies is the dotted line). Time: the phases of the
 # fastest call when the runner repeats a fast run.
 
@@ -176,10 +176,10 @@ R.tabulate("design_map")
 R.figure("design_map")
 
 # %% [markdown]
-# ## What the memoised effects cost, cold and warm
+# ## What the memoised effects and outputs cost, cold and warm
 # The calibration and the exact and rolled references are pure functions of scalars,
 # memoised per process: after the first run of a batch they cost ~0 (warm, the run's own
-# `effect_time`, which `effect_cost.csv` sums). Cold is what the same effect costs with
+# `effect_time`, which `effect_cost.csv` sums). Cold is what the same one costs with
 # nothing memoised (a fresh process, or the first run).
 
 # %%
