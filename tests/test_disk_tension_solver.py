@@ -60,7 +60,7 @@ def test_unknown_effect_and_bad_parameters_fail_clearly(cfg):
     with pytest.raises(UnknownEffect, match="stress_stiffening"):
         solve(run_of(cfg, "table12", effects=["stress_stiffening"]))
     with pytest.raises(ValueError, match="needs the residual stress"):
-        # a bad inplane_bc: refused at load
+        # the eigen-analysis after rolling without the rolled stress it reads
         solve(run_of(cfg, "table12", effects=[], outputs=["eigen"]))
 
 
