@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import csv
 import functools
+import json
 from pathlib import Path
 
 import numpy as np
@@ -37,6 +38,7 @@ def _run_times(path: str) -> dict:
                "wall": float(nc["wall_time"][...]),
                "core": float(nc["core_time"][...]) if "core_time" in nc.variables else np.nan,
                "effects": {}, "calls": {}, "phases": {},
+               "outputs": set(json.loads(getattr(nc, "outputs", "[]"))),
                "rounds": (np.asarray(nc["timing_rounds"][...], float)
                           if "timing_rounds" in nc.variables else np.array([]))}
         if "effect_time" in nc.variables:
@@ -51,16 +53,18 @@ def _run_times(path: str) -> dict:
 
 
 def effect_cost(run_files) -> list[dict]:
-    """One row per (solver, effect), a ``(solver core)`` row per solver and a ``(phase)
-    <name>`` row per phase a model names (inside the core or an effect, so phases are not
-    added to the rest): the summed time over the runs that used it, how often it was
-    evaluated, and its share of those runs' wall time."""
+    """One row per (solver, effect) and per (solver, ``(output) <name>``), a ``(solver
+    core)`` row per solver and a ``(phase) <name>`` row per phase a model names (inside the
+    core, an effect or an output, so phases are not added to the rest): the summed time over
+    the runs that used it, how often it was evaluated, and its share of those runs' wall
+    time."""
     acc: dict[tuple[str, str], list[tuple]] = {}
     for f in run_files:
         t = run_times(f)
         acc.setdefault((t["solver"], "(solver core)"), []).append((t["core"], t["wall"], 1))
         for e, sec in t["effects"].items():
-            acc.setdefault((t["solver"], e), []).append((sec, t["wall"], t["calls"].get(e, np.nan)))
+            row = f"(output) {e}" if e in t["outputs"] else e
+            acc.setdefault((t["solver"], row), []).append((sec, t["wall"], t["calls"].get(e, np.nan)))
         for name, (sec, calls) in t["phases"].items():
             acc.setdefault((t["solver"], f"(phase) {name}"), []).append((sec, t["wall"], calls))
     rows = []
