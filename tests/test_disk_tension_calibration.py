@@ -6,7 +6,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mechrepro.config import declared, load_paper
+from mechrepro.config import load_paper
+from mechrepro.effects import declared
 from mechrepro.solve import solve
 from mechrepro.errors import Refusal
 from mechrepro.levels import extrapolate

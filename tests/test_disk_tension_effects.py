@@ -8,7 +8,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mechrepro.config import declared, load_paper
+from mechrepro.config import load_paper
+from mechrepro.effects import declared
 from mechrepro.models.disk_tension import EFFECTS
 from mechrepro.solve import solve
 from mechrepro.inputs import read_yaml

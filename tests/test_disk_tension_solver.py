@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 import yaml
 
-from mechrepro.config import ConfigError, declared, load_paper
+from mechrepro.config import ConfigError, load_paper
+from mechrepro.effects import declared
 from mechrepro.effects import UnknownEffect
 from mechrepro.io import check_cf
 from mechrepro.models.disk_tension import EFFECTS

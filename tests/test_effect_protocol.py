@@ -12,7 +12,7 @@ import yaml
 
 from mechrepro import effects as fx
 from mechrepro import timing
-from mechrepro.config import ConfigError, declared, discover_papers, load_all, load_paper
+from mechrepro.config import ConfigError, discover_papers, load_all, load_paper
 from mechrepro.inputs import read_yaml
 
 CONFIG = Path(__file__).resolve().parents[1] / "config"
@@ -37,7 +37,7 @@ def _load(tmp_path, raw):
 @pytest.mark.parametrize("paper", PAPERS)
 def test_every_scene_declares_a_solver_that_honours_its_effects(paper):
     raw = _raw(paper)
-    assert raw.get("solvers") and declared(raw), f"{paper}: declare solvers: and effects: or outputs:"
+    assert raw.get("solvers") and fx.declared(raw), f"{paper}: declare solvers: and effects: or outputs:"
     for name, scene in raw["scenes"].items():
         assert scene.get("solver") in raw["solvers"], f"{paper}: scene {name} names no solver"
     cfg = load_all(CONFIG, [paper])[paper]
@@ -51,7 +51,7 @@ def test_every_declared_effect_is_implemented_and_vice_versa(paper):
     import importlib
 
     registry = importlib.import_module(f"mechrepro.models.{paper}").EFFECTS
-    assert set(registry.names) == set(declared(_raw(paper)))
+    assert set(registry.names) == set(fx.declared(_raw(paper)))
 
 
 @pytest.mark.parametrize("paper", PAPERS)

@@ -4,7 +4,7 @@ built to show it."""
 import numpy as np
 import pytest
 
-from mechrepro.config import declared
+from mechrepro.effects import declared
 
 from mechrepro.models.rolling_shear import EFFECTS, SOLVERS
 

@@ -7,7 +7,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mechrepro.config import declared, load_paper
+from mechrepro.config import load_paper
+from mechrepro.effects import declared
 from mechrepro.models.saw_chain import EFFECTS
 from mechrepro.solve import solve
 from mechrepro.solve import run_solver

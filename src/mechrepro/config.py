@@ -35,6 +35,7 @@ from pathlib import Path
 
 import yaml
 
+from .effects import declared
 from .errors import Refusal
 from .limits import solve_key
 from .units import UNITS, to_si
@@ -477,19 +478,13 @@ LEVELS = {"finer": -1, "coarser": 1, "coarsest": 2}
 VARIANT_LEVEL = "coarser"
 
 
-def declared(raw: dict) -> dict[str, dict]:
-    """Every effect and output of the paper config by name (one namespace)."""
-    return {**raw.get("effects", {}), **raw.get("outputs", {})}
-
-
 def _check_effects(raw: dict, where: str) -> None:
     """The effect protocol (:mod:`mechrepro.effects`), checked before any job is planned:
     every scene names a declared solver and only effects and outputs that solver honours,
     with what they require and without what they exclude.  Never silently ignored."""
     solvers, decl = raw["solvers"], declared(raw)
-    if set(raw["effects"]) & set(raw["outputs"]):
-        raise ConfigError(f"{where}: {sorted(set(raw['effects']) & set(raw['outputs']))} "
-                          "declared both as effects and as outputs")
+    if both := sorted(set(raw["effects"]) & set(raw["outputs"])):
+        raise ConfigError(f"{where}: {both} declared both as effects and as outputs")
     for kind, name, spec in ((k, n, v) for k in ("effects", "outputs") for n, v in raw[k].items()):
         at = f"{where}: {kind}.{name}"
         for s in spec["honoured_by"]:

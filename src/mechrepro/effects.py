@@ -40,6 +40,11 @@ from .registry import Registry
 from .timing import EFFECT, OUTPUT, phase
 
 
+def declared(raw: dict) -> dict[str, dict]:
+    """Every effect and output of a paper config by name (one namespace)."""
+    return {**raw.get("effects", {}), **raw.get("outputs", {})}
+
+
 class UnknownEffect(Refusal, KeyError):
     """A scene names an effect no model registered."""
 

@@ -324,7 +324,9 @@ def missing_effects(cfg, cache_dir=None) -> list[str]:
     """A scene whose effects and outputs lack one whose contribution a reported quantity
     reads from it (an emptied list would otherwise fail in validation, after the solve
     jobs)."""
-    effects = {**cfg.raw["effects"], **cfg.raw["outputs"]}   # config.declared
+    from .effects import declared
+
+    effects = declared(cfg.raw)
     by_key = {k: e for e, spec in effects.items() for k in spec.get("contributes", [])}
     # a model may name solver outputs that exist only with an effect (not its declared
     # contributions): models/<paper>/limits.py PRODUCED_BY = {variable: effect}
