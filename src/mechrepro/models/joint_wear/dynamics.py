@@ -152,15 +152,15 @@ _WARM: set = set()     # what warm() has loaded in this process: "physics" and m
 def warm(methods=COMPILED) -> None:
     """Load (or, on a fresh clone, compile) the compiled kernels once per process, with the
     argument types the solvers use, so that a period's measured time is not numba's
-    one-time start: the physics, the quasi-static stages, Radau (constant_sensitivity steps
-    it whatever the scene names) and the other COMPILED integrators of ``methods`` (one no
-    run steps is not compiled).  Changes no result."""
+    one-time start: the physics, the quasi-static stages, the groove's balance, Radau
+    (constant_sensitivity steps it whatever the scene names) and the other COMPILED
+    integrators of ``methods`` (one no run steps is not compiled).  Changes no result."""
     if not clearance.available():
         return
     todo = [m for m in COMPILED if m in {"Radau", *methods} and m not in _WARM]
     if not todo and "physics" in _WARM:
         return
-    from . import qs_numba as q
+    from . import groove, qs_numba as q
 
     p = clearance.Params(*np.ones(len(clearance.Params._fields)))
     y, te, at = np.zeros(4), np.zeros(1), np.ones(4)
@@ -178,4 +178,5 @@ def warm(methods=COMPILED) -> None:
     q.friction(F_N, delta, m, 0.0, m, r, 1.0, 0.0, r)
     q.contact_angle(a, a)
     q.periodic_part(np.zeros((2, 2)), 2)
+    groove._solve_offset_kernel(r, m, a, a, a, m, r, m, m, 1e-6, 0, 1.0)
     _WARM.add("physics")

@@ -40,6 +40,7 @@ import math
 
 import numpy as np
 
+from mechrepro.compiled import jit
 from mechrepro.errors import Refusal
 
 from . import quasistatic
@@ -85,42 +86,86 @@ def solve_offset(F_N, psi_F, theta, depth, fb: FourBar, tol=1e-6, max_iter=60, e
         e = ((gap + delta[:, None]) / cosd).min(1)[:, None] * nF
     else:
         e = np.array(e0, float)
+    q, r, converged = _solve_offset_kernel(F_N, nF, cs, sn, gap, a, delta, F, e, tol, max_iter,
+                                           0.1 * fb.clearance)
+    if not converged:
+        res = np.hypot(r[:, 0], r[:, 1]).max()
+        raise Refusal("joint_wear: the groove's foundation balance (G3) did not converge in "
+                      f"{max_iter} Newton steps (residual {res:.3g} N)")
+    return e, k_f, q / a * k_f[:, None], delta
 
-    def state(e):
-        u = e[:, :1] * cs + e[:, 1:] * sn - gap                               # (G1)
-        q = a * np.maximum(u, 0.0)
-        energy = 0.5 * (q * np.maximum(u, 0.0)).sum(1) - (F * e).sum(1)
-        return u, q, energy, np.stack([q @ cs, q @ sn], axis=1) - F          # (G3)
 
-    u, q, energy, r = state(e)
-    lam = np.zeros(F_N.size)
+@jit
+def _state(e0, e1, cs, sn, gap, a, F0, F1, u, q):
+    """(G1) and (G3) of one sample at the offset (e0, e1): u and q written into the rows
+    given, returns the energy and the residual."""
+    w = r0 = r1 = 0.0
+    for j in range(cs.size):
+        u[j] = e0 * cs[j] + e1 * sn[j] - gap[j]                               # (G1)
+        p = max(u[j], 0.0)
+        q[j] = a[j] * p
+        w += q[j] * p
+        r0 += q[j] * cs[j]
+        r1 += q[j] * sn[j]
+    return 0.5 * w - (F0 * e0 + F1 * e1), r0 - F0, r1 - F1                    # (G3)
+
+
+@jit
+def _solve_offset_kernel(F_N, nF, cs, sn, gap, a, delta, F, e, tol, max_iter, cap0):
+    """The iteration of solve_offset from e (updated in place): (q, r, converged).  The
+    samples step together until all are balanced (a balanced one keeps stepping: when the
+    loop ends decides the numbers).  The Levenberg-Marquardt tries run per sample: a sample
+    that is not worse keeps its lam, so repeating its try while others retry would repeat
+    its step."""
+    m, n = a.shape
+    u, q = np.empty((m, n)), np.empty((m, n))
+    ut, qt = np.empty(n), np.empty(n)
+    energy, r, lam = np.empty(m), np.empty((m, 2)), np.zeros(m)
+    for i in range(m):
+        energy[i], r[i, 0], r[i, 1] = _state(e[i, 0], e[i, 1], cs, sn, gap, a[i], F[i, 0],
+                                             F[i, 1], u[i], q[i])
     for _ in range(max_iter):
-        res = np.hypot(r[:, 0], r[:, 1])
-        if np.all(res <= tol * F_N):
-            return e, k_f, q / a * k_f[:, None], delta
-        on = a * (u > 0.0)
-        h11, h12, h22 = on @ (cs * cs), on @ (cs * sn), on @ (sn * sn)
-        free = ~(h11 + h22 > 0.0)
-        lam = np.maximum(0.1 * lam, 1e-6 * (h11 + h22))  # Levenberg-Marquardt: raised where
-        for _ in range(40):              # the energy does not fall (a node or two in contact leave
-            d11, d22 = h11 + lam, h22 + lam          # the slide along the groove free)
-            det = np.where(free, 1.0, d11 * d22 - h12 * h12)
-            step = -np.stack([d22 * r[:, 0] - h12 * r[:, 1], d11 * r[:, 1] - h12 * r[:, 0]],
-                             axis=1) / det[:, None]
-            step[free] = (delta - u.max(1))[free, None] * nF[free]
-            size = np.hypot(step[:, 0], step[:, 1])
-            cap = np.maximum(0.1 * fb.clearance, 0.5 * np.hypot(e[:, 0], e[:, 1]))
-            step *= np.minimum(1.0, cap / np.maximum(size, 1e-300))[:, None]
-            trial = state(e + step)
-            worse = (~free & (trial[2] > energy + 1e-4 * (r * step).sum(1))
-                     & (res > 1e-3 * F_N))     # near the balance: full steps (round-off)
-            if not worse.any():
-                break
-            lam[worse] = np.maximum(lam[worse] * 10.0, 1e-6 * (h11 + h22)[worse])
-        e = e + step
-        u, q, energy, r = trial
-    raise Refusal("joint_wear: the groove's foundation balance (G3) did not converge in "
-                  f"{max_iter} Newton steps (residual {np.hypot(r[:, 0], r[:, 1]).max():.3g} N)")
+        converged = True
+        for i in range(m):
+            converged = converged and math.hypot(r[i, 0], r[i, 1]) <= tol * F_N[i]
+        if converged:
+            return q, r, True
+        for i in range(m):
+            res = math.hypot(r[i, 0], r[i, 1])
+            h11 = h12 = h22 = 0.0
+            umax = -math.inf
+            for j in range(n):
+                if u[i, j] > 0.0:
+                    h11 += a[i, j] * (cs[j] * cs[j])
+                    h12 += a[i, j] * (cs[j] * sn[j])
+                    h22 += a[i, j] * (sn[j] * sn[j])
+                umax = max(umax, u[i, j])
+            free = not h11 + h22 > 0.0
+            # Levenberg-Marquardt: raised where the energy does not fall (a node or two in
+            # contact leave the slide along the groove free)
+            lam[i] = max(0.1 * lam[i], 1e-6 * (h11 + h22))
+            for _ in range(40):
+                if free:
+                    s0, s1 = (delta[i] - umax) * nF[i, 0], (delta[i] - umax) * nF[i, 1]
+                else:
+                    d11, d22 = h11 + lam[i], h22 + lam[i]
+                    det = d11 * d22 - h12 * h12
+                    s0 = -(d22 * r[i, 0] - h12 * r[i, 1]) / det
+                    s1 = -(d11 * r[i, 1] - h12 * r[i, 0]) / det
+                cap = max(cap0, 0.5 * math.hypot(e[i, 0], e[i, 1]))
+                f = min(1.0, cap / max(math.hypot(s0, s1), 1e-300))
+                s0, s1 = s0 * f, s1 * f
+                et, rt0, rt1 = _state(e[i, 0] + s0, e[i, 1] + s1, cs, sn, gap, a[i], F[i, 0],
+                                      F[i, 1], ut, qt)
+                worse = (not free and et > energy[i] + 1e-4 * (r[i, 0] * s0 + r[i, 1] * s1)
+                         and res > 1e-3 * F_N[i])     # near the balance: full steps (round-off)
+                if not worse:
+                    break
+                lam[i] = max(lam[i] * 10.0, 1e-6 * (h11 + h22))
+            e[i, 0], e[i, 1] = e[i, 0] + s0, e[i, 1] + s1
+            u[i], q[i] = ut, qt
+            energy[i], r[i, 0], r[i, 1] = et, rt0, rt1
+    return q, r, False
 
 
 def period(fb: FourBar, n_steps: int, theta, depth) -> dict:
