@@ -194,9 +194,6 @@ class PaperConfig:
         runs = set(runs)
         return [s for s, members in self.studies.items() if set(members) <= runs]
 
-    def runs_of(self, study: str | None = None) -> list[str]:
-        return self.studies[study] if study else list(self.runs)
-
     def for_artefacts(self, artefacts, together=()) -> "PaperConfig":
         """This paper cut down to the verdict rows of some figures or tables and the runs
         those rows read: their baselines and the variants that re-check exactly these rows

@@ -199,8 +199,6 @@ def measurements(results: str | Path, config_dir: str | Path = "config",
     seconds per work term (:func:`fit`) from every run file whose record is today's (its
     ``wall_time_s``, or every solve of an accuracy target), and per paper the job start, the
     most any of its solve jobs spent beyond its runs' measured compute."""
-    import json
-
     import netCDF4
 
     from .config import discover_papers, load_paper

@@ -28,18 +28,13 @@ import sys
 from collections.abc import Callable
 from pathlib import Path
 
+# the rows of a result table, as dicts (what the papers' docs blocks read)
+from .validation import read_table as table_rows
+
 # <!-- run:NAME --> or <!-- run:NAME ARG ARG --> (a block given arguments: notes q1 q2)
 BLOCK = re.compile(r"<!-- run:(\w+)((?: [\w.]+)*) -->.*?<!-- /run:\1 -->", flags=re.S)
 BLOCK_NAME = re.compile(r"<!-- run:(\w+)[ \w.]* -->")
 VERDICTS = ("pass", "fail", "inconclusive", "not_converged")
-
-
-def table_rows(path: Path) -> list[dict]:
-    """The rows of a result table, as dicts (what the papers' docs blocks read)."""
-    import csv
-
-    with open(path, newline="") as fh:
-        return list(csv.DictReader(fh))
 
 
 def number(x, digits: int = 4) -> str:
@@ -129,9 +124,7 @@ def job_times(results: Path, config_dir: Path = Path("config")) -> str:
     view = time_view(results, _papers(config_dir))
     if view is None:
         return "(no job times in this run)"
-    return "\n".join(["| " + " | ".join(view["head"]) + " |",
-                      "|" + "---|" * len(view["head"])]
-                     + ["| " + " | ".join(r) + " |" for r in view["rows"]])
+    return markdown(view["head"], view["rows"])
 
 
 def knobs(results: Path, config_dir: Path = Path("config")) -> str:
@@ -148,7 +141,7 @@ def knobs(results: Path, config_dir: Path = Path("config")) -> str:
             continue
         for k, v in run.get("resolution", {}).items():
             used.setdefault(k, set()).add(json.dumps(v))
-    out = ["| knob | what it is | allowed | per level (coarser: ÷) | default profile |", "|---|---|---|---|---|"]
+    rows = []
     for key, spec in cfg.raw.get("refine", {}).items():
         a = spec["allowed"]
         rng = (", ".join(map(str, a["enum"])) if "enum" in a else
@@ -157,13 +150,11 @@ def knobs(results: Path, config_dir: Path = Path("config")) -> str:
         how = (f"× {spec['factor']:g}" if "factor" in spec else "fixed: " + spec["fixed"])
         if spec.get("why"):
             how += f" ({spec['why']})"
-        vals = sorted(used.get(key, ()), key=lambda v: (len(v), v))
-        vals = [v.strip('"') for v in vals]
+        vals = [v.strip('"') for v in sorted(used.get(key, ()), key=lambda v: (len(v), v))]
         shown = ", ".join(vals[:6]) + (f" … ({len(vals)} values)" if len(vals) > 6 else "")
-        cell = lambda t: " ".join(str(t).split()).replace("|", "/")
-        out.append(f"| `{key}` | {cell(spec['description'])} | {cell(rng)} | {cell(how)} | "
-                   f"{cell(shown) or 'not used'} |")
-    return "\n".join(out)
+        rows.append([f"`{key}`", spec["description"], rng, how, shown or "not used"])
+    return markdown(["knob", "what it is", "allowed", "per level (coarser: ÷)", "default profile"],
+                    rows)
 
 
 def markdown(header, rows) -> str:

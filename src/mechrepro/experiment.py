@@ -161,8 +161,8 @@ def prepare(name: str, sets: list[str], base: Path = Path("."), profile: str | N
     exp = base / "experiments" / name
     if exp.exists():
         raise ConfigError(f"experiment {name!r} exists ({exp}); remove it or choose another name")
-    tmp = Path(tempfile.mkdtemp(prefix=f".{name}.", dir=base / "experiments"
-                                if (base / "experiments").is_dir() else _mk(base / "experiments")))
+    (base / "experiments").mkdir(parents=True, exist_ok=True)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{name}.", dir=base / "experiments"))
     try:
         (tmp / "config" / "papers").mkdir(parents=True)
         for item in LINKED:
@@ -214,11 +214,6 @@ def prepare(name: str, sets: list[str], base: Path = Path("."), profile: str | N
         shutil.rmtree(tmp, ignore_errors=True)
         raise
     return exp, record
-
-
-def _mk(p: Path) -> Path:
-    p.mkdir(parents=True, exist_ok=True)
-    return p
 
 
 def _record(exp: Path, record: dict, **changes) -> None:
@@ -349,19 +344,14 @@ def _data_differs(a: Path, b: Path) -> bool:
     if a.exists() and b.exists() and (os.path.samefile(a, b) or filecmp.cmp(a, b, shallow=False)):
         return False
     with open_dataset(a) as x, open_dataset(b) as y:
-        names = set(x.data_vars) | set(y.data_vars)
-        for v in names:
+        for v in set(x.data_vars) | set(y.data_vars):
             if _is_timing(x.get(v, y.get(v))):
                 continue   # timings differ on every run
             if v not in x or v not in y:
                 return True
             p, q = x[v].values, y[v].values
-            if p.shape != q.shape:
-                return True
-            if p.dtype.kind in "fc":
-                if not np.allclose(p, q, rtol=1e-12, atol=0.0, equal_nan=True):
-                    return True
-            elif not np.array_equal(p, q):
+            if p.shape != q.shape or not (np.allclose(p, q, rtol=1e-12, atol=0.0, equal_nan=True)
+                                          if p.dtype.kind in "fc" else np.array_equal(p, q)):
                 return True
     return False
 
@@ -417,7 +407,6 @@ def _diff(a: Path, b: Path, reference: Path, profile: str) -> dict:
     papers = sorted(set(ca) | set(cb))
     out = {"a": str(a), "b": str(b), "papers": {}}
     for paper in papers:
-        d: dict = {}
         pa, pb = _run_parameters(a, paper), _run_parameters(b, paper)
         params = {}
         for run in sorted(set(pa) & set(pb)):
@@ -447,11 +436,9 @@ def _diff(a: Path, b: Path, reference: Path, profile: str) -> dict:
         changed = sorted((runs_a ^ runs_b) | {n for n in runs_a & runs_b
                                               if _data_differs(a / paper / "runs" / n, b / paper / "runs" / n)})
         figures = sorted(f.name for f in (b / paper / "figures").glob("*.png")) if changed else []
-        claim = {}
-        if (ca.get(paper) or {}).get("independent") != (cb.get(paper) or {}).get("independent") or \
-                (ca.get(paper) or {}).get("claim") != (cb.get(paper) or {}).get("claim"):
-            claim = {"a": {k: (ca.get(paper) or {}).get(k) for k in ("claim", "independent")},
-                     "b": {k: (cb.get(paper) or {}).get(k) for k in ("claim", "independent")}}
+        claim = {side: {k: (c.get(paper) or {}).get(k) for k in ("claim", "independent")}
+                 for side, c in (("a", ca), ("b", cb))}
+        claim = claim if claim["a"] != claim["b"] else {}
         d = {"parameters": params, "rows": rows, "claim": claim, "runs_changed": changed,
              "figures_changed": figures, "time": {"a": _time(a, paper), "b": _time(b, paper)}}
         if params or rows or claim or changed:

@@ -160,9 +160,8 @@ def inspect(results: str | Path, workdir: str | Path = "."):
                     reverted.append(f)
                 else:
                     remove.append((f, "content differs from what its job wrote (checksum)"))
-            else:
-                if st.st_mtime_ns != rec["mtime_ns"]:
-                    restore.append(f)
+            elif st.st_mtime_ns != rec["mtime_ns"]:
+                restore.append(f)
             continue
         # no record: a result of an older version of the writer
         if manifest is None:
@@ -267,16 +266,18 @@ def read_only(results: str | Path, workdir: str | Path = ".", run: bool = True) 
     return None
 
 
+def _not_a_run(argv: list[str] | None) -> bool:
+    """Whether the Snakemake command line (default: this process's) runs no job."""
+    return any(a.split("=")[0] in NOT_A_RUN for a in (sys.argv[1:] if argv is None else argv))
+
+
 def refuse_read_only(workflow, results: str, argv: list[str] | None = None) -> None:
     """Called while Snakemake parses the workflow, before anything is written: a read-only
     project stops here with one line (:func:`read_only`), not a traceback from Snakemake's
     lock directory or from the first job.  A dry run needs only ``.snakemake/``."""
-    argv = sys.argv[1:] if argv is None else argv
     if workflow.exec_mode.name != "DEFAULT":
         return
-    run = not (workflow.output_settings.dryrun or any(a.split("=")[0] in NOT_A_RUN
-                                                        for a in argv))
-    msg = read_only(results, run=run)
+    msg = read_only(results, run=not (workflow.output_settings.dryrun or _not_a_run(argv)))
     if msg:
         sys.stderr.write(f"\n{msg}\n\n")
         raise SystemExit(1)
@@ -286,9 +287,7 @@ def heal_workflow(workflow, results: str, argv: list[str] | None = None) -> None
     """Called while Snakemake parses the workflow: heal the results before the jobs are
     decided, in the main process of a run only (not in a dry run, an ``--unlock``, a
     cluster job, ...).  A run in progress on the same results stops this one here."""
-    argv = sys.argv[1:] if argv is None else argv
-    if workflow.exec_mode.name != "DEFAULT" or workflow.output_settings.dryrun \
-            or any(a.split("=")[0] in NOT_A_RUN for a in argv):
+    if workflow.exec_mode.name != "DEFAULT" or workflow.output_settings.dryrun or _not_a_run(argv):
         return
     try:
         for line in heal(results):
@@ -316,10 +315,8 @@ def steer_workflow(workflow, jobs, results: str, table: str,
     stale jobs first and to restrict the DAG's jobs that may run to those rules after
     (every rule stays in the DAG, so a target made by another is still found)."""
 
-    argv = sys.argv[1:] if argv is None else argv
     dry = workflow.output_settings.dryrun
-    if workflow.exec_mode.name != "DEFAULT" or (
-            not dry and any(a.split("=")[0] in NOT_A_RUN for a in argv)):
+    if workflow.exec_mode.name != "DEFAULT" or (not dry and _not_a_run(argv)):
         return
     prepare = workflow._prepare_dag
 

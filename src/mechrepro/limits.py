@@ -254,7 +254,6 @@ def _extractor_reads(paper: str) -> dict[str, list[tuple[str, str, str, int]]]:
     function called with ``ds`` (read the same way, transitively).  What it cannot see it
     leaves out (no refusal), so it never refuses a config whose validation works."""
     import ast
-    from pathlib import Path
 
     path = Path(__file__).parent / "models" / paper / "validation.py"
     try:
@@ -314,9 +313,7 @@ def _extractor_reads(paper: str) -> dict[str, list[tuple[str, str, str, int]]]:
                  and isinstance(d.func, ast.Attribute) and d.func.attr == "register"
                  for a in d.args]
         if names and None not in names:
-            found = reads(fn, {})
-            for q in names:
-                out[q] = found
+            out.update(dict.fromkeys(names, reads(fn, {})))
     return out
 
 

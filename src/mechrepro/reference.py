@@ -58,9 +58,7 @@ def settings(config_dir: str | Path) -> dict:
 
 
 def variant_env(spec: dict) -> dict:
-    env = dict(os.environ)
-    env.update({k: str(v) for k, v in spec.get("env", {}).items()})
-    return env
+    return {**os.environ, **{k: str(v) for k, v in spec.get("env", {}).items()}}
 
 
 def measure(profile: str, papers: list[str], workdir: str | Path, config_dir: str | Path,
@@ -120,10 +118,8 @@ def _values(path: Path) -> dict[str, tuple[float, str, str]]:
 
 
 def _basis(cfg) -> dict[str, str]:
-    out = {}
-    for q, spec in cfg.reported.items():
-        out[q] = ("timing" if spec.get("timing") else spec.get("drift", "value"))
-    return out
+    return {q: "timing" if spec.get("timing") else spec.get("drift", "value")
+            for q, spec in cfg.reported.items()}
 
 
 # modules that only present or book-keep results (a change there changes no value); any
@@ -206,10 +202,8 @@ def derive(results: dict[str, Path], reference_dir: str | Path, config_dir: str 
             spread = max([abs(x - value) for x, _ in others.values()
                           if not (math.isnan(x) and math.isnan(value))]
                          + ([] if math.isnan(carried) else [carried]), default=0.0)
-            if b == "value" and not math.isnan(value):
-                tol = max(safety * spread, floor * abs(value))
-            else:
-                tol = math.nan
+            tol = (max(safety * spread, floor * abs(value))
+                   if b == "value" and not math.isnan(value) else math.nan)
             w.writerow([q, repr(value), status, b, repr(spread), repr(tol),
                         " ".join(others), evidence, inputs])
         write_text(out, buf.getvalue(), record=False)
@@ -224,11 +218,8 @@ def compare(current: dict[str, tuple[float, str, str]], ref_rows: list[dict], wh
             ) -> list[str]:
     """Readable differences between a validation table and its reference."""
     ref = {r["quantity"]: r for r in ref_rows}
-    problems = []
-    for q in sorted(set(ref) - set(current)):
-        problems.append(f"  {q}: in reference, missing now")
-    for q in sorted(set(current) - set(ref)):
-        problems.append(f"  {q}: new quantity, not in reference")
+    problems = [f"  {q}: in reference, missing now" for q in sorted(set(ref) - set(current))]
+    problems += [f"  {q}: new quantity, not in reference" for q in sorted(set(current) - set(ref))]
     for i, (q, r) in enumerate(ref.items(), 2):
         if q not in current:
             continue
@@ -277,9 +268,8 @@ def profiles_agree(reference_dir: str | Path, paper: str, config_dir: str | Path
                     if a[q] != b[q] and not (a[q] in undecided and b[q] in ("pass", "fail")))
     if not differ:
         return []
-    reported = {}
-    if config_dir is not None:
-        reported = load_paper(Path(config_dir) / "papers" / f"{paper}.yaml").reported
+    reported = (load_paper(Path(config_dir) / "papers" / f"{paper}.yaml").reported
+                if config_dir is not None else {})
     return [f"  {q}: verdict {a[q]} in {files['ci']}, {b[q]} in {files['default']} (the "
             f"profiles disagree; fix it, or say why in reported.{q}.profile_differs_why)"
             for q in differ if not (reported.get(q) or {}).get("profile_differs_why")]

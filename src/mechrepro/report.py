@@ -18,6 +18,7 @@ from pathlib import Path
 from .config import CACHE_DIR, load_paper
 from .io import write_text
 from .provenance import code_version
+from .validation import artefact_verdicts, read_table
 
 VERDICTS = ("pass", "fail", "inconclusive", "not_converged")
 #: the failure mark of a run that did not complete, in the results directory
@@ -152,8 +153,6 @@ def claim_sentence(claim: dict, rows: list[dict]) -> str:
             return f"{m} of {rows_n} row{'s' * (rows_n != 1)} {k if m == 1 else word}"
         return ", ".join(f"{c[s]} {s.replace('_', ' ')}" for s in VERDICTS if c.get(s))
 
-    from .validation import artefact_verdicts
-
     for key, arts in artefact_verdicts(rows).items():
         if arts:
             word = {"agree": "agrees on", "disagree": "disagrees on"}.get(key, "not settled on")
@@ -177,8 +176,7 @@ def paper_view(paper: str, results: Path, config_dir: Path, profile: str, out_di
     cfg = load_paper(config_dir / "papers" / f"{paper}.yaml", profile, CACHE_DIR)
     root = results / paper
     claim = json.loads((root / "claim.json").read_text())
-    with open(root / "tables" / "validation.csv", newline="") as f:
-        rows = list(csv.DictReader(f))
+    rows = read_table(root / "tables" / "validation.csv")
     reported = cfg.reported
     artefacts: dict[str, dict] = {}
     for fig in cfg.figures:
@@ -222,8 +220,7 @@ def verification_sentence(path: Path) -> str:
     """What verification costs and what it decides, in one sentence (verification_cost.csv)."""
     if not path.exists():
         return ""
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
+    rows = read_table(path)
     checks = [r for r in rows if r["kind"] not in ("baseline", "ablation")]
     base = sum(float(r["solve_s"]) for r in rows if r["kind"] == "baseline")
     spent = sum(float(r["solve_s"]) for r in checks)
@@ -245,8 +242,7 @@ def matrix_view(path: Path, rivals: dict) -> dict | None:
     and the physics the row tests (what the rivals that credit it remove)."""
     if not path.exists() or not rivals:
         return None
-    with open(path, newline="") as f:
-        long = list(csv.DictReader(f))
+    long = read_table(path)
     sledge = {r["rival"] for r in long if r["sledgehammer"] == "True"}
     rows: dict[str, dict] = {}
     for r in long:

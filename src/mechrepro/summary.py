@@ -58,8 +58,7 @@ def write_summary(png: str, csv: str, results: str, config_dir: str, papers: lis
     from .plotting import plt, savefig
 
     results, config_dir = Path(results), Path(config_dir)
-    table = rows(results, config_dir, papers, profile)
-    write_csv(csv, COLUMNS, [[r[c] for c in COLUMNS] for r in table])
+    write_csv(csv, COLUMNS, rows(results, config_dir, papers, profile))
     fig, ax = plt.subplots(figsize=(7.5, 5))
     for paper in with_accuracy(config_dir, papers):
         h = headline(results, paper)

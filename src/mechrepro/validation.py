@@ -227,6 +227,9 @@ class Row:
     def __post_init__(self):
         self.evidence = self.evidence or self.spec["evidence"]
 
+    def add_note(self, text: str) -> None:
+        self.note = " ".join(x for x in (self.note, text) if x)
+
     @property
     def kind(self) -> str:
         return self.spec["kind"]
@@ -423,8 +426,7 @@ def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]
         if numeric:
             coarsest = levels["coarsest"][2] if "coarsest" in levels else math.nan
             if "coarsest" not in levels:
-                row.note = " ".join(x for x in (row.note, f"No coarsest level "
-                                                f"({_skipped_why(cfg, 'coarsest', spec)}).") if x)
+                row.add_note(f"No coarsest level ({_skipped_why(cfg, 'coarsest', spec)}).")
             ratio, width, own = _level_ratio(cfg, spec), band(spec, row.value), float(r.error or 0.0)
             e, row.order, converged, how = level_error(coarsest, levels["coarser"][2], row.value,
                                                        ratio, width, own)
@@ -450,18 +452,15 @@ def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]
                 fine, row.value = row.value, levels["coarser"][2]
                 e = abs(row.value - fine) + e
                 how = f"{how}; the baseline {fine:.6g} is the level above this coarser value"
-                row.note = " ".join(x for x in (row.note, f"The baseline is the middle level: "
-                                                f"the value is the coarser level's, the baseline "
-                                                f"run one level finer ({spec['finer_why']}).")
-                                    if x)
+                row.add_note(f"The baseline is the middle level: the value is the coarser "
+                             f"level's, the baseline run one level finer ({spec['finer_why']}).")
                 if verdict(spec, fine) != verdict(spec, row.value):
                     flips.append(f"{verdict(spec, fine)} one level finer (the baseline run): "
                                  f"{_fmt_short(fine)}")
                 base_status = row.status = verdict(spec, row.value)
             elif spec["evidence"] == "independent" and converged:
                 why = _skipped_why(cfg, "finer", spec)
-                row.note = " ".join(x for x in (row.note, f"Levels on one side only: no run "
-                                                f"one level finer ({why}).") if x)
+                row.add_note(f"Levels on one side only: no run one level finer ({why}).")
             error += e
         else:
             # a worded claim has no error bar: it must hold at every level
@@ -489,9 +488,8 @@ def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]
             flipped = [c for c in members if c[3] != base_status]
             dist = _distribution([c[2] for c in members]) if numeric else ""
             out = f", {len(excluded)} refused by the model" if excluded else ""
-            row.note = " ".join(x for x in (row.note, f"Family {name} ({len(members)} members"
-                                            f"{out}): {dist}{'; ' if dist else ''}"
-                                            f"{len(flipped)} flip the verdict.") if x)
+            row.add_note(f"Family {name} ({len(members)} members{out}): {dist}"
+                         f"{'; ' if dist else ''}{len(flipped)} flip the verdict.")
             flips += [f"{c[3]} {c[4]}: {_fmt_short(c[2])}" for c in flipped[:3]]
             if len(flipped) > 3:
                 flips.append(f"and {len(flipped) - 3} more members of {name}")
@@ -508,7 +506,7 @@ def _row(cfg, q: str, spec: dict, r: Reproduced, variants: dict[str, Reproduced]
         if why:
             row.flips = [why]
     if how and numeric and converged and error:
-        row.note = " ".join(x for x in (row.note, f"Error estimate {error:.3g} ({how}).") if x)
+        row.add_note(f"Error estimate {error:.3g} ({how}).")
     for c in by_kind.get("rival", []):
         at = _level_of(info, c[0], spec)
         ref = levels.get(at)[3] if at and at in levels else base_status if not at else None
@@ -560,8 +558,7 @@ def grade_rivals(rows: list[Row]) -> None:
                f"{', '.join(str(sledge[n]) for n in by)} of {len(passes)} counted passes) "
                f"fail{'s' * (len(by) == 1)} it" if by else
                "no rival of the paper is declared" if not r.rivals else "no rival fails it")
-        r.note = " ".join(x for x in (r.note, f"[not discriminating] reproduced, not counted: "
-                                      f"{why}.") if x)
+        r.add_note(f"[not discriminating] reproduced, not counted: {why}.")
 
 
 def discrimination(cfg, rows: list[Row]) -> list[list]:
@@ -617,18 +614,8 @@ def _fmt_short(x) -> str:
     return str(bool(x)).lower() if isinstance(x, bool) else f"{float(x):.6g}"
 
 
-def table_text(rows: list[Row]) -> str:
-    buf = io.StringIO()
-    w = csv.writer(buf, lineterminator="\n")
-    w.writerow(COLUMNS)
-    for r in rows:
-        w.writerow(r.cells())
-    return buf.getvalue()
-
-
 def write_table(rows: list[Row], path: str | Path) -> Path:
-    write_text(path, table_text(rows))
-    return Path(path)
+    return write_csv(path, COLUMNS, [r.cells() for r in rows])
 
 
 def counts(rows) -> dict[str, dict[str, int]]:
@@ -768,8 +755,7 @@ def validate(paper: str, results_dir: str, config_file: str, profile: str) -> li
         write_costs(cfg, results_dir, files)
         from . import costs
         write_csv(root / "tables" / "verification_cost.csv", costs.VERIFICATION_COLUMNS,
-                  [[r[c] for c in costs.VERIFICATION_COLUMNS]
-                   for r in costs.verification(root, cfg, rows)])
+                  costs.verification(root, cfg, rows))
     return rows
 
 
@@ -820,41 +806,34 @@ def write_costs(cfg, results_dir: str, files: ResultFiles | None = None) -> None
             kind = "studies" if name in cfg.studies else "runs"
             return files(root / kind / f"{name}.nc")
 
-        table = accuracy.rows(cfg.raw["accuracy"], dataset, quantities)
         write_csv(root / "tables" / "cost_of_accuracy.csv", accuracy.COLUMNS,
-                  [[r[c] for c in accuracy.COLUMNS] for r in table])
-    ec = costs.effect_cost([root / "runs" / f"{r}.nc" for r in cfg.runs])   # variants too
+                  accuracy.rows(cfg.raw["accuracy"], dataset, quantities))
     write_csv(root / "tables" / "effect_cost.csv", costs.EFFECT_COST_COLUMNS,
-              [[r[c] for c in costs.EFFECT_COST_COLUMNS] for r in ec])
+              costs.effect_cost([root / "runs" / f"{r}.nc" for r in cfg.runs]))   # variants too
     if cfg.ablations:
-        mc = costs.marginal(root, cfg.ablations)
         write_csv(root / "tables" / "effect_marginal_cost.csv", costs.MARGINAL_COLUMNS,
-                  [[r[c] for c in costs.MARGINAL_COLUMNS] for r in mc])
+                  costs.marginal(root, cfg.ablations))
     from .limits import job_costs
 
-    jt = costs.job_time(root, cfg.solve_jobs(), {j: c["seconds"] for j, c in job_costs(cfg).items()})
-    write_csv(root / "tables" / "job_time.csv", costs.JOB_TIME_COLUMNS,
-              [[r[c] for c in costs.JOB_TIME_COLUMNS] for r in jt])
-    targets = accuracy.target_rows(cfg, root)
-    if targets:
-        write_csv(root / "tables" / "accuracy_targets.csv", accuracy.TARGET_COLUMNS,
-                  [[r[c] for c in accuracy.TARGET_COLUMNS] for r in targets])
+    write_csv(root / "tables" / "job_time.csv", costs.JOB_TIME_COLUMNS, costs.job_time(
+        root, cfg.solve_jobs(), {j: c["seconds"] for j, c in job_costs(cfg).items()}))
+    if targets := accuracy.target_rows(cfg, root):
+        write_csv(root / "tables" / "accuracy_targets.csv", accuracy.TARGET_COLUMNS, targets)
 
 
 def read_table(path: str | Path) -> list[dict]:
     """Rows of a validation.csv (or any result table) as dicts, with a readable error."""
-    path = Path(path)
     with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
-    return rows
+        return list(csv.DictReader(f))
 
 
-def write_csv(path: str | Path, header: list[str], rows: list[list]) -> Path:
-    """Any other table of a paper (Table 1, Table II ...), same atomic writer."""
+def write_csv(path: str | Path, header: list[str], rows: list[list] | list[dict]) -> Path:
+    """Any other table of a paper (Table 1, Table II ...), same atomic writer; a row is a
+    list of cells or a dict holding the header's keys."""
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(header)
-    for r in rows:
-        w.writerow([_fmt(x) if isinstance(x, float) else x for x in r])
+    w.writerows([_fmt(x) if isinstance(x, float) else x
+                 for x in ([r[c] for c in header] if isinstance(r, dict) else r)] for r in rows)
     write_text(path, buf.getvalue())
     return Path(path)

@@ -6,8 +6,6 @@ import re
 import sys
 from pathlib import Path
 
-from snakemake.utils import validate
-
 # Paths relative to the working directory, so that a moved or copied project (results
 # included) schedules nothing: Snakemake compares the set of input paths of every job.
 BASE = Path(os.path.relpath(workflow.basedir))
@@ -31,8 +29,6 @@ PAPERS = config["papers"]
 # The cross-paper report and archive of a run of some papers go beside the full ones
 # (`report-saw_chain/`), so `--config papers=[saw_chain]` never replaces the five-paper
 # report or its archive.
-import yaml  # noqa: E402
-
 _ALL = workflow_config(BASE / "config/config.yaml")["papers"]
 _TAG = "" if sorted(PAPERS) == sorted(_ALL) else "-" + "+".join(PAPERS)
 REPORT = f"{RESULTS}/report{_TAG}"
@@ -82,8 +78,7 @@ def code(*relpaths):
     """Source files a job imports (Snakemake does not track imported modules): their
     bytes are part of what made its results (mechrepro.staleness), never their times."""
     out = []
-    relpaths = (*CORE, *relpaths)
-    for rel in relpaths:
+    for rel in (*CORE, *relpaths):
         p = SRC / "mechrepro" / rel
         out += sorted(str(f) for f in p.rglob("*.py")) if p.is_dir() else [str(p)]
     # a model's load-time limits (models/<paper>/limits.py) are read by the workflow

@@ -12,7 +12,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from mechrepro.docs import number as _g
-from mechrepro.docs import table_rows as _rows
+from mechrepro.docs import markdown, table_rows as _rows
 
 
 def discrete_peaks(root: Path) -> str:
@@ -32,14 +32,11 @@ def discrete_peaks(root: Path) -> str:
 def string_vs_discrete(root: Path) -> str:
     """The cost-of-accuracy entries that measure the string against the discrete span:
     per scheme (line) and points per pitch, the error and the string's own time."""
-    rows = [r for r in _rows(root / "tables" / "cost_of_accuracy.csv")
-            if r["accuracy"].startswith("string_vs_discrete")]
-    out = ["| entry | quantity | scheme | points per pitch | error | string time [s] |",
-           "|---|---|---|---|---|---|"]
-    for r in rows:
-        out.append(f"| {r['accuracy']} | {r['quantity']} | {r['line'] or '—'} | "
-                   f"{r['knob_value']} | {float(r['error']):.3g} | {float(r['time_s']):.2g} |")
-    return "\n".join(out)
+    return markdown(["entry", "quantity", "scheme", "points per pitch", "error", "string time [s]"],
+                    [[r["accuracy"], r["quantity"], r["line"] or "—", r["knob_value"],
+                      f"{float(r['error']):.3g}", f"{float(r['time_s']):.2g}"]
+                     for r in _rows(root / "tables" / "cost_of_accuracy.csv")
+                     if r["accuracy"].startswith("string_vs_discrete")])
 
 
 BLOCKS = {"discrete_peaks": discrete_peaks, "string_vs_discrete": string_vs_discrete}
