@@ -51,9 +51,6 @@ NOT_A_RUN = {"-n", "--dry-run", "--dryrun", "--unlock", "--lint", "-t", "--touch
              "--print-compilation", "--help", "-h", "--version", "-v"}
 
 
-# an archive's own outputs (rules/report.smk), recorded from its manifest after a restore
-
-
 class RunInProgress(RuntimeError):
     pass
 
