@@ -145,6 +145,8 @@ def test_outputs_come_after_every_effect_and_are_timed_apart():
     assert calls == ["load", "drag", "ref"]
     assert set(timer.phases) == {"effect:load", "effect:drag", "output:ref"}
     assert set(timer.effects()) == {"load", "drag", "ref"}
+    with pytest.raises(fx.ContributionError, match="demo: output 'ref' returned"):
+        reg.stages({"effects": [], "outputs": ["ref"], "contributes": {"ref": ["x"]}}, None)()
 
 
 def test_timed_run_keeps_the_phases_of_the_fastest_call():

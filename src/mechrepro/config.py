@@ -674,7 +674,7 @@ def _variant_names(spec: dict, raw: dict | None = None) -> list[str]:
     families = (raw or {}).get("families", {})
     for p in spec.get("depends_on", []):
         if p in families:
-            out += _family_members(p, families[p], raw)
+            out += _family_members(p, families[p])
         else:
             out += [f"{p}-lo", f"{p}-hi"]
     if spec.get("evidence") == "independent":
@@ -690,7 +690,7 @@ def rivals_of(spec: dict, raw: dict | None) -> list[str]:
     return [r for r in declared if r in spec["rivals"]] if "rivals" in spec else declared
 
 
-def _family_members(name: str, fam: dict, raw: dict) -> list[str]:
+def _family_members(name: str, fam: dict) -> list[str]:
     n = len(fam["members"])
     corners = [f"{name}-c{i:02d}" for i in range(2 ** n)] if fam.get("corners", True) else []
     return corners + [f"{name}-s{i:02d}" for i in range(int(fam.get("samples", 0)))]

@@ -50,7 +50,7 @@ class UnknownEffect(Refusal, KeyError):
 
 
 class ContributionError(Refusal):
-    """An effect returned keys its declaration does not contribute."""
+    """An effect or output returned keys its declaration does not contribute."""
 
 
 class Contributions:
@@ -147,7 +147,7 @@ class Stages:
                 values = fn(self.ctx)
             if name in declared and set(values) - set(declared[name]):
                 raise ContributionError(
-                    f"{self.registry.paper}: effect {name!r} returned {sorted(values)}; its "
-                    f"declaration contributes {declared[name]}")
+                    f"{self.registry.paper}: {kind.rstrip(':')} {name!r} returned "
+                    f"{sorted(values)}; its declaration contributes {declared[name]}")
             out.add(name, values)
         return out
